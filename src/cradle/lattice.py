@@ -1,0 +1,87 @@
+"""Newton's cradle lattice (nc) with the Hertz contact potential V0 (vhertz).
+
+    d^2 x_n / dt^2 + x_n = V'(x_{n+1} - x_n) - V'(x_n - x_{n-1})          (nc)
+
+with V = V0, V0(x) = |x|^(1+alpha) H(-x) / (1+alpha) for any alpha > 1.
+Bead index n runs 0..N-1. Bond n joins beads n and n+1 and carries the
+force f_n = V0'(x_{n+1} - x_n) <= 0 (zero when the beads are apart).
+
+Boundary conditions:
+  * ``periodic``: x_N = x_0 (a closed ring, section 4 of the paper);
+  * ``free``: beads 0 and N-1 have one neighbour; bond N-1 is absent and its
+    force is reported as 0 (figure fini).
+
+All functions take arrays whose last axis is n, so they work on one state
+(shape (N,)) or on a stored trajectory (shape (T, N)).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+BOUNDARY_CONDITIONS = ("periodic", "free")
+
+
+def check_alpha(alpha: float) -> float:
+    """Return ``alpha`` as a float, or raise if the Hertz exponent is not > 1."""
+    alpha = float(alpha)
+    if not np.isfinite(alpha) or alpha <= 1.0:
+        raise ValueError(f"alpha must be > 1 (vhertz), got alpha={alpha!r}")
+    return alpha
+
+
+def check_bc(bc: str) -> str:
+    """Return ``bc`` or raise if it is not a known boundary condition."""
+    if bc not in BOUNDARY_CONDITIONS:
+        raise ValueError(f"bc must be one of {BOUNDARY_CONDITIONS}, got bc={bc!r}")
+    return bc
+
+
+def V0(d, alpha: float):
+    """Hertz potential V0(d) = |d|^(1+alpha) H(-d) / (1+alpha)   (vhertz)."""
+    c = np.maximum(-np.asarray(d, dtype=float), 0.0)
+    return c ** (1.0 + alpha) / (1.0 + alpha)
+
+
+def dV0(d, alpha: float):
+    """Hertz force V0'(d) = -|d|^alpha H(-d)   (vhertzd)."""
+    c = np.maximum(-np.asarray(d, dtype=float), 0.0)
+    return -(c**alpha)
+
+
+def bond_elongations(x, bc: str = "periodic"):
+    """d_n = x_{n+1} - x_n for n = 0..N-1; with free ends d_{N-1} = 0 (no bond)."""
+    x = np.asarray(x, dtype=float)
+    d = np.roll(x, -1, axis=-1) - x
+    if check_bc(bc) == "free":
+        d[..., -1] = 0.0
+    return d
+
+
+def bond_forces(x, alpha: float, bc: str = "periodic"):
+    """Contact forces f_n = V0'(x_{n+1} - x_n) on every bond (0 on a missing bond)."""
+    return dV0(bond_elongations(x, bc), alpha)
+
+
+def acceleration(x, alpha: float, bc: str = "periodic"):
+    """Right-hand side of (nc): -x_n + f_n - f_{n-1}."""
+    f = bond_forces(x, alpha, bc)
+    f_left = np.roll(f, 1, axis=-1)
+    if bc == "free":
+        f_left[..., 0] = 0.0
+    return -np.asarray(x, dtype=float) + f - f_left
+
+
+def hamiltonian(x, v, alpha: float, bc: str = "periodic"):
+    """Total energy (ham): sum_n v_n^2/2 + x_n^2/2 + V0(x_{n+1} - x_n)."""
+    x = np.asarray(x, dtype=float)
+    v = np.asarray(v, dtype=float)
+    d = bond_elongations(x, bc)
+    return np.sum(0.5 * v**2 + 0.5 * x**2 + V0(d, alpha), axis=-1)
+
+
+def binary_oscillation_rhs(a: float, alpha: float) -> float:
+    """Acceleration of the integrable reduction (inteq): a'' = -a - 2^alpha a |a|^(alpha-1).
+
+    x_n(t) = (-1)^n a(t) solves (nc) with V = V0 for N even and periodic ends.
+    """
+    return -a - 2.0**alpha * a * abs(a) ** (alpha - 1.0)
