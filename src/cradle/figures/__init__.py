@@ -38,3 +38,48 @@ def save_figure(fig, stem) -> list[Path]:
 def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
     """A new figure with the project's layout defaults."""
     return plt.subplots(nrows, ncols, figsize=(width, height), constrained_layout=True, **kw)
+
+
+# label -> (module, function). Each function takes (data, options) and returns a Figure;
+# ``data`` maps every name of the figure's `scenes:` list to its Dataset(s).
+REGISTRY = {
+    "traj3": ("maps", "figure_traj3"),
+    "traj2": ("maps", "figure_traj2"),
+    "bcsc": ("homoclinic", "draw_bcsc"),
+    "plot4-5": ("travelling", "draw_plot4_5"),
+    "plotcomplin": ("travelling", "draw_plotcomplin"),
+}
+
+
+def load_inputs(scenes: dict, root) -> dict:
+    """Open the netCDF files of a figure's scenes.
+
+    ``scenes`` maps each name to its config section (map, homoclinic,
+    scenes). Map and homoclinic names give one Dataset; a scene gives
+    ``{"exact": ..., "dps": ..., "metrics": ...}``.
+    """
+    from ..io import open_dataset
+
+    root = Path(root)
+    data = {}
+    for name, kind in scenes.items():
+        if kind == "map":
+            data[name] = open_dataset(root / "map" / f"{name}.nc")
+        elif kind == "homoclinic":
+            data[name] = open_dataset(root / "homoclinic" / f"{name}.nc")
+        else:
+            data[name] = {part: open_dataset(path) for part, path in (
+                ("exact", root / "sim" / name / "exact.nc"), ("dps", root / "sim" / name / "dps.nc"),
+                ("metrics", root / "metrics" / f"{name}.nc"))}
+    return data
+
+
+def draw(label: str, data: dict, options: dict, stem) -> list[Path]:
+    """Draw figure ``label`` and save it as ``stem``.pdf/.png."""
+    import importlib
+
+    if label not in REGISTRY:
+        raise KeyError(f"no drawing function for figure {label!r}; known: {sorted(REGISTRY)}")
+    module, func = REGISTRY[label]
+    fig = getattr(importlib.import_module(f"{__name__}.{module}"), func)(data, options)
+    return save_figure(fig, stem)

@@ -1,0 +1,57 @@
+"""Figures plot4-5 and plotcomplin: travelling waves q = pi/5, omega_tw = 1.01 (section 4.1)."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..compare import linear_wave
+from . import figure
+
+
+def _at(ds, t):
+    """The stored state nearest to time t (stored times are exact, to 1e-9)."""
+    return ds.sel(t=t, method="nearest")
+
+
+def _profiles(ax, sim, t, title=""):
+    ex, ap = _at(sim["exact"], t), _at(sim["dps"], t)
+    n = ex["n"].values
+    ax.plot(n, ex["x"].values, "-", color="k", lw=1.0, label="exact")
+    ax.plot(n, ap["x"].values, "-.", color="C3", lw=1.0, label="approx. (DpS)")
+    ax.set_xlabel("$n$")
+    ax.set_ylabel("$x_n(t)$")
+    ax.set_title(f"{title}$t = {float(ex['t']):g}$", fontsize=9)
+
+
+def draw_plot4_5(data, options):
+    """Left: exact and approximate profiles at t = 621.95; right: E(t) = ||x^tw - x||_inf / a."""
+    (name,) = options["scenes"]
+    sim = data[name]
+    fig, (left, right) = figure(1, 2, width=9.0, height=3.4)
+    _profiles(left, sim, options["times"][0])
+    left.legend(fontsize=8, loc="upper right")
+    m = sim["metrics"]
+    right.plot(m["t"].values, m["E"].values, lw=0.6, color="k")
+    right.set_xlabel("$t$")
+    right.set_ylabel("$E(t)$")
+    right.set_title(f"max E = {float(m['E'].max()):.3f}, E(t_end) = {float(m['E'][-1]):.3f}", fontsize=9)
+    right.set_xlim(0, float(m["t"][-1]))
+    return fig
+
+
+def draw_plotcomplin(data, options):
+    """Left: the plot4-5 experiment with noise (perturb); right: exact, approximate and
+    linear wave a cos(q n - t) at t0 = 333.7."""
+    noisy, clean = options["scenes"]
+    t_noisy, t0 = options["times"]
+    fig, (left, right) = figure(1, 2, width=9.0, height=3.4)
+    _profiles(left, data[noisy], t_noisy, "with noise, ")
+    left.legend(fontsize=8, loc="upper right")
+    sim = data[clean]
+    _profiles(right, sim, t0)
+    ex = sim["exact"]
+    n = ex["n"].values
+    a, q = float(ex.attrs["a"]), float(ex.attrs["q"])
+    t_shown = float(_at(ex, t0)["t"])
+    right.plot(n, linear_wave(n, np.array([t_shown]), a, q)[0], "--", color="C0", lw=1.0, label="linear wave")
+    right.legend(fontsize=8, loc="upper right")
+    return fig

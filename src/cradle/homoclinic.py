@@ -1,0 +1,155 @@
+"""Homoclinic (breather) solutions of the stationary DpS equation (dpsstn).
+
+    -sign(mu) a_n = g(a_{n+1} - a_n) - g(a_n - a_{n-1}),   g(s) = s |s|^(alpha-1)   (dpsstn)
+
+solved on N sites with periodic (a_{n+N} = a_n) or free-end conditions (no
+bond beyond the ends, as in figure fini), by MINPACK's modified Powell hybrid
+method (scipy ``root(method="hybr")``, the algorithm behind Scilab's fsolve
+that the paper used) with the analytic tridiagonal Jacobian, then polished by
+Newton steps. A solution of (dpsst) with any mu > 0 is |mu|^(1/(alpha-1))
+times the mu = 1 solution (the scaling that leads to (dpsstn)).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import root
+
+from .lattice import check_alpha, check_bc
+
+
+RESIDUAL_TOL = 1e-10  # max |residual| / max |a_n| accepted as converged
+
+
+def _g(s, alpha):
+    return s * np.abs(s) ** (alpha - 1.0)
+
+
+def _dg(s, alpha):
+    return alpha * np.abs(s) ** (alpha - 1.0)
+
+
+def _diffs(a, bc):
+    d = np.roll(a, -1) - a
+    if bc == "free":
+        d[-1] = 0.0
+    return d
+
+
+def residual(a, alpha: float, bc: str = "periodic", sign: float = 1.0):
+    """r_n = g(a_{n+1}-a_n) - g(a_n-a_{n-1}) + sign(mu) a_n, zero on solutions of (dpsstn)."""
+    a = np.asarray(a, dtype=float)
+    G = _g(_diffs(a, bc), alpha)
+    return G - np.roll(G, 1) + sign * a if bc == "periodic" else G - np.concatenate(([0.0], G[:-1])) + sign * a
+
+
+def jacobian(a, alpha: float, bc: str = "periodic", sign: float = 1.0):
+    """Analytic Jacobian of :func:`residual` (tridiagonal, with corners if periodic)."""
+    a = np.asarray(a, dtype=float)
+    N = a.size
+    k = _dg(_diffs(a, bc), alpha)  # stiffness of bond n (0 on a missing free-end bond)
+    J = np.zeros((N, N))
+    idx = np.arange(N)
+    right = (idx + 1) % N
+    left = (idx - 1) % N
+    k_left = np.roll(k, 1)
+    if bc == "free":
+        k_left[0] = 0.0
+    J[idx, idx] = sign - k - k_left
+    np.add.at(J, (idx, right), k)
+    np.add.at(J, (idx, left), k_left)
+    return J
+
+
+@dataclass
+class Homoclinic:
+    a: np.ndarray          # solution a_n, n = 0..N-1 (mu = 1 scaling unless mu given)
+    residual: float        # max_n |r_n| of (dpsst) at the returned a
+    converged: bool
+    n_iterations: int
+    message: str
+
+
+def initial_guess(N: int, kind: str, alpha: float = 1.5, amplitude: float = 0.1,
+                  centre: int | None = None, separation: int = 9):
+    """The starting point of the Powell iteration (section 2.2).
+
+    * ``site``: a_{N/2} = -amplitude, 0 elsewhere (the paper's site-centred start);
+    * ``bond``: a_{N/2} = amplitude, a_{N/2+1} = -amplitude (the paper's bond-centred start);
+    * ``double``: the sum of two copies of the converged site-centred solution,
+      ``separation`` sites apart around N/2. The paper does not give its start
+      for the double-humped solution; two single-site seeds do not converge
+      (hybr stalls at residuals ~1e-7), two converged humps do for
+      separations of 9 and more on N = 50.
+    """
+    c = N // 2 if centre is None else centre
+    a = np.zeros(N)
+    if kind == "site":
+        a[c % N] = -amplitude
+    elif kind == "bond":
+        a[c % N], a[(c + 1) % N] = amplitude, -amplitude
+    elif kind == "double":
+        hump = solve(initial_guess(N, "site", alpha, amplitude, centre=c), alpha).a
+        a = np.roll(hump, -(separation // 2)) + np.roll(hump, separation - separation // 2)
+    else:
+        raise ValueError(f"unknown initial guess kind={kind!r} (site, bond, double)")
+    return a
+
+
+def solve(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: float = 1e-14,
+          newton_steps: int = 3) -> Homoclinic:
+    """Solve (dpsst) -mu a_n = g(a_{n+1}-a_n) - g(a_n-a_{n-1}) from ``guess`` (a mu = 1 guess).
+
+    The normalised problem (dpsstn) is solved by Powell's hybrid method with
+    the analytic Jacobian and polished with a few Newton steps; the result is
+    scaled by mu^(1/(alpha-1)). ``residual`` is the max-norm residual of the
+    scaled equation (dpsst).
+    """
+    alpha = check_alpha(alpha)
+    check_bc(bc)
+    if not mu > 0:
+        raise ValueError(f"mu must be > 0 for nontrivial localised solutions (section 2.2), got mu={mu!r}")
+    guess = np.asarray(guess, dtype=float)
+    if guess.ndim != 1 or guess.size < 2:
+        raise ValueError(f"need N >= 2 sites, got N={guess.size}")
+    sol = root(residual, guess, args=(alpha, bc), jac=jacobian, method="hybr", options={"xtol": xtol})
+    a = sol.x
+    for _ in range(newton_steps):  # quadratic convergence from hybr's answer
+        r = residual(a, alpha, bc)
+        try:
+            step = np.linalg.solve(jacobian(a, alpha, bc), r)
+        except np.linalg.LinAlgError:
+            break
+        a_new = a - step
+        if np.max(np.abs(residual(a_new, alpha, bc))) < np.max(np.abs(r)):
+            a = a_new
+    scale = mu ** (1.0 / (alpha - 1.0))
+    a_mu = scale * a
+    res = float(np.max(np.abs(residual(a_mu, alpha, bc, sign=mu))))  # residual of (dpsst)
+    # hybr may report "no progress" once it sits at round-off; judge by the residual itself
+    converged = res <= RESIDUAL_TOL * max(float(np.max(np.abs(a_mu))), np.finfo(float).tiny)
+    return Homoclinic(a=a_mu, residual=res, converged=bool(converged), n_iterations=int(sol.nfev),
+                      message=str(sol.message))
+
+
+def symmetry_error(a, kind: str, centre: int | None = None) -> float:
+    """Departure from the symmetry the solution should have.
+
+    ``site``: a_{c-n} = a_{c+n}; ``bond``: a_{c-n} = -a_{c+n+1}; ``double``:
+    none required (returns the site-symmetry error about the midpoint of the
+    two humps for information).
+    """
+    a = np.asarray(a)
+    N = a.size
+    c = N // 2 if centre is None else centre
+    n = np.arange(N // 2)
+    if kind == "bond":
+        return float(np.max(np.abs(a[(c - n) % N] + a[(c + n + 1) % N])))
+    return float(np.max(np.abs(a[(c - n) % N] - a[(c + n) % N])))
+
+
+def energy_balance(a, alpha: float, bc: str = "periodic"):
+    """(sum a_n^2, sum |a_{n+1}-a_n|^(alpha+1)): equal for mu = 1 solutions of (dpsstn)."""
+    a = np.asarray(a)
+    return float(np.sum(a**2)), float(np.sum(np.abs(_diffs(a, bc)) ** (alpha + 1.0)))

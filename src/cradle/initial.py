@@ -1,0 +1,125 @@
+"""Initial conditions for (nc) and (dfnls), built from a DpS amplitude A_n(0).
+
+The paper's procedure (section 4): choose A_n(0), set
+x_n(0) = eps (A_n(0) + c.c.) from (ansatz), and take the velocities from the
+same ansatz, d/dt x_n^app at t = 0, where dA_n/dtau(0) comes from the DpS
+right-hand side (dfnls) at tau = 0:
+
+    v_n(0) = 2 eps ( -Im A_n(0) + eps^(alpha-1) Re dA_n/dtau(0) ).
+
+Families:
+  * travelling waves (ansatzapprox): A_n(0) = R e^{-i(q n + phi)}, R = 1,
+    eps = a/2 with a from (freq), optionally perturbed as in (perturb);
+  * breathers (ansatzapproxst2)/(breatherdps): A_n(0) = mu^(1/(alpha-1)) a_n / 2
+    with eps = 1, from a solution a_n of (dpsstn).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import dps
+from .lattice import check_alpha, check_bc
+
+NOISE_KINDS = ("none", "uniform", "gaussian")
+
+
+@dataclass
+class InitialData:
+    A0: np.ndarray          # complex DpS amplitude A_n(0)
+    eps: float              # small parameter of (ansatz); tau = eps^(alpha-1) t
+    x0: np.ndarray          # x_n(0)
+    v0: np.ndarray          # dx_n/dt(0)
+    rho1: np.ndarray | None = None   # noise of (perturb), if any
+    rho2: np.ndarray | None = None
+    info: dict = field(default_factory=dict)  # derived parameters (a, omega_tw, ...)
+
+
+def lattice_state(A0, eps: float, alpha: float, bc: str = "periodic"):
+    """(x_n(0), v_n(0)) of the ansatz (ansatz) for DpS data A0 and small parameter eps."""
+    A0 = np.asarray(A0, dtype=complex)
+    dA = dps.rhs(A0, alpha, bc)
+    x0 = 2.0 * eps * A0.real
+    v0 = 2.0 * eps * (-A0.imag + eps ** (alpha - 1.0) * dA.real)
+    return x0, v0
+
+
+def noise(N: int, kind: str, amplitude: float, seed: int):
+    """(rho1, rho2) of (perturb): uniform on [-amplitude, amplitude] or Gaussian with sd amplitude.
+
+    Drawn from ``numpy.random.default_rng(seed)`` (PCG64): the same seed
+    gives the same numbers on every machine.
+    """
+    rng = np.random.default_rng(seed)
+    if kind == "uniform":
+        return rng.uniform(-amplitude, amplitude, N), rng.uniform(-amplitude, amplitude, N)
+    if kind == "gaussian":
+        return rng.normal(0.0, amplitude, N), rng.normal(0.0, amplitude, N)
+    raise ValueError(f"noise kind must be 'uniform' or 'gaussian', got {kind!r}")
+
+
+def travelling_wave(N: int, q: float, alpha: float, *, a: float | None = None, omega_tw: float | None = None,
+                    phi: float = 0.0, bc: str = "periodic", noise_kind: str = "none",
+                    noise_amplitude: float = 0.0, seed: int | None = None) -> InitialData:
+    """Travelling-wave data (ansatzapprox) with R = 1, a = 2 eps, perturbed as in (perturb).
+
+    Exactly one of ``a`` and ``omega_tw`` is given; the other follows from
+    (freq). Unperturbed: x_n(0) = a cos(q n + phi). With noise,
+    A_n(0) = (1 + rho1_n) cos(q n + phi) - i (1 + rho2_n) sin(q n + phi)
+    (perturb; the paper has phi = 0).
+    """
+    alpha = check_alpha(alpha)
+    check_bc(bc)
+    if N < 2:
+        raise ValueError(f"N must be >= 2, got N={N}")
+    if (a is None) == (omega_tw is None):
+        raise ValueError(f"give exactly one of a and omega_tw (got a={a!r}, omega_tw={omega_tw!r})")
+    if a is None:
+        a = dps.amplitude_from_omega(omega_tw, q, alpha)
+    elif not a > 0:
+        raise ValueError(f"amplitude a must be > 0, got a={a!r}")
+    omega = dps.omega_tw(a, q, alpha)
+    n = np.arange(N)
+    rho1 = rho2 = None
+    if noise_kind == "none":
+        A0 = np.exp(-1j * (q * n + phi))
+    else:
+        if seed is None:
+            raise ValueError("noisy initial data need a recorded seed")
+        rho1, rho2 = noise(N, noise_kind, noise_amplitude, seed)
+        A0 = (1.0 + rho1) * np.cos(q * n + phi) - 1j * (1.0 + rho2) * np.sin(q * n + phi)
+    eps = a / 2.0
+    x0, v0 = lattice_state(A0, eps, alpha, bc)
+    info = {"a": a, "omega_tw": omega, "eps": eps, "R": 1.0,
+            "Omega": dps.plane_wave_frequency(1.0, q, alpha)}
+    return InitialData(A0=A0, eps=eps, x0=x0, v0=v0, rho1=rho1, rho2=rho2, info=info)
+
+
+def breather(a_n, alpha: float, *, omega_sw: float | None = None, amplitude: float | None = None,
+             site: int | None = None, bc: str = "periodic") -> InitialData:
+    """Breather data (ansatzapproxst2)/(breatherdps) from a mu = 1 solution ``a_n`` of (dpsstn).
+
+    A_n(0) = mu^(1/(alpha-1)) a_n / 2, eps = 1, so x_n(0) = mu^(1/(alpha-1)) a_n
+    and v_n(0) = 0. Give either ``omega_sw`` (then mu = (omega_sw - 1) 2^alpha tau0)
+    or the initial ``amplitude`` |x_site(0)| at bead ``site`` (default: the
+    largest |a_n|), from which mu and omega_sw are derived.
+    """
+    alpha = check_alpha(alpha)
+    a_n = np.asarray(a_n, dtype=float)
+    if (omega_sw is None) == (amplitude is None):
+        raise ValueError(f"give exactly one of omega_sw and amplitude (got {omega_sw!r}, {amplitude!r})")
+    if omega_sw is not None:
+        if not omega_sw > 1.0:
+            raise ValueError(f"omega_sw must be > 1 (mu > 0), got omega_sw={omega_sw!r}")
+        mu = dps.mu_from_omega_sw(omega_sw, alpha)
+    else:
+        k = int(np.argmax(np.abs(a_n))) if site is None else site
+        if not (amplitude > 0 and a_n[k] != 0):
+            raise ValueError(f"need amplitude > 0 at a site where a_n != 0 (amplitude={amplitude!r}, site={k})")
+        mu = (amplitude / abs(a_n[k])) ** (alpha - 1.0)
+        omega_sw = dps.omega_sw_from_mu(mu, alpha)
+    A0 = 0.5 * mu ** (1.0 / (alpha - 1.0)) * a_n.astype(complex)
+    x0, v0 = lattice_state(A0, 1.0, alpha, bc)
+    info = {"mu": mu, "omega_sw": omega_sw, "eps": 1.0}
+    return InitialData(A0=A0, eps=1.0, x0=x0, v0=v0, info=info)

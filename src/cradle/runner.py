@@ -1,0 +1,76 @@
+"""Run one stage and write its output safely (used by workflow scripts and the command line).
+
+* the output is written atomically (:func:`cradle.io.write_netcdf`): a failed
+  or interrupted run leaves nothing at the target path;
+* a :class:`cradle.stages.StageFailure` keeps what was computed under
+  ``results/failed/...`` with the reason as the ``failure`` attribute, then
+  the error propagates (the rule fails with the message);
+* progress and timing go to the log file (and to the terminal).
+"""
+from __future__ import annotations
+
+import logging
+import sys
+import time
+from pathlib import Path
+
+from .io import write_netcdf
+from .stages import StageFailure
+
+log = logging.getLogger("cradle")
+
+
+def setup_logging(log_path: str | None = None) -> None:
+    """Log to ``log_path`` (if given) and to stderr, one line per message."""
+    handlers: list[logging.Handler] = [logging.StreamHandler(sys.stderr)]
+    if log_path:
+        Path(log_path).parent.mkdir(parents=True, exist_ok=True)
+        handlers.append(logging.FileHandler(log_path, mode="w"))
+    logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", handlers=handlers, force=True)
+
+
+def failed_path(out: str | Path) -> Path:
+    """Where a failed run's partial output goes: results/X/Y.nc -> results/failed/X/Y.nc."""
+    out = Path(out)
+    parts = out.parts
+    if "results" in parts:
+        i = parts.index("results")
+        return Path(*parts[: i + 1], "failed", *parts[i + 1:])
+    return out.with_name(f"failed-{out.name}")
+
+
+class Progress:
+    """A progress callback: logs simulated time reached and rate, at most every ``every`` seconds."""
+
+    def __init__(self, label: str, every: float = 2.0):
+        self.label, self.every = label, every
+        self.start = self.last = time.perf_counter()
+
+    def __call__(self, t_reached: float, t_final: float) -> None:
+        now = time.perf_counter()
+        if now - self.last >= self.every or t_reached >= t_final:
+            self.last = now
+            rate = t_reached / max(now - self.start, 1e-9)
+            log.info("%s: t = %.6g / %.6g (%.1f%%), %.3g time units per second",
+                     self.label, t_reached, t_final, 100.0 * t_reached / t_final, rate)
+
+
+def run(compute, out: str | Path, log_path: str | None = None, label: str = ""):
+    """Call ``compute()`` (returning a Dataset) and write it to ``out``; see module docstring."""
+    setup_logging(log_path)
+    t0 = time.perf_counter()
+    log.info("%s: start -> %s", label, out)
+    try:
+        ds = compute()
+    except StageFailure as err:
+        if err.partial is not None:
+            path = failed_path(out)
+            err.partial.attrs["failure"] = str(err)
+            write_netcdf(err.partial, path)
+            log.error("%s: FAILED: %s (partial output kept in %s)", label, err, path)
+        else:
+            log.error("%s: FAILED: %s", label, err)
+        raise
+    write_netcdf(ds, out)
+    log.info("%s: done in %.2f s -> %s", label, time.perf_counter() - t0, out)
+    return ds

@@ -1,0 +1,206 @@
+"""The pipeline's four stages as functions: resolved parameters in, xarray Datasets out.
+
+homoclinic / map orbits  ->  initial data  ->  exact and DpS runs  ->  metrics
+(then figures, :mod:`cradle.figures`).
+
+Each function takes the plain-dict parameters of one config entry (as
+returned by :mod:`cradle.config`'s ``resolved_*`` functions) and the
+Datasets of the stage before, and returns a self-describing Dataset (see
+:mod:`cradle.variables`, :mod:`cradle.io`). No file paths and no Snakemake:
+the workflow scripts and the command line are thin adapters around these.
+A run that fails (no convergence, NaN, drift above the bound) raises
+:class:`StageFailure` carrying what was computed, for diagnosis.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import xarray as xr
+
+from . import compare, dps, homoclinic, initial, lattice
+from .io import make_dataset
+
+
+class StageFailure(RuntimeError):
+    """A stage computed something it must not hand on; ``partial`` keeps it for diagnosis."""
+
+    def __init__(self, message: str, partial: xr.Dataset | None = None):
+        super().__init__(message)
+        self.partial = partial
+
+
+# ---------------------------------------------------------------- stationary DpS
+
+def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
+    """Solve (dpsstn) for one ``homoclinic:`` entry; a(n), residual(n), attributes."""
+    t0 = time.perf_counter()
+    alpha, N, bc = spec["alpha"], spec["N"], spec["bc"]
+    centre = spec.get("centre")
+    guess = homoclinic.initial_guess(N, spec["guess"], alpha, spec.get("amplitude", 0.1), centre=centre,
+                                     separation=spec.get("separation", 9))
+    sol = homoclinic.solve(guess, alpha, bc, mu=spec.get("mu", 1.0))
+    a = sol.a
+    r = homoclinic.residual(a, alpha, bc, sign=spec.get("mu", 1.0))
+    sum_a2, sum_d = homoclinic.energy_balance(a, alpha, bc)
+    attrs = {
+        "name": name, "alpha": alpha, "mu": spec.get("mu", 1.0), "bc": bc, "N": N, "guess": spec["guess"],
+        "guess_amplitude": spec.get("amplitude", 0.1), "solver": "scipy.optimize.root hybr (MINPACK) + Newton",
+        "residual": sol.residual, "converged": sol.converged, "n_function_evals": sol.n_iterations,
+        "max_abs_a": float(np.max(np.abs(a))), "symmetry_error": homoclinic.symmetry_error(a, spec["guess"], centre),
+        "sum_a2": sum_a2, "sum_abs_da_pow": sum_d, "wall_time_s": time.perf_counter() - t0,
+    }
+    if spec["guess"] == "double":
+        attrs["separation"] = spec.get("separation", 9)
+    ds = make_dataset({"a": a, "residual_n": r}, coords={"n": np.arange(N)}, attrs=attrs,
+                      title=f"solution '{name}' of the stationary DpS equation (dpsstn)")
+    if not sol.converged or not np.all(np.isfinite(a)):
+        raise StageFailure(f"homoclinic '{name}': Powell hybrid did not converge "
+                           f"(residual {sol.residual:.3e}, {sol.message})", ds)
+    if attrs["max_abs_a"] < 1e-6:
+        raise StageFailure(f"homoclinic '{name}': converged to the trivial solution a = 0 "
+                           f"(max|a_n| = {attrs['max_abs_a']:.3e}); change the guess", ds)
+    return ds
+
+
+def map_orbits(spec: dict, name: str = "") -> xr.Dataset:
+    """Orbits of the map G (comp1)-(comp2) for one ``map:`` entry (traj3, traj2)."""
+    from . import stationary
+
+    t0 = time.perf_counter()
+    starts = np.asarray(spec["starts"], dtype=float)
+    U = stationary.orbits(starts, spec["iterations"], spec["alpha"], box=spec["box"])
+    attrs = {"name": name, "alpha": spec["alpha"], "box": spec["box"], "iterations": spec["iterations"],
+             "marks": bool(spec.get("marks", False)), "wall_time_s": time.perf_counter() - t0}
+    return make_dataset({"map_a": U[..., 0], "map_b": U[..., 1]},
+                        coords={"orbit": np.arange(len(starts)), "iterate": np.arange(U.shape[1])},
+                        attrs=attrs, title=f"orbits '{name}' of the map G (comp1)-(comp2)")
+
+
+# ---------------------------------------------------------------- initial data
+
+def _scene_attrs(spec: dict, name: str) -> dict:
+    """The parameters that define a scene, flattened into netCDF attributes."""
+    ini = spec["initial"]
+    noise = ini.get("noise") or {}
+    attrs = {"scene": name, "alpha": spec["alpha"], "N": spec["N"], "bc": spec["bc"],
+             "initial_kind": ini["kind"], "t_end": spec["t_end"],
+             "noise": noise.get("kind", "none"), "noise_amplitude": noise.get("amplitude", 0.0),
+             "seed": noise.get("seed", "none")}
+    if ini["kind"] == "travelling":
+        attrs.update({"q": ini["q"], "q_expr": str(ini.get("q_expr", ini["q"])), "phi": ini.get("phi", 0.0)})
+    else:
+        attrs.update({"homoclinic": ini["homoclinic"]})
+    return attrs
+
+
+def initial_data(spec: dict, name: str = "", homoclinic_ds: xr.Dataset | None = None) -> xr.Dataset:
+    """Initial data of one scene: x0, v0, A0 (and the noise realisation)."""
+    ini = spec["initial"]
+    alpha, N, bc = spec["alpha"], spec["N"], spec["bc"]
+    if ini["kind"] == "travelling":
+        noise = ini.get("noise") or {}
+        data = initial.travelling_wave(N, ini["q"], alpha, a=ini.get("a"), omega_tw=ini.get("omega_tw"),
+                                       phi=ini.get("phi", 0.0), bc=bc, noise_kind=noise.get("kind", "none"),
+                                       noise_amplitude=noise.get("amplitude", 0.0), seed=noise.get("seed"))
+    elif ini["kind"] == "breather":
+        if homoclinic_ds is None:
+            raise ValueError(f"scene '{name}': a breather needs the homoclinic solution '{ini['homoclinic']}'")
+        data = initial.breather(homoclinic_ds["a"].values, alpha, omega_sw=ini.get("omega_sw"),
+                                amplitude=ini.get("amplitude"), site=ini.get("site"), bc=bc)
+    else:
+        raise ValueError(f"scene '{name}': unknown initial kind {ini['kind']!r}")
+    fields = {"x0": data.x0, "v0": data.v0, "A0_re": data.A0.real, "A0_im": data.A0.imag}
+    if data.rho1 is not None:
+        fields.update({"rho1": data.rho1, "rho2": data.rho2})
+    attrs = _scene_attrs(spec, name) | data.info
+    attrs["energy0"] = float(lattice.hamiltonian(data.x0, data.v0, alpha, bc))
+    return make_dataset(fields, coords={"n": np.arange(N)}, attrs=attrs,
+                        title=f"initial data of scene '{name}'")
+
+
+# ---------------------------------------------------------------- integration
+
+def _check_finite(name, model, arrays, partial):
+    for label, arr in arrays.items():
+        bad = ~np.isfinite(arr)
+        if bad.any():
+            ti = int(np.argwhere(bad)[0][0])
+            raise StageFailure(f"scene '{name}' ({model}): {label} is not finite from stored time index {ti} on "
+                               "(blow-up or NaN)", partial)
+
+
+def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
+    """Integrate the lattice (nc) from the scene's initial data; x, v, forces, energy at stored times."""
+    from .integrators import integrate_lattice
+
+    alpha, bc = spec["alpha"], spec["bc"]
+    times = np.asarray(spec["times"], dtype=float)
+    ex = spec["exact"]
+    x0, v0 = init_ds["x0"].values, init_ds["v0"].values
+    sol = integrate_lattice(x0, v0, times, alpha=alpha, bc=bc, method=ex["method"],
+                            dt_factor=ex.get("dt_factor"), rtol=ex.get("rtol"), progress=progress)
+    force = lattice.bond_forces(sol.x, alpha, bc)
+    attrs = dict(init_ds.attrs)
+    for key in ("title", "history", "Conventions", "source", "references"):
+        attrs.pop(key, None)
+    attrs.update({"model": "exact lattice (nc), V = V0", "integrator": sol.method,
+                  "dt": sol.dt if sol.dt is not None else "adaptive",
+                  "rtol": sol.rtol if sol.rtol is not None else "none",
+                  "atol": sol.atol if sol.atol is not None else "none",
+                  "energy_drift": sol.energy_drift, "max_energy_drift_allowed": spec["max_energy_drift"],
+                  "n_steps": sol.n_steps, "n_force_evals": sol.n_force_evals,
+                  "max_compression": sol.max_compression, "wall_time_s": sol.wall_time_s})
+    ds = make_dataset({"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy},
+                      coords={"t": times, "n": np.arange(spec["N"])}, attrs=attrs,
+                      title=f"exact solution of (nc), scene '{name}'")
+    _check_finite(name, "exact", {"x": sol.x, "v": sol.v}, ds)
+    if not sol.energy_drift <= spec["max_energy_drift"]:
+        raise StageFailure(f"scene '{name}' (exact): relative energy drift {sol.energy_drift:.3e} exceeds "
+                           f"max_energy_drift = {spec['max_energy_drift']:.1e} ({sol.method}, dt={sol.dt})", ds)
+    return ds
+
+
+def dps_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
+    """Integrate the DpS equation (dfnls) and rebuild the approximate solution (ansatz) at stored times."""
+    from .integrators import integrate_dps
+
+    alpha, bc = spec["alpha"], spec["bc"]
+    times = np.asarray(spec["times"], dtype=float)
+    eps = float(init_ds.attrs["eps"])
+    tau = eps ** (alpha - 1.0) * times
+    A0 = init_ds["A0_re"].values + 1j * init_ds["A0_im"].values
+    st = spec["dps"]
+    sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=st["method"], rtol=st["rtol"], progress=progress)
+    x_app = compare.approximate_displacement(sol.A, times, eps)
+    force = lattice.bond_forces(x_app, alpha, bc)
+    attrs = dict(init_ds.attrs)
+    for key in ("title", "history", "Conventions", "source", "references"):
+        attrs.pop(key, None)
+    attrs.update({"model": "DpS (dfnls) + ansatz (ansatz)", "integrator": sol.method, "rtol": sol.rtol,
+                  "atol": sol.atol, "tau0": dps.tau0(alpha), "max_l2_drift": sol.max_l2_drift,
+                  "max_dps_energy_drift": sol.max_energy_drift, "n_steps": sol.n_steps,
+                  "wall_time_s": sol.wall_time_s})
+    ds = make_dataset({"A_re": sol.A.real, "A_im": sol.A.imag, "x": x_app, "force": force,
+                       "l2_drift": sol.l2_drift, "dps_energy_drift": sol.energy_drift, "P_drift": sol.P_drift},
+                      coords={"t": times, "n": np.arange(spec["N"]), "tau": tau}, attrs=attrs,
+                      title=f"DpS approximation (dfnls)/(ansatz), scene '{name}'")
+    _check_finite(name, "dps", {"A": sol.A}, ds)
+    return ds
+
+
+# ---------------------------------------------------------------- metrics
+
+def metrics(spec: dict, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: str = "") -> xr.Dataset:
+    """Exact against approximate: E(t) (plot4-5) and the spectra |x_hat_k(t)| on Gamma*."""
+    a_scale = float(exact_ds.attrs.get("a", np.max(np.abs(exact_ds["x"].isel(t=0).values))))
+    E = compare.relative_error(exact_ds["x"].values, dps_ds["x"].values, a_scale)
+    k, xh_exact = compare.spatial_dft(exact_ds["x"].values)
+    _, xh_dps = compare.spatial_dft(dps_ds["x"].values)
+    attrs = {key: exact_ds.attrs[key] for key in ("scene", "alpha", "N", "bc", "q", "a", "eps", "omega_tw",
+                                                   "noise", "noise_amplitude", "seed") if key in exact_ds.attrs}
+    attrs.update({"E_scale": a_scale, "E_max": float(np.max(E)), "E_final": float(E[-1]),
+                  "t_final": float(exact_ds["t"].values[-1])})
+    return make_dataset({"E": E, "spectrum_exact": np.abs(xh_exact), "spectrum_dps": np.abs(xh_dps)},
+                        coords={"t": exact_ds["t"].values, "k": k}, attrs=attrs,
+                        title=f"exact vs DpS comparison metrics, scene '{name}'")

@@ -1,0 +1,35 @@
+# Stage 1: stationary DpS (dpsstn): homoclinic solutions, and orbits of the map G.
+
+
+rule homoclinic:
+    message:
+        "Solving (dpsstn) for the homoclinic solution '{wildcards.name}'"
+    input:
+        code=sources(*CORE, "homoclinic"),
+    output:
+        "results/homoclinic/{name}.nc",
+    params:
+        spec=lambda w: cc.resolved_homoclinic(config, w.name),
+    log:
+        "results/logs/homoclinic/{name}.log",
+    wildcard_constraints:
+        name=names_regex("homoclinic"),
+    script:
+        "../scripts/homoclinic.py"
+
+
+rule map_orbits:
+    message:
+        "Iterating the map G (comp1)-(comp2) for '{wildcards.name}'"
+    input:
+        code=sources(*CORE, "stationary"),
+    output:
+        "results/map/{name}.nc",
+    params:
+        spec=lambda w: cc.resolved_map(config, w.name),
+    log:
+        "results/logs/map/{name}.log",
+    wildcard_constraints:
+        name=names_regex("map"),
+    script:
+        "../scripts/map_orbits.py"

@@ -1,0 +1,25 @@
+# Stage 2: initial data x0, v0, A0 of each scene (ansatzapprox), (perturb), (ansatzapproxst2).
+
+
+def initial_inputs(w):
+    """A breather scene reads its homoclinic solution."""
+    ini = config["scenes"][w.scene]["initial"]
+    return [f"results/homoclinic/{ini['homoclinic']}.nc"] if ini["kind"] == "breather" else []
+
+
+rule initial:
+    message:
+        "Initial data of scene '{wildcards.scene}'"
+    input:
+        code=sources(*CORE, "initial"),
+        homoclinic=initial_inputs,
+    output:
+        "results/initial/{scene}.nc",
+    params:
+        spec=lambda w: cc.resolved_scene(config, w.scene),
+    log:
+        "results/logs/initial/{scene}.log",
+    wildcard_constraints:
+        scene=names_regex("scenes"),
+    script:
+        "../scripts/initial.py"

@@ -1,0 +1,10 @@
+"""Snakemake adapter: draw one paper figure from its netCDF inputs -> results/figures/<label>.{pdf,png}."""
+from pathlib import Path
+
+from cradle.figures import draw, load_inputs
+from cradle.runner import setup_logging
+
+sm = snakemake  # noqa: F821 (injected by Snakemake)
+setup_logging(sm.log[0])
+data = load_inputs(sm.params.scenes, Path(sm.output.pdf).parent.parent)
+draw(sm.params.label, data, dict(sm.params.options), Path(sm.output.pdf).with_suffix(""))
