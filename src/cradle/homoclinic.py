@@ -136,9 +136,7 @@ def solve(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: floa
 def symmetry_error(a, kind: str, centre: int | None = None) -> float:
     """Departure from the symmetry the solution should have.
 
-    ``site``: a_{c-n} = a_{c+n}; ``bond``: a_{c-n} = -a_{c+n+1}; ``double``:
-    none required (returns the site-symmetry error about the midpoint of the
-    two humps for information).
+    ``site``: a_{c-n} = a_{c+n}; ``bond``: a_{c-n} = -a_{c+n+1}.
     """
     a = np.asarray(a)
     N = a.size
