@@ -1,0 +1,55 @@
+"""Time integration of Newton's cradle (nc)/(meca) and of the DpS equation (dfnls).
+
+Public API
+----------
+:func:`integrate_lattice` -> :class:`LatticeSolution`
+    (nc) with the Hertz potential (vhertz), or (meca) with kappa = 1
+    ("smooth"), by symplectic splittings of the energy (ham) ("srkn6"
+    default, "srkn4", "strang"; numba kernels, fixed step), by scipy's
+    adaptive solvers ("dop853", "rk45", "lsoda", "radau"; numba right-hand
+    side) or by "dop853_numba" (DOP853 entirely in numba, for references);
+    energy monitored after every step.
+:func:`integrate_dps` -> :class:`DpsSolution`
+    (dfnls) with scipy's DOP853 (numba right-hand side) or "dop853_numba";
+    l2 norm, Hamiltonian and P = sum A_n monitored after every step.
+
+Helpers: :func:`omega_max`, :func:`compression_bounds`, :func:`default_dt`,
+``DEFAULT_DT_FACTOR``, ``METHODS``.
+
+The (inteq) reduction x_n = (-1)^n a(t) (N even, periodic) and the plane
+waves (ansatz3) of (dfnls) are used as exact references in
+tests/test_integrators.py.
+"""
+from __future__ import annotations
+
+from .dps_solver import DPS_METHODS, DpsSolution, integrate_dps
+from .lattice_solver import (
+    ADAPTIVE_METHODS,
+    DEFAULT_DT_FACTOR,
+    MAX_RERUNS,
+    METHODS,
+    SCIPY_METHODS,
+    SPLITTING_METHODS,
+    LatticeSolution,
+    compression_bounds,
+    default_dt,
+    integrate_lattice,
+    omega_max,
+)
+
+__all__ = [
+    "LatticeSolution",
+    "DpsSolution",
+    "integrate_lattice",
+    "integrate_dps",
+    "omega_max",
+    "compression_bounds",
+    "default_dt",
+    "DEFAULT_DT_FACTOR",
+    "MAX_RERUNS",
+    "METHODS",
+    "SPLITTING_METHODS",
+    "ADAPTIVE_METHODS",
+    "SCIPY_METHODS",
+    "DPS_METHODS",
+]

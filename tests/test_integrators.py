@@ -1,0 +1,339 @@
+"""Tests of cradle.integrators: splittings and scipy baselines for (nc)/(meca), DOP853 for (dfnls).
+
+Exact references: the q = 0 in-phase oscillation (no contact, pure rotation),
+the binary oscillation x_n = (-1)^n a(t) of (inteq), the two-bead chain
+(reduced to one scalar ODE), and the plane waves (ansatz3)/(ds) of (dfnls).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from cradle import dps as D
+from cradle import lattice as L
+from cradle.dps import amplitude_from_omega
+from cradle.integrators import (
+    DEFAULT_DT_FACTOR,
+    compression_bounds,
+    integrate_dps,
+    integrate_lattice,
+    omega_max,
+)
+from cradle.integrators import _kernels as K
+from cradle.integrators._coefficients import SPLITTINGS
+
+ORDERS = {"strang": 2, "srkn4": 4, "srkn6": 6}
+
+
+def wave(N, q, a, omega):
+    """Travelling wave (ansatzapprox) at t = 0: x_n = a cos(qn), v_n = a omega sin(qn)."""
+    n = np.arange(N)
+    return a * np.cos(q * n), a * omega * np.sin(q * n)
+
+
+def smooth_state(seed=1, N=8, amp=0.5):
+    rng = np.random.default_rng(seed)
+    return amp * rng.uniform(-1, 1, N), amp * rng.uniform(-1, 1, N)
+
+
+@pytest.fixture(scope="module")
+def tw11():
+    """N = 50, q = pi/5, omega_tw = 1.1 (a = 2.118) travelling wave (figure plot6-7)."""
+    q = np.pi / 5
+    a = amplitude_from_omega(1.1, q, 1.5)
+    return wave(50, q, a, 1.1) + (a,)
+
+
+# ---------------------------------------------------------------- coefficients
+
+@pytest.mark.parametrize("method", list(SPLITTINGS))
+def test_coefficients_consistent_and_symmetric(method):
+    a, b, order = SPLITTINGS[method]
+    assert order == ORDERS[method]
+    assert b.size == a.size + 1
+    assert abs(a.sum() - 1.0) < 1e-14
+    assert abs(b.sum() - 1.0) < 1e-14
+    np.testing.assert_array_equal(a, a[::-1])
+    np.testing.assert_array_equal(b, b[::-1])
+
+
+def test_kernels_match_reference_formulas():
+    """Force, energy (ham) and the Jacobian agree with cradle.lattice / finite differences."""
+    rng = np.random.default_rng(3)
+    x, v = rng.standard_normal(7), rng.standard_normal(7)
+    for bc in ("periodic", "free"):
+        for alpha in (1.5, 2.3):
+            mode = K.mode_flag("hertz", alpha)
+            per = bc == "periodic"
+            f, F = np.empty(7), np.empty(7)
+            K.forces(x, f, F, alpha, mode, per)
+            np.testing.assert_allclose(f, L.bond_forces(x, alpha, bc), rtol=1e-14, atol=1e-15)
+            np.testing.assert_allclose(F - x, L.acceleration(x, alpha, bc), rtol=1e-13, atol=1e-14)
+            H, _ = K.lattice_energy(x, v, alpha, mode, per)
+            assert H == pytest.approx(L.hamiltonian(x, v, alpha, bc), rel=1e-14)
+            y = np.concatenate((x, v))
+            J = np.empty((14, 14))
+            K.lattice_jac(y, J, alpha, mode, per)
+            eps = 1e-7
+            Jfd = np.empty_like(J)
+            for k in range(14):
+                yp, ym = y.copy(), y.copy()
+                yp[k] += eps
+                ym[k] -= eps
+                dp, dm = np.empty(14), np.empty(14)
+                K.lattice_rhs(yp, dp, f, F, alpha, mode, per)
+                K.lattice_rhs(ym, dm, f, F, alpha, mode, per)
+                Jfd[:, k] = (dp - dm) / (2 * eps)
+            np.testing.assert_allclose(J, Jfd, atol=1e-6)
+
+
+# ---------------------------------------------------------------- exact solutions
+
+def test_q0_in_phase_wave_is_exact():
+    """x_n = a cos t: no bond is ever compressed, so srkn6 reduces to exact rotations."""
+    N, a = 8, 0.3
+    t = np.linspace(0.0, 100.0, 11)
+    s = integrate_lattice(np.full(N, a), np.zeros(N), t, alpha=1.5, method="srkn6")
+    err_x = np.abs(s.x - a * np.cos(t)[:, None]).max()
+    err_v = np.abs(s.v + a * np.sin(t)[:, None]).max()
+    print(f"q=0: max error x {err_x:.2e}, v {err_v:.2e} over {s.n_steps} steps")
+    assert err_x < 1e-11 * a and err_v < 1e-11 * a
+    assert s.max_compression == 0.0
+    assert s.energy_drift < 1e-10
+
+
+@pytest.mark.parametrize("alpha, tol", [(1.5, 1e-8), (2.0, 5e-10)])
+def test_binary_oscillation_inteq(alpha, tol):
+    """x_n = (-1)^n a(t), a'' + a + 2^alpha a|a|^(alpha-1) = 0 (inteq), N even, periodic."""
+    N, a0, T = 8, 0.5, 20.0
+    t = np.linspace(0.0, T, 41)
+    ref = solve_ivp(lambda _t, y: [y[1], -y[0] - 2.0**alpha * y[0] * abs(y[0]) ** (alpha - 1.0)],
+                    (0.0, T), [a0, 0.0], t_eval=t, method="DOP853", rtol=1e-12, atol=1e-14)
+    sign = (-1.0) ** np.arange(N)
+    s = integrate_lattice(a0 * sign, np.zeros(N), t, alpha=alpha, method="srkn6")
+    err = max(np.abs(s.x - ref.y[0][:, None] * sign).max(), np.abs(s.v - ref.y[1][:, None] * sign).max())
+    print(f"(inteq) alpha={alpha}: srkn6 default max error {err:.2e} (a0 = {a0})")
+    assert err < tol * a0
+    assert s.max_compression == pytest.approx(2 * a0, rel=1e-12)
+    d = integrate_lattice(a0 * sign, np.zeros(N), t, alpha=alpha, method="dop853", rtol=1e-12)
+    assert np.abs(d.x - ref.y[0][:, None] * sign).max() < tol * a0
+
+
+def test_two_bead_free_chain_and_rerun():
+    """N = 2, free ends: s = x0 + x1 is harmonic, r = x1 - x0 solves r'' + r = 2 max(-r, 0)^alpha.
+
+    The beads start at rest positions with opposite velocities, so the initial
+    compression is 0 and the assumed c = A0 = 1 is exceeded: the driver reruns.
+    """
+    alpha = 1.5
+    t = np.linspace(0.0, 10.0, 21)
+    s = integrate_lattice([0.0, 0.0], [1.0, -1.0], t, alpha=alpha, bc="free")
+    ref = solve_ivp(lambda _t, y: [y[1], -y[0] + 2.0 * max(-y[0], 0.0) ** alpha], (0.0, 10.0), [0.0, -2.0],
+                    t_eval=t, method="DOP853", rtol=1e-12, atol=1e-14)
+    err = np.abs((s.x[:, 1] - s.x[:, 0]) - ref.y[0]).max()
+    print(f"N=2 free: error {err:.2e}, max compression {s.max_compression:.4f}, "
+          f"c_assumed {s.c_assumed:.4f}, reruns {s.n_reruns}")
+    assert err < 1e-8
+    assert np.abs(s.x.sum(axis=1)).max() < 1e-14
+    assert s.n_reruns >= 1 and s.c_assumed >= s.max_compression
+    assert s.energy_drift < 1e-8
+
+
+def test_free_ends_conserve_energy(tw11):
+    x0, v0, a = tw11
+    s = integrate_lattice(x0, v0, np.linspace(0, 50, 6), alpha=1.5, bc="free")
+    H = L.hamiltonian(s.x, s.v, 1.5, "free")
+    np.testing.assert_allclose(s.energy, H, rtol=1e-13)
+    print(f"free ends: energy drift {s.energy_drift:.2e}")
+    assert s.energy_drift < 1e-8
+    assert np.abs(H - H[0]).max() / H[0] < 1e-8
+
+
+# ---------------------------------------------------------------- orders
+
+def _observed_order(x0, v0, T, alpha, potential, method, dts, ref):
+    errs = []
+    for dt in dts:
+        s = integrate_lattice(x0, v0, [0.0, T], alpha=alpha, method=method, dt=dt, potential=potential)
+        errs.append(max(np.abs(s.x[-1] - ref.x[-1]).max(), np.abs(s.v[-1] - ref.v[-1]).max()))
+    return np.polyfit(np.log(dts), np.log(errs), 1)[0], errs
+
+
+SMOOTH_DTS = {"strang": [0.04, 0.02, 0.01, 0.005], "srkn4": [0.2, 0.1, 0.05, 0.025],
+              "srkn6": [0.4, 0.3, 0.2, 0.15, 0.1]}
+
+
+@pytest.mark.parametrize("method", list(SPLITTINGS))
+def test_convergence_order_smooth_meca(method):
+    """(meca) with U = |d|^4/4 (alpha = 3, kappa = 1): observed orders 2, 4, 6."""
+    x0, v0 = smooth_state()
+    ref = integrate_lattice(x0, v0, [0.0, 5.0], alpha=3.0, potential="smooth", method="dop853",
+                            rtol=1e-13, atol=1e-15)
+    p, errs = _observed_order(x0, v0, 5.0, 3.0, "smooth", method, SMOOTH_DTS[method], ref)
+    print(f"(meca) alpha=3 {method}: observed order {p:.2f}, errors {np.array(errs)}")
+    assert abs(p - ORDERS[method]) < 0.3
+
+
+@pytest.mark.parametrize("method", list(SPLITTINGS))
+def test_energy_error_smooth_scales_and_stays_bounded(method):
+    """Symplectic: the energy error ~ dt^order and does not grow secularly (t = 100 vs 1000)."""
+    x0, v0 = smooth_state()
+    dts = {"strang": [0.02, 0.01], "srkn4": [0.1, 0.075, 0.05], "srkn6": [0.2, 0.15, 0.1]}[method]
+    drifts = []
+    for dt in dts:
+        s100 = integrate_lattice(x0, v0, [0.0, 100.0], alpha=3.0, potential="smooth", method=method, dt=dt)
+        s1000 = integrate_lattice(x0, v0, [0.0, 1000.0], alpha=3.0, potential="smooth", method=method, dt=dt)
+        assert s1000.energy_drift < 3 * s100.energy_drift
+        drifts.append(s1000.energy_drift)
+    p = np.polyfit(np.log(dts), np.log(drifts), 1)[0]
+    print(f"(meca) {method}: energy-error order {p:.2f}, drifts {drifts}")
+    assert p > ORDERS[method] - 0.5
+
+
+def test_convergence_order_hertz():
+    """Hertz (vhertz) alpha = 3/2: the force is only C^{1,1/2} at contact onset, so the
+    observed order is capped near alpha + 1 = 2.5 whatever the nominal order."""
+    N, q = 16, 2 * np.pi * 3 / 16
+    x0, v0 = wave(N, q, 0.5, 1.1)
+    ref = integrate_lattice(x0, v0, [0.0, 10.0], alpha=1.5, method="srkn6", dt=0.0005)
+    orders = {}
+    for method, dts in {"srkn6": [0.2, 0.1, 0.05, 0.025], "strang": [0.04, 0.02, 0.01, 0.005]}.items():
+        orders[method], _ = _observed_order(x0, v0, 10.0, 1.5, "hertz", method, dts, ref)
+    print(f"Hertz alpha=1.5 observed orders: {orders}")
+    assert orders["srkn6"] > 1.5
+    assert abs(orders["strang"] - 2.0) < 0.3
+
+
+# ---------------------------------------------------------------- defaults on a paper scene
+
+def test_default_energy_drift_and_long_time(tw11):
+    x0, v0, a = tw11
+    s100 = integrate_lattice(x0, v0, np.linspace(0.0, 100.0, 11), alpha=1.5)
+    s1000 = integrate_lattice(x0, v0, np.linspace(0.0, 1000.0, 11), alpha=1.5)
+    print(f"srkn6 default (dt={s100.dt:.3g}): drift t=100 {s100.energy_drift:.2e}, "
+          f"t=1000 {s1000.energy_drift:.2e}, wall {s100.wall_time_s:.2f}+{s1000.wall_time_s:.2f}s")
+    assert s100.method == "srkn6" and s100.n_reruns == 0
+    assert s100.energy_drift <= 1e-8
+    assert s1000.energy_drift < 3 * s100.energy_drift
+    assert s100.n_force_evals == 1 + 11 * s100.n_steps
+    c_assumed, c_energy = compression_bounds(x0, v0, 1.5)
+    assert s100.dt == pytest.approx(DEFAULT_DT_FACTOR["srkn6"] * 2 * np.pi / omega_max(c_assumed, 1.5))
+    assert s100.max_compression <= c_assumed <= c_energy
+
+
+def test_srkn6_agrees_with_dop853(tw11):
+    x0, v0, a = tw11
+    t = np.linspace(0.0, 50.0, 6)
+    s = integrate_lattice(x0, v0, t, alpha=1.5)
+    d = integrate_lattice(x0, v0, t, alpha=1.5, method="dop853", rtol=1e-12)
+    dn = integrate_lattice(x0, v0, t, alpha=1.5, method="dop853_numba", rtol=1e-12)
+    err = np.abs(s.x - d.x).max() / a
+    err_n = np.abs(dn.x - s.x).max() / a
+    print(f"srkn6 default vs dop853 rtol=1e-12 at t=50: {err:.2e}; dop853_numba rtol=1e-12 vs srkn6 {err_n:.2e} "
+          f"(relative to a); wall {s.wall_time_s:.3f} / {d.wall_time_s:.3f} / {dn.wall_time_s:.3f} s")
+    assert err < 1e-8
+    assert err_n < 2e-8  # both DOP853 runs carry ~5e-9 global error at rtol = 1e-12
+    assert d.atol == pytest.approx(1e-12 * max(np.abs(x0).max(), np.abs(v0).max()))
+
+
+@pytest.mark.parametrize("method", ["rk45", "lsoda", "radau", "dop853_numba"])
+def test_other_adaptive_methods(method):
+    x0, v0 = wave(8, np.pi / 2, 0.3, 1.05)
+    t = np.linspace(0.0, 5.0, 3)
+    ref = integrate_lattice(x0, v0, t, alpha=1.5)
+    s = integrate_lattice(x0, v0, t, alpha=1.5, method=method, rtol=1e-9)
+    assert s.dt is None and s.rtol == 1e-9
+    assert np.abs(s.x - ref.x).max() < 1e-6
+    assert s.energy_drift < 1e-6
+
+
+def test_output_times_progress_and_general_alpha():
+    x0, v0 = wave(10, 2 * np.pi / 5, 0.2, 1.05)
+    calls = []
+    t = np.array([0.5, 1.0, 2.5])
+    s = integrate_lattice(x0, v0, t, alpha=2.2, dt=0.01, progress=lambda tr, tf: calls.append((tr, tf)))
+    s_all = integrate_lattice(x0, v0, np.array([0.0, 0.5, 1.0, 2.5]), alpha=2.2, dt=0.01)
+    np.testing.assert_array_equal(s.t, t)
+    assert s.x.shape == (3, 10)
+    np.testing.assert_allclose(s.x, s_all.x[1:], rtol=0, atol=1e-15)
+    assert calls and calls[-1] == (2.5, 2.5)
+    np.testing.assert_allclose(s.energy, L.hamiltonian(s.x, s.v, 2.2), rtol=1e-13)
+    d = integrate_lattice(x0, v0, t, alpha=2.2, method="dop853", rtol=1e-11)
+    assert np.abs(d.x - s.x).max() < 1e-8
+
+
+# ---------------------------------------------------------------- DpS
+
+@pytest.mark.parametrize("bc", ["periodic", "free"])
+def test_dps_invariants(bc):
+    rng = np.random.default_rng(0)
+    A0 = rng.standard_normal(12) + 1j * rng.standard_normal(12)
+    y = A0.view(np.float64).copy()
+    dy = np.empty_like(y)
+    K.dps_rhs(y, dy, 1.5, 1.0 / (2.0 * D.tau0(1.5)), bc == "periodic")
+    np.testing.assert_allclose(dy.view(complex), D.rhs(A0, 1.5, bc), rtol=1e-13, atol=1e-14)
+    s = integrate_dps(A0, np.linspace(0.0, 10.0, 5), alpha=1.5, bc=bc, rtol=1e-10)
+    print(f"DpS {bc}: max l2 drift {s.max_l2_drift:.1e}, H drift {s.max_energy_drift:.1e}")
+    assert s.max_l2_drift < 1e-8 and s.max_energy_drift < 1e-8 and s.P_drift.max() < 1e-12
+
+
+def test_dps_plane_wave():
+    """A_n = R exp(i(Omega tau - q n)), tau0 Omega = 2^alpha R^(alpha-1) |sin(q/2)|^(alpha+1) (ds)."""
+    N, alpha, R = 16, 1.5, 0.7
+    q = 2 * np.pi * 3 / N
+    n = np.arange(N)
+    tau = np.linspace(0.0, 20.0, 21)
+    s = integrate_dps(D.plane_wave(n, 0.0, R, q, 0.0, alpha), tau, alpha=alpha, rtol=1e-11)
+    exact = D.plane_wave(n[None, :], tau[:, None], R, q, 0.0, alpha)
+    err = np.abs(s.A - exact).max()
+    print(f"DpS plane wave: error {err:.1e}, l2 drift {s.max_l2_drift:.1e}, H drift {s.max_energy_drift:.1e}")
+    assert err < 1e-9
+    assert s.max_l2_drift < 1e-10 and s.max_energy_drift < 1e-10
+    assert s.l2_drift.shape == (21,) and s.atol == pytest.approx(1e-11 * R)
+    sn = integrate_dps(D.plane_wave(n, 0.0, R, q, 0.0, alpha), tau, alpha=alpha, rtol=1e-11, method="dop853_numba")
+    assert np.abs(sn.A - exact).max() < 1e-9
+    assert sn.max_l2_drift < 1e-10 and sn.max_energy_drift < 1e-10 and sn.P_drift.max() < 1e-12
+    np.testing.assert_allclose(s.energy_drift, np.abs(D.hamiltonian(s.A, alpha) / D.hamiltonian(s.A[0], alpha) - 1),
+                               atol=1e-14)
+
+
+# ---------------------------------------------------------------- bad inputs
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(alpha=1.0), "alpha=1.0"),
+    (dict(alpha=1.5, method="euler"), "method='euler'"),
+    (dict(alpha=1.5, bc="fixed"), "bc='fixed'"),
+    (dict(alpha=1.5, potential="fpu"), "potential='fpu'"),
+    (dict(alpha=1.5, t_out=[0.0, 2.0, 1.0]), r"t_out\[1\]=2.0"),
+    (dict(alpha=1.5, t_out=[-1.0, 1.0]), r"t_out\[0\]=-1.0"),
+    (dict(alpha=1.5, x0=[0.1]), "N=1"),
+    (dict(alpha=1.5, x0=[0.1, np.nan, 0.0, 0.0]), r"x0\[1\]=nan"),
+    (dict(alpha=1.5, v0=[0.1, np.inf, 0.0, 0.0]), r"v0\[1\]=inf"),
+    (dict(alpha=1.5, dt=-0.1), "dt=-0.1"),
+    (dict(alpha=1.5, dt=0.1, dt_factor=0.01), "dt=0.1"),
+    (dict(alpha=1.5, rtol=1e-8), "rtol=1e-08"),
+    (dict(alpha=1.5, method="dop853", dt=0.1), "dt=0.1"),
+    (dict(alpha=1.5, method="dop853", rtol=0.0), "rtol=0.0"),
+])
+def test_bad_lattice_inputs(kwargs, match):
+    args = dict(x0=np.zeros(4), v0=np.zeros(4), t_out=[0.0, 1.0])
+    for key in ("x0", "v0", "t_out"):
+        if key in kwargs:
+            args[key] = kwargs.pop(key)
+    if len(args["x0"]) != len(args["v0"]) and len(args["x0"]) >= 2:
+        args["v0"] = np.zeros(len(args["x0"]))
+    with pytest.raises(ValueError, match=match):
+        integrate_lattice(args["x0"], args["v0"], args["t_out"], **kwargs)
+
+
+def test_bad_dps_inputs():
+    A0 = np.ones(4, dtype=complex)
+    with pytest.raises(ValueError, match="alpha=0.5"):
+        integrate_dps(A0, [0.0, 1.0], alpha=0.5)
+    with pytest.raises(ValueError, match="method='srkn6'"):
+        integrate_dps(A0, [0.0, 1.0], alpha=1.5, method="srkn6")
+    with pytest.raises(ValueError, match=r"tau_out\[1\]=1.0"):
+        integrate_dps(A0, [0.0, 1.0, 1.0], alpha=1.5)
+    with pytest.raises(ValueError, match=r"A0\[2\]"):
+        integrate_dps(np.array([1, 1, np.nan, 1], dtype=complex), [0.0, 1.0], alpha=1.5)
