@@ -53,3 +53,12 @@ def scene_files(name):
 def figure_targets(labels=None):
     labels = config["figures"] if labels is None else labels
     return [f"results/figures/{label}.{ext}" for label in labels for ext in ("pdf", "png")]
+
+
+def figure_module(label):
+    """The figures/*.py module whose FIGURES dict draws ``label`` (read as text: no import)."""
+    for path in sorted((SRC / "figures").glob("*.py")):
+        match = re.search(r"^FIGURES\s*=\s*\{(.*?)\}", path.read_text(), re.M | re.S)
+        if match and re.search(r"[\"']" + re.escape(label) + r"[\"']\s*:", match.group(1)):
+            return str(path)
+    raise WorkflowError(f"no module in {SRC / 'figures'} draws figure {label!r}")

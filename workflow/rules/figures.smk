@@ -9,7 +9,8 @@ rule figure:
     message:
         "Drawing figure {wildcards.label}"
     input:
-        code=sources("__init__", "io", "variables", "compare", "lattice", "figures"),
+        code=lambda w: sources("__init__", "io", "variables", "compare", "lattice", "figures/__init__")
+        + [figure_module(w.label)],
         data=figure_inputs,
     output:
         pdf="results/figures/{label}.pdf",

@@ -1,10 +1,11 @@
 """One drawing function per paper figure, reading netCDF outputs only.
 
-Each ``draw_<label>`` takes opened :class:`xarray.Dataset` objects (and the
-figure's options from config.yaml) and returns a matplotlib Figure;
-:func:`save_figure` writes it as ``<stem>.pdf`` and ``<stem>.png``.
-Modules: :mod:`.maps` (traj3, traj2), :mod:`.homoclinic` (bcsc),
-:mod:`.travelling` (plot4-5, plotcomplin).
+Each module registers its figures in a ``FIGURES = {label: function}`` dict;
+a function takes opened :class:`xarray.Dataset` objects (and the figure's
+options from config.yaml) and returns a matplotlib Figure; :func:`save_figure`
+writes it as ``<stem>.pdf`` and ``<stem>.png``. Modules: :mod:`.maps`
+(traj3, traj2), :mod:`.homoclinic` (bcsc), :mod:`.travelling` (plot4-5,
+plotcomplin).
 """
 from __future__ import annotations
 
@@ -40,15 +41,24 @@ def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
     return plt.subplots(nrows, ncols, figsize=(width, height), constrained_layout=True, **kw)
 
 
-# label -> (module, function). Each function takes (data, options) and returns a Figure;
-# ``data`` maps every name of the figure's `scenes:` list to its Dataset(s).
-REGISTRY = {
-    "traj3": ("maps", "figure_traj3"),
-    "traj2": ("maps", "figure_traj2"),
-    "bcsc": ("homoclinic", "draw_bcsc"),
-    "plot4-5": ("travelling", "draw_plot4_5"),
-    "plotcomplin": ("travelling", "draw_plotcomplin"),
-}
+def registry() -> dict:
+    """label -> drawing function, collected from the ``FIGURES`` dict of every module here.
+
+    Each function takes (data, options) and returns a Figure; ``data`` maps
+    every name of the figure's `scenes:` list to its Dataset(s) (see
+    :func:`load_inputs`), ``options`` is the figure's entry in config.yaml.
+    """
+    import importlib
+    import pkgutil
+
+    found = {}
+    for info in pkgutil.iter_modules(__path__):
+        module = importlib.import_module(f"{__name__}.{info.name}")
+        for label, func in getattr(module, "FIGURES", {}).items():
+            if label in found:
+                raise RuntimeError(f"figure {label!r} is drawn by two modules")
+            found[label] = func
+    return found
 
 
 def load_inputs(scenes: dict, root) -> dict:
@@ -76,10 +86,7 @@ def load_inputs(scenes: dict, root) -> dict:
 
 def draw(label: str, data: dict, options: dict, stem) -> list[Path]:
     """Draw figure ``label`` and save it as ``stem``.pdf/.png."""
-    import importlib
-
-    if label not in REGISTRY:
-        raise KeyError(f"no drawing function for figure {label!r}; known: {sorted(REGISTRY)}")
-    module, func = REGISTRY[label]
-    fig = getattr(importlib.import_module(f"{__name__}.{module}"), func)(data, options)
-    return save_figure(fig, stem)
+    funcs = registry()
+    if label not in funcs:
+        raise KeyError(f"no drawing function for figure {label!r}; known: {sorted(funcs)}")
+    return save_figure(funcs[label](data, options), stem)

@@ -30,3 +30,6 @@ def draw_bcsc(data, options):
     _profile(axes[1, 0], bond, "bond-centred")
     _profile(axes[1, 1], double, "double-humped")
     return fig
+
+
+FIGURES = {"bcsc": draw_bcsc}

@@ -55,3 +55,6 @@ def draw_plotcomplin(data, options):
     right.plot(n, linear_wave(n, np.array([t_shown]), a, q)[0], "--", color="C0", lw=1.0, label="linear wave")
     right.legend(fontsize=8, loc="upper right")
     return fig
+
+
+FIGURES = {"plot4-5": draw_plot4_5, "plotcomplin": draw_plotcomplin}
