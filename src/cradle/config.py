@@ -13,7 +13,8 @@ Two layers:
    bounds, enums; its errors are rewritten as one readable line each;
 2. physical checks the schema cannot express: q in (-pi, pi], q N / (2 pi)
    an integer on a ring, exactly one of a and omega_tw, breathers naming an
-   existing homoclinic entry with the same N and bc, increasing snapshots
+   existing homoclinic entry with the same N and bc, packets and pairs that
+   fit the chain, increasing snapshots
    within [0, t_end], names unique across sections, figures reading existing
    entries and stored times, ...
 
@@ -522,6 +523,28 @@ def _check_breather(ini, scene, cfg, alpha, path, scene_path, out):
                                         f"is built from that solution", alpha)
 
 
+def _check_packet(ini, N, path, out):
+    """kind packet (loc1, left): the envelope must fit the chain and be centred on it."""
+    if not isinstance(N, int) or N < 2:
+        return
+    width, centre = ini.get("width"), ini.get("centre")
+    if _number(width) and width > N:
+        out.add(path + ["width"], f"must be <= N = {N} (the envelope must fit the chain)", width)
+    if _number(centre) and not 0 <= centre <= N - 1:
+        out.add(path + ["centre"], f"must be in [0, N-1] = [0, {N - 1}]", centre)
+
+
+def _check_pair(ini, N, path, out):
+    """kind pair (loc1, right): the two copies must be distinct and the centre a site."""
+    if not isinstance(N, int) or N < 2:
+        return
+    sep, centre = ini.get("separation"), ini.get("centre")
+    if _number(sep) and not 1 <= sep < N:
+        out.add(path + ["separation"], f"must be in [1, N-1] = [1, {N - 1}]", sep)
+    if _number(centre) and not 0 <= centre < N:
+        out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", centre)
+
+
 def _check_scene(name, scene, cfg, out):
     path = ["scenes", name]
     N, bc = scene.get("N"), scene.get("bc", "periodic")
@@ -564,6 +587,10 @@ def _check_scene(name, scene, cfg, out):
             _check_travelling(ini, N, bc, alpha, path + ["initial"], out)
         elif ini.get("kind") == "breather":
             _check_breather(ini, scene, cfg, alpha, path + ["initial"], path, out)
+        elif ini.get("kind") == "packet":
+            _check_packet(ini, N, path + ["initial"], out)
+        elif ini.get("kind") == "pair":
+            _check_pair(ini, N, path + ["initial"], out)
 
 
 def _physical(cfg: dict, out: _Errors):

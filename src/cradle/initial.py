@@ -123,3 +123,118 @@ def breather(a_n, alpha: float, *, omega_sw: float | None = None, amplitude: flo
     x0, v0 = lattice_state(A0, 1.0, alpha, bc)
     info = {"mu": mu, "omega_sw": omega_sw, "eps": 1.0}
     return InitialData(A0=A0, eps=1.0, x0=x0, v0=v0, info=info)
+
+
+# ----------------------------------------------------------------------------- localised envelopes (loc1)
+
+ENVELOPES = ("gaussian", "cos2")
+PAIR_PROFILES = ("site", "bond")
+
+
+def from_displacements(x0, alpha: float, bc: str = "periodic", info: dict | None = None) -> InitialData:
+    """Data with zero velocities whose DpS start is tau = 0 in (breatherdps): A_n(0) = x_n(0)/2, eps = 1.
+
+    For a real A_n(0) the DpS right-hand side is purely imaginary, so the
+    ansatz velocities v_n(0) = 2 (-Im A_n(0) + Re dA_n/dtau(0)) vanish:
+    the lattice starts at rest from x_n(0), as in figure loc1.
+    """
+    alpha = check_alpha(alpha)
+    check_bc(bc)
+    x0 = np.asarray(x0, dtype=float)
+    A0 = 0.5 * x0.astype(complex)
+    x0_ansatz, v0 = lattice_state(A0, 1.0, alpha, bc)
+    return InitialData(A0=A0, eps=1.0, x0=x0_ansatz, v0=v0, info={**(info or {}), "eps": 1.0})
+
+
+def envelope(s, kind: str, width: float):
+    """A packet envelope of peak 1 at s = 0, (almost) supported on ``width`` sites.
+
+    * ``gaussian``: exp(-s^2 / (2 sigma^2)) with sigma = width / 6, so the
+      envelope is below 0.5 % of its peak one site beyond ``width`` sites
+      (6 sigma = width): "almost compactly supported";
+    * ``cos2``: cos^2(pi s / width) for |s| < width / 2, 0 elsewhere
+      (compactly supported; ``width`` sites are nonzero when the centre is
+      a half-integer and ``width`` even).
+    """
+    s = np.asarray(s, dtype=float)
+    if not width > 0:
+        raise ValueError(f"width must be > 0, got width={width!r}")
+    if kind == "gaussian":
+        sigma = width / 6.0
+        return np.exp(-0.5 * (s / sigma) ** 2)
+    if kind == "cos2":
+        return np.where(np.abs(s) < width / 2.0, np.cos(np.pi * s / width) ** 2, 0.0)
+    raise ValueError(f"unknown envelope {kind!r} (known: {', '.join(ENVELOPES)})")
+
+
+def packet(N: int, alpha: float, *, amplitude: float, width: float, envelope_kind: str = "gaussian",
+           centre: float | None = None, bc: str = "periodic") -> InitialData:
+    """A modulated binary oscillation at rest (figure loc1, left):
+
+        x_n(0) = amplitude (-1)^n env(n - centre),   v_n(0) = 0,   A_n(0) = x_n(0)/2, eps = 1,
+
+    with ``env`` from :func:`envelope` (peak 1, ``width`` sites). On a ring the
+    distance n - centre is taken modulo N (nearest image). Default centre:
+    (N - 1)/2, the bond in the middle of the chain, so an even number of
+    sites sits symmetrically under the envelope.
+    """
+    if N < 2:
+        raise ValueError(f"N must be >= 2, got N={N}")
+    if not amplitude > 0:
+        raise ValueError(f"amplitude must be > 0, got amplitude={amplitude!r}")
+    c = (N - 1) / 2.0 if centre is None else float(centre)
+    n = np.arange(N)
+    s = n - c
+    if bc == "periodic":
+        s = (s + N / 2.0) % N - N / 2.0
+    x0 = amplitude * (-1.0) ** n * envelope(s, envelope_kind, width)
+    info = {"envelope": envelope_kind, "width": float(width), "amplitude": float(amplitude), "centre": c,
+            "max_abs_x0": float(np.max(np.abs(x0)))}
+    return from_displacements(x0, alpha, bc, info)
+
+
+def pair(N: int, alpha: float, *, amplitude: float, separation: int, profile: str = "bond", sign: int = 1,
+         centre: int | None = None, bc: str = "periodic", a_n=None) -> InitialData:
+    """Two static breathers at rest (figure loc1, right): the sum of two copies of one
+    homoclinic profile a_n of (dpsstn), ``separation`` sites apart,
+
+        x_n(0) = mu^(1/(alpha-1)) (a_{n+l} + sign a_{n-r}),  l = separation // 2, r = separation - l,
+        v_n(0) = 0,   A_n(0) = x_n(0)/2, eps = 1   (tau = 0 in (breatherdps)),
+
+    where mu is such that one copy alone has |x_n(0)| = ``amplitude`` at its
+    largest site, and omega_sw = 1 + mu / (2^alpha tau0) is the frequency of
+    that single breather. ``profile`` (site | bond) is solved here by
+    :mod:`cradle.homoclinic` from the paper's start (amplitude 0.1) on the
+    scene's N and bc, centred at ``centre`` (default N // 2), unless ``a_n``
+    is given. A bond profile centred on bond (c, c+1) with separation 3 and
+    sign +1 gives two breathers with a node at one site between them.
+    """
+    from . import homoclinic
+
+    alpha = check_alpha(alpha)
+    check_bc(bc)
+    if not amplitude > 0:
+        raise ValueError(f"amplitude must be > 0, got amplitude={amplitude!r}")
+    if profile not in PAIR_PROFILES:
+        raise ValueError(f"unknown pair profile {profile!r} (known: {', '.join(PAIR_PROFILES)})")
+    if sign not in (1, -1):
+        raise ValueError(f"sign must be 1 or -1, got sign={sign!r}")
+    if not 1 <= separation < N:
+        raise ValueError(f"separation must be in [1, N-1] = [1, {N - 1}], got separation={separation!r}")
+    residual = float("nan")
+    if a_n is None:
+        sol = homoclinic.solve(homoclinic.initial_guess(N, profile, alpha, 0.1, centre=centre), alpha, bc)
+        if not sol.converged:
+            raise ValueError(f"the {profile} profile did not converge (residual {sol.residual:.3e})")
+        a_n, residual = sol.a, sol.residual
+    a_n = np.asarray(a_n, dtype=float)
+    if a_n.shape != (N,):
+        raise ValueError(f"a_n must have N = {N} sites, got shape {a_n.shape}")
+    left, right = separation // 2, separation - separation // 2
+    env = np.roll(a_n, -left) + sign * np.roll(a_n, right)
+    mu = (amplitude / float(np.max(np.abs(a_n)))) ** (alpha - 1.0)
+    x0 = mu ** (1.0 / (alpha - 1.0)) * env
+    info = {"profile": profile, "separation": int(separation), "sign": int(sign), "amplitude": float(amplitude),
+            "mu": mu, "omega_sw": dps.omega_sw_from_mu(mu, alpha), "profile_residual": residual,
+            "max_abs_x0": float(np.max(np.abs(x0)))}
+    return from_displacements(x0, alpha, bc, info)

@@ -91,7 +91,7 @@ def _scene_attrs(spec: dict, name: str) -> dict:
              "seed": noise.get("seed", "none")}
     if ini["kind"] == "travelling":
         attrs.update({"q": ini["q"], "q_expr": str(ini.get("q_expr", ini["q"])), "phi": ini.get("phi", 0.0)})
-    else:
+    elif ini["kind"] == "breather":
         attrs.update({"homoclinic": ini["homoclinic"]})
     return attrs
 
@@ -110,6 +110,13 @@ def initial_data(spec: dict, name: str = "", homoclinic_ds: xr.Dataset | None = 
             raise ValueError(f"scene '{name}': a breather needs the homoclinic solution '{ini['homoclinic']}'")
         data = initial.breather(homoclinic_ds["a"].values, alpha, omega_sw=ini.get("omega_sw"),
                                 amplitude=ini.get("amplitude"), site=ini.get("site"), bc=bc)
+    elif ini["kind"] == "packet":  # loc1 (left): modulated binary oscillation at rest
+        data = initial.packet(N, alpha, amplitude=ini["amplitude"], width=ini["width"],
+                              envelope_kind=ini.get("envelope", "gaussian"), centre=ini.get("centre"), bc=bc)
+    elif ini["kind"] == "pair":  # loc1 (right): two static breathers at rest, profile solved in-process
+        data = initial.pair(N, alpha, amplitude=ini["amplitude"], separation=ini["separation"],
+                            profile=ini.get("profile", "bond"), sign=ini.get("sign", 1), centre=ini.get("centre"),
+                            bc=bc)
     else:
         raise ValueError(f"scene '{name}': unknown initial kind {ini['kind']!r}")
     fields = {"x0": data.x0, "v0": data.v0, "A0_re": data.A0.real, "A0_im": data.A0.imag}

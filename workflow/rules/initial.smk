@@ -11,7 +11,7 @@ rule initial:
     message:
         "Initial data of scene '{wildcards.scene}'"
     input:
-        code=sources(*CORE, "initial"),
+        code=sources(*CORE, "initial", "homoclinic"),  # pair scenes solve their profile in-process
         homoclinic=initial_inputs,
     output:
         "results/initial/{scene}.nc",

@@ -1,0 +1,370 @@
+"""Figures plot18, loc1 and fini: localised initial conditions (section 4.3).
+
+* plot18: one breather (ansatzapproxst2)/(breatherdps) from the bond-centred
+  homoclinic solution of (dpsstn), N = 50, periodic, zero velocities. Top
+  left: x_n(0); top right: exact at t = 569.4 (line) against approximate at
+  565.95 (dots); bottom left: forces of the exact run in grey levels; bottom
+  right: exact at t = 293.2 for the large amplitude (omega_sw ~ 1.6).
+* loc1: a packet modulating a binary oscillation (left) and two static
+  breathers (right), at rest: initial profiles, then the forces of the exact
+  and approximate runs on one colour scale per column, and the merging time
+  of the two breathers (:func:`merging_time`) in breather periods.
+* fini: a breather on a 10-bead chain with free ends: bead displacements
+  against t, each bead offset by its label n = 1..10, in an early window and
+  after ~250 breather periods, exact (left) and approximate (right).
+
+Space-time diagrams are raster images (``imshow``): forces f_n =
+V0'(x_{n+1} - x_n) <= 0 in grey levels, white = beads apart (f = 0), black =
+the most negative force; bond index n horizontal, time t upwards.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import figure
+
+CMAP = "gray"                      # vmin -> black, vmax = 0 -> white
+FORCE_LABEL = "$V_0'(x_{n+1}-x_n)$"
+
+# plot18 (bottom left): the paper likens this diagram to the detail plot28 (the central breather of
+# the q = pi instability), a 100-time-unit, 20-bond window. We show the last 100 time units of the
+# run (the breather is still intact at the end) on the 20 bonds 16..35 around the breather.
+PLOT18_SPAN = 100.0
+PLOT18_BONDS = (16, 35)
+
+# merging_time: a breather is a run of consecutive bonds whose peak compression over one breather
+# period reaches MERGE_REL times the largest of that period; the merged state must last at least
+# MERGE_MIN_PERIODS periods before the end of the data to count (see merging_time).
+MERGE_REL = 0.5
+MERGE_MIN_PERIODS = 50.0
+
+FINI_DELTA_X = 0.02                # displacement of one unit of vertical offset (the paper's scale bar)
+
+
+# --------------------------------------------------------------------------- measurements (numpy)
+
+def peak_compression(t, force, period):
+    """Window starts and the peak compression max |f_n| of every bond in each breather period.
+
+    ``t`` (T,) increasing stored times, ``force`` (T, N); windows are
+    [t_0 + k period, t_0 + (k+1) period), k = 0..K-1, only complete windows
+    (a window holding no stored time gives a row of NaN). Returns
+    (starts (K,), P (K, N)).
+    """
+    t = np.asarray(t, dtype=float)
+    f = np.abs(np.asarray(force, dtype=float))
+    if f.ndim != 2 or f.shape[0] != t.size:
+        raise ValueError(f"force must have shape (len(t), N), got {f.shape} with len(t) = {t.size}")
+    if not period > 0:
+        raise ValueError(f"period must be > 0, got {period!r}")
+    span = t[-1] - t[0]
+    K = int(np.floor(span / period + 1e-9))
+    starts = t[0] + period * np.arange(K)
+    P = np.full((K, f.shape[1]), np.nan)
+    k = np.floor((t - t[0]) / period + 1e-9).astype(int)
+    for i in range(K):
+        rows = f[k == i]
+        if rows.size:
+            P[i] = rows.max(axis=0)
+    return starts, P
+
+
+def count_humps(profile, rel=MERGE_REL, periodic=True) -> int:
+    """Number of humps of a non-negative profile: maximal runs of consecutive sites
+    (cyclically if ``periodic``) whose value is >= rel * max. 0 for an all-zero or NaN profile."""
+    p = np.asarray(profile, dtype=float)
+    top = np.nanmax(p) if np.any(np.isfinite(p)) else np.nan
+    if not np.isfinite(top) or top <= 0:
+        return 0
+    above = p >= rel * top
+    if above.all():
+        return 1
+    starts = above & ~np.roll(above, 1)          # a run begins where the previous site is below
+    if not periodic:
+        starts[0] = above[0]
+    return int(np.count_nonzero(starts))
+
+
+def merging_time(ds, period=None, *, rel=MERGE_REL, min_periods=MERGE_MIN_PERIODS, periodic=True) -> float:
+    """Merging time of two breathers, in breather periods, from stored forces.
+
+    ``ds`` is anything indexable by "t" (T,) and "force" (T, N) (an xarray
+    Dataset of results/sim/<scene>/{exact,dps}.nc or a dict of arrays);
+    ``period`` defaults to 2 pi / ds.attrs["omega_sw"]. Pure numpy on the
+    arrays.
+
+    Criterion. The time axis is cut into breather periods; in each, the
+    localisation profile is the peak compression max_t |f_n| of every bond
+    (:func:`peak_compression`). A breather is a maximal run of consecutive
+    bonds whose peak compression is at least ``rel`` times the period's
+    largest (:func:`count_humps`). The breathers have merged at the start of
+    the first period from which every later period shows a single such run;
+    that single-breather state must last at least ``min_periods`` periods
+    before the end of the data (otherwise a last transient overlap, e.g. two
+    travelling breathers crossing at the end, would count). Returns the
+    merging time in periods (t_merge - t_0) / period, 0.0 if the data hold a
+    single breather throughout, NaN if the breathers have not merged for good.
+    """
+    t = np.asarray(ds["t"], dtype=float)
+    force = np.asarray(ds["force"], dtype=float)
+    if period is None:
+        period = 2.0 * np.pi / float(ds.attrs["omega_sw"])
+    starts, P = peak_compression(t, force, period)
+    if len(starts) == 0:
+        return float("nan")
+    counts = np.array([count_humps(p, rel, periodic) for p in P])
+    single = counts == 1
+    if not single[-1]:
+        return float("nan")
+    not_single = np.flatnonzero(~single)
+    first = int(not_single[-1]) + 1 if not_single.size else 0
+    if len(starts) - first < min_periods:
+        return float("nan")
+    return float((starts[first] - t[0]) / period)
+
+
+def frequency_from_crossings(t, x) -> float:
+    """Angular frequency of an oscillating signal x(t) from its upward zero crossings
+    (linear interpolation between samples, then a least-squares line through
+    crossing time against crossing number). NaN with fewer than 3 crossings."""
+    t = np.asarray(t, dtype=float)
+    x = np.asarray(x, dtype=float)
+    i = np.flatnonzero((x[:-1] < 0) & (x[1:] >= 0))
+    if i.size < 3:
+        return float("nan")
+    tc = t[i] - x[i] * (t[i + 1] - t[i]) / (x[i + 1] - x[i])
+    slope = np.polyfit(np.arange(tc.size), tc, 1)[0]
+    return float(2.0 * np.pi / slope)
+
+
+def half_period_shift(t, x_exact, x_approx, omega_sw) -> dict:
+    """Frequencies of exact and approximate signals (zero crossings) and the number of
+    breather periods after which they drift half a period apart, pi / |omega_ex - omega_app|
+    in units of 2 pi / omega_sw."""
+    w_ex = frequency_from_crossings(t, x_exact)
+    w_ap = frequency_from_crossings(t, x_approx)
+    dw = abs(w_ex - w_ap)
+    periods = (np.pi / dw) / (2.0 * np.pi / omega_sw) if dw > 0 else float("inf")
+    return {"omega_exact": w_ex, "omega_approx": w_ap, "half_shift_periods": float(periods)}
+
+
+def dispersive_amplitude(x, core, halfwidth=6, periodic=True) -> float:
+    """max |x_n| over the sites farther than ``halfwidth`` from ``core`` (a site or a bond midpoint):
+    the amplitude of what the breather radiated (plot18, bottom right)."""
+    x = np.asarray(x, dtype=float)
+    n = np.arange(x.size)
+    d = np.abs(n - core)
+    if periodic:
+        d = np.minimum(d, x.size - d)
+    far = d > halfwidth
+    return float(np.max(np.abs(x[far]))) if far.any() else 0.0
+
+
+# --------------------------------------------------------------------------- drawing helpers
+
+def _at(ds, t):
+    """The stored state nearest to time t (stored times are exact to 1e-9)."""
+    return ds.sel(t=t, method="nearest")
+
+
+def _vmin(*datasets, t_range=None) -> float:
+    lows = []
+    for ds in datasets:
+        f = ds["force"]
+        if t_range is not None:
+            f = f.sel(t=slice(*t_range))
+        lows.append(float(f.min()))
+    low = min(lows)
+    return low if low < 0 else -1e-300      # all beads apart: draw white
+
+
+def _edges(values):
+    values = np.asarray(values, dtype=float)
+    step = (values[-1] - values[0]) / (len(values) - 1) if len(values) > 1 else 1.0
+    return values[0] - step / 2, values[-1] + step / 2
+
+
+def period_minimum(t, force, period):
+    """(bin centres, most negative force of every bond in each bin of length ``period``):
+    one row per breather period, so that a long run drawn on a few hundred pixels keeps
+    the depth of its black spots instead of averaging them with the white half-periods."""
+    starts, P = peak_compression(t, force, period)
+    return starts + 0.5 * period, -P
+
+
+def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", bin_period=None):
+    """Forces of ``ds`` (dims t, n) as a grey-level raster image; returns the AxesImage.
+    ``t_range`` = (t0, t1), ``n_range`` = (n0, n1) inclusive (n0 <= n1). With
+    ``bin_period``, each image row is the most negative force over one bin of
+    that length (:func:`period_minimum`); otherwise every stored time is a row."""
+    f = ds["force"]
+    if t_range is not None:
+        f = f.sel(t=slice(*t_range))
+    if n_range is not None:
+        f = f.isel(n=slice(n_range[0], n_range[1] + 1))
+    t, n, values = f["t"].values, f["n"].values, f.values
+    if bin_period is not None:
+        t, values = period_minimum(t, values, bin_period)
+    img = ax.imshow(values, cmap=CMAP, vmin=vmin, vmax=0.0, origin="lower", aspect="auto",
+                    extent=(*_edges(n), *_edges(t)), interpolation="antialiased", rasterized=True)
+    ax.set_xlabel("$n$")
+    ax.set_ylabel("$t$")
+    if title:
+        ax.set_title(title, fontsize=8)
+    return img
+
+
+def _profile(ax, ds, t, style="o-", label=None, color="k", ms=3):
+    s = _at(ds, t)
+    ax.plot(s["n"].values, s["x"].values, style, color=color, ms=ms, lw=0.9, label=label)
+    ax.set_xlabel("$n$")
+    ax.set_ylabel("$x_n(t)$")
+    return float(s["t"])
+
+
+def _omega(ds):
+    return float(ds.attrs["omega_sw"])
+
+
+# --------------------------------------------------------------------------- plot18
+
+def draw_plot18(data, options):
+    """plot18. ``options['scenes']`` = [small, large]; ``times`` = [0, t_approx, t_exact, t_large]
+    (0, 565.95, 569.4, 293.2 in the paper)."""
+    small, large = options["scenes"]
+    t0, t_app, t_ex, t_large = options["times"]
+    ex, ap = data[small]["exact"], data[small]["dps"]
+    exl = data[large]["exact"]
+    w = _omega(ex)
+    fig, axes = figure(2, 2, width=9.0, height=7.0)
+
+    ax = axes[0, 0]
+    _profile(ax, ex, t0)
+    x0 = _at(ex, t0)["x"].values
+    k = int(np.argmax(np.abs(x0)))
+    top = np.flatnonzero(np.isclose(np.abs(x0), abs(x0[k]), rtol=1e-9, atol=0.0))
+    ax.set_title(f"$x_n(0)$: max $|x_n(0)|$ = {abs(x0[k]):.3g} at $n$ = {', '.join(map(str, top))}\n"
+                 f"$\\omega_{{sw}}$ = {w:.4f}, $\\mu$ = {float(ex.attrs['mu']):.4f}", fontsize=8)
+
+    ax = axes[0, 1]
+    te = _profile(ax, ex, t_ex, "-", label="exact")
+    ta = _profile(ax, ap, t_app, ".", label="approx. (DpS)", color="C3", ms=5)
+    sh = half_period_shift(ex["t"].values, ex["x"].values[:, k], ap["x"].values[:, k], w)
+    ax.legend(fontsize=7, loc="upper right")
+    ax.set_title(f"exact $t$ = {te:g} (line), approx. $t$ = {ta:g} (dots)\n"
+                 f"$\\omega$ exact {sh['omega_exact']:.4f}, approx. {sh['omega_approx']:.4f}:\n"
+                 f"half-period shift after {sh['half_shift_periods']:.0f} periods", fontsize=8)
+
+    ax = axes[1, 0]
+    t_end = float(ex["t"].values[-1])
+    t_range = (max(0.0, t_end - PLOT18_SPAN), t_end)
+    img = spacetime(ax, ex, _vmin(ex, t_range=t_range), t_range=t_range, n_range=PLOT18_BONDS,
+                    title=f"exact forces, $t \\in [{t_range[0]:g}, {t_range[1]:g}]$, bonds "
+                          f"{PLOT18_BONDS[0]}..{PLOT18_BONDS[1]}")
+    fig.colorbar(img, ax=ax, label=FORCE_LABEL)
+
+    ax = axes[1, 1]
+    tl = _profile(ax, exl, t_large, "o-", ms=2)
+    xl0 = _at(exl, 0.0)["x"].values
+    kl = int(np.argmax(np.abs(xl0)))
+    core = 0.5 * (int(np.argmax(xl0)) + int(np.argmin(xl0)))
+    radiated = dispersive_amplitude(_at(exl, t_large)["x"].values, core, periodic=exl.attrs["bc"] == "periodic")
+    ax.set_title(f"exact, $t$ = {tl:g}, $|x_{{{kl}}}(0)|$ = {abs(xl0[kl]):.3g}, $\\omega_{{sw}}$ = "
+                 f"{_omega(exl):.4f}\nmax $|x_n|$ beyond 6 sites of the core: {radiated:.2e}", fontsize=8)
+    return fig
+
+
+# --------------------------------------------------------------------------- loc1
+
+def loc1_merging_times(sim) -> dict:
+    """Merging times (breather periods 2 pi / omega_sw) of the exact and approximate runs of a scene."""
+    period = 2.0 * np.pi / _omega(sim["exact"])
+    periodic = sim["exact"].attrs["bc"] == "periodic"
+    return {m: merging_time(sim[m], period, periodic=periodic) for m in ("exact", "dps")}
+
+
+def _periods_text(value, total) -> str:
+    return f"none within {total:.0f} periods" if not np.isfinite(value) else f"after {value:.0f} periods"
+
+
+# loc1 rows are binned by one breather period; the packet has no omega_sw of its own and the paper
+# gives omega_sw ~ 1.1 for both loc1 experiments.
+LOC1_OMEGA = 1.1
+
+
+def draw_loc1(data, options):
+    """loc1: 3 rows x 2 columns. Row 1: x_n(0); rows 2 and 3: exact and approximate forces on
+    one colour scale per column. ``options['scenes']`` = [packet, pair]; the merging time of
+    the pair (column 2) is printed in its titles."""
+    names = options["scenes"]
+    fig, axes = figure(3, len(names), width=9.0, height=10.0, squeeze=False)
+    for j, name in enumerate(names):
+        ex, ap = data[name]["exact"], data[name]["dps"]
+        ax = axes[0, j]
+        _profile(ax, ex, 0.0, "o-", ms=2)
+        x0 = ex["x"].values[0]
+        t_end = float(ex["t"].values[-1])
+        info = f"max $|x_n(0)|$ = {np.max(np.abs(x0)):.3g}"
+        if "omega_sw" in ex.attrs:
+            info += f", $\\omega_{{sw}}$ = {_omega(ex):.4f}, $t_{{end}}$ = {t_end * _omega(ex) / (2 * np.pi):.0f} periods"
+        ax.set_title(f"{name}: $x_n(0)$, $v_n(0) = 0$\n{info}", fontsize=8)
+        vmin = _vmin(ex, ap)
+        omega = _omega(ex) if "omega_sw" in ex.attrs else LOC1_OMEGA
+        period = 2.0 * np.pi / omega
+        merge = loc1_merging_times(data[name]) if ex.attrs.get("initial_kind") == "pair" else None
+        for i, (ds, label, key) in enumerate(((ex, "exact (nc)", "exact"), (ap, "approx. (DpS)", "dps")), start=1):
+            title = f"{label}, min force per period $2\\pi/{omega:.4g}$"
+            if merge is not None:
+                title += f"\nmerging: {_periods_text(merge[key], t_end / period)}"
+            img = spacetime(axes[i, j], ds, vmin, title=title, bin_period=period)
+        fig.colorbar(img, ax=axes[1:, j], label=FORCE_LABEL, shrink=0.8)
+    return fig
+
+
+# --------------------------------------------------------------------------- fini
+
+def _traces(ax, ds, t_range, delta=FINI_DELTA_X, title=""):
+    """Bead displacements on t_range, bead n (label n+1 = 1..N) drawn at height n+1 + x_n(t)/delta."""
+    s = ds["x"].sel(t=slice(*t_range))
+    t = s["t"].values
+    N = s.sizes["n"]
+    for n in range(N):
+        ax.plot(t, (n + 1) + s.values[:, n] / delta, "-", color="k", lw=0.7)
+    ax.set_xlim(*t_range)
+    ax.set_ylim(0.3, N + 0.9)
+    ax.set_yticks(np.arange(1, N + 1))
+    ax.set_xlabel("$t$")
+    ax.set_ylabel("bead $n$")
+    # scale bar: one unit of offset is delta in displacement, at the top of the vertical axis
+    xb = t_range[0] + 0.015 * (t_range[1] - t_range[0])
+    ax.annotate("", xy=(xb, N + 0.85), xytext=(xb, N - 0.15),
+                arrowprops={"arrowstyle": "<->", "lw": 0.8, "shrinkA": 0, "shrinkB": 0})
+    ax.text(xb, N + 0.35, f"  $\\delta x = {delta:g}$", fontsize=7, va="center")
+    if title:
+        ax.set_title(title, fontsize=8)
+
+
+def draw_fini(data, options):
+    """fini: rows = the windows [times[0], times[1]] and [times[2], times[3]]; left exact, right approx."""
+    (name,) = options["scenes"]
+    ex, ap = data[name]["exact"], data[name]["dps"]
+    times = options["times"]
+    windows = [(times[i], times[i + 1]) for i in range(0, len(times) - 1, 2)]
+    w = _omega(ex)
+    period = 2.0 * np.pi / w
+    k = int(np.argmax(np.abs(ex["x"].values[0])))
+    sh = half_period_shift(ex["t"].values, ex["x"].values[:, k], ap["x"].values[:, k], w)
+    fig, axes = figure(len(windows), 2, width=9.0, height=4.0 * len(windows), squeeze=False)
+    for i, win in enumerate(windows):
+        p0, p1 = win[0] / period, win[1] / period
+        for j, (ds, label) in enumerate(((ex, "exact (nc), free ends"), (ap, "approx. (DpS)"))):
+            _traces(axes[i, j], ds, win, title=f"{label}, $t \\in [{win[0]:g}, {win[1]:g}]$ "
+                                               f"({p0:.1f}-{p1:.1f} periods)")
+    fig.suptitle(f"N = {ex.sizes['n']}, free ends, $\\omega_{{sw}}$ = {w:.4f}, max $|x_n(0)|$ = "
+                 f"{np.max(np.abs(ex['x'].values[0])):.3g}; $\\omega$ exact {sh['omega_exact']:.4f}, approx. "
+                 f"{sh['omega_approx']:.4f}: half-period shift after {sh['half_shift_periods']:.0f} periods",
+                 fontsize=9)
+    return fig
+
+
+FIGURES = {"plot18": draw_plot18, "loc1": draw_loc1, "fini": draw_fini}
