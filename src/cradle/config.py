@@ -614,10 +614,14 @@ def _physical(cfg: dict, out: _Errors):
         if "alpha" in entry:
             _check_alpha(entry["alpha"], ["map", name, "alpha"], out)
         box, starts = entry.get("box"), entry.get("starts")
-        if _number(box) and isinstance(starts, list):
-            for i, u in enumerate(starts):
+        points = [(["map", name, "starts", i], u) for i, u in enumerate(starts if isinstance(starts, list) else [])]
+        line = entry.get("line")
+        if isinstance(line, dict):
+            points += [(["map", name, "line", end], line.get(end)) for end in ("from", "to")]
+        if _number(box):
+            for key, u in points:
                 if isinstance(u, list) and all(_number(x) for x in u) and u and max(abs(x) for x in u) > box:
-                    out.add(["map", name, "starts", i], f"must lie in the box ||U||_inf <= box = {_show(box)}", u)
+                    out.add(key, f"must lie in the box ||U||_inf <= box = {_show(box)}", u)
     for name, entry in _entries(cfg, "homoclinic").items():
         path = ["homoclinic", name]
         N = entry.get("N")

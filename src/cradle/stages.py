@@ -70,7 +70,7 @@ def map_orbits(spec: dict, name: str = "") -> xr.Dataset:
     from . import stationary
 
     t0 = time.perf_counter()
-    starts = np.asarray(spec["starts"], dtype=float)
+    starts = stationary.starts_from_spec(spec)
     U = stationary.orbits(starts, spec["iterations"], spec["alpha"], box=spec["box"])
     attrs = {"name": name, "alpha": spec["alpha"], "box": spec["box"], "iterations": spec["iterations"],
              "marks": bool(spec.get("marks", False)), "wall_time_s": time.perf_counter() - t0}

@@ -1,0 +1,61 @@
+"""Figures traj3 and traj2: orbits of the map G (comp1)-(comp2), alpha = 3/2 (section 2.2)."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..stationary import explicit_periodic_orbits
+from . import figure
+
+MARKERS = {"period2": ("o", "period 2"), "period3": ("s", "period 3"), "period4": ("^", "period 4")}
+
+
+def _orbits(ax, ds, size=0.3):
+    """Every stored iterate of every orbit as a dot (NaN: the orbit left the box)."""
+    a, b = ds["map_a"].values, ds["map_b"].values
+    for i in range(a.shape[0]):
+        keep = np.isfinite(a[i]) & np.isfinite(b[i])
+        ax.scatter(a[i, keep], b[i, keep], s=size, lw=0, color=f"C{i % 10}", rasterized=True)
+    box = float(ds.attrs["box"])
+    ax.set_xlim(-box, box)
+    ax.set_ylim(-box, box)
+    ax.set_xlabel("$a_n$")
+    ax.set_ylabel("$b_{n+1}$")
+
+
+def _marks(ax, alpha):
+    """The explicit period-2, -3, -4 orbits of the traj2 caption."""
+    for name, U in explicit_periodic_orbits(alpha).items():
+        if name in MARKERS:
+            marker, label = MARKERS[name]
+            ax.plot(U[:, 0], U[:, 1], marker, ms=5, mfc="none", mec="k", mew=0.9, ls="none", label=label)
+    ax.legend(fontsize=7, loc="upper right")
+
+
+def draw_traj3(data, options):
+    """One orbit of G from a_0 = 0, b_1 = 1e-13: it follows the pair of symmetric homoclinic loops."""
+    ds = data[options["scenes"][0]]
+    fig, ax = figure(1, 1, width=5.0, height=4.2)
+    _orbits(ax, ds, size=1.5)
+    a, b = ds["map_a"].values[0], ds["map_b"].values[0]
+    box = 1.15 * max(np.nanmax(np.abs(a)), np.nanmax(np.abs(b)))
+    ax.set_xlim(-box, box)
+    ax.set_ylim(-box, box)
+    ax.set_title(f"orbit of G, $a_0 = 0$, $b_1 = 10^{{-13}}$, {a.size - 1} iterates", fontsize=9)
+    return fig
+
+
+def draw_traj2(data, options):
+    """Six panels: ||U||_inf <= 0.1 (top), 1 (middle), 8 and 100 (bottom); left periodic
+    orbits and invariant tori, right orbits near stable and unstable manifolds; marks for the
+    explicit periodic orbits where the entry has ``marks``."""
+    fig, axes = figure(3, 2, width=8.0, height=11.5)
+    for ax, name in zip(axes.flat, options["scenes"]):
+        ds = data[name]
+        _orbits(ax, ds)
+        if ds.attrs.get("marks"):
+            _marks(ax, float(ds.attrs["alpha"]))
+        ax.set_title(f"$\\|U_n\\|_\\infty \\leq {float(ds.attrs['box']):g}$ ({name})", fontsize=9)
+    return fig
+
+
+FIGURES = {"traj3": draw_traj3, "traj2": draw_traj2}

@@ -1,0 +1,78 @@
+"""The map G (comp1)-(comp2) of the stationary DpS equation (dpsstn): area preservation,
+reversibility, the explicit periodic orbits of the traj2 caption."""
+import numpy as np
+import pytest
+
+from cradle import stationary as st
+from cradle.figures import maps
+from cradle.io import make_dataset
+
+ALPHAS = [1.5, 2.0, 3.0]
+
+
+def _random_points(seed=0, n=50, scale=0.5):
+    U = np.random.default_rng(seed).uniform(-scale, scale, (n, 2))
+    return U[np.abs(U[:, 1]) > 1e-3]  # G is not differentiable where b = 0
+
+
+@pytest.mark.parametrize("alpha", ALPHAS)
+def test_det_DG_is_one_and_jacobian_matches_finite_differences(alpha):
+    for U in _random_points():
+        J = st.jacobian(U, alpha)
+        assert np.linalg.det(J) == pytest.approx(1.0, abs=1e-12)
+        h = 1e-7
+        fd = np.column_stack([(st.G(U + h * e, alpha) - st.G(U - h * e, alpha)) / (2 * h) for e in np.eye(2)])
+        assert np.allclose(fd, J, rtol=1e-5, atol=1e-6)
+
+
+@pytest.mark.parametrize("alpha", ALPHAS)
+def test_odd_invertible_and_reversible(alpha):
+    U = _random_points(1)
+    assert np.allclose(st.G(-U, alpha), -st.G(U, alpha), atol=1e-15)
+    assert np.allclose(st.G_inverse(st.G(U, alpha), alpha), U, atol=1e-13)
+    # R G^{-1} = G R with R(a, b) = (a, -a - b)
+    assert np.allclose(st.reversor(st.G_inverse(U, alpha)), st.G(st.reversor(U), alpha), atol=1e-13)
+    assert np.allclose(st.reversor(st.reversor(U)), U)
+
+
+@pytest.mark.parametrize("alpha", ALPHAS)
+@pytest.mark.parametrize("name, period", [("period2", 2), ("period3", 3), ("period4", 4)])
+def test_explicit_periodic_orbits_of_traj2_caption(alpha, name, period):
+    U = st.explicit_periodic_orbits(alpha)[name]
+    assert U.shape == (period, 2)
+    for j in range(period):
+        assert np.allclose(st.G(U[j], alpha), U[(j + 1) % period], rtol=1e-13, atol=1e-15)
+    # minimal period: no earlier return
+    for p in range(1, period):
+        if period % p == 0:
+            assert not np.allclose(st.orbit(U[0], p, alpha)[-1], U[0])
+    a = st.explicit_periodic_orbits(alpha)[name + "_a"]
+    assert np.max(np.abs(st.stationary_residual(a, alpha))) < 1e-15
+    lhs, rhs = np.sum(a**2), np.sum(np.abs(np.roll(a, -1) - a) ** (alpha + 1))
+    assert lhs == pytest.approx(rhs, rel=1e-13)
+
+
+def test_closed_forms_at_hertz():
+    P = st.explicit_periodic_orbits(1.5)
+    assert P["period2_a"][0] == pytest.approx(2.0**-5)            # 2^((alpha+1)/(1-alpha))
+    assert P["period3_a"][1] == pytest.approx((1 + 2**1.5) ** -2)  # (1 + 2^alpha)^(1/(1-alpha))
+    assert P["period4_a"][3] == pytest.approx(0.25)                # 2^(1/(1-alpha))
+
+
+def test_box_cuts_escaping_orbits():
+    O = st.orbit([5.0, 0.0], 50, 1.5, box=1.0)
+    assert np.all(np.isnan(O))
+    O = st.orbit([0.01, 0.0], 50, 1.5, box=1.0)
+    assert np.all(np.isfinite(O))
+
+
+def test_map_figures_draw_from_datasets():
+    U = st.orbits([[0.0, 1e-13], [0.02, 0.0]], 200, 1.5, box=0.1)
+    ds = make_dataset({"map_a": U[..., 0], "map_b": U[..., 1]},
+                      coords={"orbit": [0, 1], "iterate": np.arange(201)},
+                      attrs={"box": 0.1, "alpha": 1.5, "marks": 1})
+    fig = maps.draw_traj3({"o": ds}, {"scenes": ["o"]})
+    assert len(fig.axes) == 1
+    fig = maps.draw_traj2({f"p{i}": ds for i in range(6)}, {"scenes": [f"p{i}" for i in range(6)]})
+    assert len(fig.axes) == 6
+    assert len(fig.axes[0].collections) == 2       # one dot cloud per orbit
