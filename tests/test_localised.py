@@ -10,7 +10,7 @@ import xarray as xr
 import yaml
 
 from cradle import config as cc
-from cradle import dps, homoclinic, initial, lattice, stages
+from cradle import breathers, dps, homoclinic, initial, lattice, stages
 from cradle.figures import localised, registry
 
 matplotlib.use("Agg")
@@ -186,41 +186,41 @@ def _merge_at(t_merge):
 
 def test_merging_time_finds_a_known_merge():
     # the period holding t_merge still shows both breathers: the merge is the next period
-    assert localised.merging_time(_merge_at(80.5 * T), T) == 81.0
-    assert localised.merging_time(_merge_at(80.0 * T - 1e-6), T) == 80.0
+    assert breathers.merging_time(_merge_at(80.5 * T), T) == 81.0
+    assert breathers.merging_time(_merge_at(80.0 * T - 1e-6), T) == 80.0
 
 
 def test_merging_time_none_zero_late_and_transient_overlap():
-    assert np.isnan(localised.merging_time(_breathers(lambda t: np.full(t.size, 3.0)), T))   # never
-    assert localised.merging_time(_breathers(lambda t: np.zeros(t.size)), T) == 0.0          # always one
+    assert np.isnan(breathers.merging_time(_breathers(lambda t: np.full(t.size, 3.0)), T))   # never
+    assert breathers.merging_time(_breathers(lambda t: np.zeros(t.size)), T) == 0.0          # always one
     late = _merge_at(190.5 * T)                      # merged only 9 periods before the end: not "for good"
-    assert np.isnan(localised.merging_time(late, T, min_periods=50))
-    assert localised.merging_time(late, T, min_periods=5) == 191.0
+    assert np.isnan(breathers.merging_time(late, T, min_periods=50))
+    assert breathers.merging_time(late, T, min_periods=5) == 191.0
     # two breathers that overlap for 20 periods and separate again (they cross or bounce): no merge
     bounce = _breathers(lambda t: np.where((t > 90 * T) & (t < 110 * T), 0.0, 3.0))
-    assert np.isnan(localised.merging_time(bounce, T))
+    assert np.isnan(breathers.merging_time(bounce, T))
 
 
 def test_merging_time_reads_the_period_from_attrs():
     d = _merge_at(80.5 * T)
     ds = xr.Dataset({"force": (("t", "n"), d["force"])}, coords={"t": d["t"]}, attrs={"omega_sw": 1.1})
-    assert localised.merging_time(ds) == 81.0
+    assert breathers.merging_time(ds) == 81.0
 
 
 def test_count_humps_wraps_around_a_ring():
     p = np.zeros(12)
     p[[0, 11]] = 1.0
-    assert localised.count_humps(p) == 1
-    assert localised.count_humps(p, periodic=False) == 2
+    assert breathers.count_humps(p) == 1
+    assert breathers.count_humps(p, periodic=False) == 2
     p[6] = 0.9
-    assert localised.count_humps(p) == 2
-    assert localised.count_humps(np.zeros(5)) == 0
+    assert breathers.count_humps(p) == 2
+    assert breathers.count_humps(np.zeros(5)) == 0
 
 
 def test_frequency_and_half_period_shift():
     t = np.arange(0, 600, 0.1)
-    assert localised.frequency_from_crossings(t, np.cos(1.1 * t + 0.3)) == pytest.approx(1.1, rel=1e-6)
-    sh = localised.half_period_shift(t, np.cos(1.09 * t), np.cos(1.1 * t), 1.1)
+    assert breathers.frequency_from_crossings(t, np.cos(1.1 * t + 0.3)) == pytest.approx(1.1, rel=1e-6)
+    sh = breathers.half_period_shift(t, np.cos(1.09 * t), np.cos(1.1 * t), 1.1)
     assert sh["half_shift_periods"] == pytest.approx((np.pi / 0.01) / (2 * np.pi / 1.1), rel=1e-3)
 
 
