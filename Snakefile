@@ -15,9 +15,19 @@ include: "workflow/rules/initial.smk"
 include: "workflow/rules/integrate.smk"
 include: "workflow/rules/metrics.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/checks.smk"
+
+
+PAPER = figure_targets() + ["results/paper_checks.csv", "results/paper_checks.md"]
 
 
 rule all:
     default_target: True
     input:
-        figure_targets(),
+        PAPER,
+
+
+rule paper:
+    # every paper figure under `figures:` in config.yaml, and the claims table
+    input:
+        PAPER,

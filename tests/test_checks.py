@@ -1,0 +1,44 @@
+"""The paper-claims table: verdict rules, sideband measures, and rows from real outputs."""
+import numpy as np
+import pytest
+
+from cradle import checks, compare, sidebands
+
+
+@pytest.mark.parametrize("text, unit", [("2e-2", 1e-2), ("2.11", 1e-2), ("52.9", 0.1), ("3.8e-3", 1e-4),
+                                        ("175", 1.0), ("1.545", 1e-3)])
+def test_printed_unit(text, unit):
+    assert checks.printed_unit(text) == pytest.approx(unit)
+
+
+def test_agrees_within_last_printed_digit():
+    assert checks.agrees_printed("2.11", 2.118) == "agrees"        # the paper truncates
+    assert checks.agrees_printed("2.11", 2.121) == "disagrees"
+    assert checks.agrees_printed("83", 81.8) == "disagrees"
+    assert checks.agrees_printed("83", float("nan")) == "not comparable"
+
+
+def test_sideband_ratio_and_harmonic_height():
+    N, q = 200, 4 * np.pi / 5
+    n = np.arange(N)
+    k, pure = compare.spatial_dft(np.cos(q * n))
+    assert sidebands.sideband_ratio(k, np.abs(pure), q) < 1e-12
+    side = 2 * np.pi * 60 / N            # well away from +-q and the harmonics
+    k, mixed = compare.spatial_dft(np.cos(q * n) + 0.3 * np.cos(side * n) + 0.05 * np.cos(2 * (q - np.pi) * n))
+    assert sidebands.sideband_ratio(k, np.abs(mixed), q) == pytest.approx(0.3, rel=1e-9)
+    assert sidebands.harmonic_height(k, np.abs(mixed), q, "2(q-pi)") == pytest.approx(0.05, rel=1e-9)
+
+
+def test_rows_from_closed_forms_and_map():
+    rows = checks.closed_forms() + checks.periodic_orbits()
+    assert all(r.verdict == "agrees" for r in rows)
+    md = checks.to_markdown(rows)
+    assert md.count("\n|") == len(rows) + 2
+    csv = checks.to_csv(rows)
+    assert csv.splitlines()[0] == ",".join(checks.COLUMNS)
+
+
+def test_missing_scenes_leave_their_rows_out(tmp_path):
+    rows = checks.paper_checks(tmp_path, scenes=[], homoclinic=[])
+    labels = {r.label for r in rows}
+    assert labels == {"(tau0)", "traj2"}
