@@ -71,3 +71,44 @@ def test_breather_initial_data(solutions):
 def test_bad_mu_raises():
     with pytest.raises(ValueError, match="mu=-1"):
         homoclinic.solve(np.zeros(10), 1.5, mu=-1)
+
+
+def _relative_residuals(signs, log10a, alpha, digits=40):
+    """(dpsstn) residual / |a_n| at interior tail sites, in 40-digit decimal arithmetic
+    (decimal's exponent range reaches 1e-999999, so nothing underflows): an
+    independent check of the log-variable tail."""
+    from decimal import Decimal, localcontext
+
+    with localcontext() as ctx:
+        ctx.prec = digits
+        al = Decimal(repr(alpha))
+        a = [int(sg) * Decimal(10) ** Decimal(repr(float(L))) for sg, L in zip(signs, log10a)]
+
+        def g(x):
+            return (abs(x) ** al).copy_sign(x) if x != 0 else Decimal(0)
+
+        return [float(abs(g(a[n + 1] - a[n]) - g(a[n] - a[n - 1]) + a[n]) / abs(a[n]))
+                for n in range(1, len(a) - 1)]
+
+
+@pytest.mark.parametrize("alpha, start", [(1.5, 0.1), (2.0, 0.3), (3.0, 0.5)])
+def test_tails_below_machine_precision_follow_dpsstn(alpha, start):
+    # the log-variable continuation of (dpsstn), started where |a_n| ~ 1e-9 max|a|, agrees with the
+    # double-precision Newton solution where that one still resolves the tail, solves (dpsstn) to
+    # ~1e-10 relative at sites down to 1e-1000 and beyond (checked in 40-digit decimal arithmetic),
+    # and follows the decay law (dpsstn) implies: ln|a_{n+1}| / ln|a_n| -> alpha, signs alternating
+    sol = homoclinic.solve(homoclinic.initial_guess(50, "site", alpha, amplitude=start), alpha)
+    a = sol.a
+    log10a = homoclinic.log10_abs(a, alpha)
+    c = int(np.argmax(np.abs(a)))
+    resolved = (np.abs(a) > 1e-40) & (np.abs(a) < 1e-12 * np.max(np.abs(a)))
+    assert resolved.sum() >= 2
+    assert np.allclose(log10a[resolved], np.log10(np.abs(a[resolved])), rtol=1e-8)
+    assert np.min(log10a) < -300
+    j = c + int(np.flatnonzero(np.abs(a[c:]) > 1e-9 * np.max(np.abs(a)))[-1])
+    signs, L = homoclinic.log_tail(a[j], alpha, 12)
+    assert np.all(signs[1:] == -signs[:-1])
+    assert L[-1] / np.log(10) < -300
+    assert max(_relative_residuals(signs, L / np.log(10), alpha)) < 1e-9
+    ratios = L[-4:] / L[-5:-1]
+    assert np.allclose(ratios, alpha, rtol=1e-9)

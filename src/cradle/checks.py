@@ -280,14 +280,22 @@ def merging(res: Results, scene, paper_exact="175", paper_dps="350") -> list[Row
 
 
 def super_exponential(res: Results, name="site") -> list[Row]:
-    a = np.abs(res.homoclinic(name)["a"].values)
+    ds = res.homoclinic(name)
+    a = np.abs(ds["a"].values)
     c = int(np.argmax(a))
     ratios = a[c + 2:c + 9] / a[c + 1:c + 8]
     decreasing = bool(np.all(np.diff(ratios) < 0))
+    L = ds["log10_abs_a"].values[c:c + ds.sizes["n"] // 2 + 1]
+    law = float(L[-1] / L[-2])
+    alpha = float(ds.attrs["alpha"])
     return [Row("bcsc", "super-exponential decay of the site-centred homoclinic", "yes",
                 f"{_fmt(decreasing)} (|a_(n+1)/a_n| = {', '.join(f'{r:.1e}' for r in ratios[:5])}, ...)",
                 "agrees" if decreasing else "disagrees",
-                "successive ratios |a_(n+1)/a_n| away from the centre keep decreasing (exponential: constant)")]
+                "successive ratios |a_(n+1)/a_n| away from the centre keep decreasing (exponential: constant)"),
+            Row("bcsc", "decay law ln|a_(n+1)| / ln|a_n| -> alpha in the tail (from (dpsstn))",
+                f"(not in the paper; law: {alpha:g})",
+                f"{law:.10g} at |a_n| ~ 1e{L[-1]:.0f}", "agrees" if abs(law - alpha) < 1e-6 else "disagrees",
+                "tail continued far below machine precision by (dpsstn) in log variables (log10_abs_a)")]
 
 
 def periodic_orbits(alpha=1.5) -> list[Row]:

@@ -41,6 +41,7 @@ def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
                                      separation=spec.get("separation", 9))
     sol = homoclinic.solve(guess, alpha, bc, mu=spec.get("mu", 1.0))
     a = sol.a
+    scale = spec.get("mu", 1.0) ** (1.0 / (alpha - 1.0))  # (dpsst) solution = scale * (dpsstn) solution
     r = homoclinic.residual(a, alpha, bc, sign=spec.get("mu", 1.0))
     sum_a2, sum_d = homoclinic.energy_balance(a, alpha, bc)
     attrs = {
@@ -54,7 +55,10 @@ def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
         attrs["separation"] = spec.get("separation", 9)
     else:  # site: a_{c-n} = a_{c+n}; bond: a_{c-n} = -a_{c+n+1}
         attrs["symmetry_error"] = homoclinic.symmetry_error(a, spec["guess"], centre)
-    ds = make_dataset({"a": a, "residual_n": r}, coords={"n": np.arange(N)}, attrs=attrs,
+    # tails far below machine precision: exact (dpsstn) recursion in log variables (periodic ends)
+    log10a = homoclinic.log10_abs(a / scale, alpha) + np.log10(scale) if bc == "periodic" else np.log10(np.abs(a))
+    attrs["log10_tail_min"] = float(np.min(log10a))
+    ds = make_dataset({"a": a, "residual_n": r, "log10_abs_a": log10a}, coords={"n": np.arange(N)}, attrs=attrs,
                       title=f"solution '{name}' of the stationary DpS equation (dpsstn)")
     if not sol.converged or not np.all(np.isfinite(a)):
         raise StageFailure(f"homoclinic '{name}': Powell hybrid did not converge "

@@ -4,6 +4,12 @@ Writers never type a ``long_name`` or ``units``: :func:`cradle.io.make_dataset`
 looks them up here (the xarray-simlab way), so all outputs agree. Everything in
 the model is dimensionless (time in units of 1/omega_0 of the pendula,
 displacements in units of the Hertz length), hence units "1".
+
+CF-1.10 notes: the time coordinates are ``t`` and ``tau``, never ``time``
+(a ``time`` coordinate would need calendar units such as "days since ...");
+complex amplitudes are stored as ``_re``/``_im`` pairs; ``attrs`` holds any
+further CF attributes of a variable (``comment``, ``flag_values``, ...), also
+written by :func:`cradle.io.make_dataset`.
 """
 from __future__ import annotations
 
@@ -15,20 +21,24 @@ class Var:
     dims: tuple[str, ...]
     long_name: str
     units: str = "1"
+    attrs: tuple[tuple[str, str], ...] = ()  # further CF attributes, as (name, value) pairs
 
 
 VARIABLES: dict[str, Var] = {
     # coordinates
     "n": Var(("n",), "bead index (bond n joins beads n and n+1)"),
     "t": Var(("t",), "dimensionless time t of (nc)"),
-    "tau": Var(("t",), "slow time tau = eps^(alpha-1) t of (dfnls)"),
-    "k": Var(("k",), "wavenumber k in Gamma* of the spatial DFT"),
+    "tau": Var(("t",), "slow time tau = eps^(alpha-1) t of (dfnls)",
+               attrs=(("comment", "auxiliary coordinate along t: the DpS time of each stored t"),)),
+    "k": Var(("k",), "wavenumber k in Gamma* of the spatial DFT",
+             attrs=(("comment", "Gamma* = (2 pi / N) {-N/2+1, ..., N/2}, radians per bead"),)),
     "iterate": Var(("iterate",), "iteration index j of the map G (comp1)-(comp2)"),
     "orbit": Var(("orbit",), "orbit number"),
     # lattice (nc)
     "x": Var(("t", "n"), "bead displacement x_n(t)"),
     "v": Var(("t", "n"), "bead velocity dx_n/dt"),
-    "force": Var(("t", "n"), "contact force V0'(x_{n+1}-x_n) on bond n"),
+    "force": Var(("t", "n"), "contact force V0'(x_{n+1}-x_n) on bond n",
+                 attrs=(("comment", "with free ends the last bond is absent and its force is 0"),)),
     "energy": Var(("t",), "lattice Hamiltonian (ham)"),
     # DpS (dfnls)
     "A_re": Var(("t", "n"), "real part of the DpS amplitude A_n(tau)"),
@@ -46,12 +56,61 @@ VARIABLES: dict[str, Var] = {
     # stationary DpS (dpsstn) and the map G
     "a": Var(("n",), "solution a_n of the stationary DpS equation (dpsstn)"),
     "residual_n": Var(("n",), "residual of (dpsstn) at site n"),
+    "log10_abs_a": Var(("n",), "log10 |a_n|, tails continued below machine precision in log variables"),
     "map_a": Var(("orbit", "iterate"), "a_j along an orbit of G"),
     "map_b": Var(("orbit", "iterate"), "b_{j+1} along an orbit of G"),
     # comparison metrics
     "E": Var(("t",), "relative error E(t) = ||x^app(t) - x(t)||_inf / a (plot4-5)"),
     "spectrum_exact": Var(("t", "k"), "|x_hat_k(t)| of the exact solution"),
     "spectrum_dps": Var(("t", "k"), "|x_hat_k(t)| of the approximate solution"),
+    # beyond the paper: theorem1, mi-diagram
+    "t1_alpha": Var(("t1_alpha",), "Hertz exponent alpha of the exact travelling waves"),
+    "t1_q": Var(("t1_q",), "wavenumber q of the travelling wave", "rad"),
+    "t1_a": Var(("t1_a",), "amplitude a: first sine coefficient of u (ansatzu)"),
+    "t1_xi": Var(("t1_xi",), "moving-frame coordinate xi = q n - omega t", "rad"),
+    "t1_modes": Var(("t1_modes",), "number J of sine modes of the discretisation"),
+    "t1_scene": Var(("t1_scene",), "index of a travelling-wave scene of the paper (names in attribute scene_names)"),
+    "t1_omega": Var(("t1_alpha", "t1_q", "t1_a"), "frequency omega_a of the exact travelling wave of (ad)"),
+    "t1_omega_dps": Var(("t1_alpha", "t1_q", "t1_a"), "DpS frequency (wleadingorder) without o(): omega_tw of (freq)"),
+    "t1_lambda": Var(("t1_alpha", "t1_q", "t1_a"), "lambda = (omega_a^2 - 1) / a^(alpha-1) (adcentral)"),
+    "t1_rel_correction": Var(("t1_alpha", "t1_q", "t1_a"), "relative correction (omega_a - omega_DpS)/(omega_DpS - 1)"),
+    "t1_residual": Var(("t1_alpha", "t1_q", "t1_a"), "max residual of the discrete (ad), scale-free units"),
+    "t1_newton_iterations": Var(("t1_alpha", "t1_q", "t1_a"), "Newton iterations"),
+    "t1_profile_error": Var(("t1_alpha", "t1_q", "t1_a"), "max_xi |v_a - K_h P_h N0(sin)|: remainder R_a of (va)"),
+    "t1_u_max": Var(("t1_alpha", "t1_q", "t1_a"), "max_xi u(xi) of the exact wave"),
+    "t1_correction_slope": Var(("t1_alpha", "t1_q"), "log-log slope of the relative frequency correction in a"),
+    "t1_decay_rate": Var(("t1_alpha", "t1_q"), "exponent s of the algebraic decay |v_j| ~ j^-s"),
+    "t1_v_small": Var(("t1_alpha", "t1_q", "t1_xi"), "profile correction v_a(xi) at the smallest amplitude"),
+    "t1_v_large": Var(("t1_alpha", "t1_q", "t1_xi"), "profile correction v_a(xi) at the largest amplitude"),
+    "t1_va_leading": Var(("t1_alpha", "t1_q", "t1_xi"), "leading term K_h P_h N0(sin) of v_a (va), by quadrature"),
+    "t1_conv_omega_error": Var(("t1_alpha", "t1_q", "t1_modes"), "|omega_J - omega_ref| against twice the largest J"),
+    "t1_conv_profile_error": Var(("t1_alpha", "t1_q", "t1_modes"), "max_xi |v_J - v_ref| against twice the largest J"),
+    "t1_pi_omega_quadrature": Var(("t1_alpha", "t1_a"), "q = pi: 2 pi / period of (inteq) at amplitude max u, by quadrature"),
+    "t1_scene_a": Var(("t1_scene",), "amplitude a of the scene (from its omega_tw by (freq))"),
+    "t1_scene_q": Var(("t1_scene",), "wavenumber q of the scene", "rad"),
+    "t1_scene_alpha": Var(("t1_scene",), "Hertz exponent of the scene"),
+    "t1_scene_t": Var(("t1_scene",), "time span of the scene"),
+    "t1_scene_omega": Var(("t1_scene",), "exact travelling-wave frequency omega_a at the scene's amplitude"),
+    "t1_scene_omega_dps": Var(("t1_scene",), "DpS frequency omega_tw (freq) at the scene's amplitude"),
+    "t1_scene_drift": Var(("t1_scene",), "phase drift |omega_a - omega_tw| t over the scene's time span", "rad"),
+    "t1_scene_residual": Var(("t1_scene",), "max residual of the discrete (ad) at the scene's amplitude"),
+    "mi_alpha": Var(("mi_alpha",), "exponent alpha of the DpS equation (dfnls)"),
+    "mi_q": Var(("mi_q",), "wavenumber q of the plane wave (ansatz3)", "rad"),
+    "mi_p": Var(("mi_p",), "wavenumber p of the perturbation sidebands", "rad"),
+    "mi_check": Var(("mi_check",), "index of a direct-simulation check"),
+    "mi_growth": Var(("mi_alpha", "mi_q", "mi_p"), "scaled growth rate lambda tau0 R^(1-alpha) of the sidebands +-p"),
+    "mi_max_growth": Var(("mi_alpha", "mi_q"), "max over p of the scaled growth rate"),
+    "mi_argmax_p": Var(("mi_alpha", "mi_q"), "|p| of the fastest-growing perturbation (NaN where stable)", "rad"),
+    "mi_q_threshold": Var(("mi_alpha",), "smallest q with an unstable perturbation", "rad"),
+    "mi_p_first": Var(("mi_alpha",), "|p| of the first unstable perturbation at the threshold", "rad"),
+    "mi_growth_pi": Var(("mi_alpha",), "max over p of the scaled growth rate at q = pi"),
+    "mi_p_max_pi": Var(("mi_alpha",), "|p| of the fastest-growing perturbation at q = pi", "rad"),
+    "mi_fixed_point_residual": Var(("mi_alpha",), "max |rotating-frame right-hand side| at the plane wave, N = check_N"),
+    "mi_check_q": Var(("mi_alpha", "mi_check"), "q = 2 pi k_q / N of a direct DpS check", "rad"),
+    "mi_check_p": Var(("mi_alpha", "mi_check"), "p = 2 pi m_p / N of a direct DpS check", "rad"),
+    "mi_check_theory": Var(("mi_alpha", "mi_check"), "scaled growth rate from the linear stability matrix"),
+    "mi_check_simulated": Var(("mi_alpha", "mi_check"), "scaled growth rate fitted on a direct DpS run"),
+    "mi_check_rel_error": Var(("mi_alpha", "mi_check"), "simulated / theoretical growth rate - 1"),
 }
 
 
