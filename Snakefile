@@ -9,22 +9,32 @@
 configfile: "config.yaml"
 
 
+report: "workflow/report/workflow.rst"
+
+
 include: "workflow/rules/common.smk"
 include: "workflow/rules/homoclinic.smk"
 include: "workflow/rules/initial.smk"
 include: "workflow/rules/integrate.smk"
 include: "workflow/rules/metrics.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/checks.smk"
+include: "workflow/rules/beyond.smk"
 
 
 PAPER = figure_targets() + ["results/paper_checks.csv", "results/paper_checks.md"]
 
 
+BEYOND = [f"results/figures/{label}.{ext}" for label in ("theorem1", "mi-diagram") for ext in ("pdf", "png")]
+
+
 rule all:
+    # the paper, and the analyses beyond it (workflow/rules/beyond.smk)
     default_target: True
     input:
         PAPER,
+        BEYOND,
 
 
 rule paper:

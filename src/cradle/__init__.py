@@ -21,3 +21,12 @@ try:
     __version__ = _version("cradle")
 except PackageNotFoundError:  # running from a source tree that is not installed
     __version__ = "0.0.0+unknown"
+
+
+def __getattr__(name):
+    # cradle.open_scene without importing xarray at `import cradle` (the Snakefile imports cradle.config)
+    if name == "open_scene":
+        from .io import open_scene
+
+        return open_scene
+    raise AttributeError(f"module 'cradle' has no attribute {name!r}")

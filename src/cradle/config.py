@@ -636,6 +636,7 @@ def _physical(cfg: dict, out: _Errors):
             out.add(path + ["separation"], f"must be in [1, N-1] = [1, {N - 1}]", sep)
     for name, scene in _entries(cfg, "scenes").items():
         _check_scene(name, scene, cfg, out)
+    _check_work_precision(cfg, out)
     figures = cfg.get("figures")
     if isinstance(figures, dict):
         scenes = _entries(cfg, "scenes")
@@ -679,6 +680,19 @@ def _physical(cfg: dict, out: _Errors):
                 if _number(t) and math.isfinite(t) and not np.any(np.abs(stored - t) <= TIME_TOL):
                     out.add(["figures", label, "times", i], f"not a stored time of {', '.join(read)} "
                                                             f"(add it to a store.snapshots list)", t)
+
+
+def _check_work_precision(cfg: dict, out: _Errors):
+    """work_precision.scenes name `scenes:` entries (their initial data are measured)."""
+    wp = cfg.get("work_precision")
+    if not isinstance(wp, dict) or not isinstance(wp.get("scenes"), dict):
+        return
+    scenes = _entries(cfg, "scenes")
+    for name in wp["scenes"]:
+        if name not in scenes:
+            near = difflib.get_close_matches(name, list(scenes), n=1)
+            did = f"; did you mean {near[0]!r}?" if near else ""
+            out.add(["work_precision", "scenes", name], f"unknown scene: no `scenes:` entry of that name{did}")
 
 
 # --------------------------------------------------------------------------- public API

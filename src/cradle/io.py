@@ -2,16 +2,19 @@
 
 :func:`make_dataset` builds an :class:`xarray.Dataset` whose variables get
 their dimensions, ``long_name`` and ``units`` from :mod:`cradle.variables`,
-plus the global attributes every file carries (paper reference, code version).
-:func:`write_netcdf` writes it atomically: to a temporary file in the target
-folder, then ``os.replace``, so an interrupted or failed rule never leaves a
-file that Snakemake would take as done.
+plus the global attributes every file carries: CF-1.10 ``Conventions``,
+``title``, ``history``, ``source``, ``references`` (the paper) and the
+provenance of :mod:`cradle.provenance` (code version and git commit, hash of
+the parameters, library versions, command). :func:`write_netcdf` writes it
+atomically: to a temporary file in the target folder, then ``os.replace``, so
+an interrupted or failed rule never leaves a file that Snakemake would take
+as done. :func:`open_scene` opens the exact and DpS runs of one scene as a
+single Dataset.
 """
 from __future__ import annotations
 
 import datetime as _dt
 import os
-import sys
 import tempfile
 from pathlib import Path
 
@@ -19,6 +22,7 @@ import numpy as np
 import xarray as xr
 
 from . import __version__
+from .provenance import KEYS as _PROVENANCE_KEYS, provenance
 from .variables import declared
 
 REFERENCE = (
@@ -40,34 +44,55 @@ def _attr_value(value):
     return str(value)
 
 
-def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = None, title: str = "") -> xr.Dataset:
+def _var_attrs(name: str) -> dict:
+    var = declared(name)
+    return {"long_name": var.long_name, "units": var.units, **dict(var.attrs)}
+
+
+#: global attributes set by :func:`make_dataset` itself; an inherited value (attrs copied from the
+#: Dataset of an earlier stage) is replaced, never kept
+GLOBAL_KEYS = ("title", "Conventions", "source", "references", "history") + _PROVENANCE_KEYS
+
+
+def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = None, title: str = "",
+                 params=None) -> xr.Dataset:
     """A Dataset from ``{name: array}`` with declared dims, long names and units.
 
     ``coords`` maps coordinate names to 1-D arrays (also declared). ``attrs``
     become global attributes (every parameter that produced the file).
+    ``params`` (the resolved config entry, JSON-serialisable) is hashed into
+    ``params_sha256``; the other provenance attributes are always written.
     """
     coords = coords or {}
     ds = xr.Dataset()
     for name, values in coords.items():
-        var = declared(name)
-        ds = ds.assign_coords({name: (var.dims, np.asarray(values), {"long_name": var.long_name, "units": var.units})})
+        ds = ds.assign_coords({name: (declared(name).dims, np.asarray(values), _var_attrs(name))})
     for name, values in data.items():
-        var = declared(name)
-        ds[name] = xr.Variable(var.dims, np.asarray(values), {"long_name": var.long_name, "units": var.units})
+        ds[name] = xr.Variable(declared(name).dims, np.asarray(values), _var_attrs(name))
+    prov = provenance(params)
     ds.attrs.update(
         {
             "title": title,
             "Conventions": "CF-1.10",
-            "source": f"cradle {__version__}",
+            "source": f"cradle {__version__}" + (f" (git {prov['git_commit'][:12]}"
+                                                f"{', dirty' if prov.get('git_dirty') else ''})"
+                                                if "git_commit" in prov else ""),
             "references": REFERENCE,
-            "history": f"{_dt.datetime.now(_dt.timezone.utc).isoformat(timespec='seconds')} "
-            f"{' '.join(Path(a).name if i == 0 else a for i, a in enumerate(sys.argv))}",
-            "cradle_version": __version__,
+            "history": f"{_dt.datetime.now(_dt.timezone.utc).isoformat(timespec='seconds')} {prov['command']}",
         }
     )
     for key, value in (attrs or {}).items():
-        ds.attrs[key] = _attr_value(value)
+        if key not in GLOBAL_KEYS:
+            ds.attrs[key] = _attr_value(value)
+    ds.attrs.update(prov)
     return ds
+
+
+def _umask_mode() -> int:
+    """0o666 less the process umask: what open() would have given (mkstemp gives 0o600)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
 
 
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
@@ -81,6 +106,7 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
     os.close(fd)
     try:
         ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
+        os.chmod(tmp, _umask_mode())
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
@@ -97,6 +123,7 @@ def write_text(text: str, path: str | os.PathLike) -> Path:
     try:
         with os.fdopen(fd, "w") as fh:
             fh.write(text)
+        os.chmod(tmp, _umask_mode())
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
@@ -109,3 +136,63 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     """Open a cradle output fully into memory (the file is closed on return)."""
     with xr.open_dataset(path) as ds:
         return ds.load()
+
+
+SHARED = ("x", "force")  # variables both models store on the same (t, n) grid
+
+
+def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = True) -> xr.Dataset:
+    """The exact and DpS runs of ``scene`` as one Dataset, read from ``root``/sim/``scene``/{exact,dps}.nc.
+
+    ``x`` and ``force`` get a ``model`` dimension (``exact``, ``dps``); the
+    other variables keep their names (``v``, ``energy`` of the lattice;
+    ``A_re``, ``A_im``, the drifts and the ``tau`` coordinate of the DpS
+    run), plus ``E`` and the spectra of ``root``/metrics/``scene``.nc when
+    it exists (and ``metrics`` is true). Global attributes equal in both runs
+    are kept as they are; the others are prefixed ``exact_`` or ``dps_``
+    (``exact_energy_drift``, ``dps_integrator``, ...)::
+
+        ds = cradle.open_scene("tw-weak")
+        (ds.x.sel(model="exact") - ds.x.sel(model="dps")).sel(t=621.95).plot()
+    """
+    root = Path(root)
+    paths = {m: root / "sim" / scene / f"{m}.nc" for m in ("exact", "dps")}
+    missing = [str(p) for p in paths.values() if not p.exists()]
+    if missing:
+        raise FileNotFoundError(f"scene {scene!r}: no {' and no '.join(missing)} (run `cradle run {scene} "
+                                f"--out {root}` or `snakemake {' '.join(missing)}`)")
+    runs = {m: open_dataset(p) for m, p in paths.items()}
+    if not np.array_equal(runs["exact"]["t"].values, runs["dps"]["t"].values):
+        raise ValueError(f"scene {scene!r}: exact and dps runs are stored at different times (rerun one)")
+    model = xr.DataArray(["exact", "dps"], dims="model", name="model",
+                         attrs={"long_name": "model: exact lattice (nc) or DpS approximation (dfnls)/(ansatz)"})
+    shared = xr.concat([runs[m][list(SHARED)].drop_vars("tau", errors="ignore") for m in ("exact", "dps")],
+                       dim=model, combine_attrs="drop_conflicts")
+    for name in SHARED:
+        shared[name].attrs = dict(runs["exact"][name].attrs)
+    rest = [runs[m].drop_vars(list(SHARED)) for m in ("exact", "dps")]
+    parts = [shared, *rest]
+    mpath = root / "metrics" / f"{scene}.nc"
+    if metrics and mpath.exists():
+        parts.append(open_dataset(mpath))
+    ds = xr.merge(parts, compat="override", join="exact", combine_attrs="override")
+    ex, ap = runs["exact"].attrs, runs["dps"].attrs
+    attrs = {}
+    for key in list(ex) + [k for k in ap if k not in ex]:
+        if key in ex and key in ap and _same(ex[key], ap[key]):
+            attrs[key] = ex[key]
+        else:
+            if key in ex:
+                attrs[f"exact_{key}"] = ex[key]
+            if key in ap:
+                attrs[f"dps_{key}"] = ap[key]
+    attrs["title"] = f"exact and DpS runs of scene '{scene}'"
+    ds.attrs = attrs
+    return ds
+
+
+def _same(a, b) -> bool:
+    try:
+        return bool(np.array_equal(np.asarray(a), np.asarray(b)))
+    except Exception:  # noqa: BLE001
+        return False

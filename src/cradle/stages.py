@@ -59,7 +59,7 @@ def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
     log10a = homoclinic.log10_abs(a / scale, alpha) + np.log10(scale) if bc == "periodic" else np.log10(np.abs(a))
     attrs["log10_tail_min"] = float(np.min(log10a))
     ds = make_dataset({"a": a, "residual_n": r, "log10_abs_a": log10a}, coords={"n": np.arange(N)}, attrs=attrs,
-                      title=f"solution '{name}' of the stationary DpS equation (dpsstn)")
+                      params=spec, title=f"solution '{name}' of the stationary DpS equation (dpsstn)")
     if not sol.converged or not np.all(np.isfinite(a)):
         raise StageFailure(f"homoclinic '{name}': Powell hybrid did not converge "
                            f"(residual {sol.residual:.3e}, {sol.message})", ds)
@@ -80,7 +80,7 @@ def map_orbits(spec: dict, name: str = "") -> xr.Dataset:
              "marks": bool(spec.get("marks", False)), "wall_time_s": time.perf_counter() - t0}
     return make_dataset({"map_a": U[..., 0], "map_b": U[..., 1]},
                         coords={"orbit": np.arange(len(starts)), "iterate": np.arange(U.shape[1])},
-                        attrs=attrs, title=f"orbits '{name}' of the map G (comp1)-(comp2)")
+                        attrs=attrs, params=spec, title=f"orbits '{name}' of the map G (comp1)-(comp2)")
 
 
 # ---------------------------------------------------------------- initial data
@@ -129,7 +129,7 @@ def initial_data(spec: dict, name: str = "", homoclinic_ds: xr.Dataset | None = 
     attrs = _scene_attrs(spec, name) | data.info
     attrs["energy0"] = float(lattice.hamiltonian(data.x0, data.v0, alpha, bc))
     return make_dataset(fields, coords={"n": np.arange(N)}, attrs=attrs,
-                        title=f"initial data of scene '{name}'")
+                        params=spec, title=f"initial data of scene '{name}'")
 
 
 # ---------------------------------------------------------------- integration
@@ -169,7 +169,7 @@ def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) ->
                   "max_compression": sol.max_compression, "wall_time_s": sol.wall_time_s})
     ds = make_dataset({"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy},
                       coords={"t": times, "n": np.arange(spec["N"])}, attrs=attrs,
-                      title=f"exact solution of (nc), scene '{name}'")
+                      params=spec, title=f"exact solution of (nc), scene '{name}'")
     _check_finite(name, "exact", {"x": sol.x, "v": sol.v}, ds)
     if not sol.energy_drift <= spec["max_energy_drift"]:
         raise StageFailure(f"scene '{name}' (exact): relative energy drift {sol.energy_drift:.3e} exceeds "
@@ -200,7 +200,7 @@ def dps_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> x
     ds = make_dataset({"A_re": sol.A.real, "A_im": sol.A.imag, "x": x_app, "force": force,
                        "l2_drift": sol.l2_drift, "dps_energy_drift": sol.energy_drift, "P_drift": sol.P_drift},
                       coords={"t": times, "n": np.arange(spec["N"]), "tau": tau}, attrs=attrs,
-                      title=f"DpS approximation (dfnls)/(ansatz), scene '{name}'")
+                      params=spec, title=f"DpS approximation (dfnls)/(ansatz), scene '{name}'")
     _check_finite(name, "dps", {"A": sol.A}, ds)
     return ds
 
@@ -219,4 +219,4 @@ def metrics(spec: dict, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: str = ""
                   "t_final": float(exact_ds["t"].values[-1])})
     return make_dataset({"E": E, "spectrum_exact": np.abs(xh_exact), "spectrum_dps": np.abs(xh_dps)},
                         coords={"t": exact_ds["t"].values, "k": k}, attrs=attrs,
-                        title=f"exact vs DpS comparison metrics, scene '{name}'")
+                        params=spec, title=f"exact vs DpS comparison metrics, scene '{name}'")

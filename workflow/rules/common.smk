@@ -59,6 +59,22 @@ def figure_module(label):
     """The figures/*.py module whose FIGURES dict draws ``label`` (read as text: no import)."""
     for path in sorted((SRC / "figures").glob("*.py")):
         match = re.search(r"^FIGURES\s*=\s*\{(.*?)\}", path.read_text(), re.M | re.S)
-        if match and re.search(r"[\"']" + re.escape(label) + r"[\"']\s*:", match.group(1)):
+        if match and re.search(rf"[\"']{re.escape(label)}[\"']\s*:", match.group(1)):
             return str(path)
     raise WorkflowError(f"no module in {SRC / 'figures'} draws figure {label!r}")
+
+
+def initial_inputs(w):
+    """A breather scene reads its homoclinic solution."""
+    ini = config["scenes"][w.scene]["initial"]
+    return [f"results/homoclinic/{ini['homoclinic']}.nc"] if ini["kind"] == "breather" else []
+
+
+def figure_inputs(w):
+    return [f for name in config["figures"][w.label]["scenes"] for f in scene_files(name)]
+
+
+def checks_inputs(w):
+    files = [f for name in config["scenes"] for f in scene_files(name)]
+    files += [f"results/initial/{name}.nc" for name in config["scenes"]]
+    return files + [f"results/homoclinic/{name}.nc" for name in config["homoclinic"]]

@@ -1,11 +1,9 @@
 # Stage 4b: one rule instance per paper figure, drawn from netCDF outputs only.
 
 
-def figure_inputs(w):
-    return [f for name in config["figures"][w.label]["scenes"] for f in scene_files(name)]
-
-
 rule figure:
+    conda:
+        "../envs/cradle.yaml"
     message:
         "Drawing figure {wildcards.label}"
     input:
@@ -14,13 +12,20 @@ rule figure:
         data=figure_inputs,
     output:
         pdf="results/figures/{label}.pdf",
-        png="results/figures/{label}.png",
+        png=report(
+            "results/figures/{label}.png",
+            caption="../report/figure.rst",
+            category="Figures",
+            labels={"figure": "{label}"},
+        ),
     params:
         label=lambda w: w.label,
         options=lambda w: config["figures"][w.label],
         scenes=lambda w: {name: kind_of(name) for name in config["figures"][w.label]["scenes"]},
     log:
         "results/logs/figures/{label}.log",
+    benchmark:
+        "results/benchmarks/figures/{label}.tsv"
     wildcard_constraints:
         label=names_regex("figures"),
     script:

@@ -2,6 +2,8 @@
 
 
 rule homoclinic:
+    conda:
+        "../envs/cradle.yaml"
     message:
         "Solving (dpsstn) for the homoclinic solution '{wildcards.name}'"
     input:
@@ -19,6 +21,8 @@ rule homoclinic:
 
 
 rule map_orbits:
+    conda:
+        "../envs/cradle.yaml"
     message:
         "Iterating the map G (comp1)-(comp2) for '{wildcards.name}'"
     input:

@@ -1,13 +1,9 @@
 # Stage 2: initial data x0, v0, A0 of each scene (ansatzapprox), (perturb), (ansatzapproxst2).
 
 
-def initial_inputs(w):
-    """A breather scene reads its homoclinic solution."""
-    ini = config["scenes"][w.scene]["initial"]
-    return [f"results/homoclinic/{ini['homoclinic']}.nc"] if ini["kind"] == "breather" else []
-
-
 rule initial:
+    conda:
+        "../envs/cradle.yaml"
     message:
         "Initial data of scene '{wildcards.scene}'"
     input:

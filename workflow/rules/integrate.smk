@@ -3,6 +3,8 @@
 
 
 rule exact:
+    conda:
+        "../envs/cradle.yaml"
     message:
         "Integrating the lattice (nc) for scene '{wildcards.scene}'"
     input:
@@ -23,6 +25,8 @@ rule exact:
 
 
 rule dps:
+    conda:
+        "../envs/cradle.yaml"
     message:
         "Integrating the DpS equation (dfnls) for scene '{wildcards.scene}'"
     input:

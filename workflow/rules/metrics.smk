@@ -2,6 +2,8 @@
 
 
 rule metrics:
+    conda:
+        "../envs/cradle.yaml"
     message:
         "Comparing exact and DpS solutions of scene '{wildcards.scene}'"
     input:

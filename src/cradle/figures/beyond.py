@@ -1,0 +1,117 @@
+"""Figures beyond the paper: Theorem 1 measured (theorem1) and the DpS modulational-instability map (mi-diagram).
+
+These read the netCDF outputs of the `theorem1` and `mi_diagram` rules
+(results/theorem1/theorem1.nc, results/mi/mi-diagram.nc), not scene files, so
+they are not in a ``FIGURES`` registry (whose functions take scene data): the
+rules call :data:`BEYOND` ``[label](ds)`` and :func:`cradle.figures.save_figure`.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import figure
+
+
+def _qlabel(q):
+    frac = q / np.pi
+    for den in (1, 2, 3, 4, 5, 6, 8, 10):
+        num = round(frac * den)
+        if abs(frac * den - num) < 1e-9:
+            if num == 0:
+                return "0"
+            top = "" if num == 1 else str(num)
+            return rf"${top}\pi$" if den == 1 else rf"${top}\pi/{den}$"
+    return f"{q:.3g}"
+
+
+def theorem1(ds):
+    """Exact frequencies against (wleadingorder), the relative correction, v_a against (va), convergence."""
+    fig, ax = figure(2, 2, width=10.0, height=7.6)
+    alphas, qs, a = ds["t1_alpha"].values, ds["t1_q"].values, ds["t1_a"].values
+    ia = int(np.argmin(np.abs(alphas - 1.5)))
+    colors = [f"C{i}" for i in range(len(qs))]
+    # (a) omega_a - 1 against a, alpha = alphas[ia]
+    A = ax[0, 0]
+    for iq, q in enumerate(qs):
+        A.loglog(a, ds["t1_omega"].values[ia, iq] - 1.0, "-", color=colors[iq], label=f"exact, q = {_qlabel(q)}")
+        A.loglog(a, ds["t1_omega_dps"].values[ia, iq] - 1.0, "--", color=colors[iq], lw=0.8)
+    A.set_xlabel("a")
+    A.set_ylabel(r"$\omega_a - 1$")
+    A.set_title(rf"(a) exact (solid) vs DpS (dashed), $\alpha$ = {alphas[ia]:g}", fontsize=9)
+    A.legend(fontsize=7)
+    if ds.sizes.get("t1_scene", 0):
+        lines = [f"{n}: a={ds['t1_scene_a'].values[i]:.4g}, drift {ds['t1_scene_drift'].values[i]:.3g} rad"
+                 for i, n in enumerate(str(ds.attrs.get("scene_names", "")).split(", "))]
+        A.text(0.98, 0.02, "\n".join(lines), transform=A.transAxes, ha="right", va="bottom", fontsize=6.5)
+    # (b) relative correction
+    B = ax[0, 1]
+    styles = ["-", "--", ":", "-."]
+    for ja, al in enumerate(alphas):
+        for iq, q in enumerate(qs):
+            r = np.abs(ds["t1_rel_correction"].values[ja, iq])
+            eps = a ** (al - 1.0)
+            ok = eps >= 1e-7
+            B.loglog(a[ok], r[ok], styles[ja % 4], color=colors[iq], lw=1.0,
+                     label=rf"$\alpha$={al:g}, q={_qlabel(q)}, slope {ds['t1_correction_slope'].values[ja, iq]:.3f}")
+    B.set_xlabel("a")
+    B.set_ylabel(r"$|\omega_a - \omega_{DpS}| / (\omega_{DpS} - 1)$")
+    B.set_title(r"(b) relative correction, expected slope $\alpha - 1$", fontsize=9)
+    B.legend(fontsize=5.5, ncol=2)
+    # (c) profile correction against (va)
+    C = ax[1, 0]
+    xi = ds["t1_xi"].values
+    for iq, q in enumerate(qs):
+        C.plot(xi, ds["t1_va_leading"].values[ia, iq], "-", color=colors[iq], lw=2.2, alpha=0.4)
+        C.plot(xi, ds["t1_v_small"].values[ia, iq], "--", color=colors[iq], lw=1.0,
+               label=f"q = {_qlabel(q)}")
+        C.plot(xi, ds["t1_v_large"].values[ia, iq], ":", color=colors[iq], lw=1.0)
+    C.set_xlabel(r"$\xi$")
+    C.set_ylabel(r"$v_a(\xi)$")
+    C.set_title(rf"(c) $v_a$ at a = {a[0]:.0e} (dashed), {a[-1]:g} (dotted); $K_h P_h N_0$ (thick)", fontsize=9)
+    C.legend(fontsize=7)
+    # (d) convergence in the number of modes
+    D = ax[1, 1]
+    modes = ds["t1_modes"].values
+    for ja, al in enumerate(alphas):
+        for iq, q in enumerate(qs):
+            e = ds["t1_conv_profile_error"].values[ja, iq]
+            D.loglog(modes[e > 0], e[e > 0], styles[ja % 4] + "o", color=colors[iq], ms=3, lw=0.8,
+                     label=rf"$\alpha$={al:g}, q={_qlabel(q)}: $|v_j| \sim j^{{-{ds['t1_decay_rate'].values[ja, iq]:.2f}}}$")
+    D.set_xlabel("modes J")
+    D.set_ylabel(r"$\max_\xi |v_J - v_{ref}|$")
+    D.set_title(f"(d) convergence at a = {ds.attrs.get('convergence_a', np.nan):g} "
+                f"(ref. J = {ds.attrs.get('reference_modes', '')})", fontsize=9)
+    D.legend(fontsize=5.5, ncol=2)
+    return fig
+
+
+def mi_diagram(ds):
+    """Growth-rate maps lambda tau0 R^(1-alpha) over (q, p) for each alpha, and the maximum over p."""
+    alphas = ds["mi_alpha"].values
+    n = len(alphas)
+    fig, ax = figure(1, n + 1, width=3.3 * (n + 1), height=3.4)
+    q, p = ds["mi_q"].values, ds["mi_p"].values
+    for ia, al in enumerate(alphas):
+        A = ax[ia]
+        G = ds["mi_growth"].values[ia]
+        m = A.pcolormesh(q, p, G.T, shading="auto", cmap="magma")
+        fig.colorbar(m, ax=A, shrink=0.85)
+        A.axvline(ds["mi_q_threshold"].values[ia], color="w", ls="--", lw=0.8)
+        A.plot(q, ds["mi_argmax_p"].values[ia], "c-", lw=0.8)
+        A.set_xlabel("q")
+        A.set_ylabel("p")
+        A.set_title(rf"$\alpha$ = {al:g}: $q_c$ = {ds['mi_q_threshold'].values[ia]:.6f}", fontsize=9)
+    B = ax[n]
+    for ia, al in enumerate(alphas):
+        B.plot(q, ds["mi_max_growth"].values[ia], color=f"C{ia}", label=rf"$\alpha$ = {al:g}")
+        B.plot(ds["mi_check_q"].values[ia], ds["mi_check_simulated"].values[ia], "x", color=f"C{ia}", ms=6)
+        B.plot(ds["mi_check_q"].values[ia], ds["mi_check_theory"].values[ia], "o", mfc="none", color=f"C{ia}",
+               ms=6)
+    B.set_xlabel("q")
+    B.set_ylabel(r"$\max_p \lambda \tau_0 R^{1-\alpha}$")
+    B.set_title("max over p; x: DpS runs, o: theory at their (q, p)", fontsize=8)
+    B.legend(fontsize=7)
+    return fig
+
+
+BEYOND = {"theorem1": theorem1, "mi-diagram": mi_diagram}

@@ -1,0 +1,250 @@
+"""Linear stability of the DpS plane waves (ansatz3): the modulational-instability diagram.
+
+In the rotating frame A_n = e^{i(Omega tau - q n)} (R + b_n), (dfnls) becomes
+
+    2 i tau0 (b_n' + i Omega (R + b_n)) = g(D_n) - g(E_n),   g(z) = z |z|^(alpha-1),
+    D_n = (R + b_{n+1}) e^{-iq} - (R + b_n),  E_n = (R + b_n) - (R + b_{n-1}) e^{iq},
+
+whose fixed point b = 0 is the plane wave iff Omega obeys (ds). Linearising
+g about z: dg = P dz + Q conj(dz), P = (alpha+1)/2 |z|^(alpha-1),
+Q = (alpha-1)/2 |z|^(alpha-1) z/conj(z). A perturbation
+b_n = beta e^{ipn} + conj(gamma) e^{-ipn} couples the sidebands p and -p:
+(beta, gamma)' = L(q, p) (beta, gamma), a 2x2 complex matrix; the growth
+rate is lambda(q, p) = max Re eig L. Every entry of L scales as
+R^(alpha-1)/tau0 (scale invariance A -> R A, tau -> R^(1-alpha) tau), so
+lambda tau0 R^(1-alpha) depends on (q, p) only: that is what we tabulate.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import dps
+from .lattice import check_alpha
+
+
+def _g(z, alpha):
+    return z * np.abs(z) ** (alpha - 1.0)
+
+
+def rotating_rhs(b, q: float, R: float, alpha: float):
+    """b' in the rotating frame (periodic lattice, N = b.size, q N / 2 pi an integer)."""
+    t0 = dps.tau0(alpha)
+    Om = dps.plane_wave_frequency(R, q, alpha)
+    B = R + np.asarray(b, dtype=complex)
+    D = np.roll(B, -1) * np.exp(-1j * q) - B
+    E = B - np.roll(B, 1) * np.exp(1j * q)
+    return (_g(D, alpha) - _g(E, alpha)) / (2j * t0) - 1j * Om * B
+
+
+def stability_matrix(q, p, alpha: float, R: float = 1.0):
+    """L(q, p): d/dtau (beta, gamma) = L (beta, gamma); q, p broadcast; shape (..., 2, 2)."""
+    alpha = check_alpha(alpha)
+    q, p = np.broadcast_arrays(np.asarray(q, dtype=float), np.asarray(p, dtype=float))
+    t0 = dps.tau0(alpha)
+    Om = 2.0**alpha * R ** (alpha - 1.0) * np.abs(np.sin(q / 2.0)) ** (alpha + 1.0) / t0   # (ds)
+    D = R * (np.exp(-1j * q) - 1.0)
+    E = R * (1.0 - np.exp(1j * q))
+    rho = np.abs(D)
+    P = (alpha + 1.0) / 2.0 * rho ** (alpha - 1.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        QD = np.where(rho > 0, (alpha - 1.0) / 2.0 * rho ** (alpha - 1.0) * D / np.conj(D), 0.0)
+        QE = np.where(rho > 0, (alpha - 1.0) / 2.0 * rho ** (alpha - 1.0) * E / np.conj(E), 0.0)
+
+    def d(k):
+        return np.exp(1j * (k - q)) - 1.0
+
+    def e(k):
+        return 1.0 - np.exp(-1j * (k - q))
+
+    c = 1.0 / (2j * t0)
+    L = np.empty(q.shape + (2, 2), dtype=complex)
+    L[..., 0, 0] = c * P * (d(p) - e(p)) - 1j * Om
+    L[..., 0, 1] = c * (QD * np.conj(d(-p)) - QE * np.conj(e(-p)))
+    L[..., 1, 1] = np.conj(c * P * (d(-p) - e(-p)) - 1j * Om)
+    L[..., 1, 0] = np.conj(c * (QD * np.conj(d(p)) - QE * np.conj(e(p))))
+    return L
+
+
+def growth_rate_matrix(q, p, alpha: float, R: float = 1.0):
+    """max Re eig L(q, p) from the 2x2 matrix (cross-check of :func:`growth_rate`).
+
+    mu = tr/2 +- sqrt(((L00 - L11)/2)^2 + L01 L10); the discriminant carries a round-off
+    ~ 1e-16 |L|^2, so rates ~ 1e-8 |L| here are noise (p -> 0 or stable bands).
+    """
+    L = stability_matrix(q, p, alpha, R)
+    half_tr = 0.5 * (L[..., 0, 0] + L[..., 1, 1])
+    disc = (0.5 * (L[..., 0, 0] - L[..., 1, 1])) ** 2 + L[..., 0, 1] * L[..., 1, 0]
+    return half_tr.real + np.abs(np.sqrt(disc).real)
+
+
+def growth_rate(q, p, alpha: float, R: float = 1.0):
+    """lambda(q, p) = max Re eig L(q, p) in units of 1/tau, in closed form.
+
+    With c = cos q, s = |sin(q/2)|, w = 1 - cos p = 2 sin^2(p/2), K = (2 R s)^(alpha-1) / tau0, the
+    entries of L are L00 = i K X, L11 = -i K Y, L01 L10 = K^2 (alpha-1)^2 (c - cos p)^2 / 4 with
+    X + Y = (alpha-1)(1-c) + (alpha+1) c w, so that
+
+        lambda = (K/2) sqrt(max(0, f)),  f = w [(alpha-1) + (alpha+1) c] [w ((alpha-1) - (alpha+1) c) - 4 (alpha-1) s^2],
+
+    written without cancellation (the Goldstone mode p = 0 is exactly neutral). For c >= 0 the last
+    bracket is <= -4c <= 0 (w <= 2): every plane wave with |q| <= pi/2 is linearly stable; for c < 0
+    the staggered perturbation p = pi (w = 2) grows as soon as c > -(alpha-1)/(alpha+1). So the
+    threshold is q_c = pi/2 exactly, for every alpha, and p = pi goes unstable first.
+    """
+    alpha = check_alpha(alpha)
+    q, p = np.broadcast_arrays(np.asarray(q, dtype=float), np.asarray(p, dtype=float))
+    s = np.abs(np.sin(q / 2.0))
+    c = np.cos(q)
+    w = 2.0 * np.sin(p / 2.0) ** 2
+    K = (2.0 * R * s) ** (alpha - 1.0) / dps.tau0(alpha)
+    f = w * ((alpha - 1.0) + (alpha + 1.0) * c) * (w * ((alpha - 1.0) - (alpha + 1.0) * c) - 4.0 * (alpha - 1.0) * s**2)
+    return 0.5 * K * np.sqrt(np.maximum(f, 0.0))
+
+
+def scaled_growth_rate(q, p, alpha: float):
+    """lambda tau0 R^(1-alpha): a function of (q, p) only."""
+    return growth_rate(q, p, alpha, 1.0) * dps.tau0(alpha)
+
+
+def growth_map(alpha: float, n_q: int, n_p: int):
+    """q in [0, pi] (n_q points), p in [-pi, pi] (n_p points), scaled growth rate (n_q, n_p)."""
+    q = np.linspace(0.0, np.pi, n_q)
+    p = np.linspace(-np.pi, np.pi, n_p)
+    return q, p, scaled_growth_rate(q[:, None], p[None, :], alpha)
+
+
+def max_over_p(q, alpha: float, n_p: int = 4001):
+    """(max_p lambda tau0 R^(1-alpha), argmax |p|): grid search on [0, pi], then a bounded refinement."""
+    from scipy.optimize import minimize_scalar
+
+    p = np.linspace(0.0, np.pi, n_p)   # lambda(q, -p) = lambda(q, p)
+    lam = scaled_growth_rate(q, p, alpha)
+    i = int(np.argmax(lam))
+    if lam[i] <= 0.0:
+        return 0.0, float(p[i])
+    lo, hi = p[max(i - 1, 0)], p[min(i + 1, n_p - 1)]
+    res = minimize_scalar(lambda x: -float(scaled_growth_rate(q, x, alpha)), bounds=(lo, hi), method="bounded",
+                          options={"xatol": 1e-12})
+    if -res.fun > lam[i]:
+        return float(-res.fun), float(res.x)
+    return float(lam[i]), float(p[i])
+
+
+def threshold(alpha: float, tol: float = 0.0, n_p: int = 4001):
+    """Smallest q in (0, pi] with max_p lambda > tol (bisection), and the p maximising lambda just above it.
+
+    The closed form of :func:`growth_rate` is exactly 0 on stable bands, so tol = 0 works; the answer
+    is pi/2 for every alpha (see :func:`growth_rate`), which this search confirms numerically.
+    """
+    qs = np.linspace(1e-3, np.pi, 400)
+    unstable = np.array([max_over_p(q, alpha, n_p)[0] > tol for q in qs])
+    if not unstable.any():
+        return float("nan"), float("nan")
+    i = int(np.argmax(unstable))
+    if i == 0:
+        return float(qs[0]), max_over_p(qs[0], alpha, n_p)[1]
+    lo, hi = qs[i - 1], qs[i]
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        if max_over_p(mid, alpha, n_p)[0] > tol:
+            hi = mid
+        else:
+            lo = mid
+    # the most unstable p just above threshold (the first unstable band)
+    q_above = hi + 1e-6
+    return float(hi), max_over_p(q_above, alpha, n_p)[1]
+
+
+def simulated_growth(alpha: float, N: int = 200, k_q: int = 70, m_p: int = 10, R: float = 1.0,
+                     delta: float = 1e-7, growth_factor: float = 1e3, rtol: float = 1e-12):
+    """Growth rate of a small perturbation of the plane wave, from a direct DpS run (integrate_dps).
+
+    q = 2 pi k_q / N, p = 2 pi m_p / N; A_n(0) = plane wave + delta R e^{i p n} (rotating-frame b_n);
+    integrate to tau with e^{lambda tau} = growth_factor (lambda from the linear theory), fit the
+    log of the sideband amplitude |b_hat(p)|^2 + |b_hat(-p)|^2 over the second half.
+    Returns (lambda_simulated, lambda_theory) in units 1/tau.
+    """
+    from .integrators import integrate_dps
+
+    q, p = 2 * np.pi * k_q / N, 2 * np.pi * m_p / N
+    lam = float(growth_rate(q, p, alpha, R))
+    if lam <= 0:
+        raise ValueError(f"(q, p) = ({q}, {p}) is stable (lambda = {lam}); nothing to fit")
+    n = np.arange(N)
+    tau_end = np.log(growth_factor) / lam
+    tau = np.linspace(0.0, tau_end, 201)
+    A0 = np.exp(-1j * q * n) * (R + delta * R * np.exp(1j * p * n))
+    sol = integrate_dps(A0, tau, alpha=alpha, bc="periodic", rtol=rtol, atol=rtol * delta * R)
+    A = np.asarray(sol.A)
+    Om = dps.plane_wave_frequency(R, q, alpha)
+    b = A * np.exp(-1j * (Om * tau[:, None] - q * n[None, :])) - R
+    bh = np.fft.fft(b, axis=-1) / N
+    amp = np.abs(bh[:, m_p]) ** 2 + np.abs(bh[:, -m_p]) ** 2
+    sel = tau >= 0.5 * tau_end
+    slope = np.polyfit(tau[sel], 0.5 * np.log(amp[sel]), 1)[0]
+    return float(slope), lam
+
+
+# ----------------------------------------------------------------- the pipeline stage
+
+def compute(spec: dict, log=None):
+    """The `mi-diagram` target as a Dataset (cradle.variables mi_*).
+
+    ``spec``: alpha (list), n_q, n_p (grid of the map), check_N and check_pairs (list of
+    [k_q, m_p]: q = 2 pi k_q / N, p = 2 pi m_p / N, each simulated for every alpha).
+    """
+    import time
+
+    from .io import make_dataset
+
+    t_start = time.perf_counter()
+    say = log or (lambda *a: None)
+    alphas = [float(a) for a in spec["alpha"]]
+    n_q, n_p, N = int(spec["n_q"]), int(spec["n_p"]), int(spec["check_N"])
+    pairs = [tuple(int(x) for x in pq) for pq in spec["check_pairs"]]
+    q = np.linspace(0.0, np.pi, n_q)
+    p = np.linspace(-np.pi, np.pi, n_p)
+    G = np.empty((len(alphas), n_q, n_p))
+    gmax, pmax = np.empty((len(alphas), n_q)), np.empty((len(alphas), n_q))
+    qc, pc, gpi, ppi, fp = (np.empty(len(alphas)) for _ in range(5))
+    chk = {k: np.full((len(alphas), len(pairs)), np.nan) for k in ("q", "p", "th", "sim")}
+    for ia, al in enumerate(alphas):
+        G[ia] = scaled_growth_rate(q[:, None], p[None, :], al)
+        i = np.argmax(G[ia], axis=1)
+        gmax[ia], pmax[ia] = G[ia, np.arange(n_q), i], np.where(G[ia, np.arange(n_q), i] > 0, np.abs(p[i]), np.nan)
+        qc[ia], pc[ia] = threshold(al)
+        gpi[ia], ppi[ia] = max_over_p(np.pi, al)
+        fp[ia] = max(float(np.max(np.abs(rotating_rhs(np.zeros(N), 2 * np.pi * k / N, 1.0, al)))) for k in range(N))
+        for ic, (k, m) in enumerate(pairs):
+            chk["q"][ia, ic], chk["p"][ia, ic] = 2 * np.pi * k / N, 2 * np.pi * m / N
+            sim, th = simulated_growth(al, N=N, k_q=k, m_p=m)
+            chk["th"][ia, ic], chk["sim"][ia, ic] = th * dps.tau0(al), sim * dps.tau0(al)
+        say(f"mi-diagram: alpha={al}: q_c={qc[ia]:.12g} (first p={pc[ia]:.6g}), growth at q=pi {gpi[ia]:.6g} "
+            f"(p={ppi[ia]:.6g}), checks {np.round(chk['sim'][ia] / chk['th'][ia] - 1.0, 6)}")
+    rel = chk["sim"] / chk["th"] - 1.0
+    data = {"mi_growth": G, "mi_max_growth": gmax, "mi_argmax_p": pmax, "mi_q_threshold": qc, "mi_p_first": pc,
+            "mi_growth_pi": gpi, "mi_p_max_pi": ppi, "mi_fixed_point_residual": fp,
+            "mi_check_q": chk["q"], "mi_check_p": chk["p"], "mi_check_theory": chk["th"],
+            "mi_check_simulated": chk["sim"], "mi_check_rel_error": rel}
+    coords = {"mi_alpha": alphas, "mi_q": q, "mi_p": p, "mi_check": np.arange(len(pairs))}
+    attrs = {"check_N": N, "check_pairs": str(pairs),
+             "growth_units": "lambda tau0 R^(1-alpha) (scale-free; lambda in units of 1/tau of (dfnls))",
+             "max_check_rel_error": float(np.nanmax(np.abs(rel))),
+             "wall_time_s": time.perf_counter() - t_start}
+    return make_dataset(data, coords=coords, attrs=attrs,
+                        title="Modulational instability of the DpS plane waves (ansatz3): growth-rate map")
+
+
+def resolved_spec(config: dict) -> dict:
+    """The `beyond.mi_diagram` parameters of a validated config (pairs checked against check_N)."""
+    b = dict(config["beyond"]["mi_diagram"])
+    N = int(b["check_N"])
+    for i, (k, m) in enumerate(b["check_pairs"]):
+        if not (0 < k < N and 0 < m < N):
+            raise ValueError(f"config error: beyond.mi_diagram.check_pairs[{i}] = {[k, m]}: need 0 < k_q, m_p < "
+                             f"check_N = {N}")
+        for al in b["alpha"]:
+            if not growth_rate(2 * np.pi * k / N, 2 * np.pi * m / N, al) > 0:
+                raise ValueError(f"config error: beyond.mi_diagram.check_pairs[{i}] = {[k, m]}: stable for alpha = "
+                                 f"{al}; a check needs an unstable (q, p)")
+    return b

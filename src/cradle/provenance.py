@@ -1,0 +1,228 @@
+"""Provenance of every output: which code, which parameters, which libraries, which command.
+
+:func:`provenance` returns flat netCDF global attributes (names are letters,
+digits and underscores, values strings or integers, as CF wants), added by
+:func:`cradle.io.make_dataset` to every file:
+
+``cradle_version``
+    the installed package version;
+``git_commit``, ``git_dirty``
+    ``git rev-parse HEAD`` of the source tree the package was imported from,
+    and 1 if tracked files differ from that commit (0 if not); absent when the
+    package is not a git checkout (an installed wheel, a source tarball);
+``params_sha256``
+    sha256 of the canonical JSON (sorted keys, no spaces) of the resolved
+    parameters that produced the file (:func:`params_hash`), when given: two
+    files with the same hash were computed from the same scene;
+``software_versions``
+    ``python=3.11.7 numpy=... scipy=... numba=... xarray=... netCDF4=...``;
+``command``
+    ``snakemake rule exact (scene=tw-weak)`` inside a Snakemake job,
+    otherwise the command line (``sys.argv``), or what :func:`set_command`
+    was told.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import platform
+import subprocess
+import sys
+from functools import lru_cache
+from importlib.metadata import PackageNotFoundError, version as _version
+from pathlib import Path
+
+__all__ = ["PACKAGES", "KEYS", "canonical_json", "params_hash", "git_info", "software_versions", "command",
+           "set_command", "provenance"]
+
+#: the libraries whose versions can change a result
+PACKAGES = ("numpy", "scipy", "numba", "xarray", "netCDF4")
+
+#: every global attribute this module may write (an inherited one is dropped before new ones are set)
+KEYS = ("cradle_version", "git_commit", "git_dirty", "params_sha256", "software_versions", "command")
+
+_COMMAND: str | None = None
+
+
+def _jsonable(value):
+    """numpy scalars and arrays, paths, sets -> plain JSON values (for :func:`canonical_json`)."""
+    if hasattr(value, "tolist"):  # numpy scalar or array
+        return value.tolist()
+    if isinstance(value, (set, frozenset)):
+        return sorted(value, key=repr)
+    if isinstance(value, Path):
+        return str(value)
+    raise TypeError(f"cannot hash a parameter of type {type(value).__name__}: {value!r}")
+
+
+def _normalise(value):
+    """Keys as strings, inf/nan as text (JSON has neither non-string keys nor non-finite numbers)."""
+    if isinstance(value, dict):
+        return {str(k): _normalise(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_normalise(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return repr(value)
+    return value
+
+
+def canonical_json(params) -> str:
+    """The canonical JSON of ``params``: sorted keys, no whitespace, numpy values as plain numbers."""
+    plain = json.loads(json.dumps(params, default=_jsonable))
+    return json.dumps(_normalise(plain), sort_keys=True, separators=(",", ":"), ensure_ascii=True,
+                      allow_nan=False)
+
+
+def params_hash(params) -> str:
+    """sha256 (hex) of :func:`canonical_json` of ``params`` (a resolved config entry)."""
+    return hashlib.sha256(canonical_json(params).encode("ascii")).hexdigest()
+
+
+def _git(args, cwd) -> str | None:
+    try:
+        out = subprocess.run(["git", *args], cwd=cwd, capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return out.stdout.strip() if out.returncode == 0 else None
+
+
+@lru_cache(maxsize=None)
+def git_info(path: str | None = None) -> dict:
+    """``{"git_commit": sha, "git_dirty": 0|1}`` for the git checkout holding ``path``; {} if there is none.
+
+    ``path`` defaults to this package's folder. The file must be tracked by
+    that repository (a package installed into a virtualenv that happens to
+    sit inside some other git work tree is not attributed to its commit).
+    """
+    here = Path(path) if path else Path(__file__).resolve().parent
+    cwd = here if here.is_dir() else here.parent
+    if not cwd.is_dir():
+        return {}
+    commit = _git(["rev-parse", "--verify", "--quiet", "HEAD"], cwd)
+    if not commit:
+        return {}
+    target = here / "__init__.py" if here.is_dir() else here
+    if _git(["ls-files", "--error-unmatch", "--", str(target)], cwd) is None:
+        return {}
+    status = _git(["status", "--porcelain", "--untracked-files=no"], cwd)
+    return {"git_commit": commit, "git_dirty": int(bool(status))}
+
+
+@lru_cache(maxsize=None)
+def software_versions() -> str:
+    """``python=X numpy=Y ...`` for :data:`PACKAGES` that are installed."""
+    parts = [f"python={platform.python_version()}"]
+    for name in PACKAGES:
+        try:
+            parts.append(f"{name}={_version(name)}")
+        except PackageNotFoundError:
+            pass
+    return " ".join(parts)
+
+
+def set_command(text: str | None) -> None:
+    """Record the command that produces the outputs of this process (None: back to automatic)."""
+    global _COMMAND
+    _COMMAND = text
+
+
+def _snakemake_job() -> str | None:
+    """``snakemake rule NAME (wildcards)`` when running inside a Snakemake ``script:`` job."""
+    sm = getattr(sys.modules.get("__main__"), "snakemake", None)
+    rule = getattr(sm, "rule", None)
+    if not rule:
+        return None
+    try:
+        wc = ", ".join(f"{k}={v}" for k, v in dict(sm.wildcards.items()).items())
+    except Exception:  # noqa: BLE001 - a wildcards object we do not know: the rule name suffices
+        wc = ""
+    return f"snakemake rule {rule}" + (f" ({wc})" if wc else "")
+
+
+def command() -> str:
+    """The command behind this process's outputs (see the module docstring)."""
+    if _COMMAND:
+        return _COMMAND
+    job = _snakemake_job()
+    if job:
+        return job
+    argv = list(sys.argv) or ["python"]
+    argv[0] = Path(argv[0]).name or "python"
+    return " ".join(argv)
+
+
+def provenance(params=None) -> dict:
+    """The provenance attributes (see the module docstring); ``params_sha256`` only with ``params``."""
+    from . import __version__
+
+    attrs = {"cradle_version": __version__}
+    attrs.update(git_info())
+    if params is not None:
+        attrs["params_sha256"] = params_hash(params)
+    attrs["software_versions"] = software_versions()
+    attrs["command"] = command()
+    return attrs
+
+
+# ------------------------------------------------------------------ lock file
+
+def _requirement_names(dist: str, extras: tuple[str, ...] = ()) -> list[str]:
+    """Names of the requirements of installed distribution ``dist`` (with ``extras``), markers evaluated."""
+    from importlib.metadata import requires
+
+    from packaging.requirements import Requirement
+
+    names = []
+    for text in requires(dist) or []:
+        req = Requirement(text)
+        envs = [{"extra": e} for e in extras] or [{"extra": ""}]
+        if req.marker is None or any(req.marker.evaluate(env) for env in envs):
+            names.append(req.name if not req.extras else f"{req.name}[{','.join(sorted(req.extras))}]")
+    return names
+
+
+def dependency_tree(root: str = "cradle", extras: tuple[str, ...] = ("workflow",)) -> dict[str, str]:
+    """``{name: installed version}`` of every distribution ``root[extras]`` needs, transitively (not root)."""
+    from packaging.utils import canonicalize_name
+
+    seen: dict[str, str] = {}
+    todo = [(root, tuple(extras))]
+    while todo:
+        name, ext = todo.pop()
+        for req in _requirement_names(name, ext):
+            base, _, rest = req.partition("[")
+            sub = tuple(rest.rstrip("]").split(",")) if rest else ()
+            try:
+                ver = _version(base)
+            except PackageNotFoundError:
+                continue  # an optional dependency that is not installed
+            key = canonicalize_name(base)
+            if key not in seen or sub:
+                if key not in seen:
+                    seen[key] = f"{base}=={ver}"
+                todo.append((base, sub))
+    return dict(sorted(seen.items()))
+
+
+def lock_text(extras: tuple[str, ...] = ("workflow",)) -> str:
+    """requirements-lock.txt: the installed versions of cradle's dependency tree, like a filtered ``pip freeze``."""
+    head = (f"# cradle {__import__('cradle').__version__} dependency tree (extras: {', '.join(extras) or 'none'}), "
+            f"python {platform.python_version()}\n"
+            "# regenerate: python -m cradle.provenance lock > requirements-lock.txt\n"
+            "# install exactly these: pip install -r requirements-lock.txt -e .\n")
+    return head + "".join(f"{line}\n" for line in dependency_tree("cradle", extras).values())
+
+
+if __name__ == "__main__":
+    import argparse
+
+    _p = argparse.ArgumentParser(prog="python -m cradle.provenance", description="provenance of this installation")
+    _p.add_argument("what", choices=("show", "lock"), help="show: the attributes outputs get; lock: requirements-lock.txt")
+    _p.add_argument("--extras", default="workflow", help="comma-separated extras of cradle to lock (default: workflow)")
+    _a = _p.parse_args()
+    if _a.what == "lock":
+        sys.stdout.write(lock_text(tuple(e for e in _a.extras.split(",") if e)))
+    else:
+        for _k, _v in provenance().items():
+            print(f"{_k}: {_v}")

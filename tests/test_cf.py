@@ -1,0 +1,128 @@
+"""Every output kind is CF-1.10 (IOOS compliance-checker, strict) and carries its provenance.
+
+The six kinds (homoclinic, map, initial, sim exact, sim dps, metrics) are
+built with cradle.stages on the tiny config of test_pipeline, written with
+cradle.io.write_netcdf and checked with the checker's Python API. Skipped
+only when compliance-checker is not installed (it is in the ``test`` extra).
+"""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from cradle import config as cc
+from cradle import provenance, stages
+from cradle.io import make_dataset, open_dataset, open_scene, write_netcdf
+from cradle.variables import VARIABLES
+
+from test_pipeline import TINY  # tests/ is on sys.path (pytest rootdir, no __init__.py)
+
+KINDS = ("homoclinic", "map", "initial", "exact", "dps", "metrics")
+
+
+@pytest.fixture(scope="module")
+def outputs(tmp_path_factory):
+    """One file of each kind, in the results/ layout (tw-weak-noise: noise fields too)."""
+    root = tmp_path_factory.mktemp("cf") / "results"
+    cfg = cc.validate(TINY)
+    scene = "tw-weak-noise"
+    spec = cc.resolved_scene(cfg, scene)
+    hspec = cc.resolved_homoclinic(cfg, "site")
+    mspec = cc.resolved_map(cfg, "traj3")
+    init = stages.initial_data(spec, scene)
+    ex = stages.exact_run(spec, init, scene)
+    ap = stages.dps_run(spec, init, scene)
+    built = {
+        "homoclinic": (stages.homoclinic_solution(hspec, "site"), root / "homoclinic" / "site.nc"),
+        "map": (stages.map_orbits(mspec, "traj3"), root / "map" / "traj3.nc"),
+        "initial": (init, root / "initial" / f"{scene}.nc"),
+        "exact": (ex, root / "sim" / scene / "exact.nc"),
+        "dps": (ap, root / "sim" / scene / "dps.nc"),
+        "metrics": (stages.metrics(spec, ex, ap, scene), root / "metrics" / f"{scene}.nc"),
+    }
+    return {kind: write_netcdf(ds, path) for kind, (ds, path) in built.items()} | {"root": root, "scene": scene}
+
+
+def _cf_failures(path, tmp_path) -> list[str]:
+    checker = pytest.importorskip("compliance_checker.runner", reason="compliance-checker is not installed")
+    suite = checker.CheckSuite()
+    suite.load_all_available_checkers()
+    report = tmp_path / f"{path.stem}.json"
+    passed, errors = checker.ComplianceChecker.run_checker(str(path), ["cf:1.10"], 0, "strict",
+                                                           output_filename=str(report), output_format="json")
+    results = json.loads(report.read_text())["cf:1.10"]
+    failures = []
+    for prio in ("high_priorities", "medium_priorities", "low_priorities"):
+        for item in results.get(prio, []):
+            score = item.get("value", [1, 1])
+            if score[0] < score[1]:
+                failures.append(f"{prio}: {item['name']}: {'; '.join(item.get('msgs', []))}")
+    assert not errors, errors
+    if not passed and not failures:
+        failures.append("checker reported failure")
+    return failures
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_cf_compliant(outputs, kind, tmp_path):
+    assert _cf_failures(outputs[kind], tmp_path) == []
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_global_and_variable_attributes(outputs, kind):
+    ds = open_dataset(outputs[kind])
+    assert ds.attrs["Conventions"] == "CF-1.10"
+    for key in ("title", "history", "source", "references"):
+        assert ds.attrs[key], key
+    assert "Newton's cradle" in ds.attrs["references"]
+    for name in list(ds.data_vars) + list(ds.coords):
+        assert ds[name].attrs["long_name"] == VARIABLES[name].long_name
+        assert ds[name].attrs["units"] == VARIABLES[name].units
+        assert "_FillValue" not in ds[name].encoding or name not in ds.coords
+        assert not np.iscomplexobj(ds[name].values)
+    assert "time" not in ds.variables  # a CF `time` would need calendar units
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_provenance_in_every_output(outputs, kind):
+    ds = open_dataset(outputs[kind])
+    for key in ("cradle_version", "software_versions", "command"):
+        assert ds.attrs[key], key
+    for lib in ("numpy=", "scipy=", "numba=", "xarray=", "netCDF4="):
+        assert lib in ds.attrs["software_versions"]
+    git = provenance.git_info()
+    if git:
+        assert ds.attrs["git_commit"] == git["git_commit"] and ds.attrs["git_dirty"] in (0, 1)
+    else:
+        assert "git_commit" not in ds.attrs
+
+
+def test_params_hash_is_canonical():
+    a = {"N": 20, "initial": {"q": 0.5, "kind": "travelling"}, "times": [0.0, 1.0]}
+    b = {"times": [np.float64(0.0), 1.0], "initial": {"kind": "travelling", "q": np.float64(0.5)}, "N": np.int64(20)}
+    assert provenance.params_hash(a) == provenance.params_hash(b)
+    assert provenance.params_hash(a) != provenance.params_hash({**a, "N": 21})
+    ds = make_dataset({"x0": np.zeros(3)}, coords={"n": np.arange(3)}, attrs={"params_sha256": "stale"}, params=a)
+    assert ds.attrs["params_sha256"] == provenance.params_hash(a)
+    ds = make_dataset({"x0": np.zeros(3)}, coords={"n": np.arange(3)}, attrs={"params_sha256": "stale"})
+    assert "params_sha256" not in ds.attrs  # inherited provenance is never kept
+
+
+def test_git_info_outside_a_checkout(tmp_path):
+    assert provenance.git_info(str(tmp_path)) == {}
+
+
+def test_open_scene(outputs):
+    ds = open_scene(outputs["scene"], root=outputs["root"])
+    assert list(ds["model"].values) == ["exact", "dps"]
+    assert ds["x"].dims == ("model", "t", "n") and ds["force"].dims == ("model", "t", "n")
+    ex = open_dataset(outputs["exact"])
+    np.testing.assert_array_equal(ds["x"].sel(model="exact").values, ex["x"].values)
+    assert {"v", "energy", "A_re", "A_im", "E", "spectrum_exact"} <= set(ds.data_vars)
+    assert "tau" in ds.coords and ds["x"].attrs["units"] == "1"
+    assert ds.attrs["exact_energy_drift"] == ex.attrs["energy_drift"] and ds.attrs["N"] == 20
+    with pytest.raises(FileNotFoundError, match="cradle run"):
+        open_scene("nope", root=outputs["root"])

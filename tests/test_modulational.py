@@ -1,0 +1,78 @@
+"""Modulational instability of the DpS plane waves (cradle.modulational): the rotating-frame fixed point,
+the sideband stability matrix against a finite-difference Jacobian and direct DpS runs, scale invariance,
+and the threshold q_c = pi/2."""
+import numpy as np
+import pytest
+
+from cradle import dps
+from cradle import modulational as MI
+
+
+@pytest.mark.parametrize("alpha", [1.5, 2.0, 3.0])
+@pytest.mark.parametrize("R", [0.3, 1.0, 2.5])
+def test_plane_wave_is_a_fixed_point_of_the_rotating_frame(alpha, R):
+    N = 200
+    worst = max(np.max(np.abs(MI.rotating_rhs(np.zeros(N), 2 * np.pi * k / N, R, alpha))) for k in range(N))
+    assert worst < 1e-13 * max(1.0, R ** alpha)
+    # and the explicit (ansatz3) solves (dfnls) in the lab frame
+    n = np.arange(N)
+    q = 2 * np.pi * 37 / N
+    A = dps.plane_wave(n, 0.4, R, q, 0.3, alpha)
+    dA = 1j * dps.plane_wave_frequency(R, q, alpha) * A
+    np.testing.assert_allclose(dps.rhs(A, alpha), dA, atol=1e-13 * max(1.0, R ** alpha))
+
+
+@pytest.mark.parametrize("alpha", [1.5, 3.0])
+def test_growth_rate_matches_the_linearised_lattice(alpha):
+    """Closed form = 2x2 sideband matrix = spectrum of the finite-difference Jacobian of the rotating frame."""
+    N, R = 40, 1.3
+    for k in (6, 14, 17):   # q = 0.94 (stable), 2.20, 2.67
+        q = 2 * np.pi * k / N
+
+        def f(x):
+            r = MI.rotating_rhs(x[:N] + 1j * x[N:], q, R, alpha)
+            return np.r_[r.real, r.imag]
+
+        h = 1e-6
+        J = np.array([(f(h * e) - f(-h * e)) / (2 * h) for e in np.eye(2 * N)]).T
+        lam_fd = np.max(np.linalg.eigvals(J).real)
+        p = 2 * np.pi * np.arange(N) / N
+        lam = MI.growth_rate(q, p, alpha, R)
+        # the neutral Goldstone pair (a Jordan block) puts ~ sqrt(FD error) ~ 1e-5 into the FD spectrum
+        assert abs(lam_fd - lam.max()) < 1e-4 * max(1.0, lam.max())
+        np.testing.assert_allclose(lam, MI.growth_rate_matrix(q, p, alpha, R), atol=1e-6)
+
+
+@pytest.mark.parametrize("alpha,k_q,m_p", [(1.5, 100, 27), (1.5, 55, 100), (2.0, 80, 20), (3.0, 70, 10)])
+def test_growth_rate_matches_direct_dps_runs(alpha, k_q, m_p):
+    sim, theory = MI.simulated_growth(alpha, N=200, k_q=k_q, m_p=m_p)
+    assert theory > 0
+    assert abs(sim / theory - 1.0) < 0.05, (sim, theory)
+
+
+def test_scale_invariance():
+    """lambda tau0 R^(1-alpha) depends on (q, p) only; a direct run at R = 3 agrees with R = 1 rescaled."""
+    q = np.linspace(0, np.pi, 61)[:, None]
+    p = np.linspace(-np.pi, np.pi, 81)[None, :]
+    for alpha in (1.5, 2.0, 3.0):
+        ref = MI.scaled_growth_rate(q, p, alpha)
+        for R in (0.01, 0.7, 40.0):
+            np.testing.assert_allclose(MI.growth_rate(q, p, alpha, R) * dps.tau0(alpha) * R ** (1 - alpha), ref,
+                                       rtol=1e-12, atol=1e-14)
+    sim, theory = MI.simulated_growth(1.5, N=200, k_q=100, m_p=27, R=3.0)
+    np.testing.assert_allclose(theory, MI.growth_rate(np.pi, 2 * np.pi * 27 / 200, 1.5, 1.0) * 3.0**0.5, rtol=1e-12)
+    assert abs(sim / theory - 1.0) < 0.05
+
+
+@pytest.mark.parametrize("alpha", [1.2, 1.5, 2.0, 3.0])
+def test_threshold_is_pi_over_2_and_p_pi_goes_first(alpha):
+    qc, pc = MI.threshold(alpha)
+    assert abs(qc - np.pi / 2) < 1e-9 and abs(pc - np.pi) < 1e-3
+    p = np.linspace(-np.pi, np.pi, 401)[None, :]
+    q_stable = np.linspace(0, np.pi / 2, 101)[:-1, None]
+    assert np.all(MI.scaled_growth_rate(q_stable, p, alpha) == 0.0)
+    assert np.max(MI.scaled_growth_rate(np.pi / 2, p, alpha)) < 1e-7   # cos(pi/2) = 6e-17 in floating point
+    # q = pi: max_p lambda tau0 = 2^(alpha-1) (alpha-1)/sqrt(alpha) at cos p = 1/alpha
+    g, p = MI.max_over_p(np.pi, alpha)
+    np.testing.assert_allclose(g, 2 ** (alpha - 1) * (alpha - 1) / np.sqrt(alpha), rtol=1e-12)
+    np.testing.assert_allclose(p, np.arccos(1 / alpha), atol=1e-5)

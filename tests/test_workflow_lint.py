@@ -1,0 +1,136 @@
+"""Snakemake conventions: `snakemake --lint`, log:/benchmark: per rule, report captions, cluster profile."""
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+RULES = ROOT / "workflow" / "rules"
+
+# Lints about files outside this change (workflow/rules/{common,initial,integrate,...}.smk), by title,
+# with the fix. Any other lint fails the test; once these are fixed the test passes outright.
+KNOWN_LINTS = {
+    "Path composition with '+'":
+        "common.smk: figure_module builds a regex with '+'; an f-string, rf\"[\\\"']{re.escape(label)}...\", avoids it",
+    "Mixed rules and functions": "move the input functions (initial_inputs, figure_inputs, checks_inputs, "
+                                 "wp_* ...) into common.smk",
+    "Specify a conda environment or container":
+        "add workflow/envs/cradle.yaml and a conda: directive to every rule",
+}
+
+
+def _snakemake(workdir, *args, timeout=120):
+    exe = shutil.which("snakemake") or shutil.which("snakemake", path=str(Path(sys.executable).parent))
+    cmd = [exe] if exe else [sys.executable, "-m", "snakemake"]
+    return subprocess.run(cmd + list(args), cwd=workdir, capture_output=True, text=True, timeout=timeout,
+                          env={**os.environ, "PYTHONWARNINGS": "ignore"})
+
+
+def _lints(text):
+    """[(where, title)] from `snakemake --lint` text output."""
+    found, where = [], None
+    for line in text.splitlines():
+        m = re.match(r"Lints for (?:snakefile (\S+)|rule (\S+) \(line \d+, (\S+)\)):", line)
+        if m:
+            where = Path(m.group(1)).name if m.group(1) else "rule"
+            continue
+        m = re.match(r"    \* (.+?)(?::|$)", line)
+        if m and where:
+            found.append((where, m.group(1)))
+    return found
+
+
+def test_snakemake_lint():
+    proc = _snakemake(ROOT, "--lint", "--nolock")
+    if proc.returncode == 0:
+        return
+    text = proc.stdout + proc.stderr
+    lints = _lints(text)
+    assert lints, text[-3000:]
+    unknown = [lint for lint in lints if not any(lint[1].startswith(title) for title in KNOWN_LINTS)]
+    assert not unknown, f"new lints: {unknown}"
+    seen = {title: sorted({w for w, t in lints if t.startswith(title)}) for title in KNOWN_LINTS}
+    pytest.xfail("only lints about files outside this change remain: " + "; ".join(
+        f"{title} in {', '.join(where)} ({KNOWN_LINTS[title]})" for title, where in seen.items() if where))
+
+
+def _rules():
+    """{rule name: its text} over workflow/rules/*.smk."""
+    rules = {}
+    for path in sorted(RULES.glob("*.smk")):
+        text = path.read_text()
+        for m in re.finditer(r"^rule (\w+):\n(.*?)(?=^\S|\Z)", text, re.M | re.S):
+            rules[m.group(1)] = m.group(2)
+    return rules
+
+
+def test_every_rule_logs_and_costly_rules_benchmark():
+    rules = _rules()
+    assert {"homoclinic", "map_orbits", "initial", "exact", "dps", "metrics", "figure", "paper_checks"} <= set(rules)
+    for name, body in rules.items():
+        if re.search(r"^\s+(script|shell|run|notebook|wrapper):", body, re.M):  # target rules run nothing
+            assert re.search(r"^\s+log:", body, re.M), f"rule {name} has no log:"
+    for name in ("exact", "dps", "figure", "paper_checks"):
+        assert re.search(r"^\s+benchmark:", rules[name], re.M), f"rule {name} has no benchmark:"
+    assert "report(" in rules["figure"] and "report(" in rules["paper_checks"]
+
+
+def test_report_captions_render_for_every_figure():
+    """The caption template renders (Jinja2 as Snakemake sets it up) to valid reStructuredText for every figure."""
+    jinja2 = pytest.importorskip("jinja2")
+    docutils_core = pytest.importorskip("docutils.core")
+    from types import SimpleNamespace
+
+    from cradle import config as cc
+
+    cfg = cc.load(ROOT / "config.yaml")
+    env = jinja2.Environment(trim_blocks=True, lstrip_blocks=True)
+    template = env.from_string((ROOT / "workflow" / "report" / "figure.rst").read_text())
+    for label, options in cfg["figures"].items():
+        sm = SimpleNamespace(wildcards=SimpleNamespace(label=label), params=SimpleNamespace(options=options),
+                             config=cfg)
+        text = template.render(snakemake=sm)
+        assert f"**{label}** -- " in text
+        for name in options["scenes"]:
+            assert f"``{name}``" in text, (label, name)
+        html = docutils_core.publish_parts(text, writer="html",
+                                           settings_overrides={"halt_level": 2, "report_level": 5})["body"]
+        assert label in html
+    for rst in ("paper_checks.rst", "workflow.rst"):
+        docutils_core.publish_parts((ROOT / "workflow" / "report" / rst).read_text(), writer="html",
+                                    settings_overrides={"halt_level": 2, "report_level": 5})
+
+
+def _workdir(tmp_path):
+    work = tmp_path / "cradle"
+    work.mkdir()
+    shutil.copy(ROOT / "Snakefile", work)
+    shutil.copy(ROOT / "config.yaml", work)
+    shutil.copytree(ROOT / "workflow", work / "workflow")
+    shutil.copytree(ROOT / "profiles", work / "profiles")
+    (work / "src").symlink_to(ROOT / "src")
+    return work
+
+
+def test_default_profile_is_valid_yaml():
+    profile = yaml.safe_load((ROOT / "profiles" / "default" / "config.yaml").read_text())
+    assert profile["cores"] == 2 and profile["keep-going"] is True
+
+
+def test_slurm_profile_dry_run(tmp_path):
+    """A dry run with the Slurm profile plans the whole workflow (no cluster needed: nothing is submitted)."""
+    pytest.importorskip("snakemake_executor_plugin_slurm", reason="snakemake-executor-plugin-slurm is not installed")
+    profile = yaml.safe_load((ROOT / "profiles" / "slurm" / "config.yaml").read_text())
+    assert profile["executor"] == "slurm"
+    assert {"exact", "dps", "figure"} <= set(profile["set-resources"])
+    work = _workdir(tmp_path)
+    proc = _snakemake(work, "-n", "--workflow-profile", "profiles/slurm")
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert re.search(r"^exact\s+\d+$", proc.stdout + proc.stderr, re.M)

@@ -1,0 +1,95 @@
+# Beyond the paper (config `beyond:`): Theorem 1 measured on exact travelling waves of (ad), and the
+# modulational-instability map of the DpS plane waves. Targets: `snakemake -j2 theorem1 mi_diagram`,
+# or the files results/theorem1/theorem1.nc, results/mi/mi-diagram.nc and
+# results/figures/{theorem1,mi-diagram}.{pdf,png}. Each computation runs in well under a minute on
+# one core; a figure rule reruns alone when only the drawing code changes.
+from cradle import modulational as _mi
+from cradle import theorem1 as _t1
+
+# should `theorem1` or `mi-diagram` ever be listed under `figures:`, these rules draw them
+ruleorder: theorem1_figure > figure
+ruleorder: mi_diagram_figure > figure
+
+
+rule theorem1_compute:
+    conda:
+        "../envs/cradle.yaml"
+    message:
+        "Theorem 1 measured: exact travelling waves of (ad) against (wleadingorder)"
+    input:
+        code=sources(*CORE, "theorem1", "config"),
+    output:
+        "results/theorem1/theorem1.nc",
+    params:
+        spec=lambda w: _t1.resolved_spec(config),
+    log:
+        "results/logs/theorem1/theorem1.log",
+    benchmark:
+        "results/benchmarks/theorem1/theorem1.tsv"
+    script:
+        "../scripts/theorem1.py"
+
+
+rule theorem1_figure:
+    conda:
+        "../envs/cradle.yaml"
+    message:
+        "Drawing figure theorem1"
+    input:
+        code=sources("__init__", "io", "variables", "figures/__init__", "figures/beyond"),
+        data="results/theorem1/theorem1.nc",
+    output:
+        pdf="results/figures/theorem1.pdf",
+        png="results/figures/theorem1.png",
+    log:
+        "results/logs/figures/theorem1.log",
+    script:
+        "../scripts/theorem1.py"
+
+
+rule theorem1:
+    input:
+        rules.theorem1_compute.output,
+        rules.theorem1_figure.output,
+
+
+rule mi_diagram_compute:
+    conda:
+        "../envs/cradle.yaml"
+    message:
+        "Modulational instability of the DpS plane waves: growth-rate map and direct checks"
+    input:
+        code=sources(*CORE, "modulational", "integrators"),
+    output:
+        "results/mi/mi-diagram.nc",
+    params:
+        spec=lambda w: _mi.resolved_spec(config),
+    log:
+        "results/logs/mi/mi-diagram.log",
+    benchmark:
+        "results/benchmarks/mi/mi-diagram.tsv"
+    script:
+        "../scripts/mi_diagram.py"
+
+
+rule mi_diagram_figure:
+    conda:
+        "../envs/cradle.yaml"
+    message:
+        "Drawing figure mi-diagram"
+    input:
+        code=sources("__init__", "io", "variables", "figures/__init__", "figures/beyond"),
+        data="results/mi/mi-diagram.nc",
+    output:
+        pdf="results/figures/mi-diagram.pdf",
+        png="results/figures/mi-diagram.png",
+    log:
+        "results/logs/figures/mi-diagram.log",
+    script:
+        "../scripts/mi_diagram.py"
+
+
+rule mi_diagram:
+    input:
+        rules.mi_diagram_compute.output,
+        rules.mi_diagram_figure.output,
