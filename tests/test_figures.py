@@ -1,0 +1,74 @@
+"""Every paper figure of sections 4.1-4.2 draws from real (small) pipeline outputs:
+space-time diagrams are raster images on one colour scale for both models, spectra
+are the paper's DFT of the stored displacements."""
+import numpy as np
+import pytest
+from matplotlib.collections import QuadMesh
+from matplotlib.image import AxesImage
+
+from cradle import compare, stages
+from cradle import config as cc
+from cradle.figures import registry, spacetime, spectra
+
+TIMES = [0.0, 5.0, 10.0, 15.0, 20.0]
+CFG = {
+    "defaults": {"exact": {"method": "srkn6"}},
+    "scenes": {
+        "small": {"N": 20, "bc": "periodic",
+                  "initial": {"kind": "travelling", "q": "4pi/5", "omega_tw": 1.1,
+                              "noise": {"kind": "gaussian", "amplitude": 0.05, "seed": 1}},
+                  "t_end": 20.0, "store": {"snapshots": TIMES, "every": 0.5}},
+    },
+    "figures": {},
+}
+
+
+@pytest.fixture(scope="module")
+def sim():
+    cfg = cc.validate(CFG)
+    spec = cc.resolved_scene(cfg, "small")
+    init = stages.initial_data(spec, "small")
+    ex, ap = stages.exact_run(spec, init, "small"), stages.dps_run(spec, init, "small")
+    return {"small": {"exact": ex, "dps": ap, "metrics": stages.metrics(spec, ex, ap, "small")}}
+
+
+SPACETIME = {"plot6-7": [], "plot2-3": TIMES[1:3], "plot1v5st": [], "plot1v5": TIMES[2:3], "plot8-11": TIMES[:2],
+             "plot9-10": [], "plot29-30": TIMES[:2], "plot26-27": [], "plot28": []}
+
+
+@pytest.mark.parametrize("label, times", SPACETIME.items())
+def test_spacetime_figures_are_raster_on_a_shared_scale(sim, label, times):
+    fig = spacetime.FIGURES[label](sim, {"scenes": ["small"], "times": times})
+    images = [im for ax in fig.axes for im in ax.get_images()]
+    # no vector mesh outside colour bars (a 3000 x 200 pcolormesh PDF takes 44 s to write)
+    assert not any(isinstance(c, QuadMesh) for ax in fig.axes if ax.get_label() != "<colorbar>"
+                   for c in ax.collections)
+    if images:
+        assert all(isinstance(im, AxesImage) for im in images)
+        lims = {im.get_clim() for im in images}
+        assert len(lims) == 1                              # exact and approximate on one scale
+        vmin, vmax = lims.pop()
+        assert vmax == 0.0 and vmin < 0.0                  # white: beads apart; black: most negative
+    assert len(fig.axes) >= 1
+
+
+def test_spectra_are_the_papers_dft(sim):
+    fig = spectra.draw_fft106(sim, {"scenes": ["small"], "times": TIMES})
+    assert len(fig.axes) == 8
+    line = fig.axes[0].get_lines()[0]
+    x = sim["small"]["exact"]["x"].sel(t=TIMES[0]).values
+    k, xh = compare.spatial_dft(x)
+    order = np.argsort(line.get_xdata())
+    assert np.allclose(np.asarray(line.get_ydata())[order], np.abs(xh)[np.argsort(k)])
+    fig = spectra.draw_fftseuil({n: sim["small"] for n in "abc"}, {"scenes": list("abc"), "times": [20.0]})
+    assert len(fig.axes) == 6
+    fig = spectra.draw_fft344(sim, {"scenes": ["small"], "times": TIMES[2:5]})
+    assert len(fig.axes) >= 5
+
+
+def test_every_label_has_one_drawing_function():
+    labels = set(registry())
+    paper = {"traj3", "traj2", "bcsc", "plot4-5", "plotcomplin", "plot6-7", "plot2-3", "plot1v5st", "plot1v5",
+             "plot8-11", "plot9-10", "plot29-30", "plot26-27", "plot28", "fft106", "fftseuil", "fft344",
+             "plot18", "loc1", "fini"}
+    assert paper <= labels
