@@ -21,11 +21,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..breathers import dispersive_amplitude, half_period_shift, merging_time, peak_compression
+from ..breathers import dispersive_amplitude, half_period_shift, merging_time
 from . import figure
+from .spacetime import FORCE_LABEL, _at, spacetime
+from .spacetime import common_vmin as _vmin
 
-CMAP = "gray"                      # vmin -> black, vmax = 0 -> white
-FORCE_LABEL = "$V_0'(x_{n+1}-x_n)$"
 
 # plot18 (bottom left): the paper likens this diagram to the detail plot28 (the central breather of
 # the q = pi instability), a 100-time-unit, 20-bond window. We show the last 100 time units of the
@@ -37,58 +37,6 @@ FINI_DELTA_X = 0.02                # displacement of one unit of vertical offset
 
 
 # --------------------------------------------------------------------------- drawing helpers
-
-def _at(ds, t):
-    """The stored state nearest to time t (stored times are exact to 1e-9)."""
-    return ds.sel(t=t, method="nearest")
-
-
-def _vmin(*datasets, t_range=None) -> float:
-    lows = []
-    for ds in datasets:
-        f = ds["force"]
-        if t_range is not None:
-            f = f.sel(t=slice(*t_range))
-        lows.append(float(f.min()))
-    low = min(lows)
-    return low if low < 0 else -1e-300      # all beads apart: draw white
-
-
-def _edges(values):
-    values = np.asarray(values, dtype=float)
-    step = (values[-1] - values[0]) / (len(values) - 1) if len(values) > 1 else 1.0
-    return values[0] - step / 2, values[-1] + step / 2
-
-
-def period_minimum(t, force, period):
-    """(bin centres, most negative force of every bond in each bin of length ``period``):
-    one row per breather period, so that a long run drawn on a few hundred pixels keeps
-    the depth of its black spots instead of averaging them with the white half-periods."""
-    starts, P = peak_compression(t, force, period)
-    return starts + 0.5 * period, -P
-
-
-def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", bin_period=None):
-    """Forces of ``ds`` (dims t, n) as a grey-level raster image; returns the AxesImage.
-    ``t_range`` = (t0, t1), ``n_range`` = (n0, n1) inclusive (n0 <= n1). With
-    ``bin_period``, each image row is the most negative force over one bin of
-    that length (:func:`period_minimum`); otherwise every stored time is a row."""
-    f = ds["force"]
-    if t_range is not None:
-        f = f.sel(t=slice(*t_range))
-    if n_range is not None:
-        f = f.isel(n=slice(n_range[0], n_range[1] + 1))
-    t, n, values = f["t"].values, f["n"].values, f.values
-    if bin_period is not None:
-        t, values = period_minimum(t, values, bin_period)
-    img = ax.imshow(values, cmap=CMAP, vmin=vmin, vmax=0.0, origin="lower", aspect="auto",
-                    extent=(*_edges(n), *_edges(t)), interpolation="antialiased", rasterized=True)
-    ax.set_xlabel("$n$")
-    ax.set_ylabel("$t$")
-    if title:
-        ax.set_title(title, fontsize=8)
-    return img
-
 
 def _profile(ax, ds, t, style="o-", label=None, color="k", ms=3):
     s = _at(ds, t)

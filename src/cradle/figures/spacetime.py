@@ -66,12 +66,24 @@ def _columns(size, n_range=None):
     return np.arange(n0, n1 + 1) if n0 <= n1 else np.r_[np.arange(n0, size), np.arange(0, n1 + 1)]
 
 
-def spacetime(ax, ds, vmin, t_range=None, n_range=None, title=""):
+def period_minimum(t, force, period):
+    """(bin centres, most negative force of every bond in each bin of length ``period``):
+    one row per breather period, so that a long run drawn on a few hundred pixels keeps
+    the depth of its black spots instead of averaging them with the white half-periods."""
+    from ..breathers import peak_compression
+
+    starts, P = peak_compression(t, force, period)
+    return starts + 0.5 * period, -P
+
+
+def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", bin_period=None):
     """Draw the forces of ``ds`` (dims t, n) in grey levels on ``ax``; return the AxesImage.
 
     ``t_range`` = (t0, t1) and ``n_range`` = (n0, n1) (inclusive) restrict the
     picture; n_range may wrap around a periodic chain (n0 > n1): the bonds are
-    then drawn in the order n0..N-1, 0..n1 and labelled by their index.
+    then drawn in the order n0..N-1, 0..n1 and labelled by their index. With
+    ``bin_period``, each image row is the most negative force over one bin of
+    that length (:func:`period_minimum`); otherwise every stored time is a row.
     """
     f = ds["force"]
     if t_range is not None:
@@ -80,7 +92,10 @@ def spacetime(ax, ds, vmin, t_range=None, n_range=None, title=""):
     size = f.sizes["n"]
     cols = _columns(size, n_range)
     positions = cols[0] + np.arange(len(cols))              # unwrapped: n0, n0+1, ... (mod N)
-    img = ax.imshow(f.values[:, cols], cmap=CMAP, vmin=vmin, vmax=0.0, origin="lower", aspect="auto",
+    values = f.values[:, cols]
+    if bin_period is not None:
+        t, values = period_minimum(t, values, bin_period)
+    img = ax.imshow(values, cmap=CMAP, vmin=vmin, vmax=0.0, origin="lower", aspect="auto",
                     extent=(*_edges(positions), *_edges(t)), interpolation="antialiased",
                     rasterized=True)
     if positions[-1] >= size:                                 # wrapped window: label the true indices
