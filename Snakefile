@@ -26,11 +26,12 @@ include: "workflow/rules/beyond.smk"
 PAPER = figure_targets() + ["results/paper_checks.csv", "results/paper_checks.md"]
 
 
-BEYOND = [f"results/figures/{label}.{ext}" for label in ("theorem1", "mi-diagram") for ext in ("pdf", "png")]
+BEYOND = [f"results/figures/{label}.{ext}" for label in ("theorem1", "mi-diagram", "work-precision")
+          for ext in ("pdf", "png")]
 
 
 rule all:
-    # the paper, and the analyses beyond it (workflow/rules/beyond.smk)
+    # the paper, and the analyses beyond it (workflow/rules/beyond.smk, workprecision.smk)
     default_target: True
     input:
         PAPER,

@@ -14,18 +14,6 @@ import yaml
 ROOT = Path(__file__).resolve().parents[1]
 RULES = ROOT / "workflow" / "rules"
 
-# Lints about files outside this change (workflow/rules/{common,initial,integrate,...}.smk), by title,
-# with the fix. Any other lint fails the test; once these are fixed the test passes outright.
-KNOWN_LINTS = {
-    "Path composition with '+'":
-        "common.smk: figure_module builds a regex with '+'; an f-string, rf\"[\\\"']{re.escape(label)}...\", avoids it",
-    "Mixed rules and functions": "move the input functions (initial_inputs, figure_inputs, checks_inputs, "
-                                 "wp_* ...) into common.smk",
-    "Specify a conda environment or container":
-        "add workflow/envs/cradle.yaml and a conda: directive to every rule",
-}
-
-
 def _snakemake(workdir, *args, timeout=120):
     exe = shutil.which("snakemake") or shutil.which("snakemake", path=str(Path(sys.executable).parent))
     cmd = [exe] if exe else [sys.executable, "-m", "snakemake"]
@@ -33,32 +21,10 @@ def _snakemake(workdir, *args, timeout=120):
                           env={**os.environ, "PYTHONWARNINGS": "ignore"})
 
 
-def _lints(text):
-    """[(where, title)] from `snakemake --lint` text output."""
-    found, where = [], None
-    for line in text.splitlines():
-        m = re.match(r"Lints for (?:snakefile (\S+)|rule (\S+) \(line \d+, (\S+)\)):", line)
-        if m:
-            where = Path(m.group(1)).name if m.group(1) else "rule"
-            continue
-        m = re.match(r"    \* (.+?)(?::|$)", line)
-        if m and where:
-            found.append((where, m.group(1)))
-    return found
-
-
 def test_snakemake_lint():
     proc = _snakemake(ROOT, "--lint", "--nolock")
-    if proc.returncode == 0:
-        return
-    text = proc.stdout + proc.stderr
-    lints = _lints(text)
-    assert lints, text[-3000:]
-    unknown = [lint for lint in lints if not any(lint[1].startswith(title) for title in KNOWN_LINTS)]
-    assert not unknown, f"new lints: {unknown}"
-    seen = {title: sorted({w for w, t in lints if t.startswith(title)}) for title in KNOWN_LINTS}
-    pytest.xfail("only lints about files outside this change remain: " + "; ".join(
-        f"{title} in {', '.join(where)} ({KNOWN_LINTS[title]})" for title, where in seen.items() if where))
+    assert proc.returncode == 0, (proc.stdout + proc.stderr)[-3000:]
+
 
 
 def _rules():

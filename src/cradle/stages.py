@@ -166,7 +166,8 @@ def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) ->
                   "atol": sol.atol if sol.atol is not None else "none",
                   "energy_drift": sol.energy_drift, "max_energy_drift_allowed": spec["max_energy_drift"],
                   "n_steps": sol.n_steps, "n_force_evals": sol.n_force_evals,
-                  "max_compression": sol.max_compression, "wall_time_s": sol.wall_time_s})
+                  "max_compression": sol.max_compression, "wall_time_s": sol.wall_time_s,
+                  "n_onset_corrections": getattr(sol, "n_onset_corrections", 0)})
     ds = make_dataset({"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy},
                       coords={"t": times, "n": np.arange(spec["N"])}, attrs=attrs,
                       params=spec, title=f"exact solution of (nc), scene '{name}'")

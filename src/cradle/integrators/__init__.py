@@ -5,7 +5,9 @@ Public API
 :func:`integrate_lattice` -> :class:`LatticeSolution`
     (nc) with the Hertz potential (vhertz), or (meca) with kappa = 1
     ("smooth"), by symplectic splittings of the energy (ham) ("srkn6"
-    default, "srkn4", "strang"; numba kernels, fixed step), by scipy's
+    default, "srkn4", "strang"; numba kernels, fixed step), by the same
+    with the contact-onset correction ("srkn6c", "srkn4c": the fastest at
+    equal accuracy, see :mod:`cradle.integrators._onset`), by scipy's
     adaptive solvers ("dop853", "rk45", "lsoda", "radau"; numba right-hand
     side) or by "dop853_numba" (DOP853 entirely in numba, for references);
     energy monitored after every step.
@@ -14,7 +16,7 @@ Public API
     l2 norm, Hamiltonian and P = sum A_n monitored after every step.
 
 Helpers: :func:`omega_max`, :func:`compression_bounds`, :func:`default_dt`,
-``DEFAULT_DT_FACTOR``, ``METHODS``.
+``DEFAULT_DT_FACTOR``, ``METHODS``, ``CORRECTED_METHODS``.
 
 The (inteq) reduction x_n = (-1)^n a(t) (N even, periodic) and the plane
 waves (ansatz3) of (dfnls) are used as exact references in
@@ -25,6 +27,7 @@ from __future__ import annotations
 from .dps_solver import DPS_METHODS, DpsSolution, integrate_dps
 from .lattice_solver import (
     ADAPTIVE_METHODS,
+    CORRECTED_METHODS,
     DEFAULT_DT_FACTOR,
     MAX_RERUNS,
     METHODS,
@@ -49,6 +52,7 @@ __all__ = [
     "MAX_RERUNS",
     "METHODS",
     "SPLITTING_METHODS",
+    "CORRECTED_METHODS",
     "ADAPTIVE_METHODS",
     "SCIPY_METHODS",
     "DPS_METHODS",

@@ -124,7 +124,11 @@ def split_run(x, v, f, F, tgrid, dt, k, j, max_steps, a, b, alpha, mode, periodi
 
     Splitting H = H_A + H_B of (ham): H_A = sum (v^2 + x^2)/2 integrated
     exactly (rotation by the angle a_i h), H_B = contact potential integrated
-    by kicks v += b_i h F(x). One step: kick b_0, rotate a_0, kick b_1, ...,
+    by kicks v += b_i h F(x). The rotation is applied as x += x (cos - 1) +
+    v sin with cos - 1 = -2 sin^2(a_i h / 2): the rounded cos(a_i h) ~ 1 would
+    scale x^2 + v^2 by the same 1 + O(1e-16) at every stage, a systematic
+    energy drift of ~1e-9 over the 10^7 rotations of a long run; written this
+    way the rounding is unbiased. One step: kick b_0, rotate a_0, kick b_1, ...,
     rotate a_{m-1}, kick b_m; the force of the last kick (end-of-step x) is
     reused by the next step's first kick (FSAL), so ``F`` must hold F(x) on
     entry and holds it on exit.
@@ -156,7 +160,7 @@ def split_run(x, v, f, F, tgrid, dt, k, j, max_steps, a, b, alpha, mode, periodi
         nk = max(1, int(math.ceil(length / dt * (1.0 - 1e-12))))
         h = length / nk
         for i in range(m):
-            cs[i] = math.cos(a[i] * h)
+            cs[i] = -2.0 * math.sin(0.5 * a[i] * h) ** 2  # cos(a_i h) - 1, to full relative precision
             sn[i] = math.sin(a[i] * h)
         for i in range(m + 1):
             bh[i] = b[i] * h
@@ -168,8 +172,8 @@ def split_run(x, v, f, F, tgrid, dt, k, j, max_steps, a, b, alpha, mode, periodi
                 for n in range(N):
                     vn = v[n] + bi * F[n]
                     xn = x[n]
-                    x[n] = xn * ci + vn * si
-                    v[n] = vn * ci - xn * si
+                    x[n] = xn + (xn * ci + vn * si)
+                    v[n] = vn + (vn * ci - xn * si)
                 if i < m - 1:
                     forces_only(x, f, F, alpha, mode, periodic)
                 else:  # end-of-step positions: contact energy and compression too

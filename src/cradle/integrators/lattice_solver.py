@@ -12,6 +12,10 @@ Three families of methods:
 * symplectic splittings ("strang", "srkn4", "srkn6") of the energy (ham),
   H = sum (v_n^2 + x_n^2)/2 [exact rotation] + sum V(x_{n+1}-x_n) [kicks],
   fixed step, numba kernel :func:`cradle.integrators._kernels.split_run`;
+  and the same splittings with the contact-onset correction ("srkn6c",
+  "srkn4c", :mod:`cradle.integrators._onset`): on every step where a bond
+  is near or crosses contact onset, its quadrature is replaced by the
+  exact integral of its force along a cubic model of its elongation;
 * scipy's adaptive solvers ("dop853", "rk45", "lsoda", "radau") stepped
   manually, right-hand side compiled with numba
   (:func:`cradle.integrators._kernels.lattice_rhs`), dense output at t_out;
@@ -21,10 +25,15 @@ Three families of methods:
 In all cases the energy (ham) is evaluated after every (accepted) step.
 
 Accuracy note: the Hertz force -max(-d, 0)^alpha is only C^{1, alpha-1} at
-contact onset (d = 0), so every method's observed order on (nc) is capped
-near alpha + 1 (2.5 for alpha = 3/2; tests/test_integrators.py), and the
-energy error of the splittings decreases like dt^~3 instead of dt^6. The
-nominal orders 2/4/6 are recovered on the smooth potential of (meca).
+contact onset (d = 0), so every uncorrected method's observed order on (nc)
+is capped near alpha + 1 (2.5 for alpha = 3/2; tests/test_integrators.py),
+and the energy error of the splittings decreases like dt^~3 instead of
+dt^6. The nominal orders 2/4/6 are recovered on the smooth potential of
+(meca). The onset correction lifts the local error of a crossing step from
+O(h^2.5) to O(h^5) and the observed global order from 2.5 to 5 on a 16-bead
+travelling wave, to 3.2-3.8 on the paper's scenes at t = 100
+(benchmarks/onset_correction.py): at equal error srkn6c is 5-30 times
+faster than srkn6 (benchmarks/bench_vs_scipy.py, `snakemake work_precision`).
 """
 from __future__ import annotations
 
@@ -38,10 +47,13 @@ from scipy import integrate as _si
 from ..lattice import check_alpha, check_bc
 from . import _dop853
 from . import _kernels as K
+from . import _onset
 from ._coefficients import SPLITTINGS
 from ._validate import check_choice, check_positive, check_state, check_times
 
-SPLITTING_METHODS = tuple(SPLITTINGS)
+#: Splittings with the contact-onset correction (:mod:`._onset`) -> the splitting they correct.
+CORRECTED_METHODS = {"srkn6c": "srkn6", "srkn4c": "srkn4"}
+SPLITTING_METHODS = tuple(SPLITTINGS) + tuple(CORRECTED_METHODS)
 SCIPY_METHODS = {"dop853": _si.DOP853, "rk45": _si.RK45, "lsoda": _si.LSODA, "radau": _si.Radau}
 ADAPTIVE_METHODS = tuple(SCIPY_METHODS) + ("dop853_numba",)
 METHODS = SPLITTING_METHODS + ADAPTIVE_METHODS
@@ -49,15 +61,17 @@ POTENTIALS = ("hertz", "smooth")
 
 #: Default step, as a fraction of the shortest linearised period 2 pi / omega_max(c)
 #: (see :func:`default_dt`). Chosen (benchmarks/tune_dt_factor.py) so that the
-#: relative energy drift stays <= 1e-8, with a margin of >= 2, on the paper's
-#: travelling-wave scenes (alpha = 3/2, periodic): N = 50, q = pi/5,
-#: omega_tw = 1.01 / 1.1 / 1.5 (a = 0.02118 / 2.118 / 52.95) to t = 621.95, and
-#: N = 200, q = 4 pi/5, a = 0.00767 to t = 913.7. Measured worst drifts:
-#: srkn6 5.3e-9, srkn4 3.4e-9, strang 4.3e-9 (all on the N = 200 or the
-#: omega_tw = 1.5 scene). The steps are small (srkn6: ~1500 per linear period)
-#: because of the Hertz non-smoothness at contact onset; srkn6 is still the
-#: cheapest for a given drift (1.4-1.7 ns per bead per force evaluation).
-DEFAULT_DT_FACTOR = {"strang": 0.00006, "srkn4": 0.0005, "srkn6": 0.001}
+#: relative energy drift stays <= 1e-8, with a margin of >= 2, on every scene
+#: of config.yaml run to its t_end (tw-*, mi-4pi5, binary-pi, fft106,
+#: fftseuil-*, fft344, breather-*, loc1-*, fini). Worst drifts measured:
+#: srkn6c 1.6e-9 (loc1-packet; 1.0 s for all 16 scenes), srkn4c 3.1e-9
+#: (1.6 s), srkn6 2.8e-9 (15 s), srkn4 1.9e-9 (18 s), strang 2.1e-9 (71 s). The
+#: breather and loc1 scenes (long runs, slow contact onsets) are the
+#: hardest: srkn6 at its former 0.001 reached 1.8e-8 on loc1-pair. The
+#: uncorrected steps are small (srkn6: ~2000 per linear period) because of
+#: the Hertz non-smoothness at contact onset; the onset correction allows 20
+#: times larger steps at a smaller drift.
+DEFAULT_DT_FACTOR = {"strang": 0.00003, "srkn4": 0.00025, "srkn6": 0.0005, "srkn4c": 0.004, "srkn6c": 0.01}
 
 #: Reruns allowed when the run reaches a compression above the assumed bound.
 MAX_RERUNS = 3
@@ -97,6 +111,10 @@ class LatticeSolution:
         Compression c used to set the default step (splittings, dt=None).
     n_reruns : int
         Runs repeated because max_compression exceeded c_assumed.
+    n_onset_corrections : int
+        Corrected methods ("srkn6c", "srkn4c"): bond crossings (contact
+        onsets and releases) whose step contribution was replaced by the
+        exact integral (:mod:`cradle.integrators._onset`); 0 otherwise.
     """
 
     t: np.ndarray
@@ -114,6 +132,7 @@ class LatticeSolution:
     wall_time_s: float
     c_assumed: float | None = None
     n_reruns: int = 0
+    n_onset_corrections: int = 0
 
 
 def omega_max(c: float, alpha: float) -> float:
@@ -160,8 +179,15 @@ def default_dt(c: float, alpha: float, method: str = "srkn6", dt_factor: float |
     return fac * 2.0 * math.pi / omega_max(c, alpha)
 
 
-def _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress):
-    a, b, _order = SPLITTINGS[method]
+#: (variant, n_iter, near) of the onset correction (:mod:`._onset`): variant 2 replaces the
+#: quadrature actually taken, 0 refinements of the model's end values, and a bond is treated when
+#: |d| < near * h * (|d'(0)| + |d'(h)|) at a step end or d changes sign (benchmarks/onset_correction.py).
+ONSET_OPTIONS = (2, 0, _onset.NEAR_DEFAULT)
+
+
+def _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, onset=None):
+    corrected = method in CORRECTED_METHODS
+    a, b, _order = SPLITTINGS[CORRECTED_METHODS.get(method, method)]
     N = x0.size
     T = t_out.size
     if t_out[0] == 0.0:
@@ -175,12 +201,23 @@ def _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress):
     v = v0.copy()
     f = np.empty(N)
     F = np.empty(N)
+    if corrected:
+        variant, n_iter, near = ONSET_OPTIONS if onset is None else onset
+        fs = np.zeros((a.size + 1, N))
+        f = fs[-1]
+        cnode = np.concatenate(([0.0], np.cumsum(a)))
+        cnode[-1] = 1.0
+        d0 = np.roll(x, -1) - x
+        w0 = np.roll(v, -1) - v
+        d1, w1 = np.empty(N), np.empty(N)
+        flag = np.zeros(N, dtype=np.uint8)
+        idx = np.empty(N, dtype=np.int64)
     pot, c0 = K.forces(x, f, F, alpha, mode, periodic)
     H0 = 0.5 * float(np.dot(x, x) + np.dot(v, v)) + pot
     if shift == 0:
         X[0], V[0], E[0] = x, v, H0
     stats = np.array([H0, 0.0, c0, H0])
-    counts = np.array([0, 1], dtype=np.int64)
+    counts = np.array([0, 1, 0, 0, 0], dtype=np.int64)
     nint = tgrid.size - 1
     k, j = 0, 0
     t_final = float(tgrid[-1])
@@ -191,8 +228,13 @@ def _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress):
     while k < nint:
         t0 = time.perf_counter()
         n_before = counts[0]
-        k, j = K.split_run(x, v, f, F, tgrid, float(dt), k, j, budget, a, b, alpha, mode, periodic,
-                           X, V, E, shift, stats, counts)
+        if corrected:
+            k, j = _onset.split_run_onset(x, v, F, fs, d0, w0, d1, w1, flag, idx, tgrid, float(dt), k, j, budget, a, b,
+                                          cnode, alpha, mode, periodic, int(variant), int(n_iter), float(near), X, V, E,
+                                          shift, stats, counts)
+        else:
+            k, j = K.split_run(x, v, f, F, tgrid, float(dt), k, j, budget, a, b, alpha, mode, periodic,
+                               X, V, E, shift, stats, counts)
         if progress is not None:
             elapsed = time.perf_counter() - t0
             taken = int(counts[0] - n_before)
@@ -205,7 +247,7 @@ def _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress):
             else:
                 t_reached = t_final
             progress(t_reached, t_final)
-    return X, V, E, float(stats[1]), int(counts[0]), int(counts[1]), float(stats[2])
+    return X, V, E, float(stats[1]), int(counts[0]), int(counts[1]), float(stats[2]), int(counts[2])
 
 
 def _run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic, progress):
@@ -302,10 +344,12 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6", dt
         Contact exponent, > 1 (alpha = 1.5 uses a c sqrt(c) fast path).
     bc : {"periodic", "free"}
         Ring (bond N-1 joins beads N-1 and 0) or free ends (bond N-1 absent).
-    method : {"srkn6", "srkn4", "strang", "dop853", "rk45", "lsoda", "radau", "dop853_numba"}
+    method : {"srkn6", "srkn4", "strang", "srkn6c", "srkn4c", "dop853", "rk45", "lsoda", "radau", "dop853_numba"}
         Symplectic splitting of (ham) (orders 6, 4, 2; rotation for the
         harmonic part, kicks for the contact part, Blanes & Moan 2002
-        SRKN_11^b and SRKN_6^b), a scipy adaptive solver stepped manually
+        SRKN_11^b and SRKN_6^b), the same with the contact-onset correction
+        ("srkn6c", "srkn4c": :mod:`cradle.integrators._onset`; the fastest at
+        equal accuracy on (nc)), a scipy adaptive solver stepped manually
         (numba right-hand side; "radau"/"lsoda" get the analytic Jacobian),
         or "dop853_numba": the same DOP853 8(5,3) pair and step control as
         scipy, entirely in numba, steps ending exactly on t_out (references).
@@ -371,14 +415,14 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6", dt
             while True:
                 dt = default_dt(c_assumed, alpha, method, fac)
                 out = _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress)
-                cmax = out[-1]
+                cmax = out[6]
                 if cmax <= c_assumed * (1.0 + 1e-12) or c_assumed >= c_energy or n_reruns >= MAX_RERUNS:
                     break
                 c_assumed = min(1.5 * cmax, c_energy)
                 n_reruns += 1
-        X, V, E, drift, n_steps, nfev, cmax = out
+        X, V, E, drift, n_steps, nfev, cmax, n_corr = out
         return LatticeSolution(t_out, X, V, E, drift, method, float(dt), None, None, n_steps, nfev, cmax,
-                               time.perf_counter() - wall0, c_assumed, n_reruns)
+                               time.perf_counter() - wall0, c_assumed, n_reruns, n_corr)
 
     if dt is not None or dt_factor is not None:
         raise ValueError(f"dt/dt_factor apply to splitting methods only, got dt={dt!r}, dt_factor={dt_factor!r} "

@@ -1,0 +1,69 @@
+"""Figure work-precision: error and energy drift of every lattice integrator against wall time.
+
+Drawn by ``snakemake work_precision`` from results/work-precision/<scene>.nc
+(:mod:`cradle.workprecision`), not through the ``figures:`` registry (its
+inputs are not scene runs): :func:`draw` takes ``{scene: Dataset}``.
+One row per scene; left: error (max over the comparison grid up to
+t_valid, relative to the amplitude) against wall time; right: relative
+energy drift (max over every step up to t_end) against wall time. The
+shaded band is where the two reference runs differ (the error floor of the
+comparison).
+"""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from . import figure
+
+STYLE = {  # method -> (colour, marker); corrected splittings solid, the rest dashed
+    "srkn6c": ("C3", "o"), "srkn4c": ("C1", "s"), "srkn6": ("C0", "o"), "srkn4": ("C9", "s"),
+    "strang": ("C2", "^"), "dop853_numba": ("C5", "D"), "dop853": ("C4", "v"), "lsoda": ("C7", "P"),
+    "rk45": ("C8", "x"), "radau": ("C6", "*"),
+}
+
+
+def _curve(ax, ds, i, var):
+    method = str(ds["method"].values[i])
+    row = ds.isel(method=i)
+    w, y = row["wall_time"].values, row[var].values
+    ok = np.isfinite(w) & np.isfinite(y) & (y > 0)
+    colour, marker = STYLE.get(method, ("k", "."))
+    ls = "-" if method.startswith("srkn") and method.endswith("c") else "--"
+    ax.loglog(w[ok], y[ok], ls, color=colour, marker=marker, ms=3.5, lw=1.0, label=method)
+
+
+def draw(data: dict):
+    """The figure for ``{scene: Dataset}`` (rows in the order given)."""
+    scenes = list(data)
+    fig, axes = figure(len(scenes), 2, width=9.5, height=2.9 * len(scenes) + 0.4, squeeze=False)
+    for r, name in enumerate(scenes):
+        ds = data[name]
+        left, right = axes[r]
+        kinds = json.loads(ds.attrs.get("parameter_kind", "{}"))
+        for i in range(ds.sizes["method"]):
+            _curve(left, ds, i, "error")
+            _curve(right, ds, i, "energy_drift")
+        floor = float(ds.attrs["reference_error"])
+        if floor > 0:
+            left.axhspan(left.get_ylim()[0] if left.has_data() else floor / 10, floor, color="0.85", zorder=0)
+        t_valid, t_end = float(ds.attrs["t_valid"]), float(ds.attrs["t_end"])
+        upto = f"t <= {t_valid:g}" + (" (reference limit)" if t_valid < t_end else "")
+        left.set_title(f"{name}: N = {int(ds.attrs['N'])}, t_end = {t_end:g}; error over {upto}", fontsize=8.5)
+        right.set_title(f"{name}: energy drift over [0, {t_end:g}]", fontsize=8.5)
+        left.set_ylabel("max error / a")
+        right.set_ylabel("max |H - H(0)| / H(0)")
+        for ax in (left, right):
+            ax.grid(True, which="major", lw=0.3, alpha=0.6)
+            if r == len(scenes) - 1:
+                ax.set_xlabel("wall time [s]")
+        if r == 0:
+            handles, labels = left.get_legend_handles_labels()
+            labels = [f"{lab} ({kinds.get(lab, '')})" if kinds.get(lab) else lab for lab in labels]
+            fig.legend(handles, labels, fontsize=7.5, ncol=4, loc="outside lower center")
+    if scenes:
+        ds = data[scenes[0]]
+        fig.suptitle(f"Lattice (nc) integrators, alpha = {float(ds.attrs['alpha']):g}; "
+                     f"{ds.attrs.get('machine', '')}, {ds.attrs.get('date', '')}", fontsize=9)
+    return fig

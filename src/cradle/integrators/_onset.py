@@ -1,0 +1,504 @@
+"""Contact-onset correction of the splittings ("srkn6c", "srkn4c"): numba kernels.
+
+Why the splittings lose their order on (nc)
+-------------------------------------------
+With the harmonic part rotated exactly, one splitting step of length h is,
+*exactly* (kicks and rotations are linear once the kick forces are known),
+
+    y(h) = R(h) y(0) + sum_i R((1 - c_i) h) (0, b_i h F(x_i)),            (S)
+
+x_i the positions at the kick nodes c_i h (c_0 = 0, c_i = a_0 + ... +
+a_{i-1}, c_m = 1), while the exact flow is the variation-of-constants formula
+
+    y(h) = R(h) y(0) + int_0^h R(h - tau) (0, F(x(tau))) dtau,            (V)
+
+R(theta)(x, v) = (x cos theta + v sin theta, v cos theta - x sin theta).
+(S) is a quadrature of (V) whose stage errors cancel through the order
+conditions, which assume a smooth force. Along a trajectory the Hertz bond
+force is (tau - tau*)_+^alpha near a contact onset tau*: the step across
+the onset makes an O(h^(alpha+1)) error, and so do the few steps next to it
+(the p-th derivative of the force grows like |tau - tau*|^(alpha - p)). The
+global error is O(h^(alpha+1)) = O(h^2.5) whatever the nominal order.
+
+The correction
+--------------
+The sum (S) is linear in the bond forces: bond k adds +g_k to bead k and
+-g_k to bead k+1, g_k = sum_i R((1 - c_i) h) (0, b_i h f_k(x_i)). After
+every step, for each bond k that is "at onset" - its elongation d_k changes
+sign during the step, or |d_k| < near * h * (|d_k'(0)| + |d_k'(h)|) at a
+step end (near = 4/27: the largest excursion of a cubic Hermite beyond its
+chord), and (Hertz) it is in contact at some point of the step - the
+contribution g_k is replaced by the integral of (V) for that bond alone,
+
+    I_k = int_0^h (sin(h - tau), cos(h - tau)) f(d~_k(tau)) dtau,
+
+along the cubic Hermite model d~_k of d_k(tau) built from the elongations
+and their rates at both ends of the step: (x, v) of bead k += I_k - g_k,
+bead k+1 -= I_k - g_k. The integral is computed "exactly": the cubic is cut
+at its extrema into monotone pieces and each of these at its root
+(safeguarded Newton), and every piece where the force is nonzero is
+integrated by 8-point Gauss-Legendre after the map tau = root +- L u^2,
+under which (tau - root)^alpha dtau is u^(2 alpha + 1) times a smooth
+function (relative error 1e-14 to 1e-12 across one onset at the default
+steps, ~1e-10 for a contact that begins and ends within one step; both far
+below the truncation error). The neighbouring
+bonds keep their quadrature; the forces at the step end (FSAL) and the
+energy are updated locally.
+
+What remains is the error of the model (the trajectory is C^{3, alpha-1},
+so d~ - d = O(h^3.5) for alpha = 3/2, times f' = O(h^(1/2)) near onset,
+times h): the local error of a crossing step is O(h^5) against O(h^2.5)
+uncorrected (two-bead chain, tests/test_integrators.py); the observed
+global order is 5 on a 16-bead travelling wave and 3.2-3.8 on the paper's
+scenes at t = 100, against 2.3-2.7 (benchmarks/onset_correction.py). Bonds
+near onset but not crossing matter as much as crossing ones: with
+``near`` = 0 (crossings only) the order on the paper's scenes stays ~2.6.
+The step is no
+longer exactly symplectic: on the steps away from onsets it is the
+symplectic splitting, on onset steps a local O(h^2.5) modification of it,
+and the energy drift - measured after every step as for every method - is
+smaller than the plain splitting's at the same step and stays bounded over
+long runs (tests/test_integrators.py).
+
+``variant`` 2 ("replace", the default) subtracts the quadrature actually
+taken (stored stage forces); variant 1 ("difference") subtracts the same
+quadrature evaluated on the model. Both, with or without a refinement of
+the model's end values (``n_iter``), were measured in
+benchmarks/onset_correction.py; 2 with no refinement is as accurate and the
+cheapest.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ._kernels import _bond, forces, forces_only
+
+# 8-point Gauss-Legendre on [0, 1]
+_GX, _GW = np.polynomial.legendre.leggauss(8)
+GL_U = np.ascontiguousarray(0.5 * (_GX + 1.0))
+GL_W = np.ascontiguousarray(0.5 * _GW)
+
+#: Default ``near`` of the onset screen: a cubic Hermite on [0, h] stays within
+#: (4/27) h (|d'(0)| + |d'(h)|) of its chord's range.
+NEAR_DEFAULT = 4.0 / 27.0
+
+
+@njit(cache=True)
+def _cubic(c0, c1, c2, c3, s):
+    return c0 + s * (c1 + s * (c2 + s * c3))
+
+
+_SIN = np.array([1.0 / math.factorial(2 * k + 1) * (-1) ** k for k in range(8)])   # x^1 .. x^15
+_COS = np.array([1.0 / math.factorial(2 * k) * (-1) ** k for k in range(9)])       # x^0 .. x^16
+
+
+@njit(cache=True)
+def _sincos(x):
+    """(sin x, cos x): Taylor polynomials of degree 15/16 for |x| <= 1 (error < 3e-15), libm beyond."""
+    if abs(x) > 1.0:
+        return math.sin(x), math.cos(x)
+    z = x * x
+    sv = _SIN[7]
+    for i in range(6, -1, -1):
+        sv = sv * z + _SIN[i]
+    cv = _COS[8]
+    for i in range(7, -1, -1):
+        cv = cv * z + _COS[i]
+    return x * sv, cv
+
+
+@njit(cache=True)
+def _root(c0, c1, c2, c3, lo, hi, plo):
+    """Root of the cubic in [lo, hi] where it is monotone with a sign change (plo = p(lo))."""
+    phi = _cubic(c0, c1, c2, c3, hi)
+    s = lo - plo * (hi - lo) / (phi - plo) if phi != plo else 0.5 * (lo + hi)
+    for _ in range(60):
+        ps = _cubic(c0, c1, c2, c3, s)
+        if ps == 0.0:
+            return s
+        if (ps < 0.0) == (plo < 0.0):
+            lo = s
+            plo = ps
+        else:
+            hi = s
+        dp = c1 + s * (2.0 * c2 + 3.0 * s * c3)
+        sn = s - ps / dp if dp != 0.0 else 0.5 * (lo + hi)
+        if not (lo < sn < hi):
+            sn = 0.5 * (lo + hi)
+        if abs(sn - s) <= 4e-16:
+            return sn
+        s = sn
+    return s
+
+
+@njit(cache=True)
+def _piece(c0, c1, c2, c3, p, q, side, h, alpha, mode):
+    """int over s in [p, q] of (sin(h(1-s)), cos(h(1-s))) f(d~(s)) ds by 8-point Gauss-Legendre.
+
+    ``side`` = -1 if d~(p) = 0, +1 if d~(q) = 0, 0 if neither: near a root
+    the force behaves like |s - root|^alpha, and the map s = root +- L u^2
+    makes the integrand u^(2 alpha + 1) times a smooth function (a
+    polynomial times a smooth factor for alpha = 3/2).
+    """
+    L = q - p
+    ix = 0.0
+    iv = 0.0
+    if L <= 0.0:
+        return ix, iv
+    if (mode == 0 or mode == 1) and _cubic(c0, c1, c2, c3, p + 0.5 * L) >= 0.0:
+        return ix, iv  # Hertz: no contact on this piece
+    for jj in range(GL_U.shape[0]):
+        u = GL_U[jj]
+        if side < 0:
+            s = p + L * u * u
+            wgt = GL_W[jj] * 2.0 * u
+        elif side > 0:
+            s = q - L * u * u
+            wgt = GL_W[jj] * 2.0 * u
+        else:
+            s = p + L * u
+            wgt = GL_W[jj]
+        fv = _bond(_cubic(c0, c1, c2, c3, s), alpha, mode)[0]
+        if fv != 0.0:
+            sa, ca = _sincos(h * (1.0 - s))
+            ix += wgt * fv * sa
+            iv += wgt * fv * ca
+    return L * ix, L * iv
+
+
+@njit(cache=True)
+def _hermite(d0, w0, d1, w1, h):
+    """Coefficients in s = tau/h of the cubic with values d0, d1 and slopes w0, w1 at tau = 0, h."""
+    c2 = -3.0 * d0 + 3.0 * d1 - 2.0 * h * w0 - h * w1
+    c3 = 2.0 * d0 - 2.0 * d1 + h * w0 + h * w1
+    return d0, h * w0, c2, c3
+
+
+@njit(cache=True)
+def _extrema(c1, c2, c3):
+    """The extrema of the cubic in (0, 1), sorted; 2.0 where there is none."""
+    qa = 3.0 * c3
+    qb = 2.0 * c2
+    e1 = 2.0
+    e2 = 2.0
+    if qa != 0.0:
+        disc = qb * qb - 4.0 * qa * c1
+        if disc > 0.0:
+            sq = math.sqrt(disc)
+            qq = -0.5 * (qb + sq if qb >= 0.0 else qb - sq)
+            e1 = qq / qa
+            e2 = c1 / qq if qq != 0.0 else 2.0
+    elif qb != 0.0:
+        e1 = -c1 / qb
+    if e1 > e2:
+        e1, e2 = e2, e1
+    if not 0.0 < e1 < 1.0:
+        e1 = e2
+        e2 = 2.0
+    if not 0.0 < e1 < 1.0:
+        e1 = 2.0
+    if not 0.0 < e2 < 1.0 or e2 == e1:
+        e2 = 2.0
+    return e1, e2
+
+
+@njit(cache=True)
+def _count_roots(c0, c1, c2, c3, e1, e2):
+    """Number of sign changes of the cubic over its monotone pieces of [0, 1] (= roots in (0, 1))."""
+    nroots = 0
+    plo = c0
+    for i in range(3):
+        hi = e1 if i == 0 else (e2 if i == 1 else 1.0)
+        if hi > 1.0:
+            continue
+        phi = _cubic(c0, c1, c2, c3, hi)
+        if (plo < 0.0) != (phi < 0.0) and plo != 0.0 and phi != 0.0:
+            nroots += 1
+        plo = phi
+    return nroots
+
+
+@njit(cache=True)
+def _integrate(c0, c1, c2, c3, e1, e2, h, alpha, mode):
+    """int_0^1 (sin(h(1-s)), cos(h(1-s))) f(d~(s)) ds over the monotone pieces, split at the roots."""
+    ix = 0.0
+    iv = 0.0
+    lo = 0.0
+    plo = c0
+    for i in range(3):
+        hi = e1 if i == 0 else (e2 if i == 1 else 1.0)
+        if hi > 1.0:
+            continue
+        phi = _cubic(c0, c1, c2, c3, hi)
+        if (plo < 0.0) != (phi < 0.0) and plo != 0.0 and phi != 0.0:
+            r = _root(c0, c1, c2, c3, lo, hi, plo)
+            px, pv = _piece(c0, c1, c2, c3, lo, r, 1, h, alpha, mode)
+            ix += px
+            iv += pv
+            px, pv = _piece(c0, c1, c2, c3, r, hi, -1, h, alpha, mode)
+        else:
+            px, pv = _piece(c0, c1, c2, c3, lo, hi, 0, h, alpha, mode)
+        ix += px
+        iv += pv
+        lo = hi
+        plo = phi
+    return ix, iv
+
+
+@njit(cache=True)
+def exact_impulse(d0, w0, d1, w1, h, alpha, mode, out):
+    """I = int_0^h (sin(h - tau), cos(h - tau)) f(d~(tau)) dtau along the cubic Hermite d~.
+
+    d~(0) = d0, d~'(0) = w0, d~(h) = d1, d~'(h) = w1; f is the bond force of
+    ``mode`` (see :mod:`._kernels`). In s = tau/h the cubic is split at its
+    extrema in (0, 1) into monotone pieces, and each of these at its root,
+    if any; every sub-piece is integrated by :func:`_piece`. Writes
+    (I_x, I_v) into ``out[0:2]`` and returns the number of roots of d~ in (0, h).
+    """
+    c0, c1, c2, c3 = _hermite(d0, w0, d1, w1, h)
+    e1, e2 = _extrema(c1, c2, c3)
+    ix, iv = _integrate(c0, c1, c2, c3, e1, e2, h, alpha, mode)
+    out[0] = h * ix
+    out[1] = h * iv
+    return _count_roots(c0, c1, c2, c3, e1, e2)
+
+
+@njit(cache=True)
+def _set_bond(bb, x, v, fend, d1, w1, alpha, mode, N):
+    """Recompute the end-of-step elongation, rate and force of bond bb; return the change of d*f."""
+    nxt = bb + 1 if bb + 1 < N else 0
+    old = d1[bb] * fend[bb]
+    d = x[nxt] - x[bb]
+    d1[bb] = d
+    w1[bb] = v[nxt] - v[bb]
+    fv = _bond(d, alpha, mode)[0]
+    fend[bb] = fv
+    return d * fv - old
+
+
+@njit(cache=True)
+def _apply(k, dx, dv, x, v, F, fend, d1, w1, alpha, mode, periodic, N):
+    """Add (dx, dv) to bead k and subtract it from bead k+1; update the end forces locally.
+
+    Returns (change of sum(x^2 + v^2), change of sum_bonds d f).
+    """
+    k1 = k + 1 if k + 1 < N else 0
+    de = -(x[k] * x[k] + v[k] * v[k] + x[k1] * x[k1] + v[k1] * v[k1])
+    x[k] += dx
+    v[k] += dv
+    x[k1] -= dx
+    v[k1] -= dv
+    de += x[k] * x[k] + v[k] * v[k] + x[k1] * x[k1] + v[k1] * v[k1]
+    km = k - 1 if k > 0 else N - 1
+    kp = k1
+    dpot = _set_bond(k, x, v, fend, d1, w1, alpha, mode, N)
+    if periodic or k > 0:
+        dpot += _set_bond(km, x, v, fend, d1, w1, alpha, mode, N)
+    if periodic or kp < N - 1:
+        if kp != km:
+            dpot += _set_bond(kp, x, v, fend, d1, w1, alpha, mode, N)
+    # net forces F_n = f_n - f_{n-1} of beads k-1 .. k+2 (f_{N-1} = 0 with free ends)
+    n = km
+    for _ in range(4):
+        F[n] = fend[n] - fend[n - 1 if n > 0 else N - 1]
+        n = n + 1 if n + 1 < N else 0
+    return de, dpot
+
+
+@njit(cache=True)
+def split_run_onset(x, v, F, fs, d0, w0, d1, w1, flag, idx, tgrid, dt, k, j, max_steps, a, b, cnode, alpha, mode,
+                    periodic, variant, n_iter, near, X, V, E, shift, stats, counts):
+    """:func:`cradle.integrators._kernels.split_run` with the contact-onset correction.
+
+    Extra state: ``fs`` (m+1, N) stage bond forces, row m holding the forces
+    at the current positions on entry and exit (FSAL); ``d0``/``w0`` bond
+    elongations and rates at the current state (updated); ``d1``/``w1``
+    (float, N), ``flag`` (uint8, N), ``idx`` (int64, N) work arrays;
+    ``cnode`` (m+1) kick nodes. ``variant``: 0 none (plain splitting), 1
+    "difference", 2 "replace" (module docstring); ``n_iter`` refinements of
+    the end values of the Hermite model; ``near`` the screen's margin. ``counts`` = [steps, force
+    evaluations, corrected crossings, steps with a correction, bonds flagged
+    by the screen] (updated in place). Returns the new ``(k, j)``.
+    """
+    N = x.shape[0]
+    m = a.shape[0]
+    nint = tgrid.shape[0] - 1
+    nb = N if periodic else N - 1
+    cs = np.empty(m)
+    sn = np.empty(m)
+    bh = np.empty(m + 1)
+    qs = np.empty(m + 1)
+    qc = np.empty(m + 1)
+    gq = np.empty((N, 2))
+    H0 = stats[0]
+    scale = abs(H0) if H0 != 0.0 else 1.0
+    drift = stats[1]
+    cmax_all = stats[2]
+    H = stats[3]
+    inv_ap1 = 1.0 / (alpha + 1.0)
+    hertz = mode == 0 or mode == 1
+    taken = 0
+    nfev = 0
+    ncorr = 0
+    nstep_corr = 0
+    nflag_all = 0
+    row0 = m          # row of fs holding the forces at the start of the step
+    da, wa, db, wb = d0, w0, d1, w1
+    swapped = False
+    while k < nint and taken < max_steps:
+        length = tgrid[k + 1] - tgrid[k]
+        nk = max(1, int(math.ceil(length / dt * (1.0 - 1e-12))))
+        h = length / nk
+        for i in range(m):
+            cs[i] = -2.0 * math.sin(0.5 * a[i] * h) ** 2  # cos(a_i h) - 1, to full relative precision
+            sn[i] = math.sin(a[i] * h)
+        for i in range(m + 1):
+            bh[i] = b[i] * h
+            qs[i] = bh[i] * math.sin((1.0 - cnode[i]) * h)
+            qc[i] = bh[i] * math.cos((1.0 - cnode[i]) * h)
+        margin_h = near * h
+        while j < nk and taken < max_steps:
+            rowf = 0 if row0 == m else m
+            fend = fs[rowf]
+            pot = 0.0
+            for i in range(m):
+                bi = bh[i]
+                ci = cs[i]
+                si = sn[i]
+                for n in range(N):
+                    vn = v[n] + bi * F[n]
+                    xn = x[n]
+                    x[n] = xn + (xn * ci + vn * si)
+                    v[n] = vn + (vn * ci - xn * si)
+                if i < m - 1:
+                    forces_only(x, fs[i + 1], F, alpha, mode, periodic)
+                else:
+                    pot, cm = forces(x, fend, F, alpha, mode, periodic)
+                    if cm > cmax_all:
+                        cmax_all = cm
+            bi = bh[m]
+            e = 0.0
+            for n in range(N):
+                vn = v[n] + bi * F[n]
+                v[n] = vn
+                e += vn * vn + x[n] * x[n]
+            nfev += m
+            # end-of-step elongations and rates, and the crossing screen (vectorised)
+            for n in range(N - 1):
+                db[n] = x[n + 1] - x[n]
+                wb[n] = v[n + 1] - v[n]
+            db[N - 1] = x[0] - x[N - 1]
+            wb[N - 1] = v[0] - v[N - 1]
+            nflag = 0
+            if variant != 0:
+                for n in range(N):
+                    p0 = da[n]
+                    p1 = db[n]
+                    mg = margin_h * (abs(wa[n]) + abs(wb[n]))
+                    flag[n] = ((p0 < 0.0) != (p1 < 0.0)) | (abs(p0) < mg) | (abs(p1) < mg)
+                for n in range(nb):
+                    if flag[n]:
+                        idx[nflag] = n
+                        nflag += 1
+            nflag_all += nflag
+            if nflag > 0:
+                # keep the flagged bonds whose model crosses zero (or, Hertz, whose stages saw both
+                # states), with the quadrature actually taken (variant 2) or its value on the model
+                # (variant 1), before any correction moves a bead
+                ncross = 0
+                for ii in range(nflag):
+                    kb = idx[ii]
+                    c0, c1, c2, c3 = _hermite(da[kb], wa[kb], db[kb], wb[kb], h)
+                    e1, e2 = _extrema(c1, c2, c3)
+                    if hertz:
+                        # only bonds in contact somewhere in the step (model or stages) are replaced
+                        contact = c0 < 0.0 or db[kb] < 0.0
+                        if not contact and e1 <= 1.0:
+                            contact = _cubic(c0, c1, c2, c3, e1) < 0.0
+                        if not contact and e2 <= 1.0:
+                            contact = _cubic(c0, c1, c2, c3, e2) < 0.0
+                        if not contact:
+                            for i in range(m + 1):
+                                if fs[row0 if i == 0 else (rowf if i == m else i), kb] != 0.0:
+                                    contact = True
+                                    break
+                        if not contact:
+                            continue
+                    gx = 0.0
+                    gv = 0.0
+                    if variant == 2:
+                        for i in range(m + 1):
+                            fv = fs[row0 if i == 0 else (rowf if i == m else i), kb]
+                            gx += qs[i] * fv
+                            gv += qc[i] * fv
+                    else:
+                        for i in range(m + 1):
+                            fv = _bond(_cubic(c0, c1, c2, c3, cnode[i]), alpha, mode)[0]
+                            gx += qs[i] * fv
+                            gv += qc[i] * fv
+                    idx[ncross] = kb
+                    gq[ncross, 0] = gx
+                    gq[ncross, 1] = gv
+                    ncross += 1
+                dpot_sum = 0.0
+                for ii in range(ncross):
+                    kb = idx[ii]
+                    gx = gq[ii, 0]
+                    gv = gq[ii, 1]
+                    ax = 0.0
+                    av = 0.0
+                    for _it in range(n_iter + 1):
+                        c0, c1, c2, c3 = _hermite(da[kb], wa[kb], db[kb], wb[kb], h)
+                        e1, e2 = _extrema(c1, c2, c3)
+                        ix, iv = _integrate(c0, c1, c2, c3, e1, e2, h, alpha, mode)
+                        nx = h * ix - gx
+                        nv = h * iv - gv
+                        de, dp = _apply(kb, nx - ax, nv - av, x, v, F, fend, db, wb, alpha, mode, periodic, N)
+                        e += de
+                        dpot_sum += dp
+                        ax = nx
+                        av = nv
+                    if hertz and -db[kb] > cmax_all:
+                        cmax_all = -db[kb]
+                pot += dpot_sum * inv_ap1
+                ncorr += ncross
+                if ncross > 0:
+                    nstep_corr += 1
+            da, db = db, da
+            wa, wb = wb, wa
+            swapped = not swapped
+            row0 = rowf
+            H = 0.5 * e + pot
+            dr = abs(H - H0) / scale
+            if dr > drift:
+                drift = dr
+            j += 1
+            taken += 1
+        if j >= nk:
+            row = k + 1 - shift
+            if row >= 0:
+                for n in range(N):
+                    X[row, n] = x[n]
+                    V[row, n] = v[n]
+                E[row] = H
+            k += 1
+            j = 0
+    if row0 != m:
+        for n in range(N):
+            fs[m, n] = fs[row0, n]
+    if swapped:
+        for n in range(N):
+            d0[n] = da[n]
+            w0[n] = wa[n]
+    stats[1] = drift
+    stats[2] = cmax_all
+    stats[3] = H
+    counts[0] += taken
+    counts[1] += nfev
+    counts[2] += ncorr
+    counts[3] += nstep_corr
+    counts[4] += nflag_all
+    return k, j

@@ -1,0 +1,153 @@
+"""Work-precision measurements (cradle.workprecision): a tiny ladder, the reference logic,
+the config section, the netCDF output and the figure."""
+from __future__ import annotations
+
+import copy
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from cradle import config as cc
+from cradle import stages
+from cradle import workprecision as wp
+from cradle.io import open_dataset, write_netcdf
+
+ROOT = Path(__file__).resolve().parents[1]
+
+TINY = {
+    "name": "tiny", "alpha": 1.5, "N": 16, "bc": "periodic", "t_end": 10.0, "compare_every": 1.0,
+    "repeat_time": 0.0,
+    "reference": {"method": "srkn6c", "dt_factor": 0.0005, "tolerance": 1e-10},
+    "methods": {"srkn6c": {"dt_factor": [0.04, 0.02, 0.01]}, "srkn6": {"dt_factor": [0.004, 0.002, 0.001]},
+                "dop853_numba": {"rtol": [1e-6, 1e-8, 1e-10]}, "dop853": {"rtol": [1e-5, 1e-8]}},
+}
+
+
+def tiny_state():
+    n = np.arange(16)
+    q, a = 2 * np.pi * 3 / 16, 0.5
+    return a * np.cos(q * n), 1.1 * a * np.sin(q * n), a
+
+
+@pytest.fixture(scope="module")
+def tiny_ds():
+    x0, v0, a = tiny_state()
+    return wp.measure(TINY, x0, v0, a)
+
+
+def test_tiny_ladder_error_decreases_with_cost(tiny_ds):
+    ds = tiny_ds
+    assert ds.sizes == {"method": 4, "setting": 3, "t_compare": 11}
+    assert list(ds["method"].values) == list(TINY["methods"])
+    for name in ("error", "energy_drift", "wall_time", "n_force_evals", "accuracy_parameter", "statistic_error",
+                 "reference_difference", "method", "setting", "t_compare"):
+        assert ds[name].attrs["long_name"] and "units" in ds[name].attrs, name
+    assert ds["wall_time"].attrs["units"] == "s"
+    assert ds.attrs["t_valid"] == 10.0 and ds.attrs["reference_error"] < 1e-10
+    for i, m in enumerate(ds["method"].values):
+        row = ds.isel(method=i)
+        k = np.isfinite(row["error"].values)
+        err, nfev = row["error"].values[k], row["n_force_evals"].values[k]
+        print(f"{m:12s} error {err} force evals {nfev} wall {row['wall_time'].values[k]}")
+        assert np.all(np.diff(err) < 0), m          # finer settings: smaller errors ...
+        assert np.all(np.diff(nfev) > 0), m         # ... at a higher cost
+        assert err[-1] > 10 * ds.attrs["reference_error"]
+        assert np.all(row["energy_drift"].values[k] > 0)
+    assert np.isnan(ds["statistic_error"].values).all()  # the reference holds to t_end
+    assert np.isnan(ds["error"].sel(setting=2).values[3])  # dop853 has a 2-setting ladder
+    # the corrected splitting is the most accurate at equal force evaluations here
+    c = ds.isel(method=0)
+    assert c["error"].values[2] < ds.isel(method=1)["error"].values[0]
+    assert c["n_force_evals"].values[2] < ds.isel(method=1)["n_force_evals"].values[0]
+
+
+def test_reference_limit_and_statistics():
+    """With a tolerance below what the references achieve, t_valid comes early and the
+    statistic over (t_valid, t_end] is reported."""
+    x0, v0, a = tiny_state()
+    spec = copy.deepcopy(TINY)
+    spec["reference"]["tolerance"] = 1e-16
+    spec["methods"] = {"srkn6c": {"dt_factor": [0.02, 0.01]}}
+    ds = wp.measure(spec, x0, v0, a)
+    assert ds.attrs["t_valid"] < 10.0
+    assert np.isfinite(ds["statistic_error"].values).all()
+    D = ds["reference_difference"].values
+    t = ds["t_compare"].values
+    assert D[t <= ds.attrs["t_valid"]].max() <= 1e-16 or ds.attrs["t_valid"] == 0.0
+
+
+def test_valid_until_and_compare_grid():
+    t = np.arange(6.0)
+    assert wp.valid_until(t, np.array([0, 1e-12, 2e-11, 5e-10, 1e-9, 1e-12]), 1e-10) == 2.0
+    assert wp.valid_until(t, np.zeros(6), 1e-10) == 5.0
+    assert wp.valid_until(t, np.array([0, np.nan, 0, 0, 0, 0]), 1e-10) == 0.0
+    np.testing.assert_allclose(wp.compare_grid(2.5, 1.0), [0, 1, 2, 2.5])
+    np.testing.assert_allclose(wp.compare_grid(3.0, 1.0), [0, 1, 2, 3])
+    np.testing.assert_allclose(wp.compare_grid(621.95, 100.0)[-2:], [600.0, 621.95])
+
+
+def test_ladder_kind_is_checked():
+    x0, v0, a = tiny_state()
+    spec = copy.deepcopy(TINY)
+    spec["methods"] = {"srkn6c": {"rtol": [1e-8]}}
+    with pytest.raises(ValueError, match="dt_factor"):
+        wp.measure(spec, x0, v0, a)
+
+
+def test_netcdf_figure_and_summary(tiny_ds, tmp_path):
+    from cradle.figures import save_figure
+    from cradle.figures.workprecision import draw
+
+    path = write_netcdf(tiny_ds, tmp_path / "tiny.nc")
+    back = open_dataset(path)
+    np.testing.assert_array_equal(back["error"].values, tiny_ds["error"].values)
+    assert list(back["method"].values) == list(TINY["methods"])
+    assert json.loads(back.attrs["parameter_kind"]) == {m: next(iter(v)) for m, v in TINY["methods"].items()}
+    lines = wp.summary(back)
+    assert len(lines) == 4 and "srkn6c" in lines[0] and "decades" in lines[0]
+    out = save_figure(draw({"tiny": back, "tiny2": back}), tmp_path / "work-precision")
+    assert all(p.stat().st_size > 1000 for p in out)
+
+
+def test_config_section_and_command_line(tmp_path):
+    raw = yaml.safe_load((ROOT / "config.yaml").read_text())
+    cfg = cc.validate(raw)
+    r = wp.resolved(cfg, "fft106")
+    json.dumps(r)
+    assert r["N"] == 200 and r["t_end"] == 100.0 and r["reference"]["method"] == "srkn6c"
+    assert {"srkn6", "srkn4", "strang", "dop853", "lsoda", "dop853_numba", "srkn6c"} <= set(r["methods"])
+    assert all(len(wp.ladder(r, m)[1]) >= 5 for m in r["methods"])
+    with pytest.raises(cc.ConfigError, match="nosuch"):
+        wp.resolved(cfg, "nosuch")
+    bad = copy.deepcopy(raw)
+    bad["work_precision"]["scenes"]["tw-wek"] = {"t_end": 10.0}
+    with pytest.raises(cc.ConfigError, match=r"work_precision.scenes.tw-wek.*did you mean 'tw-weak'"):
+        cc.validate(bad)
+    bad = copy.deepcopy(raw)
+    bad["work_precision"]["methods"]["srkn6c"] = {"rtol": [1e-8]}
+    with pytest.raises(cc.ConfigError, match="work_precision.methods.srkn6c"):
+        cc.validate(bad)
+    bad = copy.deepcopy(raw)
+    bad["work_precision"]["methods"]["euler"] = {"dt_factor": [0.1]}
+    with pytest.raises(cc.ConfigError, match="euler"):
+        cc.validate(bad)
+
+    # the command line used by the workflow, on a tiny scene
+    tiny_cfg = copy.deepcopy(raw)
+    tiny_cfg["scenes"] = {"tw-weak": {**raw["scenes"]["tw-weak"], "N": 20, "t_end": 5.0, "store": {"every": 1.0}}}
+    tiny_cfg["figures"] = {}
+    tiny_cfg["work_precision"] = {"scenes": {"tw-weak": {"t_end": 5.0}}, "repeat_time": 0.0,
+                                  "reference": {"dt_factor": 0.001},
+                                  "methods": {"srkn6c": {"dt_factor": [0.02, 0.01]}, "lsoda": {"rtol": [1e-6, 1e-8]}}}
+    spec = wp.resolved(tiny_cfg, "tw-weak")
+    init = write_netcdf(stages.initial_data(cc.resolved_scene(tiny_cfg, "tw-weak"), "tw-weak"), tmp_path / "i.nc")
+    out = tmp_path / "wp" / "tw-weak.nc"
+    assert wp.main(["scene", "--spec", json.dumps(spec), "--initial", str(init), "--out", str(out)]) == 0
+    ds = open_dataset(out)
+    assert ds.attrs["scene"] == "tw-weak" and ds.attrs["a"] == pytest.approx(0.021180, rel=1e-3)
+    assert ds.sizes["method"] == 2 and np.all(np.isfinite(ds["error"].values))
+    assert wp.main(["figure", "--out", str(tmp_path / "fig"), str(out)]) == 0
+    assert (tmp_path / "fig.png").stat().st_size > 1000
