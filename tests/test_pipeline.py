@@ -129,7 +129,7 @@ def test_snakemake_end_to_end_on_tiny_config(tmp_path):
     (work / "src").symlink_to(ROOT / "src")
     (work / "config.yaml").write_text(yaml.safe_dump(TINY))
 
-    built = _snakemake(work)
+    built = _snakemake(work, "paper")      # the paper's figures and claims table (all adds slow analyses)
     assert built.returncode == 0, built.stderr[-3000:]
     for label in TINY["figures"]:
         for ext in ("pdf", "png"):
@@ -137,7 +137,7 @@ def test_snakemake_end_to_end_on_tiny_config(tmp_path):
     ex = open_dataset(work / "results" / "sim" / "tw-weak" / "exact.nc")
     assert ex.attrs["energy_drift"] < 1e-8
 
-    again = _snakemake(work, "-n")
+    again = _snakemake(work, "-n", "paper")
     assert again.returncode == 0
     assert "Nothing to be done" in again.stdout + again.stderr
 
@@ -145,7 +145,7 @@ def test_snakemake_end_to_end_on_tiny_config(tmp_path):
     cfg = yaml.safe_load((work / "config.yaml").read_text())
     cfg["scenes"]["tw-weak"]["initial"]["q"] = "2pi/5"
     (work / "config.yaml").write_text(yaml.safe_dump(cfg))
-    plan = _snakemake(work, "-n")
+    plan = _snakemake(work, "-n", "paper")
     assert plan.returncode == 0, plan.stderr[-2000:]
     counts = _job_counts(plan.stdout + plan.stderr)
     assert counts.get("initial") == 1 and counts.get("exact") == 1 and counts.get("dps") == 1
@@ -155,6 +155,6 @@ def test_snakemake_end_to_end_on_tiny_config(tmp_path):
     # a bad value stops the run before any work, naming key and value
     cfg["scenes"]["tw-weak"]["N"] = 1
     (work / "config.yaml").write_text(yaml.safe_dump(cfg))
-    bad = _snakemake(work, "-n")
+    bad = _snakemake(work, "-n", "paper")
     assert bad.returncode != 0
     assert "scenes.tw-weak.N = 1" in bad.stdout + bad.stderr
