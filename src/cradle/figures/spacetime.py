@@ -14,6 +14,7 @@ vmin = the most negative force of both, vmax = 0 (:func:`common_vmin`).
 from __future__ import annotations
 
 import numpy as np
+from matplotlib.ticker import MaxNLocator
 
 from . import figure
 
@@ -76,7 +77,8 @@ def period_minimum(t, force, period):
     return starts + 0.5 * period, -P
 
 
-def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", bin_period=None):
+def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", bin_period=None,
+              interpolation="antialiased"):
     """Draw the forces of ``ds`` (dims t, n) in grey levels on ``ax``; return the AxesImage.
 
     ``t_range`` = (t0, t1) and ``n_range`` = (n0, n1) (inclusive) restrict the
@@ -84,6 +86,8 @@ def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", bin_period=Non
     then drawn in the order n0..N-1, 0..n1 and labelled by their index. With
     ``bin_period``, each image row is the most negative force over one bin of
     that length (:func:`period_minimum`); otherwise every stored time is a row.
+    ``interpolation`` "antialiased" averages rows when many stored times share a
+    pixel (long runs); "nearest" keeps every bond a sharp column (zooms).
     """
     f = ds["force"]
     if t_range is not None:
@@ -96,8 +100,9 @@ def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", bin_period=Non
     if bin_period is not None:
         t, values = period_minimum(t, values, bin_period)
     img = ax.imshow(values, cmap=CMAP, vmin=vmin, vmax=0.0, origin="lower", aspect="auto",
-                    extent=(*_edges(positions), *_edges(t)), interpolation="antialiased",
+                    extent=(*_edges(positions), *_edges(t)), interpolation=interpolation,
                     rasterized=True)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))      # bond indices are integers
     if positions[-1] >= size:                                 # wrapped window: label the true indices
         ax.xaxis.set_major_formatter(lambda value, _pos: f"{int(round(value)) % size}")
     ax.set_xlabel("$n$")
@@ -228,7 +233,7 @@ def draw_plot28(data, options):
     vmin = float(f.isel(n=_columns(ex.sizes["n"], n_range)).min())
     vmin = vmin if vmin < 0 else -1e-300
     fig, ax = figure(1, 1, width=5.6, height=5.2)
-    img = spacetime(ax, ex, vmin, t_range=t_range, n_range=n_range,
+    img = spacetime(ax, ex, vmin, t_range=t_range, n_range=n_range, interpolation="nearest",
                     title=f"exact, $t \\in [{t_range[0]:g}, {t_range[1]:g}]$, bonds $n = {n_range[0]}..{n_range[1]}$\n"
                           f"({PLOT28_BEADS} bonds of largest force variance on the last {PLOT28_SPAN:g} time units)")
     fig.colorbar(img, ax=ax, label=FORCE_LABEL)
