@@ -19,7 +19,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ..compare import spatial_dft
-from ..sidebands import EXCLUDE_BINS, envelope, sideband_peak, wrap
+from ..sidebands import EXCLUDE_BINS, sideband_peak, sideband_ratio, wrap
 
 TIME_TOL = 1e-6          # a requested time must be stored to within this
 MODELS = (("exact", "spectrum_exact", "exact"), ("dps", "spectrum_dps", "approx. (DpS)"))
@@ -91,8 +91,8 @@ def _ratio_note(fig):
 
 def _new(nrows, ncols, width, height):
     fig, axes = plt.subplots(nrows, ncols, figsize=(width, height), squeeze=False,
-                             gridspec_kw={"bottom": 0.07, "top": 0.94, "hspace": 0.55, "wspace": 0.25,
-                                          "left": 0.08, "right": 0.98})
+                             gridspec_kw={"bottom": 0.75 / height, "top": 1.0 - 0.55 / height, "hspace": 0.6,
+                                          "wspace": 0.25, "left": 0.08, "right": 0.98})
     return fig, axes
 
 
@@ -130,16 +130,30 @@ def draw_fftseuil(data, options):
     return fig
 
 
+def carrier_share(x, q: float):
+    """Share of the carrier in the power of a profile: sum over k = +-q of |x_hat_k|^2 / sum_k |x_hat_k|^2.
+
+    1 for an unmodulated wave a cos(q n - w t + phi) with q on Gamma*; it falls as the
+    profile gets modulated (sidebands, harmonics). ``x`` has shape (..., N).
+    """
+    k, xh = spatial_dft(x)
+    p = np.abs(xh) ** 2
+    N = k.size
+    jq = {int(np.round(wrap(c) * N / (2.0 * np.pi))) % N for c in (q, -q)}
+    on = np.isin(np.round(k * N / (2.0 * np.pi)).astype(int) % N, list(jq))
+    return p[..., on].sum(axis=-1) / p.sum(axis=-1)
+
+
 def _profile_panel(ax, sim, model, t):
     s = _at(sim[model], t)
     n, x = s["n"].values, s["x"].values
-    env = envelope(x)
     ax.plot(n, x, "-", color="k" if model == "exact" else "C3", lw=0.7)
     ax.set_xlim(n[0], n[-1])
     ax.set_xlabel("$n$")
     ax.set_ylabel("$x_n(t)$")
     label = dict((m, lab) for m, _, lab in MODELS)[model]
-    ax.set_title(f"{label}, $t = {t:g}$: envelope min/max = {env.min() / env.max():.2f}", fontsize=8)
+    share = float(carrier_share(x, carrier(sim)))
+    ax.set_title(f"{label}, $t = {t:g}$: carrier share of power {share:.2f}", fontsize=8)
 
 
 def draw_fft344(data, options):
@@ -149,7 +163,8 @@ def draw_fft344(data, options):
     t_spec, t1, t2 = [float(t) for t in options["times"]]
     sim = data[name]
     fig = plt.figure(figsize=(9.0, 8.0))
-    gs = fig.add_gridspec(3, 4, bottom=0.07, top=0.93, hspace=0.6, wspace=0.5, left=0.08, right=0.98)
+    gs = fig.add_gridspec(3, 4, bottom=0.75 / 8.0, top=1.0 - 0.55 / 8.0, hspace=0.6, wspace=0.9,
+                          left=0.09, right=0.98)
     se, sa = fig.add_subplot(gs[0, 0:2]), fig.add_subplot(gs[0, 2:4])
     x1, x2 = fig.add_subplot(gs[1, 0:2]), fig.add_subplot(gs[1, 2:4])
     xa = fig.add_subplot(gs[2, 1:3])
@@ -166,5 +181,8 @@ def draw_fft344(data, options):
     _ratio_note(fig)
     return fig
 
+
+__all__ = ["FIGURES", "carrier_share", "sideband_ratio", "spectrum", "draw_fft106", "draw_fftseuil",
+           "draw_fft344"]
 
 FIGURES = {"fft106": draw_fft106, "fftseuil": draw_fftseuil, "fft344": draw_fft344}
