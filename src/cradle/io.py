@@ -97,32 +97,27 @@ def _umask_mode() -> int:
 
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
     """Write ``ds`` to ``path`` atomically (temporary file, then rename)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     # float coordinates must not get a _FillValue (CF forbids it on coordinates)
     encoding = {name: {"_FillValue": None} for name in list(ds.coords) + list(ds.data_vars)
                 if np.issubdtype(ds[name].dtype, np.floating)}
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
-        ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
-        os.chmod(tmp, _umask_mode())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-    return path
+    return _atomic(Path(path), lambda tmp: ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4"))
 
 
 def write_text(text: str, path: str | os.PathLike) -> Path:
     """Write a text file atomically (temporary file, then rename)."""
-    path = Path(path)
+    return _atomic(Path(path), lambda tmp: Path(tmp).write_text(text))
+
+
+def _atomic(path: Path, write) -> Path:
+    """Call ``write(tmp)`` on a temporary file beside ``path``, then rename it to ``path``.
+
+    An interrupted or failed write leaves nothing at ``path`` (and no temporary file).
+    """
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
     try:
-        with os.fdopen(fd, "w") as fh:
-            fh.write(text)
+        write(tmp)
         os.chmod(tmp, _umask_mode())
         os.replace(tmp, path)
     except BaseException:
