@@ -64,14 +64,23 @@ def differences(A, bc: str = "periodic"):
     return D
 
 
-def rhs(A, alpha: float, bc: str = "periodic", tau0_value: float | None = None):
-    """dA_n/dtau of (dfnls): (g(A_{n+1}-A_n) - g(A_n-A_{n-1})) / (2 i tau0)."""
-    t0 = tau0(alpha) if tau0_value is None else tau0_value
+def p_laplacian(A, alpha: float, bc: str = "periodic"):
+    """The discrete p-Laplacian g(A_{n+1} - A_n) - g(A_n - A_{n-1}), p = alpha + 1, along the last axis.
+
+    The coupling of (dfnls), and of the stationary equations (dpsst)/(dpsstn)
+    for real A; past a free end the missing bond contributes nothing.
+    """
     G = _g(differences(A, bc), alpha)
     G_left = np.roll(G, 1, axis=-1)
     if bc == "free":
         G_left[..., 0] = 0.0
-    return (G - G_left) / (2j * t0)
+    return G - G_left
+
+
+def rhs(A, alpha: float, bc: str = "periodic", tau0_value: float | None = None):
+    """dA_n/dtau of (dfnls): (g(A_{n+1}-A_n) - g(A_n-A_{n-1})) / (2 i tau0)."""
+    t0 = tau0(alpha) if tau0_value is None else tau0_value
+    return p_laplacian(A, alpha, bc) / (2j * t0)
 
 
 def l2_norm_squared(A):

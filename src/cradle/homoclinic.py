@@ -16,39 +16,29 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import root
 
+from .dps import differences, p_laplacian
 from .lattice import check_alpha, check_bc
 
 
 RESIDUAL_TOL = 1e-10  # max |residual| / max |a_n| accepted as converged
 
 
-def _g(s, alpha):
-    return s * np.abs(s) ** (alpha - 1.0)
-
-
 def _dg(s, alpha):
     return alpha * np.abs(s) ** (alpha - 1.0)
 
 
-def _diffs(a, bc):
-    d = np.roll(a, -1) - a
-    if bc == "free":
-        d[-1] = 0.0
-    return d
-
-
 def residual(a, alpha: float, bc: str = "periodic", sign: float = 1.0):
-    """r_n = g(a_{n+1}-a_n) - g(a_n-a_{n-1}) + sign(mu) a_n, zero on solutions of (dpsstn)."""
+    """r_n = g(a_{n+1}-a_n) - g(a_n-a_{n-1}) + sign a_n: zero on solutions of (dpsstn) for
+    sign = sign(mu), of (dpsst) for sign = mu."""
     a = np.asarray(a, dtype=float)
-    G = _g(_diffs(a, bc), alpha)
-    return G - np.roll(G, 1) + sign * a if bc == "periodic" else G - np.concatenate(([0.0], G[:-1])) + sign * a
+    return p_laplacian(a, alpha, bc) + sign * a
 
 
 def jacobian(a, alpha: float, bc: str = "periodic", sign: float = 1.0):
     """Analytic Jacobian of :func:`residual` (tridiagonal, with corners if periodic)."""
     a = np.asarray(a, dtype=float)
     N = a.size
-    k = _dg(_diffs(a, bc), alpha)  # stiffness of bond n (0 on a missing free-end bond)
+    k = _dg(differences(a, bc), alpha)  # stiffness of bond n (0 on a missing free-end bond)
     J = np.zeros((N, N))
     idx = np.arange(N)
     right = (idx + 1) % N
@@ -150,7 +140,7 @@ def symmetry_error(a, kind: str, centre: int | None = None) -> float:
 def energy_balance(a, alpha: float, bc: str = "periodic"):
     """(sum a_n^2, sum |a_{n+1}-a_n|^(alpha+1)): equal for mu = 1 solutions of (dpsstn)."""
     a = np.asarray(a)
-    return float(np.sum(a**2)), float(np.sum(np.abs(_diffs(a, bc)) ** (alpha + 1.0)))
+    return float(np.sum(a**2)), float(np.sum(np.abs(differences(a, bc)) ** (alpha + 1.0)))
 
 
 # ---------------------------------------------------------------- tails below machine precision

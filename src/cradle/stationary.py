@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .dps import p_laplacian
 from .lattice import check_alpha, check_bc
 
 
@@ -251,13 +252,4 @@ def stationary_residual(a, alpha: float, mu: float = 1.0, bc: str = "periodic"):
     bc = check_bc(bc)
     if mu == 0:
         raise ValueError("mu must be nonzero in (dpsstn)")
-    a = np.asarray(a, dtype=float)
-    if bc == "periodic":
-        fwd = g(np.roll(a, -1, axis=-1) - a, alpha)  # bond n: g(a_{n+1} - a_n)
-        bwd = np.roll(fwd, 1, axis=-1)  # bond n-1
-    else:
-        bonds = g(np.diff(a, axis=-1), alpha)
-        zero = np.zeros(a.shape[:-1] + (1,))
-        fwd = np.concatenate([bonds, zero], axis=-1)
-        bwd = np.concatenate([zero, bonds], axis=-1)
-    return fwd - bwd + np.sign(mu) * a
+    return p_laplacian(np.asarray(a, dtype=float), alpha, bc) + np.sign(mu) * a
