@@ -157,9 +157,7 @@ def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) ->
     sol = integrate_lattice(x0, v0, times, alpha=alpha, bc=bc, method=ex["method"], progress=progress,
                             **accuracy)
     force = lattice.bond_forces(sol.x, alpha, bc)
-    attrs = dict(init_ds.attrs)
-    for key in ("title", "history", "Conventions", "source", "references"):
-        attrs.pop(key, None)
+    attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
     attrs.update({"model": "exact lattice (nc), V = V0", "integrator": sol.method,
                   "dt": sol.dt if sol.dt is not None else "adaptive",
                   "rtol": sol.rtol if sol.rtol is not None else "none",
@@ -191,9 +189,7 @@ def dps_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> x
     sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=st["method"], rtol=st["rtol"], progress=progress)
     x_app = compare.approximate_displacement(sol.A, times, eps)
     force = lattice.bond_forces(x_app, alpha, bc)
-    attrs = dict(init_ds.attrs)
-    for key in ("title", "history", "Conventions", "source", "references"):
-        attrs.pop(key, None)
+    attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
     attrs.update({"model": "DpS (dfnls) + ansatz (ansatz)", "integrator": sol.method, "rtol": sol.rtol,
                   "atol": sol.atol, "tau0": dps.tau0(alpha), "max_l2_drift": sol.max_l2_drift,
                   "max_dps_energy_drift": sol.max_energy_drift, "n_steps": sol.n_steps,
