@@ -5,21 +5,7 @@ import numpy as np
 
 from ..compare import linear_wave
 from . import figure
-
-
-def _at(ds, t):
-    """The stored state nearest to time t (stored times are exact, to 1e-9)."""
-    return ds.sel(t=t, method="nearest")
-
-
-def _profiles(ax, sim, t, title=""):
-    ex, ap = _at(sim["exact"], t), _at(sim["dps"], t)
-    n = ex["n"].values
-    ax.plot(n, ex["x"].values, "-", color="k", lw=1.0, label="exact")
-    ax.plot(n, ap["x"].values, "-.", color="C3", lw=1.0, label="approx. (DpS)")
-    ax.set_xlabel("$n$")
-    ax.set_ylabel("$x_n(t)$")
-    ax.set_title(f"{title}$t = {float(ex['t']):g}$", fontsize=9)
+from .spacetime import _at, _profiles
 
 
 def draw_plot4_5(data, options):
@@ -44,7 +30,7 @@ def draw_plotcomplin(data, options):
     noisy, clean = options["scenes"]
     t_noisy, t0 = options["times"]
     fig, (left, right) = figure(1, 2, width=9.0, height=3.4)
-    _profiles(left, data[noisy], t_noisy, "with noise, ")
+    _profiles(left, data[noisy], t_noisy, title="with noise, ")
     left.legend(fontsize=8, loc="upper right")
     sim = data[clean]
     _profiles(right, sim, t0)
