@@ -2,8 +2,9 @@
 # p-Schrodinger equation", rebuilt. `snakemake -j2` builds every figure listed
 # under `figures:` in config.yaml into results/figures/<label>.{pdf,png}.
 #
-# Stages (workflow/rules): homoclinic & map orbits -> initial data ->
-# exact and DpS integration -> metrics -> figures.
+# Stages (workflow/rules): homoclinic & map orbits (homoclinic.smk) -> initial data,
+# exact and DpS integration and their comparison, one job per scene (simulate.smk) ->
+# figures (figures.smk) and the claims table (checks.smk).
 
 
 configfile: "config.yaml"
@@ -14,9 +15,7 @@ report: "workflow/report/workflow.rst"
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/homoclinic.smk"
-include: "workflow/rules/initial.smk"
-include: "workflow/rules/integrate.smk"
-include: "workflow/rules/metrics.smk"
+include: "workflow/rules/simulate.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/checks.smk"

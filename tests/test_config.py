@@ -56,7 +56,7 @@ BREATHER = {"N": 50, "bc": "periodic", "initial": {"kind": "breather", "homoclin
 def test_real_config_validates_and_fills_defaults(raw):
     cfg = cc.load(CONFIG)
     assert cfg["defaults"] == {"alpha": 1.5, "exact": {"method": "srkn6c", "dt_factor": None, "rtol": 1e-10},
-                               "dps": {"method": "dop853", "rtol": 1e-10}, "max_energy_drift": 1e-6}
+                               "dps": {"method": "dop853_numba", "rtol": 1e-10}, "max_energy_drift": 1e-6}
     assert cfg["scenes"]["tw-weak"]["bc"] == "periodic"
     assert cfg["scenes"]["tw-weak"]["initial"]["phi"] == 0.0
     assert cfg["homoclinic"]["site"]["mu"] == 1.0 and cfg["homoclinic"]["site"]["separation"] == 9
@@ -76,7 +76,7 @@ def test_resolved_scene(raw):
     assert r["name"] == "tw-weak" and r["N"] == 50 and r["alpha"] == 1.5
     assert r["initial"]["q"] == pytest.approx(math.pi / 5) and r["initial"]["q_expr"] == "pi/5"
     assert r["exact"] == {"method": "srkn6c", "dt_factor": None, "rtol": 1e-10}
-    assert r["dps"] == {"method": "dop853", "rtol": 1e-10} and r["max_energy_drift"] == 1e-6
+    assert r["dps"] == {"method": "dop853_numba", "rtol": 1e-10} and r["max_energy_drift"] == 1e-6
     assert r["times"][0] == 0.0 and r["times"][-1] == 621.95 and 333.7 in r["times"]
     assert len(r["times"]) == 6221  # 0, 0.1, ..., 621.9 and 621.95
     noisy = cc.resolved_scene(raw, "tw-weak-noise")

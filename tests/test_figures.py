@@ -72,3 +72,24 @@ def test_every_label_has_one_drawing_function():
              "plot8-11", "plot9-10", "plot29-30", "plot26-27", "plot28", "fft106", "fftseuil", "fft344",
              "plot18", "loc1", "fini"}
     assert paper <= labels
+
+
+def test_module_lookup_by_source_agrees_with_the_imported_registry():
+    """The Snakefile finds a label's module by reading sources (module_of, labels); the
+    imported FIGURES dicts say the same, and a figure job imports only that module."""
+    import subprocess
+    import sys
+
+    from cradle import figures
+
+    reg = registry()
+    assert sorted(figures.labels()) == sorted(reg)
+    for label, func in reg.items():
+        assert func.__module__ == f"cradle.figures.{figures.module_of(label)}"
+        assert figures.drawer(label) is func
+    with pytest.raises(KeyError, match="'no-such-figure'"):
+        figures.module_of("no-such-figure")
+    code = ("import sys; from cradle.figures import drawer; drawer('bcsc'); "
+            "print(sorted(m for m in sys.modules if m.startswith('cradle.figures.')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.split() == ["['cradle.figures.homoclinic']"]

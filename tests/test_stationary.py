@@ -75,4 +75,5 @@ def test_map_figures_draw_from_datasets():
     assert len(fig.axes) == 1
     fig = maps.draw_traj2({f"p{i}": ds for i in range(6)}, {"scenes": [f"p{i}" for i in range(6)]})
     assert len(fig.axes) == 6
-    assert len(fig.axes[0].collections) == 2       # one dot cloud per orbit
+    assert len(fig.axes[0].lines) == 2 + 3         # one dot cloud per orbit, marks of the period-2, -3, -4 orbits
+    assert fig.axes[0].lines[0].get_linestyle() == "None" and fig.axes[0].lines[0].get_rasterized()

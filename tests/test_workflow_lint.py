@@ -39,11 +39,11 @@ def _rules():
 
 def test_every_rule_logs_and_costly_rules_benchmark():
     rules = _rules()
-    assert {"homoclinic", "map_orbits", "initial", "exact", "dps", "metrics", "figure", "paper_checks"} <= set(rules)
+    assert {"homoclinic", "map_orbits", "simulate", "figure", "paper_checks"} <= set(rules)
     for name, body in rules.items():
         if re.search(r"^\s+(script|shell|run|notebook|wrapper):", body, re.M):  # target rules run nothing
             assert re.search(r"^\s+log:", body, re.M), f"rule {name} has no log:"
-    for name in ("exact", "dps", "figure", "paper_checks"):
+    for name in ("simulate", "figure", "paper_checks"):
         assert re.search(r"^\s+benchmark:", rules[name], re.M), f"rule {name} has no benchmark:"
     assert "report(" in rules["figure"] and "report(" in rules["paper_checks"]
 
@@ -95,8 +95,8 @@ def test_slurm_profile_dry_run(tmp_path):
     pytest.importorskip("snakemake_executor_plugin_slurm", reason="snakemake-executor-plugin-slurm is not installed")
     profile = yaml.safe_load((ROOT / "profiles" / "slurm" / "config.yaml").read_text())
     assert profile["executor"] == "slurm"
-    assert {"exact", "dps", "figure"} <= set(profile["set-resources"])
+    assert {"simulate", "figure"} <= set(profile["set-resources"])
     work = _workdir(tmp_path)
     proc = _snakemake(work, "-n", "--workflow-profile", "profiles/slurm")
     assert proc.returncode == 0, proc.stderr[-3000:]
-    assert re.search(r"^exact\s+\d+$", proc.stdout + proc.stderr, re.M)
+    assert re.search(r"^simulate\s+\d+$", proc.stdout + proc.stderr, re.M)

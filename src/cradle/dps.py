@@ -14,8 +14,7 @@ approximate travelling waves (ansatzapprox).
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import quad
-from scipy.special import gammaln
+import math
 
 from .lattice import check_alpha, check_bc
 
@@ -29,17 +28,19 @@ def c_alpha(alpha: float) -> float:
     """
     alpha = check_alpha(alpha)
     log_c = (
-        np.log(2.0 * alpha)
-        + gammaln(alpha / 2.0)
-        - 0.5 * np.log(np.pi)
-        - np.log(alpha**2 - 1.0)
-        - gammaln((alpha - 1.0) / 2.0)
+        math.log(2.0 * alpha)
+        + math.lgamma(alpha / 2.0)
+        - 0.5 * math.log(math.pi)
+        - math.log(alpha**2 - 1.0)
+        - math.lgamma((alpha - 1.0) / 2.0)
     )
-    return float(np.exp(log_c))
+    return math.exp(log_c)
 
 
 def c_alpha_wallis(alpha: float) -> float:
     """c_alpha = (2/pi) int_0^{pi/2} cos(t)^(alpha+1) dt by quadrature (wallis)."""
+    from scipy.integrate import quad  # imported here: scipy.integrate costs 0.5 s at start-up
+
     alpha = check_alpha(alpha)
     val, _ = quad(lambda t: np.cos(t) ** (alpha + 1.0), 0.0, np.pi / 2.0, epsabs=0.0, epsrel=1e-13, limit=200)
     return 2.0 / np.pi * val

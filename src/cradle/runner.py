@@ -74,3 +74,40 @@ def run(compute, out: str | Path, log_path: str | None = None, label: str = ""):
     write_netcdf(ds, out)
     log.info("%s: done in %.2f s -> %s", label, time.perf_counter() - t0, out)
     return ds
+
+
+def run_chain(steps, outs: dict, log_path: str | None = None, label: str = "") -> dict:
+    """Run dependent stages in one process and write each to ``outs[key]``.
+
+    ``steps`` is a list of ``(key, compute)``; ``compute(done)`` gets the
+    Datasets of the earlier steps by key. Every output is written (atomically)
+    only after all steps succeeded, so a failure leaves none of them at its
+    target path: Snakemake reruns the whole job. If a step fails, the earlier
+    steps' results are kept under ``results/failed/`` next to the failed
+    step's partial output, each with the reason as its ``failure`` attribute.
+    """
+    setup_logging(log_path)
+    t0 = time.perf_counter()
+    done = {}
+    for key, compute in steps:
+        t1 = time.perf_counter()
+        log.info("%s %s: start", key, label)
+        try:
+            done[key] = compute(done)
+        except StageFailure as err:
+            kept = []
+            for prev, ds in done.items():
+                ds.attrs["failure"] = f"not written: the later step '{key}' failed: {err}"
+                write_netcdf(ds, failed_path(outs[prev]))
+                kept.append(str(failed_path(outs[prev])))
+            if err.partial is not None:
+                err.partial.attrs["failure"] = str(err)
+                write_netcdf(err.partial, failed_path(outs[key]))
+                kept.append(str(failed_path(outs[key])))
+            log.error("%s %s: FAILED: %s (kept for diagnosis: %s)", key, label, err, ", ".join(kept) or "nothing")
+            raise
+        log.info("%s %s: done in %.2f s", key, label, time.perf_counter() - t1)
+    for key, ds in done.items():
+        write_netcdf(ds, outs[key])
+    log.info("%s: all done in %.2f s -> %s", label, time.perf_counter() - t0, ", ".join(map(str, outs.values())))
+    return done

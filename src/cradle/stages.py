@@ -18,7 +18,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from . import compare, dps, homoclinic, initial, lattice
+from . import compare, dps, initial, lattice
 from .io import make_dataset
 
 
@@ -34,6 +34,8 @@ class StageFailure(RuntimeError):
 
 def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
     """Solve (dpsstn) for one ``homoclinic:`` entry; a(n), residual(n), attributes."""
+    from . import homoclinic  # scipy.optimize: only the homoclinic stage needs it
+
     t0 = time.perf_counter()
     alpha, N, bc = spec["alpha"], spec["N"], spec["bc"]
     centre = spec.get("centre")

@@ -6,6 +6,7 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 
 from cradle import config as cc
+from cradle import figures as _figures
 
 try:
     config.update(cc.validate(config))
@@ -56,12 +57,11 @@ def figure_targets(labels=None):
 
 
 def figure_module(label):
-    """The figures/*.py module whose FIGURES dict draws ``label`` (read as text: no import)."""
-    for path in sorted((SRC / "figures").glob("*.py")):
-        match = re.search(r"^FIGURES\s*=\s*\{(.*?)\}", path.read_text(), re.M | re.S)
-        if match and re.search(rf"[\"']{re.escape(label)}[\"']\s*:", match.group(1)):
-            return str(path)
-    raise WorkflowError(f"no module in {SRC / 'figures'} draws figure {label!r}")
+    """The figures/*.py module that draws ``label`` (found in the sources, nothing imported)."""
+    try:
+        return str(SRC / "figures" / f"{_figures.module_of(label)}.py")
+    except KeyError as err:
+        raise WorkflowError(str(err)) from None
 
 
 def initial_inputs(w):

@@ -5,55 +5,98 @@ a function takes opened :class:`xarray.Dataset` objects (and the figure's
 options from config.yaml) and returns a matplotlib Figure; :func:`save_figure`
 writes it as ``<stem>.pdf`` and ``<stem>.png``. Modules: :mod:`.maps`
 (traj3, traj2), :mod:`.homoclinic` (bcsc), :mod:`.travelling` (plot4-5,
-plotcomplin).
+plotcomplin), :mod:`.spacetime` (space-time diagrams and profiles),
+:mod:`.spectra` (fft106, fftseuil, fft344), :mod:`.localised` (breathers,
+loc1, fini), :mod:`.beyond` and :mod:`.workprecision` (beyond the paper).
+
+Importing this package is cheap (no matplotlib, no figure module): the
+Snakefile asks it which module draws a label (:func:`module_of`), and a
+figure job imports only that module.
 """
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
 PNG_DPI = 150
+_HERE = Path(__file__).parent
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
 
 
 def save_figure(fig, stem) -> list[Path]:
-    """Save ``fig`` as ``stem.pdf`` and ``stem.png`` with fixed metadata.
+    """Save ``fig`` as ``stem.png`` and ``stem.pdf`` with fixed metadata.
 
-    No creation date is written, so rebuilding a figure from the same data
-    gives the same files.
+    The layout (constrained_layout: the costly part, every tick label is
+    measured on each pass) is solved once, for the PNG, then frozen for the
+    PDF. No creation date is written, so rebuilding a figure from the same
+    data gives the same files.
     """
     stem = Path(stem)
     stem.parent.mkdir(parents=True, exist_ok=True)
     out = []
-    for ext, meta in (("pdf", {"CreationDate": None, "ModDate": None}), ("png", {"Software": None})):
+    for ext, meta in (("png", {"Software": None}), ("pdf", {"CreationDate": None, "ModDate": None})):
         path = stem.with_suffix(f".{ext}")
         fig.savefig(path, dpi=PNG_DPI, metadata=meta)
+        fig.set_layout_engine("none")  # keeps the positions found for the PNG
         out.append(path)
-    plt.close(fig)
-    return out
+    _pyplot().close(fig)
+    return out[::-1]
 
 
 def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
     """A new figure with the project's layout defaults."""
-    return plt.subplots(nrows, ncols, figsize=(width, height), constrained_layout=True, **kw)
+    return _pyplot().subplots(nrows, ncols, figsize=(width, height), constrained_layout=True, **kw)
+
+
+def module_of(label: str) -> str:
+    """Name of the module here whose ``FIGURES`` dict draws ``label``, found by reading the
+    sources (nothing is imported; the Snakefile uses it to make that module a rule input)."""
+    found = [path.stem for path in sorted(_HERE.glob("[!_]*.py"))
+             if (m := re.search(r"^FIGURES\s*=\s*\{(.*?)\}", path.read_text(), re.M | re.S))
+             and re.search(rf"[\"']{re.escape(label)}[\"']\s*:", m.group(1))]
+    if len(found) != 1:
+        raise KeyError(f"figure {label!r} is drawn by {len(found)} modules of {_HERE} ({found}); "
+                       f"known: {sorted(labels())}")
+    return found[0]
+
+
+def labels() -> list[str]:
+    """Every label some module here draws (read from the sources)."""
+    out = []
+    for path in sorted(_HERE.glob("[!_]*.py")):
+        if m := re.search(r"^FIGURES\s*=\s*\{(.*?)\}", path.read_text(), re.M | re.S):
+            out += re.findall(r"[\"']([\w.-]+)[\"']\s*:", m.group(1))
+    return out
+
+
+def drawer(label: str):
+    """The drawing function of ``label``, importing only its module."""
+    import importlib
+
+    module = importlib.import_module(f"{__name__}.{module_of(label)}")
+    return module.FIGURES[label]
 
 
 def registry() -> dict:
-    """label -> drawing function, collected from the ``FIGURES`` dict of every module here.
+    """label -> drawing function, for every module here (imports them all).
 
     Each function takes (data, options) and returns a Figure; ``data`` maps
     every name of the figure's `scenes:` list to its Dataset(s) (see
     :func:`load_inputs`), ``options`` is the figure's entry in config.yaml.
     """
     import importlib
-    import pkgutil
 
     found = {}
-    for info in pkgutil.iter_modules(__path__):
-        module = importlib.import_module(f"{__name__}.{info.name}")
+    for path in sorted(_HERE.glob("[!_]*.py")):
+        module = importlib.import_module(f"{__name__}.{path.stem}")
         for label, func in getattr(module, "FIGURES", {}).items():
             if label in found:
                 raise RuntimeError(f"figure {label!r} is drawn by two modules")
@@ -86,7 +129,4 @@ def load_inputs(scenes: dict, root) -> dict:
 
 def draw(label: str, data: dict, options: dict, stem) -> list[Path]:
     """Draw figure ``label`` and save it as ``stem``.pdf/.png."""
-    funcs = registry()
-    if label not in funcs:
-        raise KeyError(f"no drawing function for figure {label!r}; known: {sorted(funcs)}")
-    return save_figure(funcs[label](data, options), stem)
+    return save_figure(drawer(label)(data, options), stem)

@@ -9,12 +9,15 @@ from . import figure
 MARKERS = {"period2": ("o", "period 2"), "period3": ("s", "period 3"), "period4": ("^", "period 4")}
 
 
-def _orbits(ax, ds, size=0.3):
-    """Every stored iterate of every orbit as a dot (NaN: the orbit left the box)."""
+def _orbits(ax, ds, size=0.55):
+    """Every stored iterate of every orbit as a dot of ``size`` points (NaN: the orbit left the box).
+
+    Markers of a Line2D, rasterised: half the time of a scatter for the ~10^5 dots of traj2."""
     a, b = ds["map_a"].values, ds["map_b"].values
     for i in range(a.shape[0]):
         keep = np.isfinite(a[i]) & np.isfinite(b[i])
-        ax.scatter(a[i, keep], b[i, keep], s=size, lw=0, color=f"C{i % 10}", rasterized=True)
+        ax.plot(a[i, keep], b[i, keep], ls="none", marker=".", ms=size, mew=0, color=f"C{i % 10}",
+                rasterized=True)
     box = float(ds.attrs["box"])
     ax.set_xlim(-box, box)
     ax.set_ylim(-box, box)
@@ -35,7 +38,7 @@ def draw_traj3(data, options):
     """One orbit of G from a_0 = 0, b_1 = 1e-13: it follows the pair of symmetric homoclinic loops."""
     ds = data[options["scenes"][0]]
     fig, ax = figure(1, 1, width=5.0, height=4.2)
-    _orbits(ax, ds, size=1.5)
+    _orbits(ax, ds, size=1.2)
     a, b = ds["map_a"].values[0], ds["map_b"].values[0]
     box = 1.15 * max(np.nanmax(np.abs(a)), np.nanmax(np.abs(b)))
     ax.set_xlim(-box, box)

@@ -17,9 +17,26 @@ import time
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _c
 
 from . import _kernels as K
+
+
+def _scipy_dop853_tableau():
+    """scipy's DOP853 tableau (scipy/integrate/_ivp/dop853_coefficients.py, numpy only), loaded
+    from its file: importing it as scipy.integrate._ivp... would import all of scipy.integrate
+    (0.5 s per process start)."""
+    import importlib.util
+    from pathlib import Path
+
+    scipy_dir = Path(importlib.util.find_spec("scipy").origin).parent
+    spec = importlib.util.spec_from_file_location(
+        "_cradle_dop853_coefficients", scipy_dir / "integrate" / "_ivp" / "dop853_coefficients.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+_c = _scipy_dop853_tableau()
 
 _NS = _c.N_STAGES  # 12
 A = np.ascontiguousarray(_c.A[:_NS, :_NS], dtype=float)

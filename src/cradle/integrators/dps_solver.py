@@ -17,7 +17,6 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import integrate as _si
 
 from ..dps import tau0 as _tau0
 from ..lattice import check_alpha, check_bc
@@ -25,7 +24,8 @@ from . import _dop853
 from . import _kernels as K
 from ._validate import check_choice, check_positive, check_state, check_times
 
-SCIPY_DPS_METHODS = {"dop853": _si.DOP853, "rk45": _si.RK45}
+#: scipy.integrate classes by name (imported when used)
+SCIPY_DPS_METHODS = {"dop853": "DOP853", "rk45": "RK45"}
 DPS_METHODS = tuple(SCIPY_DPS_METHODS) + ("dop853_numba",)
 DEFAULT_RTOL = 1e-10
 
@@ -163,7 +163,9 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853", rtol=DE
         return DpsSolution(tau_out, A, l2d, Ed, Pd, max_l2, max_E, n_steps, time.perf_counter() - wall0, method,
                            float(rtol), float(atol), nfev)
     if idx < T:
-        solver = SCIPY_DPS_METHODS[method](fun, 0.0, y0, tau_final, rtol=rtol, atol=atol)
+        from scipy import integrate
+
+        solver = getattr(integrate, SCIPY_DPS_METHODS[method])(fun, 0.0, y0, tau_final, rtol=rtol, atol=atol)
         t_last = time.perf_counter()
         while solver.status == "running":
             msg = solver.step()

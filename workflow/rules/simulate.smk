@@ -1,0 +1,31 @@
+# Stages 2 and 3, one job per scene: the initial data x0, v0, A0 (ansatzapprox), (perturb),
+# (ansatzapproxst2); the exact lattice (nc) and the DpS equation (dfnls) integrated from them and
+# stored at the scene's declared times; and their comparison (E(t) of plot4-5, spectra on Gamma*).
+# Each of the four is its own netCDF file, but one process computes them: every step takes well
+# under a second, while a job's start-up (interpreter, imports, compiled-kernel cache loads) costs
+# about one, and the whole paper is meant to rebuild in a minute on two cores.
+
+
+rule simulate:
+    conda:
+        "../envs/cradle.yaml"
+    message:
+        "Scene '{wildcards.scene}': initial data, lattice (nc) and DpS (dfnls) runs, comparison"
+    input:
+        code=sources(*CORE, "initial", "homoclinic", "integrators", "compare"),  # pair scenes solve a profile
+        homoclinic=initial_inputs,
+    output:
+        initial="results/initial/{scene}.nc",
+        exact="results/sim/{scene}/exact.nc",
+        dps="results/sim/{scene}/dps.nc",
+        metrics="results/metrics/{scene}.nc",
+    params:
+        spec=lambda w: cc.resolved_scene(config, w.scene),
+    log:
+        "results/logs/sim/{scene}.log",
+    benchmark:
+        "results/benchmarks/sim/{scene}.tsv"
+    wildcard_constraints:
+        scene=names_regex("scenes"),
+    script:
+        "../scripts/simulate.py"

@@ -1,0 +1,15 @@
+"""Snakemake adapter: one scene's initial data, lattice (nc) and DpS (dfnls) runs and their
+comparison -> results/initial/<scene>.nc, results/sim/<scene>/{exact,dps}.nc, results/metrics/<scene>.nc."""
+from cradle import stages
+from cradle.io import open_dataset
+from cradle.runner import Progress, run_chain
+
+sm = snakemake  # noqa: F821 (injected by Snakemake)
+scene, spec = sm.wildcards.scene, sm.params.spec
+hom = open_dataset(sm.input.homoclinic[0]) if sm.input.homoclinic else None
+run_chain([
+    ("initial", lambda done: stages.initial_data(spec, scene, hom)),
+    ("exact", lambda done: stages.exact_run(spec, done["initial"], scene, progress=Progress(f"exact {scene}"))),
+    ("dps", lambda done: stages.dps_run(spec, done["initial"], scene, progress=Progress(f"dps {scene}"))),
+    ("metrics", lambda done: stages.metrics(spec, done["exact"], done["dps"], scene)),
+], {key: sm.output[key] for key in ("initial", "exact", "dps", "metrics")}, sm.log[0], label=scene)
