@@ -10,6 +10,7 @@
 from __future__ import annotations
 
 import logging
+import os
 import sys
 import time
 from pathlib import Path
@@ -20,13 +21,33 @@ from .stages import StageFailure
 log = logging.getLogger("cradle")
 
 
+def process_age() -> float | None:
+    """Seconds since this process started (Linux /proc), or None where that is not available.
+
+    Called first thing in a job, it is the job's start-up cost: interpreter,
+    Snakemake's script preamble and the imports (benchmarks/rebuild.py adds them up).
+    """
+    try:
+        with open("/proc/self/stat") as f:
+            start_ticks = int(f.read().rsplit(")", 1)[1].split()[19])
+        with open("/proc/uptime") as f:
+            uptime = float(f.read().split()[0])
+        return uptime - start_ticks / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
+
+
 def setup_logging(log_path: str | None = None) -> None:
-    """Log to ``log_path`` (if given) and to stderr, one line per message."""
+    """Log to ``log_path`` (if given) and to stderr, one line per message; the first line
+    gives the process start-up time (see :func:`process_age`)."""
     handlers: list[logging.Handler] = [logging.StreamHandler(sys.stderr)]
     if log_path:
         Path(log_path).parent.mkdir(parents=True, exist_ok=True)
         handlers.append(logging.FileHandler(log_path, mode="w"))
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", handlers=handlers, force=True)
+    age = process_age()
+    if age is not None:
+        log.info("process start-up (interpreter, imports): %.2f s", age)
 
 
 def failed_path(out: str | Path) -> Path:

@@ -128,5 +128,15 @@ def load_inputs(scenes: dict, root) -> dict:
 
 
 def draw(label: str, data: dict, options: dict, stem) -> list[Path]:
-    """Draw figure ``label`` and save it as ``stem``.pdf/.png."""
-    return save_figure(drawer(label)(data, options), stem)
+    """Draw figure ``label`` and save it as ``stem``.pdf/.png (times go to the log)."""
+    import logging
+    import time
+
+    log = logging.getLogger("cradle")
+    t0 = time.perf_counter()
+    fig = drawer(label)(data, options)
+    t1 = time.perf_counter()
+    out = save_figure(fig, stem)
+    log.info("figure %s: drawn in %.2f s, saved in %.2f s -> %s", label, t1 - t0, time.perf_counter() - t1,
+             ", ".join(map(str, out)))
+    return out

@@ -1,0 +1,156 @@
+"""Time `snakemake -j2 paper` from a fresh clone, cold then warm, and say where the time goes.
+
+    python benchmarks/rebuild.py [--target paper] [--cores 2] [--out results/benchmarks/rebuild.md]
+
+1. ``git clone`` of this repository's HEAD into a temporary folder (uncommitted
+   changes are not included: this is what a newcomer gets);
+2. **cold**: ``snakemake -j2 paper`` there, with no compiled-kernel cache (numba
+   compiles each kernel on first use and caches it next to its source);
+3. **warm**: ``results/`` removed, the same command again (the cache now warm).
+
+The clone's ``src/`` is put first on PYTHONPATH, so the installed ``cradle``
+(an editable install of this folder) is shadowed by the clone's and no install
+is timed. Each job's log (``results/logs``) starts with the process start-up
+time (interpreter, Snakemake's script preamble, imports; see
+:func:`cradle.runner.process_age`) and its steps' times; the outputs record the
+integrators' own wall time. From these the table splits the job time into:
+
+* start-up: process start to the first line of cradle code, summed over jobs;
+* integration: the integrators' wall time (``wall_time_s`` of exact.nc, dps.nc);
+* kernel loads, initial data, I/O: the rest of the simulate jobs (compiling,
+  in the cold run);
+* figures: drawing + saving (PDF and PNG), and loading their inputs;
+* other jobs: homoclinic, map orbits, the claims table;
+
+and compares their sum over 2 cores with the wall time (the rest is Snakemake:
+DAG building, job scheduling and bookkeeping, and cores left idle).
+"""
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+STAMP = re.compile(r"^(\d{4}-\d\d-\d\d \d\d:\d\d:\d\d,\d{3}) (.*)$")
+
+
+def _lines(path: Path):
+    for line in path.read_text().splitlines():
+        m = STAMP.match(line)
+        if m:
+            yield _dt.datetime.strptime(m.group(1), "%Y-%m-%d %H:%M:%S,%f").timestamp(), m.group(2)
+
+
+def job_times(results: Path) -> dict:
+    """Per job (one log file): start-up, total and the logged step times, by job kind."""
+    jobs = []
+    for log in sorted((results / "logs").rglob("*.log")):
+        lines = list(_lines(log))
+        if not lines:
+            continue
+        kind = log.relative_to(results / "logs").parts[0]
+        startup = next((float(m.group(1)) for _, text in lines
+                        if (m := re.match(r"process start-up .*: ([\d.]+) s", text))), 0.0)
+        job = {"kind": kind, "name": log.stem, "startup": startup,
+               "total": startup + lines[-1][0] - lines[0][0], "draw": 0.0, "save": 0.0}
+        for _, text in lines:
+            if m := re.match(r"figure \S+: drawn in ([\d.]+) s, saved in ([\d.]+) s", text):
+                job["draw"], job["save"] = float(m.group(1)), float(m.group(2))
+        jobs.append(job)
+    return jobs
+
+
+def integration_time(results: Path) -> float:
+    """Sum of the integrators' own wall time over the exact and DpS outputs."""
+    import xarray as xr
+
+    total = 0.0
+    for path in sorted((results / "sim").rglob("*.nc")):
+        with xr.open_dataset(path) as ds:
+            total += float(ds.attrs.get("wall_time_s", 0.0))
+    return total
+
+
+def breakdown(results: Path, wall: float, cores: int) -> dict:
+    jobs = job_times(results)
+    sim = [j for j in jobs if j["kind"] == "sim"]
+    fig = [j for j in jobs if j["kind"] == "figures"]
+    rest = [j for j in jobs if j["kind"] not in ("sim", "figures")]
+    integ = integration_time(results)
+    out = {
+        "wall": wall,
+        "jobs": len(jobs),
+        "start-up (all jobs)": sum(j["startup"] for j in jobs),
+        "integration (exact + DpS)": integ,
+        "kernel loads, initial data, I/O (simulate)": sum(j["total"] - j["startup"] for j in sim) - integ,
+        "figures: drawing": sum(j["draw"] for j in fig),
+        "figures: saving PDF + PNG": sum(j["save"] for j in fig),
+        "figures: loading inputs": sum(j["total"] - j["startup"] - j["draw"] - j["save"] for j in fig),
+        "homoclinic, map, claims table": sum(j["total"] - j["startup"] for j in rest),
+    }
+    out["sum of job times"] = sum(j["total"] for j in jobs)
+    out["Snakemake and idle cores"] = wall - out["sum of job times"] / cores
+    return out
+
+
+def run(clone: Path, target: str, cores: int) -> float:
+    env = dict(os.environ, PYTHONPATH=f"{clone / 'src'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
+    t0 = time.perf_counter()
+    proc = subprocess.run([sys.executable, "-m", "snakemake", f"-j{cores}", target, "--quiet", "all"],
+                          cwd=clone, env=env, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    if proc.returncode:
+        sys.exit(f"snakemake failed in {clone}:\n{proc.stderr[-3000:]}")
+    return wall
+
+
+def table(runs: dict, cores: int) -> str:
+    keys = list(next(iter(runs.values())))
+    head = "| | " + " | ".join(runs) + " |\n|---|" + "---:|" * len(runs) + "\n"
+    rows = []
+    for key in keys:
+        cells = [f"{r[key]:.0f}" if key == "jobs" else f"{r[key]:.1f} s" for r in runs.values()]
+        label = f"**{key}**" if key == "wall" else (f"{key} (wall - sum/{cores})" if key.startswith("Snake")
+                                                   else key)
+        rows.append(f"| {label} | " + " | ".join(cells) + " |")
+    return head + "\n".join(rows) + "\n"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--target", default="paper")
+    ap.add_argument("--cores", type=int, default=2)
+    ap.add_argument("--out", type=Path, help="also write the table (markdown) here")
+    args = ap.parse_args(argv)
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
+                            text=True).stdout.strip()
+    with tempfile.TemporaryDirectory(prefix="cradle-rebuild-") as tmp:
+        clone = Path(tmp) / "cradle"
+        subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
+        runs = {}
+        for label in ("cold", "warm"):
+            shutil.rmtree(clone / "results", ignore_errors=True)
+            wall = run(clone, args.target, args.cores)
+            runs[label] = breakdown(clone / "results", wall, args.cores)
+            print(f"{label}: {wall:.1f} s", file=sys.stderr)
+    text = (f"`snakemake -j{args.cores} {args.target}` from a fresh clone of {commit}, "
+            f"{_dt.date.today()}, {platform.machine()} with {os.cpu_count()} cores, "
+            f"Python {platform.python_version()}\n\n" + table(runs, args.cores))
+    print(text)
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        args.out.write_text(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
