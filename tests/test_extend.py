@@ -90,3 +90,27 @@ def test_cli_extend(runs, tmp_path, capsys):
     assert io.open_dataset(path).sizes["t"] == short.sizes["t"]            # --out leaves the input alone
     assert cli.main(["extend", str(path), "--t-end", "5"]) == 2
     assert "must be > the last stored time" in capsys.readouterr().err
+
+
+def test_big_chain_streamed_peak_memory_below_1GiB(tmp_path):
+    """N = 1e4, 100 stored times (t = 2), streamed in a subprocess: peak RSS (getrusage, numba and
+    libraries included) < 1 GiB; the file holds 101 rows. (t = 1e3 at this N: benchmarks/extremes.py.)"""
+    import json
+    import subprocess
+    import sys
+
+    code = f"""
+import json, resource, numpy as np
+from cradle import initial
+from cradle.extend import stream_lattice
+d = initial.travelling_wave(10_000, np.pi / 5, 1.5, omega_tw=1.1)
+s = stream_lattice(d.x0, d.v0, np.linspace(0.0, 2.0, 101), {str(tmp_path / 'big.nc')!r}, alpha=1.5,
+                   chunk_bytes=8 * 2**20)
+print(json.dumps({{"rss": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024, "rows": s["rows"],
+                  "drift": s["energy_drift"]}}))
+"""
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    out = json.loads(r.stdout.strip().splitlines()[-1])
+    assert out["rows"] == 101 and out["drift"] < 1e-10
+    assert out["rss"] < 2**30
+    assert io.open_dataset(tmp_path / "big.nc").sizes == {"t": 101, "n": 10_000}

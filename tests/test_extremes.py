@@ -258,3 +258,16 @@ def test_config_accepts_N2_and_names_bad_N_and_q():
     with pytest.raises(cc.ConfigError) as e2:
         cc.validate(cfg(5, "pi/5"))
     assert "scenes.two.initial.q = 'pi/5'" in str(e2.value) and "q N/(2 pi) = 0.5" in str(e2.value)
+
+
+@pytest.mark.parametrize("alpha, guess, log10_amp", [(1.01, "site", -60.290), (3.0, "site", -0.4246)])
+def test_homoclinic_stage_far_from_three_halves(alpha, guess, log10_amp):
+    """stages.homoclinic_solution (config entry, N = 50) now gives the alpha = 1.01 and alpha = 3
+    site-centred solutions (by continuation) instead of failing or returning a = 0."""
+    from cradle import stages
+
+    ds = stages.homoclinic_solution({"alpha": alpha, "N": 50, "bc": "periodic", "guess": guess}, "x")
+    assert ds.attrs["method"] == "continued" and ds.attrs["converged"] == 1
+    assert ds.attrs["log10_max_abs_a"] == pytest.approx(log10_amp, abs=1e-3)
+    assert ds.attrs["residual"] < 5e-15 * ds.attrs["max_abs_a"]
+    assert np.all(np.isfinite(ds["log10_abs_a"].values))

@@ -38,6 +38,8 @@ from .io import _umask_mode, make_dataset
 #: memory per chunk of stored states (x, v, force: 3 N float64 per stored time)
 DEFAULT_CHUNK_BYTES = 64 * 2**20
 TIME_TOL = 1e-9
+#: HDF5 chunk cache per variable while appending (netCDF-C's default, 64 MiB, is held per variable)
+CHUNK_CACHE_BYTES = 4 * 2**20
 VARS = ("x", "v", "force", "energy")
 
 
@@ -60,6 +62,8 @@ class _Appender:
                     if np.issubdtype(first[k].dtype, np.floating)}
         first.to_netcdf(self.tmp, engine="netcdf4", unlimited_dims=["t"], encoding=encoding)
         self.nc = netCDF4.Dataset(self.tmp, "a")
+        for var in self.nc.variables.values():   # HDF5 would otherwise cache up to 64 MiB per variable
+            var.set_var_chunk_cache(size=CHUNK_CACHE_BYTES, nelems=61)
         self.rows = first.sizes["t"]
 
     def append(self, t, fields: dict):
