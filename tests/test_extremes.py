@@ -271,3 +271,19 @@ def test_homoclinic_stage_far_from_three_halves(alpha, guess, log10_amp):
     assert ds.attrs["log10_max_abs_a"] == pytest.approx(log10_amp, abs=1e-3)
     assert ds.attrs["residual"] < 5e-15 * ds.attrs["max_abs_a"]
     assert np.all(np.isfinite(ds["log10_abs_a"].values))
+
+
+def test_dps_breather_near_alpha_one_needs_astronomically_small_amplitudes():
+    """alpha = 1.01: the DpS small parameter is a^(alpha-1), so the breather approximation holds only
+    for a ~ 1e-150 (a^(alpha-1) = 0.03): E(t = 20) = 0.01 there, > 1 at a = 1e-2 (a^(alpha-1) = 0.95).
+    The lattice at a = 1e-150 (forces ~1e-152) runs in double precision with drift ~1e-10."""
+    profile = homoclinic.continued("bond", 1.01, 128).profile     # N = 128 from solve_sized
+    t = np.linspace(0.0, 20.0, 11)
+    E = {}
+    for amp in (1e-2, 1e-150):
+        d = initial.breather(profile, 1.01, amplitude=amp)
+        s = integrate_lattice(d.x0, d.v0, t, alpha=1.01, method="srkn6c")
+        A = integrate_dps(d.A0, t, alpha=1.01).A
+        E[amp] = compare.relative_error(s.x, compare.approximate_displacement(A, t, 1.0), amp)[-1]
+        assert s.energy_drift < 1e-7
+    assert E[1e-150] < 0.02 and E[1e-2] > 0.5
