@@ -52,8 +52,8 @@ def test_plane_wave_is_an_exact_dps_solution(alpha, q):
     assert res < 1e-14
     # the relation (freq): omega_tw = 1 + eps^(alpha-1) Omega with a = 2 eps R, R = 1, and its inverse
     a = 0.37
-    assert dps.omega_tw(a, q, alpha) == pytest.approx(1 + (a / 2) ** (alpha - 1) * dps.plane_wave_frequency(1, q, alpha),
-                                                      rel=1e-14)
+    Om1 = dps.plane_wave_frequency(1, q, alpha)
+    assert dps.omega_tw(a, q, alpha) == pytest.approx(1 + (a / 2) ** (alpha - 1) * Om1, rel=1e-14)
     assert dps.amplitude_from_omega(dps.omega_tw(a, q, alpha), q, alpha) == pytest.approx(a, rel=1e-9)
 
 

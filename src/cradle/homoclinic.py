@@ -502,7 +502,8 @@ def continued(kind: str, alpha: float, N: int, bc: str = "periodic", mu: float =
             sol = solve_scaled(sol.profile, alpha, bc, mu)
     if not sol.converged:
         raise ValueError(f"{kind} homoclinic: continuation in alpha from {alpha_start} to alpha={alpha!r} failed "
-                         f"on N={N} (residual {sol.residual:.3e} at alpha={sol.alpha!r}: {' '.join(sol.message.split())})")
+                         f"on N={N} (residual {sol.residual:.3e} at alpha={sol.alpha!r}: "
+                         f"{' '.join(sol.message.split())})")
     return sol
 
 
