@@ -5,6 +5,7 @@
     cradle scenes   [--config config.yaml]                 # scenes, figures and what each needs
     cradle run      SCENE [--out results] [--config ...]   # one scene without Snakemake
     cradle describe FILE.nc                                # parameters, checks, provenance of a result
+    cradle extend   FILE.nc --t-end T [--every DT] [--out FILE.nc]   # continue a finished exact run
 
 ``cradle run`` computes a scene's initial data, exact and DpS runs and
 metrics with :mod:`cradle.stages` and :func:`cradle.runner.run` (atomic
@@ -211,6 +212,24 @@ def cmd_describe(args) -> int:
     return 0
 
 
+# ------------------------------------------------------------------ extend
+
+def cmd_extend(args) -> int:
+    from .extend import extend
+
+    path = Path(args.file)
+    if not path.exists():
+        raise CliError(f"no such file {str(path)!r}")
+    try:
+        s = extend(path, args.t_end, out=args.out, every=args.every)
+    except ValueError as err:
+        raise CliError(str(err)) from None
+    print(f"{s['path']}: t = {s['t_from']:g} -> {s['t_end']:g}, {s['rows_added']} stored times added, "
+          f"{s['n_steps']} steps (dt = {s['dt']:.6g}), energy drift {s['energy_drift']:.3e}, "
+          f"{s['wall_time_s']:.2f} s")
+    return 0
+
+
 # ------------------------------------------------------------------ main
 
 class _Parser(argparse.ArgumentParser):
@@ -234,6 +253,14 @@ def parser() -> argparse.ArgumentParser:
     d = sub.add_parser("describe", help="print a result's parameters, checks and provenance")
     d.add_argument("file", metavar="FILE.nc")
     d.set_defaults(func=cmd_describe)
+    e = sub.add_parser("extend", help="continue a finished exact run (exact.nc) to a later time and append; "
+                                      "bitwise the same as one longer run for splitting methods")
+    e.add_argument("file", metavar="FILE.nc", help="an exact run (sim/SCENE/exact.nc)")
+    e.add_argument("--t-end", type=float, required=True, dest="t_end", help="new final time (> the last stored t)")
+    e.add_argument("--every", type=float, default=None,
+                   help="storage step of the new times (default: the file's median spacing)")
+    e.add_argument("--out", default=None, help="write here instead of replacing FILE.nc")
+    e.set_defaults(func=cmd_extend)
     return p
 
 

@@ -185,15 +185,15 @@ def default_dt(c: float, alpha: float, method: str = "srkn6", dt_factor: float |
 ONSET_OPTIONS = (2, 0, _onset.NEAR_DEFAULT)
 
 
-def _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, onset=None):
+def _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, onset=None, t0=0.0, energy0=None):
     corrected = method in CORRECTED_METHODS
     a, b, _order = SPLITTINGS[CORRECTED_METHODS.get(method, method)]
     N = x0.size
     T = t_out.size
-    if t_out[0] == 0.0:
+    if t_out[0] == t0:
         tgrid, shift = t_out, 0
     else:
-        tgrid, shift = np.concatenate(([0.0], t_out)), 1
+        tgrid, shift = np.concatenate(([t0], t_out)), 1
     X = np.empty((T, N))
     V = np.empty((T, N))
     E = np.empty(T)
@@ -216,7 +216,8 @@ def _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, o
     H0 = 0.5 * float(np.dot(x, x) + np.dot(v, v)) + pot
     if shift == 0:
         X[0], V[0], E[0] = x, v, H0
-    stats = np.array([H0, 0.0, c0, H0])
+    # drift measured from energy0 (the energy at the start of the run being continued) if given
+    stats = np.array([H0 if energy0 is None else float(energy0), 0.0, c0, H0])
     counts = np.array([0, 1, 0, 0, 0], dtype=np.int64)
     nint = tgrid.size - 1
     k, j = 0, 0
@@ -331,7 +332,8 @@ def _run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic, progress
 
 
 def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6", dt=None, dt_factor=None,
-                      rtol=None, atol=None, potential="hertz", progress=None) -> LatticeSolution:
+                      rtol=None, atol=None, potential="hertz", progress=None, t0=0.0,
+                      energy0=None) -> LatticeSolution:
     """Integrate the lattice (nc) (Hertz V0 of (vhertz)) or (meca) (kappa = 1).
 
     Parameters
@@ -373,6 +375,14 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6", dt
     progress : callable, optional
         ``progress(t_reached, t_final)``, called about once per second of wall
         time (and at the end).
+    t0 : float, optional
+        Time of the state (x0, v0) (default 0), t_out[0] >= t0. Splittings
+        only: continuing a run from its stored state at t0 with the same dt
+        and the same later output times takes exactly the same steps, so the
+        result is bitwise that of one run (:mod:`cradle.extend`).
+    energy0 : float, optional
+        Splittings only: reference energy for ``energy_drift`` (default
+        H(x0, v0)); the energy at t = 0 of the run being continued.
 
     Returns
     -------
@@ -395,6 +405,12 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6", dt
     if v0.shape != x0.shape:
         raise ValueError(f"x0 and v0 must have the same shape, got x0 {x0.shape} and v0 {v0.shape}")
     t_out = check_times(t_out, "t_out")
+    t0 = float(t0)
+    if not (np.isfinite(t0) and 0.0 <= t0 <= t_out[0]):
+        raise ValueError(f"t0 must be finite, >= 0 and <= t_out[0] = {float(t_out[0])!r}, got t0={t0!r}")
+    if (t0 != 0.0 or energy0 is not None) and method not in SPLITTING_METHODS:
+        raise ValueError(f"t0/energy0 (continuing a run) need a fixed-step splitting method, got method={method!r} "
+                         f"(t0={t0!r}, energy0={energy0!r})")
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be callable or None, got progress={progress!r}")
     periodic = bc == "periodic"
@@ -410,13 +426,14 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6", dt
         n_reruns = 0
         if dt is not None:
             dt = check_positive(dt, "dt")
-            out = _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress)
+            out = _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, t0=t0, energy0=energy0)
         else:
             fac = DEFAULT_DT_FACTOR[method] if dt_factor is None else check_positive(dt_factor, "dt_factor")
             c_assumed, c_energy = compression_bounds(x0, v0, alpha, bc, potential)
             while True:
                 dt = default_dt(c_assumed, alpha, method, fac)
-                out = _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress)
+                out = _run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, t0=t0,
+                                     energy0=energy0)
                 cmax = out[6]
                 if cmax <= c_assumed * (1.0 + 1e-12) or c_assumed >= c_energy or n_reruns >= MAX_RERUNS:
                     break

@@ -1,0 +1,116 @@
+"""Extending a finished exact run and streaming long runs to disk (cradle.extend, `cradle extend`)."""
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+
+from cradle import cli, extend, io, stages
+from cradle.config import store_times
+
+
+def spec(T, method="srkn6c", bc="periodic"):
+    return {"name": "ext", "alpha": 1.5, "N": 16, "bc": bc, "t_end": T, "times": store_times({"every": 0.5}, T),
+            "exact": {"method": method, "dt_factor": None, "rtol": 1e-10}, "max_energy_drift": 1e-6,
+            "initial": {"kind": "travelling", "q": np.pi / 4, "omega_tw": 1.1, "phi": 0.0},
+            "dps": {"method": "dop853", "rtol": 1e-10}}
+
+
+@pytest.fixture(scope="module")
+def runs():
+    """exact_run to T = 20 and to 2T = 40 from the same initial data (same default dt)."""
+    init = stages.initial_data(spec(20.0), "ext")
+    short, long = stages.exact_run(spec(20.0), init, "ext"), stages.exact_run(spec(40.0), init, "ext")
+    assert short.attrs["dt"] == long.attrs["dt"]
+    return short, long
+
+
+@pytest.mark.parametrize("chunk_bytes", [extend.DEFAULT_CHUNK_BYTES, 3 * 8 * 16 * 7])
+def test_extend_T_to_2T_is_bitwise_one_run(runs, tmp_path, chunk_bytes):
+    """Run to T, extend to 2T (in one chunk, or in chunks of 7 stored times): x, v, force, energy, t
+    and the energy drift are bitwise those of one run to 2T; the step counts add up."""
+    short, long = runs
+    path = tmp_path / "exact.nc"
+    io.write_netcdf(short, path)
+    s = extend.extend(path, 40.0, chunk_bytes=chunk_bytes)
+    got = io.open_dataset(path)
+    for k in ("t", "x", "v", "force", "energy"):
+        assert np.array_equal(got[k].values, long[k].values), k
+    assert got.attrs["energy_drift"] == long.attrs["energy_drift"]
+    assert got.attrs["n_steps"] == long.attrs["n_steps"]
+    assert got.attrs["t_end"] == 40.0 and s["rows_added"] == 40
+    assert "t=20.0 -> 40.0" in got.attrs["extended"]
+    assert got["x"].attrs["long_name"] == long["x"].attrs["long_name"]
+    assert sorted(os.listdir(tmp_path)) == ["exact.nc"]          # no temporary file left
+
+
+def test_stream_lattice_chunks_match_one_call(runs, tmp_path):
+    """stream_lattice from t = 0 in chunks of 5 stored times = integrate_lattice in one call, bitwise;
+    the file's t dimension is unlimited."""
+    import netCDF4
+
+    short, _ = runs
+    x0, v0 = short["x"].values[0], short["v"].values[0]
+    s = extend.stream_lattice(x0, v0, short["t"].values, tmp_path / "s.nc", alpha=1.5, method="srkn6c",
+                              dt=float(short.attrs["dt"]), chunk_bytes=3 * 8 * 16 * 5)
+    got = io.open_dataset(tmp_path / "s.nc")
+    assert s["chunk_rows"] == 5 and s["rows"] == short.sizes["t"]
+    assert np.array_equal(got["x"].values, short["x"].values)
+    assert np.array_equal(got["energy"].values, short["energy"].values)
+    assert s["energy_drift"] == short.attrs["energy_drift"]
+    with netCDF4.Dataset(tmp_path / "s.nc") as nc:
+        assert nc.dimensions["t"].isunlimited()
+
+
+def test_extend_refuses_with_clear_messages(runs, tmp_path):
+    short, _ = runs
+    path = tmp_path / "exact.nc"
+    io.write_netcdf(short, path)
+    with pytest.raises(ValueError, match=r"t_end=10.0 must be > the last stored time t=20.0"):
+        extend.extend(path, 10.0)
+    ad = short.copy()
+    ad.attrs["integrator"] = "dop853"
+    io.write_netcdf(ad, tmp_path / "adaptive.nc")
+    with pytest.raises(ValueError, match=r"integrator='dop853' is adaptive"):
+        extend.extend(tmp_path / "adaptive.nc", 40.0)
+    io.write_netcdf(short[["energy"]], tmp_path / "noxv.nc")
+    with pytest.raises(ValueError, match=r"no x, v, force"):
+        extend.extend(tmp_path / "noxv.nc", 40.0)
+    assert np.array_equal(io.open_dataset(path)["x"].values, short["x"].values)   # untouched
+
+
+def test_cli_extend(runs, tmp_path, capsys):
+    short, long = runs
+    path = tmp_path / "exact.nc"
+    io.write_netcdf(short, path)
+    assert cli.main(["extend", str(path), "--t-end", "40", "--out", str(tmp_path / "long.nc")]) == 0
+    assert "t = 20 -> 40, 40 stored times added" in capsys.readouterr().out
+    assert np.array_equal(io.open_dataset(tmp_path / "long.nc")["x"].values, long["x"].values)
+    assert io.open_dataset(path).sizes["t"] == short.sizes["t"]            # --out leaves the input alone
+    assert cli.main(["extend", str(path), "--t-end", "5"]) == 2
+    assert "must be > the last stored time" in capsys.readouterr().err
+
+
+def test_big_chain_streamed_peak_memory_below_1GiB(tmp_path):
+    """N = 1e4, 100 stored times (t = 2), streamed in a subprocess: peak RSS (getrusage, numba and
+    libraries included) < 1 GiB; the file holds 101 rows. (t = 1e3 at this N: benchmarks/extremes.py.)"""
+    import json
+    import subprocess
+    import sys
+
+    code = f"""
+import json, resource, numpy as np
+from cradle import initial
+from cradle.extend import stream_lattice
+d = initial.travelling_wave(10_000, np.pi / 5, 1.5, omega_tw=1.1)
+s = stream_lattice(d.x0, d.v0, np.linspace(0.0, 2.0, 101), {str(tmp_path / 'big.nc')!r}, alpha=1.5,
+                   chunk_bytes=8 * 2**20)
+print(json.dumps({{"rss": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024, "rows": s["rows"],
+                  "drift": s["energy_drift"]}}))
+"""
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    out = json.loads(r.stdout.strip().splitlines()[-1])
+    assert out["rows"] == 101 and out["drift"] < 1e-10
+    assert out["rss"] < 2**30
+    assert io.open_dataset(tmp_path / "big.nc").sizes == {"t": 101, "n": 10_000}
