@@ -213,6 +213,8 @@ def compute(spec: dict, scenes: dict, log=None):
     say = log or (lambda *a: None)
     every = float(spec["sample_every"])
     names = list(scenes)
+    if not names:
+        raise ValueError("config error: beyond.mi_growth.scenes is empty: name at least one scene to measure")
     Ns = [int(scenes[n][0]["N"]) for n in names]
     M = max(Ns) // 2 + 1
     t_end_max = max(float(scenes[n][0]["t_end"]) for n in names)
@@ -288,5 +290,17 @@ def compute(spec: dict, scenes: dict, log=None):
 
 
 def resolved_spec(config: dict) -> dict:
-    """The `beyond.mi_growth` parameters of a validated config."""
-    return dict(config["beyond"]["mi_growth"])
+    """The `beyond.mi_growth` parameters of a validated config; every scene named must exist."""
+    import difflib
+
+    spec = dict(config["beyond"]["mi_growth"])
+    scenes = config.get("scenes") or {}
+    if not spec["scenes"]:
+        raise ValueError("config error: beyond.mi_growth.scenes is empty: name at least one scene to measure")
+    for i, name in enumerate(spec["scenes"]):
+        if name not in scenes:
+            near = difflib.get_close_matches(str(name), list(scenes), n=1)
+            did = f"; did you mean {near[0]!r}?" if near else ""
+            raise ValueError(f"config error: beyond.mi_growth.scenes[{i}] = {name!r}: unknown scene: no `scenes:` "
+                             f"entry of that name{did}")
+    return spec

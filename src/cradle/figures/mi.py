@@ -139,6 +139,7 @@ def mi_statistics(ds):
         A.legend(fontsize=6, loc="center right")
         B.set_ylabel("crossing time t (line: median)", fontsize=8)
         B.set_ylim(0.0, float(ds.attrs["t_end"]) * 1.02)
+        B.set_xlim(A.get_xlim())
         B.legend(fontsize=6)
     return fig
 
