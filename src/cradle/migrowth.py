@@ -271,8 +271,8 @@ def compute(spec: dict, scenes: dict, log=None):
             "mig_rate_theory_max": tmax, "mig_p_star": f["pstar"], "mig_window_start": f["ta"],
             "mig_window_end": f["tb"], "mig_exponential": expo, "mig_pair": pair, "mig_envelope": env,
             "mig_sim_check": f["check"]}
-    coords = {"mig_scene": np.arange(S), "mig_model": list(MODELS), "mig_m": np.arange(M), "mig_t": tg}
-    attrs = {"scene_names": ", ".join(names), "alpha": alpha, "tau0": dps.tau0(alpha),
+    coords = {"mig_scene": np.arange(S), "mig_model": np.arange(len(MODELS)), "mig_m": np.arange(M), "mig_t": tg}
+    attrs = {"scene_names": ", ".join(names), "model_names": ", ".join(MODELS), "alpha": alpha, "tau0": dps.tau0(alpha),
              "sample_every": every, "saturation": spec["saturation"], "decades": spec["decades"],
              "r2_min": spec["r2_min"],
              "time_units": "every rate is per unit t of (nc); DpS rates lambda (per unit tau of (dfnls)) are "
@@ -281,9 +281,9 @@ def compute(spec: dict, scenes: dict, log=None):
                                   "(x_n - i v_n) e^{-it} / (2 eps)",
              "window": "ends where max_p S_p first reaches saturation; starts `decades` decades of S_{p*} earlier",
              "wall_time_s": time.perf_counter() - wall0}
-    for name, info in drifts.items():
+    for name, info in drifts.items():   # CF attribute names: letters, digits, underscores
         for key, val in info.items():
-            attrs[f"{name}_{key}"] = val
+            attrs[f"scene_{name.replace('-', '_')}_{key}"] = val
     return make_dataset(data, coords=coords, attrs=attrs, params=spec,
                         title="Modulational-instability growth rates measured in the scenes' runs (exact and DpS) "
                               "against the linear DpS theory")

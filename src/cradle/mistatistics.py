@@ -215,7 +215,7 @@ def seeds(spec: dict) -> list[int]:
 
 def _attrs(spec: dict) -> dict:
     g = spec["q_over_pi"]
-    return {"variant": spec["variant"], "alpha": spec["alpha"], "omega_tw": spec["omega_tw"],
+    return {"variant": spec["variant"], "model_names": ", ".join(MODELS), "alpha": spec["alpha"], "omega_tw": spec["omega_tw"],
             "noise": spec["noise_kind"], "noise_amplitude": spec["noise_amplitude"], "t_end": spec["t_end"],
             "sample_every": spec["sample_every"], "fraction": spec["fraction"],
             "exclude_bins": spec["exclude_bins"], "seed0": spec["seed0"], "n_seeds": spec["n_seeds"],
@@ -265,7 +265,7 @@ def batch(spec: dict, N: int, model: str, chunk: int, log=None):
     data = {"mis_ratio": R[None, None], "mis_crossing_time": TC[None, None],
             "mis_crossed": np.isfinite(TC)[None, None].astype(np.int8), "mis_k_peak": KP[None, None],
             "mis_drift": DR[None, None], "mis_k_index": np.asarray(ks)[None, :], "mis_a": amp[None, :]}
-    coords = {"mis_N": [N], "mis_model": [model], "mis_q": q, "mis_seed": sd, "mis_t": t}
+    coords = {"mis_N": [N], "mis_model": [MODELS.index(model)], "mis_q": q, "mis_seed": sd, "mis_t": t}
     attrs = _attrs(spec) | {"chunk": chunk, "wall_time_s": time.perf_counter() - wall0}
     return make_dataset(data, coords=coords, attrs=attrs, params=spec,
                         title=f"mi-statistics batch: N = {N}, {model}, chunk {chunk}")
@@ -278,7 +278,7 @@ def aggregate(batches, spec: dict):
     from .io import make_dataset
 
     Ns = sorted({int(n) for b in batches for n in b["mis_N"].values})
-    models = [m for m in MODELS if any(m in b["mis_model"].values for b in batches)]
+    models = [m for i, m in enumerate(MODELS) if any(i in b["mis_model"].values for b in batches)]
     q = np.unique(np.concatenate([b["mis_q"].values for b in batches]))
     qo = np.round(q / np.pi, 9)
     names = ["mis_ratio", "mis_crossing_time", "mis_crossed", "mis_k_peak", "mis_drift"]
@@ -295,7 +295,7 @@ def aggregate(batches, spec: dict):
             raise ValueError("mi-statistics: batches with different sample times or seeds")
         wall += float(b.attrs.get("wall_time_s", 0.0))
         iN = Ns.index(int(b["mis_N"].values[0]))
-        im = models.index(str(b["mis_model"].values[0]))
+        im = models.index(MODELS[int(b["mis_model"].values[0])])
         iq = np.searchsorted(qo, np.round(b["mis_q"].values / np.pi, 9))
         for nm in names:
             out[nm][iN, im, iq] = b[nm].values[0, 0]
@@ -323,7 +323,7 @@ def aggregate(batches, spec: dict):
     data = {**out, "mis_k_index": kidx, "mis_a": amp, "mis_fraction_unstable": frac,
             "mis_fraction_low": lo, "mis_fraction_high": hi, "mis_median_crossing_time": med,
             "mis_threshold": thr["estimate"], "mis_threshold_low": thr["low"], "mis_threshold_high": thr["high"]}
-    coords = {"mis_N": Ns, "mis_model": models, "mis_q": q, "mis_seed": sd, "mis_t": t}
+    coords = {"mis_N": Ns, "mis_model": [MODELS.index(m) for m in models], "mis_q": q, "mis_seed": sd, "mis_t": t}
     attrs = _attrs(spec) | status | {"batch_wall_time_s_total": wall, "n_runs": int(np.prod(frac.shape)) * sd.size}
     return make_dataset(data, coords=coords, attrs=attrs, params=spec,
                         title=f"Modulational-instability threshold statistics ({spec['variant']}): "

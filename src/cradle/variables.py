@@ -113,7 +113,8 @@ VARIABLES: dict[str, Var] = {
     "mi_check_rel_error": Var(("mi_alpha", "mi_check"), "simulated / theoretical growth rate - 1"),
     # beyond the paper: mi-statistics (cradle.mistatistics)
     "mis_N": Var(("mis_N",), "number N of beads on the ring"),
-    "mis_model": Var(("mis_model",), "model: exact lattice (nc) or DpS approximation (dfnls)/(ansatz)"),
+    "mis_model": Var(("mis_model",), "model index: 0 exact lattice (nc), 1 DpS approximation (dfnls)/(ansatz)",
+                      attrs=(("comment", "names in the global attribute model_names"),)),
     "mis_q": Var(("mis_q",), "carrier wavenumber q of the travelling wave", "rad"),
     "mis_seed": Var(("mis_seed",), "seed of numpy.random.default_rng drawing the noise of (perturb)"),
     "mis_t": Var(("mis_t",), "dimensionless time t of (nc) at which the spectrum is sampled"),
@@ -139,7 +140,8 @@ VARIABLES: dict[str, Var] = {
     "mis_threshold_high": Var(("mis_N", "mis_model"), "upper end of the threshold interval (Wilson 95 %)", "rad"),
     # beyond the paper: mi-growth (cradle.migrowth)
     "mig_scene": Var(("mig_scene",), "index of a scene (names in the global attribute scene_names)"),
-    "mig_model": Var(("mig_model",), "model: exact lattice (nc) or DpS approximation (dfnls)/(ansatz)"),
+    "mig_model": Var(("mig_model",), "model index: 0 exact lattice (nc), 1 DpS approximation (dfnls)/(ansatz)",
+                      attrs=(("comment", "names in the global attribute model_names"),)),
     "mig_m": Var(("mig_m",), "index m of the perturbation wavenumber p = 2 pi m / N"),
     "mig_t": Var(("mig_t",), "dimensionless time t of (nc)"),
     "mig_q": Var(("mig_scene",), "carrier wavenumber q of the scene", "rad"),

@@ -13,6 +13,8 @@ import numpy as np
 from .. import dps, modulational
 from . import figure
 
+MODELS = ("exact", "dps")      # the model index of mig_model / mis_model
+
 MODEL_STYLE = {"exact": dict(color="C0", marker="o", label="exact (nc)"),
                "dps": dict(color="C3", marker="x", label="DpS (dfnls)")}
 
@@ -25,7 +27,7 @@ def mi_growth(ds):
     """Per scene: linear DpS rate against p with the measured rates; the fitted series; the growth-rate diagram."""
     names = _names(ds)
     S = len(names)
-    models = [str(m) for m in ds["mig_model"].values]
+    models = [MODELS[int(i)] for i in ds["mig_model"].values]
     ncol = 4
     nrow = int(np.ceil((S + 2) / ncol))
     fig, ax = figure(nrow, ncol, width=3.2 * ncol, height=2.9 * nrow)
@@ -96,7 +98,7 @@ def mi_growth(ds):
 def mi_statistics(ds):
     """Fraction of unstable seeds and crossing-time distributions against q, per N, both models."""
     Ns = [int(n) for n in ds["mis_N"].values]
-    models = [str(m) for m in ds["mis_model"].values]
+    models = [MODELS[int(i)] for i in ds["mis_model"].values]
     q = ds["mis_q"].values / np.pi
     qc = float(ds.attrs.get("dps_threshold_linear_theory", np.pi / 2)) / np.pi
     fig, ax = figure(2, len(Ns), width=4.6 * len(Ns), height=6.4)
