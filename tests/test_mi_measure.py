@@ -59,7 +59,7 @@ def test_pair_spectrum_of_a_plane_wave_with_two_sidebands():
 
 def test_direct_dps_run_growth_matches_linear_theory():
     """A plane wave (R = 1) plus a 1e-6 noise-free sideband pair, q = 0.8 pi, N = 50: the fitted rate of
-    the pair (per unit tau here, eps = 1) agrees with modulational.growth_rate to 1 %."""
+    the pair (per unit tau here, eps = 1) agrees with modulational.growth_rate to 0.1 %."""
     from cradle.integrators import integrate_dps
 
     alpha, N, k_q, m = 1.5, 50, 20, 6
@@ -72,7 +72,7 @@ def test_direct_dps_run_growth_matches_linear_theory():
     S = MG.pair_spectrum(sol.A, k_q)
     r = MG.measure(tau, S, saturation=0.05, decades=3.0, r2_min=0.999)
     assert r["m_star"] == m and r["exponential"]
-    assert abs(r["rate"] / lam - 1.0) < 0.01, (r["rate"], lam)
+    assert abs(r["rate"] / lam - 1.0) < 1e-3, (r["rate"], lam)   # measured: 3e-5
 
 
 # ---------------------------------------------------------------- statistics
