@@ -20,12 +20,13 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/checks.smk"
 include: "workflow/rules/beyond.smk"
+include: "workflow/rules/mi.smk"
 
 
 PAPER = figure_targets() + ["results/paper_checks.csv", "results/paper_checks.md"]
 
 
-BEYOND = [f"results/figures/{label}.{ext}" for label in ("theorem1", "mi-diagram", "work-precision")
+BEYOND = [f"results/figures/{label}.{ext}" for label in ("theorem1", "mi-diagram", "mi-growth", "mi-statistics", "work-precision")
           for ext in ("pdf", "png")]
 
 

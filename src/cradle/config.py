@@ -637,6 +637,7 @@ def _physical(cfg: dict, out: _Errors):
     for name, scene in _entries(cfg, "scenes").items():
         _check_scene(name, scene, cfg, out)
     _check_work_precision(cfg, out)
+    _check_mi(cfg, out)
     figures = cfg.get("figures")
     if isinstance(figures, dict):
         scenes = _entries(cfg, "scenes")
@@ -693,6 +694,59 @@ def _check_work_precision(cfg: dict, out: _Errors):
             near = difflib.get_close_matches(name, list(scenes), n=1)
             did = f"; did you mean {near[0]!r}?" if near else ""
             out.add(["work_precision", "scenes", name], f"unknown scene: no `scenes:` entry of that name{did}")
+
+
+def _check_mi(cfg: dict, out: _Errors):
+    """beyond.mi_growth.scenes: periodic travelling-wave scenes (names are checked by
+    cradle.migrowth.resolved_spec, so that a config with fewer scenes still validates);
+    beyond.mi_statistics.<variant>: every q of the
+    grid on every ring's wavenumber grid (q N / (2 pi) an integer), N even, start < stop, chunks <= count."""
+    b = cfg.get("beyond")
+    if not isinstance(b, dict):
+        return
+    mg = b.get("mi_growth")
+    scenes = _entries(cfg, "scenes")
+    if isinstance(mg, dict) and isinstance(mg.get("scenes"), list):
+        for i, name in enumerate(mg["scenes"]):
+            path = ["beyond", "mi_growth", "scenes", i]
+            if name not in scenes:   # checked by cradle.migrowth.resolved_spec, when the target is built
+                continue
+            sc = scenes[name]
+            ini = sc.get("initial") if isinstance(sc.get("initial"), dict) else {}
+            if ini.get("kind") != "travelling" or sc.get("bc") != "periodic":
+                out.add(path, "must be a travelling-wave scene on a periodic ring (initial.kind travelling, "
+                              "bc periodic)", name)
+    ms = b.get("mi_statistics")
+    if not isinstance(ms, dict):
+        return
+    for variant in ("reduced", "full"):
+        v = ms.get(variant)
+        if not isinstance(v, dict):
+            continue
+        base = ["beyond", "mi_statistics", variant]
+        g = v.get("q_over_pi")
+        if not isinstance(g, dict) or not all(_number(g.get(k)) for k in ("start", "stop", "count")):
+            continue
+        if not g["start"] < g["stop"]:
+            out.add(base + ["q_over_pi"], "need start < stop", g)
+            continue
+        count = int(g["count"])
+        vals = [g["start"] + i * (g["stop"] - g["start"]) / (count - 1) for i in range(count)]
+        if _number(v.get("chunks")) and v["chunks"] > count:
+            out.add(base + ["chunks"], f"more batches than q values (count = {count})", v["chunks"])
+        for j, N in enumerate(v.get("N") or []):
+            if not isinstance(N, int):
+                continue
+            if N % 2:
+                out.add(base + ["N", j], "must be even (Gamma* of the spatial DFT)", N)
+                continue
+            for x in vals:
+                m = x * N / 2.0
+                if abs(m - round(m)) > INTEGER_TOL:
+                    out.add(base + ["q_over_pi"], f"q = {x:.10g} pi gives q N/(2 pi) = {m:.10g} for N = {N}: with "
+                                                  f"periodic ends it must be an integer (choose start, stop, count "
+                                                  f"so that the step is a multiple of 2/N)", g)
+                    break
 
 
 # --------------------------------------------------------------------------- public API

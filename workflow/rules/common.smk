@@ -78,3 +78,20 @@ def checks_inputs(w):
     files = [f for name in config["scenes"] for f in scene_files(name)]
     files += [f"results/initial/{name}.nc" for name in config["scenes"]]
     return files + [f"results/homoclinic/{name}.nc" for name in config["homoclinic"]]
+
+
+def mi_growth_inputs(w):
+    """The initial data and the two runs of every scene measured by mi-growth."""
+    files = []
+    for name in config["beyond"]["mi_growth"]["scenes"]:
+        files += [f"results/initial/{name}.nc", f"results/sim/{name}/exact.nc", f"results/sim/{name}/dps.nc"]
+    return files
+
+
+def mi_batches(variant):
+    """The batch files of one mi-statistics variant (reduced, full)."""
+    from cradle import mistatistics as _mis
+
+    spec = _mis.resolved_spec(config, variant)
+    return [f"results/mi/batch/{variant}/N{N}-{m}-{c}.nc" for N in spec["N"] for m in _mis.MODELS
+            for c in range(int(spec["chunks"]))]

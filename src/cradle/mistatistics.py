@@ -1,0 +1,330 @@
+"""Statistics of the modulational-instability threshold over noise seeds, ring sizes and both models.
+
+The experiment of figure fftseuil (section 4.2), repeated many times: the
+approximate travelling wave (ansatzapprox)-(freq) with omega_tw fixed
+(so a = 2 eps follows from q by (freq)), perturbed as in (perturb) with
+Gaussian rho_n^(1), rho_n^(2) (sd ``noise_amplitude``, seed per run), on a
+periodic ring of N beads with q = 2 pi k / N, integrated to t_end
+
+* by the lattice (nc) (``model = "exact"``, :func:`cradle.integrators.integrate_lattice`),
+* by the DpS equation (dfnls) (``model = "dps"``, :func:`cradle.integrators.integrate_dps`
+  in the slow time tau = eps^(alpha-1) t of (ansatz), rebuilt as
+  x_n^app(t) = eps (A_n e^{it} + c.c.) on the same t grid).
+
+Measure (on the fly, every ``sample_every`` time units; the fields are not kept):
+the paper's spatial spectrum |x_hat_k(t)| on Gamma* (:func:`cradle.compare.spatial_dft`)
+and its sideband-to-carrier ratio r(t) (:func:`cradle.sidebands.sideband_peak`,
+``exclude_bins`` bins left out on each side of +-q and of the lattice harmonics
++-2(q - pi), +-(3q - 2 pi); default 0: only those exact bins). A run is
+*unstable* when r first reaches ``fraction`` before t_end; its crossing time
+(:func:`crossing_time`) is NaN otherwise, with the flag ``crossed = 0``.
+
+Threshold (:func:`threshold`): with f(q) the fraction of unstable seeds, the
+estimate is where f crosses 1/2 for the last time going up in q (linear
+interpolation between the two grid points around it; every grid q above it
+has f >= 1/2). Its interval [q_lo, q_hi] is stated by Wilson 95 % binomial
+intervals: q_lo is the largest grid q below the crossing whose interval for
+f lies entirely below 1/2, q_hi the smallest grid q above it whose interval
+lies entirely above 1/2 (so the interval is never narrower than the grid).
+The DpS linear theory puts the threshold at q_c = pi/2 exactly
+(:func:`cradle.modulational.threshold`).
+
+Stage functions: :func:`batch` runs one (N, model, chunk of q) batch ->
+Dataset; :func:`aggregate` joins the batches and adds the thresholds.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from . import compare, dps, initial, modulational, sidebands
+
+MODELS = ("exact", "dps")
+WILSON_Z = 1.959963984540054   # two-sided 95 %
+
+
+# ---------------------------------------------------------------- measurement
+
+def sample_times(t_end: float, every: float) -> np.ndarray:
+    """0, every, 2 every, ... below t_end, and t_end itself."""
+    n = int(math.floor(t_end / every * (1.0 + 1e-12)))
+    t = np.arange(n + 1) * every
+    t = t[t < t_end - 1e-9]
+    return np.append(t, t_end)
+
+
+def crossing_time(t, r, fraction: float) -> float:
+    """First time r(t) >= fraction, interpolated linearly in log r between the two samples around it.
+
+    NaN when r stays below ``fraction`` on the whole series; t[0] when it starts above.
+    """
+    t = np.asarray(t, dtype=float)
+    r = np.asarray(r, dtype=float)
+    above = np.flatnonzero(r >= fraction)
+    if above.size == 0:
+        return float("nan")
+    i = int(above[0])
+    if i == 0:
+        return float(t[0])
+    r0, r1 = r[i - 1], r[i]
+    if not (r0 > 0 and r1 > r0):
+        return float(t[i])
+    s = (np.log(fraction) - np.log(r0)) / (np.log(r1) - np.log(r0))
+    return float(t[i - 1] + s * (t[i] - t[i - 1]))
+
+
+def run_ratio(model: str, N: int, k: int, seed: int, spec: dict):
+    """One run: (t, r(t), k_peak(t), info) for carrier q = 2 pi k / N, noise seed ``seed``.
+
+    ``spec``: alpha, omega_tw, noise_kind, noise_amplitude, t_end, sample_every, exclude_bins,
+    exact {method, dt_factor}, dps {method, rtol}.
+    """
+    from .integrators import integrate_dps, integrate_lattice
+
+    alpha = float(spec["alpha"])
+    q = 2.0 * np.pi * k / N
+    t = sample_times(float(spec["t_end"]), float(spec["sample_every"]))
+    data = initial.travelling_wave(N, q, alpha, omega_tw=float(spec["omega_tw"]), bc="periodic",
+                                   noise_kind=spec["noise_kind"], noise_amplitude=float(spec["noise_amplitude"]),
+                                   seed=int(seed))
+    if model == "exact":
+        ex = spec["exact"]
+        sol = integrate_lattice(data.x0, data.v0, t, alpha=alpha, bc="periodic", method=ex["method"],
+                                dt_factor=ex.get("dt_factor"))
+        x = sol.x
+        info = {"drift": sol.energy_drift, "wall": sol.wall_time_s}
+    elif model == "dps":
+        st = spec["dps"]
+        sol = integrate_dps(data.A0, data.eps ** (alpha - 1.0) * t, alpha=alpha, bc="periodic",
+                            method=st["method"], rtol=float(st["rtol"]))
+        x = compare.approximate_displacement(sol.A, t, data.eps)
+        info = {"drift": sol.max_l2_drift, "wall": sol.wall_time_s}
+    else:
+        raise ValueError(f"model must be one of {MODELS}, got {model!r}")
+    if not np.all(np.isfinite(x)):
+        raise RuntimeError(f"mi-statistics: {model} run N={N} k={k} seed={seed} is not finite")
+    kk, xh = compare.spatial_dft(x)
+    r, kp = sidebands.sideband_peak(kk, np.abs(xh), q, exclude_bins=int(spec["exclude_bins"]))
+    info.update({"a": data.info["a"], "eps": data.eps})
+    return t, r, kp, info
+
+
+# ---------------------------------------------------------------- threshold
+
+def wilson_interval(successes, n, z: float = WILSON_Z):
+    """Wilson score interval (low, high) for a binomial proportion successes / n."""
+    s = np.asarray(successes, dtype=float)
+    n = np.asarray(n, dtype=float)
+    p = s / n
+    den = 1.0 + z**2 / n
+    centre = (p + z**2 / (2 * n)) / den
+    half = z * np.sqrt(p * (1 - p) / n + z**2 / (4 * n**2)) / den
+    return centre - half, centre + half
+
+
+def threshold(q, unstable) -> dict:
+    """Threshold in q from a boolean array ``unstable`` of shape (n_q, n_seeds) (see the module docstring).
+
+    Returns {estimate, low, high, status, n_nonmonotone}: status "ok", "below_grid" (f >= 1/2 at
+    every q: estimate NaN, high = q[0]), "above_grid" (f < 1/2 at the largest q: estimate NaN,
+    low = q[-1]). ``low``/``high`` are NaN when no grid point is conclusive on that side.
+    n_nonmonotone counts grid points below the crossing with f >= 1/2.
+    """
+    q = np.asarray(q, dtype=float)
+    u = np.asarray(unstable, dtype=bool)
+    n = u.shape[1]
+    hits = u.sum(axis=1)
+    f = hits / n
+    lo_ci, hi_ci = wilson_interval(hits, n)
+    nan = float("nan")
+    below = np.flatnonzero(f < 0.5)
+    if below.size == 0:
+        return {"estimate": nan, "low": nan, "high": float(q[0]), "status": "below_grid", "n_nonmonotone": 0}
+    j = int(below[-1])             # last grid point with f < 1/2
+    if j == q.size - 1:
+        return {"estimate": nan, "low": float(q[-1]), "high": nan, "status": "above_grid",
+                "n_nonmonotone": int(np.sum(f[:j] >= 0.5))}
+    i = j + 1
+    est = q[j] + (0.5 - f[j]) / (f[i] - f[j]) * (q[i] - q[j])
+    lows = np.flatnonzero(hi_ci[: j + 1] < 0.5)
+    highs = np.flatnonzero(lo_ci[i:] > 0.5)
+    low = float(q[lows[-1]]) if lows.size else nan
+    high = float(q[i + highs[0]]) if highs.size else nan
+    return {"estimate": float(est), "low": low, "high": high, "status": "ok",
+            "n_nonmonotone": int(np.sum(f[:j] >= 0.5))}
+
+
+# ---------------------------------------------------------------- config
+
+def q_indices(spec: dict, N: int) -> list[int]:
+    """The integers k with q = 2 pi k / N for the grid q / pi = start ... stop (count values)."""
+    g = spec["q_over_pi"]
+    vals = np.linspace(float(g["start"]), float(g["stop"]), int(g["count"]))
+    k = vals * N / 2.0
+    return [int(round(x)) for x in k]
+
+
+def resolved_spec(config: dict, variant: str) -> dict:
+    """The `beyond.mi_statistics.<variant>` parameters, with the shared keys merged in and checked.
+
+    Every q of the grid must sit on the ring's wavenumber grid, q N / (2 pi) an integer, for every N.
+    """
+    ms = config["beyond"]["mi_statistics"]
+    if variant not in ("reduced", "full"):
+        raise ValueError(f"config error: beyond.mi_statistics: unknown variant {variant!r} (reduced or full)")
+    common = {k: v for k, v in ms.items() if k not in ("reduced", "full")}
+    spec = {**common, **ms[variant], "variant": variant}
+    spec["alpha"] = float(spec.get("alpha") or config["defaults"]["alpha"])
+    d = config["defaults"]
+    spec["exact"] = {**{"method": d["exact"]["method"], "dt_factor": d["exact"]["dt_factor"]},
+                     **(spec.get("exact") or {})}
+    spec["dps"] = {**{"method": d["dps"]["method"], "rtol": d["dps"]["rtol"]}, **(spec.get("dps") or {})}
+    g = spec["q_over_pi"]
+    if not float(g["start"]) < float(g["stop"]):
+        raise ValueError(f"config error: beyond.mi_statistics.{variant}.q_over_pi = {g}: need start < stop")
+    vals = np.linspace(float(g["start"]), float(g["stop"]), int(g["count"]))
+    for N in spec["N"]:
+        if N % 2:
+            raise ValueError(f"config error: beyond.mi_statistics.{variant}.N = {N}: must be even (Gamma*)")
+        for v in vals:
+            k = v * N / 2.0
+            if abs(k - round(k)) > 1e-9:
+                raise ValueError(f"config error: beyond.mi_statistics.{variant}.q_over_pi = {g}: q = {v:.6g} pi "
+                                 f"gives q N / (2 pi) = {k:.6g} for N = {N}, not an integer (periodic ring)")
+    if int(spec["chunks"]) > int(g["count"]):
+        raise ValueError(f"config error: beyond.mi_statistics.{variant}.chunks = {spec['chunks']}: more chunks "
+                         f"than q values ({g['count']})")
+    return spec
+
+
+def chunk_indices(spec: dict, N: int, chunk: int) -> list[int]:
+    """The k of chunk ``chunk`` (0-based; q values dealt round-robin so the chunks cost about the same)."""
+    ks = q_indices(spec, N)
+    c = int(spec["chunks"])
+    if not 0 <= chunk < c:
+        raise ValueError(f"chunk must be in [0, {c - 1}], got {chunk}")
+    return ks[chunk::c]
+
+
+def seeds(spec: dict) -> list[int]:
+    """seed0, seed0 + 1, ...: the same noise realisations at every q (common random numbers)."""
+    return [int(spec["seed0"]) + s for s in range(int(spec["n_seeds"]))]
+
+
+def _attrs(spec: dict) -> dict:
+    g = spec["q_over_pi"]
+    return {"variant": spec["variant"], "model_names": ", ".join(MODELS), "alpha": spec["alpha"], "omega_tw": spec["omega_tw"],
+            "noise": spec["noise_kind"], "noise_amplitude": spec["noise_amplitude"], "t_end": spec["t_end"],
+            "sample_every": spec["sample_every"], "fraction": spec["fraction"],
+            "exclude_bins": spec["exclude_bins"], "seed0": spec["seed0"], "n_seeds": spec["n_seeds"],
+            "seeds": str(seeds(spec)), "q_over_pi_grid": f"{g['start']}..{g['stop']} ({g['count']} values)",
+            "exact_integrator": spec["exact"]["method"],
+            "exact_dt_factor": spec["exact"]["dt_factor"] if spec["exact"]["dt_factor"] is not None
+            else "method default (cradle.integrators.DEFAULT_DT_FACTOR)",
+            "dps_integrator": spec["dps"]["method"], "dps_rtol": spec["dps"]["rtol"],
+            "dps_atol": "rtol * max |A_n(0)|", "boundary": "periodic",
+            "initial_data": "travelling wave (ansatzapprox)-(freq), R = 1, phi = 0, perturbed as in (perturb)",
+            "ratio": "max |x_hat_k| / |x_hat_{+-q}| over Gamma* without +-q, +-2(q-pi), +-(3q-2pi) "
+                     "(+- exclude_bins bins), cradle.sidebands.sideband_peak",
+            "unstable_when": "ratio >= fraction at some sampled t <= t_end",
+            "threshold_method": "last upward crossing of 1/2 by the unstable fraction, linear interpolation; "
+                                "interval from Wilson 95 % binomial intervals at the grid points",
+            "dps_threshold_linear_theory": modulational.threshold(spec["alpha"])[0]}
+
+
+# ---------------------------------------------------------------- stages
+
+def batch(spec: dict, N: int, model: str, chunk: int, log=None):
+    """Runs of one (N, model, chunk): every q of the chunk times every seed -> Dataset (mis_* variables)."""
+    from .io import make_dataset
+
+    say = log or (lambda *a: None)
+    wall0 = time.perf_counter()
+    ks = chunk_indices(spec, N, chunk)
+    sd = seeds(spec)
+    t = sample_times(float(spec["t_end"]), float(spec["sample_every"]))
+    R = np.full((len(ks), len(sd), t.size), np.nan, dtype=np.float32)
+    KP = np.full((len(ks), len(sd)), np.nan)
+    TC = np.full((len(ks), len(sd)), np.nan)
+    DR = np.full((len(ks), len(sd)), np.nan)
+    amp = np.full(len(ks), np.nan)
+    for iq, k in enumerate(ks):
+        for js, s in enumerate(sd):
+            tt, r, kp, info = run_ratio(model, N, k, s, spec)
+            R[iq, js] = r
+            TC[iq, js] = crossing_time(tt, r, float(spec["fraction"]))
+            i = int(np.argmax(r >= float(spec["fraction"]))) if np.isfinite(TC[iq, js]) else int(np.argmax(r))
+            KP[iq, js] = kp[i]
+            DR[iq, js] = info["drift"]
+            amp[iq] = info["a"]
+        say(f"mi-statistics {spec['variant']}: N={N} {model} q={2 * k / N:.4f} pi: "
+            f"{int(np.sum(np.isfinite(TC[iq])))}/{len(sd)} unstable, {time.perf_counter() - wall0:.1f} s")
+    q = 2.0 * np.pi * np.asarray(ks) / N
+    data = {"mis_ratio": R[None, None], "mis_crossing_time": TC[None, None],
+            "mis_crossed": np.isfinite(TC)[None, None].astype(np.int8), "mis_k_peak": KP[None, None],
+            "mis_drift": DR[None, None], "mis_k_index": np.asarray(ks)[None, :], "mis_a": amp[None, :]}
+    coords = {"mis_N": [N], "mis_model": [MODELS.index(model)], "mis_q": q, "mis_seed": sd, "mis_t": t}
+    attrs = _attrs(spec) | {"chunk": chunk, "wall_time_s": time.perf_counter() - wall0}
+    return make_dataset(data, coords=coords, attrs=attrs, params=spec,
+                        title=f"mi-statistics batch: N = {N}, {model}, chunk {chunk}")
+
+
+def aggregate(batches, spec: dict):
+    """Join the batches of one variant (any order) and add the thresholds per (N, model)."""
+    import warnings
+
+    from .io import make_dataset
+
+    Ns = sorted({int(n) for b in batches for n in b["mis_N"].values})
+    models = [m for i, m in enumerate(MODELS) if any(i in b["mis_model"].values for b in batches)]
+    q = np.unique(np.concatenate([b["mis_q"].values for b in batches]))
+    qo = np.round(q / np.pi, 9)
+    names = ["mis_ratio", "mis_crossing_time", "mis_crossed", "mis_k_peak", "mis_drift"]
+    t = batches[0]["mis_t"].values
+    sd = batches[0]["mis_seed"].values
+    out = {nm: np.full((len(Ns), len(models), q.size, sd.size) + ((t.size,) if nm == "mis_ratio" else ()),
+                       np.nan, dtype=np.float32 if nm == "mis_ratio" else float) for nm in names}
+    kidx = np.full((len(Ns), q.size), -1, dtype=int)
+    amp = np.full((len(Ns), q.size), np.nan)
+    filled = np.zeros((len(Ns), len(models), q.size), dtype=bool)
+    wall = 0.0
+    for b in batches:
+        if not (np.array_equal(b["mis_t"].values, t) and np.array_equal(b["mis_seed"].values, sd)):
+            raise ValueError("mi-statistics: batches with different sample times or seeds")
+        wall += float(b.attrs.get("wall_time_s", 0.0))
+        iN = Ns.index(int(b["mis_N"].values[0]))
+        im = models.index(MODELS[int(b["mis_model"].values[0])])
+        iq = np.searchsorted(qo, np.round(b["mis_q"].values / np.pi, 9))
+        for nm in names:
+            out[nm][iN, im, iq] = b[nm].values[0, 0]
+        kidx[iN, iq] = b["mis_k_index"].values[0]
+        amp[iN, iq] = b["mis_a"].values[0]
+        filled[iN, im, iq] = True
+    if not filled.all():
+        missing = [(Ns[a], models[b_], float(qo[c])) for a, b_, c in zip(*np.nonzero(~filled))]
+        raise ValueError(f"mi-statistics: no batch for (N, model, q/pi) = {missing[:5]} ...")
+    out["mis_crossed"] = out["mis_crossed"].astype(np.int8)
+    frac = out["mis_crossed"].mean(axis=-1)
+    thr = {key: np.full((len(Ns), len(models)), np.nan) for key in ("estimate", "low", "high")}
+    status = {}
+    for iN, N in enumerate(Ns):
+        for im, m in enumerate(models):
+            th = threshold(q, out["mis_crossed"][iN, im].astype(bool))
+            for key in thr:
+                thr[key][iN, im] = th[key]
+            status[f"threshold_status_N{N}_{m}"] = th["status"]
+            status[f"threshold_nonmonotone_N{N}_{m}"] = th["n_nonmonotone"]
+    lo, hi = wilson_interval(out["mis_crossed"].sum(axis=-1), sd.size)
+    with warnings.catch_warnings():   # all-NaN slices (no unstable seed) give NaN, quietly
+        warnings.simplefilter("ignore", RuntimeWarning)
+        med = np.nanmedian(np.where(out["mis_crossed"] == 1, out["mis_crossing_time"], np.nan), axis=-1)
+    data = {**out, "mis_k_index": kidx, "mis_a": amp, "mis_fraction_unstable": frac,
+            "mis_fraction_low": lo, "mis_fraction_high": hi, "mis_median_crossing_time": med,
+            "mis_threshold": thr["estimate"], "mis_threshold_low": thr["low"], "mis_threshold_high": thr["high"]}
+    coords = {"mis_N": Ns, "mis_model": [MODELS.index(m) for m in models], "mis_q": q, "mis_seed": sd, "mis_t": t}
+    attrs = _attrs(spec) | status | {"batch_wall_time_s_total": wall, "n_runs": int(np.prod(frac.shape)) * sd.size}
+    return make_dataset(data, coords=coords, attrs=attrs, params=spec,
+                        title=f"Modulational-instability threshold statistics ({spec['variant']}): "
+                              "lattice (nc) and DpS (dfnls) over noise seeds")
