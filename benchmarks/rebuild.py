@@ -60,8 +60,8 @@ def job_times(results: Path) -> dict:
         kind = log.relative_to(results / "logs").parts[0]
         startup = next((float(m.group(1)) for _, text in lines
                         if (m := re.match(r"process start-up .*: ([\d.]+) s", text))), 0.0)
-        job = {"kind": kind, "name": log.stem, "startup": startup,
-               "total": startup + lines[-1][0] - lines[0][0], "draw": 0.0, "save": 0.0}
+        job = {"kind": kind, "name": log.stem, "startup": startup, "start": lines[0][0] - startup,
+               "end": lines[-1][0], "total": startup + lines[-1][0] - lines[0][0], "draw": 0.0, "save": 0.0}
         for _, text in lines:
             if m := re.match(r"figure \S+: drawn in ([\d.]+) s, saved in ([\d.]+) s", text):
                 job["draw"], job["save"] = float(m.group(1)), float(m.group(2))
@@ -99,6 +99,16 @@ def breakdown(results: Path, wall: float, cores: int) -> dict:
     }
     out["sum of job times"] = sum(j["total"] for j in jobs)
     out["Snakemake and idle cores"] = wall - out["sum of job times"] / cores
+    # from the first job's start to the last job's end: how long 0, 1, 2... jobs ran at once
+    events = sorted([(j["start"], 1) for j in jobs] + [(j["end"], -1) for j in jobs])
+    running, last, spans = 0, events[0][0], {}
+    for t, step in events:
+        spans[running] = spans.get(running, 0.0) + t - last
+        running, last = running + step, t
+    out["no job running: DAG before, wrap-up after"] = wall - (events[-1][0] - events[0][0])
+    for k in range(cores + 1):
+        out[f"{k} job{'s' if k != 1 else ''} running"] = spans.get(k, 0.0)
+    out[f"more than {cores} running"] = sum(v for k, v in spans.items() if k > cores)
     return out
 
 
@@ -119,6 +129,8 @@ def table(runs: dict, cores: int) -> str:
     rows = []
     for key in keys:
         cells = [f"{r[key]:.0f}" if key == "jobs" else f"{r[key]:.1f} s" for r in runs.values()]
+        if key.startswith("no job running"):
+            rows.append("| *timeline* |" + " |" * len(runs))
         label = f"**{key}**" if key == "wall" else (f"{key} (wall - sum/{cores})" if key.startswith("Snake")
                                                    else key)
         rows.append(f"| {label} | " + " | ".join(cells) + " |")

@@ -351,3 +351,12 @@ def test_store_times_dedup_within_tolerance():
 def test_store_times_snapshots_only():
     assert cc.store_times({"snapshots": [621.95]}, 621.95) == [0.0, 621.95]
     assert cc.store_times({"snapshots": [0.0, 5.0]}, 10.0) == [0.0, 5.0, 10.0]
+
+
+def test_validate_is_idempotent_and_remembered():
+    """A validated config validates to itself, which is what lets resolved_* skip revalidating it."""
+    cfg = cc.load(CONFIG)
+    assert cc.validate(cfg) == cfg
+    cc._VALIDATED.clear()
+    cfg = cc.load(CONFIG)
+    assert len(cc._VALIDATED) == 1 and cc._validated(cfg) == cfg and len(cc._VALIDATED) == 1

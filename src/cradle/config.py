@@ -772,10 +772,23 @@ def validate(config: dict) -> dict:
     _physical(cfg, out)
     if out.lines:
         raise ConfigError(out.lines)
+    _remember(cfg)
     return cfg
 
 
 _VALIDATED: dict[str, dict] = {}
+
+
+def _remember(cfg: dict) -> None:
+    """A validated config validates to itself (tested): remember it, so that the resolved_*
+    calls the Snakefile makes with it, once per job, do not validate it again."""
+    try:
+        key = json.dumps(cfg, sort_keys=True, default=repr)
+    except (TypeError, ValueError):
+        return
+    if len(_VALIDATED) >= 8:
+        _VALIDATED.pop(next(iter(_VALIDATED)))
+    _VALIDATED[key] = copy.deepcopy(cfg)
 
 
 def _validated(config: dict) -> dict:

@@ -32,7 +32,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import quad
 
 from . import dps
 from .lattice import check_alpha
@@ -262,6 +261,8 @@ def _breaks(q):
 
 def va_leading(xi, q, alpha):
     """K_h P_h N0(sin) of (va), with the operators (ph) and (kh), by adaptive quadrature."""
+    from scipy.integrate import quad  # here: scipy.integrate takes 0.5 s to import, and the Snakefile imports us
+
     f = lambda s: float(N0(s, q, alpha))  # noqa: E731
     br = _breaks(q)
     opts = dict(epsabs=1e-13, epsrel=1e-11, limit=400)
@@ -293,6 +294,8 @@ def binary_period(A: float, alpha: float) -> float:
     T = 4 int_0^{pi/2} A cos(th) dth / sqrt(A^2 cos^2 th + 2^(alpha+1) A^(alpha+1) (1 - sin^(alpha+1) th)/(alpha+1)),
     the substitution a = A sin(th) removing the turning-point singularity.
     """
+    from scipy.integrate import quad
+
     alpha = check_alpha(alpha)
     k = 2.0**alpha
 

@@ -52,7 +52,6 @@ import sys
 import time
 
 import numpy as np
-import xarray as xr
 
 from . import lattice
 from .variables import Var
@@ -278,6 +277,8 @@ def _version(pkg: str) -> str:
 
 def _dataset(fields: dict, methods, S, t, D, attrs, title) -> xr.Dataset:
     """A self-describing Dataset (cradle.io.make_dataset conventions) from the measured arrays."""
+    import xarray as xr  # here, not at the top: the Snakefile imports this module to plan
+
     from .io import make_dataset
 
     ds = make_dataset({}, attrs=attrs, title=title)
