@@ -7,6 +7,14 @@
 # figures (figures.smk) and the claims table (checks.smk).
 
 
+import os
+
+# one BLAS thread per job: the dense solves here are small, and with one job per core (-j2 on
+# 2 cores) more threads only contend; every job inherits this (set OPENBLAS_NUM_THREADS to override)
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+
 configfile: "config.yaml"
 
 

@@ -146,12 +146,12 @@ def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):
     assert dps.omega_tw(d.info["a"], 2 * np.pi * 12 / 40, 1.5) == pytest.approx(1.1)
     # written, read back and drawn
     from cradle.figures import save_figure
-    from cradle.figures.mi import MI_FIGURES
+    from cradle.figures.mi import DATASET_FIGURES
     from cradle.io import open_dataset, write_netcdf
 
     back = open_dataset(write_netcdf(ds, tmp_path / "mis.nc"))
     np.testing.assert_array_equal(back["mis_crossed"].values, crossed)
-    assert all(p.stat().st_size > 0 for p in save_figure(MI_FIGURES["mi-statistics"](back), tmp_path / "mis"))
+    assert all(p.stat().st_size > 0 for p in save_figure(DATASET_FIGURES["mi-statistics"](back), tmp_path / "mis"))
 
 
 def test_config_rejects_a_q_grid_off_the_ring(raw):

@@ -89,6 +89,18 @@ def initial_guess(N: int, kind: str, alpha: float = 1.5, amplitude: float = 0.1,
     return a
 
 
+def _checked(guess, alpha: float, bc: str, mu: float):
+    """(alpha, guess as a float array) after checking alpha > 1, bc, mu > 0 and N >= 2."""
+    alpha = check_alpha(alpha)
+    check_bc(bc)
+    if not mu > 0:
+        raise ValueError(f"mu must be > 0 for nontrivial localised solutions (section 2.2), got mu={mu!r}")
+    guess = np.asarray(guess, dtype=float)
+    if guess.ndim != 1 or guess.size < 2:
+        raise ValueError(f"need N >= 2 sites, got N={guess.size}")
+    return alpha, guess
+
+
 def solve(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: float = 1e-14,
           newton_steps: int = 3) -> Homoclinic:
     """Solve (dpsst) -mu a_n = g(a_{n+1}-a_n) - g(a_n-a_{n-1}) from ``guess`` (a mu = 1 guess).
@@ -98,13 +110,7 @@ def solve(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: floa
     scaled by mu^(1/(alpha-1)). ``residual`` is the max-norm residual of the
     scaled equation (dpsst).
     """
-    alpha = check_alpha(alpha)
-    check_bc(bc)
-    if not mu > 0:
-        raise ValueError(f"mu must be > 0 for nontrivial localised solutions (section 2.2), got mu={mu!r}")
-    guess = np.asarray(guess, dtype=float)
-    if guess.ndim != 1 or guess.size < 2:
-        raise ValueError(f"need N >= 2 sites, got N={guess.size}")
+    alpha, guess = _checked(guess, alpha, bc, mu)
     sol = root(residual, guess, args=(alpha, bc), jac=jacobian, method="hybr", options={"xtol": xtol})
     a = sol.x
     for _ in range(newton_steps):  # quadratic convergence from hybr's answer
@@ -337,13 +343,7 @@ def solve_scaled(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xto
     Jacobian, then Newton steps. The start for nu is the balance at the
     pinned site, nu0 = -(p-Laplacian of b)_c / b_c (2 for a single-site guess).
     """
-    alpha = check_alpha(alpha)
-    check_bc(bc)
-    if not mu > 0:
-        raise ValueError(f"mu must be > 0 for nontrivial localised solutions (section 2.2), got mu={mu!r}")
-    guess = np.asarray(guess, dtype=float)
-    if guess.ndim != 1 or guess.size < 2:
-        raise ValueError(f"need N >= 2 sites, got N={guess.size}")
+    alpha, guess = _checked(guess, alpha, bc, mu)
     top = float(np.max(np.abs(guess)))
     if not (np.isfinite(top) and top > 0):
         raise ValueError(f"the guess must be finite and not identically 0, got max|guess| = {top!r}")

@@ -41,10 +41,12 @@ rule theorem1_figure:
     output:
         pdf="results/figures/theorem1.pdf",
         png="results/figures/theorem1.png",
+    params:
+        label="theorem1",
     log:
         "results/logs/figures/theorem1.log",
     script:
-        "../scripts/theorem1.py"
+        "../scripts/dataset_figure.py"
 
 
 rule theorem1:
@@ -83,10 +85,12 @@ rule mi_diagram_figure:
     output:
         pdf="results/figures/mi-diagram.pdf",
         png="results/figures/mi-diagram.png",
+    params:
+        label="mi-diagram",
     log:
         "results/logs/figures/mi-diagram.log",
     script:
-        "../scripts/mi_diagram.py"
+        "../scripts/dataset_figure.py"
 
 
 rule mi_diagram:

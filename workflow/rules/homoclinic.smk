@@ -2,6 +2,7 @@
 
 
 rule homoclinic:
+    priority: 30  # stage 1 first: it unlocks the breather scenes
     conda:
         "../envs/cradle.yaml"
     message:
@@ -21,6 +22,7 @@ rule homoclinic:
 
 
 rule map_orbits:
+    priority: 30  # stage 1 first, not left to the end beside one figure
     conda:
         "../envs/cradle.yaml"
     message:

@@ -50,10 +50,12 @@ rule mi_growth_figure:
     output:
         pdf="results/figures/mi-growth.pdf",
         png="results/figures/mi-growth.png",
+    params:
+        label="mi-growth",
     log:
         "results/logs/figures/mi-growth.log",
     script:
-        "../scripts/mi_growth.py"
+        "../scripts/dataset_figure.py"
 
 
 rule mi_growth:
@@ -123,10 +125,12 @@ for _variant in ("reduced", "full"):
         output:
             pdf=f"{MI_FIGURE_STEM[_variant]}.pdf",
             png=f"{MI_FIGURE_STEM[_variant]}.png",
+        params:
+            label="mi-statistics",
         log:
             f"results/logs/mi/{_variant}/figure.log",
         script:
-            "../scripts/mi_statistics.py"
+            "../scripts/dataset_figure.py"
 
 
 rule mi_statistics:

@@ -7,6 +7,7 @@
 
 
 rule simulate:
+    priority: 20  # all scenes before the figures: the two cores stay busy to the end
     conda:
         "../envs/cradle.yaml"
     message:

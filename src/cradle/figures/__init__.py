@@ -56,33 +56,39 @@ def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
     return _pyplot().subplots(nrows, ncols, figsize=(width, height), constrained_layout=True, **kw)
 
 
-def module_of(label: str) -> str:
-    """Name of the module here whose ``FIGURES`` dict draws ``label``, found by reading the
+#: the two registries a module here may define: ``FIGURES`` (paper figures, drawn from the
+#: scenes' files by :func:`draw`) and ``DATASET_FIGURES`` (beyond the paper, each drawn from the
+#: one netCDF file of its analysis by :func:`draw_dataset`)
+REGISTRIES = ("FIGURES", "DATASET_FIGURES")
+
+
+def _declared(path: Path, registry: str) -> list[str]:
+    """The labels of ``registry`` in the module at ``path``, read from its source."""
+    m = re.search(rf"^{registry}\s*=\s*\{{(.*?)\}}", path.read_text(), re.M | re.S)
+    return re.findall(r"[\"']([\w.-]+)[\"']\s*:", m.group(1)) if m else []
+
+
+def module_of(label: str, registry: str = "FIGURES") -> str:
+    """Name of the module here whose ``registry`` dict draws ``label``, found by reading the
     sources (nothing is imported; the Snakefile uses it to make that module a rule input)."""
-    found = [path.stem for path in sorted(_HERE.glob("[!_]*.py"))
-             if (m := re.search(r"^FIGURES\s*=\s*\{(.*?)\}", path.read_text(), re.M | re.S))
-             and re.search(rf"[\"']{re.escape(label)}[\"']\s*:", m.group(1))]
+    found = [path.stem for path in sorted(_HERE.glob("[!_]*.py")) if label in _declared(path, registry)]
     if len(found) != 1:
         raise KeyError(f"figure {label!r} is drawn by {len(found)} modules of {_HERE} ({found}); "
-                       f"known: {sorted(labels())}")
+                       f"known: {sorted(labels(registry))}")
     return found[0]
 
 
-def labels() -> list[str]:
-    """Every label some module here draws (read from the sources)."""
-    out = []
-    for path in sorted(_HERE.glob("[!_]*.py")):
-        if m := re.search(r"^FIGURES\s*=\s*\{(.*?)\}", path.read_text(), re.M | re.S):
-            out += re.findall(r"[\"']([\w.-]+)[\"']\s*:", m.group(1))
-    return out
+def labels(registry: str = "FIGURES") -> list[str]:
+    """Every label some module here draws in ``registry`` (read from the sources)."""
+    return [label for path in sorted(_HERE.glob("[!_]*.py")) for label in _declared(path, registry)]
 
 
-def drawer(label: str):
+def drawer(label: str, registry: str = "FIGURES"):
     """The drawing function of ``label``, importing only its module."""
     import importlib
 
-    module = importlib.import_module(f"{__name__}.{module_of(label)}")
-    return module.FIGURES[label]
+    module = importlib.import_module(f"{__name__}.{module_of(label, registry)}")
+    return getattr(module, registry)[label]
 
 
 def registry() -> dict:
@@ -125,6 +131,12 @@ def load_inputs(scenes: dict, root) -> dict:
                 ("exact", root / "sim" / name / "exact.nc"), ("dps", root / "sim" / name / "dps.nc"),
                 ("metrics", root / "metrics" / f"{name}.nc"))}
     return data
+
+
+def draw_dataset(label: str, ds, stem) -> list[Path]:
+    """Draw the beyond-the-paper figure ``label`` (a ``DATASET_FIGURES`` entry) from the Dataset
+    of its analysis and save it as ``stem``.pdf/.png."""
+    return save_figure(drawer(label, "DATASET_FIGURES")(ds), stem)
 
 
 def draw(label: str, data: dict, options: dict, stem) -> list[Path]:

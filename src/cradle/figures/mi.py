@@ -2,8 +2,8 @@
 
 They read the netCDF outputs of the `mi_growth` and `mi_statistics` rules
 (results/mi/mi-growth.nc, results/mi/[full/]mi-statistics.nc), not scene files,
-so, as in :mod:`.beyond`, they sit in :data:`MI_FIGURES` rather than a
-``FIGURES`` registry; the rules call ``MI_FIGURES[label](ds)`` and
+so, as in :mod:`.beyond`, they sit in :data:`DATASET_FIGURES` rather than a
+``FIGURES`` registry; the rules call ``DATASET_FIGURES[label](ds)`` and
 :func:`cradle.figures.save_figure`.
 """
 from __future__ import annotations
@@ -146,4 +146,4 @@ def mi_statistics(ds):
     return fig
 
 
-MI_FIGURES = {"mi-growth": mi_growth, "mi-statistics": mi_statistics}
+DATASET_FIGURES = {"mi-growth": mi_growth, "mi-statistics": mi_statistics}

@@ -1,0 +1,11 @@
+"""Snakemake adapter: draw a beyond-the-paper figure from the netCDF of its analysis
+-> results/figures/<label>.{pdf,png} (or the variant's folder)."""
+from pathlib import Path
+
+from cradle.figures import draw_dataset
+from cradle.io import open_dataset
+from cradle.runner import setup_logging
+
+sm = snakemake  # noqa: F821 (injected by Snakemake)
+setup_logging(sm.log[0])
+draw_dataset(sm.params.label, open_dataset(sm.input.data), Path(sm.output.pdf).with_suffix(""))
