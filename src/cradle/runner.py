@@ -37,17 +37,22 @@ def process_age() -> float | None:
         return None
 
 
+_STARTUP_LOGGED = False  # only the first log of a process says how long its start-up took
+
+
 def setup_logging(log_path: str | None = None) -> None:
-    """Log to ``log_path`` (if given) and to stderr, one line per message; the first line
-    gives the process start-up time (see :func:`process_age`)."""
+    """Log to ``log_path`` (if given) and to stderr, one line per message; the first call in a
+    process starts with the process start-up time (see :func:`process_age`)."""
     handlers: list[logging.Handler] = [logging.StreamHandler(sys.stderr)]
     if log_path:
         Path(log_path).parent.mkdir(parents=True, exist_ok=True)
         handlers.append(logging.FileHandler(log_path, mode="w"))
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", handlers=handlers, force=True)
-    age = process_age()
+    global _STARTUP_LOGGED
+    age = None if _STARTUP_LOGGED else process_age()
     if age is not None:
         log.info("process start-up (interpreter, imports): %.2f s", age)
+        _STARTUP_LOGGED = True
 
 
 def failed_path(out: str | Path) -> Path:
