@@ -20,17 +20,18 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/checks.smk"
 include: "workflow/rules/beyond.smk"
+include: "workflow/rules/floquet.smk"
 
 
 PAPER = figure_targets() + ["results/paper_checks.csv", "results/paper_checks.md"]
 
 
-BEYOND = [f"results/figures/{label}.{ext}" for label in ("theorem1", "mi-diagram", "work-precision")
+BEYOND = [f"results/figures/{label}.{ext}" for label in ("theorem1", "mi-diagram", "work-precision", "floquet")
           for ext in ("pdf", "png")]
 
 
 rule all:
-    # the paper, and the analyses beyond it (workflow/rules/beyond.smk, workprecision.smk)
+    # the paper, and the analyses beyond it (workflow/rules/beyond.smk, workprecision.smk, floquet.smk)
     default_target: True
     input:
         PAPER,
