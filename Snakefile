@@ -29,17 +29,19 @@ include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/checks.smk"
 include: "workflow/rules/beyond.smk"
 include: "workflow/rules/mi.smk"
+include: "workflow/rules/floquet.smk"
 
 
 PAPER = figure_targets() + ["results/paper_checks.csv", "results/paper_checks.md"]
 
 
-BEYOND = [f"results/figures/{label}.{ext}" for label in ("theorem1", "mi-diagram", "mi-growth", "mi-statistics", "work-precision")
+BEYOND = [f"results/figures/{label}.{ext}"
+          for label in ("theorem1", "mi-diagram", "mi-growth", "mi-statistics", "floquet", "work-precision")
           for ext in ("pdf", "png")]
 
 
 rule all:
-    # the paper, and the analyses beyond it (workflow/rules/beyond.smk, workprecision.smk)
+    # the paper, and the analyses beyond it (workflow/rules/beyond.smk, mi.smk, floquet.smk, workprecision.smk)
     default_target: True
     input:
         PAPER,

@@ -45,7 +45,7 @@ __all__ = [
 KNOWN_FIGURES = (
     "traj3", "traj2", "bcsc", "plot4-5", "plotcomplin", "plot6-7", "plot2-3", "plot1v5st", "plot1v5",
     "plot8-11", "plot9-10", "plot29-30", "plot26-27", "plot28", "fft106", "fftseuil", "fft344",
-    "plot18", "loc1", "fini", "theorem1", "mi-diagram", "mi-growth", "mi-statistics", "work-precision",
+    "plot18", "loc1", "fini", "theorem1", "mi-diagram", "mi-growth", "mi-statistics", "work-precision", "floquet",
 )
 
 SECTIONS = ("map", "homoclinic", "scenes")  # the name spaces a figure's `scenes:` list reads from

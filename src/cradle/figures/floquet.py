@@ -1,0 +1,87 @@
+"""Figure beyond the paper: Bloch-Floquet stability of the exact travelling waves (floquet).
+
+Reads results/floquet/floquet.nc (rule floquet_compute, :mod:`cradle.floquet`), not scene files, so it
+is not in a ``FIGURES`` registry (whose functions take scene data): the rule calls
+:data:`DATASET_FIGURES` ``["floquet"](ds)`` and :func:`cradle.figures.save_figure`.
+
+(a) max over p of the growth rate against q, lattice (exact waves) and DpS, thresholds marked, the
+    fftseuil wavenumbers 50, 51, 52 pi/100 shaded; (b) the lattice growth rate over (q, p), with the DpS
+    unstable region outlined; (c) growth against p at the selected q, lattice solid, DpS dashed;
+    (d) the lattice threshold against the amplitude (omega_tw - 1), tending to the DpS pi/2.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import figure
+
+
+def _frac(q):
+    return f"{q / np.pi:.3g}" + r"$\pi$"
+
+
+def floquet(ds):
+    fig, ax = figure(2, 2, width=10.0, height=7.6)
+    q, p = ds["fq_q"].values, ds["fq_p"].values
+    qc = float(ds.attrs["q_threshold_lattice"])
+    dq = float(ds.attrs["q_threshold_uncertainty"])
+    om = float(ds.attrs["omega_tw"])
+    # (a)
+    A = ax[0, 0]
+    A.plot(q / np.pi, ds["fq_max_growth"].values, "-", color="C0", label="lattice (exact waves, Bloch-Floquet)")
+    A.plot(q / np.pi, ds["fq_dps_max_growth"].values, "--", color="C3", label="DpS, lattice time (R = a/2)")
+    A.axvline(qc / np.pi, color="C0", lw=0.8, ls=":")
+    A.axvline(0.5, color="C3", lw=0.8, ls=":")
+    for qq in (0.50, 0.51, 0.52):
+        A.axvline(qq, color="0.6", lw=0.5)
+    A.set_xlabel(r"$q/\pi$")
+    A.set_ylabel(r"max$_p$ growth rate (1/t)")
+    A.set_title(rf"(a) $\omega_{{tw}}$ = {om:g}: $q_c$(lattice) = {qc / np.pi:.5f}$\pi$ $\pm$ {dq:.1g} rad, "
+                rf"$q_c$(DpS) = $\pi/2$", fontsize=9)
+    if np.isfinite(ds.attrs.get("q_dip", np.nan)):
+        A.annotate(f"dip {ds.attrs['growth_dip']:.1g}", (ds.attrs["q_dip_over_pi"], 0.0), xytext=(0, 18),
+                   textcoords="offset points", fontsize=6.5, ha="center", arrowprops={"arrowstyle": "->", "lw": 0.6})
+    A.legend(fontsize=7, loc="upper left")
+    # (b)
+    B = ax[0, 1]
+    G = ds["fq_growth"].values
+    mesh = B.pcolormesh(q / np.pi, p / np.pi, G.T, shading="nearest", cmap="viridis")
+    fig.colorbar(mesh, ax=B, label="lattice growth rate (1/t)")
+    Gd = ds["fq_dps_growth"].values
+    if np.any(Gd > 0) and np.any(Gd <= 0):
+        B.contour(q / np.pi, p / np.pi, (Gd > 0).T.astype(float), levels=[0.5], colors="w", linewidths=0.8,
+                  linestyles="--")
+    B.axvline(qc / np.pi, color="w", lw=0.6, ls=":")
+    B.set_xlabel(r"$q/\pi$")
+    B.set_ylabel(r"$p/\pi$")
+    B.set_title("(b) lattice growth over (q, p); DpS unstable region dashed", fontsize=9)
+    # (c)
+    C = ax[1, 0]
+    for i, qq in enumerate(ds["fq_q_profile"].values):
+        C.plot(p / np.pi, ds["fq_profile_growth"].values[i], "-", color=f"C{i}", label=f"q = {_frac(qq)}")
+        C.plot(p / np.pi, ds["fq_profile_dps_growth"].values[i], "--", color=f"C{i}", lw=0.8)
+    C.set_xlabel(r"$p/\pi$")
+    C.set_ylabel("growth rate (1/t)")
+    C.set_title("(c) growth against p: lattice (solid), DpS (dashed)", fontsize=9)
+    C.legend(fontsize=7)
+    # (d)
+    D = ax[1, 1]
+    omt = ds["fq_omega_tw"].values
+    thr = ds["fq_threshold"].values
+    D.semilogx(omt - 1.0, thr / np.pi, "o-", color="C0", label="lattice threshold")
+    D.axhline(0.5, color="C3", ls="--", lw=0.8, label=r"DpS: $\pi/2$")
+    for x, y, pp in zip(omt - 1.0, thr / np.pi, ds["fq_threshold_p"].values / np.pi):
+        D.annotate(f"p={pp:.2f}$\\pi$", (x, y), xytext=(4, -10), textcoords="offset points", fontsize=6.5)
+    D.set_xlabel(r"$\omega_{tw} - 1$ (amplitude from (freq))")
+    D.set_ylabel(r"$q_c/\pi$")
+    D.set_title(r"(d) lattice threshold $\to \pi/2$ as the amplitude $\to 0$", fontsize=9)
+    D.legend(fontsize=7)
+    lines = [f"small amplitude (omega_tw = {ds.attrs['small_omega_tw']:g}): |lattice/DpS - 1| <= "
+             f"{ds.attrs['small_max_rel_error']:.2g}",
+             f"ring N = {ds.attrs['ring_N']}: |mu_monodromy - mu_Bloch| <= {ds.attrs['ring_multiplier_distance']:.1g}",
+             f"direct run: rate {ds.attrs['direct_rate_mode']:.4g} vs Floquet {ds.attrs['direct_rate_floquet']:.4g}"]
+    D.text(0.02, 0.02, "\n".join(lines), transform=D.transAxes, fontsize=6.5, va="bottom")
+    return fig
+
+
+DATASET_FIGURES = {"floquet": floquet}

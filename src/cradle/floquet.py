@@ -1,0 +1,572 @@
+"""Spectral stability of the exact travelling waves of (nc): Bloch-Floquet in the co-moving frame.
+
+Linearising (nc) with V = V0 about the exact wave x_n(t) = u(q n - omega t) of :mod:`cradle.theorem1`
+(the force of bond n is V0'(x_{n+1} - x_n), see :mod:`cradle.lattice`) gives
+
+    y_n'' + y_n = K(xi_n) (y_{n+1} - y_n) - K(xi_n - q) (y_n - y_{n-1}),   xi_n = q n - omega t,   (lin)
+
+with K(xi) = V0''(u(xi + q) - u(xi)) = alpha |d|^(alpha-1) H(-d): continuous for alpha > 1 (Hoelder
+alpha - 1 where a contact opens), so the linearisation is legitimate. The coefficients depend on (n, t)
+only through xi: (lin) is invariant under t -> t + T (T = 2 pi / omega) and under (n, t) -> (n + 1,
+t + q / omega). Joint eigenfunctions of both are the Bloch-Floquet modes
+
+    y_n(t) = e^{lambda t} e^{i p n} W(xi_n),   W 2 pi-periodic,                               (bloch)
+
+and (lin) becomes, for each perturbation wavenumber p, the quadratic eigenvalue problem on the circle
+
+    omega^2 W'' - 2 lambda omega W' + (lambda^2 + 1) W = L_p W,
+    L_p W = K(xi) (e^{ip} W(xi + q) - W(xi)) - K(xi - q) (W(xi) - e^{-ip} W(xi - q)),
+
+solved here by Hill's method: W = sum_{|m| <= L} W_m e^{i m xi}, K by its Fourier coefficients (FFT of
+K on an M-point grid). L_p is Hermitian and the first-order term skew-Hermitian (a gyroscopic
+pencil), also after truncation, so the computed spectrum keeps the Hamiltonian symmetry
+lambda -> -conj(lambda): stable modes stay on the imaginary axis (|Re lambda| at round-off).
+
+Labelling. (lambda, p, W) and (lambda + i omega, p - q, e^{i xi} W) are the same lattice solution, so
+the pair (lambda, p) is defined modulo (i omega, -q). At a -> 0 the spectrum is lambda = i (m omega
++- 1); exactly two eigenvalues, +-i (omega - 1), lie in the central strip |Im lambda| < omega / 2, with
+W = e^{-+i xi}: the lattice modes e^{i(p - q) n + i t} and e^{i(p + q) n - i t}, i.e. the sidebands p of
+the DpS plane wave (ansatz3). So g(p) = max Re lambda over the central strip is the lattice
+counterpart of the DpS growth rate of sideband p; the other strips at p repeat the central strip at
+p + m q. The fastest growth over all perturbations is max_p g(p).
+
+On a ring of N sites with q = 2 pi k / N the wave is T-periodic and (lin) has a 2N x 2N monodromy
+matrix; its Floquet exponents ln(mu) / T (mod i omega) are the central-strip eigenvalues of (bloch)
+at p = 2 pi j / N, j = 0..N-1 (two per p): :func:`ring_monodromy` computes it by brute force (the
+variational equations with DOP853) to check the reduction. Trivial multipliers: time translation
+(W = u', p = 0, lambda = 0) and the amplitude family (its Jordan partner) give a double multiplier 1.
+
+Small amplitude: x_n ~ eps (A_n e^{it} + c.c.) with A = R e^{i(...)} and a = 2 eps R, tau = eps^(alpha-1) t,
+so a DpS growth rate lambda_tau converts to lattice time as growth_rate(q, p, alpha, R = a / 2)
+(homogeneous of degree alpha - 1 in R): :func:`dps_growth`.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import dps
+from . import theorem1 as t1
+from .lattice import check_alpha
+
+DEFAULT_HILL_MODES = 32      # L: Fourier modes |m| <= L of W
+DEFAULT_GRID_LOG2 = 14       # M = 2^14 points for the Fourier coefficients of K
+NOISE_FLOOR = 1e-7           # Re lambda below this (per unit t: e-folding time 1e7) counts as neutral
+# The trivial pair at p = 0 (double multiplier 1) splits by the discretisation error, ~1e-5 (see
+# trivial_defect), and the splitting leaks to |p| ~ 1e-2: maxima over p leave out p < P_EXCLUDE. Where a
+# genuine band reaches p -> 0 its rate grows like p, so its maximum lies further out.
+P_EXCLUDE = 0.02 * np.pi
+
+
+# ----------------------------------------------------------------- the waves
+
+def wave_for(q: float, alpha: float, *, a: float | None = None, omega_tw: float | None = None, modes: int = 128,
+             grid_log2: int = 16) -> t1.Wave:
+    """The exact wave of (ad) of amplitude a (first sine coefficient), or with a = (freq) inverted at omega_tw.
+
+    The paper's travelling-wave scenes fix omega_tw and take a from (freq); the exact wave with that a
+    has a slightly different frequency omega_a (Theorem 1), stored alongside.
+    """
+    if (a is None) == (omega_tw is None):
+        raise ValueError(f"give exactly one of a and omega_tw (got a={a!r}, omega_tw={omega_tw!r})")
+    if a is None:
+        a = dps.amplitude_from_omega(omega_tw, q, alpha)
+    w = t1.solve(float(a), float(q), alpha, modes=modes, M=2 ** int(grid_log2))
+    if not w.residual < 1e-10:
+        raise RuntimeError(f"exact wave q={q!r} a={a!r}: Newton residual {w.residual:.3g}")
+    return w
+
+
+def coupling(w: t1.Wave, M: int = 2**DEFAULT_GRID_LOG2) -> np.ndarray:
+    """K(xi) = V0''(u(xi + q) - u(xi)) on the M-point grid."""
+    c = w.coefficients()
+    d = t1.synth(c, M, w.q) - t1.synth(c, M)
+    return t1._d2V0(d, w.alpha)
+
+
+def coupling_fourier(w: t1.Wave, M: int = 2**DEFAULT_GRID_LOG2) -> np.ndarray:
+    """Fourier coefficients K_hat_j, K(xi) = sum_j K_hat_j e^{i j xi}, as an FFT-ordered array of length M."""
+    return np.fft.fft(coupling(w, M)) / M
+
+
+# ----------------------------------------------------------------- Hill's method for (bloch)
+
+class Hill:
+    """The pencil of (bloch) for one wave, truncated to |m| <= L; :meth:`eigenvalues` for any p."""
+
+    def __init__(self, w: t1.Wave, L: int = DEFAULT_HILL_MODES, M: int = 2**DEFAULT_GRID_LOG2):
+        if M < 8 * (2 * L + 1):
+            raise ValueError(f"M = {M} grid points too few for L = {L} Hill modes (need M >= 8 (2L + 1))")
+        self.w, self.L, self.M = w, int(L), int(M)
+        self.omega = w.omega
+        Kh = coupling_fourier(w, M)
+        m = np.arange(-self.L, self.L + 1)
+        self.m = m
+        diff = m[:, None] - m[None, :]
+        self.Kd = Kh[diff % M]                                   # K_hat_{m - m'}
+        self.phase_minus = np.exp(-1j * diff * w.q)              # coefficients of K(xi - q)
+        self.eq = np.exp(1j * m * w.q)                           # e^{i m' q}
+
+    def operator(self, p: float) -> np.ndarray:
+        """The matrix of L_p on e^{i m xi}, |m| <= L (Hermitian)."""
+        ep = np.exp(1j * p) * self.eq[None, :]
+        return self.Kd * (ep - 1.0) - self.Kd * self.phase_minus * (1.0 - np.conj(ep))
+
+    def eigenvalues(self, p: float, vectors: bool = False):
+        """All 2 (2L + 1) eigenvalues lambda of the truncated pencil (and the W-parts of the eigenvectors)."""
+        n = self.m.size
+        om, m = self.omega, self.m
+        D = np.diag(1.0 - om**2 * m**2).astype(complex) - self.operator(p)
+        C = np.diag(-2j * om * m)
+        A = np.zeros((2 * n, 2 * n), dtype=complex)
+        A[:n, n:] = np.eye(n)
+        A[n:, :n] = -D
+        A[n:, n:] = -C
+        if vectors:
+            lam, V = np.linalg.eig(A)
+            return lam, V[:n]
+        return np.linalg.eigvals(A)
+
+    def central(self, p: float) -> np.ndarray:
+        """The eigenvalues in the central strip |Im lambda| < omega / 2 (the sidebands p; two expected)."""
+        lam = self.eigenvalues(p)
+        return lam[np.abs(lam.imag) < 0.5 * self.omega]
+
+    def growth(self, p) -> np.ndarray:
+        """g(p) = max Re lambda over the central strip (0 where every Re lambda < NOISE_FLOOR)."""
+        out = []
+        for pp in np.atleast_1d(np.asarray(p, dtype=float)):
+            c = self.central(pp)
+            g = float(np.max(c.real)) if c.size else float("nan")
+            out.append(g if g > NOISE_FLOOR else 0.0)
+        return np.asarray(out)
+
+    def signed(self, p: float, floor: float = NOISE_FLOOR) -> float:
+        """max Re lambda of the central pair if > floor, else -|Im lambda_1 - Im lambda_2| (the distance to
+        a collision): continuous in p, so a narrow unstable band opening between grid points is found by
+        maximising it."""
+        c = self.central(p)
+        if c.size != 2:
+            return float("nan")
+        g = float(np.max(c.real))
+        return g if g > floor else -abs(float(c[0].imag - c[1].imag))
+
+    def max_signed(self, n_p: int = 61, floor: float = NOISE_FLOOR):
+        """(max over p in (0, pi] of :meth:`signed`, its p): grid, then a bounded refinement (p = 0, the
+        trivial double multiplier, and its neighbourhood p < P_EXCLUDE are left out)."""
+        from scipy.optimize import minimize_scalar
+
+        ps = np.linspace(0.0, np.pi, n_p)
+        ps = ps[ps >= P_EXCLUDE]
+        s = np.array([self.signed(pp, floor) for pp in ps])
+        i = int(np.nanargmax(s))
+        lo = ps[i - 1] if i > 0 else ps[0]
+        hi = ps[min(i + 1, ps.size - 1)]
+        res = minimize_scalar(lambda x: -self.signed(x, floor), bounds=(lo, hi), method="bounded",
+                              options={"xatol": 1e-7})
+        if np.isfinite(res.fun) and -res.fun > s[i]:
+            return float(-res.fun), float(res.x)
+        return float(s[i]), float(ps[i])
+
+    def trivial_defect(self) -> float:
+        """max |lambda| of the central pair at p = 0 (exactly 0: time translation and its Jordan partner)."""
+        return float(np.max(np.abs(self.central(0.0))))
+
+    def max_growth(self, n_p: int = 121):
+        """(max_p g(p), argmax p in [P_EXCLUDE, pi]): grid search (g(-p) = g(p)), then a bounded refinement."""
+        from scipy.optimize import minimize_scalar
+
+        ps = np.linspace(0.0, np.pi, n_p)
+        ps = ps[ps >= P_EXCLUDE]                   # p ~ 0: the trivial pair (see trivial_defect)
+        g = self.growth(ps)
+        i = int(np.argmax(g))
+        if not g[i] > 0.0:
+            return 0.0, float("nan")
+        lo = ps[i - 1] if i > 0 else ps[0]
+        hi = ps[min(i + 1, ps.size - 1)]
+        res = minimize_scalar(lambda x: -float(self.growth(x)[0]), bounds=(lo, hi), method="bounded",
+                              options={"xatol": 1e-6})
+        if -res.fun > g[i]:
+            return float(-res.fun), float(res.x)
+        return float(g[i]), float(ps[i])
+
+
+def dps_growth(q, p, alpha: float, a: float):
+    """The DpS growth rate of sideband p in lattice time: modulational.growth_rate with R = a / 2."""
+    from .modulational import growth_rate
+
+    return growth_rate(q, p, alpha, R=0.5 * a)
+
+
+def dps_max_growth(q: float, alpha: float, a: float) -> tuple[float, float]:
+    """(max_p DpS growth in lattice time, argmax |p|)."""
+    from .modulational import max_over_p
+
+    g, p = max_over_p(q, alpha)
+    return g / dps.tau0(alpha) * (0.5 * a) ** (alpha - 1.0), p
+
+
+# ----------------------------------------------------------------- brute force on a ring
+
+def ring_wavenumber(w: t1.Wave, N: int) -> int:
+    """k with q = 2 pi k / N, or ValueError."""
+    k = w.q * N / (2.0 * np.pi)
+    if abs(k - round(k)) > 1e-9:
+        raise ValueError(f"q = {w.q!r} is not 2 pi k / N on a ring of N = {N} sites")
+    return int(round(k))
+
+
+def ring_state(w: t1.Wave, N: int, t: float = 0.0):
+    """(x_n(t), v_n(t)) of the exact wave on the ring, n = 0..N-1."""
+    ring_wavenumber(w, N)
+    xi = w.q * np.arange(N) - w.omega * t
+    j = np.arange(1, w.modes + 1)
+    c = w.coefficients()
+    x = np.sin(np.multiply.outer(xi, j)) @ c
+    v = -w.omega * (np.cos(np.multiply.outer(xi, j)) @ (j * c))
+    return x, v
+
+
+def ring_monodromy(w: t1.Wave, N: int, rtol: float = 1e-11, atol: float = 1e-13) -> np.ndarray:
+    """The 2N x 2N monodromy matrix of (lin) over T = 2 pi / omega on a ring (state (y, y')), by DOP853."""
+    from scipy.integrate import solve_ivp
+
+    ring_wavenumber(w, N)
+    j = np.arange(1, w.modes + 1)
+    c = w.coefficients()
+    n = np.arange(N)
+    om, q, al = w.omega, w.q, w.alpha
+
+    def rhs(t, Y):
+        Y = Y.reshape(2 * N, 2 * N)
+        y, v = Y[:N], Y[N:]
+        u = np.sin(np.multiply.outer(q * n - om * t, j)) @ c
+        k = t1._d2V0(np.roll(u, -1) - u, al)                  # bond n: K(xi_n)
+        dy = np.roll(y, -1, axis=0) - y
+        f = k[:, None] * dy
+        acc = -y + f - np.roll(f, 1, axis=0)
+        return np.concatenate([v, acc]).ravel()
+
+    T = 2.0 * np.pi / om
+    sol = solve_ivp(rhs, (0.0, T), np.eye(2 * N).ravel(), method="DOP853", rtol=rtol, atol=atol)
+    if not sol.success:
+        raise RuntimeError(f"monodromy integration failed: {sol.message}")
+    return sol.y[:, -1].reshape(2 * N, 2 * N)
+
+
+def ring_exponents_hill(hill: Hill, N: int) -> np.ndarray:
+    """Floquet exponents of the ring from (bloch): the central eigenvalues at p = 2 pi j / N, j = 0..N-1."""
+    ring_wavenumber(hill.w, N)
+    return np.concatenate([hill.central(2.0 * np.pi * jj / N) for jj in range(N)])
+
+
+def multipliers(exponents, T: float) -> np.ndarray:
+    return np.exp(np.asarray(exponents) * T)
+
+
+def match_distance(mu_a, mu_b) -> float:
+    """max over mu_a of the distance to the nearest mu_b, and conversely (a Hausdorff distance)."""
+    d = np.abs(np.asarray(mu_a)[:, None] - np.asarray(mu_b)[None, :])
+    return float(max(d.min(axis=1).max(), d.min(axis=0).max()))
+
+
+# ----------------------------------------------------------------- direct simulation
+
+def direct_growth(w: t1.Wave, N: int, rel_size: float = 1e-9, growth_factor: float = 1e3, method: str = "dop853",
+                  rtol: float = 1e-13):
+    """Growth rate of the top Floquet mode, measured on a nonlinear run of (nc) with integrate_lattice.
+
+    The exact wave on the ring plus rel_size * a * (the real part of, normalised) the eigenvector of the
+    largest brute-force multiplier mu; integrate to t with e^{rate t} = growth_factor. The deviation
+    delta(t) from the exact wave is sampled at t = k T; its component on the mode, c_k = l . delta(k T)
+    (l the left eigenvector), grows like |mu|^k without the beating that the complex pair (mu, conj mu)
+    gives to |delta|. Returns (rate fitted on log|c_k| over the second half, rate fitted on log|delta|,
+    Floquet rate ln|mu| / T, t, |delta|).
+    """
+    from .integrators import integrate_lattice
+
+    Mono = ring_monodromy(w, N)
+    mu, V = np.linalg.eig(Mono)
+    i = int(np.argmax(np.abs(mu)))
+    T = 2.0 * np.pi / w.omega
+    rate = float(np.log(np.abs(mu[i])) / T)
+    if not rate > 1e-6:
+        raise ValueError(f"no unstable Floquet mode on the ring N={N}, q={w.q!r} (top rate {rate:.3g})")
+    left = np.linalg.inv(V)[i]
+    vec = V[:, i].real if np.linalg.norm(V[:, i].real) > 0.3 else V[:, i].imag
+    vec = vec / np.linalg.norm(vec)
+    x0, v0 = ring_state(w, N)
+    d0 = rel_size * w.a
+    n_per = int(np.ceil(np.log(growth_factor) / rate / T))
+    t_out = T * np.arange(n_per + 1)
+    sol = integrate_lattice(x0 + d0 * vec[:N], v0 + d0 * vec[N:], t_out, alpha=w.alpha, bc="periodic",
+                            method=method, rtol=rtol, atol=rtol * w.a * 1e-3)
+    xs, vs = np.asarray(sol.x), np.asarray(sol.v)
+    delta = np.concatenate([xs - x0[None, :], vs - v0[None, :]], axis=1)   # the wave is T-periodic
+    dist = np.linalg.norm(delta, axis=1)
+    proj = np.abs(delta @ left)
+    sel = t_out >= 0.5 * t_out[-1]
+    slope_mode = float(np.polyfit(t_out[sel], np.log(proj[sel]), 1)[0])
+    slope_dist = float(np.polyfit(t_out[sel], np.log(dist[sel]), 1)[0])
+    return slope_mode, slope_dist, rate, t_out, dist
+
+
+# ----------------------------------------------------------------- thresholds
+
+def _hill_at(q, alpha, omega_tw, num):
+    w = wave_for(q, alpha, omega_tw=omega_tw, modes=num["wave_modes"], grid_log2=num["wave_grid_log2"])
+    return Hill(w, L=num["hill_modes"], M=2 ** num["grid_log2"])
+
+
+def threshold(alpha: float, omega_tw: float, q_lo: float, q_hi: float, num: dict, n_scan: int = 16,
+              n_p: int = 61, floor: float = NOISE_FLOOR, tol: float = 2e-6):
+    """Smallest q in [q_lo, q_hi] where the exact wave (a from (freq) at omega_tw) has an unstable Bloch mode.
+
+    Scan n_scan points for the first q with max_p signed > floor (p in (0, pi], refined between grid
+    points), then bisect to |dq| < tol. Returns (q_c, dq, p of the first unstable mode, n_waves solved);
+    (nan, nan, nan, n) if the scan finds no transition (stable throughout or unstable at q_lo).
+    """
+    qs = np.linspace(q_lo, q_hi, n_scan)
+    prev, count = None, 0
+    for q in qs:
+        s, _ = _hill_at(q, alpha, omega_tw, num).max_signed(n_p, floor)
+        count += 1
+        if s > floor:
+            if prev is None:
+                return float("nan"), float("nan"), float("nan"), count
+            lo, hi = prev, q
+            break
+        prev = q
+    else:
+        return float("nan"), float("nan"), float("nan"), count
+    while hi - lo > tol:
+        mid = 0.5 * (lo + hi)
+        s, _ = _hill_at(mid, alpha, omega_tw, num).max_signed(n_p, floor)
+        count += 1
+        if s > floor:
+            hi = mid
+        else:
+            lo = mid
+    _, p_first = _hill_at(hi, alpha, omega_tw, num).max_signed(n_p, floor)
+    return float(0.5 * (lo + hi)), float(0.5 * (hi - lo)), float(p_first), count + 1
+
+
+# ----------------------------------------------------------------- the pipeline stage
+
+def compute(spec: dict, log=None):
+    """The `floquet` target as a Dataset (cradle.variables fq_*).
+
+    ``spec`` (see :func:`resolved_spec`): alpha, omega_tw, q_min, q_max, n_q, n_p, hill_modes, grid_log2,
+    wave_modes, wave_grid_log2, q_profiles (+ q_profiles_expr), threshold_omega_tw, threshold_q_min,
+    threshold_q_max, threshold_n_scan, convergence (hill_modes, grid_log2, wave_modes), ring_N, ring_k, direct_N,
+    direct_k, direct_growth_factor, small_omega_tw, small_q (+ small_q_expr).
+    """
+    import time
+
+    from .io import make_dataset
+
+    t_start = time.perf_counter()
+    say = log or (lambda *a: None)
+    al, om_tw = float(spec["alpha"]), float(spec["omega_tw"])
+    num = {k: int(spec[k]) for k in ("hill_modes", "grid_log2", "wave_modes", "wave_grid_log2")}
+    conv = dict(num, **{k: int(v) for k, v in spec["convergence"].items()})
+    n_p = int(spec["n_p"])
+    qs = np.linspace(float(spec["q_min"]), float(spec["q_max"]), int(spec["n_q"]))
+    ps = np.linspace(0.0, np.pi, n_p)
+    timings = {}
+
+    # 1. growth over (q, p) at omega_tw, lattice (Hill) and DpS
+    t0 = time.perf_counter()
+    G, Gd = np.zeros((qs.size, n_p)), np.zeros((qs.size, n_p))
+    amp, omg, gmax, pmax, gdmax, pdmax, defect = (np.full(qs.size, np.nan) for _ in range(7))
+    for i, q in enumerate(qs):
+        H = _hill_at(q, al, om_tw, num)
+        amp[i], omg[i] = H.w.a, H.w.omega
+        G[i] = H.growth(ps)
+        G[i, 0] = 0.0                                    # p = 0: the trivial pair, reported as defect
+        defect[i] = H.trivial_defect()
+        gmax[i], pmax[i] = H.max_growth(n_p)
+        Gd[i] = dps_growth(q, ps, al, H.w.a)
+        gdmax[i], pdmax[i] = dps_max_growth(q, al, H.w.a)
+        if not gdmax[i] > 0:
+            pdmax[i] = np.nan
+    timings["sweep"] = time.perf_counter() - t0
+    say(f"floquet: sweep of {qs.size} q x {n_p} p in {timings['sweep']:.1f} s; max trivial defect "
+        f"{np.max(defect):.2g}")
+
+    # 2. thresholds against the amplitude (omega_tw), and at omega_tw with finer numerics / another floor
+    t0 = time.perf_counter()
+    om_list = [float(x) for x in spec["threshold_omega_tw"]]
+    qlo, qhi = float(spec["threshold_q_min"]), float(spec["threshold_q_max"])
+    thr, thr_dq, thr_p = (np.full(len(om_list), np.nan) for _ in range(3))
+    for j, om in enumerate(om_list):
+        thr[j], thr_dq[j], thr_p[j], nw = threshold(al, om, qlo, qhi, num, n_scan=int(spec["threshold_n_scan"]))
+        say(f"floquet: omega_tw={om}: lattice threshold q_c = {thr[j]:.8f} = {thr[j] / np.pi:.6f} pi "
+            f"(+- {thr_dq[j]:.1g}), first p = {thr_p[j] / np.pi:.4f} pi, {nw} waves")
+    j_main = int(np.argmin(np.abs(np.asarray(om_list) - om_tw)))
+    if abs(om_list[j_main] - om_tw) > 1e-12:
+        raise ValueError(f"config error: beyond.floquet.threshold_omega_tw = {om_list}: must contain omega_tw = "
+                         f"{om_tw}")
+    q_c, dq_c = thr[j_main], thr_dq[j_main]
+    # the same threshold with finer numerics and with a 100 x higher floor, from a bracket around it
+    br = (q_c - 0.002 * np.pi, q_c + 0.002 * np.pi)
+    q_c_conv = threshold(al, om_tw, *br, conv, n_scan=2)[0]
+    q_c_floor = threshold(al, om_tw, *br, num, n_scan=2, floor=1e-5)[0]
+    unc = float(dq_c + abs(q_c_conv - q_c) + abs(q_c_floor - q_c))
+    timings["thresholds"] = time.perf_counter() - t0
+    say(f"floquet: threshold at omega_tw={om_tw}: {q_c / np.pi:.6f} pi; finer numerics {q_c_conv / np.pi:.6f} pi; "
+        f"floor 1e-5 {q_c_floor / np.pi:.6f} pi; uncertainty {unc:.2g} rad; DpS pi/2")
+
+    # 2b. the deepest dip of max_p g above the threshold (where the unstable band changes family)
+    t0 = time.perf_counter()
+    from scipy.optimize import minimize_scalar
+
+    above = np.where(qs > q_c)[0] if np.isfinite(q_c) else np.array([], dtype=int)
+    q_dip, g_dip = float("nan"), float("nan")
+    inner = [i for i in above if 0 < i < qs.size - 1 and gmax[i] <= gmax[i - 1] and gmax[i] <= gmax[i + 1]]
+    if inner:
+        i = min(inner, key=lambda i_: gmax[i_])
+        res = minimize_scalar(lambda x: _hill_at(x, al, om_tw, num).max_signed(n_p)[0], bounds=(qs[i - 1], qs[i + 1]),
+                              method="bounded", options={"xatol": 1e-5})
+        q_dip, g_dip = float(res.x), float(res.fun)
+        say(f"floquet: deepest dip of the max growth above q_c: {g_dip:.3g} at q = {q_dip / np.pi:.5f} pi")
+    timings["dip"] = time.perf_counter() - t0
+
+    # 3. growth against p at selected q, refined maxima, convergence
+    t0 = time.perf_counter()
+    qsel = [float(x) for x in spec["q_profiles"]]
+    prof, prof_d = np.zeros((len(qsel), n_p)), np.zeros((len(qsel), n_p))
+    pm, pm_p, pm_conv, pm_d, pm_dp = (np.full(len(qsel), np.nan) for _ in range(5))
+    for i, q in enumerate(qsel):
+        H = _hill_at(q, al, om_tw, num)
+        prof[i] = H.growth(ps)
+        prof[i, 0] = 0.0
+        pm[i], pm_p[i] = H.max_growth(n_p)
+        pm_conv[i] = _hill_at(q, al, om_tw, conv).max_growth(n_p)[0]
+        prof_d[i] = dps_growth(q, ps, al, H.w.a)
+        pm_d[i], pm_dp[i] = dps_max_growth(q, al, H.w.a)
+        say(f"floquet: q = {q / np.pi:.4f} pi: lattice max growth {pm[i]:.6g} at p = {pm_p[i] / np.pi:.4f} pi "
+            f"(finer numerics {pm_conv[i]:.6g}); DpS {pm_d[i]:.6g} at p = {pm_dp[i] / np.pi:.4f} pi; "
+            f"e-folds over t = 913.7: {913.7 * pm[i]:.3g} (DpS {913.7 * pm_d[i]:.3g})")
+    timings["profiles"] = time.perf_counter() - t0
+
+    # 4. small amplitude: lattice -> DpS
+    t0 = time.perf_counter()
+    sq = [float(x) for x in spec["small_q"]]
+    sm_lat, sm_dps = np.full(len(sq), np.nan), np.full(len(sq), np.nan)
+    for i, q in enumerate(sq):
+        H = _hill_at(q, al, float(spec["small_omega_tw"]), num)
+        sm_lat[i] = H.max_growth(n_p)[0]
+        sm_dps[i] = dps_max_growth(q, al, H.w.a)[0]
+    sm_rel = sm_lat / sm_dps - 1.0
+    timings["small_amplitude"] = time.perf_counter() - t0
+    say(f"floquet: omega_tw={spec['small_omega_tw']}: lattice/DpS max growth - 1 = {np.round(sm_rel, 4)}")
+
+    # 5. brute force on a ring: monodromy vs Bloch reduction; direct simulation
+    t0 = time.perf_counter()
+    N, k = int(spec["ring_N"]), int(spec["ring_k"])
+    Hr = _hill_at(2 * np.pi * k / N, al, om_tw, num)
+    T = 2 * np.pi / Hr.w.omega
+    mu = np.linalg.eigvals(ring_monodromy(Hr.w, N))
+    mu_h = multipliers(ring_exponents_hill(Hr, N), T)
+    ring_dist = match_distance(mu, mu_h)
+    ring_rate, ring_rate_h = float(np.max(np.log(np.abs(mu))) / T), float(np.max(np.log(np.abs(mu_h))) / T)
+    ring_trivial = float(np.sort(np.abs(mu - 1.0))[1])
+    timings["ring"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    Nd, kd = int(spec["direct_N"]), int(spec["direct_k"])
+    wd = wave_for(2 * np.pi * kd / Nd, al, omega_tw=om_tw, modes=num["wave_modes"], grid_log2=num["wave_grid_log2"])
+    d_mode, d_dist, d_rate, _, _ = direct_growth(wd, Nd, growth_factor=float(spec["direct_growth_factor"]))
+    timings["direct"] = time.perf_counter() - t0
+    say(f"floquet: ring N={N} k={k}: |mu_brute - mu_Bloch| <= {ring_dist:.2g}, top rate {ring_rate:.8g} vs "
+        f"{ring_rate_h:.8g}, trivial |mu - 1| = {ring_trivial:.2g}; direct run N={Nd} k={kd}: {d_mode:.6g} "
+        f"(|delta| fit {d_dist:.6g}) vs Floquet {d_rate:.6g}")
+
+    def at(qv):
+        return float(pm[int(np.argmin(np.abs(np.asarray(qsel) - qv)))]) if qsel else float("nan")
+
+    data = {
+        "fq_a": amp, "fq_omega": omg, "fq_growth": G, "fq_dps_growth": Gd, "fq_max_growth": gmax,
+        "fq_argmax_p": np.where(gmax > 0, pmax, np.nan), "fq_dps_max_growth": gdmax, "fq_dps_argmax_p": pdmax,
+        "fq_trivial_defect": defect,
+        "fq_profile_growth": prof, "fq_profile_dps_growth": prof_d, "fq_profile_max_growth": pm,
+        "fq_profile_argmax_p": np.where(pm > 0, pm_p, np.nan), "fq_profile_max_growth_fine": pm_conv,
+        "fq_profile_dps_max_growth": pm_d,
+        "fq_threshold": thr, "fq_threshold_bisection": thr_dq, "fq_threshold_p": thr_p,
+        "fq_small_growth": sm_lat, "fq_small_dps_growth": sm_dps, "fq_small_rel_error": sm_rel,
+    }
+    coords = {"fq_q": qs, "fq_p": ps, "fq_q_profile": qsel, "fq_omega_tw": om_list, "fq_small_q": sq}
+    wall = time.perf_counter() - t_start
+    attrs = {
+        "alpha": al, "omega_tw": om_tw,
+        "amplitude": "a from (freq) inverted at omega_tw for each q (as the fftseuil scenes); the exact wave of "
+                     "(ad) with that first sine coefficient, frequency fq_omega",
+        "hill_modes": num["hill_modes"], "grid_points": 2 ** num["grid_log2"], "wave_modes": num["wave_modes"],
+        "wave_grid_points": 2 ** num["wave_grid_log2"],
+        "fine_numerics": f"hill_modes={conv['hill_modes']}, grid_points=2^{conv['grid_log2']}, "
+                         f"wave_modes={conv['wave_modes']}",
+        "noise_floor": NOISE_FLOOR,
+        "q_profiles_expr": ", ".join(spec.get("q_profiles_expr", [repr(x) for x in qsel])),
+        "q_threshold_lattice": q_c, "q_threshold_lattice_over_pi": q_c / np.pi,
+        "q_threshold_uncertainty": unc, "q_threshold_fine_numerics": q_c_conv, "q_threshold_high_floor": q_c_floor,
+        "q_threshold_dps": float(np.pi / 2),
+        "q_dip": q_dip, "q_dip_over_pi": q_dip / np.pi, "growth_dip": g_dip,
+        "growth_at_pi_over_2": at(np.pi / 2), "growth_at_051pi": at(0.51 * np.pi), "growth_at_052pi": at(0.52 * np.pi),
+        "max_profile_fine_change": float(np.nanmax(np.abs(pm_conv - pm))),
+        "small_omega_tw": float(spec["small_omega_tw"]), "small_max_rel_error": float(np.nanmax(np.abs(sm_rel))),
+        "ring_N": N, "ring_k": k, "ring_multiplier_distance": ring_dist, "ring_top_rate_monodromy": ring_rate,
+        "ring_top_rate_bloch": ring_rate_h, "ring_trivial_multiplier_distance": ring_trivial,
+        "direct_N": Nd, "direct_k": kd, "direct_growth_factor": float(spec["direct_growth_factor"]),
+        "direct_rate_mode": d_mode, "direct_rate_distance": d_dist, "direct_rate_floquet": d_rate,
+        "direct_rel_error": d_mode / d_rate - 1.0,
+        "growth_units": "1 / t (lattice time of (nc)); DpS rates converted by growth_rate(q, p, alpha, R = a/2)",
+        "method": "Hill's method for the Bloch-Floquet pencil (bloch) in the co-moving frame; central strip "
+                  "|Im lambda| < omega/2 = DpS sideband p; brute-force ring monodromy (DOP853) as a check",
+        "timings_s": ", ".join(f"{k_}={v:.1f}" for k_, v in timings.items()),
+        "wall_time_s": wall,
+    }
+    say(f"floquet: done in {wall:.1f} s ({attrs['timings_s']})")
+    return make_dataset(data, coords=coords, attrs=attrs,
+                        title="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) against "
+                              "the DpS modulational-instability threshold")
+
+
+def resolved_spec(config: dict) -> dict:
+    """The `beyond.floquet` parameters of a validated config, angles in radians; ValueError names the key."""
+    from . import config as cc
+
+    b = dict(config["beyond"]["floquet"])
+    check_alpha(b["alpha"])
+    for key in ("q_min", "q_max", "threshold_q_min", "threshold_q_max"):
+        expr = b[key]
+        b[key] = cc.parse_angle(expr)
+        if not 0.0 < b[key] < np.pi:
+            raise ValueError(f"config error: beyond.floquet.{key} = {expr!r}: must be in (0, pi)")
+    for lo, hi in (("q_min", "q_max"), ("threshold_q_min", "threshold_q_max")):
+        if not b[hi] > b[lo]:
+            raise ValueError(f"config error: beyond.floquet.{hi} = {config['beyond']['floquet'][hi]!r}: must exceed "
+                             f"{lo} = {config['beyond']['floquet'][lo]!r}")
+    for key in ("q_profiles", "small_q"):
+        b[key + "_expr"] = [q if isinstance(q, str) else repr(float(q)) for q in b[key]]
+        b[key] = [cc.parse_angle(q) for q in b[key]]
+        for q, e in zip(b[key], b[key + "_expr"]):
+            if not 0.0 < q < np.pi:
+                raise ValueError(f"config error: beyond.floquet.{key}: {e!r} must be in (0, pi)")
+    if float(b["omega_tw"]) not in [float(x) for x in b["threshold_omega_tw"]]:
+        raise ValueError(f"config error: beyond.floquet.threshold_omega_tw = {b['threshold_omega_tw']}: must contain "
+                         f"omega_tw = {b['omega_tw']}")
+    conv = dict(b["convergence"])
+    for key in ("hill_modes", "grid_log2", "wave_modes"):
+        conv.setdefault(key, b[key])
+    b["convergence"] = conv
+    for sec in (b, conv):
+        if 2 ** int(sec["grid_log2"]) < 8 * (2 * int(sec["hill_modes"]) + 1):
+            raise ValueError(f"config error: beyond.floquet.grid_log2 = {sec['grid_log2']}: 2^grid_log2 must be >= "
+                             f"8 (2 hill_modes + 1) = {8 * (2 * int(sec['hill_modes']) + 1)}")
+    if 2 ** int(b["wave_grid_log2"]) < 8 * max(int(b["wave_modes"]), int(conv["wave_modes"])):
+        raise ValueError(f"config error: beyond.floquet.wave_grid_log2 = {b['wave_grid_log2']}: 2^wave_grid_log2 must "
+                         f"be >= 8 x wave_modes")
+    for key_n, key_k in (("ring_N", "ring_k"), ("direct_N", "direct_k")):
+        if not 0 < b[key_k] < b[key_n]:
+            raise ValueError(f"config error: beyond.floquet.{key_k} = {b[key_k]}: need 0 < {key_k} < {key_n} = "
+                             f"{b[key_n]} (q = 2 pi k / N)")
+    return b

@@ -1,0 +1,108 @@
+"""Bloch-Floquet stability of the exact travelling waves (cradle.floquet): trivial multipliers, the
+reduction against the brute-force ring monodromy, the small-amplitude DpS limit, a direct run."""
+import copy
+
+import numpy as np
+import pytest
+
+from cradle import floquet as F
+
+ALPHA = 1.5
+NUM = dict(hill_modes=16, grid_log2=16, wave_modes=64, wave_grid_log2=13)
+
+
+def _wave(q, omega_tw):
+    return F.wave_for(q, ALPHA, omega_tw=omega_tw, modes=NUM["wave_modes"], grid_log2=NUM["wave_grid_log2"])
+
+
+@pytest.fixture(scope="module")
+def ring10():
+    """q = 3 pi / 5 on a ring of 10 sites, omega_tw = 1.1: unstable (Bloch p = 2 pi j / 10)."""
+    w = _wave(2 * np.pi * 3 / 10, 1.1)
+    return w, F.ring_monodromy(w, 10)
+
+
+def test_trivial_multipliers_and_hamiltonian_symmetry(ring10):
+    w, Mono = ring10
+    mu = np.linalg.eigvals(Mono)
+    # time translation and the amplitude family: a double multiplier 1 (a Jordan block: error ~ sqrt(tol))
+    assert np.sort(np.abs(mu - 1.0))[1] < 1e-4
+    # volume preserving (no damping): det = 1; symplectic: the multipliers come as mu, 1/conj(mu)
+    assert abs(np.prod(mu) - 1.0) < 1e-8
+    mirrored = 1.0 / np.conj(mu)
+    assert F.match_distance(mu, mirrored) < 1e-6
+    # Bloch: the central pair at p = 0 is (0, 0) up to the discretisation error; stable modes are neutral
+    H = F.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
+    assert H.trivial_defect() < 1e-3
+    c = H.central(0.3)                     # q = 3pi/5, omega_tw = 1.1: p = 0.3 is unstable ...
+    assert c.size == 2 and abs(c[0].real + c[1].real) < 1e-12   # ... as lambda, -conj(lambda)
+    c = H.central(0.9 * np.pi)             # ... and 0.9 pi stable: on the imaginary axis
+    assert np.max(np.abs(c.real)) < 1e-10
+
+
+def test_bloch_reduction_equals_brute_force_monodromy(ring10):
+    w, Mono = ring10
+    T = 2 * np.pi / w.omega
+    mu = np.linalg.eigvals(Mono)
+    H = F.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
+    lam = F.ring_exponents_hill(H, 10)
+    assert lam.size == 20                   # two central exponents per Bloch wavenumber
+    mu_h = F.multipliers(lam, T)
+    assert F.match_distance(mu, mu_h) < 2e-3   # the neutral double multiplier 1 dominates the distance
+    top, top_h = np.max(np.log(np.abs(mu))) / T, np.max(np.log(np.abs(mu_h))) / T
+    assert top > 0.005
+    assert abs(top_h / top - 1.0) < 1e-4
+
+
+@pytest.mark.parametrize("q", [0.6 * np.pi, 0.8 * np.pi])
+def test_small_amplitude_growth_matches_dps(q):
+    """omega_tw = 1.001: max growth within 1 % of the DpS prediction, the band against p within 2 %."""
+    w = _wave(q, 1.001)
+    H = F.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
+    g, p = H.max_growth(61)
+    gd, pd = F.dps_max_growth(q, ALPHA, w.a)
+    assert abs(g / gd - 1.0) < 0.01
+    assert abs(p - pd) < 0.02 * np.pi
+    ps = np.linspace(0.05, np.pi, 30)
+    np.testing.assert_allclose(H.growth(ps), F.dps_growth(q, ps, ALPHA, w.a), atol=0.02 * gd)
+    # at omega_tw = 1.01 the finite-amplitude correction is a few per cent
+    w = _wave(q, 1.01)
+    g1 = F.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"]).max_growth(61)[0]
+    assert abs(g1 / F.dps_max_growth(q, ALPHA, w.a)[0] - 1.0) < 0.05
+
+
+def test_lattice_threshold_lies_below_pi_over_2_at_omega_tw_1_1():
+    """The spectral result: stable at 0.46 pi, unstable at 0.49 pi and pi/2 (DpS: stable up to pi/2)."""
+    assert F._hill_at(0.46 * np.pi, ALPHA, 1.1, NUM).max_signed(61)[0] < 0
+    for qf in (0.49, 0.5):
+        g, p = F._hill_at(qf * np.pi, ALPHA, 1.1, NUM).max_growth(61)
+        assert g > 3e-3 and p > 0.8 * np.pi
+        assert F.dps_max_growth(qf * np.pi, ALPHA, 1.0)[0] == 0.0
+
+
+def test_direct_simulation_grows_at_the_top_floquet_rate():
+    w = _wave(2 * np.pi * 3 / 10, 1.1)
+    rate_mode, rate_dist, rate, t, dist = F.direct_growth(w, 10, growth_factor=300.0)
+    assert rate > 0.005
+    assert abs(rate_mode / rate - 1.0) < 0.02
+    assert dist[-1] / dist[0] > 30
+
+
+def test_resolved_spec_names_the_key():
+    from cradle import config as cc
+
+    cfg = cc.load("config.yaml")
+    b = F.resolved_spec(cfg)
+    assert abs(b["q_min"] - 0.4 * np.pi) < 1e-15 and b["convergence"]["hill_modes"] >= b["hill_modes"]
+    bad = copy.deepcopy(cfg)
+    bad["beyond"]["floquet"]["q_max"] = "0.3pi"
+    with pytest.raises(ValueError, match="beyond.floquet.q_max"):
+        F.resolved_spec(bad)
+    bad = copy.deepcopy(cfg)
+    bad["beyond"]["floquet"]["ring_k"] = bad["beyond"]["floquet"]["ring_N"]
+    with pytest.raises(ValueError, match="beyond.floquet.ring_k"):
+        F.resolved_spec(bad)
+    bad = copy.deepcopy(cfg)
+    bad["beyond"]["floquet"]["threshold_omega_tw"] = [1.05]
+    with pytest.raises(ValueError, match="threshold_omega_tw"):
+        F.resolved_spec(bad)
