@@ -74,7 +74,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._kernels import _bond, forces, forces_only
+from ._kernels import _bond, forces, forces_only, kick_rotate, last_kick
 
 # 8-point Gauss-Legendre on [0, 1]
 _GX, _GW = np.polynomial.legendre.leggauss(8)
@@ -368,11 +368,7 @@ def split_run_onset(x, v, F, fs, d0, w0, d1, w1, flag, idx, tgrid, dt, k, j, max
                 bi = bh[i]
                 ci = cs[i]
                 si = sn[i]
-                for n in range(N):
-                    vn = v[n] + bi * F[n]
-                    xn = x[n]
-                    x[n] = xn + (xn * ci + vn * si)
-                    v[n] = vn + (vn * ci - xn * si)
+                kick_rotate(x, v, F, bi, ci, si)
                 if i < m - 1:
                     forces_only(x, fs[i + 1], F, alpha, mode, periodic)
                 else:
@@ -380,11 +376,7 @@ def split_run_onset(x, v, F, fs, d0, w0, d1, w1, flag, idx, tgrid, dt, k, j, max
                     if cm > cmax_all:
                         cmax_all = cm
             bi = bh[m]
-            e = 0.0
-            for n in range(N):
-                vn = v[n] + bi * F[n]
-                v[n] = vn
-                e += vn * vn + x[n] * x[n]
+            e = last_kick(x, v, F, bi)
             nfev += m
             # end-of-step elongations and rates, and the crossing screen (vectorised)
             for n in range(N - 1):
