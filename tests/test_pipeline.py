@@ -17,7 +17,7 @@ import yaml
 from cradle import config as cc
 from cradle import stages
 from cradle.io import open_dataset, write_netcdf
-from cradle.runner import failed_path, run
+from cradle.runner import failed_path, run, run_chain
 from cradle.variables import VARIABLES
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -107,6 +107,22 @@ def test_failed_stage_leaves_nothing_at_target(tmp_path):
     assert "exceeds max_energy_drift" in open_dataset(kept).attrs["failure"]
     assert not list(out.parent.glob("*.tmp"))
 
+
+
+def test_failed_step_of_a_chain_writes_no_target_and_keeps_the_finished_steps(tmp_path):
+    """simulate's run_chain: the exact run fails its drift bound, so neither initial.nc nor exact.nc
+    is written at its target; both go to results/failed/ with the reason."""
+    cfg = cc.validate(TINY)
+    spec = cc.resolved_scene(cfg, "tw-weak")
+    spec["max_energy_drift"] = 1e-30
+    root = tmp_path / "results"
+    outs = {"initial": root / "initial" / "tw-weak.nc", "exact": root / "sim" / "tw-weak" / "exact.nc"}
+    with pytest.raises(stages.StageFailure, match="energy drift"):
+        run_chain([("initial", lambda done: stages.initial_data(spec, "tw-weak")),
+                   ("exact", lambda done: stages.exact_run(spec, done["initial"], "tw-weak"))], outs)
+    assert not any(path.exists() for path in outs.values())
+    assert "the later step 'exact' failed" in open_dataset(failed_path(outs["initial"])).attrs["failure"]
+    assert "exceeds max_energy_drift" in open_dataset(failed_path(outs["exact"])).attrs["failure"]
 
 def _snakemake(workdir, *args):
     exe = shutil.which("snakemake") or shutil.which("snakemake", path=str(Path(sys.executable).parent))

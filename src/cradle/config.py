@@ -772,35 +772,39 @@ def validate(config: dict) -> dict:
     _physical(cfg, out)
     if out.lines:
         raise ConfigError(out.lines)
-    _remember(cfg)
+    # a validated config validates to itself (tested): remember it, so that the resolved_* calls
+    # the Snakefile makes with it, once per job, do not validate it again
+    _remember(_key(cfg), copy.deepcopy(cfg))
     return cfg
 
 
 _VALIDATED: dict[str, dict] = {}
 
 
-def _remember(cfg: dict) -> None:
-    """A validated config validates to itself (tested): remember it, so that the resolved_*
-    calls the Snakefile makes with it, once per job, do not validate it again."""
+def _key(config) -> str | None:
+    """The cache key of a config (its canonical JSON), or None if it cannot be serialised."""
     try:
-        key = json.dumps(cfg, sort_keys=True, default=repr)
+        return json.dumps(config, sort_keys=True, default=repr)
     except (TypeError, ValueError):
+        return None
+
+
+def _remember(key: str | None, validated: dict) -> None:
+    """Keep ``validated`` under ``key``, for the last few configs only."""
+    if key is None:
         return
     if len(_VALIDATED) >= 8:
         _VALIDATED.pop(next(iter(_VALIDATED)))
-    _VALIDATED[key] = copy.deepcopy(cfg)
+    _VALIDATED[key] = validated
 
 
 def _validated(config: dict) -> dict:
     """validate(config), remembered for the last few configs (the Snakefile resolves one entry per job)."""
-    try:
-        key = json.dumps(config, sort_keys=True, default=repr)
-    except (TypeError, ValueError):
+    key = _key(config)
+    if key is None:
         return validate(config)
     if key not in _VALIDATED:
-        if len(_VALIDATED) >= 8:
-            _VALIDATED.pop(next(iter(_VALIDATED)))
-        _VALIDATED[key] = validate(config)
+        _remember(key, validate(config))
     return _VALIDATED[key]
 
 

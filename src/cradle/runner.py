@@ -81,6 +81,14 @@ class Progress:
                      self.label, t_reached, t_final, 100.0 * t_reached / t_final, rate)
 
 
+def _keep_failed(ds, out, reason: str) -> str:
+    """Write ``ds`` under results/failed/ (not at ``out``) with ``reason`` as its ``failure`` attribute."""
+    path = failed_path(out)
+    ds.attrs["failure"] = reason
+    write_netcdf(ds, path)
+    return str(path)
+
+
 def run(compute, out: str | Path, log_path: str | None = None, label: str = ""):
     """Call ``compute()`` (returning a Dataset) and write it to ``out``; see module docstring."""
     setup_logging(log_path)
@@ -90,9 +98,7 @@ def run(compute, out: str | Path, log_path: str | None = None, label: str = ""):
         ds = compute()
     except StageFailure as err:
         if err.partial is not None:
-            path = failed_path(out)
-            err.partial.attrs["failure"] = str(err)
-            write_netcdf(err.partial, path)
+            path = _keep_failed(err.partial, out, str(err))
             log.error("%s: FAILED: %s (partial output kept in %s)", label, err, path)
         else:
             log.error("%s: FAILED: %s", label, err)
@@ -121,15 +127,10 @@ def run_chain(steps, outs: dict, log_path: str | None = None, label: str = "") -
         try:
             done[key] = compute(done)
         except StageFailure as err:
-            kept = []
-            for prev, ds in done.items():
-                ds.attrs["failure"] = f"not written: the later step '{key}' failed: {err}"
-                write_netcdf(ds, failed_path(outs[prev]))
-                kept.append(str(failed_path(outs[prev])))
+            kept = [_keep_failed(ds, outs[prev], f"not written: the later step '{key}' failed: {err}")
+                    for prev, ds in done.items()]
             if err.partial is not None:
-                err.partial.attrs["failure"] = str(err)
-                write_netcdf(err.partial, failed_path(outs[key]))
-                kept.append(str(failed_path(outs[key])))
+                kept.append(_keep_failed(err.partial, outs[key], str(err)))
             log.error("%s %s: FAILED: %s (kept for diagnosis: %s)", key, label, err, ", ".join(kept) or "nothing")
             raise
         log.info("%s %s: done in %.2f s", key, label, time.perf_counter() - t1)
