@@ -43,6 +43,7 @@ import time
 import numpy as np
 
 from . import compare, dps, modulational
+from .config import store_times
 
 MODELS = ("exact", "dps")
 
@@ -148,21 +149,14 @@ def measure(t, S, exclude_m=(), saturation: float = 0.2, decades: float = 1.0, r
 
 # ---------------------------------------------------------------- scene runs
 
-def sample_grid(t_end: float, every: float, extra=()) -> np.ndarray:
-    """Regular grid 0, every, ... <= t_end, plus t_end and the ``extra`` times (sorted, duplicates merged)."""
-    n = int(np.floor(t_end / every * (1.0 + 1e-12)))
-    t = np.concatenate([np.arange(n + 1) * every, [t_end], np.asarray(extra, dtype=float)])
-    t = np.sort(np.round(t, 9))
-    return t[np.r_[True, np.diff(t) > 1e-9]]
-
-
 def run_scene(spec: dict, init_ds, every: float):
     """Rerun scene ``spec`` (resolved) from its initial Dataset: (t, {model: A (T, N)}, {model: x (T, N)}, info)."""
     from .integrators import SPLITTING_METHODS, integrate_dps, integrate_lattice
 
     alpha, bc = float(spec["alpha"]), spec["bc"]
     eps = float(init_ds.attrs["eps"])
-    t = sample_grid(float(spec["t_end"]), every, spec["times"])
+    # the grid 0, every, ..., t_end plus the scene's own stored times (to check against its files)
+    t = np.asarray(store_times({"every": every, "snapshots": spec["times"]}, spec["t_end"]))
     ex = spec["exact"]
     accuracy = ({"dt_factor": ex.get("dt_factor")} if ex["method"] in SPLITTING_METHODS
                 else {"rtol": ex.get("rtol")})

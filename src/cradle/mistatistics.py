@@ -34,12 +34,12 @@ Dataset; :func:`aggregate` joins the batches and adds the thresholds.
 """
 from __future__ import annotations
 
-import math
 import time
 
 import numpy as np
 
 from . import compare, dps, initial, modulational, sidebands
+from .config import store_times
 
 MODELS = ("exact", "dps")
 WILSON_Z = 1.959963984540054   # two-sided 95 %
@@ -47,12 +47,9 @@ WILSON_Z = 1.959963984540054   # two-sided 95 %
 
 # ---------------------------------------------------------------- measurement
 
-def sample_times(t_end: float, every: float) -> np.ndarray:
-    """0, every, 2 every, ... below t_end, and t_end itself."""
-    n = int(math.floor(t_end / every * (1.0 + 1e-12)))
-    t = np.arange(n + 1) * every
-    t = t[t < t_end - 1e-9]
-    return np.append(t, t_end)
+def sample_times(spec: dict) -> np.ndarray:
+    """0, sample_every, ..., t_end: where the sideband ratio of every run is sampled."""
+    return np.asarray(store_times({"every": spec["sample_every"]}, spec["t_end"]))
 
 
 def crossing_time(t, r, fraction: float) -> float:
@@ -85,7 +82,7 @@ def run_ratio(model: str, N: int, k: int, seed: int, spec: dict):
 
     alpha = float(spec["alpha"])
     q = 2.0 * np.pi * k / N
-    t = sample_times(float(spec["t_end"]), float(spec["sample_every"]))
+    t = sample_times(spec)
     data = initial.travelling_wave(N, q, alpha, omega_tw=float(spec["omega_tw"]), bc="periodic",
                                    noise_kind=spec["noise_kind"], noise_amplitude=float(spec["noise_amplitude"]),
                                    seed=int(seed))
@@ -244,7 +241,7 @@ def batch(spec: dict, N: int, model: str, chunk: int, log=None):
     wall0 = time.perf_counter()
     ks = chunk_indices(spec, N, chunk)
     sd = seeds(spec)
-    t = sample_times(float(spec["t_end"]), float(spec["sample_every"]))
+    t = sample_times(spec)
     R = np.full((len(ks), len(sd), t.size), np.nan, dtype=np.float32)
     KP = np.full((len(ks), len(sd)), np.nan)
     TC = np.full((len(ks), len(sd)), np.nan)
