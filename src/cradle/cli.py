@@ -102,19 +102,14 @@ def cmd_scenes(args) -> int:
 
 # ------------------------------------------------------------------ run
 
-def _stage(compute, out, log, label, spec):
-    """runner.run (atomic write, log, failed/ on StageFailure) of ``compute``, tagged with the hash of ``spec``."""
-    from .provenance import params_hash
+def _stage(compute, out, log, label):
+    """runner.run (atomic write, log, failed/ on StageFailure) of ``compute``; the stage functions
+    record the hash of their parameters themselves (``params_sha256``)."""
     from .runner import run
     from .stages import StageFailure
 
-    def hashed():
-        ds = compute()
-        ds.attrs["params_sha256"] = params_hash(spec)
-        return ds
-
     try:
-        return run(hashed, out, str(log), label=label)
+        return run(compute, out, str(log), label=label)
     except StageFailure as err:
         raise CliError(f"{label}: {err}") from None
 
@@ -133,12 +128,12 @@ def cmd_run(args) -> int:
     if section == "map":
         mspec = cc.resolved_map(cfg, name)
         _stage(lambda: stages.map_orbits(mspec, name), out / "map" / f"{name}.nc",
-               logs / "map" / f"{name}.log", f"map {name}", mspec)
+               logs / "map" / f"{name}.log", f"map {name}")
         return 0
     if section == "homoclinic":
         hspec = cc.resolved_homoclinic(cfg, name)
         _stage(lambda: stages.homoclinic_solution(hspec, name), out / "homoclinic" / f"{name}.nc",
-               logs / "homoclinic" / f"{name}.log", f"homoclinic {name}", hspec)
+               logs / "homoclinic" / f"{name}.log", f"homoclinic {name}")
         return 0
     spec = cc.resolved_scene(cfg, name)
     hom = None
@@ -146,16 +141,16 @@ def cmd_run(args) -> int:
         hname = spec["initial"]["homoclinic"]
         hspec = cc.resolved_homoclinic(cfg, hname)
         hom = _stage(lambda: stages.homoclinic_solution(hspec, hname), out / "homoclinic" / f"{hname}.nc",
-                     logs / "homoclinic" / f"{hname}.log", f"homoclinic {hname}", hspec)
+                     logs / "homoclinic" / f"{hname}.log", f"homoclinic {hname}")
     init = _stage(lambda: stages.initial_data(spec, name, hom), out / "initial" / f"{name}.nc",
-                  logs / "initial" / f"{name}.log", f"initial {name}", spec)
+                  logs / "initial" / f"{name}.log", f"initial {name}")
     sim = out / "sim" / name
     ex = _stage(lambda: stages.exact_run(spec, init, name, progress=Progress(f"exact {name}")), sim / "exact.nc",
-                logs / "sim" / name / "exact.log", f"exact {name}", spec)
+                logs / "sim" / name / "exact.log", f"exact {name}")
     ap = _stage(lambda: stages.dps_run(spec, init, name, progress=Progress(f"dps {name}")), sim / "dps.nc",
-                logs / "sim" / name / "dps.log", f"dps {name}", spec)
+                logs / "sim" / name / "dps.log", f"dps {name}")
     _stage(lambda: stages.metrics(spec, ex, ap, name), out / "metrics" / f"{name}.nc",
-           logs / "metrics" / f"{name}.log", f"metrics {name}", spec)
+           logs / "metrics" / f"{name}.log", f"metrics {name}")
     print(f"{name}: {out / 'initial' / (name + '.nc')}, {sim / 'exact.nc'}, {sim / 'dps.nc'}, "
           f"{out / 'metrics' / (name + '.nc')}")
     return 0
