@@ -7,7 +7,7 @@ x_n = a cos(qn), v_n = a omega_tw sin(qn)):
 * q=4pi/5 : N = 200, q = 4pi/5, a = 0.00767 (omega_tw = 1.1),  t = 913.7
 
 Rows: ``solve_ivp(method="DOP853", rtol=1e-10)`` with the vectorised numpy
-right-hand side :func:`cradle.lattice.acceleration` (the plain baseline,
+right-hand side :func:`cradle.models.lattice.acceleration` (the plain baseline,
 energy checked at the 1001 outputs only); ``integrate_lattice(method="dop853")``
 (same solver, numba RHS, energy after every step); "dop853_numba" (same
 pair and controller, whole loop in numba); srkn6 with its default
@@ -25,7 +25,7 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from cradle import lattice as L
+from cradle.models import lattice as L
 from cradle.integrators import DEFAULT_DT_FACTOR, integrate_lattice
 
 ALPHA = 1.5

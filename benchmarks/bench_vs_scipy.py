@@ -14,7 +14,7 @@ whose error is <= target. Methods:
 * scipy ``solve_ivp(method="DOP853")`` and ``solve_ivp(method="LSODA")``
   with the numba right-hand side (scipy at its best: the solver's own Python
   overhead only) and DOP853 with the numpy right-hand side
-  :func:`cradle.lattice.acceleration` (what a plain script does);
+  :func:`cradle.models.lattice.acceleration` (what a plain script does);
 * ours: ``srkn6c`` (splitting with contact-onset correction), ``srkn6``,
   ``dop853_numba`` (cradle.integrators.integrate_lattice, energy evaluated
   after every step).
@@ -39,12 +39,12 @@ import numpy as np
 from numba import njit
 from scipy.integrate import solve_ivp
 
-from cradle import config as cc
-from cradle import lattice as L
-from cradle import stages
+from cradle.pipeline import config as cc
+from cradle.models import lattice as L
+from cradle.pipeline import stages
 from cradle.integrators import _kernels as K
 from cradle.integrators import integrate_lattice
-from cradle.workprecision import machine
+from cradle.analyses.workprecision import machine
 
 ROOT = Path(__file__).resolve().parents[1]
 ALPHA = 1.5

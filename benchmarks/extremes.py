@@ -4,7 +4,7 @@ Each case runs in its own subprocess, so that its peak resident memory
 (resource.getrusage ru_maxrss, numba and the libraries included) is its own,
 and prints one JSON line; the parent prints a table. Lattice runs use the
 default method srkn6c with its default step, stream their 100 stored times
-to a netCDF file with an unlimited t (cradle.extend.stream_lattice, 64 MiB
+to a netCDF file with an unlimited t (cradle.pipeline.extend.stream_lattice, 64 MiB
 chunks), then delete it.
 
 Cases:
@@ -45,8 +45,8 @@ def _peak_mib() -> float:
 
 
 def _tw_stream(N, t_end, omega_tw=None, a=None, q=np.pi / 5, alpha=1.5, keep=None):
-    from cradle import initial
-    from cradle.extend import stream_lattice
+    from cradle.models import initial
+    from cradle.pipeline.extend import stream_lattice
 
     d = initial.travelling_wave(N, q, alpha, a=a, omega_tw=omega_tw)
     t = np.linspace(0.0, t_end, 101)
@@ -65,9 +65,10 @@ def case_long_t():
 
 
 def case_extend():
-    """Run to 5e3 (exact.nc), extend to 1e4 with cradle.extend.extend, compare with one run to 1e4."""
-    from cradle import initial, io
-    from cradle.extend import extend, stream_lattice
+    """Run to 5e3 (exact.nc), extend to 1e4 with cradle.pipeline.extend.extend, compare with one run to 1e4."""
+    from cradle.models import initial
+    from cradle.pipeline import io
+    from cradle.pipeline.extend import extend, stream_lattice
 
     d = initial.travelling_wave(200, np.pi / 5, 1.5, omega_tw=1.1)
     t = np.linspace(0.0, 1e4, 101)
@@ -92,7 +93,7 @@ def case_big_n():
 
 
 def case_hom():
-    from cradle import homoclinic
+    from cradle.models import homoclinic
 
     t0 = time.perf_counter()
     sol, N = homoclinic.solve_sized("site", 1.01, decades=16)
@@ -106,8 +107,8 @@ def case_hom():
 
 
 def case_breather():
-    from cradle import homoclinic, initial
-    from cradle.extend import stream_lattice
+    from cradle.models import homoclinic, initial
+    from cradle.pipeline.extend import stream_lattice
 
     sol, N = homoclinic.solve_sized("site", 1.01, decades=16)
     d = initial.breather(sol.profile, 1.01, amplitude=0.01)
@@ -122,7 +123,8 @@ def case_breather():
 
 
 def case_tiny():
-    from cradle import compare, initial, lattice
+    from cradle.measurements import compare
+    from cradle.models import initial, lattice
     from cradle.integrators import integrate_dps, integrate_lattice
 
     d = initial.travelling_wave(50, np.pi / 5, 1.5, a=1e-8)
@@ -143,7 +145,7 @@ def case_omega15():
 
 
 def case_dense_memory():
-    from cradle import initial, lattice
+    from cradle.models import initial, lattice
     from cradle.integrators import integrate_lattice
 
     d = initial.travelling_wave(10_000, np.pi / 5, 1.5, omega_tw=1.1)
@@ -156,8 +158,8 @@ def case_dense_memory():
 
 
 def case_dense_stream():
-    from cradle import initial
-    from cradle.extend import stream_lattice
+    from cradle.models import initial
+    from cradle.pipeline.extend import stream_lattice
 
     d = initial.travelling_wave(10_000, np.pi / 5, 1.5, omega_tw=1.1)
     t = np.round(np.arange(2001) * 0.05, 9)

@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from cradle import config as cc
-from cradle import stages
+from cradle.pipeline import config as cc
+from cradle.pipeline import stages
 from cradle.integrators import integrate_lattice
 from cradle.integrators import lattice_solver as LS
 

@@ -12,7 +12,7 @@ The clone's ``src/`` is put first on PYTHONPATH, so the installed ``cradle``
 (an editable install of this folder) is shadowed by the clone's and no install
 is timed. Each job's log (``results/logs``) starts with the process start-up
 time (interpreter, Snakemake's script preamble, imports; see
-:func:`cradle.runner.process_age`) and its steps' times; the outputs record the
+:func:`cradle.pipeline.runner.process_age`) and its steps' times; the outputs record the
 integrators' own wall time. From these the table splits the job time into:
 
 * start-up: process start to the first line of cradle code, summed over jobs;

@@ -15,8 +15,8 @@ import argparse
 import time
 from pathlib import Path
 
-from cradle import config as cc
-from cradle import stages
+from cradle.pipeline import config as cc
+from cradle.pipeline import stages
 from cradle.integrators import DEFAULT_DT_FACTOR, integrate_lattice
 
 ROOT = Path(__file__).resolve().parents[1]

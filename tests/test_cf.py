@@ -1,8 +1,8 @@
 """Every output kind is CF-1.10 (IOOS compliance-checker, strict) and carries its provenance.
 
 The six kinds (homoclinic, map, initial, sim exact, sim dps, metrics) are
-built with cradle.stages on the tiny config of test_pipeline, written with
-cradle.io.write_netcdf and checked with the checker's Python API. Skipped
+built with cradle.pipeline.stages on the tiny config of test_pipeline, written with
+cradle.pipeline.io.write_netcdf and checked with the checker's Python API. Skipped
 only when compliance-checker is not installed (it is in the ``test`` extra).
 """
 from __future__ import annotations
@@ -12,10 +12,10 @@ import json
 import numpy as np
 import pytest
 
-from cradle import config as cc
-from cradle import provenance, stages
-from cradle.io import make_dataset, open_dataset, open_scene, write_netcdf
-from cradle.variables import VARIABLES
+from cradle.pipeline import config as cc
+from cradle.pipeline import provenance, stages
+from cradle.pipeline.io import make_dataset, open_dataset, open_scene, write_netcdf
+from cradle.pipeline.variables import VARIABLES
 
 from test_pipeline import TINY  # tests/ is on sys.path (pytest rootdir, no __init__.py)
 

@@ -2,7 +2,8 @@
 import numpy as np
 import pytest
 
-from cradle import checks, compare, sidebands
+from cradle.analyses import checks
+from cradle.measurements import compare, sidebands
 
 
 @pytest.mark.parametrize("text, unit", [("2e-2", 1e-2), ("2.11", 1e-2), ("52.9", 0.1), ("3.8e-3", 1e-4),

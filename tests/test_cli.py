@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 import yaml
 
-from cradle.cli import main
-from cradle.config import load, resolved_scene
-from cradle.provenance import params_hash
-from cradle.io import open_dataset, open_scene
+from cradle.pipeline.cli import main
+from cradle.pipeline.config import load, resolved_scene
+from cradle.pipeline.provenance import params_hash
+from cradle.pipeline.io import open_dataset, open_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 from scipy.special import gamma
 
-from cradle import dps
+from cradle.models import dps
 
 
 @pytest.mark.parametrize("alpha", [1.01, 1.1, 1.5, 2.0, 2.5, 3.0])

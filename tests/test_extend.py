@@ -1,4 +1,4 @@
-"""Extending a finished exact run and streaming long runs to disk (cradle.extend, `cradle extend`)."""
+"""Extending a finished exact run and streaming long runs to disk (cradle.pipeline.extend, `cradle extend`)."""
 from __future__ import annotations
 
 import os
@@ -6,8 +6,8 @@ import os
 import numpy as np
 import pytest
 
-from cradle import cli, extend, io, stages
-from cradle.config import store_times
+from cradle.pipeline import cli, extend, io, stages
+from cradle.pipeline.config import store_times
 
 
 def spec(T, method="srkn6c", bc="periodic"):
@@ -101,8 +101,8 @@ def test_big_chain_streamed_peak_memory_below_1GiB(tmp_path):
 
     code = f"""
 import json, resource, numpy as np
-from cradle import initial
-from cradle.extend import stream_lattice
+from cradle.models import initial
+from cradle.pipeline.extend import stream_lattice
 d = initial.travelling_wave(10_000, np.pi / 5, 1.5, omega_tw=1.1)
 s = stream_lattice(d.x0, d.v0, np.linspace(0.0, 2.0, 101), {str(tmp_path / 'big.nc')!r}, alpha=1.5,
                    chunk_bytes=8 * 2**20)

@@ -12,7 +12,9 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 from scipy.special import gamma
 
-from cradle import compare, dps, homoclinic, initial, lattice, theorem1
+from cradle.measurements import compare
+from cradle.models import dps, homoclinic, initial, lattice
+from cradle.analyses import theorem1
 from cradle.integrators import integrate_dps, integrate_lattice
 
 ALPHAS = [1.01, 1.1, 1.5, 2.0, 3.0]
@@ -243,7 +245,7 @@ def test_two_site_dps_free_and_periodic():
 
 def test_config_accepts_N2_and_names_bad_N_and_q():
     """N = 2 with q = pi on a ring validates; N = 1 and q N/(2 pi) = 0.4 give one line each naming key and value."""
-    from cradle import config as cc
+    from cradle.pipeline import config as cc
 
     def cfg(N, q):
         return {"scenes": {"two": {"N": N, "bc": "periodic", "t_end": 10.0, "store": {"every": 1.0},
@@ -264,7 +266,7 @@ def test_config_accepts_N2_and_names_bad_N_and_q():
 def test_homoclinic_stage_far_from_three_halves(alpha, guess, log10_amp):
     """stages.homoclinic_solution (config entry, N = 50) now gives the alpha = 1.01 and alpha = 3
     site-centred solutions (by continuation) instead of failing or returning a = 0."""
-    from cradle import stages
+    from cradle.pipeline import stages
 
     ds = stages.homoclinic_solution({"alpha": alpha, "N": 50, "bc": "periodic", "guess": guess}, "x")
     assert ds.attrs["method"] == "continued" and ds.attrs["converged"] == 1

@@ -6,9 +6,10 @@ import pytest
 from matplotlib.collections import QuadMesh
 from matplotlib.image import AxesImage
 
-from cradle import compare, stages
-from cradle import config as cc
-from cradle.figures import registry, spacetime, spectra
+from cradle.measurements import compare
+from cradle.pipeline import stages
+from cradle.pipeline import config as cc
+from cradle.figures import drawer, registry, spacetime, spectra
 
 TIMES = [0.0, 5.0, 10.0, 15.0, 20.0]
 CFG = {
@@ -38,7 +39,7 @@ SPACETIME = {"plot6-7": [], "plot2-3": TIMES[1:3], "plot1v5st": [], "plot1v5": T
 
 @pytest.mark.parametrize("label, times", SPACETIME.items())
 def test_spacetime_figures_are_raster_on_a_shared_scale(sim, label, times):
-    fig = spacetime.FIGURES[label](sim, {"scenes": ["small"], "times": times})
+    fig = drawer(label)(sim, {"scenes": ["small"], "times": times})
     images = [im for ax in fig.axes for im in ax.get_images()]
     # no vector mesh outside colour bars (a 3000 x 200 pcolormesh PDF takes 44 s to write)
     assert not any(isinstance(c, QuadMesh) for ax in fig.axes if ax.get_label() != "<colorbar>"

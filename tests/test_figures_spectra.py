@@ -4,9 +4,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from cradle import compare
+from cradle.measurements import compare
 from cradle.figures import spectra
-from cradle.io import make_dataset
+from cradle.pipeline.io import make_dataset
 
 N = 40                                   # q N / (2 pi) = 16 for q = 4 pi/5: q on Gamma*
 Q = 4 * np.pi / 5
@@ -51,7 +51,7 @@ def test_window_around_carrier_and_wrap_at_pi():
 
 
 def test_harmonics_are_left_out_only_when_asked():
-    from cradle.sidebands import harmonics
+    from cradle.measurements.sidebands import harmonics
     N, q = 200, 57 * np.pi / 100                # fft344: 2(q - pi) = -0.86 pi, 3q - 2pi = -0.29 pi
     n = np.arange(N)
     second, third = 2 * (q - np.pi), 3 * q - 2 * np.pi

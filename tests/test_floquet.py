@@ -1,11 +1,11 @@
-"""Bloch-Floquet stability of the exact travelling waves (cradle.floquet): trivial multipliers, the
+"""Bloch-Floquet stability of the exact travelling waves (cradle.analyses.floquet): trivial multipliers, the
 reduction against the brute-force ring monodromy, the small-amplitude DpS limit, a direct run."""
 import copy
 
 import numpy as np
 import pytest
 
-from cradle import floquet as F
+from cradle.analyses import floquet as F
 
 ALPHA = 1.5
 NUM = dict(hill_modes=16, grid_log2=16, wave_modes=64, wave_grid_log2=13)
@@ -89,7 +89,7 @@ def test_direct_simulation_grows_at_the_top_floquet_rate():
 
 
 def test_resolved_spec_names_the_key():
-    from cradle import config as cc
+    from cradle.pipeline import config as cc
 
     cfg = cc.load("config.yaml")
     b = F.resolved_spec(cfg)

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from cradle import homoclinic, initial
+from cradle.models import homoclinic, initial
 
 
 @pytest.fixture(scope="module")

@@ -2,7 +2,8 @@
 import numpy as np
 import pytest
 
-from cradle import compare, dps, initial
+from cradle.measurements import compare
+from cradle.models import dps, initial
 
 
 def test_travelling_wave_matches_ansatzapprox():

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from cradle import dps as D
-from cradle import lattice as L
-from cradle.dps import amplitude_from_omega
+from cradle.models import dps as D
+from cradle.models import lattice as L
+from cradle.models.dps import amplitude_from_omega
 from cradle.integrators import (
     CORRECTED_METHODS,
     DEFAULT_DT_FACTOR,
@@ -61,7 +61,7 @@ def test_coefficients_consistent_and_symmetric(method):
 
 
 def test_kernels_match_reference_formulas():
-    """Force, energy (ham) and the Jacobian agree with cradle.lattice / finite differences."""
+    """Force, energy (ham) and the Jacobian agree with cradle.models.lattice / finite differences."""
     rng = np.random.default_rng(3)
     x, v = rng.standard_normal(7), rng.standard_normal(7)
     for bc in ("periodic", "free"):

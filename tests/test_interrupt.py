@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from cradle.io import open_dataset
+from cradle.pipeline.io import open_dataset
 
 CONFIG = {
     "scenes": {

@@ -9,8 +9,10 @@ import pytest
 import xarray as xr
 import yaml
 
-from cradle import config as cc
-from cradle import breathers, dps, homoclinic, initial, lattice, stages
+from cradle.pipeline import config as cc
+from cradle.measurements import breathers
+from cradle.models import dps, homoclinic, initial, lattice
+from cradle.pipeline import stages
 from cradle.figures import localised, registry
 
 matplotlib.use("Agg")

@@ -1,14 +1,14 @@
-"""Modulational instability measured (cradle.migrowth, cradle.mistatistics): the growth fit and its window
+"""Modulational instability measured (cradle.analyses.migrowth, cradle.analyses.mistatistics): the growth fit and its window
 on synthetic series, a direct DpS run against modulational.growth_rate, crossing times and the threshold
 estimator on synthetic data, determinism, and a tiny batch through the stage functions."""
 import numpy as np
 import pytest
 
-from cradle import config as cc
-from cradle import dps, initial
-from cradle import migrowth as MG
-from cradle import mistatistics as MS
-from cradle import modulational as MI
+from cradle.pipeline import config as cc
+from cradle.models import dps, initial
+from cradle.analyses import migrowth as MG
+from cradle.analyses import mistatistics as MS
+from cradle.analyses import modulational as MI
 
 
 # ---------------------------------------------------------------- growth fit
@@ -146,12 +146,12 @@ def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):
     assert dps.omega_tw(d.info["a"], 2 * np.pi * 12 / 40, 1.5) == pytest.approx(1.1)
     # written, read back and drawn
     from cradle.figures import save_figure
-    from cradle.figures.mi import DATASET_FIGURES
-    from cradle.io import open_dataset, write_netcdf
+    from cradle.figures import drawer
+    from cradle.pipeline.io import open_dataset, write_netcdf
 
     back = open_dataset(write_netcdf(ds, tmp_path / "mis.nc"))
     np.testing.assert_array_equal(back["mis_crossed"].values, crossed)
-    assert all(p.stat().st_size > 0 for p in save_figure(DATASET_FIGURES["mi-statistics"](back), tmp_path / "mis"))
+    assert all(p.stat().st_size > 0 for p in save_figure(drawer("mi-statistics", "DATASET_FIGURES")(back), tmp_path / "mis"))
 
 
 def test_config_rejects_a_q_grid_off_the_ring(raw):

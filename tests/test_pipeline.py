@@ -14,11 +14,11 @@ import numpy as np
 import pytest
 import yaml
 
-from cradle import config as cc
-from cradle import stages
-from cradle.io import open_dataset, write_netcdf
-from cradle.runner import failed_path, run, run_chain
-from cradle.variables import VARIABLES
+from cradle.pipeline import config as cc
+from cradle.pipeline import stages
+from cradle.pipeline.io import open_dataset, write_netcdf
+from cradle.pipeline.runner import failed_path, run, run_chain
+from cradle.pipeline.variables import VARIABLES
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -3,9 +3,9 @@ reversibility, the explicit periodic orbits of the traj2 caption."""
 import numpy as np
 import pytest
 
-from cradle import stationary as st
+from cradle.models import stationary as st
 from cradle.figures import maps
-from cradle.io import make_dataset
+from cradle.pipeline.io import make_dataset
 
 ALPHAS = [1.5, 2.0, 3.0]
 

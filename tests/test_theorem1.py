@@ -1,10 +1,10 @@
-"""Theorem 1 measured (cradle.theorem1): exact travelling waves of (ad) with V = V0 by a sine-series Newton
+"""Theorem 1 measured (cradle.analyses.theorem1): exact travelling waves of (ad) with V = V0 by a sine-series Newton
 solver, against the DpS dispersion relation (wleadingorder), (va) and the q = pi binary oscillation (inteq)."""
 import numpy as np
 import pytest
 
-from cradle import dps, lattice
-from cradle import theorem1 as T
+from cradle.models import dps, lattice
+from cradle.analyses import theorem1 as T
 
 M = 2**13   # small grids keep the tests fast; aliasing ~ M^-(alpha+1) ~ 1e-10
 

@@ -54,7 +54,7 @@ def test_report_captions_render_for_every_figure():
     docutils_core = pytest.importorskip("docutils.core")
     from types import SimpleNamespace
 
-    from cradle import config as cc
+    from cradle.pipeline import config as cc
 
     cfg = cc.load(ROOT / "config.yaml")
     env = jinja2.Environment(trim_blocks=True, lstrip_blocks=True)

@@ -1,4 +1,4 @@
-"""Work-precision measurements (cradle.workprecision): a tiny ladder, the reference logic,
+"""Work-precision measurements (cradle.analyses.workprecision): a tiny ladder, the reference logic,
 the config section, the netCDF output and the figure."""
 from __future__ import annotations
 
@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 import yaml
 
-from cradle import config as cc
-from cradle import stages
-from cradle import workprecision as wp
-from cradle.io import open_dataset, write_netcdf
+from cradle.pipeline import config as cc
+from cradle.pipeline import stages
+from cradle.analyses import workprecision as wp
+from cradle.pipeline.io import open_dataset, write_netcdf
 
 ROOT = Path(__file__).resolve().parents[1]
 

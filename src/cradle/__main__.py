@@ -1,6 +1,6 @@
-"""``python -m cradle``: the ``cradle`` command line (:mod:`cradle.cli`)."""
+"""``python -m cradle``: the ``cradle`` command line (:mod:`cradle.pipeline.cli`)."""
 import sys
 
-from .cli import main
+from cradle.pipeline.cli import main
 
 sys.exit(main())

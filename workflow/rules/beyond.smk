@@ -3,8 +3,8 @@
 # or the files results/theorem1/theorem1.nc, results/mi/mi-diagram.nc and
 # results/figures/{theorem1,mi-diagram}.{pdf,png}. Each computation runs in well under a minute on
 # one core; a figure rule reruns alone when only the drawing code changes.
-from cradle import modulational as _mi
-from cradle import theorem1 as _t1
+from cradle.analyses import modulational as _mi
+from cradle.analyses import theorem1 as _t1
 
 # should `theorem1` or `mi-diagram` ever be listed under `figures:`, these rules draw them
 ruleorder: theorem1_figure > figure
@@ -17,7 +17,7 @@ rule theorem1_compute:
     message:
         "Theorem 1 measured: exact travelling waves of (ad) against (wleadingorder)"
     input:
-        code=sources(*CORE, "theorem1", "config"),
+        code=code_of("workflow/scripts/theorem1.py"),
     output:
         "results/theorem1/theorem1.nc",
     params:
@@ -36,7 +36,7 @@ rule theorem1_figure:
     message:
         "Drawing figure theorem1"
     input:
-        code=sources("__init__", "io", "variables", "figures/__init__", "figures/beyond"),
+        code=figure_code("theorem1"),
         data="results/theorem1/theorem1.nc",
     output:
         pdf="results/figures/theorem1.pdf",
@@ -61,7 +61,7 @@ rule mi_diagram_compute:
     message:
         "Modulational instability of the DpS plane waves: growth-rate map and direct checks"
     input:
-        code=sources(*CORE, "modulational", "integrators"),
+        code=code_of("workflow/scripts/mi_diagram.py"),
     output:
         "results/mi/mi-diagram.nc",
     params:
@@ -80,7 +80,7 @@ rule mi_diagram_figure:
     message:
         "Drawing figure mi-diagram"
     input:
-        code=sources("__init__", "io", "variables", "figures/__init__", "figures/beyond"),
+        code=figure_code("mi-diagram"),
         data="results/mi/mi-diagram.nc",
     output:
         pdf="results/figures/mi-diagram.pdf",

@@ -8,7 +8,7 @@ rule paper_checks:
     message:
         "Tabulating the paper's claims against ours"
     input:
-        code=sources(*CORE, "checks", "breathers", "sidebands", "compare", "stationary"),
+        code=code_of("workflow/scripts/paper_checks.py"),
         data=checks_inputs,
     output:
         csv=report(

@@ -1,31 +1,34 @@
 # Shared helpers: config validation (after any --config overrides), resolved
-# parameters per entry, and the src/cradle sources each rule depends on.
+# parameters per entry, and the code each rule runs (derived from its imports).
 import re
-from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
 
-from cradle import config as cc
+from cradle.pipeline import config as cc
 from cradle import figures as _figures
+from cradle.pipeline.codedeps import code_files
 
 try:
     config.update(cc.validate(config))
 except cc.ConfigError as err:
     raise WorkflowError(str(err)) from None
 
-SRC = Path("src/cradle")
+def code_of(*entries):
+    """A rule's code inputs: its script (or module) and every cradle source file it can import,
+    derived from the imports themselves (cradle.pipeline.codedeps), so an edit reruns exactly the
+    jobs whose code reaches it."""
+    return [str(e) for e in entries if str(e).endswith(".py")] + code_files(*entries, src="src")
 
 
-def sources(*modules):
-    """The cradle source files a rule uses (a change to them reruns the rule)."""
-    files = []
-    for m in modules:
-        p = SRC / m
-        files += sorted(str(f) for f in p.glob("*.py")) if p.is_dir() else [str(p.with_suffix(".py"))]
-    return files
-
-
-CORE = ("__init__", "io", "variables", "stages", "runner", "lattice", "dps")
+def figure_code(label):
+    """Code inputs of the job drawing ``label``: its adapter script and its drawing module."""
+    registry = "FIGURES" if label in _figures.FIGURES else "DATASET_FIGURES"
+    script = "workflow/scripts/figure.py" if registry == "FIGURES" else "workflow/scripts/dataset_figure.py"
+    try:
+        drawing = _figures.module_of(label, registry)
+    except KeyError as err:
+        raise WorkflowError(str(err)) from None
+    return code_of(script, f"cradle.figures.{drawing}")
 
 
 def names_regex(section):
@@ -56,14 +59,6 @@ def figure_targets(labels=None):
     return [f"results/figures/{label}.{ext}" for label in labels for ext in ("pdf", "png")]
 
 
-def figure_module(label):
-    """The figures/*.py module that draws ``label`` (found in the sources, nothing imported)."""
-    try:
-        return str(SRC / "figures" / f"{_figures.module_of(label)}.py")
-    except KeyError as err:
-        raise WorkflowError(str(err)) from None
-
-
 def initial_inputs(w):
     """A breather scene reads its homoclinic solution."""
     ini = config["scenes"][w.scene]["initial"]
@@ -90,7 +85,7 @@ def mi_growth_inputs(w):
 
 def mi_batches(variant):
     """The batch files of one mi-statistics variant (reduced, full)."""
-    from cradle import mistatistics as _mis
+    from cradle.analyses import mistatistics as _mis
 
     spec = _mis.resolved_spec(config, variant)
     return [f"results/mi/batch/{variant}/N{N}-{m}-{c}.nc" for N in spec["N"] for m in _mis.MODELS

@@ -7,8 +7,7 @@ rule figure:
     message:
         "Drawing figure {wildcards.label}"
     input:
-        code=lambda w: sources("__init__", "io", "variables", "compare", "lattice", "figures/__init__")
-        + [figure_module(w.label)],
+        code=lambda w: figure_code(w.label),
         data=figure_inputs,
     output:
         pdf="results/figures/{label}.pdf",

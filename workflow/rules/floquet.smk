@@ -1,9 +1,9 @@
 # Spectral (Bloch-Floquet) stability of the exact travelling waves (config `beyond: floquet:`, part of
 # `all`): `snakemake -j2 floquet` writes results/floquet/floquet.nc and results/figures/floquet.{pdf,png}.
-# The compute job (cradle.floquet: Hill's method in the co-moving frame, the lattice threshold in q
+# The compute job (cradle.analyses.floquet: Hill's method in the co-moving frame, the lattice threshold in q
 # against the DpS q_c = pi/2, a brute-force ring monodromy and a direct run as checks) takes ~2-3 min
 # on one core; the figure rule reruns alone when only the drawing code changes.
-from cradle import floquet as _fq
+from cradle.analyses import floquet as _fq
 
 # should `floquet` ever be listed under `figures:`, this rule draws it
 ruleorder: floquet_figure > figure
@@ -15,7 +15,7 @@ rule floquet_compute:
     message:
         "Bloch-Floquet stability of the exact travelling waves against the DpS threshold"
     input:
-        code=sources(*CORE, "floquet", "theorem1", "modulational", "integrators", "config"),
+        code=code_of("workflow/scripts/floquet.py"),
     output:
         "results/floquet/floquet.nc",
     params:
@@ -34,7 +34,7 @@ rule floquet_figure:
     message:
         "Drawing figure floquet"
     input:
-        code=sources("__init__", "io", "variables", "figures/__init__", "figures/floquet"),
+        code=figure_code("floquet"),
         data="results/floquet/floquet.nc",
     output:
         pdf="results/figures/floquet.pdf",

@@ -8,7 +8,7 @@ rule homoclinic:
     message:
         "Solving (dpsstn) for the homoclinic solution '{wildcards.name}'"
     input:
-        code=sources(*CORE, "homoclinic"),
+        code=code_of("workflow/scripts/homoclinic.py"),
     output:
         "results/homoclinic/{name}.nc",
     params:
@@ -28,7 +28,7 @@ rule map_orbits:
     message:
         "Iterating the map G (comp1)-(comp2) for '{wildcards.name}'"
     input:
-        code=sources(*CORE, "stationary"),
+        code=code_of("workflow/scripts/map_orbits.py"),
     output:
         "results/map/{name}.nc",
     params:

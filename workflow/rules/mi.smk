@@ -1,5 +1,5 @@
-# Modulational instability measured (config `beyond: mi_growth, mi_statistics`; cradle.migrowth,
-# cradle.mistatistics, figures in cradle.figures.mi).
+# Modulational instability measured (config `beyond: mi_growth, mi_statistics`; cradle.analyses.migrowth,
+# cradle.analyses.mistatistics, figures in cradle.figures.mi).
 #
 # * `snakemake -j2 mi_growth` (seconds): the scenes of beyond.mi_growth.scenes rerun from their initial
 #   data, growth rates fitted in both models against the linear DpS theory -> results/mi/mi-growth.nc,
@@ -9,8 +9,8 @@
 # * `snakemake -j2 mi_statistics_full` (a few minutes on 2 cores): the full sweep, the same code ->
 #   results/mi/full/mi-statistics.nc, results/mi/full/mi-statistics.{pdf,png}.
 # Each batch job runs every seed of a chunk of q values for one (N, model): results/mi/batch/<variant>/.
-from cradle import migrowth as _mig
-from cradle import mistatistics as _mis
+from cradle.analyses import migrowth as _mig
+from cradle.analyses import mistatistics as _mis
 
 ruleorder: mi_growth_figure > figure
 ruleorder: mi_statistics_figure_reduced > figure
@@ -24,7 +24,7 @@ rule mi_growth_compute:
     message:
         "Modulational-instability growth rates measured in the scenes' runs, exact and DpS"
     input:
-        code=sources(*CORE, "integrators", "compare", "modulational", "migrowth", "config"),
+        code=code_of("workflow/scripts/mi_growth.py"),
         data=mi_growth_inputs,
     output:
         "results/mi/mi-growth.nc",
@@ -45,7 +45,7 @@ rule mi_growth_figure:
     message:
         "Drawing figure mi-growth"
     input:
-        code=sources("__init__", "io", "variables", "dps", "modulational", "figures/__init__", "figures/mi"),
+        code=figure_code("mi-growth"),
         data="results/mi/mi-growth.nc",
     output:
         pdf="results/figures/mi-growth.pdf",
@@ -70,7 +70,7 @@ rule mi_statistics_batch:
     message:
         "mi-statistics ({wildcards.variant}): N = {wildcards.N}, {wildcards.model}, chunk {wildcards.chunk}"
     input:
-        code=sources(*CORE, "initial", "integrators", "compare", "sidebands", "modulational", "mistatistics"),
+        code=code_of("workflow/scripts/mi_statistics.py"),
     output:
         "results/mi/batch/{variant}/N{N}-{model}-{chunk}.nc",
     params:
@@ -101,7 +101,7 @@ for _variant in ("reduced", "full"):
         message:
             f"mi-statistics ({_variant}): thresholds from every batch"
         input:
-            code=sources("__init__", "io", "variables", "mistatistics"),
+            code=code_of("workflow/scripts/mi_statistics.py"),
             batches=mi_batches(_variant),
         output:
             f"{MI_VARIANT_DIR[_variant]}/mi-statistics.nc",
@@ -120,7 +120,7 @@ for _variant in ("reduced", "full"):
         message:
             f"Drawing figure mi-statistics ({_variant})"
         input:
-            code=sources("__init__", "io", "variables", "dps", "modulational", "figures/__init__", "figures/mi"),
+            code=figure_code("mi-statistics"),
             data=f"{MI_VARIANT_DIR[_variant]}/mi-statistics.nc",
         output:
             pdf=f"{MI_FIGURE_STEM[_variant]}.pdf",

@@ -13,7 +13,7 @@ rule simulate:
     message:
         "Scene '{wildcards.scene}': initial data, lattice (nc) and DpS (dfnls) runs, comparison"
     input:
-        code=sources(*CORE, "initial", "homoclinic", "integrators", "compare"),  # pair scenes solve a profile
+        code=code_of("workflow/scripts/simulate.py"),  # pair scenes solve a profile (homoclinic)
         homoclinic=initial_inputs,
     output:
         initial="results/initial/{scene}.nc",

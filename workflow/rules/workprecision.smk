@@ -6,7 +6,7 @@
 # single-threaded Python process (~40 s each, ~2 min for the whole target on 2 cores).
 import json
 
-from cradle import workprecision as wpr
+from cradle.analyses import workprecision as wpr
 
 WP_SCENES = list((config.get("work_precision") or {}).get("scenes") or {})
 
@@ -17,7 +17,7 @@ rule work_precision_scene:
     message:
         "Work-precision of the lattice integrators on scene '{wildcards.scene}'"
     input:
-        code=sources(*CORE, "integrators", "workprecision"),
+        code=code_of("cradle.analyses.workprecision"),
         initial="results/initial/{scene}.nc",
     output:
         "results/work-precision/{scene}.nc",
@@ -32,7 +32,7 @@ rule work_precision_scene:
     threads: workflow.cores
     shell:
         "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "
-        "python -m cradle.workprecision scene --spec {params.spec:q} --initial {input.initial:q} "
+        "python -m cradle.analyses.workprecision scene --spec {params.spec:q} --initial {input.initial:q} "
         "--out {output:q} --log {log:q}"
 
 
@@ -42,8 +42,7 @@ rule work_precision_figure:
     message:
         "Drawing figure work-precision"
     input:
-        code=sources("__init__", "io", "variables", "runner", "lattice", "workprecision", "figures/__init__",
-                     "figures/workprecision"),
+        code=code_of("cradle.analyses.workprecision", "cradle.figures.workprecision"),
         data=expand("results/work-precision/{scene}.nc", scene=WP_SCENES),
     output:
         pdf="results/figures/work-precision.pdf",
@@ -51,7 +50,7 @@ rule work_precision_figure:
     log:
         "results/logs/figures/work-precision.log",
     shell:
-        "python -m cradle.workprecision figure --out results/figures/work-precision "
+        "python -m cradle.analyses.workprecision figure --out results/figures/work-precision "
         "--log {log:q} {input.data:q}"
 
 

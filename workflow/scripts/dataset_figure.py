@@ -3,8 +3,8 @@
 from pathlib import Path
 
 from cradle.figures import draw_dataset
-from cradle.io import open_dataset
-from cradle.runner import setup_logging
+from cradle.pipeline.io import open_dataset
+from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 setup_logging(sm.log[0])

@@ -2,7 +2,7 @@
 from pathlib import Path
 
 from cradle.figures import draw, load_inputs
-from cradle.runner import setup_logging
+from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 setup_logging(sm.log[0])

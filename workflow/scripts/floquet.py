@@ -2,8 +2,8 @@
 (rule floquet_compute)."""
 import logging
 
-from cradle import floquet
-from cradle.runner import run
+from cradle.analyses import floquet
+from cradle.pipeline.runner import run
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = logging.getLogger("cradle")

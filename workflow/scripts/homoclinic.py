@@ -1,6 +1,6 @@
 """Snakemake adapter: solve (dpsstn) for one homoclinic entry -> results/homoclinic/<name>.nc."""
-from cradle import stages
-from cradle.runner import run
+from cradle.pipeline import stages
+from cradle.pipeline.runner import run
 
 name = snakemake.wildcards.name  # noqa: F821 (injected by Snakemake)
 run(lambda: stages.homoclinic_solution(snakemake.params.spec, name),  # noqa: F821

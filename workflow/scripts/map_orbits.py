@@ -1,6 +1,6 @@
 """Snakemake adapter: orbits of the map G (comp1)-(comp2) -> results/map/<name>.nc."""
-from cradle import stages
-from cradle.runner import run
+from cradle.pipeline import stages
+from cradle.pipeline.runner import run
 
 name = snakemake.wildcards.name  # noqa: F821 (injected by Snakemake)
 run(lambda: stages.map_orbits(snakemake.params.spec, name),  # noqa: F821

@@ -1,8 +1,8 @@
 """Snakemake adapter: DpS modulational-instability map -> results/mi/mi-diagram.nc (rule mi_diagram_compute)."""
 import logging
 
-from cradle import modulational
-from cradle.runner import run
+from cradle.analyses import modulational
+from cradle.pipeline.runner import run
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = logging.getLogger("cradle")

@@ -2,9 +2,9 @@
 (rule mi_growth_compute)."""
 import logging
 
-from cradle import migrowth
-from cradle.io import open_dataset
-from cradle.runner import run
+from cradle.analyses import migrowth
+from cradle.pipeline.io import open_dataset
+from cradle.pipeline.runner import run
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = logging.getLogger("cradle")

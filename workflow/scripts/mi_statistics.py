@@ -2,9 +2,9 @@
 (rule mi_statistics_batch), or the batches of a variant -> its mi-statistics.nc (mi_statistics_aggregate_*)."""
 import logging
 
-from cradle import mistatistics
-from cradle.io import open_dataset
-from cradle.runner import run
+from cradle.analyses import mistatistics
+from cradle.pipeline.io import open_dataset
+from cradle.pipeline.runner import run
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = logging.getLogger("cradle")

@@ -1,9 +1,9 @@
 """Snakemake adapter: the paper-claims table -> results/paper_checks.{csv,md}."""
 from pathlib import Path
 
-from cradle import checks
-from cradle.io import write_text
-from cradle.runner import setup_logging
+from cradle.analyses import checks
+from cradle.pipeline.io import write_text
+from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 setup_logging(sm.log[0])

@@ -1,8 +1,8 @@
 """Snakemake adapter: one scene's initial data, lattice (nc) and DpS (dfnls) runs and their
 comparison -> results/initial/<scene>.nc, results/sim/<scene>/{exact,dps}.nc, results/metrics/<scene>.nc."""
-from cradle import stages
-from cradle.io import open_dataset
-from cradle.runner import Progress, run_chain
+from cradle.pipeline import stages
+from cradle.pipeline.io import open_dataset
+from cradle.pipeline.runner import Progress, run_chain
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 scene, spec = sm.wildcards.scene, sm.params.spec

@@ -1,8 +1,8 @@
 """Snakemake adapter: Theorem 1 measured -> results/theorem1/theorem1.nc (rule theorem1_compute)."""
 import logging
 
-from cradle import theorem1
-from cradle.runner import run
+from cradle.analyses import theorem1
+from cradle.pipeline.runner import run
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = logging.getLogger("cradle")

@@ -1,7 +1,6 @@
 """One drawing function per paper figure, reading netCDF outputs only.
 
-Each module registers its figures in a ``FIGURES = {label: function}`` dict;
-a function takes opened :class:`xarray.Dataset` objects (and the figure's
+:data:`FIGURES` maps each label to its drawing function; a function takes opened :class:`xarray.Dataset` objects (and the figure's
 options from config.yaml) and returns a matplotlib Figure; :func:`save_figure`
 writes it as ``<stem>.pdf`` and ``<stem>.png``. Modules: :mod:`.maps`
 (traj3, traj2), :mod:`.homoclinic` (bcsc), :mod:`.travelling` (plot4-5,
@@ -10,16 +9,15 @@ plotcomplin), :mod:`.spacetime` (space-time diagrams and profiles),
 loc1, fini), :mod:`.beyond` and :mod:`.workprecision` (beyond the paper).
 
 Importing this package is cheap (no matplotlib, no figure module): the
-Snakefile asks it which module draws a label (:func:`module_of`), and a
-figure job imports only that module.
+Snakefile asks it which module draws a label (:func:`module_of`) and
+derives the job's code inputs from that module's imports; a figure job
+imports only that module.
 """
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 PNG_DPI = 150
-_HERE = Path(__file__).parent
 
 
 def _pyplot():
@@ -56,58 +54,77 @@ def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
     return _pyplot().subplots(nrows, ncols, figsize=(width, height), constrained_layout=True, **kw)
 
 
-#: the two registries a module here may define: ``FIGURES`` (paper figures, drawn from the
-#: scenes' files by :func:`draw`) and ``DATASET_FIGURES`` (beyond the paper, each drawn from the
-#: one netCDF file of its analysis by :func:`draw_dataset`)
-REGISTRIES = ("FIGURES", "DATASET_FIGURES")
+#: Paper figures: label -> "module.function" of this package, drawn from the scenes' files by
+#: :func:`draw`. The one table of labels: config validation, the Snakefile and the tests read it.
+FIGURES = {
+    "traj3": "maps.draw_traj3",
+    "traj2": "maps.draw_traj2",
+    "bcsc": "homoclinic.draw_bcsc",
+    "plot4-5": "travelling.draw_plot4_5",
+    "plotcomplin": "travelling.draw_plotcomplin",
+    "plot6-7": "spacetime.draw_plot6_7",
+    "plot2-3": "spacetime.draw_plot2_3",
+    "plot1v5st": "spacetime.draw_plot1v5st",
+    "plot1v5": "spacetime.draw_plot1v5",
+    "plot8-11": "spacetime.draw_plot8_11",
+    "plot9-10": "spacetime.draw_plot9_10",
+    "plot29-30": "spacetime.draw_plot29_30",
+    "plot26-27": "spacetime.draw_plot26_27",
+    "plot28": "spacetime.draw_plot28",
+    "fft106": "spectra.draw_fft106",
+    "fftseuil": "spectra.draw_fftseuil",
+    "fft344": "spectra.draw_fft344",
+    "plot18": "localised.draw_plot18",
+    "loc1": "localised.draw_loc1",
+    "fini": "localised.draw_fini",
+}
 
+#: Beyond the paper: label -> "module.function", each drawn from the one netCDF file of its
+#: analysis by :func:`draw_dataset`.
+DATASET_FIGURES = {
+    "theorem1": "beyond.theorem1",
+    "mi-diagram": "beyond.mi_diagram",
+    "floquet": "floquet.floquet",
+    "mi-growth": "mi.mi_growth",
+    "mi-statistics": "mi.mi_statistics",
+}
 
-def _declared(path: Path, registry: str) -> list[str]:
-    """The labels of ``registry`` in the module at ``path``, read from its source."""
-    m = re.search(rf"^{registry}\s*=\s*\{{(.*?)\}}", path.read_text(), re.M | re.S)
-    return re.findall(r"[\"']([\w.-]+)[\"']\s*:", m.group(1)) if m else []
+#: Drawn from several analysis files by its own rule (``workprecision.draw``).
+OTHER_FIGURES = ("work-precision",)
+
+REGISTRIES = {"FIGURES": FIGURES, "DATASET_FIGURES": DATASET_FIGURES}
 
 
 def module_of(label: str, registry: str = "FIGURES") -> str:
-    """Name of the module here whose ``registry`` dict draws ``label``, found by reading the
-    sources (nothing is imported; the Snakefile uses it to make that module a rule input)."""
-    found = [path.stem for path in sorted(_HERE.glob("[!_]*.py")) if label in _declared(path, registry)]
-    if len(found) != 1:
-        raise KeyError(f"figure {label!r} is drawn by {len(found)} modules of {_HERE} ({found}); "
-                       f"known: {sorted(labels(registry))}")
-    return found[0]
+    """Name of the module here that draws ``label`` (nothing is imported)."""
+    table = REGISTRIES[registry]
+    if label not in table:
+        raise KeyError(f"no figure {label!r} in {registry} (known: {sorted(table)})")
+    return table[label].split(".")[0]
 
 
 def labels(registry: str = "FIGURES") -> list[str]:
-    """Every label some module here draws in ``registry`` (read from the sources)."""
-    return [label for path in sorted(_HERE.glob("[!_]*.py")) for label in _declared(path, registry)]
+    """Every label of ``registry``."""
+    return list(REGISTRIES[registry])
 
 
 def drawer(label: str, registry: str = "FIGURES"):
     """The drawing function of ``label``, importing only its module."""
     import importlib
 
-    module = importlib.import_module(f"{__name__}.{module_of(label, registry)}")
-    return getattr(module, registry)[label]
+    module_of(label, registry)  # the clear KeyError for an unknown label
+    module, func = REGISTRIES[registry][label].split(".")
+    return getattr(importlib.import_module(f"{__name__}.{module}"), func)
 
 
 def registry() -> dict:
-    """label -> drawing function, for every module here (imports them all).
+    """label -> drawing function for every paper figure (imports every figure module).
 
     Each function takes (data, options) and returns a Figure; ``data`` maps
     every name of the figure's `scenes:` list to its Dataset(s) (see
     :func:`load_inputs`), ``options`` is the figure's entry in config.yaml.
     """
-    import importlib
-
-    found = {}
-    for path in sorted(_HERE.glob("[!_]*.py")):
-        module = importlib.import_module(f"{__name__}.{path.stem}")
-        for label, func in getattr(module, "FIGURES", {}).items():
-            if label in found:
-                raise RuntimeError(f"figure {label!r} is drawn by two modules")
-            found[label] = func
-    return found
+    return {label: drawer(label) for label in FIGURES}
 
 
 def load_inputs(scenes: dict, root) -> dict:
@@ -117,7 +134,7 @@ def load_inputs(scenes: dict, root) -> dict:
     scenes). Map and homoclinic names give one Dataset; a scene gives
     ``{"exact": ..., "dps": ..., "metrics": ...}``.
     """
-    from ..io import open_dataset
+    from cradle.pipeline.io import open_dataset
 
     root = Path(root)
     data = {}

@@ -2,14 +2,14 @@
 
 These read the netCDF outputs of the `theorem1` and `mi_diagram` rules
 (results/theorem1/theorem1.nc, results/mi/mi-diagram.nc), not scene files, so
-they are not in a ``FIGURES`` registry (whose functions take scene data): the
-rules call :data:`DATASET_FIGURES` ``[label](ds)`` and :func:`cradle.figures.save_figure`.
+they are listed in :data:`cradle.figures.DATASET_FIGURES` (functions of one Dataset) and
+drawn by :func:`cradle.figures.draw_dataset`.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from . import figure
+from cradle.figures import figure
 
 
 def _qlabel(q):
@@ -113,6 +113,3 @@ def mi_diagram(ds):
     B.set_title("max over p; x: DpS runs, o: theory at their (q, p)", fontsize=8)
     B.legend(fontsize=7)
     return fig
-
-
-DATASET_FIGURES = {"theorem1": theorem1, "mi-diagram": mi_diagram}

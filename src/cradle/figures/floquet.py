@@ -1,8 +1,8 @@
 """Figure beyond the paper: Bloch-Floquet stability of the exact travelling waves (floquet).
 
-Reads results/floquet/floquet.nc (rule floquet_compute, :mod:`cradle.floquet`), not scene files, so it
-is not in a ``FIGURES`` registry (whose functions take scene data): the rule calls
-:data:`DATASET_FIGURES` ``["floquet"](ds)`` and :func:`cradle.figures.save_figure`.
+Reads results/floquet/floquet.nc (rule floquet_compute, :mod:`cradle.analyses.floquet`), not scene files, so it
+is listed in :data:`cradle.figures.DATASET_FIGURES` (functions of one Dataset) and drawn by
+:func:`cradle.figures.draw_dataset`.
 
 (a) max over p of the growth rate against q, lattice (exact waves) and DpS, thresholds marked, the
     fftseuil wavenumbers 50, 51, 52 pi/100 shaded; (b) the lattice growth rate over (q, p), with the DpS
@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import figure
+from cradle.figures import figure
 
 
 def _frac(q):
@@ -82,6 +82,3 @@ def floquet(ds):
              f"direct run: rate {ds.attrs['direct_rate_mode']:.4g} vs Floquet {ds.attrs['direct_rate_floquet']:.4g}"]
     D.text(0.02, 0.02, "\n".join(lines), transform=D.transAxes, fontsize=6.5, va="bottom")
     return fig
-
-
-DATASET_FIGURES = {"floquet": floquet}

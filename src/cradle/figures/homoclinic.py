@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import figure
+from cradle.figures import figure
 
 
 def _profile(ax, ds, title):
@@ -36,6 +36,3 @@ def draw_bcsc(data, options):
     _profile(axes[1, 0], bond, "bond-centred")
     _profile(axes[1, 1], double, "double-humped")
     return fig
-
-
-FIGURES = {"bcsc": draw_bcsc}

@@ -21,10 +21,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..breathers import dispersive_amplitude, half_period_shift, merging_time
-from . import figure
-from .spacetime import FORCE_LABEL, _at, spacetime
-from .spacetime import common_vmin as _vmin
+from cradle.measurements.breathers import dispersive_amplitude, half_period_shift, merging_time
+from cradle.figures import figure
+from cradle.figures.spacetime import FORCE_LABEL, _at, spacetime
+from cradle.figures.spacetime import common_vmin as _vmin
 
 
 # plot18 (bottom left): the paper likens this diagram to the detail plot28 (the central breather of
@@ -189,6 +189,3 @@ def draw_fini(data, options):
                  f"{sh['omega_approx']:.4f}: half-period shift after {sh['half_shift_periods']:.0f} periods",
                  fontsize=9)
     return fig
-
-
-FIGURES = {"plot18": draw_plot18, "loc1": draw_loc1, "fini": draw_fini}

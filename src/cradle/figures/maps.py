@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..stationary import explicit_periodic_orbits
-from . import figure
+from cradle.models.stationary import explicit_periodic_orbits
+from cradle.figures import figure
 
 MARKERS = {"period2": ("o", "period 2"), "period3": ("s", "period 3"), "period4": ("^", "period 4")}
 
@@ -59,6 +59,3 @@ def draw_traj2(data, options):
             _marks(ax, float(ds.attrs["alpha"]))
         ax.set_title(f"$\\|U_n\\|_\\infty \\leq {float(ds.attrs['box']):g}$ ({name})", fontsize=9)
     return fig
-
-
-FIGURES = {"traj3": draw_traj3, "traj2": draw_traj2}

@@ -2,16 +2,16 @@
 
 They read the netCDF outputs of the `mi_growth` and `mi_statistics` rules
 (results/mi/mi-growth.nc, results/mi/[full/]mi-statistics.nc), not scene files,
-so, as in :mod:`.beyond`, they sit in :data:`DATASET_FIGURES` rather than a
-``FIGURES`` registry; the rules call ``DATASET_FIGURES[label](ds)`` and
-:func:`cradle.figures.save_figure`.
+so, as in :mod:`.beyond`, they are listed in
+:data:`cradle.figures.DATASET_FIGURES` and drawn by :func:`cradle.figures.draw_dataset`.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .. import dps, modulational
-from . import figure
+from cradle.models import dps
+from cradle.analyses import modulational
+from cradle.figures import figure
 
 MODELS = ("exact", "dps")      # the model index of mig_model / mis_model
 
@@ -144,6 +144,3 @@ def mi_statistics(ds):
         B.set_xlim(A.get_xlim())
         B.legend(fontsize=6)
     return fig
-
-
-DATASET_FIGURES = {"mi-growth": mi_growth, "mi-statistics": mi_statistics}

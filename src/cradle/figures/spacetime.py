@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.ticker import MaxNLocator
 
-from . import figure
+from cradle.figures import figure
 
 CMAP = "gray"                     # vmin -> black, vmax = 0 -> white
 FORCE_LABEL = "$V_0'(x_{n+1}-x_n)$"
@@ -71,7 +71,7 @@ def period_minimum(t, force, period):
     """(bin centres, most negative force of every bond in each bin of length ``period``):
     one row per breather period, so that a long run drawn on a few hundred pixels keeps
     the depth of its black spots instead of averaging them with the white half-periods."""
-    from ..breathers import peak_compression
+    from cradle.measurements.breathers import peak_compression
 
     starts, P = peak_compression(t, force, period)
     return starts + 0.5 * period, -P
@@ -238,16 +238,3 @@ def draw_plot28(data, options):
                           f"({PLOT28_BEADS} bonds of largest force variance on the last {PLOT28_SPAN:g} time units)")
     fig.colorbar(img, ax=ax, label=FORCE_LABEL)
     return fig
-
-
-FIGURES = {
-    "plot6-7": draw_plot6_7,
-    "plot2-3": draw_plot2_3,
-    "plot1v5st": draw_plot1v5st,
-    "plot1v5": draw_plot1v5,
-    "plot8-11": draw_plot8_11,
-    "plot9-10": draw_plot9_10,
-    "plot29-30": draw_plot29_30,
-    "plot26-27": draw_plot26_27,
-    "plot28": draw_plot28,
-}

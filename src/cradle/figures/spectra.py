@@ -1,7 +1,7 @@
 """Figures fft106, fftseuil, fft344: spatial spectra |x_hat_k(t)| on Gamma* (section 4.2).
 
 The spectra are the paper's DFT x_hat_k(t) = sum_n x_n(t) e^{-i n k}, k in
-Gamma* = (2 pi / N){-N/2+1, ..., N/2} (:func:`cradle.compare.spatial_dft`),
+Gamma* = (2 pi / N){-N/2+1, ..., N/2} (:func:`cradle.measurements.compare.spatial_dft`),
 read from ``results/metrics/<scene>.nc`` (``spectrum_exact``, ``spectrum_dps``)
 and checked against the DFT of the stored displacements before drawing.
 Axes are linear, as in the paper; each spectrum panel's title gives the
@@ -18,8 +18,8 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..compare import spatial_dft
-from ..sidebands import EXCLUDE_BINS, sideband_peak, sideband_ratio, wrap
+from cradle.measurements.compare import spatial_dft
+from cradle.measurements.sidebands import EXCLUDE_BINS, sideband_peak, sideband_ratio, wrap
 
 TIME_TOL = 1e-6          # a requested time must be stored to within this
 MODELS = (("exact", "spectrum_exact", "exact"), ("dps", "spectrum_dps", "approx. (DpS)"))
@@ -182,7 +182,5 @@ def draw_fft344(data, options):
     return fig
 
 
-__all__ = ["FIGURES", "carrier_share", "sideband_ratio", "spectrum", "draw_fft106", "draw_fftseuil",
+__all__ = ["carrier_share", "sideband_ratio", "spectrum", "draw_fft106", "draw_fftseuil",
            "draw_fft344"]
-
-FIGURES = {"fft106": draw_fft106, "fftseuil": draw_fftseuil, "fft344": draw_fft344}

@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compare import linear_wave
-from . import figure
-from .spacetime import _at, _profiles
+from cradle.measurements.compare import linear_wave
+from cradle.figures import figure
+from cradle.figures.spacetime import _at, _profiles
 
 
 def draw_plot4_5(data, options):
@@ -41,6 +41,3 @@ def draw_plotcomplin(data, options):
     right.plot(n, linear_wave(n, np.array([t_shown]), a, q)[0], "--", color="C0", lw=1.0, label="linear wave")
     right.legend(fontsize=8, loc="upper right")
     return fig
-
-
-FIGURES = {"plot4-5": draw_plot4_5, "plotcomplin": draw_plotcomplin}

@@ -1,7 +1,7 @@
 """Figure work-precision: error and energy drift of every lattice integrator against wall time.
 
 Drawn by ``snakemake work_precision`` from results/work-precision/<scene>.nc
-(:mod:`cradle.workprecision`), not through the ``figures:`` registry (its
+(:mod:`cradle.analyses.workprecision`), not through the ``figures:`` registry (its
 inputs are not scene runs): :func:`draw` takes ``{scene: Dataset}``.
 One row per scene; left: error (max over the comparison grid up to
 t_valid, relative to the amplitude) against wall time; right: relative
@@ -15,7 +15,7 @@ import json
 
 import numpy as np
 
-from . import figure
+from cradle.figures import figure
 
 STYLE = {  # method -> (colour, marker); corrected splittings solid, the rest dashed
     "srkn6c": ("C3", "o"), "srkn4c": ("C1", "s"), "srkn6": ("C0", "o"), "srkn4": ("C9", "s"),

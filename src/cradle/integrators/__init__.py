@@ -24,8 +24,8 @@ tests/test_integrators.py.
 """
 from __future__ import annotations
 
-from .dps_solver import DPS_METHODS, DpsSolution, integrate_dps
-from .lattice_solver import (
+from cradle.integrators.dps_solver import DPS_METHODS, DpsSolution, integrate_dps
+from cradle.integrators.lattice_solver import (
     ADAPTIVE_METHODS,
     CORRECTED_METHODS,
     DEFAULT_DT_FACTOR,

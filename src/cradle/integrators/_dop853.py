@@ -18,7 +18,7 @@ import time
 import numpy as np
 from numba import njit
 
-from . import _kernels as K
+from cradle.integrators import _kernels as K
 
 
 def _scipy_dop853_tableau():

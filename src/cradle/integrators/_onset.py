@@ -74,7 +74,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._kernels import _bond, forces, forces_only, kick_rotate, last_kick
+from cradle.integrators._kernels import _bond, forces, forces_only, kick_rotate, last_kick
 
 # 8-point Gauss-Legendre on [0, 1]
 _GX, _GW = np.polynomial.legendre.leggauss(8)

@@ -2,7 +2,7 @@
 
     2 i tau0 dA_n/dtau = g(A_{n+1} - A_n) - g(A_n - A_{n-1}),  g(z) = z |z|^(alpha-1)   (dfnls)
 
-(conventions of :mod:`cradle.dps`: periodic, or free ends with
+(conventions of :mod:`cradle.models.dps`: periodic, or free ends with
 g(A_N - A_{N-1}) = g(A_0 - A_{-1}) = 0). The equation is not of the
 "kinetic + potential" form, so the splittings used for (nc) do not apply;
 scipy's adaptive solvers are stepped manually on the real view of A
@@ -18,11 +18,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..dps import tau0 as _tau0
-from ..lattice import check_alpha, check_bc
-from . import _dop853
-from . import _kernels as K
-from ._validate import check_choice, check_positive, check_state, check_times
+from cradle.models.dps import tau0 as _tau0
+from cradle.models.lattice import check_alpha, check_bc
+from cradle.integrators import _dop853
+from cradle.integrators import _kernels as K
+from cradle.integrators._validate import check_choice, check_positive, check_state, check_times
 
 #: scipy.integrate classes by name (imported when used)
 SCIPY_DPS_METHODS = {"dop853": "DOP853", "rk45": "RK45"}
@@ -45,7 +45,7 @@ class DpsSolution:
         Hamiltonian, -sum |A_{n+1}-A_n|^(alpha+1) / ((alpha+1) tau0));
         absolute when I(0) = 0.
     P_drift : ndarray, shape (T,)
-        |P(tau) - P(0)| / max_n |A_n(0)|, P = sum A_n (cradle.variables).
+        |P(tau) - P(0)| / max_n |A_n(0)|, P = sum A_n (cradle.pipeline.variables).
     max_l2_drift, max_energy_drift : float
         Same relative drifts, max over every accepted step.
     n_steps : int
@@ -73,7 +73,7 @@ class DpsSolution:
 
 def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853", rtol=DEFAULT_RTOL, atol=None,
                   progress=None) -> DpsSolution:
-    """Integrate the DpS equation (dfnls) with tau0 = tau0(alpha) of :mod:`cradle.dps`.
+    """Integrate the DpS equation (dfnls) with tau0 = tau0(alpha) of :mod:`cradle.models.dps`.
 
     Parameters
     ----------

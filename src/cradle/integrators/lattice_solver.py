@@ -3,7 +3,7 @@ or of the smooth lattice (meca) with kappa = 1.
 
     d^2 x_n/dt^2 + x_n = V'(x_{n+1} - x_n) - V'(x_n - x_{n-1})        (nc)/(meca)
 
-Conventions are those of :mod:`cradle.lattice`: beads n = 0..N-1, bond n joins
+Conventions are those of :mod:`cradle.models.lattice`: beads n = 0..N-1, bond n joins
 beads n and n+1 and carries f_n = V'(x_{n+1} - x_n); periodic ends close the
 ring with bond N-1, free ends drop it.
 
@@ -43,12 +43,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..lattice import check_alpha, check_bc
-from . import _dop853
-from . import _kernels as K
-from . import _onset
-from ._coefficients import SPLITTINGS
-from ._validate import check_choice, check_positive, check_state, check_times
+from cradle.models.lattice import check_alpha, check_bc
+from cradle.integrators import _dop853
+from cradle.integrators import _kernels as K
+from cradle.integrators import _onset
+from cradle.integrators._coefficients import SPLITTINGS
+from cradle.integrators._validate import check_choice, check_positive, check_state, check_times
 
 #: Splittings with the contact-onset correction (:mod:`._onset`) -> the splitting they correct.
 CORRECTED_METHODS = {"srkn6c": "srkn6", "srkn4c": "srkn4"}
@@ -379,7 +379,7 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6", dt
         Time of the state (x0, v0) (default 0), t_out[0] >= t0. Splittings
         only: continuing a run from its stored state at t0 with the same dt
         and the same later output times takes exactly the same steps, so the
-        result is bitwise that of one run (:mod:`cradle.extend`).
+        result is bitwise that of one run (:mod:`cradle.pipeline.extend`).
     energy0 : float, optional
         Splittings only: reference energy for ``energy_drift`` (default
         H(x0, v0)); the energy at t = 0 of the run being continued.

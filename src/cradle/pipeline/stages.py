@@ -4,9 +4,9 @@ homoclinic / map orbits  ->  initial data  ->  exact and DpS runs  ->  metrics
 (then figures, :mod:`cradle.figures`).
 
 Each function takes the plain-dict parameters of one config entry (as
-returned by :mod:`cradle.config`'s ``resolved_*`` functions) and the
+returned by :mod:`cradle.pipeline.config`'s ``resolved_*`` functions) and the
 Datasets of the stage before, and returns a self-describing Dataset (see
-:mod:`cradle.variables`, :mod:`cradle.io`). No file paths and no Snakemake:
+:mod:`cradle.pipeline.variables`, :mod:`cradle.pipeline.io`). No file paths and no Snakemake:
 the workflow scripts and the command line are thin adapters around these.
 A run that fails (no convergence, NaN, drift above the bound) raises
 :class:`StageFailure` carrying what was computed, for diagnosis.
@@ -18,23 +18,17 @@ import time
 import numpy as np
 import xarray as xr
 
-from . import compare, dps, initial, lattice
-from .io import make_dataset
-
-
-class StageFailure(RuntimeError):
-    """A stage computed something it must not hand on; ``partial`` keeps it for diagnosis."""
-
-    def __init__(self, message: str, partial: xr.Dataset | None = None):
-        super().__init__(message)
-        self.partial = partial
+from cradle.measurements import compare
+from cradle.models import dps, initial, lattice
+from cradle.pipeline.io import make_dataset
+from cradle.pipeline.runner import StageFailure
 
 
 # ---------------------------------------------------------------- stationary DpS
 
 def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
     """Solve (dpsstn) for one ``homoclinic:`` entry; a(n), residual(n), attributes."""
-    from . import homoclinic  # scipy.optimize: only the homoclinic stage needs it
+    from cradle.models import homoclinic  # scipy.optimize: only the homoclinic stage needs it
 
     t0 = time.perf_counter()
     alpha, N, bc = spec["alpha"], spec["N"], spec["bc"]
@@ -74,7 +68,7 @@ def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
 
 def map_orbits(spec: dict, name: str = "") -> xr.Dataset:
     """Orbits of the map G (comp1)-(comp2) for one ``map:`` entry (traj3, traj2)."""
-    from . import stationary
+    from cradle.models import stationary
 
     t0 = time.perf_counter()
     starts = stationary.starts_from_spec(spec)
@@ -148,7 +142,7 @@ def _check_finite(name, model, arrays, partial):
 
 def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
     """Integrate the lattice (nc) from the scene's initial data; x, v, forces, energy at stored times."""
-    from .integrators import SPLITTING_METHODS, integrate_lattice
+    from cradle.integrators import SPLITTING_METHODS, integrate_lattice
 
     alpha, bc = spec["alpha"], spec["bc"]
     times = np.asarray(spec["times"], dtype=float)
@@ -181,7 +175,7 @@ def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) ->
 
 def dps_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
     """Integrate the DpS equation (dfnls) and rebuild the approximate solution (ansatz) at stored times."""
-    from .integrators import integrate_dps
+    from cradle.integrators import integrate_dps
 
     alpha, bc = spec["alpha"], spec["bc"]
     times = np.asarray(spec["times"], dtype=float)

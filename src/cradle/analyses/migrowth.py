@@ -15,13 +15,13 @@ Measured quantity: the complex amplitude of (ansatz) in both models,
 
 whose plane wave (ansatz3) A_n = R e^{i(Omega tau - q n)} has its carrier at
 the single wavenumber -q. A perturbation beta e^{ipn} + conj(gamma) e^{-ipn} of
-the rotating frame (cradle.modulational) lives at -q + p and -q - p, so the
+the rotating frame (cradle.analyses.modulational) lives at -q + p and -q - p, so the
 sideband-pair amplitude
 
     S_p(t) = sqrt(|A_hat_{-q+p}|^2 + |A_hat_{-q-p}|^2) / |A_hat_{-q}|,   p = 2 pi m / N, m = 1..N/2,
 
 grows like e^{lambda(q, p) tau} = e^{lambda(q, p) eps^(alpha-1) t} in the linear phase, with
-lambda(q, p) of :func:`cradle.modulational.growth_rate` (units 1/tau, R = 1 here). Every rate
+lambda(q, p) of :func:`cradle.analyses.modulational.growth_rate` (units 1/tau, R = 1 here). Every rate
 below is per unit t of (nc): rate_t = rate_tau eps^(alpha-1). (Unlike the x spectrum, the A
 spectrum separates -q + p from q - p, so the growing p is read off without ambiguity.) The
 bins where the lattice's harmonics land (p = +-q, +-2q, +-3q, +-4q mod 2 pi: e^{2i theta},
@@ -42,8 +42,10 @@ import time
 
 import numpy as np
 
-from . import compare, dps, modulational
-from .config import store_times
+from cradle.measurements import compare
+from cradle.models import dps
+from cradle.analyses import modulational
+from cradle.pipeline.config import store_times
 
 MODELS = ("exact", "dps")
 
@@ -151,7 +153,7 @@ def measure(t, S, exclude_m=(), saturation: float = 0.2, decades: float = 1.0, r
 
 def run_scene(spec: dict, init_ds, every: float):
     """Rerun scene ``spec`` (resolved) from its initial Dataset: (t, {model: A (T, N)}, {model: x (T, N)}, info)."""
-    from .integrators import SPLITTING_METHODS, integrate_dps, integrate_lattice
+    from cradle.integrators import SPLITTING_METHODS, integrate_dps, integrate_lattice
 
     alpha, bc = float(spec["alpha"]), spec["bc"]
     eps = float(init_ds.attrs["eps"])
@@ -201,7 +203,7 @@ def compute(spec: dict, scenes: dict, log=None):
     ``spec``: sample_every, saturation, decades, r2_min. ``scenes``: {name: (resolved scene spec,
     initial Dataset, {"exact": sim Dataset, "dps": sim Dataset})}.
     """
-    from .io import make_dataset
+    from cradle.pipeline.io import make_dataset
 
     wall0 = time.perf_counter()
     say = log or (lambda *a: None)

@@ -1,6 +1,6 @@
 """Every stored variable and coordinate, declared once: dimensions, long name, units.
 
-Writers never type a ``long_name`` or ``units``: :func:`cradle.io.make_dataset`
+Writers never type a ``long_name`` or ``units``: :func:`cradle.pipeline.io.make_dataset`
 looks them up here (the xarray-simlab way), so all outputs agree. Everything in
 the model is dimensionless (time in units of 1/omega_0 of the pendula,
 displacements in units of the Hertz length), hence units "1".
@@ -9,7 +9,7 @@ CF-1.10 notes: the time coordinates are ``t`` and ``tau``, never ``time``
 (a ``time`` coordinate would need calendar units such as "days since ...");
 complex amplitudes are stored as ``_re``/``_im`` pairs; ``attrs`` holds any
 further CF attributes of a variable (``comment``, ``flag_values``, ...), also
-written by :func:`cradle.io.make_dataset`.
+written by :func:`cradle.pipeline.io.make_dataset`.
 """
 from __future__ import annotations
 
@@ -111,7 +111,7 @@ VARIABLES: dict[str, Var] = {
     "mi_check_theory": Var(("mi_alpha", "mi_check"), "scaled growth rate from the linear stability matrix"),
     "mi_check_simulated": Var(("mi_alpha", "mi_check"), "scaled growth rate fitted on a direct DpS run"),
     "mi_check_rel_error": Var(("mi_alpha", "mi_check"), "simulated / theoretical growth rate - 1"),
-    # beyond the paper: mi-statistics (cradle.mistatistics)
+    # beyond the paper: mi-statistics (cradle.analyses.mistatistics)
     "mis_N": Var(("mis_N",), "number N of beads on the ring"),
     "mis_model": Var(("mis_model",), "model index: 0 exact lattice (nc), 1 DpS approximation (dfnls)/(ansatz)",
                       attrs=(("comment", "names in the global attribute model_names"),)),
@@ -138,7 +138,7 @@ VARIABLES: dict[str, Var] = {
     "mis_threshold": Var(("mis_N", "mis_model"), "threshold q: the unstable fraction crosses 1/2", "rad"),
     "mis_threshold_low": Var(("mis_N", "mis_model"), "lower end of the threshold interval (Wilson 95 %)", "rad"),
     "mis_threshold_high": Var(("mis_N", "mis_model"), "upper end of the threshold interval (Wilson 95 %)", "rad"),
-    # beyond the paper: mi-growth (cradle.migrowth)
+    # beyond the paper: mi-growth (cradle.analyses.migrowth)
     "mig_scene": Var(("mig_scene",), "index of a scene (names in the global attribute scene_names)"),
     "mig_model": Var(("mig_model",), "model index: 0 exact lattice (nc), 1 DpS approximation (dfnls)/(ansatz)",
                       attrs=(("comment", "names in the global attribute model_names"),)),
@@ -204,4 +204,4 @@ def declared(name: str) -> Var:
     try:
         return VARIABLES[name]
     except KeyError:
-        raise KeyError(f"variable {name!r} is not declared in cradle.variables.VARIABLES") from None
+        raise KeyError(f"variable {name!r} is not declared in cradle.pipeline.variables.VARIABLES") from None

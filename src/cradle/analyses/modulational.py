@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import dps
-from .lattice import check_alpha
+from cradle.models import dps
+from cradle.models.lattice import check_alpha
 
 
 def _g(z, alpha):
@@ -164,7 +164,7 @@ def simulated_growth(alpha: float, N: int = 200, k_q: int = 70, m_p: int = 10, R
     log of the sideband amplitude |b_hat(p)|^2 + |b_hat(-p)|^2 over the second half.
     Returns (lambda_simulated, lambda_theory) in units 1/tau.
     """
-    from .integrators import integrate_dps
+    from cradle.integrators import integrate_dps
 
     q, p = 2 * np.pi * k_q / N, 2 * np.pi * m_p / N
     lam = float(growth_rate(q, p, alpha, R))
@@ -188,14 +188,14 @@ def simulated_growth(alpha: float, N: int = 200, k_q: int = 70, m_p: int = 10, R
 # ----------------------------------------------------------------- the pipeline stage
 
 def compute(spec: dict, log=None):
-    """The `mi-diagram` target as a Dataset (cradle.variables mi_*).
+    """The `mi-diagram` target as a Dataset (cradle.pipeline.variables mi_*).
 
     ``spec``: alpha (list), n_q, n_p (grid of the map), check_N and check_pairs (list of
     [k_q, m_p]: q = 2 pi k_q / N, p = 2 pi m_p / N, each simulated for every alpha).
     """
     import time
 
-    from .io import make_dataset
+    from cradle.pipeline.io import make_dataset
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)

@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .dps import p_laplacian
-from .lattice import check_alpha, check_bc
+from cradle.models.dps import p_laplacian
+from cradle.models.lattice import check_alpha, check_bc
 
 
 def g(s, alpha: float):

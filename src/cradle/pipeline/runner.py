@@ -1,8 +1,8 @@
 """Run one stage and write its output safely (used by workflow scripts and the command line).
 
-* the output is written atomically (:func:`cradle.io.write_netcdf`): a failed
+* the output is written atomically (:func:`cradle.pipeline.io.write_netcdf`): a failed
   or interrupted run leaves nothing at the target path;
-* a :class:`cradle.stages.StageFailure` keeps what was computed under
+* a :class:`StageFailure` (raised by :mod:`cradle.pipeline.stages`) keeps what was computed under
   ``results/failed/...`` with the reason as the ``failure`` attribute, then
   the error propagates (the rule fails with the message);
 * progress and timing go to the log file (and to the terminal).
@@ -15,8 +15,16 @@ import sys
 import time
 from pathlib import Path
 
-from .io import write_netcdf
-from .stages import StageFailure
+from cradle.pipeline.io import write_netcdf
+
+
+class StageFailure(RuntimeError):
+    """A stage computed something it must not hand on; ``partial`` keeps it for diagnosis."""
+
+    def __init__(self, message: str, partial: "xarray.Dataset | None" = None):
+        super().__init__(message)
+        self.partial = partial
+
 
 log = logging.getLogger("cradle")
 

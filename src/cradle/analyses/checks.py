@@ -23,7 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import breathers, compare, dps, sidebands, stationary
+from cradle.measurements import breathers, compare, sidebands
+from cradle.models import dps, stationary
 
 #: A run is modulationally unstable at time t when its largest sideband
 #: (sidebands.sideband_ratio, harmonics excluded) reaches this fraction of the
@@ -80,7 +81,7 @@ class Results:
         self._cache = {}
 
     def _open(self, *parts):
-        from .io import open_dataset
+        from cradle.pipeline.io import open_dataset
 
         key = parts
         if key not in self._cache:
@@ -107,7 +108,7 @@ def closed_forms() -> list[Row]:
     near_one = dps.tau0(1.0 + 1e-9)
     return [
         Row("(tau0)", "tau0 at alpha = 3/2", "1.545", _fmt(t0, 7), agrees_printed("1.545", t0),
-            "5 Gamma(1/4)^2 / (24 sqrt(pi)) via log-Gamma (cradle.dps.tau0)"),
+            "5 Gamma(1/4)^2 / (24 sqrt(pi)) via log-Gamma (cradle.models.dps.tau0)"),
         Row("(tau0)", "limit of tau0 as alpha -> 1+", "2", _fmt(near_one, 10), agrees_printed("2", near_one),
             "tau0(1 + 1e-9)"),
     ]

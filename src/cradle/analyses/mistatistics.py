@@ -12,8 +12,8 @@ periodic ring of N beads with q = 2 pi k / N, integrated to t_end
   x_n^app(t) = eps (A_n e^{it} + c.c.) on the same t grid).
 
 Measure (on the fly, every ``sample_every`` time units; the fields are not kept):
-the paper's spatial spectrum |x_hat_k(t)| on Gamma* (:func:`cradle.compare.spatial_dft`)
-and its sideband-to-carrier ratio r(t) (:func:`cradle.sidebands.sideband_peak`,
+the paper's spatial spectrum |x_hat_k(t)| on Gamma* (:func:`cradle.measurements.compare.spatial_dft`)
+and its sideband-to-carrier ratio r(t) (:func:`cradle.measurements.sidebands.sideband_peak`,
 ``exclude_bins`` bins left out on each side of +-q and of the lattice harmonics
 +-2(q - pi), +-(3q - 2 pi); default 0: only those exact bins). A run is
 *unstable* when r first reaches ``fraction`` before t_end; its crossing time
@@ -27,7 +27,7 @@ intervals: q_lo is the largest grid q below the crossing whose interval for
 f lies entirely below 1/2, q_hi the smallest grid q above it whose interval
 lies entirely above 1/2 (so the interval is never narrower than the grid).
 The DpS linear theory puts the threshold at q_c = pi/2 exactly
-(:func:`cradle.modulational.threshold`).
+(:func:`cradle.analyses.modulational.threshold`).
 
 Stage functions: :func:`batch` runs one (N, model, chunk of q) batch ->
 Dataset; :func:`aggregate` joins the batches and adds the thresholds.
@@ -38,8 +38,10 @@ import time
 
 import numpy as np
 
-from . import compare, dps, initial, modulational, sidebands
-from .config import store_times
+from cradle.measurements import compare, sidebands
+from cradle.models import dps, initial
+from cradle.analyses import modulational
+from cradle.pipeline.config import store_times
 
 MODELS = ("exact", "dps")
 WILSON_Z = 1.959963984540054   # two-sided 95 %
@@ -78,7 +80,7 @@ def run_ratio(model: str, N: int, k: int, seed: int, spec: dict):
     ``spec``: alpha, omega_tw, noise_kind, noise_amplitude, t_end, sample_every, exclude_bins,
     exact {method, dt_factor}, dps {method, rtol}.
     """
-    from .integrators import integrate_dps, integrate_lattice
+    from cradle.integrators import integrate_dps, integrate_lattice
 
     alpha = float(spec["alpha"])
     q = 2.0 * np.pi * k / N
@@ -224,7 +226,7 @@ def _attrs(spec: dict) -> dict:
             "dps_atol": "rtol * max |A_n(0)|", "boundary": "periodic",
             "initial_data": "travelling wave (ansatzapprox)-(freq), R = 1, phi = 0, perturbed as in (perturb)",
             "ratio": "max |x_hat_k| / |x_hat_{+-q}| over Gamma* without +-q, +-2(q-pi), +-(3q-2pi) "
-                     "(+- exclude_bins bins), cradle.sidebands.sideband_peak",
+                     "(+- exclude_bins bins), cradle.measurements.sidebands.sideband_peak",
             "unstable_when": "ratio >= fraction at some sampled t <= t_end",
             "threshold_method": "last upward crossing of 1/2 by the unstable fraction, linear interpolation; "
                                 "interval from Wilson 95 % binomial intervals at the grid points",
@@ -235,7 +237,7 @@ def _attrs(spec: dict) -> dict:
 
 def batch(spec: dict, N: int, model: str, chunk: int, log=None):
     """Runs of one (N, model, chunk): every q of the chunk times every seed -> Dataset (mis_* variables)."""
-    from .io import make_dataset
+    from cradle.pipeline.io import make_dataset
 
     say = log or (lambda *a: None)
     wall0 = time.perf_counter()
@@ -272,7 +274,7 @@ def aggregate(batches, spec: dict):
     """Join the batches of one variant (any order) and add the thresholds per (N, model)."""
     import warnings
 
-    from .io import make_dataset
+    from cradle.pipeline.io import make_dataset
 
     Ns = sorted({int(n) for b in batches for n in b["mis_N"].values})
     models = [m for i, m in enumerate(MODELS) if any(i in b["mis_model"].values for b in batches)]

@@ -8,7 +8,7 @@
     cradle extend   FILE.nc --t-end T [--every DT] [--out FILE.nc]   # continue a finished exact run
 
 ``cradle run`` computes a scene's initial data, exact and DpS runs and
-metrics with :mod:`cradle.stages` and :func:`cradle.runner.run` (atomic
+metrics with :mod:`cradle.pipeline.stages` and :func:`cradle.pipeline.runner.run` (atomic
 writes, failed runs kept under ``failed/``, progress every ~2 s on the
 terminal and in ``OUT/logs/...``), into the same layout as the workflow:
 ``OUT/initial/SCENE.nc``, ``OUT/sim/SCENE/{exact,dps}.nc``,
@@ -25,7 +25,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from . import __version__
+from cradle import __version__
 
 PROG = "cradle"
 
@@ -35,7 +35,7 @@ class CliError(Exception):
 
 
 def _load(path):
-    from . import config as cc
+    from cradle.pipeline import config as cc
 
     path = Path(path)
     if not path.exists():
@@ -58,7 +58,7 @@ def _known(cfg):
 # ------------------------------------------------------------------ scenes
 
 def _scene_line(name, spec) -> str:
-    from . import config as cc
+    from cradle.pipeline import config as cc
 
     ini = spec["initial"]
     kind = ini["kind"]
@@ -105,8 +105,7 @@ def cmd_scenes(args) -> int:
 def _stage(compute, out, log, label):
     """runner.run (atomic write, log, failed/ on StageFailure) of ``compute``; the stage functions
     record the hash of their parameters themselves (``params_sha256``)."""
-    from .runner import run
-    from .stages import StageFailure
+    from cradle.pipeline.runner import StageFailure, run
 
     try:
         return run(compute, out, str(log), label=label)
@@ -115,9 +114,9 @@ def _stage(compute, out, log, label):
 
 
 def cmd_run(args) -> int:
-    from . import config as cc
-    from . import stages
-    from .runner import Progress
+    from cradle.pipeline import config as cc
+    from cradle.pipeline import stages
+    from cradle.pipeline.runner import Progress
 
     cfg = _load(args.config)
     name, out = args.scene, Path(args.out)
@@ -177,7 +176,7 @@ def _fmt(value) -> str:
 def cmd_describe(args) -> int:
     import xarray as xr
 
-    from .provenance import KEYS as PROV
+    from cradle.pipeline.provenance import KEYS as PROV
 
     path = Path(args.file)
     if not path.exists():
@@ -210,7 +209,7 @@ def cmd_describe(args) -> int:
 # ------------------------------------------------------------------ extend
 
 def cmd_extend(args) -> int:
-    from .extend import extend
+    from cradle.pipeline.extend import extend
 
     path = Path(args.file)
     if not path.exists():
@@ -263,8 +262,8 @@ def main(argv=None) -> int:
     """Run the command line ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
     import os
 
-    from . import provenance
-    from .config import ConfigError
+    from cradle.pipeline import provenance
+    from cradle.pipeline.config import ConfigError
 
     argv = sys.argv[1:] if argv is None else list(argv)
     try:

@@ -19,8 +19,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import dps
-from .lattice import check_alpha, check_bc
+from cradle.models import dps
+from cradle.models.lattice import check_alpha, check_bc
 
 NOISE_KINDS = ("none", "uniform", "gaussian")
 
@@ -204,12 +204,12 @@ def pair(N: int, alpha: float, *, amplitude: float, separation: int, profile: st
     where mu is such that one copy alone has |x_n(0)| = ``amplitude`` at its
     largest site, and omega_sw = 1 + mu / (2^alpha tau0) is the frequency of
     that single breather. ``profile`` (site | bond) is solved here by
-    :mod:`cradle.homoclinic` from the paper's start (amplitude 0.1) on the
+    :mod:`cradle.models.homoclinic` from the paper's start (amplitude 0.1) on the
     scene's N and bc, centred at ``centre`` (default N // 2), unless ``a_n``
     is given. A bond profile centred on bond (c, c+1) with separation 3 and
     sign +1 gives two breathers with a node at one site between them.
     """
-    from . import homoclinic
+    from cradle.models import homoclinic
 
     alpha = check_alpha(alpha)
     check_bc(bc)

@@ -4,9 +4,9 @@
 each chunk to a netCDF file whose ``t`` dimension is unlimited, so the
 memory held is one chunk (``chunk_bytes``), whatever t_end and the number of
 stored times. The file is written under a temporary name beside the target
-and renamed at the end (as :func:`cradle.io.write_netcdf`): an interrupted
+and renamed at the end (as :func:`cradle.pipeline.io.write_netcdf`): an interrupted
 run leaves nothing at the target. Its variables and attributes are those of
-:func:`cradle.stages.exact_run` (``x``, ``v``, ``force``, ``energy`` on
+:func:`cradle.pipeline.stages.exact_run` (``x``, ``v``, ``force``, ``energy`` on
 ``(t, n)``).
 
 :func:`extend` continues a finished ``exact.nc`` (it stores x and v at the
@@ -32,8 +32,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from . import lattice
-from .io import _umask_mode, make_dataset
+from cradle.models import lattice
+from cradle.pipeline.io import _umask_mode, make_dataset
 
 #: memory per chunk of stored states (x, v, force: 3 N float64 per stored time)
 DEFAULT_CHUNK_BYTES = 64 * 2**20
@@ -74,7 +74,7 @@ class _Appender:
         self.rows = n1
 
     def set_attrs(self, attrs: dict):
-        from .io import _attr_value
+        from cradle.pipeline.io import _attr_value
 
         for k, v in attrs.items():
             self.nc.setncattr(k, _attr_value(v))
@@ -110,7 +110,7 @@ def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c"
     (also written as global attributes): energy_drift, n_steps, n_force_evals, max_compression, dt,
     wall_time_s, rows.
     """
-    from .integrators import SPLITTING_METHODS, compression_bounds, default_dt, integrate_lattice
+    from cradle.integrators import SPLITTING_METHODS, compression_bounds, default_dt, integrate_lattice
 
     wall0 = time.perf_counter()
     if method not in SPLITTING_METHODS:
@@ -183,15 +183,15 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
     """Continue the exact run stored in ``path`` to ``t_end`` and append (to ``out``, default ``path``).
 
     New output times: the grid k * ``every`` (default: the median spacing of the stored times,
-    rounded to 1e-9 as :func:`cradle.config.store_times` rounds) beyond the last stored time, and
+    rounded to 1e-9 as :func:`cradle.pipeline.config.store_times` rounds) beyond the last stored time, and
     t_end. The step is the file's ``dt`` and the drift reference its energy at t = 0, so with a
     splitting method the result equals one run to t_end bitwise (same grid). Attributes updated:
     t_end, energy_drift (max over both parts), n_steps, n_force_evals, max_compression, wall_time_s,
     n_onset_corrections; ``extended`` records the history. Raises ValueError naming the value for
     an adaptive integrator, t_end <= the last stored time, or a file without x/v.
     """
-    from .config import store_times
-    from .integrators import SPLITTING_METHODS
+    from cradle.pipeline.config import store_times
+    from cradle.integrators import SPLITTING_METHODS
 
     path = Path(path)
     out = path if out is None else Path(out)
@@ -242,7 +242,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
     with netCDF4.Dataset(tmp, "a") as nc:
         for k in list(nc.ncattrs()):
             nc.delncattr(k)
-        from .io import _attr_value
+        from cradle.pipeline.io import _attr_value
 
         for k, val in attrs.items():
             nc.setncattr(k, _attr_value(val))

@@ -1,7 +1,7 @@
 """Config schema and physical validation (config.yaml).
 
 The Snakefile calls :func:`validate` right after loading the config (so after
-any ``--config`` overrides); ``python -m cradle.config [config.yaml]`` does
+any ``--config`` overrides); ``python -m cradle.pipeline.config [config.yaml]`` does
 the same from the command line. Every bad input is reported before any work
 starts, one line per problem, naming the key path and the value::
 
@@ -42,11 +42,13 @@ __all__ = [
     "store_times", "resolved_scene", "resolved_homoclinic", "resolved_map", "load", "main",
 ]
 
-KNOWN_FIGURES = (
-    "traj3", "traj2", "bcsc", "plot4-5", "plotcomplin", "plot6-7", "plot2-3", "plot1v5st", "plot1v5",
-    "plot8-11", "plot9-10", "plot29-30", "plot26-27", "plot28", "fft106", "fftseuil", "fft344",
-    "plot18", "loc1", "fini", "theorem1", "mi-diagram", "mi-growth", "mi-statistics", "work-precision", "floquet",
-)
+def _known_figures() -> tuple[str, ...]:
+    from cradle.figures import DATASET_FIGURES, FIGURES, OTHER_FIGURES
+
+    return (*FIGURES, *DATASET_FIGURES, *OTHER_FIGURES)
+
+
+KNOWN_FIGURES = _known_figures()
 
 SECTIONS = ("map", "homoclinic", "scenes")  # the name spaces a figure's `scenes:` list reads from
 
@@ -89,7 +91,7 @@ class ConfigError(ValueError):
 
 @lru_cache(maxsize=1)
 def _schema_text() -> str:
-    return resources.files("cradle").joinpath(SCHEMA_FILE).read_text(encoding="utf-8")
+    return resources.files("cradle.pipeline").joinpath(SCHEMA_FILE).read_text(encoding="utf-8")
 
 
 def schema() -> dict:
@@ -481,7 +483,7 @@ def _check_travelling(ini, N, bc, alpha, path, out):
             out.add(path + ["q"], "must not be 0 with omega_tw: (freq) gives omega_tw = 1 for every a when "
                                   "q = 0; give a instead of omega_tw", q_raw)
         elif alpha is not None and alpha > 1 and q is not None:
-            from . import dps  # the amplitude must come out finite and positive
+            from cradle.models import dps  # the amplitude must come out finite and positive
             try:
                 a_derived = dps.amplitude_from_omega(float(om), q, alpha)
             except (ValueError, OverflowError, ZeroDivisionError) as err:
@@ -698,7 +700,7 @@ def _check_work_precision(cfg: dict, out: _Errors):
 
 def _check_mi(cfg: dict, out: _Errors):
     """beyond.mi_growth.scenes: periodic travelling-wave scenes (names are checked by
-    cradle.migrowth.resolved_spec, so that a config with fewer scenes still validates);
+    cradle.analyses.migrowth.resolved_spec, so that a config with fewer scenes still validates);
     beyond.mi_statistics.<variant>: every q of the
     grid on every ring's wavenumber grid (q N / (2 pi) an integer), N even, start < stop, chunks <= count."""
     b = cfg.get("beyond")
@@ -709,7 +711,7 @@ def _check_mi(cfg: dict, out: _Errors):
     if isinstance(mg, dict) and isinstance(mg.get("scenes"), list):
         for i, name in enumerate(mg["scenes"]):
             path = ["beyond", "mi_growth", "scenes", i]
-            if name not in scenes:   # checked by cradle.migrowth.resolved_spec, when the target is built
+            if name not in scenes:   # checked by cradle.analyses.migrowth.resolved_spec, when the target is built
                 continue
             sc = scenes[name]
             ini = sc.get("initial") if isinstance(sc.get("initial"), dict) else {}
@@ -879,14 +881,14 @@ def load(path) -> dict:
 
 
 def main(argv=None) -> int:
-    """``python -m cradle.config [config.yaml] [--scene|--homoclinic|--map NAME]``.
+    """``python -m cradle.pipeline.config [config.yaml] [--scene|--homoclinic|--map NAME]``.
 
     Validates the config (exit status 1 and one line per problem on stderr if
     it is bad); with a NAME, prints that entry's resolved parameters as JSON.
     """
     import argparse
 
-    parser = argparse.ArgumentParser(prog="python -m cradle.config", description=main.__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="python -m cradle.pipeline.config", description=main.__doc__.splitlines()[0])
     parser.add_argument("config", nargs="?", default="config.yaml")
     group = parser.add_mutually_exclusive_group()
     group.add_argument("--scene", metavar="NAME")

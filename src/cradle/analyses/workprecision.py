@@ -37,8 +37,8 @@ results/figures/work-precision.{pdf,png} (:mod:`cradle.figures.workprecision`).
 
 Command line (used by workflow/rules/workprecision.smk)::
 
-    python -m cradle.workprecision scene --spec JSON --initial results/initial/S.nc --out results/work-precision/S.nc
-    python -m cradle.workprecision figure --out results/figures/work-precision results/work-precision/*.nc
+    python -m cradle.analyses.workprecision scene --spec JSON --initial results/initial/S.nc --out results/work-precision/S.nc
+    python -m cradle.analyses.workprecision figure --out results/figures/work-precision results/work-precision/*.nc
 """
 from __future__ import annotations
 
@@ -53,13 +53,13 @@ import time
 
 import numpy as np
 
-from . import lattice
-from .variables import Var
+from cradle.models import lattice
+from cradle.pipeline.variables import Var
 
 log = logging.getLogger("cradle")
 
 #: Variables of the work-precision files. Until they are added to
-#: cradle.variables.VARIABLES, the writer takes their long names and units
+#: cradle.pipeline.variables.VARIABLES, the writer takes their long names and units
 #: from here (:func:`declaration`).
 VARIABLES: dict[str, Var] = {
     "method": Var(("method",), "integration method of the lattice (nc)"),
@@ -84,8 +84,8 @@ MAX_REPEATS = 5
 
 
 def declaration(name: str) -> Var:
-    """The declaration of ``name``: cradle.variables.VARIABLES if it is there, else :data:`VARIABLES`."""
-    from .variables import VARIABLES as GLOBAL
+    """The declaration of ``name``: cradle.pipeline.variables.VARIABLES if it is there, else :data:`VARIABLES`."""
+    from cradle.pipeline.variables import VARIABLES as GLOBAL
 
     return GLOBAL.get(name) or VARIABLES[name]
 
@@ -111,7 +111,7 @@ def resolved(config: dict, name: str) -> dict:
     (whose initial data are used); ``t_end``, ``compare_every``, ``reference``,
     ``methods`` and ``repeat_time`` from ``work_precision``.
     """
-    from . import config as cc
+    from cradle.pipeline import config as cc
 
     cfg = cc._validated(config)
     wp = cfg.get("work_precision") or {}
@@ -161,7 +161,7 @@ def contact_energy(x, alpha: float, bc: str) -> np.ndarray:
 
 
 def _kwargs(method: str, value: float, a: float) -> dict:
-    from .integrators import SPLITTING_METHODS
+    from cradle.integrators import SPLITTING_METHODS
 
     if method in SPLITTING_METHODS:
         return {"dt_factor": value}
@@ -170,7 +170,7 @@ def _kwargs(method: str, value: float, a: float) -> dict:
 
 def run_once(x0, v0, t, alpha, bc, method, value, a, repeat_time=0.0):
     """One integration (repeated while short, the fastest wall time kept); returns (solution, wall time)."""
-    from .integrators import integrate_lattice
+    from cradle.integrators import integrate_lattice
 
     best = np.inf
     spent = 0.0
@@ -188,7 +188,7 @@ def run_once(x0, v0, t, alpha, bc, method, value, a, repeat_time=0.0):
 
 def warm_up(methods, alpha: float, bc: str) -> None:
     """Load (or compile) every method's kernels on a tiny chain, so that timings exclude the JIT."""
-    from .integrators import integrate_lattice
+    from cradle.integrators import integrate_lattice
 
     x0 = 0.1 * np.cos(np.arange(8) * np.pi / 2)
     for method in methods:
@@ -198,7 +198,7 @@ def warm_up(methods, alpha: float, bc: str) -> None:
 
 def measure(spec: dict, x0, v0, a: float | None = None) -> xr.Dataset:
     """The work-precision Dataset of one scene (see module docstring)."""
-    from .integrators import SPLITTING_METHODS, integrate_lattice
+    from cradle.integrators import SPLITTING_METHODS, integrate_lattice
 
     alpha, bc, t_end = spec["alpha"], spec["bc"], spec["t_end"]
     x0 = np.asarray(x0, dtype=float)
@@ -276,10 +276,10 @@ def _version(pkg: str) -> str:
 
 
 def _dataset(fields: dict, methods, S, t, D, attrs, title) -> xr.Dataset:
-    """A self-describing Dataset (cradle.io.make_dataset conventions) from the measured arrays."""
+    """A self-describing Dataset (cradle.pipeline.io.make_dataset conventions) from the measured arrays."""
     import xarray as xr  # here, not at the top: the Snakefile imports this module to plan
 
-    from .io import make_dataset
+    from cradle.pipeline.io import make_dataset
 
     ds = make_dataset({}, attrs=attrs, title=title)
 
@@ -320,13 +320,13 @@ def summary(ds: xr.Dataset) -> list[str]:
 # --------------------------------------------------------------------------- command line
 
 def main(argv=None) -> int:
-    from .io import open_dataset
-    from .runner import run, setup_logging
+    from cradle.pipeline.io import open_dataset
+    from cradle.pipeline.runner import run, setup_logging
 
-    parser = argparse.ArgumentParser(prog="python -m cradle.workprecision", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="python -m cradle.analyses.workprecision", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("scene", help="measure one scene")
-    p.add_argument("--spec", required=True, help="resolved parameters (JSON, cradle.workprecision.resolved)")
+    p.add_argument("--spec", required=True, help="resolved parameters (JSON, cradle.analyses.workprecision.resolved)")
     p.add_argument("--initial", required=True, help="results/initial/<scene>.nc")
     p.add_argument("--out", required=True)
     p.add_argument("--log")
@@ -347,8 +347,8 @@ def main(argv=None) -> int:
         run(compute, args.out, args.log, label=f"work-precision {spec['name']}")
         return 0
     setup_logging(args.log)
-    from .figures import save_figure
-    from .figures.workprecision import draw
+    from cradle.figures import save_figure
+    from cradle.figures.workprecision import draw
 
     data = {}
     for path in args.inputs:

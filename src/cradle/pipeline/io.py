@@ -1,10 +1,10 @@
 """Self-describing netCDF output.
 
 :func:`make_dataset` builds an :class:`xarray.Dataset` whose variables get
-their dimensions, ``long_name`` and ``units`` from :mod:`cradle.variables`,
+their dimensions, ``long_name`` and ``units`` from :mod:`cradle.pipeline.variables`,
 plus the global attributes every file carries: CF-1.10 ``Conventions``,
 ``title``, ``history``, ``source``, ``references`` (the paper) and the
-provenance of :mod:`cradle.provenance` (code version and git commit, hash of
+provenance of :mod:`cradle.pipeline.provenance` (code version and git commit, hash of
 the parameters, library versions, command). :func:`write_netcdf` writes it
 atomically: to a temporary file in the target folder, then ``os.replace``, so
 an interrupted or failed rule never leaves a file that Snakemake would take
@@ -21,9 +21,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from . import __version__
-from .provenance import KEYS as _PROVENANCE_KEYS, provenance
-from .variables import declared
+from cradle import __version__
+from cradle.pipeline.provenance import KEYS as _PROVENANCE_KEYS, provenance
+from cradle.pipeline.variables import declared
 
 REFERENCE = (
     "G. James, Nonlinear waves in Newton's cradle and the discrete p-Schroedinger "

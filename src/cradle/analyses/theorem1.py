@@ -33,8 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import dps
-from .lattice import check_alpha
+from cradle.models import dps
+from cradle.models.lattice import check_alpha
 
 DEFAULT_M = 2**16
 
@@ -353,7 +353,7 @@ def _sample_v(w: Wave, xi) -> np.ndarray:
 
 
 def compute(spec: dict, log=None):
-    """The `theorem1` target as a Dataset (see module docstring and cradle.variables t1_*).
+    """The `theorem1` target as a Dataset (see module docstring and cradle.pipeline.variables t1_*).
 
     ``spec``: alpha (list), q (list, radians), q_expr (list of their texts), a_min, a_max,
     n_amplitudes, modes, grid_log2 (M = 2^grid_log2), slope_eps_max (the slope is fitted where
@@ -363,7 +363,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from .io import make_dataset
+    from cradle.pipeline.io import make_dataset
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
@@ -463,7 +463,7 @@ def resolved_spec(config: dict) -> dict:
     Each name of ``scenes`` must be a travelling-wave scene; its amplitude a is its ``a`` or, from its
     ``omega_tw``, (freq) inverted; its time span is its ``t_end``. Raises ValueError naming the key.
     """
-    from . import config as cc
+    from cradle.pipeline import config as cc
 
     b = dict(config["beyond"]["theorem1"])
     q_expr = [q if isinstance(q, str) else repr(float(q)) for q in b["q"]]

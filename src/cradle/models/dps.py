@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import math
 
-from .lattice import check_alpha, check_bc
+from cradle.models.lattice import check_alpha, check_bc
 
 
 def c_alpha(alpha: float) -> float:

@@ -5,7 +5,7 @@
 * :func:`spatial_dft` is the paper's DFT x_hat_k = sum_n x_n e^{-i n k}, k in Gamma*
   (section 4.2, figures fft106, fftseuil, fft344);
 * :func:`linear_wave` is the solution a cos(q n - t) of (nc) linearised at 0 (plotcomplin).
-Forces for space-time diagrams are :func:`cradle.lattice.bond_forces`.
+Forces for space-time diagrams are :func:`cradle.models.lattice.bond_forces`.
 """
 from __future__ import annotations
 

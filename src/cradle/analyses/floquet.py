@@ -1,7 +1,7 @@
 """Spectral stability of the exact travelling waves of (nc): Bloch-Floquet in the co-moving frame.
 
-Linearising (nc) with V = V0 about the exact wave x_n(t) = u(q n - omega t) of :mod:`cradle.theorem1`
-(the force of bond n is V0'(x_{n+1} - x_n), see :mod:`cradle.lattice`) gives
+Linearising (nc) with V = V0 about the exact wave x_n(t) = u(q n - omega t) of :mod:`cradle.analyses.theorem1`
+(the force of bond n is V0'(x_{n+1} - x_n), see :mod:`cradle.models.lattice`) gives
 
     y_n'' + y_n = K(xi_n) (y_{n+1} - y_n) - K(xi_n - q) (y_n - y_{n-1}),   xi_n = q n - omega t,   (lin)
 
@@ -44,9 +44,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import dps
-from . import theorem1 as t1
-from .lattice import check_alpha
+from cradle.models import dps
+from cradle.analyses import theorem1 as t1
+from cradle.models.lattice import check_alpha
 
 DEFAULT_HILL_MODES = 32      # L: Fourier modes |m| <= L of W
 DEFAULT_GRID_LOG2 = 14       # M = 2^14 points for the Fourier coefficients of K
@@ -192,14 +192,14 @@ class Hill:
 
 def dps_growth(q, p, alpha: float, a: float):
     """The DpS growth rate of sideband p in lattice time: modulational.growth_rate with R = a / 2."""
-    from .modulational import growth_rate
+    from cradle.analyses.modulational import growth_rate
 
     return growth_rate(q, p, alpha, R=0.5 * a)
 
 
 def dps_max_growth(q: float, alpha: float, a: float) -> tuple[float, float]:
     """(max_p DpS growth in lattice time, argmax |p|)."""
-    from .modulational import max_over_p
+    from cradle.analyses.modulational import max_over_p
 
     g, p = max_over_p(q, alpha)
     return g / dps.tau0(alpha) * (0.5 * a) ** (alpha - 1.0), p
@@ -282,7 +282,7 @@ def direct_growth(w: t1.Wave, N: int, rel_size: float = 1e-9, growth_factor: flo
     gives to |delta|. Returns (rate fitted on log|c_k| over the second half, rate fitted on log|delta|,
     Floquet rate ln|mu| / T, t, |delta|).
     """
-    from .integrators import integrate_lattice
+    from cradle.integrators import integrate_lattice
 
     Mono = ring_monodromy(w, N)
     mu, V = np.linalg.eig(Mono)
@@ -353,7 +353,7 @@ def threshold(alpha: float, omega_tw: float, q_lo: float, q_hi: float, num: dict
 # ----------------------------------------------------------------- the pipeline stage
 
 def compute(spec: dict, log=None):
-    """The `floquet` target as a Dataset (cradle.variables fq_*).
+    """The `floquet` target as a Dataset (cradle.pipeline.variables fq_*).
 
     ``spec`` (see :func:`resolved_spec`): alpha, omega_tw, q_min, q_max, n_q, n_p, hill_modes, grid_log2,
     wave_modes, wave_grid_log2, q_profiles (+ q_profiles_expr), threshold_omega_tw, threshold_q_min,
@@ -362,7 +362,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from .io import make_dataset
+    from cradle.pipeline.io import make_dataset
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
@@ -532,7 +532,7 @@ def compute(spec: dict, log=None):
 
 def resolved_spec(config: dict) -> dict:
     """The `beyond.floquet` parameters of a validated config, angles in radians; ValueError names the key."""
-    from . import config as cc
+    from cradle.pipeline import config as cc
 
     b = dict(config["beyond"]["floquet"])
     check_alpha(b["alpha"])

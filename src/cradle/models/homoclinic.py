@@ -16,8 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import root
 
-from .dps import differences, p_laplacian
-from .lattice import check_alpha, check_bc
+from cradle.models.dps import differences, p_laplacian
+from cradle.models.lattice import check_alpha, check_bc
 
 
 RESIDUAL_TOL = 1e-10  # max |residual| / max |a_n| accepted as converged

@@ -1,0 +1,103 @@
+"""Which source files a job runs: the transitive ``cradle`` imports of its entry points.
+
+A rule's code inputs are derived, never listed by hand: :func:`code_files`
+parses the entry points (a workflow script, a module name) with :mod:`ast`,
+follows every import of a ``cradle`` module -- at module level or inside a
+function, absolute or relative -- and returns the source file of each module
+reached, with the ``__init__.py`` of every package on the way (Python runs
+them on import). So an edit to any module reruns exactly the jobs whose code
+can reach it: a change to :mod:`cradle.pipeline.provenance` (imported by the
+netCDF writer and reader) reruns everything, a change to a figure helper only
+the figures drawn with it.
+
+Only the source text is read: nothing is imported, so the Snakefile can plan
+without numpy or matplotlib.
+"""
+from __future__ import annotations
+
+import ast
+from functools import lru_cache
+from pathlib import Path
+
+PACKAGE = "cradle"
+
+
+def _module_file(src: Path, name: str) -> Path | None:
+    """src/cradle/a/b.py or src/cradle/a/b/__init__.py for ``cradle.a.b``; None if neither."""
+    base = src.joinpath(*name.split("."))
+    for path in (base.with_suffix(".py"), base / "__init__.py"):
+        if path.is_file():
+            return path
+    return None
+
+
+def _package_of(src: Path, path: Path) -> str:
+    """Dotted package a source file belongs to (``cradle.figures`` for figures/maps.py)."""
+    rel = path.resolve().relative_to(src.resolve()).with_suffix("")
+    parts = list(rel.parts)
+    return ".".join(parts[:-1]) if parts[-1] != "__init__" else ".".join(parts[:-1])
+
+
+@lru_cache(maxsize=None)
+def _imports(path: Path, package: str | None) -> tuple[str, ...]:
+    """Every module name the file at ``path`` may import (relative ones resolved in ``package``);
+    ``from X import y`` gives both X and X.y (y may be a submodule)."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            found += [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                if package is None:
+                    continue
+                head = package.split(".")
+                head = head[: len(head) - node.level + 1]
+                base = ".".join(head + ([node.module] if node.module else []))
+            else:
+                base = node.module or ""
+            found.append(base)
+            found += [f"{base}.{alias.name}" for alias in node.names if alias.name != "*"]
+    return tuple(n for n in found if n == PACKAGE or n.startswith(PACKAGE + "."))
+
+
+def _with_parents(name: str) -> list[str]:
+    parts = name.split(".")
+    return [".".join(parts[: i + 1]) for i in range(len(parts))]
+
+
+def code_files(*entries: str | Path, src: str | Path = "src") -> list[str]:
+    """Source files of every ``cradle`` module the entry points can import, transitively.
+
+    ``entries`` are dotted module names (``cradle.figures.maps``) or paths to
+    scripts outside the package (``workflow/scripts/figure.py``). ``src`` is
+    the folder that holds the ``cradle`` package; paths are returned as
+    ``src``-relative strings joined to ``src`` (what Snakemake compares),
+    sorted, each once.
+    """
+    src = Path(src)
+    todo: list[tuple[Path, str | None]] = []
+    seen: set[str] = set()
+
+    def visit(name: str) -> None:
+        for full in _with_parents(name):
+            if full in seen:
+                continue
+            path = _module_file(src, full)
+            if path is None:  # a function or constant of the package, not a module
+                continue
+            seen.add(full)
+            todo.append((path, _package_of(src, path)))
+
+    for entry in entries:
+        if isinstance(entry, Path) or str(entry).endswith(".py"):
+            for name in _imports(Path(entry), None):
+                visit(name)
+        else:
+            if _module_file(src, str(entry)) is None:
+                raise ValueError(f"no module {entry!r} under {src}")
+            visit(str(entry))
+    while todo:
+        path, package = todo.pop()
+        for name in _imports(path, package):
+            visit(name)
+    return sorted(str(_module_file(src, name)) for name in seen)
