@@ -32,12 +32,10 @@ include: "workflow/rules/mi.smk"
 include: "workflow/rules/floquet.smk"
 
 
-PAPER = figure_targets() + ["results/paper_checks.csv", "results/paper_checks.md"]
+PAPER = figure_targets() + [L.path("checks", ext=ext) for ext in ("csv", "md")]
 
 
-BEYOND = [f"results/figures/{label}.{ext}"
-          for label in ("theorem1", "mi-diagram", "mi-growth", "mi-statistics", "floquet", "work-precision")
-          for ext in ("pdf", "png")]
+BEYOND = figure_targets(("theorem1", "mi-diagram", "mi-growth", "mi-statistics", "floquet", "work-precision"))
 
 
 rule all:

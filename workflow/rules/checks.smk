@@ -12,12 +12,12 @@ rule paper_checks:
         data=checks_inputs,
     output:
         csv=report(
-            "results/paper_checks.csv",
+            L.path("checks", ext="csv"),
             caption="../report/paper_checks.rst",
             category="Paper claims",
             labels={"table": "paper claims against ours"},
         ),
-        md="results/paper_checks.md",
+        md=L.path("checks", ext="md"),
     params:
         scenes=list(config["scenes"]),
         homoclinic=list(config["homoclinic"]),

@@ -6,6 +6,7 @@ from snakemake.exceptions import WorkflowError
 
 from cradle.pipeline import config as cc
 from cradle import figures as _figures
+from cradle.pipeline import layout as L
 from cradle.pipeline.codedeps import code_files
 
 try:
@@ -47,22 +48,20 @@ def kind_of(name):
 def scene_files(name):
     """The netCDF files a figure reads for one name of its `scenes:` list."""
     kind = kind_of(name)
-    if kind == "map":
-        return [f"results/map/{name}.nc"]
-    if kind == "homoclinic":
-        return [f"results/homoclinic/{name}.nc"]
-    return [f"results/sim/{name}/exact.nc", f"results/sim/{name}/dps.nc", f"results/metrics/{name}.nc"]
+    if kind in ("map", "homoclinic"):
+        return [L.path(kind, name=name)]
+    return list(L.scene_paths(name, parts=L.RUN_PARTS).values())
 
 
 def figure_targets(labels=None):
     labels = config["figures"] if labels is None else labels
-    return [f"results/figures/{label}.{ext}" for label in labels for ext in ("pdf", "png")]
+    return [f for label in labels for f in L.figure_paths(label).values()]
 
 
 def initial_inputs(w):
     """A breather scene reads its homoclinic solution."""
     ini = config["scenes"][w.scene]["initial"]
-    return [f"results/homoclinic/{ini['homoclinic']}.nc"] if ini["kind"] == "breather" else []
+    return [L.path("homoclinic", name=ini["homoclinic"])] if ini["kind"] == "breather" else []
 
 
 def figure_inputs(w):
@@ -71,15 +70,15 @@ def figure_inputs(w):
 
 def checks_inputs(w):
     files = [f for name in config["scenes"] for f in scene_files(name)]
-    files += [f"results/initial/{name}.nc" for name in config["scenes"]]
-    return files + [f"results/homoclinic/{name}.nc" for name in config["homoclinic"]]
+    files += [L.path("initial", scene=name) for name in config["scenes"]]
+    return files + [L.path("homoclinic", name=name) for name in config["homoclinic"]]
 
 
 def mi_growth_inputs(w):
     """The initial data and the two runs of every scene measured by mi-growth."""
     files = []
     for name in config["beyond"]["mi_growth"]["scenes"]:
-        files += [f"results/initial/{name}.nc", f"results/sim/{name}/exact.nc", f"results/sim/{name}/dps.nc"]
+        files += list(L.scene_paths(name, parts=("initial", "exact", "dps")).values())
     return files
 
 

@@ -10,9 +10,9 @@ rule figure:
         code=lambda w: figure_code(w.label),
         data=figure_inputs,
     output:
-        pdf="results/figures/{label}.pdf",
+        pdf=L.path("figure", label="{label}", ext="pdf"),
         png=report(
-            "results/figures/{label}.png",
+            L.path("figure", label="{label}", ext="png"),
             caption="../report/figure.rst",
             category="Figures",
             labels={"figure": "{label}"},
@@ -22,9 +22,9 @@ rule figure:
         options=lambda w: config["figures"][w.label],
         scenes=lambda w: {name: kind_of(name) for name in config["figures"][w.label]["scenes"]},
     log:
-        "results/logs/figures/{label}.log",
+        L.path("log", job="figures/{label}"),
     benchmark:
-        "results/benchmarks/figures/{label}.tsv"
+        L.path("benchmark", job="figures/{label}")
     wildcard_constraints:
         label=names_regex("figures"),
     script:

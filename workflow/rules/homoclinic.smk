@@ -10,11 +10,11 @@ rule homoclinic:
     input:
         code=code_of("workflow/scripts/homoclinic.py"),
     output:
-        "results/homoclinic/{name}.nc",
+        L.path("homoclinic", name="{name}"),
     params:
         spec=lambda w: cc.resolved_homoclinic(config, w.name),
     log:
-        "results/logs/homoclinic/{name}.log",
+        L.path("log", job="homoclinic/{name}"),
     wildcard_constraints:
         name=names_regex("homoclinic"),
     script:
@@ -30,11 +30,11 @@ rule map_orbits:
     input:
         code=code_of("workflow/scripts/map_orbits.py"),
     output:
-        "results/map/{name}.nc",
+        L.path("map", name="{name}"),
     params:
         spec=lambda w: cc.resolved_map(config, w.name),
     log:
-        "results/logs/map/{name}.log",
+        L.path("log", job="map/{name}"),
     wildcard_constraints:
         name=names_regex("map"),
     script:

@@ -16,16 +16,13 @@ rule simulate:
         code=code_of("workflow/scripts/simulate.py"),  # pair scenes solve a profile (homoclinic)
         homoclinic=initial_inputs,
     output:
-        initial="results/initial/{scene}.nc",
-        exact="results/sim/{scene}/exact.nc",
-        dps="results/sim/{scene}/dps.nc",
-        metrics="results/metrics/{scene}.nc",
+        **L.scene_paths("{scene}"),
     params:
         spec=lambda w: cc.resolved_scene(config, w.scene),
     log:
-        "results/logs/sim/{scene}.log",
+        L.path("log", job="sim/{scene}"),
     benchmark:
-        "results/benchmarks/sim/{scene}.tsv"
+        L.path("benchmark", job="sim/{scene}")
     wildcard_constraints:
         scene=names_regex("scenes"),
     script:

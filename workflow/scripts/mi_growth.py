@@ -3,6 +3,7 @@
 import logging
 
 from cradle.analyses import migrowth
+from cradle.pipeline import layout
 from cradle.pipeline.io import open_dataset
 from cradle.pipeline.runner import run
 
@@ -13,8 +14,8 @@ log = logging.getLogger("cradle")
 def compute():
     scenes = {}
     for name, spec in sm.params.scenes.items():
-        sims = {m: open_dataset(f"results/sim/{name}/{m}.nc") for m in migrowth.MODELS}
-        scenes[name] = (dict(spec), open_dataset(f"results/initial/{name}.nc"), sims)
+        sims = {m: open_dataset(layout.path(m, scene=name)) for m in migrowth.MODELS}
+        scenes[name] = (dict(spec), open_dataset(layout.path("initial", scene=name)), sims)
     return migrowth.compute(dict(sm.params.spec), scenes, log=log.info)
 
 

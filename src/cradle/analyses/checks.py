@@ -80,25 +80,26 @@ class Results:
         self.root = Path(root)
         self._cache = {}
 
-    def _open(self, *parts):
+    def _open(self, kind, **names):
+        from cradle.pipeline import layout
         from cradle.pipeline.io import open_dataset
 
-        key = parts
+        key = layout.path(kind, self.root, **names)
         if key not in self._cache:
-            self._cache[key] = open_dataset(self.root.joinpath(*parts))
+            self._cache[key] = open_dataset(key)
         return self._cache[key]
 
     def initial(self, scene):
-        return self._open("initial", f"{scene}.nc")
+        return self._open("initial", scene=scene)
 
     def sim(self, scene, model):
-        return self._open("sim", scene, f"{model}.nc")
+        return self._open(model, scene=scene)
 
     def metrics(self, scene):
-        return self._open("metrics", f"{scene}.nc")
+        return self._open("metrics", scene=scene)
 
     def homoclinic(self, name):
-        return self._open("homoclinic", f"{name}.nc")
+        return self._open("homoclinic", name=name)
 
 
 # ------------------------------------------------------------------ the rows

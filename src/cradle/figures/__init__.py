@@ -134,19 +134,16 @@ def load_inputs(scenes: dict, root) -> dict:
     scenes). Map and homoclinic names give one Dataset; a scene gives
     ``{"exact": ..., "dps": ..., "metrics": ...}``.
     """
+    from cradle.pipeline import layout
     from cradle.pipeline.io import open_dataset
 
-    root = Path(root)
     data = {}
     for name, kind in scenes.items():
-        if kind == "map":
-            data[name] = open_dataset(root / "map" / f"{name}.nc")
-        elif kind == "homoclinic":
-            data[name] = open_dataset(root / "homoclinic" / f"{name}.nc")
+        if kind in ("map", "homoclinic"):
+            data[name] = open_dataset(layout.path(kind, root, name=name))
         else:
-            data[name] = {part: open_dataset(path) for part, path in (
-                ("exact", root / "sim" / name / "exact.nc"), ("dps", root / "sim" / name / "dps.nc"),
-                ("metrics", root / "metrics" / f"{name}.nc"))}
+            data[name] = {part: open_dataset(path)
+                          for part, path in layout.scene_paths(name, root, layout.RUN_PARTS).items()}
     return data
 
 

@@ -1,0 +1,64 @@
+"""Where every output lives: the one declaration of the results layout.
+
+Paths are relative to a results folder (``results`` for the workflow, a
+folder of its own for ``cradle run``). Rules, scripts, the CLI,
+:func:`cradle.open_scene`, the figure loader and the claims table all ask
+here; nothing else spells a path. Templates keep Snakemake wildcards
+(``{scene}``, ``{name}``, ``{label}``) when those are passed through::
+
+    path("exact", scene="tw-weak")            # results/sim/tw-weak/exact.nc
+    path("exact", scene="{scene}")            # results/sim/{scene}/exact.nc (a rule's output)
+    path("exact", root="out", scene="tw")     # out/sim/tw/exact.nc
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+ROOT = "results"
+
+#: kind -> path template under the results folder
+TEMPLATES = {
+    # stage 1: stationary DpS (dpsstn)
+    "homoclinic": "homoclinic/{name}.nc",
+    "map": "map/{name}.nc",
+    # stages 2-3: one scene
+    "initial": "initial/{scene}.nc",
+    "exact": "sim/{scene}/exact.nc",
+    "dps": "sim/{scene}/dps.nc",
+    "metrics": "metrics/{scene}.nc",
+    # stage 4
+    "figure": "figures/{label}.{ext}",
+    "checks": "paper_checks.{ext}",
+    # analyses beyond the paper
+    "theorem1": "theorem1/theorem1.nc",
+    "mi-diagram": "mi/mi-diagram.nc",
+    "mi-growth": "mi/mi-growth.nc",
+    "floquet": "floquet/floquet.nc",
+    "work-precision": "work-precision/{scene}.nc",
+    # bookkeeping
+    "log": "logs/{job}.log",
+    "benchmark": "benchmarks/{job}.tsv",
+    "failed": "failed/{path}",
+}
+
+#: the four files of one scene, written together by the ``simulate`` job
+SCENE_PARTS = ("initial", "exact", "dps", "metrics")
+#: the files of a scene a figure reads (its runs and their comparison)
+RUN_PARTS = ("exact", "dps", "metrics")
+#: formats of every figure
+FIGURE_FORMATS = ("pdf", "png")
+
+
+def path(kind: str, root: str | Path = ROOT, **names) -> str:
+    """The path of one output of ``kind`` (a key of :data:`TEMPLATES`) under ``root``."""
+    return str(Path(root) / TEMPLATES[kind].format(**names))
+
+
+def scene_paths(scene: str, root: str | Path = ROOT, parts=SCENE_PARTS) -> dict[str, str]:
+    """part -> path for the files of one scene (initial, exact, dps, metrics)."""
+    return {part: path(part, root, scene=scene) for part in parts}
+
+
+def figure_paths(label: str, root: str | Path = ROOT) -> dict[str, str]:
+    """ext -> path of the files of one figure."""
+    return {ext: path("figure", root, label=label, ext=ext) for ext in FIGURE_FORMATS}
