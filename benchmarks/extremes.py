@@ -25,8 +25,10 @@ Run time ~1.5 min on one core (the dense cases write a 458 MiB file to the tempo
 from __future__ import annotations
 
 import argparse
+import datetime as _dt
 import json
 import os
+import platform
 import resource
 import subprocess
 import sys
@@ -34,6 +36,7 @@ import tempfile
 import time
 
 import numpy as np
+from doctable import publish
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = ("long-t", "extend", "big-N", "hom-1.01", "breather-1.01", "tiny-a", "omega-1.5", "dense-memory",
@@ -199,6 +202,7 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--only", nargs="*", choices=CASES)
     p.add_argument("--child", choices=CASES, help=argparse.SUPPRESS)
+    p.add_argument("--no-docs", action="store_true", help="do not write the table into docs/extremes.md")
     args = p.parse_args(argv)
     if args.child:
         child(args.child)
@@ -211,13 +215,18 @@ def main(argv=None):
         else:
             rows.append(json.loads(r.stdout.strip().splitlines()[-1]))
         print(f"{name}: " + ", ".join(f"{k}={fmt(v)}" for k, v in rows[-1].items() if k != "case"), flush=True)
-    print("\n| case | drift / residual | peak RSS (MiB) | wall (s) | other |\n|---|---|---|---|---|")
+    lines = [f"`python benchmarks/extremes.py`: {_dt.date.today()}, {platform.machine()} with {os.cpu_count()} cores, "
+             f"Python {platform.python_version()}, each case in its own process", "",
+             "| case | drift / residual | peak RSS (MiB) | wall (s) | other |", "|---|---|---|---|---|"]
     for r in rows:
         acc = r.get("drift", r.get("residual", r.get("error")))
         other = ", ".join(f"{k}={fmt(v)}" for k, v in r.items()
                           if k not in ("case", "drift", "residual", "peak_RSS_MiB", "total_s", "error"))
         rss, wall = fmt(r.get("peak_RSS_MiB", "")), fmt(r.get("total_s", ""))
-        print(f"| {r['case']} | {fmt(acc)} | {rss} | {wall} | {other} |")
+        lines.append(f"| {r['case']} | {fmt(acc)} | {rss} | {wall} | {other} |")
+    print("\n" + "\n".join(lines))
+    if not (args.only or args.no_docs):  # a partial run does not replace the published table
+        publish("extremes.md", "extremes", "\n".join(lines))
     return 0
 
 

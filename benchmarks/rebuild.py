@@ -39,6 +39,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from doctable import publish
+
 ROOT = Path(__file__).resolve().parents[1]
 STAMP = re.compile(r"^(\d{4}-\d\d-\d\d \d\d:\d\d:\d\d,\d{3}) (.*)$")
 
@@ -142,6 +144,7 @@ def main(argv=None) -> int:
     ap.add_argument("--target", default="paper")
     ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--out", type=Path, help="also write the table (markdown) here")
+    ap.add_argument("--no-docs", action="store_true", help="do not write the table into docs/performance.md")
     args = ap.parse_args(argv)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                             text=True).stdout.strip()
@@ -158,6 +161,8 @@ def main(argv=None) -> int:
             f"{_dt.date.today()}, {platform.machine()} with {os.cpu_count()} cores, "
             f"Python {platform.python_version()}\n\n" + table(runs, args.cores))
     print(text)
+    if not args.no_docs:
+        publish("performance.md", f"rebuild-{args.target}", text)
     if args.out:
         args.out.parent.mkdir(parents=True, exist_ok=True)
         args.out.write_text(text)
