@@ -232,21 +232,22 @@ class Config:
     beyond: Beyond = param(Beyond(), Beyond.__schema_doc__)
 
 
-def _finite_everywhere(node, path, out) -> None:
-    """Every float of the config finite (an inf or nan anywhere is one line, at its key)."""
+def check_finite(node, out, path=()) -> None:
+    """Every float of the config finite: an inf or nan anywhere is one line, at its key (run before the
+    schema, whose bounds would otherwise word it as out of range)."""
+    path = list(path)
     if isinstance(node, dict):
         for k, v in node.items():
-            _finite_everywhere(v, path + [k], out)
+            check_finite(v, out, path + [k])
     elif isinstance(node, list):
         for i, v in enumerate(node):
-            _finite_everywhere(v, path + [i], out)
+            check_finite(v, out, path + [i])
     elif isinstance(node, float) and not math.isfinite(node):
         out.add(path, "must be a finite number", node)
 
 
 def check(cfg: dict, out) -> None:
     """The checks the schema cannot express, section by section (``cfg`` has the schema defaults)."""
-    _finite_everywhere(cfg, [], out)
     names: dict[str, str] = {}   # unique across the sections a figure reads from
     for section in SECTIONS:
         sec = cfg.get(section)

@@ -313,6 +313,7 @@ def validate(config: dict) -> dict:
                           f"{', '.join(map(str, config)) or 'none'})")
     cfg = _coerce(_validator().schema, copy.deepcopy(dict(config)))
     out = Errors()
+    sections.check_finite(cfg, out)
     for err in sorted(_validator().iter_errors(cfg), key=lambda e: [str(p) for p in e.absolute_path]):
         _schema_messages(err, out)
     cfg = _fill(_validator().schema, cfg)
