@@ -161,3 +161,17 @@ def test_non_finite_times_are_refused_once(raw, where, value):
     head = ".".join(map(str, where)) if isinstance(where[-1], str) else \
         ".".join(map(str, where[:-1])) + f"[{where[-1]}]"
     assert lines[0].startswith(f"config error: {head} = ") and lines[0].endswith("must be a finite number")
+
+
+def test_config_yaml_beyond_restates_the_defaults_as_its_comment_says(raw):
+    """config.yaml says that under `beyond:` only theorem1.scenes and mi_growth.scenes differ from the
+    declared defaults, and that work_precision's compare_every, repeat_time and reference restate them."""
+    declared = cc.validate({"map": {"m": {"box": 1.0, "iterations": 2, "starts": [[0.0, 0.1]]}}})
+    given = copy.deepcopy(raw["beyond"])
+    for section in ("theorem1", "mi_growth"):
+        assert given[section].pop("scenes")
+    for section, values in given.items():
+        for key, value in values.items():
+            assert declared["beyond"][section][key] == value, f"beyond.{section}.{key}"
+    for key in ("compare_every", "repeat_time", "reference"):
+        assert raw["work_precision"][key] == declared["work_precision"][key], key
