@@ -175,3 +175,15 @@ def test_config_yaml_beyond_restates_the_defaults_as_its_comment_says(raw):
             assert declared["beyond"][section][key] == value, f"beyond.{section}.{key}"
     for key in ("compare_every", "repeat_time", "reference"):
         assert raw["work_precision"][key] == declared["work_precision"][key], key
+
+
+def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw):
+    c = cc.typed(raw)
+    assert isinstance(c, sections.Config) and isinstance(c.defaults.exact, scenes.ExactIntegrator)
+    kinds = {name: type(s.initial) for name, s in c.scenes.items()}
+    assert kinds["tw-weak"] is scenes.Travelling and kinds["breather-small"] is scenes.Breather
+    assert kinds["loc1-packet"] is scenes.Packet and kinds["loc1-pair"] is scenes.Pair
+    assert c.scenes["tw-weak-noise"].initial.noise == scenes.Noise(kind="uniform", amplitude=0.5, seed=20110605)
+    assert c.map["traj2-8"].line.from_ == [0.2, -0.1] and c.beyond.mi_statistics.full.q_over_pi.count == 21
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        c.defaults.alpha = 2.0

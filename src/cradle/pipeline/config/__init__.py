@@ -11,7 +11,7 @@
 """
 from .resolve import (resolved_floquet, resolved_homoclinic, resolved_map, resolved_mi_diagram,
                       resolved_mi_growth, resolved_mi_statistics, resolved_scene, resolved_theorem1,
-                      resolved_work_precision)
+                      resolved_work_precision, typed)
 from .sections import KNOWN_FIGURES, SECTIONS
 from .spec import ANGLE_PATTERN
 from .validate import (SCHEMA_FILE, _VALIDATED, StrictLoader, _validated, generated_schema, load, main, read_yaml,
@@ -22,5 +22,5 @@ __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SECTIONS", "SCHEMA_FILE", "ANGLE_PATTERN", "TIME_TOL", "schema",
     "generated_schema", "schema_path", "write_schema", "parse_angle", "validate", "store_times", "resolved_scene",
     "resolved_homoclinic", "resolved_map", "resolved_work_precision", "resolved_theorem1", "resolved_mi_diagram",
-    "resolved_mi_growth", "resolved_mi_statistics", "resolved_floquet", "load", "read_yaml", "StrictLoader", "main",
+    "resolved_mi_growth", "resolved_mi_statistics", "resolved_floquet", "load", "read_yaml", "StrictLoader", "main", "typed",
 ]

@@ -80,6 +80,15 @@ def resolved_map(config: dict, name: str) -> dict:
 
 
 
+def typed(config: dict):
+    """The validated config as a frozen :class:`.sections.Config` (scenes, entries, analyses as typed
+    instances; each initial condition an instance of its kind's class)."""
+    from . import spec
+    from .sections import Config
+
+    return spec.build(Config, _validated(config))
+
+
 def resolved_work_precision(config: dict, name: str) -> dict:
     """The parameters of work-precision scene ``name``: ``alpha``, ``N``, ``bc`` from the ``scenes:``
     entry of the same name (whose initial data are used), the rest from ``work_precision``."""

@@ -67,7 +67,8 @@ def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of
     ``extra``: further schema keywords.
     """
     def wrap(cls):
-        cls = dataclasses.dataclass(frozen=True, kw_only=True)(cls)  # keys in the order of the file
+        # keyword-only: fields are declared in the order of the config's keys, required or not
+        cls = dataclasses.dataclass(frozen=True, kw_only=True)(cls)
         cls.__schema_name__ = name
         cls.__schema_doc__ = doc
         cls.__schema_partial__ = partial
@@ -86,14 +87,20 @@ ANGLE_PATTERN = (
 NAME_PATTERN = "^[A-Za-z0-9][A-Za-z0-9_-]*$"
 
 SHARED = {
-    'name': {'description': "An entry name: letters, digits, '-' and '_' (it becomes part of file names).", 'type': 'string', 'pattern': NAME_PATTERN},
-    'alpha': {'description': 'Hertz exponent alpha of (vhertz); > 1.', 'type': 'number', 'exclusiveMinimum': 1},
-    'N': {'description': 'Number of sites (beads) n = 0..N-1; >= 2.', 'type': 'integer', 'minimum': 2},
-    'bc': {'description': 'Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one neighbour).', 'type': 'string', 'enum': ['periodic', 'free']},
-    'rtol': {'description': 'Relative tolerance of an adaptive integrator, in (0, 1e-2].', 'type': 'number', 'exclusiveMinimum': 0, 'maximum': 0.01},
-    'maxEnergyDrift': {'description': 'Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact run; > 0.', 'type': 'number', 'exclusiveMinimum': 0},
-    'angleString': {'description': "A multiple of pi such as 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', or a number written as a string.", 'type': 'string', 'pattern': ANGLE_PATTERN},
-    'angle': {'description': "An angle: a number (radians) or a multiple of pi as a string ('pi/5', '4pi/5', '-52pi/100', '4*pi/5').", 'anyOf': [{'type': 'number'}, {'$ref': '#/$defs/angleString'}]},
+    "name": {"description": "An entry name: letters, digits, '-' and '_' (it becomes part of file names).",
+             "type": "string", "pattern": NAME_PATTERN},
+    "alpha": {"description": "Hertz exponent alpha of (vhertz); > 1.", "type": "number", "exclusiveMinimum": 1},
+    "N": {"description": "Number of sites (beads) n = 0..N-1; >= 2.", "type": "integer", "minimum": 2},
+    "bc": {"description": "Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one "
+                          "neighbour).", "type": "string", "enum": ["periodic", "free"]},
+    "rtol": {"description": "Relative tolerance of an adaptive integrator, in (0, 1e-2].", "type": "number",
+             "exclusiveMinimum": 0, "maximum": 0.01},
+    "maxEnergyDrift": {"description": "Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact "
+                                      "run; > 0.", "type": "number", "exclusiveMinimum": 0},
+    "angleString": {"description": "A multiple of pi such as 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', or a "
+                                   "number written as a string.", "type": "string", "pattern": ANGLE_PATTERN},
+    "angle": {"description": "An angle: a number (radians) or a multiple of pi as a string ('pi/5', '4pi/5', "
+                             "'-52pi/100', '4*pi/5').", "anyOf": [{"type": "number"}, {"$ref": "#/$defs/angleString"}]},
 }
 
 
@@ -105,10 +112,15 @@ def _is_declared(tp) -> bool:
     return isinstance(tp, type) and hasattr(tp, "__schema_doc__")
 
 
+def _key(f: dataclasses.Field) -> str:
+    """The config key of a field (its name unless declared with ``key=``)."""
+    return f.metadata.get("key") or f.name
+
+
 def _json_default(value):
     """A declared default as JSON (tuples as lists, declared instances as mappings)."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return {f.name: _json_default(getattr(value, f.name)) for f in dataclasses.fields(value)}
+        return {_key(f): _json_default(getattr(value, f.name)) for f in dataclasses.fields(value)}
     if isinstance(value, (list, tuple)):
         return [_json_default(v) for v in value]
     if isinstance(value, dict):
@@ -180,10 +192,10 @@ def object_schema(cls, defs: dict, *, defaults: dict | None = None) -> dict:
     hints = typing.get_type_hints(cls)
     props, required = {}, []
     for f in dataclasses.fields(cls):
-        default = _default_of(f) if defaults is None else defaults.get(f.name)
-        props[f.metadata["key"] or f.name] = _field_schema(f, hints[f.name], defs, not cls.__schema_partial__, default)
+        default = _default_of(f) if defaults is None else defaults.get(_key(f))
+        props[_key(f)] = _field_schema(f, hints[f.name], defs, not cls.__schema_partial__, default)
         if f.metadata["required"]:
-            required.append(f.metadata["key"] or f.name)
+            required.append(_key(f))
     out = {"description": cls.__schema_doc__, "type": "object", "additionalProperties": False}
     if required:
         out["required"] = required
@@ -205,6 +217,31 @@ def union_schema(doc: str, kind_doc: str, kinds: dict, defs: dict) -> dict:
         "allOf": [{"if": {"type": "object", "required": ["kind"], "properties": {"kind": {"const": k}}},
                    "then": object_schema(c, defs)} for k, c in kinds.items()],
     }
+
+
+def build(tp, value):
+    """``value`` (a validated, schema-filled mapping or one of its values) as an instance of the
+    annotation ``tp``: declared classes become frozen instances, recursively; a union of declared
+    classes (the kinds of initial condition) picks the class whose ``kind`` constant matches."""
+    origin, args = typing.get_origin(tp), typing.get_args(tp)
+    if value is None:
+        return None
+    if origin in (typing.Union, types.UnionType):
+        kinds = [a for a in args if _is_declared(a)]
+        if kinds and isinstance(value, dict):
+            for cls in kinds:
+                const = next((f.metadata["keywords"].get("const") for f in dataclasses.fields(cls)
+                              if f.name == "kind"), None)
+                if const is None or const == value.get("kind"):
+                    return build(cls, value)
+        return value
+    if origin is dict and _is_declared(args[1]):
+        return {k: build(args[1], v) for k, v in value.items()}
+    if _is_declared(tp):
+        hints = typing.get_type_hints(tp)
+        return tp(**{f.name: build(hints[f.name], value[_key(f)])
+                     for f in dataclasses.fields(tp) if _key(f) in value})
+    return value
 
 
 def generate(root, *, title: str, extra_defs=None) -> dict:
