@@ -4,8 +4,9 @@
 - :mod:`.scenes`, :mod:`.sections`, :mod:`.beyond`, :mod:`.mi_statistics`, :mod:`.floquet`: each
   section and each kind of initial condition as a frozen dataclass, with the checks the schema
   cannot express as its ``check`` method and, for the analyses, its ``resolve`` method;
-- :mod:`.validate`: loading (duplicate YAML keys refused), coercion of strings, one-line messages,
-  defaults; :mod:`.resolve`: the resolved parameters of one entry or analysis.
+- :mod:`.validate`: coercion of strings, one-line messages, defaults; :mod:`.loading`: reading
+  files (a YAML key given twice refused) and the command line; :mod:`.resolve`: the resolved
+  parameters of one entry or analysis, and :func:`typed`, the config as frozen instances.
 
 ``python -m cradle.pipeline.config --write-schema`` regenerates ``config.schema.json``.
 """
@@ -14,8 +15,8 @@ from .resolve import (resolved_floquet, resolved_homoclinic, resolved_map, resol
                       resolved_work_precision, typed)
 from .sections import KNOWN_FIGURES, SECTIONS
 from .spec import ANGLE_PATTERN
-from .validate import (SCHEMA_FILE, _VALIDATED, StrictLoader, _validated, generated_schema, load, main, read_yaml,
-                       schema, schema_path, validate, write_schema)
+from .loading import StrictLoader, load, main, read_yaml
+from .validate import SCHEMA_FILE, _VALIDATED, _validated, generated_schema, schema, schema_path, validate, write_schema
 from .values import TIME_TOL, ConfigError, parse_angle, store_times
 
 __all__ = [

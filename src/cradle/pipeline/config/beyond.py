@@ -14,8 +14,8 @@ import math
 
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
-from .spec import NULL, declared, param
-from .values import INTEGER_TOL, ConfigError, angle_expr, did_you_mean, entries, number, parse_angle, show
+from .spec import declared, param
+from .values import ConfigError, angle_expr, did_you_mean, entries, number, parse_angle, show
 
 _ALPHAS = {"$ref": "#/$defs/alpha", "maximum": 10}
 _ANGLES = {"$ref": "#/$defs/angle"}

@@ -247,8 +247,8 @@ def build(tp, value):
 def generate(root, *, title: str, extra_defs=None) -> dict:
     """The JSON Schema of the declared class ``root`` (the whole config), shared types under $defs."""
     defs = {k: dict(v) for k, v in SHARED.items()}
-    for name, build in (extra_defs or {}).items():
-        defs[name] = build(defs)
+    for name, make in (extra_defs or {}).items():
+        defs[name] = make(defs)
     body = object_schema(root, defs)
     out = {"$schema": SCHEMA_DRAFT, "title": title, "description": root.__schema_doc__, "type": "object",
            "additionalProperties": False, "properties": body["properties"], "$defs": defs}
