@@ -187,3 +187,39 @@ def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw
     assert c.map["traj2-8"].line.from_ == [0.2, -0.1] and c.beyond.mi_statistics.full.q_over_pi.count == 21
     with pytest.raises(dataclasses.FrozenInstanceError):
         c.defaults.alpha = 2.0
+
+
+@pytest.mark.parametrize("section,key,value,words", [
+    ("theorem1", "q", ["pi/5", "-pi/2"], "beyond.theorem1.q[1] = '-pi/2': must be in (0, pi]"),
+    ("theorem1", "a_max", 1e-9, "beyond.theorem1.a_max = 1e-09: must exceed a_min = 1e-08"),
+    ("theorem1", "grid_log2", 10, "beyond.theorem1.grid_log2 = 10: 2^grid_log2 must be >= 8 x"),
+    ("mi_diagram", "check_pairs", [[70, 10], [250, 3]], "beyond.mi_diagram.check_pairs[1] = [250, 3]: need 0 <"),
+    ("mi_diagram", "check_pairs", [[10, 150]], "beyond.mi_diagram.check_pairs[0] = [10, 150]: stable for alpha"),
+    ("floquet", "q_max", "0.3pi", "beyond.floquet.q_max = '0.3pi': must exceed q_min = '0.4pi'"),
+    ("floquet", "small_q", ["3pi/5", "pi"], "beyond.floquet.small_q[1] = 'pi': must be in (0, pi)"),
+    ("mi_statistics", "reduced", {"N": [201]}, "beyond.mi_statistics.reduced.N[0] = 201: must be even"),
+])
+def test_analysis_checks_are_one_line_at_validation(raw, section, key, value, words):
+    """The checks the analysis modules used to make when their target was built, now made with the
+    rest of the config: one line naming the key and the value."""
+    cfg = copy.deepcopy(raw)
+    cfg["beyond"][section][key] = value
+    lines = _lines(cfg)
+    assert len(lines) == 1 and words in lines[0], lines
+
+
+def test_analysis_scene_names_are_checked_when_resolved(raw):
+    """Names of scenes are checked when the analysis is resolved, so a config with fewer scenes (a
+    test's) still validates."""
+    cfg = copy.deepcopy(raw)
+    cfg["beyond"]["theorem1"]["scenes"] = ["tw-weak", "fini"]
+    with pytest.raises(cc.ConfigError, match=r"beyond\.theorem1\.scenes\[1\] = 'fini': not a travelling-wave"):
+        cc.resolved_theorem1(cfg)
+    cfg["beyond"]["theorem1"]["scenes"] = ["tw-wek"]
+    with pytest.raises(cc.ConfigError, match=r"scenes\[0\] = 'tw-wek': unknown scene.*did you mean 'tw-weak'"):
+        cc.resolved_theorem1(cfg)
+    cfg["beyond"]["mi_growth"]["scenes"] = []
+    with pytest.raises(cc.ConfigError, match=r"beyond\.mi_growth\.scenes is empty"):
+        cc.resolved_mi_growth(cfg)
+    with pytest.raises(cc.ConfigError, match="unknown variant 'tiny'"):
+        cc.resolved_mi_statistics(raw, "tiny")
