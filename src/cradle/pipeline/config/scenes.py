@@ -223,8 +223,8 @@ class Scene:
     dps: DpsIntegrator = param(None, "Per-scene DpS integrator settings, merged over defaults.dps.")
     max_energy_drift: float = param(None, "Per-scene energy drift bound; default defaults.max_energy_drift.",
                                     ref="maxEnergyDrift")
-    initial: Travelling | Breather | Packet | Pair = param(REQUIRED, "Initial condition: travelling wave or breather.",
-                                                           ref="initial")
+    initial: Travelling | Breather | Packet | Pair = param(REQUIRED, "Initial condition: its kind (travelling, "
+                                                           "breather, packet, pair) and parameters.", ref="initial")
     t_end: float = param(REQUIRED, "Final time of the run (lattice time t); > 0.", exclusiveMinimum=0)
     store: Store = param(REQUIRED, "Times at which the state is stored.")
 
