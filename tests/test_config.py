@@ -65,9 +65,17 @@ def test_real_config_validates_and_fills_defaults(raw):
     json.dumps(cfg)
 
 
-def test_defaults_are_filled_into_an_empty_config():
-    cfg = cc.validate({})
+def test_defaults_are_filled_into_a_small_config():
+    cfg = cc.validate({"map": {"m": {"box": 1.0, "iterations": 2, "starts": [[0.0, 0.1]]}}})
     assert cfg["defaults"]["alpha"] == 1.5 and cfg["scenes"] == {} and cfg["figures"] == {}
+    assert cfg["defaults"]["exact"]["method"] == "srkn6c" and cfg["defaults"]["dps"]["method"] == "dop853_numba"
+
+
+@pytest.mark.parametrize("empty", [None, {}, {"defaults": {"alpha": 2.0}}, {"figures": {}}])
+def test_empty_or_sectionless_config_is_refused_in_one_line(empty):
+    """An empty file (None) or one without map, homoclinic or scenes would otherwise validate and fail
+    later, as a traceback while Snakemake builds the DAG."""
+    assert len(errors(empty)) == 1 and "nothing to build" in errors(empty)[0]
 
 
 def test_resolved_scene(raw):

@@ -88,21 +88,21 @@ def test_direct_simulation_grows_at_the_top_floquet_rate():
     assert dist[-1] / dist[0] > 30
 
 
-def test_resolved_spec_names_the_key():
+def test_resolved_floquet_names_the_key():
     from cradle.pipeline import config as cc
 
     cfg = cc.load("config.yaml")
-    b = F.resolved_spec(cfg)
+    b = cc.resolved_floquet(cfg)
     assert abs(b["q_min"] - 0.4 * np.pi) < 1e-15 and b["convergence"]["hill_modes"] >= b["hill_modes"]
     bad = copy.deepcopy(cfg)
     bad["beyond"]["floquet"]["q_max"] = "0.3pi"
     with pytest.raises(ValueError, match="beyond.floquet.q_max"):
-        F.resolved_spec(bad)
+        cc.resolved_floquet(bad)
     bad = copy.deepcopy(cfg)
     bad["beyond"]["floquet"]["ring_k"] = bad["beyond"]["floquet"]["ring_N"]
     with pytest.raises(ValueError, match="beyond.floquet.ring_k"):
-        F.resolved_spec(bad)
+        cc.resolved_floquet(bad)
     bad = copy.deepcopy(cfg)
     bad["beyond"]["floquet"]["threshold_omega_tw"] = [1.05]
     with pytest.raises(ValueError, match="threshold_omega_tw"):
-        F.resolved_spec(bad)
+        cc.resolved_floquet(bad)

@@ -349,14 +349,14 @@ def test_default_energy_drift_and_long_time(tw11):
     x0, v0, a = tw11
     s100 = integrate_lattice(x0, v0, np.linspace(0.0, 100.0, 11), alpha=1.5)
     s1000 = integrate_lattice(x0, v0, np.linspace(0.0, 1000.0, 11), alpha=1.5)
-    print(f"srkn6 default (dt={s100.dt:.3g}): drift t=100 {s100.energy_drift:.2e}, "
+    print(f"srkn6c default (dt={s100.dt:.3g}): drift t=100 {s100.energy_drift:.2e}, "
           f"t=1000 {s1000.energy_drift:.2e}, wall {s100.wall_time_s:.2f}+{s1000.wall_time_s:.2f}s")
-    assert s100.method == "srkn6" and s100.n_reruns == 0
+    assert s100.method == "srkn6c" and s100.n_reruns == 0
     assert s100.energy_drift <= 1e-8
     assert s1000.energy_drift < 3 * s100.energy_drift
     assert s100.n_force_evals == 1 + 11 * s100.n_steps
     c_assumed, c_energy = compression_bounds(x0, v0, 1.5)
-    assert s100.dt == pytest.approx(DEFAULT_DT_FACTOR["srkn6"] * 2 * np.pi / omega_max(c_assumed, 1.5))
+    assert s100.dt == pytest.approx(DEFAULT_DT_FACTOR["srkn6c"] * 2 * np.pi / omega_max(c_assumed, 1.5))
     assert s100.max_compression <= c_assumed <= c_energy
 
 

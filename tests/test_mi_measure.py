@@ -112,7 +112,7 @@ def _tiny_spec(raw_config):
     cfg["beyond"]["mi_statistics"]["t_end"] = 60.0
     cfg["beyond"]["mi_statistics"]["fraction"] = 0.02
     cfg["beyond"]["mi_statistics"]["sample_every"] = 2.0
-    return MS.resolved_spec(cc.validate(cfg), "reduced")
+    return cc.resolved_mi_statistics(cc.validate(cfg), "reduced")
 
 
 @pytest.fixture(scope="module")
@@ -164,7 +164,7 @@ def test_config_rejects_a_q_grid_off_the_ring(raw):
     bad = copy.deepcopy(raw)
     bad["beyond"]["mi_growth"]["scenes"] = ["fftseuil-5"]
     with pytest.raises(ValueError, match=r"mi_growth\.scenes\[0\] = 'fftseuil-5'.*did you mean 'fftseuil-5"):
-        MG.resolved_spec(cc.validate(bad))
+        cc.resolved_mi_growth(cc.validate(bad))
     bad["beyond"]["mi_growth"]["scenes"] = ["loc1-pair"]
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi_growth\.scenes\[0\] = 'loc1-pair'"):
         cc.validate(bad)

@@ -115,13 +115,13 @@ def test_netcdf_figure_and_summary(tiny_ds, tmp_path):
 def test_config_section_and_command_line(tmp_path):
     raw = yaml.safe_load((ROOT / "config.yaml").read_text())
     cfg = cc.validate(raw)
-    r = wp.resolved(cfg, "fft106")
+    r = cc.resolved_work_precision(cfg, "fft106")
     json.dumps(r)
     assert r["N"] == 200 and r["t_end"] == 100.0 and r["reference"]["method"] == "srkn6c"
     assert {"srkn6", "srkn4", "strang", "dop853", "lsoda", "dop853_numba", "srkn6c"} <= set(r["methods"])
     assert all(len(wp.ladder(r, m)[1]) >= 5 for m in r["methods"])
     with pytest.raises(cc.ConfigError, match="nosuch"):
-        wp.resolved(cfg, "nosuch")
+        cc.resolved_work_precision(cfg, "nosuch")
     bad = copy.deepcopy(raw)
     bad["work_precision"]["scenes"]["tw-wek"] = {"t_end": 10.0}
     with pytest.raises(cc.ConfigError, match=r"work_precision.scenes.tw-wek.*did you mean 'tw-weak'"):
@@ -142,7 +142,7 @@ def test_config_section_and_command_line(tmp_path):
     tiny_cfg["work_precision"] = {"scenes": {"tw-weak": {"t_end": 5.0}}, "repeat_time": 0.0,
                                   "reference": {"dt_factor": 0.001},
                                   "methods": {"srkn6c": {"dt_factor": [0.02, 0.01]}, "lsoda": {"rtol": [1e-6, 1e-8]}}}
-    spec = wp.resolved(tiny_cfg, "tw-weak")
+    spec = cc.resolved_work_precision(tiny_cfg, "tw-weak")
     init = write_netcdf(stages.initial_data(cc.resolved_scene(tiny_cfg, "tw-weak"), "tw-weak"), tmp_path / "i.nc")
     out = tmp_path / "wp" / "tw-weak.nc"
     assert wp.main(["scene", "--spec", json.dumps(spec), "--initial", str(init), "--out", str(out)]) == 0

@@ -3,8 +3,6 @@
 # or the files results/theorem1/theorem1.nc, results/mi/mi-diagram.nc and
 # results/figures/{theorem1,mi-diagram}.{pdf,png}. Each computation runs in well under a minute on
 # one core; a figure rule reruns alone when only the drawing code changes.
-from cradle.analyses import modulational as _mi
-from cradle.analyses import theorem1 as _t1
 
 # should `theorem1` or `mi-diagram` ever be listed under `figures:`, these rules draw them
 ruleorder: theorem1_figure > figure
@@ -21,7 +19,7 @@ rule theorem1_compute:
     output:
         "results/theorem1/theorem1.nc",
     params:
-        spec=lambda w: _t1.resolved_spec(config),
+        spec=lambda w: cc.resolved_theorem1(config),
     log:
         "results/logs/theorem1/theorem1.log",
     benchmark:
@@ -65,7 +63,7 @@ rule mi_diagram_compute:
     output:
         "results/mi/mi-diagram.nc",
     params:
-        spec=lambda w: _mi.resolved_spec(config),
+        spec=lambda w: cc.resolved_mi_diagram(config),
     log:
         "results/logs/mi/mi-diagram.log",
     benchmark:

@@ -10,6 +10,8 @@ from cradle.pipeline import layout as L
 from cradle.pipeline.codedeps import code_files
 
 try:
+    for _file in workflow.configfiles:   # Snakemake's own loader keeps the last of two equal keys silently
+        cc.read_yaml(_file)
     config.update(cc.validate(config))
 except cc.ConfigError as err:
     raise WorkflowError(str(err)) from None
@@ -86,6 +88,6 @@ def mi_batches(variant):
     """The batch files of one mi-statistics variant (reduced, full)."""
     from cradle.analyses import mistatistics as _mis
 
-    spec = _mis.resolved_spec(config, variant)
+    spec = cc.resolved_mi_statistics(config, variant)
     return [f"results/mi/batch/{variant}/N{N}-{m}-{c}.nc" for N in spec["N"] for m in _mis.MODELS
             for c in range(int(spec["chunks"]))]

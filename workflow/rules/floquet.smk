@@ -3,7 +3,6 @@
 # The compute job (cradle.analyses.floquet: Hill's method in the co-moving frame, the lattice threshold in q
 # against the DpS q_c = pi/2, a brute-force ring monodromy and a direct run as checks) takes ~2-3 min
 # on one core; the figure rule reruns alone when only the drawing code changes.
-from cradle.analyses import floquet as _fq
 
 # should `floquet` ever be listed under `figures:`, this rule draws it
 ruleorder: floquet_figure > figure
@@ -19,7 +18,7 @@ rule floquet_compute:
     output:
         "results/floquet/floquet.nc",
     params:
-        spec=lambda w: _fq.resolved_spec(config),
+        spec=lambda w: cc.resolved_floquet(config),
     log:
         "results/logs/floquet/floquet.log",
     benchmark:

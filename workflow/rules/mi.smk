@@ -9,7 +9,6 @@
 # * `snakemake -j2 mi_statistics_full` (a few minutes on 2 cores): the full sweep, the same code ->
 #   results/mi/full/mi-statistics.nc, results/mi/full/mi-statistics.{pdf,png}.
 # Each batch job runs every seed of a chunk of q values for one (N, model): results/mi/batch/<variant>/.
-from cradle.analyses import migrowth as _mig
 from cradle.analyses import mistatistics as _mis
 
 ruleorder: mi_growth_figure > figure
@@ -29,7 +28,7 @@ rule mi_growth_compute:
     output:
         "results/mi/mi-growth.nc",
     params:
-        spec=lambda w: _mig.resolved_spec(config),
+        spec=lambda w: cc.resolved_mi_growth(config),
         scenes=lambda w: {n: cc.resolved_scene(config, n) for n in config["beyond"]["mi_growth"]["scenes"]},
     log:
         "results/logs/mi/mi-growth.log",
@@ -74,8 +73,8 @@ rule mi_statistics_batch:
     output:
         "results/mi/batch/{variant}/N{N}-{model}-{chunk}.nc",
     params:
-        spec=lambda w: _mis.resolved_spec(config, w.variant),
-        q_indices=lambda w: _mis.chunk_indices(_mis.resolved_spec(config, w.variant), int(w.N), int(w.chunk)),
+        spec=lambda w: cc.resolved_mi_statistics(config, w.variant),
+        q_indices=lambda w: _mis.chunk_indices(cc.resolved_mi_statistics(config, w.variant), int(w.N), int(w.chunk)),
     log:
         "results/logs/mi/{variant}/N{N}-{model}-{chunk}.log",
     benchmark:
@@ -106,7 +105,7 @@ for _variant in ("reduced", "full"):
         output:
             f"{MI_VARIANT_DIR[_variant]}/mi-statistics.nc",
         params:
-            spec=_mis.resolved_spec(config, _variant),
+            spec=cc.resolved_mi_statistics(config, _variant),
         log:
             f"results/logs/mi/{_variant}/mi-statistics.log",
         script:

@@ -6,7 +6,6 @@
 # single-threaded Python process (~40 s each, ~2 min for the whole target on 2 cores).
 import json
 
-from cradle.analyses import workprecision as wpr
 
 WP_SCENES = list((config.get("work_precision") or {}).get("scenes") or {})
 
@@ -22,7 +21,7 @@ rule work_precision_scene:
     output:
         "results/work-precision/{scene}.nc",
     params:
-        spec=lambda w: json.dumps(wpr.resolved(config, w.scene), sort_keys=True),
+        spec=lambda w: json.dumps(cc.resolved_work_precision(config, w.scene), sort_keys=True),
     log:
         "results/logs/work-precision/{scene}.log",
     benchmark:

@@ -46,7 +46,6 @@ import numpy as np
 
 from cradle.models import dps
 from cradle.analyses import theorem1 as t1
-from cradle.models.lattice import check_alpha
 
 DEFAULT_HILL_MODES = 32      # L: Fourier modes |m| <= L of W
 DEFAULT_GRID_LOG2 = 14       # M = 2^14 points for the Fourier coefficients of K
@@ -355,7 +354,7 @@ def threshold(alpha: float, omega_tw: float, q_lo: float, q_hi: float, num: dict
 def compute(spec: dict, log=None):
     """The `floquet` target as a Dataset (cradle.pipeline.variables fq_*).
 
-    ``spec`` (see :func:`resolved_spec`): alpha, omega_tw, q_min, q_max, n_q, n_p, hill_modes, grid_log2,
+    ``spec`` (:func:`cradle.pipeline.config.resolved_floquet`): alpha, omega_tw, q_min, q_max, n_q, n_p, hill_modes, grid_log2,
     wave_modes, wave_grid_log2, q_profiles (+ q_profiles_expr), threshold_omega_tw, threshold_q_min,
     threshold_q_max, threshold_n_scan, convergence (hill_modes, grid_log2, wave_modes), ring_N, ring_k, direct_N,
     direct_k, direct_growth_factor, small_omega_tw, small_q (+ small_q_expr).
@@ -528,45 +527,3 @@ def compute(spec: dict, log=None):
     return make_dataset(data, coords=coords, attrs=attrs,
                         title="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) against "
                               "the DpS modulational-instability threshold")
-
-
-def resolved_spec(config: dict) -> dict:
-    """The `beyond.floquet` parameters of a validated config, angles in radians; ValueError names the key."""
-    from cradle.pipeline import config as cc
-
-    b = dict(config["beyond"]["floquet"])
-    check_alpha(b["alpha"])
-    for key in ("q_min", "q_max", "threshold_q_min", "threshold_q_max"):
-        expr = b[key]
-        b[key] = cc.parse_angle(expr)
-        if not 0.0 < b[key] < np.pi:
-            raise ValueError(f"config error: beyond.floquet.{key} = {expr!r}: must be in (0, pi)")
-    for lo, hi in (("q_min", "q_max"), ("threshold_q_min", "threshold_q_max")):
-        if not b[hi] > b[lo]:
-            raise ValueError(f"config error: beyond.floquet.{hi} = {config['beyond']['floquet'][hi]!r}: must exceed "
-                             f"{lo} = {config['beyond']['floquet'][lo]!r}")
-    for key in ("q_profiles", "small_q"):
-        b[key + "_expr"] = [q if isinstance(q, str) else repr(float(q)) for q in b[key]]
-        b[key] = [cc.parse_angle(q) for q in b[key]]
-        for q, e in zip(b[key], b[key + "_expr"]):
-            if not 0.0 < q < np.pi:
-                raise ValueError(f"config error: beyond.floquet.{key}: {e!r} must be in (0, pi)")
-    if float(b["omega_tw"]) not in [float(x) for x in b["threshold_omega_tw"]]:
-        raise ValueError(f"config error: beyond.floquet.threshold_omega_tw = {b['threshold_omega_tw']}: must contain "
-                         f"omega_tw = {b['omega_tw']}")
-    conv = dict(b["convergence"])
-    for key in ("hill_modes", "grid_log2", "wave_modes"):
-        conv.setdefault(key, b[key])
-    b["convergence"] = conv
-    for sec in (b, conv):
-        if 2 ** int(sec["grid_log2"]) < 8 * (2 * int(sec["hill_modes"]) + 1):
-            raise ValueError(f"config error: beyond.floquet.grid_log2 = {sec['grid_log2']}: 2^grid_log2 must be >= "
-                             f"8 (2 hill_modes + 1) = {8 * (2 * int(sec['hill_modes']) + 1)}")
-    if 2 ** int(b["wave_grid_log2"]) < 8 * max(int(b["wave_modes"]), int(conv["wave_modes"])):
-        raise ValueError(f"config error: beyond.floquet.wave_grid_log2 = {b['wave_grid_log2']}: 2^wave_grid_log2 must "
-                         f"be >= 8 x wave_modes")
-    for key_n, key_k in (("ring_N", "ring_k"), ("direct_N", "direct_k")):
-        if not 0 < b[key_k] < b[key_n]:
-            raise ValueError(f"config error: beyond.floquet.{key_k} = {b[key_k]}: need 0 < {key_k} < {key_n} = "
-                             f"{b[key_n]} (q = 2 pi k / N)")
-    return b

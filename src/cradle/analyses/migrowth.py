@@ -283,20 +283,3 @@ def compute(spec: dict, scenes: dict, log=None):
     return make_dataset(data, coords=coords, attrs=attrs, params=spec,
                         title="Modulational-instability growth rates measured in the scenes' runs (exact and DpS) "
                               "against the linear DpS theory")
-
-
-def resolved_spec(config: dict) -> dict:
-    """The `beyond.mi_growth` parameters of a validated config; every scene named must exist."""
-    import difflib
-
-    spec = dict(config["beyond"]["mi_growth"])
-    scenes = config.get("scenes") or {}
-    if not spec["scenes"]:
-        raise ValueError("config error: beyond.mi_growth.scenes is empty: name at least one scene to measure")
-    for i, name in enumerate(spec["scenes"]):
-        if name not in scenes:
-            near = difflib.get_close_matches(str(name), list(scenes), n=1)
-            did = f"; did you mean {near[0]!r}?" if near else ""
-            raise ValueError(f"config error: beyond.mi_growth.scenes[{i}] = {name!r}: unknown scene: no `scenes:` "
-                             f"entry of that name{did}")
-    return spec

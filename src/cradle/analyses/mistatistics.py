@@ -165,39 +165,6 @@ def q_indices(spec: dict, N: int) -> list[int]:
     return [int(round(x)) for x in k]
 
 
-def resolved_spec(config: dict, variant: str) -> dict:
-    """The `beyond.mi_statistics.<variant>` parameters, with the shared keys merged in and checked.
-
-    Every q of the grid must sit on the ring's wavenumber grid, q N / (2 pi) an integer, for every N.
-    """
-    ms = config["beyond"]["mi_statistics"]
-    if variant not in ("reduced", "full"):
-        raise ValueError(f"config error: beyond.mi_statistics: unknown variant {variant!r} (reduced or full)")
-    common = {k: v for k, v in ms.items() if k not in ("reduced", "full")}
-    spec = {**common, **ms[variant], "variant": variant}
-    spec["alpha"] = float(spec.get("alpha") or config["defaults"]["alpha"])
-    d = config["defaults"]
-    spec["exact"] = {**{"method": d["exact"]["method"], "dt_factor": d["exact"]["dt_factor"]},
-                     **(spec.get("exact") or {})}
-    spec["dps"] = {**{"method": d["dps"]["method"], "rtol": d["dps"]["rtol"]}, **(spec.get("dps") or {})}
-    g = spec["q_over_pi"]
-    if not float(g["start"]) < float(g["stop"]):
-        raise ValueError(f"config error: beyond.mi_statistics.{variant}.q_over_pi = {g}: need start < stop")
-    vals = np.linspace(float(g["start"]), float(g["stop"]), int(g["count"]))
-    for N in spec["N"]:
-        if N % 2:
-            raise ValueError(f"config error: beyond.mi_statistics.{variant}.N = {N}: must be even (Gamma*)")
-        for v in vals:
-            k = v * N / 2.0
-            if abs(k - round(k)) > 1e-9:
-                raise ValueError(f"config error: beyond.mi_statistics.{variant}.q_over_pi = {g}: q = {v:.6g} pi "
-                                 f"gives q N / (2 pi) = {k:.6g} for N = {N}, not an integer (periodic ring)")
-    if int(spec["chunks"]) > int(g["count"]):
-        raise ValueError(f"config error: beyond.mi_statistics.{variant}.chunks = {spec['chunks']}: more chunks "
-                         f"than q values ({g['count']})")
-    return spec
-
-
 def chunk_indices(spec: dict, N: int, chunk: int) -> list[int]:
     """The k of chunk ``chunk`` (0-based; q values dealt round-robin so the chunks cost about the same)."""
     ks = q_indices(spec, N)

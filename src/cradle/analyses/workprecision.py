@@ -102,30 +102,6 @@ def machine() -> str:
     return platform.processor() or platform.machine()
 
 
-# --------------------------------------------------------------------------- configuration
-
-def resolved(config: dict, name: str) -> dict:
-    """The parameters of work-precision scene ``name``: plain, JSON-serialisable.
-
-    ``alpha``, ``N``, ``bc`` come from the ``scenes:`` entry of the same name
-    (whose initial data are used); ``t_end``, ``compare_every``, ``reference``,
-    ``methods`` and ``repeat_time`` from ``work_precision``.
-    """
-    from cradle.pipeline import config as cc
-
-    cfg = cc._validated(config)
-    wp = cfg.get("work_precision") or {}
-    entries = wp.get("scenes") or {}
-    if name not in entries:
-        raise cc.ConfigError(f"config error: work_precision.scenes.{name}: no entry of that name "
-                             f"(entries: {', '.join(entries) or 'none'})")
-    scene = cc.resolved_scene(cfg, name)
-    return {"name": name, "alpha": scene["alpha"], "N": scene["N"], "bc": scene["bc"],
-            "t_end": float(entries[name]["t_end"]), "compare_every": float(wp["compare_every"]),
-            "reference": dict(wp["reference"]), "repeat_time": float(wp["repeat_time"]),
-            "methods": {m: {k: [float(x) for x in v] for k, v in lad.items()} for m, lad in wp["methods"].items()}}
-
-
 def ladder(spec: dict, method: str) -> tuple[str, list[float]]:
     """(parameter name, settings) of one method of a resolved spec."""
     (key, values), = spec["methods"][method].items()
@@ -326,7 +302,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m cradle.analyses.workprecision", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("scene", help="measure one scene")
-    p.add_argument("--spec", required=True, help="resolved parameters (JSON, cradle.analyses.workprecision.resolved)")
+    p.add_argument("--spec", required=True, help="resolved parameters (JSON, cradle.pipeline.config.resolved_work_precision)")
     p.add_argument("--initial", required=True, help="results/initial/<scene>.nc")
     p.add_argument("--out", required=True)
     p.add_argument("--log")

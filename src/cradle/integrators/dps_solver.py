@@ -71,7 +71,7 @@ class DpsSolution:
     n_rhs_evals: int = 0
 
 
-def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853", rtol=DEFAULT_RTOL, atol=None,
+def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", rtol=DEFAULT_RTOL, atol=None,
                   progress=None) -> DpsSolution:
     """Integrate the DpS equation (dfnls) with tau0 = tau0(alpha) of :mod:`cradle.models.dps`.
 
@@ -85,7 +85,8 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853", rtol=DE
     alpha : float
         Exponent > 1.
     bc : {"periodic", "free"}
-    method : {"dop853", "rk45", "dop853_numba"}
+    method : {"dop853_numba", "dop853", "rk45"}
+        Default "dop853_numba", as ``defaults.dps.method`` of the config.
         scipy explicit Runge-Kutta pair stepped manually (DOP853: order 8
         with dense output of order 7), or "dop853_numba": the same DOP853
         pair and step control fully in numba, steps ending exactly on

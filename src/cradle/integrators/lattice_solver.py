@@ -173,7 +173,7 @@ def compression_bounds(x0, v0, alpha: float, bc: str = "periodic", potential: st
     return min(2.0 * c0 + A0, c_energy), c_energy
 
 
-def default_dt(c: float, alpha: float, method: str = "srkn6", dt_factor: float | None = None) -> float:
+def default_dt(c: float, alpha: float, method: str = "srkn6c", dt_factor: float | None = None) -> float:
     """dt = dt_factor * 2 pi / omega_max(c) (default dt_factor from DEFAULT_DT_FACTOR)."""
     fac = DEFAULT_DT_FACTOR[method] if dt_factor is None else dt_factor
     return fac * 2.0 * math.pi / omega_max(c, alpha)
@@ -331,7 +331,7 @@ def _run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic, progress
     return X, V, E, float(stats[1]), n_steps, nfev, float(stats[2])
 
 
-def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6", dt=None, dt_factor=None,
+def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", dt=None, dt_factor=None,
                       rtol=None, atol=None, potential="hertz", progress=None, t0=0.0,
                       energy0=None) -> LatticeSolution:
     """Integrate the lattice (nc) (Hertz V0 of (vhertz)) or (meca) (kappa = 1).
@@ -348,7 +348,8 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6", dt
         Contact exponent, > 1 (alpha = 1.5 uses a c sqrt(c) fast path).
     bc : {"periodic", "free"}
         Ring (bond N-1 joins beads N-1 and 0) or free ends (bond N-1 absent).
-    method : {"srkn6", "srkn4", "strang", "srkn6c", "srkn4c", "dop853", "rk45", "lsoda", "radau", "dop853_numba"}
+    method : {"srkn6c", "srkn4c", "srkn6", "srkn4", "strang", "dop853", "rk45", "lsoda", "radau", "dop853_numba"}
+        Default "srkn6c", as ``defaults.exact.method`` of the config.
         Symplectic splitting of (ham) (orders 6, 4, 2; rotation for the
         harmonic part, kicks for the contact part, Blanes & Moan 2002
         SRKN_11^b and SRKN_6^b), the same with the contact-onset correction

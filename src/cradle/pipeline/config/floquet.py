@@ -1,0 +1,128 @@
+"""Declaration of ``beyond.floquet``: Bloch-Floquet stability of the exact travelling waves of (nc)."""
+from __future__ import annotations
+
+import math
+
+from .spec import declared, param
+from .values import ConfigError, angle_expr, number, parse_angle, show
+
+_ANGLES = {"$ref": "#/$defs/angle"}
+
+
+def _angle(value):
+    """An angle in radians, or None if it does not read as one (the schema reports it)."""
+    try:
+        return parse_angle(value)
+    except ConfigError:
+        return None
+
+
+@declared(doc="Finer numerics for the convergence checks (threshold, growth at q_profiles); missing keys keep the "
+              "main values.")
+class FloquetConvergence:
+    hill_modes: int = param(32, "Hill modes of the check.", minimum=4, maximum=256)
+    grid_log2: int = param(20, "log2 of the K grid of the check.", minimum=8, maximum=22)
+    wave_modes: int = param(256, "Sine modes of the wave of the check.", minimum=8, maximum=2048)
+
+
+_FLOQUET_ANGLES = ("q_min", "q_max", "threshold_q_min", "threshold_q_max")
+_FLOQUET_ANGLE_LISTS = ("q_profiles", "small_q")
+_OMEGA = {"type": "number", "exclusiveMinimum": 1, "maximum": 2, "description": "One omega_tw."}
+
+
+@declared(doc="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) in the co-moving frame "
+              "(Hill's method), against the DpS threshold q_c = pi/2 -> results/floquet/floquet.nc and "
+              "results/figures/floquet.{pdf,png}.")
+class Floquet:
+    alpha: float = param(1.5, "Hertz exponent alpha of V0 (> 1).", ref="alpha", maximum=10)
+    omega_tw: float = param(1.1, "omega_tw of (freq): at each q the amplitude a is (freq) inverted (as the paper's "
+                            "travelling-wave scenes); > 1.", exclusiveMinimum=1, maximum=2)
+    q_min: float | str = param("0.4pi", "Smallest q of the sweep, in (0, pi).", ref="angle")
+    q_max: float | str = param("0.7pi", "Largest q of the sweep, in (q_min, pi).", ref="angle")
+    n_q: int = param(61, "Number of q of the sweep.", minimum=3, maximum=1001)
+    n_p: int = param(121, "Number of Bloch wavenumbers p in [0, pi] (maxima are refined between them).", minimum=9,
+                     maximum=2001)
+    hill_modes: int = param(16, "Hill's method: Fourier modes |m| <= hill_modes of the Bloch profile W.", minimum=4,
+                            maximum=256)
+    grid_log2: int = param(18, "The Fourier coefficients of K = V0''(u(xi+q) - u(xi)) come from 2^grid_log2 samples; "
+                           "2^grid_log2 >= 8 (2 hill_modes + 1).", minimum=8, maximum=22)
+    wave_modes: int = param(128, "Sine modes of the exact wave (theorem1.solve).", minimum=8, maximum=1024)
+    wave_grid_log2: int = param(15, "Grid 2^wave_grid_log2 of the wave solver; >= 8 x wave_modes (also those of "
+                                "`convergence`).", minimum=8, maximum=20)
+    convergence: FloquetConvergence = param(FloquetConvergence(), FloquetConvergence.__schema_doc__)
+    q_profiles: list[float | str] = param(["pi/2", "51pi/100", "52pi/100", "55pi/100", "3pi/5"], "Wavenumbers q where "
+                                          "the growth rate against p is stored (numbers or 'pi/2'-style strings, in "
+                                          "(0, pi)).", minItems=1, maxItems=10, items=_ANGLES)
+    threshold_omega_tw: list[float] = param([1.1, 1.03, 1.01, 1.003], "omega_tw values (each > 1) at which the "
+                                            "lattice threshold is searched; must contain omega_tw.", minItems=1,
+                                            maxItems=8, items=_OMEGA)
+    threshold_q_min: float | str = param("0.4pi", "Lower end of the threshold scan (must be stable), in (0, pi).",
+                                         ref="angle")
+    threshold_q_max: float | str = param("0.55pi", "Upper end of the threshold scan, in (threshold_q_min, pi).",
+                                         ref="angle")
+    threshold_n_scan: int = param(16, "Scan points before the bisection of the threshold.", minimum=2, maximum=200)
+    small_omega_tw: float = param(1.001, "Small amplitude (as omega_tw) where the lattice growth rates are checked "
+                                  "against DpS; > 1.", exclusiveMinimum=1, maximum=2)
+    small_q: list[float | str] = param(["3pi/5", "4pi/5"], "Wavenumbers (DpS-unstable, in (0, pi)) of the "
+                                       "small-amplitude check.", minItems=1, maxItems=8, items=_ANGLES)
+    ring_N: int = param(20, "Ring size of the brute-force monodromy check (2N x 2N variational equations).",
+                        minimum=3, maximum=200)
+    ring_k: int = param(5, "q = 2 pi ring_k / ring_N of the brute-force check; 0 < ring_k < ring_N.", minimum=1,
+                        maximum=199)
+    direct_N: int = param(20, "Ring size of the direct nonlinear run seeded with the top Floquet mode.", minimum=3,
+                          maximum=200)
+    direct_k: int = param(5, "q = 2 pi direct_k / direct_N of the direct run (must be unstable).", minimum=1,
+                          maximum=199)
+    direct_growth_factor: float = param(1000.0, "The direct run lasts until the mode grows by this factor (> 1).",
+                                        exclusiveMinimum=1, maximum=100000000.0)
+
+    @staticmethod
+    def check(b: dict, path: list, out) -> None:
+        """Angles in (0, pi) with q_min < q_max and threshold_q_min < threshold_q_max, omega_tw among
+        threshold_omega_tw, grids fine enough for the Hill and sine modes, 0 < k < N for the ring checks."""
+        q = {key: _angle(b.get(key)) for key in _FLOQUET_ANGLES}
+        for key, x in q.items():
+            if x is not None and not 0.0 < x < math.pi:
+                out.add(path + [key], "must be in (0, pi)", b.get(key))
+        for lo, hi in (("q_min", "q_max"), ("threshold_q_min", "threshold_q_max")):
+            if q[lo] is not None and q[hi] is not None and 0 < q[lo] < math.pi and not q[hi] > q[lo]:
+                out.add(path + [hi], f"must exceed {lo} = {show(b.get(lo))}", b.get(hi))
+        for key in _FLOQUET_ANGLE_LISTS:
+            for i, e in enumerate(b.get(key) if isinstance(b.get(key), list) else []):
+                x = _angle(e)
+                if x is not None and not 0.0 < x < math.pi:
+                    out.add(path + [key, i], "must be in (0, pi)", e)
+        om, ths = b.get("omega_tw"), b.get("threshold_omega_tw")
+        if number(om) and isinstance(ths, list) and all(number(x) for x in ths) and \
+                float(om) not in [float(x) for x in ths]:
+            out.add(path + ["threshold_omega_tw"], f"must contain omega_tw = {show(om)}", ths)
+        conv = {**{k: b.get(k) for k in ("hill_modes", "grid_log2", "wave_modes")},
+                **(b.get("convergence") if isinstance(b.get("convergence"), dict) else {})}
+        for where, sec in ((path, b), (path + ["convergence"], conv)):
+            g, h = sec.get("grid_log2"), sec.get("hill_modes")
+            if isinstance(g, int) and isinstance(h, int) and 2 ** g < 8 * (2 * h + 1):
+                out.add(where + ["grid_log2"], f"2^grid_log2 must be >= 8 (2 hill_modes + 1) = {8 * (2 * h + 1)}", g)
+        wg, wm, cm = b.get("wave_grid_log2"), b.get("wave_modes"), conv.get("wave_modes")
+        if all(isinstance(x, int) for x in (wg, wm, cm)) and 2 ** wg < 8 * max(wm, cm):
+            out.add(path + ["wave_grid_log2"], "2^wave_grid_log2 must be >= 8 x wave_modes (also those of "
+                                               "`convergence`)", wg)
+        for key_n, key_k in (("ring_N", "ring_k"), ("direct_N", "direct_k")):
+            n, k = b.get(key_n), b.get(key_k)
+            if isinstance(n, int) and isinstance(k, int) and not 0 < k < n:
+                out.add(path + [key_k], f"need 0 < {key_k} < {key_n} = {n} (q = 2 pi k / N)", k)
+
+    @staticmethod
+    def resolve(cfg: dict) -> dict:
+        """``beyond.floquet`` with angles in radians (the texts of the lists in ``<key>_expr``) and
+        ``convergence`` completed with the main values."""
+        b = dict(cfg["beyond"]["floquet"])
+        for key in _FLOQUET_ANGLES:
+            b[key] = parse_angle(b[key])
+        for key in _FLOQUET_ANGLE_LISTS:
+            b[key + "_expr"] = [angle_expr(q) for q in b[key]]
+            b[key] = [parse_angle(q) for q in b[key]]
+        conv = dict(b["convergence"])
+        for key in ("hill_modes", "grid_log2", "wave_modes"):
+            conv.setdefault(key, b[key])
+        b["convergence"] = conv
+        return b

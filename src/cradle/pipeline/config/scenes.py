@@ -1,0 +1,279 @@
+"""Declarations of a scene: one lattice (nc) + DpS (dfnls) run from one initial condition.
+
+The kinds of initial condition (travelling (ansatzapprox), breather
+(ansatzapproxst2), packet, pair) are one class each, chosen by ``kind``; each
+class's ``check`` holds the physical checks the schema cannot express (a wave
+that fits the ring, a breather built from an existing homoclinic entry with
+the same N and bc, ...). Checks read the schema-filled mapping, which may hold
+values of the wrong type (the schema reports those): they test before use.
+"""
+from __future__ import annotations
+
+import math
+
+from .spec import NULL, REQUIRED, declared, param
+from .values import INTEGER_TOL, MAX_STORED_TIMES, TIME_TOL, ConfigError, entries, finite, grid_size, number, \
+    parse_angle, show
+
+SPLITTINGS = ("srkn6c", "srkn4c", "srkn6", "srkn4", "strang")   # fixed step: dt_factor
+LATTICE_ADAPTIVE = ("dop853_numba", "dop853", "rk45", "lsoda", "radau")   # error control: rtol
+DPS_METHODS = ("dop853", "dop853_numba", "rk45")
+
+
+@declared("exactIntegrator", doc="Integrator of the lattice (nc).", partial=True)
+class ExactIntegrator:
+    method: str = param("srkn6c", "srkn6c (default: Blanes-Moan order-6 splitting, harmonic part exact, with the "
+                        "contact-onset correction) | srkn4c | srkn6 | srkn4 | strang (plain splittings) | "
+                        "dop853_numba (adaptive, compiled) | dop853 | rk45 | lsoda | radau (scipy).",
+                        enum=[*SPLITTINGS, *LATTICE_ADAPTIVE])
+    dt_factor: float | None = param(NULL, "Splitting step = dt_factor * 2 pi / omega_max; > 0, or null for the "
+                                    "method's default.", exclusiveMinimum=0)
+    rtol: float = param(1e-10, "Relative tolerance of the adaptive (scipy) methods, in (0, 1e-2].", ref="rtol")
+
+
+@declared("dpsIntegrator", doc="Integrator of the DpS equation (dfnls).", partial=True)
+class DpsIntegrator:
+    method: str = param("dop853_numba", "dop853_numba (default: DOP853 with error control, compiled) | dop853 "
+                        "(scipy, compiled right-hand side) | rk45.", enum=list(DPS_METHODS))
+    rtol: float = param(1e-10, "Relative tolerance, in (0, 1e-2]; atol = rtol * max |A_n(0)|.", ref="rtol")
+
+
+@declared("noise", doc="Perturbation (perturb): A_n(0) = (1 + rho1_n) cos(q n + phi) - i (1 + rho2_n) sin(q n + "
+                       "phi).")
+class Noise:
+    kind: str = param("uniform", "Law of rho1_n, rho2_n: uniform on [-amplitude, amplitude] or gaussian with "
+                      "standard deviation amplitude.", enum=["uniform", "gaussian"])
+    amplitude: float = param(REQUIRED, "Half-width (uniform) or standard deviation (gaussian) of the noise; >= 0.",
+                             minimum=0)
+    seed: int = param(REQUIRED, "Seed of numpy.random.default_rng (PCG64); recorded so the run is reproducible; "
+                      "integer >= 0.", minimum=0)
+
+
+@declared("travelling", doc="Approximate travelling wave (ansatzapprox) x_n(0) = a cos(q n + phi), optionally "
+                            "perturbed (perturb).")
+class Travelling:
+    kind: str = param(REQUIRED, "travelling", const="travelling")
+    q: float | str = param(REQUIRED, "Wavenumber q in (-pi, pi] (radians or 'pi/5'-like); with periodic ends "
+                           "q N / (2 pi) must be an integer.", ref="angle")
+    a: float = param(None, "Amplitude a = 2 eps of the wave; > 0. Give exactly one of a and omega_tw.",
+                     exclusiveMinimum=0)
+    omega_tw: float = param(None, "Frequency of the wave; a follows from (freq), which needs omega_tw > 1 and q != 0. "
+                            "Give exactly one of a and omega_tw.", exclusiveMinimum=1)
+    phi: float = param(0.0, "Phase phi of the wave (radians).")
+    noise: Noise = param(None, "Optional perturbation (perturb); absent = unperturbed wave.")
+
+    @staticmethod
+    def check(ini: dict, N, bc, alpha, path: list, out) -> None:
+        """q in (-pi, pi], q N / (2 pi) an integer on a ring, exactly one of a and omega_tw, and a
+        finite a > 0 from (freq) when omega_tw is given."""
+        q_raw = ini.get("q")
+        q = None
+        if q_raw is not None:
+            try:
+                q = parse_angle(q_raw)
+            except ConfigError as err:
+                out.add(path + ["q"], "not an angle: " + str(err).split("as an angle: ", 1)[-1], q_raw)
+        if q is not None:
+            if not (-math.pi + 1e-12 < q <= math.pi + 1e-12):
+                out.add(path + ["q"], f"must be in (-pi, pi], got q = {q:.10g} rad", q_raw)
+            elif bc == "periodic" and isinstance(N, int) and N >= 2:
+                m = q * N / (2.0 * math.pi)
+                if abs(m - round(m)) > INTEGER_TOL:
+                    out.add(path + ["q"], f"with periodic ends q N/(2 pi) must be an integer (the wave must fit the "
+                                          f"ring), got q N/(2 pi) = {m:.10g} (N = {N})", q_raw)
+        a, om = ini.get("a"), ini.get("omega_tw")
+        if a is not None and om is not None:
+            out.add(path, f"give exactly one of a and omega_tw, got both (a = {show(a)}, omega_tw = {show(om)})")
+        elif a is None and om is None:
+            out.add(path, "give exactly one of a and omega_tw, got neither")
+        elif finite(om) and om > 1 and q is not None:
+            if abs(math.sin(q / 2.0)) < 1e-12:
+                out.add(path + ["q"], "must not be 0 with omega_tw: (freq) gives omega_tw = 1 for every a when "
+                                      "q = 0; give a instead of omega_tw", q_raw)
+            elif finite(alpha) and alpha > 1:
+                from cradle.models import dps  # the amplitude must come out finite and positive
+                try:
+                    a_derived = dps.amplitude_from_omega(float(om), q, alpha)
+                except (ValueError, OverflowError, ZeroDivisionError) as err:
+                    out.add(path + ["omega_tw"], f"cannot derive a from (freq): {err}", om)
+                else:
+                    if not (math.isfinite(a_derived) and a_derived > 0):
+                        out.add(path + ["omega_tw"], f"(freq) gives a = {a_derived!r}, not a finite amplitude > 0",
+                                om)
+
+
+@declared("breather", doc="Breather (ansatzapproxst2)/(breatherdps) built from a homoclinic solution of (dpsstn).")
+class Breather:
+    kind: str = param(REQUIRED, "breather", const="breather")
+    homoclinic: str = param(REQUIRED, "Name of the homoclinic entry the breather is built from (same N and bc as "
+                            "the scene).", ref="name")
+    omega_sw: float = param(None, "Breather frequency; mu = (omega_sw - 1) 2^alpha tau0 > 0 needs omega_sw > 1. Give "
+                            "exactly one of omega_sw and amplitude.", exclusiveMinimum=1)
+    amplitude: float = param(None, "Initial amplitude |x_site(0)| > 0, from which mu and omega_sw follow. Give "
+                             "exactly one of omega_sw and amplitude.", exclusiveMinimum=0)
+    site: int = param(None, "Bead where amplitude is measured (0 <= site < N); default: the largest |a_n|.",
+                      minimum=0)
+
+    @staticmethod
+    def check(ini: dict, scene: dict, cfg: dict, alpha, path: list, scene_path: list, out) -> None:
+        """Exactly one of omega_sw and amplitude, a site on the chain, and a homoclinic entry of the
+        same N, bc and alpha (the breather is built from it)."""
+        om, amp = ini.get("omega_sw"), ini.get("amplitude")
+        if om is not None and amp is not None:
+            out.add(path, f"give exactly one of omega_sw and amplitude, got both "
+                          f"(omega_sw = {show(om)}, amplitude = {show(amp)})")
+        elif om is None and amp is None:
+            out.add(path, "give exactly one of omega_sw and amplitude, got neither")
+        N = scene.get("N")
+        site = ini.get("site")
+        if number(site) and isinstance(N, int) and not 0 <= site < N:
+            out.add(path + ["site"], f"must be a bead index in [0, N-1] = [0, {N - 1}]", site)
+        name = ini.get("homoclinic")
+        if not isinstance(name, str):
+            return
+        homs = entries(cfg, "homoclinic")
+        if name not in homs:
+            known = ", ".join(homs) or "none"
+            out.add(path + ["homoclinic"], f"no homoclinic entry of that name (homoclinic entries: {known})", name)
+            return
+        h = homs[name]
+        for key in ("N", "bc"):
+            if scene.get(key) is not None and h.get(key) is not None and scene.get(key) != h.get(key):
+                out.add(scene_path + [key], f"must equal homoclinic.{name}.{key} = {show(h.get(key))} "
+                                            f"(the breather is built from that solution)", scene.get(key))
+        h_alpha = alpha_of(cfg, h)
+        # a non-finite alpha is reported once, where it is written
+        if finite(alpha) and finite(h_alpha) and alpha != h_alpha:
+            out.add(scene_path + ["alpha"], f"must equal the alpha of homoclinic.{name} ({h_alpha!r}): the breather "
+                                            f"is built from that solution", alpha)
+
+
+@declared("packet", doc="Modulated binary oscillation at rest (figure loc1, left): x_n(0) = amplitude (-1)^n "
+                        "env(n - centre), v_n(0) = 0; DpS from A_n(0) = x_n(0)/2, eps = 1 (tau = 0 in (breatherdps)).")
+class Packet:
+    kind: str = param(REQUIRED, "packet", const="packet")
+    amplitude: float = param(REQUIRED, "Peak of the envelope (amplitude of the binary oscillation); > 0.",
+                             exclusiveMinimum=0)
+    width: float = param(REQUIRED, "Number of sites the envelope (almost) covers; > 0 and <= N. gaussian: "
+                         "sigma = width/6; cos2: cos^2(pi s/width) on |s| < width/2.", exclusiveMinimum=0)
+    envelope: str = param("gaussian", "Envelope shape: gaussian (almost compactly supported) or cos2 (compactly "
+                          "supported).", enum=["gaussian", "cos2"])
+    centre: float = param(None, "Centre of the envelope, a site (integer) or a bond (half-integer) in [0, N-1]; "
+                          "default (N-1)/2.", minimum=0)
+
+    @staticmethod
+    def check(ini: dict, N, path: list, out) -> None:
+        """The envelope must fit the chain and be centred on it (loc1, left)."""
+        if not isinstance(N, int) or N < 2:
+            return
+        width, centre = ini.get("width"), ini.get("centre")
+        if number(width) and width > N:
+            out.add(path + ["width"], f"must be <= N = {N} (the envelope must fit the chain)", width)
+        if number(centre) and not 0 <= centre <= N - 1:
+            out.add(path + ["centre"], f"must be in [0, N-1] = [0, {N - 1}]", centre)
+
+
+@declared("pair", doc="Two static breathers at rest (figure loc1, right): two copies of a homoclinic profile of "
+                      "(dpsstn), separation sites apart, each of amplitude `amplitude`; v_n(0) = 0; DpS from "
+                      "A_n(0) = x_n(0)/2, eps = 1.")
+class Pair:
+    kind: str = param(REQUIRED, "pair", const="pair")
+    amplitude: float = param(REQUIRED, "|x_n(0)| of one copy alone at its largest site; > 0 (mu and omega_sw of one "
+                             "breather follow).", exclusiveMinimum=0)
+    separation: int = param(REQUIRED, "Distance in sites between the centres of the two copies; integer in "
+                            "[1, N-1].", minimum=1)
+    profile: str = param("bond", "Homoclinic profile of each copy, solved from the paper's start on the scene's N "
+                         "and bc: site or bond.", enum=["site", "bond"])
+    sign: int = param(1, "Relative sign of the second copy: 1 (in phase) or -1 (in antiphase).", enum=[1, -1])
+    centre: int = param(None, "Site the profile is centred on before the copies are shifted (0 <= centre < N); "
+                        "default N // 2.", minimum=0)
+
+    @staticmethod
+    def check(ini: dict, N, path: list, out) -> None:
+        """The two copies must be distinct and the centre a site (loc1, right)."""
+        if not isinstance(N, int) or N < 2:
+            return
+        sep, centre = ini.get("separation"), ini.get("centre")
+        if number(sep) and not 1 <= sep < N:
+            out.add(path + ["separation"], f"must be in [1, N-1] = [1, {N - 1}]", sep)
+        if number(centre) and not 0 <= centre < N:
+            out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", centre)
+
+
+INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair}
+INITIAL_DOC = "Initial condition of a scene: kind travelling, breather, packet or pair."
+KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest) "
+            "or pair (two static breathers at rest).")
+
+
+@declared("store", doc="What a scene stores: profiles at `snapshots` and/or every `every` time units on [0, t_end] "
+                       "(0 and t_end are always stored).", any_of=[("snapshots",), ("every",)])
+class Store:
+    snapshots: list[float] = param(None, "Strictly increasing times in [0, t_end] whose profiles are stored.",
+                                   items={"type": "number", "minimum": 0})
+    every: float = param(None, "Spacing of the stored time grid on [0, t_end]; > 0.", exclusiveMinimum=0)
+
+
+@declared("scene", doc="One lattice (nc) + DpS (dfnls) run.")
+class Scene:
+    N: int = param(REQUIRED, "Number of beads; >= 2.", ref="N")
+    bc: str = param("periodic", "Boundary conditions (periodic | free).", ref="bc")
+    alpha: float = param(None, "Per-scene Hertz exponent; default defaults.alpha.", ref="alpha")
+    exact: ExactIntegrator = param(None, "Per-scene lattice integrator settings, merged over defaults.exact.")
+    dps: DpsIntegrator = param(None, "Per-scene DpS integrator settings, merged over defaults.dps.")
+    max_energy_drift: float = param(None, "Per-scene energy drift bound; default defaults.max_energy_drift.",
+                                    ref="maxEnergyDrift")
+    initial: Travelling | Breather | Packet | Pair = param(REQUIRED, "Initial condition: its kind (travelling, "
+                                                           "breather, packet, pair) and parameters.", ref="initial")
+    t_end: float = param(REQUIRED, "Final time of the run (lattice time t); > 0.", exclusiveMinimum=0)
+    store: Store = param(REQUIRED, "Times at which the state is stored.")
+
+    @staticmethod
+    def check(name: str, scene: dict, cfg: dict, out) -> None:
+        """Snapshots increasing within [0, t_end], a stored grid of sane size, and the checks of the
+        initial condition's kind."""
+        path = ["scenes", name]
+        N, bc = scene.get("N"), scene.get("bc", "periodic")
+        alpha = alpha_of(cfg, scene)
+        t_end = scene.get("t_end")
+        t_ok = finite(t_end) and t_end > 0
+        store = scene.get("store")
+        if isinstance(store, dict):
+            snaps = store.get("snapshots")
+            prev = None
+            for i, t in enumerate(snaps if isinstance(snaps, list) else []):
+                if not finite(t):
+                    continue
+                p = path + ["store", "snapshots", i]
+                if t_ok and t > t_end + TIME_TOL:
+                    out.add(p, f"must be <= t_end = {show(t_end)}", t)
+                elif prev is not None and not t > prev:
+                    out.add(p, f"must be > the previous snapshot {show(prev)} (snapshots must be strictly "
+                               f"increasing)", t)
+                prev = t
+            every = store.get("every")
+            if t_ok and finite(every) and every > 0:
+                n = grid_size(store, t_end)
+                if n > MAX_STORED_TIMES:
+                    out.add(path + ["store", "every"], f"stores ~{n} times on [0, t_end = {show(t_end)}], more "
+                                                       f"than {MAX_STORED_TIMES}", every)
+        ini = scene.get("initial")
+        if not isinstance(ini, dict):
+            return
+        kind, where = ini.get("kind"), path + ["initial"]
+        if kind == "travelling":
+            Travelling.check(ini, N, bc, alpha, where, out)
+        elif kind == "breather":
+            Breather.check(ini, scene, cfg, alpha, where, path, out)
+        elif kind == "packet":
+            Packet.check(ini, N, where, out)
+        elif kind == "pair":
+            Pair.check(ini, N, where, out)
+
+
+def alpha_of(cfg: dict, entry: dict) -> float | None:
+    """The alpha an entry runs with: its own, else defaults.alpha (None if neither is a number)."""
+    a = entry.get("alpha")
+    if a is None and isinstance(cfg.get("defaults"), dict):
+        a = cfg["defaults"].get("alpha")
+    return float(a) if number(a) else None

@@ -1,0 +1,265 @@
+"""Declaration helpers for the typed config, and the JSON Schema generated from the declarations.
+
+Each config section and each kind of initial condition is a frozen dataclass
+(:mod:`.sections`, :mod:`.scenes`, :mod:`.beyond`); each field is declared by
+:func:`param` with its description, its JSON-Schema keywords (bounds, enum,
+pattern, items) and its default, so that a bound or a default is written once.
+:func:`generate` turns the declarations into the JSON Schema (draft 2020-12)
+committed as ``src/cradle/pipeline/config.schema.json``; ``python -m
+cradle.pipeline.config --write-schema`` rewrites that file.
+
+Field annotations give the JSON type: ``float`` is a number, ``int`` an
+integer, ``str`` a string, ``bool`` a boolean, ``X | None`` adds null,
+``list[...]`` / ``tuple[...]`` an array, ``dict[str, C]`` a mapping from entry
+names to ``C``, and a declared dataclass a nested object (a ``$ref`` when the
+class is one of the schema's ``$defs``).
+"""
+from __future__ import annotations
+
+import dataclasses
+import json
+import types
+import typing
+from pathlib import Path
+
+REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
+
+SCHEMA_DRAFT = "https://json-schema.org/draft/2020-12/schema"
+
+
+class _Null:
+    """The default of a key whose default is null (filled in as None), unlike an optional key."""
+
+    def __repr__(self):
+        return "NULL"
+
+
+NULL = _Null()
+
+
+def param(default=REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict | None = None, key: str | None = None,
+          **keywords):
+    """A config key: ``default``, its description ``doc``, ``ref`` (a shared type of :data:`SHARED`,
+    e.g. "alpha") and JSON-Schema ``keywords`` (minimum, exclusiveMinimum, maximum, enum, items, ...).
+
+    ``default``: REQUIRED (the config must give the key), None (optional, absent unless given), NULL
+    (filled in as null) or a value (filled in). A mutable default (list, dict) is copied into every
+    instance. ``fill``: for a nested object whose class is a partial override (an integrator), the
+    descriptions of its keys in this place, where they get the defaults of the class. ``key``: the
+    config key when it is not a Python name (``from``).
+    """
+    meta = {"key": key, "doc": doc, "ref": ref, "keywords": keywords, "fill": fill, "required": default is REQUIRED,
+            "null_default": default is NULL}
+    if default is NULL:
+        default = None
+    if isinstance(default, (list, dict)):
+        frozen = json.dumps(default)
+        return dataclasses.field(default_factory=lambda: json.loads(frozen), metadata=meta)
+    return dataclasses.field(default=default, metadata=meta)
+
+
+def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of=None, extra=None):
+    """Class decorator: a frozen dataclass declaring one object of the config.
+
+    ``name``: its key under ``$defs`` (None: written inline where it is used); ``doc``: its
+    description; ``partial``: an override of settings inherited from elsewhere (its keys get no
+    defaults in ``$defs``); ``any_of``: alternatives of required keys (e.g. snapshots or every);
+    ``extra``: further schema keywords.
+    """
+    def wrap(cls):
+        # keyword-only: fields are declared in the order of the config's keys, required or not
+        cls = dataclasses.dataclass(frozen=True, kw_only=True)(cls)
+        cls.__schema_name__ = name
+        cls.__schema_doc__ = doc
+        cls.__schema_partial__ = partial
+        cls.__schema_any_of__ = any_of
+        cls.__schema_extra__ = extra or {}
+        return cls
+    return wrap
+
+
+# Shared scalar types ($defs), each bound written here only.
+_NUM = r"(\d+(\.\d*)?|\.\d+)"
+# Angles: a number, or [sign] [coefficient [*]] pi [/ denominator], e.g. pi, pi/5, 4pi/5, -52pi/100, 4*pi/5.
+ANGLE_PATTERN = (
+    r"^\s*[-+]?\s*((" + _NUM + r"\s*\*?\s*)?pi(\s*/\s*" + _NUM + r")?|" + _NUM + r"([eE][-+]?\d+)?)\s*$"
+)
+NAME_PATTERN = "^[A-Za-z0-9][A-Za-z0-9_-]*$"
+
+SHARED = {
+    "name": {"description": "An entry name: letters, digits, '-' and '_' (it becomes part of file names).",
+             "type": "string", "pattern": NAME_PATTERN},
+    "alpha": {"description": "Hertz exponent alpha of (vhertz); > 1.", "type": "number", "exclusiveMinimum": 1},
+    "N": {"description": "Number of sites (beads) n = 0..N-1; >= 2.", "type": "integer", "minimum": 2},
+    "bc": {"description": "Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one "
+                          "neighbour).", "type": "string", "enum": ["periodic", "free"]},
+    "rtol": {"description": "Relative tolerance of an adaptive integrator, in (0, 1e-2].", "type": "number",
+             "exclusiveMinimum": 0, "maximum": 0.01},
+    "maxEnergyDrift": {"description": "Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact "
+                                      "run; > 0.", "type": "number", "exclusiveMinimum": 0},
+    "angleString": {"description": "A multiple of pi such as 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', or a "
+                                   "number written as a string.", "type": "string", "pattern": ANGLE_PATTERN},
+    "angle": {"description": "An angle: a number (radians) or a multiple of pi as a string ('pi/5', '4pi/5', "
+                             "'-52pi/100', '4*pi/5').", "anyOf": [{"type": "number"}, {"$ref": "#/$defs/angleString"}]},
+}
+
+
+def _ref(name: str) -> dict:
+    return {"$ref": f"#/$defs/{name}"}
+
+
+def _is_declared(tp) -> bool:
+    return isinstance(tp, type) and hasattr(tp, "__schema_doc__")
+
+
+def _key(f: dataclasses.Field) -> str:
+    """The config key of a field (its name unless declared with ``key=``)."""
+    return f.metadata.get("key") or f.name
+
+
+def _json_default(value):
+    """A declared default as JSON (tuples as lists, declared instances as mappings)."""
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return {_key(f): _json_default(getattr(value, f.name)) for f in dataclasses.fields(value)}
+    if isinstance(value, (list, tuple)):
+        return [_json_default(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _json_default(v) for k, v in value.items()}
+    return value
+
+
+def _default_of(f: dataclasses.Field):
+    if f.default is not dataclasses.MISSING:
+        return f.default
+    if f.default_factory is not dataclasses.MISSING:
+        return f.default_factory()
+    return REQUIRED
+
+
+def _type_of(tp, defs: dict) -> dict:
+    """The schema of an annotation (without description)."""
+    origin, args = typing.get_origin(tp), typing.get_args(tp)
+    if origin in (typing.Union, types.UnionType):
+        inner = [a for a in args if a is not type(None)]
+        node = _type_of(inner[0], defs) if len(inner) == 1 else {}
+        if "type" in node and isinstance(node["type"], str) and len(args) == 2:
+            node["type"] = [node["type"], "null"]
+        return node
+    if origin in (list, tuple):
+        return {"type": "array"}
+    if origin is dict:
+        return {"type": "object", "propertyNames": _ref("name"), "additionalProperties": _type_of(args[1], defs)}
+    if _is_declared(tp):
+        return object_schema(tp, defs)
+    names = {float: "number", int: "integer", str: "string", bool: "boolean"}
+    return {"type": names[tp]} if tp in names else {}
+
+
+def _field_schema(f: dataclasses.Field, tp, defs: dict, with_defaults: bool, default) -> dict:
+    meta = f.metadata
+    node = {"description": meta["doc"]} if meta["doc"] else {}
+    if meta["ref"]:
+        node.update(_ref(meta["ref"]))
+    elif _is_declared(tp) and not tp.__schema_name__ and default is not None:
+        # an inline nested object: its keys get the defaults of this field's default instance
+        node.update(object_schema(tp, defs, defaults=_json_default(default)))
+        if meta["doc"]:
+            node["description"] = meta["doc"]
+        default = {}
+    else:
+        node.update(_type_of(tp, defs))
+    if meta["fill"] is not None:
+        # a partial override declared once (an integrator): here its keys get the class defaults
+        values = _json_default(default if default is not None else tp())
+        node["properties"] = {k: {"description": d, "default": values[k]} for k, d in meta["fill"].items()}
+        default = {}
+    node.update(meta["keywords"])
+    if with_defaults and not meta["required"] and (default is not None or meta["null_default"]):
+        node["default"] = _json_default(default)
+    return node
+
+
+def object_schema(cls, defs: dict, *, defaults: dict | None = None) -> dict:
+    """The schema of a declared class: a ``$ref`` for a named class (added to ``defs``), else inline.
+
+    ``defaults``: the defaults of the keys of an inline class, when they are not the class's own.
+    """
+    name = cls.__schema_name__
+    if name and name in defs:
+        return _ref(name)
+    if name:
+        defs[name] = {}   # reserved (a class may refer to itself through its fields)
+    hints = typing.get_type_hints(cls)
+    props, required = {}, []
+    for f in dataclasses.fields(cls):
+        default = _default_of(f) if defaults is None else defaults.get(_key(f))
+        props[_key(f)] = _field_schema(f, hints[f.name], defs, not cls.__schema_partial__, default)
+        if f.metadata["required"]:
+            required.append(_key(f))
+    out = {"description": cls.__schema_doc__, "type": "object", "additionalProperties": False}
+    if required:
+        out["required"] = required
+    if cls.__schema_any_of__:
+        out["anyOf"] = [{"required": list(r)} for r in cls.__schema_any_of__]
+    out.update(cls.__schema_extra__)
+    out["properties"] = props
+    if name:
+        defs[name] = out
+        return _ref(name)
+    return out
+
+
+def union_schema(doc: str, kind_doc: str, kinds: dict, defs: dict) -> dict:
+    """A discriminated union on ``kind``: ``kinds`` maps each kind to its declared class."""
+    return {
+        "description": doc, "type": "object", "required": ["kind"],
+        "properties": {"kind": {"description": kind_doc, "type": "string", "enum": list(kinds)}},
+        "allOf": [{"if": {"type": "object", "required": ["kind"], "properties": {"kind": {"const": k}}},
+                   "then": object_schema(c, defs)} for k, c in kinds.items()],
+    }
+
+
+def build(tp, value):
+    """``value`` (a validated, schema-filled mapping or one of its values) as an instance of the
+    annotation ``tp``: declared classes become frozen instances, recursively; a union of declared
+    classes (the kinds of initial condition) picks the class whose ``kind`` constant matches."""
+    origin, args = typing.get_origin(tp), typing.get_args(tp)
+    if value is None:
+        return None
+    if origin in (typing.Union, types.UnionType):
+        kinds = [a for a in args if _is_declared(a)]
+        if kinds and isinstance(value, dict):
+            for cls in kinds:
+                const = next((f.metadata["keywords"].get("const") for f in dataclasses.fields(cls)
+                              if f.name == "kind"), None)
+                if const is None or const == value.get("kind"):
+                    return build(cls, value)
+        return value
+    if origin is dict and _is_declared(args[1]):
+        return {k: build(args[1], v) for k, v in value.items()}
+    if _is_declared(tp):
+        hints = typing.get_type_hints(tp)
+        return tp(**{f.name: build(hints[f.name], value[_key(f)])
+                     for f in dataclasses.fields(tp) if _key(f) in value})
+    return value
+
+
+def generate(root, *, title: str, extra_defs=None) -> dict:
+    """The JSON Schema of the declared class ``root`` (the whole config), shared types under $defs."""
+    defs = {k: dict(v) for k, v in SHARED.items()}
+    for name, make in (extra_defs or {}).items():
+        defs[name] = make(defs)
+    body = object_schema(root, defs)
+    out = {"$schema": SCHEMA_DRAFT, "title": title, "description": root.__schema_doc__, "type": "object",
+           "additionalProperties": False, "properties": body["properties"], "$defs": defs}
+    return out
+
+
+def dump(schema: dict) -> str:
+    """The committed text of a schema (stable key order, one trailing newline)."""
+    return json.dumps(schema, indent=2, ensure_ascii=False) + "\n"
+
+
+def write(schema: dict, path: Path) -> Path:
+    path.write_text(dump(schema), encoding="utf-8")
+    return path

@@ -1,0 +1,353 @@
+"""Loading and validating config.yaml: coercion, schema messages, defaults, resolved entries.
+
+The Snakefile calls :func:`validate` right after loading the config (so after
+any ``--config`` overrides); ``python -m cradle.pipeline.config [config.yaml]`` does
+the same from the command line. Every bad input is reported before any work
+starts, one line per problem, naming the key path and the value::
+
+    config error: scenes.tw-weak.N = 1: must be >= 2
+
+Two layers, both declared in :mod:`.sections`, :mod:`.scenes` and :mod:`.beyond`:
+
+1. the JSON Schema generated from the declarations (``config.schema.json``):
+   keys, types, bounds, enums; its errors are rewritten as one readable line each;
+2. the ``check`` methods of the declared types: what the schema cannot express
+   (q N / (2 pi) an integer on a ring, a breather built from an existing
+   homoclinic entry of the same N and bc, stored times of figures, ...).
+
+:func:`validate` returns a deep copy with the schema defaults filled in;
+:func:`resolved_scene`, :func:`resolved_homoclinic`, :func:`resolved_map` and
+the ``resolved_*`` of the analyses give the fully resolved, JSON-serialisable
+parameters of one entry.
+"""
+from __future__ import annotations
+
+import copy
+import difflib
+import json
+import re
+from functools import lru_cache
+from importlib import resources
+from pathlib import Path
+
+from jsonschema import Draft202012Validator
+
+from . import sections, spec
+from .scenes import INITIAL_DOC, INITIAL_KINDS, KIND_DOC
+from .sections import SECTIONS
+from .spec import ANGLE_PATTERN
+from .values import ANGLE_HINT, ConfigError, Errors, number, show
+
+SCHEMA_FILE = "config.schema.json"
+
+# Extra words appended to schema messages for some keys, by (last key, schema keyword).
+_HINTS = {
+    ("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))",
+    ("omega_tw", "exclusiveMinimum"): " (a is derived from (freq), omega_tw = 1 + (2/tau0) a^(alpha-1) |sin(q/2)|^(alpha+1))",
+    ("omega_sw", "exclusiveMinimum"): " (mu = (omega_sw - 1) 2^alpha tau0 must be > 0)",
+}
+
+
+# --------------------------------------------------------------------------- schema
+
+def generated_schema() -> dict:
+    """The JSON Schema of config.yaml, generated from the declarations (:mod:`.sections`)."""
+    extra = {"initial": lambda defs: spec.union_schema(INITIAL_DOC, KIND_DOC, INITIAL_KINDS, defs)}
+    return spec.generate(sections.Config, title="cradle configuration", extra_defs=extra)
+
+
+def schema_path() -> Path:
+    """The committed schema file (src/cradle/pipeline/config.schema.json)."""
+    return Path(str(resources.files("cradle.pipeline").joinpath(SCHEMA_FILE)))
+
+
+def write_schema(path=None) -> Path:
+    """Write the generated schema to ``path`` (default: the committed file)."""
+    return spec.write(generated_schema(), Path(path) if path else schema_path())
+
+
+@lru_cache(maxsize=1)
+def _schema_text() -> str:
+    return spec.dump(generated_schema())
+
+
+def schema() -> dict:
+    """The JSON Schema of config.yaml (a fresh copy; equal to the committed file, which a test checks)."""
+    return json.loads(_schema_text())
+
+
+@lru_cache(maxsize=1)
+def _validator() -> Draft202012Validator:
+    s = schema()
+    Draft202012Validator.check_schema(s)
+    return Draft202012Validator(s)
+
+
+def _resolve(node: dict) -> dict:
+    """Follow a local "$ref" ("#/$defs/...") of the schema."""
+    ref = node["$ref"]
+    if not ref.startswith("#/"):
+        raise ValueError(f"only local $ref are supported, got {ref!r}")
+    target = _validator().schema
+    for part in ref[2:].split("/"):
+        target = target[part]
+    return target
+
+
+def _fill(node, instance):
+    """Fill schema defaults into ``instance`` (mutated and returned), following
+    $ref, allOf, if/then/else, anyOf/oneOf (first matching branch), properties,
+    additionalProperties and items. Robust to instances of the wrong type.
+    Integer-valued floats of "integer" keys become ints (N: 50.0 -> 50)."""
+    if not isinstance(node, dict):
+        return instance
+    v = _validator()
+    if "$ref" in node:
+        instance = _fill(_resolve(node), instance)
+    for sub in node.get("allOf", ()):
+        instance = _fill(sub, instance)
+    if "if" in node:
+        branch = node.get("then") if v.evolve(schema=node["if"]).is_valid(instance) else node.get("else")
+        instance = _fill(branch, instance)
+    for key in ("anyOf", "oneOf"):
+        for sub in node.get(key, ()):
+            if v.evolve(schema=sub).is_valid(instance):
+                instance = _fill(sub, instance)
+                break
+    if isinstance(instance, dict):
+        props = node.get("properties", {})
+        for key, sub in props.items():
+            if key not in instance and isinstance(sub, dict) and "default" in sub:
+                instance[key] = copy.deepcopy(sub["default"])
+        extra = node.get("additionalProperties")
+        for key in list(instance):
+            if key in props:
+                instance[key] = _fill(props[key], instance[key])
+            elif isinstance(extra, dict):
+                instance[key] = _fill(extra, instance[key])
+    elif isinstance(instance, list) and isinstance(node.get("items"), dict):
+        for i, item in enumerate(instance):
+            instance[i] = _fill(node["items"], item)
+    if node.get("type") == "integer" and isinstance(instance, float) and instance.is_integer():
+        instance = int(instance)
+    return instance
+
+
+_INT_RE = re.compile(r"^[-+]?\d+$")
+_FLOAT_RE = re.compile(r"^[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?$|^[-+]?(inf|nan)$", re.IGNORECASE)
+
+
+def _scalar_from_string(text: str, types):
+    """``text`` as a value of one of the JSON ``types`` (not string), or the string itself."""
+    s = text.strip()
+    if "null" in types and s in ("null", "Null", "NULL", "~", ""):
+        return None
+    if "boolean" in types and s in ("true", "True", "TRUE", "false", "False", "FALSE"):
+        return s.lower() == "true"
+    if ("integer" in types or "number" in types) and _INT_RE.match(s):
+        return int(s)
+    if "number" in types and _FLOAT_RE.match(s):
+        return float(s)
+    if "integer" in types and _FLOAT_RE.match(s) and float(s).is_integer():
+        return int(float(s))
+    return text
+
+
+def _coerce(node, instance):
+    """Turn strings into the number / integer / boolean / null their key expects.
+
+    ``snakemake --config key='{nested: {x: 1.5}}'`` parses nested values with
+    YAML's BaseLoader, so every nested scalar arrives as a string; PyYAML also
+    reads ``1e-10`` (no dot) as a string. Strings that do not read as the
+    expected type are left alone for the schema to report.
+    """
+    if not isinstance(node, dict):
+        return instance
+    if "$ref" in node:
+        instance = _coerce(_resolve(node), instance)
+    for sub in node.get("allOf", ()):
+        instance = _coerce(sub, instance)
+    if "if" in node:
+        branch = node.get("then") if _validator().evolve(schema=node["if"]).is_valid(instance) else node.get("else")
+        instance = _coerce(branch, instance)
+    if isinstance(instance, dict):
+        props = node.get("properties", {})
+        extra = node.get("additionalProperties")
+        for key in list(instance):
+            sub = props.get(key, extra if isinstance(extra, dict) else None)
+            if sub is not None:
+                instance[key] = _coerce(sub, instance[key])
+    elif isinstance(instance, list) and isinstance(node.get("items"), dict):
+        for i, item in enumerate(instance):
+            instance[i] = _coerce(node["items"], item)
+    elif isinstance(instance, str) and "type" in node:
+        types = [node["type"]] if isinstance(node["type"], str) else list(node["type"])
+        if "string" not in types:
+            instance = _scalar_from_string(instance, types)
+    return instance
+
+
+# --------------------------------------------------------------------------- messages
+
+_TYPE_WORDS = {"integer": "an integer", "number": "a number", "string": "a string", "object": "a mapping",
+               "array": "a list", "boolean": "true or false", "null": "null"}
+
+
+def _type_words(types) -> str:
+    types = [types] if isinstance(types, str) else list(types)
+    return " or ".join(_TYPE_WORDS.get(t, t) for t in types)
+
+
+def _fmt_bound(x) -> str:
+    return repr(x) if isinstance(x, float) and not float(x).is_integer() else str(int(x)) if number(x) else str(x)
+
+
+def _schema_messages(err, out: Errors):
+    """One readable line per jsonschema error (recursing into anyOf/oneOf)."""
+    path = list(err.absolute_path)
+    last = str(path[-1]) if path else ""
+    kw = err.validator
+    val = err.validator_value
+    inst = err.instance
+    hint = _HINTS.get((last, kw), "")
+    if "propertyNames" in err.schema_path:
+        # jsonschema reports the bad name itself as the instance, at the parent's path
+        if kw == "enum":
+            out.add(path + [inst], f"unknown figure label {inst!r} (known labels: {', '.join(map(str, val))})"
+                    if path == ["figures"] else f"must be one of {', '.join(map(str, val))}")
+        else:
+            out.add(path + [inst], f"bad name {inst!r}: names use letters, digits, '-' and '_' "
+                                   f"and start with a letter or digit", force=True)
+        return
+    if kw == "required":
+        for key in val:
+            if isinstance(inst, dict) and key not in inst:
+                out.add(path + [key], "missing (required key)")
+        return
+    if kw == "additionalProperties" and val is False:
+        allowed = list(err.schema.get("properties", {}))
+        for key in inst:
+            if key not in allowed:
+                near = difflib.get_close_matches(str(key), allowed, n=1)
+                did = f"; did you mean {near[0]!r}?" if near else ""
+                out.add(path + [key], f"unknown key (allowed: {', '.join(allowed)}){did}", inst[key])
+        return
+    if kw in ("anyOf", "oneOf"):
+        branches: dict[int, list] = {}
+        for sub in err.context:
+            branches.setdefault(sub.relative_schema_path[0], []).append(sub)
+        subs = [s for errs in branches.values() for s in errs]
+        if subs and all(s.validator == "required" for s in subs):
+            names = [k for s in subs for k in s.validator_value]
+            out.add(path, f"needs at least one of {', '.join(names)}", inst)
+            return
+        # a branch whose type fits the value explains best what is wrong with it
+        for errs in branches.values():
+            if not any(s.validator == "type" and list(s.absolute_path) == path for s in errs):
+                for s in errs:
+                    _schema_messages(s, out)
+                return
+        types = [s.validator_value for s in subs if s.validator == "type" and list(s.absolute_path) == path]
+        flat = []
+        for t in types:
+            flat += [t] if isinstance(t, str) else list(t)
+        if err.schema.get("anyOf") == _validator().schema["$defs"]["angle"]["anyOf"]:
+            out.add(path, f"must be {ANGLE_HINT}", inst)
+        else:
+            out.add(path, f"must be {_type_words(list(dict.fromkeys(flat)))}", inst)
+        return
+    if kw == "type":
+        out.add(path, f"must be {_type_words(val)}", inst)
+    elif kw == "enum":
+        out.add(path, f"must be one of {', '.join(map(str, val))}", inst)
+    elif kw == "const":
+        out.add(path, f"must be {val!r}", inst)
+    elif kw == "minimum":
+        out.add(path, f"must be >= {_fmt_bound(val)}{hint}", inst)
+    elif kw == "exclusiveMinimum":
+        out.add(path, f"must be > {_fmt_bound(val)}{hint}", inst)
+    elif kw == "maximum":
+        out.add(path, f"must be <= {_fmt_bound(val)}{hint}", inst)
+    elif kw == "exclusiveMaximum":
+        out.add(path, f"must be < {_fmt_bound(val)}{hint}", inst)
+    elif kw in ("minItems", "maxItems"):
+        lo, hi = err.schema.get("minItems"), err.schema.get("maxItems")
+        if lo is not None and lo == hi:
+            out.add(path, f"must have exactly {lo} items", inst)
+        elif kw == "minItems":
+            out.add(path, "must not be empty" if val == 1 else f"must have at least {val} items", inst)
+        else:
+            out.add(path, f"must have at most {val} items", inst)
+    elif kw == "uniqueItems":
+        out.add(path, "must not repeat a name", inst)
+    elif kw == "pattern":
+        if last == "q" or err.schema.get("pattern") == ANGLE_PATTERN:
+            out.add(path, f"must be {ANGLE_HINT}", inst)
+        else:
+            out.add(path, "must use letters, digits, '-' and '_' and start with a letter or digit", inst)
+    else:  # a keyword this module does not word specially
+        out.add(path, err.message, inst)
+
+
+# --------------------------------------------------------------------------- public API
+
+def validate(config: dict) -> dict:
+    """A validated deep copy of ``config`` with the schema defaults filled in.
+
+    Strings where a number, integer, boolean or null is expected are read as
+    such first (``--config`` overrides arrive as strings), so ``N: "50"`` is
+    50 but ``N: "fifty"`` is an error.
+
+    Raises :class:`ConfigError` listing every problem found, one line each.
+    """
+    if config is None:
+        config = {}   # an empty YAML file
+    if not isinstance(config, dict):
+        raise ConfigError(f"config error: config = {show(config)}: must be a mapping")
+    if not any(config.get(section) for section in SECTIONS):
+        # an empty file, or the wrong one: refused here rather than as a traceback while the DAG is built
+        raise ConfigError(f"config error: config: no {', '.join(SECTIONS)} entries, nothing to build (keys given: "
+                          f"{', '.join(map(str, config)) or 'none'})")
+    cfg = _coerce(_validator().schema, copy.deepcopy(dict(config)))
+    out = Errors()
+    sections.check_finite(cfg, out)
+    for err in sorted(_validator().iter_errors(cfg), key=lambda e: [str(p) for p in e.absolute_path]):
+        _schema_messages(err, out)
+    cfg = _fill(_validator().schema, cfg)
+    sections.check(cfg, out)
+    if out.lines:
+        raise ConfigError(out.lines)
+    # a validated config validates to itself (tested): remember it, so that the resolved_* calls
+    # the Snakefile makes with it, once per job, do not validate it again
+    _remember(_key(cfg), copy.deepcopy(cfg))
+    return cfg
+
+
+_VALIDATED: dict[str, dict] = {}
+
+
+def _key(config) -> str | None:
+    """The cache key of a config (its canonical JSON), or None if it cannot be serialised."""
+    try:
+        return json.dumps(config, sort_keys=True, default=repr)
+    except (TypeError, ValueError):
+        return None
+
+
+def _remember(key: str | None, validated: dict) -> None:
+    """Keep ``validated`` under ``key``, for the last few configs only."""
+    if key is None:
+        return
+    if len(_VALIDATED) >= 8:
+        _VALIDATED.pop(next(iter(_VALIDATED)))
+    _VALIDATED[key] = validated
+
+
+def _validated(config: dict) -> dict:
+    """validate(config), remembered for the last few configs (the Snakefile resolves one entry per job)."""
+    key = _key(config)
+    if key is None:
+        return validate(config)
+    if key not in _VALIDATED:
+        _remember(key, validate(config))
+    return _VALIDATED[key]

@@ -1,0 +1,169 @@
+"""Values the config layer reads and the errors it reports: angles, stored times, one-line messages.
+
+Every problem is one line naming the key path and the value::
+
+    config error: scenes.tw-weak.N = 1: must be >= 2
+"""
+from __future__ import annotations
+
+import json
+import math
+import re
+
+from .spec import ANGLE_PATTERN
+
+_ANGLE_RE = re.compile(ANGLE_PATTERN)
+ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5'"
+
+TIME_TOL = 1e-9          # two times closer than this are the same time
+INTEGER_TOL = 1e-9       # q N / (2 pi) must be this close to an integer on a ring
+MAX_STORED_TIMES = 10_000_000  # a guard against typos such as every: 1.0e-7
+
+
+class ConfigError(ValueError):
+    """A config that fails the schema or the physical checks.
+
+    ``str(err)`` is one line per problem; ``err.errors`` is the list of lines.
+    """
+
+    def __init__(self, errors):
+        if isinstance(errors, str):
+            errors = [errors]
+        self.errors = list(errors)
+        super().__init__("\n".join(self.errors))
+
+
+def key_path(parts) -> str:
+    """``["scenes", "tw", "store", "snapshots", 1]`` as ``scenes.tw.store.snapshots[1]``."""
+    out = ""
+    for p in parts:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
+    return out or "config"
+
+
+def show(value) -> str:
+    """A short, unambiguous rendering of a value (strings quoted)."""
+    if isinstance(value, float):
+        text = repr(value)
+    elif isinstance(value, (dict, list)):
+        try:
+            text = json.dumps(value, separators=(", ", ": "), default=str)
+        except (TypeError, ValueError):
+            text = repr(value)
+    else:
+        text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def number(x) -> bool:
+    """A real number (not a boolean)."""
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def finite(x) -> bool:
+    """A finite real number."""
+    return number(x) and math.isfinite(x)
+
+
+class Errors:
+    """Problems by key path, in order; at most one kind of complaint per path."""
+
+    def __init__(self):
+        self.lines: list[str] = []
+        self.paths: set[str] = set()
+
+    def add(self, path, what: str, value=..., *, force: bool = False):
+        p = path if isinstance(path, str) else key_path(path)
+        if p in self.paths and not force:
+            return
+        self.paths.add(p)
+        head = p if value is ... else f"{p} = {show(value)}"
+        line = f"config error: {head}: {what}"
+        if line not in self.lines:
+            self.lines.append(line)
+
+    def has(self, path) -> bool:
+        return (path if isinstance(path, str) else key_path(path)) in self.paths
+
+    def raise_any(self):
+        if self.lines:
+            raise ConfigError(self.lines)
+
+
+def entries(cfg, section) -> dict:
+    """The mapping entries of one name-keyed section (map, homoclinic, scenes), skipping malformed ones."""
+    sec = cfg.get(section)
+    return {k: v for k, v in sec.items() if isinstance(v, dict)} if isinstance(sec, dict) else {}
+
+
+def parse_angle(value) -> float:
+    """An angle in radians from a number or a string 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', '0.3'."""
+    if number(value):
+        x = float(value)
+    elif isinstance(value, str) and _ANGLE_RE.match(value) and "\n" not in value:
+        s = re.sub(r"\s+", "", value)
+        sign = -1.0 if s.startswith("-") else 1.0
+        s = s.lstrip("+-")
+        if "pi" in s:
+            coef, _, denom = s.partition("pi")
+            coef = coef.rstrip("*")
+            c = float(coef) if coef else 1.0
+            d = float(denom[1:]) if denom else 1.0
+            if d == 0.0:
+                raise ConfigError(f"cannot read {value!r} as an angle: division by zero")
+            x = sign * c * math.pi / d
+        else:
+            x = sign * float(s)
+    else:
+        raise ConfigError(f"cannot read {value!r} as an angle: expected {ANGLE_HINT}")
+    if not math.isfinite(x):
+        raise ConfigError(f"cannot read {value!r} as an angle: not finite")
+    return x
+
+
+def angle_expr(value) -> str:
+    """The text of an angle as given (a number as its repr), kept next to its value in radians."""
+    return value if isinstance(value, str) else repr(float(value))
+
+
+def grid_size(store: dict, t_end: float) -> int:
+    """An upper bound on the number of times :func:`store_times` gives."""
+    every = store.get("every")
+    n = len(store.get("snapshots") or ()) + 2
+    if every:
+        n += int(math.floor(t_end / every * (1.0 + 1e-12) + TIME_TOL)) + 1
+    return n
+
+
+def store_times(store: dict, t_end: float) -> list[float]:
+    """The sorted times a scene stores: 0, the grid k*every on [0, t_end], t_end and the snapshots.
+
+    Times are rounded to 1e-9; times closer than 1e-9 (e.g. a snapshot on the
+    grid) are one time. 0 and t_end are always included.
+    """
+    import numpy as np
+
+    t_end = float(t_end)
+    parts = [np.array([0.0, t_end]), np.asarray(store.get("snapshots") or [], dtype=float)]
+    every = store.get("every")
+    if every:
+        every = float(every)
+        n = int(math.floor(t_end / every * (1.0 + 1e-12) + TIME_TOL))
+        grid = np.arange(n + 1) * every
+        parts.append(grid[grid <= t_end + TIME_TOL])
+    t = np.sort(np.concatenate(parts))
+    keep = np.ones(t.size, dtype=bool)
+    keep[1:] = np.diff(t) > TIME_TOL  # a time within TIME_TOL of the previous one is the same time
+    t = np.round(t[keep], 9)
+    t[0] = 0.0
+    if abs(t[-1] - t_end) <= TIME_TOL:
+        t[-1] = round(t_end, 9)
+    return t.tolist()
+
+
+def did_you_mean(name, known) -> str:
+    """'; did you mean 'x'?' for the closest known name, or ''."""
+    import difflib
+
+    near = difflib.get_close_matches(str(name), list(known), n=1)
+    return f"; did you mean {near[0]!r}?" if near else ""
