@@ -137,6 +137,21 @@ def test_key_sources_are_the_kernel_modules_and_their_cradle_imports():
     assert uses_numba <= set(names)
 
 
+
+def test_key_sources_agree_with_the_ast_import_scan_of_codedeps():
+    """The regular-expression scan of _cache finds every cradle module (not package) that the
+    ast-based scan of cradle.pipeline.codedeps finds in the kernel modules."""
+    from cradle.pipeline import codedeps
+
+    sources = _cache.kernel_sources()
+    src = _cache.PACKAGE_DIR.parent
+    for path in sources:
+        package = ".".join(path.relative_to(src).parts[:-1])
+        for name in codedeps._imports(path, package):
+            found = codedeps._module_file(src, name)
+            if found is not None and found.name != "__init__.py":
+                assert found in sources, (path.name, name)
+
 def _copy_key(tmp_path, monkeypatch, edit=None):
     """Key of a scratch copy of the package, after ``edit(package_dir)``."""
     pkg = tmp_path / "cradle"
