@@ -275,15 +275,45 @@ def test_activate_marks_use_and_prunes(tmp_path, monkeypatch):
     """A fresh activation creates its folder with a note of its key, touches it, and prunes the root."""
     monkeypatch.setenv("CRADLE_KERNEL_CACHE", str(tmp_path))
     old = _folders(tmp_path, [2 * _cache.GRACE_S + i for i in range(_cache.KEEP + 2)], now=time.time())
-    saved = dict(_cache._active)
-    monkeypatch.setattr(_cache, "_active", {})
-    try:
-        folder = _cache.activate()
-    finally:
-        numba.config.CACHE_DIR = str(saved["folder"])
+    folder = _fresh_activation(monkeypatch)
     key, info = _cache.cache_key()
     assert folder == tmp_path / key[:_cache.KEY_DIGITS]
     assert (folder / _cache.INFO_FILE).read_text() == info
     left = sorted(p for p in tmp_path.iterdir())
     # the new folder is the most recent; KEEP - 1 of the old ones remain, the youngest
     assert left == sorted([folder] + old[:_cache.KEEP - 1])
+
+
+def _fresh_activation(monkeypatch):
+    """activate() as in a new process; numba's setting of this process restored afterwards."""
+    saved = str(_cache.activate())
+    monkeypatch.setattr(_cache, "_active", {})
+    try:
+        return _cache.activate()
+    finally:
+        numba.config.CACHE_DIR = saved
+
+
+def test_activate_removes_old_in_tree_cache_files_on_a_new_key(tmp_path, monkeypatch):
+    kernel_dir = tmp_path / "integrators"
+    (kernel_dir / "__pycache__").mkdir(parents=True)
+    for name in ("_onset.split_run_onset-316.py311.nbi", "_onset.split_run_onset-316.py311.1.nbc", "keep.pyc"):
+        (kernel_dir / "__pycache__" / name).write_bytes(b"x")
+    monkeypatch.setattr(_cache, "KERNEL_DIR", kernel_dir)
+    monkeypatch.setattr(_cache, "kernel_sources", lambda: [])   # key of the real sources not needed
+    monkeypatch.setenv("CRADLE_KERNEL_CACHE", str(tmp_path / "cache"))
+    folder = _fresh_activation(monkeypatch)
+    assert folder.parent == tmp_path / "cache"
+    assert [p.name for p in (kernel_dir / "__pycache__").iterdir()] == ["keep.pyc"]
+
+
+def test_activate_falls_back_to_a_temporary_folder(tmp_path, monkeypatch):
+    blocker = tmp_path / "a-file"
+    blocker.write_text("")
+    monkeypatch.setenv("CRADLE_KERNEL_CACHE", str(blocker / "cache"))   # cannot be created
+    monkeypatch.setattr(_cache.tempfile, "tempdir", str(tmp_path / "tmp"))
+    (tmp_path / "tmp").mkdir()
+    with pytest.warns(RuntimeWarning, match="not writable"):
+        folder = _fresh_activation(monkeypatch)
+    assert folder.parent.parent == tmp_path / "tmp" and folder.parent.name.startswith("cradle-numba-")
+    assert (folder / _cache.INFO_FILE).is_file()

@@ -156,21 +156,31 @@ def cache_key() -> tuple[str, str]:
 def cache_root() -> Path:
     """The folder holding one folder per key (see the module docstring for the order of choices)."""
     if os.environ.get(ENV_VAR):
-        return Path(os.environ[ENV_VAR]).expanduser()
-    if os.environ.get("NUMBA_CACHE_DIR"):
-        return Path(os.environ["NUMBA_CACHE_DIR"]).expanduser() / "cradle"
-    xdg = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(xdg).expanduser() / "cradle" / "numba"
+        root = Path(os.environ[ENV_VAR]).expanduser()
+    elif os.environ.get("NUMBA_CACHE_DIR"):
+        root = Path(os.environ["NUMBA_CACHE_DIR"]).expanduser() / "cradle"
+    else:
+        root = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache").expanduser() / "cradle" / "numba"
+    return root.absolute()   # numba would read a relative one against each later working directory
 
 
 def _prepare(folder: Path, info: str) -> None:
-    """Create ``folder`` (with a note of its key) if missing, and mark it used now."""
+    """Create ``folder`` (with a note of its key) if missing, and mark it used now.
+
+    On creation, also delete the cache files numba used to write next to the
+    sources (``__pycache__/*.nbi``, ``*.nbc``): never read any more, and stale.
+    """
     folder.mkdir(parents=True, exist_ok=True)
     note = folder / INFO_FILE
     if not note.exists():
         tmp = folder / f".{INFO_FILE}.{uuid.uuid4().hex[:8]}"
         tmp.write_text(info)
         os.replace(tmp, note)
+        for old in [*KERNEL_DIR.glob("__pycache__/*.nbi"), *KERNEL_DIR.glob("__pycache__/*.nbc")]:
+            try:
+                old.unlink()
+            except OSError:   # a read-only tree, or another process was first
+                pass
     os.utime(folder)
 
 
@@ -215,9 +225,9 @@ def prune(root: Path, current: Path, keep: int = KEEP, grace_s: float = GRACE_S,
 
 
 def activate() -> Path:
-    """Point numba's cache at this version's folder (created if needed) and prune old folders;
-    return the folder. Cheap after the first call, which it repeats only to re-set numba's
-    config in case numba re-read its environment meanwhile."""
+    """Point numba's cache at this version's folder (created if needed), prune old folders, and
+    return the folder. Later calls only set numba's config again (numba re-reads its environment
+    variables when it compiles, which would undo the setting if one of them changed)."""
     import numba.core.config as numba_config
 
     if not _active:
