@@ -23,7 +23,9 @@ The folders live under a root, the first of:
 4. ``~/.cache/cradle/numba``;
 
 and, if that root cannot be written, a folder in the system's temporary
-directory (with a warning). Each use touches the folder's modification time;
+directory (with a warning). Nothing is written next to the sources (a new
+folder also deletes the ``.nbi``/``.nbc`` files numba used to leave in
+``__pycache__``). Each use touches the folder's modification time;
 :func:`prune` then keeps the :data:`KEEP` most recently used folders plus any
 used within :data:`GRACE_S`, and removes the rest by renaming each to a
 ``.trash-*`` name first (atomic, so two processes pruning at once never see a
