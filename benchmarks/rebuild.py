@@ -4,8 +4,9 @@
 
 1. ``git clone`` of this repository's HEAD into a temporary folder (uncommitted
    changes are not included: this is what a newcomer gets);
-2. **cold**: ``snakemake -j2 paper`` there, with no compiled-kernel cache (numba
-   compiles each kernel on first use and caches it next to its source);
+2. **cold**: ``snakemake -j2 paper`` there, with an empty compiled-kernel cache
+   (``CRADLE_KERNEL_CACHE`` pointed into the temporary folder: numba compiles
+   each kernel on first use; see docs/compiled-kernels.md);
 3. **warm**: ``results/`` removed, the same command again (the cache now warm).
 
 The clone's ``src/`` is put first on PYTHONPATH, so the installed ``cradle``
@@ -115,7 +116,8 @@ def breakdown(results: Path, wall: float, cores: int) -> dict:
 
 
 def run(clone: Path, target: str, cores: int) -> float:
-    env = dict(os.environ, PYTHONPATH=f"{clone / 'src'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
+    env = dict(os.environ, PYTHONPATH=f"{clone / 'src'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}",
+               CRADLE_KERNEL_CACHE=str(clone.parent / "kernel-cache"))
     t0 = time.perf_counter()
     proc = subprocess.run([sys.executable, "-m", "snakemake", f"-j{cores}", target, "--quiet", "all"],
                           cwd=clone, env=env, capture_output=True, text=True)

@@ -16,7 +16,12 @@ import math
 import time
 
 import numpy as np
-from numba import njit
+
+from cradle.integrators import _cache
+
+_cache.activate()   # before the first @njit: numba picks the cache folder when decorating
+
+from numba import njit  # noqa: E402
 
 from cradle.integrators import _kernels as K
 

@@ -72,7 +72,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from cradle.integrators import _cache
+
+_cache.activate()   # before the first @njit: numba picks the cache folder when decorating
+
+from numba import njit  # noqa: E402
 
 from cradle.integrators._kernels import _bond, forces, forces_only, kick_rotate, last_kick
 
