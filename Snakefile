@@ -4,7 +4,8 @@
 #
 # Stages (workflow/rules): homoclinic & map orbits (homoclinic.smk) -> initial data,
 # exact and DpS integration and their comparison, one job per scene (simulate.smk) ->
-# figures (figures.smk) and the claims table (checks.smk).
+# figures (figures.smk) and the claims table (checks.smk); the analyses beyond the paper
+# (analyses.smk, with the mi-statistics batches in mi.smk) and work-precision (workprecision.smk).
 
 
 import os
@@ -27,19 +28,20 @@ include: "workflow/rules/simulate.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/checks.smk"
-include: "workflow/rules/beyond.smk"
+include: "workflow/rules/analyses.smk"
 include: "workflow/rules/mi.smk"
-include: "workflow/rules/floquet.smk"
 
 
 PAPER = figure_targets() + [L.path("checks", ext=ext) for ext in ("csv", "md")]
 
 
-BEYOND = figure_targets(("theorem1", "mi-diagram", "mi-growth", "mi-statistics", "floquet", "work-precision"))
+# the reduced form of every analysis beyond the paper (cradle.analyses.registry), and work-precision
+BEYOND = [f for a in ANALYSES.values() for f in (a.output(a.forms[0]), *a.figure(a.forms[0]).values())]
+BEYOND += figure_targets(["work-precision"])
 
 
 rule all:
-    # the paper, and the analyses beyond it (workflow/rules/beyond.smk, mi.smk, floquet.smk, workprecision.smk)
+    # the paper, and the analyses beyond it in their reduced forms (workflow/rules/analyses.smk, workprecision.smk)
     default_target: True
     input:
         PAPER,

@@ -74,20 +74,3 @@ def checks_inputs(w):
     files = [f for name in config["scenes"] for f in scene_files(name)]
     files += [L.path("initial", scene=name) for name in config["scenes"]]
     return files + [L.path("homoclinic", name=name) for name in config["homoclinic"]]
-
-
-def mi_growth_inputs(w):
-    """The initial data and the two runs of every scene measured by mi-growth."""
-    files = []
-    for name in config["beyond"]["mi_growth"]["scenes"]:
-        files += list(L.scene_paths(name, parts=("initial", "exact", "dps")).values())
-    return files
-
-
-def mi_batches(variant):
-    """The batch files of one mi-statistics variant (reduced, full)."""
-    from cradle.analyses import mistatistics as _mis
-
-    spec = cc.resolved_mi_statistics(config, variant)
-    return [f"results/mi/batch/{variant}/N{N}-{m}-{c}.nc" for N in spec["N"] for m in _mis.MODELS
-            for c in range(int(spec["chunks"]))]

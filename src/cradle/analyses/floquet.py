@@ -527,3 +527,8 @@ def compute(spec: dict, log=None):
     return make_dataset(data, coords=coords, attrs=attrs,
                         title="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) against "
                               "the DpS modulational-instability threshold")
+
+
+def run(spec: dict, files: list, scenes: dict, log=None):
+    """The analysis protocol (:mod:`cradle.analyses.registry`): reads no file."""
+    return compute(spec, log=log)

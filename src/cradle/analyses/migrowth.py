@@ -283,3 +283,13 @@ def compute(spec: dict, scenes: dict, log=None):
     return make_dataset(data, coords=coords, attrs=attrs, params=spec,
                         title="Modulational-instability growth rates measured in the scenes' runs (exact and DpS) "
                               "against the linear DpS theory")
+
+
+def run(spec: dict, files: list, scenes: dict, log=None):
+    """The analysis protocol (:mod:`cradle.analyses.registry`): ``files`` are the initial data, exact
+    and DpS runs of each scene of ``scenes`` (name -> resolved scene spec), in that order."""
+    data = {}
+    for i, (name, scene) in enumerate(scenes.items()):
+        initial, exact, dps = files[3 * i: 3 * i + 3]
+        data[name] = (dict(scene), initial, {"exact": exact, "dps": dps})
+    return compute(spec, data, log=log)

@@ -294,3 +294,8 @@ def aggregate(batches, spec: dict):
     return make_dataset(data, coords=coords, attrs=attrs, params=spec,
                         title=f"Modulational-instability threshold statistics ({spec['variant']}): "
                               "lattice (nc) and DpS (dfnls) over noise seeds")
+
+
+def run(spec: dict, files: list, scenes: dict, log=None):
+    """The analysis protocol (:mod:`cradle.analyses.registry`): ``files`` are the batches of the form."""
+    return aggregate(files, spec)

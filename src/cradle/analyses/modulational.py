@@ -235,3 +235,8 @@ def compute(spec: dict, log=None):
              "wall_time_s": time.perf_counter() - t_start}
     return make_dataset(data, coords=coords, attrs=attrs,
                         title="Modulational instability of the DpS plane waves (ansatz3): growth-rate map")
+
+
+def run(spec: dict, files: list, scenes: dict, log=None):
+    """The analysis protocol (:mod:`cradle.analyses.registry`): reads no file."""
+    return compute(spec, log=log)

@@ -455,3 +455,8 @@ def compute(spec: dict, log=None):
     return make_dataset(data, coords=coords, attrs=attrs,
                         title="Theorem 1 measured: exact travelling waves of (nc) with V = V0 against the DpS "
                               "dispersion relation (wleadingorder)")
+
+
+def run(spec: dict, files: list, scenes: dict, log=None):
+    """The analysis protocol (:mod:`cradle.analyses.registry`): reads no file."""
+    return compute(spec, log=log)

@@ -1,6 +1,6 @@
 """Figure beyond the paper: Bloch-Floquet stability of the exact travelling waves (floquet).
 
-Reads results/floquet/floquet.nc (rule floquet_compute, :mod:`cradle.analyses.floquet`), not scene files, so it
+Reads results/floquet/[full/]floquet.nc (:mod:`cradle.analyses.floquet`), not scene files, so it
 is listed in :data:`cradle.figures.DATASET_FIGURES` (functions of one Dataset) and drawn by
 :func:`cradle.figures.draw_dataset`.
 

@@ -29,11 +29,9 @@ TEMPLATES = {
     # stage 4
     "figure": "figures/{label}.{ext}",
     "checks": "paper_checks.{ext}",
-    # analyses beyond the paper
-    "theorem1": "theorem1/theorem1.nc",
-    "mi-diagram": "mi/mi-diagram.nc",
-    "mi-growth": "mi/mi-growth.nc",
-    "floquet": "floquet/floquet.nc",
+    # analyses beyond the paper: their files are declared with them (cradle.analyses.registry);
+    # here the inputs some of them read
+    "mi-batch": "mi/batch/{variant}/N{N}-{model}-{chunk}.nc",
     "work-precision": "work-precision/{scene}.nc",
     # bookkeeping
     "log": "logs/{job}.log",

@@ -17,12 +17,30 @@ def _angle(value):
         return None
 
 
+_OMEGA_ITEM = {"type": "number", "exclusiveMinimum": 1, "maximum": 2, "description": "One omega_tw."}
+
+
 @declared(doc="Finer numerics for the convergence checks (threshold, growth at q_profiles); missing keys keep the "
               "main values.")
 class FloquetConvergence:
     hill_modes: int = param(32, "Hill modes of the check.", minimum=4, maximum=256)
     grid_log2: int = param(20, "log2 of the K grid of the check.", minimum=8, maximum=22)
     wave_modes: int = param(256, "Sine modes of the wave of the check.", minimum=8, maximum=2048)
+
+
+@declared(doc="The reduced form `snakemake all` builds (results/floquet/floquet.nc, results/figures/floquet.*): "
+              "these keys replace those of the full form, `snakemake floquet_full` (results/floquet/full/).")
+class FloquetReduced:
+    n_q: int = param(13, "Number of q of the sweep.", minimum=3, maximum=1001)
+    n_p: int = param(41, "Number of Bloch wavenumbers p in [0, pi].", minimum=9, maximum=2001)
+    threshold_omega_tw: list[float] = param([1.1], "omega_tw values of the threshold search; must contain omega_tw.",
+                                            minItems=1, maxItems=8, items=_OMEGA_ITEM)
+    q_profiles: list[float | str] = param(["pi/2"], "Wavenumbers q of the stored growth-against-p profiles.",
+                                          minItems=1, maxItems=10, items={"$ref": "#/$defs/angle"})
+    small_q: list[float | str] = param(["3pi/5"], "Wavenumbers of the small-amplitude check.", minItems=1,
+                                       maxItems=8, items={"$ref": "#/$defs/angle"})
+    convergence: FloquetConvergence = param(FloquetConvergence(hill_modes=20, grid_log2=18, wave_modes=128),
+                                            FloquetConvergence.__schema_doc__)
 
 
 _FLOQUET_ANGLES = ("q_min", "q_max", "threshold_q_min", "threshold_q_max")
@@ -73,11 +91,34 @@ class Floquet:
                           maximum=200)
     direct_k: int = param(5, "q = 2 pi direct_k / direct_N of the direct run (must be unstable).", minimum=1,
                           maximum=199)
+    reduced: FloquetReduced = param(FloquetReduced(), FloquetReduced.__schema_doc__)
     direct_growth_factor: float = param(1000.0, "The direct run lasts until the mode grows by this factor (> 1).",
                                         exclusiveMinimum=1, maximum=100000000.0)
 
     @staticmethod
     def check(b: dict, path: list, out) -> None:
+        """Both forms: the full section, and the section with the reduced keys in place."""
+        Floquet._check(b, path, out)
+        reduced = b.get("reduced")
+        if isinstance(reduced, dict):  # errors of keys the reduced form replaces; the rest are said above
+
+            class _Own:
+                def add(self, where, *rest):
+                    if where[len(path) + 1] in reduced:
+                        out.add(where, *rest)
+
+            Floquet._check(Floquet._form(b, "reduced"), path + ["reduced"], _Own())
+
+    @staticmethod
+    def _form(b: dict, form: str) -> dict:
+        """The section of one form: the full keys, with the reduced ones in place for ``reduced``."""
+        out = {k: v for k, v in b.items() if k != "reduced"}
+        if form == "reduced":
+            out.update({k: v for k, v in (b.get("reduced") or {}).items() if v is not None})
+        return out
+
+    @staticmethod
+    def _check(b: dict, path: list, out) -> None:
         """Angles in (0, pi) with q_min < q_max and threshold_q_min < threshold_q_max, omega_tw among
         threshold_omega_tw, grids fine enough for the Hill and sine modes, 0 < k < N for the ring checks."""
         q = {key: _angle(b.get(key)) for key in _FLOQUET_ANGLES}
@@ -112,10 +153,10 @@ class Floquet:
                 out.add(path + [key_k], f"need 0 < {key_k} < {key_n} = {n} (q = 2 pi k / N)", k)
 
     @staticmethod
-    def resolve(cfg: dict) -> dict:
-        """``beyond.floquet`` with angles in radians (the texts of the lists in ``<key>_expr``) and
-        ``convergence`` completed with the main values."""
-        b = dict(cfg["beyond"]["floquet"])
+    def resolve(cfg: dict, form: str = "full") -> dict:
+        """``beyond.floquet`` of one form (``full``, or ``reduced``: the reduced keys in place), with angles in
+        radians (the texts of the lists in ``<key>_expr``) and ``convergence`` completed with the main values."""
+        b = Floquet._form(cfg["beyond"]["floquet"], form)
         for key in _FLOQUET_ANGLES:
             b[key] = parse_angle(b[key])
         for key in _FLOQUET_ANGLE_LISTS:

@@ -121,6 +121,7 @@ def resolved_mi_statistics(config: dict, variant: str) -> dict:
     return MIStatistics.resolve(_validated(config), variant)
 
 
-def resolved_floquet(config: dict) -> dict:
-    """``beyond.floquet`` with angles in radians and ``convergence`` completed."""
-    return Floquet.resolve(_validated(config))
+def resolved_floquet(config: dict, form: str = "full") -> dict:
+    """``beyond.floquet`` of one form (full, or reduced: what ``all`` builds) with angles in radians and
+    ``convergence`` completed."""
+    return Floquet.resolve(_validated(config), form)

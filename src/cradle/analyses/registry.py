@@ -1,0 +1,94 @@
+"""The analyses beyond the paper, each declared the same way: its spec, its compute, its figure.
+
+An :class:`Analysis` names the config resolver of its spec, the function that
+computes its Dataset from that spec (and, for some, from files of earlier
+stages), the figure label that draws it, and its forms: the reduced form
+``all`` builds (``results/<folder>/<name>.nc``, figure
+``results/figures/<name>.{pdf,png}``) and, where that is cheaper than the
+full one, the full form as its own target (``results/<folder>/full/...``).
+One pair of generic rules (``workflow/rules/analyses.smk``) serves every
+entry; the Snakefile reads this table and nothing else about them.
+
+Importing this module is cheap (no numpy): the Snakefile plans with it.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from importlib import import_module
+
+from cradle.pipeline import config as cc
+from cradle.pipeline import layout
+
+#: the form ``all`` builds, and the complete one (its own target)
+REDUCED, FULL = "reduced", "full"
+
+
+@dataclass(frozen=True)
+class Analysis:
+    name: str              # target stem, figure label and file stem ("mi-diagram")
+    module: str            # cradle.analyses.<module>
+    run: str               # "function" of that module: run(spec, files, scenes, log) -> Dataset
+    folder: str            # under the results folder
+    forms: tuple = (FULL,)  # (REDUCED, FULL) when `all` builds a cheaper form than the full target
+    title: str = ""
+
+    @property
+    def target(self) -> str:
+        """Snakemake target name (``mi_diagram``)."""
+        return self.name.replace("-", "_")
+
+    def output(self, form: str = REDUCED, root=layout.ROOT) -> str:
+        """The netCDF file of a form: the form ``all`` builds at the folder's top, the other in full/."""
+        sub = "" if form == self.forms[0] else "full/"
+        return f"{root}/{self.folder}/{sub}{self.name}.nc"
+
+    def figure(self, form: str = REDUCED, root=layout.ROOT) -> dict[str, str]:
+        """ext -> figure file of a form: results/figures/<name>.<ext> for the form ``all`` builds."""
+        if form == self.forms[0]:
+            return layout.figure_paths(self.name, root)
+        return {ext: f"{root}/{self.folder}/full/{self.name}.{ext}" for ext in layout.FIGURE_FORMATS}
+
+    def spec(self, config: dict, form: str) -> dict:
+        """The resolved parameters of one form (cradle.pipeline.config)."""
+        resolve = getattr(cc, f"resolved_{self.target}")
+        return resolve(config, form) if len(self.forms) > 1 else resolve(config)
+
+    def compute(self, spec: dict, files=(), scenes=None, log=None):
+        """The Dataset of this analysis (imports its module only now)."""
+        return getattr(import_module(f"cradle.analyses.{self.module}"), self.run)(spec, list(files), scenes or {},
+                                                                                   log)
+
+
+ANALYSES: dict[str, Analysis] = {a.name: a for a in (
+    Analysis("theorem1", "theorem1", "run", "theorem1",
+             title="Theorem 1 measured: exact travelling waves of (ad) against (wleadingorder)"),
+    Analysis("mi-diagram", "modulational", "run", "mi",
+             title="Modulational instability of the DpS plane waves: growth-rate map and direct checks"),
+    Analysis("mi-growth", "migrowth", "run", "mi",
+             title="Modulational-instability growth rates measured in the scenes' runs, exact and DpS"),
+    Analysis("mi-statistics", "mistatistics", "run", "mi", forms=(REDUCED, FULL),
+             title="mi-statistics: thresholds from every batch"),
+    Analysis("floquet", "floquet", "run", "floquet", forms=(REDUCED, FULL),
+             title="Bloch-Floquet stability of the exact travelling waves against the DpS threshold"),
+)}
+
+
+def scenes_read(config: dict, analysis: Analysis) -> list[str]:
+    """The scenes whose files an analysis reads (mi-growth: beyond.mi_growth.scenes)."""
+    if analysis.name == "mi-growth":
+        return list(config["beyond"]["mi_growth"]["scenes"])
+    return []
+
+
+def inputs(config: dict, analysis: Analysis, form: str) -> list[str]:
+    """The files an analysis reads, in the order its run function takes them."""
+    if analysis.name == "mi-growth":
+        return [p for name in scenes_read(config, analysis)
+                for p in layout.scene_paths(name, parts=("initial", "exact", "dps")).values()]
+    if analysis.name == "mi-statistics":
+        from cradle.analyses import mistatistics
+
+        spec = analysis.spec(config, form)
+        return [layout.path("mi-batch", variant=form, N=N, model=m, chunk=c) for N in spec["N"]
+                for m in mistatistics.MODELS for c in range(int(spec["chunks"]))]
+    return []

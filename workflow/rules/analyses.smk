@@ -1,0 +1,66 @@
+# Analyses beyond the paper (cradle.analyses.registry): one pair of generic rules serves every entry.
+# For each analysis and form: `<name>_compute_<form>` writes its netCDF file, `<name>_figure_<form>` draws
+# it; target `<name>` builds the form `all` builds (results/<folder>/<name>.nc, results/figures/<name>.*),
+# and `<name>_full` the full form (the same files when the analysis has one form; else
+# results/<folder>/full/). Config: `beyond:` in config.yaml.
+from cradle.analyses.registry import ANALYSES, FULL, inputs as analysis_inputs, scenes_read
+
+for _a in ANALYSES.values():
+    for _form in _a.forms:
+
+        rule:
+            name:
+                f"{_a.target}_compute_{_form}"
+            priority: 10  # before the figures of the paper: the longest jobs start early
+            conda:
+                "../envs/cradle.yaml"
+            message:
+                f"{_a.title} ({_form})"
+            input:
+                code=code_of("workflow/scripts/analysis.py", f"cradle.analyses.{_a.module}"),
+                data=analysis_inputs(config, _a, _form),
+            output:
+                _a.output(_form),
+            params:
+                analysis=_a.name,
+                spec=_a.spec(config, _form),
+                scenes={n: cc.resolved_scene(config, n) for n in scenes_read(config, _a)},
+            log:
+                L.path("log", job=f"{_a.folder}/{_form}/{_a.name}"),
+            benchmark:
+                L.path("benchmark", job=f"{_a.folder}/{_form}/{_a.name}")
+            script:
+                "../scripts/analysis.py"
+
+        rule:
+            name:
+                f"{_a.target}_figure_{_form}"
+            conda:
+                "../envs/cradle.yaml"
+            message:
+                f"Drawing figure {_a.name} ({_form})"
+            input:
+                code=figure_code(_a.name),
+                data=_a.output(_form),
+            output:
+                **_a.figure(_form),
+            params:
+                label=_a.name,
+            log:
+                L.path("log", job=f"figures/{_form}/{_a.name}"),
+            script:
+                "../scripts/dataset_figure.py"
+
+    rule:
+        name:
+            _a.target
+        input:
+            _a.output(_a.forms[0]),
+            *_a.figure(_a.forms[0]).values(),
+
+    rule:
+        name:
+            f"{_a.target}_full"
+        input:
+            _a.output(FULL),
+            *_a.figure(FULL).values(),

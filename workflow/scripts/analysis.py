@@ -1,0 +1,14 @@
+"""Snakemake adapter: one analysis beyond the paper (cradle.analyses.registry) -> its netCDF file
+(rules <name>_compute_<form>)."""
+import logging
+
+from cradle.analyses.registry import ANALYSES
+from cradle.pipeline.io import open_dataset
+from cradle.pipeline.runner import run
+
+sm = snakemake  # noqa: F821 (injected by Snakemake)
+log = logging.getLogger("cradle")
+analysis = ANALYSES[sm.params.analysis]
+run(lambda: analysis.compute(dict(sm.params.spec), [open_dataset(p) for p in sm.input.data],
+                             {name: dict(spec) for name, spec in sm.params.scenes.items()}, log=log.info),
+    sm.output[0], sm.log[0], label=analysis.name)
