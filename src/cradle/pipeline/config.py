@@ -37,6 +37,8 @@ from pathlib import Path
 import yaml
 from jsonschema import Draft202012Validator
 
+from cradle.pipeline import budget
+
 __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SCHEMA_FILE", "ANGLE_PATTERN", "schema", "parse_angle", "validate",
     "store_times", "resolved_scene", "resolved_homoclinic", "resolved_map", "load", "main",
@@ -771,6 +773,8 @@ def validate(config: dict) -> dict:
     for err in sorted(_validator().iter_errors(cfg), key=lambda e: [str(p) for p in e.absolute_path]):
         _schema_messages(err, out)
     cfg = _fill(_validator().schema, cfg)
+    if not out.lines:  # every job's estimated memory, output and time within budget, before the physical
+        budget.check(cfg)  # checks build stored-time arrays (cradle.pipeline.budget)
     _physical(cfg, out)
     if out.lines:
         raise ConfigError(out.lines)

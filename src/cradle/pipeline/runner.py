@@ -74,19 +74,36 @@ def failed_path(out: str | Path) -> Path:
 
 
 class Progress:
-    """A progress callback: logs simulated time reached and rate, at most every ``every`` seconds."""
+    """A progress callback: logs simulated time reached, rate and ETA, at most every ``every`` seconds.
 
-    def __init__(self, label: str, every: float = 2.0):
-        self.label, self.every = label, every
+    ``estimate`` (an :class:`cradle.pipeline.budget.Estimate`), when given, is logged before the
+    first progress line, so a long run says up front what it will cost; ``t0`` is the simulated
+    time the run starts from (a continued run starts after 0).
+    """
+
+    def __init__(self, label: str, every: float = 2.0, estimate=None, t0: float = 0.0):
+        self.label, self.every, self.estimate, self.t0 = label, every, estimate, t0
         self.start = self.last = time.perf_counter()
 
     def __call__(self, t_reached: float, t_final: float) -> None:
         now = time.perf_counter()
+        if self.estimate is not None:
+            log.info("%s: %s", self.label, self.estimate.describe())
+            self.estimate = None
         if now - self.last >= self.every or t_reached >= t_final:
             self.last = now
-            rate = t_reached / max(now - self.start, 1e-9)
-            log.info("%s: t = %.6g / %.6g (%.1f%%), %.3g time units per second",
-                     self.label, t_reached, t_final, 100.0 * t_reached / t_final, rate)
+            rate = (t_reached - self.t0) / max(now - self.start, 1e-9)
+            eta = f"ETA {_eta((t_final - t_reached) / rate)}" if rate > 0 and t_reached < t_final else "done"
+            log.info("%s: t = %.6g / %.6g (%.1f%%), %.3g time units per second, %s",
+                     self.label, t_reached, t_final, 100.0 * t_reached / t_final, rate, eta)
+
+
+def _eta(seconds: float) -> str:
+    """Remaining seconds as '42 s', '3.5 min', '2.1 h' or '4.2 days'."""
+    for unit, size in (("days", 86400.0), ("h", 3600.0), ("min", 60.0)):
+        if seconds >= size:
+            return f"{seconds / size:.2g} {unit}"
+    return f"{seconds:.0f} s"
 
 
 def _keep_failed(ds, out, reason: str) -> str:
