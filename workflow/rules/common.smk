@@ -7,6 +7,7 @@ from snakemake.exceptions import WorkflowError
 from cradle.pipeline import config as cc
 from cradle import figures as _figures
 from cradle.pipeline.codedeps import code_files
+from cradle.pipeline.params import compact_scene
 
 try:
     config.update(cc.validate(config))

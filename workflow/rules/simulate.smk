@@ -21,7 +21,9 @@ rule simulate:
         dps="results/sim/{scene}/dps.nc",
         metrics="results/metrics/{scene}.nc",
     params:
-        spec=lambda w: cc.resolved_scene(config, w.scene),
+        # the store description, not the expanded stored times (cradle.pipeline.params): a changed store
+        # still reruns the job, and a dry run stays readable
+        spec=lambda w: compact_scene(cc.resolved_scene(config, w.scene)),
     log:
         "results/logs/sim/{scene}.log",
     benchmark:
