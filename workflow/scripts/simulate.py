@@ -7,10 +7,11 @@ from cradle.pipeline.runner import Progress, run_chain
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 scene, spec = sm.wildcards.scene, expand_scene(dict(sm.params.spec))
-hom = open_dataset(sm.input.homoclinic[0]) if sm.input.homoclinic else None
 run_chain([
-    ("initial", lambda done: stages.initial_data(spec, scene, hom)),
-    ("exact", lambda done: stages.exact_run(spec, done["initial"], scene, progress=Progress(f"exact {scene}", estimate=budget.long_run(spec)))),
+    ("initial", lambda done: stages.initial_data(
+        spec, scene, open_dataset(sm.input.homoclinic[0]) if sm.input.homoclinic else None)),
+    ("exact", lambda done: stages.exact_run(spec, done["initial"], scene,
+                                            progress=Progress(f"exact {scene}", estimate=budget.long_run(spec)))),
     ("dps", lambda done: stages.dps_run(spec, done["initial"], scene, progress=Progress(f"dps {scene}"))),
     ("metrics", lambda done: stages.metrics(spec, done["exact"], done["dps"], scene)),
 ], {key: sm.output[key] for key in ("initial", "exact", "dps", "metrics")}, sm.log[0], label=scene)

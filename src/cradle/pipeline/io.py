@@ -160,8 +160,15 @@ def rebuild_hint(path) -> str:
     parts = Path(path).parts
     if "results" in parts:
         rel = Path(*parts[parts.index("results"):])
-        return f"rebuild it: snakemake --forcerun {rel} (see docs/recovery.md)"
+        return f"rebuild it: snakemake --force {rel} (see docs/recovery.md)"
     return "rebuild it: rerun the command that wrote it (its `cradle describe` history; see docs/recovery.md)"
+
+
+def _why(err: BaseException) -> str:
+    """The reader's error on one line, without the file name it repeats."""
+    import re
+
+    return re.sub(r":? '[^']*'", "", " ".join(str(err).split())).strip() or type(err).__name__
 
 
 def _is_netcdf(path) -> bool:
@@ -190,7 +197,7 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     except DamagedOutput:
         raise
     except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
-        why = " ".join(str(err).split()).replace(f": {str(path)!r}", "").replace(f": '{path}'", "")
+        why = _why(err)
         raise DamagedOutput(f"{path}: damaged or truncated, cannot be read ({why}); {rebuild_hint(path)}") from None
 
 
@@ -224,7 +231,7 @@ def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[
     except DamagedOutput:
         raise
     except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
-        why = " ".join(str(err).split()).replace(f": {str(path)!r}", "").replace(f": '{path}'", "")
+        why = _why(err)
         raise DamagedOutput(f"{path}: damaged or truncated, cannot be read ({why}); {rebuild_hint(path)}") from None
 
 

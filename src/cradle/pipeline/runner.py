@@ -5,7 +5,9 @@
 * a :class:`StageFailure` (raised by :mod:`cradle.pipeline.stages`) keeps what was computed under
   ``results/failed/...`` with the reason as the ``failure`` attribute, then
   the error propagates (the rule fails with the message);
-* progress and timing go to the log file (and to the terminal).
+* progress and timing go to the log file (and to the terminal);
+* a damaged, truncated or missing input stops the job with one line naming the file and its
+  rebuild command (:class:`cradle.pipeline.io.DamagedOutput`), not a traceback.
 """
 from __future__ import annotations
 
@@ -56,11 +58,23 @@ def setup_logging(log_path: str | None = None) -> None:
         Path(log_path).parent.mkdir(parents=True, exist_ok=True)
         handlers.append(logging.FileHandler(log_path, mode="w"))
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", handlers=handlers, force=True)
+    sys.excepthook = _one_line_excepthook
     global _STARTUP_LOGGED
     age = None if _STARTUP_LOGGED else process_age()
     if age is not None:
         log.info("process start-up (interpreter, imports): %.2f s", age)
         _STARTUP_LOGGED = True
+
+
+def _one_line_excepthook(exc_type, exc, tb):
+    """A job stopped by a missing, damaged or truncated input says so in one line (log and stderr),
+    naming the file and the command that rebuilds it, instead of a traceback through the readers."""
+    from cradle.pipeline.io import DamagedOutput
+
+    if issubclass(exc_type, (DamagedOutput, FileNotFoundError)):
+        log.error("input error: %s", " ".join(str(exc).split()))
+    else:
+        sys.__excepthook__(exc_type, exc, tb)
 
 
 def failed_path(out: str | Path) -> Path:
