@@ -28,11 +28,16 @@ How the numbers are obtained:
   best of three after a warm-up); rerun it on another machine and update them here.
 
 Why a large store is refused instead of streamed: :func:`cradle.pipeline.extend.stream_lattice`
-bounds the memory of the exact run's file only. The simulate job also holds the DpS run at every
-stored time (its ansatz x and forces) and the metrics stage needs both models' x at every stored
-time at once (E(t) and the spectra), and its four files are one atomic set. Streaming the whole
-job needs a chunked DpS run and chunked metrics; until then, a store whose estimate exceeds the
-memory budget is refused with the key to change (``store.every``, ``N``) or the budget to raise.
+bounds the memory of the exact run's file only (about a third of the job's peak). The simulate
+job also holds the DpS run at every stored time (A, its ansatz x and forces) and the metrics
+stage compares both models' x at every stored time; its four files are one atomic set. A
+bounded-memory job would need the DpS run in chunks too, and
+:func:`cradle.integrators.integrate_dps` cannot continue from a stored state: it always starts
+at tau = 0 and measures its drifts from A(0) (no ``t0``/reference arguments as
+``integrate_lattice`` has), and the integrators are being reworked separately. Until then, a
+store whose estimate exceeds the memory budget is refused with the keys that drive it
+(``store.every``, ``N``, ``t_end``) and the budget to raise; a long exact run alone can be
+streamed with ``cradle extend`` (bounded memory).
 """
 from __future__ import annotations
 
@@ -97,18 +102,18 @@ class Estimate:
 
     def describe(self) -> str:
         """One line: memory, disk, time."""
-        return (f"{self.key}: estimated peak memory {_bytes(self.memory_bytes)}, writes {_bytes(self.disk_bytes)}, "
-                f"about {_duration(self.seconds)} ({self.cause})")
+        return (f"{self.key}: estimated peak memory {fmt_bytes(self.memory_bytes)}, writes {fmt_bytes(self.disk_bytes)}, "
+                f"about {fmt_duration(self.seconds)} ({self.cause})")
 
 
-def _bytes(b: float) -> str:
+def fmt_bytes(b: float) -> str:
     for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
         if b >= size:
             return f"{b / size:.3g} {unit}"
     return f"{b:.0f} B"
 
 
-def _duration(s: float) -> str:
+def fmt_duration(s: float) -> str:
     for unit, size in (("years", 365.25 * 86400), ("days", 86400), ("h", 3600), ("min", 60)):
         if s >= size:
             return f"{s / size:.3g} {unit}"
@@ -218,12 +223,12 @@ def over_budget(cfg: dict) -> list[str]:
                 ("output", e.disk_bytes, budget.disk_gb * GB, "disk_gb"),
                 ("run time", e.seconds, budget.hours * 3600.0, "hours")):
             if value > limit:
-                shown = _duration(value) if key == "hours" else _bytes(value)
+                shown = fmt_duration(value) if key == "hours" else fmt_bytes(value)
                 lines.append(f"{e.key}: {e.cause}: estimated {what} {shown} exceeds budget.{key} = "
                              f"{_g(getattr(budget, key))} ({hint})")
                 break
     if total > budget.disk_gb * GB and not lines:
-        lines.append(f"scenes: all scenes together write an estimated {_bytes(total)}, over budget.disk_gb = "
+        lines.append(f"scenes: all scenes together write an estimated {fmt_bytes(total)}, over budget.disk_gb = "
                      f"{_g(budget.disk_gb)} ({hint})")
     return lines
 

@@ -87,12 +87,22 @@ def _scene_line(name, spec) -> str:
     return f"  {name:<16} N={spec['N']:<4} {spec['bc']:<8} t_end={spec['t_end']:<8g} {len(times):>6} stored times  {what}"
 
 
+def _cost_line(cfg, name) -> str:
+    """The scene's estimated job cost (cradle.pipeline.budget), under its line of ``cradle scenes``."""
+    from cradle.pipeline import budget
+
+    e = budget.scene_estimate(cfg, name)
+    return (f"  {'':<16} estimated: peak memory {budget.fmt_bytes(e.memory_bytes)}, writes {budget.fmt_bytes(e.disk_bytes)}, "
+            f"about {budget.fmt_duration(e.seconds)}")
+
+
 def cmd_scenes(args) -> int:
     cfg = _load(args.config)
     out = [f"{args.config}: {len(cfg.get('scenes') or {})} scenes, {len(cfg.get('homoclinic') or {})} homoclinic, "
            f"{len(cfg.get('map') or {})} map, {len(cfg.get('figures') or {})} figures", "", "scenes:"]
     for name, spec in (cfg.get("scenes") or {}).items():
         out.append(_scene_line(name, spec))
+        out.append(_cost_line(cfg, name))
         if spec["initial"]["kind"] == "breather":
             out.append(f"  {'':<16} needs homoclinic/{spec['initial']['homoclinic']}.nc")
         out.append(f"  {'':<16} makes initial/{name}.nc, sim/{name}/exact.nc, sim/{name}/dps.nc, metrics/{name}.nc")

@@ -98,18 +98,20 @@ class Progress:
     def __init__(self, label: str, every: float = 2.0, estimate=None, t0: float = 0.0):
         self.label, self.every, self.estimate, self.t0 = label, every, estimate, t0
         self.start = self.last = time.perf_counter()
+        self.announced = False
+        self.expected = f", estimated {_eta(estimate.seconds)} in all" if estimate is not None else ""
 
     def __call__(self, t_reached: float, t_final: float) -> None:
         now = time.perf_counter()
-        if self.estimate is not None:
+        if self.estimate is not None and not self.announced:
             log.info("%s: %s", self.label, self.estimate.describe())
-            self.estimate = None
+            self.announced = True
         if now - self.last >= self.every or t_reached >= t_final:
             self.last = now
             rate = (t_reached - self.t0) / max(now - self.start, 1e-9)
             eta = f"ETA {_eta((t_final - t_reached) / rate)}" if rate > 0 and t_reached < t_final else "done"
-            log.info("%s: t = %.6g / %.6g (%.1f%%), %.3g time units per second, %s",
-                     self.label, t_reached, t_final, 100.0 * t_reached / t_final, rate, eta)
+            log.info("%s: t = %.6g / %.6g (%.1f%%), %.3g time units per second, %s%s",
+                     self.label, t_reached, t_final, 100.0 * t_reached / t_final, rate, eta, self.expected)
 
 
 def _eta(seconds: float) -> str:
