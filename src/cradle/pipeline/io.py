@@ -161,14 +161,15 @@ def rebuild_hint(path) -> str:
     if "results" in parts:
         rel = Path(*parts[parts.index("results"):])
         return f"rebuild it: snakemake --force {rel} (see docs/recovery.md)"
-    return "rebuild it: rerun the command that wrote it (its `cradle describe` history; see docs/recovery.md)"
+    return "rebuild it: rerun the command that wrote it (see docs/recovery.md)"
 
 
 def _why(err: BaseException) -> str:
     """The reader's error on one line, without the file name it repeats."""
     import re
 
-    return re.sub(r":? '[^']*'", "", " ".join(str(err).split())).strip() or type(err).__name__
+    text = re.sub(r"\[Errno -?\d+\] ", "", " ".join(str(err).split()))
+    return re.sub(r":? '[^']*'", "", text).strip() or type(err).__name__
 
 
 def _is_netcdf(path) -> bool:
@@ -190,8 +191,8 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
         raise FileNotFoundError(f"{path}: no such file ({rebuild_hint(path)})")
     try:
         if not _is_netcdf(path):
-            raise DamagedOutput(f"{path}: not a netCDF file (no netCDF or HDF5 signature in its first bytes); "
-                                f"{rebuild_hint(path)}")
+            raise DamagedOutput(f"{path}: not a netCDF file (no netCDF or HDF5 signature in its first bytes)"
+                                + (f"; {rebuild_hint(path)}" if "results" in path.parts else ""))
         with xr.open_dataset(path, engine="netcdf4") as ds:
             return ds.load()
     except DamagedOutput:
@@ -212,8 +213,8 @@ def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[
         raise FileNotFoundError(f"{path}: no such file ({rebuild_hint(path)})")
     try:
         if not _is_netcdf(path):
-            raise DamagedOutput(f"{path}: not a netCDF file (no netCDF or HDF5 signature in its first bytes); "
-                                f"{rebuild_hint(path)}")
+            raise DamagedOutput(f"{path}: not a netCDF file (no netCDF or HDF5 signature in its first bytes)"
+                                + (f"; {rebuild_hint(path)}" if "results" in path.parts else ""))
         with netCDF4.Dataset(path) as nc:
             bare = []
             for name, var in nc.variables.items():
