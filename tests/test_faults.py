@@ -308,3 +308,30 @@ def test_rule_params_hold_no_stored_times():
 
 def test_cli_run_defaults_to_its_own_folder():
     assert cli.parser().parse_args(["run", "tw"]).out == cli.RUN_OUT != "results"
+
+
+def test_progress_lines_give_eta_and_estimate(caplog):
+    import logging
+
+    from cradle.pipeline.runner import Progress
+
+    est = budget.spec_estimate({"name": "long", "N": 200, "t_end": 1e5, "store": {}, "alpha": 1.5,
+                                "exact": {"method": "srkn6c"}})
+    p = Progress("exact long", every=0.0, estimate=est)
+    with caplog.at_level(logging.INFO, logger="cradle"):
+        time.sleep(0.01)
+        p(10.0, 100.0)
+        p(100.0, 100.0)
+    lines = [r.getMessage() for r in caplog.records]
+    assert lines[0].startswith("exact long: scenes.long: estimated peak memory") and "about" in lines[0]
+    assert "(10.0%)" in lines[1] and "ETA " in lines[1] and "estimated" in lines[1] and "in all" in lines[1]
+    assert "(100.0%)" in lines[2] and "done" in lines[2]
+
+
+def test_every_figure_rule_keeps_its_previous_figure_on_failure():
+    """Figure outputs are flagged update(): Snakemake backs them up and restores them if the job fails."""
+    import re
+
+    for path in sorted((ROOT / "workflow" / "rules").glob("*.smk")):
+        for m in re.finditer(r"^\s+(pdf|png)=(.*)$", path.read_text(), re.M):
+            assert m.group(2).startswith("update("), f"{path.name}: {m.group(0).strip()}"

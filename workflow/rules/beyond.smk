@@ -39,8 +39,8 @@ rule theorem1_figure:
         code=figure_code("theorem1"),
         data="results/theorem1/theorem1.nc",
     output:
-        pdf="results/figures/theorem1.pdf",
-        png="results/figures/theorem1.png",
+        pdf=update("results/figures/theorem1.pdf"),
+        png=update("results/figures/theorem1.png"),
     params:
         label="theorem1",
     log:
@@ -83,8 +83,8 @@ rule mi_diagram_figure:
         code=figure_code("mi-diagram"),
         data="results/mi/mi-diagram.nc",
     output:
-        pdf="results/figures/mi-diagram.pdf",
-        png="results/figures/mi-diagram.png",
+        pdf=update("results/figures/mi-diagram.pdf"),
+        png=update("results/figures/mi-diagram.png"),
     params:
         label="mi-diagram",
     log:

@@ -37,8 +37,8 @@ rule floquet_figure:
         code=figure_code("floquet"),
         data="results/floquet/floquet.nc",
     output:
-        pdf="results/figures/floquet.pdf",
-        png="results/figures/floquet.png",
+        pdf=update("results/figures/floquet.pdf"),
+        png=update("results/figures/floquet.png"),
     params:
         label="floquet",
     log:

@@ -48,8 +48,8 @@ rule mi_growth_figure:
         code=figure_code("mi-growth"),
         data="results/mi/mi-growth.nc",
     output:
-        pdf="results/figures/mi-growth.pdf",
-        png="results/figures/mi-growth.png",
+        pdf=update("results/figures/mi-growth.pdf"),
+        png=update("results/figures/mi-growth.png"),
     params:
         label="mi-growth",
     log:
@@ -123,8 +123,8 @@ for _variant in ("reduced", "full"):
             code=figure_code("mi-statistics"),
             data=f"{MI_VARIANT_DIR[_variant]}/mi-statistics.nc",
         output:
-            pdf=f"{MI_FIGURE_STEM[_variant]}.pdf",
-            png=f"{MI_FIGURE_STEM[_variant]}.png",
+            pdf=update(f"{MI_FIGURE_STEM[_variant]}.pdf"),  # kept if the job fails (docs/recovery.md)
+            png=update(f"{MI_FIGURE_STEM[_variant]}.png"),
         params:
             label="mi-statistics",
         log:

@@ -166,6 +166,7 @@ def cmd_run(args) -> int:
                logs / "homoclinic" / f"{name}.log", f"homoclinic {name}")
         return 0
     spec = cc.resolved_scene(cfg, name)
+    print(f"{PROG}: {budget.spec_estimate(spec).describe()}", file=sys.stderr)  # within budget (validated)
     steps, outs = [], {}
     if spec["initial"]["kind"] == "breather":
         hname = spec["initial"]["homoclinic"]
