@@ -17,15 +17,19 @@ How the numbers are obtained:
 * **peak memory**: the four Datasets of the job are held until all are written (all-or-nothing,
   :func:`cradle.pipeline.runner.run_chain`), plus the transient arrays of the metrics stage
   (complex FFT of x and its selection): :data:`PEAK_ARRAYS` arrays of N x T float64, plus
-  :data:`STATE_ARRAYS` arrays of N for the states and work arrays. Calibrated against the peak RSS
-  measured for fft106 stored every 0.001 (see the issue's measurement on main);
+  :data:`STATE_ARRAYS` arrays of N for the states and work arrays. Checked against peak RSS:
+  fft106 stored every 0.001 (11 GB on main, estimated 11.6 GB) and every 0.01 (1.34 GB measured
+  with ``cradle run``, estimated 1.4 GB);
 * **time**: steps x N x :data:`COST_PER_BEAD_STEP_S` of the exact run's method, with steps =
   t_end x :data:`STEPS_PER_TIME_UNIT` (the method's default step, or tolerance, on a typical
   travelling wave; a stronger compression takes smaller steps, up to omega_max(c) / omega_max of
-  that wave more). The DpS run (an ODE on N sites over the slow time
-  eps^(alpha-1) t) is cheaper than the exact run and is not counted. The constants were measured
-  on this machine by ``benchmarks/bead_step_cost.py`` (fft106 initial data, N = 200, t = 100,
-  best of three after a warm-up); rerun it on another machine and update them here.
+  that wave more) and at least one step per stored time, plus a cost per stored value
+  (:data:`COST_PER_STORED_VALUE_S`: DpS run, ansatz, metrics, writing) and the job's start-up
+  (:data:`BASE_SECONDS`). The DpS run's own steps (an ODE on N sites over the slow time
+  eps^(alpha-1) t) are cheaper than the exact run's and are not counted apart. The per-step
+  constants were measured on this machine by ``benchmarks/bead_step_cost.py`` (fft106 initial
+  data, N = 200, t = 100, best of three after a warm-up), the others from single jobs as each
+  constant says; rerun them on another machine and update them here.
 
 Why a large store is refused instead of streamed: :func:`cradle.pipeline.extend.stream_lattice`
 bounds the memory of the exact run's file only (about a third of the job's peak). The simulate
@@ -54,8 +58,17 @@ STORED_SCALARS = 7
 PEAK_ARRAYS = 13
 #: arrays of N float64 held whatever the store (initial data, states, integrator work arrays)
 STATE_ARRAYS = 32
-#: bytes of a process before any array (interpreter, numpy, xarray, numba, netCDF4)
-BASE_BYTES = 300 * 2**20
+#: bytes of a process before any array (interpreter, numpy, xarray, numba, netCDF4): the max RSS
+#: of tw-weak's simulate job (results/benchmarks/sim/tw-weak.tsv), whose arrays are a few MB
+BASE_BYTES = 250e6
+#: wall seconds of a job before its first step (interpreter, imports, compiled-kernel cache loads):
+#: tw-weak's simulate job, 5.8 s wall for 0.1 s of integration
+BASE_SECONDS = 5.0
+#: wall seconds per stored value (stored time x bead) beyond the exact run's steps: the DpS run
+#: stepping to every stored time, the ansatz, forces, metrics and writing the four files with their
+#: checksums. Measured with `cradle run fft106` stored every 0.01 (54373 times x 200 beads): 27.6 s
+#: for the job, of which 0.35 s were exact steps
+COST_PER_STORED_VALUE_S = 2.5e-6
 #: wall seconds per (step x bead) and steps per unit of simulated time at the default step or
 #: tolerance (rtol = 1e-10), measured by benchmarks/bead_step_cost.py on this machine (2 cores):
 #: fft106's initial data, N = 200, best of three after a warm-up. lsoda and radau were not
@@ -134,15 +147,17 @@ def stored_count(store: dict, t_end: float) -> int:
     return n
 
 
-def _exact_seconds(N: int, t_end: float, exact: dict) -> tuple[float, float]:
+def _exact_seconds(N: int, t_end: float, exact: dict, stored: int) -> tuple[float, float]:
     """(wall seconds, steps) of the exact run at the measured steps per unit time of its method,
-    scaled by the ratio of step factors when a splitting's ``dt_factor`` is given."""
+    scaled by the ratio of step factors when a splitting's ``dt_factor`` is given; every interval
+    between stored times takes at least one step (the steps end on the stored times)."""
     method = exact.get("method", "srkn6c")
     steps = float(t_end) * STEPS_PER_TIME_UNIT.get(method, max(STEPS_PER_TIME_UNIT.values()))
     if exact.get("dt_factor"):  # only then import the integrators (numba): the Snakefile validates
         from cradle.integrators.lattice_solver import DEFAULT_DT_FACTOR
 
         steps *= DEFAULT_DT_FACTOR.get(method, float(exact["dt_factor"])) / float(exact["dt_factor"])
+    steps = max(steps, float(stored - 1))
     return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
 
 
@@ -162,7 +177,8 @@ def spec_estimate(spec: dict) -> Estimate:
     store = spec.get("store") or {}
     T = stored_count(store, t_end)
     exact = spec.get("exact") or {}
-    seconds, steps = _exact_seconds(N, t_end, exact)
+    seconds, steps = _exact_seconds(N, t_end, exact, T)
+    seconds += BASE_SECONDS + COST_PER_STORED_VALUE_S * N * T
     per_time = 8.0 * (STORED_ARRAYS * N + STORED_SCALARS)
     cause = f"N = {N}, t_end = {_g(t_end)}" + (f", store.every = {_g(store['every'])}" if store.get("every") else "")
     cause += f": {T} stored times"
