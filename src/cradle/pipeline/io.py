@@ -11,8 +11,8 @@ an interrupted or failed rule never leaves a file that Snakemake would take
 as done. Every variable carries a Fletcher-32 checksum (:func:`encoding_of`),
 and :func:`open_dataset` reads every value, so a damaged or truncated file
 stops its reader with one line naming the file and the command that rebuilds
-it (:class:`DamagedOutput`, docs/recovery.md). :func:`open_scene` opens the exact and DpS runs of one scene as a
-single Dataset.
+it (:class:`DamagedOutput`, docs/recovery.md). :func:`open_scene` opens the
+exact and DpS runs of one scene as a single Dataset.
 """
 from __future__ import annotations
 
@@ -188,6 +188,22 @@ def _is_netcdf(path) -> bool:
     return any(head.startswith(sig) for sig in _SIGNATURES)
 
 
+def _checked(path, read):
+    """``read(path)``, with a missing file as FileNotFoundError and a file that is not netCDF, is
+    truncated or fails a checksum as one :class:`DamagedOutput` line naming it and its rebuild."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such file ({rebuild_hint(path)})")
+    if not _is_netcdf(path):
+        raise DamagedOutput(f"{path}: not a netCDF file (no netCDF or HDF5 signature in its first bytes)"
+                            + (f"; {rebuild_hint(path)}" if "results" in path.parts else ""))
+    try:
+        return read(path)
+    except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
+        raise DamagedOutput(f"{path}: damaged or truncated, cannot be read ({_why(err)}); "
+                            f"{rebuild_hint(path)}") from None
+
+
 def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     """Open a cradle output fully into memory (the file is closed on return), verified.
 
@@ -195,20 +211,11 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     raises FileNotFoundError; a file that is not netCDF, is truncated or fails a checksum raises
     :class:`DamagedOutput` with one line naming the file and the command that rebuilds it.
     """
-    path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"{path}: no such file ({rebuild_hint(path)})")
-    try:
-        if not _is_netcdf(path):
-            raise DamagedOutput(f"{path}: not a netCDF file (no netCDF or HDF5 signature in its first bytes)"
-                                + (f"; {rebuild_hint(path)}" if "results" in path.parts else ""))
-        with xr.open_dataset(path, engine="netcdf4") as ds:
+    def read(p):
+        with xr.open_dataset(p, engine="netcdf4") as ds:
             return ds.load()
-    except DamagedOutput:
-        raise
-    except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
-        why = _why(err)
-        raise DamagedOutput(f"{path}: damaged or truncated, cannot be read ({why}); {rebuild_hint(path)}") from None
+
+    return _checked(path, read)
 
 
 def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[str]:
@@ -217,32 +224,22 @@ def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[
     (written before checksums); raises FileNotFoundError or :class:`DamagedOutput` (one line)."""
     import netCDF4
 
-    path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"{path}: no such file ({rebuild_hint(path)})")
-    try:
-        if not _is_netcdf(path):
-            raise DamagedOutput(f"{path}: not a netCDF file (no netCDF or HDF5 signature in its first bytes)"
-                                + (f"; {rebuild_hint(path)}" if "results" in path.parts else ""))
-        with netCDF4.Dataset(path) as nc:
-            bare = []
+    def read(p):
+        bare = []
+        with netCDF4.Dataset(p) as nc:
             for name, var in nc.variables.items():
                 if var.ndim == 0:
                     var[...]
                     continue
                 if not (var.filters() or {}).get("fletcher32"):
                     bare.append(name)
-                row = max(1, int(np.prod(var.shape[1:], dtype=float)) * var.dtype.itemsize) \
-                    if var.dtype != str else 1
-                step = max(1, block_bytes // row)
+                row = int(np.prod(var.shape[1:], dtype=np.int64)) * getattr(var.dtype, "itemsize", 1)
+                step = max(1, block_bytes // max(row, 1))
                 for i in range(0, var.shape[0], step):
                     var[i:i + step]
         return bare
-    except DamagedOutput:
-        raise
-    except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
-        why = _why(err)
-        raise DamagedOutput(f"{path}: damaged or truncated, cannot be read ({why}); {rebuild_hint(path)}") from None
+
+    return _checked(path, read)
 
 
 SHARED = ("x", "force")  # variables both models store on the same (t, n) grid
