@@ -1,5 +1,6 @@
 """A run killed mid-integration (SIGKILL: no clean-up at all) leaves nothing at its target
-paths (`cradle run` writes a scene's four files only once all are computed), and running it again completes with the same numbers as a run never interrupted."""
+paths (`cradle run` writes a scene's four files only once all are computed), and running it
+again completes with the same numbers as a run never interrupted."""
 from __future__ import annotations
 
 import os

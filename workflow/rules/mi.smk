@@ -30,7 +30,8 @@ rule mi_growth_compute:
         "results/mi/mi-growth.nc",
     params:
         spec=lambda w: _mig.resolved_spec(config),
-        scenes=lambda w: {n: compact_scene(cc.resolved_scene(config, n)) for n in config["beyond"]["mi_growth"]["scenes"]},
+        scenes=lambda w: {n: compact_scene(cc.resolved_scene(config, n))
+                          for n in config["beyond"]["mi_growth"]["scenes"]},
     log:
         "results/logs/mi/mi-growth.log",
     benchmark:

@@ -115,8 +115,8 @@ class Estimate:
 
     def describe(self) -> str:
         """One line: memory, disk, time."""
-        return (f"{self.key}: estimated peak memory {fmt_bytes(self.memory_bytes)}, writes {fmt_bytes(self.disk_bytes)}, "
-                f"about {fmt_duration(self.seconds)} ({self.cause})")
+        return (f"{self.key}: estimated peak memory {fmt_bytes(self.memory_bytes)}, "
+                f"writes {fmt_bytes(self.disk_bytes)}, about {fmt_duration(self.seconds)} ({self.cause})")
 
 
 def fmt_bytes(b: float) -> str:

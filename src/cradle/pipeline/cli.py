@@ -92,8 +92,8 @@ def _cost_line(cfg, name) -> str:
     from cradle.pipeline import budget
 
     e = budget.scene_estimate(cfg, name)
-    return (f"  {'':<16} estimated: peak memory {budget.fmt_bytes(e.memory_bytes)}, writes {budget.fmt_bytes(e.disk_bytes)}, "
-            f"about {budget.fmt_duration(e.seconds)}")
+    return (f"  {'':<16} estimated: peak memory {budget.fmt_bytes(e.memory_bytes)}, "
+            f"writes {budget.fmt_bytes(e.disk_bytes)}, about {budget.fmt_duration(e.seconds)}")
 
 
 def cmd_scenes(args) -> int:
