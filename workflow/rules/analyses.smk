@@ -24,7 +24,7 @@ for _a in ANALYSES.values():
             params:
                 analysis=_a.name,
                 spec=_a.spec(config, _form),
-                scenes={n: cc.resolved_scene(config, n) for n in scenes_read(config, _a)},
+                scenes={n: compact_scene(cc.resolved_scene(config, n)) for n in scenes_read(config, _a)},
             log:
                 L.path("log", job=f"{_a.folder}/{_form}/{_a.name}"),
             benchmark:
@@ -42,8 +42,8 @@ for _a in ANALYSES.values():
             input:
                 code=figure_code(_a.name),
                 data=_a.output(_form),
-            output:
-                **_a.figure(_form),
+            output:  # update(): the previous figure is restored if the job fails (docs/recovery.md)
+                **{ext: update(f) for ext, f in _a.figure(_form).items()},
             params:
                 label=_a.name,
             log:

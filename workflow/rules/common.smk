@@ -8,6 +8,7 @@ from cradle.pipeline import config as cc
 from cradle import figures as _figures
 from cradle.pipeline import layout as L
 from cradle.pipeline.codedeps import code_files
+from cradle.pipeline.params import compact_scene
 
 try:
     for _file in workflow.configfiles:   # Snakemake's own loader keeps the last of two equal keys silently

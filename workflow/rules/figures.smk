@@ -10,13 +10,15 @@ rule figure:
         code=lambda w: figure_code(w.label),
         data=figure_inputs,
     output:
-        pdf=L.path("figure", label="{label}", ext="pdf"),
-        png=report(
+        # update(): Snakemake keeps a backup of the previous figure and restores it if this job fails
+        # (a damaged input), instead of deleting it first (docs/recovery.md)
+        pdf=update(L.path("figure", label="{label}", ext="pdf")),
+        png=update(report(
             L.path("figure", label="{label}", ext="png"),
             caption="../report/figure.rst",
             category="Figures",
             labels={"figure": "{label}"},
-        ),
+        )),
     params:
         label=lambda w: w.label,
         options=lambda w: config["figures"][w.label],

@@ -18,7 +18,9 @@ rule simulate:
     output:
         **L.scene_paths("{scene}"),
     params:
-        spec=lambda w: cc.resolved_scene(config, w.scene),
+        # the store description, not the expanded stored times (cradle.pipeline.params): a changed store
+        # still reruns the job, and a dry run stays readable
+        spec=lambda w: compact_scene(cc.resolved_scene(config, w.scene)),
     log:
         L.path("log", job="sim/{scene}"),
     benchmark:

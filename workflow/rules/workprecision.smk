@@ -44,8 +44,8 @@ rule work_precision_figure:
         code=code_of("cradle.analyses.workprecision", "cradle.figures.workprecision"),
         data=expand("results/work-precision/{scene}.nc", scene=WP_SCENES),
     output:
-        pdf="results/figures/work-precision.pdf",
-        png="results/figures/work-precision.png",
+        pdf=update("results/figures/work-precision.pdf"),
+        png=update("results/figures/work-precision.png"),
     log:
         "results/logs/figures/work-precision.log",
     shell:

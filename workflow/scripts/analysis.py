@@ -4,11 +4,12 @@ import logging
 
 from cradle.analyses.registry import ANALYSES
 from cradle.pipeline.io import open_dataset
+from cradle.pipeline.params import expand_scene
 from cradle.pipeline.runner import run
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = logging.getLogger("cradle")
 analysis = ANALYSES[sm.params.analysis]
 run(lambda: analysis.compute(dict(sm.params.spec), [open_dataset(p) for p in sm.input.data],
-                             {name: dict(spec) for name, spec in sm.params.scenes.items()}, log=log.info),
+                             {name: expand_scene(dict(spec)) for name, spec in sm.params.scenes.items()}, log=log.info),
     sm.output[0], sm.log[0], label=analysis.name)

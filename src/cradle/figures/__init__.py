@@ -30,23 +30,40 @@ def _pyplot():
 
 
 def save_figure(fig, stem) -> list[Path]:
-    """Save ``fig`` as ``stem.png`` and ``stem.pdf`` with fixed metadata.
+    """Save ``fig`` as ``stem.png`` and ``stem.pdf`` with fixed metadata, atomically.
 
     The layout (constrained_layout: the costly part, every tick label is
     measured on each pass) is solved once, for the PNG, then frozen for the
     PDF. No creation date is written, so rebuilding a figure from the same
-    data gives the same files.
+    data gives the same files. Both files are written under temporary names
+    beside their targets and renamed only once both are complete: a drawing
+    that fails part way leaves the previous figure (both files) in place.
     """
+    import os
+    import tempfile
+
     stem = Path(stem)
     stem.parent.mkdir(parents=True, exist_ok=True)
-    out = []
-    for ext, meta in (("png", {"Software": None}), ("pdf", {"CreationDate": None, "ModDate": None})):
-        path = stem.with_suffix(f".{ext}")
-        fig.savefig(path, dpi=PNG_DPI, metadata=meta)
-        fig.set_layout_engine("none")  # keeps the positions found for the PNG
-        out.append(path)
-    _pyplot().close(fig)
-    return out[::-1]
+    done: list[tuple[str, Path]] = []
+    try:
+        for ext, meta in (("png", {"Software": None}), ("pdf", {"CreationDate": None, "ModDate": None})):
+            path = stem.with_suffix(f".{ext}")
+            fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=f".tmp.{ext}", dir=path.parent)
+            os.close(fd)
+            done.append((tmp, path))
+            fig.savefig(tmp, dpi=PNG_DPI, metadata=meta, format=ext)
+            fig.set_layout_engine("none")  # keeps the positions found for the PNG
+        mask = os.umask(0)
+        os.umask(mask)
+        for tmp, path in done:
+            os.chmod(tmp, 0o666 & ~mask)
+            os.replace(tmp, path)
+    finally:
+        for tmp, _ in done:
+            if os.path.exists(tmp):
+                os.remove(tmp)
+        _pyplot().close(fig)
+    return [path for _, path in done][::-1]
 
 
 def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
@@ -132,7 +149,9 @@ def load_inputs(scenes: dict, root) -> dict:
 
     ``scenes`` maps each name to its config section (map, homoclinic,
     scenes). Map and homoclinic names give one Dataset; a scene gives
-    ``{"exact": ..., "dps": ..., "metrics": ...}``.
+    ``{"exact": ..., "dps": ..., "metrics": ...}``. Every file is verified as it is read
+    (:func:`cradle.pipeline.io.open_dataset`): a damaged or truncated one stops the figure with one
+    line naming it and its rebuild command, before anything is drawn or written.
     """
     from cradle.pipeline import layout
     from cradle.pipeline.io import open_dataset

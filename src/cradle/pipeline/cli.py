@@ -3,21 +3,31 @@
 ::
 
     cradle scenes   [--config config.yaml]                 # scenes, figures and what each needs
-    cradle run      SCENE [--out results] [--config ...]   # one scene without Snakemake
+    cradle run      SCENE [--out cradle-runs] [--config ...]   # one scene without Snakemake
     cradle describe FILE.nc                                # parameters, checks, provenance of a result
-    cradle extend   FILE.nc --t-end T [--every DT] [--out FILE.nc]   # continue a finished exact run
+    cradle extend   FILE.nc --t-end T [--every DT] [--out FILE.nc | --in-place]   # continue an exact run
+    cradle verify   [results]                              # every output's checksums; what to rebuild
 
 ``cradle run`` computes a scene's initial data, exact and DpS runs and
-metrics with :mod:`cradle.pipeline.stages` and :func:`cradle.pipeline.runner.run` (atomic
-writes, failed runs kept under ``failed/``, progress every ~2 s on the
-terminal and in ``OUT/logs/...``), into the same layout as the workflow:
-``OUT/initial/SCENE.nc``, ``OUT/sim/SCENE/{exact,dps}.nc``,
-``OUT/metrics/SCENE.nc``. A breather scene's homoclinic solution is computed
-first (``OUT/homoclinic/NAME.nc``). A ``map`` or ``homoclinic`` name computes
-that entry alone.
+metrics with :mod:`cradle.pipeline.stages` and
+:func:`cradle.pipeline.runner.run_chain`, as the workflow's ``simulate`` job
+does: all four files are written only after every step succeeded (a failure
+writes none of them; what was computed goes under ``failed/``), into the
+workflow's layout under its own folder (default ``cradle-runs/``, never the
+workflow's ``results/`` unless asked): ``OUT/initial/SCENE.nc``,
+``OUT/sim/SCENE/{exact,dps}.nc``, ``OUT/metrics/SCENE.nc``, log in
+``OUT/logs/sim/SCENE.log``. A breather scene's homoclinic solution is
+computed first (``OUT/homoclinic/NAME.nc``). A ``map`` or ``homoclinic``
+name computes that entry alone. The config is refused before any work if a
+job is over budget (:mod:`cradle.pipeline.budget`).
+
+``cradle extend`` writes a new file by default (``FILE-tT.nc`` beside the
+input); ``--in-place`` replaces the input, and is refused for a scene's
+exact run next to its DpS run (a workflow output): extending it alone would
+leave the DpS run, the metrics and the config at the old t_end.
 
 Every error is one line on stderr, ``cradle: error: ...``, exit status 2,
-no traceback.
+no traceback. ``cradle verify`` exits 1 when an output must be rebuilt.
 """
 from __future__ import annotations
 
@@ -28,6 +38,8 @@ from pathlib import Path
 from cradle import __version__
 
 PROG = "cradle"
+#: where ``cradle run`` writes by default: its own folder, not the workflow's results/
+RUN_OUT = "cradle-runs"
 
 
 class CliError(Exception):
@@ -75,12 +87,22 @@ def _scene_line(name, spec) -> str:
     return f"  {name:<16} N={spec['N']:<4} {spec['bc']:<8} t_end={spec['t_end']:<8g} {len(times):>6} stored times  {what}"
 
 
+def _cost_line(cfg, name) -> str:
+    """The scene's estimated job cost (cradle.pipeline.budget), under its line of ``cradle scenes``."""
+    from cradle.pipeline import budget
+
+    e = budget.scene_estimate(cfg, name)
+    return (f"  {'':<16} estimated: peak memory {budget.fmt_bytes(e.memory_bytes)}, "
+            f"writes {budget.fmt_bytes(e.disk_bytes)}, about {budget.fmt_duration(e.seconds)}")
+
+
 def cmd_scenes(args) -> int:
     cfg = _load(args.config)
     out = [f"{args.config}: {len(cfg.get('scenes') or {})} scenes, {len(cfg.get('homoclinic') or {})} homoclinic, "
            f"{len(cfg.get('map') or {})} map, {len(cfg.get('figures') or {})} figures", "", "scenes:"]
     for name, spec in (cfg.get("scenes") or {}).items():
         out.append(_scene_line(name, spec))
+        out.append(_cost_line(cfg, name))
         if spec["initial"]["kind"] == "breather":
             out.append(f"  {'':<16} needs homoclinic/{spec['initial']['homoclinic']}.nc")
         out.append(f"  {'':<16} makes initial/{name}.nc, sim/{name}/exact.nc, sim/{name}/dps.nc, metrics/{name}.nc")
@@ -113,16 +135,25 @@ def _stage(compute, out, log, label):
         raise CliError(f"{label}: {err}") from None
 
 
-def cmd_run(args) -> int:
-    from cradle.pipeline import config as cc
-    from cradle.pipeline import stages
-    from cradle.pipeline.runner import Progress
+def _note_workflow_results(out: Path, config: Path) -> None:
+    """``cradle run`` writes into the workflow's own ``results/`` only when asked by name; there, a
+    file written outside Snakemake would be taken as up to date with whatever config made it."""
+    if out.resolve() == (Path(config).resolve().parent / "results").resolve():
+        print(f"{PROG}: note: writing into the workflow's folder {out}; Snakemake will take these files as "
+              "built from the current config", file=sys.stderr)
 
-    cfg = _load(args.config)
+
+def cmd_run(args) -> int:
+    from cradle.pipeline import budget, config as cc
+    from cradle.pipeline import stages
+    from cradle.pipeline.runner import Progress, StageFailure, run_chain
+
+    cfg = _load(args.config)  # validate: an over-budget job is refused here, before any work
     name, out = args.scene, Path(args.out)
     section = _section_of(cfg, name)
     if section is None:
         raise CliError(f"unknown scene {name!r} (known: {_known(cfg)})")
+    _note_workflow_results(out, args.config)
     logs = out / "logs"
     if section == "map":
         mspec = cc.resolved_map(cfg, name)
@@ -135,23 +166,29 @@ def cmd_run(args) -> int:
                logs / "homoclinic" / f"{name}.log", f"homoclinic {name}")
         return 0
     spec = cc.resolved_scene(cfg, name)
-    hom = None
+    print(f"{PROG}: {budget.spec_estimate(spec).describe()}", file=sys.stderr)  # within budget (validated)
+    steps, outs = [], {}
     if spec["initial"]["kind"] == "breather":
         hname = spec["initial"]["homoclinic"]
         hspec = cc.resolved_homoclinic(cfg, hname)
-        hom = _stage(lambda: stages.homoclinic_solution(hspec, hname), out / "homoclinic" / f"{hname}.nc",
-                     logs / "homoclinic" / f"{hname}.log", f"homoclinic {hname}")
-    init = _stage(lambda: stages.initial_data(spec, name, hom), out / "initial" / f"{name}.nc",
-                  logs / "initial" / f"{name}.log", f"initial {name}")
+        steps.append(("homoclinic", lambda done: stages.homoclinic_solution(hspec, hname)))
+        outs["homoclinic"] = out / "homoclinic" / f"{hname}.nc"
     sim = out / "sim" / name
-    ex = _stage(lambda: stages.exact_run(spec, init, name, progress=Progress(f"exact {name}")), sim / "exact.nc",
-                logs / "sim" / name / "exact.log", f"exact {name}")
-    ap = _stage(lambda: stages.dps_run(spec, init, name, progress=Progress(f"dps {name}")), sim / "dps.nc",
-                logs / "sim" / name / "dps.log", f"dps {name}")
-    _stage(lambda: stages.metrics(spec, ex, ap, name), out / "metrics" / f"{name}.nc",
-           logs / "metrics" / f"{name}.log", f"metrics {name}")
-    print(f"{name}: {out / 'initial' / (name + '.nc')}, {sim / 'exact.nc'}, {sim / 'dps.nc'}, "
-          f"{out / 'metrics' / (name + '.nc')}")
+    steps += [
+        ("initial", lambda done: stages.initial_data(spec, name, done.get("homoclinic"))),
+        ("exact", lambda done: stages.exact_run(spec, done["initial"], name, progress=Progress(
+            f"exact {name}", estimate=budget.long_run(spec)))),
+        ("dps", lambda done: stages.dps_run(spec, done["initial"], name, progress=Progress(f"dps {name}"))),
+        ("metrics", lambda done: stages.metrics(spec, done["exact"], done["dps"], name)),
+    ]
+    outs.update({"initial": out / "initial" / f"{name}.nc", "exact": sim / "exact.nc", "dps": sim / "dps.nc",
+                  "metrics": out / "metrics" / f"{name}.nc"})
+    try:
+        run_chain(steps, outs, str(logs / "sim" / f"{name}.log"), label=name)
+    except StageFailure as err:
+        raise CliError(f"{name}: {err} (none of the scene's files written; what was computed is kept for "
+                       f"diagnosis, see {logs / 'sim' / (name + '.log')})") from None
+    print(f"{name}: {', '.join(str(p) for p in outs.values())}")
     return 0
 
 
@@ -178,11 +215,16 @@ def cmd_describe(args) -> int:
 
     from cradle.pipeline.provenance import KEYS as PROV
 
+    from cradle.pipeline.io import DamagedOutput, verify_file
+
     path = Path(args.file)
     if not path.exists():
         raise CliError(f"no such file {str(path)!r}")
     try:
+        bare = verify_file(path)  # every checksum, in bounded memory: a damaged file is not described as fine
         ds = xr.open_dataset(path)
+    except DamagedOutput as err:
+        raise CliError(str(err)) from None
     except Exception as err:  # noqa: BLE001 - any unreadable file is one line
         raise CliError(f"cannot read {str(path)!r} as netCDF: {' '.join(str(err).split())}") from None
     with ds:
@@ -195,6 +237,8 @@ def cmd_describe(args) -> int:
         for name in ("residual_n", "l2_drift", "dps_energy_drift", "P_drift", "E"):
             if name in ds:
                 out.append(f"  {'max|' + name + '|':<{width}} {float(abs(ds[name]).max()):.6g}")
+        out.append(f"  {'checksums':<{width}} " + ("verified (every variable)" if not bare else
+                   f"verified; no checksum on {', '.join(bare)} (written before checksums: rebuild to protect)"))
         out += ["", "provenance:"]
         out += [f"  {k:<{width}} {_fmt(attrs[k])}" for k in PROV + ("history", "Conventions") if k in attrs]
         out += ["", "variables:"]
@@ -208,20 +252,73 @@ def cmd_describe(args) -> int:
 
 # ------------------------------------------------------------------ extend
 
+def _workflow_scene_of(path: Path) -> str | None:
+    """The scene whose workflow outputs ``path`` belongs to (``.../sim/SCENE/exact.nc`` beside its
+    ``dps.nc``), or None for a standalone exact run."""
+    if path.parent.parent.name == "sim" and (path.parent / "dps.nc").exists():
+        return path.parent.name
+    return None
+
+
 def cmd_extend(args) -> int:
+    import math
+
     from cradle.pipeline.extend import extend
+    from cradle.pipeline.io import DamagedOutput
 
     path = Path(args.file)
     if not path.exists():
         raise CliError(f"no such file {str(path)!r}")
+    if not math.isfinite(args.t_end):
+        raise CliError(f"--t-end {args.t_end!r}: must be a finite time")
+    if args.every is not None and not (math.isfinite(args.every) and args.every > 0):
+        raise CliError(f"--every {args.every!r}: must be a finite time > 0")
+    if args.in_place and args.out:
+        raise CliError("give --out FILE or --in-place, not both")
+    out = path if args.in_place else Path(args.out) if args.out else path.with_name(f"{path.stem}-t{args.t_end:g}.nc")
+    if out.resolve() == path.resolve():
+        scene = _workflow_scene_of(path)
+        if scene is not None:
+            raise CliError(f"refusing to extend {path} in place: the DpS run {path.parent / 'dps.nc'}, the metrics "
+                           f"and the config would stay at the old t_end. Set scenes.{scene}.t_end: {args.t_end:g} in "
+                           f"the config and run `snakemake {path}` (all four files of the scene, consistently), "
+                           f"or drop --in-place to write a new file")
     try:
-        s = extend(path, args.t_end, out=args.out, every=args.every)
+        s = extend(path, args.t_end, out=out, every=args.every)
+    except DamagedOutput as err:
+        raise CliError(str(err)) from None
     except ValueError as err:
         raise CliError(str(err)) from None
     print(f"{s['path']}: t = {s['t_from']:g} -> {s['t_end']:g}, {s['rows_added']} stored times added, "
           f"{s['n_steps']} steps (dt = {s['dt']:.6g}), energy drift {s['energy_drift']:.3e}, "
           f"{s['wall_time_s']:.2f} s")
     return 0
+
+
+# ------------------------------------------------------------------ verify
+
+def cmd_verify(args) -> int:
+    from cradle.pipeline.io import DamagedOutput, rebuild_hint, verify_file
+
+    root = Path(args.root)
+    if not root.exists():
+        raise CliError(f"no such folder or file {str(root)!r}")
+    files = [root] if root.is_file() else sorted(p for p in root.rglob("*.nc")
+                                                 if not p.name.startswith(".") and "failed" not in p.parts)
+    damaged, bare = [], []
+    for p in files:
+        try:
+            if verify_file(p):
+                bare.append(p)
+        except (DamagedOutput, OSError) as err:
+            damaged.append(" ".join(str(err).split()))
+    for line in damaged:
+        print(f"DAMAGED {line}")
+    for p in bare:
+        print(f"note    {p}: readable, but written before checksums; {rebuild_hint(p)} to protect it")
+    print(f"{len(files)} files checked: {len(files) - len(damaged) - len(bare)} verified, {len(bare)} without "
+          f"checksums, {len(damaged)} to rebuild")
+    return 1 if damaged else 0
 
 
 # ------------------------------------------------------------------ main
@@ -241,7 +338,7 @@ def parser() -> argparse.ArgumentParser:
     s.set_defaults(func=cmd_scenes)
     r = sub.add_parser("run", help="compute one scene (initial, exact, dps, metrics) without Snakemake")
     r.add_argument("scene", metavar="SCENE", help="a name under scenes: (or homoclinic:, map:) of the config")
-    r.add_argument("--out", default="results", help="output folder (default: results)")
+    r.add_argument("--out", default=RUN_OUT, help=f"output folder (default: {RUN_OUT}; not the workflow's results)")
     r.add_argument("--config", default="config.yaml", help="config file (default: config.yaml)")
     r.set_defaults(func=cmd_run)
     d = sub.add_parser("describe", help="print a result's parameters, checks and provenance")
@@ -253,8 +350,15 @@ def parser() -> argparse.ArgumentParser:
     e.add_argument("--t-end", type=float, required=True, dest="t_end", help="new final time (> the last stored t)")
     e.add_argument("--every", type=float, default=None,
                    help="storage step of the new times (default: the file's median spacing)")
-    e.add_argument("--out", default=None, help="write here instead of replacing FILE.nc")
+    e.add_argument("--out", default=None, help="write here (default: FILE-tT.nc beside FILE.nc)")
+    e.add_argument("--in-place", action="store_true", dest="in_place",
+                   help="replace FILE.nc (refused for a workflow scene's exact run: change t_end in the config)")
     e.set_defaults(func=cmd_extend)
+    v = sub.add_parser("verify", help="read every output's data against its checksums; list what to rebuild "
+                                      "(exit 1 if any)")
+    v.add_argument("root", nargs="?", default="results", metavar="RESULTS",
+                   help="a folder of outputs (every *.nc below it) or one file (default: results)")
+    v.set_defaults(func=cmd_verify)
     return p
 
 
@@ -283,9 +387,13 @@ def main(argv=None) -> int:
         print(f"{PROG}: interrupted", file=sys.stderr)
         return 130
     except Exception as err:  # noqa: BLE001 - one line for the user; CRADLE_DEBUG=1 shows the traceback
-        if os.environ.get("CRADLE_DEBUG"):
+        io = sys.modules.get("cradle.pipeline.io")  # a damaged input can only come from the readers there
+        if io is not None and isinstance(err, io.DamagedOutput):
+            text = " ".join(str(err).split())
+        elif os.environ.get("CRADLE_DEBUG"):
             raise
-        text = f"{type(err).__name__}: {' '.join(str(err).split())} (CRADLE_DEBUG=1 shows the traceback)"
+        else:
+            text = f"{type(err).__name__}: {' '.join(str(err).split())} (CRADLE_DEBUG=1 shows the traceback)"
     finally:
         provenance.set_command(None)
     print(f"{PROG}: error: {text}", file=sys.stderr)

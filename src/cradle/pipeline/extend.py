@@ -24,6 +24,7 @@ ceil(length/dt) equal steps), which is why chunking changes no bit either.
 from __future__ import annotations
 
 import datetime as _dt
+import math
 import os
 import tempfile
 import time
@@ -33,7 +34,7 @@ import numpy as np
 import xarray as xr
 
 from cradle.models import lattice
-from cradle.pipeline.io import _umask_mode, make_dataset
+from cradle.pipeline.io import _umask_mode, encoding_of, make_dataset, verify_file
 
 #: memory per chunk of stored states (x, v, force: 3 N float64 per stored time)
 DEFAULT_CHUNK_BYTES = 64 * 2**20
@@ -58,9 +59,7 @@ class _Appender:
         self.path.parent.mkdir(parents=True, exist_ok=True)
         fd, self.tmp = tempfile.mkstemp(prefix=f".{self.path.name}.", suffix=".tmp", dir=self.path.parent)
         os.close(fd)
-        encoding = {k: {"_FillValue": None} for k in list(first.coords) + list(first.data_vars)
-                    if np.issubdtype(first[k].dtype, np.floating)}
-        first.to_netcdf(self.tmp, engine="netcdf4", unlimited_dims=["t"], encoding=encoding)
+        first.to_netcdf(self.tmp, engine="netcdf4", unlimited_dims=["t"], encoding=encoding_of(first))
         self.nc = netCDF4.Dataset(self.tmp, "a")
         for var in self.nc.variables.values():   # HDF5 would otherwise cache up to 64 MiB per variable
             var.set_var_chunk_cache(size=CHUNK_CACHE_BYTES, nelems=61)
@@ -156,7 +155,8 @@ def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c"
                 app.append(times, f)
             x, v, t_cur = sol.x[-1].copy(), sol.v[-1].copy(), float(times[-1])
             start += times.size
-        summary.update({"integrator": method, "dt": float(dt), "energy_drift": drift, "n_steps": n_steps,
+        summary.update({"integrator": method, "dt": _largest_step(t_out, dt, t0), "dt_nominal": float(dt),
+                        "energy_drift": drift, "n_steps": n_steps,
                         "n_force_evals": nfev, "max_compression": cmax, "n_onset_corrections": ncorr,
                         "wall_time_s": time.perf_counter() - wall0, "rows": app.rows if app else 0,
                         "chunk_rows": rows, "t_end": t_cur})
@@ -169,6 +169,12 @@ def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c"
             app.abort()
         raise
     return summary
+
+
+def _largest_step(t_out, dt, t0) -> float:
+    from cradle.pipeline.stages import steps_taken
+
+    return steps_taken(t_out, float(dt), None if t0 is None else float(t0))[0]
 
 
 def _infer_every(t) -> float:
@@ -195,6 +201,11 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
 
     path = Path(path)
     out = path if out is None else Path(out)
+    if not math.isfinite(float(t_end)):
+        raise ValueError(f"t_end={t_end!r}: must be a finite time")
+    if every is not None and not (math.isfinite(float(every)) and float(every) > 0):
+        raise ValueError(f"every={every!r}: must be a finite time > 0")
+    verify_file(path)  # every checksum, before anything is written (DamagedOutput: one line)
     with xr.open_dataset(path) as ds:
         missing = [k for k in VARS if k not in ds]
         if missing:
@@ -204,7 +215,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
         if method not in SPLITTING_METHODS:
             raise ValueError(f"{path}: integrator={method!r} is adaptive; extending needs a fixed-step splitting "
                              f"{SPLITTING_METHODS} (rerun the scene to the later t_end instead)")
-        dt = float(a["dt"])
+        dt = float(a.get("dt_nominal", a["dt"]))  # the step bound the run was made with
         alpha, bc = float(a["alpha"]), str(a["bc"])
         t = ds["t"].values
         t_last = float(t[-1])
@@ -226,6 +237,8 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
     attrs = {k: val for k, val in a.items()}
     attrs.update({
         "t_end": float(new[-1]),
+        "dt": max(float(a["dt"]), s["dt"]) if isinstance(a.get("dt"), (int, float, np.floating)) else s["dt"],
+        "dt_nominal": dt,
         "energy_drift": max(float(a.get("energy_drift", 0.0)), s["energy_drift"]),
         "n_steps": int(a.get("n_steps", 0)) + s["n_steps"],
         "n_force_evals": int(a.get("n_force_evals", 0)) + s["n_force_evals"],

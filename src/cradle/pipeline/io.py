@@ -8,8 +8,11 @@ provenance of :mod:`cradle.pipeline.provenance` (code version and git commit, ha
 the parameters, library versions, command). :func:`write_netcdf` writes it
 atomically: to a temporary file in the target folder, then ``os.replace``, so
 an interrupted or failed rule never leaves a file that Snakemake would take
-as done. :func:`open_scene` opens the exact and DpS runs of one scene as a
-single Dataset.
+as done. Every variable carries a Fletcher-32 checksum (:func:`encoding_of`),
+and :func:`open_dataset` reads every value, so a damaged or truncated file
+stops its reader with one line naming the file and the command that rebuilds
+it (:class:`DamagedOutput`, docs/recovery.md). :func:`open_scene` opens the
+exact and DpS runs of one scene as a single Dataset.
 """
 from __future__ import annotations
 
@@ -95,12 +98,37 @@ def _umask_mode() -> int:
     return 0o666 & ~mask
 
 
+#: bytes per HDF5 chunk of a checksummed variable: whole rows (every bead of a stored time), about
+#: this many bytes of them. netCDF-C's default shapes split the rows and made writing a 260 MB
+#: exact run several times slower; whole-row chunks also suit the readers, which take rows
+CHUNK_BYTES = 4 * 2**20
+
+
+def encoding_of(ds: xr.Dataset) -> dict:
+    """The netCDF encoding of every output: a Fletcher-32 checksum on every variable, checked by
+    HDF5 whenever the data is read (:func:`open_dataset` reads it all), and no _FillValue on
+    floats (CF forbids it on coordinates). The checksum needs chunked storage: chunks of whole
+    rows, :data:`CHUNK_BYTES` at most (one row if a row is larger); the stored values are the same
+    bits. A 0-d or string variable cannot carry a filter and is stored without one."""
+    encoding = {}
+    for name in list(ds.coords) + list(ds.data_vars):
+        var = ds[name]
+        enc = {}
+        if np.issubdtype(var.dtype, np.floating):
+            enc["_FillValue"] = None
+        if var.ndim > 0 and var.dtype.kind in "fiucb" and var.shape[0] > 0:
+            enc["fletcher32"] = True
+            row = int(np.prod(var.shape[1:], dtype=np.int64)) * var.dtype.itemsize
+            enc["chunksizes"] = (max(1, min(var.shape[0], CHUNK_BYTES // max(row, 1))),) + tuple(var.shape[1:])
+        if enc:
+            encoding[name] = enc
+    return encoding
+
+
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
-    """Write ``ds`` to ``path`` atomically (temporary file, then rename)."""
-    # float coordinates must not get a _FillValue (CF forbids it on coordinates)
-    encoding = {name: {"_FillValue": None} for name in list(ds.coords) + list(ds.data_vars)
-                if np.issubdtype(ds[name].dtype, np.floating)}
-    return _atomic(Path(path), lambda tmp: ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4"))
+    """Write ``ds`` to ``path`` atomically (temporary file, then rename), every variable checksummed
+    (:func:`encoding_of`)."""
+    return _atomic(Path(path), lambda tmp: ds.to_netcdf(tmp, encoding=encoding_of(ds), engine="netcdf4"))
 
 
 def write_text(text: str, path: str | os.PathLike) -> Path:
@@ -127,10 +155,91 @@ def _atomic(path: Path, write) -> Path:
     return path
 
 
+class DamagedOutput(RuntimeError):
+    """An output that cannot be trusted: not netCDF, truncated, or failing its checksums.
+
+    The message is one line naming the file, what is wrong and the command that rebuilds it."""
+
+
+_SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02", b"CDF\x05")
+
+
+def rebuild_hint(path) -> str:
+    """The command that rebuilds ``path``: Snakemake's for a file under ``results/``, else a rerun."""
+    parts = Path(path).parts
+    if "results" in parts:
+        rel = Path(*parts[parts.index("results"):])
+        return f"rebuild it: snakemake --force {rel} (see docs/recovery.md)"
+    return "rebuild it: rerun the command that wrote it (see docs/recovery.md)"
+
+
+def _why(err: BaseException) -> str:
+    """The reader's error on one line, without the file name it repeats."""
+    import re
+
+    text = re.sub(r"\[Errno -?\d+\] ", "", " ".join(str(err).split()))
+    return re.sub(r":? '[^']*'", "", text).strip() or type(err).__name__
+
+
+def _is_netcdf(path) -> bool:
+    """True if the file starts with a netCDF classic or HDF5 (netCDF-4) signature."""
+    with open(path, "rb") as f:
+        head = f.read(8)
+    return any(head.startswith(sig) for sig in _SIGNATURES)
+
+
+def _checked(path, read):
+    """``read(path)``, with a missing file as FileNotFoundError and a file that is not netCDF, is
+    truncated or fails a checksum as one :class:`DamagedOutput` line naming it and its rebuild."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such file ({rebuild_hint(path)})")
+    if not _is_netcdf(path):
+        raise DamagedOutput(f"{path}: not a netCDF file (no netCDF or HDF5 signature in its first bytes)"
+                            + (f"; {rebuild_hint(path)}" if "results" in path.parts else ""))
+    try:
+        return read(path)
+    except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
+        raise DamagedOutput(f"{path}: damaged or truncated, cannot be read ({_why(err)}); "
+                            f"{rebuild_hint(path)}") from None
+
+
 def open_dataset(path: str | os.PathLike) -> xr.Dataset:
-    """Open a cradle output fully into memory (the file is closed on return)."""
-    with xr.open_dataset(path) as ds:
-        return ds.load()
+    """Open a cradle output fully into memory (the file is closed on return), verified.
+
+    Every variable is read (so HDF5 checks every chunk's Fletcher-32 checksum). A missing file
+    raises FileNotFoundError; a file that is not netCDF, is truncated or fails a checksum raises
+    :class:`DamagedOutput` with one line naming the file and the command that rebuilds it.
+    """
+    def read(p):
+        with xr.open_dataset(p, engine="netcdf4") as ds:
+            return ds.load()
+
+    return _checked(path, read)
+
+
+def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[str]:
+    """Read every value of a netCDF file, ``block_bytes`` at a time (bounded memory whatever its
+    size), so that HDF5 checks every checksum. Returns the variables stored without a checksum
+    (written before checksums); raises FileNotFoundError or :class:`DamagedOutput` (one line)."""
+    import netCDF4
+
+    def read(p):
+        bare = []
+        with netCDF4.Dataset(p) as nc:
+            for name, var in nc.variables.items():
+                if var.ndim == 0:
+                    var[...]
+                    continue
+                if not (var.filters() or {}).get("fletcher32"):
+                    bare.append(name)
+                row = int(np.prod(var.shape[1:], dtype=np.int64)) * getattr(var.dtype, "itemsize", 1)
+                step = max(1, block_bytes // max(row, 1))
+                for i in range(0, var.shape[0], step):
+                    var[i:i + step]
+        return bare
+
+    return _checked(path, read)
 
 
 SHARED = ("x", "force")  # variables both models store on the same (t, n) grid

@@ -5,7 +5,9 @@
 * a :class:`StageFailure` (raised by :mod:`cradle.pipeline.stages`) keeps what was computed under
   ``results/failed/...`` with the reason as the ``failure`` attribute, then
   the error propagates (the rule fails with the message);
-* progress and timing go to the log file (and to the terminal).
+* progress and timing go to the log file (and to the terminal);
+* a damaged, truncated or missing input stops the job with one line naming the file and its
+  rebuild command (:class:`cradle.pipeline.io.DamagedOutput`), not a traceback.
 """
 from __future__ import annotations
 
@@ -56,11 +58,23 @@ def setup_logging(log_path: str | None = None) -> None:
         Path(log_path).parent.mkdir(parents=True, exist_ok=True)
         handlers.append(logging.FileHandler(log_path, mode="w"))
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", handlers=handlers, force=True)
+    sys.excepthook = _one_line_excepthook
     global _STARTUP_LOGGED
     age = None if _STARTUP_LOGGED else process_age()
     if age is not None:
         log.info("process start-up (interpreter, imports): %.2f s", age)
         _STARTUP_LOGGED = True
+
+
+def _one_line_excepthook(exc_type, exc, tb):
+    """A job stopped by a missing, damaged or truncated input says so in one line (log and stderr),
+    naming the file and the command that rebuilds it, instead of a traceback through the readers."""
+    from cradle.pipeline.io import DamagedOutput
+
+    if issubclass(exc_type, (DamagedOutput, FileNotFoundError)):
+        log.error("input error: %s", " ".join(str(exc).split()))
+    else:
+        sys.__excepthook__(exc_type, exc, tb)
 
 
 def failed_path(out: str | Path) -> Path:
@@ -74,19 +88,38 @@ def failed_path(out: str | Path) -> Path:
 
 
 class Progress:
-    """A progress callback: logs simulated time reached and rate, at most every ``every`` seconds."""
+    """A progress callback: logs simulated time reached, rate and ETA, at most every ``every`` seconds.
 
-    def __init__(self, label: str, every: float = 2.0):
-        self.label, self.every = label, every
+    ``estimate`` (an :class:`cradle.pipeline.budget.Estimate`), when given, is logged before the
+    first progress line, so a long run says up front what it will cost; ``t0`` is the simulated
+    time the run starts from (a continued run starts after 0).
+    """
+
+    def __init__(self, label: str, every: float = 2.0, estimate=None, t0: float = 0.0):
+        self.label, self.every, self.estimate, self.t0 = label, every, estimate, t0
         self.start = self.last = time.perf_counter()
+        self.announced = False
+        self.expected = f", estimated {_eta(estimate.seconds)} in all" if estimate is not None else ""
 
     def __call__(self, t_reached: float, t_final: float) -> None:
         now = time.perf_counter()
+        if self.estimate is not None and not self.announced:
+            log.info("%s: %s", self.label, self.estimate.describe())
+            self.announced = True
         if now - self.last >= self.every or t_reached >= t_final:
             self.last = now
-            rate = t_reached / max(now - self.start, 1e-9)
-            log.info("%s: t = %.6g / %.6g (%.1f%%), %.3g time units per second",
-                     self.label, t_reached, t_final, 100.0 * t_reached / t_final, rate)
+            rate = (t_reached - self.t0) / max(now - self.start, 1e-9)
+            eta = f"ETA {_eta((t_final - t_reached) / rate)}" if rate > 0 and t_reached < t_final else "done"
+            log.info("%s: t = %.6g / %.6g (%.1f%%), %.3g time units per second, %s%s",
+                     self.label, t_reached, t_final, 100.0 * t_reached / t_final, rate, eta, self.expected)
+
+
+def _eta(seconds: float) -> str:
+    """Remaining seconds as '42 s', '3.5 min', '2.1 h' or '4.2 days'."""
+    for unit, size in (("days", 86400.0), ("h", 3600.0), ("min", 60.0)):
+        if seconds >= size:
+            return f"{seconds / size:.2g} {unit}"
+    return f"{seconds:.0f} s"
 
 
 def _keep_failed(ds, out, reason: str) -> str:

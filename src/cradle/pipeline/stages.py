@@ -140,6 +140,22 @@ def _check_finite(name, model, arrays, partial):
                                "(blow-up or NaN)", partial)
 
 
+def steps_taken(times, dt: float, t0: float | None = None) -> tuple[float, float]:
+    """(largest, smallest) step a fixed-step splitting takes to reach ``times`` from ``t0`` (default
+    times[0]) with nominal step ``dt``: each interval between output times is covered by
+    ceil(length/dt) equal steps (:func:`cradle.integrators.integrate_lattice`), so a store finer than
+    dt makes every step the store spacing, not dt."""
+    t = np.asarray(times, dtype=float)
+    if t0 is not None and t.size and t0 < t[0]:
+        t = np.concatenate(([t0], t))
+    lengths = np.diff(t)
+    lengths = lengths[lengths > 0]
+    if lengths.size == 0:
+        return float(dt), float(dt)
+    h = lengths / np.maximum(1.0, np.ceil(lengths / dt * (1.0 - 1e-12)))
+    return float(h.max()), float(h.min())
+
+
 def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
     """Integrate the lattice (nc) from the scene's initial data; x, v, forces, energy at stored times."""
     from cradle.integrators import SPLITTING_METHODS, integrate_lattice
@@ -156,7 +172,10 @@ def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) ->
     force = lattice.bond_forces(sol.x, alpha, bc)
     attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
     attrs.update({"model": "exact lattice (nc), V = V0", "integrator": sol.method,
-                  "dt": sol.dt if sol.dt is not None else "adaptive",
+                  # the largest step taken; the nominal step (its upper bound, from which the step grid
+                  # follows and with which `cradle extend` continues the run) is dt_nominal
+                  "dt": steps_taken(times, sol.dt)[0] if sol.dt is not None else "adaptive",
+                  "dt_nominal": sol.dt if sol.dt is not None else "adaptive",
                   "rtol": sol.rtol if sol.rtol is not None else "none",
                   "atol": sol.atol if sol.atol is not None else "none",
                   "energy_drift": sol.energy_drift, "max_energy_drift_allowed": spec["max_energy_drift"],
@@ -169,7 +188,7 @@ def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) ->
     _check_finite(name, "exact", {"x": sol.x, "v": sol.v}, ds)
     if not sol.energy_drift <= spec["max_energy_drift"]:
         raise StageFailure(f"scene '{name}' (exact): relative energy drift {sol.energy_drift:.3e} exceeds "
-                           f"max_energy_drift = {spec['max_energy_drift']:.1e} ({sol.method}, dt={sol.dt})", ds)
+                           f"max_energy_drift = {spec['max_energy_drift']:.1e} ({sol.method}, dt={attrs['dt']})", ds)
     return ds
 
 

@@ -8,6 +8,7 @@ that span several keys or sections are the ``check`` methods here and in
 from __future__ import annotations
 
 import math
+from dataclasses import fields
 
 from .beyond import Beyond
 from .scenes import LATTICE_ADAPTIVE, SPLITTINGS, DpsIntegrator, ExactIntegrator, Scene
@@ -213,6 +214,25 @@ class WorkPrecision:
                 "methods": {m: {k: [float(x) for x in v] for k, v in lad.items()} for m, lad in wp["methods"].items()}}
 
 
+@declared(doc="Limits every job must fit, checked on estimates before any work starts (cradle.pipeline.budget); "
+              "raise them on a bigger machine.")
+class Budget:
+    """Limits every job must fit (config key ``budget:``); the defaults fit a 2-core, 24 GB machine
+    running two jobs side by side."""
+
+    memory_gb: float = param(8.0, "Peak memory one job may use (GB); two jobs run side by side on two cores.",
+                             exclusiveMinimum=0)
+    disk_gb: float = param(20.0, "Bytes one job may write, and all scenes together (GB).", exclusiveMinimum=0)
+    hours: float = param(12.0, "Wall time one job may take (hours), estimated from its steps and beads.",
+                         exclusiveMinimum=0)
+
+    @classmethod
+    def from_config(cls, cfg: dict) -> "Budget":
+        """The budget of a validated config: its ``budget:`` values over the defaults."""
+        given = (cfg or {}).get("budget") or {}
+        return cls(**{f.name: float(given[f.name]) for f in fields(cls) if given.get(f.name) is not None})
+
+
 @declared(doc="The experiments of G. James, 'Nonlinear waves in Newton's cradle and the discrete p-Schrodinger "
               "equation': integrator defaults, orbits of the map G, homoclinic solutions of (dpsstn), lattice + DpS "
               "runs (scenes) and the figures that read them. Checked after this schema by "
@@ -230,6 +250,7 @@ class Config:
                                                       "enum": list(KNOWN_FIGURES)})
     work_precision: WorkPrecision = param(WorkPrecision(), WorkPrecision.__schema_doc__)
     beyond: Beyond = param(Beyond(), Beyond.__schema_doc__)
+    budget: Budget = param(Budget(), Budget.__schema_doc__)
 
 
 def check_finite(node, out, path=()) -> None:

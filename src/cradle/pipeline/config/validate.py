@@ -314,6 +314,10 @@ def validate(config: dict) -> dict:
     for err in sorted(_validator().iter_errors(cfg), key=lambda e: [str(p) for p in e.absolute_path]):
         _schema_messages(err, out)
     cfg = _fill(_validator().schema, cfg)
+    if not out.lines:  # every job's estimated memory, output and time within budget, before the physical
+        from cradle.pipeline import budget  # checks build stored-time arrays (cradle.pipeline.budget)
+
+        budget.check(cfg)
     sections.check(cfg, out)
     if out.lines:
         raise ConfigError(out.lines)

@@ -1,0 +1,243 @@
+"""What a job will cost, estimated from its parameters before it starts, and the budgets it must fit.
+
+Every config entry that makes a job (``scenes``, ``homoclinic``, ``map``) gets an
+:class:`Estimate` of its peak memory, the bytes it writes and its wall time, computed from the
+validated config alone (no initial data, no stored-time array: a 10-million-time store or
+``N: 1e9`` is judged in microseconds, before anything is allocated). :func:`check` compares
+each estimate with the :class:`Budget` (config key ``budget:``) and raises one
+:class:`~cradle.pipeline.config.ConfigError` line naming the entry's key, its value, the
+estimate and the budget. It is called at the end of :func:`cradle.pipeline.config.validate`, so
+the Snakefile and every ``cradle`` command refuse an over-budget config before any job starts.
+
+How the numbers are obtained:
+
+* **stored bytes**: a scene's simulate job writes, per stored time, ``x, v, force`` (exact),
+  ``A_re, A_im, x, force`` (DpS) and the two spectra (metrics): :data:`STORED_ARRAYS` float64
+  arrays of N values, plus a few scalars per time (energy, drifts, E, t, tau);
+* **peak memory**: the four Datasets of the job are held until all are written (all-or-nothing,
+  :func:`cradle.pipeline.runner.run_chain`), plus the transient arrays of the metrics stage
+  (complex FFT of x and its selection): :data:`PEAK_ARRAYS` arrays of N x T float64, plus
+  :data:`STATE_ARRAYS` arrays of N for the states and work arrays. Checked against peak RSS:
+  fft106 stored every 0.001 (11 GB on main, estimated 11.6 GB) and every 0.01 (1.34 GB measured
+  with ``cradle run``, estimated 1.4 GB);
+* **time**: steps x N x :data:`COST_PER_BEAD_STEP_S` of the exact run's method, with steps =
+  t_end x :data:`STEPS_PER_TIME_UNIT` (the method's default step, or tolerance, on a typical
+  travelling wave; a stronger compression takes smaller steps, up to omega_max(c) / omega_max of
+  that wave more) and at least one step per stored time, plus a cost per stored value
+  (:data:`COST_PER_STORED_VALUE_S`: DpS run, ansatz, metrics, writing) and the job's start-up
+  (:data:`BASE_SECONDS`). The DpS run's own steps (an ODE on N sites over the slow time
+  eps^(alpha-1) t) are cheaper than the exact run's and are not counted apart. The per-step
+  constants were measured on this machine by ``benchmarks/bead_step_cost.py`` (fft106 initial
+  data, N = 200, t = 100, best of three after a warm-up), the others from single jobs as each
+  constant says; rerun them on another machine and update them here.
+
+Why a large store is refused instead of streamed: :func:`cradle.pipeline.extend.stream_lattice`
+bounds the memory of the exact run's file only (about a third of the job's peak). The simulate
+job also holds the DpS run at every stored time (A, its ansatz x and forces) and the metrics
+stage compares both models' x at every stored time; its four files are one atomic set. A
+bounded-memory job would need the DpS run in chunks too, and
+:func:`cradle.integrators.integrate_dps` cannot continue from a stored state: it always starts
+at tau = 0 and measures its drifts from A(0) (no ``t0``/reference arguments as
+``integrate_lattice`` has), and the integrators are being reworked separately. Until then, a
+store whose estimate exceeds the memory budget is refused with the keys that drive it
+(``store.every``, ``N``, ``t_end``) and the budget to raise; a long exact run alone can be
+streamed with ``cradle extend`` (bounded memory).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from cradle.pipeline.config.sections import Budget  # the config key budget:, declared with the others
+
+#: float64 arrays of N values written per stored time by a scene's job (exact x, v, force; DpS
+#: A_re, A_im, x, force; metrics spectrum_exact, spectrum_dps)
+STORED_ARRAYS = 9
+#: scalars written per stored time (t, tau, energy, l2_drift, dps_energy_drift, P_drift, E)
+STORED_SCALARS = 7
+#: N x T float64 arrays held at the peak of a scene's job: the stored ones plus the metrics
+#: stage's complex FFT of x and its selection
+PEAK_ARRAYS = 13
+#: arrays of N float64 held whatever the store (initial data, states, integrator work arrays)
+STATE_ARRAYS = 32
+#: bytes of a process before any array (interpreter, numpy, xarray, numba, netCDF4): the max RSS
+#: of tw-weak's simulate job (results/benchmarks/sim/tw-weak.tsv), whose arrays are a few MB
+BASE_BYTES = 250e6
+#: wall seconds of a job before its first step (interpreter, imports, compiled-kernel cache loads):
+#: tw-weak's simulate job, 5.8 s wall for 0.1 s of integration
+BASE_SECONDS = 5.0
+#: wall seconds per stored value (stored time x bead) beyond the exact run's steps: the DpS run
+#: stepping to every stored time, the ansatz, forces, metrics and writing the four files with their
+#: checksums. Measured with `cradle run fft106` stored every 0.01 (54373 times x 200 beads): 27.6 s
+#: for the job, of which 0.35 s were exact steps
+COST_PER_STORED_VALUE_S = 2.5e-6
+#: wall seconds per (step x bead) and steps per unit of simulated time at the default step or
+#: tolerance (rtol = 1e-10), measured by benchmarks/bead_step_cost.py on this machine (2 cores):
+#: fft106's initial data, N = 200, best of three after a warm-up. lsoda and radau were not
+#: measured and take scipy dop853's values.
+COST_PER_BEAD_STEP_S = {"srkn6c": 3.2e-8, "srkn4c": 1.4e-8, "srkn6": 1.8e-8, "srkn4": 1.1e-8, "strang": 4.5e-9,
+                        "dop853_numba": 1.4e-7, "dop853": 1.7e-6, "rk45": 6.2e-7, "lsoda": 1.7e-6, "radau": 1.7e-6}
+STEPS_PER_TIME_UNIT = {"srkn6c": 23.3, "srkn4c": 58.2, "srkn6": 466.0, "srkn4": 931.0, "strang": 7760.0,
+                       "dop853_numba": 14.7, "dop853": 14.6, "rk45": 31.6, "lsoda": 14.6, "radau": 14.6}
+#: runs estimated to take longer than this print their estimate and an ETA while they run
+LONG_RUN_S = 60.0
+
+GB = 1e9
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """What one job will cost: peak memory and output bytes, wall seconds, and what drives them."""
+
+    key: str          # the config entry, e.g. scenes.fft106
+    cause: str        # its values that drive the cost, e.g. "N = 200, t_end = 543.7, store.every = 0.001"
+    memory_bytes: float
+    disk_bytes: float
+    seconds: float
+    steps: float = 0.0
+
+    def describe(self) -> str:
+        """One line: memory, disk, time."""
+        return (f"{self.key}: estimated peak memory {fmt_bytes(self.memory_bytes)}, "
+                f"writes {fmt_bytes(self.disk_bytes)}, about {fmt_duration(self.seconds)} ({self.cause})")
+
+
+def fmt_bytes(b: float) -> str:
+    for unit, size in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if b >= size:
+            return f"{b / size:.3g} {unit}"
+    return f"{b:.0f} B"
+
+
+def fmt_duration(s: float) -> str:
+    for unit, size in (("years", 365.25 * 86400), ("days", 86400), ("h", 3600), ("min", 60)):
+        if s >= size:
+            return f"{s / size:.3g} {unit}"
+    return f"{s:.2g} s"
+
+
+def _g(x) -> str:
+    return f"{float(x):g}"
+
+
+def stored_count(store: dict, t_end: float) -> int:
+    """Upper bound on the number of stored times (0, t_end, the snapshots and the grid), without
+    building the time array."""
+    every = store.get("every")
+    n = len(store.get("snapshots") or ()) + 2
+    if every:
+        n += int(math.floor(float(t_end) / float(every) * (1.0 + 1e-12) + 1e-9)) + 1
+    return n
+
+
+def _exact_seconds(N: int, t_end: float, exact: dict, stored: int) -> tuple[float, float]:
+    """(wall seconds, steps) of the exact run at the measured steps per unit time of its method,
+    scaled by the ratio of step factors when a splitting's ``dt_factor`` is given; every interval
+    between stored times takes at least one step (the steps end on the stored times)."""
+    method = exact.get("method", "srkn6c")
+    steps = float(t_end) * STEPS_PER_TIME_UNIT.get(method, max(STEPS_PER_TIME_UNIT.values()))
+    if exact.get("dt_factor"):  # only then import the integrators (numba): the Snakefile validates
+        from cradle.integrators.lattice_solver import DEFAULT_DT_FACTOR
+
+        steps *= DEFAULT_DT_FACTOR.get(method, float(exact["dt_factor"])) / float(exact["dt_factor"])
+    steps = max(steps, float(stored - 1))
+    return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
+
+
+def scene_estimate(cfg: dict, name: str) -> Estimate:
+    """The cost of scene ``name``'s simulate job (initial data, exact and DpS runs, metrics)."""
+    scene = cfg["scenes"][name]
+    d = cfg.get("defaults") or {}
+    return spec_estimate({"name": name, "N": scene["N"], "t_end": scene["t_end"], "store": scene.get("store"),
+                          "alpha": scene.get("alpha", d.get("alpha", 1.5)),
+                          "exact": {**(d.get("exact") or {}), **(scene.get("exact") or {})}})
+
+
+def spec_estimate(spec: dict) -> Estimate:
+    """The cost of a scene's job from its parameters (``name, N, t_end, store, alpha, exact``; a
+    resolved scene of :func:`cradle.pipeline.config.resolved_scene` has them all)."""
+    N, t_end = int(spec["N"]), float(spec["t_end"])
+    store = spec.get("store") or {}
+    T = stored_count(store, t_end)
+    exact = spec.get("exact") or {}
+    seconds, steps = _exact_seconds(N, t_end, exact, T)
+    seconds += BASE_SECONDS + COST_PER_STORED_VALUE_S * N * T
+    per_time = 8.0 * (STORED_ARRAYS * N + STORED_SCALARS)
+    cause = f"N = {N}, t_end = {_g(t_end)}" + (f", store.every = {_g(store['every'])}" if store.get("every") else "")
+    cause += f": {T} stored times"
+    if steps:
+        cause += f", ~{steps:.3g} steps of {exact.get('method')}"
+    return Estimate(f"scenes.{spec.get('name', '?')}", cause,
+                    memory_bytes=BASE_BYTES + 8.0 * (PEAK_ARRAYS * N * T + STATE_ARRAYS * N),
+                    disk_bytes=per_time * T + 8.0 * 6 * N, seconds=seconds, steps=steps)
+
+
+def long_run(spec: dict) -> Estimate | None:
+    """The estimate of a scene's job if it is long enough (:data:`LONG_RUN_S`) to announce, else None."""
+    e = spec_estimate(spec)
+    return e if e.seconds >= LONG_RUN_S else None
+
+
+def homoclinic_estimate(cfg: dict, name: str) -> Estimate:
+    """Powell's hybrid method holds a dense N x N Jacobian (and its QR factors): a few N^2 floats."""
+    N = int(cfg["homoclinic"][name]["N"])
+    return Estimate(f"homoclinic.{name}", f"N = {N}: dense N x N Jacobian",
+                    memory_bytes=BASE_BYTES + 8.0 * 4 * N * N, disk_bytes=8.0 * 4 * N,
+                    seconds=1e-9 * N**3 * 50)
+
+
+def map_estimate(cfg: dict, name: str) -> Estimate:
+    """Orbits x iterations points of the map G, two floats each."""
+    m = cfg["map"][name]
+    orbits = len(m.get("starts") or ()) + int((m.get("line") or {}).get("count", 0))
+    points = float(orbits) * (int(m["iterations"]) + 1)
+    return Estimate(f"map.{name}", f"{orbits} orbits x iterations = {m['iterations']}",
+                    memory_bytes=BASE_BYTES + 8.0 * 4 * points, disk_bytes=8.0 * 2 * points,
+                    seconds=points * 1e-6)
+
+
+def estimates(cfg: dict) -> list[Estimate]:
+    """An :class:`Estimate` for every scene, homoclinic and map entry of a validated config."""
+    out = []
+    for section, fn in (("scenes", scene_estimate), ("homoclinic", homoclinic_estimate), ("map", map_estimate)):
+        for name, entry in (cfg.get(section) or {}).items():
+            try:
+                out.append(fn(cfg, name))
+            except (TypeError, ValueError, KeyError, AttributeError, ZeroDivisionError, OverflowError):
+                continue  # a bad value: the physical checks name it
+    return out
+
+
+def over_budget(cfg: dict) -> list[str]:
+    """One line per job (and for all scenes' output together) that exceeds the budget; empty if all fit."""
+    budget = Budget.from_config(cfg)
+    lines = []
+    hint = "raise it under budget: in the config if this machine allows, or change the entry"
+    total = 0.0
+    for e in estimates(cfg):
+        if e.key.startswith("scenes."):
+            total += e.disk_bytes
+        for what, value, limit, key in (
+                ("peak memory", e.memory_bytes, budget.memory_gb * GB, "memory_gb"),
+                ("output", e.disk_bytes, budget.disk_gb * GB, "disk_gb"),
+                ("run time", e.seconds, budget.hours * 3600.0, "hours")):
+            if value > limit:
+                shown = fmt_duration(value) if key == "hours" else fmt_bytes(value)
+                lines.append(f"{e.key}: {e.cause}: estimated {what} {shown} exceeds budget.{key} = "
+                             f"{_g(getattr(budget, key))} ({hint})")
+                break
+    if total > budget.disk_gb * GB and not lines:
+        lines.append(f"scenes: all scenes together write an estimated {fmt_bytes(total)}, over budget.disk_gb = "
+                     f"{_g(budget.disk_gb)} ({hint})")
+    return lines
+
+
+def check(cfg: dict) -> None:
+    """Raise :class:`~cradle.pipeline.config.ConfigError` (one line per job over budget) if any job of
+    ``cfg`` (schema-valid, defaults filled) exceeds its budget; called by ``validate`` before its
+    physical checks (which build the stored-time arrays), so an oversized store is refused first."""
+    lines = over_budget(cfg)
+    if lines:
+        from cradle.pipeline.config import ConfigError
+
+        raise ConfigError([f"config error: {line}" for line in lines])
