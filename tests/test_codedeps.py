@@ -25,6 +25,7 @@ from pathlib import Path
 import pytest
 
 from cradle import figures
+from cradle.analyses.registry import ANALYSES
 from cradle.pipeline.codedeps import code_files
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -68,6 +69,8 @@ def _entries(row) -> tuple[str, ...]:
                                 if f.startswith("src/cradle/analyses/") or f.startswith("src/cradle/figures/")
                                 and not f.endswith("__init__.py")}))
     label = Path(row["output_file"]).stem
+    if "workflow/scripts/analysis.py" in scripts:  # the generic analysis rule runs the module the registry names
+        entries += (f"cradle.analyses.{ANALYSES[label].module}",)
     if {"workflow/scripts/figure.py", "workflow/scripts/dataset_figure.py"} & set(scripts):
         table = figures.FIGURES if label in figures.FIGURES else figures.DATASET_FIGURES
         entries += (f"cradle.figures.{table[label].split('.')[0]}",)

@@ -1,58 +1,72 @@
-# Work-precision of the lattice integrators (part of `all`): `snakemake -j2 work_precision`.
-# One job per scene of the `work_precision:` config section (reference runs, then every method on
-# its ladder) -> results/work-precision/<scene>.nc; then the figure
-# results/figures/work-precision.{pdf,png}. A scene job times integrators: it takes every core
-# given to Snakemake (threads: workflow.cores), so no other job runs beside it, and it runs in its own
-# single-threaded Python process (~40 s each, ~2 min for the whole target on 2 cores).
+# Work-precision of the lattice integrators (config `work_precision:`). Two forms, as the analyses of
+# analyses.smk: the reduced one `all` builds (`snakemake -j2 work_precision`: the scenes, methods and
+# settings of work_precision.reduced -> results/work-precision/<scene>.nc, results/figures/work-precision.*)
+# and the full one (`snakemake -j2 work_precision_full` -> results/work-precision/full/). One job per
+# scene (reference runs, then every method on its ladder), then the figure. A scene job times
+# integrators: it takes every core given to Snakemake (threads: workflow.cores), so no other job runs
+# beside it, in its own single-threaded Python process.
 import json
 
+from cradle.pipeline.config.sections import WorkPrecision as _WP
 
-WP_SCENES = list((config.get("work_precision") or {}).get("scenes") or {})
+WP_DIR = {"reduced": "results/work-precision", "full": "results/work-precision/full"}
+WP_FIGURE = {"reduced": "results/figures/work-precision", "full": "results/work-precision/full/work-precision"}
 
+for _form in ("reduced", "full"):
+    _scenes = _WP.scenes_of(config, _form) if config.get("work_precision") else []
 
-rule work_precision_scene:
-    conda:
-        "../envs/cradle.yaml"
-    message:
-        "Work-precision of the lattice integrators on scene '{wildcards.scene}'"
-    input:
-        code=code_of("cradle.analyses.workprecision"),
-        initial="results/initial/{scene}.nc",
-    output:
-        "results/work-precision/{scene}.nc",
-    params:
-        spec=lambda w: json.dumps(cc.resolved_work_precision(config, w.scene), sort_keys=True),
-    log:
-        "results/logs/work-precision/{scene}.log",
-    benchmark:
-        "results/benchmarks/work-precision/{scene}.tsv"
-    wildcard_constraints:
-        scene="|".join(re.escape(k) for k in WP_SCENES) or "(?!)",
-    threads: workflow.cores
-    shell:
-        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "
-        "python -m cradle.analyses.workprecision scene --spec {params.spec:q} --initial {input.initial:q} "
-        "--out {output:q} --log {log:q}"
+    rule:
+        name:
+            f"work_precision_scene_{_form}"
+        conda:
+            "../envs/cradle.yaml"
+        message:
+            f"Work-precision of the lattice integrators on scene '{{wildcards.scene}}' ({_form})"
+        input:
+            code=code_of("cradle.analyses.workprecision"),
+            initial=L.path("initial", scene="{scene}"),
+        output:
+            f"{WP_DIR[_form]}/{{scene}}.nc",
+        params:
+            spec=lambda w, form=_form: json.dumps(cc.resolved_work_precision(config, w.scene, form), sort_keys=True),
+        log:
+            L.path("log", job=f"work-precision/{_form}/{{scene}}"),
+        benchmark:
+            L.path("benchmark", job=f"work-precision/{_form}/{{scene}}")
+        wildcard_constraints:
+            scene="|".join(re.escape(k) for k in _scenes) or "(?!)",
+        threads: workflow.cores
+        shell:
+            "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "
+            "python -m cradle.analyses.workprecision scene --spec {params.spec:q} --initial {input.initial:q} "
+            "--out {output:q} --log {log:q}"
 
-
-rule work_precision_figure:
-    conda:
-        "../envs/cradle.yaml"
-    message:
-        "Drawing figure work-precision"
-    input:
-        code=code_of("cradle.analyses.workprecision", "cradle.figures.workprecision"),
-        data=expand("results/work-precision/{scene}.nc", scene=WP_SCENES),
-    output:
-        pdf=update("results/figures/work-precision.pdf"),
-        png=update("results/figures/work-precision.png"),
-    log:
-        "results/logs/figures/work-precision.log",
-    shell:
-        "python -m cradle.analyses.workprecision figure --out results/figures/work-precision "
-        "--log {log:q} {input.data:q}"
+    rule:
+        name:
+            f"work_precision_figure_{_form}"
+        conda:
+            "../envs/cradle.yaml"
+        message:
+            f"Drawing figure work-precision ({_form})"
+        input:
+            code=code_of("cradle.analyses.workprecision", "cradle.figures.workprecision"),
+            data=[f"{WP_DIR[_form]}/{s}.nc" for s in _scenes],
+        output:
+            pdf=update(f"{WP_FIGURE[_form]}.pdf"),
+            png=update(f"{WP_FIGURE[_form]}.png"),
+        params:
+            stem=WP_FIGURE[_form],
+        log:
+            L.path("log", job=f"figures/{_form}/work-precision"),
+        shell:
+            "python -m cradle.analyses.workprecision figure --out {params.stem:q} --log {log:q} {input.data:q}"
 
 
 rule work_precision:
     input:
-        rules.work_precision_figure.output,
+        rules.work_precision_figure_reduced.output,
+
+
+rule work_precision_full:
+    input:
+        rules.work_precision_figure_full.output,

@@ -31,16 +31,23 @@ class FloquetConvergence:
 @declared(doc="The reduced form `snakemake all` builds (results/floquet/floquet.nc, results/figures/floquet.*): "
               "these keys replace those of the full form, `snakemake floquet_full` (results/floquet/full/).")
 class FloquetReduced:
-    n_q: int = param(13, "Number of q of the sweep.", minimum=3, maximum=1001)
-    n_p: int = param(41, "Number of Bloch wavenumbers p in [0, pi].", minimum=9, maximum=2001)
+    n_q: int = param(9, "Number of q of the sweep.", minimum=3, maximum=1001)
+    n_p: int = param(31, "Number of Bloch wavenumbers p in [0, pi].", minimum=9, maximum=2001)
+    hill_modes: int = param(12, "Hill modes |m| <= hill_modes of the Bloch profile W.", minimum=4, maximum=256)
+    grid_log2: int = param(16, "log2 of the grid of K = V0''(u(xi+q) - u(xi)).", minimum=8, maximum=22)
+    wave_modes: int = param(64, "Sine modes of the exact wave.", minimum=8, maximum=1024)
+    wave_grid_log2: int = param(13, "Grid 2^wave_grid_log2 of the wave solver.", minimum=8, maximum=20)
+    threshold_n_scan: int = param(6, "Scan points before the bisection of the threshold.", minimum=2, maximum=200)
     threshold_omega_tw: list[float] = param([1.1], "omega_tw values of the threshold search; must contain omega_tw.",
                                             minItems=1, maxItems=8, items=_OMEGA_ITEM)
     q_profiles: list[float | str] = param(["pi/2"], "Wavenumbers q of the stored growth-against-p profiles.",
                                           minItems=1, maxItems=10, items={"$ref": "#/$defs/angle"})
     small_q: list[float | str] = param(["3pi/5"], "Wavenumbers of the small-amplitude check.", minItems=1,
                                        maxItems=8, items={"$ref": "#/$defs/angle"})
-    convergence: FloquetConvergence = param(FloquetConvergence(hill_modes=20, grid_log2=18, wave_modes=128),
+    convergence: FloquetConvergence = param(FloquetConvergence(hill_modes=16, grid_log2=17, wave_modes=96),
                                             FloquetConvergence.__schema_doc__)
+    direct_growth_factor: float = param(100.0, "The direct run lasts until the mode grows by this factor (> 1).",
+                                        exclusiveMinimum=1, maximum=100000000.0)
 
 
 _FLOQUET_ANGLES = ("q_min", "q_max", "threshold_q_min", "threshold_q_max")

@@ -89,7 +89,7 @@ def typed(config: dict):
     return spec.build(Config, _validated(config))
 
 
-def resolved_work_precision(config: dict, name: str) -> dict:
+def resolved_work_precision(config: dict, name: str, form: str = "full") -> dict:
     """The parameters of work-precision scene ``name``: ``alpha``, ``N``, ``bc`` from the ``scenes:``
     entry of the same name (whose initial data are used), the rest from ``work_precision``."""
     cfg = _validated(config)
@@ -97,7 +97,7 @@ def resolved_work_precision(config: dict, name: str) -> dict:
     if name not in entries:
         raise ConfigError(f"config error: work_precision.scenes.{name}: no entry of that name "
                           f"(entries: {', '.join(entries) or 'none'})")
-    return WorkPrecision.resolve(cfg, name, resolved_scene(cfg, name))
+    return WorkPrecision.resolve(cfg, name, resolved_scene(cfg, name), form)
 
 
 def resolved_theorem1(config: dict) -> dict:

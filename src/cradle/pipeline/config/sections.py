@@ -171,6 +171,18 @@ class WorkPrecisionReference:
                              "reference to hold; > 0.", exclusiveMinimum=0)
 
 
+@declared(doc="The reduced form `snakemake all` builds (results/work-precision/<scene>.nc, "
+              "results/figures/work-precision.*); the full one is `snakemake work_precision_full` "
+              "(results/work-precision/full/).")
+class WorkPrecisionReduced:
+    scenes: list[str] = param(["tw-weak"], "The measured scenes kept (names under work_precision.scenes).",
+                              minItems=1, items={"$ref": "#/$defs/name"})
+    t_end: float = param(100.0, "Runs end at the smaller of this and the scene's t_end; > 0.", exclusiveMinimum=0)
+    methods: list[str] = param(["srkn6c", "srkn4c", "srkn6", "dop853_numba"], "The methods kept.", minItems=1,
+                               items={"type": "string", "enum": [*SPLITTINGS, *LATTICE_ADAPTIVE]})
+    settings: int = param(4, "The first (coarsest) settings of each ladder kept.", minimum=1, maximum=20)
+
+
 @declared(doc="Work-precision of the lattice integrators (`snakemake -j2 work_precision`): for each scene, a reference "
               "from two runs of different accuracy, then every method on a ladder of settings; error and energy drift "
               "against wall time in results/work-precision/<scene>.nc and results/figures/work-precision.{pdf,png}.")
@@ -191,10 +203,12 @@ class WorkPrecision:
     methods: dict = param({}, "The methods measured and the ladder of settings of each: dt_factor for the "
                           "splittings, rtol for the adaptive methods.", type="object", additionalProperties=False,
                           properties={m: _ladder(m) for m in (*SPLITTINGS, *LATTICE_ADAPTIVE)})
+    reduced: WorkPrecisionReduced = param(WorkPrecisionReduced(), WorkPrecisionReduced.__schema_doc__)
 
     @staticmethod
     def check(wp, cfg: dict, out) -> None:
-        """work_precision.scenes name `scenes:` entries (their initial data are measured)."""
+        """work_precision.scenes name `scenes:` entries (their initial data are measured); the reduced form
+        keeps some of those scenes and methods."""
         if not isinstance(wp, dict) or not isinstance(wp.get("scenes"), dict):
             return
         scenes = entries(cfg, "scenes")
@@ -202,16 +216,39 @@ class WorkPrecision:
             if name not in scenes:
                 out.add(["work_precision", "scenes", name], f"unknown scene: no `scenes:` entry of that "
                                                             f"name{did_you_mean(name, scenes)}")
+        red = wp.get("reduced") if isinstance(wp.get("reduced"), dict) else {}
+        if wp["scenes"]:
+            for i, name in enumerate(red.get("scenes") or []):
+                if name not in wp["scenes"]:
+                    out.add(["work_precision", "reduced", "scenes", i], f"not a work_precision scene"
+                                                                        f"{did_you_mean(name, list(wp['scenes']))}", name)
+        for i, m in enumerate(red.get("methods") or []):
+            if isinstance(wp.get("methods"), dict) and m not in wp["methods"]:
+                out.add(["work_precision", "reduced", "methods", i], "not a method of work_precision.methods", m)
 
     @staticmethod
-    def resolve(cfg: dict, name: str, scene: dict) -> dict:
-        """The parameters of work-precision scene ``name`` (plain, JSON-serialisable): ``alpha``, ``N``,
-        ``bc`` of the resolved ``scene`` of that name, the rest from ``work_precision``."""
+    def scenes_of(cfg: dict, form: str) -> list[str]:
+        """The scenes measured in one form (full: every work_precision scene)."""
         wp = cfg["work_precision"]
+        return list(wp["scenes"]) if form == "full" else [n for n in wp["reduced"]["scenes"] if n in wp["scenes"]]
+
+    @staticmethod
+    def resolve(cfg: dict, name: str, scene: dict, form: str = "full") -> dict:
+        """The parameters of work-precision scene ``name`` (plain, JSON-serialisable): ``alpha``, ``N``,
+        ``bc`` of the resolved ``scene`` of that name, the rest from ``work_precision``; the reduced form
+        keeps its methods, the first settings of each ladder, and ends at its t_end."""
+        wp = cfg["work_precision"]
+        t_end, methods = float(wp["scenes"][name]["t_end"]), wp["methods"]
+        ladder = slice(None)
+        if form == "reduced":
+            red = wp["reduced"]
+            t_end = min(t_end, float(red["t_end"]))
+            methods = {m: lad for m, lad in methods.items() if m in red["methods"]}
+            ladder = slice(0, int(red["settings"]))
         return {"name": name, "alpha": scene["alpha"], "N": scene["N"], "bc": scene["bc"],
-                "t_end": float(wp["scenes"][name]["t_end"]), "compare_every": float(wp["compare_every"]),
+                "t_end": t_end, "compare_every": float(wp["compare_every"]),
                 "reference": dict(wp["reference"]), "repeat_time": float(wp["repeat_time"]),
-                "methods": {m: {k: [float(x) for x in v] for k, v in lad.items()} for m, lad in wp["methods"].items()}}
+                "methods": {m: {k: [float(x) for x in v][ladder] for k, v in lad.items()} for m, lad in methods.items()}}
 
 
 @declared(doc="Limits every job must fit, checked on estimates before any work starts (cradle.pipeline.budget); "
