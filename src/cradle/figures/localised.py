@@ -56,7 +56,8 @@ def _omega(ds):
 def _stored(metrics, name):
     """A measurement of the scene's metrics file (a clear error when the file predates it)."""
     if name not in metrics:
-        raise ValueError(f"scene '{metrics.attrs.get('scene', '?')}': no {name} in its metrics file: rebuild the metrics")
+        raise ValueError(f"scene '{metrics.attrs.get('scene', '?')}': no {name} in its metrics file: "
+                         "rebuild the metrics")
     return metrics[name]
 
 

@@ -79,8 +79,8 @@ def map_orbits(spec: dict, name: str = "") -> xr.Dataset:
     data = {"map_a": U[..., 0], "map_b": U[..., 1]}
     coords = {"orbit": np.arange(len(starts)), "iterate": np.arange(U.shape[1])}
     if spec.get("marks", False):  # traj2: the explicit period-2, -3, -4 orbits of its caption, marked on the panel
-        marks = [(int(key[len("period"):]), U_p) for key, U_p in stationary.explicit_periodic_orbits(spec["alpha"]).items()
-                 if key in MARKED_ORBITS]
+        explicit = stationary.explicit_periodic_orbits(spec["alpha"])
+        marks = [(int(key[len("period"):]), explicit[key]) for key in MARKED_ORBITS]
         data.update({"mark_a": np.concatenate([U_p[:, 0] for _, U_p in marks]),
                      "mark_b": np.concatenate([U_p[:, 1] for _, U_p in marks]),
                      "mark_period": np.concatenate([np.full(len(U_p), period) for period, U_p in marks])})
