@@ -19,7 +19,20 @@ from cradle.pipeline.variables import VARIABLES
 
 from test_pipeline import TINY  # tests/ is on sys.path (pytest rootdir, no __init__.py)
 
-KINDS = ("homoclinic", "map", "initial", "exact", "dps", "metrics")
+KINDS = ("homoclinic", "map", "initial", "exact", "dps", "metrics", "map-marks", "metrics-breather", "metrics-pair")
+
+
+def _localised_run(kind, omega, N=20, t_end=60.0, dt=0.5):
+    """A synthetic breathing run of ``kind`` ("breather", "pair"), as exact.nc holds it (x, force)."""
+    from cradle.models import lattice
+
+    t = np.arange(0.0, t_end + 1e-9, dt)
+    n = np.arange(N)
+    prof = 0.01 * (-1.0) ** n * np.exp(-0.5 * ((n - N / 2 + 0.5) / 1.2) ** 2)
+    x = prof[None, :] * np.cos(omega * t)[:, None]
+    attrs = {"scene": kind, "alpha": 1.5, "N": N, "bc": "periodic", "initial_kind": kind, "omega_sw": 1.1}
+    return make_dataset({"x": x, "force": lattice.bond_forces(x, 1.5, "periodic")}, coords={"t": t, "n": n},
+                        attrs=attrs)
 
 
 @pytest.fixture(scope="module")
@@ -41,7 +54,11 @@ def outputs(tmp_path_factory):
         "exact": (ex, root / "sim" / scene / "exact.nc"),
         "dps": (ap, root / "sim" / scene / "dps.nc"),
         "metrics": (stages.metrics(spec, ex, ap, scene), root / "metrics" / f"{scene}.nc"),
+        "map-marks": (stages.map_orbits({**mspec, "marks": True}, "marked"), root / "map" / "marked.nc"),
     }
+    for kind in ("breather", "pair"):  # the breather measurements of localised scenes (plot18, loc1, fini)
+        run_ex, run_ap = _localised_run(kind, 1.09), _localised_run(kind, 1.1)
+        built[f"metrics-{kind}"] = (stages.metrics({}, run_ex, run_ap, kind), root / "metrics" / f"{kind}.nc")
     return {kind: write_netcdf(ds, path) for kind, (ds, path) in built.items()} | {"root": root, "scene": scene}
 
 

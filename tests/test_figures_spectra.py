@@ -4,8 +4,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from cradle.measurements import compare
+from cradle.measurements import compare, sidebands
 from cradle.figures import spectra
+from cradle.pipeline import stages
 from cradle.pipeline.io import make_dataset
 
 N = 40                                   # q N / (2 pi) = 16 for q = 4 pi/5: q on Gamma*
@@ -21,7 +22,7 @@ def _carrier(N, q, amp=1.0):
 
 def _ratio(x, q, **kw):
     k, xh = compare.spatial_dft(x)
-    return float(spectra.sideband_ratio(k, np.abs(xh), q, **kw))
+    return float(sidebands.sideband_ratio(k, np.abs(xh), q, **kw))
 
 
 def test_pure_carrier_has_no_sideband():
@@ -75,10 +76,10 @@ def test_ratio_is_vectorised_over_time_and_rejects_other_grids():
     x = np.stack([np.cos(q * n), np.cos(q * n) + 0.3 * np.cos((q - 0.5) * n)])
     # q - 0.5 is not on Gamma*: its leakage still tops out below 0.3 outside the window
     k, xh = compare.spatial_dft(x)
-    r = spectra.sideband_ratio(k, np.abs(xh), q)
+    r = sidebands.sideband_ratio(k, np.abs(xh), q)
     assert r.shape == (2,) and r[0] < 1e-12 and 0.1 < r[1] < 0.3
     with pytest.raises(ValueError, match="Gamma"):
-        spectra.sideband_ratio(np.linspace(-3, 3, N), np.abs(xh), q)
+        sidebands.sideband_ratio(np.linspace(-3, 3, N), np.abs(xh), q)
 
 
 # --------------------------------------------------------------------------- drawing
@@ -91,14 +92,10 @@ def _scene(q=Q, q_expr="4pi/5", seed=0):
     base = a * np.cos(q * n[None, :] - 1.1 * t[:, None])
     ex = base + 1e-3 * rng.standard_normal((t.size, N))
     ap = base + 1e-3 * rng.standard_normal((t.size, N))
-    attrs = {"q": q, "q_expr": q_expr, "a": a, "N": N, "bc": "periodic"}
+    attrs = {"q": q, "q_expr": q_expr, "a": a, "N": N, "bc": "periodic", "initial_kind": "travelling"}
     exact = make_dataset({"x": ex}, coords={"t": t, "n": n}, attrs=attrs)
     dps = make_dataset({"x": ap}, coords={"t": t, "n": n}, attrs=attrs)
-    k, xe = compare.spatial_dft(ex)
-    _, xa = compare.spatial_dft(ap)
-    metrics = make_dataset({"spectrum_exact": np.abs(xe), "spectrum_dps": np.abs(xa)},
-                           coords={"t": t, "k": k}, attrs=attrs)
-    return {"exact": exact, "dps": dps, "metrics": metrics}
+    return {"exact": exact, "dps": dps, "metrics": stages.metrics({}, exact, dps, "s")}
 
 
 def _curve(ax):
@@ -158,10 +155,9 @@ def test_fft344_spectra_and_profiles():
     plt.close(fig)
 
 
-def test_stale_metrics_and_missing_times_are_errors():
+def test_metrics_without_the_sideband_peaks_and_missing_times_are_errors():
     sim = _scene()
-    stale = sim["metrics"].copy(deep=True)
-    stale["spectrum_dps"][1, 3] += 1.0
+    stale = sim["metrics"].drop_vars(["sideband_ratio_dps", "sideband_k_dps"])
     with pytest.raises(ValueError, match="rebuild the metrics"):
         spectra.draw_fft106({"s": {**sim, "metrics": stale}}, {"scenes": ["s"], "times": TIMES})
     with pytest.raises(ValueError, match="not stored"):
@@ -169,10 +165,31 @@ def test_stale_metrics_and_missing_times_are_errors():
     plt.close("all")
 
 
+def test_printed_ratios_and_shares_are_the_stored_measurements():
+    """The metrics stage stores, per stored time, what the panels print: sideband_peak of the DFT
+    of each model and the carrier share of each profile."""
+    sim = _scene()
+    m, q = sim["metrics"], Q
+    for model in ("exact", "dps"):
+        k, xh = compare.spatial_dft(sim[model]["x"].values)
+        ratio, k_peak = sidebands.sideband_peak(k, np.abs(xh), q)
+        assert np.array_equal(m[f"sideband_ratio_{model}"].values, ratio)
+        assert np.array_equal(m[f"sideband_k_{model}"].values, k_peak, equal_nan=True)
+        for i, x in enumerate(sim[model]["x"].values):
+            assert m[f"carrier_share_{model}"].values[i] == sidebands.carrier_share(x, q)
+    t = TIMES[3]
+    fig = spectra.draw_fft344({"s": sim}, {"scenes": ["s"], "times": [t, TIMES[1], TIMES[2]]})
+    r = float(m["sideband_ratio_exact"].sel(t=t))
+    assert f"$r = {r:.3g}$" in fig.axes[0].get_title()
+    share = float(m["carrier_share_dps"].sel(t=TIMES[2]))
+    assert f"carrier share of power {share:.2f}" in fig.axes[4].get_title()
+    plt.close(fig)
+
+
 def test_carrier_share_of_a_profile():
     N, q = 200, 57 * np.pi / 100
     n = np.arange(N)
-    assert spectra.carrier_share(0.02 * np.cos(q * n - 0.7), q) == pytest.approx(1.0, abs=1e-12)
+    assert sidebands.carrier_share(0.02 * np.cos(q * n - 0.7), q) == pytest.approx(1.0, abs=1e-12)
     # carrier a, one sideband of amplitude a/2: share = 1 / (1 + 1/4)
     x = np.cos(q * n) + 0.5 * np.cos((q + 2 * np.pi * 10 / N) * n)
-    assert spectra.carrier_share(x, q) == pytest.approx(0.8, rel=1e-12)
+    assert sidebands.carrier_share(x, q) == pytest.approx(0.8, rel=1e-12)

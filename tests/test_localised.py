@@ -226,6 +226,49 @@ def test_frequency_and_half_period_shift():
     assert sh["half_shift_periods"] == pytest.approx((np.pi / 0.01) / (2 * np.pi / 1.1), rel=1e-3)
 
 
+def _pair_run(t_merge, x_scale=1e-3):
+    """A synthetic run of kind "pair" (forces of _merge_at, any displacements) as the sim files hold it."""
+    d = _merge_at(t_merge)
+    N = d["force"].shape[1]
+    x = x_scale * np.sin(np.arange(N))[None, :] * np.cos(1.1 * d["t"])[:, None]
+    return xr.Dataset({"x": (("t", "n"), x), "force": (("t", "n"), d["force"])},
+                      coords={"t": d["t"], "n": np.arange(N)},
+                      attrs={"omega_sw": 1.1, "bc": "periodic", "initial_kind": "pair", "alpha": ALPHA})
+
+
+def test_metrics_stage_stores_the_merging_times_of_the_measurement():
+    ex, ap = _pair_run(80.5 * T), _pair_run(60.2 * T)
+    m = stages.metrics({}, ex, ap, "pair")
+    for model, run in (("exact", ex), ("dps", ap)):
+        assert float(m[f"merging_time_{model}"]) == breathers.merging_time(run, 2.0 * np.pi / 1.1, periodic=True)
+        assert m[f"merging_time_{model}"].attrs["units"] == "1" and m[f"merging_time_{model}"].attrs["long_name"]
+    assert localised.loc1_merging_times({"metrics": m}) == {"exact": 81.0, "dps": 61.0}
+    # the peak compression the loc1 diagrams bin by period is the measurement's, on every bond
+    starts, P = breathers.peak_compression(ex["t"].values, ex["force"].values, 2.0 * np.pi / 1.1)
+    assert np.array_equal(m["t_window"].values, starts)
+    assert np.array_equal(m["peak_compression_exact"].values, P, equal_nan=True)
+
+
+def test_metrics_stage_stores_the_breather_measurements_of_plot18_and_fini():
+    sim = _sim(N=40, t_end=120.0)
+    ex, ap, m = sim["exact"], sim["dps"], sim["metrics"]
+    x = ex["x"].values
+    site = int(np.argmax(np.abs(x[0])))
+    sh = breathers.half_period_shift(ex["t"].values, x[:, site], ap["x"].values[:, site], 1.1)
+    assert int(m["breather_site"]) == site
+    assert localised.shift(m) == sh
+    core = 0.5 * (int(np.argmax(x[0])) + int(np.argmin(x[0])))
+    i = 57
+    assert float(m["radiated_exact"][i]) == breathers.dispersive_amplitude(x[i], core, periodic=True)
+
+
+def test_a_metrics_file_without_the_measurements_is_a_clear_error():
+    sim = _sim(kind="pair", t_end=100.0)
+    stale = sim["metrics"].drop_vars(["merging_time_exact", "merging_time_dps"])
+    with pytest.raises(ValueError, match="rebuild the metrics"):
+        localised.loc1_merging_times({**sim, "metrics": stale})
+
+
 # ------------------------------------------------------------------ drawing functions
 
 def _sim(N=20, t_end=60.0, dt=0.5, omega=1.1, bc="periodic", kind="breather", scale=0.01):
@@ -239,7 +282,11 @@ def _sim(N=20, t_end=60.0, dt=0.5, omega=1.1, bc="periodic", kind="breather", sc
         f = lattice.bond_forces(x, ALPHA, bc)
         return xr.Dataset({"x": (("t", "n"), x), "force": (("t", "n"), f)}, coords={"t": t, "n": n}, attrs=attrs)
 
-    return {"exact": ds(omega * 0.995), "dps": ds(omega), "metrics": None}
+    ex, ap = ds(omega * 0.995), ds(omega)
+    if kind == "packet":  # no omega_sw of its own (the metrics stage bins it by 1.1)
+        for part in (ex, ap):
+            del part.attrs["omega_sw"]
+    return {"exact": ex, "dps": ap, "metrics": stages.metrics({}, ex, ap, kind)}
 
 
 def _images(fig):
@@ -262,8 +309,6 @@ def test_draw_plot18_on_synthetic_data():
 
 def test_draw_loc1_on_synthetic_data():
     packet = _sim(kind="packet")
-    for part in ("exact", "dps"):
-        del packet[part].attrs["omega_sw"]
     data = {"p": packet, "q": _sim(kind="pair", t_end=100.0)}
     fig = localised.draw_loc1(data, {"scenes": ["p", "q"]})
     ims = _images(fig)

@@ -5,7 +5,7 @@ import pytest
 
 from cradle.models import stationary as st
 from cradle.figures import maps
-from cradle.pipeline.io import make_dataset
+from cradle.pipeline import stages
 
 ALPHAS = [1.5, 2.0, 3.0]
 
@@ -66,11 +66,23 @@ def test_box_cuts_escaping_orbits():
     assert np.all(np.isfinite(O))
 
 
+def test_map_stage_stores_the_explicit_orbits_of_marked_entries():
+    spec = {"alpha": 1.5, "box": 0.1, "iterations": 20, "starts": [[0.0, 1e-13]]}
+    plain = stages.map_orbits(spec, "plain")
+    assert "mark_a" not in plain and plain.attrs["marks"] == 0
+    ds = stages.map_orbits({**spec, "marks": True}, "marked")
+    P = st.explicit_periodic_orbits(1.5)
+    for period in (2, 3, 4):
+        sel = ds["mark_period"].values == period
+        U = P[f"period{period}"]
+        assert np.array_equal(ds["mark_a"].values[sel], U[:, 0]) and np.array_equal(ds["mark_b"].values[sel], U[:, 1])
+    assert np.array_equal(ds["map_a"].values, plain["map_a"].values, equal_nan=True)
+    assert ds["mark_a"].attrs["units"] == "1" and ds["mark_a"].attrs["long_name"]
+
+
 def test_map_figures_draw_from_datasets():
-    U = st.orbits([[0.0, 1e-13], [0.02, 0.0]], 200, 1.5, box=0.1)
-    ds = make_dataset({"map_a": U[..., 0], "map_b": U[..., 1]},
-                      coords={"orbit": [0, 1], "iterate": np.arange(201)},
-                      attrs={"box": 0.1, "alpha": 1.5, "marks": 1})
+    ds = stages.map_orbits({"alpha": 1.5, "box": 0.1, "iterations": 200, "starts": [[0.0, 1e-13], [0.02, 0.0]],
+                            "marks": True}, "o")
     fig = maps.draw_traj3({"o": ds}, {"scenes": ["o"]})
     assert len(fig.axes) == 1
     fig = maps.draw_traj2({f"p{i}": ds for i in range(6)}, {"scenes": [f"p{i}" for i in range(6)]})

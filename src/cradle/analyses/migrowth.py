@@ -48,6 +48,10 @@ from cradle.analyses import modulational
 from cradle.pipeline.config import store_times
 
 MODELS = ("exact", "dps")
+#: the growth-rate diagram of the mi-growth figure: max_p of the scaled linear DpS rate on THEORY_N_Q
+#: wavenumbers q in [0, pi], each a grid search over THEORY_N_P values of p then a bounded refinement
+THEORY_N_Q = 361
+THEORY_N_P = 1001
 
 
 # ---------------------------------------------------------------- spectra
@@ -262,12 +266,16 @@ def compute(spec: dict, scenes: dict, log=None):
     if len(alphas) != 1:
         raise ValueError(f"mi-growth: scenes with different alpha {sorted(alphas)}: one diagram per alpha")
     alpha = alphas.pop()
-    data = {"mig_q": qs, "mig_N": Ns, "mig_eps": eps_s, "mig_p": pgrid, "mig_theory_p": theo, "mig_rate_p": rate_p,
+    q_theory = np.linspace(0.0, np.pi, THEORY_N_Q)
+    max_theory = np.array([modulational.max_over_p(x, alpha, THEORY_N_P)[0] for x in q_theory])
+    data = {"mig_theory_max": max_theory, "mig_rate_scale": dps.tau0(alpha) / eps_s ** (alpha - 1.0),
+            "mig_q": qs, "mig_N": Ns, "mig_eps": eps_s, "mig_p": pgrid, "mig_theory_p": theo, "mig_rate_p": rate_p,
             "mig_rate": f["rate"], "mig_rate_stderr": f["stderr"], "mig_r2": f["r2"], "mig_rate_theory": f["theory"],
             "mig_rate_theory_max": tmax, "mig_p_star": f["pstar"], "mig_window_start": f["ta"],
             "mig_window_end": f["tb"], "mig_exponential": expo, "mig_pair": pair, "mig_envelope": env,
             "mig_sim_check": f["check"]}
-    coords = {"mig_scene": np.arange(S), "mig_model": np.arange(len(MODELS)), "mig_m": np.arange(M), "mig_t": tg}
+    coords = {"mig_scene": np.arange(S), "mig_model": np.arange(len(MODELS)), "mig_m": np.arange(M), "mig_t": tg,
+              "mig_theory_q": q_theory}
     attrs = {"scene_names": ", ".join(names), "model_names": ", ".join(MODELS), "alpha": alpha, "tau0": dps.tau0(alpha),
              "sample_every": every, "saturation": spec["saturation"], "decades": spec["decades"],
              "r2_min": spec["r2_min"],

@@ -8,7 +8,7 @@
 * loc1: a packet modulating a binary oscillation (left) and two static
   breathers (right), at rest: initial profiles, then the forces of the exact
   and approximate runs on one colour scale per column, and the merging time
-  of the two breathers (:func:`merging_time`) in breather periods.
+  of the two breathers in breather periods.
 * fini: a breather on a 10-bead chain with free ends: bead displacements
   against t, each bead offset by its label n = 1..10, in an early window and
   after ~250 breather periods, exact (left) and approximate (right).
@@ -16,14 +16,17 @@
 Space-time diagrams are raster images (``imshow``): forces f_n =
 V0'(x_{n+1} - x_n) <= 0 in grey levels, white = beads apart (f = 0), black =
 the most negative force; bond index n horizontal, time t upwards.
+
+Every measurement shown (half-period shift, radiated amplitude, peak
+compression per period, merging times) is read from the scene's metrics file
+(results/metrics/<scene>.nc, :func:`cradle.pipeline.stages.localised_metrics`).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from cradle.measurements.breathers import dispersive_amplitude, half_period_shift, merging_time
 from cradle.figures import figure
-from cradle.figures.spacetime import FORCE_LABEL, _at, spacetime
+from cradle.figures.spacetime import FORCE_LABEL, _at, period_minimum, spacetime
 from cradle.figures.spacetime import common_vmin as _vmin
 
 
@@ -50,6 +53,19 @@ def _omega(ds):
     return float(ds.attrs["omega_sw"])
 
 
+def _stored(metrics, name):
+    """A measurement of the scene's metrics file (a clear error when the file predates it)."""
+    if name not in metrics:
+        raise ValueError(f"scene '{metrics.attrs.get('scene', '?')}': no {name} in its metrics file: "
+                         "rebuild the metrics")
+    return metrics[name]
+
+
+def shift(metrics) -> dict:
+    """The stored frequencies of exact and approximate runs and their half-period shift."""
+    return {key: float(_stored(metrics, key)) for key in ("omega_exact", "omega_approx", "half_shift_periods")}
+
+
 # --------------------------------------------------------------------------- plot18
 
 def draw_plot18(data, options):
@@ -73,7 +89,7 @@ def draw_plot18(data, options):
     ax = axes[0, 1]
     te = _profile(ax, ex, t_ex, "-", label="exact")
     ta = _profile(ax, ap, t_app, ".", label="approx. (DpS)", color="C3", ms=5)
-    sh = half_period_shift(ex["t"].values, ex["x"].values[:, k], ap["x"].values[:, k], w)
+    sh = shift(data[small]["metrics"])
     ax.legend(fontsize=7, loc="upper right")
     ax.set_title(f"exact $t$ = {te:g} (line), approx. $t$ = {ta:g} (dots)\n"
                  f"$\\omega$ exact {sh['omega_exact']:.4f}, approx. {sh['omega_approx']:.4f}:\n"
@@ -91,8 +107,7 @@ def draw_plot18(data, options):
     tl = _profile(ax, exl, t_large, "o-", ms=2)
     xl0 = _at(exl, 0.0)["x"].values
     kl = int(np.argmax(np.abs(xl0)))
-    core = 0.5 * (int(np.argmax(xl0)) + int(np.argmin(xl0)))
-    radiated = dispersive_amplitude(_at(exl, t_large)["x"].values, core, periodic=exl.attrs["bc"] == "periodic")
+    radiated = float(_at(_stored(data[large]["metrics"], "radiated_exact"), t_large))
     ax.set_title(f"exact, $t$ = {tl:g}, $|x_{{{kl}}}(0)|$ = {abs(xl0[kl]):.3g}, $\\omega_{{sw}}$ = "
                  f"{_omega(exl):.4f}\nmax $|x_n|$ beyond 6 sites of the core: {radiated:.2e}", fontsize=8)
     return fig
@@ -101,19 +116,13 @@ def draw_plot18(data, options):
 # --------------------------------------------------------------------------- loc1
 
 def loc1_merging_times(sim) -> dict:
-    """Merging times (breather periods 2 pi / omega_sw) of the exact and approximate runs of a scene."""
-    period = 2.0 * np.pi / _omega(sim["exact"])
-    periodic = sim["exact"].attrs["bc"] == "periodic"
-    return {m: merging_time(sim[m], period, periodic=periodic) for m in ("exact", "dps")}
+    """Merging times (breather periods 2 pi / omega_sw) of the exact and approximate runs of a scene,
+    as stored in its metrics file."""
+    return {m: float(_stored(sim["metrics"], f"merging_time_{m}")) for m in ("exact", "dps")}
 
 
 def _periods_text(value, total) -> str:
     return f"none within {total:.0f} periods" if not np.isfinite(value) else f"after {value:.0f} periods"
-
-
-# loc1 rows are binned by one breather period; the packet has no omega_sw of its own and the paper
-# gives omega_sw ~ 1.1 for both loc1 experiments.
-LOC1_OMEGA = 1.1
 
 
 def draw_loc1(data, options):
@@ -133,14 +142,15 @@ def draw_loc1(data, options):
             info += f", $\\omega_{{sw}}$ = {_omega(ex):.4f}, $t_{{end}}$ = {t_end * _omega(ex) / (2 * np.pi):.0f} periods"
         ax.set_title(f"{name}: $x_n(0)$, $v_n(0) = 0$\n{info}", fontsize=8)
         vmin = _vmin(ex, ap)
-        omega = _omega(ex) if "omega_sw" in ex.attrs else LOC1_OMEGA
+        m = data[name]["metrics"]
+        omega = float(_stored(m, "breather_omega"))   # rows binned by one breather period (1.1 for the packet)
         period = 2.0 * np.pi / omega
-        merge = loc1_merging_times(data[name]) if ex.attrs.get("initial_kind") == "pair" else None
+        merge = loc1_merging_times(data[name]) if "merging_time_exact" in m else None
         for i, (ds, label, key) in enumerate(((ex, "exact (nc)", "exact"), (ap, "approx. (DpS)", "dps")), start=1):
             title = f"{label}, min force per period $2\\pi/{omega:.4g}$"
             if merge is not None:
                 title += f"\nmerging: {_periods_text(merge[key], t_end / period)}"
-            img = spacetime(axes[i, j], ds, vmin, title=title, bin_period=period)
+            img = spacetime(axes[i, j], ds, vmin, title=title, binned=period_minimum(m, key))
         fig.colorbar(img, ax=axes[1:, j], label=FORCE_LABEL, shrink=0.8)
     return fig
 
@@ -176,8 +186,7 @@ def draw_fini(data, options):
     windows = [(times[i], times[i + 1]) for i in range(0, len(times) - 1, 2)]
     w = _omega(ex)
     period = 2.0 * np.pi / w
-    k = int(np.argmax(np.abs(ex["x"].values[0])))
-    sh = half_period_shift(ex["t"].values, ex["x"].values[:, k], ap["x"].values[:, k], w)
+    sh = shift(data[name]["metrics"])
     fig, axes = figure(len(windows), 2, width=9.0, height=4.0 * len(windows), squeeze=False)
     for i, win in enumerate(windows):
         p0, p1 = win[0] / period, win[1] / period

@@ -3,10 +3,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.models.stationary import explicit_periodic_orbits
 from cradle.figures import figure
 
-MARKERS = {"period2": ("o", "period 2"), "period3": ("s", "period 3"), "period4": ("^", "period 4")}
+MARKERS = {2: ("o", "period 2"), 3: ("s", "period 3"), 4: ("^", "period 4")}
 
 
 def _orbits(ax, ds, size=0.55):
@@ -25,12 +24,15 @@ def _orbits(ax, ds, size=0.55):
     ax.set_ylabel("$b_{n+1}$")
 
 
-def _marks(ax, alpha):
-    """The explicit period-2, -3, -4 orbits of the traj2 caption."""
-    for name, U in explicit_periodic_orbits(alpha).items():
-        if name in MARKERS:
-            marker, label = MARKERS[name]
-            ax.plot(U[:, 0], U[:, 1], marker, ms=5, mfc="none", mec="k", mew=0.9, ls="none", label=label)
+def _marks(ax, ds):
+    """The explicit period-2, -3, -4 orbits of the traj2 caption (mark_a, mark_b, mark_period of the map file)."""
+    if "mark_a" not in ds:
+        raise ValueError(f"map '{ds.attrs.get('name', '?')}' has marks but no stored mark_a/mark_b: rebuild it")
+    a, b, period = ds["mark_a"].values, ds["mark_b"].values, ds["mark_period"].values
+    for p, (marker, label) in MARKERS.items():
+        sel = period == p
+        if sel.any():
+            ax.plot(a[sel], b[sel], marker, ms=5, mfc="none", mec="k", mew=0.9, ls="none", label=label)
     ax.legend(fontsize=7, loc="upper right")
 
 
@@ -56,6 +58,6 @@ def draw_traj2(data, options):
         ds = data[name]
         _orbits(ax, ds)
         if ds.attrs.get("marks"):
-            _marks(ax, float(ds.attrs["alpha"]))
+            _marks(ax, ds)
         ax.set_title(f"$\\|U_n\\|_\\infty \\leq {float(ds.attrs['box']):g}$ ({name})", fontsize=9)
     return fig

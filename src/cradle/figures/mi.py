@@ -9,8 +9,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.models import dps
-from cradle.analyses import modulational
 from cradle.figures import figure
 
 MODELS = ("exact", "dps")      # the model index of mig_model / mis_model
@@ -75,10 +73,9 @@ def mi_growth(ds):
     B.legend(fontsize=5.5)
     # the growth-rate diagram: max_p lambda tau0 R^(1-alpha) against q, measured points rescaled
     C = ax[S + 1]
-    qg = np.linspace(0.0, np.pi, 361)
-    C.plot(qg / np.pi, [modulational.max_over_p(x, alpha, 1001)[0] for x in qg], "k-", lw=1.2,
+    C.plot(ds["mig_theory_q"].values / np.pi, ds["mig_theory_max"].values, "k-", lw=1.2,
            label=r"$\max_p$ linear DpS")
-    scale = dps.tau0(alpha) / ds["mig_eps"].values ** (alpha - 1.0)      # per unit t -> lambda tau0 R^(1-alpha)
+    scale = ds["mig_rate_scale"].values      # per unit t -> lambda tau0 R^(1-alpha)
     for j, m in enumerate(models):
         st = MODEL_STYLE[m]
         C.plot(ds["mig_q"].values / np.pi, ds["mig_rate"].values[:, j] * scale, st["marker"], color=st["color"],

@@ -67,38 +67,46 @@ def _columns(size, n_range=None):
     return np.arange(n0, n1 + 1) if n0 <= n1 else np.r_[np.arange(n0, size), np.arange(0, n1 + 1)]
 
 
-def period_minimum(t, force, period):
-    """(bin centres, most negative force of every bond in each bin of length ``period``):
-    one row per breather period, so that a long run drawn on a few hundred pixels keeps
-    the depth of its black spots instead of averaging them with the white half-periods."""
-    from cradle.measurements.breathers import peak_compression
+def period_minimum(metrics, model):
+    """(bin centres, most negative force of every bond in each breather period) of ``model`` ('exact'
+    or 'dps'), from the peak compression stored in the scene's metrics file (``t_window``,
+    ``breather_omega``, ``peak_compression_<model>``): one row per breather period, so that a long
+    run drawn on a few hundred pixels keeps the depth of its black spots instead of averaging them
+    with the white half-periods."""
+    if f"peak_compression_{model}" not in metrics:
+        raise ValueError(f"scene '{metrics.attrs.get('scene', '?')}': no peak_compression_{model} in its "
+                         "metrics file (only localised scenes store it): rebuild the metrics")
+    period = 2.0 * np.pi / float(metrics["breather_omega"])
+    return metrics["t_window"].values + 0.5 * period, -metrics[f"peak_compression_{model}"].values
 
-    starts, P = peak_compression(t, force, period)
-    return starts + 0.5 * period, -P
 
-
-def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", bin_period=None,
+def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", binned=None,
               interpolation="antialiased"):
     """Draw the forces of ``ds`` (dims t, n) in grey levels on ``ax``; return the AxesImage.
 
     ``t_range`` = (t0, t1) and ``n_range`` = (n0, n1) (inclusive) restrict the
     picture; n_range may wrap around a periodic chain (n0 > n1): the bonds are
     then drawn in the order n0..N-1, 0..n1 and labelled by their index. With
-    ``bin_period``, each image row is the most negative force over one bin of
-    that length (:func:`period_minimum`); otherwise every stored time is a row.
+    ``binned`` = (bin centres, rows) of :func:`period_minimum`, each image row is
+    the most negative force over one breather period (all stored times, no
+    ``t_range``); otherwise every stored time is a row.
     ``interpolation`` "antialiased" averages rows when many stored times share a
     pixel (long runs); "nearest" keeps every bond a sharp column (zooms).
     """
     f = ds["force"]
     if t_range is not None:
+        if binned is not None:
+            raise ValueError("spacetime: binned rows cover every stored time; t_range is not supported with them")
         f = f.sel(t=slice(*t_range))
     t = f["t"].values
     size = f.sizes["n"]
     cols = _columns(size, n_range)
     positions = cols[0] + np.arange(len(cols))              # unwrapped: n0, n0+1, ... (mod N)
-    values = f.values[:, cols]
-    if bin_period is not None:
-        t, values = period_minimum(t, values, bin_period)
+    if binned is not None:
+        t, rows = binned
+        values = rows[:, cols]
+    else:
+        values = f.values[:, cols]
     img = ax.imshow(values, cmap=CMAP, vmin=vmin, vmax=0.0, origin="lower", aspect="auto",
                     extent=(*_edges(positions), *_edges(t)), interpolation=interpolation,
                     rasterized=True)

@@ -3,9 +3,12 @@
 The spectra are the paper's DFT x_hat_k(t) = sum_n x_n(t) e^{-i n k}, k in
 Gamma* = (2 pi / N){-N/2+1, ..., N/2} (:func:`cradle.measurements.compare.spatial_dft`),
 read from ``results/metrics/<scene>.nc`` (``spectrum_exact``, ``spectrum_dps``)
-and checked against the DFT of the stored displacements before drawing.
-Axes are linear, as in the paper; each spectrum panel's title gives the
-measured sideband-to-carrier ratio of :func:`sideband_ratio`.
+with what the panels print, measured by the metrics stage at every stored time
+(:func:`cradle.pipeline.stages.travelling_metrics`): the sideband-to-carrier
+ratio and the wavenumber of the largest sideband (``sideband_ratio_<model>``,
+``sideband_k_<model>``, :func:`cradle.measurements.sidebands.sideband_peak`) and
+the carrier's share of a profile's power (``carrier_share_<model>``).
+Axes are linear, as in the paper.
 
 * fft106: q = 4 pi/5, exact (left) and DpS (right) at four times (the last
   row at 541.95 for the exact solution and 543.7 for the DpS one);
@@ -17,9 +20,6 @@ from __future__ import annotations
 
 import matplotlib.pyplot as plt
 import numpy as np
-
-from cradle.measurements.compare import spatial_dft
-from cradle.measurements.sidebands import EXCLUDE_BINS, sideband_peak, sideband_ratio, wrap
 
 TIME_TOL = 1e-6          # a requested time must be stored to within this
 MODELS = (("exact", "spectrum_exact", "exact"), ("dps", "spectrum_dps", "approx. (DpS)"))
@@ -33,17 +33,30 @@ def _at(ds, t: float):
     return s
 
 
+def _stored(m, name):
+    if name not in m:
+        raise ValueError(f"scene '{m.attrs.get('scene', '?')}': no {name} in its metrics file: rebuild the metrics")
+    return m[name]
+
+
 def spectrum(sim: dict, model: str, t: float):
-    """(k, |x_hat_k(t)|) of ``model`` ('exact' or 'dps') from the metrics file, checked against
-    the DFT of the stored displacements x_n(t) (a stale metrics file is an error)."""
+    """(k, |x_hat_k(t)|) of ``model`` ('exact' or 'dps') from the metrics file."""
     var = dict((m, v) for m, v, _ in MODELS)[model]
     m = _at(sim["metrics"], t)
-    k, sp = m["k"].values, m[var].values
-    k_dft, xh = spatial_dft(_at(sim[model], t)["x"].values)
-    ref = np.abs(xh)
-    if not (np.allclose(k, k_dft, atol=1e-12) and np.allclose(sp, ref, rtol=1e-9, atol=1e-12 * max(ref.max(), 1e-300))):
-        raise ValueError(f"{var} at t = {t:g} differs from |DFT| of {model}.nc x: rebuild the metrics")
-    return k, sp
+    return m["k"].values, m[var].values
+
+
+def sideband(sim: dict, model: str, t: float):
+    """(ratio, k of the largest sideband) of ``model``'s spectrum at t, from the metrics file."""
+    m = _at(sim["metrics"], t)
+    return float(_stored(m, f"sideband_ratio_{model}")), float(_stored(m, f"sideband_k_{model}"))
+
+
+def wrap(k):
+    """Wavenumbers brought into the band (-pi, pi] (where to draw the carrier lines)."""
+    k = np.asarray(k, dtype=float)
+    w = np.mod(k + np.pi, 2.0 * np.pi) - np.pi       # in [-pi, pi)
+    return np.where(np.isclose(w, -np.pi, rtol=0.0, atol=1e-12), np.pi, w)
 
 
 def carrier(sim: dict) -> float:
@@ -61,7 +74,7 @@ def _q_label(sim) -> str:
 def _spectrum_panel(ax, sim, model, t, title_prefix=""):
     k, sp = spectrum(sim, model, t)
     q = carrier(sim)
-    ratio, k_peak = sideband_peak(k, sp, q)
+    ratio, k_peak = sideband(sim, model, t)
     ax.plot(k, sp, "-", color="k" if model == "exact" else "C3", lw=0.8)
     for kq in (-q, q):
         ax.axvline(wrap(kq), color="0.6", lw=0.5, ls=":", zorder=0)
@@ -83,9 +96,14 @@ def _same_ylim(axes):
         a.set_ylim(0.0, top)
 
 
-def _ratio_note(fig):
+def _ratio_note(fig, sim):
+    m = sim["metrics"]
+    if "sideband_exclude_bins" not in m.attrs:
+        raise ValueError(f"scene '{m.attrs.get('scene', '?')}': no sideband_exclude_bins in its metrics file: "
+                         "rebuild the metrics")
+    bins = int(m.attrs["sideband_exclude_bins"])
     fig.text(0.5, 0.0, r"$r$ = max $|\hat{x}_k|$ outside $\pm$%d bins of $k = \pm q$, $\pm 2(q-\pi)$, "
-             r"$\pm(3q-2\pi)$, divided by $|\hat{x}_{\pm q}|$; dotted lines: $k = \pm q$" % EXCLUDE_BINS,
+             r"$\pm(3q-2\pi)$, divided by $|\hat{x}_{\pm q}|$; dotted lines: $k = \pm q$" % bins,
              ha="center", va="bottom", fontsize=7, color="0.3")
 
 
@@ -110,7 +128,7 @@ def draw_fft106(data, options):
         _same_ylim(axes[row])
     fig.suptitle(f"fft106: $q = {_q_label(sim)}$, $N = {sim['exact'].sizes['n']}$ "
                  "(left: exact, right: approx. DpS)", fontsize=10)
-    _ratio_note(fig)
+    _ratio_note(fig, sim)
     return fig
 
 
@@ -126,22 +144,8 @@ def draw_fftseuil(data, options):
         _spectrum_panel(axes[row, 1], sim, "dps", t, prefix)
         _same_ylim(axes[row])
     fig.suptitle(f"fftseuil: $t = {t:g}$ (left: exact, right: approx. DpS)", fontsize=10)
-    _ratio_note(fig)
+    _ratio_note(fig, data[names[0]])
     return fig
-
-
-def carrier_share(x, q: float):
-    """Share of the carrier in the power of a profile: sum over k = +-q of |x_hat_k|^2 / sum_k |x_hat_k|^2.
-
-    1 for an unmodulated wave a cos(q n - w t + phi) with q on Gamma*; it falls as the
-    profile gets modulated (sidebands, harmonics). ``x`` has shape (..., N).
-    """
-    k, xh = spatial_dft(x)
-    p = np.abs(xh) ** 2
-    N = k.size
-    jq = {int(np.round(wrap(c) * N / (2.0 * np.pi))) % N for c in (q, -q)}
-    on = np.isin(np.round(k * N / (2.0 * np.pi)).astype(int) % N, list(jq))
-    return p[..., on].sum(axis=-1) / p.sum(axis=-1)
 
 
 def _profile_panel(ax, sim, model, t):
@@ -152,7 +156,7 @@ def _profile_panel(ax, sim, model, t):
     ax.set_xlabel("$n$")
     ax.set_ylabel("$x_n(t)$")
     label = dict((m, lab) for m, _, lab in MODELS)[model]
-    share = float(carrier_share(x, carrier(sim)))
+    share = float(_stored(_at(sim["metrics"], t), f"carrier_share_{model}"))
     ax.set_title(f"{label}, $t = {t:g}$: carrier share of power {share:.2f}", fontsize=8)
 
 
@@ -178,9 +182,8 @@ def draw_fft344(data, options):
     for a in (x1, x2, xa):
         a.set_ylim(-lim, lim)
     fig.suptitle(f"fft344: $q = {_q_label(sim)}$, $N = {sim['exact'].sizes['n']}$", fontsize=10)
-    _ratio_note(fig)
+    _ratio_note(fig, sim)
     return fig
 
 
-__all__ = ["carrier_share", "sideband_ratio", "spectrum", "draw_fft106", "draw_fftseuil",
-           "draw_fft344"]
+__all__ = ["sideband", "spectrum", "draw_fft106", "draw_fftseuil", "draw_fft344"]

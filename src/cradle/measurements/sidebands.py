@@ -3,11 +3,14 @@
 Pure numpy. :func:`sideband_ratio` measures modulational instability as the
 largest sideband over the carrier; :func:`harmonics` and
 :func:`harmonic_height` locate and measure the lattice's second and third
-harmonics k = +-2(q - pi), +-(3q - 2pi) (fft106, fftseuil, fft344).
+harmonics k = +-2(q - pi), +-(3q - 2pi) (fft106, fftseuil, fft344);
+:func:`carrier_share` is the carrier's share of a profile's power (fft344).
 """
 from __future__ import annotations
 
 import numpy as np
+
+from cradle.measurements.compare import spatial_dft
 
 EXCLUDE_BINS = 3         # half-width (in bins of 2 pi / N) of the windows left out by sideband_ratio
 
@@ -106,6 +109,20 @@ def sideband_ratio(k, spectrum, q: float, exclude_bins: int = EXCLUDE_BINS, excl
     spectrum); NaN if every k is excluded; inf if the carrier is 0.
     """
     return sideband_peak(k, spectrum, q, exclude_bins, exclude_harmonics)[0]
+
+
+def carrier_share(x, q: float):
+    """Share of the carrier in the power of a profile: sum over k = +-q of |x_hat_k|^2 / sum_k |x_hat_k|^2.
+
+    1 for an unmodulated wave a cos(q n - w t + phi) with q on Gamma*; it falls as the
+    profile gets modulated (sidebands, harmonics). ``x`` has shape (..., N).
+    """
+    k, xh = spatial_dft(x)
+    p = np.abs(xh) ** 2
+    N = k.size
+    jq = {int(np.round(wrap(c) * N / (2.0 * np.pi))) % N for c in (q, -q)}
+    on = np.isin(np.round(k * N / (2.0 * np.pi)).astype(int) % N, list(jq))
+    return p[..., on].sum(axis=-1) / p.sum(axis=-1)
 
 
 def envelope(x):

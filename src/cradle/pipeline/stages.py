@@ -18,7 +18,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from cradle.measurements import compare
+from cradle.measurements import breathers, compare, sidebands
 from cradle.models import dps, initial, lattice
 from cradle.pipeline.io import make_dataset
 from cradle.pipeline.runner import StageFailure
@@ -66,6 +66,9 @@ def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
     return ds
 
 
+MARKED_ORBITS = ("period2", "period3", "period4")   # keys of stationary.explicit_periodic_orbits stored by map_orbits
+
+
 def map_orbits(spec: dict, name: str = "") -> xr.Dataset:
     """Orbits of the map G (comp1)-(comp2) for one ``map:`` entry (traj3, traj2)."""
     from cradle.models import stationary
@@ -73,11 +76,19 @@ def map_orbits(spec: dict, name: str = "") -> xr.Dataset:
     t0 = time.perf_counter()
     starts = stationary.starts_from_spec(spec)
     U = stationary.orbits(starts, spec["iterations"], spec["alpha"], box=spec["box"])
+    data = {"map_a": U[..., 0], "map_b": U[..., 1]}
+    coords = {"orbit": np.arange(len(starts)), "iterate": np.arange(U.shape[1])}
+    if spec.get("marks", False):  # traj2: the explicit period-2, -3, -4 orbits of its caption, marked on the panel
+        explicit = stationary.explicit_periodic_orbits(spec["alpha"])
+        marks = [(int(key[len("period"):]), explicit[key]) for key in MARKED_ORBITS]
+        data.update({"mark_a": np.concatenate([U_p[:, 0] for _, U_p in marks]),
+                     "mark_b": np.concatenate([U_p[:, 1] for _, U_p in marks]),
+                     "mark_period": np.concatenate([np.full(len(U_p), period) for period, U_p in marks])})
+        coords["mark"] = np.arange(data["mark_a"].size)
     attrs = {"name": name, "alpha": spec["alpha"], "box": spec["box"], "iterations": spec["iterations"],
              "marks": bool(spec.get("marks", False)), "wall_time_s": time.perf_counter() - t0}
-    return make_dataset({"map_a": U[..., 0], "map_b": U[..., 1]},
-                        coords={"orbit": np.arange(len(starts)), "iterate": np.arange(U.shape[1])},
-                        attrs=attrs, params=spec, title=f"orbits '{name}' of the map G (comp1)-(comp2)")
+    return make_dataset(data, coords=coords, attrs=attrs, params=spec,
+                        title=f"orbits '{name}' of the map G (comp1)-(comp2)")
 
 
 # ---------------------------------------------------------------- initial data
@@ -220,8 +231,64 @@ def dps_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> x
 
 # ---------------------------------------------------------------- metrics
 
+#: loc1 (left): the packet has no omega_sw of its own; its peak compression is binned by the period of
+#: omega_sw ~ 1.1, the paper's value for both loc1 experiments
+PACKET_OMEGA = 1.1
+LOCALISED_KINDS = ("breather", "pair", "packet")
+
+
+def travelling_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset, k, spectra: dict) -> dict:
+    """Per stored time, for a travelling-wave scene: the sideband ratio and the wavenumber of the largest
+    sideband of each spectrum (fft106, fftseuil, fft344), the carrier's share of the power of each
+    profile (fft344) and the linear wave a cos(q n - t + phi) (plotcomplin)."""
+    q, a = float(exact_ds.attrs["q"]), float(exact_ds.attrs["a"])
+    out = {}
+    for model, ds in (("exact", exact_ds), ("dps", dps_ds)):
+        ratio, k_peak = sidebands.sideband_peak(k, spectra[model], q)
+        out[f"sideband_ratio_{model}"], out[f"sideband_k_{model}"] = ratio, k_peak
+        # one profile at a time: the FFT of a (T, N) block can differ from that of its rows in the last bit
+        out[f"carrier_share_{model}"] = np.array([sidebands.carrier_share(x, q) for x in ds["x"].values])
+    out["x_linear"] = compare.linear_wave(exact_ds["n"].values, exact_ds["t"].values, a, q,
+                                          float(exact_ds.attrs.get("phi", 0.0)))
+    return out
+
+
+def localised_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset) -> tuple[dict, dict]:
+    """Breather measurements of a localised scene (plot18, loc1, fini): (data, coords).
+
+    Every localised scene: the peak compression of every bond per breather period (loc1's
+    diagrams). A breather: its frequency in both models at the site of largest |x_n(0)| and the
+    half-period shift (plot18, fini), and the amplitude radiated beyond 6 sites of its core at
+    every stored time (plot18). A pair: the merging time of the two breathers in both models (loc1).
+    """
+    kind = exact_ds.attrs["initial_kind"]
+    periodic = exact_ds.attrs["bc"] == "periodic"
+    omega = float(exact_ds.attrs["omega_sw"]) if "omega_sw" in exact_ds.attrs else PACKET_OMEGA
+    period = 2.0 * np.pi / omega
+    t = exact_ds["t"].values
+    data = {"breather_omega": omega}
+    for model, ds in (("exact", exact_ds), ("dps", dps_ds)):
+        starts, P = breathers.peak_compression(t, ds["force"].values, period)
+        data[f"peak_compression_{model}"] = P
+    coords = {"t_window": starts}
+    if kind == "pair":
+        for model, ds in (("exact", exact_ds), ("dps", dps_ds)):
+            data[f"merging_time_{model}"] = breathers.merging_time(ds, period, periodic=periodic)
+    elif kind == "breather":
+        x = exact_ds["x"].values
+        site = int(np.argmax(np.abs(x[0])))
+        sh = breathers.half_period_shift(t, x[:, site], dps_ds["x"].values[:, site], omega)
+        data.update({"breather_site": site, "omega_exact": sh["omega_exact"], "omega_approx": sh["omega_approx"],
+                     "half_shift_periods": sh["half_shift_periods"]})
+        core = 0.5 * (int(np.argmax(x[0])) + int(np.argmin(x[0])))
+        data["radiated_exact"] = np.array([breathers.dispersive_amplitude(row, core, periodic=periodic)
+                                           for row in x])
+    return data, coords
+
+
 def metrics(spec: dict, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: str = "") -> xr.Dataset:
-    """Exact against approximate: E(t) (plot4-5) and the spectra |x_hat_k(t)| on Gamma*."""
+    """Exact against approximate: E(t) (plot4-5) and the spectra |x_hat_k(t)| on Gamma*; what the
+    figures show of the scene (:func:`travelling_metrics`, :func:`localised_metrics`)."""
     a_scale = float(exact_ds.attrs.get("a", np.max(np.abs(exact_ds["x"].isel(t=0).values))))
     E = compare.relative_error(exact_ds["x"].values, dps_ds["x"].values, a_scale)
     k, xh_exact = compare.spatial_dft(exact_ds["x"].values)
@@ -230,6 +297,17 @@ def metrics(spec: dict, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: str = ""
                                                    "noise", "noise_amplitude", "seed") if key in exact_ds.attrs}
     attrs.update({"E_scale": a_scale, "E_max": float(np.max(E)), "E_final": float(E[-1]),
                   "t_final": float(exact_ds["t"].values[-1])})
-    return make_dataset({"E": E, "spectrum_exact": np.abs(xh_exact), "spectrum_dps": np.abs(xh_dps)},
-                        coords={"t": exact_ds["t"].values, "k": k}, attrs=attrs,
+    data = {"E": E, "spectrum_exact": np.abs(xh_exact), "spectrum_dps": np.abs(xh_dps)}
+    coords = {"t": exact_ds["t"].values, "k": k}
+    kind = exact_ds.attrs.get("initial_kind")
+    if kind == "travelling":
+        data.update(travelling_metrics(exact_ds, dps_ds, k, {"exact": data["spectrum_exact"],
+                                                             "dps": data["spectrum_dps"]}))
+        coords["n"] = exact_ds["n"].values
+        attrs["sideband_exclude_bins"] = sidebands.EXCLUDE_BINS
+    elif kind in LOCALISED_KINDS:
+        extra, extra_coords = localised_metrics(exact_ds, dps_ds)
+        data.update(extra)
+        coords.update(extra_coords)
+    return make_dataset(data, coords=coords, attrs=attrs,
                         params=spec, title=f"exact vs DpS comparison metrics, scene '{name}'")
