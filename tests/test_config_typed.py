@@ -20,8 +20,9 @@ CONFIG = ROOT / "config.yaml"
 # sha256 of every resolved parameter of config.yaml (see _everything_resolved). The move of the config
 # into typed declarations changed none of them; a deliberate change of config.yaml or of a resolved_*
 # function changes this hash: check the difference, then update it. (Updated once since: the new
-# key beyond.floquet.reduced, the reduced form `all` builds; every other value unchanged.)
-RESOLVED_SHA256 = "6c85504fc5f815a15308899b7eb323b1cec290e87b8fe984024f4b64134483fd"
+# keys beyond.floquet.reduced and work_precision.reduced, the reduced forms `all` builds; every other
+# value unchanged.)
+RESOLVED_SHA256 = "ce7541ea2d4d3e9b4cfa1320faa9aac9d8726b89bd4439e7655058d37eba6ba1"
 
 
 @pytest.fixture(scope="module")
@@ -44,6 +45,8 @@ def _everything_resolved(config) -> dict:
         "floquet": cc.resolved_floquet(cfg),
         "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
         "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
+        "work_precision_reduced": {n: cc.resolved_work_precision(cfg, n, "reduced")
+                                   for n in cfg["work_precision"]["reduced"]["scenes"]},
     }
 
 

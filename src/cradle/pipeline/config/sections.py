@@ -217,11 +217,12 @@ class WorkPrecision:
                 out.add(["work_precision", "scenes", name], f"unknown scene: no `scenes:` entry of that "
                                                             f"name{did_you_mean(name, scenes)}")
         red = wp.get("reduced") if isinstance(wp.get("reduced"), dict) else {}
-        if wp["scenes"]:
-            for i, name in enumerate(red.get("scenes") or []):
-                if name not in wp["scenes"]:
-                    out.add(["work_precision", "reduced", "scenes", i], f"not a work_precision scene"
-                                                                        f"{did_you_mean(name, list(wp['scenes']))}", name)
+        if not wp["scenes"]:  # nothing measured: the reduced form's defaults name nothing to check
+            return
+        for i, name in enumerate(red.get("scenes") or []):
+            if name not in wp["scenes"]:
+                out.add(["work_precision", "reduced", "scenes", i], f"not a work_precision scene"
+                                                                    f"{did_you_mean(name, list(wp['scenes']))}", name)
         for i, m in enumerate(red.get("methods") or []):
             if isinstance(wp.get("methods"), dict) and m not in wp["methods"]:
                 out.add(["work_precision", "reduced", "methods", i], "not a method of work_precision.methods", m)
