@@ -301,7 +301,7 @@ def test_rule_params_hold_no_stored_times():
         small = compact_scene(full)
         assert "times" not in small and len(repr(small)) < 2000, name
         assert expand_scene(small) == full
-    for rule in ("simulate.smk", "mi.smk"):
+    for rule in ("simulate.smk", "analyses.smk"):
         text = (ROOT / "workflow" / "rules" / rule).read_text()
         assert "compact_scene(cc.resolved_scene(" in text and "=lambda w: cc.resolved_scene(" not in text
 

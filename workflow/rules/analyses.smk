@@ -18,13 +18,14 @@ for _a in ANALYSES.values():
                 f"{_a.title} ({_form})"
             input:
                 code=code_of("workflow/scripts/analysis.py", f"cradle.analyses.{_a.module}"),
-                data=analysis_inputs(config, _a, _form),
+                data=lambda w, a=_a, form=_form: analysis_inputs(config, a, form),
             output:
                 _a.output(_form),
             params:
                 analysis=_a.name,
-                spec=_a.spec(config, _form),
-                scenes={n: compact_scene(cc.resolved_scene(config, n)) for n in scenes_read(config, _a)},
+                # resolved when the job is planned: an analysis not asked for is not resolved
+                spec=lambda w, a=_a, form=_form: a.spec(config, form),
+                scenes=lambda w, a=_a: {n: compact_scene(cc.resolved_scene(config, n)) for n in scenes_read(config, a)},
             log:
                 L.path("log", job=f"{_a.folder}/{_form}/{_a.name}"),
             benchmark:

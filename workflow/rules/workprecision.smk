@@ -6,6 +6,7 @@
 # integrators: it takes every core given to Snakemake (threads: workflow.cores), so no other job runs
 # beside it, in its own single-threaded Python process.
 import json
+import os
 
 from cradle.pipeline.config.sections import WorkPrecision as _WP
 
@@ -55,7 +56,7 @@ for _form in ("reduced", "full"):
             pdf=update(f"{WP_FIGURE[_form]}.pdf"),
             png=update(f"{WP_FIGURE[_form]}.png"),
         params:
-            stem=WP_FIGURE[_form],
+            stem=lambda w, output: os.path.splitext(output.pdf)[0],
         log:
             L.path("log", job=f"figures/{_form}/work-precision"),
         shell:

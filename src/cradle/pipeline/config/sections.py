@@ -178,7 +178,8 @@ class WorkPrecisionReduced:
     scenes: list[str] = param(["tw-weak"], "The measured scenes kept (names under work_precision.scenes).",
                               minItems=1, items={"$ref": "#/$defs/name"})
     t_end: float = param(100.0, "Runs end at the smaller of this and the scene's t_end; > 0.", exclusiveMinimum=0)
-    methods: list[str] = param(["srkn6c", "srkn4c", "srkn6", "dop853_numba"], "The methods kept.", minItems=1,
+    methods: list[str] = param(["srkn6c", "srkn4c", "srkn6", "dop853_numba"], "The methods kept (those of them "
+                               "that work_precision.methods measures).", minItems=1,
                                items={"type": "string", "enum": [*SPLITTINGS, *LATTICE_ADAPTIVE]})
     settings: int = param(4, "The first (coarsest) settings of each ladder kept.", minimum=1, maximum=20)
 
@@ -223,9 +224,10 @@ class WorkPrecision:
             if name not in wp["scenes"]:
                 out.add(["work_precision", "reduced", "scenes", i], f"not a work_precision scene"
                                                                     f"{did_you_mean(name, list(wp['scenes']))}", name)
-        for i, m in enumerate(red.get("methods") or []):
-            if isinstance(wp.get("methods"), dict) and m not in wp["methods"]:
-                out.add(["work_precision", "reduced", "methods", i], "not a method of work_precision.methods", m)
+        kept = [m for m in red.get("methods") or [] if m in (wp.get("methods") or {})]
+        if red.get("methods") and isinstance(wp.get("methods"), dict) and wp["methods"] and not kept:
+            out.add(["work_precision", "reduced", "methods"], "names no method of work_precision.methods",
+                    red["methods"])
 
     @staticmethod
     def scenes_of(cfg: dict, form: str) -> list[str]:
