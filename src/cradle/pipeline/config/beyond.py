@@ -15,19 +15,11 @@ import math
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
 from .spec import declared, param
-from .values import ConfigError, angle_expr, did_you_mean, entries, number, parse_angle, show
+from .values import ConfigError, angle_expr, angle_or_none, did_you_mean, entries, number, parse_angle, show
 
 _ALPHAS = {"$ref": "#/$defs/alpha", "maximum": 10}
 _ANGLES = {"$ref": "#/$defs/angle"}
 _NAMES = {"$ref": "#/$defs/name"}
-
-
-def _angle(value):
-    """An angle in radians, or None if it does not read as one (the schema reports it)."""
-    try:
-        return parse_angle(value)
-    except ConfigError:
-        return None
 
 
 @declared(doc="Exact periodic travelling waves of (nc) with V = V0 by a sine-series Newton solver of (ad), against "
@@ -64,7 +56,7 @@ class Theorem1:
         """q in (0, pi], a_max > a_min, and a grid fine enough for the modes (2^grid_log2 >= 8 x
         max(modes, 2 x max(convergence_modes)))."""
         for i, q in enumerate(b.get("q") if isinstance(b.get("q"), list) else []):
-            x = _angle(q)
+            x = angle_or_none(q)
             if x is not None and not 0.0 < x <= math.pi + 1e-12:
                 out.add(path + ["q", i], "must be in (0, pi]", q)
         lo, hi = b.get("a_min"), b.get("a_max")

@@ -4,20 +4,12 @@ from __future__ import annotations
 import math
 
 from .spec import declared, param
-from .values import ConfigError, angle_expr, number, parse_angle, show
+from .values import angle_expr, angle_or_none, number, parse_angle, show
 
 _ANGLES = {"$ref": "#/$defs/angle"}
 
 
-def _angle(value):
-    """An angle in radians, or None if it does not read as one (the schema reports it)."""
-    try:
-        return parse_angle(value)
-    except ConfigError:
-        return None
-
-
-_OMEGA_ITEM = {"type": "number", "exclusiveMinimum": 1, "maximum": 2, "description": "One omega_tw."}
+_OMEGA = {"type": "number", "exclusiveMinimum": 1, "maximum": 2, "description": "One omega_tw."}
 
 
 @declared(doc="Finer numerics for the convergence checks (threshold, growth at q_profiles); missing keys keep the "
@@ -39,7 +31,7 @@ class FloquetReduced:
     wave_grid_log2: int = param(13, "Grid 2^wave_grid_log2 of the wave solver.", minimum=8, maximum=20)
     threshold_n_scan: int = param(6, "Scan points before the bisection of the threshold.", minimum=2, maximum=200)
     threshold_omega_tw: list[float] = param([1.1], "omega_tw values of the threshold search; must contain omega_tw.",
-                                            minItems=1, maxItems=8, items=_OMEGA_ITEM)
+                                            minItems=1, maxItems=8, items=_OMEGA)
     q_profiles: list[float | str] = param(["pi/2"], "Wavenumbers q of the stored growth-against-p profiles.",
                                           minItems=1, maxItems=10, items={"$ref": "#/$defs/angle"})
     small_q: list[float | str] = param(["3pi/5"], "Wavenumbers of the small-amplitude check.", minItems=1,
@@ -52,7 +44,6 @@ class FloquetReduced:
 
 _FLOQUET_ANGLES = ("q_min", "q_max", "threshold_q_min", "threshold_q_max")
 _FLOQUET_ANGLE_LISTS = ("q_profiles", "small_q")
-_OMEGA = {"type": "number", "exclusiveMinimum": 1, "maximum": 2, "description": "One omega_tw."}
 
 
 @declared(doc="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) in the co-moving frame "
@@ -128,7 +119,7 @@ class Floquet:
     def _check(b: dict, path: list, out) -> None:
         """Angles in (0, pi) with q_min < q_max and threshold_q_min < threshold_q_max, omega_tw among
         threshold_omega_tw, grids fine enough for the Hill and sine modes, 0 < k < N for the ring checks."""
-        q = {key: _angle(b.get(key)) for key in _FLOQUET_ANGLES}
+        q = {key: angle_or_none(b.get(key)) for key in _FLOQUET_ANGLES}
         for key, x in q.items():
             if x is not None and not 0.0 < x < math.pi:
                 out.add(path + [key], "must be in (0, pi)", b.get(key))
@@ -137,7 +128,7 @@ class Floquet:
                 out.add(path + [hi], f"must exceed {lo} = {show(b.get(lo))}", b.get(hi))
         for key in _FLOQUET_ANGLE_LISTS:
             for i, e in enumerate(b.get(key) if isinstance(b.get(key), list) else []):
-                x = _angle(e)
+                x = angle_or_none(e)
                 if x is not None and not 0.0 < x < math.pi:
                     out.add(path + [key, i], "must be in (0, pi)", e)
         om, ths = b.get("omega_tw"), b.get("threshold_omega_tw")

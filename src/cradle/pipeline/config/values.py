@@ -121,6 +121,14 @@ def parse_angle(value) -> float:
     return x
 
 
+
+def angle_or_none(value):
+    """An angle in radians, or None if it does not read as one (the schema reports it)."""
+    try:
+        return parse_angle(value)
+    except ConfigError:
+        return None
+
 def angle_expr(value) -> str:
     """The text of an angle as given (a number as its repr), kept next to its value in radians."""
     return value if isinstance(value, str) else repr(float(value))
