@@ -96,24 +96,24 @@ def case_big_n():
 
 
 def case_hom():
-    from cradle.models import homoclinic
+    from cradle.models import homoclinic, homoclinic_continuation, homoclinic_tails
 
     t0 = time.perf_counter()
-    sol, N = homoclinic.solve_sized("site", 1.01, decades=16)
+    sol, N = homoclinic_continuation.solve_sized("site", 1.01, decades=16)
     wall = time.perf_counter() - t0
-    L = homoclinic.log10_abs_scaled(sol)
+    L = homoclinic_tails.log10_abs_scaled(sol)
     a = sol.a
     res = float(np.max(np.abs(homoclinic.residual(a, 1.01)))) / float(np.max(np.abs(a)))
     return {"N": N, "residual": res, "profile_residual": sol.residual, "nu": sol.nu,
-            "log10_max_a": sol.log10_scale, "width8": homoclinic.decay_sites(L, 8),
-            "width16": homoclinic.decay_sites(L, 16), "log10_tail_min": float(np.min(L)), "wall_s": wall}
+            "log10_max_a": sol.log10_scale, "width8": homoclinic_tails.decay_sites(L, 8),
+            "width16": homoclinic_tails.decay_sites(L, 16), "log10_tail_min": float(np.min(L)), "wall_s": wall}
 
 
 def case_breather():
-    from cradle.models import homoclinic, initial
+    from cradle.models import homoclinic_continuation, initial
     from cradle.pipeline.extend import stream_lattice
 
-    sol, N = homoclinic.solve_sized("site", 1.01, decades=16)
+    sol, N = homoclinic_continuation.solve_sized("site", 1.01, decades=16)
     d = initial.breather(sol.profile, 1.01, amplitude=0.01)
     t = np.linspace(0.0, 1e3, 101)
     with tempfile.TemporaryDirectory() as tmp:

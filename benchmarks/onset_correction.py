@@ -22,7 +22,7 @@ from scipy.integrate import solve_ivp
 from cradle.pipeline import config as cc
 from cradle.pipeline import stages
 from cradle.integrators import integrate_lattice
-from cradle.integrators import lattice_solver as LS
+from cradle.integrators import lattice_splitting as LS
 
 ROOT = Path(__file__).resolve().parents[1]
 FACTORS = [0.064, 0.032, 0.016, 0.008, 0.004]

@@ -13,7 +13,7 @@ from scipy.optimize import brentq
 from scipy.special import gamma
 
 from cradle.measurements import compare
-from cradle.models import dps, homoclinic, initial, lattice
+from cradle.models import dps, homoclinic, homoclinic_continuation, homoclinic_tails, initial, lattice
 from cradle.analyses import theorem1
 from cradle.integrators import integrate_dps, integrate_lattice
 
@@ -77,7 +77,7 @@ def test_dps_integrator_keeps_the_plane_wave(alpha):
 @pytest.fixture(scope="module")
 def sized():
     """The site-centred homoclinic of each alpha on the ring N chosen from its decay (16 decades)."""
-    return {alpha: homoclinic.solve_sized("site", alpha, decades=16) for alpha in ALPHAS}
+    return {alpha: homoclinic_continuation.solve_sized("site", alpha, decades=16) for alpha in ALPHAS}
 
 
 @pytest.mark.parametrize("alpha", ALPHAS)
@@ -94,9 +94,9 @@ def test_homoclinic_residual_and_amplitude(sized, alpha):
     # symmetric up to the conditioning of the nearly translation-invariant broad core (5e-10 at alpha = 1.01)
     assert homoclinic.symmetry_error(sol.profile, "site", int(np.argmax(np.abs(sol.profile)))) < 2e-9
     # the sites' log10 |a_n| (tails in log variables) reach 16 decades below the centre inside the ring
-    L = homoclinic.log10_abs_scaled(sol)
+    L = homoclinic_tails.log10_abs_scaled(sol)
     assert np.max(L) == pytest.approx(sol.log10_scale, abs=1e-12)
-    assert homoclinic.decay_sites(L, 16) < N // 2
+    assert homoclinic_tails.decay_sites(L, 16) < N // 2
 
 
 def test_homoclinic_width_and_amplitude_scaling_with_alpha(sized):
@@ -104,7 +104,7 @@ def test_homoclinic_width_and_amplitude_scaling_with_alpha(sized):
     linearised staggered problem), the core widens like (alpha - 1)^(-1/2) (8-decade half-width
     14 sites at alpha = 1.1, 43 at 1.01: ratio sqrt(10)), and the mu = 1 amplitude is
     nu^(-1/(alpha-1)) ~ 10^(-0.6/(alpha-1)) (10^-60.3 at alpha = 1.01). The width decreases with alpha."""
-    w8 = {al: homoclinic.decay_sites(homoclinic.log10_abs_scaled(sized[al][0]), 8) for al in ALPHAS}
+    w8 = {al: homoclinic_tails.decay_sites(homoclinic_tails.log10_abs_scaled(sized[al][0]), 8) for al in ALPHAS}
     nu = {al: sized[al][0].nu for al in ALPHAS}
     assert [w8[al] for al in ALPHAS] == sorted(w8.values(), reverse=True)
     assert w8[3.0] <= 4 and w8[1.5] == 6 and w8[1.1] == 14
@@ -122,17 +122,17 @@ def test_paper_start_fails_far_from_three_halves_and_solve_kind_recovers():
     bad = homoclinic.solve(homoclinic.initial_guess(50, "site", 1.01), 1.01)
     assert not homoclinic.localised(bad.a)
     for alpha in (3.0, 1.01):
-        sol = homoclinic.solve_kind(50, "site", alpha)
+        sol = homoclinic_continuation.solve_kind(50, "site", alpha)
         assert sol.method == "continued" and sol.converged
         assert sol.residual < 5e-15 * np.max(np.abs(sol.a))
-    assert homoclinic.solve_kind(50, "site", 1.5).method == "direct"   # the paper's case is unchanged
+    assert homoclinic_continuation.solve_kind(50, "site", 1.5).method == "direct"   # the paper's case is unchanged
 
 
 def test_underflowing_homoclinic_fails_with_a_clear_message():
     """alpha = 1.001: the mu = 1 amplitude 10^-602 is not a double; the message names it."""
     with pytest.raises(ValueError, match=r"alpha=1.001.*10\^-602.*underflows"):
-        homoclinic.solve_kind(50, "bond", 1.001)
-    sol = homoclinic.continued("bond", 1.001, 50)          # the profile itself is fine
+        homoclinic_continuation.solve_kind(50, "bond", 1.001)
+    sol = homoclinic_continuation.continued("bond", 1.001, 50)          # the profile itself is fine
     assert sol.converged and sol.underflow and sol.log10_scale == pytest.approx(-602.36, abs=0.01)
 
 
@@ -279,7 +279,7 @@ def test_dps_breather_near_alpha_one_needs_astronomically_small_amplitudes():
     """alpha = 1.01: the DpS small parameter is a^(alpha-1), so the breather approximation holds only
     for a ~ 1e-150 (a^(alpha-1) = 0.03): E(t = 20) = 0.01 there, > 1 at a = 1e-2 (a^(alpha-1) = 0.95).
     The lattice at a = 1e-150 (forces ~1e-152) runs in double precision with drift ~1e-10."""
-    profile = homoclinic.continued("bond", 1.01, 128).profile     # N = 128 from solve_sized
+    profile = homoclinic_continuation.continued("bond", 1.01, 128).profile     # N = 128 from solve_sized
     t = np.linspace(0.0, 20.0, 11)
     E = {}
     for amp in (1e-2, 1e-150):

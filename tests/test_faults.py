@@ -307,7 +307,9 @@ def test_rule_params_hold_no_stored_times():
 
 
 def test_cli_run_defaults_to_its_own_folder():
-    assert cli.parser().parse_args(["run", "tw"]).out == cli.RUN_OUT != "results"
+    from cradle.pipeline.cli.run import RUN_OUT
+
+    assert cli.parser().parse_args(["run", "tw"]).out == RUN_OUT != "results"
 
 
 def test_progress_lines_give_eta_and_estimate(caplog):

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from cradle.models import homoclinic, initial
+from cradle.models import homoclinic, homoclinic_tails, initial
 
 
 @pytest.fixture(scope="module")
@@ -99,14 +99,14 @@ def test_tails_below_machine_precision_follow_dpsstn(alpha, start):
     # and follows the decay law (dpsstn) implies: ln|a_{n+1}| / ln|a_n| -> alpha, signs alternating
     sol = homoclinic.solve(homoclinic.initial_guess(50, "site", alpha, amplitude=start), alpha)
     a = sol.a
-    log10a = homoclinic.log10_abs(a, alpha)
+    log10a = homoclinic_tails.log10_abs(a, alpha)
     c = int(np.argmax(np.abs(a)))
     resolved = (np.abs(a) > 1e-40) & (np.abs(a) < 1e-12 * np.max(np.abs(a)))
     assert resolved.sum() >= 2
     assert np.allclose(log10a[resolved], np.log10(np.abs(a[resolved])), rtol=1e-8)
     assert np.min(log10a) < -300
     j = c + int(np.flatnonzero(np.abs(a[c:]) > 1e-9 * np.max(np.abs(a)))[-1])
-    signs, L = homoclinic.log_tail(a[j], alpha, 12)
+    signs, L = homoclinic_tails.log_tail(a[j], alpha, 12)
     assert np.all(signs[1:] == -signs[:-1])
     assert L[-1] / np.log(10) < -300
     assert max(_relative_residuals(signs, L / np.log(10), alpha)) < 1e-9

@@ -22,7 +22,7 @@ from cradle.integrators import (
     omega_max,
 )
 from cradle.integrators import _kernels as K
-from cradle.integrators import _onset as O
+from cradle.integrators import _onset_impulse as OI
 from cradle.integrators._coefficients import SPLITTINGS
 
 ORDERS = {"strang": 2, "srkn4": 4, "srkn6": 6}
@@ -248,7 +248,7 @@ def test_exact_impulse_against_quadrature():
     out = np.empty(2)
     for d0, w0, d1, w1, h, rtol in [(0.01, -0.3, -0.02, -0.35, 0.1, 1e-11), (-0.004, 0.2, 0.01, 0.1, 0.07, 1e-12),
                                     (0.003, -0.1, 0.002, 0.1, 0.2, 1e-9)]:
-        p = np.polynomial.Polynomial(O._hermite(d0, w0, d1, w1, h))
+        p = np.polynomial.Polynomial(OI.hermite(d0, w0, d1, w1, h))
         roots = sorted(r.real for r in p.roots() if abs(r.imag) < 1e-12 and 0 < r.real < 1)
         ref = np.zeros(2)
         cuts = [0.0, *roots, 1.0]
@@ -261,14 +261,14 @@ def test_exact_impulse_against_quadrature():
                 left = quad(lambda u: g(lo + (mid - lo) * u * u) * 2 * (mid - lo) * u, 0, 1, epsabs=0, epsrel=1e-13)
                 right = quad(lambda u: g(hi - (hi - mid) * u * u) * 2 * (hi - mid) * u, 0, 1, epsabs=0, epsrel=1e-13)
                 ref[i] += h * (left[0] + right[0])
-        nroots = O.exact_impulse(d0, w0, d1, w1, h, 1.5, 0, out)
+        nroots = OI.exact_impulse(d0, w0, d1, w1, h, 1.5, 0, out)
         assert nroots == len(roots)
         np.testing.assert_allclose(out, ref, rtol=rtol)
 
 
 def test_sincos_polynomial():
     x = np.linspace(-2.0, 2.0, 401)
-    got = np.array([O._sincos(v) for v in x])
+    got = np.array([OI._sincos(v) for v in x])
     np.testing.assert_allclose(got[:, 0], np.sin(x), rtol=0, atol=5e-15)
     np.testing.assert_allclose(got[:, 1], np.cos(x), rtol=0, atol=5e-15)
 

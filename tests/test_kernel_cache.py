@@ -23,7 +23,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from cradle.integrators import _cache
-from cradle.integrators import _dop853, _onset
+from cradle.integrators import _dop853, _onset, _onset_impulse
 from cradle.integrators import _kernels as K
 from cradle.models import lattice as L
 from cradle.models.dps import amplitude_from_omega
@@ -122,7 +122,7 @@ def test_kernels_of_this_process_are_cached_in_the_keyed_folder():
     folder = _cache.activate()
     assert numba.config.CACHE_DIR == str(folder)
     assert folder.name == _cache.cache_key()[0][:_cache.KEY_DIGITS]
-    dispatchers = [f for mod in (K, _onset, _dop853) for f in vars(mod).values()
+    dispatchers = [f for mod in (K, _onset, _onset_impulse, _dop853) for f in vars(mod).values()
                    if isinstance(f, numba.core.registry.CPUDispatcher)]
     assert len(dispatchers) >= 20
     for f in dispatchers:
@@ -131,7 +131,7 @@ def test_kernels_of_this_process_are_cached_in_the_keyed_folder():
 
 def test_key_sources_are_the_kernel_modules_and_their_cradle_imports():
     names = [p.name for p in _cache.kernel_sources()]
-    assert names == ["_cache.py", "_dop853.py", "_kernels.py", "_onset.py"]
+    assert names == ["_cache.py", "_dop853.py", "_kernels.py", "_onset.py", "_onset_impulse.py"]
     # every module of the package that uses numba is covered
     uses_numba = {p.name for p in _cache.PACKAGE_DIR.rglob("*.py") if re.search(r"^\s*(from|import) numba", p.read_text(), re.M)}
     assert uses_numba <= set(names)

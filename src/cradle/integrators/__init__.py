@@ -29,20 +29,10 @@ from cradle.integrators import _cache
 _cache.activate()   # numba's cache folder for these sources, before any kernel is decorated
 
 from cradle.integrators.dps_solver import DPS_METHODS, DpsSolution, integrate_dps
-from cradle.integrators.lattice_solver import (
-    ADAPTIVE_METHODS,
-    CORRECTED_METHODS,
-    DEFAULT_DT_FACTOR,
-    MAX_RERUNS,
-    METHODS,
-    SCIPY_METHODS,
-    SPLITTING_METHODS,
-    LatticeSolution,
-    compression_bounds,
-    default_dt,
-    integrate_lattice,
-    omega_max,
-)
+from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, SCIPY_METHODS
+from cradle.integrators.lattice_solver import MAX_RERUNS, METHODS, LatticeSolution, integrate_lattice
+from cradle.integrators.lattice_splitting import CORRECTED_METHODS, SPLITTING_METHODS
+from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bounds, default_dt, omega_max
 
 __all__ = [
     "LatticeSolution",

@@ -137,7 +137,7 @@ def _exact_seconds(N: int, t_end: float, exact: dict, stored: int) -> tuple[floa
     method = exact.get("method", "srkn6c")
     steps = float(t_end) * STEPS_PER_TIME_UNIT.get(method, max(STEPS_PER_TIME_UNIT.values()))
     if exact.get("dt_factor"):  # only then import the integrators (numba): the Snakefile validates
-        from cradle.integrators.lattice_solver import DEFAULT_DT_FACTOR
+        from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR
 
         steps *= DEFAULT_DT_FACTOR.get(method, float(exact["dt_factor"])) / float(exact["dt_factor"])
     steps = max(steps, float(stored - 1))

@@ -28,15 +28,16 @@ from cradle.pipeline.runner import StageFailure
 
 def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
     """Solve (dpsstn) for one ``homoclinic:`` entry; a(n), residual(n), attributes."""
-    from cradle.models import homoclinic  # scipy.optimize: only the homoclinic stage needs it
+    # scipy.optimize: only the homoclinic stage needs it
+    from cradle.models import homoclinic, homoclinic_continuation, homoclinic_tails
 
     t0 = time.perf_counter()
     alpha, N, bc = spec["alpha"], spec["N"], spec["bc"]
     centre = spec.get("centre")
     # the paper's Powell start, or continuation in alpha from 3/2 where it fails (alpha far from 3/2)
-    sol = homoclinic.solve_kind(N, spec["guess"], alpha, bc, mu=spec.get("mu", 1.0),
-                                amplitude=spec.get("amplitude", 0.1), centre=centre,
-                                separation=spec.get("separation", 9))
+    sol = homoclinic_continuation.solve_kind(N, spec["guess"], alpha, bc, mu=spec.get("mu", 1.0),
+                                             amplitude=spec.get("amplitude", 0.1), centre=centre,
+                                             separation=spec.get("separation", 9))
     a = sol.a
     scale = spec.get("mu", 1.0) ** (1.0 / (alpha - 1.0))  # (dpsst) solution = scale * (dpsstn) solution
     r = homoclinic.residual(a, alpha, bc, sign=spec.get("mu", 1.0))
@@ -53,7 +54,8 @@ def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
     else:  # site: a_{c-n} = a_{c+n}; bond: a_{c-n} = -a_{c+n+1}
         attrs["symmetry_error"] = homoclinic.symmetry_error(a, spec["guess"], centre)
     # tails far below machine precision: exact (dpsstn) recursion in log variables (periodic ends)
-    log10a = homoclinic.log10_abs(a / scale, alpha) + np.log10(scale) if bc == "periodic" else np.log10(np.abs(a))
+    log10a = (homoclinic_tails.log10_abs(a / scale, alpha) + np.log10(scale) if bc == "periodic"
+              else np.log10(np.abs(a)))
     attrs["log10_tail_min"] = float(np.min(log10a))
     ds = make_dataset({"a": a, "residual_n": r, "log10_abs_a": log10a}, coords={"n": np.arange(N)}, attrs=attrs,
                       params=spec, title=f"solution '{name}' of the stationary DpS equation (dpsstn)")

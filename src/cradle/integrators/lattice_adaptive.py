@@ -1,0 +1,103 @@
+"""The adaptive drivers on (nc)/(meca): scipy's solvers stepped manually, and DOP853 in numba.
+
+scipy's "dop853", "rk45", "lsoda", "radau" get the numba right-hand side
+(:func:`cradle.integrators._kernels.lattice_rhs`; "radau" and "lsoda" also the
+analytic Jacobian) and dense output at the output times; "dop853_numba" runs
+entirely in numba (:mod:`cradle.integrators._dop853`) with steps ending
+exactly on the output times. The energy (ham) is evaluated after every
+accepted step.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from cradle.integrators import _dop853
+from cradle.integrators import _kernels as K
+
+#: scipy.integrate.solve_ivp classes, the baselines (looked up when used: scipy.integrate costs 0.5 s to import)
+SCIPY_METHODS = {"dop853": "DOP853", "rk45": "RK45", "lsoda": "LSODA", "radau": "Radau"}
+ADAPTIVE_METHODS = tuple(SCIPY_METHODS) + ("dop853_numba",)
+
+
+def run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic, progress):
+    """(X, V, E, drift, steps, function evaluations, max compression) of scipy's ``method`` from t = 0."""
+    N = x0.size
+    T = t_out.size
+    y0 = np.concatenate((x0, v0))
+    f = np.empty(N)
+    F = np.empty(N)
+
+    def fun(t, y):
+        dy = np.empty_like(y)
+        K.lattice_rhs(y, dy, f, F, alpha, mode, periodic)
+        return dy
+
+    extra = {}
+    if method in ("radau", "lsoda"):
+        def jac(t, y):
+            J = np.empty((2 * N, 2 * N))
+            K.lattice_jac(y, J, alpha, mode, periodic)
+            return J
+        extra["jac"] = jac
+
+    X = np.empty((T, N))
+    V = np.empty((T, N))
+    E = np.empty(T)
+    H0, cmax = K.lattice_energy(x0, v0, alpha, mode, periodic)
+    scale = abs(H0) if H0 != 0.0 else 1.0
+    drift = 0.0
+    idx = 0
+    if t_out[0] == 0.0:
+        X[0], V[0], E[0] = x0, v0, H0
+        idx = 1
+    t_final = float(t_out[-1])
+    n_steps = 0
+    if idx < T:
+        from scipy import integrate
+
+        solver = getattr(integrate, SCIPY_METHODS[method])(fun, 0.0, y0, t_final, rtol=rtol, atol=atol, **extra)
+        t_last = time.perf_counter()
+        while solver.status == "running":
+            msg = solver.step()
+            if solver.status == "failed":
+                raise RuntimeError(f"{method} failed at t={solver.t!r}: {msg}")
+            n_steps += 1
+            y = solver.y
+            H, cm = K.lattice_energy(y[:N], y[N:], alpha, mode, periodic)
+            drift = max(drift, abs(H - H0) / scale)
+            cmax = max(cmax, cm)
+            dense = None
+            while idx < T and t_out[idx] <= solver.t:
+                if t_out[idx] == solver.t:
+                    yk = y
+                else:
+                    if dense is None:
+                        dense = solver.dense_output()
+                    yk = dense(t_out[idx])
+                X[idx], V[idx] = yk[:N], yk[N:]
+                E[idx] = K.lattice_energy(X[idx], V[idx], alpha, mode, periodic)[0]
+                idx += 1
+            if progress is not None and time.perf_counter() - t_last >= 1.0:
+                t_last = time.perf_counter()
+                progress(float(solver.t), t_final)
+        nfev = solver.nfev
+    else:
+        nfev = 0
+    if progress is not None:
+        progress(t_final, t_final)
+    return X, V, E, drift, n_steps, int(nfev), float(cmax)
+
+
+def run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic, progress):
+    """(X, V, E, drift, steps, function evaluations, max compression) of DOP853 in numba from t = 0."""
+    N = x0.size
+    H0, c0 = K.lattice_energy(x0, v0, alpha, mode, periodic)
+    stats = np.array([H0, 0.0, c0, H0])
+    Y, n_steps, nfev = _dop853.run_dop853(_dop853.LATTICE, np.concatenate((x0, v0)), t_out, rtol, atol, alpha,
+                                          mode, 0.0, periodic, stats, progress)
+    X = np.ascontiguousarray(Y[:, :N])
+    V = np.ascontiguousarray(Y[:, N:])
+    E = np.array([K.lattice_energy(X[i], V[i], alpha, mode, periodic)[0] for i in range(len(t_out))])
+    return X, V, E, float(stats[1]), n_steps, nfev, float(stats[2])

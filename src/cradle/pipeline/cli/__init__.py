@@ -1,0 +1,122 @@
+"""The ``cradle`` command (also ``python -m cradle``).
+
+::
+
+    cradle scenes   [--config config.yaml]                 # scenes, figures and what each needs
+    cradle run      SCENE [--out cradle-runs] [--config ...]   # one scene without Snakemake
+    cradle describe FILE.nc                                # parameters, checks, provenance of a result
+    cradle extend   FILE.nc --t-end T [--every DT] [--out FILE.nc | --in-place]   # continue an exact run
+    cradle verify   [results]                              # every output's checksums; what to rebuild
+
+``cradle run`` computes a scene's initial data, exact and DpS runs and
+metrics with :mod:`cradle.pipeline.stages` and
+:func:`cradle.pipeline.runner.run_chain`, as the workflow's ``simulate`` job
+does: all four files are written only after every step succeeded (a failure
+writes none of them; what was computed goes under ``failed/``), into the
+workflow's layout under its own folder (default ``cradle-runs/``, never the
+workflow's ``results/`` unless asked): ``OUT/initial/SCENE.nc``,
+``OUT/sim/SCENE/{exact,dps}.nc``, ``OUT/metrics/SCENE.nc``, log in
+``OUT/logs/sim/SCENE.log``. A breather scene's homoclinic solution is
+computed first (``OUT/homoclinic/NAME.nc``). A ``map`` or ``homoclinic``
+name computes that entry alone. The config is refused before any work if a
+job is over budget (:mod:`cradle.pipeline.budget`).
+
+``cradle extend`` writes a new file by default (``FILE-tT.nc`` beside the
+input); ``--in-place`` replaces the input, and is refused for a scene's
+exact run next to its DpS run (a workflow output): extending it alone would
+leave the DpS run, the metrics and the config at the old t_end.
+
+Every error is one line on stderr, ``cradle: error: ...``, exit status 2,
+no traceback. ``cradle verify`` exits 1 when an output must be rebuilt.
+
+This package holds the parser and :func:`main`; the commands are in
+:mod:`.scenes`, :mod:`.run` and :mod:`.files` (describe, extend, verify),
+what they share in :mod:`.common`.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+
+from cradle import __version__
+from cradle.pipeline.cli.common import PROG, CliError
+from cradle.pipeline.cli.files import cmd_describe, cmd_extend, cmd_verify
+from cradle.pipeline.cli.run import RUN_OUT, cmd_run
+from cradle.pipeline.cli.scenes import cmd_scenes
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, exit 2 (argparse would print the usage first)
+        raise CliError(message)
+
+
+def parser() -> argparse.ArgumentParser:
+    p = _Parser(prog=PROG, description="Newton's cradle and the discrete p-Schroedinger equation (G. James 2011), "
+                                       "rebuilt: list, run and describe scenes outside Snakemake.")
+    p.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    s = sub.add_parser("scenes", help="list scenes, homoclinic and map entries, figures and what each needs")
+    s.add_argument("--config", default="config.yaml", help="config file (default: config.yaml)")
+    s.set_defaults(func=cmd_scenes)
+    r = sub.add_parser("run", help="compute one scene (initial, exact, dps, metrics) without Snakemake")
+    r.add_argument("scene", metavar="SCENE", help="a name under scenes: (or homoclinic:, map:) of the config")
+    r.add_argument("--out", default=RUN_OUT, help=f"output folder (default: {RUN_OUT}; not the workflow's results)")
+    r.add_argument("--config", default="config.yaml", help="config file (default: config.yaml)")
+    r.set_defaults(func=cmd_run)
+    d = sub.add_parser("describe", help="print a result's parameters, checks and provenance")
+    d.add_argument("file", metavar="FILE.nc")
+    d.set_defaults(func=cmd_describe)
+    e = sub.add_parser("extend", help="continue a finished exact run (exact.nc) to a later time and append; "
+                                      "bitwise the same as one longer run for splitting methods")
+    e.add_argument("file", metavar="FILE.nc", help="an exact run (sim/SCENE/exact.nc)")
+    e.add_argument("--t-end", type=float, required=True, dest="t_end", help="new final time (> the last stored t)")
+    e.add_argument("--every", type=float, default=None,
+                   help="storage step of the new times (default: the file's median spacing)")
+    e.add_argument("--out", default=None, help="write here (default: FILE-tT.nc beside FILE.nc)")
+    e.add_argument("--in-place", action="store_true", dest="in_place",
+                   help="replace FILE.nc (refused for a workflow scene's exact run: change t_end in the config)")
+    e.set_defaults(func=cmd_extend)
+    v = sub.add_parser("verify", help="read every output's data against its checksums; list what to rebuild "
+                                      "(exit 1 if any)")
+    v.add_argument("root", nargs="?", default="results", metavar="RESULTS",
+                   help="a folder of outputs (every *.nc below it) or one file (default: results)")
+    v.set_defaults(func=cmd_verify)
+    return p
+
+
+def main(argv=None) -> int:
+    """Run the command line ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
+    import os
+
+    from cradle.pipeline import provenance
+    from cradle.pipeline.config import ConfigError
+
+    argv = sys.argv[1:] if argv is None else list(argv)
+    try:
+        args = parser().parse_args(argv)
+        if not getattr(args, "func", None):
+            parser().print_help()
+            return 2
+        provenance.set_command(" ".join([PROG, *argv]))
+        return args.func(args)
+    except CliError as err:
+        text = " ".join(str(err).split())
+    except ConfigError as err:
+        lines = [line.strip() for line in str(err).splitlines() if line.strip()]
+        text = "; ".join(line.removeprefix("config error: ") for line in lines)
+        text = f"{getattr(args, 'config', 'config')}: {text}"
+    except KeyboardInterrupt:
+        print(f"{PROG}: interrupted", file=sys.stderr)
+        return 130
+    except Exception as err:  # noqa: BLE001 - one line for the user; CRADLE_DEBUG=1 shows the traceback
+        io = sys.modules.get("cradle.pipeline.io")  # a damaged input can only come from the readers there
+        if io is not None and isinstance(err, io.DamagedOutput):
+            text = " ".join(str(err).split())
+        elif os.environ.get("CRADLE_DEBUG"):
+            raise
+        else:
+            text = f"{type(err).__name__}: {' '.join(str(err).split())} (CRADLE_DEBUG=1 shows the traceback)"
+    finally:
+        provenance.set_command(None)
+    print(f"{PROG}: error: {text}", file=sys.stderr)
+    return 2

@@ -1,0 +1,130 @@
+"""The commands on result files: ``cradle describe`` (parameters, checks, provenance), ``cradle extend``
+(continue a finished exact run of (nc) to a later time) and ``cradle verify`` (every output's checksums)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from cradle.pipeline.cli.common import CliError
+
+
+#: global attributes that are checks of the result (accuracy, convergence, failure)
+CHECKS = ("energy_drift", "max_energy_drift_allowed", "max_l2_drift", "max_dps_energy_drift", "residual",
+          "converged", "symmetry_error", "E_max", "E_final", "n_steps", "n_force_evals", "wall_time_s", "failure")
+CF_KEYS = ("title", "Conventions", "source", "references", "history")
+
+
+def _fmt(value) -> str:
+    import numpy as np
+
+    if isinstance(value, (float, np.floating)):
+        return f"{float(value):.6g}"
+    if isinstance(value, np.ndarray):
+        return "[" + ", ".join(_fmt(v) for v in value.tolist()) + "]"
+    return str(value)
+
+
+def cmd_describe(args) -> int:
+    import xarray as xr
+
+    from cradle.pipeline.provenance import KEYS as PROV
+
+    from cradle.pipeline.io import DamagedOutput, verify_file
+
+    path = Path(args.file)
+    if not path.exists():
+        raise CliError(f"no such file {str(path)!r}")
+    try:
+        bare = verify_file(path)  # every checksum, in bounded memory: a damaged file is not described as fine
+        ds = xr.open_dataset(path)
+    except DamagedOutput as err:
+        raise CliError(str(err)) from None
+    except Exception as err:  # noqa: BLE001 - any unreadable file is one line
+        raise CliError(f"cannot read {str(path)!r} as netCDF: {' '.join(str(err).split())}") from None
+    with ds:
+        attrs = dict(ds.attrs)
+        width = max([len(k) for k in attrs] + [12])
+        out = [f"{path}: {attrs.get('title', '(no title)')}", "", "parameters:"]
+        out += [f"  {k:<{width}} {_fmt(v)}" for k, v in attrs.items() if k not in CHECKS + CF_KEYS + PROV]
+        out += ["", "checks:"]
+        out += [f"  {k:<{width}} {_fmt(attrs[k])}" for k in CHECKS if k in attrs]
+        for name in ("residual_n", "l2_drift", "dps_energy_drift", "P_drift", "E"):
+            if name in ds:
+                out.append(f"  {'max|' + name + '|':<{width}} {float(abs(ds[name]).max()):.6g}")
+        out.append(f"  {'checksums':<{width}} " + ("verified (every variable)" if not bare else
+                   f"verified; no checksum on {', '.join(bare)} (written before checksums: rebuild to protect)"))
+        out += ["", "provenance:"]
+        out += [f"  {k:<{width}} {_fmt(attrs[k])}" for k in PROV + ("history", "Conventions") if k in attrs]
+        out += ["", "variables:"]
+        for name in list(ds.coords) + list(ds.data_vars):
+            var = ds[name]
+            dims = f"({', '.join(f'{d}={ds.sizes[d]}' for d in var.dims)})"
+            out.append(f"  {name:<16} {dims:<22} {var.attrs.get('long_name', '')} [{var.attrs.get('units', '?')}]")
+    print("\n".join(out))
+    return 0
+
+
+def _workflow_scene_of(path: Path) -> str | None:
+    """The scene whose workflow outputs ``path`` belongs to (``.../sim/SCENE/exact.nc`` beside its
+    ``dps.nc``), or None for a standalone exact run."""
+    if path.parent.parent.name == "sim" and (path.parent / "dps.nc").exists():
+        return path.parent.name
+    return None
+
+
+def cmd_extend(args) -> int:
+    import math
+
+    from cradle.pipeline.extend import extend
+    from cradle.pipeline.io import DamagedOutput
+
+    path = Path(args.file)
+    if not path.exists():
+        raise CliError(f"no such file {str(path)!r}")
+    if not math.isfinite(args.t_end):
+        raise CliError(f"--t-end {args.t_end!r}: must be a finite time")
+    if args.every is not None and not (math.isfinite(args.every) and args.every > 0):
+        raise CliError(f"--every {args.every!r}: must be a finite time > 0")
+    if args.in_place and args.out:
+        raise CliError("give --out FILE or --in-place, not both")
+    out = path if args.in_place else Path(args.out) if args.out else path.with_name(f"{path.stem}-t{args.t_end:g}.nc")
+    if out.resolve() == path.resolve():
+        scene = _workflow_scene_of(path)
+        if scene is not None:
+            raise CliError(f"refusing to extend {path} in place: the DpS run {path.parent / 'dps.nc'}, the metrics "
+                           f"and the config would stay at the old t_end. Set scenes.{scene}.t_end: {args.t_end:g} in "
+                           f"the config and run `snakemake {path}` (all four files of the scene, consistently), "
+                           f"or drop --in-place to write a new file")
+    try:
+        s = extend(path, args.t_end, out=out, every=args.every)
+    except DamagedOutput as err:
+        raise CliError(str(err)) from None
+    except ValueError as err:
+        raise CliError(str(err)) from None
+    print(f"{s['path']}: t = {s['t_from']:g} -> {s['t_end']:g}, {s['rows_added']} stored times added, "
+          f"{s['n_steps']} steps (dt = {s['dt']:.6g}), energy drift {s['energy_drift']:.3e}, "
+          f"{s['wall_time_s']:.2f} s")
+    return 0
+
+
+def cmd_verify(args) -> int:
+    from cradle.pipeline.io import DamagedOutput, rebuild_hint, verify_file
+
+    root = Path(args.root)
+    if not root.exists():
+        raise CliError(f"no such folder or file {str(root)!r}")
+    files = [root] if root.is_file() else sorted(p for p in root.rglob("*.nc")
+                                                 if not p.name.startswith(".") and "failed" not in p.parts)
+    damaged, bare = [], []
+    for p in files:
+        try:
+            if verify_file(p):
+                bare.append(p)
+        except (DamagedOutput, OSError) as err:
+            damaged.append(" ".join(str(err).split()))
+    for line in damaged:
+        print(f"DAMAGED {line}")
+    for p in bare:
+        print(f"note    {p}: readable, but written before checksums; {rebuild_hint(p)} to protect it")
+    print(f"{len(files)} files checked: {len(files) - len(damaged) - len(bare)} verified, {len(bare)} without "
+          f"checksums, {len(damaged)} to rebuild")
+    return 1 if damaged else 0

@@ -1,0 +1,84 @@
+"""``cradle run``: one scene (or homoclinic or map entry) computed without Snakemake.
+
+As the workflow's ``simulate`` job does, with :mod:`cradle.pipeline.stages`
+and :func:`cradle.pipeline.runner.run_chain`: a scene's files are written
+only after every step succeeded, into the workflow's layout under its own
+folder (:data:`RUN_OUT` unless asked otherwise).
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from cradle.pipeline.cli.common import PROG, CliError, known_names, load_config, section_of
+
+#: where ``cradle run`` writes by default: its own folder, not the workflow's results/
+RUN_OUT = "cradle-runs"
+
+
+def _stage(compute, out, log, label):
+    """runner.run (atomic write, log, failed/ on StageFailure) of ``compute``; the stage functions
+    record the hash of their parameters themselves (``params_sha256``)."""
+    from cradle.pipeline.runner import StageFailure, run
+
+    try:
+        return run(compute, out, str(log), label=label)
+    except StageFailure as err:
+        raise CliError(f"{label}: {err}") from None
+
+
+def _note_workflow_results(out: Path, config: Path) -> None:
+    """``cradle run`` writes into the workflow's own ``results/`` only when asked by name; there, a
+    file written outside Snakemake would be taken as up to date with whatever config made it."""
+    if out.resolve() == (Path(config).resolve().parent / "results").resolve():
+        print(f"{PROG}: note: writing into the workflow's folder {out}; Snakemake will take these files as "
+              "built from the current config", file=sys.stderr)
+
+
+def cmd_run(args) -> int:
+    from cradle.pipeline import budget, config as cc
+    from cradle.pipeline import stages
+    from cradle.pipeline.runner import Progress, StageFailure, run_chain
+
+    cfg = load_config(args.config)  # validate: an over-budget job is refused here, before any work
+    name, out = args.scene, Path(args.out)
+    section = section_of(cfg, name)
+    if section is None:
+        raise CliError(f"unknown scene {name!r} (known: {known_names(cfg)})")
+    _note_workflow_results(out, args.config)
+    logs = out / "logs"
+    if section == "map":
+        mspec = cc.resolved_map(cfg, name)
+        _stage(lambda: stages.map_orbits(mspec, name), out / "map" / f"{name}.nc",
+               logs / "map" / f"{name}.log", f"map {name}")
+        return 0
+    if section == "homoclinic":
+        hspec = cc.resolved_homoclinic(cfg, name)
+        _stage(lambda: stages.homoclinic_solution(hspec, name), out / "homoclinic" / f"{name}.nc",
+               logs / "homoclinic" / f"{name}.log", f"homoclinic {name}")
+        return 0
+    spec = cc.resolved_scene(cfg, name)
+    print(f"{PROG}: {budget.spec_estimate(spec).describe()}", file=sys.stderr)  # within budget (validated)
+    steps, outs = [], {}
+    if spec["initial"]["kind"] == "breather":
+        hname = spec["initial"]["homoclinic"]
+        hspec = cc.resolved_homoclinic(cfg, hname)
+        steps.append(("homoclinic", lambda done: stages.homoclinic_solution(hspec, hname)))
+        outs["homoclinic"] = out / "homoclinic" / f"{hname}.nc"
+    sim = out / "sim" / name
+    steps += [
+        ("initial", lambda done: stages.initial_data(spec, name, done.get("homoclinic"))),
+        ("exact", lambda done: stages.exact_run(spec, done["initial"], name, progress=Progress(
+            f"exact {name}", estimate=budget.long_run(spec)))),
+        ("dps", lambda done: stages.dps_run(spec, done["initial"], name, progress=Progress(f"dps {name}"))),
+        ("metrics", lambda done: stages.metrics(spec, done["exact"], done["dps"], name)),
+    ]
+    outs.update({"initial": out / "initial" / f"{name}.nc", "exact": sim / "exact.nc", "dps": sim / "dps.nc",
+                  "metrics": out / "metrics" / f"{name}.nc"})
+    try:
+        run_chain(steps, outs, str(logs / "sim" / f"{name}.log"), label=name)
+    except StageFailure as err:
+        raise CliError(f"{name}: {err} (none of the scene's files written; what was computed is kept for "
+                       f"diagnosis, see {logs / 'sim' / (name + '.log')})") from None
+    print(f"{name}: {', '.join(str(p) for p in outs.values())}")
+    return 0
