@@ -39,7 +39,7 @@ import time
 import numpy as np
 
 from cradle.measurements import compare, sidebands
-from cradle.models import dps, initial
+from cradle.models import initial
 from cradle.analyses import modulational
 from cradle.pipeline.config import store_times
 

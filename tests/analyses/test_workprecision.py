@@ -15,7 +15,7 @@ from cradle.pipeline import stages
 from cradle.analyses import workprecision as wp
 from cradle.pipeline.io import open_dataset, write_netcdf
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 TINY = {
     "name": "tiny", "alpha": 1.5, "N": 16, "bc": "periodic", "t_end": 10.0, "compare_every": 1.0,

@@ -22,7 +22,7 @@ import yaml
 from cradle.pipeline import budget, cli, config as cc, extend, io, stages
 from cradle.pipeline.params import compact_scene, expand_scene
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 TINY = {
     "defaults": {"alpha": 1.5, "exact": {"method": "srkn6c"}, "dps": {"method": "dop853_numba", "rtol": 1e-9}},

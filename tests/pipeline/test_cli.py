@@ -14,7 +14,7 @@ from cradle.pipeline.config import load, resolved_scene
 from cradle.pipeline.provenance import params_hash
 from cradle.pipeline.io import open_dataset, open_scene
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 TINY_CLI = {
     "defaults": {"alpha": 1.5, "exact": {"method": "srkn6"}, "dps": {"method": "dop853", "rtol": 1e-9}},

@@ -3,15 +3,13 @@ target, and a small Snakemake run on a tiny config builds, is idempotent and
 replans only what a changed parameter touches."""
 from __future__ import annotations
 
-import os
 import re
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import run_snakemake
 import yaml
 
 from cradle.pipeline import config as cc
@@ -20,7 +18,7 @@ from cradle.pipeline.io import open_dataset, write_netcdf
 from cradle.pipeline.runner import failed_path, run, run_chain
 from cradle.pipeline.variables import VARIABLES
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 TINY = {
     "defaults": {"alpha": 1.5, "exact": {"method": "srkn6"}, "dps": {"method": "dop853", "rtol": 1e-9}},
@@ -125,10 +123,7 @@ def test_failed_step_of_a_chain_writes_no_target_and_keeps_the_finished_steps(tm
     assert "exceeds max_energy_drift" in open_dataset(failed_path(outs["exact"])).attrs["failure"]
 
 def _snakemake(workdir, *args):
-    exe = shutil.which("snakemake") or shutil.which("snakemake", path=str(Path(sys.executable).parent))
-    cmd = [exe] if exe else [sys.executable, "-m", "snakemake"]
-    return subprocess.run(cmd + ["--cores", "2", *args], cwd=workdir, capture_output=True, text=True,
-                          env={**os.environ, "PYTHONWARNINGS": "ignore"})
+    return run_snakemake(workdir, "--cores", "2", *args)
 
 
 def _job_counts(text):

@@ -120,7 +120,7 @@ def raw():
     import yaml
     from pathlib import Path
 
-    return yaml.safe_load((Path(__file__).resolve().parents[1] / "config.yaml").read_text())
+    return yaml.safe_load((Path(__file__).resolve().parents[2] / "config.yaml").read_text())
 
 
 def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):

@@ -1,24 +1,19 @@
 """Snakemake conventions: `snakemake --lint`, log:/benchmark: per rule, report captions, cluster profile."""
 from __future__ import annotations
 
-import os
 import re
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from conftest import run_snakemake
 import yaml
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 RULES = ROOT / "workflow" / "rules"
 
 def _snakemake(workdir, *args, timeout=120):
-    exe = shutil.which("snakemake") or shutil.which("snakemake", path=str(Path(sys.executable).parent))
-    cmd = [exe] if exe else [sys.executable, "-m", "snakemake"]
-    return subprocess.run(cmd + list(args), cwd=workdir, capture_output=True, text=True, timeout=timeout,
-                          env={**os.environ, "PYTHONWARNINGS": "ignore"})
+    return run_snakemake(workdir, *args, timeout=timeout)
 
 
 def test_snakemake_lint():

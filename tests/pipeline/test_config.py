@@ -10,7 +10,7 @@ import yaml
 
 from cradle.pipeline import config as cc
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
 
 

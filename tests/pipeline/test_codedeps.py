@@ -17,25 +17,23 @@ import io
 import os
 import shutil
 import subprocess
-import sys
 import time
 from modulefinder import ModuleFinder
 from pathlib import Path
 
 import pytest
+from conftest import run_snakemake
 
 from cradle import figures
 from cradle.analyses.registry import ANALYSES
 from cradle.pipeline.codedeps import code_files
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SRC = ROOT / "src"
 
 
 def _snakemake(workdir, *args):
-    exe = shutil.which("snakemake") or shutil.which("snakemake", path=str(Path(sys.executable).parent))
-    return subprocess.run([exe, *args], cwd=workdir, capture_output=True, text=True, timeout=300,
-                          env={**os.environ, "PYTHONWARNINGS": "ignore"})
+    return run_snakemake(workdir, *args)
 
 
 def _summary(workdir, *targets) -> list[dict]:

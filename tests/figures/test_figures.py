@@ -9,7 +9,7 @@ from matplotlib.image import AxesImage
 from cradle.measurements import compare
 from cradle.pipeline import stages
 from cradle.pipeline import config as cc
-from cradle.figures import drawer, registry, spacetime, spectra
+from cradle.figures import drawer, registry, spectra
 
 TIMES = [0.0, 5.0, 10.0, 15.0, 20.0]
 CFG = {

@@ -14,7 +14,7 @@ import yaml
 from cradle.pipeline import config as cc
 from cradle.pipeline.config import beyond, floquet, mi_statistics, scenes, sections
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
 
 # sha256 of every resolved parameter of config.yaml (see _everything_resolved). The move of the config
