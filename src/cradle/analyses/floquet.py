@@ -46,6 +46,7 @@ import numpy as np
 
 from cradle.models import dps
 from cradle.analyses import theorem1 as t1
+from cradle.pipeline.variables import Var
 
 DEFAULT_HILL_MODES = 32      # L: Fourier modes |m| <= L of W
 DEFAULT_GRID_LOG2 = 14       # M = 2^14 points for the Fourier coefficients of K
@@ -351,8 +352,56 @@ def threshold(alpha: float, omega_tw: float, q_lo: float, q_hi: float, num: dict
 
 # ----------------------------------------------------------------- the pipeline stage
 
+_Q = Var(("q",), "wavenumber q of the exact travelling wave", "rad")
+_P = Var(("p",), "Bloch wavenumber p of the perturbation (DpS sideband p)", "rad")
+_GROWTH = Var(("q", "p"), "lattice growth rate g(p): max Re lambda of the central Bloch pair", "1",
+              attrs=(("comment", "per unit lattice time t; 0 where stable; p = 0 (trivial pair) set to 0"),))
+
+#: the stored variables of the `floquet` file, per netCDF group (the root holds the attributes):
+#: "/sweep" the growth over (q, p) at omega_tw, "/profiles" growth against p at selected q,
+#: "/thresholds" the lattice threshold against the amplitude (omega_tw), "/small_amplitude" the
+#: check against DpS. Rates are per unit t of (nc); DpS rates in lattice time (R = a/2)
+VARIABLES = {
+    "/": {},
+    "/sweep": {
+        "q": _Q, "p": _P,
+        "a": Var(("q",), "amplitude a (first sine coefficient of u) from (freq) at omega_tw"),
+        "omega": Var(("q",), "frequency omega_a of the exact wave"),
+        "growth": _GROWTH,
+        "growth_dps": Var(("q", "p"), "DpS growth rate of sideband p in lattice time (R = a/2)"),
+        "max_growth": Var(("q",), "max over p of the lattice growth rate"),
+        "argmax_p": Var(("q",), "p of the fastest-growing lattice mode (NaN where stable)", "rad"),
+        "max_growth_dps": Var(("q",), "max over p of the DpS growth rate in lattice time"),
+        "argmax_p_dps": Var(("q",), "p of the fastest-growing DpS sideband (NaN where stable)", "rad"),
+        "trivial_defect": Var(("q",), "max |lambda| of the central pair at p = 0 (exactly 0; numerical error)"),
+    },
+    "/profiles": {
+        "q": Var(("q",), "wavenumber q of a growth-against-p profile", "rad"), "p": _P,
+        "growth": Var(("q", "p"), "lattice growth rate against p at a selected q"),
+        "growth_dps": Var(("q", "p"), "DpS growth rate (lattice time) against p at a selected q"),
+        "max_growth": Var(("q",), "max over p of the lattice growth rate at a selected q"),
+        "argmax_p": Var(("q",), "p of the fastest-growing lattice mode at a selected q", "rad"),
+        "max_growth_fine": Var(("q",), "the same with the finer numerics (convergence check)"),
+        "max_growth_dps": Var(("q",), "max over p of the DpS growth rate at a selected q"),
+    },
+    "/thresholds": {
+        "omega_tw": Var(("omega_tw",), "omega_tw of (freq) fixing the amplitude of a threshold search"),
+        "q_threshold": Var(("omega_tw",), "lattice instability threshold: smallest unstable q", "rad"),
+        "q_threshold_halfwidth": Var(("omega_tw",), "half-width of the final bisection bracket of the threshold",
+                                     "rad"),
+        "p_threshold": Var(("omega_tw",), "p of the first unstable lattice mode at the threshold", "rad"),
+    },
+    "/small_amplitude": {
+        "q": Var(("q",), "wavenumber q of a small-amplitude check against DpS", "rad"),
+        "max_growth": Var(("q",), "max lattice growth rate at the small amplitude"),
+        "max_growth_dps": Var(("q",), "max DpS growth rate (lattice time) at the small amplitude"),
+        "rel_error": Var(("q",), "lattice / DpS max growth rate - 1 at the small amplitude"),
+    },
+}
+
+
 def compute(spec: dict, log=None):
-    """The `floquet` target as a Dataset (cradle.pipeline.variables fq_*).
+    """The `floquet` target as a tree of groups (:data:`VARIABLES`).
 
     ``spec`` (:func:`cradle.pipeline.config.resolved_floquet`): alpha, omega_tw, q_min, q_max, n_q, n_p, hill_modes, grid_log2,
     wave_modes, wave_grid_log2, q_profiles (+ q_profiles_expr), threshold_omega_tw, threshold_q_min,
@@ -361,7 +410,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from cradle.pipeline.io import make_dataset
+    from cradle.pipeline.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
@@ -483,22 +532,22 @@ def compute(spec: dict, log=None):
     def at(qv):
         return float(pm[int(np.argmin(np.abs(np.asarray(qsel) - qv)))]) if qsel else float("nan")
 
-    data = {
-        "fq_a": amp, "fq_omega": omg, "fq_growth": G, "fq_dps_growth": Gd, "fq_max_growth": gmax,
-        "fq_argmax_p": np.where(gmax > 0, pmax, np.nan), "fq_dps_max_growth": gdmax, "fq_dps_argmax_p": pdmax,
-        "fq_trivial_defect": defect,
-        "fq_profile_growth": prof, "fq_profile_dps_growth": prof_d, "fq_profile_max_growth": pm,
-        "fq_profile_argmax_p": np.where(pm > 0, pm_p, np.nan), "fq_profile_max_growth_fine": pm_conv,
-        "fq_profile_dps_max_growth": pm_d,
-        "fq_threshold": thr, "fq_threshold_bisection": thr_dq, "fq_threshold_p": thr_p,
-        "fq_small_growth": sm_lat, "fq_small_dps_growth": sm_dps, "fq_small_rel_error": sm_rel,
+    groups = {
+        "/sweep": ({"a": amp, "omega": omg, "growth": G, "growth_dps": Gd, "max_growth": gmax,
+                    "argmax_p": np.where(gmax > 0, pmax, np.nan), "max_growth_dps": gdmax, "argmax_p_dps": pdmax,
+                    "trivial_defect": defect}, {"q": qs, "p": ps}),
+        "/profiles": ({"growth": prof, "growth_dps": prof_d, "max_growth": pm,
+                       "argmax_p": np.where(pm > 0, pm_p, np.nan), "max_growth_fine": pm_conv,
+                       "max_growth_dps": pm_d}, {"q": qsel, "p": ps}),
+        "/thresholds": ({"q_threshold": thr, "q_threshold_halfwidth": thr_dq, "p_threshold": thr_p},
+                        {"omega_tw": om_list}),
+        "/small_amplitude": ({"max_growth": sm_lat, "max_growth_dps": sm_dps, "rel_error": sm_rel}, {"q": sq}),
     }
-    coords = {"fq_q": qs, "fq_p": ps, "fq_q_profile": qsel, "fq_omega_tw": om_list, "fq_small_q": sq}
     wall = time.perf_counter() - t_start
     attrs = {
         "alpha": al, "omega_tw": om_tw,
         "amplitude": "a from (freq) inverted at omega_tw for each q (as the fftseuil scenes); the exact wave of "
-                     "(ad) with that first sine coefficient, frequency fq_omega",
+                     "(ad) with that first sine coefficient, frequency omega of /sweep",
         "hill_modes": num["hill_modes"], "grid_points": 2 ** num["grid_log2"], "wave_modes": num["wave_modes"],
         "wave_grid_points": 2 ** num["wave_grid_log2"],
         "fine_numerics": f"hill_modes={conv['hill_modes']}, grid_points=2^{conv['grid_log2']}, "
@@ -524,9 +573,9 @@ def compute(spec: dict, log=None):
         "wall_time_s": wall,
     }
     say(f"floquet: done in {wall:.1f} s ({attrs['timings_s']})")
-    return make_dataset(data, coords=coords, attrs=attrs,
-                        title="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) against "
-                              "the DpS modulational-instability threshold")
+    return make_tree(groups, VARIABLES, attrs=attrs,
+                     title="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) against "
+                           "the DpS modulational-instability threshold")
 
 
 def run(spec: dict, files: list, scenes: dict, log=None):

@@ -35,6 +35,59 @@ import numpy as np
 
 from cradle.models import dps
 from cradle.models.lattice import check_alpha
+from cradle.pipeline.variables import Var
+
+_AQ = ("alpha", "q")
+_AQA = ("alpha", "q", "a")
+_SCENE = ("scene",)
+_ALPHA = Var(("alpha",), "Hertz exponent alpha of the exact travelling waves")
+_Q = Var(("q",), "wavenumber q of the travelling wave", "rad")
+
+#: the stored variables of the `theorem1` file, per netCDF group: "/waves" the exact waves of (ad)
+#: on the grid (alpha, q, a); "/profiles" the profile correction v_a against xi; "/convergence" the
+#: checks in the number of sine modes; "/scenes" the paper's travelling-wave scenes
+VARIABLES = {
+    "/": {},
+    "/waves": {
+        "alpha": _ALPHA, "q": _Q,
+        "a": Var(("a",), "amplitude a: first sine coefficient of u (ansatzu)"),
+        "omega": Var(_AQA, "frequency omega_a of the exact travelling wave of (ad)"),
+        "omega_dps": Var(_AQA, "DpS frequency (wleadingorder) without o(): omega_tw of (freq)"),
+        "lambda": Var(_AQA, "lambda = (omega_a^2 - 1) / a^(alpha-1) (adcentral)"),
+        "rel_correction": Var(_AQA, "relative correction (omega_a - omega_DpS)/(omega_DpS - 1)"),
+        "residual": Var(_AQA, "max residual of the discrete (ad), scale-free units"),
+        "newton_iterations": Var(_AQA, "Newton iterations"),
+        "profile_error": Var(_AQA, "max_xi |v_a - K_h P_h N0(sin)|: remainder R_a of (va)"),
+        "u_max": Var(_AQA, "max_xi u(xi) of the exact wave"),
+        "correction_slope": Var(_AQ, "log-log slope of the relative frequency correction in a"),
+        "omega_binary": Var(("alpha", "a"), "q = pi: 2 pi / period of (inteq) at amplitude max u, by quadrature"),
+    },
+    "/profiles": {
+        "alpha": _ALPHA, "q": _Q,
+        "xi": Var(("xi",), "moving-frame coordinate xi = q n - omega t", "rad"),
+        "v_small": Var(_AQ + ("xi",), "profile correction v_a(xi) at the smallest amplitude"),
+        "v_large": Var(_AQ + ("xi",), "profile correction v_a(xi) at the largest amplitude"),
+        "va_leading": Var(_AQ + ("xi",), "leading term K_h P_h N0(sin) of v_a (va), by quadrature"),
+    },
+    "/convergence": {
+        "alpha": _ALPHA, "q": _Q,
+        "modes": Var(("modes",), "number J of sine modes of the discretisation"),
+        "omega_error": Var(_AQ + ("modes",), "|omega_J - omega_ref| against twice the largest J"),
+        "profile_error": Var(_AQ + ("modes",), "max_xi |v_J - v_ref| against twice the largest J"),
+        "decay_rate": Var(_AQ, "exponent s of the algebraic decay |v_j| ~ j^-s"),
+    },
+    "/scenes": {
+        "scene": Var(_SCENE, "index of a travelling-wave scene of the paper (names in attribute scene_names)"),
+        "a": Var(_SCENE, "amplitude a of the scene (from its omega_tw by (freq))"),
+        "q": Var(_SCENE, "wavenumber q of the scene", "rad"),
+        "alpha": Var(_SCENE, "Hertz exponent of the scene"),
+        "t_end": Var(_SCENE, "time span of the scene"),
+        "omega": Var(_SCENE, "exact travelling-wave frequency omega_a at the scene's amplitude"),
+        "omega_dps": Var(_SCENE, "DpS frequency omega_tw (freq) at the scene's amplitude"),
+        "drift": Var(_SCENE, "phase drift |omega_a - omega_tw| t over the scene's time span", "rad"),
+        "residual": Var(_SCENE, "max residual of the discrete (ad) at the scene's amplitude"),
+    },
+}
 
 DEFAULT_M = 2**16
 
@@ -353,7 +406,7 @@ def _sample_v(w: Wave, xi) -> np.ndarray:
 
 
 def compute(spec: dict, log=None):
-    """The `theorem1` target as a Dataset (see module docstring and cradle.pipeline.variables t1_*).
+    """The `theorem1` target as a tree of groups (see module docstring and :data:`VARIABLES`).
 
     ``spec``: alpha (list), q (list, radians), q_expr (list of their texts), a_min, a_max,
     n_amplitudes, modes, grid_log2 (M = 2^grid_log2), slope_eps_max (the slope is fitted where
@@ -363,7 +416,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from cradle.pipeline.io import make_dataset
+    from cradle.pipeline.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
@@ -424,19 +477,18 @@ def compute(spec: dict, log=None):
         sc["drift"][i] = abs(sc["om"][i] - sc["omd"][i]) * sc["t"][i]
         say(f"theorem1: scene {s['name']}: a={a:.6g} omega={w.omega:.10g} omega_DpS={sc['omd'][i]:.10g} "
             f"drift={sc['drift'][i]:.4g} rad over t={sc['t'][i]}")
-    data = {
-        "t1_omega": om, "t1_omega_dps": om_dps, "t1_lambda": lam, "t1_rel_correction": rel_corr,
-        "t1_residual": res, "t1_newton_iterations": iters, "t1_profile_error": prof_err, "t1_u_max": umax,
-        "t1_correction_slope": slope, "t1_decay_rate": decay,
-        "t1_v_small": v_small, "t1_v_large": v_large, "t1_va_leading": v_lead,
-        "t1_conv_omega_error": conv_om, "t1_conv_profile_error": conv_prof,
-        "t1_pi_omega_quadrature": pi_quad,
-        "t1_scene_a": sc["a"], "t1_scene_q": sc["q"], "t1_scene_alpha": sc["alpha"], "t1_scene_t": sc["t"],
-        "t1_scene_omega": sc["om"], "t1_scene_omega_dps": sc["omd"], "t1_scene_drift": sc["drift"],
-        "t1_scene_residual": sc["res"],
+    alpha_q = {"alpha": alphas, "q": qs}
+    groups = {
+        "/waves": ({"omega": om, "omega_dps": om_dps, "lambda": lam, "rel_correction": rel_corr, "residual": res,
+                    "newton_iterations": iters, "profile_error": prof_err, "u_max": umax,
+                    "correction_slope": slope, "omega_binary": pi_quad}, {**alpha_q, "a": amps}),
+        "/profiles": ({"v_small": v_small, "v_large": v_large, "va_leading": v_lead}, {**alpha_q, "xi": xi}),
+        "/convergence": ({"omega_error": conv_om, "profile_error": conv_prof, "decay_rate": decay},
+                         {**alpha_q, "modes": conv_modes}),
+        "/scenes": ({"a": sc["a"], "q": sc["q"], "alpha": sc["alpha"], "t_end": sc["t"], "omega": sc["om"],
+                     "omega_dps": sc["omd"], "drift": sc["drift"], "residual": sc["res"]},
+                    {"scene": np.arange(len(scenes))}),
     }
-    coords = {"t1_alpha": alphas, "t1_q": qs, "t1_a": amps, "t1_xi": xi, "t1_modes": conv_modes,
-              "t1_scene": np.arange(len(scenes))}
     attrs = {
         "scene_names": ", ".join(str(s["name"]) for s in scenes),
         "q_expr": ", ".join(str(x) for x in spec.get("q_expr", qs)), "modes": J, "grid_points": M,
@@ -452,8 +504,8 @@ def compute(spec: dict, log=None):
     if np.any(np.isfinite(pi_quad)):
         iq = [i for i, q in enumerate(qs) if abs(abs(q) - np.pi) < 1e-12][0]
         attrs["pi_max_relative_error"] = float(np.nanmax(np.abs(om[:, iq, :] / pi_quad - 1.0)))
-    return make_dataset(data, coords=coords, attrs=attrs,
-                        title="Theorem 1 measured: exact travelling waves of (nc) with V = V0 against the DpS "
+    return make_tree(groups, VARIABLES, attrs=attrs,
+                     title="Theorem 1 measured: exact travelling waves of (nc) with V = V0 against the DpS "
                               "dispersion relation (wleadingorder)")
 
 
