@@ -108,3 +108,32 @@ def test_exact_wave_solves_the_lattice():
         np.testing.assert_allclose(sol.sol(t)[N:], v, atol=3e-8 * a)
     # the DpS frequency would drift visibly over the same span
     assert abs(w.omega - T.omega_dps(a, q, alpha)) * t_end > 1e-3
+
+
+def test_theorem1_file_is_a_tree_named_as_in_the_paper(tmp_path):
+    """A tiny `theorem1` run, written and read back: the groups /waves, /profiles, /convergence,
+    /scenes hold the waves of cradle.models.waves under the paper's names, values as solved."""
+    from cradle.pipeline.io import open_tree, write_netcdf
+
+    alpha, q = 1.5, np.pi / 2
+    spec = {"alpha": [alpha], "q": [q, np.pi], "q_expr": ["pi/2", "pi"], "a_min": 1e-3, "a_max": 0.1,
+            "n_amplitudes": 3, "modes": 16, "grid_log2": 10, "slope_eps_max": 1.0, "convergence_a": 0.01,
+            "convergence_modes": [8, 16], "n_xi": 9,
+            "scenes": [{"name": "tw", "alpha": alpha, "q": q, "a": 0.05, "omega_tw": 1.0, "t_end": 100.0}]}
+    tree = open_tree(write_netcdf(T.run(spec, [], {}), tmp_path / "theorem1.nc"))
+    assert {node.path for node in tree.subtree} == {"/", "/waves", "/profiles", "/convergence", "/scenes"}
+    waves = tree["waves"]
+    assert waves["omega"].dims == ("alpha", "q", "a") and waves["omega"].attrs["units"] == "1"
+    np.testing.assert_array_equal(waves["a"].values, np.geomspace(1e-3, 0.1, 3))
+    ws = W.branch(waves["a"].values, q, alpha, modes=16, M=2**10)
+    np.testing.assert_array_equal(waves["omega"].sel(alpha=alpha, q=q).values, [w.omega for w in ws])
+    np.testing.assert_allclose(waves["omega_dps"].sel(alpha=alpha, q=q).values,
+                               T.omega_dps(waves["a"].values, q, alpha), rtol=1e-15)
+    # q = pi: the binary oscillation (inteq) at the wave's amplitude has the wave's frequency
+    np.testing.assert_allclose(waves["omega"].sel(q=np.pi).values, waves["omega_binary"].values, rtol=1e-6)
+    assert tree["profiles"]["v_small"].dims == ("alpha", "q", "xi") and tree["profiles"]["xi"].size == 9
+    assert list(tree["convergence"]["modes"].values) == [8, 16]
+    assert tree["convergence"]["decay_rate"].dims == ("alpha", "q")
+    sc = tree["scenes"]
+    assert sc["q"].values[0] == q and sc["t_end"].values[0] == 100.0 and tree.attrs["scene_names"] == "tw"
+    assert sc["drift"].values[0] == pytest.approx(abs(sc["omega"].values[0] - sc["omega_dps"].values[0]) * 100.0)
