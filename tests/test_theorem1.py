@@ -1,5 +1,5 @@
-"""Theorem 1 measured (cradle.analyses.theorem1, the waves of cradle.models.waves): exact travelling waves of (ad) with V = V0 by a sine-series Newton
-solver, against the DpS dispersion relation (wleadingorder), (va) and the q = pi binary oscillation (inteq)."""
+"""Theorem 1 measured (cradle.analyses.theorem1): exact travelling waves of (ad) with V = V0 by a
+sine-series Newton solver (cradle.models.waves), against the DpS dispersion relation (wleadingorder), (va) and the q = pi binary oscillation (inteq)."""
 import numpy as np
 import pytest
 
