@@ -1,5 +1,6 @@
 """Theorem 1 measured (cradle.analyses.theorem1): exact travelling waves of (ad) with V = V0 by a
-sine-series Newton solver (cradle.models.waves), against the DpS dispersion relation (wleadingorder), (va) and the q = pi binary oscillation (inteq)."""
+sine-series Newton solver (cradle.models.waves), against the DpS dispersion relation (wleadingorder),
+(va) and the q = pi binary oscillation (inteq)."""
 import numpy as np
 import pytest
 
