@@ -130,6 +130,12 @@ def make_tree(groups: dict, variables: dict, attrs: dict | None = None, title: s
     for path, (data, coords) in groups.items():
         if path != "/":
             nodes[path] = _table(data, coords, variables[path])
+    for path, ds in nodes.items():  # xarray would let an inherited coordinate hide a child's variable
+        parents = ["/"] + ["/".join(path.split("/")[:i]) for i in range(2, path.count("/") + 1)]
+        for parent in (p for p in parents if p in nodes and p != path):
+            clash = set(ds.variables) & set(nodes[parent].coords)
+            if clash:
+                raise ValueError(f"group {path}: {sorted(clash)} already coordinates of its parent {parent}")
     return xr.DataTree.from_dict(nodes)
 
 
