@@ -5,7 +5,7 @@ Sub-packages, one layer each:
 
 * :mod:`cradle.models`       - the paper's objects: the lattice (nc)/(ham), the DpS equation (dfnls),
   the stationary problem (dpsstn) and its map G (comp1)-(comp2), homoclinics, initial data
-  (ansatzapprox)/(perturb)/(ansatzapproxst2)
+  (ansatzapprox)/(perturb)/(ansatzapproxst2), the exact travelling waves of (ad)
 * :mod:`cradle.integrators`  - time integration of (nc) and (dfnls), compiled kernels
 * :mod:`cradle.measurements` - measurements on runs: (ansatz), E(t), spectra on Gamma*, breathers
 * :mod:`cradle.analyses`     - beyond the paper: theorem1, modulational instability, Floquet,

@@ -1,10 +1,12 @@
-"""Bloch-Floquet stability of the exact travelling waves (cradle.analyses.floquet): trivial multipliers, the
-reduction against the brute-force ring monodromy, the small-amplitude DpS limit, a direct run."""
+"""Bloch-Floquet stability of the exact travelling waves (cradle.analyses.floquet; Hill's method and the
+ring in cradle.analyses.bloch): trivial multipliers, the reduction against the brute-force ring
+monodromy, the small-amplitude DpS limit, a direct run."""
 import copy
 
 import numpy as np
 import pytest
 
+from cradle.analyses import bloch as B
 from cradle.analyses import floquet as F
 
 ALPHA = 1.5
@@ -12,14 +14,14 @@ NUM = dict(hill_modes=16, grid_log2=16, wave_modes=64, wave_grid_log2=13)
 
 
 def _wave(q, omega_tw):
-    return F.wave_for(q, ALPHA, omega_tw=omega_tw, modes=NUM["wave_modes"], grid_log2=NUM["wave_grid_log2"])
+    return B.wave_for(q, ALPHA, omega_tw=omega_tw, modes=NUM["wave_modes"], grid_log2=NUM["wave_grid_log2"])
 
 
 @pytest.fixture(scope="module")
 def ring10():
     """q = 3 pi / 5 on a ring of 10 sites, omega_tw = 1.1: unstable (Bloch p = 2 pi j / 10)."""
     w = _wave(2 * np.pi * 3 / 10, 1.1)
-    return w, F.ring_monodromy(w, 10)
+    return w, B.ring_monodromy(w, 10)
 
 
 def test_trivial_multipliers_and_hamiltonian_symmetry(ring10):
@@ -30,9 +32,9 @@ def test_trivial_multipliers_and_hamiltonian_symmetry(ring10):
     # volume preserving (no damping): det = 1; symplectic: the multipliers come as mu, 1/conj(mu)
     assert abs(np.prod(mu) - 1.0) < 1e-8
     mirrored = 1.0 / np.conj(mu)
-    assert F.match_distance(mu, mirrored) < 1e-6
+    assert B.match_distance(mu, mirrored) < 1e-6
     # Bloch: the central pair at p = 0 is (0, 0) up to the discretisation error; stable modes are neutral
-    H = F.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
+    H = B.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
     assert H.trivial_defect() < 1e-3
     c = H.central(0.3)                     # q = 3pi/5, omega_tw = 1.1: p = 0.3 is unstable ...
     assert c.size == 2 and abs(c[0].real + c[1].real) < 1e-12   # ... as lambda, -conj(lambda)
@@ -44,11 +46,11 @@ def test_bloch_reduction_equals_brute_force_monodromy(ring10):
     w, Mono = ring10
     T = 2 * np.pi / w.omega
     mu = np.linalg.eigvals(Mono)
-    H = F.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
-    lam = F.ring_exponents_hill(H, 10)
+    H = B.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
+    lam = B.ring_exponents_hill(H, 10)
     assert lam.size == 20                   # two central exponents per Bloch wavenumber
-    mu_h = F.multipliers(lam, T)
-    assert F.match_distance(mu, mu_h) < 2e-3   # the neutral double multiplier 1 dominates the distance
+    mu_h = B.multipliers(lam, T)
+    assert B.match_distance(mu, mu_h) < 2e-3   # the neutral double multiplier 1 dominates the distance
     top, top_h = np.max(np.log(np.abs(mu))) / T, np.max(np.log(np.abs(mu_h))) / T
     assert top > 0.005
     assert abs(top_h / top - 1.0) < 1e-4
@@ -58,7 +60,7 @@ def test_bloch_reduction_equals_brute_force_monodromy(ring10):
 def test_small_amplitude_growth_matches_dps(q):
     """omega_tw = 1.001: max growth within 1 % of the DpS prediction, the band against p within 2 %."""
     w = _wave(q, 1.001)
-    H = F.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
+    H = B.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
     g, p = H.max_growth(61)
     gd, pd = F.dps_max_growth(q, ALPHA, w.a)
     assert abs(g / gd - 1.0) < 0.01
@@ -67,7 +69,7 @@ def test_small_amplitude_growth_matches_dps(q):
     np.testing.assert_allclose(H.growth(ps), F.dps_growth(q, ps, ALPHA, w.a), atol=0.02 * gd)
     # at omega_tw = 1.01 the finite-amplitude correction is a few per cent
     w = _wave(q, 1.01)
-    g1 = F.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"]).max_growth(61)[0]
+    g1 = B.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"]).max_growth(61)[0]
     assert abs(g1 / F.dps_max_growth(q, ALPHA, w.a)[0] - 1.0) < 0.05
 
 
@@ -82,7 +84,7 @@ def test_lattice_threshold_lies_below_pi_over_2_at_omega_tw_1_1():
 
 def test_direct_simulation_grows_at_the_top_floquet_rate():
     w = _wave(2 * np.pi * 3 / 10, 1.1)
-    rate_mode, rate_dist, rate, t, dist = F.direct_growth(w, 10, growth_factor=300.0)
+    rate_mode, rate_dist, rate, t, dist = B.direct_growth(w, 10, growth_factor=300.0)
     assert rate > 0.005
     assert abs(rate_mode / rate - 1.0) < 0.02
     assert dist[-1] / dist[0] > 30

@@ -128,29 +128,32 @@ def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):
     assert MS.q_indices(spec, 40) == [12, 16]
     bs = [MS.batch(spec, 40, m, 0) for m in MS.MODELS]
     again = MS.batch(spec, 40, "dps", 0)
-    np.testing.assert_array_equal(again["mis_ratio"].values, bs[1]["mis_ratio"].values)    # same seed, same numbers
-    ds = MS.aggregate(bs[::-1], spec)                                                        # any order
-    assert ds["mis_ratio"].shape == (1, 2, 2, 2, 31)
-    assert list(ds["mis_model"].values) == [0, 1] and ds.attrs["model_names"] == "exact, dps"
-    r = ds["mis_ratio"].values
+    np.testing.assert_array_equal(again["ratio"].values, bs[1]["ratio"].values)    # same seed, same numbers
+    tree = MS.aggregate(bs[::-1], spec)                                            # any order
+    ds, runs = tree.to_dataset(), tree["runs"]
+    assert runs["ratio"].dims == ("N", "model", "q", "seed", "t") and runs["ratio"].shape == (1, 2, 2, 2, 31)
+    assert list(ds["model"].values) == [0, 1] and ds.attrs["model_names"] == "exact, dps"
+    r = runs["ratio"].values
     assert np.all(np.isfinite(r)) and np.all(r[..., 0] < 0.1)
-    tc, crossed = ds["mis_crossing_time"].values, ds["mis_crossed"].values
+    tc, crossed = runs["crossing_time"].values, runs["crossed"].values
     assert np.array_equal(np.isfinite(tc), crossed == 1)
-    assert set(ds["mis_seed"].values) == {spec["seed0"], spec["seed0"] + 1}
+    assert set(runs["seed"].values) == {spec["seed0"], spec["seed0"] + 1}
+    np.testing.assert_array_equal(ds["fraction_unstable"].values, crossed.mean(axis=-1))
     assert ds.attrs["fraction"] == 0.02 and ds.attrs["exact_integrator"] == "srkn6c"
     # the ratio at t = 0 is the noise of (perturb), the same realisation in both models (x(0) is shared)
     np.testing.assert_allclose(r[0, 0, :, :, 0], r[0, 1, :, :, 0], rtol=1e-6)
     d = initial.travelling_wave(40, 2 * np.pi * 12 / 40, 1.5, omega_tw=1.1, noise_kind="gaussian",
                                 noise_amplitude=0.05, seed=spec["seed0"])
-    assert ds["mis_a"].values[0, 0] == pytest.approx(d.info["a"])
+    assert ds["a"].values[0, 0] == pytest.approx(d.info["a"])
     assert dps.omega_tw(d.info["a"], 2 * np.pi * 12 / 40, 1.5) == pytest.approx(1.1)
     # written, read back and drawn
     from cradle.figures import save_figure
     from cradle.figures import drawer
-    from cradle.pipeline.io import open_dataset, write_netcdf
+    from cradle.pipeline.io import open_tree, write_netcdf
 
-    back = open_dataset(write_netcdf(ds, tmp_path / "mis.nc"))
-    np.testing.assert_array_equal(back["mis_crossed"].values, crossed)
+    back = open_tree(write_netcdf(tree, tmp_path / "mis.nc"))
+    np.testing.assert_array_equal(back["runs"]["crossed"].values, crossed)
+    assert back["runs"]["crossed"].encoding["fletcher32"] and back["threshold"].encoding["fletcher32"]
     assert all(p.stat().st_size > 0 for p in save_figure(drawer("mi-statistics", "DATASET_FIGURES")(back), tmp_path / "mis"))
 
 

@@ -1,10 +1,12 @@
-"""Theorem 1 measured (cradle.analyses.theorem1): exact travelling waves of (ad) with V = V0 by a sine-series Newton
-solver, against the DpS dispersion relation (wleadingorder), (va) and the q = pi binary oscillation (inteq)."""
+"""Theorem 1 measured (cradle.analyses.theorem1): exact travelling waves of (ad) with V = V0 by a
+sine-series Newton solver (cradle.models.waves), against the DpS dispersion relation (wleadingorder),
+(va) and the q = pi binary oscillation (inteq)."""
 import numpy as np
 import pytest
 
 from cradle.models import dps, lattice
 from cradle.analyses import theorem1 as T
+from cradle.models import waves as W
 
 M = 2**13   # small grids keep the tests fast; aliasing ~ M^-(alpha+1) ~ 1e-10
 
@@ -14,7 +16,7 @@ def test_dps_limit_and_correction_slope(alpha):
     """omega_a -> (wleadingorder) as a -> 0, the relative correction shrinking like a^(alpha-1)."""
     q = np.pi / 5
     a = np.geomspace(1e-4, 1e-2, 5) ** (1.0 / (alpha - 1.0))   # eps = a^(alpha-1) in [1e-4, 1e-2]
-    waves = T.branch(a, q, alpha, modes=32, M=M)
+    waves = W.branch(a, q, alpha, modes=32, M=M)
     assert max(w.residual for w in waves) < 1e-12
     lam = np.array([w.lam for w in waves])
     assert np.all(np.abs(lam / T.lambda0(q, alpha) - 1.0) < 0.05)
@@ -33,8 +35,8 @@ def test_dps_limit_and_correction_slope(alpha):
 @pytest.mark.parametrize("alpha", [1.5, 2.5])
 def test_q_pi_matches_the_inteq_quadrature(alpha):
     """q = pi: the wave is x_n = (-1)^n a(t), a'' = -a - 2^alpha a|a|^(alpha-1) (inteq); same frequency to 1e-8."""
-    for w in T.branch([1e-3, 1e-2, 0.1, 1.0, 5.0, 50.0], np.pi, alpha, modes=128, M=2**14)[::2]:
-        amp, A = w.a, T.wave_max(w)
+    for w in W.branch([1e-3, 1e-2, 0.1, 1.0, 5.0, 50.0], np.pi, alpha, modes=128, M=2**14)[::2]:
+        amp, A = w.a, W.wave_max(w)
         assert abs(w.omega / T.binary_frequency(A, alpha) - 1.0) < 1e-8, (amp, w.omega)
         np.testing.assert_allclose(w.v[1::2], 0.0, atol=1e-14)   # only odd harmonics: u(xi + pi) = -u(xi)
     # the quadrature itself: small amplitude -> 1, and a direct integration of (inteq)
@@ -51,11 +53,11 @@ def test_q_pi_matches_the_inteq_quadrature(alpha):
 def test_modes_convergence_and_algebraic_decay():
     """Errors in omega and v fall algebraically with the number of modes; |v_j| ~ j^-(alpha+3)."""
     alpha, q, a = 1.5, np.pi / 5, 0.1
-    ref = T.solve(a, q, alpha, modes=256, M=M)
+    ref = W.solve(a, q, alpha, modes=256, M=M)
     xs = np.linspace(0, 2 * np.pi, 1025)
     errs_om, errs_v = [], []
     for J in (16, 32, 64):
-        w = T.solve(a, q, alpha, modes=J, M=M, guess=ref)
+        w = W.solve(a, q, alpha, modes=J, M=M, guess=ref)
         errs_om.append(abs(w.omega - ref.omega))
         errs_v.append(np.max(np.abs(T._sample_v(w, xs) - T._sample_v(ref, xs))))
     assert errs_v[0] > 5 * errs_v[1] > 25 * errs_v[2]   # ~ J^-3.3 here
@@ -71,13 +73,13 @@ def test_profile_correction_leading_term():
     lead = T.va_leading(xi, q, alpha)
     # the same operator in Fourier: (K_h P_h f)_j = f_j / (1 - j^2), j >= 2
     J = 256
-    Nj = T.sine_coefficients(T.N_grid(np.r_[1.0, np.zeros(J - 1)], q, alpha, 2**14)[0], J)
+    Nj = W.sine_coefficients(W.N_grid(np.r_[1.0, np.zeros(J - 1)], q, alpha, 2**14)[0], J)
     j = np.arange(2, J + 1)
     v0 = np.sin(np.outer(xi, j)) @ (Nj[1:] / (1.0 - j**2))
     np.testing.assert_allclose(lead, v0, atol=1e-7)
     errs = []
     for a in (1e-8, 1e-6, 1e-4):
-        w = T.solve(a, q, alpha, modes=64, M=M)
+        w = W.solve(a, q, alpha, modes=64, M=M)
         errs.append(np.max(np.abs(T._sample_v(w, xi) - lead)))
     assert errs[0] < 1e-3 and errs[0] < errs[1] < errs[2]
 
@@ -88,7 +90,7 @@ def test_exact_wave_solves_the_lattice():
 
     alpha, N, k, a = 1.5, 10, 2, 0.5
     q = 2 * np.pi * k / N
-    w = T.solve(a, q, alpha, modes=256, M=2**15)   # 64 modes: error 4e-7; 128: 5e-8; 256: 5e-9
+    w = W.solve(a, q, alpha, modes=256, M=2**15)   # 64 modes: error 4e-7; 128: 5e-8; 256: 5e-9
     n = np.arange(N)
     c = w.coefficients()
     jj = np.arange(1, c.size + 1)
@@ -107,3 +109,32 @@ def test_exact_wave_solves_the_lattice():
         np.testing.assert_allclose(sol.sol(t)[N:], v, atol=3e-8 * a)
     # the DpS frequency would drift visibly over the same span
     assert abs(w.omega - T.omega_dps(a, q, alpha)) * t_end > 1e-3
+
+
+def test_theorem1_file_is_a_tree_named_as_in_the_paper(tmp_path):
+    """A tiny `theorem1` run, written and read back: the groups /waves, /profiles, /convergence,
+    /scenes hold the waves of cradle.models.waves under the paper's names, values as solved."""
+    from cradle.pipeline.io import open_tree, write_netcdf
+
+    alpha, q = 1.5, np.pi / 2
+    spec = {"alpha": [alpha], "q": [q, np.pi], "q_expr": ["pi/2", "pi"], "a_min": 1e-3, "a_max": 0.1,
+            "n_amplitudes": 3, "modes": 16, "grid_log2": 10, "slope_eps_max": 1.0, "convergence_a": 0.01,
+            "convergence_modes": [8, 16], "n_xi": 9,
+            "scenes": [{"name": "tw", "alpha": alpha, "q": q, "a": 0.05, "omega_tw": 1.0, "t_end": 100.0}]}
+    tree = open_tree(write_netcdf(T.run(spec, [], {}), tmp_path / "theorem1.nc"))
+    assert {node.path for node in tree.subtree} == {"/", "/waves", "/profiles", "/convergence", "/scenes"}
+    waves = tree["waves"]
+    assert waves["omega"].dims == ("alpha", "q", "a") and waves["omega"].attrs["units"] == "1"
+    np.testing.assert_array_equal(waves["a"].values, np.geomspace(1e-3, 0.1, 3))
+    ws = W.branch(waves["a"].values, q, alpha, modes=16, M=2**10)
+    np.testing.assert_array_equal(waves["omega"].sel(alpha=alpha, q=q).values, [w.omega for w in ws])
+    np.testing.assert_allclose(waves["omega_dps"].sel(alpha=alpha, q=q).values,
+                               T.omega_dps(waves["a"].values, q, alpha), rtol=1e-15)
+    # q = pi: the binary oscillation (inteq) at the wave's amplitude has the wave's frequency
+    np.testing.assert_allclose(waves["omega"].sel(q=np.pi).values, waves["omega_binary"].values, rtol=1e-6)
+    assert tree["profiles"]["v_small"].dims == ("alpha", "q", "xi") and tree["profiles"]["xi"].size == 9
+    assert list(tree["convergence"]["modes"].values) == [8, 16]
+    assert tree["convergence"]["decay_rate"].dims == ("alpha", "q")
+    sc = tree["scenes"]
+    assert sc["q"].values[0] == q and sc["t_end"].values[0] == 100.0 and tree.attrs["scene_names"] == "tw"
+    assert sc["drift"].values[0] == pytest.approx(abs(sc["omega"].values[0] - sc["omega_dps"].values[0]) * 100.0)

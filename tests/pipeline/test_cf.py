@@ -4,6 +4,12 @@ The six kinds (homoclinic, map, initial, sim exact, sim dps, metrics) are
 built with cradle.pipeline.stages on the tiny config of test_pipeline, written with
 cradle.pipeline.io.write_netcdf and checked with the checker's Python API. Skipped
 only when compliance-checker is not installed (it is in the ``test`` extra).
+
+The files of the analyses beyond the paper are trees of netCDF groups; the checker reads the root
+group only, so each group is checked as the Dataset ``xarray.open_datatree`` gives for it (its
+variables, the coordinates it inherits, the root's global attributes), written as its own file.
+The trees are built by :func:`cradle.pipeline.io.make_tree` from every variable each analysis
+declares (``VARIABLES`` of its module), filled with increasing numbers.
 """
 from __future__ import annotations
 
@@ -14,7 +20,7 @@ import pytest
 
 from cradle.pipeline import config as cc
 from cradle.pipeline import provenance, stages
-from cradle.pipeline.io import make_dataset, open_dataset, open_scene, write_netcdf
+from cradle.pipeline.io import make_dataset, make_tree, open_dataset, open_scene, open_tree, write_netcdf
 from cradle.pipeline.variables import VARIABLES
 
 from test_pipeline import TINY  # tests/ is on sys.path (pytest rootdir, no __init__.py)
@@ -86,6 +92,78 @@ def _cf_failures(path, tmp_path) -> list[str]:
 @pytest.mark.parametrize("kind", KINDS)
 def test_cf_compliant(outputs, kind, tmp_path):
     assert _cf_failures(outputs[kind], tmp_path) == []
+
+
+#: analysis -> module declaring its VARIABLES (one dict per netCDF group)
+TREES = {"theorem1": "theorem1", "mi-diagram": "modulational", "mi-growth": "migrowth",
+         "mi-statistics": "mistatistics", "floquet": "floquet"}
+
+
+def _declared_tree(module: str):
+    """The tree of an analysis with every declared variable, its dims sized 2 or 3, increasing values."""
+    from importlib import import_module
+
+    variables = import_module(f"cradle.analyses.{module}").VARIABLES
+    dims = {}
+    for decl in variables.values():
+        for d in (d for v in decl.values() for d in v.dims):
+            dims.setdefault(d, 2 + len(dims) % 2)
+    groups = {}
+    for path, decl in variables.items():
+        data, coords = {}, {}
+        for name, var in decl.items():
+            shape = tuple(dims[d] for d in var.dims)
+            values = 1.0 + np.arange(int(np.prod(shape))).reshape(shape)
+            (coords if var.dims == (name,) else data)[name] = values
+        groups[path] = (data, coords)
+    return make_tree(groups, variables, attrs={"scene_names": "a, b"}, title=f"{module}: declared variables")
+
+
+@pytest.fixture(scope="module")
+def trees(tmp_path_factory):
+    root = tmp_path_factory.mktemp("trees")
+    return {label: write_netcdf(_declared_tree(module), root / f"{label}.nc") for label, module in TREES.items()}
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+@pytest.mark.parametrize("label", TREES)
+def test_cf_compliant_every_group(trees, label, tmp_path):
+    tree = open_tree(trees[label])
+    assert len(list(tree.subtree)) > 1
+    failures = {}
+    for node in tree.subtree:
+        ds = node.to_dataset(inherit=True)
+        if not ds.variables:
+            continue
+        ds.attrs = dict(tree.attrs)
+        name = node.path.strip("/").replace("/", "-") or "root"
+        failures[node.path] = _cf_failures(write_netcdf(ds, tmp_path / f"{label}-{name}.nc"), tmp_path)
+    assert failures and all(f == [] for f in failures.values()), failures
+
+
+@pytest.mark.parametrize("label", TREES)
+def test_groups_declared_named_and_checksummed(trees, label):
+    """Every group of a tree holds its declared variables without an analysis prefix, with the declared
+    dims, long name and units, each under a Fletcher-32 checksum; provenance on the root only."""
+    from importlib import import_module
+
+    import xarray as xr
+
+    variables = import_module(f"cradle.analyses.{TREES[label]}").VARIABLES
+    tree = open_tree(trees[label])
+    assert tree.attrs["Conventions"] == "CF-1.10" and tree.attrs["cradle_version"]
+    for path, decl in variables.items():
+        ds = (tree if path == "/" else tree[path]).to_dataset(inherit=False)
+        assert set(ds.variables) == set(decl), path
+        for name, var in decl.items():
+            assert not name.startswith(("t1_", "mi_", "mig_", "mis_", "fq_")), name
+            assert ds[name].dims == var.dims and ds[name].attrs["long_name"] == var.long_name
+            assert ds[name].attrs["units"] == var.units
+            assert ds[name].encoding["fletcher32"], (path, name)
+        if path != "/":
+            assert "cradle_version" not in ds.attrs
+    with xr.open_datatree(trees[label], engine="netcdf4") as plain:   # what a researcher types
+        assert {node.path for node in plain.subtree} == set(variables) | {"/"}
 
 
 @pytest.mark.parametrize("kind", KINDS)

@@ -337,3 +337,32 @@ def test_every_figure_rule_keeps_its_previous_figure_on_failure():
     for path in sorted((ROOT / "workflow" / "rules").glob("*.smk")):
         for m in re.finditer(r"^\s+(pdf|png)=(.*)$", path.read_text(), re.M):
             assert m.group(2).startswith("update("), f"{path.name}: {m.group(0).strip()}"
+
+
+def test_flipped_byte_in_a_group_of_a_tree_is_detected(tmp_path, capsys):
+    """An analysis file is a tree of netCDF groups: every variable of every group is checksummed, read
+    back bitwise by open_tree, and one flipped byte in a child group stops open_tree, verify_file and
+    `cradle describe` with one line."""
+    from cradle.analyses.mistatistics import VARIABLES
+
+    rng = np.random.default_rng(5)
+    ratio = rng.random((1, 2, 3, 4, 64))
+    root = {"fraction_unstable": rng.random((1, 2, 3)), "threshold": rng.random((1, 2))}
+    tree = io.make_tree({"/": (root, {"N": [200], "model": [0, 1], "q": [1.4, 1.5, 1.6]}),
+                         "/runs": ({"ratio": ratio}, {"seed": np.arange(4), "t": 0.5 * np.arange(64)})},
+                        VARIABLES, title="a tree")
+    path = tmp_path / "results" / "mi" / "mi-statistics.nc"
+    io.write_netcdf(tree, path)
+    with netCDF4.Dataset(path) as nc:
+        assert all(v.filters()["fletcher32"] for g in (nc, nc["runs"]) for v in g.variables.values())
+    back = io.open_tree(path)
+    assert back["runs"]["ratio"].values.tobytes() == ratio.tobytes()
+    assert back["threshold"].values.tobytes() == root["threshold"].tobytes()
+    assert io.verify_file(path) == []
+    _flip_in_data(path, ratio)
+    for reader in (io.open_tree, io.verify_file):
+        with pytest.raises(io.DamagedOutput) as err:
+            reader(path)
+        assert "\n" not in str(err.value) and "snakemake --force results/mi/mi-statistics.nc" in str(err.value)
+    assert cli.main(["describe", str(path)]) == 2
+    assert _one_line(capsys.readouterr().err)

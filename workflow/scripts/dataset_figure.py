@@ -3,9 +3,9 @@
 from pathlib import Path
 
 from cradle.figures import draw_dataset
-from cradle.pipeline.io import open_dataset
+from cradle.pipeline.io import open_tree
 from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 setup_logging(sm.log[0])
-draw_dataset(sm.params.label, open_dataset(sm.input.data), Path(sm.output.pdf).with_suffix(""))
+draw_dataset(sm.params.label, open_tree(sm.input.data), Path(sm.output.pdf).with_suffix(""))

@@ -1,192 +1,20 @@
-"""Spectral stability of the exact travelling waves of (nc): Bloch-Floquet in the co-moving frame.
+"""Spectral stability of the exact travelling waves of (nc) against the DpS modulational instability.
 
-Linearising (nc) with V = V0 about the exact wave x_n(t) = u(q n - omega t) of :mod:`cradle.analyses.theorem1`
-(the force of bond n is V0'(x_{n+1} - x_n), see :mod:`cradle.models.lattice`) gives
-
-    y_n'' + y_n = K(xi_n) (y_{n+1} - y_n) - K(xi_n - q) (y_n - y_{n-1}),   xi_n = q n - omega t,   (lin)
-
-with K(xi) = V0''(u(xi + q) - u(xi)) = alpha |d|^(alpha-1) H(-d): continuous for alpha > 1 (Hoelder
-alpha - 1 where a contact opens), so the linearisation is legitimate. The coefficients depend on (n, t)
-only through xi: (lin) is invariant under t -> t + T (T = 2 pi / omega) and under (n, t) -> (n + 1,
-t + q / omega). Joint eigenfunctions of both are the Bloch-Floquet modes
-
-    y_n(t) = e^{lambda t} e^{i p n} W(xi_n),   W 2 pi-periodic,                               (bloch)
-
-and (lin) becomes, for each perturbation wavenumber p, the quadratic eigenvalue problem on the circle
-
-    omega^2 W'' - 2 lambda omega W' + (lambda^2 + 1) W = L_p W,
-    L_p W = K(xi) (e^{ip} W(xi + q) - W(xi)) - K(xi - q) (W(xi) - e^{-ip} W(xi - q)),
-
-solved here by Hill's method: W = sum_{|m| <= L} W_m e^{i m xi}, K by its Fourier coefficients (FFT of
-K on an M-point grid). L_p is Hermitian and the first-order term skew-Hermitian (a gyroscopic
-pencil), also after truncation, so the computed spectrum keeps the Hamiltonian symmetry
-lambda -> -conj(lambda): stable modes stay on the imaginary axis (|Re lambda| at round-off).
-
-Labelling. (lambda, p, W) and (lambda + i omega, p - q, e^{i xi} W) are the same lattice solution, so
-the pair (lambda, p) is defined modulo (i omega, -q). At a -> 0 the spectrum is lambda = i (m omega
-+- 1); exactly two eigenvalues, +-i (omega - 1), lie in the central strip |Im lambda| < omega / 2, with
-W = e^{-+i xi}: the lattice modes e^{i(p - q) n + i t} and e^{i(p + q) n - i t}, i.e. the sidebands p of
-the DpS plane wave (ansatz3). So g(p) = max Re lambda over the central strip is the lattice
-counterpart of the DpS growth rate of sideband p; the other strips at p repeat the central strip at
-p + m q. The fastest growth over all perturbations is max_p g(p).
-
-On a ring of N sites with q = 2 pi k / N the wave is T-periodic and (lin) has a 2N x 2N monodromy
-matrix; its Floquet exponents ln(mu) / T (mod i omega) are the central-strip eigenvalues of (bloch)
-at p = 2 pi j / N, j = 0..N-1 (two per p): :func:`ring_monodromy` computes it by brute force (the
-variational equations with DOP853) to check the reduction. Trivial multipliers: time translation
-(W = u', p = 0, lambda = 0) and the amplitude family (its Jordan partner) give a double multiplier 1.
-
-Small amplitude: x_n ~ eps (A_n e^{it} + c.c.) with A = R e^{i(...)} and a = 2 eps R, tau = eps^(alpha-1) t,
-so a DpS growth rate lambda_tau converts to lattice time as growth_rate(q, p, alpha, R = a / 2)
-(homogeneous of degree alpha - 1 in R): :func:`dps_growth`.
+The Bloch-Floquet modes (bloch) of the waves of :mod:`cradle.models.waves`, Hill's method for
+them and the brute-force checks on a ring are :mod:`cradle.analyses.bloch`. Here: the lattice
+growth rate g(p) of each sideband p against the DpS rate of (ansatz3) converted to lattice time
+(:func:`dps_growth`, R = a/2), over (q, p) at the amplitude omega_tw fixes by (freq); the lattice
+threshold (:func:`threshold`) against the amplitude, tending to the DpS q_c = pi/2; the small-
+amplitude limit; and :func:`compute`, which stores them as a tree of netCDF groups (:data:`VARIABLES`).
 """
 from __future__ import annotations
 
 import numpy as np
 
+from cradle.analyses.bloch import (NOISE_FLOOR, Hill, direct_growth, match_distance, multipliers,
+                                   ring_exponents_hill, ring_monodromy, wave_for)
 from cradle.models import dps
-from cradle.analyses import theorem1 as t1
-
-DEFAULT_HILL_MODES = 32      # L: Fourier modes |m| <= L of W
-DEFAULT_GRID_LOG2 = 14       # M = 2^14 points for the Fourier coefficients of K
-NOISE_FLOOR = 1e-7           # Re lambda below this (per unit t: e-folding time 1e7) counts as neutral
-# The trivial pair at p = 0 (double multiplier 1) splits by the discretisation error, ~1e-5 (see
-# trivial_defect), and the splitting leaks to |p| ~ 1e-2: maxima over p leave out p < P_EXCLUDE. Where a
-# genuine band reaches p -> 0 its rate grows like p, so its maximum lies further out.
-P_EXCLUDE = 0.02 * np.pi
-
-
-# ----------------------------------------------------------------- the waves
-
-def wave_for(q: float, alpha: float, *, a: float | None = None, omega_tw: float | None = None, modes: int = 128,
-             grid_log2: int = 16) -> t1.Wave:
-    """The exact wave of (ad) of amplitude a (first sine coefficient), or with a = (freq) inverted at omega_tw.
-
-    The paper's travelling-wave scenes fix omega_tw and take a from (freq); the exact wave with that a
-    has a slightly different frequency omega_a (Theorem 1), stored alongside.
-    """
-    if (a is None) == (omega_tw is None):
-        raise ValueError(f"give exactly one of a and omega_tw (got a={a!r}, omega_tw={omega_tw!r})")
-    if a is None:
-        a = dps.amplitude_from_omega(omega_tw, q, alpha)
-    w = t1.solve(float(a), float(q), alpha, modes=modes, M=2 ** int(grid_log2))
-    if not w.residual < 1e-10:
-        raise RuntimeError(f"exact wave q={q!r} a={a!r}: Newton residual {w.residual:.3g}")
-    return w
-
-
-def coupling(w: t1.Wave, M: int = 2**DEFAULT_GRID_LOG2) -> np.ndarray:
-    """K(xi) = V0''(u(xi + q) - u(xi)) on the M-point grid."""
-    c = w.coefficients()
-    d = t1.synth(c, M, w.q) - t1.synth(c, M)
-    return t1._d2V0(d, w.alpha)
-
-
-def coupling_fourier(w: t1.Wave, M: int = 2**DEFAULT_GRID_LOG2) -> np.ndarray:
-    """Fourier coefficients K_hat_j, K(xi) = sum_j K_hat_j e^{i j xi}, as an FFT-ordered array of length M."""
-    return np.fft.fft(coupling(w, M)) / M
-
-
-# ----------------------------------------------------------------- Hill's method for (bloch)
-
-class Hill:
-    """The pencil of (bloch) for one wave, truncated to |m| <= L; :meth:`eigenvalues` for any p."""
-
-    def __init__(self, w: t1.Wave, L: int = DEFAULT_HILL_MODES, M: int = 2**DEFAULT_GRID_LOG2):
-        if M < 8 * (2 * L + 1):
-            raise ValueError(f"M = {M} grid points too few for L = {L} Hill modes (need M >= 8 (2L + 1))")
-        self.w, self.L, self.M = w, int(L), int(M)
-        self.omega = w.omega
-        Kh = coupling_fourier(w, M)
-        m = np.arange(-self.L, self.L + 1)
-        self.m = m
-        diff = m[:, None] - m[None, :]
-        self.Kd = Kh[diff % M]                                   # K_hat_{m - m'}
-        self.phase_minus = np.exp(-1j * diff * w.q)              # coefficients of K(xi - q)
-        self.eq = np.exp(1j * m * w.q)                           # e^{i m' q}
-
-    def operator(self, p: float) -> np.ndarray:
-        """The matrix of L_p on e^{i m xi}, |m| <= L (Hermitian)."""
-        ep = np.exp(1j * p) * self.eq[None, :]
-        return self.Kd * (ep - 1.0) - self.Kd * self.phase_minus * (1.0 - np.conj(ep))
-
-    def eigenvalues(self, p: float, vectors: bool = False):
-        """All 2 (2L + 1) eigenvalues lambda of the truncated pencil (and the W-parts of the eigenvectors)."""
-        n = self.m.size
-        om, m = self.omega, self.m
-        D = np.diag(1.0 - om**2 * m**2).astype(complex) - self.operator(p)
-        C = np.diag(-2j * om * m)
-        A = np.zeros((2 * n, 2 * n), dtype=complex)
-        A[:n, n:] = np.eye(n)
-        A[n:, :n] = -D
-        A[n:, n:] = -C
-        if vectors:
-            lam, V = np.linalg.eig(A)
-            return lam, V[:n]
-        return np.linalg.eigvals(A)
-
-    def central(self, p: float) -> np.ndarray:
-        """The eigenvalues in the central strip |Im lambda| < omega / 2 (the sidebands p; two expected)."""
-        lam = self.eigenvalues(p)
-        return lam[np.abs(lam.imag) < 0.5 * self.omega]
-
-    def growth(self, p) -> np.ndarray:
-        """g(p) = max Re lambda over the central strip (0 where every Re lambda < NOISE_FLOOR)."""
-        out = []
-        for pp in np.atleast_1d(np.asarray(p, dtype=float)):
-            c = self.central(pp)
-            g = float(np.max(c.real)) if c.size else float("nan")
-            out.append(g if g > NOISE_FLOOR else 0.0)
-        return np.asarray(out)
-
-    def signed(self, p: float, floor: float = NOISE_FLOOR) -> float:
-        """max Re lambda of the central pair if > floor, else -|Im lambda_1 - Im lambda_2| (the distance to
-        a collision): continuous in p, so a narrow unstable band opening between grid points is found by
-        maximising it."""
-        c = self.central(p)
-        if c.size != 2:
-            return float("nan")
-        g = float(np.max(c.real))
-        return g if g > floor else -abs(float(c[0].imag - c[1].imag))
-
-    def max_signed(self, n_p: int = 61, floor: float = NOISE_FLOOR):
-        """(max over p in (0, pi] of :meth:`signed`, its p): grid, then a bounded refinement (p = 0, the
-        trivial double multiplier, and its neighbourhood p < P_EXCLUDE are left out)."""
-        from scipy.optimize import minimize_scalar
-
-        ps = np.linspace(0.0, np.pi, n_p)
-        ps = ps[ps >= P_EXCLUDE]
-        s = np.array([self.signed(pp, floor) for pp in ps])
-        i = int(np.nanargmax(s))
-        lo = ps[i - 1] if i > 0 else ps[0]
-        hi = ps[min(i + 1, ps.size - 1)]
-        res = minimize_scalar(lambda x: -self.signed(x, floor), bounds=(lo, hi), method="bounded",
-                              options={"xatol": 1e-7})
-        if np.isfinite(res.fun) and -res.fun > s[i]:
-            return float(-res.fun), float(res.x)
-        return float(s[i]), float(ps[i])
-
-    def trivial_defect(self) -> float:
-        """max |lambda| of the central pair at p = 0 (exactly 0: time translation and its Jordan partner)."""
-        return float(np.max(np.abs(self.central(0.0))))
-
-    def max_growth(self, n_p: int = 121):
-        """(max_p g(p), argmax p in [P_EXCLUDE, pi]): grid search (g(-p) = g(p)), then a bounded refinement."""
-        from scipy.optimize import minimize_scalar
-
-        ps = np.linspace(0.0, np.pi, n_p)
-        ps = ps[ps >= P_EXCLUDE]                   # p ~ 0: the trivial pair (see trivial_defect)
-        g = self.growth(ps)
-        i = int(np.argmax(g))
-        if not g[i] > 0.0:
-            return 0.0, float("nan")
-        lo = ps[i - 1] if i > 0 else ps[0]
-        hi = ps[min(i + 1, ps.size - 1)]
-        res = minimize_scalar(lambda x: -float(self.growth(x)[0]), bounds=(lo, hi), method="bounded",
-                              options={"xatol": 1e-6})
-        if -res.fun > g[i]:
-            return float(-res.fun), float(res.x)
-        return float(g[i]), float(ps[i])
+from cradle.pipeline.variables import Var
 
 
 def dps_growth(q, p, alpha: float, a: float):
@@ -202,111 +30,6 @@ def dps_max_growth(q: float, alpha: float, a: float) -> tuple[float, float]:
 
     g, p = max_over_p(q, alpha)
     return g / dps.tau0(alpha) * (0.5 * a) ** (alpha - 1.0), p
-
-
-# ----------------------------------------------------------------- brute force on a ring
-
-def ring_wavenumber(w: t1.Wave, N: int) -> int:
-    """k with q = 2 pi k / N, or ValueError."""
-    k = w.q * N / (2.0 * np.pi)
-    if abs(k - round(k)) > 1e-9:
-        raise ValueError(f"q = {w.q!r} is not 2 pi k / N on a ring of N = {N} sites")
-    return int(round(k))
-
-
-def ring_state(w: t1.Wave, N: int, t: float = 0.0):
-    """(x_n(t), v_n(t)) of the exact wave on the ring, n = 0..N-1."""
-    ring_wavenumber(w, N)
-    xi = w.q * np.arange(N) - w.omega * t
-    j = np.arange(1, w.modes + 1)
-    c = w.coefficients()
-    x = np.sin(np.multiply.outer(xi, j)) @ c
-    v = -w.omega * (np.cos(np.multiply.outer(xi, j)) @ (j * c))
-    return x, v
-
-
-def ring_monodromy(w: t1.Wave, N: int, rtol: float = 1e-11, atol: float = 1e-13) -> np.ndarray:
-    """The 2N x 2N monodromy matrix of (lin) over T = 2 pi / omega on a ring (state (y, y')), by DOP853."""
-    from scipy.integrate import solve_ivp
-
-    ring_wavenumber(w, N)
-    j = np.arange(1, w.modes + 1)
-    c = w.coefficients()
-    n = np.arange(N)
-    om, q, al = w.omega, w.q, w.alpha
-
-    def rhs(t, Y):
-        Y = Y.reshape(2 * N, 2 * N)
-        y, v = Y[:N], Y[N:]
-        u = np.sin(np.multiply.outer(q * n - om * t, j)) @ c
-        k = t1._d2V0(np.roll(u, -1) - u, al)                  # bond n: K(xi_n)
-        dy = np.roll(y, -1, axis=0) - y
-        f = k[:, None] * dy
-        acc = -y + f - np.roll(f, 1, axis=0)
-        return np.concatenate([v, acc]).ravel()
-
-    T = 2.0 * np.pi / om
-    sol = solve_ivp(rhs, (0.0, T), np.eye(2 * N).ravel(), method="DOP853", rtol=rtol, atol=atol)
-    if not sol.success:
-        raise RuntimeError(f"monodromy integration failed: {sol.message}")
-    return sol.y[:, -1].reshape(2 * N, 2 * N)
-
-
-def ring_exponents_hill(hill: Hill, N: int) -> np.ndarray:
-    """Floquet exponents of the ring from (bloch): the central eigenvalues at p = 2 pi j / N, j = 0..N-1."""
-    ring_wavenumber(hill.w, N)
-    return np.concatenate([hill.central(2.0 * np.pi * jj / N) for jj in range(N)])
-
-
-def multipliers(exponents, T: float) -> np.ndarray:
-    return np.exp(np.asarray(exponents) * T)
-
-
-def match_distance(mu_a, mu_b) -> float:
-    """max over mu_a of the distance to the nearest mu_b, and conversely (a Hausdorff distance)."""
-    d = np.abs(np.asarray(mu_a)[:, None] - np.asarray(mu_b)[None, :])
-    return float(max(d.min(axis=1).max(), d.min(axis=0).max()))
-
-
-# ----------------------------------------------------------------- direct simulation
-
-def direct_growth(w: t1.Wave, N: int, rel_size: float = 1e-9, growth_factor: float = 1e3, method: str = "dop853",
-                  rtol: float = 1e-13):
-    """Growth rate of the top Floquet mode, measured on a nonlinear run of (nc) with integrate_lattice.
-
-    The exact wave on the ring plus rel_size * a * (the real part of, normalised) the eigenvector of the
-    largest brute-force multiplier mu; integrate to t with e^{rate t} = growth_factor. The deviation
-    delta(t) from the exact wave is sampled at t = k T; its component on the mode, c_k = l . delta(k T)
-    (l the left eigenvector), grows like |mu|^k without the beating that the complex pair (mu, conj mu)
-    gives to |delta|. Returns (rate fitted on log|c_k| over the second half, rate fitted on log|delta|,
-    Floquet rate ln|mu| / T, t, |delta|).
-    """
-    from cradle.integrators import integrate_lattice
-
-    Mono = ring_monodromy(w, N)
-    mu, V = np.linalg.eig(Mono)
-    i = int(np.argmax(np.abs(mu)))
-    T = 2.0 * np.pi / w.omega
-    rate = float(np.log(np.abs(mu[i])) / T)
-    if not rate > 1e-6:
-        raise ValueError(f"no unstable Floquet mode on the ring N={N}, q={w.q!r} (top rate {rate:.3g})")
-    left = np.linalg.inv(V)[i]
-    vec = V[:, i].real if np.linalg.norm(V[:, i].real) > 0.3 else V[:, i].imag
-    vec = vec / np.linalg.norm(vec)
-    x0, v0 = ring_state(w, N)
-    d0 = rel_size * w.a
-    n_per = int(np.ceil(np.log(growth_factor) / rate / T))
-    t_out = T * np.arange(n_per + 1)
-    sol = integrate_lattice(x0 + d0 * vec[:N], v0 + d0 * vec[N:], t_out, alpha=w.alpha, bc="periodic",
-                            method=method, rtol=rtol, atol=rtol * w.a * 1e-3)
-    xs, vs = np.asarray(sol.x), np.asarray(sol.v)
-    delta = np.concatenate([xs - x0[None, :], vs - v0[None, :]], axis=1)   # the wave is T-periodic
-    dist = np.linalg.norm(delta, axis=1)
-    proj = np.abs(delta @ left)
-    sel = t_out >= 0.5 * t_out[-1]
-    slope_mode = float(np.polyfit(t_out[sel], np.log(proj[sel]), 1)[0])
-    slope_dist = float(np.polyfit(t_out[sel], np.log(dist[sel]), 1)[0])
-    return slope_mode, slope_dist, rate, t_out, dist
 
 
 # ----------------------------------------------------------------- thresholds
@@ -351,8 +74,56 @@ def threshold(alpha: float, omega_tw: float, q_lo: float, q_hi: float, num: dict
 
 # ----------------------------------------------------------------- the pipeline stage
 
+_Q = Var(("q",), "wavenumber q of the exact travelling wave", "rad")
+_P = Var(("p",), "Bloch wavenumber p of the perturbation (DpS sideband p)", "rad")
+_GROWTH = Var(("q", "p"), "lattice growth rate g(p): max Re lambda of the central Bloch pair", "1",
+              attrs=(("comment", "per unit lattice time t; 0 where stable; p = 0 (trivial pair) set to 0"),))
+
+#: the stored variables of the `floquet` file, per netCDF group (the root holds the attributes):
+#: "/sweep" the growth over (q, p) at omega_tw, "/profiles" growth against p at selected q,
+#: "/thresholds" the lattice threshold against the amplitude (omega_tw), "/small_amplitude" the
+#: check against DpS. Rates are per unit t of (nc); DpS rates in lattice time (R = a/2)
+VARIABLES = {
+    "/": {},
+    "/sweep": {
+        "q": _Q, "p": _P,
+        "a": Var(("q",), "amplitude a (first sine coefficient of u) from (freq) at omega_tw"),
+        "omega": Var(("q",), "frequency omega_a of the exact wave"),
+        "growth": _GROWTH,
+        "growth_dps": Var(("q", "p"), "DpS growth rate of sideband p in lattice time (R = a/2)"),
+        "max_growth": Var(("q",), "max over p of the lattice growth rate"),
+        "argmax_p": Var(("q",), "p of the fastest-growing lattice mode (NaN where stable)", "rad"),
+        "max_growth_dps": Var(("q",), "max over p of the DpS growth rate in lattice time"),
+        "argmax_p_dps": Var(("q",), "p of the fastest-growing DpS sideband (NaN where stable)", "rad"),
+        "trivial_defect": Var(("q",), "max |lambda| of the central pair at p = 0 (exactly 0; numerical error)"),
+    },
+    "/profiles": {
+        "q": Var(("q",), "wavenumber q of a growth-against-p profile", "rad"), "p": _P,
+        "growth": Var(("q", "p"), "lattice growth rate against p at a selected q"),
+        "growth_dps": Var(("q", "p"), "DpS growth rate (lattice time) against p at a selected q"),
+        "max_growth": Var(("q",), "max over p of the lattice growth rate at a selected q"),
+        "argmax_p": Var(("q",), "p of the fastest-growing lattice mode at a selected q", "rad"),
+        "max_growth_fine": Var(("q",), "the same with the finer numerics (convergence check)"),
+        "max_growth_dps": Var(("q",), "max over p of the DpS growth rate at a selected q"),
+    },
+    "/thresholds": {
+        "omega_tw": Var(("omega_tw",), "omega_tw of (freq) fixing the amplitude of a threshold search"),
+        "q_threshold": Var(("omega_tw",), "lattice instability threshold: smallest unstable q", "rad"),
+        "q_threshold_halfwidth": Var(("omega_tw",), "half-width of the final bisection bracket of the threshold",
+                                     "rad"),
+        "p_threshold": Var(("omega_tw",), "p of the first unstable lattice mode at the threshold", "rad"),
+    },
+    "/small_amplitude": {
+        "q": Var(("q",), "wavenumber q of a small-amplitude check against DpS", "rad"),
+        "max_growth": Var(("q",), "max lattice growth rate at the small amplitude"),
+        "max_growth_dps": Var(("q",), "max DpS growth rate (lattice time) at the small amplitude"),
+        "rel_error": Var(("q",), "lattice / DpS max growth rate - 1 at the small amplitude"),
+    },
+}
+
+
 def compute(spec: dict, log=None):
-    """The `floquet` target as a Dataset (cradle.pipeline.variables fq_*).
+    """The `floquet` target as a tree of groups (:data:`VARIABLES`).
 
     ``spec`` (:func:`cradle.pipeline.config.resolved_floquet`): alpha, omega_tw, q_min, q_max, n_q, n_p, hill_modes, grid_log2,
     wave_modes, wave_grid_log2, q_profiles (+ q_profiles_expr), threshold_omega_tw, threshold_q_min,
@@ -361,7 +132,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from cradle.pipeline.io import make_dataset
+    from cradle.pipeline.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
@@ -483,22 +254,22 @@ def compute(spec: dict, log=None):
     def at(qv):
         return float(pm[int(np.argmin(np.abs(np.asarray(qsel) - qv)))]) if qsel else float("nan")
 
-    data = {
-        "fq_a": amp, "fq_omega": omg, "fq_growth": G, "fq_dps_growth": Gd, "fq_max_growth": gmax,
-        "fq_argmax_p": np.where(gmax > 0, pmax, np.nan), "fq_dps_max_growth": gdmax, "fq_dps_argmax_p": pdmax,
-        "fq_trivial_defect": defect,
-        "fq_profile_growth": prof, "fq_profile_dps_growth": prof_d, "fq_profile_max_growth": pm,
-        "fq_profile_argmax_p": np.where(pm > 0, pm_p, np.nan), "fq_profile_max_growth_fine": pm_conv,
-        "fq_profile_dps_max_growth": pm_d,
-        "fq_threshold": thr, "fq_threshold_bisection": thr_dq, "fq_threshold_p": thr_p,
-        "fq_small_growth": sm_lat, "fq_small_dps_growth": sm_dps, "fq_small_rel_error": sm_rel,
+    groups = {
+        "/sweep": ({"a": amp, "omega": omg, "growth": G, "growth_dps": Gd, "max_growth": gmax,
+                    "argmax_p": np.where(gmax > 0, pmax, np.nan), "max_growth_dps": gdmax, "argmax_p_dps": pdmax,
+                    "trivial_defect": defect}, {"q": qs, "p": ps}),
+        "/profiles": ({"growth": prof, "growth_dps": prof_d, "max_growth": pm,
+                       "argmax_p": np.where(pm > 0, pm_p, np.nan), "max_growth_fine": pm_conv,
+                       "max_growth_dps": pm_d}, {"q": qsel, "p": ps}),
+        "/thresholds": ({"q_threshold": thr, "q_threshold_halfwidth": thr_dq, "p_threshold": thr_p},
+                        {"omega_tw": om_list}),
+        "/small_amplitude": ({"max_growth": sm_lat, "max_growth_dps": sm_dps, "rel_error": sm_rel}, {"q": sq}),
     }
-    coords = {"fq_q": qs, "fq_p": ps, "fq_q_profile": qsel, "fq_omega_tw": om_list, "fq_small_q": sq}
     wall = time.perf_counter() - t_start
     attrs = {
         "alpha": al, "omega_tw": om_tw,
         "amplitude": "a from (freq) inverted at omega_tw for each q (as the fftseuil scenes); the exact wave of "
-                     "(ad) with that first sine coefficient, frequency fq_omega",
+                     "(ad) with that first sine coefficient, frequency omega of /sweep",
         "hill_modes": num["hill_modes"], "grid_points": 2 ** num["grid_log2"], "wave_modes": num["wave_modes"],
         "wave_grid_points": 2 ** num["wave_grid_log2"],
         "fine_numerics": f"hill_modes={conv['hill_modes']}, grid_points=2^{conv['grid_log2']}, "
@@ -524,9 +295,9 @@ def compute(spec: dict, log=None):
         "wall_time_s": wall,
     }
     say(f"floquet: done in {wall:.1f} s ({attrs['timings_s']})")
-    return make_dataset(data, coords=coords, attrs=attrs,
-                        title="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) against "
-                              "the DpS modulational-instability threshold")
+    return make_tree(groups, VARIABLES, attrs=attrs,
+                     title="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) against "
+                           "the DpS modulational-instability threshold")
 
 
 def run(spec: dict, files: list, scenes: dict, log=None):

@@ -5,7 +5,7 @@ in (perturb)), both models are rerun from the pipeline's own initial data
 (results/initial/<scene>.nc) with the scene's own integrators and tolerances,
 sampled every ``sample_every`` (the scene files keep snapshots only); the
 rerun is checked against results/sim/<scene>/{exact,dps}.nc at their stored
-times (``mig_sim_check``).
+times (``sim_check``).
 
 Measured quantity: the complex amplitude of (ansatz) in both models,
 
@@ -46,6 +46,7 @@ from cradle.measurements import compare
 from cradle.models import dps
 from cradle.analyses import modulational
 from cradle.pipeline.config import store_times
+from cradle.pipeline.variables import Var
 
 MODELS = ("exact", "dps")
 #: the growth-rate diagram of the mi-growth figure: max_p of the scaled linear DpS rate on THEORY_N_Q
@@ -201,13 +202,60 @@ def theory_rates(q: float, N: int, alpha: float, eps: float):
 
 # ---------------------------------------------------------------- the stage
 
+_SC, _SM = ("scene",), ("scene", "model")
+
+#: the stored variables of the `mi-growth` file, per netCDF group: "/" one row per scene and model
+#: (the fitted growth rates), "/sidebands" every sideband pair p, "/series" the sideband amplitudes
+#: against t, "/theory" the linear DpS diagram. Rates are per unit t of (nc)
+VARIABLES = {
+    "/": {
+        "scene": Var(_SC, "index of a scene (names in the global attribute scene_names)"),
+        "model": Var(("model",), "model index: 0 exact lattice (nc), 1 DpS approximation (dfnls)/(ansatz)",
+                     attrs=(("comment", "names in the global attribute model_names"),)),
+        "q": Var(_SC, "carrier wavenumber q of the scene", "rad"),
+        "N": Var(_SC, "number N of beads of the scene"),
+        "eps": Var(_SC, "small parameter eps = a/2 of (ansatz); tau = eps^(alpha-1) t"),
+        "growth_scale": Var(_SC, "tau0 / eps^(alpha-1): a rate per unit t times this is lambda tau0 R^(1-alpha)"),
+        "growth_theory_max": Var(_SC, "max over p of the linear DpS growth rate, per unit t"),
+        "growth": Var(_SM, "measured growth rate of the dominant sideband pair, per unit t"),
+        "growth_stderr": Var(_SM, "standard error of the fitted growth rate, per unit t"),
+        "r2": Var(_SM, "coefficient of determination of the log-linear fit"),
+        "growth_theory": Var(_SM, "linear DpS growth rate at the scene's q and the measured p*, per unit t"),
+        "p_star": Var(_SM, "|p| of the sideband pair that grows (fit target)", "rad"),
+        "window_start": Var(_SM, "start of the fit window in t"),
+        "window_end": Var(_SM, "end of the fit window in t"),
+        "exponential": Var(_SM, "an exponential growth phase was found",
+                           attrs=(("comment", "1: exponential phase found (growth over the window >= decades, "
+                                              "r2 >= r2_min), 0: not"),)),
+        "sim_check": Var(_SM, "max |x - x_sim| / a against results/sim/<scene>/<model>.nc up to the window end"),
+    },
+    "/sidebands": {
+        "m": Var(("m",), "index m of the perturbation wavenumber p = 2 pi m / N"),
+        "p": Var(("scene", "m"), "perturbation wavenumber p = 2 pi m / N (NaN past N/2)", "rad"),
+        "growth_theory": Var(("scene", "m"), "linear DpS growth rate lambda(q, p) eps^(alpha-1), per unit t"),
+        "growth": Var(("scene", "model", "m"),
+                      "slope of log sideband-pair amplitude at p over the fit window, per unit t"),
+    },
+    "/series": {
+        "t": Var(("t",), "dimensionless time t of (nc)"),
+        "pair": Var(("scene", "model", "t"),
+                    "sideband-pair amplitude at p* over the carrier, |A_hat| spectrum (NaN past t_end)"),
+        "envelope": Var(("scene", "model", "t"), "largest sideband-pair amplitude over the carrier"),
+    },
+    "/theory": {
+        "q": Var(("q",), "wavenumber q of the linear DpS growth-rate diagram", "rad"),
+        "max_growth": Var(("q",), "max over p of the scaled linear DpS growth rate lambda tau0 R^(1-alpha)"),
+    },
+}
+
+
 def compute(spec: dict, scenes: dict, log=None):
-    """The `mi-growth` target as a Dataset (mig_* variables).
+    """The `mi-growth` target as a tree of groups (:data:`VARIABLES`).
 
     ``spec``: sample_every, saturation, decades, r2_min. ``scenes``: {name: (resolved scene spec,
     initial Dataset, {"exact": sim Dataset, "dps": sim Dataset})}.
     """
-    from cradle.pipeline.io import make_dataset
+    from cradle.pipeline.io import make_tree
 
     wall0 = time.perf_counter()
     say = log or (lambda *a: None)
@@ -268,14 +316,16 @@ def compute(spec: dict, scenes: dict, log=None):
     alpha = alphas.pop()
     q_theory = np.linspace(0.0, np.pi, THEORY_N_Q)
     max_theory = np.array([modulational.max_over_p(x, alpha, THEORY_N_P)[0] for x in q_theory])
-    data = {"mig_theory_max": max_theory, "mig_rate_scale": dps.tau0(alpha) / eps_s ** (alpha - 1.0),
-            "mig_q": qs, "mig_N": Ns, "mig_eps": eps_s, "mig_p": pgrid, "mig_theory_p": theo, "mig_rate_p": rate_p,
-            "mig_rate": f["rate"], "mig_rate_stderr": f["stderr"], "mig_r2": f["r2"], "mig_rate_theory": f["theory"],
-            "mig_rate_theory_max": tmax, "mig_p_star": f["pstar"], "mig_window_start": f["ta"],
-            "mig_window_end": f["tb"], "mig_exponential": expo, "mig_pair": pair, "mig_envelope": env,
-            "mig_sim_check": f["check"]}
-    coords = {"mig_scene": np.arange(S), "mig_model": np.arange(len(MODELS)), "mig_m": np.arange(M), "mig_t": tg,
-              "mig_theory_q": q_theory}
+    groups = {
+        "/": ({"q": qs, "N": Ns, "eps": eps_s, "growth_scale": dps.tau0(alpha) / eps_s ** (alpha - 1.0),
+               "growth_theory_max": tmax, "growth": f["rate"], "growth_stderr": f["stderr"], "r2": f["r2"],
+               "growth_theory": f["theory"], "p_star": f["pstar"], "window_start": f["ta"], "window_end": f["tb"],
+               "exponential": expo, "sim_check": f["check"]},
+              {"scene": np.arange(S), "model": np.arange(len(MODELS))}),
+        "/sidebands": ({"p": pgrid, "growth_theory": theo, "growth": rate_p}, {"m": np.arange(M)}),
+        "/series": ({"pair": pair, "envelope": env}, {"t": tg}),
+        "/theory": ({"max_growth": max_theory}, {"q": q_theory}),
+    }
     attrs = {"scene_names": ", ".join(names), "model_names": ", ".join(MODELS), "alpha": alpha, "tau0": dps.tau0(alpha),
              "sample_every": every, "saturation": spec["saturation"], "decades": spec["decades"],
              "r2_min": spec["r2_min"],
@@ -288,8 +338,8 @@ def compute(spec: dict, scenes: dict, log=None):
     for name, info in drifts.items():   # CF attribute names: letters, digits, underscores
         for key, val in info.items():
             attrs[f"scene_{name.replace('-', '_')}_{key}"] = val
-    return make_dataset(data, coords=coords, attrs=attrs, params=spec,
-                        title="Modulational-instability growth rates measured in the scenes' runs (exact and DpS) "
+    return make_tree(groups, VARIABLES, attrs=attrs, params=spec,
+                     title="Modulational-instability growth rates measured in the scenes' runs (exact and DpS) "
                               "against the linear DpS theory")
 
 

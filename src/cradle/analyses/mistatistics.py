@@ -42,6 +42,7 @@ from cradle.measurements import compare, sidebands
 from cradle.models import initial
 from cradle.analyses import modulational
 from cradle.pipeline.config import store_times
+from cradle.pipeline.variables import Var
 
 MODELS = ("exact", "dps")
 WILSON_Z = 1.959963984540054   # two-sided 95 %
@@ -202,8 +203,46 @@ def _attrs(spec: dict) -> dict:
 
 # ---------------------------------------------------------------- stages
 
+_NMQ, _RUN = ("N", "model", "q"), ("N", "model", "q", "seed")
+
+#: the stored variables of the `mi-statistics` file, per netCDF group: "/" the summary per
+#: (N, model, q) and the thresholds, "/runs" one row per run (seed) and its sampled ratio
+VARIABLES = {
+    "/": {
+        "N": Var(("N",), "number N of beads on the ring"),
+        "model": Var(("model",), "model index: 0 exact lattice (nc), 1 DpS approximation (dfnls)/(ansatz)",
+                     attrs=(("comment", "names in the global attribute model_names"),)),
+        "q": Var(("q",), "carrier wavenumber q of the travelling wave", "rad"),
+        "k_index": Var(("N", "q"), "integer k with q = 2 pi k / N"),
+        "a": Var(("N", "q"), "wave amplitude a from (freq) at omega_tw"),
+        "fraction_unstable": Var(_NMQ, "fraction of seeds unstable by t_end"),
+        "fraction_low": Var(_NMQ, "Wilson 95 % lower bound of the unstable fraction"),
+        "fraction_high": Var(_NMQ, "Wilson 95 % upper bound of the unstable fraction"),
+        "median_crossing_time": Var(_NMQ, "median crossing time over unstable seeds"),
+        "threshold": Var(("N", "model"), "threshold q: the unstable fraction crosses 1/2", "rad"),
+        "threshold_low": Var(("N", "model"), "lower end of the threshold interval (Wilson 95 %)", "rad"),
+        "threshold_high": Var(("N", "model"), "upper end of the threshold interval (Wilson 95 %)", "rad"),
+    },
+    "/runs": {
+        "seed": Var(("seed",), "seed of numpy.random.default_rng drawing the noise of (perturb)"),
+        "t": Var(("t",), "dimensionless time t of (nc) at which the spectrum is sampled"),
+        "ratio": Var(_RUN + ("t",), "sideband-to-carrier ratio of the spatial spectrum |x_hat_k(t)|"),
+        "crossing_time": Var(_RUN, "first time t the sideband ratio reaches the fraction (NaN: not by t_end)",
+                             attrs=(("comment", "see crossed; fraction in the global attribute `fraction`"),)),
+        "crossed": Var(_RUN, "run unstable by t_end (ratio reached fraction)",
+                       attrs=(("comment", "1: the ratio reached fraction by t_end, 0: it did not"),)),
+        "k_peak": Var(_RUN, "wavenumber k of the largest sideband at the crossing (at the maximum if none)", "rad"),
+        "drift": Var(_RUN, "max relative drift of the lattice energy (exact) or of sum |A_n|^2 (dps)"),
+    },
+}
+
+#: a batch file (one N, model and chunk of q) is flat: the "/runs" table with k_index and a
+BATCH_VARIABLES = {**VARIABLES["/"], **VARIABLES["/runs"]}
+
+
 def batch(spec: dict, N: int, model: str, chunk: int, log=None):
-    """Runs of one (N, model, chunk): every q of the chunk times every seed -> Dataset (mis_* variables)."""
+    """Runs of one (N, model, chunk): every q of the chunk times every seed -> a flat Dataset
+    (:data:`BATCH_VARIABLES`: the "/runs" table with k_index and a)."""
     from cradle.pipeline.io import make_dataset
 
     say = log or (lambda *a: None)
@@ -228,72 +267,74 @@ def batch(spec: dict, N: int, model: str, chunk: int, log=None):
         say(f"mi-statistics {spec['variant']}: N={N} {model} q={2 * k / N:.4f} pi: "
             f"{int(np.sum(np.isfinite(TC[iq])))}/{len(sd)} unstable, {time.perf_counter() - wall0:.1f} s")
     q = 2.0 * np.pi * np.asarray(ks) / N
-    data = {"mis_ratio": R[None, None], "mis_crossing_time": TC[None, None],
-            "mis_crossed": np.isfinite(TC)[None, None].astype(np.int8), "mis_k_peak": KP[None, None],
-            "mis_drift": DR[None, None], "mis_k_index": np.asarray(ks)[None, :], "mis_a": amp[None, :]}
-    coords = {"mis_N": [N], "mis_model": [MODELS.index(model)], "mis_q": q, "mis_seed": sd, "mis_t": t}
+    data = {"ratio": R[None, None], "crossing_time": TC[None, None],
+            "crossed": np.isfinite(TC)[None, None].astype(np.int8), "k_peak": KP[None, None],
+            "drift": DR[None, None], "k_index": np.asarray(ks)[None, :], "a": amp[None, :]}
+    coords = {"N": [N], "model": [MODELS.index(model)], "q": q, "seed": sd, "t": t}
     attrs = _attrs(spec) | {"chunk": chunk, "wall_time_s": time.perf_counter() - wall0}
-    return make_dataset(data, coords=coords, attrs=attrs, params=spec,
+    return make_dataset(data, coords=coords, attrs=attrs, params=spec, variables=BATCH_VARIABLES,
                         title=f"mi-statistics batch: N = {N}, {model}, chunk {chunk}")
 
 
 def aggregate(batches, spec: dict):
-    """Join the batches of one variant (any order) and add the thresholds per (N, model)."""
+    """Join the batches of one variant (any order) and add the thresholds per (N, model): a tree of
+    groups (:data:`VARIABLES`), the summary per q at the root and every run in "/runs"."""
     import warnings
 
-    from cradle.pipeline.io import make_dataset
+    from cradle.pipeline.io import make_tree
 
-    Ns = sorted({int(n) for b in batches for n in b["mis_N"].values})
-    models = [m for i, m in enumerate(MODELS) if any(i in b["mis_model"].values for b in batches)]
-    q = np.unique(np.concatenate([b["mis_q"].values for b in batches]))
+    Ns = sorted({int(n) for b in batches for n in b["N"].values})
+    models = [m for i, m in enumerate(MODELS) if any(i in b["model"].values for b in batches)]
+    q = np.unique(np.concatenate([b["q"].values for b in batches]))
     qo = np.round(q / np.pi, 9)
-    names = ["mis_ratio", "mis_crossing_time", "mis_crossed", "mis_k_peak", "mis_drift"]
-    t = batches[0]["mis_t"].values
-    sd = batches[0]["mis_seed"].values
-    out = {nm: np.full((len(Ns), len(models), q.size, sd.size) + ((t.size,) if nm == "mis_ratio" else ()),
-                       np.nan, dtype=np.float32 if nm == "mis_ratio" else float) for nm in names}
+    names = ["ratio", "crossing_time", "crossed", "k_peak", "drift"]
+    t = batches[0]["t"].values
+    sd = batches[0]["seed"].values
+    out = {nm: np.full((len(Ns), len(models), q.size, sd.size) + ((t.size,) if nm == "ratio" else ()),
+                       np.nan, dtype=np.float32 if nm == "ratio" else float) for nm in names}
     kidx = np.full((len(Ns), q.size), -1, dtype=int)
     amp = np.full((len(Ns), q.size), np.nan)
     filled = np.zeros((len(Ns), len(models), q.size), dtype=bool)
     wall = 0.0
     for b in batches:
-        if not (np.array_equal(b["mis_t"].values, t) and np.array_equal(b["mis_seed"].values, sd)):
+        if not (np.array_equal(b["t"].values, t) and np.array_equal(b["seed"].values, sd)):
             raise ValueError("mi-statistics: batches with different sample times or seeds")
         wall += float(b.attrs.get("wall_time_s", 0.0))
-        iN = Ns.index(int(b["mis_N"].values[0]))
-        im = models.index(MODELS[int(b["mis_model"].values[0])])
-        iq = np.searchsorted(qo, np.round(b["mis_q"].values / np.pi, 9))
+        iN = Ns.index(int(b["N"].values[0]))
+        im = models.index(MODELS[int(b["model"].values[0])])
+        iq = np.searchsorted(qo, np.round(b["q"].values / np.pi, 9))
         for nm in names:
             out[nm][iN, im, iq] = b[nm].values[0, 0]
-        kidx[iN, iq] = b["mis_k_index"].values[0]
-        amp[iN, iq] = b["mis_a"].values[0]
+        kidx[iN, iq] = b["k_index"].values[0]
+        amp[iN, iq] = b["a"].values[0]
         filled[iN, im, iq] = True
     if not filled.all():
         missing = [(Ns[a], models[b_], float(qo[c])) for a, b_, c in zip(*np.nonzero(~filled))]
         raise ValueError(f"mi-statistics: no batch for (N, model, q/pi) = {missing[:5]} ...")
-    out["mis_crossed"] = out["mis_crossed"].astype(np.int8)
-    frac = out["mis_crossed"].mean(axis=-1)
+    out["crossed"] = out["crossed"].astype(np.int8)
+    frac = out["crossed"].mean(axis=-1)
     thr = {key: np.full((len(Ns), len(models)), np.nan) for key in ("estimate", "low", "high")}
     status = {}
     for iN, N in enumerate(Ns):
         for im, m in enumerate(models):
-            th = threshold(q, out["mis_crossed"][iN, im].astype(bool))
+            th = threshold(q, out["crossed"][iN, im].astype(bool))
             for key in thr:
                 thr[key][iN, im] = th[key]
             status[f"threshold_status_N{N}_{m}"] = th["status"]
             status[f"threshold_nonmonotone_N{N}_{m}"] = th["n_nonmonotone"]
-    lo, hi = wilson_interval(out["mis_crossed"].sum(axis=-1), sd.size)
+    lo, hi = wilson_interval(out["crossed"].sum(axis=-1), sd.size)
     with warnings.catch_warnings():   # all-NaN slices (no unstable seed) give NaN, quietly
         warnings.simplefilter("ignore", RuntimeWarning)
-        med = np.nanmedian(np.where(out["mis_crossed"] == 1, out["mis_crossing_time"], np.nan), axis=-1)
-    data = {**out, "mis_k_index": kidx, "mis_a": amp, "mis_fraction_unstable": frac,
-            "mis_fraction_low": lo, "mis_fraction_high": hi, "mis_median_crossing_time": med,
-            "mis_threshold": thr["estimate"], "mis_threshold_low": thr["low"], "mis_threshold_high": thr["high"]}
-    coords = {"mis_N": Ns, "mis_model": [MODELS.index(m) for m in models], "mis_q": q, "mis_seed": sd, "mis_t": t}
+        med = np.nanmedian(np.where(out["crossed"] == 1, out["crossing_time"], np.nan), axis=-1)
+    groups = {"/": ({"k_index": kidx, "a": amp, "fraction_unstable": frac, "fraction_low": lo, "fraction_high": hi,
+                     "median_crossing_time": med, "threshold": thr["estimate"], "threshold_low": thr["low"],
+                     "threshold_high": thr["high"]},
+                    {"N": Ns, "model": [MODELS.index(m) for m in models], "q": q}),
+              "/runs": (out, {"seed": sd, "t": t})}
     attrs = _attrs(spec) | status | {"batch_wall_time_s_total": wall, "n_runs": int(np.prod(frac.shape)) * sd.size}
-    return make_dataset(data, coords=coords, attrs=attrs, params=spec,
-                        title=f"Modulational-instability threshold statistics ({spec['variant']}): "
-                              "lattice (nc) and DpS (dfnls) over noise seeds")
+    return make_tree(groups, VARIABLES, attrs=attrs, params=spec,
+                     title=f"Modulational-instability threshold statistics ({spec['variant']}): "
+                           "lattice (nc) and DpS (dfnls) over noise seeds")
 
 
 def run(spec: dict, files: list, scenes: dict, log=None):

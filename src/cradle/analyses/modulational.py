@@ -20,6 +20,7 @@ import numpy as np
 
 from cradle.models import dps
 from cradle.models.lattice import check_alpha
+from cradle.pipeline.variables import Var
 
 
 def _g(z, alpha):
@@ -189,15 +190,46 @@ def simulated_growth(alpha: float, N: int = 200, k_q: int = 70, m_p: int = 10, R
 
 # ----------------------------------------------------------------- the pipeline stage
 
+_AC = ("alpha", "check")
+
+#: the stored variables of the `mi-diagram` file, per netCDF group: "/" the thresholds per alpha,
+#: "/map" the growth-rate map over (q, p), "/checks" the direct DpS runs against the theory
+VARIABLES = {
+    "/": {
+        "alpha": Var(("alpha",), "exponent alpha of the DpS equation (dfnls)"),
+        "q_threshold": Var(("alpha",), "smallest q with an unstable perturbation", "rad"),
+        "p_first": Var(("alpha",), "|p| of the first unstable perturbation at the threshold", "rad"),
+        "growth_pi": Var(("alpha",), "max over p of the scaled growth rate at q = pi"),
+        "p_max_pi": Var(("alpha",), "|p| of the fastest-growing perturbation at q = pi", "rad"),
+        "fixed_point_residual": Var(("alpha",), "max |rotating-frame right-hand side| at the plane wave, N = check_N"),
+    },
+    "/map": {
+        "q": Var(("q",), "wavenumber q of the plane wave (ansatz3)", "rad"),
+        "p": Var(("p",), "wavenumber p of the perturbation sidebands", "rad"),
+        "growth": Var(("alpha", "q", "p"), "scaled growth rate lambda tau0 R^(1-alpha) of the sidebands +-p"),
+        "max_growth": Var(("alpha", "q"), "max over p of the scaled growth rate"),
+        "argmax_p": Var(("alpha", "q"), "|p| of the fastest-growing perturbation (NaN where stable)", "rad"),
+    },
+    "/checks": {
+        "check": Var(("check",), "index of a direct-simulation check"),
+        "q": Var(_AC, "q = 2 pi k_q / N of a direct DpS check", "rad"),
+        "p": Var(_AC, "p = 2 pi m_p / N of a direct DpS check", "rad"),
+        "growth_theory": Var(_AC, "scaled growth rate from the linear stability matrix"),
+        "growth_simulated": Var(_AC, "scaled growth rate fitted on a direct DpS run"),
+        "rel_error": Var(_AC, "simulated / theoretical growth rate - 1"),
+    },
+}
+
+
 def compute(spec: dict, log=None):
-    """The `mi-diagram` target as a Dataset (cradle.pipeline.variables mi_*).
+    """The `mi-diagram` target as a tree of groups (:data:`VARIABLES`).
 
     ``spec``: alpha (list), n_q, n_p (grid of the map), check_N and check_pairs (list of
     [k_q, m_p]: q = 2 pi k_q / N, p = 2 pi m_p / N, each simulated for every alpha).
     """
     import time
 
-    from cradle.pipeline.io import make_dataset
+    from cradle.pipeline.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
@@ -224,17 +256,17 @@ def compute(spec: dict, log=None):
         say(f"mi-diagram: alpha={al}: q_c={qc[ia]:.12g} (first p={pc[ia]:.6g}), growth at q=pi {gpi[ia]:.6g} "
             f"(p={ppi[ia]:.6g}), checks {np.round(chk['sim'][ia] / chk['th'][ia] - 1.0, 6)}")
     rel = chk["sim"] / chk["th"] - 1.0
-    data = {"mi_growth": G, "mi_max_growth": gmax, "mi_argmax_p": pmax, "mi_q_threshold": qc, "mi_p_first": pc,
-            "mi_growth_pi": gpi, "mi_p_max_pi": ppi, "mi_fixed_point_residual": fp,
-            "mi_check_q": chk["q"], "mi_check_p": chk["p"], "mi_check_theory": chk["th"],
-            "mi_check_simulated": chk["sim"], "mi_check_rel_error": rel}
-    coords = {"mi_alpha": alphas, "mi_q": q, "mi_p": p, "mi_check": np.arange(len(pairs))}
+    groups = {"/": ({"q_threshold": qc, "p_first": pc, "growth_pi": gpi, "p_max_pi": ppi,
+                     "fixed_point_residual": fp}, {"alpha": alphas}),
+              "/map": ({"growth": G, "max_growth": gmax, "argmax_p": pmax}, {"q": q, "p": p}),
+              "/checks": ({"q": chk["q"], "p": chk["p"], "growth_theory": chk["th"], "growth_simulated": chk["sim"],
+                           "rel_error": rel}, {"check": np.arange(len(pairs))})}
     attrs = {"check_N": N, "check_pairs": str(pairs),
              "growth_units": "lambda tau0 R^(1-alpha) (scale-free; lambda in units of 1/tau of (dfnls))",
              "max_check_rel_error": float(np.nanmax(np.abs(rel))),
              "wall_time_s": time.perf_counter() - t_start}
-    return make_dataset(data, coords=coords, attrs=attrs,
-                        title="Modulational instability of the DpS plane waves (ansatz3): growth-rate map")
+    return make_tree(groups, VARIABLES, attrs=attrs,
+                     title="Modulational instability of the DpS plane waves (ansatz3): growth-rate map")
 
 
 def run(spec: dict, files: list, scenes: dict, log=None):

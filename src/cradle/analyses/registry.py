@@ -1,8 +1,9 @@
 """The analyses beyond the paper, each declared the same way: its spec, its compute, its figure.
 
 An :class:`Analysis` names the config resolver of its spec, the function that
-computes its Dataset from that spec (and, for some, from files of earlier
-stages), the figure label that draws it, and its forms: the reduced form
+computes its output from that spec (and, for some, from files of earlier stages) -- a tree of
+netCDF groups (:func:`cradle.pipeline.io.make_tree`) named as in the paper from the
+``VARIABLES`` its module declares -- the figure label that draws it, and its forms: the reduced form
 ``all`` builds (``results/<folder>/<name>.nc``, figure
 ``results/figures/<name>.{pdf,png}``) and, where that is cheaper than the
 full one, the full form as its own target (``results/<folder>/full/...``).
@@ -27,7 +28,7 @@ REDUCED, FULL = "reduced", "full"
 class Analysis:
     name: str              # target stem, figure label and file stem ("mi-diagram")
     module: str            # cradle.analyses.<module>
-    run: str               # "function" of that module: run(spec, files, scenes, log) -> Dataset
+    run: str               # "function" of that module: run(spec, files, scenes, log) -> DataTree or Dataset
     folder: str            # under the results folder
     forms: tuple = (FULL,)  # (REDUCED, FULL) when `all` builds a cheaper form than the full target
     title: str = ""
@@ -54,7 +55,7 @@ class Analysis:
         return resolve(config, form) if len(self.forms) > 1 else resolve(config)
 
     def compute(self, spec: dict, files=(), scenes=None, log=None):
-        """The Dataset of this analysis (imports its module only now)."""
+        """The output of this analysis, a DataTree (or Dataset) (imports its module only now)."""
         return getattr(import_module(f"cradle.analyses.{self.module}"), self.run)(spec, list(files), scenes or {},
                                                                                    log)
 

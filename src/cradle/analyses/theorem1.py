@@ -1,218 +1,74 @@
-"""Exact periodic travelling waves of (nc) with V = V0: Theorem 1 measured.
+"""Theorem 1 measured: the exact periodic travelling waves of (nc) with V = V0 against DpS.
 
-Travelling waves x_n(t) = u(q n - omega t) solve the advance-delay equation (ad)
-
-    omega^2 u'' + u = N(u),   N(u)(xi) = V0'(u(xi+q)-u(xi)) - V0'(u(xi)-u(xi-q))   (ad), (defn)
-
-for u odd and 2 pi-periodic. With the splitting (ansatzu) u = a sin(xi) + a^alpha v,
-v orthogonal to sin (the first sine coefficient of u is exactly a), and the
-scaling omega^2 - 1 = a^(alpha-1) lambda of section 3, the positive
-homogeneity V0'(a d) = a^alpha V0'(d) gives, with eps = a^(alpha-1) and
-w = sin + eps v, the scale-free problem
-
-    lambda = -zeta*(N(w))                                   (adcentral)-(f0)
-    (1 - omega^2 j^2) v_j = N_j(w),  j >= 2                 (projection on X_h)
-
-where N_j are the sine coefficients. We discretise v by J sine modes
-(j = 2..J; all j, since V0' is not odd and u(xi+pi) != -u(xi) unless q = pi),
-evaluate N(w) on a fine uniform grid of M points (the shifts xi +- q are exact:
-they are phase factors on the sine coefficients) and solve by Newton with an
-analytic Jacobian (dN/dw uses V0''), starting from the fixed point of
-(fpe) at eps -> 0 and continuing in a. N(w) is only C^1 where a contact opens
-(V0' ~ |d|^alpha H(-d)), so N_j decays like j^-(alpha+1), v_j like
-j^-(alpha+3), and the trapezoidal sine coefficients carry an aliasing error
-~ M^-(alpha+1): M = 2^16 keeps it below 1e-11.
-
-Also here: the leading term (va) K_h P_h N0(sin) of v_a by quadrature of
-(ph)-(kh), and the q = pi binary oscillation from (inteq) whose period is a
-quadrature.
+The waves themselves, solutions of the advance-delay equation (ad) by a sine-series Newton, are
+:mod:`cradle.models.waves` (:func:`~cradle.models.waves.solve`, :func:`~cradle.models.waves.branch`).
+Here: their frequencies against the DpS relation (wleadingorder)/(freq), the relative correction
+and its slope in a (estim1), the profile correction v_a against its leading term (va) K_h P_h
+N0(sin) by quadrature of (ph)-(kh), the decay of the sine coefficients, the convergence in the
+number of modes, the q = pi binary oscillation of (inteq) whose period is a quadrature, and the
+paper's travelling-wave scenes; :func:`compute` stores them as a tree of netCDF groups
+(:data:`VARIABLES`).
 """
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 
 from cradle.models import dps
 from cradle.models.lattice import check_alpha
+from cradle.models.waves import Wave, branch, dV0, solve, wave_max
+from cradle.pipeline.variables import Var
 
-DEFAULT_M = 2**16
+_AQ = ("alpha", "q")
+_AQA = ("alpha", "q", "a")
+_SCENE = ("scene",)
+_ALPHA = Var(("alpha",), "Hertz exponent alpha of the exact travelling waves")
+_Q = Var(("q",), "wavenumber q of the travelling wave", "rad")
 
-
-def _dV0(d, alpha):
-    c = np.maximum(-d, 0.0)
-    return -(c**alpha)
-
-
-def _d2V0(d, alpha):
-    c = np.maximum(-d, 0.0)
-    return alpha * c ** (alpha - 1.0)
-
-
-def grid(M: int) -> np.ndarray:
-    return 2.0 * np.pi * np.arange(M) / M
-
-
-def synth(c, M: int, shift: float = 0.0) -> np.ndarray:
-    """u(xi_m + shift) on the M-point grid for u = sum_{j>=1} c_j sin(j xi) (c[0] is c_1)."""
-    c = np.asarray(c, dtype=float)
-    J = c.size
-    if J > M // 2 - 1:
-        raise ValueError(f"{J} modes need M > {2 * J + 2} grid points")
-    j = np.arange(1, J + 1)
-    X = np.zeros(M // 2 + 1, dtype=complex)
-    # Re sum Z_j e^{i j xi} with Z_j = -i c_j e^{i j shift}; irfft(X)[m] = Re sum 2 X_j/M e^{i j xi_m}
-    X[1:J + 1] = -1j * c * np.exp(1j * j * shift) * (M / 2.0)
-    return np.fft.irfft(X, n=M)
-
-
-def sine_coefficients(f, J: int) -> np.ndarray:
-    """(1/pi) int f sin(j xi), j = 1..J, by the trapezoidal rule on the uniform grid of f."""
-    f = np.asarray(f, dtype=float)
-    M = f.size
-    return -2.0 / M * np.fft.rfft(f)[1:J + 1].imag
-
-
-def N_grid(c, q: float, alpha: float, M: int):
-    """N(u) (defn) on the grid, and the bond elongations d+ = u(xi+q)-u(xi), d- = u(xi)-u(xi-q)."""
-    u = synth(c, M)
-    dp = synth(c, M, q) - u
-    dm = u - synth(c, M, -q)
-    return _dV0(dp, alpha) - _dV0(dm, alpha), dp, dm
-
-
-@dataclass
-class Wave:
-    """One exact travelling wave: u = a (sin xi + eps sum_{j>=2} v_j sin j xi), omega^2 = 1 + eps lambda."""
-    a: float
-    q: float
-    alpha: float
-    lam: float
-    v: np.ndarray          # v_j, j = 1..J (v_1 = 0)
-    residual: float        # max_j |residual_j| of the discrete equations (scale-free units)
-    iterations: int
-    M: int
-
-    @property
-    def eps(self) -> float:
-        return self.a ** (self.alpha - 1.0)
-
-    @property
-    def omega(self) -> float:
-        return float(np.sqrt(1.0 + self.eps * self.lam))
-
-    @property
-    def modes(self) -> int:
-        return self.v.size
-
-    def coefficients(self) -> np.ndarray:
-        """Sine coefficients c_j of u (c_1 = a)."""
-        c = self.a ** self.alpha * self.v
-        c[0] = self.a
-        return c
-
-    def profile(self, xi) -> np.ndarray:
-        xi = np.asarray(xi, dtype=float)
-        j = np.arange(1, self.modes + 1)
-        return np.sin(np.multiply.outer(xi, j)) @ self.coefficients()
-
-
-def _w(v, eps):
-    w = eps * np.asarray(v, dtype=float)
-    w[0] = 1.0
-    return w
-
-
-def residual(x, a, q, alpha, J, M):
-    """Residual of the scale-free equations for x = (lambda, v_2..v_J)."""
-    eps = a ** (alpha - 1.0)
-    lam, v = x[0], np.concatenate([[0.0], x[1:]])
-    Nw, _, _ = N_grid(_w(v, eps), q, alpha, M)
-    Nj = sine_coefficients(Nw, J)
-    j = np.arange(1, J + 1)
-    om2 = 1.0 + eps * lam
-    r = (1.0 - om2 * j**2) * v - Nj
-    r[0] = lam + Nj[0]
-    return r
-
-
-def jacobian(x, a, q, alpha, J, M_jac):
-    """Analytic Jacobian of :func:`residual` (dN/dw by V0''), on an M_jac-point grid."""
-    eps = a ** (alpha - 1.0)
-    lam, v = x[0], np.concatenate([[0.0], x[1:]])
-    w = _w(v, eps)
-    u = synth(w, M_jac)
-    dp = synth(w, M_jac, q) - u
-    dm = u - synth(w, M_jac, -q)
-    kp, km = _d2V0(dp, alpha), _d2V0(dm, alpha)
-    xi = grid(M_jac)
-    j = np.arange(1, J + 1)
-    S = np.sin(np.outer(xi, j))
-    Sp = np.sin(np.outer(xi + q, j))
-    Sm = np.sin(np.outer(xi - q, j))
-    dN = kp[:, None] * (Sp - S) - km[:, None] * (S - Sm)      # dN/dw_k on the grid
-    G = 2.0 / M_jac * S.T @ dN                                 # dN_j/dw_k
-    om2 = 1.0 + eps * lam
-    Jm = np.diag(1.0 - om2 * j**2) - eps * G
-    Jm[0, :] = eps * G[0, :]
-    Jm[:, 0] = -eps * j**2 * v
-    Jm[0, 0] = 1.0
-    return Jm
-
-
-def solve(a: float, q: float, alpha: float, modes: int = 128, M: int = DEFAULT_M, guess: Wave | None = None,
-          tol: float = 1e-13, max_iter: int = 40) -> Wave:
-    """The exact wave of amplitude a (first sine coefficient) and wavenumber q, by Newton.
-
-    ``guess``: a nearby solution (continuation); otherwise the eps -> 0 fixed point.
-    """
-    alpha = check_alpha(alpha)
-    if not a > 0:
-        raise ValueError(f"amplitude a must be > 0, got {a!r}")
-    J = int(modes)
-    M_jac = int(min(M, max(1024, 8 * J)))
-    x = np.zeros(J)
-    if guess is not None:
-        g = np.zeros(J)
-        n = min(J, guess.modes)
-        g[:n] = guess.v[:n]
-        x[1:] = g[1:]
-        x[0] = guess.lam
-    else:  # leading order: v0 = K_h P_h N(sin), lambda0 = -zeta*(N(sin))
-        Nj = sine_coefficients(N_grid(np.r_[1.0, np.zeros(J - 1)], q, alpha, M)[0], J)
-        j = np.arange(1, J + 1)
-        x[1:] = Nj[1:] / (1.0 - j[1:] ** 2)
-        x[0] = -Nj[0]
-    r = residual(x, a, q, alpha, J, M)
-    scale = np.maximum(1.0, np.arange(1, J + 1) ** 2.0)
-    it = 0
-    Jm = None
-    best = np.max(np.abs(r / scale))
-    while best > tol and it < max_iter:
-        if Jm is None or it % 4 == 0:
-            Jm = jacobian(x, a, q, alpha, J, M_jac)
-        x_new = x - np.linalg.solve(Jm, r)
-        r_new = residual(x_new, a, q, alpha, J, M)
-        res_new = np.max(np.abs(r_new / scale))
-        it += 1
-        if not np.isfinite(res_new):
-            break
-        if res_new >= best and it > 6 and res_new < 1e3 * tol:
-            break  # stagnation at round-off level
-        x, r, best = x_new, r_new, res_new
-    v = np.concatenate([[0.0], x[1:]])
-    return Wave(a=float(a), q=float(q), alpha=alpha, lam=float(x[0]), v=v, residual=float(best), iterations=it,
-                M=int(M))
-
-
-def branch(amplitudes, q: float, alpha: float, modes: int = 128, M: int = DEFAULT_M) -> list[Wave]:
-    """Solutions along increasing amplitudes, each Newton started from the previous one."""
-    out, prev = [], None
-    for a in np.sort(np.asarray(amplitudes, dtype=float)):
-        prev = solve(a, q, alpha, modes=modes, M=M, guess=prev)
-        out.append(prev)
-    return out
-
+#: the stored variables of the `theorem1` file, per netCDF group: "/waves" the exact waves of (ad)
+#: on the grid (alpha, q, a); "/profiles" the profile correction v_a against xi; "/convergence" the
+#: checks in the number of sine modes; "/scenes" the paper's travelling-wave scenes
+VARIABLES = {
+    "/": {},
+    "/waves": {
+        "alpha": _ALPHA, "q": _Q,
+        "a": Var(("a",), "amplitude a: first sine coefficient of u (ansatzu)"),
+        "omega": Var(_AQA, "frequency omega_a of the exact travelling wave of (ad)"),
+        "omega_dps": Var(_AQA, "DpS frequency (wleadingorder) without o(): omega_tw of (freq)"),
+        "lambda": Var(_AQA, "lambda = (omega_a^2 - 1) / a^(alpha-1) (adcentral)"),
+        "rel_correction": Var(_AQA, "relative correction (omega_a - omega_DpS)/(omega_DpS - 1)"),
+        "residual": Var(_AQA, "max residual of the discrete (ad), scale-free units"),
+        "newton_iterations": Var(_AQA, "Newton iterations"),
+        "profile_error": Var(_AQA, "max_xi |v_a - K_h P_h N0(sin)|: remainder R_a of (va)"),
+        "u_max": Var(_AQA, "max_xi u(xi) of the exact wave"),
+        "correction_slope": Var(_AQ, "log-log slope of the relative frequency correction in a"),
+        "omega_binary": Var(("alpha", "a"), "q = pi: 2 pi / period of (inteq) at amplitude max u, by quadrature"),
+    },
+    "/profiles": {
+        "alpha": _ALPHA, "q": _Q,
+        "xi": Var(("xi",), "moving-frame coordinate xi = q n - omega t", "rad"),
+        "v_small": Var(_AQ + ("xi",), "profile correction v_a(xi) at the smallest amplitude"),
+        "v_large": Var(_AQ + ("xi",), "profile correction v_a(xi) at the largest amplitude"),
+        "va_leading": Var(_AQ + ("xi",), "leading term K_h P_h N0(sin) of v_a (va), by quadrature"),
+    },
+    "/convergence": {
+        "alpha": _ALPHA, "q": _Q,
+        "modes": Var(("modes",), "number J of sine modes of the discretisation"),
+        "omega_error": Var(_AQ + ("modes",), "|omega_J - omega_ref| against twice the largest J"),
+        "profile_error": Var(_AQ + ("modes",), "max_xi |v_J - v_ref| against twice the largest J"),
+        "decay_rate": Var(_AQ, "exponent s of the algebraic decay |v_j| ~ j^-s"),
+    },
+    "/scenes": {
+        "scene": Var(_SCENE, "index of a travelling-wave scene of the paper (names in attribute scene_names)"),
+        "a": Var(_SCENE, "amplitude a of the scene (from its omega_tw by (freq))"),
+        "q": Var(_SCENE, "wavenumber q of the scene", "rad"),
+        "alpha": Var(_SCENE, "Hertz exponent of the scene"),
+        "t_end": Var(_SCENE, "time span of the scene"),
+        "omega": Var(_SCENE, "exact travelling-wave frequency omega_a at the scene's amplitude"),
+        "omega_dps": Var(_SCENE, "DpS frequency omega_tw (freq) at the scene's amplitude"),
+        "drift": Var(_SCENE, "phase drift |omega_a - omega_tw| t over the scene's time span", "rad"),
+        "residual": Var(_SCENE, "max residual of the discrete (ad) at the scene's amplitude"),
+    },
+}
 
 # ----------------------------------------------------------------- leading orders of Theorem 1
 
@@ -248,7 +104,7 @@ def lambda0(q, alpha):
 def N0(xi, q, alpha):
     """N0(sin)(xi) = V0'(sin(xi+q) - sin xi) - V0'(sin xi - sin(xi-q)) (the bracket of (va))."""
     xi = np.asarray(xi, dtype=float)
-    return _dV0(np.sin(xi + q) - np.sin(xi), alpha) - _dV0(np.sin(xi) - np.sin(xi - q), alpha)
+    return dV0(np.sin(xi + q) - np.sin(xi), alpha) - dV0(np.sin(xi) - np.sin(xi - q), alpha)
 
 
 def _breaks(q):
@@ -315,14 +171,6 @@ def binary_frequency(A: float, alpha: float) -> float:
     return 2.0 * np.pi / binary_period(A, alpha)
 
 
-def wave_max(w: Wave) -> float:
-    """max_xi u(xi): at xi = pi/2 for q = pi (u(pi - xi) = u(xi)); on a fine grid otherwise."""
-    if abs(abs(w.q) - np.pi) < 1e-14:
-        j = np.arange(1, w.modes + 1)
-        return float(np.sin(j * np.pi / 2.0) @ w.coefficients())
-    return float(np.max(synth(w.coefficients(), max(4096, 8 * w.modes))))
-
-
 def decay_rate(v, j_min: int = 8) -> float:
     """Algebraic decay exponent s of |v_j| ~ j^-s from the upper envelope of |v_j|, j >= j_min."""
     v = np.abs(np.asarray(v, dtype=float))
@@ -353,7 +201,7 @@ def _sample_v(w: Wave, xi) -> np.ndarray:
 
 
 def compute(spec: dict, log=None):
-    """The `theorem1` target as a Dataset (see module docstring and cradle.pipeline.variables t1_*).
+    """The `theorem1` target as a tree of groups (see module docstring and :data:`VARIABLES`).
 
     ``spec``: alpha (list), q (list, radians), q_expr (list of their texts), a_min, a_max,
     n_amplitudes, modes, grid_log2 (M = 2^grid_log2), slope_eps_max (the slope is fitted where
@@ -363,7 +211,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from cradle.pipeline.io import make_dataset
+    from cradle.pipeline.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
@@ -424,19 +272,18 @@ def compute(spec: dict, log=None):
         sc["drift"][i] = abs(sc["om"][i] - sc["omd"][i]) * sc["t"][i]
         say(f"theorem1: scene {s['name']}: a={a:.6g} omega={w.omega:.10g} omega_DpS={sc['omd'][i]:.10g} "
             f"drift={sc['drift'][i]:.4g} rad over t={sc['t'][i]}")
-    data = {
-        "t1_omega": om, "t1_omega_dps": om_dps, "t1_lambda": lam, "t1_rel_correction": rel_corr,
-        "t1_residual": res, "t1_newton_iterations": iters, "t1_profile_error": prof_err, "t1_u_max": umax,
-        "t1_correction_slope": slope, "t1_decay_rate": decay,
-        "t1_v_small": v_small, "t1_v_large": v_large, "t1_va_leading": v_lead,
-        "t1_conv_omega_error": conv_om, "t1_conv_profile_error": conv_prof,
-        "t1_pi_omega_quadrature": pi_quad,
-        "t1_scene_a": sc["a"], "t1_scene_q": sc["q"], "t1_scene_alpha": sc["alpha"], "t1_scene_t": sc["t"],
-        "t1_scene_omega": sc["om"], "t1_scene_omega_dps": sc["omd"], "t1_scene_drift": sc["drift"],
-        "t1_scene_residual": sc["res"],
+    alpha_q = {"alpha": alphas, "q": qs}
+    groups = {
+        "/waves": ({"omega": om, "omega_dps": om_dps, "lambda": lam, "rel_correction": rel_corr, "residual": res,
+                    "newton_iterations": iters, "profile_error": prof_err, "u_max": umax,
+                    "correction_slope": slope, "omega_binary": pi_quad}, {**alpha_q, "a": amps}),
+        "/profiles": ({"v_small": v_small, "v_large": v_large, "va_leading": v_lead}, {**alpha_q, "xi": xi}),
+        "/convergence": ({"omega_error": conv_om, "profile_error": conv_prof, "decay_rate": decay},
+                         {**alpha_q, "modes": conv_modes}),
+        "/scenes": ({"a": sc["a"], "q": sc["q"], "alpha": sc["alpha"], "t_end": sc["t"], "omega": sc["om"],
+                     "omega_dps": sc["omd"], "drift": sc["drift"], "residual": sc["res"]},
+                    {"scene": np.arange(len(scenes))}),
     }
-    coords = {"t1_alpha": alphas, "t1_q": qs, "t1_a": amps, "t1_xi": xi, "t1_modes": conv_modes,
-              "t1_scene": np.arange(len(scenes))}
     attrs = {
         "scene_names": ", ".join(str(s["name"]) for s in scenes),
         "q_expr": ", ".join(str(x) for x in spec.get("q_expr", qs)), "modes": J, "grid_points": M,
@@ -452,8 +299,8 @@ def compute(spec: dict, log=None):
     if np.any(np.isfinite(pi_quad)):
         iq = [i for i, q in enumerate(qs) if abs(abs(q) - np.pi) < 1e-12][0]
         attrs["pi_max_relative_error"] = float(np.nanmax(np.abs(om[:, iq, :] / pi_quad - 1.0)))
-    return make_dataset(data, coords=coords, attrs=attrs,
-                        title="Theorem 1 measured: exact travelling waves of (nc) with V = V0 against the DpS "
+    return make_tree(groups, VARIABLES, attrs=attrs,
+                     title="Theorem 1 measured: exact travelling waves of (nc) with V = V0 against the DpS "
                               "dispersion relation (wleadingorder)")
 
 

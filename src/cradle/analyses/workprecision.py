@@ -58,9 +58,8 @@ from cradle.pipeline.variables import Var
 
 log = logging.getLogger("cradle")
 
-#: Variables of the work-precision files. Until they are added to
-#: cradle.pipeline.variables.VARIABLES, the writer takes their long names and units
-#: from here (:func:`declaration`).
+#: Variables of the work-precision files (flat, one per scene), declared beside the analysis:
+#: :func:`cradle.pipeline.io.make_dataset` takes their dims, long names and units from here.
 VARIABLES: dict[str, Var] = {
     "method": Var(("method",), "integration method of the lattice (nc)"),
     "setting": Var(("setting",), "index of the accuracy setting on the method's ladder"),
@@ -81,13 +80,6 @@ VARIABLES: dict[str, Var] = {
 
 ADAPTIVE_KEY, SPLITTING_KEY = "rtol", "dt_factor"
 MAX_REPEATS = 5
-
-
-def declaration(name: str) -> Var:
-    """The declaration of ``name``: cradle.pipeline.variables.VARIABLES if it is there, else :data:`VARIABLES`."""
-    from cradle.pipeline.variables import VARIABLES as GLOBAL
-
-    return GLOBAL.get(name) or VARIABLES[name]
 
 
 def machine() -> str:
@@ -252,24 +244,14 @@ def _version(pkg: str) -> str:
 
 
 def _dataset(fields: dict, methods, S, t, D, attrs, title) -> xr.Dataset:
-    """A self-describing Dataset (cradle.pipeline.io.make_dataset conventions) from the measured arrays."""
-    import xarray as xr  # here, not at the top: the Snakefile imports this module to plan
-
+    """A self-describing Dataset (:func:`cradle.pipeline.io.make_dataset`, :data:`VARIABLES`) from the
+    measured arrays."""
     from cradle.pipeline.io import make_dataset
 
-    ds = make_dataset({}, attrs=attrs, title=title)
-
-    def var(name, values):
-        d = declaration(name)
-        return xr.Variable(d.dims, values, {"long_name": d.long_name, "units": d.units})
-
-    ds = ds.assign_coords(method=var("method", np.array(methods, dtype=object)),
-                          setting=var("setting", np.arange(S)),
-                          t_compare=var("t_compare", np.asarray(t, dtype=float)))
-    for name, values in fields.items():
-        ds[name] = var(name, values)
-    ds["reference_difference"] = var("reference_difference", np.asarray(D, dtype=float))
-    return ds
+    coords = {"method": np.array(methods, dtype=object), "setting": np.arange(S),
+              "t_compare": np.asarray(t, dtype=float)}
+    data = {**fields, "reference_difference": np.asarray(D, dtype=float)}
+    return make_dataset(data, coords=coords, attrs=attrs, title=title, variables=VARIABLES)
 
 
 def scene_dataset(spec: dict, initial: xr.Dataset) -> xr.Dataset:

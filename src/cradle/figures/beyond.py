@@ -2,8 +2,8 @@
 
 These read the netCDF outputs of the `theorem1` and `mi_diagram` rules
 (results/theorem1/theorem1.nc, results/mi/mi-diagram.nc), not scene files, so
-they are listed in :data:`cradle.figures.DATASET_FIGURES` (functions of one Dataset) and
-drawn by :func:`cradle.figures.draw_dataset`.
+they are listed in :data:`cradle.figures.DATASET_FIGURES` (functions of the one file of their
+analysis, a tree of netCDF groups) and drawn by :func:`cradle.figures.draw_dataset`.
 """
 from __future__ import annotations
 
@@ -24,89 +24,96 @@ def _qlabel(q):
     return f"{q:.3g}"
 
 
-def theorem1(ds):
-    """Exact frequencies against (wleadingorder), the relative correction, v_a against (va), convergence."""
+def theorem1(tree):
+    """Exact frequencies against (wleadingorder), the relative correction, v_a against (va), convergence.
+
+    ``tree``: the groups /waves, /profiles, /convergence, /scenes of the theorem1 file."""
     fig, ax = figure(2, 2, width=10.0, height=7.6)
-    alphas, qs, a = ds["t1_alpha"].values, ds["t1_q"].values, ds["t1_a"].values
+    ds, scenes = tree["waves"], tree["scenes"]
+    prof, conv = tree["profiles"], tree["convergence"]
+    alphas, qs, a = ds["alpha"].values, ds["q"].values, ds["a"].values
     ia = int(np.argmin(np.abs(alphas - 1.5)))
     colors = [f"C{i}" for i in range(len(qs))]
     # (a) omega_a - 1 against a, alpha = alphas[ia]
     A = ax[0, 0]
     for iq, q in enumerate(qs):
-        A.loglog(a, ds["t1_omega"].values[ia, iq] - 1.0, "-", color=colors[iq], label=f"exact, q = {_qlabel(q)}")
-        A.loglog(a, ds["t1_omega_dps"].values[ia, iq] - 1.0, "--", color=colors[iq], lw=0.8)
+        A.loglog(a, ds["omega"].values[ia, iq] - 1.0, "-", color=colors[iq], label=f"exact, q = {_qlabel(q)}")
+        A.loglog(a, ds["omega_dps"].values[ia, iq] - 1.0, "--", color=colors[iq], lw=0.8)
     A.set_xlabel("a")
     A.set_ylabel(r"$\omega_a - 1$")
     A.set_title(rf"(a) exact (solid) vs DpS (dashed), $\alpha$ = {alphas[ia]:g}", fontsize=9)
     A.legend(fontsize=7)
-    if ds.sizes.get("t1_scene", 0):
-        lines = [f"{n}: a={ds['t1_scene_a'].values[i]:.4g}, drift {ds['t1_scene_drift'].values[i]:.3g} rad"
-                 for i, n in enumerate(str(ds.attrs.get("scene_names", "")).split(", "))]
+    if scenes.sizes.get("scene", 0):
+        lines = [f"{n}: a={scenes['a'].values[i]:.4g}, drift {scenes['drift'].values[i]:.3g} rad"
+                 for i, n in enumerate(str(tree.attrs.get("scene_names", "")).split(", "))]
         A.text(0.98, 0.02, "\n".join(lines), transform=A.transAxes, ha="right", va="bottom", fontsize=6.5)
     # (b) relative correction
     B = ax[0, 1]
     styles = ["-", "--", ":", "-."]
     for ja, al in enumerate(alphas):
         for iq, q in enumerate(qs):
-            r = np.abs(ds["t1_rel_correction"].values[ja, iq])
+            r = np.abs(ds["rel_correction"].values[ja, iq])
             eps = a ** (al - 1.0)
             ok = eps >= 1e-7
             B.loglog(a[ok], r[ok], styles[ja % 4], color=colors[iq], lw=1.0,
-                     label=rf"$\alpha$={al:g}, q={_qlabel(q)}, slope {ds['t1_correction_slope'].values[ja, iq]:.3f}")
+                     label=rf"$\alpha$={al:g}, q={_qlabel(q)}, slope {ds['correction_slope'].values[ja, iq]:.3f}")
     B.set_xlabel("a")
     B.set_ylabel(r"$|\omega_a - \omega_{DpS}| / (\omega_{DpS} - 1)$")
     B.set_title(r"(b) relative correction, expected slope $\alpha - 1$", fontsize=9)
     B.legend(fontsize=5.5, ncol=2)
     # (c) profile correction against (va)
     C = ax[1, 0]
-    xi = ds["t1_xi"].values
+    xi = prof["xi"].values
     for iq, q in enumerate(qs):
-        C.plot(xi, ds["t1_va_leading"].values[ia, iq], "-", color=colors[iq], lw=2.2, alpha=0.4)
-        C.plot(xi, ds["t1_v_small"].values[ia, iq], "--", color=colors[iq], lw=1.0,
+        C.plot(xi, prof["va_leading"].values[ia, iq], "-", color=colors[iq], lw=2.2, alpha=0.4)
+        C.plot(xi, prof["v_small"].values[ia, iq], "--", color=colors[iq], lw=1.0,
                label=f"q = {_qlabel(q)}")
-        C.plot(xi, ds["t1_v_large"].values[ia, iq], ":", color=colors[iq], lw=1.0)
+        C.plot(xi, prof["v_large"].values[ia, iq], ":", color=colors[iq], lw=1.0)
     C.set_xlabel(r"$\xi$")
     C.set_ylabel(r"$v_a(\xi)$")
     C.set_title(rf"(c) $v_a$ at a = {a[0]:.0e} (dashed), {a[-1]:g} (dotted); $K_h P_h N_0$ (thick)", fontsize=9)
     C.legend(fontsize=7)
     # (d) convergence in the number of modes
     D = ax[1, 1]
-    modes = ds["t1_modes"].values
+    modes = conv["modes"].values
     for ja, al in enumerate(alphas):
         for iq, q in enumerate(qs):
-            e = ds["t1_conv_profile_error"].values[ja, iq]
+            e = conv["profile_error"].values[ja, iq]
             D.loglog(modes[e > 0], e[e > 0], styles[ja % 4] + "o", color=colors[iq], ms=3, lw=0.8,
-                     label=rf"$\alpha$={al:g}, q={_qlabel(q)}: $|v_j| \sim j^{{-{ds['t1_decay_rate'].values[ja, iq]:.2f}}}$")
+                     label=rf"$\alpha$={al:g}, q={_qlabel(q)}: $|v_j| \sim j^{{-{conv['decay_rate'].values[ja, iq]:.2f}}}$")
     D.set_xlabel("modes J")
     D.set_ylabel(r"$\max_\xi |v_J - v_{ref}|$")
-    D.set_title(f"(d) convergence at a = {ds.attrs.get('convergence_a', np.nan):g} "
-                f"(ref. J = {ds.attrs.get('reference_modes', '')})", fontsize=9)
+    D.set_title(f"(d) convergence at a = {tree.attrs.get('convergence_a', np.nan):g} "
+                f"(ref. J = {tree.attrs.get('reference_modes', '')})", fontsize=9)
     D.legend(fontsize=5.5, ncol=2)
     return fig
 
 
-def mi_diagram(ds):
-    """Growth-rate maps lambda tau0 R^(1-alpha) over (q, p) for each alpha, and the maximum over p."""
-    alphas = ds["mi_alpha"].values
+def mi_diagram(tree):
+    """Growth-rate maps lambda tau0 R^(1-alpha) over (q, p) for each alpha, and the maximum over p.
+
+    ``tree``: the mi-diagram file, thresholds at the root, groups /map and /checks."""
+    ds, mp, chk = tree.to_dataset(), tree["map"], tree["checks"]
+    alphas = ds["alpha"].values
     n = len(alphas)
     fig, ax = figure(1, n + 1, width=3.3 * (n + 1), height=3.4)
-    q, p = ds["mi_q"].values, ds["mi_p"].values
+    q, p = mp["q"].values, mp["p"].values
     for ia, al in enumerate(alphas):
         A = ax[ia]
-        G = ds["mi_growth"].values[ia]
+        G = mp["growth"].values[ia]
         # 181 x 361 cells: a raster inside the PDF (70 kB, not 3 MB of vector patches)
         m = A.pcolormesh(q, p, G.T, shading="auto", cmap="magma", rasterized=True)
         fig.colorbar(m, ax=A, shrink=0.85)
-        A.axvline(ds["mi_q_threshold"].values[ia], color="w", ls="--", lw=0.8)
-        A.plot(q, ds["mi_argmax_p"].values[ia], "c-", lw=0.8)
+        A.axvline(ds["q_threshold"].values[ia], color="w", ls="--", lw=0.8)
+        A.plot(q, mp["argmax_p"].values[ia], "c-", lw=0.8)
         A.set_xlabel("q")
         A.set_ylabel("p")
-        A.set_title(rf"$\alpha$ = {al:g}: $q_c$ = {ds['mi_q_threshold'].values[ia]:.6f}", fontsize=9)
+        A.set_title(rf"$\alpha$ = {al:g}: $q_c$ = {ds['q_threshold'].values[ia]:.6f}", fontsize=9)
     B = ax[n]
     for ia, al in enumerate(alphas):
-        B.plot(q, ds["mi_max_growth"].values[ia], color=f"C{ia}", label=rf"$\alpha$ = {al:g}")
-        B.plot(ds["mi_check_q"].values[ia], ds["mi_check_simulated"].values[ia], "x", color=f"C{ia}", ms=6)
-        B.plot(ds["mi_check_q"].values[ia], ds["mi_check_theory"].values[ia], "o", mfc="none", color=f"C{ia}",
+        B.plot(q, mp["max_growth"].values[ia], color=f"C{ia}", label=rf"$\alpha$ = {al:g}")
+        B.plot(chk["q"].values[ia], chk["growth_simulated"].values[ia], "x", color=f"C{ia}", ms=6)
+        B.plot(chk["q"].values[ia], chk["growth_theory"].values[ia], "o", mfc="none", color=f"C{ia}",
                ms=6)
     B.set_xlabel("q")
     B.set_ylabel(r"$\max_p \lambda \tau_0 R^{1-\alpha}$")

@@ -1,7 +1,7 @@
 """Figure beyond the paper: Bloch-Floquet stability of the exact travelling waves (floquet).
 
 Reads results/floquet/[full/]floquet.nc (:mod:`cradle.analyses.floquet`), not scene files, so it
-is listed in :data:`cradle.figures.DATASET_FIGURES` (functions of one Dataset) and drawn by
+is listed in :data:`cradle.figures.DATASET_FIGURES` (functions of the one file of their analysis) and drawn by
 :func:`cradle.figures.draw_dataset`.
 
 (a) max over p of the growth rate against q, lattice (exact waves) and DpS, thresholds marked, the
@@ -20,16 +20,18 @@ def _frac(q):
     return f"{q / np.pi:.3g}" + r"$\pi$"
 
 
-def floquet(ds):
+def floquet(tree):
+    """The four panels above from the groups /sweep, /profiles, /thresholds of the floquet file."""
     fig, ax = figure(2, 2, width=10.0, height=7.6)
-    q, p = ds["fq_q"].values, ds["fq_p"].values
+    ds, sweep, prof, thresholds = tree, tree["sweep"], tree["profiles"], tree["thresholds"]
+    q, p = sweep["q"].values, sweep["p"].values
     qc = float(ds.attrs["q_threshold_lattice"])
     dq = float(ds.attrs["q_threshold_uncertainty"])
     om = float(ds.attrs["omega_tw"])
     # (a)
     A = ax[0, 0]
-    A.plot(q / np.pi, ds["fq_max_growth"].values, "-", color="C0", label="lattice (exact waves, Bloch-Floquet)")
-    A.plot(q / np.pi, ds["fq_dps_max_growth"].values, "--", color="C3", label="DpS, lattice time (R = a/2)")
+    A.plot(q / np.pi, sweep["max_growth"].values, "-", color="C0", label="lattice (exact waves, Bloch-Floquet)")
+    A.plot(q / np.pi, sweep["max_growth_dps"].values, "--", color="C3", label="DpS, lattice time (R = a/2)")
     A.axvline(qc / np.pi, color="C0", lw=0.8, ls=":")
     A.axvline(0.5, color="C3", lw=0.8, ls=":")
     for qq in (0.50, 0.51, 0.52):
@@ -44,10 +46,10 @@ def floquet(ds):
     A.legend(fontsize=7, loc="upper left")
     # (b)
     B = ax[0, 1]
-    G = ds["fq_growth"].values
+    G = sweep["growth"].values
     mesh = B.pcolormesh(q / np.pi, p / np.pi, G.T, shading="nearest", cmap="viridis")
     fig.colorbar(mesh, ax=B, label="lattice growth rate (1/t)")
-    Gd = ds["fq_dps_growth"].values
+    Gd = sweep["growth_dps"].values
     if np.any(Gd > 0) and np.any(Gd <= 0):
         B.contour(q / np.pi, p / np.pi, (Gd > 0).T.astype(float), levels=[0.5], colors="w", linewidths=0.8,
                   linestyles="--")
@@ -57,20 +59,20 @@ def floquet(ds):
     B.set_title("(b) lattice growth over (q, p); DpS unstable region dashed", fontsize=9)
     # (c)
     C = ax[1, 0]
-    for i, qq in enumerate(ds["fq_q_profile"].values):
-        C.plot(p / np.pi, ds["fq_profile_growth"].values[i], "-", color=f"C{i}", label=f"q = {_frac(qq)}")
-        C.plot(p / np.pi, ds["fq_profile_dps_growth"].values[i], "--", color=f"C{i}", lw=0.8)
+    for i, qq in enumerate(prof["q"].values):
+        C.plot(p / np.pi, prof["growth"].values[i], "-", color=f"C{i}", label=f"q = {_frac(qq)}")
+        C.plot(p / np.pi, prof["growth_dps"].values[i], "--", color=f"C{i}", lw=0.8)
     C.set_xlabel(r"$p/\pi$")
     C.set_ylabel("growth rate (1/t)")
     C.set_title("(c) growth against p: lattice (solid), DpS (dashed)", fontsize=9)
     C.legend(fontsize=7)
     # (d)
     D = ax[1, 1]
-    omt = ds["fq_omega_tw"].values
-    thr = ds["fq_threshold"].values
+    omt = thresholds["omega_tw"].values
+    thr = thresholds["q_threshold"].values
     D.semilogx(omt - 1.0, thr / np.pi, "o-", color="C0", label="lattice threshold")
     D.axhline(0.5, color="C3", ls="--", lw=0.8, label=r"DpS: $\pi/2$")
-    for x, y, pp in zip(omt - 1.0, thr / np.pi, ds["fq_threshold_p"].values / np.pi):
+    for x, y, pp in zip(omt - 1.0, thr / np.pi, thresholds["p_threshold"].values / np.pi):
         D.annotate(f"p={pp:.2f}$\\pi$", (x, y), xytext=(4, -10), textcoords="offset points", fontsize=6.5)
     D.set_xlabel(r"$\omega_{tw} - 1$ (amplitude from (freq))")
     D.set_ylabel(r"$q_c/\pi$")

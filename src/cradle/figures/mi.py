@@ -11,7 +11,7 @@ import numpy as np
 
 from cradle.figures import figure
 
-MODELS = ("exact", "dps")      # the model index of mig_model / mis_model
+MODELS = ("exact", "dps")      # the model index of the `model` coordinate
 
 MODEL_STYLE = {"exact": dict(color="C0", marker="o", label="exact (nc)"),
                "dps": dict(color="C3", marker="x", label="DpS (dfnls)")}
@@ -21,11 +21,15 @@ def _names(ds, key="scene_names"):
     return [s.strip() for s in str(ds.attrs.get(key, "")).split(",")]
 
 
-def mi_growth(ds):
-    """Per scene: linear DpS rate against p with the measured rates; the fitted series; the growth-rate diagram."""
+def mi_growth(tree):
+    """Per scene: linear DpS rate against p with the measured rates; the fitted series; the growth-rate diagram.
+
+    ``tree``: the mi-growth file, one row per scene and model at the root, groups /sidebands, /series
+    and /theory."""
+    ds, sb, series, theory = tree.to_dataset(), tree["sidebands"], tree["series"], tree["theory"]
     names = _names(ds)
     S = len(names)
-    models = [MODELS[int(i)] for i in ds["mig_model"].values]
+    models = [MODELS[int(i)] for i in ds["model"].values]
     ncol = 4
     nrow = int(np.ceil((S + 2) / ncol))
     fig, ax = figure(nrow, ncol, width=3.2 * ncol, height=2.9 * nrow)
@@ -33,37 +37,37 @@ def mi_growth(ds):
     alpha = float(ds.attrs["alpha"])
     for i, name in enumerate(names):
         A = ax[i]
-        p = ds["mig_p"].values[i]
+        p = sb["p"].values[i]
         ok = np.isfinite(p)
-        A.plot(p[ok] / np.pi, ds["mig_theory_p"].values[i][ok], "k-", lw=1.2, label="linear DpS")
+        A.plot(p[ok] / np.pi, sb["growth_theory"].values[i][ok], "k-", lw=1.2, label="linear DpS")
         for j, m in enumerate(models):
             st = MODEL_STYLE[m]
-            A.plot(p[ok] / np.pi, ds["mig_rate_p"].values[i, j][ok], st["marker"], color=st["color"], ms=2.5,
+            A.plot(p[ok] / np.pi, sb["growth"].values[i, j][ok], st["marker"], color=st["color"], ms=2.5,
                    alpha=0.6, label=st["label"])
-            ps = ds["mig_p_star"].values[i, j] / np.pi
-            A.plot([ps], [ds["mig_rate"].values[i, j]], st["marker"], color=st["color"], ms=9, mew=2)
+            ps = ds["p_star"].values[i, j] / np.pi
+            A.plot([ps], [ds["growth"].values[i, j]], st["marker"], color=st["color"], ms=9, mew=2)
         A.axhline(0.0, color="0.7", lw=0.6)
-        q = float(ds["mig_q"].values[i])
-        lines = [f"{m}: {ds['mig_rate'].values[i, j]:.4f} vs {ds['mig_rate_theory'].values[i, j]:.4f}"
-                 + ("" if ds["mig_exponential"].values[i, j] else " (no exp. phase)") for j, m in enumerate(models)]
-        A.set_title(f"{name}: q = {q / np.pi:.2f}$\\pi$, N = {int(ds['mig_N'].values[i])}", fontsize=8)
+        q = float(ds["q"].values[i])
+        lines = [f"{m}: {ds['growth'].values[i, j]:.4f} vs {ds['growth_theory'].values[i, j]:.4f}"
+                 + ("" if ds["exponential"].values[i, j] else " (no exp. phase)") for j, m in enumerate(models)]
+        A.set_title(f"{name}: q = {q / np.pi:.2f}$\\pi$, N = {int(ds['N'].values[i])}", fontsize=8)
         A.text(0.02, 0.98, "measured vs theory at p*:\n" + "\n".join(lines), transform=A.transAxes, va="top",
                fontsize=6)
         A.set_xlabel(r"$p/\pi$", fontsize=8)
         A.set_ylabel("growth rate per unit t", fontsize=8)
-        top = np.nanmax([np.nanmax(ds["mig_theory_p"].values[i]), np.nanmax(ds["mig_rate"].values[i])])
+        top = np.nanmax([np.nanmax(sb["growth_theory"].values[i]), np.nanmax(ds["growth"].values[i])])
         A.set_ylim(-0.6 * top if top > 0 else -0.01, 1.5 * top if top > 0 else 0.01)
         if i == 0:
             A.legend(fontsize=6, loc="lower right")
     # the fitted series
     B = ax[S]
-    t = ds["mig_t"].values
+    t = series["t"].values
     for i, name in enumerate(names):
         for j, m in enumerate(models):
-            y = ds["mig_pair"].values[i, j]
+            y = series["pair"].values[i, j]
             ls = "-" if m == "exact" else "--"
             B.semilogy(t, y, ls, color=f"C{i}", lw=0.8, label=name if j == 0 else None)
-            ta, tb = ds["mig_window_start"].values[i, j], ds["mig_window_end"].values[i, j]
+            ta, tb = ds["window_start"].values[i, j], ds["window_end"].values[i, j]
             sel = (t >= ta) & (t <= tb)
             B.semilogy(t[sel], y[sel], ls, color=f"C{i}", lw=2.2)
     B.axhline(float(ds.attrs["saturation"]), color="k", lw=0.6, ls=":")
@@ -73,14 +77,14 @@ def mi_growth(ds):
     B.legend(fontsize=5.5)
     # the growth-rate diagram: max_p lambda tau0 R^(1-alpha) against q, measured points rescaled
     C = ax[S + 1]
-    C.plot(ds["mig_theory_q"].values / np.pi, ds["mig_theory_max"].values, "k-", lw=1.2,
+    C.plot(theory["q"].values / np.pi, theory["max_growth"].values, "k-", lw=1.2,
            label=r"$\max_p$ linear DpS")
-    scale = ds["mig_rate_scale"].values      # per unit t -> lambda tau0 R^(1-alpha)
+    scale = ds["growth_scale"].values      # per unit t -> lambda tau0 R^(1-alpha)
     for j, m in enumerate(models):
         st = MODEL_STYLE[m]
-        C.plot(ds["mig_q"].values / np.pi, ds["mig_rate"].values[:, j] * scale, st["marker"], color=st["color"],
+        C.plot(ds["q"].values / np.pi, ds["growth"].values[:, j] * scale, st["marker"], color=st["color"],
                ms=7, mew=1.5, ls="none", label=f"measured, {st['label']}")
-        C.plot(ds["mig_q"].values / np.pi, ds["mig_rate_theory"].values[:, j] * scale, "s", mfc="none",
+        C.plot(ds["q"].values / np.pi, ds["growth_theory"].values[:, j] * scale, "s", mfc="none",
                color=st["color"], ms=7, ls="none", label=f"theory at the p* of {m}")
     C.axvline(0.5, color="0.5", ls="--", lw=0.8)
     C.set_xlabel(r"$q/\pi$", fontsize=8)
@@ -92,11 +96,14 @@ def mi_growth(ds):
     return fig
 
 
-def mi_statistics(ds):
-    """Fraction of unstable seeds and crossing-time distributions against q, per N, both models."""
-    Ns = [int(n) for n in ds["mis_N"].values]
-    models = [MODELS[int(i)] for i in ds["mis_model"].values]
-    q = ds["mis_q"].values / np.pi
+def mi_statistics(tree):
+    """Fraction of unstable seeds and crossing-time distributions against q, per N, both models.
+
+    ``tree``: the mi-statistics file, the summary per q at the root and every run in /runs."""
+    ds, runs = tree.to_dataset(), tree["runs"]
+    Ns = [int(n) for n in ds["N"].values]
+    models = [MODELS[int(i)] for i in ds["model"].values]
+    q = ds["q"].values / np.pi
     qc = float(ds.attrs.get("dps_threshold_linear_theory", np.pi / 2)) / np.pi
     fig, ax = figure(2, len(Ns), width=4.6 * len(Ns), height=6.4)
     ax = np.asarray(ax).reshape(2, len(Ns))
@@ -106,33 +113,33 @@ def mi_statistics(ds):
         A, B = ax[0, c], ax[1, c]
         for j, m in enumerate(models):
             st = MODEL_STYLE[m]
-            f = ds["mis_fraction_unstable"].values[c, j]
-            lo, hi = ds["mis_fraction_low"].values[c, j], ds["mis_fraction_high"].values[c, j]
+            f = ds["fraction_unstable"].values[c, j]
+            lo, hi = ds["fraction_low"].values[c, j], ds["fraction_high"].values[c, j]
             A.errorbar(q + off[m] * dq, f, yerr=[f - lo, hi - f], fmt=st["marker"] + "-", color=st["color"], ms=4,
                        lw=0.8, capsize=2, label=st["label"])
-            th = ds["mis_threshold"].values[c, j] / np.pi
-            tl, thh = ds["mis_threshold_low"].values[c, j] / np.pi, ds["mis_threshold_high"].values[c, j] / np.pi
+            th = ds["threshold"].values[c, j] / np.pi
+            tl, thh = ds["threshold_low"].values[c, j] / np.pi, ds["threshold_high"].values[c, j] / np.pi
             if np.isfinite(th):
                 A.axvline(th, color=st["color"], lw=1.0, ls=":")
                 A.axvspan(tl if np.isfinite(tl) else q[0], thh if np.isfinite(thh) else q[-1], color=st["color"],
                           alpha=0.12)
-            tc = ds["mis_crossing_time"].values[c, j]
+            tc = runs["crossing_time"].values[c, j]
             for iq in range(q.size):
                 y = tc[iq][np.isfinite(tc[iq])]
                 B.plot(np.full(y.size, q[iq] + off[m] * dq), y, st["marker"], color=st["color"], ms=2.5, alpha=0.5,
                        label=st["label"] if iq == 0 else None)
-            B.plot(q + off[m] * dq, ds["mis_median_crossing_time"].values[c, j], "-", color=st["color"], lw=1.0)
+            B.plot(q + off[m] * dq, ds["median_crossing_time"].values[c, j], "-", color=st["color"], lw=1.0)
         for P in (A, B):
             P.axvline(qc, color="k", ls="--", lw=0.8)
             P.set_xlabel(r"$q/\pi$", fontsize=8)
         A.text(qc, 1.02, r" $q_c=\pi/2$ (DpS linear)", fontsize=6, va="bottom")
         A.set_ylim(-0.05, 1.12)
-        A.set_ylabel(f"fraction unstable (Wilson 95 %), {ds['mis_seed'].size} seeds", fontsize=8)
+        A.set_ylabel(f"fraction unstable (Wilson 95 %), {runs['seed'].size} seeds", fontsize=8)
         lines = []
         for j, m in enumerate(models):
-            th = ds["mis_threshold"].values[c, j] / np.pi
-            lines.append(f"{m}: q_th = {th:.4f} pi in [{ds['mis_threshold_low'].values[c, j] / np.pi:.3f}, "
-                         f"{ds['mis_threshold_high'].values[c, j] / np.pi:.3f}] pi")
+            th = ds["threshold"].values[c, j] / np.pi
+            lines.append(f"{m}: q_th = {th:.4f} pi in [{ds['threshold_low'].values[c, j] / np.pi:.3f}, "
+                         f"{ds['threshold_high'].values[c, j] / np.pi:.3f}] pi")
         A.set_title(f"N = {N}: ratio reaches {ds.attrs['fraction']:g} by t = {ds.attrs['t_end']:g}\n"
                     + "\n".join(lines), fontsize=7)
         A.legend(fontsize=6, loc="center right")

@@ -13,6 +13,12 @@ and :func:`open_dataset` reads every value, so a damaged or truncated file
 stops its reader with one line naming the file and the command that rebuilds
 it (:class:`DamagedOutput`, docs/recovery.md). :func:`open_scene` opens the
 exact and DpS runs of one scene as a single Dataset.
+
+A file holding several tables is a tree of netCDF groups (:class:`xarray.DataTree`, read by
+``xarray.open_datatree``): :func:`make_tree` builds it from the declarations of its analysis
+(``variables=``, one dict per group), the global attributes and provenance on the root group;
+:func:`write_datatree` writes it atomically with a checksum on every variable of every group, and
+:func:`open_tree` reads and verifies every group's values as :func:`open_dataset` does.
 """
 from __future__ import annotations
 
@@ -47,9 +53,30 @@ def _attr_value(value):
     return str(value)
 
 
-def _var_attrs(name: str) -> dict:
-    var = declared(name)
+def _lookup(name: str, variables: dict | None):
+    """The declaration of ``name``: in ``variables`` (an analysis's own) if given, else the global one."""
+    if variables is None:
+        return declared(name)
+    try:
+        return variables[name]
+    except KeyError:
+        raise KeyError(f"variable {name!r} is not declared in the analysis's VARIABLES") from None
+
+
+def _var_attrs(var) -> dict:
     return {"long_name": var.long_name, "units": var.units, **dict(var.attrs)}
+
+
+def _table(data: dict, coords: dict | None, variables: dict | None) -> xr.Dataset:
+    """The variables and coordinates of one table, with their declared dims, long names and units."""
+    ds = xr.Dataset()
+    for name, values in (coords or {}).items():
+        var = _lookup(name, variables)
+        ds = ds.assign_coords({name: (var.dims, np.asarray(values), _var_attrs(var))})
+    for name, values in data.items():
+        var = _lookup(name, variables)
+        ds[name] = xr.Variable(var.dims, np.asarray(values), _var_attrs(var))
+    return ds
 
 
 #: global attributes set by :func:`make_dataset` itself; an inherited value (attrs copied from the
@@ -58,20 +85,17 @@ GLOBAL_KEYS = ("title", "Conventions", "source", "references", "history") + _PRO
 
 
 def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = None, title: str = "",
-                 params=None) -> xr.Dataset:
+                 params=None, variables: dict | None = None) -> xr.Dataset:
     """A Dataset from ``{name: array}`` with declared dims, long names and units.
 
     ``coords`` maps coordinate names to 1-D arrays (also declared). ``attrs``
     become global attributes (every parameter that produced the file).
     ``params`` (the resolved config entry, JSON-serialisable) is hashed into
     ``params_sha256``; the other provenance attributes are always written.
+    ``variables`` (name -> :class:`cradle.pipeline.variables.Var`) holds the declarations of an
+    analysis's own variables; without it the global :data:`cradle.pipeline.variables.VARIABLES`.
     """
-    coords = coords or {}
-    ds = xr.Dataset()
-    for name, values in coords.items():
-        ds = ds.assign_coords({name: (declared(name).dims, np.asarray(values), _var_attrs(name))})
-    for name, values in data.items():
-        ds[name] = xr.Variable(declared(name).dims, np.asarray(values), _var_attrs(name))
+    ds = _table(data, coords, variables)
     prov = provenance(params)
     ds.attrs.update(
         {
@@ -89,6 +113,30 @@ def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = No
             ds.attrs[key] = _attr_value(value)
     ds.attrs.update(prov)
     return ds
+
+
+def make_tree(groups: dict, variables: dict, attrs: dict | None = None, title: str = "",
+               params=None) -> xr.DataTree:
+    """A tree of netCDF groups: ``groups`` maps a group path ("/", "/scenes", ...) to its
+    ``(data, coords)``, ``variables`` maps the same paths to their declarations (name -> Var).
+
+    The root group carries the global attributes and provenance of :func:`make_dataset`; a child
+    group carries only its variables (it inherits the root's coordinates in xarray, so a child
+    never reuses a name of its parents' coordinates).
+    """
+    root_data, root_coords = groups.get("/", ({}, {}))
+    nodes = {"/": make_dataset(root_data, root_coords, attrs=attrs, title=title, params=params,
+                               variables=variables["/"])}
+    for path, (data, coords) in groups.items():
+        if path != "/":
+            nodes[path] = _table(data, coords, variables[path])
+    for path, ds in nodes.items():  # xarray would let an inherited coordinate hide a child's variable
+        parents = ["/"] + ["/".join(path.split("/")[:i]) for i in range(2, path.count("/") + 1)]
+        for parent in (p for p in parents if p in nodes and p != path):
+            clash = set(ds.variables) & set(nodes[parent].coords)
+            if clash:
+                raise ValueError(f"group {path}: {sorted(clash)} already coordinates of its parent {parent}")
+    return xr.DataTree.from_dict(nodes)
 
 
 def _umask_mode() -> int:
@@ -125,10 +173,19 @@ def encoding_of(ds: xr.Dataset) -> dict:
     return encoding
 
 
-def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
+def write_netcdf(ds: xr.Dataset | xr.DataTree, path: str | os.PathLike) -> Path:
     """Write ``ds`` to ``path`` atomically (temporary file, then rename), every variable checksummed
-    (:func:`encoding_of`)."""
+    (:func:`encoding_of`). A :class:`xarray.DataTree` is written by :func:`write_datatree`."""
+    if isinstance(ds, xr.DataTree):
+        return write_datatree(ds, path)
     return _atomic(Path(path), lambda tmp: ds.to_netcdf(tmp, encoding=encoding_of(ds), engine="netcdf4"))
+
+
+def write_datatree(tree: xr.DataTree, path: str | os.PathLike) -> Path:
+    """Write a tree of groups to ``path`` atomically, every variable of every group checksummed
+    (:func:`encoding_of` per group); ``xarray.open_datatree`` (and :func:`open_tree`) reads it."""
+    encoding = {node.path: encoding_of(node.to_dataset(inherit=False)) for node in tree.subtree}
+    return _atomic(Path(path), lambda tmp: tree.to_netcdf(tmp, encoding=encoding, engine="netcdf4"))
 
 
 def write_text(text: str, path: str | os.PathLike) -> Path:
@@ -218,26 +275,44 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     return _checked(path, read)
 
 
+def open_tree(path: str | os.PathLike) -> xr.DataTree:
+    """Open a cradle output as a tree of groups, fully into memory (the file is closed on return),
+    verified: every variable of every group is read, so HDF5 checks every checksum. A flat file is
+    a tree with a root group only. Errors as :func:`open_dataset`."""
+    def read(p):
+        tree = xr.open_datatree(p, engine="netcdf4")
+        try:
+            return tree.load()
+        finally:
+            tree.close()
+
+    return _checked(path, read)
+
+
 def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[str]:
     """Read every value of a netCDF file, ``block_bytes`` at a time (bounded memory whatever its
     size), so that HDF5 checks every checksum. Returns the variables stored without a checksum
     (written before checksums); raises FileNotFoundError or :class:`DamagedOutput` (one line)."""
     import netCDF4
 
-    def read(p):
-        bare = []
-        with netCDF4.Dataset(p) as nc:
-            for name, var in nc.variables.items():
-                if var.ndim == 0:
-                    var[...]
-                    continue
-                if not (var.filters() or {}).get("fletcher32"):
-                    bare.append(name)
-                row = int(np.prod(var.shape[1:], dtype=np.int64)) * getattr(var.dtype, "itemsize", 1)
-                step = max(1, block_bytes // max(row, 1))
-                for i in range(0, var.shape[0], step):
-                    var[i:i + step]
+    def walk(group, prefix, bare):
+        for name, var in group.variables.items():
+            if var.ndim == 0:
+                var[...]
+                continue
+            if not (var.filters() or {}).get("fletcher32"):
+                bare.append(prefix + name)
+            row = int(np.prod(var.shape[1:], dtype=np.int64)) * getattr(var.dtype, "itemsize", 1)
+            step = max(1, block_bytes // max(row, 1))
+            for i in range(0, var.shape[0], step):
+                var[i:i + step]
+        for gname, sub in group.groups.items():  # every netCDF group of a tree (open_tree)
+            walk(sub, f"{prefix}{gname}/", bare)
         return bare
+
+    def read(p):
+        with netCDF4.Dataset(p) as nc:
+            return walk(nc, "", [])
 
     return _checked(path, read)
 

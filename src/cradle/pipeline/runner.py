@@ -131,7 +131,8 @@ def _keep_failed(ds, out, reason: str) -> str:
 
 
 def run(compute, out: str | Path, log_path: str | None = None, label: str = ""):
-    """Call ``compute()`` (returning a Dataset) and write it to ``out``; see module docstring."""
+    """Call ``compute()`` (returning a Dataset, or a DataTree of groups) and write it to ``out``; see
+    module docstring."""
     setup_logging(log_path)
     t0 = time.perf_counter()
     log.info("%s: start -> %s", label, out)

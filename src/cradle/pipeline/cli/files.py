@@ -23,6 +23,16 @@ def _fmt(value) -> str:
     return str(value)
 
 
+def _describe_variables(heading: str, ds) -> list[str]:
+    """One line per variable of ``ds``: name, dims with sizes, long name and units."""
+    out = ["", heading]
+    for name in list(ds.coords) + list(ds.data_vars):
+        var = ds[name]
+        dims = f"({', '.join(f'{d}={ds.sizes[d]}' for d in var.dims)})"
+        out.append(f"  {name:<16} {dims:<22} {var.attrs.get('long_name', '')} [{var.attrs.get('units', '?')}]")
+    return out
+
+
 def cmd_describe(args) -> int:
     import xarray as xr
 
@@ -54,11 +64,10 @@ def cmd_describe(args) -> int:
                    f"verified; no checksum on {', '.join(bare)} (written before checksums: rebuild to protect)"))
         out += ["", "provenance:"]
         out += [f"  {k:<{width}} {_fmt(attrs[k])}" for k in PROV + ("history", "Conventions") if k in attrs]
-        out += ["", "variables:"]
-        for name in list(ds.coords) + list(ds.data_vars):
-            var = ds[name]
-            dims = f"({', '.join(f'{d}={ds.sizes[d]}' for d in var.dims)})"
-            out.append(f"  {name:<16} {dims:<22} {var.attrs.get('long_name', '')} [{var.attrs.get('units', '?')}]")
+        out += _describe_variables("variables:", ds)
+    with xr.open_datatree(path) as tree:   # the groups of an analysis file (xarray.open_datatree)
+        for node in list(tree.subtree)[1:]:
+            out += _describe_variables(f"group {node.path}:", node.to_dataset(inherit=False))
     print("\n".join(out))
     return 0
 
