@@ -98,7 +98,7 @@ def breakdown(results: Path, wall: float, cores: int) -> dict:
         "figures: drawing": sum(j["draw"] for j in fig),
         "figures: saving PDF + PNG": sum(j["save"] for j in fig),
         "figures: loading inputs": sum(j["total"] - j["startup"] - j["draw"] - j["save"] for j in fig),
-        "homoclinic, map, claims table": sum(j["total"] - j["startup"] for j in rest),
+        "other jobs: stage 1, claims table, analyses": sum(j["total"] - j["startup"] for j in rest),
     }
     out["sum of job times"] = sum(j["total"] for j in jobs)
     out["Snakemake and idle cores"] = wall - out["sum of job times"] / cores
