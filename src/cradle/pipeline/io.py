@@ -335,7 +335,9 @@ def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = 
         (ds.x.sel(model="exact") - ds.x.sel(model="dps")).sel(t=621.95).plot()
     """
     root = Path(root)
-    paths = {m: root / "sim" / scene / f"{m}.nc" for m in ("exact", "dps")}
+    from cradle.pipeline import layout
+
+    paths = {m: Path(p) for m, p in layout.scene_paths(scene, root, ("exact", "dps")).items()}
     missing = [str(p) for p in paths.values() if not p.exists()]
     if missing:
         raise FileNotFoundError(f"scene {scene!r}: no {' and no '.join(missing)} (run `cradle run {scene} "
@@ -351,7 +353,7 @@ def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = 
         shared[name].attrs = dict(runs["exact"][name].attrs)
     rest = [runs[m].drop_vars(list(SHARED)) for m in ("exact", "dps")]
     parts = [shared, *rest]
-    mpath = root / "metrics" / f"{scene}.nc"
+    mpath = Path(layout.path("metrics", root, scene=scene))
     if metrics and mpath.exists():
         parts.append(open_dataset(mpath))
     ds = xr.merge(parts, compat="override", join="exact", combine_attrs="override")

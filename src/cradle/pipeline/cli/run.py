@@ -10,6 +10,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from cradle.pipeline import layout
 from cradle.pipeline.cli.common import PROG, CliError, known_names, load_config, section_of
 
 #: where ``cradle run`` writes by default: its own folder, not the workflow's results/
@@ -46,16 +47,15 @@ def cmd_run(args) -> int:
     if section is None:
         raise CliError(f"unknown scene {name!r} (known: {known_names(cfg)})")
     _note_workflow_results(out, args.config)
-    logs = out / "logs"
     if section == "map":
         mspec = cc.resolved_map(cfg, name)
-        _stage(lambda: stages.map_orbits(mspec, name), out / "map" / f"{name}.nc",
-               logs / "map" / f"{name}.log", f"map {name}")
+        _stage(lambda: stages.map_orbits(mspec, name), Path(layout.path("map", out, name=name)),
+               layout.path("log", out, job=f"map/{name}"), f"map {name}")
         return 0
     if section == "homoclinic":
         hspec = cc.resolved_homoclinic(cfg, name)
-        _stage(lambda: stages.homoclinic_solution(hspec, name), out / "homoclinic" / f"{name}.nc",
-               logs / "homoclinic" / f"{name}.log", f"homoclinic {name}")
+        _stage(lambda: stages.homoclinic_solution(hspec, name), Path(layout.path("homoclinic", out, name=name)),
+               layout.path("log", out, job=f"homoclinic/{name}"), f"homoclinic {name}")
         return 0
     spec = cc.resolved_scene(cfg, name)
     print(f"{PROG}: {budget.spec_estimate(spec).describe()}", file=sys.stderr)  # within budget (validated)
@@ -64,8 +64,7 @@ def cmd_run(args) -> int:
         hname = spec["initial"]["homoclinic"]
         hspec = cc.resolved_homoclinic(cfg, hname)
         steps.append(("homoclinic", lambda done: stages.homoclinic_solution(hspec, hname)))
-        outs["homoclinic"] = out / "homoclinic" / f"{hname}.nc"
-    sim = out / "sim" / name
+        outs["homoclinic"] = Path(layout.path("homoclinic", out, name=hname))
     steps += [
         ("initial", lambda done: stages.initial_data(spec, name, done.get("homoclinic"))),
         ("exact", lambda done: stages.exact_run(spec, done["initial"], name, progress=Progress(
@@ -73,12 +72,12 @@ def cmd_run(args) -> int:
         ("dps", lambda done: stages.dps_run(spec, done["initial"], name, progress=Progress(f"dps {name}"))),
         ("metrics", lambda done: stages.metrics(spec, done["exact"], done["dps"], name)),
     ]
-    outs.update({"initial": out / "initial" / f"{name}.nc", "exact": sim / "exact.nc", "dps": sim / "dps.nc",
-                  "metrics": out / "metrics" / f"{name}.nc"})
+    outs.update({part: Path(p) for part, p in layout.scene_paths(name, out).items()})
+    log = layout.path("log", out, job=f"sim/{name}")
     try:
-        run_chain(steps, outs, str(logs / "sim" / f"{name}.log"), label=name)
+        run_chain(steps, outs, log, label=name)
     except StageFailure as err:
         raise CliError(f"{name}: {err} (none of the scene's files written; what was computed is kept for "
-                       f"diagnosis, see {logs / 'sim' / (name + '.log')})") from None
+                       f"diagnosis, see {log})") from None
     print(f"{name}: {', '.join(str(p) for p in outs.values())}")
     return 0
