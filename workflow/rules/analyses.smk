@@ -47,6 +47,9 @@ for _a in ANALYSES.values():
                 **{ext: update(f) for ext, f in _a.figure(_form).items()},
             params:
                 label=_a.name,
+                # the reduced form says so on the figure, and where the full one is
+                note=f"reduced form: `snakemake -j2 {_a.target}_full` builds the full one"
+                if _form != FULL else "",
             log:
                 L.path("log", job=f"figures/{_form}/{_a.name}"),
             script:

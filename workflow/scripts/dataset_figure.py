@@ -8,4 +8,5 @@ from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 setup_logging(sm.log[0])
-draw_dataset(sm.params.label, open_tree(sm.input.data), Path(sm.output.pdf).with_suffix(""))
+draw_dataset(sm.params.label, open_tree(sm.input.data), Path(sm.output.pdf).with_suffix(""),
+             note=sm.params.get("note", ""))

@@ -166,10 +166,14 @@ def load_inputs(scenes: dict, root) -> dict:
     return data
 
 
-def draw_dataset(label: str, ds, stem) -> list[Path]:
+def draw_dataset(label: str, ds, stem, note: str = "") -> list[Path]:
     """Draw the beyond-the-paper figure ``label`` (a ``DATASET_FIGURES`` entry) from the Dataset
-    of its analysis and save it as ``stem``.pdf/.png."""
-    return save_figure(drawer(label, "DATASET_FIGURES")(ds), stem)
+    of its analysis and save it as ``stem``.pdf/.png; ``note`` (e.g. which form of the analysis it
+    shows) goes small in the bottom right corner."""
+    fig = drawer(label, "DATASET_FIGURES")(ds)
+    if note:  # a figure-level x label: the layout keeps room for it below the panels
+        fig.supxlabel(note, x=0.998, ha="right", fontsize=6, color="0.4")
+    return save_figure(fig, stem)
 
 
 def draw(label: str, data: dict, options: dict, stem) -> list[Path]:
