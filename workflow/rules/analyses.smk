@@ -3,7 +3,7 @@
 # it; target `<name>` builds the form `all` builds (results/<folder>/<name>.nc, results/figures/<name>.*),
 # and `<name>_full` the full form (the same files when the analysis has one form; else
 # results/<folder>/full/). Config: `beyond:` in config.yaml.
-from cradle.analyses.registry import ANALYSES, FULL, inputs as analysis_inputs, scenes_read
+from cradle.analyses.registry import ANALYSES, FULL
 
 for _a in ANALYSES.values():
     for _form in _a.forms:
@@ -18,14 +18,14 @@ for _a in ANALYSES.values():
                 f"{_a.title} ({_form})"
             input:
                 code=code_of("workflow/scripts/analysis.py", f"cradle.analyses.{_a.module}"),
-                data=lambda w, a=_a, form=_form: analysis_inputs(config, a, form),
+                data=lambda w, a=_a, form=_form: a.inputs(config, form),
             output:
                 _a.output(_form),
             params:
                 analysis=_a.name,
                 # resolved when the job is planned: an analysis not asked for is not resolved
                 spec=lambda w, a=_a, form=_form: a.spec(config, form),
-                scenes=lambda w, a=_a: {n: compact_scene(cc.resolved_scene(config, n)) for n in scenes_read(config, a)},
+                scenes=lambda w, a=_a: {n: compact_scene(cc.resolved_scene(config, n)) for n in a.scenes(config)},
             log:
                 L.path("log", job=f"{_a.folder}/{_form}/{_a.name}"),
             benchmark:

@@ -10,10 +10,10 @@ import os
 
 from cradle.pipeline.config.sections import WorkPrecision as _WP
 
-WP_DIR = {"reduced": "results/work-precision", "full": "results/work-precision/full"}
-WP_FIGURE = {"reduced": "results/figures/work-precision", "full": "results/work-precision/full/work-precision"}
+WP_FORMS = ("reduced", "full")  # the first is the form `all` builds (cradle.pipeline.layout.form_folder)
+WP_DIR = {form: L.form_folder("work-precision", form, WP_FORMS[0]) for form in WP_FORMS}
 
-for _form in ("reduced", "full"):
+for _form in WP_FORMS:
     _scenes = _WP.scenes_of(config, _form) if config.get("work_precision") else []
 
     rule:
@@ -53,8 +53,8 @@ for _form in ("reduced", "full"):
             code=code_of("cradle.analyses.workprecision", "cradle.figures.workprecision"),
             data=[f"{WP_DIR[_form]}/{s}.nc" for s in _scenes],
         output:
-            pdf=update(f"{WP_FIGURE[_form]}.pdf"),
-            png=update(f"{WP_FIGURE[_form]}.png"),
+            **{ext: update(f) for ext, f in L.form_figure_paths("work-precision", "work-precision", _form,
+                                                                 WP_FORMS[0]).items()},
         params:
             stem=lambda w, output: os.path.splitext(output.pdf)[0],
         log:

@@ -32,6 +32,8 @@ class Analysis:
     folder: str            # under the results folder
     forms: tuple = (FULL,)  # (REDUCED, FULL) when `all` builds a cheaper form than the full target
     title: str = ""
+    reads_scenes: str = ""  # key under `beyond:` whose `scenes` list names the scenes whose runs it reads
+    reads_batches: bool = False  # its input is the mi-statistics batches of its form
 
     @property
     def target(self) -> str:
@@ -39,20 +41,33 @@ class Analysis:
         return self.name.replace("-", "_")
 
     def output(self, form: str = REDUCED, root=layout.ROOT) -> str:
-        """The netCDF file of a form: the form ``all`` builds at the folder's top, the other in full/."""
-        sub = "" if form == self.forms[0] else "full/"
-        return f"{root}/{self.folder}/{sub}{self.name}.nc"
+        """The netCDF file of a form (:func:`cradle.pipeline.layout.form_folder`)."""
+        return f"{layout.form_folder(self.folder, form, self.forms[0], root)}/{self.name}.nc"
 
     def figure(self, form: str = REDUCED, root=layout.ROOT) -> dict[str, str]:
-        """ext -> figure file of a form: results/figures/<name>.<ext> for the form ``all`` builds."""
-        if form == self.forms[0]:
-            return layout.figure_paths(self.name, root)
-        return {ext: f"{root}/{self.folder}/full/{self.name}.{ext}" for ext in layout.FIGURE_FORMATS}
+        """ext -> figure file of a form (:func:`cradle.pipeline.layout.form_figure_paths`)."""
+        return layout.form_figure_paths(self.name, self.folder, form, self.forms[0], root)
 
     def spec(self, config: dict, form: str) -> dict:
         """The resolved parameters of one form (cradle.pipeline.config)."""
         resolve = getattr(cc, f"resolved_{self.target}")
         return resolve(config, form) if len(self.forms) > 1 else resolve(config)
+
+    def scenes(self, config: dict) -> list[str]:
+        """The scenes whose initial data and runs this analysis reads (mi-growth)."""
+        return list(config["beyond"][self.reads_scenes]["scenes"]) if self.reads_scenes else []
+
+    def inputs(self, config: dict, form: str) -> list[str]:
+        """The files this analysis reads, in the order its run function takes them."""
+        files = [p for name in self.scenes(config)
+                 for p in layout.scene_paths(name, parts=("initial", "exact", "dps")).values()]
+        if self.reads_batches:
+            from cradle.analyses import mistatistics
+
+            spec = self.spec(config, form)
+            files += [layout.path("mi-batch", variant=form, N=N, model=m, chunk=c) for N in spec["N"]
+                      for m in mistatistics.MODELS for c in range(int(spec["chunks"]))]
+        return files
 
     def compute(self, spec: dict, files=(), scenes=None, log=None):
         """The output of this analysis, a DataTree (or Dataset) (imports its module only now)."""
@@ -65,31 +80,10 @@ ANALYSES: dict[str, Analysis] = {a.name: a for a in (
              title="Theorem 1 measured: exact travelling waves of (ad) against (wleadingorder)"),
     Analysis("mi-diagram", "modulational", "run", "mi",
              title="Modulational instability of the DpS plane waves: growth-rate map and direct checks"),
-    Analysis("mi-growth", "migrowth", "run", "mi",
+    Analysis("mi-growth", "migrowth", "run", "mi", reads_scenes="mi_growth",
              title="Modulational-instability growth rates measured in the scenes' runs, exact and DpS"),
-    Analysis("mi-statistics", "mistatistics", "run", "mi", forms=(REDUCED, FULL),
+    Analysis("mi-statistics", "mistatistics", "run", "mi", forms=(REDUCED, FULL), reads_batches=True,
              title="mi-statistics: thresholds from every batch"),
     Analysis("floquet", "floquet", "run", "floquet", forms=(REDUCED, FULL),
              title="Bloch-Floquet stability of the exact travelling waves against the DpS threshold"),
 )}
-
-
-def scenes_read(config: dict, analysis: Analysis) -> list[str]:
-    """The scenes whose files an analysis reads (mi-growth: beyond.mi_growth.scenes)."""
-    if analysis.name == "mi-growth":
-        return list(config["beyond"]["mi_growth"]["scenes"])
-    return []
-
-
-def inputs(config: dict, analysis: Analysis, form: str) -> list[str]:
-    """The files an analysis reads, in the order its run function takes them."""
-    if analysis.name == "mi-growth":
-        return [p for name in scenes_read(config, analysis)
-                for p in layout.scene_paths(name, parts=("initial", "exact", "dps")).values()]
-    if analysis.name == "mi-statistics":
-        from cradle.analyses import mistatistics
-
-        spec = analysis.spec(config, form)
-        return [layout.path("mi-batch", variant=form, N=N, model=m, chunk=c) for N in spec["N"]
-                for m in mistatistics.MODELS for c in range(int(spec["chunks"]))]
-    return []

@@ -33,9 +33,8 @@ def _module_file(src: Path, name: str) -> Path | None:
 
 def _package_of(src: Path, path: Path) -> str:
     """Dotted package a source file belongs to (``cradle.figures`` for figures/maps.py)."""
-    rel = path.resolve().relative_to(src.resolve()).with_suffix("")
-    parts = list(rel.parts)
-    return ".".join(parts[:-1]) if parts[-1] != "__init__" else ".".join(parts[:-1])
+    # a module's package is its folder; so is an __init__.py's (relative imports resolve the same way)
+    return ".".join(path.resolve().relative_to(src.resolve()).parts[:-1])
 
 
 @lru_cache(maxsize=None)

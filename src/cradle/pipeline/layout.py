@@ -29,14 +29,11 @@ TEMPLATES = {
     # stage 4
     "figure": "figures/{label}.{ext}",
     "checks": "paper_checks.{ext}",
-    # analyses beyond the paper: their files are declared with them (cradle.analyses.registry);
-    # here the inputs some of them read
+    # analyses beyond the paper: their files follow form_folder (below); here the batches some read
     "mi-batch": "mi/batch/{variant}/N{N}-{model}-{chunk}.nc",
-    "work-precision": "work-precision/{scene}.nc",
     # bookkeeping
     "log": "logs/{job}.log",
     "benchmark": "benchmarks/{job}.tsv",
-    "failed": "failed/{path}",
 }
 
 #: the four files of one scene, written together by the ``simulate`` job
@@ -60,3 +57,17 @@ def scene_paths(scene: str, root: str | Path = ROOT, parts=SCENE_PARTS) -> dict[
 def figure_paths(label: str, root: str | Path = ROOT) -> dict[str, str]:
     """ext -> path of the files of one figure."""
     return {ext: path("figure", root, label=label, ext=ext) for ext in FIGURE_FORMATS}
+
+
+def form_folder(folder: str, form: str, main_form: str, root: str | Path = ROOT) -> str:
+    """The folder of one form of an analysis: ``root/folder`` for the form ``all`` builds
+    (``main_form``), ``root/folder/<form>`` for another (the full form of floquet, ...)."""
+    return str(Path(root) / folder) if form == main_form else str(Path(root) / folder / form)
+
+
+def form_figure_paths(label: str, folder: str, form: str, main_form: str, root: str | Path = ROOT) -> dict[str, str]:
+    """ext -> figure files of one form of an analysis: ``root/figures/<label>.<ext>`` for the form
+    ``all`` builds, beside the form's files for another."""
+    if form == main_form:
+        return figure_paths(label, root)
+    return {ext: f"{form_folder(folder, form, main_form, root)}/{label}.{ext}" for ext in FIGURE_FORMATS}
