@@ -214,20 +214,31 @@ def initial_step(fun, y0, f0, t_bound, rtol, atol, order=7):
     return min(100 * h0, h1, t_bound)
 
 
-def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, progress):
+def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, progress, state=None,
+               counts=None, t_bound=None):
     """Python driver of :func:`dop853_run`: returns (Y (T, n), n_steps, n_rhs_evals).
 
     ``stats`` must hold the initial invariants (see :func:`_monitor`) and is
     updated in place. ``progress(t, t_final)`` is called about once per second.
+
+    Continuing a run: ``state`` = [t, h] (float64, updated in place) is where the previous call
+    stopped (``y0`` its last row, t <= t_out[0]) and the step it would take next (h = 0 on the
+    first call: the initial step is chosen as below); ``counts``
+    (int64 [steps, rhs evaluations, -]) accumulates over the calls. Steps end on every output
+    time, so a run cut into consecutive calls this way takes exactly the steps of one call: the
+    rows are bitwise equal (one more rhs evaluation per call, for f(y0)). Without ``state`` the
+    run starts at t = 0 with scipy's initial step for [0, ``t_bound``] (default t_out[-1]: the
+    first of several calls passes the last time of the whole run).
     """
     n = y0.size
     T = t_out.size
     Y = np.empty((T, n))
-    if t_out[0] == 0.0:
+    t_start = 0.0 if state is None else float(state[0])
+    if t_out[0] == t_start:
         tgrid, shift = t_out, 0
         Y[0] = y0
     else:
-        tgrid, shift = np.concatenate(([0.0], t_out)), 1
+        tgrid, shift = np.concatenate(([t_start], t_out)), 1
     y = y0.copy()
     fy = np.empty(n)
     nf = n // 2 if kind == 0 else 1
@@ -239,12 +250,19 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         return dz
 
     fy[:] = fun(y)
-    counts = np.array([0, 2, 0], dtype=np.int64)
+    if counts is None:
+        counts = np.array([0, 0, 0], dtype=np.int64)
+    n0, f0 = int(counts[0]), int(counts[1])
+    counts[1] += 1
     t_final = float(tgrid[-1])
     nint = tgrid.size - 1
     if nint == 0:
         return Y, 0, 1
-    state = np.array([0.0, initial_step(fun, y, fy, t_final, rtol, atol)])
+    if state is None:
+        state = np.zeros(2)
+    if state[1] == 0.0:
+        state[1] = initial_step(fun, y, fy, t_final if t_bound is None else float(t_bound), rtol, atol)
+        counts[1] += 1
     budget = np.iinfo(np.int64).max if progress is None else max(1, int(2e6 / n))
     k = 0
     while k < nint:
@@ -260,4 +278,4 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
             if elapsed > 0 and taken > 0:
                 budget = max(1, int(taken / elapsed))
             progress(float(state[0]) if k < nint else t_final, t_final)
-    return Y, int(counts[0]), int(counts[1])
+    return Y, int(counts[0]) - n0, int(counts[1]) - f0

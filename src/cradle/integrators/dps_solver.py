@@ -103,35 +103,20 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
     DpsSolution
     """
     wall0 = time.perf_counter()
-    alpha = check_alpha(alpha)
-    bc = check_bc(bc)
     method = check_choice(method, DPS_METHODS, "method")
-    A0 = check_state(A0, "A0", dtype=complex)
-    tau_out = check_times(tau_out, "tau_out")
-    rtol = check_positive(rtol, "rtol")
-    amp = float(np.max(np.abs(A0)))
-    if atol is None:
-        atol = rtol * amp if amp > 0.0 else rtol
-    else:
-        atol = check_positive(atol, "atol")
-    if progress is not None and not callable(progress):
-        raise ValueError(f"progress must be callable or None, got progress={progress!r}")
-    periodic = bc == "periodic"
-    inv2tau0 = 1.0 / (2.0 * _tau0(alpha))
-    N = A0.size
-    T = tau_out.size
+    run = _DpsRun(A0, tau_out, alpha, bc, rtol, atol, progress)
+    tau_out, T, N = run.tau_out, run.tau_out.size, run.N
+    if method == "dop853_numba":
+        return run.block(tau_out, wall0)
+    alpha, periodic, rtol, atol = run.alpha, run.periodic, run.rtol, run.atol
+    l20, S0 = run.l20, run.S0
+    l2_scale, S_scale = run.l2_scale, run.S_scale
+    y0 = run.y0
 
     def fun(t, y):
         dy = np.empty_like(y)
-        K.dps_rhs(y, dy, alpha, inv2tau0, periodic)
+        K.dps_rhs(y, dy, alpha, run.inv2tau0, periodic)
         return dy
-
-    y0 = np.ascontiguousarray(A0).view(np.float64).copy()
-    l20, S0, pr0, pi0 = K.dps_invariants(y0, alpha, periodic)
-    P0 = complex(pr0, pi0)
-    l2_scale = l20 if l20 != 0.0 else 1.0
-    S_scale = S0 if S0 != 0.0 else 1.0
-    P_scale = amp if amp > 0.0 else 1.0
 
     A = np.empty((T, N), dtype=complex)
     l2d = np.empty(T)
@@ -140,10 +125,7 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
 
     def store(i, y):
         A[i] = y.view(np.complex128)
-        l2, S, pr, pi = K.dps_invariants(np.ascontiguousarray(y), alpha, periodic)
-        l2d[i] = abs(l2 - l20) / l2_scale
-        Ed[i] = abs(S - S0) / S_scale
-        Pd[i] = abs(complex(pr, pi) - P0) / P_scale
+        l2d[i], Ed[i], Pd[i] = run.drifts(y[None, :])[:, 0]
 
     idx = 0
     if tau_out[0] == 0.0:
@@ -154,15 +136,6 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
     n_steps = 0
     nfev = 0
     tau_final = float(tau_out[-1])
-    if method == "dop853_numba":
-        stats = np.array([l20, S0, 0.0, 0.0])
-        Y, n_steps, nfev = _dop853.run_dop853(_dop853.DPS, y0, tau_out, rtol, atol, alpha, 0, inv2tau0, periodic,
-                                              stats, progress)
-        for i in range(T):
-            store(i, Y[i])
-        max_l2, max_E = float(stats[2]), float(stats[3])
-        return DpsSolution(tau_out, A, l2d, Ed, Pd, max_l2, max_E, n_steps, time.perf_counter() - wall0, method,
-                           float(rtol), float(atol), nfev)
     if idx < T:
         from scipy import integrate
 
@@ -194,3 +167,71 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
         progress(tau_final, tau_final)
     return DpsSolution(tau_out, A, l2d, Ed, Pd, float(max_l2), float(max_E), n_steps,
                        time.perf_counter() - wall0, method, float(rtol), float(atol), nfev)
+
+
+class _DpsRun:
+    """One run of (dfnls) from A0 at tau = 0 to tau_out[-1]: its validated inputs, the invariants of
+    A0 that every drift is measured from, and (DOP853 in numba) the stepper's state, so the run can
+    be computed in consecutive blocks of output times (:func:`iter_dps`)."""
+
+    def __init__(self, A0, tau_out, alpha, bc, rtol, atol, progress):
+        self.alpha = check_alpha(alpha)
+        self.periodic = check_bc(bc) == "periodic"
+        A0 = check_state(A0, "A0", dtype=complex)
+        self.tau_out = check_times(tau_out, "tau_out")
+        self.rtol = check_positive(rtol, "rtol")
+        amp = float(np.max(np.abs(A0)))
+        self.atol = (rtol * amp if amp > 0.0 else rtol) if atol is None else check_positive(atol, "atol")
+        if progress is not None and not callable(progress):
+            raise ValueError(f"progress must be callable or None, got progress={progress!r}")
+        self.progress = progress
+        self.inv2tau0 = 1.0 / (2.0 * _tau0(self.alpha))
+        self.N = A0.size
+        self.y0 = np.ascontiguousarray(A0).view(np.float64).copy()
+        self.l20, self.S0, pr0, pi0 = K.dps_invariants(self.y0, self.alpha, self.periodic)
+        self.P0 = complex(pr0, pi0)
+        self.l2_scale = self.l20 if self.l20 != 0.0 else 1.0
+        self.S_scale = self.S0 if self.S0 != 0.0 else 1.0
+        self.P_scale = amp if amp > 0.0 else 1.0
+        # the numba stepper's state, carried from block to block
+        self.y = self.y0.copy()
+        self.stats = np.array([self.l20, self.S0, 0.0, 0.0])
+        self.state = np.zeros(2)  # [tau, next step]; step 0: chosen on the first block
+        self.counts = np.zeros(3, dtype=np.int64)
+
+    def drifts(self, Y) -> np.ndarray:
+        """(3, rows): relative drifts of l2 norm, Hamiltonian and P of each row of Y from A0."""
+        out = np.empty((3, Y.shape[0]))
+        for i, y in enumerate(Y):
+            l2, S, pr, pi = K.dps_invariants(np.ascontiguousarray(y), self.alpha, self.periodic)
+            out[:, i] = (abs(l2 - self.l20) / self.l2_scale, abs(S - self.S0) / self.S_scale,
+                         abs(complex(pr, pi) - self.P0) / self.P_scale)
+        return out
+
+    def block(self, tau, wall0) -> DpsSolution:
+        """The solution at ``tau`` (increasing, after the previous block's last time), DOP853 in numba."""
+        n0, f0 = int(self.counts[0]), int(self.counts[1])
+        Y, _, _ = _dop853.run_dop853(_dop853.DPS, self.y, tau, self.rtol, self.atol, self.alpha, 0,
+                                      self.inv2tau0, self.periodic, self.stats, self.progress, state=self.state,
+                                      counts=self.counts, t_bound=float(self.tau_out[-1]))
+        self.y = Y[-1].copy()
+        l2d, Ed, Pd = self.drifts(Y)
+        return DpsSolution(tau, np.ascontiguousarray(Y).view(np.complex128), l2d, Ed, Pd, float(self.stats[2]),
+                           float(self.stats[3]), int(self.counts[0]) - n0, time.perf_counter() - wall0,
+                           "dop853_numba", float(self.rtol), float(self.atol), int(self.counts[1]) - f0)
+
+
+def iter_dps(A0, tau_out, rows: int, *, alpha, bc="periodic", rtol=DEFAULT_RTOL, atol=None, progress=None):
+    """Yield the :class:`DpsSolution` of consecutive blocks of ``rows`` output times of one run of
+    :func:`integrate_dps` (method "dop853_numba") from A0 at tau = 0.
+
+    Steps end on every output time and the stepper's state (tau, next step, invariants' running
+    maxima) is carried from block to block, so the blocks' rows are bitwise those of the single
+    call; memory is one block, whatever the number of output times (the streamed scene job,
+    :mod:`cradle.pipeline.streamed`). ``max_l2_drift`` / ``max_energy_drift`` of a block are the
+    maxima over every step so far; ``n_steps`` counts the block's own.
+    """
+    run = _DpsRun(A0, tau_out, alpha, bc, rtol, atol, progress)
+    rows = max(1, int(rows))
+    for i in range(0, run.tau_out.size, rows):
+        yield run.block(run.tau_out[i:i + rows], time.perf_counter())

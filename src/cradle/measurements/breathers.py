@@ -85,6 +85,13 @@ def merging_time(ds, period=None, *, rel=MERGE_REL, min_periods=MERGE_MIN_PERIOD
     if period is None:
         period = 2.0 * np.pi / float(ds.attrs["omega_sw"])
     starts, P = peak_compression(t, force, period)
+    return merging_time_of_peaks(starts, P, t[0], period, rel=rel, min_periods=min_periods, periodic=periodic)
+
+
+def merging_time_of_peaks(starts, P, t0, period, *, rel=MERGE_REL, min_periods=MERGE_MIN_PERIODS,
+                          periodic=True) -> float:
+    """:func:`merging_time` from the peak compression ``P`` (K, N) of the periods starting at ``starts``
+    (:func:`peak_compression`; the streamed scene job accumulates them block by block)."""
     if len(starts) == 0:
         return float("nan")
     counts = np.array([count_humps(p, rel, periodic) for p in P])
@@ -95,7 +102,7 @@ def merging_time(ds, period=None, *, rel=MERGE_REL, min_periods=MERGE_MIN_PERIOD
     first = int(not_single[-1]) + 1 if not_single.size else 0
     if len(starts) - first < min_periods:
         return float("nan")
-    return float((starts[first] - t[0]) / period)
+    return float((starts[first] - t0) / period)
 
 
 def frequency_from_crossings(t, x) -> float:

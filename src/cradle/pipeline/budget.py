@@ -31,17 +31,13 @@ How the numbers are obtained:
   data, N = 200, t = 100, best of three after a warm-up), the others from single jobs as each
   constant says; rerun them on another machine and update them here.
 
-Why a large store is refused instead of streamed: :func:`cradle.pipeline.extend.stream_lattice`
-bounds the memory of the exact run's file only (about a third of the job's peak). The simulate
-job also holds the DpS run at every stored time (A, its ansatz x and forces) and the metrics
-stage compares both models' x at every stored time; its four files are one atomic set. A
-bounded-memory job would need the DpS run in chunks too, and
-:func:`cradle.integrators.integrate_dps` cannot continue from a stored state: it always starts
-at tau = 0 and measures its drifts from A(0) (no ``t0``/reference arguments as
-``integrate_lattice`` has), and the integrators are being reworked separately. Until then, a
-store whose estimate exceeds the memory budget is refused with the keys that drive it
-(``store.every``, ``N``, ``t_end``) and the budget to raise; a long exact run alone can be
-streamed with ``cradle extend`` (bounded memory).
+A large store is streamed, not refused: when a scene's in-memory peak would exceed
+:data:`STREAM_ABOVE_BYTES` (and its methods can be continued block by block: a fixed-step
+splitting for (nc), DOP853 in numba for DpS), :func:`streams` says so and the job runs block by
+block (:mod:`cradle.pipeline.streamed`), holding :data:`STREAMED_BLOCK_BYTES` of block plus
+:data:`STREAMED_BYTES_PER_TIME` per stored time, whatever N x T. Such a scene is then judged on
+disk and time; a store that cannot stream (an adaptive method for (nc)) is judged on its
+in-memory peak as before.
 """
 from __future__ import annotations
 
@@ -79,6 +75,15 @@ COST_PER_BEAD_STEP_S = {"srkn6c": 3.2e-8, "srkn4c": 1.4e-8, "srkn6": 1.8e-8, "sr
                         "dop853_numba": 1.4e-7, "dop853": 1.7e-6, "rk45": 6.2e-7, "lsoda": 1.7e-6, "radau": 1.7e-6}
 STEPS_PER_TIME_UNIT = {"srkn6c": 23.3, "srkn4c": 58.2, "srkn6": 466.0, "srkn4": 931.0, "strang": 7760.0,
                        "dop853_numba": 14.7, "dop853": 14.6, "rk45": 31.6, "lsoda": 14.6, "radau": 14.6}
+#: a scene's job streams (:mod:`cradle.pipeline.streamed`) when its in-memory peak estimate exceeds this
+STREAM_ABOVE_BYTES = 2e9
+#: peak memory of a streamed job beyond BASE_BYTES: its blocks (cradle.pipeline.appending
+#: DEFAULT_CHUNK_BYTES of stored values, times the copies a block goes through: both runs' Datasets,
+#: the metrics' FFTs, the HDF5 chunk caches) -- measured by benchmarks/streamed_store.py
+STREAMED_BLOCK_BYTES = 0.5e9
+#: bytes held per stored time by a streamed job (the stored and slow times, the E(t) maxima, the
+#: breather's site signal of both models)
+STREAMED_BYTES_PER_TIME = 48
 #: runs estimated to take longer than this print their estimate and an ETA while they run
 LONG_RUN_S = 60.0
 
@@ -95,6 +100,7 @@ class Estimate:
     disk_bytes: float
     seconds: float
     steps: float = 0.0
+    streamed: bool = False  # a scene's job that runs block by block (cradle.pipeline.streamed)
 
     def describe(self) -> str:
         """One line: memory, disk, time."""
@@ -150,7 +156,8 @@ def scene_estimate(cfg: dict, name: str) -> Estimate:
     d = cfg.get("defaults") or {}
     return spec_estimate({"name": name, "N": scene["N"], "t_end": scene["t_end"], "store": scene.get("store"),
                           "alpha": scene.get("alpha", d.get("alpha", 1.5)),
-                          "exact": {**(d.get("exact") or {}), **(scene.get("exact") or {})}})
+                          "exact": {**(d.get("exact") or {}), **(scene.get("exact") or {})},
+                          "dps": {**(d.get("dps") or {}), **(scene.get("dps") or {})}})
 
 
 def spec_estimate(spec: dict) -> Estimate:
@@ -167,9 +174,28 @@ def spec_estimate(spec: dict) -> Estimate:
     cause += f": {T} stored times"
     if steps:
         cause += f", ~{steps:.3g} steps of {exact.get('method')}"
-    return Estimate(f"scenes.{spec.get('name', '?')}", cause,
-                    memory_bytes=BASE_BYTES + 8.0 * (PEAK_ARRAYS * N * T + STATE_ARRAYS * N),
-                    disk_bytes=per_time * T + 8.0 * 6 * N, seconds=seconds, steps=steps)
+    memory = BASE_BYTES + 8.0 * (PEAK_ARRAYS * N * T + STATE_ARRAYS * N)
+    streamed = memory > STREAM_ABOVE_BYTES and streamable(spec)
+    if streamed:
+        memory = BASE_BYTES + STREAMED_BLOCK_BYTES + STREAMED_BYTES_PER_TIME * T + 8.0 * STATE_ARRAYS * N
+        cause += ", streamed block by block"
+    return Estimate(f"scenes.{spec.get('name', '?')}", cause, memory_bytes=memory,
+                    disk_bytes=per_time * T + 8.0 * 6 * N, seconds=seconds, steps=steps, streamed=streamed)
+
+
+def streamable(spec: dict) -> bool:
+    """Whether a scene's runs can be computed block by block (:mod:`cradle.pipeline.streamed`): a
+    fixed-step splitting for (nc) and DOP853 in numba for DpS (both continue bitwise)."""
+    from cradle.pipeline.config.scenes import SPLITTINGS
+
+    return ((spec.get("exact") or {}).get("method", "srkn6c") in SPLITTINGS
+            and (spec.get("dps") or {}).get("method", "dop853_numba") == "dop853_numba")
+
+
+def streams(spec: dict) -> bool:
+    """Whether scene ``spec``'s job runs block by block: streamable, and its in-memory peak estimate
+    above :data:`STREAM_ABOVE_BYTES`."""
+    return spec_estimate(spec).streamed
 
 
 def long_run(spec: dict) -> Estimate | None:

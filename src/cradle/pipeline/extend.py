@@ -26,7 +26,6 @@ from __future__ import annotations
 import datetime as _dt
 import math
 import os
-import tempfile
 import time
 from pathlib import Path
 
@@ -34,62 +33,11 @@ import numpy as np
 import xarray as xr
 
 from cradle.models import lattice
-from cradle.pipeline.io import _umask_mode, encoding_of, make_dataset, verify_file
+from cradle.pipeline.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
+from cradle.pipeline.io import make_dataset, verify_file
 
-#: memory per chunk of stored states (x, v, force: 3 N float64 per stored time)
-DEFAULT_CHUNK_BYTES = 64 * 2**20
 TIME_TOL = 1e-9
-#: HDF5 chunk cache per variable while appending (netCDF-C's default, 64 MiB, is held per variable)
-CHUNK_CACHE_BYTES = 4 * 2**20
 VARS = ("x", "v", "force", "energy")
-
-
-def chunk_rows(N: int, chunk_bytes: int = DEFAULT_CHUNK_BYTES) -> int:
-    """Stored times per chunk: x, v and force of N beads (float64) within ``chunk_bytes``; at least 1."""
-    return max(1, int(chunk_bytes // (3 * 8 * max(int(N), 1))))
-
-
-class _Appender:
-    """A netCDF file with an unlimited ``t``, written under a temporary name, renamed on :meth:`commit`."""
-
-    def __init__(self, path, first: xr.Dataset):
-        import netCDF4
-
-        self.path = Path(path)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        fd, self.tmp = tempfile.mkstemp(prefix=f".{self.path.name}.", suffix=".tmp", dir=self.path.parent)
-        os.close(fd)
-        first.to_netcdf(self.tmp, engine="netcdf4", unlimited_dims=["t"], encoding=encoding_of(first))
-        self.nc = netCDF4.Dataset(self.tmp, "a")
-        for var in self.nc.variables.values():   # HDF5 would otherwise cache up to 64 MiB per variable
-            var.set_var_chunk_cache(size=CHUNK_CACHE_BYTES, nelems=61)
-        self.rows = first.sizes["t"]
-
-    def append(self, t, fields: dict):
-        n0, n1 = self.rows, self.rows + len(t)
-        self.nc.variables["t"][n0:n1] = np.asarray(t)
-        for name, arr in fields.items():
-            self.nc.variables[name][n0:n1, ...] = arr
-        self.rows = n1
-
-    def set_attrs(self, attrs: dict):
-        from cradle.pipeline.io import _attr_value
-
-        for k, v in attrs.items():
-            self.nc.setncattr(k, _attr_value(v))
-
-    def commit(self):
-        self.nc.close()
-        os.chmod(self.tmp, _umask_mode())
-        os.replace(self.tmp, self.path)
-
-    def abort(self):
-        try:
-            self.nc.close()
-        except Exception:  # noqa: BLE001
-            pass
-        if os.path.exists(self.tmp):
-            os.remove(self.tmp)
 
 
 def _fields(sol, alpha, bc):
@@ -131,7 +79,7 @@ def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c"
     try:
         if prefix is not None:
             first = prefix.isel(t=slice(0, min(rows, prefix.sizes["t"]))).load()
-            app = _Appender(path, first)
+            app = Appender(path, first)
             for i in range(first.sizes["t"], prefix.sizes["t"], rows):
                 part = prefix.isel(t=slice(i, i + rows)).load()
                 app.append(part["t"].values, {k: part[k].values for k in VARS})
@@ -150,7 +98,7 @@ def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c"
             if app is None:
                 ds = make_dataset(f, coords={"t": times, "n": np.arange(N)}, attrs=attrs, title=title,
                                   params=params)
-                app = _Appender(path, ds)
+                app = Appender(path, ds)
             else:
                 app.append(times, f)
             x, v, t_cur = sol.x[-1].copy(), sol.v[-1].copy(), float(times[-1])

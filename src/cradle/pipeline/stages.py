@@ -169,6 +169,27 @@ def steps_taken(times, dt: float, t0: float | None = None) -> tuple[float, float
     return float(h.max()), float(h.min())
 
 
+def exact_title(name: str) -> str:
+    return f"exact solution of (nc), scene '{name}'"
+
+
+def exact_attrs(spec: dict, init_ds: xr.Dataset, method: str, dt_taken, dt_nominal, rtol, atol, stats: dict) -> dict:
+    """Global attributes of a scene's exact run: the initial data's, the integrator and its accuracy
+    (``dt`` the largest step taken, ``dt_nominal`` its bound, from which the step grid follows and with
+    which ``cradle extend`` continues the run; "adaptive" for an adaptive method) and the run's
+    ``stats`` (energy_drift, n_steps, n_force_evals, max_compression, wall_time_s, n_onset_corrections)."""
+    attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
+    attrs.update({"model": "exact lattice (nc), V = V0", "integrator": method,
+                  "dt": dt_taken if dt_nominal is not None else "adaptive",
+                  "dt_nominal": dt_nominal if dt_nominal is not None else "adaptive",
+                  "rtol": rtol if rtol is not None else "none",
+                  "atol": atol if atol is not None else "none",
+                  "energy_drift": stats["energy_drift"], "max_energy_drift_allowed": spec["max_energy_drift"],
+                  **{k: stats[k] for k in ("n_steps", "n_force_evals", "max_compression", "wall_time_s",
+                                           "n_onset_corrections")}})
+    return attrs
+
+
 def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
     """Integrate the lattice (nc) from the scene's initial data; x, v, forces, energy at stored times."""
     from cradle.integrators import SPLITTING_METHODS, integrate_lattice
@@ -183,26 +204,38 @@ def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) ->
     sol = integrate_lattice(x0, v0, times, alpha=alpha, bc=bc, method=ex["method"], progress=progress,
                             **accuracy)
     force = lattice.bond_forces(sol.x, alpha, bc)
-    attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
-    attrs.update({"model": "exact lattice (nc), V = V0", "integrator": sol.method,
-                  # the largest step taken; the nominal step (its upper bound, from which the step grid
-                  # follows and with which `cradle extend` continues the run) is dt_nominal
-                  "dt": steps_taken(times, sol.dt)[0] if sol.dt is not None else "adaptive",
-                  "dt_nominal": sol.dt if sol.dt is not None else "adaptive",
-                  "rtol": sol.rtol if sol.rtol is not None else "none",
-                  "atol": sol.atol if sol.atol is not None else "none",
-                  "energy_drift": sol.energy_drift, "max_energy_drift_allowed": spec["max_energy_drift"],
-                  "n_steps": sol.n_steps, "n_force_evals": sol.n_force_evals,
-                  "max_compression": sol.max_compression, "wall_time_s": sol.wall_time_s,
-                  "n_onset_corrections": getattr(sol, "n_onset_corrections", 0)})
+    attrs = exact_attrs(spec, init_ds, sol.method, steps_taken(times, sol.dt)[0] if sol.dt is not None else None,
+                        sol.dt, sol.rtol, sol.atol, {"energy_drift": sol.energy_drift, "n_steps": sol.n_steps,
+                                                     "n_force_evals": sol.n_force_evals,
+                                                     "max_compression": sol.max_compression,
+                                                     "wall_time_s": sol.wall_time_s,
+                                                     "n_onset_corrections": getattr(sol, "n_onset_corrections", 0)})
     ds = make_dataset({"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy},
                       coords={"t": times, "n": np.arange(spec["N"])}, attrs=attrs,
-                      params=spec, title=f"exact solution of (nc), scene '{name}'")
+                      params=spec, title=exact_title(name))
     _check_finite(name, "exact", {"x": sol.x, "v": sol.v}, ds)
     if not sol.energy_drift <= spec["max_energy_drift"]:
         raise StageFailure(f"scene '{name}' (exact): relative energy drift {sol.energy_drift:.3e} exceeds "
                            f"max_energy_drift = {spec['max_energy_drift']:.1e} ({sol.method}, dt={attrs['dt']})", ds)
     return ds
+
+
+def dps_dataset(spec: dict, init_ds: xr.Dataset, name: str, times, sol) -> xr.Dataset:
+    """The DpS run's Dataset at ``times`` from its solution ``sol`` (:class:`cradle.integrators.DpsSolution`
+    at tau = eps^(alpha-1) t): A, the approximate displacement (ansatz), its forces and the drifts."""
+    alpha, bc = spec["alpha"], spec["bc"]
+    eps = float(init_ds.attrs["eps"])
+    x_app = compare.approximate_displacement(sol.A, times, eps)
+    force = lattice.bond_forces(x_app, alpha, bc)
+    attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
+    attrs.update({"model": "DpS (dfnls) + ansatz (ansatz)", "integrator": sol.method, "rtol": sol.rtol,
+                  "atol": sol.atol, "tau0": dps.tau0(alpha), "max_l2_drift": sol.max_l2_drift,
+                  "max_dps_energy_drift": sol.max_energy_drift, "n_steps": sol.n_steps,
+                  "wall_time_s": sol.wall_time_s})
+    return make_dataset({"A_re": sol.A.real, "A_im": sol.A.imag, "x": x_app, "force": force,
+                         "l2_drift": sol.l2_drift, "dps_energy_drift": sol.energy_drift, "P_drift": sol.P_drift},
+                        coords={"t": times, "n": np.arange(spec["N"]), "tau": sol.tau}, attrs=attrs,
+                        params=spec, title=f"DpS approximation (dfnls)/(ansatz), scene '{name}'")
 
 
 def dps_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
@@ -216,17 +249,7 @@ def dps_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> x
     A0 = init_ds["A0_re"].values + 1j * init_ds["A0_im"].values
     st = spec["dps"]
     sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=st["method"], rtol=st["rtol"], progress=progress)
-    x_app = compare.approximate_displacement(sol.A, times, eps)
-    force = lattice.bond_forces(x_app, alpha, bc)
-    attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
-    attrs.update({"model": "DpS (dfnls) + ansatz (ansatz)", "integrator": sol.method, "rtol": sol.rtol,
-                  "atol": sol.atol, "tau0": dps.tau0(alpha), "max_l2_drift": sol.max_l2_drift,
-                  "max_dps_energy_drift": sol.max_energy_drift, "n_steps": sol.n_steps,
-                  "wall_time_s": sol.wall_time_s})
-    ds = make_dataset({"A_re": sol.A.real, "A_im": sol.A.imag, "x": x_app, "force": force,
-                       "l2_drift": sol.l2_drift, "dps_energy_drift": sol.energy_drift, "P_drift": sol.P_drift},
-                      coords={"t": times, "n": np.arange(spec["N"]), "tau": tau}, attrs=attrs,
-                      params=spec, title=f"DpS approximation (dfnls)/(ansatz), scene '{name}'")
+    ds = dps_dataset(spec, init_ds, name, times, sol)
     _check_finite(name, "dps", {"A": sol.A}, ds)
     return ds
 

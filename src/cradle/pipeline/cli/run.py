@@ -1,7 +1,7 @@
 """``cradle run``: one scene (or homoclinic or map entry) computed without Snakemake.
 
-As the workflow's ``simulate`` job does, with :mod:`cradle.pipeline.stages`
-and :func:`cradle.pipeline.runner.run_chain`: a scene's files are written
+As the workflow's ``simulate`` job does (:func:`cradle.pipeline.scene_job.run_scene`, in memory
+or block by block for a large store): a scene's files are written
 only after every step succeeded, into the workflow's layout under its own
 folder (:data:`RUN_OUT` unless asked otherwise).
 """
@@ -39,7 +39,8 @@ def _note_workflow_results(out: Path, config: Path) -> None:
 def cmd_run(args) -> int:
     from cradle.pipeline import budget, config as cc
     from cradle.pipeline import stages
-    from cradle.pipeline.runner import Progress, StageFailure, run_chain
+    from cradle.pipeline.runner import StageFailure
+    from cradle.pipeline.scene_job import run_scene
 
     cfg = load_config(args.config)  # validate: an over-budget job is refused here, before any work
     name, out = args.scene, Path(args.out)
@@ -59,23 +60,16 @@ def cmd_run(args) -> int:
         return 0
     spec = cc.resolved_scene(cfg, name)
     print(f"{PROG}: {budget.spec_estimate(spec).describe()}", file=sys.stderr)  # within budget (validated)
-    steps, outs = [], {}
+    outs, homoclinic = {}, None
     if spec["initial"]["kind"] == "breather":
         hname = spec["initial"]["homoclinic"]
         hspec = cc.resolved_homoclinic(cfg, hname)
-        steps.append(("homoclinic", lambda done: stages.homoclinic_solution(hspec, hname)))
+        homoclinic = lambda: stages.homoclinic_solution(hspec, hname)  # noqa: E731
         outs["homoclinic"] = Path(layout.path("homoclinic", out, name=hname))
-    steps += [
-        ("initial", lambda done: stages.initial_data(spec, name, done.get("homoclinic"))),
-        ("exact", lambda done: stages.exact_run(spec, done["initial"], name, progress=Progress(
-            f"exact {name}", estimate=budget.long_run(spec)))),
-        ("dps", lambda done: stages.dps_run(spec, done["initial"], name, progress=Progress(f"dps {name}"))),
-        ("metrics", lambda done: stages.metrics(spec, done["exact"], done["dps"], name)),
-    ]
     outs.update({part: Path(p) for part, p in layout.scene_paths(name, out).items()})
     log = layout.path("log", out, job=f"sim/{name}")
     try:
-        run_chain(steps, outs, log, label=name)
+        run_scene(spec, name, outs, log, homoclinic=homoclinic)
     except StageFailure as err:
         raise CliError(f"{name}: {err} (none of the scene's files written; what was computed is kept for "
                        f"diagnosis, see {log})") from None
