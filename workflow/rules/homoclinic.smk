@@ -15,6 +15,8 @@ rule homoclinic:
         spec=lambda w: cc.resolved_homoclinic(config, w.name),
     log:
         L.path("log", job="homoclinic/{name}"),
+    benchmark:  # measured against cradle.pipeline.budget's estimate by benchmarks/estimates.py
+        L.path("benchmark", job="homoclinic/{name}")
     wildcard_constraints:
         name=names_regex("homoclinic"),
     script:
@@ -35,6 +37,8 @@ rule map_orbits:
         spec=lambda w: cc.resolved_map(config, w.name),
     log:
         L.path("log", job="map/{name}"),
+    benchmark:
+        L.path("benchmark", job="map/{name}")
     wildcard_constraints:
         name=names_regex("map"),
     script:
