@@ -17,9 +17,9 @@ How the numbers are obtained:
 * **peak memory**: the four Datasets of the job are held until all are written (all-or-nothing,
   :func:`cradle.pipeline.runner.run_chain`), plus the transient arrays of the metrics stage
   (complex FFT of x and its selection): :data:`PEAK_ARRAYS` arrays of N x T float64, plus
-  :data:`STATE_ARRAYS` arrays of N for the states and work arrays. Checked against peak RSS:
-  fft106 stored every 0.001 (11 GB on main, estimated 11.6 GB) and every 0.01 (1.34 GB measured
-  with ``cradle run``, estimated 1.4 GB);
+  :data:`STATE_ARRAYS` arrays of N for the states and work arrays. Checked against peak RSS by
+  ``benchmarks/streamed_store.py`` (large stores, docs/extremes.md) and ``benchmarks/estimates.py``
+  (every job of config.yaml, docs/performance.md);
 * **time**: steps x N x :data:`COST_PER_BEAD_STEP_S` of the exact run's method, with steps =
   t_end x :data:`STEPS_PER_TIME_UNIT` (the method's default step, or tolerance, on a typical
   travelling wave; a stronger compression takes smaller steps, up to omega_max(c) / omega_max of
