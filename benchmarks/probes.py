@@ -102,10 +102,10 @@ def run(repo: Path) -> list:
             ("`alpha: nan`", lambda c: c["defaults"].update(alpha=float("nan"))),
     ]:
         cfg = pr.config_variant(str(len(pr.rows)), edit)
-        pr.record(f"{label} (`snakemake -n --configfile`)", pr.snakemake("-n", "--configfile", cfg, "all"))
+        pr.record(f"{label} (`snakemake -n --configfile`)", pr.snakemake("-n", "all", "--configfile", cfg))
     (repo / "probe-dup.yaml").write_text((repo / "config.yaml").read_text().replace(
         "defaults:\n", "defaults:\n  alpha: 2.0\n", 1))
-    pr.record("duplicate YAML key (`alpha` twice)", pr.snakemake("-n", "--configfile", "probe-dup.yaml", "all"))
+    pr.record("duplicate YAML key (`alpha` twice)", pr.snakemake("-n", "all", "--configfile", "probe-dup.yaml"))
     (repo / "probe-empty.yaml").write_text("")
     pr.record("empty config (`--configfile empty.yaml`)",
               pr.cradle("scenes", "--config", "probe-empty.yaml"))
@@ -117,13 +117,13 @@ def run(repo: Path) -> list:
     pr.record("4 kB of garbage in exact.nc, mtime kept: `cradle describe`", pr.cradle("describe", EXACT))
     pr.record("... `cradle verify`", pr.cradle("verify", "results"))
     pr.record("... `snakemake -n` (compares times, not contents)", pr.snakemake("-n", FIGURE))
-    p = pr.snakemake("--forcerun", "plot4_5", "--", FIGURE)
+    p = pr.snakemake(FIGURE, "--forcerun", FIGURE)
     kept = (repo / FIGURE).read_bytes() == fig
     pr.record("... the figure job forced to read it", p, lost=f"figure {'kept' if kept else 'LOST'}")
     p = pr.snakemake("--force", EXACT)
     pr.record("... `snakemake --force exact.nc` (docs/recovery.md)", p, lost=pr.verified())
     (repo / EXACT).write_bytes(saved[: len(saved) // 2])
-    p = pr.snakemake("--forcerun", "plot4_5", "--", FIGURE)
+    p = pr.snakemake(FIGURE, "--forcerun", FIGURE)
     kept = (repo / FIGURE).read_bytes() == fig
     pr.record("truncated exact.nc, figure job", p, lost=f"figure {'kept' if kept else 'LOST'}")
     (repo / EXACT).unlink()
@@ -145,7 +145,7 @@ def run(repo: Path) -> list:
 
     # ---- a changed parameter: the dry run lists jobs, not arrays
     cfg = pr.config_variant("changed", lambda c: c["scenes"]["tw-weak"].update(t_end=600.0))
-    p, wall = pr.snakemake("-n", "--configfile", cfg, FIGURE)
+    p, wall = pr.snakemake("-n", FIGURE, "--configfile", cfg)
     pr.record("changed `t_end` of tw-weak: `snakemake -n`", (p, wall),
               outcome=f"{len(p.stdout) + len(p.stderr)} bytes of output; {_last_line(p)}")
     return pr.rows
