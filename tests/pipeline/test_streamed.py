@@ -106,3 +106,23 @@ def test_a_large_store_streams_with_bounded_memory(config):
     assert twenty.memory_bytes - two.memory_bytes < 0.5e9
     assert est(0.01, t_end=99000.0).disk_bytes > budget.Budget().disk_gb * budget.GB
     assert est(0.01, N=int(1e9)).memory_bytes > limit
+
+
+def test_large_file_opened_lazily_after_verification(config, tmp_path, monkeypatch):
+    """Above io.LAZY_ABOVE_BYTES a reader gets the file verified block by block and opened lazily:
+    same values, nothing loaded until selected; a damaged large file still stops it in one line."""
+    spec = short_spec(config, "tw-weak", 10.0)
+    init = stages.initial_data(spec, "tw-weak")
+    ex = stages.exact_run(spec, init, "tw-weak")
+    path = tmp_path / "exact.nc"
+    io.write_netcdf(ex, path)
+    monkeypatch.setattr(io, "LAZY_ABOVE_BYTES", 1000)
+    lazy = io.open_dataset(path)
+    assert not lazy["x"].variable._in_memory
+    assert np.array_equal(lazy["x"].values, ex["x"].values)
+    lazy.close()
+    data = bytearray(path.read_bytes())
+    data[len(data) // 2: len(data) // 2 + 4096] = os.urandom(4096)
+    path.write_bytes(bytes(data))
+    with pytest.raises(io.DamagedOutput, match="exact.nc: damaged"):
+        io.open_dataset(path)

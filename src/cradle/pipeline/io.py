@@ -261,14 +261,25 @@ def _checked(path, read):
                             f"{rebuild_hint(path)}") from None
 
 
+#: files larger than this are verified block by block and opened lazily by :func:`open_dataset`
+LAZY_ABOVE_BYTES = 512 * 2**20
+
+
 def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     """Open a cradle output fully into memory (the file is closed on return), verified.
 
     Every variable is read (so HDF5 checks every chunk's Fletcher-32 checksum). A missing file
     raises FileNotFoundError; a file that is not netCDF, is truncated or fails a checksum raises
     :class:`DamagedOutput` with one line naming the file and the command that rebuilds it.
+
+    A file larger than :data:`LAZY_ABOVE_BYTES` (a large store, :mod:`cradle.pipeline.streamed`)
+    is verified block by block (:func:`verify_file`) and returned opened lazily: what the reader
+    selects is read when used (HDF5 checks those chunks again), so its memory is what it uses.
     """
     def read(p):
+        if Path(p).stat().st_size > LAZY_ABOVE_BYTES:
+            verify_file(p)
+            return xr.open_dataset(p, engine="netcdf4")
         with xr.open_dataset(p, engine="netcdf4") as ds:
             return ds.load()
 
