@@ -1,0 +1,225 @@
+"""Exact breathers of the lattice (nc): families in omega_b, Floquet stability, Peierls-Nabarro barrier and
+distance to the DpS breathers (ansatzapproxst2), against the DpS predictions.
+
+The breathers and their multipliers are :mod:`cradle.models.lattice_breathers` (reversible shooting with
+the variational equations, Newton continuation in omega_b from the DpS start); the DpS side is
+:mod:`cradle.models.dps_breathers`; the kicked breather and the direct growth check are
+:mod:`cradle.analyses.breather_mobility`. :func:`compute` stores them as a tree of netCDF groups
+(:data:`VARIABLES`).
+
+Families (``family`` index, names in the root attribute ``family_names``): site- and bond-centred on the
+ring of N beads (plot18) and on the free-end chain of fini. Symmetry classes: (nc) is invariant under
+x_n -> -x_{2c-n}; the bond breather has x(t) = -S x(t), the site breather x(t + T/2) = -S x(t).
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from cradle.pipeline.variables import Var
+
+_F = ("family", "omega")
+VARIABLES = {
+    "/": {
+        "family": Var(("family",), "breather family index (names in family_names)"),
+        "omega": Var(("omega",), "breather frequency omega_b of the continuation grid"),
+        "N": Var(("family",), "number of beads of the family's lattice"),
+    },
+    "/families": {
+        "converged": Var(_F, "1 where the exact breather was found (Newton converged), else 0"),
+        "amplitude": Var(_F, "max_n |x_n(0)| of the exact breather"),
+        "energy": Var(_F, "energy (ham) of the exact breather"),
+        "action": Var(_F, "action J = int_0^T sum_n v_n^2 dt of the exact breather"),
+        "residual": Var(_F, "periodic-orbit residual max|z(T) - z(0)| / max|x(0)| over one period"),
+        "residual_check": Var(_F, "the same residual integrated with the finer tolerance (resolution check)"),
+        "newton_iterations": Var(_F, "Newton iterations from the predictor"),
+        "trivial_defect": Var(_F, "max |mu - 1| of the trivial Floquet pair (exactly 0; numerical error)"),
+        "growth_rate": Var(_F, "max ln|mu| / T over the non-trivial Floquet multipliers (per unit t)",
+                           attrs=(("comment", "0 (to round-off) where spectrally stable"),)),
+        "unstable": Var(_F, "1 if growth_rate > stability_threshold (unstable), 0 if stable"),
+        "odd_growing": Var(_F, "1 if the fastest-growing mode breaks the breather's symmetry (pinning mode)"),
+        "pinning_exponent": Var(_F, "ln(mu) / T of the symmetry-breaking multiplier nearest +1: real part",
+                                attrs=(("comment", "the pinning (translation) mode; real rate if unstable"),)),
+        "pinning_frequency": Var(_F, "|arg mu| / T of the symmetry-breaking multiplier nearest +1"),
+        "dps_growth_rate": Var(_F, "max Re lambda of the DpS breather of the same omega_b, per unit t"),
+        "dps_pinning_exponent": Var(_F, "Re lambda of the DpS symmetry-breaking eigenvalue nearest 0"),
+        "dps_pinning_frequency": Var(_F, "|Im lambda| of the DpS symmetry-breaking eigenvalue nearest 0"),
+        "dps_distance": Var(_F, "max_n |x_n(0) - x_n^DpS(0)| / max|x(0)|, DpS breather of the same omega_b"),
+        "omega_dps": Var(_F, "frequency of the DpS breather with the same amplitude max|x_n(0)|"),
+        "tail_slope": Var(_F, "slope of ln(-ln|x_n/max x|) against distance from the centre (DpS: ln alpha)"),
+    },
+    "/profiles": {
+        "n": Var(("n",), "bead index (ring families; free chains use the first N_free beads)"),
+        "x0": Var(("family", "omega", "n"), "x_n(0) of the exact breather (v_n(0) = 0)"),
+        "x0_dps": Var(("family", "omega", "n"), "x_n(0) of the DpS breather of the same omega_b"),
+    },
+    "/multipliers": {
+        "m": Var(("m",), "index of a Floquet multiplier"),
+        "mu_re": Var(("family", "omega", "m"), "real part of a Floquet multiplier of the exact breather"),
+        "mu_im": Var(("family", "omega", "m"), "imaginary part of a Floquet multiplier of the exact breather"),
+    },
+    "/pn": {
+        "action_pn": Var(("action_pn",), "action J at which site and bond breathers of the ring are compared"),
+        "barrier": Var(("action_pn",), "Peierls-Nabarro barrier E_bond - E_site at equal action, exact lattice"),
+        "barrier_dps": Var(("action_pn",), "the DpS prediction of E_bond - E_site at equal action"),
+        "omega_site": Var(("action_pn",), "omega_b of the site breather of that action"),
+    },
+}
+
+
+def _family_names(spec):
+    names = [(f"ring {k}", int(spec["N"]), "periodic", k) for k in spec["kinds"]]
+    if int(spec["free_N"]) > 0:
+        names += [("free bond", int(spec["free_N"]), "free", "bond")]   # fini's; no site symmetry on an even chain
+    return names
+
+
+def _profile(N, kind, alpha, bc):
+    from cradle.models import homoclinic
+
+    sol = homoclinic.solve(homoclinic.initial_guess(N, kind, alpha, 0.1), alpha, bc)
+    if not sol.converged:
+        raise RuntimeError(f"breathers: no DpS {kind} profile on N = {N} ({bc}), residual {sol.residual:.2g}")
+    return sol.a
+
+
+def _nearest_one(mu, T):
+    if mu.size == 0:
+        return np.nan, np.nan
+    z = mu[int(np.argmin(np.abs(mu - 1.0)))]
+    ln = np.log(z)
+    return float(ln.real / T), float(abs(ln.imag) / T)
+
+
+def compute(spec: dict, log=None):
+    """The `breathers` target (:data:`VARIABLES`). ``spec`` (:func:`cradle.pipeline.config.resolved_breathers`):
+    alpha, N, free_N, kinds, omegas, rtol, check_rtol, stability_threshold, pn_omega, and the mobility keys."""
+    from cradle.models import dps_breathers as db
+    from cradle.models import lattice_breathers as lb
+    from cradle.pipeline.io import make_tree
+
+    t_start = time.perf_counter()
+    say = log or (lambda *a: None)
+    al = float(spec["alpha"])
+    omegas = np.asarray(spec["omegas"], float)
+    fams = _family_names(spec)
+    F, W, Nmax = len(fams), omegas.size, int(spec["N"])
+    out = {k: np.full((F, W), np.nan) for k in VARIABLES["/families"]}
+    out["converged"][:] = 0
+    x0s, x0d = np.full((F, W, Nmax), np.nan), np.full((F, W, Nmax), np.nan)
+    mus = np.full((F, W, 2 * Nmax), np.nan, complex)
+    ends, timings, keep = {}, {}, {}
+    for f, (name, N, bc, kind) in enumerate(fams):
+        t0 = time.perf_counter()
+        a = _profile(N, kind, al, bc)
+        sym = kind
+        fam, last = lb.continue_family(a, omegas, al, bc, sym, N // 2, tol=float(spec["newton_tol"]), log=say)
+        ends[name] = last
+        odd_basis = None
+        if sym is not None:
+            S = lb.reflection(N, N // 2 + (0.5 if kind == "bond" else 0.0), bc)
+            # symmetry-breaking DpS modes: S-odd for the (S-even) site profile, S-even for the bond one
+            odd_basis = lb._eigenbasis(S, -1.0 if kind == "site" else 1.0)
+        keep[name] = fam
+        for b in fam:
+            w = int(np.argmin(np.abs(omegas - b.omega)))
+            res, J = lb.period_residual(b, float(spec["rtol"]))
+            res2, _ = lb.period_residual(b, float(spec["check_rtol"]))
+            o = out
+            o["converged"][f, w] = 1
+            o["amplitude"][f, w], o["energy"][f, w], o["action"][f, w] = b.amplitude, b.energy(), J
+            o["residual"][f, w], o["residual_check"][f, w], o["newton_iterations"][f, w] = res, res2, b.iterations
+            xd = lb.dps_start(a, b.omega, al)
+            x0s[f, w, :N], x0d[f, w, :N] = b.x0, xd
+            o["dps_distance"][f, w] = float(np.max(np.abs(b.x0 - xd)) / b.amplitude)
+            o["omega_dps"][f, w] = db.omega_of_amplitude(a, b.amplitude, al)
+            o["tail_slope"][f, w] = db.tail_slope(b.x0, N // 2 + (0.5 if kind == "bond" else 0.0), al)[0]
+            lam, lam_odd = db.stability(a, b.omega, al, bc, odd_basis)
+            o["dps_growth_rate"][f, w] = float(np.max(lam.real))
+            if lam_odd is not None:
+                z = lam_odd[int(np.argmin(np.abs(lam_odd)))]
+                o["dps_pinning_exponent"][f, w], o["dps_pinning_frequency"][f, w] = abs(z.real), abs(z.imag)
+            if sym is not None:
+                fl = lb.floquet(b, kind, N // 2, float(spec["rtol"]))
+                o["trivial_defect"][f, w], o["growth_rate"][f, w] = fl.trivial, fl.rate
+                o["odd_growing"][f, w] = float(fl.odd_growing)
+                o["pinning_exponent"][f, w], o["pinning_frequency"][f, w] = _nearest_one(fl.mu_odd, b.T)
+                mus[f, w, :fl.mu.size] = fl.mu
+                o["unstable"][f, w] = float(fl.rate > float(spec["stability_threshold"]))
+        timings[name] = time.perf_counter() - t0
+        if fam:
+            om = [b.omega for b in fam]
+            say(f"breathers: {name} (N = {N}): {len(fam)} breathers, omega_b in [{min(om):.4g}, {max(om):.4g}], "
+                f"family ends at {last}; max residual {np.nanmax(out['residual'][f]):.2g} (finer "
+                f"{np.nanmax(out['residual_check'][f]):.2g}), max trivial defect "
+                f"{np.nanmax(out['trivial_defect'][f]) if sym else float('nan'):.2g}; {timings[name]:.1f} s")
+
+    # Peierls-Nabarro barrier on the ring: E_bond - E_site at the site breather's action
+    pn = _pn(out, fams, omegas, spec, al, db)
+    groups = {
+        "/": ({"N": np.array([n for _, n, _, _ in fams])}, {"family": np.arange(F), "omega": omegas}),
+        "/families": (out, {}),
+        "/profiles": ({"x0": x0s, "x0_dps": x0d}, {"n": np.arange(Nmax)}),
+        "/multipliers": ({"mu_re": mus.real, "mu_im": mus.imag}, {"m": np.arange(2 * Nmax)}),
+        "/pn": pn[0],
+    }
+    fit = _distance_fit(out, omegas, spec)
+    attrs = {"alpha": al, "family_names": ", ".join(n for n, *_ in fams),
+             "family_ends": ", ".join(f"{k}: {v}" for k, v in ends.items()),
+             "rtol": float(spec["rtol"]), "check_rtol": float(spec["check_rtol"]),
+             "stability_threshold": float(spec["stability_threshold"]),
+             "pn_omega": float(spec["pn_omega"]), "pn_barrier_at_pn_omega": pn[1], "pn_barrier_dps_at_pn_omega": pn[2],
+             "pn_energy_site_at_pn_omega": pn[3],
+             "dps_distance_exponent": fit[0], "dps_distance_prefactor": fit[1],
+             "dps_distance_fit_omega_max": float(spec["fit_omega_max"]),
+             "tail_slope_dps": float(np.log(al)),
+             "method": "reversible shooting (v(0) = 0; v(T/2) = 0 on Fix(-S) for bond, x(T/4) on Fix(S) and v(T/4) "
+                       "on Fix(-S) for site) with DOP853 and the variational equations; Newton continuation in "
+                       "omega_b from the DpS start; monodromy M = R M(T/2)^-1 R M(T/2) on the core",
+             "timings_s": ", ".join(f"{k}={v:.1f}" for k, v in timings.items())}
+    from cradle.analyses import breather_mobility
+
+    groups.update(breather_mobility.compute(keep, spec, al, say, attrs))
+    attrs["wall_time_s"] = time.perf_counter() - t_start
+    say(f"breathers: done in {attrs['wall_time_s']:.1f} s")
+    return make_tree(groups, VARIABLES | breather_mobility.VARIABLES, attrs=attrs,
+                     title="Exact breathers of (nc): families, Floquet stability, Peierls-Nabarro barrier, distance "
+                           "to the DpS breathers")
+
+
+def _pn(out, fams, omegas, spec, al, db):
+    names = [n for n, *_ in fams]
+    if "ring site" not in names or "ring bond" not in names:
+        return ({"barrier": [], "barrier_dps": [], "omega_site": []}, {"action_pn": []}), np.nan, np.nan, np.nan
+    fs, fb = names.index("ring site"), names.index("ring bond")
+    Js, Es, Jb, Eb = (out[k][f] for f in (fs,) for k in ("action", "energy")) if False else (
+        out["action"][fs], out["energy"][fs], out["action"][fb], out["energy"][fb])
+    okb = np.isfinite(Jb) & np.isfinite(Eb)
+    oks = np.isfinite(Js) & (Js >= np.nanmin(Jb)) & (Js <= np.nanmax(Jb))
+    # E - J/(2 pi) is smooth and small: interpolate it in log J (the families are monotone in J)
+    Eb_at = np.interp(np.log(Js[oks]), np.log(Jb[okb]), Eb[okb] - Jb[okb] / (2 * np.pi)) + Js[oks] / (2 * np.pi)
+    bar = Eb_at - Es[oks]
+    N = int(spec["N"])
+    a_s, a_b = _profile(N, "site", al, "periodic"), _profile(N, "bond", al, "periodic")
+    bar_d = db.pn_barrier(a_s, a_b, Js[oks], al)
+    om_s = omegas[oks]
+    j = np.where(np.abs(om_s - float(spec["pn_omega"])) < 1e-9)[0]
+    at = (float(bar[j[0]]), float(bar_d[j[0]]), float(Es[oks][j[0]])) if j.size else (np.nan, np.nan, np.nan)
+    return ({"barrier": bar, "barrier_dps": bar_d, "omega_site": om_s}, {"action_pn": Js[oks]}), *at
+
+
+def _distance_fit(out, omegas, spec):
+    """Power law dps_distance ~ C (omega_b - 1)^p over omega_b <= fit_omega_max, all ring families pooled."""
+    d = out["dps_distance"]
+    x = np.broadcast_to(omegas - 1.0, d.shape)
+    sel = np.isfinite(d) & (x <= float(spec["fit_omega_max"]) - 1.0) & (d > 0)
+    if sel.sum() < 2:
+        return np.nan, np.nan
+    p, c = np.polyfit(np.log(x[sel]), np.log(d[sel]), 1)
+    return float(p), float(np.exp(c))
+
+
+def run(spec: dict, files: list, scenes: dict, log=None):
+    """The analysis protocol (:mod:`cradle.analyses.registry`): reads no file."""
+    return compute(spec, log=log)
