@@ -90,12 +90,10 @@ def direct_growth(b, fl, growth_factor, rel_size=1e-8):
     return float(np.polyfit(t_out[sel], np.log(dev[sel]), 1)[0]), fl.rate, t_out, dev
 
 
-def compute(families: dict, spec: dict, alpha: float, say, attrs: dict) -> dict:
-    """The /kick and /direct groups from the ring families ``families`` (name -> list of Breathers);
-    the scalar results go into ``attrs``."""
+def compute(families: dict, floquets: dict, spec: dict, alpha: float, say, attrs: dict) -> dict:
+    """The /kick and /direct groups from the ring families ``families`` (name -> list of Breathers) and their
+    Floquet results ``floquets`` ((name, omega_b) -> Floquet); the scalar results go into ``attrs``."""
     import time
-
-    from cradle.models import lattice_breathers as lb
 
     groups = {}
     t0 = time.perf_counter()
@@ -105,7 +103,7 @@ def compute(families: dict, spec: dict, alpha: float, say, attrs: dict) -> dict:
     vel = rad = drift = np.full(len(kicks), np.nan)
     if kicks and fam:
         b = fam[0]
-        fl = lb.floquet(b, spec["kick_family"], b.x0.size // 2, float(spec["rtol"]))
+        fl = floquets[(fam_name, b.omega)]
         vel, rad, drift = kicked(b, fl, kicks, float(spec["kick_t_end"]), float(spec["kick_window"]), alpha)
         say(f"breathers: {fam_name} at omega_b = {b.omega}: kicks {kicks} -> velocities {np.round(vel, 6)}, "
             f"radiation {np.round(rad, 6)}")
@@ -118,11 +116,10 @@ def compute(families: dict, spec: dict, alpha: float, say, attrs: dict) -> dict:
     for name, fam in families.items():
         if not name.startswith("ring"):
             continue
-        kind = name.split()[1]
         for b in fam:
             if spec.get("direct_omega") and abs(b.omega - float(spec["direct_omega"])) > 1e-9:
                 continue
-            fl = lb.floquet(b, kind, b.x0.size // 2, float(spec["rtol"]))
+            fl = floquets[(name, b.omega)]
             if fl.rate > float(spec["stability_threshold"]) and (best is None or fl.rate > best[1].rate):
                 best = (b, fl, name)
     if best is not None and float(spec["direct_growth_factor"]) > 1:

@@ -17,6 +17,7 @@ import time
 
 import numpy as np
 
+from cradle.analyses.breather_mobility import VARIABLES as _MOBILITY
 from cradle.pipeline.variables import Var
 
 _F = ("family", "omega")
@@ -65,6 +66,7 @@ VARIABLES = {
         "barrier_dps": Var(("action_pn",), "the DpS prediction of E_bond - E_site at equal action"),
         "omega_site": Var(("action_pn",), "omega_b of the site breather of that action"),
     },
+    **_MOBILITY,
 }
 
 
@@ -75,10 +77,16 @@ def _family_names(spec):
     return names
 
 
+def _centre(N, bc):
+    """Centre bead c of a family: N // 2 on the ring (as homoclinic.initial_guess), (N - 1) // 2 on a free
+    chain (bond (c, c+1) in the middle: the free-bond entry of fini)."""
+    return N // 2 if bc == "periodic" else (N - 1) // 2
+
+
 def _profile(N, kind, alpha, bc):
     from cradle.models import homoclinic
 
-    sol = homoclinic.solve(homoclinic.initial_guess(N, kind, alpha, 0.1), alpha, bc)
+    sol = homoclinic.solve(homoclinic.initial_guess(N, kind, alpha, 0.1, centre=_centre(N, bc)), alpha, bc)
     if not sol.converged:
         raise RuntimeError(f"breathers: no DpS {kind} profile on N = {N} ({bc}), residual {sol.residual:.2g}")
     return sol.a
@@ -89,7 +97,7 @@ def _nearest_one(mu, T):
         return np.nan, np.nan
     z = mu[int(np.argmin(np.abs(mu - 1.0)))]
     ln = np.log(z)
-    return float(ln.real / T), float(abs(ln.imag) / T)
+    return float(abs(ln.real) / T), float(abs(ln.imag) / T)
 
 
 def compute(spec: dict, log=None):
@@ -109,16 +117,16 @@ def compute(spec: dict, log=None):
     out["converged"][:] = 0
     x0s, x0d = np.full((F, W, Nmax), np.nan), np.full((F, W, Nmax), np.nan)
     mus = np.full((F, W, 2 * Nmax), np.nan, complex)
-    ends, timings, keep = {}, {}, {}
+    ends, timings, keep, floquets = {}, {}, {}, {}
     for f, (name, N, bc, kind) in enumerate(fams):
         t0 = time.perf_counter()
         a = _profile(N, kind, al, bc)
-        sym = kind
-        fam, last = lb.continue_family(a, omegas, al, bc, sym, N // 2, tol=float(spec["newton_tol"]), log=say)
+        sym, c = kind, _centre(N, bc)
+        fam, last = lb.continue_family(a, omegas, al, bc, sym, c, tol=float(spec["newton_tol"]), log=say)
         ends[name] = last
         odd_basis = None
         if sym is not None:
-            S = lb.reflection(N, N // 2 + (0.5 if kind == "bond" else 0.0), bc)
+            S = lb.reflection(N, c + (0.5 if kind == "bond" else 0.0), bc)
             # symmetry-breaking DpS modes: S-odd for the (S-even) site profile, S-even for the bond one
             odd_basis = lb._eigenbasis(S, -1.0 if kind == "site" else 1.0)
         keep[name] = fam
@@ -134,14 +142,15 @@ def compute(spec: dict, log=None):
             x0s[f, w, :N], x0d[f, w, :N] = b.x0, xd
             o["dps_distance"][f, w] = float(np.max(np.abs(b.x0 - xd)) / b.amplitude)
             o["omega_dps"][f, w] = db.omega_of_amplitude(a, b.amplitude, al)
-            o["tail_slope"][f, w] = db.tail_slope(b.x0, N // 2 + (0.5 if kind == "bond" else 0.0), al)[0]
+            o["tail_slope"][f, w] = db.tail_slope(b.x0, c + (0.5 if kind == "bond" else 0.0), al)[0]
             lam, lam_odd = db.stability(a, b.omega, al, bc, odd_basis)
             o["dps_growth_rate"][f, w] = float(np.max(lam.real))
             if lam_odd is not None:
                 z = lam_odd[int(np.argmin(np.abs(lam_odd)))]
                 o["dps_pinning_exponent"][f, w], o["dps_pinning_frequency"][f, w] = abs(z.real), abs(z.imag)
             if sym is not None:
-                fl = lb.floquet(b, kind, N // 2, float(spec["rtol"]))
+                fl = lb.floquet(b, kind, c, float(spec["rtol"]))
+                floquets[(name, b.omega)] = fl
                 o["trivial_defect"][f, w], o["growth_rate"][f, w] = fl.trivial, fl.rate
                 o["odd_growing"][f, w] = float(fl.odd_growing)
                 o["pinning_exponent"][f, w], o["pinning_frequency"][f, w] = _nearest_one(fl.mu_odd, b.T)
@@ -155,6 +164,13 @@ def compute(spec: dict, log=None):
                 f"{np.nanmax(out['residual_check'][f]):.2g}), max trivial defect "
                 f"{np.nanmax(out['trivial_defect'][f]) if sym else float('nan'):.2g}; {timings[name]:.1f} s")
 
+    # dE/dJ = omega_b / (2 pi) along each family (finite differences between grid points): a check of E and J
+    dedj = []
+    for f in range(F):
+        ok = np.isfinite(out["action"][f])
+        E, J, om = out["energy"][f][ok], out["action"][f][ok], omegas[ok]
+        if E.size > 1:
+            dedj.append(np.max(np.abs(np.diff(E) / np.diff(J) / ((om[1:] + om[:-1]) / (4 * np.pi)) - 1.0)))
     # Peierls-Nabarro barrier on the ring: E_bond - E_site at the site breather's action
     pn = _pn(out, fams, omegas, spec, al, db)
     groups = {
@@ -171,6 +187,9 @@ def compute(spec: dict, log=None):
              "stability_threshold": float(spec["stability_threshold"]),
              "pn_omega": float(spec["pn_omega"]), "pn_barrier_at_pn_omega": pn[1], "pn_barrier_dps_at_pn_omega": pn[2],
              "pn_energy_site_at_pn_omega": pn[3],
+             "dE_dJ_check": float(max(dedj)) if dedj else np.nan,
+             "dE_dJ_check_comment": "max over grid intervals of |Delta E / Delta J / (mean omega_b / 2 pi) - 1| "
+                                    "(first order in the grid step)",
              "dps_distance_exponent": fit[0], "dps_distance_prefactor": fit[1],
              "dps_distance_fit_omega_max": float(spec["fit_omega_max"]),
              "tail_slope_dps": float(np.log(al)),
@@ -179,34 +198,38 @@ def compute(spec: dict, log=None):
                        "omega_b from the DpS start; monodromy M = R M(T/2)^-1 R M(T/2) on the core",
              "timings_s": ", ".join(f"{k}={v:.1f}" for k, v in timings.items())}
     from cradle.analyses import breather_mobility
-
-    groups.update(breather_mobility.compute(keep, spec, al, say, attrs))
+    groups.update(breather_mobility.compute(keep, floquets, spec, al, say, attrs))
     attrs["wall_time_s"] = time.perf_counter() - t_start
     say(f"breathers: done in {attrs['wall_time_s']:.1f} s")
-    return make_tree(groups, VARIABLES | breather_mobility.VARIABLES, attrs=attrs,
+    return make_tree(groups, VARIABLES, attrs=attrs,
                      title="Exact breathers of (nc): families, Floquet stability, Peierls-Nabarro barrier, distance "
                            "to the DpS breathers")
 
 
 def _pn(out, fams, omegas, spec, al, db):
+    """E_bond - E_site at the site breather's action J_s, from the bond breather of the same omega_b.
+
+    Along a family of periodic orbits dE/dJ = 1/T = omega_b / (2 pi), so the bond breather of action J_s
+    has energy E_b + (J_s - J_b) omega_b / (2 pi) + (J_s - J_b)^2 / (4 pi) d omega_b/dJ; J_s - J_b is
+    ~1e-7 J here, so the quadratic term (d omega_b/dJ from the family) is below 1e-15 of E and no
+    interpolation between grid points is needed.
+    """
     names = [n for n, *_ in fams]
     if "ring site" not in names or "ring bond" not in names:
         return ({"barrier": [], "barrier_dps": [], "omega_site": []}, {"action_pn": []}), np.nan, np.nan, np.nan
     fs, fb = names.index("ring site"), names.index("ring bond")
-    Js, Es, Jb, Eb = (out[k][f] for f in (fs,) for k in ("action", "energy")) if False else (
-        out["action"][fs], out["energy"][fs], out["action"][fb], out["energy"][fb])
-    okb = np.isfinite(Jb) & np.isfinite(Eb)
-    oks = np.isfinite(Js) & (Js >= np.nanmin(Jb)) & (Js <= np.nanmax(Jb))
-    # E - J/(2 pi) is smooth and small: interpolate it in log J (the families are monotone in J)
-    Eb_at = np.interp(np.log(Js[oks]), np.log(Jb[okb]), Eb[okb] - Jb[okb] / (2 * np.pi)) + Js[oks] / (2 * np.pi)
-    bar = Eb_at - Es[oks]
+    Js, Es, Jb, Eb = out["action"][fs], out["energy"][fs], out["action"][fb], out["energy"][fb]
+    ok = np.isfinite(Js) & np.isfinite(Jb)
+    dJ = Js - Jb
+    dwdJ = np.gradient(omegas[ok], Jb[ok]) if ok.sum() > 1 else np.zeros(ok.sum())
+    bar = Eb[ok] + dJ[ok] * omegas[ok] / (2 * np.pi) + dJ[ok] ** 2 * dwdJ / (4 * np.pi) - Es[ok]
     N = int(spec["N"])
     a_s, a_b = _profile(N, "site", al, "periodic"), _profile(N, "bond", al, "periodic")
-    bar_d = db.pn_barrier(a_s, a_b, Js[oks], al)
-    om_s = omegas[oks]
+    bar_d = db.pn_barrier(a_s, a_b, Js[ok], al)
+    om_s = omegas[ok]
     j = np.where(np.abs(om_s - float(spec["pn_omega"])) < 1e-9)[0]
-    at = (float(bar[j[0]]), float(bar_d[j[0]]), float(Es[oks][j[0]])) if j.size else (np.nan, np.nan, np.nan)
-    return ({"barrier": bar, "barrier_dps": bar_d, "omega_site": om_s}, {"action_pn": Js[oks]}), *at
+    at = (float(bar[j[0]]), float(bar_d[j[0]]), float(Es[ok][j[0]])) if j.size else (np.nan, np.nan, np.nan)
+    return ({"barrier": bar, "barrier_dps": bar_d, "omega_site": om_s}, {"action_pn": Js[ok]}), *at
 
 
 def _distance_fit(out, omegas, spec):

@@ -234,6 +234,24 @@ def core(b: Breather, rel: float = 1e-9, S=None) -> np.ndarray:
     return np.array(sorted(idx))
 
 
+def monodromy(b: Breather, rtol=RTOL, rel: float | None = 1e-9):
+    """The monodromy matrix M(T) = R M(T/2)^{-1} R M(T/2) (reversibility, R = diag(1, -1)) without symmetry
+    reduction, on the core (``rel``, see :func:`floquet`) or on all 2N coordinates (``rel=None``).
+    Returns (M, the 2N multipliers, core indices)."""
+    N = b.x0.size
+    idx = np.arange(N) if rel is None else core(b, rel)
+    nc = idx.size
+    cols = np.zeros((2 * N, 2 * nc))
+    cols[idx, np.arange(nc)] = 1.0
+    cols[N + idx, nc + np.arange(nc)] = 1.0
+    _, _, _, Phi = flow(b.x0, np.zeros(N), b.T / 2, b.alpha, b.bc, cols, rtol)
+    Mh = np.concatenate([Phi[idx], Phi[N + idx]])
+    R = np.diag(np.concatenate([np.ones(nc), -np.ones(nc)]))
+    M = R @ np.linalg.solve(Mh, R @ Mh)
+    mu = np.concatenate([np.linalg.eigvals(M), np.repeat(np.exp([1j * b.T, -1j * b.T]), N - nc)])
+    return M, mu, idx
+
+
 @dataclass
 class Floquet:
     mu: np.ndarray          # all 2N multipliers (core block + exp(+-iT) for the harmonic tail)

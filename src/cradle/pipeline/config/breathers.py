@@ -2,6 +2,8 @@
 barrier and mobility, against the DpS breathers (ansatzapproxst2)."""
 from __future__ import annotations
 
+import itertools
+
 from .spec import declared, param
 from .values import number
 
@@ -78,7 +80,7 @@ class Breathers:
             om = sec.get("omegas")
             if not (isinstance(om, list) and om and all(number(x) for x in om)):
                 continue
-            if any(y <= x for x, y in zip(om, om[1:])):
+            if any(y <= x for x, y in itertools.pairwise(om)):
                 out.add(where + ["omegas"], "must be strictly increasing", om)
             if form == "full":
                 for key in ("pn_omega", "kick_omega"):
