@@ -149,7 +149,7 @@ def test_config_errors_name_the_key():
     from cradle.pipeline import config as cc
 
     cfg = yaml.safe_load((cc.schema_path().parents[3] / "config.yaml").read_text())
-    assert cc.resolved_breathers(cfg, "reduced")["N"] == 12
+    assert cc.resolved_breathers(cfg, "reduced")["N"] == 10
     bad = copy.deepcopy(cfg)
     bad["beyond"]["breathers"]["pn_omega"] = 1.11
     with pytest.raises(ValueError, match="beyond.breathers.pn_omega"):

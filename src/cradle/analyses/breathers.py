@@ -17,6 +17,7 @@ import time
 
 import numpy as np
 
+from cradle.analyses.breather_exchanges import VARIABLES as _EXCHANGES
 from cradle.analyses.breather_mobility import VARIABLES as _MOBILITY
 from cradle.pipeline.variables import Var
 
@@ -32,8 +33,11 @@ VARIABLES = {
         "amplitude": Var(_F, "max_n |x_n(0)| of the exact breather"),
         "energy": Var(_F, "energy (ham) of the exact breather"),
         "action": Var(_F, "action J = int_0^T sum_n v_n^2 dt of the exact breather"),
+        "action_check": Var(_F, "action of the breather re-solved with the finer tolerance (resolution check)"),
+        "energy_check": Var(_F, "energy of the breather re-solved with the finer tolerance (resolution check)"),
+        "profile_change": Var(_F, "max|x0 - x0_check| / max|x0|, x0_check re-solved with the finer tolerance"),
         "residual": Var(_F, "periodic-orbit residual max|z(T) - z(0)| / max|x(0)| over one period"),
-        "residual_check": Var(_F, "the same residual integrated with the finer tolerance (resolution check)"),
+        "residual_check": Var(_F, "the period residual of the breather re-solved with the finer tolerance"),
         "newton_iterations": Var(_F, "Newton iterations from the predictor"),
         "trivial_defect": Var(_F, "max |mu - 1| of the trivial Floquet pair (exactly 0; numerical error)"),
         "growth_rate": Var(_F, "max ln|mu| / T over the non-trivial Floquet multipliers (per unit t)",
@@ -64,9 +68,12 @@ VARIABLES = {
         "action_pn": Var(("action_pn",), "action J at which site and bond breathers of the ring are compared"),
         "barrier": Var(("action_pn",), "Peierls-Nabarro barrier E_bond - E_site at equal action, exact lattice"),
         "barrier_dps": Var(("action_pn",), "the DpS prediction of E_bond - E_site at equal action"),
+        "barrier_uncertainty": Var(("action_pn",), "|barrier - barrier of the breathers re-solved with the finer "
+                                   "tolerance| (resolution check)"),
         "omega_site": Var(("action_pn",), "omega_b of the site breather of that action"),
     },
     **_MOBILITY,
+    **_EXCHANGES,
 }
 
 
@@ -117,7 +124,7 @@ def compute(spec: dict, log=None):
     out["converged"][:] = 0
     x0s, x0d = np.full((F, W, Nmax), np.nan), np.full((F, W, Nmax), np.nan)
     mus = np.full((F, W, 2 * Nmax), np.nan, complex)
-    ends, timings, keep, floquets = {}, {}, {}, {}
+    ends, timings, keep, floquets, exchanges = {}, {}, {}, {}, []
     for f, (name, N, bc, kind) in enumerate(fams):
         t0 = time.perf_counter()
         a = _profile(N, kind, al, bc)
@@ -133,10 +140,16 @@ def compute(spec: dict, log=None):
         for b in fam:
             w = int(np.argmin(np.abs(omegas - b.omega)))
             res, J = lb.period_residual(b, float(spec["rtol"]))
-            res2, _ = lb.period_residual(b, float(spec["check_rtol"]))
+            # resolution check: the breather re-solved (Newton from x0) and measured at the finer tolerance
+            b2 = lb.newton(b.x0, b.omega, al, bc, sym, c, float(spec["newton_tol"]) / 100, max_iter=3,
+                           rtol=float(spec["check_rtol"]))
+            res2, J2 = lb.period_residual(b2, float(spec["check_rtol"]))
             o = out
+            o["energy_check"][f, w] = b2.energy()
+            o["profile_change"][f, w] = float(np.max(np.abs(b2.x0 - b.x0)) / b.amplitude)
             o["converged"][f, w] = 1
             o["amplitude"][f, w], o["energy"][f, w], o["action"][f, w] = b.amplitude, b.energy(), J
+            o["action_check"][f, w] = J2
             o["residual"][f, w], o["residual_check"][f, w], o["newton_iterations"][f, w] = res, res2, b.iterations
             xd = lb.dps_start(a, b.omega, al)
             x0s[f, w, :N], x0d[f, w, :N] = b.x0, xd
@@ -156,12 +169,18 @@ def compute(spec: dict, log=None):
                 o["pinning_exponent"][f, w], o["pinning_frequency"][f, w] = _nearest_one(fl.mu_odd, b.T)
                 mus[f, w, :fl.mu.size] = fl.mu
                 o["unstable"][f, w] = float(fl.rate > float(spec["stability_threshold"]))
+        if sym is not None and int(spec["exchange_steps"]) > 0:
+            from cradle.analyses.breather_exchanges import locate
+
+            exchanges += [(f, *e) for e in locate(fam, floquets, name, kind, c, spec, say,
+                                                  int(spec["exchange_steps"]))]
         timings[name] = time.perf_counter() - t0
         if fam:
             om = [b.omega for b in fam]
             say(f"breathers: {name} (N = {N}): {len(fam)} breathers, omega_b in [{min(om):.4g}, {max(om):.4g}], "
                 f"family ends at {last}; max residual {np.nanmax(out['residual'][f]):.2g} (finer "
-                f"{np.nanmax(out['residual_check'][f]):.2g}), max trivial defect "
+                f"{np.nanmax(out['residual_check'][f]):.2g}, profile change {np.nanmax(out['profile_change'][f]):.2g}), "
+                f"max trivial defect "
                 f"{np.nanmax(out['trivial_defect'][f]) if sym else float('nan'):.2g}; {timings[name]:.1f} s")
 
     # dE/dJ = omega_b / (2 pi) along each family: Delta E against Delta J / (2 pi) + int (omega_b - 1) dJ / (2 pi),
@@ -182,6 +201,8 @@ def compute(spec: dict, log=None):
         "/profiles": ({"x0": x0s, "x0_dps": x0d}, {"n": np.arange(Nmax)}),
         "/multipliers": ({"mu_re": mus.real, "mu_im": mus.imag}, {"m": np.arange(2 * Nmax)}),
         "/pn": pn[0],
+        "/exchanges": ({"omega_exchange": [e[1] for e in exchanges], "omega_halfwidth": [e[2] for e in exchanges],
+                        "family_exchange": [e[0] for e in exchanges]}, {"exchange": np.arange(len(exchanges))}),
     }
     fit = _distance_fit(out, omegas, spec)
     attrs = {"alpha": al, "family_names": ", ".join(n for n, *_ in fams),
@@ -189,7 +210,7 @@ def compute(spec: dict, log=None):
              "rtol": float(spec["rtol"]), "check_rtol": float(spec["check_rtol"]),
              "stability_threshold": float(spec["stability_threshold"]),
              "pn_omega": float(spec["pn_omega"]), "pn_barrier_at_pn_omega": pn[1], "pn_barrier_dps_at_pn_omega": pn[2],
-             "pn_energy_site_at_pn_omega": pn[3],
+             "pn_energy_site_at_pn_omega": pn[3], "pn_barrier_uncertainty_at_pn_omega": pn[4],
              "dE_dJ_check": float(max(dedj)) if dedj else np.nan,
              "dE_dJ_check_comment": "max over grid intervals of |(Delta J + int (omega_b - 1) dJ) / (2 pi Delta E) - 1| "
                                     "(omega_b - 1 = c J^p through both ends: exact to O((omega_b - 1)^2) per interval)",
@@ -215,24 +236,34 @@ def _pn(out, fams, omegas, spec, al, db):
     Along a family of periodic orbits dE/dJ = 1/T = omega_b / (2 pi), so the bond breather of action J_s
     has energy E_b + (J_s - J_b) omega_b / (2 pi) + (J_s - J_b)^2 / (4 pi) d omega_b/dJ; J_s - J_b is
     ~1e-7 J here, so the quadratic term (d omega_b/dJ from the family) is below 1e-15 of E and no
-    interpolation between grid points is needed.
+    interpolation between grid points is needed. The uncertainty is the change of the barrier when both
+    breathers are re-solved with the finer tolerance (errors of x0 off the family enter E - omega J / 2 pi
+    at first order).
     """
     names = [n for n, *_ in fams]
     if "ring site" not in names or "ring bond" not in names:
-        return ({"barrier": [], "barrier_dps": [], "omega_site": []}, {"action_pn": []}), np.nan, np.nan, np.nan
+        return ({"barrier": [], "barrier_dps": [], "barrier_uncertainty": [], "omega_site": []}, {"action_pn": []}), \
+            np.nan, np.nan, np.nan, np.nan
     fs, fb = names.index("ring site"), names.index("ring bond")
-    Js, Es, Jb, Eb = out["action"][fs], out["energy"][fs], out["action"][fb], out["energy"][fb]
-    ok = np.isfinite(Js) & np.isfinite(Jb)
-    dJ = Js - Jb
-    dwdJ = np.gradient(omegas[ok], Jb[ok]) if ok.sum() > 1 else np.zeros(ok.sum())
-    bar = Eb[ok] + dJ[ok] * omegas[ok] / (2 * np.pi) + dJ[ok] ** 2 * dwdJ / (4 * np.pi) - Es[ok]
+
+    def barrier(Es, Js, Eb, Jb):
+        dJ = Js - Jb
+        dwdJ = np.gradient(omegas[ok], Jb[ok]) if ok.sum() > 1 else np.zeros(ok.sum())
+        return Eb[ok] + dJ[ok] * omegas[ok] / (2 * np.pi) + dJ[ok] ** 2 * dwdJ / (4 * np.pi) - Es[ok]
+
+    ok = np.isfinite(out["action"][fs]) & np.isfinite(out["action"][fb])
+    bar = barrier(out["energy"][fs], out["action"][fs], out["energy"][fb], out["action"][fb])
+    unc = np.abs(bar - barrier(out["energy_check"][fs], out["action_check"][fs], out["energy_check"][fb],
+                               out["action_check"][fb]))
+    Js, Es = out["action"][fs], out["energy"][fs]
     N = int(spec["N"])
     a_s, a_b = _profile(N, "site", al, "periodic"), _profile(N, "bond", al, "periodic")
     bar_d = db.pn_barrier(a_s, a_b, Js[ok], al)
     om_s = omegas[ok]
     j = np.where(np.abs(om_s - float(spec["pn_omega"])) < 1e-9)[0]
-    at = (float(bar[j[0]]), float(bar_d[j[0]]), float(Es[ok][j[0]])) if j.size else (np.nan, np.nan, np.nan)
-    return ({"barrier": bar, "barrier_dps": bar_d, "omega_site": om_s}, {"action_pn": Js[ok]}), *at
+    at = (float(bar[j[0]]), float(bar_d[j[0]]), float(Es[ok][j[0]]), float(unc[j[0]])) if j.size else (np.nan,) * 4
+    return ({"barrier": bar, "barrier_dps": bar_d, "barrier_uncertainty": unc, "omega_site": om_s},
+            {"action_pn": Js[ok]}), *at
 
 
 def _distance_fit(out, omegas, spec):

@@ -15,13 +15,14 @@ _KICK = {"type": "number", "exclusiveMinimum": 0, "maximum": 10, "description": 
 @declared(doc="The reduced form `snakemake all` builds (results/breathers/breathers.nc, results/figures/breathers.*): "
               "these keys replace those of the full form, `snakemake breathers_full` (results/breathers/full/).")
 class BreathersReduced:
-    N: int = param(12, "Beads of the ring.", minimum=6, maximum=400)
+    N: int = param(10, "Beads of the ring.", minimum=6, maximum=400)
     free_N: int = param(0, "Beads of the free-end chain (0: none).", minimum=0, maximum=400)
-    omegas: list[float] = param([1.08, 1.1, 1.12], "Continuation grid of omega_b.", minItems=1, maxItems=200,
+    omegas: list[float] = param([1.05, 1.1], "Continuation grid of omega_b.", minItems=1, maxItems=200,
                                 items=_OMEGA)
-    rtol: float = param(1e-12, "DOP853 relative tolerance of the shooting.", minimum=2.3e-14, maximum=1e-6)
-    check_rtol: float = param(1e-13, "Tolerance of the resolution check.", minimum=2.3e-14, maximum=1e-6)
+    rtol: float = param(1e-13, "DOP853 relative tolerance of the shooting.", minimum=2.3e-14, maximum=1e-6)
+    check_rtol: float = param(2.5e-14, "Tolerance of the resolution check.", minimum=2.3e-14, maximum=1e-6)
     kicks: list[float] = param([], "Kick sizes of the mobility runs.", maxItems=20, items=_KICK)
+    exchange_steps: int = param(0, "Regula falsi steps per stability exchange (0: none).", minimum=0, maximum=50)
     direct_growth_factor: float = param(1.0, "Growth factor of the direct run (1: no direct run).", minimum=1,
                                         maximum=1e8)
 
@@ -52,16 +53,18 @@ class Breathers:
                             "of omegas.", exclusiveMinimum=1, maximum=10)
     fit_omega_max: float = param(1.1, "The DpS-distance power law is fitted over omega_b <= fit_omega_max.",
                                  exclusiveMinimum=1, maximum=10)
+    exchange_steps: int = param(4, "Regula falsi steps locating each stability exchange (pinning pair through +1) "
+                                "between grid points (0: none).", minimum=0, maximum=50)
     kick_family: str = param("bond", "Ring family of the kicked breather.", enum=["site", "bond"])
     kick_omega: float = param(1.1, "omega_b of the kicked breather; one of omegas.", exclusiveMinimum=1, maximum=10)
-    kicks: list[float] = param([0.003, 0.01, 0.03, 0.1], "Kick sizes: velocity along the pinning mode / max|x(0)|.",
+    kicks: list[float] = param([3e-5, 1e-4, 1e-3, 1e-2, 1e-1], "Kick sizes: velocity along the pinning mode / max|x(0)|.",
                                maxItems=20, items=_KICK)
     kick_t_end: float = param(3000.0, "Duration of a kicked run.", exclusiveMinimum=0, maximum=1e6)
     kick_window: float = param(5.0, "Beads from the energy centre beyond which energy counts as radiated.",
                                exclusiveMinimum=0, maximum=100)
-    direct_omega: float | None = param(None, "omega_b of the direct growth check (default: the most unstable "
+    direct_omega: float | None = param(2.5, "omega_b of the direct growth check (default: the most unstable "
                                        "ring breather).", exclusiveMinimum=1, maximum=10)
-    direct_growth_factor: float = param(100.0, "The direct run lasts until the unstable mode grows by this factor "
+    direct_growth_factor: float = param(30.0, "The direct run lasts until the unstable mode grows by this factor "
                                         "(1: no direct run).", minimum=1, maximum=1e8)
     reduced: BreathersReduced = param(BreathersReduced(), BreathersReduced.__schema_doc__)
 
