@@ -158,3 +158,23 @@ def test_config_errors_name_the_key():
     bad["beyond"]["breathers"]["omegas"] = [1.1, 1.05]
     with pytest.raises(ValueError, match="beyond.breathers.omegas"):
         cc.resolved_breathers(bad)
+
+
+def test_tail_recursion_continues_the_resolved_tail_double_exponentially():
+    """The tail recursion in log variables (cradle.models.lattice_breather_tails), started where |x_n| drops
+    below 1e-4 max|x|, reproduces the beads the trajectory still resolves (down to 1e-11) to within the
+    neglected relative terms O(|x_n / x_{n-1}|), and decays double-exponentially: ln(-ln|x_n|) has slope
+    -> ln(alpha) (the DpS value) along the tail."""
+    from cradle.models import lattice_breather_tails as lbt
+
+    n = 30
+    a = homoclinic.solve(homoclinic.initial_guess(n, "site", ALPHA, 0.1), ALPHA).a
+    b = lb.newton(lb.dps_start(a, 1.1, ALPHA), 1.1, ALPHA, kind="site")
+    _, early, first_e = lbt.log10_tail(b, n // 2, 14, start_rel=1e-4)
+    _, late, first_l = lbt.log10_tail(b, n // 2, 14, start_rel=1e-11)
+    assert first_l > first_e
+    ratio = 10.0 ** (late[first_e] - late[first_e - 1])         # |x_n / x_{n-1}| at the first recursed bead
+    assert abs(early[first_e] - late[first_e]) <= 2 * ratio / np.log(10)
+    assert np.all(np.diff(late) < 0) and late[-1] < -200          # far below double precision
+    slope = lbt.double_exponential_slope(late, np.log10(b.amplitude), first_l)
+    assert slope == pytest.approx(np.log(ALPHA), abs=0.02)

@@ -52,7 +52,8 @@ VARIABLES = {
         "dps_pinning_frequency": Var(_F, "|Im lambda| of the DpS symmetry-breaking eigenvalue nearest 0"),
         "dps_distance": Var(_F, "max_n |x_n(0) - x_n^DpS(0)| / max|x(0)|, DpS breather of the same omega_b"),
         "omega_dps": Var(_F, "frequency of the DpS breather with the same amplitude max|x_n(0)|"),
-        "tail_slope": Var(_F, "slope of ln(-ln|x_n/max x|) against distance from the centre (DpS: ln alpha)"),
+        "tail_slope": Var(_F, "slope of ln(-ln(max_t|x_n| / max|x|)) against distance from the centre, over the "
+                          "beads past the resolved core, in log variables (DpS: ln alpha)"),
     },
     "/profiles": {
         "n": Var(("n",), "bead index (ring families; free chains use the first N_free beads)"),
@@ -63,6 +64,13 @@ VARIABLES = {
         "m": Var(("m",), "index of a Floquet multiplier"),
         "mu_re": Var(("family", "omega", "m"), "real part of a Floquet multiplier of the exact breather"),
         "mu_im": Var(("family", "omega", "m"), "imaginary part of a Floquet multiplier of the exact breather"),
+    },
+    "/tails": {
+        "j": Var(("j",), "distance from the breather's centre, beads (right tail)"),
+        "log10_amplitude": Var(("family", "j"), "log10 max_t |x_n(t)| of the exact breather at pn_omega",
+                               attrs=(("comment", ("from the trajectory where resolved, then the tail recursion "
+                                                   "in log variables (cradle.models.lattice_breather_tails)")),)),
+        "log10_amplitude_dps": Var(("family", "j"), "log10 |x_n(0)| of the DpS breather at pn_omega (homoclinic_tails)"),
     },
     "/pn": {
         "action_pn": Var(("action_pn",), "action J at which site and bond breathers of the ring are compared"),
@@ -111,6 +119,8 @@ def compute(spec: dict, log=None):
     """The `breathers` target (:data:`VARIABLES`). ``spec`` (:func:`cradle.pipeline.config.resolved_breathers`):
     alpha, N, free_N, kinds, omegas, rtol, check_rtol, stability_threshold, pn_omega, and the mobility keys."""
     from cradle.models import dps_breathers as db
+    from cradle.models import homoclinic_tails as ht
+    from cradle.models import lattice_breather_tails as lbt
     from cradle.models import lattice_breathers as lb
     from cradle.pipeline.io import make_tree
 
@@ -125,8 +135,11 @@ def compute(spec: dict, log=None):
     x0s, x0d = np.full((F, W, Nmax), np.nan), np.full((F, W, Nmax), np.nan)
     mus = np.full((F, W, 2 * Nmax), np.nan, complex)
     ends, timings, keep, floquets, exchanges = {}, {}, {}, {}, []
+    n_tails = [(N // 2 - 1 if bc == "periodic" else N - 1 - _centre(N, bc)) for _, N, bc, _ in fams]
+    tails, tails_d = np.full((F, max(n_tails)), np.nan), np.full((F, max(n_tails)), np.nan)
     for f, (name, N, bc, kind) in enumerate(fams):
         t0 = time.perf_counter()
+        n_tail = n_tails[f]
         a = _profile(N, kind, al, bc)
         sym, c = kind, _centre(N, bc)
         fam, last = lb.continue_family(a, omegas, al, bc, sym, c, tol=float(spec["newton_tol"]), log=say)
@@ -155,7 +168,16 @@ def compute(spec: dict, log=None):
             x0s[f, w, :N], x0d[f, w, :N] = b.x0, xd
             o["dps_distance"][f, w] = float(np.max(np.abs(b.x0 - xd)) / b.amplitude)
             o["omega_dps"][f, w] = db.omega_of_amplitude(a, b.amplitude, al)
-            o["tail_slope"][f, w] = db.tail_slope(b.x0, c + (0.5 if kind == "bond" else 0.0), al)[0]
+            cc_ = c + (0.5 if kind == "bond" else 0.0)
+            _, lt_, first = lbt.log10_tail(b, cc_, n_tail, rtol=float(spec["rtol"]))
+            o["tail_slope"][f, w] = lbt.double_exponential_slope(lt_, np.log10(b.amplitude), first)
+            if abs(b.omega - float(spec["pn_omega"])) < 1e-9:
+                tails[f, :n_tail] = lt_
+                sc = np.log10(lb.dps_start(a, b.omega, al)[c] / a[c])
+                ld = ht.log10_abs(a, al, centre=c) + sc
+                first_d = c + (1 if kind == "bond" else 0) + 1
+                seq = [ld[(first_d + i) % N] if bc == "periodic" else ld[first_d + i] for i in range(n_tail)]
+                tails_d[f, :n_tail] = seq
             lam, lam_odd = db.stability(a, b.omega, al, bc, odd_basis)
             o["dps_growth_rate"][f, w] = float(np.max(lam.real))
             if lam_odd is not None:
@@ -201,6 +223,7 @@ def compute(spec: dict, log=None):
         "/profiles": ({"x0": x0s, "x0_dps": x0d}, {"n": np.arange(Nmax)}),
         "/multipliers": ({"mu_re": mus.real, "mu_im": mus.imag}, {"m": np.arange(2 * Nmax)}),
         "/pn": pn[0],
+        "/tails": ({"log10_amplitude": tails, "log10_amplitude_dps": tails_d}, {"j": np.arange(1, tails.shape[1] + 1)}),
         "/exchanges": ({"omega_exchange": [e[1] for e in exchanges], "omega_halfwidth": [e[2] for e in exchanges],
                         "family_exchange": [e[0] for e in exchanges]}, {"exchange": np.arange(len(exchanges))}),
     }

@@ -84,17 +84,3 @@ def omega_of_amplitude(a_n, amplitude, alpha):
     """Frequency of the DpS breather (ansatzapproxst2) whose x_n(0) = mu^(1/(alpha-1)) a_n has max |x_n| = amplitude."""
     mu = (amplitude / float(np.max(np.abs(a_n)))) ** (alpha - 1.0)
     return dps.omega_sw_from_mu(mu, alpha)
-
-
-def tail_slope(x, centre, alpha, floor=1e-250, lo=1e-30):
-    """Double-exponential decay of a profile: fit of ln(-ln|x_n / max|x||) against the distance j from the
-    centre, on the sites where lo >= |x_n / max|x|| >= floor; DpS predicts the slope ln(alpha) (a_{n+1}
-    ~ a_n^alpha in the tail of (dpsstn)). Returns (slope, number of sites used)."""
-    x = np.asarray(x, float)
-    r = np.abs(x) / np.max(np.abs(x))
-    N = x.size
-    j = np.abs((np.arange(N) - centre + N / 2) % N - N / 2)
-    sel = (r <= lo) & (r >= floor)
-    if sel.sum() < 2:
-        return float("nan"), int(sel.sum())
-    return float(np.polyfit(j[sel], np.log(-np.log(r[sel])), 1)[0]), int(sel.sum())

@@ -17,7 +17,7 @@ _KICK = {"type": "number", "exclusiveMinimum": 0, "maximum": 10, "description": 
 class BreathersReduced:
     N: int = param(10, "Beads of the ring.", minimum=6, maximum=400)
     free_N: int = param(0, "Beads of the free-end chain (0: none).", minimum=0, maximum=400)
-    omegas: list[float] = param([1.05, 1.1], "Continuation grid of omega_b.", minItems=1, maxItems=200,
+    omegas: list[float] = param([1.1], "Continuation grid of omega_b.", minItems=1, maxItems=200,
                                 items=_OMEGA)
     rtol: float = param(1e-13, "DOP853 relative tolerance of the shooting.", minimum=2.3e-14, maximum=1e-6)
     check_rtol: float = param(2.5e-14, "Tolerance of the resolution check.", minimum=2.3e-14, maximum=1e-6)
