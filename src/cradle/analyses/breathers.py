@@ -294,7 +294,7 @@ def _distance_fit(out, omegas, spec):
     d = out["dps_distance"]
     x = np.broadcast_to(omegas - 1.0, d.shape)
     sel = np.isfinite(d) & (x <= float(spec["fit_omega_max"]) - 1.0) & (d > 0)
-    if sel.sum() < 2:
+    if np.unique(x[sel]).size < 2:
         return np.nan, np.nan
     p, c = np.polyfit(np.log(x[sel]), np.log(d[sel]), 1)
     return float(p), float(np.exp(c))
