@@ -24,7 +24,6 @@ def breathers(tree):
     fam = tree["families"]
     om = tree["omega"].values
     names = [s.strip() for s in at["family_names"].split(",")]
-    al = float(at["alpha"])
     # (a) amplitudes
     A = ax[0, 0]
     for f, name in enumerate(names):
