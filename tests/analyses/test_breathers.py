@@ -178,3 +178,18 @@ def test_tail_recursion_continues_the_resolved_tail_double_exponentially():
     assert np.all(np.diff(late) < 0) and late[-1] < -200          # far below double precision
     slope = lbt.double_exponential_slope(late, np.log10(b.amplitude), first_l)
     assert slope == pytest.approx(np.log(ALPHA), abs=0.02)
+
+
+def test_pinning_exponent_tends_to_dps_linearly(profiles):
+    """As omega_b -> 1 the lattice pinning growth of the site breather tends to the DpS eigenvalue, with a
+    relative correction linear in omega_b - 1 (large, ~ -47 (omega_b - 1): the DpS pinning eigenvalue is
+    itself tiny, which is why the lattice verdicts alternate at larger amplitude)."""
+    a = profiles["site"]
+    dev = []
+    for om in (1.001, 1.002):
+        b = lb.newton(lb.dps_start(a, om, ALPHA), om, ALPHA, kind="site")
+        fl = lb.floquet(b, "site")
+        lam, _ = db.stability(a, om, ALPHA)
+        dev.append(fl.rate / np.max(lam.real) - 1.0)
+    assert abs(dev[0]) < 0.1
+    assert dev[1] / dev[0] == pytest.approx(2.0, rel=0.2)
