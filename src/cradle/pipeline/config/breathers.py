@@ -38,9 +38,9 @@ class Breathers:
     free_N: int = param(10, "Beads of the free-end chain (fini: 10; 0: none); bond-centred family only (an even "
                         "free chain has no site-centred symmetry).", minimum=0, maximum=400)
     kinds: list[str] = param(["site", "bond"], "Families on the ring.", minItems=1, maxItems=2, items=_KINDS)
-    omegas: list[float] = param([1.01, 1.02, 1.03, 1.05, 1.07, 1.1, 1.15, 1.2, 1.3, 1.4, 1.5, 1.6, 1.8, 2.0, 2.5,
-                                 3.0], "Continuation grid of omega_b (increasing, > 1); the first is started from "
-                                "DpS.", minItems=1, maxItems=200, items=_OMEGA)
+    omegas: list[float] = param([1.001, 1.002, 1.005, 1.01, 1.02, 1.03, 1.05, 1.07, 1.1, 1.15, 1.2, 1.3, 1.4, 1.5, 1.6,
+                                 1.8, 2.0, 2.5, 3.0], "Continuation grid of omega_b (increasing, > 1); the first is "
+                                "started from DpS.", minItems=1, maxItems=200, items=_OMEGA)
     newton_tol: float = param(1e-11, "Newton stops when max|F| <= newton_tol max|x(0)|.", exclusiveMinimum=0,
                               maximum=1e-4)
     rtol: float = param(1e-13, "DOP853 relative tolerance of the shooting and of the monodromy.", minimum=2.3e-14,
