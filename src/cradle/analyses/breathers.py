@@ -175,7 +175,7 @@ def compute(spec: dict, log=None):
                 tails[f, :n_tail] = lt_
                 sc = np.log10(lb.dps_start(a, b.omega, al)[c] / a[c])
                 ld = ht.log10_abs(a, al, centre=c) + sc
-                first_d = c + (1 if kind == "bond" else 0) + 1
+                first_d = c + 1                      # bead j = 1 of log10_tail (site and bond)
                 seq = [ld[(first_d + i) % N] if bc == "periodic" else ld[first_d + i] for i in range(n_tail)]
                 tails_d[f, :n_tail] = seq
             lam, lam_odd = db.stability(a, b.omega, al, bc, odd_basis)
