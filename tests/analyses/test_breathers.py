@@ -37,8 +37,8 @@ def test_period_map_fixes_the_breather(breathers, kind):
     r_fine, J_fine = lb.period_residual(b, rtol=2.5e-14)
     assert r <= 1e-9 and r_fine <= 1e-9
     assert abs(J / J_fine - 1) <= 1e-10
-    # localised (the antipode of the centre at round-off), and not the DpS start: it differs at O(omega_b - 1)
-    assert abs(b.x0[0]) <= 1e-9 * b.amplitude
+    # localised (the antipode of the centre ~1e-4 on this small ring), not the DpS start: differs at O(omega_b - 1)
+    assert abs(b.x0[0]) <= 1e-3 * b.amplitude
     assert 0.05 < np.max(np.abs(b.x0 - lb.dps_start(homoclinic.solve(homoclinic.initial_guess(
         N, kind, ALPHA, 0.1), ALPHA).a, 1.1, ALPHA))) / b.amplitude < 0.3
 
