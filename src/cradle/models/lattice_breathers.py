@@ -15,11 +15,14 @@ integrated with the orbit over half a period only (why shooting rather than Four
 Hertz force is only C^{1,alpha-1} at contact onset, so a Fourier series in t converges slowly,
 like k^-(alpha+2), while an adaptive integrator (scipy's DOP853, error per period ~ rtol) resolves
 the onsets; reversibility halves both the unknowns, N instead of 2N, and the integration time).
-The time-translation symmetry is removed by v(0) = 0, and T is fixed, so the Jacobian is regular
-(its kernel would be the frequency direction of the family, transverse to fixed T).
+The time-translation symmetry is removed by v(0) = 0, and T is fixed. The near-translation (pinning)
+direction is removed by solving within a symmetry class of x_n -> -x_{2c-n} (:func:`newton`: bond
+breathers x(t) = -S x(t), N/2 unknowns; site breathers x(t + T/2) = -S x(t), conditions at T/4), and
+the unknowns are restricted to the core (|x_n| > 1e-14 max|x|; the rest move below the tolerance).
 
 The monodromy matrix over a full period follows from the half-period one by reversibility,
-R (x, v) = (x, -v): M(T) = R M(T/2)^{-1} R M(T/2). Its multipliers come in symplectic quadruples
+R (x, v) = (x, -v): M(T) = R M(T/2)^{-1} R M(T/2) (:func:`floquet` splits it by the symmetry into
+the trivial and the pinning pair's subspaces). Its multipliers come in symplectic quadruples
 (mu, 1/mu, conj mu, 1/conj mu) with the trivial pair at +1 (phase and frequency of the family), the
 accuracy check of the literature (James, Kevrekidis, Cuevas, Physica D 251, 2013).
 
@@ -35,7 +38,7 @@ import numpy as np
 
 from cradle.models.lattice import check_alpha, check_bc, hamiltonian
 
-RTOL = 1e-13         # DOP853 relative tolerance of the shooting (period residual ~1e-11; the check uses 1e-14)
+RTOL = 1e-13         # DOP853 relative tolerance of the shooting (period residuals 1e-11 .. 2e-9)
 
 
 def _rhs_factory(N, m, alpha, periodic):
