@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import beyond, floquet, mi_statistics, scenes, sections
+from cradle.pipeline.config import beyond, breathers, floquet, mi_statistics, scenes, sections
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -21,8 +21,9 @@ CONFIG = ROOT / "config.yaml"
 # into typed declarations changed none of them; a deliberate change of config.yaml or of a resolved_*
 # function changes this hash: check the difference, then update it. (Updated once since: the new
 # keys beyond.floquet.reduced and work_precision.reduced, the reduced forms `all` builds; every other
-# value unchanged.)
-RESOLVED_SHA256 = "ce7541ea2d4d3e9b4cfa1320faa9aac9d8726b89bd4439e7655058d37eba6ba1"
+# value unchanged. And once more: the new section beyond.breathers and its reduced form; every other value
+# unchanged.)
+RESOLVED_SHA256 = "194cda6035e580efbb36c153e9f5260fbc8b5ac5953d6d1f407b9fdfe0020e3e"
 
 
 @pytest.fixture(scope="module")
@@ -44,6 +45,8 @@ def _everything_resolved(config) -> dict:
         "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
         "floquet": cc.resolved_floquet(cfg),
         "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
+        "breathers": cc.resolved_breathers(cfg),
+        "breathers_reduced": cc.resolved_breathers(cfg, "reduced"),
         "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
         "work_precision_reduced": {n: cc.resolved_work_precision(cfg, n, "reduced")
                                    for n in cfg["work_precision"]["reduced"]["scenes"]},
@@ -65,7 +68,7 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 
 def test_declarations_are_frozen_and_every_field_described():
-    classes = [c for m in (scenes, sections, beyond, floquet, mi_statistics) for c in vars(m).values()
+    classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics) for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:

@@ -86,4 +86,6 @@ ANALYSES: dict[str, Analysis] = {a.name: a for a in (
              title="mi-statistics: thresholds from every batch"),
     Analysis("floquet", "floquet", "run", "floquet", forms=(REDUCED, FULL),
              title="Bloch-Floquet stability of the exact travelling waves against the DpS threshold"),
+    Analysis("breathers", "breathers", "run", "breathers", forms=(REDUCED, FULL),
+             title="Exact breathers of (nc): families, Floquet stability, Peierls-Nabarro barrier, distance to DpS"),
 )}
