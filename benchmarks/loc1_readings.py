@@ -36,9 +36,9 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from cradle.analyses import pair_runs  # noqa: E402
-from cradle.measurements import interactions  # noqa: E402
-from cradle.models import initial, pairs  # noqa: E402
+from cradle.analyses import pair_runs
+from cradle.measurements import interactions
+from cradle.models import initial, pairs
 
 N, ALPHA, AMP = 50, 1.5, 0.01
 PACKET_AMP, PACKET_OMEGA = 0.016, 1.1
@@ -48,7 +48,7 @@ THETAS = ((0.0, "0"), (np.pi, "pi"))
 
 def spacings(profiles, largest=10):
     half = 0.5 if profiles[0] != profiles[1] else 0.0
-    return [k + half for k in range(1, largest + 1)] if half == 0 else [k + half for k in range(0, largest)]
+    return [k + half for k in range(1, largest + 1)] if half == 0 else [k + half for k in range(largest)]
 
 
 def pair_rows(periods: float):
@@ -102,7 +102,7 @@ PACKETS = ("gaussian-w6", "gaussian-w4", "gaussian-w8", "sech", "super-gaussian"
 def packet_outcome(t, x, period, periodic=True):
     """Humps of the site profile max_t |x_n| in the last 50 periods of the run: (how many, how many stay
     within 3 sites of the start centre, the largest speed in sites per period of the others)."""
-    starts, P = interactions.peak_compression(t, x, period)
+    _starts, P = interactions.peak_compression(t, x, period)
     cent0 = (x.shape[1] - 1) / 2.0
     last = P[-50:]
     counts = [len(interactions.humps(p)[0]) for p in last]
@@ -140,19 +140,19 @@ def packet_rows(periods: float, widths=(12,)):
 
 def markdown(prs, pks, periods, wall) -> str:
     lines = [f"<!-- written by benchmarks/loc1_readings.py ({wall:.0f} s); do not edit by hand -->",
-             f"N = {N}, periodic, zero velocities, {periods:g} breather periods 2 pi/omega_sw; DpS from "
-             "tau = 0 in (breatherdps).", "",
+             (f"N = {N}, periodic, zero velocities, {periods:g} breather periods 2 pi/omega_sw; DpS from "
+             "tau = 0 in (breatherdps)."), "",
              "### Pair (loc1, right): two copies of peak |x| = 0.01", "",
-             "theta = 0: in phase on the (-1)^n carrier; pi: antiphase. Spacing: distance of the centres "
+             ("theta = 0: in phase on the (-1)^n carrier; pi: antiphase. Spacing: distance of the centres "
              "(sites; a bond-centred copy sits on a bond midpoint). Outcome by "
-             "`cradle.measurements.interactions.classify`; merging in breather periods.", "",
+             "`cradle.measurements.interactions.classify`; merging in breather periods."), "",
              "| copies | spacing | theta | omega_sw | exact (nc) | DpS |", "|---|---|---|---|---|---|"]
     for r in prs:
         lines.append(f"| {r['profiles']} | {r['spacing']:g} | {r['theta']} | {r['omega_sw']:.4f} | "
                      f"{_cell(r['exact'])} | {_cell(r['dps'])} |")
     lines += ["", "### Packet (loc1, left): peak 0.016, ~12 sites", "",
-              "Humps of max_t |x_n| per period (omega = 1.1) in the last 50 periods: total, and how many "
-              "stay within 3 sites of the packet's centre.", "",
+              ("Humps of max_t |x_n| per period (omega = 1.1) in the last 50 periods: total, and how many "
+              "stay within 3 sites of the packet's centre."), "",
               "| envelope | sites >= 0.5 % of peak | exact: humps (static) | DpS: humps (static) |",
               "|---|---|---|---|"]
     for r in pks:

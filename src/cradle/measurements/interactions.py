@@ -191,11 +191,11 @@ def classify(t, field, period: float, *, periodic: bool = True, rel: float = REL
     K = len(starts)
     if K == 0:
         return Outcome("none")
-    cent, tops = zip(*(humps(p, rel, dip, periodic) for p in P))
+    cent, _tops = zip(*(humps(p, rel, dip, periodic) for p in P))
     counts = np.array([len(c) for c in cent])
     big = np.array([c[0] if len(c) else np.nan for c in cent])
     sep = np.array([ring_distance(c[0], c[1], N, periodic) if len(c) >= 2 else 0.0 for c in cent])
-    base = dict(counts=counts, separation=sep, centre=big)
+    base = {"counts": counts, "separation": sep, "centre": big}
     sm = running_median(np.minimum(counts, 2), smooth)
     if sm[0] < 2 and counts[0] < 2:
         return Outcome("none", **base)
@@ -207,6 +207,8 @@ def classify(t, field, period: float, *, periodic: bool = True, rel: float = REL
         k = first_single
         while k > 0 and counts[k - 1] == 1:
             k -= 1
+        if k == 0:      # two humps in the first period only: merged at the first single one
+            k = int(np.flatnonzero(counts == 1)[0])
         after = np.arange(k, K)
         drift = np.polyfit(after, _unwrap(big[after], N, periodic), 1)[0] if after.size >= 2 else np.nan
         return Outcome("merge", merge_period=float((starts[k] - starts[0]) / period),

@@ -57,7 +57,7 @@ def _placed(e, centre, target):
     k = target - centre
     if abs(k - round(k)) > 1e-9:
         raise ValueError(f"a copy centred at {centre} cannot be moved to {target} (not an integer shift)")
-    return np.roll(e, int(round(k)))
+    return np.roll(e, round(k))
 
 
 def two_breathers(N: int, alpha: float, *, profiles=("site", "site"), centres=(None, None),
