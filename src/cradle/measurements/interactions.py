@@ -10,17 +10,20 @@ breathers one site apart: both bonds of the node bead between them are
 compressed, so their profile shows one hump where x shows two.) From the
 humps of every period:
 
-* ``merge``: the run ends with one breather. Merging period: the first
-  period from which the *smoothed* hump count (running median over
+* ``repel``: two breathers whose distance grows by at least ``repel_sites``
+  sites before they first overlap; the separation velocity (sites per
+  period) is the slope of the distance over the periods it takes to grow by
+  80 % of that growth;
+* ``merge``: the run ends with one breather where the pair was. Merging
+  period: the first period from which the *smoothed* count of humps within
+  the initial distance + ``NEAR_MARGIN`` of the largest (running median over
   ``2 * smooth + 1`` periods, so a merged breather that shows two humps for
   a few periods, or two breathers that overlap for a few, do not flip the
   count) is 1 until the end, the single state lasting at least
-  ``min_periods`` periods;
+  ``min_periods`` periods (a small breather or radiation the merger sends
+  round the ring is not one of the pair);
 * ``transmit``: two breathers that approach, overlap and come out on the
   other side of each other (tracked positions swap their order);
-* ``repel``: two breathers whose distance grows by at least ``repel_sites``
-  sites; the separation velocity (sites per period) is the slope of the
-  distance over the periods it takes to grow by 80 % of that growth;
 * ``bound``: two breathers to the end, neither merging nor separating.
 
 A hump is a local maximum of P of at least ``rel`` max P that stands out
@@ -43,6 +46,7 @@ DIP = 0.7            # and is separated from the next by a dip below 70 % of the
 SMOOTH = 5           # running median over 11 periods
 MIN_PERIODS = 20     # the merged state must last >= 20 periods to count
 REPEL_SITES = 3.0    # breathers 3 sites farther apart than at the start have repelled
+NEAR_MARGIN = 3.0    # after a merge, a hump farther than the initial distance + 3 sites is not of the pair
 
 
 def humps(profile, rel: float = REL, dip: float = DIP, periodic: bool = True):
@@ -196,33 +200,42 @@ def classify(t, field, period: float, *, periodic: bool = True, rel: float = REL
     big = np.array([c[0] if len(c) else np.nan for c in cent])
     sep = np.array([ring_distance(c[0], c[1], N, periodic) if len(c) >= 2 else 0.0 for c in cent])
     base = {"counts": counts, "separation": sep, "centre": big}
-    sm = running_median(np.minimum(counts, 2), smooth)
-    if sm[0] < 2 and counts[0] < 2:
+    pair = running_median(np.minimum(counts, 2), smooth)
+    if pair[0] < 2 and counts[0] < 2:
         return Outcome("none", **base)
     sep0 = float(sep[0]) if counts[0] >= 2 else float(np.nan)
+    two = counts >= 2
+    # repel: the distance grows by repel_sites before the two first overlap (on a ring, breathers that
+    # repelled meet again on the far side: that later meeting does not change the outcome)
+    overlap = np.flatnonzero(pair < 2)
+    k_ov = int(overlap[0]) if overlap.size else K
+    grown = (np.where(two, sep, np.nan) - sep0)[:k_ov]
+    if grown.size and np.nanmax(grown) >= repel_sites:
+        stop = int(np.flatnonzero(grown >= 0.8 * np.nanmax(grown))[0])
+        ks = np.flatnonzero(two[:stop + 1])
+        v = np.polyfit(ks, sep[ks], 1)[0] if ks.size >= 2 else np.nan
+        return Outcome("repel", separation_velocity=float(v), separation0=sep0, **base)
+    # merge: from some period on, no second hump within sep0 + NEAR_MARGIN of the largest (what the
+    # merger radiates, or a small breather it emits, travels away and is not one of the pair)
+    reach = (sep0 if np.isfinite(sep0) else 0.0) + NEAR_MARGIN
+    near = np.array([1 + int(np.sum(ring_distance(c[1:], c[0], N, periodic) <= reach)) if len(c) else 0
+                     for c in cent])
+    sm = running_median(np.minimum(near, 2), smooth)
     multi = np.flatnonzero(sm != 1)
     first_single = int(multi[-1]) + 1 if multi.size else 0
     if sm[-1] == 1 and K - first_single >= min_periods:
         # the first period of the final single state, in the raw counts (the median lags by < smooth)
         k = first_single
-        while k > 0 and counts[k - 1] == 1:
+        while k > 0 and near[k - 1] == 1:
             k -= 1
         if k == 0:      # two humps in the first period only: merged at the first single one
-            k = int(np.flatnonzero(counts == 1)[0])
+            k = int(np.flatnonzero(near == 1)[0])
         after = np.arange(k, K)
         drift = np.polyfit(after, _unwrap(big[after], N, periodic), 1)[0] if after.size >= 2 else np.nan
         return Outcome("merge", merge_period=float((starts[k] - starts[0]) / period),
                        drift_velocity=float(drift), separation0=sep0, **base)
     if _crossed(cent, counts, N, periodic):
         return Outcome("transmit", separation0=sep0, **base)
-    two = counts >= 2
-    grown = np.where(two, sep, np.nan) - sep0
-    if np.nanmax(grown) >= repel_sites:
-        target = 0.8 * np.nanmax(grown)
-        stop = int(np.flatnonzero(grown >= target)[0])
-        ks = np.flatnonzero(two[:stop + 1])
-        v = np.polyfit(ks, sep[ks], 1)[0] if ks.size >= 2 else np.nan
-        return Outcome("repel", separation_velocity=float(v), separation0=sep0, **base)
     return Outcome("bound", separation0=sep0, **base)
 
 
