@@ -104,3 +104,9 @@ def test_breathers_that_overlap_and_come_apart_are_not_merged():
 
 def test_outcome_codes_are_the_index_in_OUTCOMES():
     assert [I.Outcome(o).code for o in I.OUTCOMES] == list(range(len(I.OUTCOMES)))
+
+
+def test_the_loc1_figure_names_the_outcomes_as_the_measure_codes_them():
+    from cradle.figures import localised
+
+    assert localised.OUTCOME_NAMES == I.OUTCOMES

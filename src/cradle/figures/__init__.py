@@ -104,6 +104,7 @@ DATASET_FIGURES = {
     "floquet": "floquet.floquet",
     "mi-growth": "mi.mi_growth",
     "mi-statistics": "mi.mi_statistics",
+    "breather-interactions": "interactions.breather_interactions",
 }
 
 #: Drawn from several analysis files by its own rule (``workprecision.draw``).

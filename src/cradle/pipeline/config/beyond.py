@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 
+from .breather_interactions import BreatherInteractions
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
 from .spec import declared, param
@@ -192,13 +193,16 @@ class MIGrowth:
               "rates measured in the scenes' runs (cradle.analyses.migrowth, target mi_growth), the threshold "
               "statistics over noise seeds (cradle.analyses.mistatistics, targets mi_statistics and "
               "mi_statistics_full) and the Bloch-Floquet stability of the exact waves (cradle.analyses.floquet, "
-              "target floquet).")
+              "target floquet), and the collisions of two breathers in both models "
+              "(cradle.analyses.breather_interactions, targets breather_interactions and breather_interactions_full).")
 class Beyond:
     theorem1: Theorem1 = param(Theorem1(), Theorem1.__schema_doc__)
     mi_diagram: MIDiagram = param(MIDiagram(), MIDiagram.__schema_doc__)
     mi_growth: MIGrowth = param(MIGrowth(), MIGrowth.__schema_doc__)
     mi_statistics: MIStatistics = param(MIStatistics(), MIStatistics.__schema_doc__)
     floquet: Floquet = param(Floquet(), Floquet.__schema_doc__)
+    breather_interactions: BreatherInteractions = param(BreatherInteractions(),
+                                                        BreatherInteractions.__schema_doc__)
 
     @staticmethod
     def check(b, cfg: dict, out) -> None:
@@ -207,7 +211,7 @@ class Beyond:
             return
         path = ["beyond"]
         sec = {k: (b.get(k) if isinstance(b.get(k), dict) else {}) for k in
-               ("theorem1", "mi_diagram", "mi_growth", "mi_statistics", "floquet")}
+               ("theorem1", "mi_diagram", "mi_growth", "mi_statistics", "floquet", "breather_interactions")}
         Theorem1.check(sec["theorem1"], path + ["theorem1"], out)
         MIDiagram.check(sec["mi_diagram"], path + ["mi_diagram"], out)
         MIGrowth.check(sec["mi_growth"], path + ["mi_growth"], cfg, out)
@@ -216,3 +220,4 @@ class Beyond:
             if isinstance(v, dict):
                 MIVariant.check(v, path + ["mi_statistics", variant], out)
         Floquet.check(sec["floquet"], path + ["floquet"], out)
+        BreatherInteractions.check(sec["breather_interactions"], path + ["breather_interactions"], out)
