@@ -43,7 +43,7 @@ def run_pair(data, t_end: float, alpha: float = 1.5, bc: str = "periodic", model
     """Integrate ``data`` (InitialData) to ``t_end`` in each of ``models``; per model a dict with the
     :class:`~cradle.measurements.interactions.Outcome`, the share of the norm held by the largest
     breather at the start and the end (norm_share_0, norm_share_end) and the wall time; with ``keep``
-    also t and force."""
+    also t, x and force."""
     from cradle.integrators import integrate_dps, integrate_lattice
 
     N = data.x0.size
@@ -72,6 +72,6 @@ def run_pair(data, t_end: float, alpha: float = 1.5, bc: str = "periodic", model
                "norm_share_end": largest_share(rho1, c1, N, periodic), "wall_time_s": float(wall),
                "periods": float(times[-1] / period)}
         if keep:
-            res.update({"t": times, "force": force})
+            res.update({"t": times, "x": x, "force": force})
         out[model] = res
     return out

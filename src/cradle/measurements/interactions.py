@@ -181,6 +181,20 @@ def _crossed(cent, counts, N, periodic) -> bool:
     return bool(start_sign is not None and np.sign(end) != start_sign and abs(end) >= 1.0)
 
 
+def _drift(P, big, reach: float, periodic: bool) -> float:
+    """Velocity (sites per period) of the merged breather: slope of the P-weighted centre of the sites
+    within ``reach`` of a fixed point (the median position of the largest hump, unwrapped), so that a
+    merged breather showing a ragged or double top does not jump between its two sides."""
+    N = P.shape[1]
+    u = _unwrap(big, N, periodic)
+    m = float(np.median(u))
+    n = np.arange(int(np.floor(m - reach)), int(np.ceil(m + reach)) + 1)
+    n = n[np.abs(n - m) <= reach]
+    w = P[:, n % N] if periodic else P[:, np.clip(n, 0, N - 1)]
+    centre = (w * n).sum(axis=1) / w.sum(axis=1)
+    return float(np.polyfit(np.arange(len(centre)), centre, 1)[0])
+
+
 def classify(t, field, period: float, *, periodic: bool = True, rel: float = REL, dip: float = DIP,
              smooth: int = SMOOTH, min_periods: float = MIN_PERIODS,
              repel_sites: float = REPEL_SITES) -> Outcome:
@@ -231,7 +245,7 @@ def classify(t, field, period: float, *, periodic: bool = True, rel: float = REL
         if k == 0:      # two humps in the first period only: merged at the first single one
             k = int(np.flatnonzero(near == 1)[0])
         after = np.arange(k, K)
-        drift = np.polyfit(after, _unwrap(big[after], N, periodic), 1)[0] if after.size >= 2 else np.nan
+        drift = _drift(P[after], big[after], reach, periodic) if after.size >= 2 else np.nan
         return Outcome("merge", merge_period=float((starts[k] - starts[0]) / period),
                        drift_velocity=float(drift), separation0=sep0, **base)
     if _crossed(cent, counts, N, periodic):
