@@ -10,7 +10,7 @@ ring, started from (ansatzapproxst2) at tau = 0 of (breatherdps), run in (nc) an
 * the relative phase theta on the carrier: ``n_theta`` values in [0, 2 pi), refined by bisection
   between neighbours whose outcome differs (``refine`` levels); theta other than 0, pi gives
   the copies the ansatz velocities of (ansatzapproxst2) (a complex A_n(0)),
-* the amplitude ratio and the overall amplitude (at theta = 0 and pi),
+* the amplitude ratio and the overall amplitude, one at a time (at ``amplitude_thetas``, 0 and pi),
 * ``n_seeds`` noise seeds per case: A_n(0) += noise * amplitude / 2 * xi_n, xi_n ~ N(0, 1) from
   numpy's default_rng((seed_base, seed)) (bitwise reproducible).
 
@@ -95,8 +95,8 @@ def _modal(codes):
 
 def run_batch(spec: dict, pair: str, spacing: float, log=None) -> list[dict]:
     """Every case of one (pair, spacing): the theta grid at ratio 1 and the base amplitude, refined where the
-    modal outcome (over seeds, exact model) changes between neighbours; then ratios x amplitudes at
-    ``amplitude_thetas``. Returns one dict per case."""
+    modal outcome (over seeds, exact model) changes between neighbours; then the ratios (at the base
+    amplitude) and the amplitudes (at ratio 1) at ``amplitude_thetas``. Returns one dict per case."""
     say = log or (lambda *a: None)
     seeds = range(int(spec["n_seeds"]))
     A, rows = float(spec["amplitude"]), []
@@ -123,12 +123,14 @@ def run_batch(spec: dict, pair: str, spacing: float, log=None) -> list[dict]:
                     grid[mid] = cases(mid, 1.0, A, 1)
     for rs in grid.values():
         rows += rs
+    # one parameter at a time: the ratios at the base amplitude, the amplitudes at ratio 1 (the base case
+    # itself is in the theta grid when its theta is)
+    combos = [(r, A) for r in spec["ratios"]] + [(1.0, a) for a in spec["amplitudes"]]
     for th in spec["amplitude_thetas"]:
-        for ratio in spec["ratios"]:
-            for amp in spec["amplitudes"]:
-                if ratio == 1.0 and amp == A and any(abs(th - t) < 1e-12 for t in grid):
-                    continue
-                rows += cases(th, ratio, amp, 2)
+        for ratio, amp in dict.fromkeys(combos):
+            if ratio == 1.0 and amp == A and any(abs(th - t) < 1e-12 for t in grid):
+                continue
+            rows += cases(th, ratio, amp, 2)
     say(f"{pair} spacing {spacing:g}: {len(rows)} cases in {time.perf_counter() - t0:.1f} s")
     return rows
 

@@ -48,10 +48,10 @@ class BreatherInteractions:
                            minimum=0)
     periods: float = param(600.0, "Run length in breather periods 2 pi / omega_sw (the paper: up to 600).",
                            exclusiveMinimum=0, maximum=5000)
-    ratios: list[float] = param([0.8, 1.0, 1.25], "Amplitude ratios (second copy / first) of the amplitude sweep.",
+    ratios: list[float] = param([0.8, 1.0, 1.25], "Amplitude ratios (second copy / first) of the amplitude sweep, at the base amplitude.",
                                 minItems=1, maxItems=8, items={"type": "number", "exclusiveMinimum": 0,
                                                                "maximum": 10})
-    amplitudes: list[float] = param([0.005, 0.01, 0.02], "Overall amplitudes of the amplitude sweep.", minItems=1,
+    amplitudes: list[float] = param([0.005, 0.01, 0.02], "Overall amplitudes of the amplitude sweep, at ratio 1.", minItems=1,
                                     maxItems=8, items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.1})
     amplitude_thetas: list[float] = param([0.0, 3.141592653589793], "Phases (radians) of the amplitude sweep.",
                                           minItems=1, maxItems=8, items=_THETA)
