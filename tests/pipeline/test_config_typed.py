@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import beyond, floquet, mi_statistics, scenes, sections
+from cradle.pipeline.config import beyond, breather_interactions, floquet, mi_statistics, scenes, sections
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -21,8 +21,10 @@ CONFIG = ROOT / "config.yaml"
 # into typed declarations changed none of them; a deliberate change of config.yaml or of a resolved_*
 # function changes this hash: check the difference, then update it. (Updated once since: the new
 # keys beyond.floquet.reduced and work_precision.reduced, the reduced forms `all` builds; every other
-# value unchanged.)
-RESOLVED_SHA256 = "ce7541ea2d4d3e9b4cfa1320faa9aac9d8726b89bd4439e7655058d37eba6ba1"
+# value unchanged. Then issue 13: the new section beyond.breather_interactions, and the loc1 scenes set to
+# the readings of docs/loc1-readings.md: loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2
+# envelope; every other value unchanged.)
+RESOLVED_SHA256 = "3967308d55e6aafca346b694fb60ecdc2491b9edc5d095933aed7b4e21e7c698"
 
 
 @pytest.fixture(scope="module")
@@ -44,6 +46,7 @@ def _everything_resolved(config) -> dict:
         "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
         "floquet": cc.resolved_floquet(cfg),
         "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
+        "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
         "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
         "work_precision_reduced": {n: cc.resolved_work_precision(cfg, n, "reduced")
                                    for n in cfg["work_precision"]["reduced"]["scenes"]},
@@ -65,7 +68,7 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 
 def test_declarations_are_frozen_and_every_field_described():
-    classes = [c for m in (scenes, sections, beyond, floquet, mi_statistics) for c in vars(m).values()
+    classes = [c for m in (scenes, sections, beyond, floquet, mi_statistics, breather_interactions) for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:
