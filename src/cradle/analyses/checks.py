@@ -267,7 +267,7 @@ def half_period(res: Results, scene, site, paper="83", t_exact=569.4, t_approx=5
     """plot18: periods until exact and approximate are half a period apart. The paper's "approximately 83"
     is its own reading of the time shift of its figure, t_exact - t_approx = 3.45 at t ~ 569: a lag
     growing as t dw/w reaches half a period pi/w after w/(2 dw) = t/(2 lag) periods, 82.0 (t = 565.95) to
-    82.5 (t = 569.4); the times are printed to 0.05 (lag 3.45 +- 0.05: 81.3 to 83.7). Tolerance: one unit
+    82.5 (t = 569.4); the times are printed to 0.05 (lag 3.45 +- 0.05: 80.9 to 83.7). Tolerance: one unit
     of the printed 83."""
     ex, ap = res.sim(scene, "exact"), res.sim(scene, "dps")
     w = float(ex.attrs["omega_sw"])
