@@ -246,7 +246,7 @@ def classify(t, field, period: float, *, periodic: bool = True, rel: float = REL
             k = int(np.flatnonzero(near == 1)[0])
         after = np.arange(k, K)
         drift = _drift(P[after], big[after], reach, periodic) if after.size >= 2 else np.nan
-        return Outcome("merge", merge_period=float((starts[k] - starts[0]) / period),
+        return Outcome("merge", merge_period=float(k),
                        drift_velocity=float(drift), separation0=sep0, **base)
     if _crossed(cent, counts, N, periodic):
         return Outcome("transmit", separation0=sep0, **base)
