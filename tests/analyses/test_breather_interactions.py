@@ -15,9 +15,9 @@ from cradle.pipeline import config as cc
 
 ROOT = Path(__file__).resolve().parents[2]
 N, ALPHA = 50, 1.5
-TINY = dict(N=N, alpha=ALPHA, amplitude=0.01, pairs=["site-site"], spacings=[2, 6], n_theta=2, refine=0, n_seeds=1,
-            noise=0.01, seed_base=20261122, periods=100.0, ratios=[1.0], amplitudes=[0.01], amplitude_thetas=[0.0],
-            chunks=1)
+TINY = {"N": N, "alpha": ALPHA, "amplitude": 0.01, "pairs": ["site-site"], "spacings": [2, 6], "n_theta": 2,
+        "refine": 0, "n_seeds": 1, "noise": 0.01, "seed_base": 20261122, "periods": 100.0, "ratios": [1.0],
+        "amplitudes": [0.01], "amplitude_thetas": [0.0], "chunks": 1}
 
 
 def _pair(spacing, theta, prof=("site", "site")):
@@ -28,7 +28,10 @@ def _pair(spacing, theta, prof=("site", "site")):
 def test_two_breathers_data_are_the_copies_with_the_carrier_phase():
     d = _pair(20, 0.0)
     e, c0, _ = pairs.envelope_profile(N, "site", ALPHA)
-    # far apart, each copy is (-1)^n e_{n - c} scaled to peak 0.01; theta = 0, pi: real A, v_n(0) = 0
+    # x_n(0) = 2 Re A_n(0): each copy (-1)^n e_{n - c} scaled to peak 0.01, at c = 15 and 35
+    sign = (-1.0) ** np.arange(N)
+    want = 0.01 / e.max() * sign * (np.roll(e, 15 - int(c0)) + np.roll(e, 35 - int(c0)))
+    assert np.max(np.abs(d.x0 - want)) <= 1e-15
     assert np.max(np.abs(d.x0[:25])) == pytest.approx(0.01, rel=1e-6)
     assert np.max(np.abs(d.v0)) == 0.0
     assert np.sign(d.x0[15]) == np.sign(d.x0[35])           # in phase: same sign at sites of equal parity

@@ -61,7 +61,7 @@ def test_a_harmonic_is_a_coherent_peak_above_the_local_band():
     assert sidebands.harmonic_over_band(k, np.abs(coherent), q, "2(q-pi)") > 50
     rng = np.random.default_rng(20261122)
     band = sum(0.07 * np.cos(2 * np.pi * j / N * n + rng.uniform(0, 2 * np.pi))
-               for j in range(int(round(h * N / (2 * np.pi))) - 12, int(round(h * N / (2 * np.pi))) + 13))
+               for j in range(round(h * N / (2 * np.pi)) - 12, round(h * N / (2 * np.pi)) + 13))
     k, broad = compare.spatial_dft(np.cos(q * n) + band)
     assert sidebands.harmonic_height(k, np.abs(broad), q, "2(q-pi)") > checks.HARMONIC_PRESENT
     assert sidebands.harmonic_over_band(k, np.abs(broad), q, "2(q-pi)") < checks.PEAK_OVER_BAND
