@@ -224,7 +224,7 @@ def classify(t, field, period: float, *, periodic: bool = True, rel: float = REL
     overlap = np.flatnonzero(pair < 2)
     k_ov = int(overlap[0]) if overlap.size else K
     grown = (np.where(two, sep, np.nan) - sep0)[:k_ov]
-    if grown.size and np.nanmax(grown) >= repel_sites:
+    if np.any(np.isfinite(grown)) and np.nanmax(grown) >= repel_sites:
         stop = int(np.flatnonzero(grown >= 0.8 * np.nanmax(grown))[0])
         ks = np.flatnonzero(two[:stop + 1])
         v = np.polyfit(ks, sep[ks], 1)[0] if ks.size >= 2 else np.nan
