@@ -147,12 +147,12 @@ _CASE = {
     "amplitude": Var(("case",), "peak |x_n(0)| of the first copy alone"),
     "seed": Var(("case",), "noise seed: A_n(0) += noise amplitude / 2 xi_n, xi ~ default_rng((seed_base, seed))"),
     "sweep": Var(("case",), "which sweep the case belongs to",
-                 attrs=(("flag_values", "0 1 2"), ("flag_meanings", "theta_grid theta_refined amplitude_ratio"))),
+                 attrs=(("flag_values", (0, 1, 2)), ("flag_meanings", "theta_grid theta_refined amplitude_ratio"))),
 }
 for _m, _model in (("exact", "exact (nc)"), ("dps", "DpS (dfnls)/(ansatz)")):
     _CASE.update({
         f"outcome_{_m}": Var(("case",), f"interaction outcome, {_model}",
-                             attrs=(("flag_values", "0 1 2 3 4"),
+                             attrs=(("flag_values", (0, 1, 2, 3, 4)),
                                     ("flag_meanings", "merge bound repel transmit none"))),
         f"merge_period_{_m}": Var(("case",), f"merging time in breather periods, {_model} (NaN: no merge)"),
         f"separation_velocity_{_m}": Var(("case",), f"separation velocity of a repelled pair, {_model} "
@@ -175,7 +175,7 @@ for _m, _model in (("exact", "exact (nc)"), ("dps", "DpS")):
     _MAPS.update({
         f"merge_share_{_m}": Var(("pair", "spacing", "theta"), f"share of the seeds that merge, {_model}"),
         f"modal_outcome_{_m}": Var(("pair", "spacing", "theta"), f"most frequent outcome over seeds, {_model}",
-                                   attrs=(("flag_values", "0 1 2 3 4"),
+                                   attrs=(("flag_values", (0.0, 1.0, 2.0, 3.0, 4.0)),
                                           ("flag_meanings", "merge bound repel transmit none"))),
         f"median_merge_period_{_m}": Var(("pair", "spacing", "theta"),
                                          f"median merging period over the seeds that merge, {_model}"),
@@ -188,6 +188,9 @@ VARIABLES = {"/": {}, "/cases": _CASE, "/maps": _MAPS}
 def case_table(rows: list[dict]) -> dict:
     """Columns of the /cases group from case dicts (pairs as strings)."""
     cols = {k: np.array([r[k] for r in rows]) for k in rows[0]} if rows else {}
+    for k in ("sweep", "outcome_exact", "outcome_dps", "seed"):    # integer flags, as their flag_values
+        if k in cols:
+            cols[k] = cols[k].astype(np.int64)
     if rows:
         me, md = cols["merge_period_exact"], cols["merge_period_dps"]
         with np.errstate(invalid="ignore", divide="ignore"):

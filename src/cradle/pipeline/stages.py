@@ -281,7 +281,7 @@ def localised_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset) -> tuple[dict, d
         for model, ds in (("exact", exact_ds), ("dps", dps_ds)):
             oc = interactions.classify(t, ds["x"].values, period, periodic=periodic)
             data[f"merging_time_{model}"] = oc.merge_period
-            data[f"outcome_{model}"] = np.int8(oc.code)
+            data[f"outcome_{model}"] = np.int64(oc.code)
     elif kind == "breather":
         x = exact_ds["x"].values
         site = int(np.argmax(np.abs(x[0])))
