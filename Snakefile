@@ -30,6 +30,7 @@ include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/checks.smk"
 include: "workflow/rules/analyses.smk"
 include: "workflow/rules/mi.smk"
+include: "workflow/rules/interactions.smk"
 
 
 PAPER = figure_targets() + [L.path("checks", ext=ext) for ext in ("csv", "md")]

@@ -43,3 +43,25 @@ def test_missing_scenes_leave_their_rows_out(tmp_path):
     rows = checks.paper_checks(tmp_path, scenes=[], homoclinic=[])
     labels = {r.label for r in rows}
     assert labels == {"(tau0)", "traj2"}
+
+
+def test_every_row_states_its_tolerance():
+    rows = checks.closed_forms() + checks.periodic_orbits()
+    assert all(r.tolerance for r in rows)
+    assert checks.to_csv(rows).splitlines()[0].split(",")[4] == "tolerance"
+
+
+def test_a_harmonic_is_a_coherent_peak_above_the_local_band():
+    """A pure harmonic on a flat floor stands far above its band; the same height inside a broad band of
+    random-phase modes (an instability band, fft344 DpS) does not."""
+    N, q = 200, 57 * np.pi / 100
+    n = np.arange(N)
+    h = 2 * (q - np.pi)
+    k, coherent = compare.spatial_dft(np.cos(q * n) + 0.07 * np.cos(h * n) + 1e-3 * np.cos(0.3 * n))
+    assert sidebands.harmonic_over_band(k, np.abs(coherent), q, "2(q-pi)") > 50
+    rng = np.random.default_rng(20261122)
+    band = sum(0.07 * np.cos(2 * np.pi * j / N * n + rng.uniform(0, 2 * np.pi))
+               for j in range(round(h * N / (2 * np.pi)) - 12, round(h * N / (2 * np.pi)) + 13))
+    k, broad = compare.spatial_dft(np.cos(q * n) + band)
+    assert sidebands.harmonic_height(k, np.abs(broad), q, "2(q-pi)") > checks.HARMONIC_PRESENT
+    assert sidebands.harmonic_over_band(k, np.abs(broad), q, "2(q-pi)") < checks.PEAK_OVER_BAND

@@ -1,5 +1,5 @@
 """Section 4.3 (plot18, loc1, fini): the packet and pair initial kinds, the free-end
-homoclinic solution, merging_time on synthetic data, and the three drawing functions."""
+homoclinic solution, the pair's outcome in the metrics on synthetic data, and the three drawing functions."""
 import copy
 from pathlib import Path
 
@@ -10,7 +10,7 @@ import xarray as xr
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.measurements import breathers
+from cradle.measurements import breathers, interactions
 from cradle.models import dps, homoclinic, initial, lattice
 from cradle.pipeline import stages
 from cradle.figures import localised, registry
@@ -162,11 +162,11 @@ def test_free_end_bond_homoclinic_on_ten_beads():
     assert s2 == pytest.approx(sd, rel=1e-12)
 
 
-# ------------------------------------------------------------------ merging_time
+# ------------------------------------------------------------------ the pair's outcome in the metrics
 
 def _breathers(halves, period=2 * np.pi / 1.1, N=30, dt=0.25):
-    """Synthetic forces of breathers at N/2 -+ half(t), breathing at omega = 2 pi / period:
-    ``halves(t)`` gives the half-separation (0: one breather at N/2)."""
+    """Synthetic displacements and forces of breathers at N/2 -+ half(t), breathing at omega = 2 pi /
+    period: ``halves(t)`` gives the half-separation (0: one breather at N/2)."""
     n_periods = 200
     t = np.arange(0, n_periods * period + 1e-9, dt)
     n = np.arange(N)
@@ -174,8 +174,9 @@ def _breathers(halves, period=2 * np.pi / 1.1, N=30, dt=0.25):
     bump = lambda x0: np.exp(-0.5 * ((n[None, :] - x0[:, None]) / 0.7) ** 2)  # noqa: E731
     shape = np.where(half[:, None] > 0, bump(N / 2 - half) + bump(N / 2 + half), bump(N / 2 + 0 * half))
     shape /= shape.max(axis=1, keepdims=True)
+    x = 1e-2 * (-1.0) ** n[None, :] * shape * np.cos(2 * np.pi / period * t)[:, None]
     force = -np.maximum(np.cos(2 * np.pi / period * t), 0)[:, None] ** 1.5 * 1e-3 * shape
-    return {"t": t, "force": force}
+    return {"t": t, "x": x, "force": force}
 
 
 T = 2 * np.pi / 1.1
@@ -186,39 +187,6 @@ def _merge_at(t_merge):
     return _breathers(lambda t: np.where(t < t_merge, 3.0, 0.0))
 
 
-def test_merging_time_finds_a_known_merge():
-    # the period holding t_merge still shows both breathers: the merge is the next period
-    assert breathers.merging_time(_merge_at(80.5 * T), T) == 81.0
-    assert breathers.merging_time(_merge_at(80.0 * T - 1e-6), T) == 80.0
-
-
-def test_merging_time_none_zero_late_and_transient_overlap():
-    assert np.isnan(breathers.merging_time(_breathers(lambda t: np.full(t.size, 3.0)), T))   # never
-    assert breathers.merging_time(_breathers(lambda t: np.zeros(t.size)), T) == 0.0          # always one
-    late = _merge_at(190.5 * T)                      # merged only 9 periods before the end: not "for good"
-    assert np.isnan(breathers.merging_time(late, T, min_periods=50))
-    assert breathers.merging_time(late, T, min_periods=5) == 191.0
-    # two breathers that overlap for 20 periods and separate again (they cross or bounce): no merge
-    bounce = _breathers(lambda t: np.where((t > 90 * T) & (t < 110 * T), 0.0, 3.0))
-    assert np.isnan(breathers.merging_time(bounce, T))
-
-
-def test_merging_time_reads_the_period_from_attrs():
-    d = _merge_at(80.5 * T)
-    ds = xr.Dataset({"force": (("t", "n"), d["force"])}, coords={"t": d["t"]}, attrs={"omega_sw": 1.1})
-    assert breathers.merging_time(ds) == 81.0
-
-
-def test_count_humps_wraps_around_a_ring():
-    p = np.zeros(12)
-    p[[0, 11]] = 1.0
-    assert breathers.count_humps(p) == 1
-    assert breathers.count_humps(p, periodic=False) == 2
-    p[6] = 0.9
-    assert breathers.count_humps(p) == 2
-    assert breathers.count_humps(np.zeros(5)) == 0
-
-
 def test_frequency_and_half_period_shift():
     t = np.arange(0, 600, 0.1)
     assert breathers.frequency_from_crossings(t, np.cos(1.1 * t + 0.3)) == pytest.approx(1.1, rel=1e-6)
@@ -226,22 +194,25 @@ def test_frequency_and_half_period_shift():
     assert sh["half_shift_periods"] == pytest.approx((np.pi / 0.01) / (2 * np.pi / 1.1), rel=1e-3)
 
 
-def _pair_run(t_merge, x_scale=1e-3):
-    """A synthetic run of kind "pair" (forces of _merge_at, any displacements) as the sim files hold it."""
+def _pair_run(t_merge):
+    """A synthetic run of kind "pair" (displacements and forces of _merge_at) as the sim files hold it."""
     d = _merge_at(t_merge)
     N = d["force"].shape[1]
-    x = x_scale * np.sin(np.arange(N))[None, :] * np.cos(1.1 * d["t"])[:, None]
-    return xr.Dataset({"x": (("t", "n"), x), "force": (("t", "n"), d["force"])},
+    return xr.Dataset({"x": (("t", "n"), d["x"]), "force": (("t", "n"), d["force"])},
                       coords={"t": d["t"], "n": np.arange(N)},
                       attrs={"omega_sw": 1.1, "bc": "periodic", "initial_kind": "pair", "alpha": ALPHA})
 
 
-def test_metrics_stage_stores_the_merging_times_of_the_measurement():
+def test_metrics_stage_stores_the_outcome_of_the_interaction_measure():
     ex, ap = _pair_run(80.5 * T), _pair_run(60.2 * T)
     m = stages.metrics({}, ex, ap, "pair")
     for model, run in (("exact", ex), ("dps", ap)):
-        assert float(m[f"merging_time_{model}"]) == breathers.merging_time(run, 2.0 * np.pi / 1.1, periodic=True)
+        oc = interactions.classify_run(run)
+        assert oc.outcome == "merge"
+        assert float(m[f"merging_time_{model}"]) == oc.merge_period
+        assert int(m[f"outcome_{model}"]) == interactions.OUTCOMES.index("merge")
         assert m[f"merging_time_{model}"].attrs["units"] == "1" and m[f"merging_time_{model}"].attrs["long_name"]
+    # the period holding t_merge still shows both breathers: the merge is the next period
     assert localised.loc1_merging_times({"metrics": m}) == {"exact": 81.0, "dps": 61.0}
     # the peak compression the loc1 diagrams bin by period is the measurement's, on every bond
     starts, P = breathers.peak_compression(ex["t"].values, ex["force"].values, 2.0 * np.pi / 1.1)

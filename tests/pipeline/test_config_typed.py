@@ -12,7 +12,8 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import beyond, breathers, floquet, mi_statistics, scenes, sections
+from cradle.pipeline.config import (beyond, breather_interactions, breathers, floquet, mi_statistics, scenes,
+                                    sections)
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -21,9 +22,10 @@ CONFIG = ROOT / "config.yaml"
 # into typed declarations changed none of them; a deliberate change of config.yaml or of a resolved_*
 # function changes this hash: check the difference, then update it. (Updated once since: the new
 # keys beyond.floquet.reduced and work_precision.reduced, the reduced forms `all` builds; every other
-# value unchanged. And once more: the new section beyond.breathers and its reduced form; every other value
-# unchanged.)
-RESOLVED_SHA256 = "194cda6035e580efbb36c153e9f5260fbc8b5ac5953d6d1f407b9fdfe0020e3e"
+# value unchanged. Then issue 14: the new section beyond.breathers and its reduced form. Then issue 13: the new
+# section beyond.breather_interactions, and the loc1 scenes set to the readings of docs/loc1-readings.md:
+# loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope; every other value unchanged.)
+RESOLVED_SHA256 = "93f5d1f15e9fc364327f2a0928ae04f8b6de55a7cde0af2d377fc8455c8e8091"
 
 
 @pytest.fixture(scope="module")
@@ -47,6 +49,7 @@ def _everything_resolved(config) -> dict:
         "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
         "breathers": cc.resolved_breathers(cfg),
         "breathers_reduced": cc.resolved_breathers(cfg, "reduced"),
+        "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
         "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
         "work_precision_reduced": {n: cc.resolved_work_precision(cfg, n, "reduced")
                                    for n in cfg["work_precision"]["reduced"]["scenes"]},
@@ -68,7 +71,8 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 
 def test_declarations_are_frozen_and_every_field_described():
-    classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics) for c in vars(m).values()
+    classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics, breather_interactions)
+               for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:

@@ -34,6 +34,7 @@ class Analysis:
     title: str = ""
     reads_scenes: str = ""  # key under `beyond:` whose `scenes` list names the scenes whose runs it reads
     reads_batches: bool = False  # its input is the mi-statistics batches of its form
+    batches: str = ""       # cradle.analyses.<batches>.batch_files(spec, form): its batch files (its own rules)
 
     @property
     def target(self) -> str:
@@ -67,6 +68,8 @@ class Analysis:
             spec = self.spec(config, form)
             files += [layout.path("mi-batch", variant=form, N=N, model=m, chunk=c) for N in spec["N"]
                       for m in mistatistics.MODELS for c in range(int(spec["chunks"]))]
+        if self.batches:
+            files += import_module(f"cradle.analyses.{self.batches}").batch_files(self.spec(config, form), form)
         return files
 
     def compute(self, spec: dict, files=(), scenes=None, log=None):
@@ -88,4 +91,7 @@ ANALYSES: dict[str, Analysis] = {a.name: a for a in (
              title="Bloch-Floquet stability of the exact travelling waves against the DpS threshold"),
     Analysis("breathers", "breathers", "run", "breathers", forms=(REDUCED, FULL),
              title="Exact breathers of (nc): families, Floquet stability, Peierls-Nabarro barrier, distance to DpS"),
+    Analysis("breather-interactions", "breather_interactions", "run", "interactions", forms=(REDUCED, FULL),
+             batches="breather_interactions",
+             title="Collisions of two breathers, exact (nc) against DpS (dfnls): outcome statistics (loc1)"),
 )}

@@ -105,6 +105,7 @@ DATASET_FIGURES = {
     "mi-growth": "mi.mi_growth",
     "mi-statistics": "mi.mi_statistics",
     "breathers": "breathers.breathers",
+    "breather-interactions": "interactions.breather_interactions",
 }
 
 #: Drawn from several analysis files by its own rule (``workprecision.draw``).

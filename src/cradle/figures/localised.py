@@ -121,8 +121,19 @@ def loc1_merging_times(sim) -> dict:
     return {m: float(_stored(sim["metrics"], f"merging_time_{m}")) for m in ("exact", "dps")}
 
 
-def _periods_text(value, total) -> str:
-    return f"none within {total:.0f} periods" if not np.isfinite(value) else f"after {value:.0f} periods"
+#: outcome codes of cradle.measurements.interactions.OUTCOMES (stored as outcome_{exact,dps}; the figure
+#: modules import no numerical module, so the names are restated here and checked by a test)
+OUTCOME_NAMES = ("merge", "bound", "repel", "transmit", "none")
+#: the paper's merging times of loc1 (right): "around 175 multiples of the breather period for the exact
+#: solution, and twice more for the approximate solution"
+PAPER_MERGING = {"exact": "~175", "dps": "~350"}
+
+
+def _periods_text(value, total, outcome=None) -> str:
+    if np.isfinite(value):
+        return f"after {value:.0f} periods"
+    what = f" ({OUTCOME_NAMES[int(outcome)]})" if outcome is not None else ""
+    return f"none within {total:.0f} periods{what}"
 
 
 def draw_loc1(data, options):
@@ -149,7 +160,9 @@ def draw_loc1(data, options):
         for i, (ds, label, key) in enumerate(((ex, "exact (nc)", "exact"), (ap, "approx. (DpS)", "dps")), start=1):
             title = f"{label}, min force per period $2\\pi/{omega:.4g}$"
             if merge is not None:
-                title += f"\nmerging: {_periods_text(merge[key], t_end / period)}"
+                outcome = _stored(m, f"outcome_{key}") if f"outcome_{key}" in m else None
+                title += (f"\nmerging: {_periods_text(merge[key], t_end / period, outcome)} "
+                          f"(paper: {PAPER_MERGING[key]})")
             img = spacetime(axes[i, j], ds, vmin, title=title, binned=period_minimum(m, key))
         fig.colorbar(img, ax=axes[1:, j], label=FORCE_LABEL, shrink=0.8)
     return fig

@@ -1,8 +1,8 @@
 """Measurements on breathers from stored trajectories (section 4.3, figures plot18, loc1, fini).
 
 Pure numpy on arrays: the peak compression of every bond per breather
-period, the number of breathers it shows, the merging time of two breathers
-(loc1), a breather's frequency from zero crossings and the number of
+period (the outcome of two interacting breathers, loc1, is
+:mod:`cradle.measurements.interactions`), a breather's frequency from zero crossings and the number of
 periods after which exact and approximate solutions drift half a period
 apart (plot18, fini), the amplitude radiated away from a breather's core
 (plot18, large amplitude).
@@ -10,12 +10,6 @@ apart (plot18, fini), the amplitude radiated away from a breather's core
 from __future__ import annotations
 
 import numpy as np
-
-# merging_time: a breather is a run of consecutive bonds whose peak compression over one breather
-# period reaches MERGE_REL times the largest of that period; the merged state must last at least
-# MERGE_MIN_PERIODS periods before the end of the data to count (see merging_time).
-MERGE_REL = 0.5
-MERGE_MIN_PERIODS = 50.0
 
 
 def peak_compression(t, force, period):
@@ -42,67 +36,6 @@ def peak_compression(t, force, period):
         if rows.size:
             P[i] = rows.max(axis=0)
     return starts, P
-
-
-def count_humps(profile, rel=MERGE_REL, periodic=True) -> int:
-    """Number of humps of a non-negative profile: maximal runs of consecutive sites
-    (cyclically if ``periodic``) whose value is >= rel * max. 0 for an all-zero or NaN profile."""
-    p = np.asarray(profile, dtype=float)
-    top = np.nanmax(p) if np.any(np.isfinite(p)) else np.nan
-    if not np.isfinite(top) or top <= 0:
-        return 0
-    above = p >= rel * top
-    if above.all():
-        return 1
-    starts = above & ~np.roll(above, 1)          # a run begins where the previous site is below
-    if not periodic:
-        starts[0] = above[0]
-    return int(np.count_nonzero(starts))
-
-
-def merging_time(ds, period=None, *, rel=MERGE_REL, min_periods=MERGE_MIN_PERIODS, periodic=True) -> float:
-    """Merging time of two breathers, in breather periods, from stored forces.
-
-    ``ds`` is anything indexable by "t" (T,) and "force" (T, N) (an xarray
-    Dataset of results/sim/<scene>/{exact,dps}.nc or a dict of arrays);
-    ``period`` defaults to 2 pi / ds.attrs["omega_sw"]. Pure numpy on the
-    arrays.
-
-    Criterion. The time axis is cut into breather periods; in each, the
-    localisation profile is the peak compression max_t |f_n| of every bond
-    (:func:`peak_compression`). A breather is a maximal run of consecutive
-    bonds whose peak compression is at least ``rel`` times the period's
-    largest (:func:`count_humps`). The breathers have merged at the start of
-    the first period from which every later period shows a single such run;
-    that single-breather state must last at least ``min_periods`` periods
-    before the end of the data (otherwise a last transient overlap, e.g. two
-    travelling breathers crossing at the end, would count). Returns the
-    merging time in periods (t_merge - t_0) / period, 0.0 if the data hold a
-    single breather throughout, NaN if the breathers have not merged for good.
-    """
-    t = np.asarray(ds["t"], dtype=float)
-    force = np.asarray(ds["force"], dtype=float)
-    if period is None:
-        period = 2.0 * np.pi / float(ds.attrs["omega_sw"])
-    starts, P = peak_compression(t, force, period)
-    return merging_time_of_peaks(starts, P, t[0], period, rel=rel, min_periods=min_periods, periodic=periodic)
-
-
-def merging_time_of_peaks(starts, P, t0, period, *, rel=MERGE_REL, min_periods=MERGE_MIN_PERIODS,
-                          periodic=True) -> float:
-    """:func:`merging_time` from the peak compression ``P`` (K, N) of the periods starting at ``starts``
-    (:func:`peak_compression`; the streamed scene job accumulates them block by block)."""
-    if len(starts) == 0:
-        return float("nan")
-    counts = np.array([count_humps(p, rel, periodic) for p in P])
-    single = counts == 1
-    if not single[-1]:
-        return float("nan")
-    not_single = np.flatnonzero(~single)
-    first = int(not_single[-1]) + 1 if not_single.size else 0
-    if len(starts) - first < min_periods:
-        return float("nan")
-    return float((starts[first] - t0) / period)
 
 
 def frequency_from_crossings(t, x) -> float:

@@ -155,3 +155,23 @@ def harmonic_height(k, spectrum, q: float, which: str) -> float:
         return spectrum[..., jk == int(np.round(wrap(c) * N / (2.0 * np.pi))) % N].max(axis=-1)
     carrier = np.maximum(at(q), at(-q))
     return float(np.max([at(c) for c in harmonics(q)[which]]) / carrier)
+
+
+def harmonic_over_band(k, spectrum, q: float, which: str, half: int = 5) -> float:
+    """How far the harmonic ``which`` stands above the local band: |x_hat| at its bin over the median
+    |x_hat| of the ``half`` bins on each side (the bin itself left out), the larger of the two mirror
+    harmonics. A coherent harmonic of the carrier (fft106, fft344, exact) is a narrow peak: this ratio
+    is large; the same bin inside a broad band of unstable modes (DpS at t = 344.95 in fft344) is at
+    the band's level: the ratio is ~1."""
+    jk, N = _bins(k)
+    spectrum = np.asarray(spectrum, dtype=float)
+
+    def at(j):
+        return spectrum[..., jk == j % N].max(axis=-1)
+
+    best = 0.0
+    for c in harmonics(q)[which]:
+        j = int(np.round(wrap(c) * N / (2.0 * np.pi)))
+        band = np.median([at(j + d) for d in range(-half, half + 1) if d != 0])
+        best = max(best, float(at(j) / band) if band > 0 else float("inf"))
+    return best

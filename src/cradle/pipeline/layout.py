@@ -31,6 +31,7 @@ TEMPLATES = {
     "checks": "paper_checks.{ext}",
     # analyses beyond the paper: their files follow form_folder (below); here the batches some read
     "mi-batch": "mi/batch/{variant}/N{N}-{model}-{chunk}.nc",
+    "interactions-batch": "interactions/batch/{form}/{chunk}.nc",
     # bookkeeping
     "log": "logs/{job}.log",
     "benchmark": "benchmarks/{job}.tsv",

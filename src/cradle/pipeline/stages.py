@@ -18,7 +18,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from cradle.measurements import breathers, compare, sidebands
+from cradle.measurements import breathers, compare, interactions, sidebands
 from cradle.models import dps, initial, lattice
 from cradle.pipeline.io import make_dataset
 from cradle.pipeline.runner import StageFailure
@@ -285,7 +285,8 @@ def localised_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset) -> tuple[dict, d
     Every localised scene: the peak compression of every bond per breather period (loc1's
     diagrams). A breather: its frequency in both models at the site of largest |x_n(0)| and the
     half-period shift (plot18, fini), and the amplitude radiated beyond 6 sites of its core at
-    every stored time (plot18). A pair: the merging time of the two breathers in both models (loc1).
+    every stored time (plot18). A pair: the outcome (merge, bound, repel, ...) and merging time of the two
+    breathers in both models (loc1), by :func:`cradle.measurements.interactions.classify`.
     """
     kind = exact_ds.attrs["initial_kind"]
     periodic = exact_ds.attrs["bc"] == "periodic"
@@ -298,8 +299,12 @@ def localised_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset) -> tuple[dict, d
         data[f"peak_compression_{model}"] = P
     coords = {"t_window": starts}
     if kind == "pair":
+        # the outcome measure on the site profile max_t |x_n| per period (interactions.classify): the bond
+        # forces cannot resolve two breathers one site apart
         for model, ds in (("exact", exact_ds), ("dps", dps_ds)):
-            data[f"merging_time_{model}"] = breathers.merging_time(ds, period, periodic=periodic)
+            oc = interactions.classify(t, ds["x"].values, period, periodic=periodic)
+            data[f"merging_time_{model}"] = oc.merge_period
+            data[f"outcome_{model}"] = np.int64(oc.code)
     elif kind == "breather":
         x = exact_ds["x"].values
         site = int(np.argmax(np.abs(x[0])))

@@ -15,7 +15,7 @@ numbers per stored time, whatever the store:
 * the metrics of every stored time are those of :func:`cradle.pipeline.stages.metrics` on the
   block (with the row t = 0 in front, from which they take their scale, site and core); the ones
   over the whole run are accumulated: the peak compression per breather period, the merging
-  time of a pair, a breather's frequencies and half-period shift, E_max and E_final.
+  time and outcome of a pair, a breather's frequencies and half-period shift, E_max and E_final.
 
 So the files hold bitwise the values of the in-memory job (``tests/pipeline/test_streamed.py``);
 only their HDF5 chunking, ``wall_time_s`` and the ``streamed`` attribute differ. The four files
@@ -30,7 +30,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from cradle.measurements import breathers
+from cradle.measurements import breathers, interactions
 from cradle.models import lattice
 from cradle.pipeline import stages
 from cradle.pipeline.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
@@ -44,7 +44,8 @@ BLOCK_ARRAYS = 16
 
 #: metrics variables without t that this job computes over the whole run (the others are per stored time)
 WHOLE_RUN = ("breather_omega", "peak_compression_exact", "peak_compression_dps", "merging_time_exact",
-             "merging_time_dps", "breather_site", "omega_exact", "omega_approx", "half_shift_periods")
+             "merging_time_dps", "outcome_exact", "outcome_dps", "breather_site", "omega_exact", "omega_approx",
+             "half_shift_periods")
 
 
 class _Peaks:
@@ -149,6 +150,7 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
     if localised:
         omega = float(init_ds.attrs["omega_sw"]) if "omega_sw" in init_ds.attrs else stages.PACKET_OMEGA
         peaks = {m: _Peaks(times, 2.0 * np.pi / omega, N) for m in ("exact", "dps")}
+        site_peaks = {m: _Peaks(times, 2.0 * np.pi / omega, N) for m in ("exact", "dps")}  # max_t |x_n| (pairs)
     x, v = init_ds["x0"].values.copy(), init_ds["v0"].values.copy()
     H0, t_cur = None, float(times[0])
     stats = {"energy_drift": 0.0, "n_steps": 0, "n_force_evals": 0, "max_compression": 0.0,
@@ -190,6 +192,8 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         if localised:
             for m, ds in (("exact", exact_ds), ("dps", dps_ds)):
                 peaks[m].add(tb, ds["force"].values)
+                if kind == "pair":
+                    site_peaks[m].add(tb, ds["x"].values)
             if kind == "breather":
                 site = int(np.argmax(np.abs(first["exact"]["x"].values[0])))
                 for m, ds in (("exact", exact_ds), ("dps", dps_ds)):
@@ -219,8 +223,9 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         if kind == "pair":
             periodic = spec["bc"] == "periodic"
             for m in ("exact", "dps"):
-                values[f"merging_time_{m}"] = breathers.merging_time_of_peaks(
-                    peaks[m].starts, peaks[m].P, times[0], period, periodic=periodic)
+                oc = interactions.classify_peaks(site_peaks[m].starts, site_peaks[m].P, periodic=periodic)
+                values[f"merging_time_{m}"] = oc.merge_period
+                values[f"outcome_{m}"] = np.int64(oc.code)
         elif kind == "breather":
             sh = breathers.half_period_shift(times, np.concatenate(site_series["exact"]),
                                              np.concatenate(site_series["dps"]), 2.0 * np.pi / period)

@@ -91,8 +91,16 @@ VARIABLES: dict[str, Var] = {
                           attrs=(("comment", "omega_sw of the scene; 1.1 for the packet (no omega_sw)"),)),
     "peak_compression_exact": Var(("t_window", "n"), "peak compression max |f_n| over one breather period, exact"),
     "peak_compression_dps": Var(("t_window", "n"), "peak compression max |f_n| over one breather period, approximate"),
-    "merging_time_exact": Var((), "merging time of the two breathers in breather periods, exact (NaN: none)"),
-    "merging_time_dps": Var((), "merging time of the two breathers in breather periods, approximate (NaN: none)"),
+    "merging_time_exact": Var((), "merging time of the two breathers in breather periods, exact (NaN: none)",
+                              attrs=(("comment", "cradle.measurements.interactions.classify on max_t |x_n| per "
+                                                 "period: first period of the final single breather"),)),
+    "merging_time_dps": Var((), "merging time of the two breathers in breather periods, approximate (NaN: none)",
+                            attrs=(("comment", "cradle.measurements.interactions.classify on max_t |x_n| per "
+                                               "period: first period of the final single breather"),)),
+    "outcome_exact": Var((), "interaction outcome of the two breathers, exact",
+                         attrs=(("flag_values", (0, 1, 2, 3, 4)), ("flag_meanings", "merge bound repel transmit none"))),
+    "outcome_dps": Var((), "interaction outcome of the two breathers, approximate",
+                       attrs=(("flag_values", (0, 1, 2, 3, 4)), ("flag_meanings", "merge bound repel transmit none"))),
     "breather_site": Var((), "bead n of largest |x_n(0)|, where the frequencies are measured"),
     "omega_exact": Var((), "frequency of x_n(t) at breather_site from zero crossings, exact solution"),
     "omega_approx": Var((), "frequency of x_n(t) at breather_site from zero crossings, approximate solution"),

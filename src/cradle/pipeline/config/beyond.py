@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 
 from .breathers import Breathers
+from .breather_interactions import BreatherInteractions
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
 from .spec import declared, param
@@ -193,8 +194,9 @@ class MIGrowth:
               "rates measured in the scenes' runs (cradle.analyses.migrowth, target mi_growth), the threshold "
               "statistics over noise seeds (cradle.analyses.mistatistics, targets mi_statistics and "
               "mi_statistics_full) and the Bloch-Floquet stability of the exact waves (cradle.analyses.floquet, "
-              "target floquet) and the exact breathers (cradle.analyses.breathers, targets breathers and "
-              "breathers_full).")
+              "target floquet), the exact breathers (cradle.analyses.breathers, targets breathers and "
+              "breathers_full), and the collisions of two breathers in both models "
+              "(cradle.analyses.breather_interactions, targets breather_interactions and breather_interactions_full).")
 class Beyond:
     theorem1: Theorem1 = param(Theorem1(), Theorem1.__schema_doc__)
     mi_diagram: MIDiagram = param(MIDiagram(), MIDiagram.__schema_doc__)
@@ -202,6 +204,8 @@ class Beyond:
     mi_statistics: MIStatistics = param(MIStatistics(), MIStatistics.__schema_doc__)
     floquet: Floquet = param(Floquet(), Floquet.__schema_doc__)
     breathers: Breathers = param(Breathers(), Breathers.__schema_doc__)
+    breather_interactions: BreatherInteractions = param(BreatherInteractions(),
+                                                        BreatherInteractions.__schema_doc__)
 
     @staticmethod
     def check(b, cfg: dict, out) -> None:
@@ -210,7 +214,8 @@ class Beyond:
             return
         path = ["beyond"]
         sec = {k: (b.get(k) if isinstance(b.get(k), dict) else {}) for k in
-               ("theorem1", "mi_diagram", "mi_growth", "mi_statistics", "floquet", "breathers")}
+               ("theorem1", "mi_diagram", "mi_growth", "mi_statistics", "floquet", "breathers",
+                "breather_interactions")}
         Theorem1.check(sec["theorem1"], path + ["theorem1"], out)
         MIDiagram.check(sec["mi_diagram"], path + ["mi_diagram"], out)
         MIGrowth.check(sec["mi_growth"], path + ["mi_growth"], cfg, out)
@@ -220,3 +225,4 @@ class Beyond:
                 MIVariant.check(v, path + ["mi_statistics", variant], out)
         Floquet.check(sec["floquet"], path + ["floquet"], out)
         Breathers.check(sec["breathers"], path + ["breathers"], out)
+        BreatherInteractions.check(sec["breather_interactions"], path + ["breather_interactions"], out)

@@ -11,6 +11,7 @@ import copy
 
 from .beyond import MIDiagram, MIGrowth, Theorem1
 from .breathers import Breathers
+from .breather_interactions import BreatherInteractions
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
@@ -131,3 +132,6 @@ def resolved_floquet(config: dict, form: str = "full") -> dict:
 def resolved_breathers(config: dict, form: str = "full") -> dict:
     """``beyond.breathers`` of one form (full, or reduced: what ``all`` builds)."""
     return Breathers.resolve(_validated(config), form)
+def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
+    """``beyond.breather_interactions`` of one form (full, or reduced: what ``all`` builds)."""
+    return BreatherInteractions.resolve(_validated(config), form)

@@ -1,0 +1,71 @@
+"""Figure beyond the paper: collisions of two breathers, exact (nc) against DpS (breather-interactions).
+
+Reads results/interactions/[full/]breather-interactions.nc (:mod:`cradle.analyses.breather_interactions`):
+row by profile pair, (a) and (b) the modal outcome over the seeds on (spacing, theta), exact and
+DpS side by side, with the share of seeds whose outcome the two models share; (c) the median
+merging time against the spacing at theta = 0, both models; (d) the exact/DpS ratio of the merging
+times of every case where both merge, against the spacing.
+"""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.colors import BoundaryNorm, ListedColormap
+
+from cradle.figures import figure
+
+#: as cradle.measurements.interactions.OUTCOMES (a figure module imports no numerical module)
+OUTCOMES = ("merge", "bound", "repel", "transmit", "none")
+COLOURS = ("#1b9e77", "#7570b3", "#d95f02", "#e7298a", "#bbbbbb")
+
+
+def breather_interactions(tree):
+    maps, cases = tree["maps"], tree["cases"]
+    pairs = [str(p) for p in maps["pair"].values]
+    theta = maps["theta"].values
+    fig, ax = figure(len(pairs), 4, width=15.0, height=3.4 * len(pairs) + 0.6, squeeze=False)
+    cmap = ListedColormap(COLOURS)
+    norm = BoundaryNorm(np.arange(-0.5, len(OUTCOMES) + 0.5), cmap.N)
+    for i, pair in enumerate(pairs):
+        sel = cases["pair"].values == pair
+        sp = np.unique(cases["spacing"].values[sel])
+        for j, m in enumerate(("exact", "dps")):
+            A = ax[i, j]
+            M = maps[f"modal_outcome_{m}"].values[i]
+            A.pcolormesh(theta / np.pi, sp, M, cmap=cmap, norm=norm, shading="nearest")
+            agree = maps["agreement"].values[i]
+            A.set_title(f"{pair}, {'exact (nc)' if m == 'exact' else 'DpS'}: modal outcome"
+                        + (f"\nmodels agree on {np.nanmean(agree):.0%} of seeds" if j == 1 else ""), fontsize=8)
+            A.set_xlabel(r"$\theta/\pi$")
+            A.set_ylabel("spacing (sites)")
+        handles = [A.scatter([], [], color=c, marker="s", label=o) for o, c in zip(OUTCOMES, COLOURS)]
+        ax[i, 1].legend(handles=handles, fontsize=6, loc="upper right")
+        # (c) merging time against spacing at theta = 0
+        C = ax[i, 2]
+        th0 = sel & (cases["sweep"].values == 0) & np.isclose(cases["theta"].values, 0.0)
+        for m, style in (("exact", "o-"), ("dps", "s--")):
+            med = []
+            for s in sp:
+                v = cases[f"merge_period_{m}"].values[th0 & (cases["spacing"].values == s)]
+                v = v[np.isfinite(v)]
+                med.append(np.median(v) if v.size else np.nan)
+                C.plot(np.full(v.size, s), v, ".", color="C0" if m == "exact" else "C3", ms=3, alpha=0.5)
+            C.plot(sp, med, style, color="C0" if m == "exact" else "C3", label=f"{m}: median")
+        C.set_xlabel("spacing (sites)")
+        C.set_ylabel(r"merging time (breather periods)")
+        C.set_title(rf"{pair}: merging time at $\theta$ = 0 (dots: seeds)", fontsize=8)
+        C.legend(fontsize=6)
+        # (d) exact / DpS ratio
+        D = ax[i, 3]
+        r = cases["merge_ratio"].values[sel]
+        s_r = cases["spacing"].values[sel]
+        ok = np.isfinite(r) & (r > 0)
+        D.semilogy(s_r[ok], r[ok], ".", color="k", ms=3, alpha=0.6)
+        D.axhline(0.5, color="C2", lw=0.8, ls=":", label="paper: exact/DpS ~ 1/2")
+        D.axhline(1.0, color="0.6", lw=0.6)
+        D.set_xlabel("spacing (sites)")
+        D.set_ylabel("merging time exact / DpS")
+        D.set_title(f"{pair}: {int(ok.sum())} cases where both merge", fontsize=8)
+        D.legend(fontsize=6)
+    fig.suptitle(f"breather-interactions: {int(tree.attrs['n_cases'])} cases, outcome the same in both models for "
+                 f"{float(tree.attrs['outcome_agreement']):.0%}", fontsize=9)
+    return fig
