@@ -2,17 +2,6 @@
 # side by side -> results/movies/<scene>.mp4 and a small .gif. Not part of `all` (a movie takes tens of
 # seconds to draw and encode); `snakemake -j2 movies` builds those listed under `movies.scenes`, and
 # any scene's movie is built by its path, e.g. `snakemake -j2 results/movies/loc1-pair.mp4`.
-from cradle.pipeline.config.movies import Movies
-
-
-def movie_targets():
-    try:
-        scenes = Movies.resolve(config)["scenes"]
-    except cc.ConfigError as err:
-        raise WorkflowError(str(err)) from None
-    return [L.path("movie", scene=s, ext=ext) for s in scenes for ext in ("mp4", "gif")]
-
-
 rule movie:
     conda:
         "../envs/cradle.yaml"
@@ -22,7 +11,12 @@ rule movie:
         code=code_of("workflow/scripts/movie.py", "cradle.figures.movie"),
         data=lambda w: [L.path(part, scene=w.scene) for part in ("exact", "dps")],
     output:
-        mp4=L.path("movie", scene="{scene}", ext="mp4"),
+        mp4=report(
+            L.path("movie", scene="{scene}", ext="mp4"),
+            caption="../report/movie.rst",
+            category="Movies",
+            labels={"movie": "{scene}"},
+        ),
         gif=L.path("movie", scene="{scene}", ext="gif"),
     params:
         movies=lambda w: dict(config["movies"]),

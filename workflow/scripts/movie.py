@@ -14,6 +14,6 @@ gif = MovieSpec(fps=m["gif_fps"], duration=m["gif_duration"], width=m["width"], 
 root = Path(sm.input.data[0]).parent.parent.parent          # results/sim/<scene>/exact.nc -> results
 info = animate(open_scene(sm.wildcards.scene, root=root, metrics=False), sm.output.mp4, spec,
                gif=sm.output.gif, gif_spec=gif, gif_width=m["gif_width"])
-logging.info("%s: %d frames, a frame every %.4g time units, displacements x %.3g; %s: %d frames",
+logging.getLogger("cradle").info("%s: %d frames, a frame every %.4g time units, displacements x %.3g; %s: %d frames",
              sm.output.mp4, len(info["indices"]), info["dt_frame"], info["magnification"], sm.output.gif,
              info["gif"]["frames"])
