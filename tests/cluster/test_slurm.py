@@ -35,13 +35,13 @@ VOLATILE = re.compile(r"(^|_)(history|date_created|wall_time_s|command|hostname|
 
 
 def _answers(*cmd) -> str | None:
-    """None if ``cmd`` runs and exits 0 within 20 s, else why not."""
+    """None if ``cmd`` runs and exits 0 within 10 s, else why not."""
     if shutil.which(cmd[0]) is None:
         return f"no {cmd[0]} on PATH (install Slurm: tests/cluster/slurm-up.sh)"
     try:
-        proc = subprocess.run(cmd, check=False, capture_output=True, text=True, timeout=20)
+        proc = subprocess.run(cmd, check=False, capture_output=True, text=True, timeout=10)
     except subprocess.TimeoutExpired:
-        return f"`{' '.join(cmd)}` did not answer in 20 s"
+        return f"`{' '.join(cmd)}` did not answer in 10 s"
     if proc.returncode != 0:
         return f"`{' '.join(cmd)}` failed: {' '.join(proc.stderr.split())[:200]} (start Slurm: tests/cluster/slurm-up.sh)"
     return None
