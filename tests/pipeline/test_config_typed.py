@@ -12,7 +12,14 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import beyond, floquet, mi_statistics, movies, scenes, sections
+from cradle.pipeline.config import (
+    beyond,
+    floquet,
+    mi_statistics,
+    movies,
+    scenes,
+    sections,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
