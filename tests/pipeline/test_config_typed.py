@@ -12,8 +12,8 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import (beyond, breather_interactions, breathers, floquet, mi_statistics, scenes,
-                                    sections)
+from cradle.pipeline.config import (beyond, breather_interactions, breathers, floquet, mi_statistics, movies,
+                                    scenes, sections)
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -24,8 +24,9 @@ CONFIG = ROOT / "config.yaml"
 # keys beyond.floquet.reduced and work_precision.reduced, the reduced forms `all` builds; every other
 # value unchanged. Then issue 14: the new section beyond.breathers and its reduced form. Then issue 13: the new
 # section beyond.breather_interactions, and the loc1 scenes set to the readings of docs/loc1-readings.md:
-# loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope; every other value unchanged.)
-RESOLVED_SHA256 = "93f5d1f15e9fc364327f2a0928ae04f8b6de55a7cde0af2d377fc8455c8e8091"
+# loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope. Then issue 16: the section
+# movies: (no resolved scene changed); every other value unchanged.)
+RESOLVED_SHA256 = "d28aef4e637db8494b974db5254cc04947c9069bd28745afeaa5dd8686d54089"
 
 
 @pytest.fixture(scope="module")
@@ -71,8 +72,8 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 
 def test_declarations_are_frozen_and_every_field_described():
-    classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics, breather_interactions)
-               for c in vars(m).values()
+    classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics, breather_interactions,
+                           movies) for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:

@@ -9,6 +9,7 @@ from cradle import figures as _figures
 from cradle.pipeline import layout as L
 from cradle.pipeline.codedeps import code_files
 from cradle.pipeline.params import compact_scene
+from cradle.pipeline.config.movies import Movies
 
 try:
     for _file in workflow.configfiles:   # Snakemake's own loader keeps the last of two equal keys silently
@@ -75,3 +76,12 @@ def checks_inputs(w):
     files = [f for name in config["scenes"] for f in scene_files(name)]
     files += [L.path("initial", scene=name) for name in config["scenes"]]
     return files + [L.path("homoclinic", name=name) for name in config["homoclinic"]]
+
+
+def movie_targets():
+    """The movies (mp4 and gif) of every scene under `movies.scenes` (workflow/rules/movies.smk)."""
+    try:
+        scenes = Movies.resolve(config)["scenes"]
+    except cc.ConfigError as err:
+        raise WorkflowError(str(err)) from None
+    return [L.path("movie", scene=s, ext=ext) for s in scenes for ext in ("mp4", "gif")]

@@ -7,6 +7,7 @@
     cradle describe FILE.nc                                # parameters, checks, provenance of a result
     cradle extend   FILE.nc --t-end T [--every DT] [--out FILE.nc | --in-place]   # continue an exact run
     cradle verify   [results]                              # every output's checksums; what to rebuild
+    cradle animate  SCENE [--results results] [--gif] [--fps F --duration S]   # a movie of the stored runs
 
 ``cradle run`` computes a scene's initial data, exact and DpS runs and
 metrics with :mod:`cradle.pipeline.stages` and
@@ -29,8 +30,11 @@ leave the DpS run, the metrics and the config at the old t_end.
 Every error is one line on stderr, ``cradle: error: ...``, exit status 2,
 no traceback. ``cradle verify`` exits 1 when an output must be rebuilt.
 
+``cradle animate`` draws a movie from a scene's stored runs only
+(:mod:`cradle.figures.movie`): ``RESULTS/movies/SCENE.mp4`` (and ``.gif``).
+
 This package holds the parser and :func:`main`; the commands are in
-:mod:`.scenes`, :mod:`.run` and :mod:`.files` (describe, extend, verify),
+:mod:`.scenes`, :mod:`.run`, :mod:`.files` (describe, extend, verify) and :mod:`.animate`,
 what they share in :mod:`.common`.
 """
 from __future__ import annotations
@@ -39,6 +43,7 @@ import argparse
 import sys
 
 from cradle import __version__
+from cradle.pipeline.cli.animate import cmd_animate
 from cradle.pipeline.cli.common import PROG, CliError
 from cradle.pipeline.cli.files import cmd_describe, cmd_extend, cmd_verify
 from cradle.pipeline.cli.run import RUN_OUT, cmd_run
@@ -81,6 +86,20 @@ def parser() -> argparse.ArgumentParser:
     v.add_argument("root", nargs="?", default="results", metavar="RESULTS",
                    help="a folder of outputs (every *.nc below it) or one file (default: results)")
     v.set_defaults(func=cmd_verify)
+    a = sub.add_parser("animate", help="a movie (MP4, optionally GIF) of a scene's stored exact and DpS runs")
+    a.add_argument("scene", metavar="SCENE", help="a scene whose runs are stored under RESULTS/sim/SCENE/")
+    a.add_argument("--results", default="results", help="the results folder to read (default: results)")
+    a.add_argument("--out", default=None, help="the MP4 to write (default: RESULTS/movies/SCENE.mp4)")
+    a.add_argument("--gif", action="store_true", help="also write a small GIF beside the MP4")
+    a.add_argument("--fps", type=int, default=None, help="frames per second (default: movies.fps of the config)")
+    a.add_argument("--duration", type=float, default=None, help="seconds of movie (default: movies.duration)")
+    a.add_argument("--width", type=int, default=None, help="frame width in pixels, even")
+    a.add_argument("--height", type=int, default=None, help="frame height in pixels, even")
+    a.add_argument("--gif-fps", type=int, default=None, dest="gif_fps", help="frames per second of the GIF")
+    a.add_argument("--t-start", type=float, default=None, dest="t_start", help="first time shown (default: 0)")
+    a.add_argument("--t-end", type=float, default=None, dest="t_end", help="last time shown (default: the run's end)")
+    a.add_argument("--config", default="config.yaml", help="config whose movies: section gives the defaults")
+    a.set_defaults(func=cmd_animate)
     return p
 
 

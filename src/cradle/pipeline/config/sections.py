@@ -11,6 +11,7 @@ import math
 from dataclasses import fields
 
 from .beyond import Beyond
+from .movies import Movies
 from .scenes import LATTICE_ADAPTIVE, SPLITTINGS, DpsIntegrator, ExactIntegrator, Scene
 from .spec import REQUIRED, declared, param
 from .values import TIME_TOL, did_you_mean, entries, finite, number, show, store_times
@@ -291,6 +292,7 @@ class Config:
     work_precision: WorkPrecision = param(WorkPrecision(), WorkPrecision.__schema_doc__)
     beyond: Beyond = param(Beyond(), Beyond.__schema_doc__)
     budget: Budget = param(Budget(), Budget.__schema_doc__)
+    movies: Movies = param(Movies(), Movies.__schema_doc__)
 
 
 def check_finite(node, out, path=()) -> None:
