@@ -96,7 +96,7 @@ def test_cf_compliant(outputs, kind, tmp_path):
 
 #: analysis -> module declaring its VARIABLES (one dict per netCDF group)
 TREES = {"theorem1": "theorem1", "mi-diagram": "modulational", "mi-growth": "migrowth",
-         "mi-statistics": "mistatistics", "floquet": "floquet"}
+         "mi-statistics": "mistatistics", "floquet": "floquet", "dps-validity": "dpsvalidity"}
 
 
 def _declared_tree(module: str):

@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import beyond, floquet, mi_statistics, scenes, sections
+from cradle.pipeline.config import beyond, dps_validity, floquet, mi_statistics, scenes, sections
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -21,8 +21,8 @@ CONFIG = ROOT / "config.yaml"
 # into typed declarations changed none of them; a deliberate change of config.yaml or of a resolved_*
 # function changes this hash: check the difference, then update it. (Updated once since: the new
 # keys beyond.floquet.reduced and work_precision.reduced, the reduced forms `all` builds; every other
-# value unchanged.)
-RESOLVED_SHA256 = "ce7541ea2d4d3e9b4cfa1320faa9aac9d8726b89bd4439e7655058d37eba6ba1"
+# value unchanged. Updated again: the new section beyond.dps_validity; every other value unchanged.)
+RESOLVED_SHA256 = "c4c7ecfc2b6e876bc9fdb64176896ee2c865f20e6d2fd1a412648563dbe8d413"
 
 
 @pytest.fixture(scope="module")
@@ -44,6 +44,8 @@ def _everything_resolved(config) -> dict:
         "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
         "floquet": cc.resolved_floquet(cfg),
         "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
+        "dps_validity": cc.resolved_dps_validity(cfg),
+        "dps_validity_reduced": cc.resolved_dps_validity(cfg, "reduced"),
         "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
         "work_precision_reduced": {n: cc.resolved_work_precision(cfg, n, "reduced")
                                    for n in cfg["work_precision"]["reduced"]["scenes"]},
@@ -65,7 +67,7 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 
 def test_declarations_are_frozen_and_every_field_described():
-    classes = [c for m in (scenes, sections, beyond, floquet, mi_statistics) for c in vars(m).values()
+    classes = [c for m in (scenes, sections, beyond, floquet, mi_statistics, dps_validity) for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:

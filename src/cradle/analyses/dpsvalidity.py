@@ -44,7 +44,7 @@ def family_amplitude(family: str, alpha: float, spec: dict):
         return np.exp(-1j * _Q[family] * np.arange(N)), N, {}
     if family == "mi-4pi5-noise":
         N = int(spec["N_noise"])
-        seed = int(spec["seed"]) + int(round(100 * alpha))  # one recorded realisation per alpha
+        seed = int(spec["seed"]) + round(100 * alpha)  # one recorded realisation per alpha
         rho1, rho2 = initial.noise(N, "uniform", float(spec["noise_amplitude"]), seed)
         n = np.arange(N)
         q = _Q[family]
@@ -89,14 +89,18 @@ def sup_error(A0, eps: float, alpha: float, T_marks, *, sample_every: float, dt_
     with dt / 2; its max deviation from the first estimates the lattice's own error (x 64/63 for
     the sixth order, ignored: it is a bound to compare with E, not a correction).
     """
-    from cradle.integrators import compression_bounds, default_dt, integrate_dps, integrate_lattice
+    from cradle.integrators import (
+        compression_bounds,
+        default_dt,
+        integrate_dps,
+        integrate_lattice,
+    )
     from cradle.measurements import compare
     from cradle.models import initial
+    from cradle.models.lattice import hamiltonian
 
     A0 = np.asarray(A0, dtype=complex)
     x, v = initial.lattice_state(A0, eps, alpha)
-    from cradle.models.lattice import hamiltonian
-
     H0 = float(hamiltonian(x, v, alpha, "periodic"))
     c_assumed, _ = compression_bounds(x, v, alpha)
     dt = default_dt(c_assumed, alpha, "srkn6c", dt_factor)

@@ -104,6 +104,7 @@ DATASET_FIGURES = {
     "floquet": "floquet.floquet",
     "mi-growth": "mi.mi_growth",
     "mi-statistics": "mi.mi_statistics",
+    "dps-validity": "validity.dps_validity",
 }
 
 #: Drawn from several analysis files by its own rule (``workprecision.draw``).

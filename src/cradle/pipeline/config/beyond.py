@@ -2,7 +2,8 @@
 
 Each analysis is a frozen dataclass (Theorem 1 on exact travelling waves of
 (ad), the DpS modulational-instability map (ansatz3), its growth rates in the
-scenes' runs, threshold statistics over noise seeds, Bloch-Floquet stability).
+scenes' runs, threshold statistics over noise seeds, Bloch-Floquet stability, the DpS approximation
+error against eps and T).
 ``check`` reports, one line per problem, what the schema cannot express;
 ``resolve`` turns the section of a validated config into the plain dict the
 analysis module computes from (angles in radians, inherited settings merged),
@@ -12,6 +13,7 @@ from __future__ import annotations
 
 import math
 
+from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
 from .spec import declared, param
@@ -191,14 +193,16 @@ class MIGrowth:
               "waves (cradle.analyses.modulational, target mi_diagram). Also the modulational-instability growth "
               "rates measured in the scenes' runs (cradle.analyses.migrowth, target mi_growth), the threshold "
               "statistics over noise seeds (cradle.analyses.mistatistics, targets mi_statistics and "
-              "mi_statistics_full) and the Bloch-Floquet stability of the exact waves (cradle.analyses.floquet, "
-              "target floquet).")
+              "mi_statistics_full), the Bloch-Floquet stability of the exact waves (cradle.analyses.floquet, "
+              "target floquet) and the DpS approximation error against eps and T (cradle.analyses.dpsvalidity, "
+              "targets dps_validity and dps_validity_full).")
 class Beyond:
     theorem1: Theorem1 = param(Theorem1(), Theorem1.__schema_doc__)
     mi_diagram: MIDiagram = param(MIDiagram(), MIDiagram.__schema_doc__)
     mi_growth: MIGrowth = param(MIGrowth(), MIGrowth.__schema_doc__)
     mi_statistics: MIStatistics = param(MIStatistics(), MIStatistics.__schema_doc__)
     floquet: Floquet = param(Floquet(), Floquet.__schema_doc__)
+    dps_validity: DpsValidity = param(DpsValidity(), DpsValidity.__schema_doc__)
 
     @staticmethod
     def check(b, cfg: dict, out) -> None:
@@ -207,7 +211,7 @@ class Beyond:
             return
         path = ["beyond"]
         sec = {k: (b.get(k) if isinstance(b.get(k), dict) else {}) for k in
-               ("theorem1", "mi_diagram", "mi_growth", "mi_statistics", "floquet")}
+               ("theorem1", "mi_diagram", "mi_growth", "mi_statistics", "floquet", "dps_validity")}
         Theorem1.check(sec["theorem1"], path + ["theorem1"], out)
         MIDiagram.check(sec["mi_diagram"], path + ["mi_diagram"], out)
         MIGrowth.check(sec["mi_growth"], path + ["mi_growth"], cfg, out)
@@ -216,3 +220,4 @@ class Beyond:
             if isinstance(v, dict):
                 MIVariant.check(v, path + ["mi_statistics", variant], out)
         Floquet.check(sec["floquet"], path + ["floquet"], out)
+        DpsValidity.check(sec["dps_validity"], path + ["dps_validity"], out)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import copy
 
 from .beyond import MIDiagram, MIGrowth, Theorem1
+from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
@@ -125,3 +126,8 @@ def resolved_floquet(config: dict, form: str = "full") -> dict:
     """``beyond.floquet`` of one form (full, or reduced: what ``all`` builds) with angles in radians and
     ``convergence`` completed."""
     return Floquet.resolve(_validated(config), form)
+
+
+def resolved_dps_validity(config: dict, form: str = "full") -> dict:
+    """``beyond.dps_validity`` of one form (full, or reduced: what ``all`` builds), T sorted."""
+    return DpsValidity.resolve(_validated(config), form)
