@@ -87,5 +87,5 @@ ANALYSES: dict[str, Analysis] = {a.name: a for a in (
     Analysis("floquet", "floquet", "run", "floquet", forms=(REDUCED, FULL),
              title="Bloch-Floquet stability of the exact travelling waves against the DpS threshold"),
     Analysis("dps-validity", "dpsvalidity", "run", "validity", forms=(REDUCED, FULL),
-             title="DpS approximation error sup_{t <= T eps^(1-alpha)} |x - x_app| against eps, T, family, alpha"),
+             title="DpS approximation error: sup over t <= T eps^(1-alpha) of |x - x_app| against eps, T, family, alpha"),
 )}
