@@ -177,6 +177,10 @@ VARIABLES = {
         "abs_error": Var(_GRID, "sup_{t <= T eps^(1-alpha)} max_n |x_n(t) - x_n^app(t)| (ansatz)"),
         "rel_error": Var(_GRID, "abs_error / (2 eps): the error relative to the amplitude a = 2 eps"),
         "law_ratio": Var(_GRID, "rel_error / eps^(alpha-1): constant where the law E_abs ~ eps^alpha holds"),
+        "law_departure": Var(_GRID, "law_ratio / law_ratio at the smallest eps: 1 where C(T) eps^alpha holds",
+                             attrs=(("comment", "the law is said to fail outside the departure_band [1/2, 2]"),)),
+        "T_lost": Var(("family", "alpha", "i_eps"), "smallest stored T where rel_error >= lost_level "
+                      "(NaN: never up to the largest T)"),
         "t_end": Var(("alpha", "i_eps", "T"), "lattice time T eps^(1-alpha) of the sup"),
     },
     "/fits": {
@@ -200,6 +204,10 @@ VARIABLES = {
         "n_samples": Var(_FA + ("i_eps",), "number of samples of the sup over t"),
     },
 }
+
+
+#: the approximation is called lost where the relative error reaches this (|x - x_app| = a / 2)
+LOST_LEVEL = 0.5
 
 
 def eps_grid(spec: dict, ia: int) -> np.ndarray:
@@ -249,6 +257,9 @@ def compute(spec: dict, log=None):
                 + " ".join(f"{e:.3g}" for e in E[jf, ia, :, -1] / (2 * eps_all[ia])))
     rel = E / (2.0 * eps_all[None, :, :, None])
     law = rel / eps_all[None, :, :, None] ** (np.asarray(alphas)[None, :, None, None] - 1.0)
+    departure = law / law[:, :, :1, :]
+    lost = rel >= LOST_LEVEL
+    T_lost = np.where(lost.any(axis=-1), Ts[np.argmax(lost, axis=-1)], np.nan)
     p, se, c = (np.full((len(fams), len(alphas), Ts.size), np.nan) for _ in range(3))
     ps, pse = (np.full((len(fams), len(alphas), Ts.size), np.nan) for _ in range(2))
     loc = np.full((len(fams), len(alphas), Ts.size, n_eps - 1), np.nan)
@@ -261,7 +272,8 @@ def compute(spec: dict, log=None):
                 loc[jf, ia, k] = local_exponents(eps_all[ia], E[jf, ia, :, k])
     eps_pair = np.sqrt(eps_all[:, 1:] * eps_all[:, :-1])
     groups = {
-        "/errors": ({"eps": eps_all, "abs_error": E, "rel_error": rel, "law_ratio": law, "t_end": t_end},
+        "/errors": ({"eps": eps_all, "abs_error": E, "rel_error": rel, "law_ratio": law,
+                     "law_departure": departure, "T_lost": T_lost, "t_end": t_end},
                     {"family": np.arange(len(fams)), "alpha": alphas, "i_eps": np.arange(n_eps), "T": Ts}),
         "/fits": ({"exponent": p, "exponent_stderr": se, "prefactor": np.exp(c), "exponent_small": ps,
                    "exponent_small_stderr": pse, "local_exponent": loc, "eps_pair": eps_pair,
@@ -289,6 +301,8 @@ def compute(spec: dict, log=None):
         "lattice_integrator": f"srkn6c, fixed dt = dt_factor 2 pi / omega_max, dt_factor = {float(spec['dt_factor'])}",
         "dps_integrator": f"dop853_numba, rtol = {float(spec['dps_rtol'])}",
         "sample_every": float(spec["sample_every"]),
+        "lost_level": LOST_LEVEL,
+        "departure_band": "[0.5, 2]",
         "sup_sampling": "the sup over t is taken on samples every sample_every (the error oscillates at "
                         "frequencies 1, 3, ...: the sampled sup is within a few per cent of the true one, the "
                         "same fraction at every eps)",

@@ -37,8 +37,9 @@ class DpsValidity:
     eps_max: float = param(0.1, "Largest eps (half the largest initial displacement).", exclusiveMinimum=0,
                            maximum=1.0)
     n_eps: int = param(9, "Number of eps, log-spaced from eps_min to eps_max.", minimum=3, maximum=41)
-    T: list[float] = param([1.0, 2.0, 4.0, 8.0, 16.0], "Slow times T = tau: the sup over t is taken up to "
-                           "t = T eps^(1-alpha).", minItems=1, maxItems=12, items=_T)
+    T: list[float] = param([0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0], "Slow times T = tau: the sup "
+                           "over t is taken up to t = T eps^(1-alpha) (one run to the largest T gives them all).",
+                           minItems=1, maxItems=12, items=_T)
     families: list[str] = param(list(_FAMILIES), "Families of well-prepared data (cradle.analyses.dpsvalidity."
                                 "FAMILIES).", minItems=1, maxItems=4, items=_FAMILY)
     N_wave: int = param(10, "Ring size of the travelling waves (q N / 2 pi an integer for q = pi/5, 4 pi/5).",
