@@ -92,7 +92,7 @@ def dps_validity(tree):
                  label=rf"$\alpha$ = {a:g}: p = {p[jf, ja, k1]:.3f} $\pm$ {se[jf, ja, k1]:.3f}")
     D.set_xlabel(r"$\varepsilon$")
     D.set_ylabel("relative sup-norm error")
-    ratio = float(np.nanmax(checks["halving_ratio"].values))
+    ratio = float(np.nanmax(checks["halving_ratio"].values[jf, :, k1]))
     D.set_title(f"(d) {fams[jf]}, T = {Ts[k1]:g}, every alpha; lattice dt-halving error "
                 f"/ E $\\leq$ {ratio:.1g}", fontsize=9)
     D.legend(fontsize=7, loc="lower right")
