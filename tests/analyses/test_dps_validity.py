@@ -97,6 +97,16 @@ def test_tiny_end_to_end_run():
             assert "long_name" in var.attrs and "units" in var.attrs, name
 
 
+
+def test_figure_draws_from_the_tiny_run(tmp_path):
+    from cradle.figures import draw_dataset
+
+    spec = dict(SPEC, alpha=[1.5], eps_min=[1e-3], eps_max=1e-2, n_eps=3, T=[1.0, 2.0],
+                families=["tw-pi5", "mi-4pi5-noise"], sample_every=0.2, dt_factor=0.01, dps_rtol=1e-11, chunk=20000)
+    paths = draw_dataset("dps-validity", dv.compute(spec), tmp_path / "dps-validity", note="test")
+    assert len(paths) == 2 and all(p.stat().st_size > 0 for p in paths)
+
+
 def test_config_one_eps_min_per_alpha():
     raw = yaml.safe_load((Path(__file__).resolve().parents[2] / "config.yaml").read_text())
     bad = copy.deepcopy(raw)
