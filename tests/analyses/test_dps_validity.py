@@ -97,7 +97,6 @@ def test_tiny_end_to_end_run():
             assert "long_name" in var.attrs and "units" in var.attrs, name
 
 
-
 def test_figure_draws_from_the_tiny_run(tmp_path):
     from cradle.figures import draw_dataset
 
