@@ -67,8 +67,8 @@ def dps_validity(tree):
     g = float(fits["dps_growth_rate"].values[jf, ia])
     B.set_xlabel(r"slow time T = $\varepsilon^{\alpha-1} t$")
     B.set_ylabel("relative sup-norm error")
-    B.set_title(rf"(b) {fams[jf]}, $\alpha$ = {al:g}: parallel while E $\sim \varepsilon^\alpha$; "
-                f"DpS growth {g:.3g}/$\\tau$; dashed: lost", fontsize=9)
+    B.set_title(rf"(b) {fams[jf]}, $\alpha$ = {al:g}, DpS growth {g:.3g}/$\tau$:" "\n"
+                r"curves parallel while E $\sim \varepsilon^\alpha$; dashed: relative error 1/2 (lost)", fontsize=9)
     B.legend(fontsize=7, loc="lower right")
     # (c)
     C = ax[1, 0]
