@@ -96,7 +96,8 @@ def test_cf_compliant(outputs, kind, tmp_path):
 
 #: analysis -> module declaring its VARIABLES (one dict per netCDF group)
 TREES = {"theorem1": "theorem1", "mi-diagram": "modulational", "mi-growth": "migrowth",
-         "mi-statistics": "mistatistics", "floquet": "floquet", "breathers": "breathers"}
+         "mi-statistics": "mistatistics", "floquet": "floquet", "breathers": "breathers",
+         "dps-validity": "dpsvalidity", "breather-interactions": "breather_interactions"}
 
 
 def _declared_tree(module: str):
@@ -114,6 +115,9 @@ def _declared_tree(module: str):
         for name, var in decl.items():
             shape = tuple(dims[d] for d in var.dims)
             values = 1.0 + np.arange(int(np.prod(shape))).reshape(shape)
+            if "flag_values" in dict(var.attrs):   # a flag variable holds its flags, of their type (CF 3.5)
+                flags = np.asarray(dict(var.attrs)["flag_values"])
+                values = flags[np.arange(values.size) % flags.size].reshape(shape)
             (coords if var.dims == (name,) else data)[name] = values
         groups[path] = (data, coords)
     return make_tree(groups, variables, attrs={"scene_names": "a, b"}, title=f"{module}: declared variables")

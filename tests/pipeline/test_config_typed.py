@@ -12,8 +12,8 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import (beyond, breather_interactions, breathers, floquet, mi_statistics, movies,
-                                    scenes, sections)
+from cradle.pipeline.config import (beyond, breather_interactions, breathers, dps_validity, floquet, mi_statistics,
+                                    movies, scenes, sections)
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -25,8 +25,9 @@ CONFIG = ROOT / "config.yaml"
 # value unchanged. Then issue 14: the new section beyond.breathers and its reduced form. Then issue 13: the new
 # section beyond.breather_interactions, and the loc1 scenes set to the readings of docs/loc1-readings.md:
 # loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope. Then issue 16: the section
-# movies: (no resolved scene changed); every other value unchanged.)
-RESOLVED_SHA256 = "d28aef4e637db8494b974db5254cc04947c9069bd28745afeaa5dd8686d54089"
+# movies: (no resolved scene changed). Then issue 15: the new section beyond.dps_validity; every other value
+# unchanged.)
+RESOLVED_SHA256 = "a61c41d84c976671cec2bf1f62c6b1636832544b28bf694746bd4468ab3c8024"
 
 
 @pytest.fixture(scope="module")
@@ -51,6 +52,8 @@ def _everything_resolved(config) -> dict:
         "breathers": cc.resolved_breathers(cfg),
         "breathers_reduced": cc.resolved_breathers(cfg, "reduced"),
         "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
+        "dps_validity": cc.resolved_dps_validity(cfg),
+        "dps_validity_reduced": cc.resolved_dps_validity(cfg, "reduced"),
         "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
         "work_precision_reduced": {n: cc.resolved_work_precision(cfg, n, "reduced")
                                    for n in cfg["work_precision"]["reduced"]["scenes"]},
@@ -73,7 +76,7 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 def test_declarations_are_frozen_and_every_field_described():
     classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics, breather_interactions,
-                           movies) for c in vars(m).values()
+                           movies, dps_validity) for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:

@@ -106,6 +106,7 @@ DATASET_FIGURES = {
     "mi-statistics": "mi.mi_statistics",
     "breathers": "breathers.breathers",
     "breather-interactions": "interactions.breather_interactions",
+    "dps-validity": "validity.dps_validity",
 }
 
 #: Drawn from several analysis files by its own rule (``workprecision.draw``).

@@ -2,7 +2,8 @@
 
 Each analysis is a frozen dataclass (Theorem 1 on exact travelling waves of
 (ad), the DpS modulational-instability map (ansatz3), its growth rates in the
-scenes' runs, threshold statistics over noise seeds, Bloch-Floquet stability).
+scenes' runs, threshold statistics over noise seeds, Bloch-Floquet stability, the DpS approximation
+error against eps and T).
 ``check`` reports, one line per problem, what the schema cannot express;
 ``resolve`` turns the section of a validated config into the plain dict the
 analysis module computes from (angles in radians, inherited settings merged),
@@ -14,6 +15,7 @@ import math
 
 from .breathers import Breathers
 from .breather_interactions import BreatherInteractions
+from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
 from .spec import declared, param
@@ -195,8 +197,10 @@ class MIGrowth:
               "statistics over noise seeds (cradle.analyses.mistatistics, targets mi_statistics and "
               "mi_statistics_full) and the Bloch-Floquet stability of the exact waves (cradle.analyses.floquet, "
               "target floquet), the exact breathers (cradle.analyses.breathers, targets breathers and "
-              "breathers_full), and the collisions of two breathers in both models "
-              "(cradle.analyses.breather_interactions, targets breather_interactions and breather_interactions_full).")
+              "breathers_full), the collisions of two breathers in both models "
+              "(cradle.analyses.breather_interactions, targets breather_interactions and breather_interactions_full), "
+              "and the DpS approximation error against eps and T (cradle.analyses.dpsvalidity, "
+              "targets dps_validity and dps_validity_full).")
 class Beyond:
     theorem1: Theorem1 = param(Theorem1(), Theorem1.__schema_doc__)
     mi_diagram: MIDiagram = param(MIDiagram(), MIDiagram.__schema_doc__)
@@ -206,6 +210,7 @@ class Beyond:
     breathers: Breathers = param(Breathers(), Breathers.__schema_doc__)
     breather_interactions: BreatherInteractions = param(BreatherInteractions(),
                                                         BreatherInteractions.__schema_doc__)
+    dps_validity: DpsValidity = param(DpsValidity(), DpsValidity.__schema_doc__)
 
     @staticmethod
     def check(b, cfg: dict, out) -> None:
@@ -215,7 +220,7 @@ class Beyond:
         path = ["beyond"]
         sec = {k: (b.get(k) if isinstance(b.get(k), dict) else {}) for k in
                ("theorem1", "mi_diagram", "mi_growth", "mi_statistics", "floquet", "breathers",
-                "breather_interactions")}
+                "breather_interactions", "dps_validity")}
         Theorem1.check(sec["theorem1"], path + ["theorem1"], out)
         MIDiagram.check(sec["mi_diagram"], path + ["mi_diagram"], out)
         MIGrowth.check(sec["mi_growth"], path + ["mi_growth"], cfg, out)
@@ -226,3 +231,4 @@ class Beyond:
         Floquet.check(sec["floquet"], path + ["floquet"], out)
         Breathers.check(sec["breathers"], path + ["breathers"], out)
         BreatherInteractions.check(sec["breather_interactions"], path + ["breather_interactions"], out)
+        DpsValidity.check(sec["dps_validity"], path + ["dps_validity"], out)

@@ -12,6 +12,7 @@ import copy
 from .beyond import MIDiagram, MIGrowth, Theorem1
 from .breathers import Breathers
 from .breather_interactions import BreatherInteractions
+from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
@@ -132,6 +133,13 @@ def resolved_floquet(config: dict, form: str = "full") -> dict:
 def resolved_breathers(config: dict, form: str = "full") -> dict:
     """``beyond.breathers`` of one form (full, or reduced: what ``all`` builds)."""
     return Breathers.resolve(_validated(config), form)
+
+
 def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
     """``beyond.breather_interactions`` of one form (full, or reduced: what ``all`` builds)."""
     return BreatherInteractions.resolve(_validated(config), form)
+
+
+def resolved_dps_validity(config: dict, form: str = "full") -> dict:
+    """``beyond.dps_validity`` of one form (full, or reduced: what ``all`` builds), T sorted."""
+    return DpsValidity.resolve(_validated(config), form)
