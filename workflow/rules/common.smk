@@ -1,6 +1,8 @@
 # Shared helpers: config validation (after any --config overrides), resolved
 # parameters per entry, and the code each rule runs (derived from its imports).
 import re
+import shlex
+import sys
 
 from snakemake.exceptions import WorkflowError
 
@@ -10,6 +12,10 @@ from cradle.pipeline import layout as L
 from cradle.pipeline.codedeps import code_files
 from cradle.pipeline.params import compact_scene
 from cradle.pipeline.config.movies import Movies
+
+#: the Python that runs this workflow: shell rules call it rather than whatever `python` is first on PATH
+#: (a venv's snakemake run without activating the venv would otherwise reach a Python without cradle)
+PYTHON = shlex.quote(sys.executable)
 
 try:
     for _file in workflow.configfiles:   # Snakemake's own loader keeps the last of two equal keys silently

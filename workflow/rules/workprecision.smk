@@ -39,7 +39,7 @@ for _form in WP_FORMS:
         threads: workflow.cores
         shell:
             "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "
-            "python -m cradle.analyses.workprecision scene --spec {params.spec:q} --initial {input.initial:q} "
+            f"{PYTHON} -m cradle.analyses.workprecision scene --spec {{params.spec:q}} --initial {{input.initial:q}} "
             "--out {output:q} --log {log:q}"
 
     rule:
@@ -60,7 +60,7 @@ for _form in WP_FORMS:
         log:
             L.path("log", job=f"figures/{_form}/work-precision"),
         shell:
-            "python -m cradle.analyses.workprecision figure --out {params.stem:q} --log {log:q} {input.data:q}"
+            f"{PYTHON} -m cradle.analyses.workprecision figure --out {{params.stem:q}} --log {{log:q}} {{input.data:q}}"
 
 
 rule work_precision:
