@@ -4,6 +4,7 @@
 # gathers them. Only the full form has batches (the reduced one runs in its analysis job).
 
 rule breather_interactions_batch:
+    priority: 10  # as the analyses: long jobs that need no scene start before the figures
     conda:
         "../envs/cradle.yaml"
     message:

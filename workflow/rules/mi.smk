@@ -4,6 +4,7 @@
 from cradle.analyses import mistatistics as _mis
 
 rule mi_statistics_batch:
+    priority: 10  # as the analyses: long jobs that need no scene start before the figures
     conda:
         "../envs/cradle.yaml"
     message:
