@@ -6,6 +6,23 @@
 # about one, and the whole paper is meant to rebuild in a minute on two cores.
 
 
+rule kernels:
+    priority: 40  # first: on an empty compiled-kernel cache it compiles while the other core does stage 1,
+    # instead of the first scene jobs each compiling the same kernels at once
+    conda:
+        "../envs/cradle.yaml"
+    message:
+        "Compiling the kernels of (nc) and (dfnls) (or loading them from the cache)"
+    input:
+        code=code_of("workflow/scripts/kernels.py"),
+    output:
+        L.path("kernels"),
+    log:
+        L.path("log", job="kernels"),
+    script:
+        "../scripts/kernels.py"
+
+
 rule simulate:
     priority: 20  # all scenes before the figures: the two cores stay busy to the end
     conda:
@@ -15,6 +32,7 @@ rule simulate:
     input:
         code=code_of("workflow/scripts/simulate.py"),  # pair scenes solve a profile (homoclinic)
         homoclinic=initial_inputs,
+        kernels=L.path("kernels"),  # compiled once, before (the cache key: unchanged content, no rerun)
     output:
         **L.scene_paths("{scene}"),
     params:

@@ -35,6 +35,7 @@ TEMPLATES = {
     "interactions-batch": "interactions/batch/{form}/{chunk}.nc",
     # bookkeeping
     "log": "logs/{job}.log",
+    "kernels": "kernels.txt",  # the compiled kernels' cache key, written once they are compiled
     "benchmark": "benchmarks/{job}.tsv",
 }
 
