@@ -39,6 +39,7 @@ for _form in WP_FORMS:
         wildcard_constraints:
             scene="|".join(re.escape(k) for k in _scenes) or "(?!)",
         threads: workflow.cores if _form == "full" else 1
+        priority: 10  # as the analyses: before the figures, so that it does not end the build alone
         shell:
             "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "
             f"{PYTHON} -m cradle.analyses.workprecision scene --spec {{params.spec:q}} --initial {{input.initial:q}} "
