@@ -237,6 +237,17 @@ def core(b: Breather, rel: float = 1e-9, S=None) -> np.ndarray:
     return np.array(sorted(idx))
 
 
+def half_period_map(b: Breather, idx, rtol=RTOL) -> np.ndarray:
+    """M(T/2) restricted to the beads ``idx`` (their x then their v): the variational equations of (nc)
+    along the breather from (x0, 0) over half a period, started on those coordinates only."""
+    N, nc = b.x0.size, len(idx)
+    cols = np.zeros((2 * N, 2 * nc))
+    cols[idx, np.arange(nc)] = 1.0
+    cols[N + idx, nc + np.arange(nc)] = 1.0
+    _, _, _, Phi = flow(b.x0, np.zeros(N), b.T / 2, b.alpha, b.bc, cols, rtol)
+    return np.concatenate([Phi[idx], Phi[N + idx]])
+
+
 def monodromy(b: Breather, rtol=RTOL, rel: float | None = 1e-9):
     """The monodromy matrix M(T) = R M(T/2)^{-1} R M(T/2) (reversibility, R = diag(1, -1)) without symmetry
     reduction, on the core (``rel``, see :func:`floquet`) or on all 2N coordinates (``rel=None``).
@@ -244,11 +255,7 @@ def monodromy(b: Breather, rtol=RTOL, rel: float | None = 1e-9):
     N = b.x0.size
     idx = np.arange(N) if rel is None else core(b, rel)
     nc = idx.size
-    cols = np.zeros((2 * N, 2 * nc))
-    cols[idx, np.arange(nc)] = 1.0
-    cols[N + idx, nc + np.arange(nc)] = 1.0
-    _, _, _, Phi = flow(b.x0, np.zeros(N), b.T / 2, b.alpha, b.bc, cols, rtol)
-    Mh = np.concatenate([Phi[idx], Phi[N + idx]])
+    Mh = half_period_map(b, idx, rtol)
     R = np.diag(np.concatenate([np.ones(nc), -np.ones(nc)]))
     M = R @ np.linalg.solve(Mh, R @ Mh)
     mu = np.concatenate([np.linalg.eigvals(M), np.repeat(np.exp([1j * b.T, -1j * b.T]), N - nc)])
@@ -287,11 +294,7 @@ def floquet(b: Breather, kind: str, centre: int | None = None, rtol=RTOL, rel: f
     S = reflection(N, c + 0.5 if kind == "bond" else c, b.bc)
     idx = core(b, rel, S)
     nc = idx.size
-    cols = np.zeros((2 * N, 2 * nc))
-    cols[idx, np.arange(nc)] = 1.0
-    cols[N + idx, nc + np.arange(nc)] = 1.0
-    _, _, _, Phi = flow(b.x0, np.zeros(N), b.T / 2, b.alpha, b.bc, cols, rtol)
-    Mh = np.concatenate([Phi[idx], Phi[N + idx]])
+    Mh = half_period_map(b, idx, rtol)
     Sc = S[np.ix_(idx, idx)]
     Z = np.zeros_like(Sc)
     Q = -np.block([[Sc, Z], [Z, Sc]])

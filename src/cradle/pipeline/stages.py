@@ -144,11 +144,13 @@ def initial_data(spec: dict, name: str = "", homoclinic_ds: xr.Dataset | None = 
 
 # ---------------------------------------------------------------- integration
 
-def _check_finite(name, model, arrays, partial):
+def check_finite(name, model, arrays, partial, offset: int = 0):
+    """StageFailure at the first stored time (index ``offset`` + row: a block of a streamed run) where an
+    array is not finite."""
     for label, arr in arrays.items():
         bad = ~np.isfinite(arr)
         if bad.any():
-            ti = int(np.argwhere(bad)[0][0])
+            ti = offset + int(np.argwhere(bad)[0][0])
             raise StageFailure(f"scene '{name}' ({model}): {label} is not finite from stored time index {ti} on "
                                "(blow-up or NaN)", partial)
 
@@ -213,7 +215,7 @@ def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) ->
     ds = make_dataset({"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy},
                       coords={"t": times, "n": np.arange(spec["N"])}, attrs=attrs,
                       params=spec, title=exact_title(name))
-    _check_finite(name, "exact", {"x": sol.x, "v": sol.v}, ds)
+    check_finite(name, "exact", {"x": sol.x, "v": sol.v}, ds)
     if not sol.energy_drift <= spec["max_energy_drift"]:
         raise StageFailure(f"scene '{name}' (exact): relative energy drift {sol.energy_drift:.3e} exceeds "
                            f"max_energy_drift = {spec['max_energy_drift']:.1e} ({sol.method}, dt={attrs['dt']})", ds)
@@ -250,7 +252,7 @@ def dps_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> x
     st = spec["dps"]
     sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=st["method"], rtol=st["rtol"], progress=progress)
     ds = dps_dataset(spec, init_ds, name, times, sol)
-    _check_finite(name, "dps", {"A": sol.A}, ds)
+    check_finite(name, "dps", {"A": sol.A}, ds)
     return ds
 
 

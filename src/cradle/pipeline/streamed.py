@@ -168,12 +168,12 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         stats["max_compression"] = max(stats["max_compression"], sol.max_compression)
         for k in ("n_steps", "n_force_evals", "n_onset_corrections"):
             stats[k] += int(getattr(sol, k))
-        _finite(name, "exact", {"x": sol.x, "v": sol.v}, start)
+        stages.check_finite(name, "exact", {"x": sol.x, "v": sol.v}, None, start)
         exact_ds = make_dataset({"x": sol.x, "v": sol.v, "force": lattice.bond_forces(sol.x, alpha, bc),
                                  "energy": sol.energy}, coords={"t": tb, "n": np.arange(N)},
                                 attrs=dict(init_ds.attrs), params=light, title=stages.exact_title(name))
         dsol = next(dps_blocks)
-        _finite(name, "dps", {"A": dsol.A}, start)
+        stages.check_finite(name, "dps", {"A": dsol.A}, None, start)
         stats["wall_time_s"] += sol.wall_time_s
         dps_stats["n_steps"] += dsol.n_steps
         dps_stats["wall_time_s"] += dsol.wall_time_s
@@ -257,12 +257,3 @@ def _whole_run_shapes(met: xr.Dataset, peaks: dict) -> xr.Dataset:
         name = f"peak_compression_{m}"
         out[name] = (met[name].dims, np.full((starts.size,) + met[name].shape[1:], np.nan), met[name].attrs)
     return out
-
-
-def _finite(name, model, arrays, start):
-    for label, arr in arrays.items():
-        bad = ~np.isfinite(arr)
-        if bad.any():
-            ti = start + int(np.argwhere(bad)[0][0])
-            raise StageFailure(f"scene '{name}' ({model}): {label} is not finite from stored time index {ti} on "
-                               "(blow-up or NaN)")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from .spec import declared, param
+from .values import form_section
 
 _PAIRS = {"type": "string", "enum": ["site-site", "bond-bond", "site-bond"]}
 _SPACING = {"type": "integer", "minimum": 1, "maximum": 24}
@@ -74,9 +75,6 @@ class BreatherInteractions:
     @staticmethod
     def resolve(cfg: dict, form: str = "full") -> dict:
         """The section of one form: the full keys, with the reduced ones in place for ``reduced``."""
-        b = {k: v for k, v in cfg["beyond"]["breather_interactions"].items() if k != "reduced"}
-        if form == "reduced":
-            b.update({k: v for k, v in (cfg["beyond"]["breather_interactions"].get("reduced") or {}).items()
-                      if v is not None})
+        b = form_section(cfg["beyond"]["breather_interactions"], form)
         b["amplitude_thetas"] = [float(t) for t in b["amplitude_thetas"]]
         return b

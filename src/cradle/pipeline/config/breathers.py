@@ -5,7 +5,7 @@ from __future__ import annotations
 import itertools
 
 from .spec import declared, param
-from .values import number
+from .values import form_section, number
 
 _OMEGA = {"type": "number", "exclusiveMinimum": 1, "maximum": 10, "description": "One breather frequency omega_b."}
 _KINDS = {"type": "string", "enum": ["site", "bond"], "description": "A breather family: site- or bond-centred."}
@@ -69,17 +69,10 @@ class Breathers:
     reduced: BreathersReduced = param(BreathersReduced(), BreathersReduced.__schema_doc__)
 
     @staticmethod
-    def _form(b: dict, form: str) -> dict:
-        out = {k: v for k, v in b.items() if k != "reduced"}
-        if form == "reduced":
-            out.update({k: v for k, v in (b.get("reduced") or {}).items() if v is not None})
-        return out
-
-    @staticmethod
     def check(b: dict, path: list, out) -> None:
         """Both forms: omegas increasing, pn_omega and kick_omega among them."""
         for form, where in (("full", path), ("reduced", path + ["reduced"])):
-            sec = Breathers._form(b, form)
+            sec = form_section(b, form)
             om = sec.get("omegas")
             if not (isinstance(om, list) and om and all(number(x) for x in om)):
                 continue
@@ -94,4 +87,4 @@ class Breathers:
     @staticmethod
     def resolve(cfg: dict, form: str = "full") -> dict:
         """``beyond.breathers`` of one form (the reduced keys in place for ``reduced``)."""
-        return Breathers._form(cfg["beyond"]["breathers"], form)
+        return form_section(cfg["beyond"]["breathers"], form)

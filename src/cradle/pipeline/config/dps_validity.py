@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from .spec import declared, param
-from .values import number, show
+from .values import form_section, number, show
 
 _FAMILIES = ("tw-pi5", "tw-4pi5", "breather-bond", "mi-4pi5-noise")
 _ALPHAS = {"$ref": "#/$defs/alpha", "maximum": 10}
@@ -62,20 +62,12 @@ class DpsValidity:
     reduced: DpsValidityReduced = param(DpsValidityReduced(), DpsValidityReduced.__schema_doc__)
 
     @staticmethod
-    def _form(b: dict, form: str) -> dict:
-        """The section of one form: the full keys, with the reduced ones in place for ``reduced``."""
-        out = {k: v for k, v in b.items() if k != "reduced"}
-        if form == "reduced":
-            out.update({k: v for k, v in (b.get("reduced") or {}).items() if v is not None})
-        return out
-
-    @staticmethod
     def check(b: dict, path: list, out) -> None:
         """Both forms: one eps_min per alpha, each below eps_max; the families distinct."""
         DpsValidity._check(b, path, out)
         reduced = b.get("reduced")
         if isinstance(reduced, dict):
-            DpsValidity._check(DpsValidity._form(b, "reduced"), path + ["reduced"], out, own=set(reduced))
+            DpsValidity._check(form_section(b, "reduced"), path + ["reduced"], out, own=set(reduced))
 
     @staticmethod
     def _check(b: dict, path: list, out, own=None) -> None:
@@ -97,6 +89,6 @@ class DpsValidity:
     @staticmethod
     def resolve(cfg: dict, form: str = "full") -> dict:
         """``beyond.dps_validity`` of one form (``full``, or ``reduced``: the reduced keys in place)."""
-        b = DpsValidity._form(cfg["beyond"]["dps_validity"], form)
+        b = form_section(cfg["beyond"]["dps_validity"], form)
         b["T"] = sorted(float(t) for t in b["T"])
         return b

@@ -4,7 +4,7 @@ from __future__ import annotations
 import math
 
 from .spec import declared, param
-from .values import angle_expr, angle_or_none, number, parse_angle, show
+from .values import angle_expr, angle_or_none, form_section, number, parse_angle, show
 
 _ANGLES = {"$ref": "#/$defs/angle"}
 
@@ -105,15 +105,7 @@ class Floquet:
                     if where[len(path) + 1] in reduced:
                         out.add(where, *rest)
 
-            Floquet._check(Floquet._form(b, "reduced"), path + ["reduced"], _Own())
-
-    @staticmethod
-    def _form(b: dict, form: str) -> dict:
-        """The section of one form: the full keys, with the reduced ones in place for ``reduced``."""
-        out = {k: v for k, v in b.items() if k != "reduced"}
-        if form == "reduced":
-            out.update({k: v for k, v in (b.get("reduced") or {}).items() if v is not None})
-        return out
+            Floquet._check(form_section(b, "reduced"), path + ["reduced"], _Own())
 
     @staticmethod
     def _check(b: dict, path: list, out) -> None:
@@ -154,7 +146,7 @@ class Floquet:
     def resolve(cfg: dict, form: str = "full") -> dict:
         """``beyond.floquet`` of one form (``full``, or ``reduced``: the reduced keys in place), with angles in
         radians (the texts of the lists in ``<key>_expr``) and ``convergence`` completed with the main values."""
-        b = Floquet._form(cfg["beyond"]["floquet"], form)
+        b = form_section(cfg["beyond"]["floquet"], form)
         for key in _FLOQUET_ANGLES:
             b[key] = parse_angle(b[key])
         for key in _FLOQUET_ANGLE_LISTS:

@@ -96,6 +96,15 @@ def entries(cfg, section) -> dict:
     return {k: v for k, v in sec.items() if isinstance(v, dict)} if isinstance(sec, dict) else {}
 
 
+def form_section(b: dict, form: str) -> dict:
+    """An analysis section of one form: its full keys, with the keys given under ``reduced`` in place for
+    ``form == "reduced"`` (a null there keeps the full value)."""
+    out = {k: v for k, v in b.items() if k != "reduced"}
+    if form == "reduced":
+        out.update({k: v for k, v in (b.get("reduced") or {}).items() if v is not None})
+    return out
+
+
 def parse_angle(value) -> float:
     """An angle in radians from a number or a string 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', '0.3'."""
     if number(value):
