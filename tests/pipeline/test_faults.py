@@ -402,3 +402,11 @@ def test_flipped_byte_in_a_group_of_a_tree_is_detected(tmp_path, capsys):
         assert "\n" not in str(err.value) and "snakemake --force results/mi/mi-statistics.nc" in str(err.value)
     assert cli.main(["describe", str(path)]) == 2
     assert _one_line(capsys.readouterr().err)
+
+
+def test_empty_variable_is_not_reported_unprotected(tmp_path):
+    """A variable of length 0 (an analysis's reduced form with no kicks, say) has no data to checksum:
+    cradle verify does not list it as written before checksums; the others still are checksummed."""
+    ds = xr.Dataset({"a": ("k", np.zeros(0)), "b": ("m", np.arange(3.0))})
+    io.write_netcdf(ds, tmp_path / "e.nc")
+    assert io.verify_file(tmp_path / "e.nc") == []
