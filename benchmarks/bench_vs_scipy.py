@@ -41,7 +41,7 @@ from scipy.integrate import solve_ivp
 
 from cradle.pipeline import config as cc
 from cradle.models import lattice as L
-from cradle.pipeline import stages
+from cradle.scenes import stages
 from cradle.integrators import _kernels as K
 from cradle.integrators import integrate_lattice
 from cradle.analyses.workprecision import machine

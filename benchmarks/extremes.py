@@ -70,7 +70,7 @@ def case_long_t():
 def case_extend():
     """Run to 5e3 (exact.nc), extend to 1e4 with cradle.pipeline.extend.extend, compare with one run to 1e4."""
     from cradle.models import initial
-    from cradle.pipeline import io
+    from cradle.data import io
     from cradle.pipeline.extend import extend, stream_lattice
 
     d = initial.travelling_wave(200, np.pi / 5, 1.5, omega_tw=1.1)

@@ -20,7 +20,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from cradle.pipeline import config as cc
-from cradle.pipeline import stages
+from cradle.scenes import stages
 from cradle.integrators import integrate_lattice
 from cradle.integrators import lattice_splitting as LS
 

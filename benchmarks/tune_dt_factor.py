@@ -16,7 +16,7 @@ import time
 from pathlib import Path
 
 from cradle.pipeline import config as cc
-from cradle.pipeline import stages
+from cradle.scenes import stages
 from cradle.integrators import DEFAULT_DT_FACTOR, integrate_lattice
 
 ROOT = Path(__file__).resolve().parents[1]

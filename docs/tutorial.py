@@ -150,7 +150,7 @@ display(Image(filename=str(changed / "figures" / "plot4-5.png"), width=700))
 exact_nc = SOURCE / "sim" / SCENE / "exact.nc"
 longer = WORK / "exact-longer.nc"
 assert cradle_cli(["extend", str(exact_nc), "--t-end", str(T_EXTEND), "--out", str(longer)]) == 0
-from cradle.pipeline.io import open_dataset
+from cradle.data.io import open_dataset
 
 short, long_ = open_dataset(exact_nc), open_dataset(longer)
 same = np.array_equal(long_.x.sel(t=short.t).values, short.x.values)

@@ -266,7 +266,7 @@ def test_config_accepts_N2_and_names_bad_N_and_q():
 def test_homoclinic_stage_far_from_three_halves(alpha, guess, log10_amp):
     """stages.homoclinic_solution (config entry, N = 50) now gives the alpha = 1.01 and alpha = 3
     site-centred solutions (by continuation) instead of failing or returning a = 0."""
-    from cradle.pipeline import stages
+    from cradle.scenes import stages
 
     ds = stages.homoclinic_solution({"alpha": alpha, "N": 50, "bc": "periodic", "guess": guess}, "x")
     assert ds.attrs["method"] == "continued" and ds.attrs["converged"] == 1

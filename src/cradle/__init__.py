@@ -24,7 +24,7 @@ except PackageNotFoundError:  # running from a source tree that is not installed
 def __getattr__(name):
     # cradle.open_scene without importing xarray at `import cradle` (the Snakefile imports cradle.pipeline.config)
     if name == "open_scene":
-        from cradle.pipeline.io import open_scene
+        from cradle.pipeline.outputs import open_scene
 
         return open_scene
     raise AttributeError(f"module 'cradle' has no attribute {name!r}")

@@ -149,7 +149,7 @@ def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):
     # written, read back and drawn
     from cradle.figures import save_figure
     from cradle.figures import drawer
-    from cradle.pipeline.io import open_tree, write_netcdf
+    from cradle.data.io import open_tree, write_netcdf
 
     back = open_tree(write_netcdf(tree, tmp_path / "mis.nc"))
     np.testing.assert_array_equal(back["runs"]["crossed"].values, crossed)

@@ -114,7 +114,7 @@ def test_exact_wave_solves_the_lattice():
 def test_theorem1_file_is_a_tree_named_as_in_the_paper(tmp_path):
     """A tiny `theorem1` run, written and read back: the groups /waves, /profiles, /convergence,
     /scenes hold the waves of cradle.models.waves under the paper's names, values as solved."""
-    from cradle.pipeline.io import open_tree, write_netcdf
+    from cradle.data.io import open_tree, write_netcdf
 
     alpha, q = 1.5, np.pi / 2
     spec = {"alpha": [alpha], "q": [q, np.pi], "q_expr": ["pi/2", "pi"], "a_min": 1e-3, "a_max": 0.1,

@@ -11,9 +11,9 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline import stages
+from cradle.scenes import stages
 from cradle.analyses import workprecision as wp
-from cradle.pipeline.io import open_dataset, write_netcdf
+from cradle.data.io import open_dataset, write_netcdf
 
 ROOT = Path(__file__).resolve().parents[2]
 

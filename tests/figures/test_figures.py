@@ -7,7 +7,7 @@ from matplotlib.collections import QuadMesh
 from matplotlib.image import AxesImage
 
 from cradle.measurements import compare
-from cradle.pipeline import stages
+from cradle.scenes import stages
 from cradle.pipeline import config as cc
 from cradle.figures import drawer, registry, spectra
 

@@ -6,8 +6,8 @@ import pytest
 
 from cradle.measurements import compare, sidebands
 from cradle.figures import spectra
-from cradle.pipeline import stages
-from cradle.pipeline.io import make_dataset
+from cradle.scenes import stages
+from cradle.data.io import make_dataset
 
 N = 40                                   # q N / (2 pi) = 16 for q = 4 pi/5: q on Gamma*
 Q = 4 * np.pi / 5

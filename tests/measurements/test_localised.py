@@ -12,7 +12,7 @@ import yaml
 from cradle.pipeline import config as cc
 from cradle.measurements import breathers, interactions
 from cradle.models import dps, homoclinic, initial, lattice
-from cradle.pipeline import stages
+from cradle.scenes import stages
 from cradle.figures import localised, registry
 
 matplotlib.use("Agg")

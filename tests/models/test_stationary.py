@@ -5,7 +5,7 @@ import pytest
 
 from cradle.models import stationary as st
 from cradle.figures import maps
-from cradle.pipeline import stages
+from cradle.scenes import stages
 
 ALPHAS = [1.5, 2.0, 3.0]
 

@@ -1,14 +1,14 @@
 """Every output kind is CF-1.10 (IOOS compliance-checker, strict) and carries its provenance.
 
 The six kinds (homoclinic, map, initial, sim exact, sim dps, metrics) are
-built with cradle.pipeline.stages on the tiny config of test_pipeline, written with
-cradle.pipeline.io.write_netcdf and checked with the checker's Python API. Skipped
+built with cradle.scenes.stages on the tiny config of test_pipeline, written with
+cradle.data.io.write_netcdf and checked with the checker's Python API. Skipped
 only when compliance-checker is not installed (it is in the ``test`` extra).
 
 The files of the analyses beyond the paper are trees of netCDF groups; the checker reads the root
 group only, so each group is checked as the Dataset ``xarray.open_datatree`` gives for it (its
 variables, the coordinates it inherits, the root's global attributes), written as its own file.
-The trees are built by :func:`cradle.pipeline.io.make_tree` from every variable each analysis
+The trees are built by :func:`cradle.data.io.make_tree` from every variable each analysis
 declares (``VARIABLES`` of its module), filled with increasing numbers.
 """
 from __future__ import annotations
@@ -19,9 +19,11 @@ import numpy as np
 import pytest
 
 from cradle.pipeline import config as cc
-from cradle.pipeline import provenance, stages
-from cradle.pipeline.io import make_dataset, make_tree, open_dataset, open_scene, open_tree, write_netcdf
-from cradle.pipeline.variables import VARIABLES
+from cradle.data import provenance
+from cradle.scenes import stages
+from cradle.data.io import make_dataset, make_tree, open_dataset, open_tree, write_netcdf
+from cradle.pipeline.outputs import open_scene
+from cradle.data.variables import VARIABLES
 
 from test_pipeline import TINY  # tests/ is on sys.path (pytest rootdir, no __init__.py)
 

@@ -11,8 +11,9 @@ import yaml
 
 from cradle.pipeline.cli import main
 from cradle.pipeline.config import load, resolved_scene
-from cradle.pipeline.provenance import params_hash
-from cradle.pipeline.io import open_dataset, open_scene
+from cradle.data.provenance import params_hash
+from cradle.data.io import open_dataset
+from cradle.pipeline.outputs import open_scene
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -13,7 +13,8 @@ import yaml
 
 from cradle.pipeline import config as cc
 from cradle.pipeline.config import (beyond, breather_interactions, breathers, dps_validity, floquet, mi_statistics,
-                                    movies, scenes, sections)
+                                    movies, sections)
+from cradle.scenes import spec as scenes
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"

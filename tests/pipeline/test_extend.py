@@ -6,7 +6,9 @@ import os
 import numpy as np
 import pytest
 
-from cradle.pipeline import cli, extend, io, stages
+from cradle.data import io
+from cradle.pipeline import cli, extend
+from cradle.scenes import stages
 from cradle.pipeline.config import store_times
 
 

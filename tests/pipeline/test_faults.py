@@ -19,7 +19,10 @@ import pytest
 import xarray as xr
 import yaml
 
-from cradle.pipeline import budget, cli, config as cc, extend, io, stages
+from cradle.data import io
+from cradle.pipeline import outputs
+from cradle.pipeline import budget, cli, config as cc, extend
+from cradle.scenes import stages
 from cradle.pipeline.params import compact_scene, expand_scene
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -127,10 +130,10 @@ def test_damaged_scene_stops_open_scene_and_figure_inputs(outputs, tmp_path):
     for kind in ("exact", "dps", "metrics"):
         _copy(outputs[kind][1], tmp_path)
     root = tmp_path / "results"
-    assert io.open_scene("tw", root=root)["x"].sizes["model"] == 2
+    assert outputs.open_scene("tw", root=root)["x"].sizes["model"] == 2
     _flip_in_data(root / "sim/tw/dps.nc", outputs["dps"][0]["A_re"].values)
     with pytest.raises(io.DamagedOutput, match=r"sim/tw/dps.nc: damaged"):
-        io.open_scene("tw", root=root)
+        outputs.open_scene("tw", root=root)
     with pytest.raises(io.DamagedOutput, match=r"sim/tw/dps.nc: damaged"):
         load_inputs({"tw": "scenes"}, root)
 
@@ -203,7 +206,7 @@ def test_figure_failing_part_way_keeps_the_previous_figure(tmp_path, monkeypatch
 
 @pytest.mark.parametrize("patch, key", [
     ({"N": 1e9}, "budget.memory_gb"),
-    # a store this large would stream in bounded memory (cradle.pipeline.streamed): refused on disk
+    # a store this large would stream in bounded memory (cradle.scenes.streamed): refused on disk
     ({"t_end": 99000.0, "store": {"every": 0.01}}, "budget.disk_gb"),
     ({"t_end": 1e12, "store": {"snapshots": [1.0]}}, "budget.hours"),
 ])

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from cradle.pipeline.io import open_dataset
+from cradle.data.io import open_dataset
 
 CONFIG = {
     "scenes": {

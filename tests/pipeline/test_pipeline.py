@@ -13,10 +13,10 @@ from conftest import run_snakemake
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline import stages
-from cradle.pipeline.io import open_dataset, write_netcdf
+from cradle.scenes import stages
+from cradle.data.io import open_dataset, write_netcdf
 from cradle.pipeline.runner import failed_path, run, run_chain
-from cradle.pipeline.variables import VARIABLES
+from cradle.data.variables import VARIABLES
 
 ROOT = Path(__file__).resolve().parents[2]
 

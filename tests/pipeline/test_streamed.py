@@ -1,4 +1,4 @@
-"""A scene's job block by block (cradle.pipeline.streamed): the same values as the in-memory job,
+"""A scene's job block by block (cradle.scenes.streamed): the same values as the in-memory job,
 bounded memory, nothing left behind on failure; which scenes stream (cradle.pipeline.budget)."""
 from __future__ import annotations
 
@@ -9,9 +9,12 @@ import pytest
 
 from cradle.integrators import integrate_dps
 from cradle.integrators.dps_solver import iter_dps
-from cradle.pipeline import budget, io, stages, streamed
+from cradle.data import io
+from cradle.pipeline import budget
+from cradle.scenes import stages, streamed
 from cradle.pipeline import config as cc
-from cradle.pipeline.runner import StageFailure, run_chain
+from cradle.pipeline.runner import run_chain
+from cradle.scenes.failure import StageFailure
 
 from conftest import ROOT
 

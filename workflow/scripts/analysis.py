@@ -3,7 +3,7 @@
 import logging
 
 from cradle.analyses.registry import ANALYSES
-from cradle.pipeline.io import open_dataset
+from cradle.data.io import open_dataset
 from cradle.pipeline.params import expand_scene
 from cradle.pipeline.runner import run
 

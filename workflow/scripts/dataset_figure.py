@@ -3,7 +3,7 @@
 from pathlib import Path
 
 from cradle.figures import draw_dataset
-from cradle.pipeline.io import open_tree
+from cradle.data.io import open_tree
 from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -1,5 +1,5 @@
 """Snakemake adapter: orbits of the map G (comp1)-(comp2) -> results/map/<name>.nc."""
-from cradle.pipeline import stages
+from cradle.scenes import stages
 from cradle.pipeline.runner import run
 
 name = snakemake.wildcards.name  # noqa: F821 (injected by Snakemake)

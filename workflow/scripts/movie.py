@@ -3,7 +3,7 @@ import logging
 from pathlib import Path
 
 from cradle.figures.movie import MovieSpec, animate
-from cradle.pipeline.io import open_scene
+from cradle.pipeline.outputs import open_scene
 from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -2,7 +2,7 @@
 from pathlib import Path
 
 from cradle.analyses import checks
-from cradle.pipeline.io import write_text
+from cradle.data.io import write_text
 from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -1,7 +1,7 @@
 """Snakemake adapter: one scene's initial data, lattice (nc) and DpS (dfnls) runs and their
 comparison -> results/initial/<scene>.nc, results/sim/<scene>/{exact,dps}.nc, results/metrics/<scene>.nc
 (cradle.pipeline.scene_job: in memory, or block by block for a large store)."""
-from cradle.pipeline.io import open_dataset
+from cradle.data.io import open_dataset
 from cradle.pipeline.params import expand_scene
 from cradle.pipeline.scene_job import run_scene
 

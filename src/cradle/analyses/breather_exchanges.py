@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 VARIABLES = {
     "/exchanges": {

@@ -27,7 +27,7 @@ import time
 
 import numpy as np
 
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 MODELS = ("exact", "dps")
 PAIRS = {"site-site": ("site", "site"), "bond-bond": ("bond", "bond"), "site-bond": ("site", "bond")}
@@ -226,7 +226,7 @@ def maps(cols: dict, spec: dict) -> dict:
 
 
 def tree(rows: list[dict], spec: dict, wall: float):
-    from cradle.pipeline.io import make_tree
+    from cradle.data.io import make_tree
 
     cols = case_table(rows)
     mp, coords = maps(cols, spec)
@@ -259,7 +259,7 @@ def batch_files(spec: dict, form: str) -> list[str]:
 
 def batch_dataset(spec: dict, chunk: int, log=None):
     """The /cases table of one batch job as a netCDF Dataset."""
-    from cradle.pipeline.io import make_dataset
+    from cradle.data.io import make_dataset
 
     t0 = time.perf_counter()
     rows = batch(spec, chunk, log)

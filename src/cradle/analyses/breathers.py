@@ -19,7 +19,7 @@ import numpy as np
 
 from cradle.analyses.breather_exchanges import VARIABLES as _EXCHANGES
 from cradle.analyses.breather_mobility import VARIABLES as _MOBILITY
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 _F = ("family", "omega")
 VARIABLES = {
@@ -122,7 +122,7 @@ def compute(spec: dict, log=None):
     from cradle.models import homoclinic_tails as ht
     from cradle.models import lattice_breather_tails as lbt
     from cradle.models import lattice_breathers as lb
-    from cradle.pipeline.io import make_tree
+    from cradle.data.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)

@@ -65,7 +65,7 @@ class Results:
 
     def _open(self, kind, **names):
         from cradle.pipeline import layout
-        from cradle.pipeline.io import open_dataset
+        from cradle.data.io import open_dataset
 
         key = layout.path(kind, self.root, **names)
         if key not in self._cache:

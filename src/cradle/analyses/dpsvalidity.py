@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 FAMILIES = ("tw-pi5", "tw-4pi5", "breather-bond", "mi-4pi5-noise")
 _Q = {"tw-pi5": np.pi / 5.0, "tw-4pi5": 4.0 * np.pi / 5.0, "mi-4pi5-noise": 4.0 * np.pi / 5.0}
@@ -231,7 +231,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from cradle.pipeline.io import make_tree
+    from cradle.data.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)

@@ -14,7 +14,7 @@ import numpy as np
 from cradle.analyses.bloch import (NOISE_FLOOR, Hill, direct_growth, match_distance, multipliers,
                                    ring_exponents_hill, ring_monodromy, wave_for)
 from cradle.models import dps
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 
 def dps_growth(q, p, alpha: float, a: float):
@@ -132,7 +132,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from cradle.pipeline.io import make_tree
+    from cradle.data.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)

@@ -46,7 +46,7 @@ from cradle.measurements import compare
 from cradle.models import dps
 from cradle.analyses import modulational
 from cradle.pipeline.config import store_times
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 MODELS = ("exact", "dps")
 #: the growth-rate diagram of the mi-growth figure: max_p of the scaled linear DpS rate on THEORY_N_Q
@@ -255,7 +255,7 @@ def compute(spec: dict, scenes: dict, log=None):
     ``spec``: sample_every, saturation, decades, r2_min. ``scenes``: {name: (resolved scene spec,
     initial Dataset, {"exact": sim Dataset, "dps": sim Dataset})}.
     """
-    from cradle.pipeline.io import make_tree
+    from cradle.data.io import make_tree
 
     wall0 = time.perf_counter()
     say = log or (lambda *a: None)

@@ -42,7 +42,7 @@ from cradle.measurements import compare, sidebands
 from cradle.models import initial
 from cradle.analyses import modulational
 from cradle.pipeline.config import store_times
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 MODELS = ("exact", "dps")
 WILSON_Z = 1.959963984540054   # two-sided 95 %
@@ -243,7 +243,7 @@ BATCH_VARIABLES = {**VARIABLES["/"], **VARIABLES["/runs"]}
 def batch(spec: dict, N: int, model: str, chunk: int, log=None):
     """Runs of one (N, model, chunk): every q of the chunk times every seed -> a flat Dataset
     (:data:`BATCH_VARIABLES`: the "/runs" table with k_index and a)."""
-    from cradle.pipeline.io import make_dataset
+    from cradle.data.io import make_dataset
 
     say = log or (lambda *a: None)
     wall0 = time.perf_counter()
@@ -281,7 +281,7 @@ def aggregate(batches, spec: dict):
     groups (:data:`VARIABLES`), the summary per q at the root and every run in "/runs"."""
     import warnings
 
-    from cradle.pipeline.io import make_tree
+    from cradle.data.io import make_tree
 
     Ns = sorted({int(n) for b in batches for n in b["N"].values})
     models = [m for i, m in enumerate(MODELS) if any(i in b["model"].values for b in batches)]

@@ -20,7 +20,7 @@ import numpy as np
 
 from cradle.models import dps
 from cradle.models.lattice import check_alpha
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 
 def _g(z, alpha):
@@ -229,7 +229,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from cradle.pipeline.io import make_tree
+    from cradle.data.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)

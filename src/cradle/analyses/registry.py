@@ -2,7 +2,7 @@
 
 An :class:`Analysis` names the config resolver of its spec, the function that
 computes its output from that spec (and, for some, from files of earlier stages) -- a tree of
-netCDF groups (:func:`cradle.pipeline.io.make_tree`) named as in the paper from the
+netCDF groups (:func:`cradle.data.io.make_tree`) named as in the paper from the
 ``VARIABLES`` its module declares -- the figure label that draws it, and its forms: the reduced form
 ``all`` builds (``results/<folder>/<name>.nc``, figure
 ``results/figures/<name>.{pdf,png}``) and, where that is cheaper than the

@@ -16,7 +16,7 @@ import numpy as np
 from cradle.models import dps
 from cradle.models.lattice import check_alpha
 from cradle.models.waves import Wave, branch, dV0, solve, wave_max
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 _AQ = ("alpha", "q")
 _AQA = ("alpha", "q", "a")
@@ -211,7 +211,7 @@ def compute(spec: dict, log=None):
     """
     import time
 
-    from cradle.pipeline.io import make_tree
+    from cradle.data.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)

@@ -54,12 +54,12 @@ import time
 import numpy as np
 
 from cradle.models import lattice
-from cradle.pipeline.variables import Var
+from cradle.data.variables import Var
 
 log = logging.getLogger("cradle")
 
 #: Variables of the work-precision files (flat, one per scene), declared beside the analysis:
-#: :func:`cradle.pipeline.io.make_dataset` takes their dims, long names and units from here.
+#: :func:`cradle.data.io.make_dataset` takes their dims, long names and units from here.
 VARIABLES: dict[str, Var] = {
     "method": Var(("method",), "integration method of the lattice (nc)"),
     "setting": Var(("setting",), "index of the accuracy setting on the method's ladder"),
@@ -244,9 +244,9 @@ def _version(pkg: str) -> str:
 
 
 def _dataset(fields: dict, methods, S, t, D, attrs, title) -> xr.Dataset:
-    """A self-describing Dataset (:func:`cradle.pipeline.io.make_dataset`, :data:`VARIABLES`) from the
+    """A self-describing Dataset (:func:`cradle.data.io.make_dataset`, :data:`VARIABLES`) from the
     measured arrays."""
-    from cradle.pipeline.io import make_dataset
+    from cradle.data.io import make_dataset
 
     coords = {"method": np.array(methods, dtype=object), "setting": np.arange(S),
               "t_compare": np.asarray(t, dtype=float)}
@@ -278,7 +278,7 @@ def summary(ds: xr.Dataset) -> list[str]:
 # --------------------------------------------------------------------------- command line
 
 def main(argv=None) -> int:
-    from cradle.pipeline.io import open_dataset
+    from cradle.data.io import open_dataset
     from cradle.pipeline.runner import run, setup_logging
 
     parser = argparse.ArgumentParser(prog="python -m cradle.analyses.workprecision", description=__doc__.splitlines()[0])

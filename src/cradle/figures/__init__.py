@@ -153,11 +153,11 @@ def load_inputs(scenes: dict, root) -> dict:
     ``scenes`` maps each name to its config section (map, homoclinic,
     scenes). Map and homoclinic names give one Dataset; a scene gives
     ``{"exact": ..., "dps": ..., "metrics": ...}``. Every file is verified as it is read
-    (:func:`cradle.pipeline.io.open_dataset`): a damaged or truncated one stops the figure with one
+    (:func:`cradle.data.io.open_dataset`): a damaged or truncated one stops the figure with one
     line naming it and its rebuild command, before anything is drawn or written.
     """
     from cradle.pipeline import layout
-    from cradle.pipeline.io import open_dataset
+    from cradle.data.io import open_dataset
 
     data = {}
     for name, kind in scenes.items():

@@ -19,7 +19,7 @@ the most negative force; bond index n horizontal, time t upwards.
 
 Every measurement shown (half-period shift, radiated amplitude, peak
 compression per period, merging times) is read from the scene's metrics file
-(results/metrics/<scene>.nc, :func:`cradle.pipeline.stages.localised_metrics`).
+(results/metrics/<scene>.nc, :func:`cradle.scenes.stages.localised_metrics`).
 """
 from __future__ import annotations
 

@@ -4,7 +4,7 @@ The spectra are the paper's DFT x_hat_k(t) = sum_n x_n(t) e^{-i n k}, k in
 Gamma* = (2 pi / N){-N/2+1, ..., N/2} (:func:`cradle.measurements.compare.spatial_dft`),
 read from ``results/metrics/<scene>.nc`` (``spectrum_exact``, ``spectrum_dps``)
 with what the panels print, measured by the metrics stage at every stored time
-(:func:`cradle.pipeline.stages.travelling_metrics`): the sideband-to-carrier
+(:func:`cradle.scenes.stages.travelling_metrics`): the sideband-to-carrier
 ratio and the wavenumber of the largest sideband (``sideband_ratio_<model>``,
 ``sideband_k_<model>``, :func:`cradle.measurements.sidebands.sideband_peak`) and
 the carrier's share of a profile's power (``carrier_share_<model>``).

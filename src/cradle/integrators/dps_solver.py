@@ -45,7 +45,7 @@ class DpsSolution:
         Hamiltonian, -sum |A_{n+1}-A_n|^(alpha+1) / ((alpha+1) tau0));
         absolute when I(0) = 0.
     P_drift : ndarray, shape (T,)
-        |P(tau) - P(0)| / max_n |A_n(0)|, P = sum A_n (cradle.pipeline.variables).
+        |P(tau) - P(0)| / max_n |A_n(0)|, P = sum A_n (cradle.data.variables).
     max_l2_drift, max_energy_drift : float
         Same relative drifts, max over every accepted step.
     n_steps : int
@@ -228,7 +228,7 @@ def iter_dps(A0, tau_out, rows: int, *, alpha, bc="periodic", rtol=DEFAULT_RTOL,
     Steps end on every output time and the stepper's state (tau, next step, invariants' running
     maxima) is carried from block to block, so the blocks' rows are bitwise those of the single
     call; memory is one block, whatever the number of output times (the streamed scene job,
-    :mod:`cradle.pipeline.streamed`). ``max_l2_drift`` / ``max_energy_drift`` of a block are the
+    :mod:`cradle.scenes.streamed`). ``max_l2_drift`` / ``max_energy_drift`` of a block are the
     maxima over every step so far; ``n_steps`` counts the block's own.
     """
     run = _DpsRun(A0, tau_out, alpha, bc, rtol, atol, progress)

@@ -34,7 +34,7 @@ How the numbers are obtained:
 A large store is streamed, not refused: when a scene's in-memory peak would exceed
 :data:`STREAM_ABOVE_BYTES` (and its methods can be continued block by block: a fixed-step
 splitting for (nc), DOP853 in numba for DpS), :func:`streams` says so and the job runs block by
-block (:mod:`cradle.pipeline.streamed`), holding :data:`STREAMED_BLOCK_BYTES` of block plus
+block (:mod:`cradle.scenes.streamed`), holding :data:`STREAMED_BLOCK_BYTES` of block plus
 :data:`STREAMED_BYTES_PER_TIME` per stored time, whatever N x T. Such a scene is then judged on
 disk and time; a store that cannot stream (an adaptive method for (nc)) is judged on its
 in-memory peak as before.
@@ -75,9 +75,9 @@ COST_PER_BEAD_STEP_S = {"srkn6c": 3.2e-8, "srkn4c": 1.4e-8, "srkn6": 1.8e-8, "sr
                         "dop853_numba": 1.4e-7, "dop853": 1.7e-6, "rk45": 6.2e-7, "lsoda": 1.7e-6, "radau": 1.7e-6}
 STEPS_PER_TIME_UNIT = {"srkn6c": 23.3, "srkn4c": 58.2, "srkn6": 466.0, "srkn4": 931.0, "strang": 7760.0,
                        "dop853_numba": 14.7, "dop853": 14.6, "rk45": 31.6, "lsoda": 14.6, "radau": 14.6}
-#: a scene's job streams (:mod:`cradle.pipeline.streamed`) when its in-memory peak estimate exceeds this
+#: a scene's job streams (:mod:`cradle.scenes.streamed`) when its in-memory peak estimate exceeds this
 STREAM_ABOVE_BYTES = 2e9
-#: peak memory of a streamed job beyond BASE_BYTES: its blocks (cradle.pipeline.appending
+#: peak memory of a streamed job beyond BASE_BYTES: its blocks (cradle.data.appending
 #: DEFAULT_CHUNK_BYTES of stored values, times the copies a block goes through: both runs' Datasets,
 #: the metrics' FFTs, the HDF5 chunk caches) -- measured by benchmarks/streamed_store.py
 STREAMED_BLOCK_BYTES = 0.5e9
@@ -100,7 +100,7 @@ class Estimate:
     disk_bytes: float
     seconds: float
     steps: float = 0.0
-    streamed: bool = False  # a scene's job that runs block by block (cradle.pipeline.streamed)
+    streamed: bool = False  # a scene's job that runs block by block (cradle.scenes.streamed)
 
     def describe(self) -> str:
         """One line: memory, disk, time."""
@@ -184,9 +184,9 @@ def spec_estimate(spec: dict) -> Estimate:
 
 
 def streamable(spec: dict) -> bool:
-    """Whether a scene's runs can be computed block by block (:mod:`cradle.pipeline.streamed`): a
+    """Whether a scene's runs can be computed block by block (:mod:`cradle.scenes.streamed`): a
     fixed-step splitting for (nc) and DOP853 in numba for DpS (both continue bitwise)."""
-    from cradle.pipeline.config.scenes import SPLITTINGS
+    from cradle.scenes.spec import SPLITTINGS
 
     return ((spec.get("exact") or {}).get("method", "srkn6c") in SPLITTINGS
             and (spec.get("dps") or {}).get("method", "dop853_numba") == "dop853_numba")

@@ -6,7 +6,7 @@ follows every import of a ``cradle`` module -- at module level or inside a
 function, absolute or relative -- and returns the source file of each module
 reached, with the ``__init__.py`` of every package on the way (Python runs
 them on import). So an edit to any module reruns exactly the jobs whose code
-can reach it: a change to :mod:`cradle.pipeline.provenance` (imported by the
+can reach it: a change to :mod:`cradle.data.provenance` (imported by the
 netCDF writer and reader) reruns everything, a change to a figure helper only
 the figures drawn with it.
 

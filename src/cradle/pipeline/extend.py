@@ -4,9 +4,9 @@
 each chunk to a netCDF file whose ``t`` dimension is unlimited, so the
 memory held is one chunk (``chunk_bytes``), whatever t_end and the number of
 stored times. The file is written under a temporary name beside the target
-and renamed at the end (as :func:`cradle.pipeline.io.write_netcdf`): an interrupted
+and renamed at the end (as :func:`cradle.data.io.write_netcdf`): an interrupted
 run leaves nothing at the target. Its variables and attributes are those of
-:func:`cradle.pipeline.stages.exact_run` (``x``, ``v``, ``force``, ``energy`` on
+:func:`cradle.scenes.stages.exact_run` (``x``, ``v``, ``force``, ``energy`` on
 ``(t, n)``).
 
 :func:`extend` continues a finished ``exact.nc`` (it stores x and v at the
@@ -33,8 +33,8 @@ import numpy as np
 import xarray as xr
 
 from cradle.models import lattice
-from cradle.pipeline.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
-from cradle.pipeline.io import make_dataset, verify_file
+from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
+from cradle.data.io import make_dataset, verify_file
 
 TIME_TOL = 1e-9
 VARS = ("x", "v", "force", "energy")
@@ -120,7 +120,7 @@ def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c"
 
 
 def _largest_step(t_out, dt, t0) -> float:
-    from cradle.pipeline.stages import steps_taken
+    from cradle.scenes.stages import steps_taken
 
     return steps_taken(t_out, float(dt), None if t0 is None else float(t0))[0]
 
@@ -203,7 +203,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
     with netCDF4.Dataset(tmp, "a") as nc:
         for k in list(nc.ncattrs()):
             nc.delncattr(k)
-        from cradle.pipeline.io import _attr_value
+        from cradle.data.io import _attr_value
 
         for k, val in attrs.items():
             nc.setncattr(k, _attr_value(val))

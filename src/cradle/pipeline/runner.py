@@ -1,13 +1,13 @@
 """Run one stage and write its output safely (used by workflow scripts and the command line).
 
-* the output is written atomically (:func:`cradle.pipeline.io.write_netcdf`): a failed
+* the output is written atomically (:func:`cradle.data.io.write_netcdf`): a failed
   or interrupted run leaves nothing at the target path;
-* a :class:`StageFailure` (raised by :mod:`cradle.pipeline.stages`) keeps what was computed under
+* a :class:`StageFailure` (raised by :mod:`cradle.scenes.stages`) keeps what was computed under
   ``results/failed/...`` with the reason as the ``failure`` attribute, then
   the error propagates (the rule fails with the message);
 * progress and timing go to the log file (and to the terminal);
 * a damaged, truncated or missing input stops the job with one line naming the file and its
-  rebuild command (:class:`cradle.pipeline.io.DamagedOutput`), not a traceback.
+  rebuild command (:class:`cradle.data.io.DamagedOutput`), not a traceback.
 """
 from __future__ import annotations
 
@@ -17,15 +17,8 @@ import sys
 import time
 from pathlib import Path
 
-from cradle.pipeline.io import write_netcdf
-
-
-class StageFailure(RuntimeError):
-    """A stage computed something it must not hand on; ``partial`` keeps it for diagnosis."""
-
-    def __init__(self, message: str, partial: "xarray.Dataset | None" = None):
-        super().__init__(message)
-        self.partial = partial
+from cradle.data.io import write_netcdf
+from cradle.scenes.failure import StageFailure
 
 
 log = logging.getLogger("cradle")
@@ -69,7 +62,7 @@ def setup_logging(log_path: str | None = None) -> None:
 def _one_line_excepthook(exc_type, exc, tb):
     """A job stopped by a missing, damaged or truncated input says so in one line (log and stderr),
     naming the file and the command that rebuilds it, instead of a traceback through the readers."""
-    from cradle.pipeline.io import DamagedOutput
+    from cradle.data.io import DamagedOutput
 
     if issubclass(exc_type, (DamagedOutput, FileNotFoundError)):
         log.error("input error: %s", " ".join(str(exc).split()))

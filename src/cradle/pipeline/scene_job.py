@@ -1,10 +1,10 @@
 """A scene's job: initial data, the (nc) and DpS runs and their metrics, written as one set of files.
 
 :func:`run_scene` is what the workflow's ``simulate`` rule and ``cradle run`` both call. A scene
-whose store fits in memory runs as a chain of :mod:`cradle.pipeline.stages`
+whose store fits in memory runs as a chain of :mod:`cradle.scenes.stages`
 (:func:`cradle.pipeline.runner.run_chain`: every file written after every step succeeded); a
 larger one (:func:`cradle.pipeline.budget.streams`) block by block in bounded memory
-(:func:`cradle.pipeline.streamed.simulate_streamed`), with the same values in its files. Either
+(:func:`cradle.scenes.streamed.simulate_streamed`), with the same values in its files. Either
 way a failure leaves none of the scene's files at their targets.
 """
 from __future__ import annotations
@@ -12,7 +12,8 @@ from __future__ import annotations
 import logging
 import time
 
-from cradle.pipeline import budget, stages
+from cradle.pipeline import budget
+from cradle.scenes import stages
 from cradle.pipeline.runner import Progress, run_chain, setup_logging
 
 log = logging.getLogger("cradle")
@@ -34,8 +35,8 @@ def run_scene(spec: dict, name: str, outs: dict, log_path=None, homoclinic=None)
         ]
         run_chain(steps, outs, log_path, label=name)
         return
-    from cradle.pipeline import streamed
-    from cradle.pipeline.io import write_netcdf
+    from cradle.scenes import streamed
+    from cradle.data.io import write_netcdf
 
     setup_logging(log_path)
     t0 = time.perf_counter()

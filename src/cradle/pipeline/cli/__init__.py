@@ -10,7 +10,7 @@
     cradle animate  SCENE [--results results] [--gif] [--fps F --duration S]   # a movie of the stored runs
 
 ``cradle run`` computes a scene's initial data, exact and DpS runs and
-metrics with :mod:`cradle.pipeline.stages` and
+metrics with :mod:`cradle.scenes.stages` and
 :func:`cradle.pipeline.runner.run_chain`, as the workflow's ``simulate`` job
 does: all four files are written only after every step succeeded (a failure
 writes none of them; what was computed goes under ``failed/``), into the
@@ -107,7 +107,7 @@ def main(argv=None) -> int:
     """Run the command line ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
     import os
 
-    from cradle.pipeline import provenance
+    from cradle.data import provenance
     from cradle.pipeline.config import ConfigError
 
     argv = sys.argv[1:] if argv is None else list(argv)
@@ -128,7 +128,7 @@ def main(argv=None) -> int:
         print(f"{PROG}: interrupted", file=sys.stderr)
         return 130
     except Exception as err:  # noqa: BLE001 - one line for the user; CRADLE_DEBUG=1 shows the traceback
-        io = sys.modules.get("cradle.pipeline.io")  # a damaged input can only come from the readers there
+        io = sys.modules.get("cradle.data.io")  # a damaged input can only come from the readers there
         if io is not None and isinstance(err, io.DamagedOutput):
             text = " ".join(str(err).split())
         elif os.environ.get("CRADLE_DEBUG"):

@@ -29,7 +29,7 @@ def settings(config_path) -> dict:
 def cmd_animate(args) -> int:
     from cradle.figures.movie import MovieSpec, animate
     from cradle.pipeline import layout
-    from cradle.pipeline.io import open_scene
+    from cradle.pipeline.outputs import open_scene
 
     given = settings(args.config)
     pick = {k: (getattr(args, k) if getattr(args, k) is not None else given[k])

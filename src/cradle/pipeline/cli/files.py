@@ -36,9 +36,9 @@ def _describe_variables(heading: str, ds) -> list[str]:
 def cmd_describe(args) -> int:
     import xarray as xr
 
-    from cradle.pipeline.provenance import KEYS as PROV
+    from cradle.data.provenance import KEYS as PROV
 
-    from cradle.pipeline.io import DamagedOutput, verify_file
+    from cradle.data.io import DamagedOutput, verify_file
 
     path = Path(args.file)
     if not path.exists():
@@ -84,7 +84,7 @@ def cmd_extend(args) -> int:
     import math
 
     from cradle.pipeline.extend import extend
-    from cradle.pipeline.io import DamagedOutput
+    from cradle.data.io import DamagedOutput
 
     path = Path(args.file)
     if not path.exists():
@@ -116,7 +116,7 @@ def cmd_extend(args) -> int:
 
 
 def cmd_verify(args) -> int:
-    from cradle.pipeline.io import DamagedOutput, rebuild_hint, verify_file
+    from cradle.data.io import DamagedOutput, rebuild_hint, verify_file
 
     root = Path(args.root)
     if not root.exists():

@@ -20,7 +20,8 @@ RUN_OUT = "cradle-runs"
 def _stage(compute, out, log, label):
     """runner.run (atomic write, log, failed/ on StageFailure) of ``compute``; the stage functions
     record the hash of their parameters themselves (``params_sha256``)."""
-    from cradle.pipeline.runner import StageFailure, run
+    from cradle.pipeline.runner import run
+    from cradle.scenes.failure import StageFailure
 
     try:
         return run(compute, out, str(log), label=label)
@@ -38,8 +39,8 @@ def _note_workflow_results(out: Path, config: Path) -> None:
 
 def cmd_run(args) -> int:
     from cradle.pipeline import budget, config as cc
-    from cradle.pipeline import stages
-    from cradle.pipeline.runner import StageFailure
+    from cradle.scenes import stages
+    from cradle.scenes.failure import StageFailure
     from cradle.pipeline.scene_job import run_scene
 
     cfg = load_config(args.config)  # validate: an over-budget job is refused here, before any work

@@ -16,10 +16,10 @@ from .resolve import (resolved_breather_interactions, resolved_breathers, resolv
                       resolved_mi_growth, resolved_mi_statistics, resolved_scene, resolved_theorem1,
                       resolved_work_precision, typed)
 from .sections import KNOWN_FIGURES, SECTIONS
-from .spec import ANGLE_PATTERN
+from cradle.specs.declare import ANGLE_PATTERN
 from .loading import StrictLoader, load, main, read_yaml
 from .validate import SCHEMA_FILE, _VALIDATED, _validated, generated_schema, schema, schema_path, validate, write_schema
-from .values import TIME_TOL, ConfigError, parse_angle, store_times
+from cradle.specs.values import TIME_TOL, ConfigError, parse_angle, store_times
 
 __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SECTIONS", "SCHEMA_FILE", "ANGLE_PATTERN", "TIME_TOL", "schema",

@@ -18,8 +18,8 @@ from .breather_interactions import BreatherInteractions
 from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
-from .spec import declared, param
-from .values import ConfigError, angle_expr, angle_or_none, did_you_mean, entries, number, parse_angle, show
+from cradle.specs.declare import declared, param
+from cradle.specs.values import ConfigError, angle_expr, angle_or_none, did_you_mean, entries, number, parse_angle, show
 
 _ALPHAS = {"$ref": "#/$defs/alpha", "maximum": 10}
 _ANGLES = {"$ref": "#/$defs/angle"}

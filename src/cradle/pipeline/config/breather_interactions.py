@@ -2,8 +2,8 @@
 (cradle.analyses.breather_interactions)."""
 from __future__ import annotations
 
-from .spec import declared, param
-from .values import form_section
+from cradle.specs.declare import declared, param
+from cradle.specs.values import form_section
 
 _PAIRS = {"type": "string", "enum": ["site-site", "bond-bond", "site-bond"]}
 _SPACING = {"type": "integer", "minimum": 1, "maximum": 24}

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import itertools
 
-from .spec import declared, param
-from .values import form_section, number
+from cradle.specs.declare import declared, param
+from cradle.specs.values import form_section, number
 
 _OMEGA = {"type": "number", "exclusiveMinimum": 1, "maximum": 10, "description": "One breather frequency omega_b."}
 _KINDS = {"type": "string", "enum": ["site", "bond"], "description": "A breather family: site- or bond-centred."}

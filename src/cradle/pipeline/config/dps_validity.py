@@ -1,8 +1,8 @@
 """Declaration of ``beyond.dps_validity``: the DpS approximation error against eps and T (cradle.analyses.dpsvalidity)."""
 from __future__ import annotations
 
-from .spec import declared, param
-from .values import form_section, number, show
+from cradle.specs.declare import declared, param
+from cradle.specs.values import form_section, number, show
 
 _FAMILIES = ("tw-pi5", "tw-4pi5", "breather-bond", "mi-4pi5-noise")
 _ALPHAS = {"$ref": "#/$defs/alpha", "maximum": 10}

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import math
 
-from .spec import declared, param
-from .values import angle_expr, angle_or_none, form_section, number, parse_angle, show
+from cradle.specs.declare import declared, param
+from cradle.specs.values import angle_expr, angle_or_none, form_section, number, parse_angle, show
 
 _ANGLES = {"$ref": "#/$defs/angle"}
 

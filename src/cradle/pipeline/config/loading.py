@@ -15,7 +15,7 @@ import yaml
 from .resolve import resolved_homoclinic, resolved_map, resolved_scene
 from .sections import SECTIONS
 from .validate import validate, write_schema
-from .values import ConfigError
+from cradle.specs.values import ConfigError
 
 
 class StrictLoader(yaml.SafeLoader):

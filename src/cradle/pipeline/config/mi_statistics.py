@@ -6,9 +6,9 @@ shared settings at the top, the sweep per variant (reduced, full).
 """
 from __future__ import annotations
 
-from .scenes import DPS_METHODS, SPLITTINGS
-from .spec import NULL, declared, param
-from .values import INTEGER_TOL, ConfigError, number
+from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
+from cradle.specs.declare import NULL, declared, param
+from cradle.specs.values import INTEGER_TOL, ConfigError, number
 
 
 @declared(doc="Lattice integrator (null keys: defaults.exact).")

@@ -5,8 +5,8 @@ no computed number: they are not part of any scene's resolved parameters.
 """
 from __future__ import annotations
 
-from .spec import declared, param
-from .values import ConfigError, did_you_mean, entries
+from cradle.specs.declare import declared, param
+from cradle.specs.values import ConfigError, did_you_mean, entries
 
 _NAMES = {"$ref": "#/$defs/name"}
 

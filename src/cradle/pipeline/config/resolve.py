@@ -16,7 +16,7 @@ from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
-from .values import ConfigError, angle_expr, parse_angle, store_times
+from cradle.specs.values import ConfigError, angle_expr, parse_angle, store_times
 
 
 def _validated(config: dict) -> dict:
@@ -86,7 +86,7 @@ def resolved_map(config: dict, name: str) -> dict:
 def typed(config: dict):
     """The validated config as a frozen :class:`.sections.Config` (scenes, entries, analyses as typed
     instances; each initial condition an instance of its kind's class)."""
-    from . import spec
+    from cradle.specs import declare as spec
     from .sections import Config
 
     return spec.build(Config, _validated(config))

@@ -12,9 +12,9 @@ from dataclasses import fields
 
 from .beyond import Beyond
 from .movies import Movies
-from .scenes import LATTICE_ADAPTIVE, SPLITTINGS, DpsIntegrator, ExactIntegrator, Scene
-from .spec import REQUIRED, declared, param
-from .values import TIME_TOL, did_you_mean, entries, finite, number, show, store_times
+from cradle.scenes.spec import LATTICE_ADAPTIVE, SPLITTINGS, DpsIntegrator, ExactIntegrator, Scene
+from cradle.specs.declare import REQUIRED, declared, param
+from cradle.specs.values import TIME_TOL, did_you_mean, entries, finite, number, show, store_times
 
 SECTIONS = ("map", "homoclinic", "scenes")  # the name spaces a figure's `scenes:` list reads from
 

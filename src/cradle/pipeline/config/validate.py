@@ -32,11 +32,11 @@ from pathlib import Path
 
 from jsonschema import Draft202012Validator
 
-from . import sections, spec
-from .scenes import INITIAL_DOC, INITIAL_KINDS, KIND_DOC
+from cradle.specs import declare as spec
+from . import sections
 from .sections import SECTIONS
-from .spec import ANGLE_PATTERN
-from .values import ANGLE_HINT, ConfigError, Errors, number, show
+from cradle.specs.declare import ANGLE_PATTERN
+from cradle.specs.values import ANGLE_HINT, ConfigError, Errors, number, show
 
 SCHEMA_FILE = "config.schema.json"
 
@@ -52,8 +52,7 @@ _HINTS = {
 
 def generated_schema() -> dict:
     """The JSON Schema of config.yaml, generated from the declarations (:mod:`.sections`)."""
-    extra = {"initial": lambda defs: spec.union_schema(INITIAL_DOC, KIND_DOC, INITIAL_KINDS, defs)}
-    return spec.generate(sections.Config, title="cradle configuration", extra_defs=extra)
+    return spec.generate(sections.Config, title="cradle configuration")
 
 
 def schema_path() -> Path:

@@ -1,6 +1,6 @@
 """Every stored variable and coordinate, declared once: dimensions, long name, units.
 
-Writers never type a ``long_name`` or ``units``: :func:`cradle.pipeline.io.make_dataset`
+Writers never type a ``long_name`` or ``units``: :func:`cradle.data.io.make_dataset`
 looks them up here (the xarray-simlab way), so all outputs agree. Everything in
 the model is dimensionless (time in units of 1/omega_0 of the pendula,
 displacements in units of the Hertz length), hence units "1".
@@ -9,12 +9,12 @@ CF-1.10 notes: the time coordinates are ``t`` and ``tau``, never ``time``
 (a ``time`` coordinate would need calendar units such as "days since ...");
 complex amplitudes are stored as ``_re``/``_im`` pairs; ``attrs`` holds any
 further CF attributes of a variable (``comment``, ``flag_values``, ...), also
-written by :func:`cradle.pipeline.io.make_dataset`.
+written by :func:`cradle.data.io.make_dataset`.
 
 The analyses beyond the paper declare their own variables beside their code, one dict per netCDF
 group (``VARIABLES`` of :mod:`cradle.analyses.theorem1`, ``modulational``, ``migrowth``,
 ``mistatistics``, ``floquet``; :mod:`cradle.analyses.workprecision` likewise), passed to
-:func:`cradle.pipeline.io.make_tree` or ``make_dataset(variables=...)``.
+:func:`cradle.data.io.make_tree` or ``make_dataset(variables=...)``.
 """
 from __future__ import annotations
 
@@ -114,4 +114,4 @@ def declared(name: str) -> Var:
     try:
         return VARIABLES[name]
     except KeyError:
-        raise KeyError(f"variable {name!r} is not declared in cradle.pipeline.variables.VARIABLES") from None
+        raise KeyError(f"variable {name!r} is not declared in cradle.data.variables.VARIABLES") from None

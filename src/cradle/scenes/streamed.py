@@ -1,9 +1,9 @@
 """A scene's job in bounded memory: the (nc) and DpS runs and their metrics, block by block.
 
 The in-memory job (:func:`cradle.pipeline.runner.run_chain` of
-:mod:`cradle.pipeline.stages`) holds every stored time of both runs until its four files are
+:mod:`cradle.scenes.stages`) holds every stored time of both runs until its four files are
 written; its peak memory grows with N x (number of stored times). This job computes the same
-four files in blocks of stored times (:func:`cradle.pipeline.appending.chunk_rows` of
+four files in blocks of stored times (:func:`cradle.data.appending.chunk_rows` of
 ``chunk_bytes``) and appends each block to its file, so what it holds is one block plus a few
 numbers per stored time, whatever the store:
 
@@ -12,7 +12,7 @@ numbers per stored time, whatever the store:
   between stored times with the same steps either way); when the compression exceeds the one the
   default step was set for, the run restarts with a larger one, as ``integrate_lattice`` reruns;
 * the DpS run continues with the stepper's state (:func:`cradle.integrators.dps_solver.iter_dps`);
-* the metrics of every stored time are those of :func:`cradle.pipeline.stages.metrics` on the
+* the metrics of every stored time are those of :func:`cradle.scenes.stages.metrics` on the
   block (with the row t = 0 in front, from which they take their scale, site and core); the ones
   over the whole run are accumulated: the peak compression per breather period, the merging
   time and outcome of a pair, a breather's frequencies and half-period shift, E_max and E_final.
@@ -32,11 +32,11 @@ import xarray as xr
 
 from cradle.measurements import breathers, interactions
 from cradle.models import lattice
-from cradle.pipeline import stages
-from cradle.pipeline.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
-from cradle.pipeline.io import GLOBAL_KEYS, make_dataset, write_netcdf
-from cradle.pipeline.provenance import provenance
-from cradle.pipeline.runner import StageFailure
+from cradle.scenes import stages
+from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
+from cradle.data.io import GLOBAL_KEYS, make_dataset, write_netcdf
+from cradle.data.provenance import provenance
+from cradle.scenes.failure import StageFailure
 
 #: float64 arrays of N values held per stored time of a block (both runs, their forces, the
 #: metrics' spectra and FFTs): the block size follows from ``chunk_bytes``
@@ -83,7 +83,7 @@ def simulate_streamed(spec: dict, init_ds: xr.Dataset, name: str, outs: dict, *,
                       chunk_bytes: int = DEFAULT_CHUNK_BYTES, progress=None, log=None) -> dict:
     """Write the scene's four files (``outs``: initial, exact, dps, metrics paths) block by block.
 
-    ``init_ds``: the scene's initial data (:func:`cradle.pipeline.stages.initial_data`). The exact
+    ``init_ds``: the scene's initial data (:func:`cradle.scenes.stages.initial_data`). The exact
     method must be a fixed-step splitting and the DpS method ``dop853_numba``
     (:func:`cradle.pipeline.budget.streams` says which scenes qualify). ``progress(t, t_end)`` is
     called after every block. Returns the run's summary (rows, blocks, energy drift, wall time).
@@ -207,7 +207,7 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         if progress is not None:
             progress(t_cur, float(times[-1]))
     # whole-run values: exact and DpS statistics, then the metrics over every stored time
-    streamed = f"block by block, {run.rows} stored times per block (cradle.pipeline.streamed)"
+    streamed = f"block by block, {run.rows} stored times per block (cradle.scenes.streamed)"
     exact_attrs = stages.exact_attrs(spec, init_ds, spec["exact"]["method"], stages.steps_taken(times, run.dt)[0],
                                      run.dt, None, None, stats)
     exact_attrs.update({"streamed": streamed, "c_assumed": run.c_assumed})

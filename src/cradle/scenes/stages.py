@@ -6,7 +6,7 @@ homoclinic / map orbits  ->  initial data  ->  exact and DpS runs  ->  metrics
 Each function takes the plain-dict parameters of one config entry (as
 returned by :mod:`cradle.pipeline.config`'s ``resolved_*`` functions) and the
 Datasets of the stage before, and returns a self-describing Dataset (see
-:mod:`cradle.pipeline.variables`, :mod:`cradle.pipeline.io`). No file paths and no Snakemake:
+:mod:`cradle.data.variables`, :mod:`cradle.data.io`). No file paths and no Snakemake:
 the workflow scripts and the command line are thin adapters around these.
 A run that fails (no convergence, NaN, drift above the bound) raises
 :class:`StageFailure` carrying what was computed, for diagnosis.
@@ -20,8 +20,8 @@ import xarray as xr
 
 from cradle.measurements import breathers, compare, interactions, sidebands
 from cradle.models import dps, initial, lattice
-from cradle.pipeline.io import make_dataset
-from cradle.pipeline.runner import StageFailure
+from cradle.data.io import make_dataset
+from cradle.scenes.failure import StageFailure
 
 
 # ---------------------------------------------------------------- stationary DpS

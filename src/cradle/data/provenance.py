@@ -2,7 +2,7 @@
 
 :func:`provenance` returns flat netCDF global attributes (names are letters,
 digits and underscores, values strings or integers, as CF wants), added by
-:func:`cradle.pipeline.io.make_dataset` to every file:
+:func:`cradle.data.io.make_dataset` to every file:
 
 ``cradle_version``
     the installed package version;
@@ -209,7 +209,7 @@ def lock_text(extras: tuple[str, ...] = ("workflow",)) -> str:
     """requirements-lock.txt: the installed versions of cradle's dependency tree, like a filtered ``pip freeze``."""
     head = (f"# cradle {__import__('cradle').__version__} dependency tree (extras: {', '.join(extras) or 'none'}), "
             f"python {platform.python_version()}\n"
-            "# regenerate: python -m cradle.pipeline.provenance lock > requirements-lock.txt\n"
+            "# regenerate: python -m cradle.data.provenance lock > requirements-lock.txt\n"
             "# install exactly these: pip install -r requirements-lock.txt -e .\n")
     return head + "".join(f"{line}\n" for line in dependency_tree("cradle", extras).values())
 
@@ -217,7 +217,7 @@ def lock_text(extras: tuple[str, ...] = ("workflow",)) -> str:
 if __name__ == "__main__":
     import argparse
 
-    _p = argparse.ArgumentParser(prog="python -m cradle.pipeline.provenance", description="provenance of this installation")
+    _p = argparse.ArgumentParser(prog="python -m cradle.data.provenance", description="provenance of this installation")
     _p.add_argument("what", choices=("show", "lock"), help="show: the attributes outputs get; lock: requirements-lock.txt")
     _p.add_argument("--extras", default="workflow", help="comma-separated extras of cradle to lock (default: workflow)")
     _a = _p.parse_args()

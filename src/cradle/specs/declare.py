@@ -17,6 +17,7 @@ class is one of the schema's ``$defs``).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import json
 import types
 import typing
@@ -244,12 +245,27 @@ def build(tp, value):
     return value
 
 
+#: discriminated unions on ``kind`` that fields refer to with ``ref=`` (the kinds of initial condition):
+#: name -> (description, description of ``kind``, kind -> declared class); :func:`register_union` adds one
+UNIONS: dict[str, tuple[str, str, dict]] = {}
+
+
+def register_union(name: str, doc: str, kind_doc: str, kinds: dict) -> None:
+    """Declare the union ``name`` (a ``$defs`` entry of every generated schema) of the declared ``kinds``."""
+    UNIONS[name] = (doc, kind_doc, dict(kinds))
+
+
 def generate(root, *, title: str, extra_defs=None) -> dict:
-    """The JSON Schema of the declared class ``root`` (the whole config), shared types under $defs."""
+    """The JSON Schema of the declared class ``root`` (the whole config, or one spec), shared types and
+    the registered unions under $defs."""
     defs = {k: dict(v) for k, v in SHARED.items()}
+    for name, (doc, kind_doc, kinds) in UNIONS.items():
+        defs[name] = union_schema(doc, kind_doc, kinds, defs)
     for name, make in (extra_defs or {}).items():
         defs[name] = make(defs)
     body = object_schema(root, defs)
+    if "$ref" in body:  # a named class: its schema is under $defs
+        body = defs[root.__schema_name__]
     out = {"$schema": SCHEMA_DRAFT, "title": title, "description": root.__schema_doc__, "type": "object",
            "additionalProperties": False, "properties": body["properties"], "$defs": defs}
     return out
@@ -263,3 +279,41 @@ def dump(schema: dict) -> str:
 def write(schema: dict, path: Path) -> Path:
     path.write_text(dump(schema), encoding="utf-8")
     return path
+
+
+def plain(value):
+    """A spec (or any value holding specs) as plain JSON values: declared instances as mappings of their
+    config keys, sorted, tuples as lists. What a rule's ``params:`` carry and a file stores; equal
+    specs give equal plain values whatever the order they were written in. An optional key that is
+    absent (None) is left out."""
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        # an optional key left out (None, where null is not a value of its own) stays out
+        return {k: v for k, v in sorted((_key(f), plain(getattr(value, f.name))) for f in dataclasses.fields(value)
+                                        if getattr(value, f.name) is not None or f.metadata.get("null_default"))}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if isinstance(value, dict):
+        return {str(k): plain(v) for k, v in sorted(value.items())}
+    return value
+
+
+@functools.lru_cache(maxsize=None)
+def _validator_of(cls):
+    from jsonschema import Draft202012Validator
+
+    return Draft202012Validator(generate(cls, title=cls.__name__))
+
+
+def from_plain(cls, mapping, where: str | None = None):
+    """A validated instance of the declared class ``cls`` from plain values (:func:`plain`'s output, a
+    rule's ``params:``, a file's stored parameters, keyword arguments): every key checked against its
+    declaration (type, bounds, enum), then built. Raises :class:`cradle.specs.values.ConfigError`, one
+    line per problem naming ``where`` (default: the class name), the key and the value."""
+    from .values import ConfigError, key_path, show
+
+    errors = sorted(_validator_of(cls).iter_errors(mapping), key=lambda e: [str(p) for p in e.absolute_path])
+    if errors:
+        head = where or cls.__name__
+        raise ConfigError([f"config error: {head}{'.' if e.absolute_path else ''}{key_path(list(e.absolute_path))}"
+                           f" = {show(e.instance)}: {e.message}" for e in errors])
+    return build(cls, mapping)

@@ -10,7 +10,7 @@ import json
 import math
 import re
 
-from .spec import ANGLE_PATTERN
+from .declare import ANGLE_PATTERN
 
 _ANGLE_RE = re.compile(ANGLE_PATTERN)
 ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5'"

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import math
 
-from .spec import NULL, REQUIRED, declared, param
-from .values import INTEGER_TOL, MAX_STORED_TIMES, TIME_TOL, ConfigError, entries, finite, grid_size, number, \
+from cradle.specs.declare import NULL, REQUIRED, declared, param, register_union
+from cradle.specs.values import INTEGER_TOL, MAX_STORED_TIMES, TIME_TOL, ConfigError, entries, finite, grid_size, number, \
     parse_angle, show
 
 SPLITTINGS = ("srkn6c", "srkn4c", "srkn6", "srkn4", "strang")   # fixed step: dt_factor
@@ -204,6 +204,7 @@ INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packe
 INITIAL_DOC = "Initial condition of a scene: kind travelling, breather, packet or pair."
 KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest) "
             "or pair (two static breathers at rest).")
+register_union("initial", INITIAL_DOC, KIND_DOC, INITIAL_KINDS)
 
 
 @declared("store", doc="What a scene stores: profiles at `snapshots` and/or every `every` time units on [0, t_end] "

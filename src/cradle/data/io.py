@@ -1,10 +1,10 @@
 """Self-describing netCDF output.
 
 :func:`make_dataset` builds an :class:`xarray.Dataset` whose variables get
-their dimensions, ``long_name`` and ``units`` from :mod:`cradle.pipeline.variables`,
+their dimensions, ``long_name`` and ``units`` from :mod:`cradle.data.variables`,
 plus the global attributes every file carries: CF-1.10 ``Conventions``,
 ``title``, ``history``, ``source``, ``references`` (the paper) and the
-provenance of :mod:`cradle.pipeline.provenance` (code version and git commit, hash of
+provenance of :mod:`cradle.data.provenance` (code version and git commit, hash of
 the parameters, library versions, command). :func:`write_netcdf` writes it
 atomically: to a temporary file in the target folder, then ``os.replace``, so
 an interrupted or failed rule never leaves a file that Snakemake would take
@@ -31,8 +31,8 @@ import numpy as np
 import xarray as xr
 
 from cradle import __version__
-from cradle.pipeline.provenance import KEYS as _PROVENANCE_KEYS, provenance
-from cradle.pipeline.variables import declared
+from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, provenance
+from cradle.data.variables import declared
 
 REFERENCE = (
     "G. James, Nonlinear waves in Newton's cradle and the discrete p-Schroedinger "
@@ -92,8 +92,8 @@ def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = No
     become global attributes (every parameter that produced the file).
     ``params`` (the resolved config entry, JSON-serialisable) is hashed into
     ``params_sha256``; the other provenance attributes are always written.
-    ``variables`` (name -> :class:`cradle.pipeline.variables.Var`) holds the declarations of an
-    analysis's own variables; without it the global :data:`cradle.pipeline.variables.VARIABLES`.
+    ``variables`` (name -> :class:`cradle.data.variables.Var`) holds the declarations of an
+    analysis's own variables; without it the global :data:`cradle.data.variables.VARIABLES`.
     """
     ds = _table(data, coords, variables)
     prov = provenance(params)
@@ -272,7 +272,7 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     raises FileNotFoundError; a file that is not netCDF, is truncated or fails a checksum raises
     :class:`DamagedOutput` with one line naming the file and the command that rebuilds it.
 
-    A file larger than :data:`LAZY_ABOVE_BYTES` (a large store, :mod:`cradle.pipeline.streamed`)
+    A file larger than :data:`LAZY_ABOVE_BYTES` (a large store, :mod:`cradle.scenes.streamed`)
     is verified block by block (:func:`verify_file`) and returned opened lazily: what the reader
     selects is read when used (HDF5 checks those chunks again), so its memory is what it uses.
     """
@@ -326,65 +326,3 @@ def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[
             return walk(nc, "", [])
 
     return _checked(path, read)
-
-
-SHARED = ("x", "force")  # variables both models store on the same (t, n) grid
-
-
-def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = True) -> xr.Dataset:
-    """The exact and DpS runs of ``scene`` as one Dataset, read from ``root``/sim/``scene``/{exact,dps}.nc.
-
-    ``x`` and ``force`` get a ``model`` dimension (``exact``, ``dps``); the
-    other variables keep their names (``v``, ``energy`` of the lattice;
-    ``A_re``, ``A_im``, the drifts and the ``tau`` coordinate of the DpS
-    run), plus ``E`` and the spectra of ``root``/metrics/``scene``.nc when
-    it exists (and ``metrics`` is true). Global attributes equal in both runs
-    are kept as they are; the others are prefixed ``exact_`` or ``dps_``
-    (``exact_energy_drift``, ``dps_integrator``, ...)::
-
-        ds = cradle.open_scene("tw-weak")
-        (ds.x.sel(model="exact") - ds.x.sel(model="dps")).sel(t=621.95).plot()
-    """
-    root = Path(root)
-    from cradle.pipeline import layout
-
-    paths = {m: Path(p) for m, p in layout.scene_paths(scene, root, ("exact", "dps")).items()}
-    missing = [str(p) for p in paths.values() if not p.exists()]
-    if missing:
-        raise FileNotFoundError(f"scene {scene!r}: no {' and no '.join(missing)} (run `cradle run {scene} "
-                                f"--out {root}` or `snakemake {' '.join(missing)}`)")
-    runs = {m: open_dataset(p) for m, p in paths.items()}
-    if not np.array_equal(runs["exact"]["t"].values, runs["dps"]["t"].values):
-        raise ValueError(f"scene {scene!r}: exact and dps runs are stored at different times (rerun one)")
-    model = xr.DataArray(["exact", "dps"], dims="model", name="model",
-                         attrs={"long_name": "model: exact lattice (nc) or DpS approximation (dfnls)/(ansatz)"})
-    shared = xr.concat([runs[m][list(SHARED)].drop_vars("tau", errors="ignore") for m in ("exact", "dps")],
-                       dim=model, combine_attrs="drop_conflicts")
-    for name in SHARED:
-        shared[name].attrs = dict(runs["exact"][name].attrs)
-    rest = [runs[m].drop_vars(list(SHARED)) for m in ("exact", "dps")]
-    parts = [shared, *rest]
-    mpath = Path(layout.path("metrics", root, scene=scene))
-    if metrics and mpath.exists():
-        parts.append(open_dataset(mpath))
-    ds = xr.merge(parts, compat="override", join="exact", combine_attrs="override")
-    ex, ap = runs["exact"].attrs, runs["dps"].attrs
-    attrs = {}
-    for key in list(ex) + [k for k in ap if k not in ex]:
-        if key in ex and key in ap and _same(ex[key], ap[key]):
-            attrs[key] = ex[key]
-        else:
-            if key in ex:
-                attrs[f"exact_{key}"] = ex[key]
-            if key in ap:
-                attrs[f"dps_{key}"] = ap[key]
-    attrs["title"] = f"exact and DpS runs of scene '{scene}'"
-    ds.attrs = attrs
-    return ds
-
-
-def _same(a, b) -> bool:
-    try:
-        return bool(np.array_equal(np.asarray(a), np.asarray(b)))
-    except Exception:  # noqa: BLE001
-        return False

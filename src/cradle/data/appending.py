@@ -1,11 +1,11 @@
 """netCDF files written block by block along ``t``, in bounded memory, renamed into place at the end.
 
 :class:`Appender` creates the file from a first block (an :class:`xarray.Dataset` with every
-variable, each checksummed as :func:`cradle.pipeline.io.encoding_of` does) with ``t`` unlimited,
+variable, each checksummed as :func:`cradle.data.io.encoding_of` does) with ``t`` unlimited,
 appends later blocks row by row, can overwrite the values of variables without ``t`` (known only
 at the end) and the global attributes, and renames the temporary file to its target on
 :meth:`Appender.commit`: an interrupted run leaves nothing at the target. Used by
-:mod:`cradle.pipeline.extend` (long exact runs) and :mod:`cradle.pipeline.streamed` (a scene's
+:mod:`cradle.pipeline.extend` (long exact runs) and :mod:`cradle.scenes.streamed` (a scene's
 job whose store exceeds memory).
 """
 from __future__ import annotations
@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from cradle.pipeline.io import _attr_value, _umask_mode, encoding_of
+from cradle.data.io import _attr_value, _umask_mode, encoding_of
 
 #: memory per block of stored states
 DEFAULT_CHUNK_BYTES = 64 * 2**20
