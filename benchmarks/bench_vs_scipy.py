@@ -44,7 +44,7 @@ from cradle.models import lattice as L
 from cradle.scenes import stages
 from cradle.integrators import _kernels as K
 from cradle.integrators import integrate_lattice
-from cradle.analyses.workprecision import machine
+from cradle.analyses.work_precision import machine
 from doctable import publish
 
 ROOT = Path(__file__).resolve().parents[1]

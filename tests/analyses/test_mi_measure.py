@@ -1,4 +1,4 @@
-"""Modulational instability measured (cradle.analyses.migrowth, cradle.analyses.mistatistics): the growth fit and its window
+"""Modulational instability measured (cradle.analyses.mi_growth, cradle.analyses.mi_statistics): the growth fit and its window
 on synthetic series, a direct DpS run against modulational.growth_rate, crossing times and the threshold
 estimator on synthetic data, determinism, and a tiny batch through the stage functions."""
 import numpy as np
@@ -6,9 +6,9 @@ import pytest
 
 from cradle.pipeline import config as cc
 from cradle.models import dps, initial
-from cradle.analyses import migrowth as MG
-from cradle.analyses import mistatistics as MS
-from cradle.analyses import modulational as MI
+from cradle.analyses import mi_growth as MG
+from cradle.analyses import mi_statistics as MS
+from cradle.analyses import mi_diagram as MI
 
 
 # ---------------------------------------------------------------- growth fit

@@ -1,11 +1,11 @@
-"""Modulational instability of the DpS plane waves (cradle.analyses.modulational): the rotating-frame fixed point,
+"""Modulational instability of the DpS plane waves (cradle.analyses.mi_diagram): the rotating-frame fixed point,
 the sideband stability matrix against a finite-difference Jacobian and direct DpS runs, scale invariance,
 and the threshold q_c = pi/2."""
 import numpy as np
 import pytest
 
 from cradle.models import dps
-from cradle.analyses import modulational as MI
+from cradle.analyses import mi_diagram as MI
 
 
 @pytest.mark.parametrize("alpha", [1.5, 2.0, 3.0])

@@ -1,4 +1,4 @@
-"""Work-precision measurements (cradle.analyses.workprecision): a tiny ladder, the reference logic,
+"""Work-precision measurements (cradle.analyses.work_precision): a tiny ladder, the reference logic,
 the config section, the netCDF output and the figure."""
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import yaml
 
 from cradle.pipeline import config as cc
 from cradle.scenes import stages
-from cradle.analyses import workprecision as wp
+from cradle.analyses import work_precision as wp
 from cradle.data.io import open_dataset, write_netcdf
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -99,7 +99,7 @@ def test_ladder_kind_is_checked():
 
 def test_netcdf_figure_and_summary(tiny_ds, tmp_path):
     from cradle.figures import save_figure
-    from cradle.figures.workprecision import draw
+    from cradle.figures.work_precision import draw
 
     path = write_netcdf(tiny_ds, tmp_path / "tiny.nc")
     back = open_dataset(path)

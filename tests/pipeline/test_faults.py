@@ -20,7 +20,7 @@ import xarray as xr
 import yaml
 
 from cradle.data import io
-from cradle.pipeline import outputs
+from cradle.pipeline import outputs as scene_outputs
 from cradle.pipeline import budget, cli, config as cc, extend
 from cradle.scenes import stages
 from cradle.pipeline.params import compact_scene, expand_scene
@@ -130,10 +130,10 @@ def test_damaged_scene_stops_open_scene_and_figure_inputs(outputs, tmp_path):
     for kind in ("exact", "dps", "metrics"):
         _copy(outputs[kind][1], tmp_path)
     root = tmp_path / "results"
-    assert outputs.open_scene("tw", root=root)["x"].sizes["model"] == 2
+    assert scene_outputs.open_scene("tw", root=root)["x"].sizes["model"] == 2
     _flip_in_data(root / "sim/tw/dps.nc", outputs["dps"][0]["A_re"].values)
     with pytest.raises(io.DamagedOutput, match=r"sim/tw/dps.nc: damaged"):
-        outputs.open_scene("tw", root=root)
+        scene_outputs.open_scene("tw", root=root)
     with pytest.raises(io.DamagedOutput, match=r"sim/tw/dps.nc: damaged"):
         load_inputs({"tw": "scenes"}, root)
 
@@ -382,7 +382,7 @@ def test_flipped_byte_in_a_group_of_a_tree_is_detected(tmp_path, capsys):
     """An analysis file is a tree of netCDF groups: every variable of every group is checksummed, read
     back bitwise by open_tree, and one flipped byte in a child group stops open_tree, verify_file and
     `cradle describe` with one line."""
-    from cradle.analyses.mistatistics import VARIABLES
+    from cradle.analyses.mi_statistics import VARIABLES
 
     rng = np.random.default_rng(5)
     ratio = rng.random((1, 2, 3, 4, 64))

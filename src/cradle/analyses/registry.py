@@ -63,7 +63,7 @@ class Analysis:
         files = [p for name in self.scenes(config)
                  for p in layout.scene_paths(name, parts=("initial", "exact", "dps")).values()]
         if self.reads_batches:
-            from cradle.analyses import mistatistics
+            from cradle.analyses import mi_statistics as mistatistics
 
             spec = self.spec(config, form)
             files += [layout.path("mi-batch", variant=form, N=N, model=m, chunk=c) for N in spec["N"]
@@ -81,11 +81,11 @@ class Analysis:
 ANALYSES: dict[str, Analysis] = {a.name: a for a in (
     Analysis("theorem1", "theorem1", "run", "theorem1",
              title="Theorem 1 measured: exact travelling waves of (ad) against (wleadingorder)"),
-    Analysis("mi-diagram", "modulational", "run", "mi",
+    Analysis("mi-diagram", "mi_diagram", "run", "mi",
              title="Modulational instability of the DpS plane waves: growth-rate map and direct checks"),
-    Analysis("mi-growth", "migrowth", "run", "mi", reads_scenes="mi_growth",
+    Analysis("mi-growth", "mi_growth", "run", "mi", reads_scenes="mi_growth",
              title="Modulational-instability growth rates measured in the scenes' runs, exact and DpS"),
-    Analysis("mi-statistics", "mistatistics", "run", "mi", forms=(REDUCED, FULL), reads_batches=True,
+    Analysis("mi-statistics", "mi_statistics", "run", "mi", forms=(REDUCED, FULL), reads_batches=True,
              title="mi-statistics: thresholds from every batch"),
     Analysis("floquet", "floquet", "run", "floquet", forms=(REDUCED, FULL),
              title="Bloch-Floquet stability of the exact travelling waves against the DpS threshold"),
@@ -94,6 +94,6 @@ ANALYSES: dict[str, Analysis] = {a.name: a for a in (
     Analysis("breather-interactions", "breather_interactions", "run", "interactions", forms=(REDUCED, FULL),
              batches="breather_interactions",
              title="Collisions of two breathers, exact (nc) against DpS (dfnls): outcome statistics (loc1)"),
-    Analysis("dps-validity", "dpsvalidity", "run", "validity", forms=(REDUCED, FULL),
+    Analysis("dps-validity", "dps_validity", "run", "validity", forms=(REDUCED, FULL),
              title="DpS approximation error: sup over t <= T eps^(1-alpha) of |x - x_app| against eps, T, family, alpha"),
 )}

@@ -10,10 +10,10 @@ digits and underscores, values strings or integers, as CF wants), added by
     ``git rev-parse HEAD`` of the source tree the package was imported from,
     and 1 if tracked files differ from that commit (0 if not); absent when the
     package is not a git checkout (an installed wheel, a source tarball);
-``params_sha256``
-    sha256 of the canonical JSON (sorted keys, no spaces) of the resolved
-    parameters that produced the file (:func:`params_hash`), when given: two
-    files with the same hash were computed from the same scene;
+``parameters``, ``params_sha256``
+    the canonical JSON (sorted keys, no spaces) of the parameters that produced the file (a spec's
+    :func:`cradle.specs.declare.plain`), from which the spec can be rebuilt and checked, and its sha256
+    (:func:`params_hash`), when given: two files with the same hash were computed from the same spec;
 ``software_versions``
     ``python=3.11.7 numpy=... scipy=... numba=... xarray=... netCDF4=...``;
 ``command``
@@ -40,7 +40,7 @@ __all__ = ["PACKAGES", "KEYS", "canonical_json", "params_hash", "git_info", "sof
 PACKAGES = ("numpy", "scipy", "numba", "xarray", "netCDF4")
 
 #: every global attribute this module may write (an inherited one is dropped before new ones are set)
-KEYS = ("cradle_version", "git_commit", "git_dirty", "params_sha256", "software_versions", "command")
+KEYS = ("cradle_version", "git_commit", "git_dirty", "parameters", "params_sha256", "software_versions", "command")
 
 _COMMAND: str | None = None
 
@@ -153,12 +153,14 @@ def command() -> str:
 
 
 def provenance(params=None) -> dict:
-    """The provenance attributes (see the module docstring); ``params_sha256`` only with ``params``."""
+    """The provenance attributes (see the module docstring); ``parameters`` and ``params_sha256`` only with
+    ``params``."""
     from cradle import __version__
 
     attrs = {"cradle_version": __version__}
     attrs.update(git_info())
     if params is not None:
+        attrs["parameters"] = canonical_json(params)
         attrs["params_sha256"] = params_hash(params)
     attrs["software_versions"] = software_versions()
     attrs["command"] = command()

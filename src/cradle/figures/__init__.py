@@ -105,8 +105,8 @@ DATASET_FIGURES = {
     "mi-growth": "mi.mi_growth",
     "mi-statistics": "mi.mi_statistics",
     "breathers": "breathers.breathers",
-    "breather-interactions": "interactions.breather_interactions",
-    "dps-validity": "validity.dps_validity",
+    "breather-interactions": "breather_interactions.breather_interactions",
+    "dps-validity": "dps_validity.dps_validity",
 }
 
 #: Drawn from several analysis files by its own rule (``workprecision.draw``).

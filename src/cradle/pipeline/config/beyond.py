@@ -128,7 +128,7 @@ class MIDiagram:
             if not (0 < k < N and 0 < m < N):
                 out.add(path + ["check_pairs", i], f"need 0 < k_q, m_p < check_N = {N}", pair)
                 continue
-            from cradle.analyses.modulational import growth_rate
+            from cradle.analyses.mi_diagram import growth_rate
 
             for al in alphas if isinstance(alphas, list) else []:
                 if number(al) and al > 1 and not growth_rate(2 * math.pi * k / N, 2 * math.pi * m / N, al) > 0:
@@ -145,7 +145,7 @@ class MIDiagram:
 @declared(doc="Growth rates of the modulational instability measured in the scenes' own runs (exact lattice and DpS, "
               "rerun from results/initial/<scene>.nc with the scene's integrators, sampled every sample_every), "
               "fitted on the sideband pairs of the |A_hat| spectrum and compared with the linear DpS rate "
-              "(cradle.analyses.modulational.growth_rate) -> results/mi/mi-growth.nc and "
+              "(cradle.analyses.mi_diagram.growth_rate) -> results/mi/mi-growth.nc and "
               "results/figures/mi-growth.{pdf,png}.")
 class MIGrowth:
     scenes: list[str] = param([], "Scenes (names under scenes:, travelling waves on a periodic ring) whose runs are "
@@ -192,14 +192,14 @@ class MIGrowth:
 
 @declared(doc="Analyses beyond the paper: Theorem 1 measured on exact travelling waves of (ad) "
               "(cradle.analyses.theorem1, target theorem1) and the modulational-instability map of the DpS plane "
-              "waves (cradle.analyses.modulational, target mi_diagram). Also the modulational-instability growth "
-              "rates measured in the scenes' runs (cradle.analyses.migrowth, target mi_growth), the threshold "
-              "statistics over noise seeds (cradle.analyses.mistatistics, targets mi_statistics and "
+              "waves (cradle.analyses.mi_diagram, target mi_diagram). Also the modulational-instability growth "
+              "rates measured in the scenes' runs (cradle.analyses.mi_growth, target mi_growth), the threshold "
+              "statistics over noise seeds (cradle.analyses.mi_statistics, targets mi_statistics and "
               "mi_statistics_full) and the Bloch-Floquet stability of the exact waves (cradle.analyses.floquet, "
               "target floquet), the exact breathers (cradle.analyses.breathers, targets breathers and "
               "breathers_full), the collisions of two breathers in both models "
               "(cradle.analyses.breather_interactions, targets breather_interactions and breather_interactions_full), "
-              "and the DpS approximation error against eps and T (cradle.analyses.dpsvalidity, "
+              "and the DpS approximation error against eps and T (cradle.analyses.dps_validity, "
               "targets dps_validity and dps_validity_full).")
 class Beyond:
     theorem1: Theorem1 = param(Theorem1(), Theorem1.__schema_doc__)

@@ -15,13 +15,13 @@ Measured quantity: the complex amplitude of (ansatz) in both models,
 
 whose plane wave (ansatz3) A_n = R e^{i(Omega tau - q n)} has its carrier at
 the single wavenumber -q. A perturbation beta e^{ipn} + conj(gamma) e^{-ipn} of
-the rotating frame (cradle.analyses.modulational) lives at -q + p and -q - p, so the
+the rotating frame (cradle.analyses.mi_diagram) lives at -q + p and -q - p, so the
 sideband-pair amplitude
 
     S_p(t) = sqrt(|A_hat_{-q+p}|^2 + |A_hat_{-q-p}|^2) / |A_hat_{-q}|,   p = 2 pi m / N, m = 1..N/2,
 
 grows like e^{lambda(q, p) tau} = e^{lambda(q, p) eps^(alpha-1) t} in the linear phase, with
-lambda(q, p) of :func:`cradle.analyses.modulational.growth_rate` (units 1/tau, R = 1 here). Every rate
+lambda(q, p) of :func:`cradle.analyses.mi_diagram.growth_rate` (units 1/tau, R = 1 here). Every rate
 below is per unit t of (nc): rate_t = rate_tau eps^(alpha-1). (Unlike the x spectrum, the A
 spectrum separates -q + p from q - p, so the growing p is read off without ambiguity.) The
 bins where the lattice's harmonics land (p = +-q, +-2q, +-3q, +-4q mod 2 pi: e^{2i theta},
@@ -44,7 +44,7 @@ import numpy as np
 
 from cradle.measurements import compare
 from cradle.models import dps
-from cradle.analyses import modulational
+from cradle.analyses import mi_diagram as modulational
 from cradle.pipeline.config import store_times
 from cradle.data.variables import Var
 
