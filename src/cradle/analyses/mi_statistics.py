@@ -41,7 +41,7 @@ import numpy as np
 from cradle.measurements import compare, sidebands
 from cradle.models import initial
 from cradle.analyses import mi_diagram as modulational
-from cradle.pipeline.config import store_times
+from cradle.specs.values import store_times
 from cradle.data.variables import Var
 
 MODELS = ("exact", "dps")

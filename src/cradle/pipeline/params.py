@@ -17,6 +17,6 @@ def compact_scene(spec: dict) -> dict:
 def expand_scene(spec: dict) -> dict:
     """The resolved scene of a :func:`compact_scene`: ``times`` from ``store`` and ``t_end``,
     exactly as :func:`cradle.pipeline.config.resolved_scene` computes them."""
-    from cradle.pipeline.config import store_times
+    from cradle.specs.values import store_times
 
     return {**spec, "times": store_times(spec["store"], spec["t_end"])}

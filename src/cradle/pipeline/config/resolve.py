@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import copy
 
-from .beyond import MIDiagram, MIGrowth, Theorem1
+from .beyond import MIDiagram, Theorem1
 from .breathers import Breathers
 from .breather_interactions import BreatherInteractions
 from .dps_validity import DpsValidity
@@ -114,11 +114,6 @@ def resolved_mi_diagram(config: dict) -> dict:
     return MIDiagram.resolve(_validated(config))
 
 
-def resolved_mi_growth(config: dict) -> dict:
-    """``beyond.mi_growth`` resolved: at least one scene, every one existing."""
-    return MIGrowth.resolve(_validated(config))
-
-
 def resolved_mi_statistics(config: dict, variant: str) -> dict:
     """``beyond.mi_statistics.<variant>`` with the shared keys and the inherited defaults merged in."""
     return MIStatistics.resolve(_validated(config), variant)
@@ -143,3 +138,13 @@ def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
 def resolved_dps_validity(config: dict, form: str = "full") -> dict:
     """``beyond.dps_validity`` of one form (full, or reduced: what ``all`` builds), T sorted."""
     return DpsValidity.resolve(_validated(config), form)
+
+
+def analysis_spec(config: dict, name: str, form: str):
+    """The typed spec of analysis ``name`` (:mod:`cradle.analyses.registry`) in one form, from the validated
+    config's section ``beyond.<name>``."""
+    from cradle.analyses.registry import ANALYSES, form_spec
+    from cradle.specs.declare import from_plain
+
+    a = ANALYSES[name]
+    return form_spec(from_plain(a.spec, _validated(config)["beyond"][a.name], where=f"beyond.{a.name}"), form)
