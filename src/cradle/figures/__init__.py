@@ -178,6 +178,18 @@ def draw_dataset(label: str, ds, stem, note: str = "") -> list[Path]:
     return save_figure(fig, stem)
 
 
+def draw_analysis(module: str, tree, stem, note: str = "") -> list[Path]:
+    """Draw the figure of an analysis (``draw`` of ``cradle.figures.<module>``) from its output ``tree`` and
+    save it as ``stem``.pdf/.png; ``note`` (e.g. which form of the analysis it shows) goes small in the
+    bottom right corner."""
+    import importlib
+
+    fig = importlib.import_module(f"{__name__}.{module}").draw(tree)
+    if note:  # a figure-level x label: the layout keeps room for it below the panels
+        fig.supxlabel(note, x=0.998, ha="right", fontsize=6, color="0.4")
+    return save_figure(fig, stem)
+
+
 def draw(label: str, data: dict, options: dict, stem) -> list[Path]:
     """Draw figure ``label`` and save it as ``stem``.pdf/.png (times go to the log)."""
     import logging
