@@ -165,9 +165,9 @@ def test_config_rejects_a_q_grid_off_the_ring(raw):
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi_statistics\.full\.q_over_pi.*not|must be an integer"):
         cc.validate(bad)
     bad = copy.deepcopy(raw)
-    bad["beyond"]["mi_growth"]["scenes"] = ["fftseuil-5"]
-    with pytest.raises(ValueError, match=r"mi_growth\.scenes\[0\] = 'fftseuil-5'.*did you mean 'fftseuil-5"):
-        cc.resolved_mi_growth(cc.validate(bad))
-    bad["beyond"]["mi_growth"]["scenes"] = ["loc1-pair"]
-    with pytest.raises(cc.ConfigError, match=r"beyond\.mi_growth\.scenes\[0\] = 'loc1-pair'"):
+    bad["beyond"]["mi-growth"]["scenes"] = ["fftseuil-5"]
+    with pytest.raises(ValueError, match=r"mi-growth: reads scene 'fftseuil-5'.*did you mean 'fftseuil-5"):
+        cc.analysis_reads(cc.validate(bad), "mi-growth", "full")
+    bad["beyond"]["mi-growth"]["scenes"] = ["loc1-pair"]
+    with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes\[0\] = 'loc1-pair'"):
         cc.validate(bad)

@@ -125,7 +125,7 @@ def test_flipped_byte_in_data_is_detected_by_every_reader(outputs, kind, tmp_pat
 
 
 def test_damaged_scene_stops_open_scene_and_figure_inputs(outputs, tmp_path):
-    from cradle.figures import load_inputs
+    from cradle.pipeline.outputs import load_inputs
 
     for kind in ("exact", "dps", "metrics"):
         _copy(outputs[kind][1], tmp_path)
@@ -333,14 +333,14 @@ def test_extend_writes_a_new_file_and_refuses_a_workflow_scene_in_place(outputs,
 
 
 def test_rule_params_hold_no_stored_times():
-    """The simulate and mi-growth rules get compact scenes: small, and expanded back bitwise."""
+    """The simulate rule gets compact scenes: small, and expanded back bitwise."""
     cfg = cc.load(ROOT / "config.yaml")
     for name in cfg["scenes"]:
         full = cc.resolved_scene(cfg, name)
         small = compact_scene(full)
         assert "times" not in small and len(repr(small)) < 2000, name
         assert expand_scene(small) == full
-    for rule in ("simulate.smk", "analyses.smk"):
+    for rule in ("simulate.smk",):
         text = (ROOT / "workflow" / "rules" / rule).read_text()
         assert "compact_scene(cc.resolved_scene(" in text and "=lambda w: cc.resolved_scene(" not in text
 

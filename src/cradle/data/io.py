@@ -30,8 +30,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from cradle import __version__
-from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, provenance
+from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, VERSION, provenance
 from cradle.data.variables import declared
 
 REFERENCE = (
@@ -101,7 +100,7 @@ def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = No
         {
             "title": title,
             "Conventions": "CF-1.10",
-            "source": f"cradle {__version__}" + (f" (git {prov['git_commit'][:12]}"
+            "source": f"cradle {VERSION}" + (f" (git {prov['git_commit'][:12]}"
                                                 f"{', dirty' if prov.get('git_dirty') else ''})"
                                                 if "git_commit" in prov else ""),
             "references": REFERENCE,
