@@ -20,10 +20,10 @@ import xarray as xr
 import yaml
 
 from cradle.data import io
-from cradle.pipeline import outputs
 from cradle.pipeline import budget, cli, config as cc, extend
-from cradle.scenes import stages
+from cradle.pipeline.outputs import open_scene
 from cradle.pipeline.params import compact_scene, expand_scene
+from cradle.scenes import stages
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -130,10 +130,10 @@ def test_damaged_scene_stops_open_scene_and_figure_inputs(outputs, tmp_path):
     for kind in ("exact", "dps", "metrics"):
         _copy(outputs[kind][1], tmp_path)
     root = tmp_path / "results"
-    assert outputs.open_scene("tw", root=root)["x"].sizes["model"] == 2
+    assert open_scene("tw", root=root)["x"].sizes["model"] == 2
     _flip_in_data(root / "sim/tw/dps.nc", outputs["dps"][0]["A_re"].values)
     with pytest.raises(io.DamagedOutput, match=r"sim/tw/dps.nc: damaged"):
-        outputs.open_scene("tw", root=root)
+        open_scene("tw", root=root)
     with pytest.raises(io.DamagedOutput, match=r"sim/tw/dps.nc: damaged"):
         load_inputs({"tw": "scenes"}, root)
 
@@ -239,7 +239,8 @@ def test_mi_statistics_batch_over_budget_refused():
     with pytest.raises(cc.ConfigError) as err:
         cc.validate(cfg)
     lines = str(err.value).splitlines()
-    assert len(lines) == 1 and lines[0].startswith("config error: beyond.mi_statistics.full: ") and "budget." in lines[0]
+    assert len(lines) == 1
+    assert lines[0].startswith("config error: beyond.mi_statistics.full: ") and "budget." in lines[0]
     e = budget.mi_statistics_estimate(cc.load(ROOT / "config.yaml"), "reduced")
     assert 7.9 / 2 < e.seconds < 7.9 * 2
 
