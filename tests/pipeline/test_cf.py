@@ -18,15 +18,14 @@ import json
 import numpy as np
 import pytest
 
-from cradle.pipeline import config as cc
-from cradle.data import provenance
-from cradle.scenes import stages
 from cradle.analyses._legacy import LEGACY
 from cradle.analyses.registry import ANALYSES
+from cradle.data import provenance
 from cradle.data.io import make_dataset, make_tree, open_dataset, open_tree, write_netcdf
-from cradle.pipeline.outputs import open_scene
 from cradle.data.variables import VARIABLES
-
+from cradle.pipeline import config as cc
+from cradle.pipeline.outputs import open_scene
+from cradle.scenes import stages
 from test_pipeline import TINY  # tests/ is on sys.path (pytest rootdir, no __init__.py)
 
 KINDS = ("homoclinic", "map", "initial", "exact", "dps", "metrics", "map-marks", "metrics-breather", "metrics-pair")

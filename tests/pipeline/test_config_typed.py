@@ -12,8 +12,16 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import (beyond, breather_interactions, breathers, dps_validity, floquet, mi_statistics,
-                                    movies, sections)
+from cradle.pipeline.config import (
+    beyond,
+    breather_interactions,
+    breathers,
+    dps_validity,
+    floquet,
+    mi_statistics,
+    movies,
+    sections,
+)
 from cradle.scenes import spec as scenes
 from cradle.specs.declare import plain
 

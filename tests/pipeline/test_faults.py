@@ -20,10 +20,9 @@ import xarray as xr
 import yaml
 
 from cradle.data import io
-from cradle.pipeline import outputs as scene_outputs
-from cradle.pipeline import budget, cli, config as cc, extend
-from cradle.scenes import stages
+from cradle.pipeline import budget, cli, config as cc, extend, outputs as scene_outputs
 from cradle.pipeline.params import compact_scene, expand_scene
+from cradle.scenes import stages
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -239,7 +238,8 @@ def test_mi_statistics_batch_over_budget_refused():
     with pytest.raises(cc.ConfigError) as err:
         cc.validate(cfg)
     lines = str(err.value).splitlines()
-    assert len(lines) == 1 and lines[0].startswith("config error: beyond.mi_statistics.full: ") and "budget." in lines[0]
+    assert len(lines) == 1
+    assert lines[0].startswith("config error: beyond.mi_statistics.full: ") and "budget." in lines[0]
     e = budget.mi_statistics_estimate(cc.load(ROOT / "config.yaml"), "reduced")
     assert 7.9 / 2 < e.seconds < 7.9 * 2
 
