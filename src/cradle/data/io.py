@@ -134,7 +134,7 @@ def make_tree(groups: dict, variables: dict, attrs: dict | None = None, title: s
         for parent in (p for p in parents if p in nodes and p != path):
             clash = set(ds.variables) & set(nodes[parent].coords)
             if clash:
-                raise ValueError(f"group {path}: {sorted(clash)} already coordinates of its parent {parent}")
+                raise ValueError(f"group {path}: {sorted(map(str, clash))} already coordinates of its parent {parent}")
     return xr.DataTree.from_dict(nodes)
 
 
@@ -160,7 +160,7 @@ def encoding_of(ds: xr.Dataset) -> dict:
     encoding = {}
     for name in list(ds.coords) + list(ds.data_vars):
         var = ds[name]
-        enc = {}
+        enc: dict[str, object] = {}
         if np.issubdtype(var.dtype, np.floating):
             enc["_FillValue"] = None
         if var.ndim > 0 and var.dtype.kind in "fiucb" and var.shape[0] > 0:

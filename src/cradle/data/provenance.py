@@ -136,7 +136,7 @@ def _snakemake_job() -> str | None:
     """``snakemake rule NAME (wildcards)`` when running inside a Snakemake ``script:`` job."""
     sm = getattr(sys.modules.get("__main__"), "snakemake", None)
     rule = getattr(sm, "rule", None)
-    if not rule:
+    if sm is None or not rule:
         return None
     try:
         wc = ", ".join(f"{k}={v}" for k, v in dict(sm.wildcards.items()).items())

@@ -22,6 +22,7 @@ import json
 import types
 import typing
 from pathlib import Path
+from typing import Any
 
 from .values import ANGLE_PATTERN, NAME_PATTERN, ConfigError, key_path, show
 
@@ -83,7 +84,7 @@ def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of
 
 # Shared scalar types ($defs), each bound written here only.
 
-SHARED = {
+SHARED: dict[str, dict[str, Any]] = {
     "name": {"description": "An entry name: letters, digits, '-' and '_' (it becomes part of file names).",
              "type": "string", "pattern": NAME_PATTERN},
     "alpha": {"description": "Hertz exponent alpha of (vhertz); > 1.", "type": "number", "exclusiveMinimum": 1},
