@@ -151,8 +151,15 @@ def test_snakemake_end_to_end_on_tiny_config(tmp_path):
     assert again.returncode == 0
     assert "Nothing to be done" in again.stdout + again.stderr
 
-    # change q of one scene: only that scene's chain and the figures reading it replan
+    # the same values in another key order: a job's params are the sorted plain values, nothing replans
     cfg = yaml.safe_load((work / "config.yaml").read_text())
+    cfg["scenes"] = {n: dict(reversed(list(s.items()))) for n, s in cfg["scenes"].items()}
+    cfg["homoclinic"] = {n: dict(reversed(list(h.items()))) for n, h in cfg["homoclinic"].items()}
+    (work / "config.yaml").write_text(yaml.safe_dump(cfg, sort_keys=False))
+    reordered = _snakemake(work, "-n", "paper")
+    assert reordered.returncode == 0 and "Nothing to be done" in reordered.stdout + reordered.stderr
+
+    # change q of one scene: only that scene's chain and the figures reading it replan
     cfg["scenes"]["tw-weak"]["initial"]["q"] = "2pi/5"
     (work / "config.yaml").write_text(yaml.safe_dump(cfg))
     plan = _snakemake(work, "-n", "paper")
