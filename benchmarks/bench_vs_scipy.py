@@ -63,7 +63,7 @@ BASELINE = "scipy DOP853 (numba RHS)"
 
 def scene(name="fft106"):
     cfg = cc.load(ROOT / "config.yaml")
-    spec = cc.resolved_scene(cfg, name)
+    spec = cc.scene(cfg, name)
     init = stages.initial_data(spec, name)
     return init["x0"].values, init["v0"].values, float(init.attrs["a"]), spec
 

@@ -35,7 +35,7 @@ def run(scene: str, every: float, tmp: Path) -> dict:
     import yaml
 
     cfg_path.write_text(yaml.safe_dump(cfg, sort_keys=False))
-    e = budget.spec_estimate(cc.resolved_scene(cc.load(cfg_path), scene))
+    e = budget.spec_estimate(cc.scene(cc.load(cfg_path), scene), scene)
     env = dict(os.environ, PYTHONPATH=f"{ROOT / 'src'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
     t0 = time.perf_counter()
     proc = subprocess.Popen([sys.executable, "-m", "cradle", "run", scene, "--config", str(cfg_path), "--out",

@@ -143,7 +143,7 @@ def test_config_section_and_command_line(tmp_path):
                                   "reference": {"dt_factor": 0.001},
                                   "methods": {"srkn6c": {"dt_factor": [0.02, 0.01]}, "lsoda": {"rtol": [1e-6, 1e-8]}}}
     spec = cc.resolved_work_precision(tiny_cfg, "tw-weak")
-    init = write_netcdf(stages.initial_data(cc.resolved_scene(tiny_cfg, "tw-weak"), "tw-weak"), tmp_path / "i.nc")
+    init = write_netcdf(stages.initial_data(cc.scene(tiny_cfg, "tw-weak"), "tw-weak"), tmp_path / "i.nc")
     out = tmp_path / "wp" / "tw-weak.nc"
     assert wp.main(["scene", "--spec", json.dumps(spec), "--initial", str(init), "--out", str(out)]) == 0
     ds = open_dataset(out)

@@ -27,7 +27,7 @@ CFG = {
 @pytest.fixture(scope="module")
 def sim():
     cfg = cc.validate(CFG)
-    spec = cc.resolved_scene(cfg, "small")
+    spec = cc.scene(cfg, "small")
     init = stages.initial_data(spec, "small")
     ex, ap = stages.exact_run(spec, init, "small"), stages.dps_run(spec, init, "small")
     return {"small": {"exact": ex, "dps": ap, "metrics": stages.metrics(spec, ex, ap, "small")}}

@@ -13,6 +13,7 @@ declares (``VARIABLES`` of its module), filled with increasing numbers.
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
@@ -50,9 +51,9 @@ def outputs(tmp_path_factory):
     root = tmp_path_factory.mktemp("cf") / "results"
     cfg = cc.validate(TINY)
     scene = "tw-weak-noise"
-    spec = cc.resolved_scene(cfg, scene)
-    hspec = cc.resolved_homoclinic(cfg, "site")
-    mspec = cc.resolved_map(cfg, "traj3")
+    spec = cc.scene(cfg, scene)
+    hspec = cc.homoclinic(cfg, "site")
+    mspec = cc.map_entry(cfg, "traj3")
     init = stages.initial_data(spec, scene)
     ex = stages.exact_run(spec, init, scene)
     ap = stages.dps_run(spec, init, scene)
@@ -63,11 +64,11 @@ def outputs(tmp_path_factory):
         "exact": (ex, root / "sim" / scene / "exact.nc"),
         "dps": (ap, root / "sim" / scene / "dps.nc"),
         "metrics": (stages.metrics(spec, ex, ap, scene), root / "metrics" / f"{scene}.nc"),
-        "map-marks": (stages.map_orbits({**mspec, "marks": True}, "marked"), root / "map" / "marked.nc"),
+        "map-marks": (stages.map_orbits(dataclasses.replace(mspec, marks=True), "marked"), root / "map" / "marked.nc"),
     }
     for kind in ("breather", "pair"):  # the breather measurements of localised scenes (plot18, loc1, fini)
         run_ex, run_ap = _localised_run(kind, 1.09), _localised_run(kind, 1.1)
-        built[f"metrics-{kind}"] = (stages.metrics({}, run_ex, run_ap, kind), root / "metrics" / f"{kind}.nc")
+        built[f"metrics-{kind}"] = (stages.metrics(None, run_ex, run_ap, kind), root / "metrics" / f"{kind}.nc")
     return {kind: write_netcdf(ds, path) for kind, (ds, path) in built.items()} | {"root": root, "scene": scene}
 
 

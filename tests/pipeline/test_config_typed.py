@@ -23,7 +23,7 @@ from cradle.pipeline.config import (
     sections,
 )
 from cradle.scenes import spec as scenes
-from cradle.specs.declare import plain
+from cradle.specs.declare import from_plain, plain, plain as spec_plain
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -133,6 +133,59 @@ def test_a_scene_override_of_the_integrator_is_not_filled_with_declared_defaults
     cfg["defaults"]["exact"]["rtol"] = 1e-8
     cfg["scenes"]["tw-weak"]["exact"] = {"method": "dop853"}
     assert cc.resolved_scene(cfg, "tw-weak")["exact"] == {"method": "dop853", "dt_factor": None, "rtol": 1e-8}
+    assert cc.scene(cfg, "tw-weak").exact == scenes.ExactIntegrator(method="dop853", dt_factor=None, rtol=1e-8)
+
+
+# ------------------------------------------------------------------ typed, resolved entries
+
+def test_every_scene_resolves_to_a_typed_scene_equal_to_its_plain_values(raw):
+    """cc.scene: defaults filled (alpha, max_energy_drift numbers, complete integrators), the same values
+    as the plain resolved_scene, and plain -> from_plain gives the same scene back (what a rule passes
+    to its script)."""
+    for name in raw["scenes"]:
+        s, r = cc.scene(raw, name), cc.resolved_scene(raw, name)
+        assert isinstance(s, scenes.Scene) and isinstance(s.alpha, float) and isinstance(s.max_energy_drift, float)
+        assert isinstance(s.exact, scenes.ExactIntegrator) and isinstance(s.dps, scenes.DpsIntegrator)
+        assert (s.alpha, s.max_energy_drift, s.N, s.bc, s.t_end) == (r["alpha"], r["max_energy_drift"], r["N"],
+                                                                    r["bc"], r["t_end"])
+        assert spec_plain(s.exact) == dict(sorted(r["exact"].items())) and spec_plain(s.dps) == r["dps"]
+        assert list(s.times) == r["times"], name
+        if isinstance(s.initial, scenes.Travelling):
+            assert s.initial.wavenumber == r["initial"]["q"] and s.initial.q_expr == r["initial"]["q_expr"]
+        values = spec_plain(s)
+        assert "times" not in values and json.loads(json.dumps(values)) == values
+        back = from_plain(scenes.Scene, values)
+        assert back == s and back.times == s.times
+
+
+def test_typed_homoclinic_and_map_entries_have_alpha_filled(raw):
+    for name in raw["homoclinic"]:
+        h = cc.homoclinic(raw, name)
+        assert isinstance(h, scenes.HomoclinicEntry) and from_plain(scenes.HomoclinicEntry, spec_plain(h)) == h
+        assert spec_plain(h) == {k: v for k, v in sorted(cc.resolved_homoclinic(raw, name).items()) if k != "name"}
+    for name in raw["map"]:
+        m = cc.map_entry(raw, name)
+        assert isinstance(m, scenes.MapEntry) and from_plain(scenes.MapEntry, spec_plain(m)) == m
+        assert spec_plain(m) == {k: v for k, v in sorted(cc.resolved_map(raw, name).items()) if k != "name"}
+    assert cc.homoclinic(raw, "double").alpha == 1.5 and cc.map_entry(raw, "traj2-8").line.count == 40
+
+
+def test_plain_values_of_a_scene_ignore_the_order_of_config_keys(raw):
+    """A rule's params are the sorted plain values: reordering config.yaml reruns nothing."""
+    cfg = copy.deepcopy(raw)
+    cfg["scenes"] = {n: dict(reversed(list(s.items()))) for n, s in cfg["scenes"].items()}
+    cfg["scenes"]["tw-weak"]["initial"] = dict(reversed(list(cfg["scenes"]["tw-weak"]["initial"].items())))
+    for name in raw["scenes"]:
+        assert json.dumps(spec_plain(cc.scene(cfg, name))) == json.dumps(spec_plain(cc.scene(raw, name))), name
+
+
+def test_typed_entries_refuse_unknown_names_and_bad_plain_values(raw):
+    for fn in (cc.scene, cc.homoclinic, cc.map_entry):
+        with pytest.raises(cc.ConfigError, match="nosuch"):
+            fn(raw, "nosuch")
+    values = {**spec_plain(cc.scene(raw, "tw-weak")), "N": 1}
+    with pytest.raises(cc.ConfigError, match=r"^config error: Scene\.N = 1: "):
+        from_plain(scenes.Scene, values)
 
 
 # ------------------------------------------------------------------ reliability of the validation layer

@@ -2,7 +2,7 @@
 
 ``python -m cradle.pipeline.config [config.yaml]`` validates a file; with
 ``--scene``/``--homoclinic``/``--map NAME`` it prints that entry's resolved
-parameters; ``--write-schema`` regenerates config.schema.json.
+parameters (what its job receives, and what the ``params_sha256`` of its files hashes); ``--write-schema`` regenerates config.schema.json.
 """
 from __future__ import annotations
 
@@ -12,9 +12,10 @@ from pathlib import Path
 
 import yaml
 
-from .resolve import resolved_homoclinic, resolved_map, resolved_scene
+from .resolve import homoclinic, map_entry, scene
 from .sections import SECTIONS
 from .validate import validate, write_schema
+from cradle.specs.declare import plain
 from cradle.specs.values import ConfigError
 
 
@@ -93,11 +94,11 @@ def main(argv=None) -> int:
     try:
         cfg = load(args.config)
         if args.scene:
-            print(json.dumps(resolved_scene(cfg, args.scene), indent=1))
+            print(json.dumps(plain(scene(cfg, args.scene)), indent=1))
         elif args.homoclinic:
-            print(json.dumps(resolved_homoclinic(cfg, args.homoclinic), indent=1))
+            print(json.dumps(plain(homoclinic(cfg, args.homoclinic)), indent=1))
         elif args.map:
-            print(json.dumps(resolved_map(cfg, args.map), indent=1))
+            print(json.dumps(plain(map_entry(cfg, args.map)), indent=1))
         else:
             counts = ", ".join(f"{len(cfg.get(s) or {})} {s}" for s in (*SECTIONS, "figures"))
             print(f"{args.config}: OK ({counts})")

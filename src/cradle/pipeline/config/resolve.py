@@ -1,9 +1,12 @@
-"""The fully resolved, JSON-serialisable parameters of one entry or analysis of a validated config.
+"""The resolved parameters of one entry or analysis of a validated config.
 
-What each Snakemake job and analysis computes from: defaults merged in, angles
-in radians (their text kept next to them), stored times listed. Each function
-validates the config first (remembered, so a job's repeated calls cost one
-validation).
+What each Snakemake job and analysis computes from, defaults merged in. A scene,
+homoclinic or map entry is a typed, frozen instance (:func:`scene`,
+:func:`homoclinic`, :func:`map_entry`; :mod:`cradle.scenes.spec`); the analyses
+still read plain, JSON-serialisable dicts (:func:`resolved_scene` and the other
+``resolved_*``: angles in radians with their text kept next to them, stored
+times listed). Each function validates the config first (remembered, so a job's
+repeated calls cost one validation).
 """
 from __future__ import annotations
 
@@ -16,6 +19,8 @@ from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
+from cradle.scenes.spec import HomoclinicEntry, MapEntry, Scene
+from cradle.specs.declare import build
 from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
 
 
@@ -40,6 +45,38 @@ def _entry(cfg, section, name):
         raise ConfigError(f"config error: {section}.{name}: no {section} entry of that name ({section} entries: "
                           f"{known})")
     return copy.deepcopy(entries[name])
+
+
+def scene_of(cfg: dict, name: str) -> Scene:
+    """Scene ``name`` of a schema-filled config (defaults filled in, not necessarily checked further:
+    the budget estimates it during validation), resolved: ``alpha`` and ``max_energy_drift`` from
+    defaults unless the scene gives them, ``exact`` and ``dps`` the scene's keys merged over
+    ``defaults.exact`` / ``defaults.dps``."""
+    entry = _entry(cfg, "scenes", name)
+    d = cfg["defaults"]
+    entry.update(alpha=float(entry.get("alpha", d["alpha"])), exact=_merged(d["exact"], entry.get("exact")),
+                 dps=_merged(d["dps"], entry.get("dps")),
+                 max_energy_drift=float(entry.get("max_energy_drift", d["max_energy_drift"])))
+    return build(Scene, entry)
+
+
+def scene(config: dict, name: str) -> Scene:
+    """Scene ``name`` of ``config``, validated and resolved (:func:`scene_of`)."""
+    return scene_of(_validated(config), name)
+
+
+def homoclinic(config: dict, name: str) -> HomoclinicEntry:
+    """Homoclinic entry ``name`` of ``config``, validated, its ``alpha`` filled from defaults."""
+    cfg = _validated(config)
+    entry = _entry(cfg, "homoclinic", name)
+    return build(HomoclinicEntry, {**entry, "alpha": float(entry.get("alpha", cfg["defaults"]["alpha"]))})
+
+
+def map_entry(config: dict, name: str) -> MapEntry:
+    """Map entry ``name`` of ``config``, validated, its ``alpha`` filled from defaults."""
+    cfg = _validated(config)
+    entry = _entry(cfg, "map", name)
+    return build(MapEntry, {**entry, "alpha": float(entry.get("alpha", cfg["defaults"]["alpha"]))})
 
 
 def resolved_scene(config: dict, name: str) -> dict:
