@@ -353,8 +353,6 @@ def test_rule_params_hold_no_stored_times():
         assert from_plain(Scene, values).times == scene.times
     text = (ROOT / "workflow" / "rules" / "simulate.smk").read_text()
     assert "spec=lambda w: plain(cc.scene(config, w.scene))" in text and "resolved_scene" not in text
-    text = (ROOT / "workflow" / "rules" / "analyses.smk").read_text()
-    assert "compact_scene(cc.resolved_scene(" in text and "=lambda w: cc.resolved_scene(" not in text
 
 
 def test_cli_run_defaults_to_its_own_folder():

@@ -292,6 +292,7 @@ def compute(spec: MIGrowth, inputs: dict, log=None):
     is rerun with the integrators its files were computed with (:func:`cradle.scenes.stored.scene_of`).
     """
     from cradle.data.io import make_tree
+    from cradle.scenes.spec import Travelling
     from cradle.scenes.stored import scene_of
 
     wall0 = time.perf_counter()
@@ -319,6 +320,7 @@ def compute(spec: MIGrowth, inputs: dict, log=None):
         sc, init_ds, sims = scenes[name]
         alpha, N = sc.alpha, sc.N
         alphas.add(alpha)
+        assert isinstance(sc.initial, Travelling)   # mi-growth measures travelling waves (checked in the config)
         q = sc.initial.wavenumber
         k_q = int(round(q * N / (2 * np.pi)))
         eps = float(init_ds.attrs["eps"])
