@@ -42,12 +42,10 @@ in-memory peak as before.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
-from cradle.pipeline.config.resolve import scene_of
-from cradle.pipeline.config.sections import Budget  # the config key budget:, declared with the others
-from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store
-from cradle.specs.declare import build
+from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store, resolved
+from cradle.specs.declare import build, declared, param
 
 #: float64 arrays of N values written per stored time by a scene's job (exact x, v, force; DpS
 #: A_re, A_im, x, force; metrics spectrum_exact, spectrum_dps)
@@ -91,6 +89,26 @@ STREAMED_BYTES_PER_TIME = 48
 LONG_RUN_S = 60.0
 
 GB = 1e9
+
+
+
+@declared(doc="Limits every job must fit, checked on estimates before any work starts (cradle.pipeline.budget); "
+              "raise them on a bigger machine.")
+class Budget:
+    """Limits every job must fit (config key ``budget:``); the defaults fit a 2-core, 24 GB machine
+    running two jobs side by side."""
+
+    memory_gb: float = param(8.0, "Peak memory one job may use (GB); two jobs run side by side on two cores.",
+                             exclusiveMinimum=0)
+    disk_gb: float = param(20.0, "Bytes one job may write, and all scenes together (GB).", exclusiveMinimum=0)
+    hours: float = param(12.0, "Wall time one job may take (hours), estimated from its steps and beads.",
+                         exclusiveMinimum=0)
+
+    @classmethod
+    def from_config(cls, cfg: dict) -> Budget:
+        """The budget of a validated config: its ``budget:`` values over the defaults."""
+        given = (cfg or {}).get("budget") or {}
+        return cls(**{f.name: float(given[f.name]) for f in fields(cls) if given.get(f.name) is not None})
 
 
 @dataclass(frozen=True)
@@ -155,7 +173,7 @@ def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int) ->
 def scene_estimate(cfg: dict, name: str) -> Estimate:
     """The cost of scene ``name``'s simulate job (initial data, exact and DpS runs, metrics) in a
     schema-filled config."""
-    return spec_estimate(scene_of(cfg, name), name)
+    return spec_estimate(resolved(cfg["scenes"][name], cfg["defaults"]), name)
 
 
 def spec_estimate(spec: Scene, name: str = "?") -> Estimate:
@@ -280,6 +298,6 @@ def check(cfg: dict) -> None:
     physical checks (which build the stored-time arrays), so an oversized store is refused first."""
     lines = over_budget(cfg)
     if lines:
-        from cradle.pipeline.config import ConfigError
+        from cradle.specs.values import ConfigError
 
         raise ConfigError([f"config error: {line}" for line in lines])

@@ -18,12 +18,25 @@ hold values of the wrong type (the schema reports those): they test before use.
 """
 from __future__ import annotations
 
+import copy
 import math
 from functools import cached_property
 
-from cradle.specs.declare import NULL, REQUIRED, declared, param, plain, register_union
-from cradle.specs.values import INTEGER_TOL, MAX_STORED_TIMES, TIME_TOL, ConfigError, angle_expr, entries, finite, \
-    grid_size, number, parse_angle, show, store_times
+from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
+from cradle.specs.values import (
+    INTEGER_TOL,
+    MAX_STORED_TIMES,
+    TIME_TOL,
+    ConfigError,
+    angle_expr,
+    entries,
+    finite,
+    grid_size,
+    number,
+    parse_angle,
+    show,
+    store_times,
+)
 
 SPLITTINGS = ("srkn6c", "srkn4c", "srkn6", "srkn4", "strang")   # fixed step: dt_factor
 LATTICE_ADAPTIVE = ("dop853_numba", "dop853", "rk45", "lsoda", "radau")   # error control: rtol
@@ -386,3 +399,22 @@ class HomoclinicEntry:
         sep = entry.get("separation")
         if entry.get("guess") == "double" and number(sep) and isinstance(N, int) and not 1 <= sep < N:
             out.add(path + ["separation"], f"must be in [1, N-1] = [1, {N - 1}]", sep)
+
+
+def _merged(base, override):
+    """Deep merge of two mappings (override wins)."""
+    out = copy.deepcopy(base) if isinstance(base, dict) else {}
+    for k, v in (override or {}).items():
+        out[k] = _merged(out.get(k), v) if isinstance(v, dict) and isinstance(out.get(k), dict) else copy.deepcopy(v)
+    return out
+
+
+def resolved(entry: dict, defaults: dict) -> Scene:
+    """A scene entry of a schema-filled config (defaults filled in), resolved against ``defaults:``:
+    ``alpha`` and ``max_energy_drift`` from the defaults unless the scene gives them, ``exact`` and
+    ``dps`` the scene's keys merged over ``defaults.exact`` / ``defaults.dps``."""
+    entry = copy.deepcopy(entry)
+    entry.update(alpha=float(entry.get("alpha", defaults["alpha"])),
+                 exact=_merged(defaults["exact"], entry.get("exact")), dps=_merged(defaults["dps"], entry.get("dps")),
+                 max_energy_drift=float(entry.get("max_energy_drift", defaults["max_energy_drift"])))
+    return build(Scene, entry)

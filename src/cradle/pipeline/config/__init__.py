@@ -12,15 +12,30 @@
 
 ``python -m cradle.pipeline.config --write-schema`` regenerates ``config.schema.json``.
 """
-from .resolve import (homoclinic, map_entry, resolved_breather_interactions, resolved_breathers,
-                      resolved_dps_validity, resolved_floquet, resolved_homoclinic, resolved_map, resolved_mi_diagram,
-                      analysis_reads, analysis_spec, resolved_mi_statistics, resolved_scene, resolved_theorem1,
-                      resolved_work_precision, scene, typed)
-from .sections import KNOWN_FIGURES, SECTIONS
-from cradle.specs.values import ANGLE_PATTERN
+from cradle.specs.values import ANGLE_PATTERN, TIME_TOL, ConfigError, parse_angle, store_times
+
 from .loading import StrictLoader, load, main, read_yaml
-from .validate import SCHEMA_FILE, _VALIDATED, _validated, generated_schema, schema, schema_path, validate, write_schema
-from cradle.specs.values import TIME_TOL, ConfigError, parse_angle, store_times
+from .resolve import (
+                      analysis_reads,
+                      analysis_spec,
+                      homoclinic,
+                      map_entry,
+                      resolved_breather_interactions,
+                      resolved_breathers,
+                      resolved_dps_validity,
+                      resolved_floquet,
+                      resolved_homoclinic,
+                      resolved_map,
+                      resolved_mi_diagram,
+                      resolved_mi_statistics,
+                      resolved_scene,
+                      resolved_theorem1,
+                      resolved_work_precision,
+                      scene,
+                      typed,
+)
+from .sections import KNOWN_FIGURES, SECTIONS
+from .validate import _VALIDATED, SCHEMA_FILE, _validated, generated_schema, schema, schema_path, validate, write_schema
 
 __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SECTIONS", "SCHEMA_FILE", "ANGLE_PATTERN", "TIME_TOL", "schema",

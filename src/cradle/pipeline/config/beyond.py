@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import math
 
-from .breathers import Breathers
+from cradle.specs.declare import declared, param
+from cradle.specs.values import ConfigError, angle_expr, angle_or_none, did_you_mean, entries, number, parse_angle, show
+
 from .breather_interactions import BreatherInteractions
+from .breathers import Breathers
 from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
-from cradle.specs.declare import declared, param
-from cradle.specs.values import ConfigError, angle_expr, angle_or_none, did_you_mean, entries, number, parse_angle, show
 
 _ALPHAS = {"$ref": "#/$defs/alpha", "maximum": 10}
 _ANGLES = {"$ref": "#/$defs/angle"}

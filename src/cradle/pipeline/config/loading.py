@@ -12,11 +12,12 @@ from pathlib import Path
 
 import yaml
 
+from cradle.specs.declare import plain
+from cradle.specs.values import ConfigError
+
 from .resolve import homoclinic, map_entry, scene
 from .sections import SECTIONS
 from .validate import validate, write_schema
-from cradle.specs.declare import plain
-from cradle.specs.values import ConfigError
 
 
 class StrictLoader(yaml.SafeLoader):

@@ -12,16 +12,17 @@ from __future__ import annotations
 
 import copy
 
+from cradle.scenes.spec import HomoclinicEntry, MapEntry, Scene, resolved
+from cradle.specs.declare import build
+from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
+
 from .beyond import MIDiagram, Theorem1
-from .breathers import Breathers
 from .breather_interactions import BreatherInteractions
+from .breathers import Breathers
 from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
-from cradle.scenes.spec import HomoclinicEntry, MapEntry, Scene
-from cradle.specs.declare import build
-from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
 
 
 def _validated(config: dict) -> dict:
@@ -52,12 +53,7 @@ def scene_of(cfg: dict, name: str) -> Scene:
     the budget estimates it during validation), resolved: ``alpha`` and ``max_energy_drift`` from
     defaults unless the scene gives them, ``exact`` and ``dps`` the scene's keys merged over
     ``defaults.exact`` / ``defaults.dps``."""
-    entry = _entry(cfg, "scenes", name)
-    d = cfg["defaults"]
-    entry.update(alpha=float(entry.get("alpha", d["alpha"])), exact=_merged(d["exact"], entry.get("exact")),
-                 dps=_merged(d["dps"], entry.get("dps")),
-                 max_energy_drift=float(entry.get("max_energy_drift", d["max_energy_drift"])))
-    return build(Scene, entry)
+    return resolved(_entry(cfg, "scenes", name), cfg["defaults"])
 
 
 def scene(config: dict, name: str) -> Scene:
@@ -124,6 +120,7 @@ def typed(config: dict):
     """The validated config as a frozen :class:`.sections.Config` (scenes, entries, analyses as typed
     instances; each initial condition an instance of its kind's class)."""
     from cradle.specs import declare as spec
+
     from .sections import Config
 
     return spec.build(Config, _validated(config))

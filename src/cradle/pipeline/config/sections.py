@@ -9,13 +9,14 @@ The checks that span several keys or sections are the ``check`` methods here, in
 from __future__ import annotations
 
 import math
-from dataclasses import fields
 
-from .beyond import Beyond
-from .movies import Movies
+from cradle.pipeline.budget import Budget
 from cradle.scenes.spec import LATTICE_ADAPTIVE, SPLITTINGS, Defaults, HomoclinicEntry, MapEntry, Scene
 from cradle.specs.declare import REQUIRED, declared, param
 from cradle.specs.values import TIME_TOL, did_you_mean, entries, finite, store_times
+
+from .beyond import Beyond
+from .movies import Movies
 
 SECTIONS = ("map", "homoclinic", "scenes")  # the name spaces a figure's `scenes:` list reads from
 
@@ -171,25 +172,6 @@ class WorkPrecision:
                 "t_end": t_end, "compare_every": float(wp["compare_every"]),
                 "reference": dict(wp["reference"]), "repeat_time": float(wp["repeat_time"]),
                 "methods": {m: {k: [float(x) for x in v][ladder] for k, v in lad.items()} for m, lad in methods.items()}}
-
-
-@declared(doc="Limits every job must fit, checked on estimates before any work starts (cradle.pipeline.budget); "
-              "raise them on a bigger machine.")
-class Budget:
-    """Limits every job must fit (config key ``budget:``); the defaults fit a 2-core, 24 GB machine
-    running two jobs side by side."""
-
-    memory_gb: float = param(8.0, "Peak memory one job may use (GB); two jobs run side by side on two cores.",
-                             exclusiveMinimum=0)
-    disk_gb: float = param(20.0, "Bytes one job may write, and all scenes together (GB).", exclusiveMinimum=0)
-    hours: float = param(12.0, "Wall time one job may take (hours), estimated from its steps and beads.",
-                         exclusiveMinimum=0)
-
-    @classmethod
-    def from_config(cls, cfg: dict) -> "Budget":
-        """The budget of a validated config: its ``budget:`` values over the defaults."""
-        given = (cfg or {}).get("budget") or {}
-        return cls(**{f.name: float(given[f.name]) for f in fields(cls) if given.get(f.name) is not None})
 
 
 @declared(doc="The experiments of G. James, 'Nonlinear waves in Newton's cradle and the discrete p-Schrodinger "

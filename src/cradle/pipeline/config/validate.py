@@ -33,10 +33,10 @@ from pathlib import Path
 from jsonschema import Draft202012Validator
 
 from cradle.specs import declare as spec
+from cradle.specs.values import ANGLE_HINT, ANGLE_PATTERN, ConfigError, Errors, number, show
+
 from . import sections
 from .sections import SECTIONS
-from cradle.specs.values import ANGLE_PATTERN
-from cradle.specs.values import ANGLE_HINT, ConfigError, Errors, number, show
 
 SCHEMA_FILE = "config.schema.json"
 
