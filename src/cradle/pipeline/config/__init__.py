@@ -12,8 +12,8 @@
 ``python -m cradle.pipeline.config --write-schema`` regenerates ``config.schema.json``.
 """
 from .resolve import (resolved_breather_interactions, resolved_breathers, resolved_dps_validity, resolved_floquet,
-                      resolved_homoclinic, resolved_map, resolved_mi_diagram,
-                      analysis_spec, resolved_mi_statistics, resolved_scene, resolved_theorem1,
+                      resolved_homoclinic, resolved_map,
+                      analysis_spec, resolved_mi_statistics, resolved_scene,
                       resolved_work_precision, typed)
 from .sections import KNOWN_FIGURES, SECTIONS
 from cradle.specs.declare import ANGLE_PATTERN
@@ -24,7 +24,7 @@ from cradle.specs.values import TIME_TOL, ConfigError, parse_angle, store_times
 __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SECTIONS", "SCHEMA_FILE", "ANGLE_PATTERN", "TIME_TOL", "schema",
     "generated_schema", "schema_path", "write_schema", "parse_angle", "validate", "store_times", "resolved_scene",
-    "resolved_homoclinic", "resolved_map", "resolved_work_precision", "resolved_theorem1", "resolved_mi_diagram",
+    "resolved_homoclinic", "resolved_map", "resolved_work_precision",
     "analysis_spec", "resolved_mi_statistics", "resolved_floquet", "resolved_breathers",
     "resolved_breather_interactions", "resolved_dps_validity", "load", "read_yaml", "StrictLoader", "main", "typed",
 ]
