@@ -97,7 +97,7 @@ def test_cf_compliant(outputs, kind, tmp_path):
 
 
 #: analysis -> module declaring its VARIABLES (one dict per netCDF group)
-TREES = {"theorem1": "theorem1", "mi-diagram": "modulational", "mi-growth": "migrowth",
+TREES = {"theorem1": "theorem1", "mi-diagram": "mi_diagram", "mi-growth": "migrowth",
          "mi-statistics": "mistatistics", "floquet": "floquet", "breathers": "breathers",
          "dps-validity": "dpsvalidity", "breather-interactions": "breather_interactions"}
 

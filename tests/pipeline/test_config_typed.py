@@ -15,6 +15,7 @@ from cradle.pipeline import config as cc
 from cradle.pipeline.config import (beyond, breather_interactions, breathers, dps_validity, floquet, mi_statistics,
                                     movies, sections)
 from cradle.scenes import spec as scenes
+from cradle.specs.declare import plain
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -44,8 +45,8 @@ def _everything_resolved(config) -> dict:
         "scenes": {n: cc.resolved_scene(cfg, n) for n in cfg["scenes"]},
         "homoclinic": {n: cc.resolved_homoclinic(cfg, n) for n in cfg["homoclinic"]},
         "map": {n: cc.resolved_map(cfg, n) for n in cfg["map"]},
-        "theorem1": cc.resolved_theorem1(cfg),
-        "mi_diagram": cc.resolved_mi_diagram(cfg),
+        "theorem1": plain(cc.analysis_spec(cfg, "theorem1", "full")),
+        "mi-diagram": plain(cc.analysis_spec(cfg, "mi-diagram", "full")),
         "mi_growth": cc.resolved_mi_growth(cfg),
         "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
         "floquet": cc.resolved_floquet(cfg),
@@ -210,8 +211,9 @@ def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw
     ("theorem1", "q", ["pi/5", "-pi/2"], "beyond.theorem1.q[1] = '-pi/2': must be in (0, pi]"),
     ("theorem1", "a_max", 1e-9, "beyond.theorem1.a_max = 1e-09: must exceed a_min = 1e-08"),
     ("theorem1", "grid_log2", 10, "beyond.theorem1.grid_log2 = 10: 2^grid_log2 must be >= 8 x"),
-    ("mi_diagram", "check_pairs", [[70, 10], [250, 3]], "beyond.mi_diagram.check_pairs[1] = [250, 3]: need 0 <"),
-    ("mi_diagram", "check_pairs", [[10, 150]], "beyond.mi_diagram.check_pairs[0] = [10, 150]: stable for alpha"),
+    ("mi-diagram", "check_pairs", [[70, 10], [250, 3]], "beyond.mi-diagram.check_pairs[1] = [250, 3]: need 0 <"),
+    ("mi-diagram", "check_pairs", [[10, 150]], "beyond.mi-diagram.check_pairs[0] = [10, 150]: stable for alpha"),
+    ("theorem1", "scenes", ["tw-weak", "fini"], "beyond.theorem1.scenes[1] = 'fini': not a travelling-wave scene"),
     ("floquet", "q_max", "0.3pi", "beyond.floquet.q_max = '0.3pi': must exceed q_min = '0.4pi'"),
     ("floquet", "small_q", ["3pi/5", "pi"], "beyond.floquet.small_q[1] = 'pi': must be in (0, pi)"),
     ("mi_statistics", "reduced", {"N": [201]}, "beyond.mi_statistics.reduced.N[0] = 201: must be even"),
@@ -226,15 +228,16 @@ def test_analysis_checks_are_one_line_at_validation(raw, section, key, value, wo
 
 
 def test_analysis_scene_names_are_checked_when_resolved(raw):
-    """Names of scenes are checked when the analysis is resolved, so a config with fewer scenes (a
-    test's) still validates."""
+    """Names of scenes are checked when the analysis is planned (its reads name the files of the scenes, and
+    the rules refuse a scene with no `scenes:` entry), so a config with fewer scenes (a test's) still
+    validates."""
+    from cradle.analyses.protocol import Read
+    from cradle.analyses.registry import ANALYSES
+
     cfg = copy.deepcopy(raw)
-    cfg["beyond"]["theorem1"]["scenes"] = ["tw-weak", "fini"]
-    with pytest.raises(cc.ConfigError, match=r"beyond\.theorem1\.scenes\[1\] = 'fini': not a travelling-wave"):
-        cc.resolved_theorem1(cfg)
     cfg["beyond"]["theorem1"]["scenes"] = ["tw-wek"]
-    with pytest.raises(cc.ConfigError, match=r"scenes\[0\] = 'tw-wek': unknown scene.*did you mean 'tw-weak'"):
-        cc.resolved_theorem1(cfg)
+    spec = cc.analysis_spec(cfg, "theorem1", "full")
+    assert ANALYSES["theorem1"].reads_of(spec) == {"tw-wek/initial": Read.of("initial", scene="tw-wek")}
     cfg["beyond"]["mi_growth"]["scenes"] = []
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi_growth\.scenes is empty"):
         cc.resolved_mi_growth(cfg)

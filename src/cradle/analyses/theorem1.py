@@ -63,7 +63,8 @@ class Theorem1:
         max(modes, 2 x max(convergence_modes))), and every named scene that exists a travelling wave.
         Names of missing scenes are reported when the target is planned (its reads), so that a config
         with fewer scenes (a test's) still validates."""
-        for i, q in enumerate(b.get("q") if isinstance(b.get("q"), list) else []):
+        qs, names = b.get("q"), b.get("scenes")
+        for i, q in enumerate(qs if isinstance(qs, list) else []):
             x = angle_or_none(q)
             if x is not None and not 0.0 < x <= math.pi + 1e-12:
                 out.add(path + ["q", i], "must be in (0, pi]", q)
@@ -75,7 +76,7 @@ class Theorem1:
                 all(isinstance(x, int) for x in cm) and 2 ** g < 8 * max(m, 2 * max(cm)):
             out.add(path + ["grid_log2"], "2^grid_log2 must be >= 8 x max(modes, 2 x max(convergence_modes))", g)
         scenes = entries(cfg, "scenes")
-        for i, name in enumerate(b.get("scenes") if isinstance(b.get("scenes"), list) else []):
+        for i, name in enumerate(names if isinstance(names, list) else []):
             sc = scenes.get(name) if isinstance(name, str) else None
             ini = sc.get("initial") if sc is not None and isinstance(sc.get("initial"), dict) else None
             if ini is not None and ini.get("kind") != "travelling":
@@ -328,11 +329,11 @@ def compute(spec: Theorem1, inputs: dict, log=None):
     scenes = list(spec.scenes)
     sc = {k: np.full(len(scenes), np.nan) for k in ("a", "q", "alpha", "om", "omd", "t", "drift", "res")}
     for i, name in enumerate(scenes):
-        ini = inputs[f"{name}/initial"].attrs
-        al, q, a = float(ini["alpha"]), float(ini["q"]), float(ini["a"])
+        scene_attrs = inputs[f"{name}/initial"].attrs
+        al, q, a = float(scene_attrs["alpha"]), float(scene_attrs["q"]), float(scene_attrs["a"])
         path = np.geomspace(min(1e-3, a), a, 12)
         w = branch(path, q, al, modes=J, M=M)[-1]
-        sc["a"][i], sc["q"][i], sc["alpha"][i], sc["t"][i] = a, q, al, float(ini["t_end"])
+        sc["a"][i], sc["q"][i], sc["alpha"][i], sc["t"][i] = a, q, al, float(scene_attrs["t_end"])
         sc["om"][i], sc["omd"][i], sc["res"][i] = w.omega, omega_dps(a, q, al), w.residual
         sc["drift"][i] = abs(sc["om"][i] - sc["omd"][i]) * sc["t"][i]
         say(f"theorem1: scene {name}: a={a:.6g} omega={w.omega:.10g} omega_DpS={sc['omd'][i]:.10g} "
