@@ -19,10 +19,9 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from cradle.integrators import integrate_lattice, lattice_splitting as LS
 from cradle.pipeline import config as cc
 from cradle.scenes import stages
-from cradle.integrators import integrate_lattice
-from cradle.integrators import lattice_splitting as LS
 
 ROOT = Path(__file__).resolve().parents[1]
 FACTORS = [0.064, 0.032, 0.016, 0.008, 0.004]

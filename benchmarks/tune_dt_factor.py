@@ -15,9 +15,9 @@ import argparse
 import time
 from pathlib import Path
 
+from cradle.integrators import DEFAULT_DT_FACTOR, integrate_lattice
 from cradle.pipeline import config as cc
 from cradle.scenes import stages
-from cradle.integrators import DEFAULT_DT_FACTOR, integrate_lattice
 
 ROOT = Path(__file__).resolve().parents[1]
 

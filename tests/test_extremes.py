@@ -12,10 +12,10 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 from scipy.special import gamma
 
-from cradle.measurements import compare
-from cradle.models import dps, homoclinic, homoclinic_continuation, homoclinic_tails, initial, lattice
 from cradle.analyses import theorem1
 from cradle.integrators import integrate_dps, integrate_lattice
+from cradle.measurements import compare
+from cradle.models import dps, homoclinic, homoclinic_continuation, homoclinic_tails, initial, lattice
 
 ALPHAS = [1.01, 1.1, 1.5, 2.0, 3.0]
 

@@ -13,12 +13,7 @@ Sub-packages, one layer each:
 * :mod:`cradle.pipeline`     - config, stages, runner, netCDF io, provenance, code dependencies, CLI
 * :mod:`cradle.figures`      - one drawing function per figure label, from stored data
 """
-from importlib.metadata import PackageNotFoundError, version as _version
-
-try:
-    __version__ = _version("cradle")
-except PackageNotFoundError:  # running from a source tree that is not installed
-    __version__ = "0.0.0+unknown"
+from cradle.data.provenance import VERSION as __version__
 
 
 def __getattr__(name):

@@ -4,8 +4,8 @@ and the threshold q_c = pi/2."""
 import numpy as np
 import pytest
 
-from cradle.models import dps
 from cradle.analyses import mi_diagram as MI
+from cradle.models import dps
 
 
 @pytest.mark.parametrize("alpha", [1.5, 2.0, 3.0])
@@ -29,7 +29,7 @@ def test_growth_rate_matches_the_linearised_lattice(alpha):
     for k in (6, 14, 17):   # q = 0.94 (stable), 2.20, 2.67
         q = 2 * np.pi * k / N
 
-        def f(x):
+        def f(x, q=q):
             r = MI.rotating_rhs(x[:N] + 1j * x[N:], q, R, alpha)
             return np.r_[r.real, r.imag]
 

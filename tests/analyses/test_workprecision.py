@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 import yaml
 
-from cradle.pipeline import config as cc
-from cradle.scenes import stages
 from cradle.analyses import work_precision as wp
 from cradle.data.io import open_dataset, write_netcdf
+from cradle.pipeline import config as cc
+from cradle.scenes import stages
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -4,10 +4,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from cradle.measurements import compare, sidebands
-from cradle.figures import spectra
-from cradle.scenes import stages
 from cradle.data.io import make_dataset
+from cradle.figures import spectra
+from cradle.measurements import compare, sidebands
+from cradle.scenes import stages
 
 N = 40                                   # q N / (2 pi) = 16 for q = 4 pi/5: q on Gamma*
 Q = 4 * np.pi / 5

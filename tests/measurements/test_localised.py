@@ -9,11 +9,11 @@ import pytest
 import xarray as xr
 import yaml
 
-from cradle.pipeline import config as cc
+from cradle.figures import localised, registry
 from cradle.measurements import breathers, interactions
 from cradle.models import dps, homoclinic, initial, lattice
+from cradle.pipeline import config as cc
 from cradle.scenes import stages
-from cradle.figures import localised, registry
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -114,7 +114,8 @@ def test_initial_data_stage_for_the_new_kinds(ini):
     assert ds.attrs["initial_kind"] == ini["kind"] and ds.attrs["eps"] == 1.0 and "homoclinic" not in ds.attrs
     assert np.all(ds["v0"].values == 0) and np.all(ds["A0_im"].values == 0)
     assert np.array_equal(ds["A0_re"].values, ds["x0"].values / 2)
-    assert ds.attrs["energy0"] == pytest.approx(lattice.hamiltonian(ds["x0"].values, ds["v0"].values, ALPHA, "periodic"))
+    energy0 = lattice.hamiltonian(ds["x0"].values, ds["v0"].values, ALPHA, "periodic")
+    assert ds.attrs["energy0"] == pytest.approx(energy0)
 
 
 @pytest.mark.parametrize("ini, path, words", [

@@ -3,8 +3,8 @@ reversibility, the explicit periodic orbits of the traj2 caption."""
 import numpy as np
 import pytest
 
-from cradle.models import stationary as st
 from cradle.figures import maps
+from cradle.models import stationary as st
 from cradle.scenes import stages
 
 ALPHAS = [1.5, 2.0, 3.0]
@@ -60,10 +60,10 @@ def test_closed_forms_at_hertz():
 
 
 def test_box_cuts_escaping_orbits():
-    O = st.orbit([5.0, 0.0], 50, 1.5, box=1.0)
-    assert np.all(np.isnan(O))
-    O = st.orbit([0.01, 0.0], 50, 1.5, box=1.0)
-    assert np.all(np.isfinite(O))
+    orbit = st.orbit([5.0, 0.0], 50, 1.5, box=1.0)
+    assert np.all(np.isnan(orbit))
+    orbit = st.orbit([0.01, 0.0], 50, 1.5, box=1.0)
+    assert np.all(np.isfinite(orbit))
 
 
 def test_map_stage_stores_the_explicit_orbits_of_marked_entries():

@@ -18,13 +18,14 @@ import json
 import numpy as np
 import pytest
 
-from cradle.pipeline import config as cc
+from cradle.analyses._legacy import LEGACY
+from cradle.analyses.registry import ANALYSES
 from cradle.data import provenance
-from cradle.scenes import stages
 from cradle.data.io import make_dataset, make_tree, open_dataset, open_tree, write_netcdf
-from cradle.pipeline.outputs import open_scene
 from cradle.data.variables import VARIABLES
-
+from cradle.pipeline import config as cc
+from cradle.pipeline.outputs import open_scene
+from cradle.scenes import stages
 from test_pipeline import TINY  # tests/ is on sys.path (pytest rootdir, no __init__.py)
 
 KINDS = ("homoclinic", "map", "initial", "exact", "dps", "metrics", "map-marks", "metrics-breather", "metrics-pair")
@@ -97,9 +98,7 @@ def test_cf_compliant(outputs, kind, tmp_path):
 
 
 #: analysis -> module declaring its VARIABLES (one dict per netCDF group)
-TREES = {"theorem1": "theorem1", "mi-diagram": "modulational", "mi-growth": "migrowth",
-         "mi-statistics": "mistatistics", "floquet": "floquet", "breathers": "breathers",
-         "dps-validity": "dpsvalidity", "breather-interactions": "breather_interactions"}
+TREES = {a.name: a.module for a in ANALYSES.values()} | {a.name: a.module for a in LEGACY.values()}
 
 
 def _declared_tree(module: str):

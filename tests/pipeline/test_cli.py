@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 import yaml
 
+from cradle.data.io import open_dataset
+from cradle.data.provenance import params_hash
 from cradle.pipeline.cli import main
 from cradle.pipeline.config import load, resolved_scene
-from cradle.data.provenance import params_hash
-from cradle.data.io import open_dataset
 from cradle.pipeline.outputs import open_scene
 
 ROOT = Path(__file__).resolve().parents[2]

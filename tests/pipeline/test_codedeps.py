@@ -22,8 +22,8 @@ from modulefinder import ModuleFinder
 from pathlib import Path
 
 import pytest
-from conftest import run_snakemake
 
+from conftest import run_snakemake
 from cradle import figures
 from cradle.analyses.registry import ANALYSES
 from cradle.pipeline.codedeps import code_files

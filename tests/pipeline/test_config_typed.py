@@ -12,9 +12,18 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import (beyond, breather_interactions, breathers, dps_validity, floquet, mi_statistics,
-                                    movies, sections)
+from cradle.pipeline.config import (
+    beyond,
+    breather_interactions,
+    breathers,
+    dps_validity,
+    floquet,
+    mi_statistics,
+    movies,
+    sections,
+)
 from cradle.scenes import spec as scenes
+from cradle.specs.declare import plain
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -27,8 +36,9 @@ CONFIG = ROOT / "config.yaml"
 # section beyond.breather_interactions, and the loc1 scenes set to the readings of docs/loc1-readings.md:
 # loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope. Then issue 16: the section
 # movies: (no resolved scene changed). Then issue 15: the new section beyond.dps_validity; every other value
-# unchanged.)
-RESOLVED_SHA256 = "a61c41d84c976671cec2bf1f62c6b1636832544b28bf694746bd4468ab3c8024"
+# unchanged. Then issue 21: the key beyond.mi_growth renamed beyond.mi-growth, its spec typed (plain() of it is
+# the old dict; with the old key the hash is the old a61c41d8...).)
+RESOLVED_SHA256 = "17faeaaba9cf11580cb3cd0c8b4c197ee3719a8cc6921e62319fe2abddb61a56"
 
 
 @pytest.fixture(scope="module")
@@ -46,7 +56,7 @@ def _everything_resolved(config) -> dict:
         "map": {n: cc.resolved_map(cfg, n) for n in cfg["map"]},
         "theorem1": cc.resolved_theorem1(cfg),
         "mi_diagram": cc.resolved_mi_diagram(cfg),
-        "mi_growth": cc.resolved_mi_growth(cfg),
+        "mi_growth": plain(cc.analysis_spec(cfg, "mi-growth", "full")),
         "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
         "floquet": cc.resolved_floquet(cfg),
         "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
@@ -185,7 +195,7 @@ def test_config_yaml_beyond_restates_the_defaults_as_its_comment_says(raw):
     declared defaults, and that work_precision's compare_every, repeat_time and reference restate them."""
     declared = cc.validate({"map": {"m": {"box": 1.0, "iterations": 2, "starts": [[0.0, 0.1]]}}})
     given = copy.deepcopy(raw["beyond"])
-    for section in ("theorem1", "mi_growth"):
+    for section in ("theorem1", "mi-growth"):
         assert given[section].pop("scenes")
     for section, values in given.items():
         for key, value in values.items():
@@ -235,8 +245,8 @@ def test_analysis_scene_names_are_checked_when_resolved(raw):
     cfg["beyond"]["theorem1"]["scenes"] = ["tw-wek"]
     with pytest.raises(cc.ConfigError, match=r"scenes\[0\] = 'tw-wek': unknown scene.*did you mean 'tw-weak'"):
         cc.resolved_theorem1(cfg)
-    cfg["beyond"]["mi_growth"]["scenes"] = []
-    with pytest.raises(cc.ConfigError, match=r"beyond\.mi_growth\.scenes is empty"):
-        cc.resolved_mi_growth(cfg)
+    cfg["beyond"]["mi-growth"]["scenes"] = []
+    with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes is empty"):
+        cc.analysis_reads(cfg, "mi-growth", "full")
     with pytest.raises(cc.ConfigError, match="unknown variant 'tiny'"):
         cc.resolved_mi_statistics(raw, "tiny")

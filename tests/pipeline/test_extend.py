@@ -8,8 +8,8 @@ import pytest
 
 from cradle.data import io
 from cradle.pipeline import cli, extend
-from cradle.scenes import stages
 from cradle.pipeline.config import store_times
+from cradle.scenes import stages
 
 
 def spec(T, method="srkn6c", bc="periodic"):

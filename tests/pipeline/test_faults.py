@@ -20,10 +20,9 @@ import xarray as xr
 import yaml
 
 from cradle.data import io
-from cradle.pipeline import outputs as scene_outputs
-from cradle.pipeline import budget, cli, config as cc, extend
-from cradle.scenes import stages
+from cradle.pipeline import budget, cli, config as cc, extend, outputs as scene_outputs
 from cradle.pipeline.params import compact_scene, expand_scene
+from cradle.scenes import stages
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -125,7 +124,7 @@ def test_flipped_byte_in_data_is_detected_by_every_reader(outputs, kind, tmp_pat
 
 
 def test_damaged_scene_stops_open_scene_and_figure_inputs(outputs, tmp_path):
-    from cradle.figures import load_inputs
+    from cradle.pipeline.outputs import load_inputs
 
     for kind in ("exact", "dps", "metrics"):
         _copy(outputs[kind][1], tmp_path)
@@ -239,7 +238,8 @@ def test_mi_statistics_batch_over_budget_refused():
     with pytest.raises(cc.ConfigError) as err:
         cc.validate(cfg)
     lines = str(err.value).splitlines()
-    assert len(lines) == 1 and lines[0].startswith("config error: beyond.mi_statistics.full: ") and "budget." in lines[0]
+    assert len(lines) == 1
+    assert lines[0].startswith("config error: beyond.mi_statistics.full: ") and "budget." in lines[0]
     e = budget.mi_statistics_estimate(cc.load(ROOT / "config.yaml"), "reduced")
     assert 7.9 / 2 < e.seconds < 7.9 * 2
 
@@ -333,14 +333,14 @@ def test_extend_writes_a_new_file_and_refuses_a_workflow_scene_in_place(outputs,
 
 
 def test_rule_params_hold_no_stored_times():
-    """The simulate and mi-growth rules get compact scenes: small, and expanded back bitwise."""
+    """The simulate rule gets compact scenes: small, and expanded back bitwise."""
     cfg = cc.load(ROOT / "config.yaml")
     for name in cfg["scenes"]:
         full = cc.resolved_scene(cfg, name)
         small = compact_scene(full)
         assert "times" not in small and len(repr(small)) < 2000, name
         assert expand_scene(small) == full
-    for rule in ("simulate.smk", "analyses.smk"):
+    for rule in ("simulate.smk",):
         text = (ROOT / "workflow" / "rules" / rule).read_text()
         assert "compact_scene(cc.resolved_scene(" in text and "=lambda w: cc.resolved_scene(" not in text
 

@@ -9,14 +9,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import run_snakemake
 import yaml
 
-from cradle.pipeline import config as cc
-from cradle.scenes import stages
+from conftest import run_snakemake
 from cradle.data.io import open_dataset, write_netcdf
-from cradle.pipeline.runner import failed_path, run, run_chain
 from cradle.data.variables import VARIABLES
+from cradle.pipeline import config as cc
+from cradle.pipeline.runner import failed_path, run, run_chain
+from cradle.scenes import stages
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -7,16 +7,14 @@ import os
 import numpy as np
 import pytest
 
+from conftest import ROOT
+from cradle.data import io
 from cradle.integrators import integrate_dps
 from cradle.integrators.dps_solver import iter_dps
-from cradle.data import io
-from cradle.pipeline import budget
-from cradle.scenes import stages, streamed
-from cradle.pipeline import config as cc
+from cradle.pipeline import budget, config as cc
 from cradle.pipeline.runner import run_chain
+from cradle.scenes import stages, streamed
 from cradle.scenes.failure import StageFailure
-
-from conftest import ROOT
 
 PARTS = ("initial", "exact", "dps", "metrics")
 #: attributes that say how the job ran, not what it computed: the block-by-block job evaluates the

@@ -18,22 +18,15 @@ def analysis_spec(a, form):
 
 
 def analysis_reads(a, form, reads):
-    """name -> file of what an analysis (or one of its batches) reads; a scene it names must exist."""
-    out = {}
-    for name, read in reads.items():
-        scene = dict(read.names).get("scene")
-        if scene is not None and scene not in config.get("scenes", {}):
-            raise WorkflowError(
-                f"config error: beyond.{a.name}: reads scene {scene!r}: no `scenes:` entry of that name"
-            )
-        out[name] = L.read_path(read, form)
-    return out
+    """name -> file of what an analysis (or one of its batches) reads."""
+    return {name: L.read_path(read, form) for name, read in reads.items()}
 
 
 def analysis_inputs(a, form):
-    """A compute job's inputs: its code, and its reads by name (cradle.analyses.protocol)."""
+    """A compute job's inputs: its code, and its reads by name (cradle.analyses.protocol); a scene it
+    names must exist."""
     try:
-        reads = a.reads_of(analysis_spec(a, form))
+        reads = cc.analysis_reads(config, a.name, form)
     except cc.ConfigError as err:
         raise WorkflowError(str(err)) from None
     code = code_of("workflow/scripts/analysis_compute.py", f"cradle.analyses.{a.module}")

@@ -33,7 +33,12 @@ from functools import lru_cache
 from importlib.metadata import PackageNotFoundError, version as _version
 from pathlib import Path
 
-__all__ = ["PACKAGES", "KEYS", "canonical_json", "params_hash", "git_info", "software_versions", "command",
+try:
+    VERSION = _version("cradle")
+except PackageNotFoundError:  # running from a source tree that is not installed
+    VERSION = "0.0.0+unknown"
+
+__all__ = ["VERSION", "PACKAGES", "KEYS", "canonical_json", "params_hash", "git_info", "software_versions", "command",
            "set_command", "provenance"]
 
 #: the libraries whose versions can change a result
@@ -131,7 +136,7 @@ def _snakemake_job() -> str | None:
     """``snakemake rule NAME (wildcards)`` when running inside a Snakemake ``script:`` job."""
     sm = getattr(sys.modules.get("__main__"), "snakemake", None)
     rule = getattr(sm, "rule", None)
-    if not rule:
+    if sm is None or not rule:
         return None
     try:
         wc = ", ".join(f"{k}={v}" for k, v in dict(sm.wildcards.items()).items())
@@ -155,9 +160,7 @@ def command() -> str:
 def provenance(params=None) -> dict:
     """The provenance attributes (see the module docstring); ``parameters`` and ``params_sha256`` only with
     ``params``."""
-    from cradle import __version__
-
-    attrs = {"cradle_version": __version__}
+    attrs = {"cradle_version": VERSION}
     attrs.update(git_info())
     if params is not None:
         attrs["parameters"] = canonical_json(params)
@@ -209,7 +212,7 @@ def dependency_tree(root: str = "cradle", extras: tuple[str, ...] = ("workflow",
 
 def lock_text(extras: tuple[str, ...] = ("workflow",)) -> str:
     """requirements-lock.txt: the installed versions of cradle's dependency tree, like a filtered ``pip freeze``."""
-    head = (f"# cradle {__import__('cradle').__version__} dependency tree (extras: {', '.join(extras) or 'none'}), "
+    head = (f"# cradle {VERSION} dependency tree (extras: {', '.join(extras) or 'none'}), "
             f"python {platform.python_version()}\n"
             "# regenerate: python -m cradle.data.provenance lock > requirements-lock.txt\n"
             "# install exactly these: pip install -r requirements-lock.txt -e .\n")

@@ -26,7 +26,7 @@ class Var:
     dims: tuple[str, ...]
     long_name: str
     units: str = "1"
-    attrs: tuple[tuple[str, str], ...] = ()  # further CF attributes, as (name, value) pairs
+    attrs: tuple[tuple[str, object], ...] = ()  # further CF attributes, as (name, value) pairs
 
 
 VARIABLES: dict[str, Var] = {

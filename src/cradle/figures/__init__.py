@@ -146,28 +146,6 @@ def registry() -> dict:
     return {label: drawer(label) for label in FIGURES}
 
 
-def load_inputs(scenes: dict, root) -> dict:
-    """Open the netCDF files of a figure's scenes.
-
-    ``scenes`` maps each name to its config section (map, homoclinic,
-    scenes). Map and homoclinic names give one Dataset; a scene gives
-    ``{"exact": ..., "dps": ..., "metrics": ...}``. Every file is verified as it is read
-    (:func:`cradle.data.io.open_dataset`): a damaged or truncated one stops the figure with one
-    line naming it and its rebuild command, before anything is drawn or written.
-    """
-    from cradle.pipeline import layout
-    from cradle.data.io import open_dataset
-
-    data = {}
-    for name, kind in scenes.items():
-        if kind in ("map", "homoclinic"):
-            data[name] = open_dataset(layout.path(kind, root, name=name))
-        else:
-            data[name] = {part: open_dataset(path)
-                          for part, path in layout.scene_paths(name, root, layout.RUN_PARTS).items()}
-    return data
-
-
 def draw_dataset(label: str, ds, stem, note: str = "") -> list[Path]:
     """Draw the beyond-the-paper figure ``label`` (a ``DATASET_FIGURES`` entry) from the Dataset
     of its analysis and save it as ``stem``.pdf/.png; ``note`` (e.g. which form of the analysis it

@@ -73,6 +73,8 @@ def main(argv=None) -> int:
     parser.add_argument("config", nargs="?", default="config.yaml")
     parser.add_argument("--write-schema", action="store_true",
                         help="regenerate src/cradle/pipeline/config.schema.json from the declarations and exit")
+    parser.add_argument("--write-reference", action="store_true",
+                        help="regenerate docs/config-reference.md (every key documented) from the declarations and exit")
     group = parser.add_mutually_exclusive_group()
     group.add_argument("--scene", metavar="NAME")
     group.add_argument("--homoclinic", metavar="NAME")
@@ -80,6 +82,13 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     if args.write_schema:
         print(f"wrote {write_schema()}")
+        return 0
+    if args.write_reference:
+        from .reference import REFERENCE_FILE, reference
+        from .validate import generated_schema
+
+        REFERENCE_FILE.write_text(reference(generated_schema()) + "\n", encoding="utf-8")
+        print(f"wrote {REFERENCE_FILE}")
         return 0
     try:
         cfg = load(args.config)

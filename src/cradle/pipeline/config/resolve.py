@@ -16,7 +16,7 @@ from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
-from cradle.specs.values import ConfigError, angle_expr, parse_angle, store_times
+from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
 
 
 def _validated(config: dict) -> dict:
@@ -148,3 +148,18 @@ def analysis_spec(config: dict, name: str, form: str):
 
     a = ANALYSES[name]
     return form_spec(from_plain(a.spec, _validated(config)["beyond"][a.name], where=f"beyond.{a.name}"), form)
+
+
+def analysis_reads(config: dict, name: str, form: str) -> dict:
+    """What analysis ``name`` reads in one form (:meth:`cradle.analyses.protocol.Analysis.reads_of`): name ->
+    :class:`~cradle.analyses.protocol.Read`; every scene it names must be a ``scenes:`` entry."""
+    from cradle.analyses.registry import ANALYSES
+
+    cfg = _validated(config)
+    reads = ANALYSES[name].reads_of(analysis_spec(cfg, name, form))
+    for read in reads.values():
+        scene = dict(read.names).get("scene")
+        if scene is not None and scene not in cfg["scenes"]:
+            raise ConfigError(f"config error: beyond.{name}: reads scene {scene!r}: no `scenes:` entry of that "
+                              f"name{did_you_mean(scene, cfg['scenes'])}")
+    return reads

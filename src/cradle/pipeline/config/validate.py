@@ -35,7 +35,7 @@ from jsonschema import Draft202012Validator
 from cradle.specs import declare as spec
 from . import sections
 from .sections import SECTIONS
-from cradle.specs.declare import ANGLE_PATTERN
+from cradle.specs.values import ANGLE_PATTERN
 from cradle.specs.values import ANGLE_HINT, ConfigError, Errors, number, show
 
 SCHEMA_FILE = "config.schema.json"
