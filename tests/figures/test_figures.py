@@ -91,7 +91,14 @@ def test_module_lookup_by_source_agrees_with_the_imported_registry():
     for label in figures.labels("DATASET_FIGURES"):   # beyond the paper: one netCDF file each
         module = figures.module_of(label, "DATASET_FIGURES")
         assert figures.drawer(label, "DATASET_FIGURES").__module__ == f"cradle.figures.{module}"
-    assert {"theorem1", "mi-diagram", "mi-growth", "mi-statistics"} <= set(figures.labels("DATASET_FIGURES"))
+    assert {"theorem1", "mi-diagram", "mi-statistics"} <= set(figures.labels("DATASET_FIGURES"))
+    from importlib import import_module
+
+    from cradle.analyses.registry import ANALYSES
+
+    assert {"mi-growth", "floquet", "breathers"} <= set(ANALYSES)   # on the protocol: draw(tree) of their module
+    for a in ANALYSES.values():
+        assert callable(import_module(f"cradle.figures.{a.module}").draw), a.name
     with pytest.raises(KeyError, match="'no-such-figure'"):
         figures.module_of("no-such-figure")
     code = ("import sys; from cradle.figures import drawer; drawer('bcsc'); "

@@ -11,13 +11,12 @@ from pathlib import Path
 import pytest
 import yaml
 
+from cradle.analyses import breathers_spec, floquet_spec
 from cradle.pipeline import config as cc
 from cradle.pipeline.config import (
     beyond,
     breather_interactions,
-    breathers,
     dps_validity,
-    floquet,
     mi_statistics,
     movies,
     sections,
@@ -37,8 +36,10 @@ CONFIG = ROOT / "config.yaml"
 # loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope. Then issue 16: the section
 # movies: (no resolved scene changed). Then issue 15: the new section beyond.dps_validity; every other value
 # unchanged. Then issue 21: the key beyond.mi_growth renamed beyond.mi-growth, its spec typed (plain() of it is
-# the old dict; with the old key the hash is the old a61c41d8...).)
-RESOLVED_SHA256 = "17faeaaba9cf11580cb3cd0c8b4c197ee3719a8cc6921e62319fe2abddb61a56"
+# the old dict; with the old key the hash is the old a61c41d8...). Then floquet and breathers typed: plain() of
+# their specs; breathers' is the old dict, floquet's keeps its angles as given: with them in radians and their
+# texts in q_profiles_expr and small_q_expr, as the old resolved dict had them, the hash is the previous 17faeaab...)
+RESOLVED_SHA256 = "fd285ca231ce8dbfceccc6f46722b40e0ff4f8ea7b8c3a3c8711c455e089e60a"
 
 
 @pytest.fixture(scope="module")
@@ -58,10 +59,10 @@ def _everything_resolved(config) -> dict:
         "mi_diagram": cc.resolved_mi_diagram(cfg),
         "mi_growth": plain(cc.analysis_spec(cfg, "mi-growth", "full")),
         "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
-        "floquet": cc.resolved_floquet(cfg),
-        "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
-        "breathers": cc.resolved_breathers(cfg),
-        "breathers_reduced": cc.resolved_breathers(cfg, "reduced"),
+        "floquet": plain(cc.analysis_spec(cfg, "floquet", "full")),
+        "floquet_reduced": plain(cc.analysis_spec(cfg, "floquet", "reduced")),
+        "breathers": plain(cc.analysis_spec(cfg, "breathers", "full")),
+        "breathers_reduced": plain(cc.analysis_spec(cfg, "breathers", "reduced")),
         "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
         "dps_validity": cc.resolved_dps_validity(cfg),
         "dps_validity_reduced": cc.resolved_dps_validity(cfg, "reduced"),
@@ -86,8 +87,9 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 
 def test_declarations_are_frozen_and_every_field_described():
-    classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics, breather_interactions,
-                           movies, dps_validity) for c in vars(m).values()
+    modules = (scenes, sections, beyond, floquet_spec, breathers_spec, mi_statistics, breather_interactions, movies,
+               dps_validity)
+    classes = [c for m in modules for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:

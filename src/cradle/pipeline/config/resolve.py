@@ -10,10 +10,8 @@ from __future__ import annotations
 import copy
 
 from .beyond import MIDiagram, Theorem1
-from .breathers import Breathers
 from .breather_interactions import BreatherInteractions
 from .dps_validity import DpsValidity
-from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
 from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
@@ -117,17 +115,6 @@ def resolved_mi_diagram(config: dict) -> dict:
 def resolved_mi_statistics(config: dict, variant: str) -> dict:
     """``beyond.mi_statistics.<variant>`` with the shared keys and the inherited defaults merged in."""
     return MIStatistics.resolve(_validated(config), variant)
-
-
-def resolved_floquet(config: dict, form: str = "full") -> dict:
-    """``beyond.floquet`` of one form (full, or reduced: what ``all`` builds) with angles in radians and
-    ``convergence`` completed."""
-    return Floquet.resolve(_validated(config), form)
-
-
-def resolved_breathers(config: dict, form: str = "full") -> dict:
-    """``beyond.breathers`` of one form (full, or reduced: what ``all`` builds)."""
-    return Breathers.resolve(_validated(config), form)
 
 
 def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
