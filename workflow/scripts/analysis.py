@@ -2,7 +2,7 @@
 (rules <name>_compute_<form>)."""
 import logging
 
-from cradle.analyses.registry import ANALYSES
+from cradle.analyses._legacy import LEGACY as ANALYSES
 from cradle.data.io import open_dataset
 from cradle.pipeline.params import expand_scene
 from cradle.pipeline.runner import run

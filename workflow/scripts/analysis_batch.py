@@ -2,7 +2,7 @@
 (rules <target>_batch_<form>); the analysis's compute job gathers the batches."""
 import logging
 
-from cradle.analyses.registry import ANALYSES
+from cradle.analyses.registry import ANALYSES, FULL, form_spec
 from cradle.data.io import open_dataset
 from cradle.pipeline.runner import run
 from cradle.specs.declare import from_plain
@@ -10,7 +10,8 @@ from cradle.specs.declare import from_plain
 sm = snakemake  # noqa: F821 (injected by Snakemake)
 log = logging.getLogger("cradle")
 analysis = ANALYSES[sm.params.analysis]
-spec = from_plain(analysis.spec, dict(sm.params.spec), where=f"beyond.{analysis.name}")
+# the form's spec as the rule resolved it (form_spec: no `reduced` overrides left to apply)
+spec = form_spec(from_plain(analysis.spec, dict(sm.params.spec), where=f"beyond.{analysis.name}"), FULL)
 key = sm.wildcards.key
 run(lambda: analysis.batches.run(spec, key, {name: open_dataset(path) for name, path in sm.input.items()
                                              if name != "code"}, log=log.info),

@@ -278,6 +278,19 @@ def write(schema: dict, path: Path) -> Path:
     return path
 
 
+@functools.lru_cache(maxsize=None)
+def _nullable(cls) -> frozenset[str]:
+    """The fields of a declared class where null is a value of its own: declared with a NULL default, or
+    typed ``X | None`` with a default other than None (``direct_omega: null`` = the most unstable one)."""
+    hints = typing.get_type_hints(cls)
+    out = set()
+    for f in dataclasses.fields(cls):
+        optional = type(None) in typing.get_args(hints[f.name])
+        if f.metadata.get("null_default") or (optional and _default_of(f) not in (None, REQUIRED)):
+            out.add(f.name)
+    return frozenset(out)
+
+
 def plain(value):
     """A spec (or any value holding specs) as plain JSON values: declared instances as mappings of their
     config keys, sorted, tuples as lists. What a rule's ``params:`` carry and a file stores; equal
@@ -285,8 +298,9 @@ def plain(value):
     absent (None) is left out."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         # an optional key left out (None, where null is not a value of its own) stays out
+        nullable = _nullable(type(value))
         return {k: v for k, v in sorted((_key(f), plain(getattr(value, f.name))) for f in dataclasses.fields(value)
-                                        if getattr(value, f.name) is not None or f.metadata.get("null_default"))}
+                                        if getattr(value, f.name) is not None or f.name in nullable)}
     if isinstance(value, (list, tuple)):
         return [plain(v) for v in value]
     if isinstance(value, dict):
