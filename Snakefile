@@ -30,6 +30,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/checks.smk"
 include: "workflow/rules/analyses.smk"
+include: "workflow/rules/legacy_analyses.smk"
 include: "workflow/rules/mi.smk"
 include: "workflow/rules/interactions.smk"
 include: "workflow/rules/movies.smk"
@@ -39,7 +40,12 @@ PAPER = figure_targets() + [L.path("checks", ext=ext) for ext in ("csv", "md")]
 
 
 # the reduced form of every analysis beyond the paper (cradle.analyses.registry), and work-precision
-BEYOND = [f for a in ANALYSES.values() for f in (a.output(a.forms[0]), *a.figure(a.forms[0]).values())]
+BEYOND = [
+    f
+    for a in ANALYSES.values()
+    for f in (L.analysis_output(a.name, a.forms[0], a.forms[0]), *L.analysis_figures(a.name, a.forms[0], a.forms[0]).values())
+]
+BEYOND += [f for a in LEGACY.values() for f in (a.output(a.forms[0]), *a.figure(a.forms[0]).values())]
 BEYOND += figure_targets(["work-precision"])
 
 

@@ -25,8 +25,8 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from cradle.models import lattice as L
 from cradle.integrators import DEFAULT_DT_FACTOR, integrate_lattice
+from cradle.models import lattice as L
 
 ALPHA = 1.5
 SCENES = [

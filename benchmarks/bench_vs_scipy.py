@@ -33,18 +33,18 @@ import argparse
 import datetime as dt
 import platform
 import time
+from itertools import pairwise
 from pathlib import Path
 
 import numpy as np
 from numba import njit
 from scipy.integrate import solve_ivp
 
-from cradle.pipeline import config as cc
+from cradle.analyses.work_precision import machine
+from cradle.integrators import _kernels as K, integrate_lattice
 from cradle.models import lattice as L
+from cradle.pipeline import config as cc
 from cradle.scenes import stages
-from cradle.integrators import _kernels as K
-from cradle.integrators import integrate_lattice
-from cradle.analyses.workprecision import machine
 from doctable import publish
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -63,7 +63,7 @@ BASELINE = "scipy DOP853 (numba RHS)"
 
 def scene(name="fft106"):
     cfg = cc.load(ROOT / "config.yaml")
-    spec = cc.resolved_scene(cfg, name)
+    spec = cc.scene(cfg, name)
     init = stages.initial_data(spec, name)
     return init["x0"].values, init["v0"].values, float(init.attrs["a"]), spec
 
@@ -148,7 +148,7 @@ def floors(x0, reps=200_000):
 def at_target(rows, target):
     """Wall time at error = target, interpolated in log-log between bracketing ladder points."""
     pts = sorted((r["error"], r["wall"]) for r in rows if np.isfinite(r["error"]) and r["error"] > 0)
-    for (e1, w1), (e2, w2) in zip(pts, pts[1:]):
+    for (e1, w1), (e2, w2) in pairwise(pts):
         if e1 <= target <= e2:
             s = np.log(target / e1) / np.log(e2 / e1) if e2 > e1 else 0.0
             return float(np.exp(np.log(w1) + s * np.log(w2 / w1)))

@@ -36,6 +36,7 @@ import tempfile
 import time
 
 import numpy as np
+
 from doctable import publish
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -69,8 +70,8 @@ def case_long_t():
 
 def case_extend():
     """Run to 5e3 (exact.nc), extend to 1e4 with cradle.pipeline.extend.extend, compare with one run to 1e4."""
-    from cradle.models import initial
     from cradle.data import io
+    from cradle.models import initial
     from cradle.pipeline.extend import extend, stream_lattice
 
     d = initial.travelling_wave(200, np.pi / 5, 1.5, omega_tw=1.1)
@@ -126,9 +127,9 @@ def case_breather():
 
 
 def case_tiny():
+    from cradle.integrators import integrate_dps, integrate_lattice
     from cradle.measurements import compare
     from cradle.models import initial, lattice
-    from cradle.integrators import integrate_dps, integrate_lattice
 
     d = initial.travelling_wave(50, np.pi / 5, 1.5, a=1e-8)
     t = np.linspace(0.0, 1e3, 101)
@@ -148,8 +149,8 @@ def case_omega15():
 
 
 def case_dense_memory():
-    from cradle.models import initial, lattice
     from cradle.integrators import integrate_lattice
+    from cradle.models import initial, lattice
 
     d = initial.travelling_wave(10_000, np.pi / 5, 1.5, omega_tw=1.1)
     t = np.round(np.arange(2001) * 0.05, 9)

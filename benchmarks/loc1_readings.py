@@ -36,9 +36,10 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from cradle.analyses import pair_runs
-from cradle.measurements import interactions
-from cradle.models import initial, pairs
+# below the thread count (numba reads it when first imported) and the path
+from cradle.analyses import pair_runs  # noqa: E402
+from cradle.measurements import interactions  # noqa: E402
+from cradle.models import initial, pairs  # noqa: E402
 
 N, ALPHA, AMP = 50, 1.5, 0.01
 PACKET_AMP, PACKET_OMEGA = 0.016, 1.1
@@ -157,8 +158,8 @@ def markdown(prs, pks, periods, packet_periods, wall) -> str:
     lines += ["", "### Packet (loc1, left): peak 0.016, ~12 sites", "",
               ("Humps of max_t |x_n| per period (omega = 1.1, humps down to 5 % of the largest) over periods "
                "20-250 (after the split, before the pulses meet on the far side of the ring), the largest count "
-               "held for >= 10 periods: static (within 3 sites of the centre) + left + right. The paper: a static breather and two pairs travelling in "
-               "opposite directions, 1 + 2 + 2."), "",
+               "held for >= 10 periods: static (within 3 sites of the centre) + left + right. The paper: a static "
+               "breather and two pairs travelling in opposite directions, 1 + 2 + 2."), "",
               "| envelope | sites >= 0.5 % of peak | exact | DpS |",
               "|---|---|---|---|"]
     for r in pks:

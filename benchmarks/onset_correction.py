@@ -19,10 +19,9 @@ from pathlib import Path
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from cradle.integrators import integrate_lattice, lattice_splitting as LS
 from cradle.pipeline import config as cc
 from cradle.scenes import stages
-from cradle.integrators import integrate_lattice
-from cradle.integrators import lattice_splitting as LS
 
 ROOT = Path(__file__).resolve().parents[1]
 FACTORS = [0.064, 0.032, 0.016, 0.008, 0.004]
@@ -53,7 +52,7 @@ def global_table(t_end):
     cfg = cc.load(ROOT / "config.yaml")
     print(f"\n2. error at t = {t_end:g} / energy drift / wall [s] against dt_factor {FACTORS}")
     for name in ("tw-weak", "fft106", "tw-strong"):
-        spec = cc.resolved_scene(cfg, name)
+        spec = cc.scene(cfg, name)
         init = stages.initial_data(spec, name)
         x0, v0, a = init["x0"].values, init["v0"].values, float(init.attrs["a"])
         LS.ONSET_OPTIONS = (2, 0, 4 / 27)

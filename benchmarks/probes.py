@@ -143,7 +143,8 @@ def run(repo: Path) -> list:
     pr.record("... `--in-place`", pr.cradle("extend", EXACT, "--t-end", "700", "--in-place"))
     pr.record("... `--t-end inf`", pr.cradle("extend", EXACT, "--t-end", "inf"))
     p = pr.cradle("run", "tw-weak")
-    pr.record("`cradle run tw-weak`", p, lost=f"writes cradle-runs/: {(repo / 'cradle-runs/sim/tw-weak/exact.nc').exists()}")
+    pr.record("`cradle run tw-weak`", p,
+              lost=f"writes cradle-runs/: {(repo / 'cradle-runs/sim/tw-weak/exact.nc').exists()}")
 
     # ---- a changed parameter: the dry run lists jobs, not arrays
     cfg = pr.config_variant("changed", lambda c: c["scenes"]["tw-weak"].update(t_end=700.0))

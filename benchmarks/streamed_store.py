@@ -35,7 +35,7 @@ def run(scene: str, every: float, tmp: Path) -> dict:
     import yaml
 
     cfg_path.write_text(yaml.safe_dump(cfg, sort_keys=False))
-    e = budget.spec_estimate(cc.resolved_scene(cc.load(cfg_path), scene))
+    e = budget.spec_estimate(cc.scene(cc.load(cfg_path), scene), scene)
     env = dict(os.environ, PYTHONPATH=f"{ROOT / 'src'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
     t0 = time.perf_counter()
     proc = subprocess.Popen([sys.executable, "-m", "cradle", "run", scene, "--config", str(cfg_path), "--out",
@@ -66,10 +66,12 @@ def main(argv=None) -> int:
         finally:
             shutil.rmtree(tmp, ignore_errors=True)
         print(r, flush=True)
-        rows.append(f"| {every:g} | {r['T']} | {fmt_bytes(r['written'])} | {'block by block' if r['streamed'] else 'in memory'} "
+        rows.append(f"| {every:g} | {r['T']} | {fmt_bytes(r['written'])} "
+                    f"| {'block by block' if r['streamed'] else 'in memory'} "
                     f"| {fmt_bytes(r['estimate'])} | {fmt_bytes(r['rss'])} | {fmt_duration(r['est_s'])} "
                     f"| {fmt_duration(r['wall'])} |")
-    text = (f"`cradle run {args.scene}` with `store.every` set as below ({time.strftime('%Y-%m-%d')}, this machine):\n\n"
+    text = (f"`cradle run {args.scene}` with `store.every` set as below "
+            f"({time.strftime('%Y-%m-%d')}, this machine):\n\n"
             "| store.every | stored times | written | job | estimated peak | measured peak RSS | estimated time "
             "| measured wall |\n|---|---|---|---|---|---|---|---|\n" + "\n".join(rows))
     publish("extremes.md", "streamed-store", text)

@@ -15,9 +15,10 @@ import argparse
 import time
 from pathlib import Path
 
+from cradle.integrators import DEFAULT_DT_FACTOR, integrate_lattice
 from cradle.pipeline import config as cc
 from cradle.scenes import stages
-from cradle.integrators import DEFAULT_DT_FACTOR, integrate_lattice
+from cradle.scenes.spec import Breather
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -27,12 +28,12 @@ def paper_initial_data(cfg, names=None):
     out = {}
     homs = {}
     for name in names or list(cfg["scenes"]):
-        spec = cc.resolved_scene(cfg, name)
+        spec = cc.scene(cfg, name)
         hom = None
-        if spec["initial"]["kind"] == "breather":
-            hname = spec["initial"]["homoclinic"]
+        if isinstance(spec.initial, Breather):
+            hname = spec.initial.homoclinic
             if hname not in homs:
-                homs[hname] = stages.homoclinic_solution(cc.resolved_homoclinic(cfg, hname), hname)
+                homs[hname] = stages.homoclinic_solution(cc.homoclinic(cfg, hname), hname)
             hom = homs[hname]
         init = stages.initial_data(spec, name, hom)
         out[name] = (init["x0"].values, init["v0"].values, spec)
@@ -50,7 +51,7 @@ def main(argv=None):
     cfg = cc.load(args.config)
     data = paper_initial_data(cfg, args.scenes)
     x0, v0, spec = next(iter(data.values()))
-    integrate_lattice(x0[:8], v0[:8], [0.0, 0.1], alpha=spec["alpha"], method="srkn6c")  # JIT cache
+    integrate_lattice(x0[:8], v0[:8], [0.0, 0.1], alpha=spec.alpha, method="srkn6c")  # JIT cache
     for method in args.methods:
         base = DEFAULT_DT_FACTOR[method]
         factors = args.factors or [base * f for f in (2.0, 1.5, 1.0, 0.5)]
@@ -62,7 +63,7 @@ def main(argv=None):
             cells = []
             for fac in factors:
                 t0 = time.perf_counter()
-                s = integrate_lattice(x0, v0, [0.0, spec["t_end"]], alpha=spec["alpha"], bc=spec["bc"],
+                s = integrate_lattice(x0, v0, [0.0, spec.t_end], alpha=spec.alpha, bc=spec.bc,
                                       method=method, dt_factor=fac)
                 total[fac] += time.perf_counter() - t0
                 if s.energy_drift > worst[fac][0]:

@@ -125,7 +125,8 @@ plt.show()
 # %%
 from IPython.display import Image, display
 
-from cradle.figures import draw, load_inputs
+from cradle.figures import draw
+from cradle.pipeline.outputs import load_inputs
 
 cfg = yaml.safe_load(CONFIG.read_text())
 old = cfg["scenes"][SCENE]["initial"]["omega_tw"]

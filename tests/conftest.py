@@ -5,14 +5,13 @@ One BLAS thread: the dense solves here are small (N <= a few hundred), and on a
 core is busy. Set before numpy is first imported.
 """
 import os
-
-for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
-
 import shutil
 import subprocess
 import sys
 from pathlib import Path
+
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
 #: the repository root (tests/<layer>/ mirror src/cradle/<layer>/)
 ROOT = Path(__file__).resolve().parents[1]

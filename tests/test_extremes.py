@@ -12,10 +12,10 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 from scipy.special import gamma
 
-from cradle.measurements import compare
-from cradle.models import dps, homoclinic, homoclinic_continuation, homoclinic_tails, initial, lattice
 from cradle.analyses import theorem1
 from cradle.integrators import integrate_dps, integrate_lattice
+from cradle.measurements import compare
+from cradle.models import dps, homoclinic, homoclinic_continuation, homoclinic_tails, initial, lattice
 
 ALPHAS = [1.01, 1.1, 1.5, 2.0, 3.0]
 
@@ -253,7 +253,7 @@ def test_config_accepts_N2_and_names_bad_N_and_q():
 
     ok = cc.validate(cfg(2, "pi"))
     assert ok["scenes"]["two"]["N"] == 2
-    assert cc.resolved_scene(ok, "two")["initial"]["q"] == pytest.approx(np.pi)
+    assert cc.scene(ok, "two").initial.wavenumber == pytest.approx(np.pi)
     with pytest.raises(cc.ConfigError) as e1:
         cc.validate(cfg(1, "pi"))
     assert "config error: scenes.two.N = 1: must be >= 2" in str(e1.value)
@@ -267,8 +267,9 @@ def test_homoclinic_stage_far_from_three_halves(alpha, guess, log10_amp):
     """stages.homoclinic_solution (config entry, N = 50) now gives the alpha = 1.01 and alpha = 3
     site-centred solutions (by continuation) instead of failing or returning a = 0."""
     from cradle.scenes import stages
+    from cradle.scenes.spec import HomoclinicEntry
 
-    ds = stages.homoclinic_solution({"alpha": alpha, "N": 50, "bc": "periodic", "guess": guess}, "x")
+    ds = stages.homoclinic_solution(HomoclinicEntry(alpha=alpha, N=50, bc="periodic", guess=guess), "x")
     assert ds.attrs["method"] == "continued" and ds.attrs["converged"] == 1
     assert ds.attrs["log10_max_abs_a"] == pytest.approx(log10_amp, abs=1e-3)
     assert ds.attrs["residual"] < 5e-15 * ds.attrs["max_abs_a"]

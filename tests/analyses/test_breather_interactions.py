@@ -7,8 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cradle.analyses import breather_interactions as B
-from cradle.analyses import pair_runs
+from cradle.analyses import breather_interactions as B, pair_runs
 from cradle.measurements.interactions import OUTCOMES
 from cradle.models import pairs
 from cradle.pipeline import config as cc
@@ -75,7 +74,7 @@ def test_the_tiny_sweep_runs_in_seconds_and_is_bitwise_reproducible():
         assert np.array_equal(ca[k].values, cb[k].values, equal_nan=ca[k].dtype.kind == "f"), k
     # theta = pi at spacing 2 (node between the cores) repels; theta = 0 at spacing 2 is one hump
     oc = {(float(s), float(t)): int(o) for s, t, o in zip(ca["spacing"].values, ca["theta"].values,
-                                                          ca["outcome_exact"].values)}
+                                                          ca["outcome_exact"].values, strict=True)}
     assert oc[(2.0, float(np.pi))] == OUTCOMES.index("repel")
     assert oc[(2.0, 0.0)] == OUTCOMES.index("none")
     assert float(a.attrs["wall_time_s"]) < 60

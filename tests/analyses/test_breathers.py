@@ -8,9 +8,7 @@ import time
 import numpy as np
 import pytest
 
-from cradle.models import dps, homoclinic
-from cradle.models import dps_breathers as db
-from cradle.models import lattice_breathers as lb
+from cradle.models import dps, dps_breathers as db, homoclinic, lattice_breathers as lb
 
 ALPHA = 1.5
 N = 10

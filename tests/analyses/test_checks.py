@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from cradle.analyses import checks
+from cradle.analyses import paper_checks as checks
 from cradle.measurements import compare, sidebands
 
 

@@ -1,4 +1,4 @@
-"""dps-validity (cradle.analyses.dpsvalidity): the DpS approximation error of (ansatz) against eps.
+"""dps-validity (cradle.analyses.dps_validity): the DpS approximation error of (ansatz) against eps.
 
 The numbers checked are fixed by the multi-scale expansion of (ansatz) and by numerical analysis:
 the error of x_app = eps (A e^{it} + c.c.) on t <= T eps^(1-alpha) scales as eps^alpha (the
@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 import yaml
 
-from cradle.analyses import dpsvalidity as dv
+from cradle.analyses import dps_validity as dv
 from cradle.pipeline import config as cc
 
 ALPHA = 1.5

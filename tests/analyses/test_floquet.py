@@ -6,8 +6,7 @@ import copy
 import numpy as np
 import pytest
 
-from cradle.analyses import bloch as B
-from cradle.analyses import floquet as F
+from cradle.analyses import bloch as B, floquet as F
 
 ALPHA = 1.5
 NUM = dict(hill_modes=16, grid_log2=16, wave_modes=64, wave_grid_log2=13)

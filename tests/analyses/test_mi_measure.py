@@ -1,15 +1,12 @@
-"""Modulational instability measured (cradle.analyses.migrowth, cradle.analyses.mistatistics): the growth fit and its window
-on synthetic series, a direct DpS run against modulational.growth_rate, crossing times and the threshold
+"""Modulational instability measured (cradle.analyses.mi_growth, cradle.analyses.mi_statistics): the growth fit
+and its window on synthetic series, a direct DpS run against mi_diagram.growth_rate, crossing times and the threshold
 estimator on synthetic data, determinism, and a tiny batch through the stage functions."""
 import numpy as np
 import pytest
 
-from cradle.pipeline import config as cc
+from cradle.analyses import mi_diagram as MI, mi_growth as MG, mi_statistics as MS
 from cradle.models import dps, initial
-from cradle.analyses import migrowth as MG
-from cradle.analyses import mistatistics as MS
-from cradle.analyses import modulational as MI
-
+from cradle.pipeline import config as cc
 
 # ---------------------------------------------------------------- growth fit
 
@@ -117,8 +114,9 @@ def _tiny_spec(raw_config):
 
 @pytest.fixture(scope="module")
 def raw():
-    import yaml
     from pathlib import Path
+
+    import yaml
 
     return yaml.safe_load((Path(__file__).resolve().parents[2] / "config.yaml").read_text())
 
@@ -147,14 +145,14 @@ def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):
     assert ds["a"].values[0, 0] == pytest.approx(d.info["a"])
     assert dps.omega_tw(d.info["a"], 2 * np.pi * 12 / 40, 1.5) == pytest.approx(1.1)
     # written, read back and drawn
-    from cradle.figures import save_figure
-    from cradle.figures import drawer
     from cradle.data.io import open_tree, write_netcdf
+    from cradle.figures import drawer, save_figure
 
     back = open_tree(write_netcdf(tree, tmp_path / "mis.nc"))
     np.testing.assert_array_equal(back["runs"]["crossed"].values, crossed)
     assert back["runs"]["crossed"].encoding["fletcher32"] and back["threshold"].encoding["fletcher32"]
-    assert all(p.stat().st_size > 0 for p in save_figure(drawer("mi-statistics", "DATASET_FIGURES")(back), tmp_path / "mis"))
+    drawn = save_figure(drawer("mi-statistics", "DATASET_FIGURES")(back), tmp_path / "mis")
+    assert all(p.stat().st_size > 0 for p in drawn)
 
 
 def test_config_rejects_a_q_grid_off_the_ring(raw):
@@ -165,9 +163,9 @@ def test_config_rejects_a_q_grid_off_the_ring(raw):
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi_statistics\.full\.q_over_pi.*not|must be an integer"):
         cc.validate(bad)
     bad = copy.deepcopy(raw)
-    bad["beyond"]["mi_growth"]["scenes"] = ["fftseuil-5"]
-    with pytest.raises(ValueError, match=r"mi_growth\.scenes\[0\] = 'fftseuil-5'.*did you mean 'fftseuil-5"):
-        cc.resolved_mi_growth(cc.validate(bad))
-    bad["beyond"]["mi_growth"]["scenes"] = ["loc1-pair"]
-    with pytest.raises(cc.ConfigError, match=r"beyond\.mi_growth\.scenes\[0\] = 'loc1-pair'"):
+    bad["beyond"]["mi-growth"]["scenes"] = ["fftseuil-5"]
+    with pytest.raises(ValueError, match=r"mi-growth: reads scene 'fftseuil-5'.*did you mean 'fftseuil-5"):
+        cc.analysis_reads(cc.validate(bad), "mi-growth", "full")
+    bad["beyond"]["mi-growth"]["scenes"] = ["loc1-pair"]
+    with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes\[0\] = 'loc1-pair'"):
         cc.validate(bad)

@@ -1,11 +1,11 @@
-"""Modulational instability of the DpS plane waves (cradle.analyses.modulational): the rotating-frame fixed point,
+"""Modulational instability of the DpS plane waves (cradle.analyses.mi_diagram): the rotating-frame fixed point,
 the sideband stability matrix against a finite-difference Jacobian and direct DpS runs, scale invariance,
 and the threshold q_c = pi/2."""
 import numpy as np
 import pytest
 
+from cradle.analyses import mi_diagram as MI
 from cradle.models import dps
-from cradle.analyses import modulational as MI
 
 
 @pytest.mark.parametrize("alpha", [1.5, 2.0, 3.0])
@@ -29,7 +29,7 @@ def test_growth_rate_matches_the_linearised_lattice(alpha):
     for k in (6, 14, 17):   # q = 0.94 (stable), 2.20, 2.67
         q = 2 * np.pi * k / N
 
-        def f(x):
+        def f(x, q=q):
             r = MI.rotating_rhs(x[:N] + 1j * x[N:], q, R, alpha)
             return np.r_[r.real, r.imag]
 

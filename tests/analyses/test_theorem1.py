@@ -4,9 +4,8 @@ sine-series Newton solver (cradle.models.waves), against the DpS dispersion rela
 import numpy as np
 import pytest
 
-from cradle.models import dps, lattice
 from cradle.analyses import theorem1 as T
-from cradle.models import waves as W
+from cradle.models import dps, lattice, waves as W
 
 M = 2**13   # small grids keep the tests fast; aliasing ~ M^-(alpha+1) ~ 1e-10
 

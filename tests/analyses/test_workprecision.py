@@ -1,4 +1,4 @@
-"""Work-precision measurements (cradle.analyses.workprecision): a tiny ladder, the reference logic,
+"""Work-precision measurements (cradle.analyses.work_precision): a tiny ladder, the reference logic,
 the config section, the netCDF output and the figure."""
 from __future__ import annotations
 
@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 import yaml
 
+from cradle.analyses import work_precision as wp
+from cradle.data.io import open_dataset, write_netcdf
 from cradle.pipeline import config as cc
 from cradle.scenes import stages
-from cradle.analyses import workprecision as wp
-from cradle.data.io import open_dataset, write_netcdf
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -99,7 +99,7 @@ def test_ladder_kind_is_checked():
 
 def test_netcdf_figure_and_summary(tiny_ds, tmp_path):
     from cradle.figures import save_figure
-    from cradle.figures.workprecision import draw
+    from cradle.figures.work_precision import draw
 
     path = write_netcdf(tiny_ds, tmp_path / "tiny.nc")
     back = open_dataset(path)
@@ -143,7 +143,7 @@ def test_config_section_and_command_line(tmp_path):
                                   "reference": {"dt_factor": 0.001},
                                   "methods": {"srkn6c": {"dt_factor": [0.02, 0.01]}, "lsoda": {"rtol": [1e-6, 1e-8]}}}
     spec = cc.resolved_work_precision(tiny_cfg, "tw-weak")
-    init = write_netcdf(stages.initial_data(cc.resolved_scene(tiny_cfg, "tw-weak"), "tw-weak"), tmp_path / "i.nc")
+    init = write_netcdf(stages.initial_data(cc.scene(tiny_cfg, "tw-weak"), "tw-weak"), tmp_path / "i.nc")
     out = tmp_path / "wp" / "tw-weak.nc"
     assert wp.main(["scene", "--spec", json.dumps(spec), "--initial", str(init), "--out", str(out)]) == 0
     ds = open_dataset(out)

@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+
 from conftest import run_snakemake
 
 pytestmark = pytest.mark.slurm
@@ -43,7 +44,8 @@ def _answers(*cmd) -> str | None:
     except subprocess.TimeoutExpired:
         return f"`{' '.join(cmd)}` did not answer in 10 s"
     if proc.returncode != 0:
-        return f"`{' '.join(cmd)}` failed: {' '.join(proc.stderr.split())[:200]} (start Slurm: tests/cluster/slurm-up.sh)"
+        return (f"`{' '.join(cmd)}` failed: {' '.join(proc.stderr.split())[:200]} "
+                "(start Slurm: tests/cluster/slurm-up.sh)")
     return None
 
 
@@ -117,7 +119,7 @@ def _sacct(job_ids) -> list[dict]:
     fields = "JobID,JobName,State,Submit,Start,End,ElapsedRaw,ReqCPUS,ReqMem"
     proc = subprocess.run(["sacct", "-n", "-X", "-P", "-j", ",".join(job_ids), "-o", fields],
                           check=False, capture_output=True, text=True, timeout=60)
-    return [dict(zip(fields.split(","), line.split("|"))) for line in proc.stdout.splitlines() if line]
+    return [dict(zip(fields.split(","), line.split("|"), strict=False)) for line in proc.stdout.splitlines() if line]
 
 
 def test_workflow_through_slurm_equals_local_build(slurm, tmp_path):

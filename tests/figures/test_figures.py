@@ -6,10 +6,10 @@ import pytest
 from matplotlib.collections import QuadMesh
 from matplotlib.image import AxesImage
 
-from cradle.measurements import compare
-from cradle.scenes import stages
-from cradle.pipeline import config as cc
 from cradle.figures import drawer, registry, spectra
+from cradle.measurements import compare
+from cradle.pipeline import config as cc
+from cradle.scenes import stages
 
 TIMES = [0.0, 5.0, 10.0, 15.0, 20.0]
 CFG = {
@@ -27,7 +27,7 @@ CFG = {
 @pytest.fixture(scope="module")
 def sim():
     cfg = cc.validate(CFG)
-    spec = cc.resolved_scene(cfg, "small")
+    spec = cc.scene(cfg, "small")
     init = stages.initial_data(spec, "small")
     ex, ap = stages.exact_run(spec, init, "small"), stages.dps_run(spec, init, "small")
     return {"small": {"exact": ex, "dps": ap, "metrics": stages.metrics(spec, ex, ap, "small")}}

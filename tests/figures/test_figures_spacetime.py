@@ -7,8 +7,8 @@ import pytest
 from matplotlib.collections import QuadMesh
 from matplotlib.image import AxesImage
 
-from cradle.figures import drawer, registry, spacetime
 from cradle.data.io import make_dataset
+from cradle.figures import drawer, registry, spacetime
 
 N = 16
 T = np.round(np.arange(0.0, 60.0 + 1e-9, 0.5), 9)       # a stored grid, every 0.5 on [0, 60]

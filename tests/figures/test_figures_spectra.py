@@ -4,10 +4,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from cradle.measurements import compare, sidebands
-from cradle.figures import spectra
-from cradle.scenes import stages
 from cradle.data.io import make_dataset
+from cradle.figures import spectra
+from cradle.measurements import compare, sidebands
+from cradle.scenes import stages
 
 N = 40                                   # q N / (2 pi) = 16 for q = 4 pi/5: q on Gamma*
 Q = 4 * np.pi / 5
@@ -95,7 +95,7 @@ def _scene(q=Q, q_expr="4pi/5", seed=0):
     attrs = {"q": q, "q_expr": q_expr, "a": a, "N": N, "bc": "periodic", "initial_kind": "travelling"}
     exact = make_dataset({"x": ex}, coords={"t": t, "n": n}, attrs=attrs)
     dps = make_dataset({"x": ap}, coords={"t": t, "n": n}, attrs=attrs)
-    return {"exact": exact, "dps": dps, "metrics": stages.metrics({}, exact, dps, "s")}
+    return {"exact": exact, "dps": dps, "metrics": stages.metrics(None, exact, dps, "s")}
 
 
 def _curve(ax):

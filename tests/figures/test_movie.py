@@ -19,7 +19,10 @@ def _scene(n_t=401, n=12, bc="periodic"):
     x = 1e-2 * np.cos(np.pi * np.arange(n) / 4)[None, :] * np.cos(t)[:, None]
     r = np.roll(x, -1, axis=1) - x
     force = -np.abs(np.minimum(r, 0.0)) ** 1.5
-    both = lambda a: xr.DataArray(np.stack([a, 0.9 * a]), dims=("model", "t", "n"))
+
+    def both(a):
+        return xr.DataArray(np.stack([a, 0.9 * a]), dims=("model", "t", "n"))
+
     return xr.Dataset({"x": both(x), "force": both(force)},
                       coords={"model": ["exact", "dps"], "t": t, "n": np.arange(n)},
                       attrs={"scene": "test", "alpha": 1.5, "N": n, "bc": bc, "omega_sw": 1.0})

@@ -6,24 +6,25 @@ the binary oscillation x_n = (-1)^n a(t) of (inteq), the two-bead chain
 """
 from __future__ import annotations
 
+from itertools import pairwise
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from cradle.models import dps as D
-from cradle.models import lattice as L
-from cradle.models.dps import amplitude_from_omega
 from cradle.integrators import (
     CORRECTED_METHODS,
     DEFAULT_DT_FACTOR,
+    _kernels as K,
+    _onset_impulse as OI,
     compression_bounds,
     integrate_dps,
     integrate_lattice,
     omega_max,
 )
-from cradle.integrators import _kernels as K
-from cradle.integrators import _onset_impulse as OI
 from cradle.integrators._coefficients import SPLITTINGS
+from cradle.models import dps as D, lattice as L
+from cradle.models.dps import amplitude_from_omega
 
 ORDERS = {"strang": 2, "srkn4": 4, "srkn6": 6}
 
@@ -240,6 +241,21 @@ def test_onset_step_local_error(theta):
     assert orders["srkn6c"] > 4.7 and orders["srkn4c"] > 4.7
 
 
+def _impulse_integrand(s, k, h, p):
+    """k(h (1 - s)) f(d~(s)), f(d) = -(-d)^1.5 in contact: the impulse's integrand at s = tau / h."""
+    return k(h * (1 - s)) * -(-p(s)) ** 1.5
+
+
+def _stretched_left(u, k, h, p, lo, mid):
+    """The integrand on [lo, mid] at s = lo + (mid - lo) u^2, times ds/du."""
+    return _impulse_integrand(lo + (mid - lo) * u * u, k, h, p) * 2 * (mid - lo) * u
+
+
+def _stretched_right(u, k, h, p, hi, mid):
+    """The integrand on [mid, hi] at s = hi - (hi - mid) u^2, times -ds/du."""
+    return _impulse_integrand(hi - (hi - mid) * u * u, k, h, p) * 2 * (hi - mid) * u
+
+
 def test_exact_impulse_against_quadrature():
     """The integral of (sin(h - tau), cos(h - tau)) f(d~(tau)) over one step: across one onset to
     ~1e-12 relative, over a contact that begins and ends within the step to ~1e-10."""
@@ -252,14 +268,13 @@ def test_exact_impulse_against_quadrature():
         roots = sorted(r.real for r in p.roots() if abs(r.imag) < 1e-12 and 0 < r.real < 1)
         ref = np.zeros(2)
         cuts = [0.0, *roots, 1.0]
-        for lo, hi in zip(cuts[:-1], cuts[1:]):
+        for lo, hi in pairwise(cuts):
             if p(0.5 * (lo + hi)) >= 0.0:
                 continue
             mid = 0.5 * (lo + hi)
             for i, k in enumerate((np.sin, np.cos)):  # s = root +- L u^2 near each root: smooth integrands
-                g = lambda s: k(h * (1 - s)) * -(-p(s)) ** 1.5  # noqa: E731
-                left = quad(lambda u: g(lo + (mid - lo) * u * u) * 2 * (mid - lo) * u, 0, 1, epsabs=0, epsrel=1e-13)
-                right = quad(lambda u: g(hi - (hi - mid) * u * u) * 2 * (hi - mid) * u, 0, 1, epsabs=0, epsrel=1e-13)
+                left = quad(_stretched_left, 0, 1, args=(k, h, p, lo, mid), epsabs=0, epsrel=1e-13)
+                right = quad(_stretched_right, 0, 1, args=(k, h, p, hi, mid), epsabs=0, epsrel=1e-13)
                 ref[i] += h * (left[0] + right[0])
         nroots = OI.exact_impulse(d0, w0, d1, w1, h, 1.5, 0, out)
         assert nroots == len(roots)

@@ -22,9 +22,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from cradle.integrators import _cache
-from cradle.integrators import _dop853, _onset, _onset_impulse
-from cradle.integrators import _kernels as K
+from cradle.integrators import _cache, _dop853, _kernels as K, _onset, _onset_impulse
 from cradle.models import lattice as L
 from cradle.models.dps import amplitude_from_omega
 
@@ -133,7 +131,8 @@ def test_key_sources_are_the_kernel_modules_and_their_cradle_imports():
     names = [p.name for p in _cache.kernel_sources()]
     assert names == ["_cache.py", "_dop853.py", "_kernels.py", "_onset.py", "_onset_impulse.py"]
     # every module of the package that uses numba is covered
-    uses_numba = {p.name for p in _cache.PACKAGE_DIR.rglob("*.py") if re.search(r"^\s*(from|import) numba", p.read_text(), re.M)}
+    uses_numba = {p.name for p in _cache.PACKAGE_DIR.rglob("*.py")
+                  if re.search(r"^\s*(from|import) numba", p.read_text(), re.M)}
     assert uses_numba <= set(names)
 
 

@@ -9,11 +9,11 @@ import pytest
 import xarray as xr
 import yaml
 
-from cradle.pipeline import config as cc
+from cradle.figures import localised, registry
 from cradle.measurements import breathers, interactions
 from cradle.models import dps, homoclinic, initial, lattice
+from cradle.pipeline import config as cc
 from cradle.scenes import stages
-from cradle.figures import localised, registry
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -109,12 +109,13 @@ def _config_with(scene):
 ])
 def test_initial_data_stage_for_the_new_kinds(ini):
     cfg = _config_with({"N": 20, "bc": "periodic", "initial": ini, "t_end": 1.0, "store": {"every": 0.5}})
-    spec = cc.resolved_scene(cfg, "s")
+    spec = cc.scene(cfg, "s")
     ds = stages.initial_data(spec, "s")
     assert ds.attrs["initial_kind"] == ini["kind"] and ds.attrs["eps"] == 1.0 and "homoclinic" not in ds.attrs
     assert np.all(ds["v0"].values == 0) and np.all(ds["A0_im"].values == 0)
     assert np.array_equal(ds["A0_re"].values, ds["x0"].values / 2)
-    assert ds.attrs["energy0"] == pytest.approx(lattice.hamiltonian(ds["x0"].values, ds["v0"].values, ALPHA, "periodic"))
+    energy0 = lattice.hamiltonian(ds["x0"].values, ds["v0"].values, ALPHA, "periodic")
+    assert ds.attrs["energy0"] == pytest.approx(energy0)
 
 
 @pytest.mark.parametrize("ini, path, words", [
@@ -205,7 +206,7 @@ def _pair_run(t_merge):
 
 def test_metrics_stage_stores_the_outcome_of_the_interaction_measure():
     ex, ap = _pair_run(80.5 * T), _pair_run(60.2 * T)
-    m = stages.metrics({}, ex, ap, "pair")
+    m = stages.metrics(None, ex, ap, "pair")
     for model, run in (("exact", ex), ("dps", ap)):
         oc = interactions.classify_run(run)
         assert oc.outcome == "merge"
@@ -257,7 +258,7 @@ def _sim(N=20, t_end=60.0, dt=0.5, omega=1.1, bc="periodic", kind="breather", sc
     if kind == "packet":  # no omega_sw of its own (the metrics stage bins it by 1.1)
         for part in (ex, ap):
             del part.attrs["omega_sw"]
-    return {"exact": ex, "dps": ap, "metrics": stages.metrics({}, ex, ap, kind)}
+    return {"exact": ex, "dps": ap, "metrics": stages.metrics(None, ex, ap, kind)}
 
 
 def _images(fig):

@@ -82,7 +82,7 @@ def _relative_residuals(signs, log10a, alpha, digits=40):
     with localcontext() as ctx:
         ctx.prec = digits
         al = Decimal(repr(alpha))
-        a = [int(sg) * Decimal(10) ** Decimal(repr(float(L))) for sg, L in zip(signs, log10a)]
+        a = [int(sg) * Decimal(10) ** Decimal(repr(float(L))) for sg, L in zip(signs, log10a, strict=True)]
 
         def g(x):
             return (abs(x) ** al).copy_sign(x) if x != 0 else Decimal(0)

@@ -1,11 +1,14 @@
 """The map G (comp1)-(comp2) of the stationary DpS equation (dpsstn): area preservation,
 reversibility, the explicit periodic orbits of the traj2 caption."""
+import dataclasses
+
 import numpy as np
 import pytest
 
-from cradle.models import stationary as st
 from cradle.figures import maps
+from cradle.models import stationary as st
 from cradle.scenes import stages
+from cradle.scenes.spec import MapEntry
 
 ALPHAS = [1.5, 2.0, 3.0]
 
@@ -60,17 +63,17 @@ def test_closed_forms_at_hertz():
 
 
 def test_box_cuts_escaping_orbits():
-    O = st.orbit([5.0, 0.0], 50, 1.5, box=1.0)
-    assert np.all(np.isnan(O))
-    O = st.orbit([0.01, 0.0], 50, 1.5, box=1.0)
-    assert np.all(np.isfinite(O))
+    orbit = st.orbit([5.0, 0.0], 50, 1.5, box=1.0)
+    assert np.all(np.isnan(orbit))
+    orbit = st.orbit([0.01, 0.0], 50, 1.5, box=1.0)
+    assert np.all(np.isfinite(orbit))
 
 
 def test_map_stage_stores_the_explicit_orbits_of_marked_entries():
-    spec = {"alpha": 1.5, "box": 0.1, "iterations": 20, "starts": [[0.0, 1e-13]]}
+    spec = MapEntry(alpha=1.5, box=0.1, iterations=20, starts=[[0.0, 1e-13]])
     plain = stages.map_orbits(spec, "plain")
     assert "mark_a" not in plain and plain.attrs["marks"] == 0
-    ds = stages.map_orbits({**spec, "marks": True}, "marked")
+    ds = stages.map_orbits(dataclasses.replace(spec, marks=True), "marked")
     P = st.explicit_periodic_orbits(1.5)
     for period in (2, 3, 4):
         sel = ds["mark_period"].values == period
@@ -81,8 +84,8 @@ def test_map_stage_stores_the_explicit_orbits_of_marked_entries():
 
 
 def test_map_figures_draw_from_datasets():
-    ds = stages.map_orbits({"alpha": 1.5, "box": 0.1, "iterations": 200, "starts": [[0.0, 1e-13], [0.02, 0.0]],
-                            "marks": True}, "o")
+    ds = stages.map_orbits(MapEntry(alpha=1.5, box=0.1, iterations=200, starts=[[0.0, 1e-13], [0.02, 0.0]],
+                                    marks=True), "o")
     fig = maps.draw_traj3({"o": ds}, {"scenes": ["o"]})
     assert len(fig.axes) == 1
     fig = maps.draw_traj2({f"p{i}": ds for i in range(6)}, {"scenes": [f"p{i}" for i in range(6)]})

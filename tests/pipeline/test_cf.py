@@ -13,18 +13,20 @@ declares (``VARIABLES`` of its module), filled with increasing numbers.
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
 import pytest
 
-from cradle.pipeline import config as cc
+from cradle.analyses._legacy import LEGACY
+from cradle.analyses.registry import ANALYSES
 from cradle.data import provenance
-from cradle.scenes import stages
 from cradle.data.io import make_dataset, make_tree, open_dataset, open_tree, write_netcdf
-from cradle.pipeline.outputs import open_scene
 from cradle.data.variables import VARIABLES
-
+from cradle.pipeline import config as cc
+from cradle.pipeline.outputs import open_scene
+from cradle.scenes import stages
 from test_pipeline import TINY  # tests/ is on sys.path (pytest rootdir, no __init__.py)
 
 KINDS = ("homoclinic", "map", "initial", "exact", "dps", "metrics", "map-marks", "metrics-breather", "metrics-pair")
@@ -49,9 +51,9 @@ def outputs(tmp_path_factory):
     root = tmp_path_factory.mktemp("cf") / "results"
     cfg = cc.validate(TINY)
     scene = "tw-weak-noise"
-    spec = cc.resolved_scene(cfg, scene)
-    hspec = cc.resolved_homoclinic(cfg, "site")
-    mspec = cc.resolved_map(cfg, "traj3")
+    spec = cc.scene(cfg, scene)
+    hspec = cc.homoclinic(cfg, "site")
+    mspec = cc.map_entry(cfg, "traj3")
     init = stages.initial_data(spec, scene)
     ex = stages.exact_run(spec, init, scene)
     ap = stages.dps_run(spec, init, scene)
@@ -62,11 +64,11 @@ def outputs(tmp_path_factory):
         "exact": (ex, root / "sim" / scene / "exact.nc"),
         "dps": (ap, root / "sim" / scene / "dps.nc"),
         "metrics": (stages.metrics(spec, ex, ap, scene), root / "metrics" / f"{scene}.nc"),
-        "map-marks": (stages.map_orbits({**mspec, "marks": True}, "marked"), root / "map" / "marked.nc"),
+        "map-marks": (stages.map_orbits(dataclasses.replace(mspec, marks=True), "marked"), root / "map" / "marked.nc"),
     }
     for kind in ("breather", "pair"):  # the breather measurements of localised scenes (plot18, loc1, fini)
         run_ex, run_ap = _localised_run(kind, 1.09), _localised_run(kind, 1.1)
-        built[f"metrics-{kind}"] = (stages.metrics({}, run_ex, run_ap, kind), root / "metrics" / f"{kind}.nc")
+        built[f"metrics-{kind}"] = (stages.metrics(None, run_ex, run_ap, kind), root / "metrics" / f"{kind}.nc")
     return {kind: write_netcdf(ds, path) for kind, (ds, path) in built.items()} | {"root": root, "scene": scene}
 
 
@@ -97,9 +99,7 @@ def test_cf_compliant(outputs, kind, tmp_path):
 
 
 #: analysis -> module declaring its VARIABLES (one dict per netCDF group)
-TREES = {"theorem1": "theorem1", "mi-diagram": "modulational", "mi-growth": "migrowth",
-         "mi-statistics": "mistatistics", "floquet": "floquet", "breathers": "breathers",
-         "dps-validity": "dpsvalidity", "breather-interactions": "breather_interactions"}
+TREES = {a.name: a.module for a in ANALYSES.values()} | {a.name: a.module for a in LEGACY.values()}
 
 
 def _declared_tree(module: str):

@@ -9,11 +9,12 @@ from pathlib import Path
 import pytest
 import yaml
 
-from cradle.pipeline.cli import main
-from cradle.pipeline.config import load, resolved_scene
-from cradle.data.provenance import params_hash
 from cradle.data.io import open_dataset
+from cradle.data.provenance import params_hash
+from cradle.pipeline.cli import main
+from cradle.pipeline.config import load, scene
 from cradle.pipeline.outputs import open_scene
+from cradle.specs.declare import plain
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -53,7 +54,7 @@ def test_run_scene_then_describe(tiny_config, tmp_path, capsys):
         assert (out / rel).exists(), rel
     ex = open_dataset(out / "sim" / "br" / "exact.nc")
     assert ex.attrs["command"].startswith("cradle run br")
-    assert ex.attrs["params_sha256"] == params_hash(resolved_scene(load(tiny_config), "br"))
+    assert ex.attrs["params_sha256"] == params_hash(plain(scene(load(tiny_config), "br")))
     log = (out / "logs" / "sim" / "br.log").read_text()   # one log, as the workflow's simulate job
     assert "exact br: t = 3 / 3 (100.0%)" in log and "exact br: done" in log  # progress reaches the log
     ds = open_scene("br", root=out)

@@ -22,8 +22,8 @@ from modulefinder import ModuleFinder
 from pathlib import Path
 
 import pytest
-from conftest import run_snakemake
 
+from conftest import run_snakemake
 from cradle import figures
 from cradle.analyses.registry import ANALYSES
 from cradle.pipeline.codedeps import code_files
@@ -148,7 +148,7 @@ def _downstream(rows, outputs: set[str]) -> set[str]:
 @pytest.mark.slow
 @pytest.mark.parametrize("module", ["src/cradle/data/provenance.py", "src/cradle/figures/spacetime.py",
                                     "src/cradle/measurements/sidebands.py", "src/cradle/integrators/_kernels.py",
-                                    "src/cradle/analyses/modulational.py"])
+                                    "src/cradle/analyses/mi_diagram.py"])
 def test_an_edit_plans_exactly_the_jobs_that_import_it(scratch, full_dag, module):
     assert all(r["plan"] == "no update" for r in full_dag)
     path = scratch / module

@@ -12,9 +12,18 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import (beyond, breather_interactions, breathers, dps_validity, floquet, mi_statistics,
-                                    movies, sections)
+from cradle.pipeline.config import (
+    beyond,
+    breather_interactions,
+    breathers,
+    dps_validity,
+    floquet,
+    mi_statistics,
+    movies,
+    sections,
+)
 from cradle.scenes import spec as scenes
+from cradle.specs.declare import from_plain, plain, plain as spec_plain
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -27,8 +36,9 @@ CONFIG = ROOT / "config.yaml"
 # section beyond.breather_interactions, and the loc1 scenes set to the readings of docs/loc1-readings.md:
 # loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope. Then issue 16: the section
 # movies: (no resolved scene changed). Then issue 15: the new section beyond.dps_validity; every other value
-# unchanged.)
-RESOLVED_SHA256 = "a61c41d84c976671cec2bf1f62c6b1636832544b28bf694746bd4468ab3c8024"
+# unchanged. Then issue 21: the key beyond.mi_growth renamed beyond.mi-growth, its spec typed (plain() of it is
+# the old dict; with the old key the hash is the old a61c41d8...).)
+RESOLVED_SHA256 = "17faeaaba9cf11580cb3cd0c8b4c197ee3719a8cc6921e62319fe2abddb61a56"
 
 
 @pytest.fixture(scope="module")
@@ -46,7 +56,7 @@ def _everything_resolved(config) -> dict:
         "map": {n: cc.resolved_map(cfg, n) for n in cfg["map"]},
         "theorem1": cc.resolved_theorem1(cfg),
         "mi_diagram": cc.resolved_mi_diagram(cfg),
-        "mi_growth": cc.resolved_mi_growth(cfg),
+        "mi_growth": plain(cc.analysis_spec(cfg, "mi-growth", "full")),
         "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
         "floquet": cc.resolved_floquet(cfg),
         "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
@@ -123,6 +133,59 @@ def test_a_scene_override_of_the_integrator_is_not_filled_with_declared_defaults
     cfg["defaults"]["exact"]["rtol"] = 1e-8
     cfg["scenes"]["tw-weak"]["exact"] = {"method": "dop853"}
     assert cc.resolved_scene(cfg, "tw-weak")["exact"] == {"method": "dop853", "dt_factor": None, "rtol": 1e-8}
+    assert cc.scene(cfg, "tw-weak").exact == scenes.ExactIntegrator(method="dop853", dt_factor=None, rtol=1e-8)
+
+
+# ------------------------------------------------------------------ typed, resolved entries
+
+def test_every_scene_resolves_to_a_typed_scene_equal_to_its_plain_values(raw):
+    """cc.scene: defaults filled (alpha, max_energy_drift numbers, complete integrators), the same values
+    as the plain resolved_scene, and plain -> from_plain gives the same scene back (what a rule passes
+    to its script)."""
+    for name in raw["scenes"]:
+        s, r = cc.scene(raw, name), cc.resolved_scene(raw, name)
+        assert isinstance(s, scenes.Scene) and isinstance(s.alpha, float) and isinstance(s.max_energy_drift, float)
+        assert isinstance(s.exact, scenes.ExactIntegrator) and isinstance(s.dps, scenes.DpsIntegrator)
+        assert (s.alpha, s.max_energy_drift, s.N, s.bc, s.t_end) == (r["alpha"], r["max_energy_drift"], r["N"],
+                                                                    r["bc"], r["t_end"])
+        assert spec_plain(s.exact) == dict(sorted(r["exact"].items())) and spec_plain(s.dps) == r["dps"]
+        assert list(s.times) == r["times"], name
+        if isinstance(s.initial, scenes.Travelling):
+            assert s.initial.wavenumber == r["initial"]["q"] and s.initial.q_expr == r["initial"]["q_expr"]
+        values = spec_plain(s)
+        assert "times" not in values and json.loads(json.dumps(values)) == values
+        back = from_plain(scenes.Scene, values)
+        assert back == s and back.times == s.times
+
+
+def test_typed_homoclinic_and_map_entries_have_alpha_filled(raw):
+    for name in raw["homoclinic"]:
+        h = cc.homoclinic(raw, name)
+        assert isinstance(h, scenes.HomoclinicEntry) and from_plain(scenes.HomoclinicEntry, spec_plain(h)) == h
+        assert spec_plain(h) == {k: v for k, v in sorted(cc.resolved_homoclinic(raw, name).items()) if k != "name"}
+    for name in raw["map"]:
+        m = cc.map_entry(raw, name)
+        assert isinstance(m, scenes.MapEntry) and from_plain(scenes.MapEntry, spec_plain(m)) == m
+        assert spec_plain(m) == {k: v for k, v in sorted(cc.resolved_map(raw, name).items()) if k != "name"}
+    assert cc.homoclinic(raw, "double").alpha == 1.5 and cc.map_entry(raw, "traj2-8").line.count == 40
+
+
+def test_plain_values_of_a_scene_ignore_the_order_of_config_keys(raw):
+    """A rule's params are the sorted plain values: reordering config.yaml reruns nothing."""
+    cfg = copy.deepcopy(raw)
+    cfg["scenes"] = {n: dict(reversed(list(s.items()))) for n, s in cfg["scenes"].items()}
+    cfg["scenes"]["tw-weak"]["initial"] = dict(reversed(list(cfg["scenes"]["tw-weak"]["initial"].items())))
+    for name in raw["scenes"]:
+        assert json.dumps(spec_plain(cc.scene(cfg, name))) == json.dumps(spec_plain(cc.scene(raw, name))), name
+
+
+def test_typed_entries_refuse_unknown_names_and_bad_plain_values(raw):
+    for fn in (cc.scene, cc.homoclinic, cc.map_entry):
+        with pytest.raises(cc.ConfigError, match="nosuch"):
+            fn(raw, "nosuch")
+    values = {**spec_plain(cc.scene(raw, "tw-weak")), "N": 1}
+    with pytest.raises(cc.ConfigError, match=r"^config error: Scene\.N = 1: "):
+        from_plain(scenes.Scene, values)
 
 
 # ------------------------------------------------------------------ reliability of the validation layer
@@ -185,7 +248,7 @@ def test_config_yaml_beyond_restates_the_defaults_as_its_comment_says(raw):
     declared defaults, and that work_precision's compare_every, repeat_time and reference restate them."""
     declared = cc.validate({"map": {"m": {"box": 1.0, "iterations": 2, "starts": [[0.0, 0.1]]}}})
     given = copy.deepcopy(raw["beyond"])
-    for section in ("theorem1", "mi_growth"):
+    for section in ("theorem1", "mi-growth"):
         assert given[section].pop("scenes")
     for section, values in given.items():
         for key, value in values.items():
@@ -235,8 +298,8 @@ def test_analysis_scene_names_are_checked_when_resolved(raw):
     cfg["beyond"]["theorem1"]["scenes"] = ["tw-wek"]
     with pytest.raises(cc.ConfigError, match=r"scenes\[0\] = 'tw-wek': unknown scene.*did you mean 'tw-weak'"):
         cc.resolved_theorem1(cfg)
-    cfg["beyond"]["mi_growth"]["scenes"] = []
-    with pytest.raises(cc.ConfigError, match=r"beyond\.mi_growth\.scenes is empty"):
-        cc.resolved_mi_growth(cfg)
+    cfg["beyond"]["mi-growth"]["scenes"] = []
+    with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes is empty"):
+        cc.analysis_reads(cfg, "mi-growth", "full")
     with pytest.raises(cc.ConfigError, match="unknown variant 'tiny'"):
         cc.resolved_mi_statistics(raw, "tiny")

@@ -9,14 +9,14 @@ import pytest
 from cradle.data import io
 from cradle.pipeline import cli, extend
 from cradle.scenes import stages
-from cradle.pipeline.config import store_times
+from cradle.scenes.spec import DpsIntegrator, ExactIntegrator, Scene, Store, Travelling
 
 
 def spec(T, method="srkn6c", bc="periodic"):
-    return {"name": "ext", "alpha": 1.5, "N": 16, "bc": bc, "t_end": T, "times": store_times({"every": 0.5}, T),
-            "exact": {"method": method, "dt_factor": None, "rtol": 1e-10}, "max_energy_drift": 1e-6,
-            "initial": {"kind": "travelling", "q": np.pi / 4, "omega_tw": 1.1, "phi": 0.0},
-            "dps": {"method": "dop853", "rtol": 1e-10}}
+    """A resolved scene stored every 0.5 to T."""
+    return Scene(alpha=1.5, N=16, bc=bc, t_end=T, store=Store(every=0.5), exact=ExactIntegrator(method=method),
+                 max_energy_drift=1e-6, initial=Travelling(kind="travelling", q=np.pi / 4, omega_tw=1.1),
+                 dps=DpsIntegrator(method="dop853"))
 
 
 @pytest.fixture(scope="module")

@@ -7,6 +7,7 @@ overwritten first, and that an over-budget config is refused before any allocati
 """
 from __future__ import annotations
 
+import dataclasses
 import os
 import shutil
 import time
@@ -20,10 +21,11 @@ import xarray as xr
 import yaml
 
 from cradle.data import io
-from cradle.pipeline import outputs
 from cradle.pipeline import budget, cli, config as cc, extend
+from cradle.pipeline.outputs import open_scene
 from cradle.scenes import stages
-from cradle.pipeline.params import compact_scene, expand_scene
+from cradle.scenes.spec import DpsIntegrator, ExactIntegrator, Scene, Store, Travelling
+from cradle.specs.declare import from_plain, plain
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -45,11 +47,11 @@ def outputs(tmp_path_factory):
     """{kind: (in-memory Dataset, path under .../results/...)} for the six output kinds."""
     root = tmp_path_factory.mktemp("faults") / "results"
     cfg = cc.validate(TINY)
-    spec = cc.resolved_scene(cfg, "tw")
+    spec = cc.scene(cfg, "tw")
     init = stages.initial_data(spec, "tw")
     ex, ap = stages.exact_run(spec, init, "tw"), stages.dps_run(spec, init, "tw")
-    made = {"homoclinic": (stages.homoclinic_solution(cc.resolved_homoclinic(cfg, "h"), "h"), "homoclinic/h.nc"),
-            "map": (stages.map_orbits(cc.resolved_map(cfg, "m"), "m"), "map/m.nc"),
+    made = {"homoclinic": (stages.homoclinic_solution(cc.homoclinic(cfg, "h"), "h"), "homoclinic/h.nc"),
+            "map": (stages.map_orbits(cc.map_entry(cfg, "m"), "m"), "map/m.nc"),
             "initial": (init, "initial/tw.nc"), "exact": (ex, "sim/tw/exact.nc"), "dps": (ap, "sim/tw/dps.nc"),
             "metrics": (stages.metrics(spec, ex, ap, "tw"), "metrics/tw.nc")}
     out = {}
@@ -57,6 +59,13 @@ def outputs(tmp_path_factory):
         io.write_netcdf(ds, root / rel)
         out[kind] = (ds, root / rel)
     return out
+
+
+def _scene(**values) -> Scene:
+    """A resolved travelling-wave scene with the declared defaults, ``values`` in place."""
+    return dataclasses.replace(Scene(N=20, alpha=1.5, t_end=5.0, store=Store(every=0.5), exact=ExactIntegrator(),
+                                     dps=DpsIntegrator(), max_energy_drift=1e-6,
+                                     initial=Travelling(kind="travelling", q="pi/5", omega_tw=1.01)), **values)
 
 
 def _copy(path: Path, tmp_path: Path) -> Path:
@@ -125,15 +134,15 @@ def test_flipped_byte_in_data_is_detected_by_every_reader(outputs, kind, tmp_pat
 
 
 def test_damaged_scene_stops_open_scene_and_figure_inputs(outputs, tmp_path):
-    from cradle.figures import load_inputs
+    from cradle.pipeline.outputs import load_inputs
 
     for kind in ("exact", "dps", "metrics"):
         _copy(outputs[kind][1], tmp_path)
     root = tmp_path / "results"
-    assert outputs.open_scene("tw", root=root)["x"].sizes["model"] == 2
+    assert open_scene("tw", root=root)["x"].sizes["model"] == 2
     _flip_in_data(root / "sim/tw/dps.nc", outputs["dps"][0]["A_re"].values)
     with pytest.raises(io.DamagedOutput, match=r"sim/tw/dps.nc: damaged"):
-        outputs.open_scene("tw", root=root)
+        open_scene("tw", root=root)
     with pytest.raises(io.DamagedOutput, match=r"sim/tw/dps.nc: damaged"):
         load_inputs({"tw": "scenes"}, root)
 
@@ -239,7 +248,8 @@ def test_mi_statistics_batch_over_budget_refused():
     with pytest.raises(cc.ConfigError) as err:
         cc.validate(cfg)
     lines = str(err.value).splitlines()
-    assert len(lines) == 1 and lines[0].startswith("config error: beyond.mi_statistics.full: ") and "budget." in lines[0]
+    assert len(lines) == 1
+    assert lines[0].startswith("config error: beyond.mi_statistics.full: ") and "budget." in lines[0]
     e = budget.mi_statistics_estimate(cc.load(ROOT / "config.yaml"), "reduced")
     assert 7.9 / 2 < e.seconds < 7.9 * 2
 
@@ -251,7 +261,7 @@ def test_two_gb_store_validates_and_streams():
     cfg = yaml.safe_load((ROOT / "config.yaml").read_text())
     cfg["scenes"]["fft106"]["store"]["every"] = 0.004
     cc.validate(cfg)
-    assert budget.streams(cc.resolved_scene(cfg, "fft106"))
+    assert budget.streams(cc.scene(cfg, "fft106"))
 
 
 def test_budget_key_raises_the_limit_and_cli_refuses(tmp_path, capsys):
@@ -278,26 +288,25 @@ def test_estimates_of_the_paper_config_fit_and_are_sane():
     (in memory: with a DpS method that cannot stream); with the defaults it streams, under 1 GB."""
     cfg = cc.load(ROOT / "config.yaml")
     assert budget.over_budget(cfg) == []
-    spec = {"name": "fft106", "N": 200, "t_end": 543.7, "store": {"every": 0.001}, "alpha": 1.5,
-            "exact": {"method": "srkn6c"}, "dps": {"method": "dop853"}}
-    e = budget.spec_estimate(spec)
+    spec = _scene(N=200, t_end=543.7, store=Store(every=0.001), dps=DpsIntegrator(method="dop853"))
+    e = budget.spec_estimate(spec, "fft106")
     assert not e.streamed
     assert 0.8 * 11e9 < e.memory_bytes < 1.2 * 11e9 and 0.8 * 7.5e9 < e.disk_bytes < 1.2 * 7.5e9
-    s = budget.spec_estimate({**spec, "dps": {"method": "dop853_numba"}})
+    s = budget.spec_estimate(dataclasses.replace(spec, dps=DpsIntegrator(method="dop853_numba")), "fft106")
     assert s.streamed and s.memory_bytes < 1e9 and s.disk_bytes == e.disk_bytes
 
 
 def test_recorded_dt_is_the_step_taken(tmp_path):
     """Stored every 0.01, below the default step: dt is the store spacing actually stepped,
     dt_nominal the bound; extend continues with the bound and stays bitwise one run."""
-    spec = cc.resolved_scene(cc.validate({**TINY, "scenes": {"tw": {**TINY["scenes"]["tw"], "t_end": 0.5,
-                                                                    "store": {"every": 0.01}}}}), "tw")
+    spec = cc.scene(cc.validate({**TINY, "scenes": {"tw": {**TINY["scenes"]["tw"], "t_end": 0.5,
+                                                           "store": {"every": 0.01}}}}), "tw")
     init = stages.initial_data(spec, "tw")
     ex = stages.exact_run(spec, init, "tw")
     assert ex.attrs["dt_nominal"] > 0.02
     assert ex.attrs["dt"] == pytest.approx(0.01, rel=1e-9)
     assert ex.attrs["n_steps"] == 50
-    long_spec = {**spec, "t_end": 1.0, "times": cc.store_times({"every": 0.01}, 1.0)}
+    long_spec = dataclasses.replace(spec, t_end=1.0)
     long = stages.exact_run(long_spec, init, "tw")
     io.write_netcdf(ex, tmp_path / "exact.nc")
     extend.extend(tmp_path / "exact.nc", 1.0, out=tmp_path / "long.nc")
@@ -333,16 +342,17 @@ def test_extend_writes_a_new_file_and_refuses_a_workflow_scene_in_place(outputs,
 
 
 def test_rule_params_hold_no_stored_times():
-    """The simulate and mi-growth rules get compact scenes: small, and expanded back bitwise."""
+    """The simulate rule gets the plain values of the typed scene: small, sorted, and built back into
+    the same scene (the same stored times) bitwise."""
     cfg = cc.load(ROOT / "config.yaml")
     for name in cfg["scenes"]:
-        full = cc.resolved_scene(cfg, name)
-        small = compact_scene(full)
-        assert "times" not in small and len(repr(small)) < 2000, name
-        assert expand_scene(small) == full
-    for rule in ("simulate.smk", "analyses.smk"):
-        text = (ROOT / "workflow" / "rules" / rule).read_text()
-        assert "compact_scene(cc.resolved_scene(" in text and "=lambda w: cc.resolved_scene(" not in text
+        scene = cc.scene(cfg, name)
+        values = plain(scene)
+        assert "times" not in values and len(repr(values)) < 2000, name
+        assert list(values) == sorted(values) and from_plain(Scene, values) == scene
+        assert from_plain(Scene, values).times == scene.times
+    text = (ROOT / "workflow" / "rules" / "simulate.smk").read_text()
+    assert "spec=lambda w: plain(cc.scene(config, w.scene))" in text and "resolved_scene" not in text
 
 
 def test_cli_run_defaults_to_its_own_folder():
@@ -356,8 +366,7 @@ def test_progress_lines_give_eta_and_estimate(caplog):
 
     from cradle.pipeline.runner import Progress
 
-    est = budget.spec_estimate({"name": "long", "N": 200, "t_end": 1e5, "store": {}, "alpha": 1.5,
-                                "exact": {"method": "srkn6c"}})
+    est = budget.spec_estimate(_scene(N=200, t_end=1e5, store=Store(snapshots=[])), "long")
     p = Progress("exact long", every=0.0, estimate=est)
     with caplog.at_level(logging.INFO, logger="cradle"):
         time.sleep(0.01)
@@ -382,7 +391,7 @@ def test_flipped_byte_in_a_group_of_a_tree_is_detected(tmp_path, capsys):
     """An analysis file is a tree of netCDF groups: every variable of every group is checksummed, read
     back bitwise by open_tree, and one flipped byte in a child group stops open_tree, verify_file and
     `cradle describe` with one line."""
-    from cradle.analyses.mistatistics import VARIABLES
+    from cradle.analyses.mi_statistics import VARIABLES
 
     rng = np.random.default_rng(5)
     ratio = rng.random((1, 2, 3, 4, 64))

@@ -3,20 +3,21 @@ target, and a small Snakemake run on a tiny config builds, is idempotent and
 replans only what a changed parameter touches."""
 from __future__ import annotations
 
+import dataclasses
 import re
 import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import run_snakemake
 import yaml
 
-from cradle.pipeline import config as cc
-from cradle.scenes import stages
+from conftest import run_snakemake
 from cradle.data.io import open_dataset, write_netcdf
-from cradle.pipeline.runner import failed_path, run, run_chain
 from cradle.data.variables import VARIABLES
+from cradle.pipeline import config as cc
+from cradle.pipeline.runner import failed_path, run, run_chain
+from cradle.scenes import stages
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -46,7 +47,7 @@ TINY = {
 
 
 def _run_scene(cfg, name, tmp_path):
-    spec = cc.resolved_scene(cfg, name)
+    spec = cc.scene(cfg, name)
     init = stages.initial_data(spec, name)
     ex = stages.exact_run(spec, init, name)
     ap = stages.dps_run(spec, init, name)
@@ -67,7 +68,7 @@ def test_outputs_are_self_describing(tmp_path):
     assert ex.attrs["noise"] == "uniform" and ex.attrs["seed"] == 3
     assert ex.attrs["a"] == pytest.approx(2.118e-2, rel=5e-4)
     assert ex.attrs["energy_drift"] < 1e-8
-    assert list(ex["t"].values) == spec["times"]
+    assert tuple(ex["t"].values) == spec.times
     for part in ("initial", "exact", "dps", "metrics"):
         ds = open_dataset(paths[part])
         for name in list(ds.data_vars) + list(ds.coords):
@@ -93,8 +94,7 @@ def test_same_config_gives_bitwise_same_arrays(tmp_path):
 
 def test_failed_stage_leaves_nothing_at_target(tmp_path):
     cfg = cc.validate(TINY)
-    spec = cc.resolved_scene(cfg, "tw-weak")
-    spec["max_energy_drift"] = 1e-30  # impossible bound: the run must fail
+    spec = dataclasses.replace(cc.scene(cfg, "tw-weak"), max_energy_drift=1e-30)  # impossible bound: it must fail
     init = stages.initial_data(spec, "tw-weak")
     out = tmp_path / "results" / "sim" / "tw-weak" / "exact.nc"
     with pytest.raises(stages.StageFailure, match="energy drift"):
@@ -111,8 +111,7 @@ def test_failed_step_of_a_chain_writes_no_target_and_keeps_the_finished_steps(tm
     """simulate's run_chain: the exact run fails its drift bound, so neither initial.nc nor exact.nc
     is written at its target; both go to results/failed/ with the reason."""
     cfg = cc.validate(TINY)
-    spec = cc.resolved_scene(cfg, "tw-weak")
-    spec["max_energy_drift"] = 1e-30
+    spec = dataclasses.replace(cc.scene(cfg, "tw-weak"), max_energy_drift=1e-30)
     root = tmp_path / "results"
     outs = {"initial": root / "initial" / "tw-weak.nc", "exact": root / "sim" / "tw-weak" / "exact.nc"}
     with pytest.raises(stages.StageFailure, match="energy drift"):
@@ -152,8 +151,15 @@ def test_snakemake_end_to_end_on_tiny_config(tmp_path):
     assert again.returncode == 0
     assert "Nothing to be done" in again.stdout + again.stderr
 
-    # change q of one scene: only that scene's chain and the figures reading it replan
+    # the same values in another key order: a job's params are the sorted plain values, nothing replans
     cfg = yaml.safe_load((work / "config.yaml").read_text())
+    cfg["scenes"] = {n: dict(reversed(list(s.items()))) for n, s in cfg["scenes"].items()}
+    cfg["homoclinic"] = {n: dict(reversed(list(h.items()))) for n, h in cfg["homoclinic"].items()}
+    (work / "config.yaml").write_text(yaml.safe_dump(cfg, sort_keys=False))
+    reordered = _snakemake(work, "-n", "paper")
+    assert reordered.returncode == 0 and "Nothing to be done" in reordered.stdout + reordered.stderr
+
+    # change q of one scene: only that scene's chain and the figures reading it replan
     cfg["scenes"]["tw-weak"]["initial"]["q"] = "2pi/5"
     (work / "config.yaml").write_text(yaml.safe_dump(cfg))
     plan = _snakemake(work, "-n", "paper")

@@ -2,21 +2,21 @@
 bounded memory, nothing left behind on failure; which scenes stream (cradle.pipeline.budget)."""
 from __future__ import annotations
 
+import dataclasses
 import os
 
 import numpy as np
 import pytest
 
+from conftest import ROOT
+from cradle.data import io
 from cradle.integrators import integrate_dps
 from cradle.integrators.dps_solver import iter_dps
-from cradle.data import io
-from cradle.pipeline import budget
-from cradle.scenes import stages, streamed
-from cradle.pipeline import config as cc
+from cradle.pipeline import budget, config as cc
 from cradle.pipeline.runner import run_chain
+from cradle.scenes import stages, streamed
 from cradle.scenes.failure import StageFailure
-
-from conftest import ROOT
+from cradle.scenes.spec import Breather, Store
 
 PARTS = ("initial", "exact", "dps", "metrics")
 #: attributes that say how the job ran, not what it computed: the block-by-block job evaluates the
@@ -30,10 +30,12 @@ def config():
 
 
 def short_spec(config, name, t_end):
-    spec = cc.resolved_scene(config, name)
-    spec["t_end"] = t_end
-    spec["times"] = [t for t in spec["times"] if t < t_end] + [t_end]
-    return spec
+    """Scene ``name`` ended at ``t_end``: its stored times before t_end, then t_end."""
+    spec = cc.scene(config, name)
+    snapshots = [t for t in spec.store.snapshots or () if t < t_end] or None
+    short = dataclasses.replace(spec, t_end=t_end, store=dataclasses.replace(spec.store, snapshots=snapshots))
+    assert list(short.times) == [t for t in spec.times if t < t_end] + [t_end]
+    return short
 
 
 def test_iter_dps_blocks_are_bitwise_one_run():
@@ -59,17 +61,17 @@ def test_streamed_job_writes_the_in_memory_values(config, tmp_path, name, t_end)
     job (travelling wave, breather, pair, packet, free ends); every attribute but how it ran equal."""
     spec = short_spec(config, name, t_end)
     hom = None
-    if spec["initial"]["kind"] == "breather":
-        h = spec["initial"]["homoclinic"]
-        hom = stages.homoclinic_solution(cc.resolved_homoclinic(config, h), h)
+    if isinstance(spec.initial, Breather):
+        h = spec.initial.homoclinic
+        hom = stages.homoclinic_solution(cc.homoclinic(config, h), h)
     init = stages.initial_data(spec, name, hom)
     a = {k: tmp_path / f"a-{k}.nc" for k in PARTS}
     b = {k: tmp_path / "b" / f"{k}.nc" for k in PARTS}
     run_chain([("initial", lambda done: init), ("exact", lambda done: stages.exact_run(spec, init, name)),
                ("dps", lambda done: stages.dps_run(spec, init, name)),
                ("metrics", lambda done: stages.metrics(spec, done["exact"], done["dps"], name))], a)
-    s = streamed.simulate_streamed(spec, init, name, b, chunk_bytes=streamed.BLOCK_ARRAYS * 8 * spec["N"] * 37)
-    assert s["rows_per_block"] == 37 and s["blocks"] == -(-len(spec["times"]) // 37) > 1
+    s = streamed.simulate_streamed(spec, init, name, b, chunk_bytes=streamed.BLOCK_ARRAYS * 8 * spec.N * 37)
+    assert s["rows_per_block"] == 37 and s["blocks"] == -(-len(spec.times) // 37) > 1
     for part in PARTS:
         A, B = io.open_dataset(a[part]), io.open_dataset(b[part])   # checksums verified on both
         assert sorted(A.variables) == sorted(B.variables), part
@@ -86,7 +88,7 @@ def test_streamed_job_writes_the_in_memory_values(config, tmp_path, name, t_end)
 def test_failed_streamed_job_leaves_nothing(config, tmp_path):
     """An energy drift above max_energy_drift, found after the last block: StageFailure, and none of
     the four files (nor a temporary one) in the folder."""
-    spec = {**short_spec(config, "tw-weak", 20.0), "max_energy_drift": 1e-300}
+    spec = dataclasses.replace(short_spec(config, "tw-weak", 20.0), max_energy_drift=1e-300)
     init = stages.initial_data(spec, "tw-weak")
     outs = {k: tmp_path / f"{k}.nc" for k in PARTS}
     with pytest.raises(StageFailure, match="energy drift"):
@@ -99,8 +101,8 @@ def test_a_large_store_streams_with_bounded_memory(config):
     within the default memory budget, with estimates a few hundred MB apart; the disk budget still
     refuses the 200 GB store of every 0.01 up to t = 99000, and N = 1e9 is refused on memory."""
     def est(every, t_end=543.7, N=200):
-        spec = {**cc.resolved_scene(config, "fft106"), "N": N, "t_end": t_end, "store": {"every": every}}
-        return budget.spec_estimate(spec)
+        spec = dataclasses.replace(cc.scene(config, "fft106"), N=N, t_end=t_end, store=Store(every=every))
+        return budget.spec_estimate(spec, "fft106")
 
     two, twenty = est(0.004), est(0.0004)
     assert two.streamed and twenty.streamed and not est(0.01).streamed

@@ -293,7 +293,7 @@ REMOVED = {"check_alpha", "check_bc", "check_positive", "check_choice"}
 #: transitional: cradle.models.lattice keeps a @checked check_alpha while these analyses (ported by others)
 #: still call it; once none does, it must go too
 TRANSITIONAL_DEF = "models/lattice.py"
-TRANSITIONAL_CALLERS = {"analyses/modulational.py", "analyses/theorem1.py"}
+TRANSITIONAL_CALLERS = {"analyses/mi_diagram.py", "analyses/theorem1.py"}
 #: a function named check_<shared type> is a per-parameter check whatever its body
 CHECK_NAMES = REMOVED | {f"check_{k}".lower() for k in SHARED}
 

@@ -11,6 +11,7 @@ from cradle import figures as _figures
 from cradle.pipeline import layout as L
 from cradle.pipeline.codedeps import code_files
 from cradle.pipeline.params import compact_scene
+from cradle.specs.declare import plain
 from cradle.pipeline.config.movies import Movies
 
 #: the Python that runs this workflow: shell rules call it rather than whatever `python` is first on PATH

@@ -12,7 +12,7 @@ rule homoclinic:
     output:
         L.path("homoclinic", name="{name}"),
     params:
-        spec=lambda w: cc.resolved_homoclinic(config, w.name),
+        spec=lambda w: plain(cc.homoclinic(config, w.name)),
     log:
         L.path("log", job="homoclinic/{name}"),
     benchmark:  # measured against cradle.pipeline.budget's estimate by benchmarks/estimates.py
@@ -34,7 +34,7 @@ rule map_orbits:
     output:
         L.path("map", name="{name}"),
     params:
-        spec=lambda w: cc.resolved_map(config, w.name),
+        spec=lambda w: plain(cc.map_entry(config, w.name)),
     log:
         L.path("log", job="map/{name}"),
     benchmark:

@@ -1,7 +1,7 @@
-# mi-statistics batches (config `beyond: mi_statistics`, cradle.analyses.mistatistics): each job runs every
+# mi-statistics batches (config `beyond: mi_statistics`, cradle.analyses.mi_statistics): each job runs every
 # seed of a chunk of q values for one (N, model) of a form (reduced, full) and keeps each run's
 # sideband-ratio series, never the fields; the analysis `mi-statistics` (analyses.smk) aggregates them.
-from cradle.analyses import mistatistics as _mis
+from cradle.analyses import mi_statistics as _mis
 
 rule mi_statistics_batch:
     priority: 10  # as the analyses: long jobs that need no scene start before the figures

@@ -36,9 +36,9 @@ rule simulate:
     output:
         **L.scene_paths("{scene}"),
     params:
-        # the store description, not the expanded stored times (cradle.pipeline.params): a changed store
-        # still reruns the job, and a dry run stays readable
-        spec=lambda w: compact_scene(cc.resolved_scene(config, w.scene)),
+        # the resolved scene's plain values, sorted (the store description, not the expanded stored
+        # times): a changed value reruns the job, a reordered config.yaml does not, a dry run stays readable
+        spec=lambda w: plain(cc.scene(config, w.scene)),
     log:
         L.path("log", job="sim/{scene}"),
     benchmark:

@@ -26,7 +26,7 @@ for _form in WP_FORMS:
         message:
             f"Work-precision of the lattice integrators on scene '{{wildcards.scene}}' ({_form})"
         input:
-            code=code_of("cradle.analyses.workprecision"),
+            code=code_of("cradle.analyses.work_precision"),
             initial=L.path("initial", scene="{scene}"),
         output:
             f"{WP_DIR[_form]}/{{scene}}.nc",
@@ -42,7 +42,7 @@ for _form in WP_FORMS:
         priority: 10  # as the analyses: before the figures, so that it does not end the build alone
         shell:
             "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 "
-            f"{PYTHON} -m cradle.analyses.workprecision scene --spec {{params.spec:q}} --initial {{input.initial:q}} "
+            f"{PYTHON} -m cradle.analyses.work_precision scene --spec {{params.spec:q}} --initial {{input.initial:q}} "
             "--out {output:q} --log {log:q}"
 
     rule:
@@ -53,7 +53,7 @@ for _form in WP_FORMS:
         message:
             f"Drawing figure work-precision ({_form})"
         input:
-            code=code_of("cradle.analyses.workprecision", "cradle.figures.workprecision"),
+            code=code_of("cradle.analyses.work_precision", "cradle.figures.work_precision"),
             data=[f"{WP_DIR[_form]}/{s}.nc" for s in _scenes],
         output:
             **{ext: update(f) for ext, f in L.form_figure_paths("work-precision", "work-precision", _form,
@@ -63,7 +63,7 @@ for _form in WP_FORMS:
         log:
             L.path("log", job=f"figures/{_form}/work-precision"),
         shell:
-            f"{PYTHON} -m cradle.analyses.workprecision figure --out {{params.stem:q}} --log {{log:q}} {{input.data:q}}"
+            f"{PYTHON} -m cradle.analyses.work_precision figure --out {{params.stem:q}} --log {{log:q}} {{input.data:q}}"
 
 
 rule work_precision:

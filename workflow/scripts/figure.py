@@ -1,7 +1,8 @@
 """Snakemake adapter: draw one paper figure from its netCDF inputs -> results/figures/<label>.{pdf,png}."""
 from pathlib import Path
 
-from cradle.figures import draw, load_inputs
+from cradle.figures import draw
+from cradle.pipeline.outputs import load_inputs
 from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

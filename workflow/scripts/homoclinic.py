@@ -1,7 +1,9 @@
 """Snakemake adapter: solve (dpsstn) for one homoclinic entry -> results/homoclinic/<name>.nc."""
-from cradle.scenes import stages
 from cradle.pipeline.runner import run
+from cradle.scenes import stages
+from cradle.scenes.spec import HomoclinicEntry
+from cradle.specs.declare import from_plain
 
-name = snakemake.wildcards.name  # noqa: F821 (injected by Snakemake)
-run(lambda: stages.homoclinic_solution(snakemake.params.spec, name),  # noqa: F821
-    snakemake.output[0], snakemake.log[0], label=f"homoclinic {name}")  # noqa: F821
+sm = snakemake  # noqa: F821 (injected by Snakemake)
+spec, name = from_plain(HomoclinicEntry, sm.params.spec), sm.wildcards.name
+run(lambda: stages.homoclinic_solution(spec, name), sm.output[0], sm.log[0], label=f"homoclinic {name}")

@@ -1,7 +1,9 @@
 """Snakemake adapter: orbits of the map G (comp1)-(comp2) -> results/map/<name>.nc."""
-from cradle.scenes import stages
 from cradle.pipeline.runner import run
+from cradle.scenes import stages
+from cradle.scenes.spec import MapEntry
+from cradle.specs.declare import from_plain
 
-name = snakemake.wildcards.name  # noqa: F821 (injected by Snakemake)
-run(lambda: stages.map_orbits(snakemake.params.spec, name),  # noqa: F821
-    snakemake.output[0], snakemake.log[0], label=f"map {name}")  # noqa: F821
+sm = snakemake  # noqa: F821 (injected by Snakemake)
+spec, name = from_plain(MapEntry, sm.params.spec), sm.wildcards.name
+run(lambda: stages.map_orbits(spec, name), sm.output[0], sm.log[0], label=f"map {name}")

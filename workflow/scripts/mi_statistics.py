@@ -2,7 +2,7 @@
 (rule mi_statistics_batch); the batches are aggregated by the analysis rules (workflow/scripts/analysis.py)."""
 import logging
 
-from cradle.analyses import mistatistics
+from cradle.analyses import mi_statistics as mistatistics
 from cradle.pipeline.runner import run
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)

@@ -1,7 +1,7 @@
 """Snakemake adapter: the paper-claims table -> results/paper_checks.{csv,md}."""
 from pathlib import Path
 
-from cradle.analyses import checks
+from cradle.analyses import paper_checks as checks
 from cradle.data.io import write_text
 from cradle.pipeline.runner import setup_logging
 

@@ -2,10 +2,11 @@
 comparison -> results/initial/<scene>.nc, results/sim/<scene>/{exact,dps}.nc, results/metrics/<scene>.nc
 (cradle.pipeline.scene_job: in memory, or block by block for a large store)."""
 from cradle.data.io import open_dataset
-from cradle.pipeline.params import expand_scene
 from cradle.pipeline.scene_job import run_scene
+from cradle.scenes.spec import Scene
+from cradle.specs.declare import from_plain
 
 sm = snakemake  # noqa: F821 (injected by Snakemake)
-run_scene(expand_scene(dict(sm.params.spec)), sm.wildcards.scene,
+run_scene(from_plain(Scene, sm.params.spec), sm.wildcards.scene,
           {key: sm.output[key] for key in ("initial", "exact", "dps", "metrics")}, sm.log[0],
           homoclinic=open_dataset(sm.input.homoclinic[0]) if sm.input.homoclinic else None)

@@ -1,4 +1,4 @@
-"""Rows of the claims table (:mod:`cradle.analyses.checks`) for section 4.3, localised initial conditions:
+"""Rows of the claims table (:mod:`cradle.analyses.paper_checks`) for section 4.3, localised initial conditions:
 plot18's breather frequencies, half-period shift and radiation, loc1's merging times."""
 from __future__ import annotations
 

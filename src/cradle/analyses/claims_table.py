@@ -1,5 +1,5 @@
 """The claims table's rows and their rendering (results/paper_checks.{csv,md}): the row, the verdict rule
-"within the paper's printed precision", and the CSV and Markdown writers (:mod:`cradle.analyses.checks`
+"within the paper's printed precision", and the CSV and Markdown writers (:mod:`cradle.analyses.paper_checks`
 computes the rows)."""
 from __future__ import annotations
 

@@ -19,14 +19,14 @@ from cradle.data.variables import Var
 
 def dps_growth(q, p, alpha: float, a: float):
     """The DpS growth rate of sideband p in lattice time: modulational.growth_rate with R = a / 2."""
-    from cradle.analyses.modulational import growth_rate
+    from cradle.analyses.mi_diagram import growth_rate
 
     return growth_rate(q, p, alpha, R=0.5 * a)
 
 
 def dps_max_growth(q: float, alpha: float, a: float) -> tuple[float, float]:
     """(max_p DpS growth in lattice time, argmax |p|)."""
-    from cradle.analyses.modulational import max_over_p
+    from cradle.analyses.mi_diagram import max_over_p
 
     g, p = max_over_p(q, alpha)
     return g / dps.tau0(alpha) * (0.5 * a) ** (alpha - 1.0), p

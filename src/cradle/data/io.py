@@ -30,8 +30,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from cradle import __version__
-from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, provenance
+from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, VERSION, provenance
 from cradle.data.variables import declared
 
 REFERENCE = (
@@ -101,7 +100,7 @@ def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = No
         {
             "title": title,
             "Conventions": "CF-1.10",
-            "source": f"cradle {__version__}" + (f" (git {prov['git_commit'][:12]}"
+            "source": f"cradle {VERSION}" + (f" (git {prov['git_commit'][:12]}"
                                                 f"{', dirty' if prov.get('git_dirty') else ''})"
                                                 if "git_commit" in prov else ""),
             "references": REFERENCE,
@@ -135,7 +134,7 @@ def make_tree(groups: dict, variables: dict, attrs: dict | None = None, title: s
         for parent in (p for p in parents if p in nodes and p != path):
             clash = set(ds.variables) & set(nodes[parent].coords)
             if clash:
-                raise ValueError(f"group {path}: {sorted(clash)} already coordinates of its parent {parent}")
+                raise ValueError(f"group {path}: {sorted(map(str, clash))} already coordinates of its parent {parent}")
     return xr.DataTree.from_dict(nodes)
 
 
@@ -161,7 +160,7 @@ def encoding_of(ds: xr.Dataset) -> dict:
     encoding = {}
     for name in list(ds.coords) + list(ds.data_vars):
         var = ds[name]
-        enc = {}
+        enc: dict[str, object] = {}
         if np.issubdtype(var.dtype, np.floating):
             enc["_FillValue"] = None
         if var.ndim > 0 and var.dtype.kind in "fiucb" and var.shape[0] > 0:

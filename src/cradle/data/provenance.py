@@ -10,10 +10,10 @@ digits and underscores, values strings or integers, as CF wants), added by
     ``git rev-parse HEAD`` of the source tree the package was imported from,
     and 1 if tracked files differ from that commit (0 if not); absent when the
     package is not a git checkout (an installed wheel, a source tarball);
-``params_sha256``
-    sha256 of the canonical JSON (sorted keys, no spaces) of the resolved
-    parameters that produced the file (:func:`params_hash`), when given: two
-    files with the same hash were computed from the same scene;
+``parameters``, ``params_sha256``
+    the canonical JSON (sorted keys, no spaces) of the parameters that produced the file (a spec's
+    :func:`cradle.specs.declare.plain`), from which the spec can be rebuilt and checked, and its sha256
+    (:func:`params_hash`), when given: two files with the same hash were computed from the same spec;
 ``software_versions``
     ``python=3.11.7 numpy=... scipy=... numba=... xarray=... netCDF4=...``;
 ``command``
@@ -33,14 +33,19 @@ from functools import lru_cache
 from importlib.metadata import PackageNotFoundError, version as _version
 from pathlib import Path
 
-__all__ = ["PACKAGES", "KEYS", "canonical_json", "params_hash", "git_info", "software_versions", "command",
+try:
+    VERSION = _version("cradle")
+except PackageNotFoundError:  # running from a source tree that is not installed
+    VERSION = "0.0.0+unknown"
+
+__all__ = ["VERSION", "PACKAGES", "KEYS", "canonical_json", "params_hash", "git_info", "software_versions", "command",
            "set_command", "provenance"]
 
 #: the libraries whose versions can change a result
 PACKAGES = ("numpy", "scipy", "numba", "xarray", "netCDF4")
 
 #: every global attribute this module may write (an inherited one is dropped before new ones are set)
-KEYS = ("cradle_version", "git_commit", "git_dirty", "params_sha256", "software_versions", "command")
+KEYS = ("cradle_version", "git_commit", "git_dirty", "parameters", "params_sha256", "software_versions", "command")
 
 _COMMAND: str | None = None
 
@@ -131,7 +136,7 @@ def _snakemake_job() -> str | None:
     """``snakemake rule NAME (wildcards)`` when running inside a Snakemake ``script:`` job."""
     sm = getattr(sys.modules.get("__main__"), "snakemake", None)
     rule = getattr(sm, "rule", None)
-    if not rule:
+    if sm is None or not rule:
         return None
     try:
         wc = ", ".join(f"{k}={v}" for k, v in dict(sm.wildcards.items()).items())
@@ -153,12 +158,12 @@ def command() -> str:
 
 
 def provenance(params=None) -> dict:
-    """The provenance attributes (see the module docstring); ``params_sha256`` only with ``params``."""
-    from cradle import __version__
-
-    attrs = {"cradle_version": __version__}
+    """The provenance attributes (see the module docstring); ``parameters`` and ``params_sha256`` only with
+    ``params``."""
+    attrs = {"cradle_version": VERSION}
     attrs.update(git_info())
     if params is not None:
+        attrs["parameters"] = canonical_json(params)
         attrs["params_sha256"] = params_hash(params)
     attrs["software_versions"] = software_versions()
     attrs["command"] = command()
@@ -207,7 +212,7 @@ def dependency_tree(root: str = "cradle", extras: tuple[str, ...] = ("workflow",
 
 def lock_text(extras: tuple[str, ...] = ("workflow",)) -> str:
     """requirements-lock.txt: the installed versions of cradle's dependency tree, like a filtered ``pip freeze``."""
-    head = (f"# cradle {__import__('cradle').__version__} dependency tree (extras: {', '.join(extras) or 'none'}), "
+    head = (f"# cradle {VERSION} dependency tree (extras: {', '.join(extras) or 'none'}), "
             f"python {platform.python_version()}\n"
             "# regenerate: python -m cradle.data.provenance lock > requirements-lock.txt\n"
             "# install exactly these: pip install -r requirements-lock.txt -e .\n")

@@ -13,7 +13,7 @@ written by :func:`cradle.data.io.make_dataset`.
 
 The analyses beyond the paper declare their own variables beside their code, one dict per netCDF
 group (``VARIABLES`` of :mod:`cradle.analyses.theorem1`, ``modulational``, ``migrowth``,
-``mistatistics``, ``floquet``; :mod:`cradle.analyses.workprecision` likewise), passed to
+``mistatistics``, ``floquet``; :mod:`cradle.analyses.work_precision` likewise), passed to
 :func:`cradle.data.io.make_tree` or ``make_dataset(variables=...)``.
 """
 from __future__ import annotations
@@ -26,7 +26,7 @@ class Var:
     dims: tuple[str, ...]
     long_name: str
     units: str = "1"
-    attrs: tuple[tuple[str, str], ...] = ()  # further CF attributes, as (name, value) pairs
+    attrs: tuple[tuple[str, object], ...] = ()  # further CF attributes, as (name, value) pairs
 
 
 VARIABLES: dict[str, Var] = {

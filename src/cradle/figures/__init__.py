@@ -102,11 +102,10 @@ DATASET_FIGURES = {
     "theorem1": "beyond.theorem1",
     "mi-diagram": "beyond.mi_diagram",
     "floquet": "floquet.floquet",
-    "mi-growth": "mi.mi_growth",
-    "mi-statistics": "mi.mi_statistics",
+    "mi-statistics": "mi_statistics.mi_statistics",
     "breathers": "breathers.breathers",
-    "breather-interactions": "interactions.breather_interactions",
-    "dps-validity": "validity.dps_validity",
+    "breather-interactions": "breather_interactions.breather_interactions",
+    "dps-validity": "dps_validity.dps_validity",
 }
 
 #: Drawn from several analysis files by its own rule (``workprecision.draw``).
@@ -147,33 +146,23 @@ def registry() -> dict:
     return {label: drawer(label) for label in FIGURES}
 
 
-def load_inputs(scenes: dict, root) -> dict:
-    """Open the netCDF files of a figure's scenes.
-
-    ``scenes`` maps each name to its config section (map, homoclinic,
-    scenes). Map and homoclinic names give one Dataset; a scene gives
-    ``{"exact": ..., "dps": ..., "metrics": ...}``. Every file is verified as it is read
-    (:func:`cradle.data.io.open_dataset`): a damaged or truncated one stops the figure with one
-    line naming it and its rebuild command, before anything is drawn or written.
-    """
-    from cradle.pipeline import layout
-    from cradle.data.io import open_dataset
-
-    data = {}
-    for name, kind in scenes.items():
-        if kind in ("map", "homoclinic"):
-            data[name] = open_dataset(layout.path(kind, root, name=name))
-        else:
-            data[name] = {part: open_dataset(path)
-                          for part, path in layout.scene_paths(name, root, layout.RUN_PARTS).items()}
-    return data
-
-
 def draw_dataset(label: str, ds, stem, note: str = "") -> list[Path]:
     """Draw the beyond-the-paper figure ``label`` (a ``DATASET_FIGURES`` entry) from the Dataset
     of its analysis and save it as ``stem``.pdf/.png; ``note`` (e.g. which form of the analysis it
     shows) goes small in the bottom right corner."""
     fig = drawer(label, "DATASET_FIGURES")(ds)
+    if note:  # a figure-level x label: the layout keeps room for it below the panels
+        fig.supxlabel(note, x=0.998, ha="right", fontsize=6, color="0.4")
+    return save_figure(fig, stem)
+
+
+def draw_analysis(module: str, tree, stem, note: str = "") -> list[Path]:
+    """Draw the figure of an analysis (``draw`` of ``cradle.figures.<module>``) from its output ``tree`` and
+    save it as ``stem``.pdf/.png; ``note`` (e.g. which form of the analysis it shows) goes small in the
+    bottom right corner."""
+    import importlib
+
+    fig = importlib.import_module(f"{__name__}.{module}").draw(tree)
     if note:  # a figure-level x label: the layout keeps room for it below the panels
         fig.supxlabel(note, x=0.998, ha="right", fontsize=6, color="0.4")
     return save_figure(fig, stem)

@@ -29,8 +29,12 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
 
 MAX_SHIFT = 0.4      # largest drawn displacement, in bead spacings: discs of neighbours never pass each other
 DPI = 100
@@ -161,8 +165,10 @@ def render(ds, spec: MovieSpec):
     moving = [a for group in artists.values() for a in group] + [clock]
     for a in moving:
         a.set_animated(True)
-    fig.canvas.draw()
-    background = fig.canvas.copy_from_bbox(fig.bbox)
+    # frames are read from an Agg canvas whatever the session's backend (pyplot's canvases derive from it)
+    canvas = cast("FigureCanvasAgg", fig.canvas)
+    canvas.draw()
+    background = canvas.copy_from_bbox(fig.bbox)
     top, rest, low = np.full(n_beads, 1.0), np.full(n_beads, 0.25), np.full(n_beads, -0.12)
     prev = 0
     try:
@@ -173,15 +179,16 @@ def render(ds, spec: MovieSpec):
                 seg = x[model][prev:j + 1]
                 left, right = n + scale * seg.min(axis=0), n + scale * seg.max(axis=0)
                 discs.set_offsets(np.column_stack([pos, rest]))
-                strings.set_segments(np.stack([np.column_stack([n, top]), np.column_stack([pos, rest])], axis=1))
-                swept.set_segments(np.stack([np.column_stack([left, low]), np.column_stack([right, low])], axis=1))
+                strings.set_segments(list(np.stack([np.column_stack([n, top]), np.column_stack([pos, rest])], axis=1)))
+                swept.set_segments(list(np.stack([np.column_stack([left, low]), np.column_stack([right, low])],
+                                                 axis=1)))
                 bonds.set_data(f[model][k:k + 1, :n_bonds])
             clock.set_text(f"t = {t[i]:10.2f}   frame {k + 1:4d}/{len(idx)}")
             prev = j
-            fig.canvas.restore_region(background)
+            canvas.restore_region(background)
             for a in moving:
                 a.axes.draw_artist(a) if a.axes is not None else fig.draw_artist(a)
-            yield np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
+            yield np.asarray(canvas.buffer_rgba())[..., :3].copy()
     finally:
         plt.close(fig)
 
@@ -226,6 +233,7 @@ def write_mp4(path, frames, size, fps: int) -> Path:
                "-crf", "23", "-pix_fmt", "yuv420p", "-threads", "1", "-fflags", "+bitexact", "-flags", "+bitexact",
                "-map_metadata", "-1", "-movflags", "+faststart", "-f", "mp4", str(tmp)]
         proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stderr=subprocess.PIPE)
+        assert proc.stdin is not None and proc.stderr is not None  # both are pipes
         try:
             for frame in frames:
                 proc.stdin.write(np.ascontiguousarray(frame, dtype=np.uint8).tobytes())
@@ -245,7 +253,7 @@ def write_gif(path, frames, fps: int, width: int) -> Path:
     rgb = []
     for frame in frames:
         img = Image.fromarray(frame)
-        rgb.append(img.resize((width, max(2, round(img.height * width / img.width))), Image.LANCZOS))
+        rgb.append(img.resize((width, max(2, round(img.height * width / img.width))), Image.Resampling.LANCZOS))
     if not rgb:
         raise ValueError("no frames")
     # one palette for every frame (from four of them), no dithering: what does not move keeps its pixels

@@ -34,6 +34,7 @@ breather with a ragged top), :func:`humps`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -67,7 +68,7 @@ def humps(profile, rel: float = REL, dip: float = DIP, periodic: bool = True):
     left = np.roll(p, 1) if periodic else np.concatenate(([-np.inf], p[:-1]))
     right = np.roll(p, -1) if periodic else np.concatenate((p[1:], [-np.inf]))
     # a local maximum; of a plateau, only its first site
-    peaks = list(np.flatnonzero((p > left) & (p >= right) & (p >= rel * p.max())))
+    peaks = [int(i) for i in np.flatnonzero((p > left) & (p >= right) & (p >= rel * p.max()))]
     if not peaks:                       # a constant profile
         peaks = [int(np.argmax(p))]
 
@@ -87,7 +88,8 @@ def humps(profile, rel: float = REL, dip: float = DIP, periodic: bool = True):
                 peaks.remove(i if p[i] < p[j] else j)
                 joined = True
                 break
-    centres, tops = [], []
+    centre_list: list[float] = []
+    top_list: list[float] = []
     for i in peaks:
         top = p[i]
         lo = i
@@ -99,12 +101,12 @@ def humps(profile, rel: float = REL, dip: float = DIP, periodic: bool = True):
         idx = np.arange(lo, hi + 1)
         w = p[idx % N]
         c = float(np.sum(w * idx) / np.sum(w))
-        centres.append(c % N if periodic else c)
-        tops.append(float(top))
-    order = np.argsort(tops, kind="stable")[::-1]
-    centres, tops = np.asarray(centres)[order], np.asarray(tops)[order]
+        centre_list.append(c % N if periodic else c)
+        top_list.append(float(top))
+    order = np.argsort(top_list, kind="stable")[::-1]
+    centres, tops = np.asarray(centre_list)[order], np.asarray(top_list)[order]
     # two tops whose weighted centres fall within one site of each other are one hump
-    keep = []
+    keep: list[int] = []
     for k in range(centres.size):
         if all(ring_distance(centres[k], centres[m], N, periodic) >= 1.0 for m in keep):
             keep.append(k)
@@ -221,7 +223,7 @@ def classify_peaks(starts, P, *, periodic: bool = True, rel: float = REL, dip: f
     counts = np.array([len(c) for c in cent])
     big = np.array([c[0] if len(c) else np.nan for c in cent])
     sep = np.array([ring_distance(c[0], c[1], N, periodic) if len(c) >= 2 else 0.0 for c in cent])
-    base = {"counts": counts, "separation": sep, "centre": big}
+    base: dict[str, Any] = {"counts": counts, "separation": sep, "centre": big}
     pair = running_median(np.minimum(counts, 2), smooth)
     if pair[0] < 2 and counts[0] < 2:
         return Outcome("none", **base)

@@ -27,7 +27,7 @@ BOUNDARY_CONDITIONS = ("periodic", "free")
 
 @checked
 def check_alpha(alpha: float) -> float:
-    """Transitional, for cradle.analyses.modulational and .theorem1 until they are ported (then deleted,
+    """Transitional, for cradle.analyses.mi_diagram and .theorem1 until they are ported (then deleted,
     tests/specs/test_checked.py says when): ``alpha`` as the shared type alpha declares it."""
     return alpha
 

@@ -172,25 +172,20 @@ def orbit(U0, n_iter: int, alpha: float, box: float | None = None):
     return orbits(np.asarray(U0, dtype=float).reshape(1, 2), n_iter, alpha, box)[0]
 
 
-def starts_from_spec(spec: dict):
-    """Starting points ``(K, 2)`` from a config entry.
-
-    Either ``{"starts": [[a, b], ...]}`` or
-    ``{"line": {"from": [a, b], "to": [a, b], "count": K}}`` (K equispaced
-    points, both ends included). Both keys may be given: the points are
-    concatenated (``starts`` first).
-    """
+def starting_points(starts=None, line=None):
+    """Starting points ``(K, 2)`` of the orbits of G: ``starts`` (pairs [a_0, b_1]), then ``line``
+    ``(from, to, count)``: ``count`` points equally spaced on the segment from ``from`` to ``to``, both
+    ends included. At least one of the two must be given."""
     parts = []
-    if spec.get("starts") is not None:
-        parts.append(np.asarray(spec["starts"], dtype=float).reshape(-1, 2))
-    line = spec.get("line")
+    if starts is not None:
+        parts.append(np.asarray(starts, dtype=float).reshape(-1, 2))
     if line is not None:
-        p0 = np.asarray(line["from"], dtype=float)
-        p1 = np.asarray(line["to"], dtype=float)
-        t = np.linspace(0.0, 1.0, int(line["count"]))[:, None]
+        p0, p1, count = line
+        p0, p1 = np.asarray(p0, dtype=float), np.asarray(p1, dtype=float)
+        t = np.linspace(0.0, 1.0, count)[:, None]
         parts.append(p0 + t * (p1 - p0))
     if not parts:
-        raise ValueError("a map spec needs 'starts' or 'line'")
+        raise ValueError("orbits of G need starts or a line of starting points")
     return np.concatenate(parts, axis=0)
 
 

@@ -42,9 +42,10 @@ in-memory peak as before.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
-from cradle.pipeline.config.sections import Budget  # the config key budget:, declared with the others
+from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store, resolved
+from cradle.specs.declare import build, declared, param
 
 #: float64 arrays of N values written per stored time by a scene's job (exact x, v, force; DpS
 #: A_re, A_im, x, force; metrics spectrum_exact, spectrum_dps)
@@ -90,6 +91,26 @@ LONG_RUN_S = 60.0
 GB = 1e9
 
 
+
+@declared(doc="Limits every job must fit, checked on estimates before any work starts (cradle.pipeline.budget); "
+              "raise them on a bigger machine.")
+class Budget:
+    """Limits every job must fit (config key ``budget:``); the defaults fit a 2-core, 24 GB machine
+    running two jobs side by side."""
+
+    memory_gb: float = param(8.0, "Peak memory one job may use (GB); two jobs run side by side on two cores.",
+                             exclusiveMinimum=0)
+    disk_gb: float = param(20.0, "Bytes one job may write, and all scenes together (GB).", exclusiveMinimum=0)
+    hours: float = param(12.0, "Wall time one job may take (hours), estimated from its steps and beads.",
+                         exclusiveMinimum=0)
+
+    @classmethod
+    def from_config(cls, cfg: dict) -> Budget:
+        """The budget of a validated config: its ``budget:`` values over the defaults."""
+        given = (cfg or {}).get("budget") or {}
+        return cls(**{f.name: float(given[f.name]) for f in fields(cls) if given.get(f.name) is not None})
+
+
 @dataclass(frozen=True)
 class Estimate:
     """What one job will cost: peak memory and output bytes, wall seconds, and what drives them."""
@@ -126,81 +147,71 @@ def _g(x) -> str:
     return f"{float(x):g}"
 
 
-def stored_count(store: dict, t_end: float) -> int:
+def stored_count(store: Store, t_end: float) -> int:
     """Upper bound on the number of stored times (0, t_end, the snapshots and the grid), without
     building the time array."""
-    every = store.get("every")
-    n = len(store.get("snapshots") or ()) + 2
-    if every:
-        n += int(math.floor(float(t_end) / float(every) * (1.0 + 1e-12) + 1e-9)) + 1
+    n = len(store.snapshots or ()) + 2
+    if store.every:
+        n += int(math.floor(t_end / store.every * (1.0 + 1e-12) + 1e-9)) + 1
     return n
 
 
-def _exact_seconds(N: int, t_end: float, exact: dict, stored: int) -> tuple[float, float]:
+def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int) -> tuple[float, float]:
     """(wall seconds, steps) of the exact run at the measured steps per unit time of its method,
     scaled by the ratio of step factors when a splitting's ``dt_factor`` is given; every interval
     between stored times takes at least one step (the steps end on the stored times)."""
-    method = exact.get("method", "srkn6c")
-    steps = float(t_end) * STEPS_PER_TIME_UNIT.get(method, max(STEPS_PER_TIME_UNIT.values()))
-    if exact.get("dt_factor"):  # only then import the integrators (numba): the Snakefile validates
+    method = exact.method
+    steps = t_end * STEPS_PER_TIME_UNIT.get(method, max(STEPS_PER_TIME_UNIT.values()))
+    if exact.dt_factor:  # only then import the integrators (numba): the Snakefile validates
         from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR
 
-        steps *= DEFAULT_DT_FACTOR.get(method, float(exact["dt_factor"])) / float(exact["dt_factor"])
+        steps *= DEFAULT_DT_FACTOR.get(method, exact.dt_factor) / exact.dt_factor
     steps = max(steps, float(stored - 1))
     return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
 
 
 def scene_estimate(cfg: dict, name: str) -> Estimate:
-    """The cost of scene ``name``'s simulate job (initial data, exact and DpS runs, metrics)."""
-    scene = cfg["scenes"][name]
-    d = cfg.get("defaults") or {}
-    return spec_estimate({"name": name, "N": scene["N"], "t_end": scene["t_end"], "store": scene.get("store"),
-                          "alpha": scene.get("alpha", d.get("alpha", 1.5)),
-                          "exact": {**(d.get("exact") or {}), **(scene.get("exact") or {})},
-                          "dps": {**(d.get("dps") or {}), **(scene.get("dps") or {})}})
+    """The cost of scene ``name``'s simulate job (initial data, exact and DpS runs, metrics) in a
+    schema-filled config."""
+    return spec_estimate(resolved(cfg["scenes"][name], cfg["defaults"]), name)
 
 
-def spec_estimate(spec: dict) -> Estimate:
-    """The cost of a scene's job from its parameters (``name, N, t_end, store, alpha, exact``; a
-    resolved scene of :func:`cradle.pipeline.config.resolved_scene` has them all)."""
-    N, t_end = int(spec["N"]), float(spec["t_end"])
-    store = spec.get("store") or {}
+def spec_estimate(spec: Scene, name: str = "?") -> Estimate:
+    """The cost of the job of scene ``name`` from its resolved spec (:func:`cradle.pipeline.config.scene`):
+    N, t_end, store and the exact integrator."""
+    N, t_end, store = spec.N, spec.t_end, spec.store
     T = stored_count(store, t_end)
-    exact = spec.get("exact") or {}
-    seconds, steps = _exact_seconds(N, t_end, exact, T)
+    seconds, steps = _exact_seconds(N, t_end, spec.exact, T)
     seconds += BASE_SECONDS + COST_PER_STORED_VALUE_S * N * T
     per_time = 8.0 * (STORED_ARRAYS * N + STORED_SCALARS)
-    cause = f"N = {N}, t_end = {_g(t_end)}" + (f", store.every = {_g(store['every'])}" if store.get("every") else "")
+    cause = f"N = {N}, t_end = {_g(t_end)}" + (f", store.every = {_g(store.every)}" if store.every else "")
     cause += f": {T} stored times"
     if steps:
-        cause += f", ~{steps:.3g} steps of {exact.get('method')}"
+        cause += f", ~{steps:.3g} steps of {spec.exact.method}"
     memory = BASE_BYTES + 8.0 * (PEAK_ARRAYS * N * T + STATE_ARRAYS * N)
     streamed = memory > STREAM_ABOVE_BYTES and streamable(spec)
     if streamed:
         memory = BASE_BYTES + STREAMED_BLOCK_BYTES + STREAMED_BYTES_PER_TIME * T + 8.0 * STATE_ARRAYS * N
         cause += ", streamed block by block"
-    return Estimate(f"scenes.{spec.get('name', '?')}", cause, memory_bytes=memory,
+    return Estimate(f"scenes.{name}", cause, memory_bytes=memory,
                     disk_bytes=per_time * T + 8.0 * 6 * N, seconds=seconds, steps=steps, streamed=streamed)
 
 
-def streamable(spec: dict) -> bool:
+def streamable(spec: Scene) -> bool:
     """Whether a scene's runs can be computed block by block (:mod:`cradle.scenes.streamed`): a
     fixed-step splitting for (nc) and DOP853 in numba for DpS (both continue bitwise)."""
-    from cradle.scenes.spec import SPLITTINGS
-
-    return ((spec.get("exact") or {}).get("method", "srkn6c") in SPLITTINGS
-            and (spec.get("dps") or {}).get("method", "dop853_numba") == "dop853_numba")
+    return spec.exact.method in SPLITTINGS and spec.dps.method == "dop853_numba"
 
 
-def streams(spec: dict) -> bool:
+def streams(spec: Scene) -> bool:
     """Whether scene ``spec``'s job runs block by block: streamable, and its in-memory peak estimate
     above :data:`STREAM_ABOVE_BYTES`."""
     return spec_estimate(spec).streamed
 
 
-def long_run(spec: dict) -> Estimate | None:
-    """The estimate of a scene's job if it is long enough (:data:`LONG_RUN_S`) to announce, else None."""
-    e = spec_estimate(spec)
+def long_run(spec: Scene, name: str = "?") -> Estimate | None:
+    """The estimate of scene ``name``'s job if it is long enough (:data:`LONG_RUN_S`) to announce, else None."""
+    e = spec_estimate(spec, name)
     return e if e.seconds >= LONG_RUN_S else None
 
 
@@ -232,7 +243,7 @@ def mi_statistics_estimate(cfg: dict, form: str) -> Estimate:
     spec = MIStatistics.resolve(cfg, form)
     N, t_end = max(int(n) for n in spec["N"]), float(spec["t_end"])
     runs = math.ceil(int(spec["q_over_pi"]["count"]) / int(spec["chunks"])) * int(spec["n_seeds"])
-    one, steps = _exact_seconds(N, t_end, spec["exact"], 2)
+    one, steps = _exact_seconds(N, t_end, build(ExactIntegrator, spec["exact"]), 2)
     samples = t_end / float(spec["sample_every"]) + 1
     return Estimate(f"beyond.mi_statistics.{form}",
                     f"{runs} runs per batch (q values / chunks x n_seeds), N = {N}, t_end = {_g(t_end)}",
@@ -287,6 +298,6 @@ def check(cfg: dict) -> None:
     physical checks (which build the stored-time arrays), so an oversized store is refused first."""
     lines = over_budget(cfg)
     if lines:
-        from cradle.pipeline.config import ConfigError
+        from cradle.specs.values import ConfigError
 
         raise ConfigError([f"config error: {line}" for line in lines])

@@ -144,7 +144,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
     n_onset_corrections; ``extended`` records the history. Raises ValueError naming the value for
     an adaptive integrator, t_end <= the last stored time, or a file without x/v.
     """
-    from cradle.pipeline.config import store_times
+    from cradle.specs.values import store_times
     from cradle.integrators import SPLITTING_METHODS
 
     path = Path(path)

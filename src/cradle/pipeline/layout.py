@@ -33,6 +33,8 @@ TEMPLATES = {
     # analyses beyond the paper: their files follow form_folder (below); here the batches some read
     "mi-batch": "mi/batch/{variant}/N{N}-{model}-{chunk}.nc",
     "interactions-batch": "interactions/batch/{form}/{chunk}.nc",
+    # an analysis of cradle.analyses.registry: its batches (its output and figure follow analysis_output)
+    "analysis-batch": "{analysis}/batch/{form}/{key}.nc",
     # bookkeeping
     "log": "logs/{job}.log",
     "kernels": "kernels.txt",  # the compiled kernels' cache key, written once they are compiled
@@ -74,3 +76,23 @@ def form_figure_paths(label: str, folder: str, form: str, main_form: str, root: 
     if form == main_form:
         return figure_paths(label, root)
     return {ext: f"{form_folder(folder, form, main_form, root)}/{label}.{ext}" for ext in FIGURE_FORMATS}
+
+
+def analysis_output(name: str, form: str, main_form: str, root: str | Path = ROOT) -> str:
+    """The netCDF file of one form of analysis ``name``: ``root/<name>/<name>.nc`` for the form ``all``
+    builds, ``root/<name>/<form>/<name>.nc`` for another."""
+    return f"{form_folder(name, form, main_form, root)}/{name}.nc"
+
+
+def analysis_figures(name: str, form: str, main_form: str, root: str | Path = ROOT) -> dict[str, str]:
+    """ext -> the figure files of one form of analysis ``name`` (``root/figures/<name>.<ext>`` for the form
+    ``all`` builds, beside the form's netCDF file for another)."""
+    return form_figure_paths(name, name, form, main_form, root)
+
+
+def read_path(read, form: str, root: str | Path = ROOT) -> str:
+    """The file of one :class:`cradle.analyses.protocol.Read` of an analysis built in ``form``."""
+    names = dict(read.names)
+    if read.kind == "analysis-batch":
+        names["form"] = form
+    return path(read.kind, root, **names)

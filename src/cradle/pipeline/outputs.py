@@ -1,4 +1,5 @@
-"""The workflow's outputs opened by name: a scene's exact and DpS runs as one Dataset."""
+"""The workflow's outputs opened by name: a scene's exact and DpS runs as one Dataset, the files a paper
+figure reads."""
 from __future__ import annotations
 
 import os
@@ -68,3 +69,22 @@ def _same(a, b) -> bool:
         return bool(np.array_equal(np.asarray(a), np.asarray(b)))
     except Exception:  # noqa: BLE001
         return False
+
+
+def load_inputs(scenes: dict, root) -> dict:
+    """Open the netCDF files of a figure's scenes.
+
+    ``scenes`` maps each name to its config section (map, homoclinic,
+    scenes). Map and homoclinic names give one Dataset; a scene gives
+    ``{"exact": ..., "dps": ..., "metrics": ...}``. Every file is verified as it is read
+    (:func:`cradle.data.io.open_dataset`): a damaged or truncated one stops the figure with one
+    line naming it and its rebuild command, before anything is drawn or written.
+    """
+    data = {}
+    for name, kind in scenes.items():
+        if kind in ("map", "homoclinic"):
+            data[name] = open_dataset(layout.path(kind, root, name=name))
+        else:
+            data[name] = {part: open_dataset(path)
+                          for part, path in layout.scene_paths(name, root, layout.RUN_PARTS).items()}
+    return data

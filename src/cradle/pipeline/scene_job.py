@@ -14,15 +14,17 @@ import time
 
 from cradle.pipeline import budget
 from cradle.scenes import stages
+from cradle.scenes.spec import Scene
 from cradle.pipeline.runner import Progress, run_chain, setup_logging
 
 log = logging.getLogger("cradle")
 
 
-def run_scene(spec: dict, name: str, outs: dict, log_path=None, homoclinic=None) -> None:
-    """Compute scene ``name`` (resolved ``spec``) into ``outs`` (initial, exact, dps, metrics paths, and
-    homoclinic when ``homoclinic`` is a callable computing it; else ``homoclinic`` is its Dataset or None)."""
-    estimate = budget.long_run(spec)
+def run_scene(spec: Scene, name: str, outs: dict, log_path=None, homoclinic=None) -> None:
+    """Compute scene ``name`` (resolved ``spec``, :func:`cradle.pipeline.config.scene`) into ``outs``
+    (initial, exact, dps, metrics paths, and homoclinic when ``homoclinic`` is a callable computing it;
+    else ``homoclinic`` is its Dataset or None)."""
+    estimate = budget.long_run(spec, name)
     steps = [("homoclinic", lambda done: homoclinic())] if callable(homoclinic) else []
     hom = (lambda done: done.get("homoclinic")) if callable(homoclinic) else (lambda done: homoclinic)
     steps.append(("initial", lambda done: stages.initial_data(spec, name, hom(done))))
@@ -43,7 +45,7 @@ def run_scene(spec: dict, name: str, outs: dict, log_path=None, homoclinic=None)
     done = {}
     for key, compute in steps:
         done[key] = compute(done)
-    log.info("%s: %s; streamed block by block", name, budget.spec_estimate(spec).describe())
+    log.info("%s: %s; streamed block by block", name, budget.spec_estimate(spec, name).describe())
     streamed.simulate_streamed(spec, done["initial"], name, outs,
                                progress=Progress(f"exact+dps {name}", estimate=estimate), log=log)
     if "homoclinic" in done:

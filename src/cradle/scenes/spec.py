@@ -1,19 +1,42 @@
-"""Declarations of a scene: one lattice (nc) + DpS (dfnls) run from one initial condition.
+"""Declarations of the entries a job computes from: scenes, homoclinic and map entries, defaults.
 
-The kinds of initial condition (travelling (ansatzapprox), breather
-(ansatzapproxst2), packet, pair) are one class each, chosen by ``kind``; each
-class's ``check`` holds the physical checks the schema cannot express (a wave
-that fits the ring, a breather built from an existing homoclinic entry with
-the same N and bc, ...). Checks read the schema-filled mapping, which may hold
-values of the wrong type (the schema reports those): they test before use.
+A scene is one lattice (nc) + DpS (dfnls) run from one initial condition. The
+kinds of initial condition (travelling (ansatzapprox), breather
+(ansatzapproxst2), packet, pair) are one class each, chosen by ``kind``.
+
+A *resolved* :class:`Scene` (:func:`cradle.pipeline.config.scene`) has its
+defaults filled in: ``alpha`` and ``max_energy_drift`` numbers, ``exact`` and
+``dps`` complete integrators. What follows from the declared values is a
+property, not a field (:attr:`Scene.times`, :attr:`Travelling.wavenumber`), so
+``from_plain(Scene, plain(scene)) == scene``. A resolved :class:`HomoclinicEntry`
+or :class:`MapEntry` has its ``alpha`` filled in.
+
+Each class's ``check`` holds the physical checks the schema cannot express (a
+wave that fits the ring, a breather built from an existing homoclinic entry
+with the same N and bc, ...). Checks read the schema-filled mapping, which may
+hold values of the wrong type (the schema reports those): they test before use.
 """
 from __future__ import annotations
 
+import copy
 import math
+from functools import cached_property
 
-from cradle.specs.declare import NULL, REQUIRED, declared, param, register_union
-from cradle.specs.values import INTEGER_TOL, MAX_STORED_TIMES, TIME_TOL, ConfigError, entries, finite, grid_size, number, \
-    parse_angle, show
+from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
+from cradle.specs.values import (
+    INTEGER_TOL,
+    MAX_STORED_TIMES,
+    TIME_TOL,
+    ConfigError,
+    angle_expr,
+    entries,
+    finite,
+    grid_size,
+    number,
+    parse_angle,
+    show,
+    store_times,
+)
 
 SPLITTINGS = ("srkn6c", "srkn4c", "srkn6", "srkn4", "strang")   # fixed step: dt_factor
 LATTICE_ADAPTIVE = ("dop853_numba", "dop853", "rk45", "lsoda", "radau")   # error control: rtol
@@ -36,6 +59,22 @@ class DpsIntegrator:
     method: str = param("dop853_numba", "dop853_numba (default: DOP853 with error control, compiled) | dop853 "
                         "(scipy, compiled right-hand side) | rk45.", enum=list(DPS_METHODS))
     rtol: float = param(1e-10, "Relative tolerance, in (0, 1e-2]; atol = rtol * max |A_n(0)|.", ref="rtol")
+
+
+@declared(doc="Settings every scene, homoclinic and map entry inherits unless it overrides them.")
+class Defaults:
+    alpha: float = param(1.5, "Hertz exponent in V0(x) = |x|^(1+alpha) H(-x)/(1+alpha) (vhertz); > 1.", ref="alpha")
+    exact: ExactIntegrator = param(ExactIntegrator(), "Integrator of the lattice (nc) used by every scene that does "
+                                   "not override it.",
+                                   fill={"method": "Default lattice integrator.",
+                                         "dt_factor": "Default splitting step factor (null = the method's default).",
+                                         "rtol": "Default relative tolerance of the adaptive (scipy) methods."})
+    dps: DpsIntegrator = param(DpsIntegrator(), "Integrator of the DpS equation (dfnls) used by every scene that "
+                               "does not override it.",
+                               fill={"method": "Default DpS integrator.",
+                                     "rtol": "Default relative tolerance; atol = rtol * max |A_n(0)|."})
+    max_energy_drift: float = param(1e-6, "An exact run whose max_t |H(t)-H(0)|/H(0) exceeds this fails.",
+                                    ref="maxEnergyDrift")
 
 
 @declared("noise", doc="Perturbation (perturb): A_n(0) = (1 + rho1_n) cos(q n + phi) - i (1 + rho2_n) sin(q n + "
@@ -61,6 +100,16 @@ class Travelling:
                             "Give exactly one of a and omega_tw.", exclusiveMinimum=1)
     phi: float = param(0.0, "Phase phi of the wave (radians).")
     noise: Noise = param(None, "Optional perturbation (perturb); absent = unperturbed wave.")
+
+    @property
+    def wavenumber(self) -> float:
+        """q in radians."""
+        return parse_angle(self.q)
+
+    @property
+    def q_expr(self) -> str:
+        """q as written ('pi/5'; a number as its repr), kept beside its value in radians."""
+        return angle_expr(self.q)
 
     @staticmethod
     def check(ini: dict, N, bc, alpha, path: list, out) -> None:
@@ -229,6 +278,11 @@ class Scene:
     t_end: float = param(REQUIRED, "Final time of the run (lattice time t); > 0.", exclusiveMinimum=0)
     store: Store = param(REQUIRED, "Times at which the state is stored.")
 
+    @cached_property
+    def times(self) -> tuple[float, ...]:
+        """The stored times: 0, the grid of ``store.every``, the snapshots and t_end (:func:`store_times`)."""
+        return tuple(store_times(plain(self.store), self.t_end))
+
     @staticmethod
     def check(name: str, scene: dict, cfg: dict, out) -> None:
         """Snapshots increasing within [0, t_end], a stored grid of sane size, and the checks of the
@@ -278,3 +332,89 @@ def alpha_of(cfg: dict, entry: dict) -> float | None:
     if a is None and isinstance(cfg.get("defaults"), dict):
         a = cfg["defaults"].get("alpha")
     return float(a) if number(a) else None
+
+
+_POINT = {"type": "number"}
+
+
+@declared(doc="`count` starting points equally spaced on the segment from `from` to `to` (both ends included); "
+              "added after `starts`.")
+class MapLine:
+    from_: list[float] = param(REQUIRED, "First point [a_0, b_1] of the segment.", key="from", minItems=2, maxItems=2,
+                               items=_POINT)
+    to: list[float] = param(REQUIRED, "Last point [a_0, b_1] of the segment.", minItems=2, maxItems=2, items=_POINT)
+    count: int = param(REQUIRED, "Number of starting points on the segment; integer >= 2.", minimum=2, maximum=1000)
+
+
+@declared("mapEntry", doc="Orbits of the map G (comp1)-(comp2).", any_of=[("starts",), ("line",)])
+class MapEntry:
+    box: float = param(REQUIRED, "Orbits are dropped after they leave ||U||_inf <= box; > 0.", exclusiveMinimum=0)
+    iterations: int = param(REQUIRED, "How many times G is applied; integer >= 1.", minimum=1)
+    marks: bool = param(False, "Mark the explicit period-2, -3 and -4 orbits of the traj2 caption in this panel.")
+    starts: list[list[float]] = param(None, "Starting points U_0 = (a_0, b_1), one pair [a_0, b_1] per orbit.",
+                                      minItems=1, items={"description": "A starting point [a_0, b_1].",
+                                                         "type": "array", "minItems": 2, "maxItems": 2,
+                                                         "items": _POINT})
+    alpha: float = param(None, "Per-entry Hertz exponent; default defaults.alpha.", ref="alpha")
+    line: MapLine = param(None, "`count` starting points equally spaced on the segment from `from` to `to` (both "
+                          "ends included); added after `starts`.")
+
+    @staticmethod
+    def check(name: str, entry: dict, out) -> None:
+        """Every starting point inside the box ||U||_inf <= box."""
+        box, starts = entry.get("box"), entry.get("starts")
+        points = [(["map", name, "starts", i], u) for i, u in enumerate(starts if isinstance(starts, list) else [])]
+        line = entry.get("line")
+        if isinstance(line, dict):
+            points += [(["map", name, "line", end], line.get(end)) for end in ("from", "to")]
+        if number(box):
+            for key, u in points:
+                if isinstance(u, list) and u and all(number(x) for x in u) and max(abs(x) for x in u) > box:
+                    out.add(key, f"must lie in the box ||U||_inf <= box = {show(box)}", u)
+
+
+@declared("homoclinicEntry", doc="A homoclinic solution of (dpsstn) found by Powell's hybrid method from an initial "
+                                 "guess.")
+class HomoclinicEntry:
+    guess: str = param(REQUIRED, "Initial guess: site (a_{N/2} = -amplitude), bond (a_{N/2} = amplitude, "
+                       "a_{N/2+1} = -amplitude) or double (two site humps `separation` sites apart).",
+                       enum=["site", "bond", "double"])
+    N: int = param(REQUIRED, "Number of sites; >= 2.", ref="N")
+    bc: str = param("periodic", "Boundary conditions (periodic | free).", ref="bc")
+    amplitude: float = param(0.1, "Amplitude of the initial guess; > 0.", exclusiveMinimum=0)
+    separation: int = param(9, "Distance in sites between the two humps of the double guess; integer >= 1 (< N).",
+                            minimum=1)
+    alpha: float = param(None, "Per-entry Hertz exponent; default defaults.alpha.", ref="alpha")
+    mu: float = param(1.0, "mu of (dpsst); the solution is mu^(1/(alpha-1)) times the mu = 1 one; > 0.",
+                      exclusiveMinimum=0)
+    centre: int = param(None, "Site the guess is centred on (0 <= centre < N); default N // 2.", minimum=0)
+
+    @staticmethod
+    def check(name: str, entry: dict, out) -> None:
+        """The centre a site of the chain, the two humps of a double guess distinct."""
+        path, N = ["homoclinic", name], entry.get("N")
+        c = entry.get("centre")
+        if number(c) and isinstance(N, int) and not 0 <= c < N:
+            out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", c)
+        sep = entry.get("separation")
+        if entry.get("guess") == "double" and number(sep) and isinstance(N, int) and not 1 <= sep < N:
+            out.add(path + ["separation"], f"must be in [1, N-1] = [1, {N - 1}]", sep)
+
+
+def _merged(base, override):
+    """Deep merge of two mappings (override wins)."""
+    out = copy.deepcopy(base) if isinstance(base, dict) else {}
+    for k, v in (override or {}).items():
+        out[k] = _merged(out.get(k), v) if isinstance(v, dict) and isinstance(out.get(k), dict) else copy.deepcopy(v)
+    return out
+
+
+def resolved(entry: dict, defaults: dict) -> Scene:
+    """A scene entry of a schema-filled config (defaults filled in), resolved against ``defaults:``:
+    ``alpha`` and ``max_energy_drift`` from the defaults unless the scene gives them, ``exact`` and
+    ``dps`` the scene's keys merged over ``defaults.exact`` / ``defaults.dps``."""
+    entry = copy.deepcopy(entry)
+    entry.update(alpha=float(entry.get("alpha", defaults["alpha"])),
+                 exact=_merged(defaults["exact"], entry.get("exact")), dps=_merged(defaults["dps"], entry.get("dps")),
+                 max_energy_drift=float(entry.get("max_energy_drift", defaults["max_energy_drift"])))
+    return build(Scene, entry)

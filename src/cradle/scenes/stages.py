@@ -3,10 +3,12 @@
 homoclinic / map orbits  ->  initial data  ->  exact and DpS runs  ->  metrics
 (then figures, :mod:`cradle.figures`).
 
-Each function takes the plain-dict parameters of one config entry (as
-returned by :mod:`cradle.pipeline.config`'s ``resolved_*`` functions) and the
-Datasets of the stage before, and returns a self-describing Dataset (see
-:mod:`cradle.data.variables`, :mod:`cradle.data.io`). No file paths and no Snakemake:
+Each function takes the resolved spec of one config entry (a frozen instance of
+:mod:`cradle.scenes.spec`, as :func:`cradle.pipeline.config.scene`,
+:func:`~cradle.pipeline.config.homoclinic` and :func:`~cradle.pipeline.config.map_entry` build it)
+and the Datasets of the stage before, and returns a self-describing Dataset (see
+:mod:`cradle.data.variables`, :mod:`cradle.data.io`) that stores the spec's plain values
+(:func:`cradle.specs.declare.plain`) as its parameters. No file paths and no Snakemake:
 the workflow scripts and the command line are thin adapters around these.
 A run that fails (no convergence, NaN, drift above the bound) raises
 :class:`StageFailure` carrying what was computed, for diagnosis.
@@ -22,43 +24,43 @@ from cradle.measurements import breathers, compare, interactions, sidebands
 from cradle.models import dps, initial, lattice
 from cradle.data.io import make_dataset
 from cradle.scenes.failure import StageFailure
+from cradle.scenes.spec import Breather, HomoclinicEntry, MapEntry, Packet, Pair, Scene, Travelling
+from cradle.specs.declare import plain
 
 
 # ---------------------------------------------------------------- stationary DpS
 
-def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
+def homoclinic_solution(spec: HomoclinicEntry, name: str = "") -> xr.Dataset:
     """Solve (dpsstn) for one ``homoclinic:`` entry; a(n), residual(n), attributes."""
     # scipy.optimize: only the homoclinic stage needs it
     from cradle.models import homoclinic, homoclinic_continuation, homoclinic_tails
 
     t0 = time.perf_counter()
-    alpha, N, bc = spec["alpha"], spec["N"], spec["bc"]
-    centre = spec.get("centre")
+    alpha, N, bc, mu = spec.alpha, spec.N, spec.bc, spec.mu
     # the paper's Powell start, or continuation in alpha from 3/2 where it fails (alpha far from 3/2)
-    sol = homoclinic_continuation.solve_kind(N, spec["guess"], alpha, bc, mu=spec.get("mu", 1.0),
-                                             amplitude=spec.get("amplitude", 0.1), centre=centre,
-                                             separation=spec.get("separation", 9))
+    sol = homoclinic_continuation.solve_kind(N, spec.guess, alpha, bc, mu=mu, amplitude=spec.amplitude,
+                                             centre=spec.centre, separation=spec.separation)
     a = sol.a
-    scale = spec.get("mu", 1.0) ** (1.0 / (alpha - 1.0))  # (dpsst) solution = scale * (dpsstn) solution
-    r = homoclinic.residual(a, alpha, bc, sign=spec.get("mu", 1.0))
+    scale = mu ** (1.0 / (alpha - 1.0))  # (dpsst) solution = scale * (dpsstn) solution
+    r = homoclinic.residual(a, alpha, bc, sign=mu)
     sum_a2, sum_d = homoclinic.energy_balance(a, alpha, bc)
     attrs = {
-        "name": name, "alpha": alpha, "mu": spec.get("mu", 1.0), "bc": bc, "N": N, "guess": spec["guess"],
-        "guess_amplitude": spec.get("amplitude", 0.1), "solver": "scipy.optimize.root hybr (MINPACK) + Newton",
+        "name": name, "alpha": alpha, "mu": mu, "bc": bc, "N": N, "guess": spec.guess,
+        "guess_amplitude": spec.amplitude, "solver": "scipy.optimize.root hybr (MINPACK) + Newton",
         "residual": sol.residual, "converged": sol.converged, "n_function_evals": sol.n_iterations,
         "max_abs_a": float(np.max(np.abs(a))), "log10_max_abs_a": sol.log10_amplitude, "method": sol.method,
         "sum_a2": sum_a2, "sum_abs_da_pow": sum_d, "wall_time_s": time.perf_counter() - t0,
     }
-    if spec["guess"] == "double":
-        attrs["separation"] = spec.get("separation", 9)
+    if spec.guess == "double":
+        attrs["separation"] = spec.separation
     else:  # site: a_{c-n} = a_{c+n}; bond: a_{c-n} = -a_{c+n+1}
-        attrs["symmetry_error"] = homoclinic.symmetry_error(a, spec["guess"], centre)
+        attrs["symmetry_error"] = homoclinic.symmetry_error(a, spec.guess, spec.centre)
     # tails far below machine precision: exact (dpsstn) recursion in log variables (periodic ends)
     log10a = (homoclinic_tails.log10_abs(a / scale, alpha) + np.log10(scale) if bc == "periodic"
               else np.log10(np.abs(a)))
     attrs["log10_tail_min"] = float(np.min(log10a))
     ds = make_dataset({"a": a, "residual_n": r, "log10_abs_a": log10a}, coords={"n": np.arange(N)}, attrs=attrs,
-                      params=spec, title=f"solution '{name}' of the stationary DpS equation (dpsstn)")
+                      params=plain(spec), title=f"solution '{name}' of the stationary DpS equation (dpsstn)")
     if not sol.converged or not np.all(np.isfinite(a)):
         raise StageFailure(f"homoclinic '{name}': Powell hybrid did not converge "
                            f"(residual {sol.residual:.3e}, {sol.message})", ds)
@@ -71,75 +73,76 @@ def homoclinic_solution(spec: dict, name: str = "") -> xr.Dataset:
 MARKED_ORBITS = ("period2", "period3", "period4")   # keys of stationary.explicit_periodic_orbits stored by map_orbits
 
 
-def map_orbits(spec: dict, name: str = "") -> xr.Dataset:
+def map_orbits(spec: MapEntry, name: str = "") -> xr.Dataset:
     """Orbits of the map G (comp1)-(comp2) for one ``map:`` entry (traj3, traj2)."""
     from cradle.models import stationary
 
     t0 = time.perf_counter()
-    starts = stationary.starts_from_spec(spec)
-    U = stationary.orbits(starts, spec["iterations"], spec["alpha"], box=spec["box"])
+    line = spec.line
+    starts = stationary.starting_points(spec.starts, None if line is None else (line.from_, line.to, line.count))
+    U = stationary.orbits(starts, spec.iterations, spec.alpha, box=spec.box)
     data = {"map_a": U[..., 0], "map_b": U[..., 1]}
     coords = {"orbit": np.arange(len(starts)), "iterate": np.arange(U.shape[1])}
-    if spec.get("marks", False):  # traj2: the explicit period-2, -3, -4 orbits of its caption, marked on the panel
-        explicit = stationary.explicit_periodic_orbits(spec["alpha"])
+    if spec.marks:  # traj2: the explicit period-2, -3, -4 orbits of its caption, marked on the panel
+        explicit = stationary.explicit_periodic_orbits(spec.alpha)
         marks = [(int(key[len("period"):]), explicit[key]) for key in MARKED_ORBITS]
         data.update({"mark_a": np.concatenate([U_p[:, 0] for _, U_p in marks]),
                      "mark_b": np.concatenate([U_p[:, 1] for _, U_p in marks]),
                      "mark_period": np.concatenate([np.full(len(U_p), period) for period, U_p in marks])})
         coords["mark"] = np.arange(data["mark_a"].size)
-    attrs = {"name": name, "alpha": spec["alpha"], "box": spec["box"], "iterations": spec["iterations"],
-             "marks": bool(spec.get("marks", False)), "wall_time_s": time.perf_counter() - t0}
-    return make_dataset(data, coords=coords, attrs=attrs, params=spec,
+    attrs = {"name": name, "alpha": spec.alpha, "box": spec.box, "iterations": spec.iterations,
+             "marks": spec.marks, "wall_time_s": time.perf_counter() - t0}
+    return make_dataset(data, coords=coords, attrs=attrs, params=plain(spec),
                         title=f"orbits '{name}' of the map G (comp1)-(comp2)")
 
 
 # ---------------------------------------------------------------- initial data
 
-def _scene_attrs(spec: dict, name: str) -> dict:
+def _scene_attrs(spec: Scene, name: str) -> dict:
     """The parameters that define a scene, flattened into netCDF attributes."""
-    ini = spec["initial"]
-    noise = ini.get("noise") or {}
-    attrs = {"scene": name, "alpha": spec["alpha"], "N": spec["N"], "bc": spec["bc"],
-             "initial_kind": ini["kind"], "t_end": spec["t_end"],
-             "noise": noise.get("kind", "none"), "noise_amplitude": noise.get("amplitude", 0.0),
-             "seed": noise.get("seed", "none")}
-    if ini["kind"] == "travelling":
-        attrs.update({"q": ini["q"], "q_expr": str(ini.get("q_expr", ini["q"])), "phi": ini.get("phi", 0.0)})
-    elif ini["kind"] == "breather":
-        attrs.update({"homoclinic": ini["homoclinic"]})
+    ini = spec.initial
+    noise = ini.noise if isinstance(ini, Travelling) else None
+    attrs = {"scene": name, "alpha": spec.alpha, "N": spec.N, "bc": spec.bc,
+             "initial_kind": ini.kind, "t_end": spec.t_end,
+             "noise": noise.kind if noise else "none", "noise_amplitude": noise.amplitude if noise else 0.0,
+             "seed": noise.seed if noise else "none"}
+    if isinstance(ini, Travelling):
+        attrs.update({"q": ini.wavenumber, "q_expr": ini.q_expr, "phi": ini.phi})
+    elif isinstance(ini, Breather):
+        attrs.update({"homoclinic": ini.homoclinic})
     return attrs
 
 
-def initial_data(spec: dict, name: str = "", homoclinic_ds: xr.Dataset | None = None) -> xr.Dataset:
+def initial_data(spec: Scene, name: str = "", homoclinic_ds: xr.Dataset | None = None) -> xr.Dataset:
     """Initial data of one scene: x0, v0, A0 (and the noise realisation)."""
-    ini = spec["initial"]
-    alpha, N, bc = spec["alpha"], spec["N"], spec["bc"]
-    if ini["kind"] == "travelling":
-        noise = ini.get("noise") or {}
-        data = initial.travelling_wave(N, ini["q"], alpha, a=ini.get("a"), omega_tw=ini.get("omega_tw"),
-                                       phi=ini.get("phi", 0.0), bc=bc, noise_kind=noise.get("kind", "none"),
-                                       noise_amplitude=noise.get("amplitude", 0.0), seed=noise.get("seed"))
-    elif ini["kind"] == "breather":
+    ini = spec.initial
+    alpha, N, bc = spec.alpha, spec.N, spec.bc
+    if isinstance(ini, Travelling):
+        noise = ini.noise
+        data = initial.travelling_wave(N, ini.wavenumber, alpha, a=ini.a, omega_tw=ini.omega_tw, phi=ini.phi, bc=bc,
+                                       noise_kind=noise.kind if noise else "none",
+                                       noise_amplitude=noise.amplitude if noise else 0.0,
+                                       seed=noise.seed if noise else None)
+    elif isinstance(ini, Breather):
         if homoclinic_ds is None:
-            raise ValueError(f"scene '{name}': a breather needs the homoclinic solution '{ini['homoclinic']}'")
-        data = initial.breather(homoclinic_ds["a"].values, alpha, omega_sw=ini.get("omega_sw"),
-                                amplitude=ini.get("amplitude"), site=ini.get("site"), bc=bc)
-    elif ini["kind"] == "packet":  # loc1 (left): modulated binary oscillation at rest
-        data = initial.packet(N, alpha, amplitude=ini["amplitude"], width=ini["width"],
-                              envelope_kind=ini.get("envelope", "gaussian"), centre=ini.get("centre"), bc=bc)
-    elif ini["kind"] == "pair":  # loc1 (right): two static breathers at rest, profile solved in-process
-        data = initial.pair(N, alpha, amplitude=ini["amplitude"], separation=ini["separation"],
-                            profile=ini.get("profile", "bond"), sign=ini.get("sign", 1), centre=ini.get("centre"),
-                            bc=bc)
+            raise ValueError(f"scene '{name}': a breather needs the homoclinic solution '{ini.homoclinic}'")
+        data = initial.breather(homoclinic_ds["a"].values, alpha, omega_sw=ini.omega_sw, amplitude=ini.amplitude,
+                                site=ini.site, bc=bc)
+    elif isinstance(ini, Packet):  # loc1 (left): modulated binary oscillation at rest
+        data = initial.packet(N, alpha, amplitude=ini.amplitude, width=ini.width, envelope_kind=ini.envelope,
+                              centre=ini.centre, bc=bc)
+    elif isinstance(ini, Pair):  # loc1 (right): two static breathers at rest, profile solved in-process
+        data = initial.pair(N, alpha, amplitude=ini.amplitude, separation=ini.separation, profile=ini.profile,
+                            sign=ini.sign, centre=ini.centre, bc=bc)
     else:
-        raise ValueError(f"scene '{name}': unknown initial kind {ini['kind']!r}")
+        raise TypeError(f"scene '{name}': not an initial condition of a known kind: {ini!r}")
     fields = {"x0": data.x0, "v0": data.v0, "A0_re": data.A0.real, "A0_im": data.A0.imag}
     if data.rho1 is not None:
         fields.update({"rho1": data.rho1, "rho2": data.rho2})
     attrs = _scene_attrs(spec, name) | data.info
     attrs["energy0"] = float(lattice.hamiltonian(data.x0, data.v0, alpha, bc))
     return make_dataset(fields, coords={"n": np.arange(N)}, attrs=attrs,
-                        params=spec, title=f"initial data of scene '{name}'")
+                        params=plain(spec), title=f"initial data of scene '{name}'")
 
 
 # ---------------------------------------------------------------- integration
@@ -175,7 +178,7 @@ def exact_title(name: str) -> str:
     return f"exact solution of (nc), scene '{name}'"
 
 
-def exact_attrs(spec: dict, init_ds: xr.Dataset, method: str, dt_taken, dt_nominal, rtol, atol, stats: dict) -> dict:
+def exact_attrs(spec: Scene, init_ds: xr.Dataset, method: str, dt_taken, dt_nominal, rtol, atol, stats: dict) -> dict:
     """Global attributes of a scene's exact run: the initial data's, the integrator and its accuracy
     (``dt`` the largest step taken, ``dt_nominal`` its bound, from which the step grid follows and with
     which ``cradle extend`` continues the run; "adaptive" for an adaptive method) and the run's
@@ -186,25 +189,23 @@ def exact_attrs(spec: dict, init_ds: xr.Dataset, method: str, dt_taken, dt_nomin
                   "dt_nominal": dt_nominal if dt_nominal is not None else "adaptive",
                   "rtol": rtol if rtol is not None else "none",
                   "atol": atol if atol is not None else "none",
-                  "energy_drift": stats["energy_drift"], "max_energy_drift_allowed": spec["max_energy_drift"],
+                  "energy_drift": stats["energy_drift"], "max_energy_drift_allowed": spec.max_energy_drift,
                   **{k: stats[k] for k in ("n_steps", "n_force_evals", "max_compression", "wall_time_s",
                                            "n_onset_corrections")}})
     return attrs
 
 
-def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
+def exact_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
     """Integrate the lattice (nc) from the scene's initial data; x, v, forces, energy at stored times."""
     from cradle.integrators import SPLITTING_METHODS, integrate_lattice
 
-    alpha, bc = spec["alpha"], spec["bc"]
-    times = np.asarray(spec["times"], dtype=float)
-    ex = spec["exact"]
+    alpha, bc = spec.alpha, spec.bc
+    times = np.asarray(spec.times, dtype=float)
+    ex = spec.exact
     x0, v0 = init_ds["x0"].values, init_ds["v0"].values
     # a fixed-step splitting takes dt_factor, an adaptive method rtol (atol scales with the amplitude)
-    accuracy = ({"dt_factor": ex.get("dt_factor")} if ex["method"] in SPLITTING_METHODS
-                else {"rtol": ex.get("rtol")})
-    sol = integrate_lattice(x0, v0, times, alpha=alpha, bc=bc, method=ex["method"], progress=progress,
-                            **accuracy)
+    accuracy = {"dt_factor": ex.dt_factor} if ex.method in SPLITTING_METHODS else {"rtol": ex.rtol}
+    sol = integrate_lattice(x0, v0, times, alpha=alpha, bc=bc, method=ex.method, progress=progress, **accuracy)
     force = lattice.bond_forces(sol.x, alpha, bc)
     attrs = exact_attrs(spec, init_ds, sol.method, steps_taken(times, sol.dt)[0] if sol.dt is not None else None,
                         sol.dt, sol.rtol, sol.atol, {"energy_drift": sol.energy_drift, "n_steps": sol.n_steps,
@@ -213,19 +214,19 @@ def exact_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) ->
                                                      "wall_time_s": sol.wall_time_s,
                                                      "n_onset_corrections": getattr(sol, "n_onset_corrections", 0)})
     ds = make_dataset({"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy},
-                      coords={"t": times, "n": np.arange(spec["N"])}, attrs=attrs,
-                      params=spec, title=exact_title(name))
+                      coords={"t": times, "n": np.arange(spec.N)}, attrs=attrs,
+                      params=plain(spec), title=exact_title(name))
     check_finite(name, "exact", {"x": sol.x, "v": sol.v}, ds)
-    if not sol.energy_drift <= spec["max_energy_drift"]:
+    if not sol.energy_drift <= spec.max_energy_drift:
         raise StageFailure(f"scene '{name}' (exact): relative energy drift {sol.energy_drift:.3e} exceeds "
-                           f"max_energy_drift = {spec['max_energy_drift']:.1e} ({sol.method}, dt={attrs['dt']})", ds)
+                           f"max_energy_drift = {spec.max_energy_drift:.1e} ({sol.method}, dt={attrs['dt']})", ds)
     return ds
 
 
-def dps_dataset(spec: dict, init_ds: xr.Dataset, name: str, times, sol) -> xr.Dataset:
+def dps_dataset(spec: Scene, init_ds: xr.Dataset, name: str, times, sol) -> xr.Dataset:
     """The DpS run's Dataset at ``times`` from its solution ``sol`` (:class:`cradle.integrators.DpsSolution`
     at tau = eps^(alpha-1) t): A, the approximate displacement (ansatz), its forces and the drifts."""
-    alpha, bc = spec["alpha"], spec["bc"]
+    alpha, bc = spec.alpha, spec.bc
     eps = float(init_ds.attrs["eps"])
     x_app = compare.approximate_displacement(sol.A, times, eps)
     force = lattice.bond_forces(x_app, alpha, bc)
@@ -236,21 +237,20 @@ def dps_dataset(spec: dict, init_ds: xr.Dataset, name: str, times, sol) -> xr.Da
                   "wall_time_s": sol.wall_time_s})
     return make_dataset({"A_re": sol.A.real, "A_im": sol.A.imag, "x": x_app, "force": force,
                          "l2_drift": sol.l2_drift, "dps_energy_drift": sol.energy_drift, "P_drift": sol.P_drift},
-                        coords={"t": times, "n": np.arange(spec["N"]), "tau": sol.tau}, attrs=attrs,
-                        params=spec, title=f"DpS approximation (dfnls)/(ansatz), scene '{name}'")
+                        coords={"t": times, "n": np.arange(spec.N), "tau": sol.tau}, attrs=attrs,
+                        params=plain(spec), title=f"DpS approximation (dfnls)/(ansatz), scene '{name}'")
 
 
-def dps_run(spec: dict, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
+def dps_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
     """Integrate the DpS equation (dfnls) and rebuild the approximate solution (ansatz) at stored times."""
     from cradle.integrators import integrate_dps
 
-    alpha, bc = spec["alpha"], spec["bc"]
-    times = np.asarray(spec["times"], dtype=float)
+    alpha, bc = spec.alpha, spec.bc
+    times = np.asarray(spec.times, dtype=float)
     eps = float(init_ds.attrs["eps"])
     tau = eps ** (alpha - 1.0) * times
     A0 = init_ds["A0_re"].values + 1j * init_ds["A0_im"].values
-    st = spec["dps"]
-    sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=st["method"], rtol=st["rtol"], progress=progress)
+    sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=spec.dps.method, rtol=spec.dps.rtol, progress=progress)
     ds = dps_dataset(spec, init_ds, name, times, sol)
     check_finite(name, "dps", {"A": sol.A}, ds)
     return ds
@@ -319,9 +319,10 @@ def localised_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset) -> tuple[dict, d
     return data, coords
 
 
-def metrics(spec: dict, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: str = "") -> xr.Dataset:
+def metrics(spec: Scene | None, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: str = "") -> xr.Dataset:
     """Exact against approximate: E(t) (plot4-5) and the spectra |x_hat_k(t)| on Gamma*; what the
-    figures show of the scene (:func:`travelling_metrics`, :func:`localised_metrics`)."""
+    figures show of the scene (:func:`travelling_metrics`, :func:`localised_metrics`). Everything is
+    read from the two runs; ``spec`` is only stored (None: two runs not made from a scene spec)."""
     a_scale = float(exact_ds.attrs.get("a", np.max(np.abs(exact_ds["x"].isel(t=0).values))))
     E = compare.relative_error(exact_ds["x"].values, dps_ds["x"].values, a_scale)
     k, xh_exact = compare.spatial_dft(exact_ds["x"].values)
@@ -342,5 +343,5 @@ def metrics(spec: dict, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: str = ""
         extra, extra_coords = localised_metrics(exact_ds, dps_ds)
         data.update(extra)
         coords.update(extra_coords)
-    return make_dataset(data, coords=coords, attrs=attrs,
-                        params=spec, title=f"exact vs DpS comparison metrics, scene '{name}'")
+    return make_dataset(data, coords=coords, attrs=attrs, params=None if spec is None else plain(spec),
+                        title=f"exact vs DpS comparison metrics, scene '{name}'")

@@ -37,6 +37,8 @@ from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
 from cradle.data.io import GLOBAL_KEYS, make_dataset, write_netcdf
 from cradle.data.provenance import provenance
 from cradle.scenes.failure import StageFailure
+from cradle.scenes.spec import Scene
+from cradle.specs.declare import plain
 
 #: float64 arrays of N values held per stored time of a block (both runs, their forces, the
 #: metrics' spectra and FFTs): the block size follows from ``chunk_bytes``
@@ -79,7 +81,7 @@ class _Run:
             f.abort()
 
 
-def simulate_streamed(spec: dict, init_ds: xr.Dataset, name: str, outs: dict, *,
+def simulate_streamed(spec: Scene, init_ds: xr.Dataset, name: str, outs: dict, *,
                       chunk_bytes: int = DEFAULT_CHUNK_BYTES, progress=None, log=None) -> dict:
     """Write the scene's four files (``outs``: initial, exact, dps, metrics paths) block by block.
 
@@ -94,15 +96,14 @@ def simulate_streamed(spec: dict, init_ds: xr.Dataset, name: str, outs: dict, *,
     from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR
 
     wall0 = time.perf_counter()
-    ex = spec["exact"]
-    method = ex["method"]
+    method = spec.exact.method
     x0, v0 = init_ds["x0"].values, init_ds["v0"].values
-    fac = ex.get("dt_factor") or DEFAULT_DT_FACTOR[method]
-    c_assumed, c_energy = compression_bounds(x0, v0, spec["alpha"], spec["bc"])
-    rows = chunk_rows(spec["N"], chunk_bytes, BLOCK_ARRAYS)
+    fac = spec.exact.dt_factor or DEFAULT_DT_FACTOR[method]
+    c_assumed, c_energy = compression_bounds(x0, v0, spec.alpha, spec.bc)
+    rows = chunk_rows(spec.N, chunk_bytes, BLOCK_ARRAYS)
     n_reruns = 0
     while True:  # as integrate_lattice: rerun with a larger compression while the assumed one is exceeded
-        run = _Run(spec, init_ds, name, outs, rows, default_dt(c_assumed, spec["alpha"], method, fac), c_assumed)
+        run = _Run(spec, init_ds, name, outs, rows, default_dt(c_assumed, spec.alpha, method, fac), c_assumed)
         try:
             summary = _attempt(run, progress, lambda cmax: not (cmax <= c_assumed * (1.0 + 1e-12)
                                                                  or c_assumed >= c_energy or n_reruns >= MAX_RERUNS))
@@ -136,15 +137,13 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
     from cradle.integrators.dps_solver import iter_dps
 
     spec, init_ds, name = run.spec, run.init_ds, run.name
-    # the blocks' Datasets record a spec without the stored times (hashing them per block would cost more
-    # than the block); the whole spec's provenance is written once, at the end
-    light = {**spec, "times": []}
-    alpha, bc, N = spec["alpha"], spec["bc"], spec["N"]
-    times = np.asarray(spec["times"], dtype=float)
+    params = plain(spec)
+    alpha, bc, N = spec.alpha, spec.bc, spec.N
+    times = np.asarray(spec.times, dtype=float)
     eps = float(init_ds.attrs["eps"])
     A0 = init_ds["A0_re"].values + 1j * init_ds["A0_im"].values
     dps_blocks = iter_dps(A0, eps ** (alpha - 1.0) * times, run.rows, alpha=alpha, bc=bc,
-                          rtol=spec["dps"]["rtol"])
+                          rtol=spec.dps.rtol)
     kind = init_ds.attrs.get("initial_kind")
     localised = kind in stages.LOCALISED_KINDS
     if localised:
@@ -159,7 +158,7 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
     E_max, site_series, first = -np.inf, {"exact": [], "dps": []}, {}
     for start in range(0, times.size, run.rows):
         tb = times[start:start + run.rows]
-        sol = integrate_lattice(x, v, tb, alpha=alpha, bc=bc, method=spec["exact"]["method"], dt=run.dt,
+        sol = integrate_lattice(x, v, tb, alpha=alpha, bc=bc, method=spec.exact.method, dt=run.dt,
                                 t0=t_cur, energy0=H0)
         if exceeded(sol.max_compression):
             return {"restart": sol.max_compression}
@@ -171,13 +170,13 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         stages.check_finite(name, "exact", {"x": sol.x, "v": sol.v}, None, start)
         exact_ds = make_dataset({"x": sol.x, "v": sol.v, "force": lattice.bond_forces(sol.x, alpha, bc),
                                  "energy": sol.energy}, coords={"t": tb, "n": np.arange(N)},
-                                attrs=dict(init_ds.attrs), params=light, title=stages.exact_title(name))
+                                attrs=dict(init_ds.attrs), params=params, title=stages.exact_title(name))
         dsol = next(dps_blocks)
         stages.check_finite(name, "dps", {"A": dsol.A}, None, start)
         stats["wall_time_s"] += sol.wall_time_s
         dps_stats["n_steps"] += dsol.n_steps
         dps_stats["wall_time_s"] += dsol.wall_time_s
-        dps_ds = stages.dps_dataset(light, init_ds, name, tb, dsol)
+        dps_ds = stages.dps_dataset(spec, init_ds, name, tb, dsol)
         if start == 0:
             first = {"exact": exact_ds.isel(t=[0]), "dps": dps_ds.isel(t=[0])}
         # per stored time: the in-memory metrics on the block, after the row t = 0 (scale, site, core)
@@ -185,7 +184,7 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
                                                           coords="minimal", compat="override",
                                                           combine_attrs="override"))
                       for m, ds in (("exact", exact_ds), ("dps", dps_ds))}
-        met = stages.metrics(light, with_first["exact"], with_first["dps"], name)
+        met = stages.metrics(spec, with_first["exact"], with_first["dps"], name)
         if start:
             met = met.isel(t=slice(1, None))
         E_max = max(E_max, float(np.max(met["E"].values)))
@@ -208,7 +207,7 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
             progress(t_cur, float(times[-1]))
     # whole-run values: exact and DpS statistics, then the metrics over every stored time
     streamed = f"block by block, {run.rows} stored times per block (cradle.scenes.streamed)"
-    exact_attrs = stages.exact_attrs(spec, init_ds, spec["exact"]["method"], stages.steps_taken(times, run.dt)[0],
+    exact_attrs = stages.exact_attrs(spec, init_ds, spec.exact.method, stages.steps_taken(times, run.dt)[0],
                                      run.dt, None, None, stats)
     exact_attrs.update({"streamed": streamed, "c_assumed": run.c_assumed})
     run.files["exact"].set_attrs({k: v for k, v in exact_attrs.items() if k not in GLOBAL_KEYS})
@@ -221,7 +220,7 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         for m in ("exact", "dps"):
             values[f"peak_compression_{m}"] = peaks[m].P
         if kind == "pair":
-            periodic = spec["bc"] == "periodic"
+            periodic = spec.bc == "periodic"
             for m in ("exact", "dps"):
                 oc = interactions.classify_peaks(site_peaks[m].starts, site_peaks[m].P, periodic=periodic)
                 values[f"merging_time_{m}"] = oc.merge_period
@@ -236,12 +235,12 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         raise StageFailure(f"scene '{name}': the streamed job cannot compute {', '.join(unknown)} over the run")
     run.files["metrics"].set_values(values)
     run.files["metrics"].set_attrs(attrs)
-    prov = provenance(spec)
+    prov = provenance(params)
     for f in run.files.values():
         f.set_attrs(prov)
-    if not stats["energy_drift"] <= spec["max_energy_drift"]:
+    if not stats["energy_drift"] <= spec.max_energy_drift:
         raise StageFailure(f"scene '{name}' (exact): relative energy drift {stats['energy_drift']:.3e} exceeds "
-                           f"max_energy_drift = {spec['max_energy_drift']:.1e} ({spec['exact']['method']}, "
+                           f"max_energy_drift = {spec.max_energy_drift:.1e} ({spec.exact.method}, "
                            f"dt={exact_attrs['dt']})")
     return {"rows": int(times.size), "blocks": -(-times.size // run.rows), "rows_per_block": run.rows,
             "energy_drift": stats["energy_drift"]}

@@ -22,6 +22,9 @@ import json
 import types
 import typing
 from pathlib import Path
+from typing import Any
+
+from .values import ANGLE_PATTERN, NAME_PATTERN, ConfigError, key_path, show
 
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
 
@@ -80,14 +83,8 @@ def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of
 
 
 # Shared scalar types ($defs), each bound written here only.
-_NUM = r"(\d+(\.\d*)?|\.\d+)"
-# Angles: a number, or [sign] [coefficient [*]] pi [/ denominator], e.g. pi, pi/5, 4pi/5, -52pi/100, 4*pi/5.
-ANGLE_PATTERN = (
-    r"^\s*[-+]?\s*((" + _NUM + r"\s*\*?\s*)?pi(\s*/\s*" + _NUM + r")?|" + _NUM + r"([eE][-+]?\d+)?)\s*$"
-)
-NAME_PATTERN = "^[A-Za-z0-9][A-Za-z0-9_-]*$"
 
-SHARED: dict[str, dict[str, typing.Any]] = {
+SHARED: dict[str, dict[str, Any]] = {
     "name": {"description": "An entry name: letters, digits, '-' and '_' (it becomes part of file names).",
              "type": "string", "pattern": NAME_PATTERN},
     "alpha": {"description": "Hertz exponent alpha of (vhertz); > 1.", "type": "number", "exclusiveMinimum": 1},
@@ -350,8 +347,6 @@ def from_plain(cls, mapping, where: str | None = None):
     rule's ``params:``, a file's stored parameters, keyword arguments): every key checked against its
     declaration (type, bounds, enum), then built. Raises :class:`cradle.specs.values.ConfigError`, one
     line per problem naming ``where`` (default: the class name), the key and the value."""
-    from .values import ConfigError, key_path, show
-
     errors = sorted(_validator_of(cls).iter_errors(mapping), key=lambda e: [str(p) for p in e.absolute_path])
     if errors:
         head = where or cls.__name__

@@ -10,7 +10,12 @@ import json
 import math
 import re
 
-from .declare import ANGLE_PATTERN
+_NUM = r"(\d+(\.\d*)?|\.\d+)"
+# Angles: a number, or [sign] [coefficient [*]] pi [/ denominator], e.g. pi, pi/5, 4pi/5, -52pi/100, 4*pi/5.
+ANGLE_PATTERN = (
+    r"^\s*[-+]?\s*((" + _NUM + r"\s*\*?\s*)?pi(\s*/\s*" + _NUM + r")?|" + _NUM + r"([eE][-+]?\d+)?)\s*$"
+)
+NAME_PATTERN = "^[A-Za-z0-9][A-Za-z0-9_-]*$"
 
 _ANGLE_RE = re.compile(ANGLE_PATTERN)
 ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5'"

@@ -42,6 +42,7 @@ def cmd_run(args) -> int:
     from cradle.scenes import stages
     from cradle.scenes.failure import StageFailure
     from cradle.pipeline.scene_job import run_scene
+    from cradle.scenes.spec import Breather
 
     cfg = load_config(args.config)  # validate: an over-budget job is refused here, before any work
     name, out = args.scene, Path(args.out)
@@ -50,21 +51,21 @@ def cmd_run(args) -> int:
         raise CliError(f"unknown scene {name!r} (known: {known_names(cfg)})")
     _note_workflow_results(out, args.config)
     if section == "map":
-        mspec = cc.resolved_map(cfg, name)
+        mspec = cc.map_entry(cfg, name)
         _stage(lambda: stages.map_orbits(mspec, name), Path(layout.path("map", out, name=name)),
                layout.path("log", out, job=f"map/{name}"), f"map {name}")
         return 0
     if section == "homoclinic":
-        hspec = cc.resolved_homoclinic(cfg, name)
+        hspec = cc.homoclinic(cfg, name)
         _stage(lambda: stages.homoclinic_solution(hspec, name), Path(layout.path("homoclinic", out, name=name)),
                layout.path("log", out, job=f"homoclinic/{name}"), f"homoclinic {name}")
         return 0
-    spec = cc.resolved_scene(cfg, name)
-    print(f"{PROG}: {budget.spec_estimate(spec).describe()}", file=sys.stderr)  # within budget (validated)
+    spec = cc.scene(cfg, name)
+    print(f"{PROG}: {budget.spec_estimate(spec, name).describe()}", file=sys.stderr)  # within budget (validated)
     outs, homoclinic = {}, None
-    if spec["initial"]["kind"] == "breather":
-        hname = spec["initial"]["homoclinic"]
-        hspec = cc.resolved_homoclinic(cfg, hname)
+    if isinstance(spec.initial, Breather):
+        hname = spec.initial.homoclinic
+        hspec = cc.homoclinic(cfg, hname)
         homoclinic = lambda: stages.homoclinic_solution(hspec, hname)  # noqa: E731
         outs["homoclinic"] = Path(layout.path("homoclinic", out, name=hname))
     outs.update({part: Path(p) for part, p in layout.scene_paths(name, out).items()})

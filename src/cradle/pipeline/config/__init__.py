@@ -7,24 +7,41 @@
   cannot express as its ``check`` method and, for the analyses, its ``resolve`` method;
 - :mod:`.validate`: coercion of strings, one-line messages, defaults; :mod:`.loading`: reading
   files (a YAML key given twice refused) and the command line; :mod:`.resolve`: the resolved
-  parameters of one entry or analysis, and :func:`typed`, the config as frozen instances.
+  parameters of one entry (:func:`scene`, :func:`homoclinic`, :func:`map_entry`: typed instances) or
+  analysis, and :func:`typed`, the config as frozen instances.
 
 ``python -m cradle.pipeline.config --write-schema`` regenerates ``config.schema.json``.
 """
-from .resolve import (resolved_breather_interactions, resolved_breathers, resolved_dps_validity, resolved_floquet,
-                      resolved_homoclinic, resolved_map, resolved_mi_diagram,
-                      resolved_mi_growth, resolved_mi_statistics, resolved_scene, resolved_theorem1,
-                      resolved_work_precision, typed)
-from .sections import KNOWN_FIGURES, SECTIONS
-from cradle.specs.declare import ANGLE_PATTERN
+from cradle.specs.values import ANGLE_PATTERN, TIME_TOL, ConfigError, parse_angle, store_times
+
 from .loading import StrictLoader, load, main, read_yaml
-from .validate import SCHEMA_FILE, _VALIDATED, _validated, generated_schema, schema, schema_path, validate, write_schema
-from cradle.specs.values import TIME_TOL, ConfigError, parse_angle, store_times
+from .resolve import (
+                      analysis_reads,
+                      analysis_spec,
+                      homoclinic,
+                      map_entry,
+                      resolved_breather_interactions,
+                      resolved_breathers,
+                      resolved_dps_validity,
+                      resolved_floquet,
+                      resolved_homoclinic,
+                      resolved_map,
+                      resolved_mi_diagram,
+                      resolved_mi_statistics,
+                      resolved_scene,
+                      resolved_theorem1,
+                      resolved_work_precision,
+                      scene,
+                      typed,
+)
+from .sections import KNOWN_FIGURES, SECTIONS
+from .validate import _VALIDATED, SCHEMA_FILE, _validated, generated_schema, schema, schema_path, validate, write_schema
 
 __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SECTIONS", "SCHEMA_FILE", "ANGLE_PATTERN", "TIME_TOL", "schema",
-    "generated_schema", "schema_path", "write_schema", "parse_angle", "validate", "store_times", "resolved_scene",
-    "resolved_homoclinic", "resolved_map", "resolved_work_precision", "resolved_theorem1", "resolved_mi_diagram",
-    "resolved_mi_growth", "resolved_mi_statistics", "resolved_floquet", "resolved_breathers",
-    "resolved_breather_interactions", "resolved_dps_validity", "load", "read_yaml", "StrictLoader", "main", "typed",
+    "generated_schema", "schema_path", "write_schema", "parse_angle", "validate", "store_times", "scene", "homoclinic",
+    "map_entry", "resolved_scene", "resolved_homoclinic", "resolved_map", "resolved_work_precision",
+    "resolved_theorem1", "resolved_mi_diagram", "analysis_reads", "analysis_spec", "resolved_mi_statistics", "resolved_floquet",
+    "resolved_breathers", "resolved_breather_interactions", "resolved_dps_validity", "load", "read_yaml",
+    "StrictLoader", "main", "typed",
 ]

@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import math
 
-from .breathers import Breathers
+from cradle.specs.declare import declared, param
+from cradle.specs.values import ConfigError, angle_expr, angle_or_none, did_you_mean, entries, number, parse_angle, show
+
 from .breather_interactions import BreatherInteractions
+from .breathers import Breathers
 from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
-from cradle.specs.declare import declared, param
-from cradle.specs.values import ConfigError, angle_expr, angle_or_none, did_you_mean, entries, number, parse_angle, show
 
 _ALPHAS = {"$ref": "#/$defs/alpha", "maximum": 10}
 _ANGLES = {"$ref": "#/$defs/angle"}
@@ -128,7 +129,7 @@ class MIDiagram:
             if not (0 < k < N and 0 < m < N):
                 out.add(path + ["check_pairs", i], f"need 0 < k_q, m_p < check_N = {N}", pair)
                 continue
-            from cradle.analyses.modulational import growth_rate
+            from cradle.analyses.mi_diagram import growth_rate
 
             for al in alphas if isinstance(alphas, list) else []:
                 if number(al) and al > 1 and not growth_rate(2 * math.pi * k / N, 2 * math.pi * m / N, al) > 0:
@@ -142,93 +143,55 @@ class MIDiagram:
         return dict(cfg["beyond"]["mi_diagram"])
 
 
-@declared(doc="Growth rates of the modulational instability measured in the scenes' own runs (exact lattice and DpS, "
-              "rerun from results/initial/<scene>.nc with the scene's integrators, sampled every sample_every), "
-              "fitted on the sideband pairs of the |A_hat| spectrum and compared with the linear DpS rate "
-              "(cradle.analyses.modulational.growth_rate) -> results/mi/mi-growth.nc and "
-              "results/figures/mi-growth.{pdf,png}.")
-class MIGrowth:
-    scenes: list[str] = param([], "Scenes (names under scenes:, travelling waves on a periodic ring) whose runs are "
-                              "measured; the target mi_growth needs at least one.", minItems=0, maxItems=12,
-                              items=_NAMES)
-    sample_every: float = param(0.5, "Sampling interval in t of the spectra (the scenes store only snapshots, so "
-                                "their runs are repeated on this grid).", exclusiveMinimum=0, maximum=10.0)
-    saturation: float = param(0.2, "The fit window ends when the largest sideband pair first reaches this fraction "
-                              "of the carrier (end of the linear phase).", exclusiveMinimum=0, maximum=1.0)
-    decades: float = param(1.0, "The fit window covers the last `decades` decades of growth of the dominant pair "
-                           "before the window end (fewer if the run grew less: then no exponential phase is "
-                           "claimed).", exclusiveMinimum=0, maximum=4.0)
-    r2_min: float = param(0.95, "Smallest coefficient of determination of the log-linear fit for the growth to be "
-                          "called exponential.", exclusiveMinimum=0, maximum=1.0)
+BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysis's name (its module "
+              "cradle.analyses.<name>, its targets <name> and <name>_full, its folder results/<name>/); see "
+              "docs/analyses.md.")
 
-    @staticmethod
-    def check(b: dict, path: list, cfg: dict, out) -> None:
-        """Every named scene that exists is a travelling wave on a periodic ring. Names of missing scenes
-        are reported by :meth:`resolve`, when the target is built, so that a config with fewer scenes
-        (a test's) still validates."""
-        scenes = entries(cfg, "scenes")
-        for i, name in enumerate(b.get("scenes") if isinstance(b.get("scenes"), list) else []):
-            sc = scenes.get(name) if isinstance(name, str) else None
-            if sc is None:
-                continue
-            ini = sc.get("initial") if isinstance(sc.get("initial"), dict) else {}
-            if ini.get("kind") != "travelling" or sc.get("bc") != "periodic":
-                out.add(path + ["scenes", i], "must be a travelling-wave scene on a periodic ring (initial.kind "
-                                              "travelling, bc periodic)", name)
-
-    @staticmethod
-    def resolve(cfg: dict) -> dict:
-        """``beyond.mi_growth``; it must name at least one scene, and only existing ones."""
-        spec = dict(cfg["beyond"]["mi_growth"])
-        scenes = entries(cfg, "scenes")
-        if not spec["scenes"]:
-            raise ConfigError("config error: beyond.mi_growth.scenes is empty: name at least one scene to measure")
-        for i, name in enumerate(spec["scenes"]):
-            if name not in scenes:
-                raise ConfigError(f"config error: beyond.mi_growth.scenes[{i}] = {name!r}: unknown scene: no "
-                                  f"`scenes:` entry of that name{did_you_mean(name, scenes)}")
-        return spec
+#: TRANSITION ONLY: the sections of the analyses not yet declared by their own modules (cradle.analyses._legacy)
+_LEGACY = {"theorem1": Theorem1, "mi_diagram": MIDiagram, "mi_statistics": MIStatistics, "floquet": Floquet,
+           "breathers": Breathers, "breather_interactions": BreatherInteractions, "dps_validity": DpsValidity}
 
 
-@declared(doc="Analyses beyond the paper: Theorem 1 measured on exact travelling waves of (ad) "
-              "(cradle.analyses.theorem1, target theorem1) and the modulational-instability map of the DpS plane "
-              "waves (cradle.analyses.modulational, target mi_diagram). Also the modulational-instability growth "
-              "rates measured in the scenes' runs (cradle.analyses.migrowth, target mi_growth), the threshold "
-              "statistics over noise seeds (cradle.analyses.mistatistics, targets mi_statistics and "
-              "mi_statistics_full) and the Bloch-Floquet stability of the exact waves (cradle.analyses.floquet, "
-              "target floquet), the exact breathers (cradle.analyses.breathers, targets breathers and "
-              "breathers_full), the collisions of two breathers in both models "
-              "(cradle.analyses.breather_interactions, targets breather_interactions and breather_interactions_full), "
-              "and the DpS approximation error against eps and T (cradle.analyses.dpsvalidity, "
-              "targets dps_validity and dps_validity_full).")
-class Beyond:
-    theorem1: Theorem1 = param(Theorem1(), Theorem1.__schema_doc__)
-    mi_diagram: MIDiagram = param(MIDiagram(), MIDiagram.__schema_doc__)
-    mi_growth: MIGrowth = param(MIGrowth(), MIGrowth.__schema_doc__)
-    mi_statistics: MIStatistics = param(MIStatistics(), MIStatistics.__schema_doc__)
-    floquet: Floquet = param(Floquet(), Floquet.__schema_doc__)
-    breathers: Breathers = param(Breathers(), Breathers.__schema_doc__)
-    breather_interactions: BreatherInteractions = param(BreatherInteractions(),
-                                                        BreatherInteractions.__schema_doc__)
-    dps_validity: DpsValidity = param(DpsValidity(), DpsValidity.__schema_doc__)
+def _legacy_check(b: dict, cfg: dict, out) -> None:
+    path = ["beyond"]
+    sec = {k: (b.get(k) if isinstance(b.get(k), dict) else {}) for k in _LEGACY}
+    Theorem1.check(sec["theorem1"], path + ["theorem1"], out)
+    MIDiagram.check(sec["mi_diagram"], path + ["mi_diagram"], out)
+    for variant in VARIANTS:
+        v = sec["mi_statistics"].get(variant)
+        if isinstance(v, dict):
+            MIVariant.check(v, path + ["mi_statistics", variant], out)
+    Floquet.check(sec["floquet"], path + ["floquet"], out)
+    Breathers.check(sec["breathers"], path + ["breathers"], out)
+    BreatherInteractions.check(sec["breather_interactions"], path + ["breather_interactions"], out)
+    DpsValidity.check(sec["dps_validity"], path + ["dps_validity"], out)
 
-    @staticmethod
+
+def _beyond_class():
+    """The declared class of the ``beyond:`` section, one key per analysis of the registry (its name),
+    declared by the analysis's own spec class."""
+    from cradle.analyses.registry import ANALYSES
+
+    namespace: dict = {"__annotations__": {}}
+    for key, cls in _LEGACY.items():
+        namespace["__annotations__"][key] = cls
+        namespace[key] = param(cls(), cls.__schema_doc__)
+    for a in ANALYSES.values():
+        namespace["__annotations__"][a.module] = a.spec
+        namespace[a.module] = param(a.spec(), a.spec.__schema_doc__, key=a.name)
+
     def check(b, cfg: dict, out) -> None:
         """The checks of every analysis (each reads its schema-filled section)."""
         if not isinstance(b, dict):
             return
-        path = ["beyond"]
-        sec = {k: (b.get(k) if isinstance(b.get(k), dict) else {}) for k in
-               ("theorem1", "mi_diagram", "mi_growth", "mi_statistics", "floquet", "breathers",
-                "breather_interactions", "dps_validity")}
-        Theorem1.check(sec["theorem1"], path + ["theorem1"], out)
-        MIDiagram.check(sec["mi_diagram"], path + ["mi_diagram"], out)
-        MIGrowth.check(sec["mi_growth"], path + ["mi_growth"], cfg, out)
-        for variant in VARIANTS:
-            v = sec["mi_statistics"].get(variant)
-            if isinstance(v, dict):
-                MIVariant.check(v, path + ["mi_statistics", variant], out)
-        Floquet.check(sec["floquet"], path + ["floquet"], out)
-        Breathers.check(sec["breathers"], path + ["breathers"], out)
-        BreatherInteractions.check(sec["breather_interactions"], path + ["breather_interactions"], out)
-        DpsValidity.check(sec["dps_validity"], path + ["dps_validity"], out)
+        _legacy_check(b, cfg, out)
+        for a in ANALYSES.values():
+            section = b.get(a.name)
+            if hasattr(a.spec, "check") and isinstance(section, dict):
+                a.spec.check(section, ["beyond", a.name], cfg, out)
+
+    namespace["check"] = staticmethod(check)
+    return declared(doc=BEYOND_DOC)(type("Beyond", (), namespace))
+
+
+Beyond = _beyond_class()

@@ -1,4 +1,4 @@
-"""Declaration of ``beyond.dps_validity``: the DpS approximation error against eps and T (cradle.analyses.dpsvalidity)."""
+"""Declaration of ``beyond.dps_validity``: the DpS approximation error against eps and T (cradle.analyses.dps_validity)."""
 from __future__ import annotations
 
 from cradle.specs.declare import declared, param
@@ -40,7 +40,7 @@ class DpsValidity:
     T: list[float] = param([0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0], "Slow times T = tau: the sup "
                            "over t is taken up to t = T eps^(1-alpha) (one run to the largest T gives them all).",
                            minItems=1, maxItems=12, items=_T)
-    families: list[str] = param(list(_FAMILIES), "Families of well-prepared data (cradle.analyses.dpsvalidity."
+    families: list[str] = param(list(_FAMILIES), "Families of well-prepared data (cradle.analyses.dps_validity."
                                 "FAMILIES).", minItems=1, maxItems=4, items=_FAMILY)
     N_wave: int = param(10, "Ring size of the travelling waves (q N / 2 pi an integer for q = pi/5, 4 pi/5).",
                         minimum=10, maximum=1000, multipleOf=10)

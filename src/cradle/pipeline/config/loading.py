@@ -2,7 +2,7 @@
 
 ``python -m cradle.pipeline.config [config.yaml]`` validates a file; with
 ``--scene``/``--homoclinic``/``--map NAME`` it prints that entry's resolved
-parameters; ``--write-schema`` regenerates config.schema.json.
+parameters (what its job receives, and what the ``params_sha256`` of its files hashes); ``--write-schema`` regenerates config.schema.json.
 """
 from __future__ import annotations
 
@@ -12,10 +12,12 @@ from pathlib import Path
 
 import yaml
 
-from .resolve import resolved_homoclinic, resolved_map, resolved_scene
+from cradle.specs.declare import plain
+from cradle.specs.values import ConfigError
+
+from .resolve import homoclinic, map_entry, scene
 from .sections import SECTIONS
 from .validate import validate, write_schema
-from cradle.specs.values import ConfigError
 
 
 class StrictLoader(yaml.SafeLoader):
@@ -73,6 +75,8 @@ def main(argv=None) -> int:
     parser.add_argument("config", nargs="?", default="config.yaml")
     parser.add_argument("--write-schema", action="store_true",
                         help="regenerate src/cradle/pipeline/config.schema.json from the declarations and exit")
+    parser.add_argument("--write-reference", action="store_true",
+                        help="regenerate docs/config-reference.md (every key documented) from the declarations and exit")
     group = parser.add_mutually_exclusive_group()
     group.add_argument("--scene", metavar="NAME")
     group.add_argument("--homoclinic", metavar="NAME")
@@ -81,14 +85,21 @@ def main(argv=None) -> int:
     if args.write_schema:
         print(f"wrote {write_schema()}")
         return 0
+    if args.write_reference:
+        from .reference import REFERENCE_FILE, reference
+        from .validate import generated_schema
+
+        REFERENCE_FILE.write_text(reference(generated_schema()) + "\n", encoding="utf-8")
+        print(f"wrote {REFERENCE_FILE}")
+        return 0
     try:
         cfg = load(args.config)
         if args.scene:
-            print(json.dumps(resolved_scene(cfg, args.scene), indent=1))
+            print(json.dumps(plain(scene(cfg, args.scene)), indent=1))
         elif args.homoclinic:
-            print(json.dumps(resolved_homoclinic(cfg, args.homoclinic), indent=1))
+            print(json.dumps(plain(homoclinic(cfg, args.homoclinic)), indent=1))
         elif args.map:
-            print(json.dumps(resolved_map(cfg, args.map), indent=1))
+            print(json.dumps(plain(map_entry(cfg, args.map)), indent=1))
         else:
             counts = ", ".join(f"{len(cfg.get(s) or {})} {s}" for s in (*SECTIONS, "figures"))
             print(f"{args.config}: OK ({counts})")

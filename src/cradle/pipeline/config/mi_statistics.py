@@ -76,7 +76,7 @@ VARIANTS = ("reduced", "full")
 
 
 @declared(doc="Threshold of the modulational instability over noise seeds, ring sizes N and both models "
-              "(cradle.analyses.mistatistics): the fftseuil experiment repeated; shared settings here, the q grid, "
+              "(cradle.analyses.mi_statistics): the fftseuil experiment repeated; shared settings here, the q grid, "
               "N, seeds and batching per variant.")
 class MIStatistics:
     alpha: float | None = param(NULL, "Hertz exponent alpha; null = defaults.alpha.", exclusiveMinimum=1, maximum=10)

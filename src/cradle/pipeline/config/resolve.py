@@ -1,22 +1,28 @@
-"""The fully resolved, JSON-serialisable parameters of one entry or analysis of a validated config.
+"""The resolved parameters of one entry or analysis of a validated config.
 
-What each Snakemake job and analysis computes from: defaults merged in, angles
-in radians (their text kept next to them), stored times listed. Each function
-validates the config first (remembered, so a job's repeated calls cost one
-validation).
+What each Snakemake job and analysis computes from, defaults merged in. A scene,
+homoclinic or map entry is a typed, frozen instance (:func:`scene`,
+:func:`homoclinic`, :func:`map_entry`; :mod:`cradle.scenes.spec`); the analyses
+still read plain, JSON-serialisable dicts (:func:`resolved_scene` and the other
+``resolved_*``: angles in radians with their text kept next to them, stored
+times listed). Each function validates the config first (remembered, so a job's
+repeated calls cost one validation).
 """
 from __future__ import annotations
 
 import copy
 
-from .beyond import MIDiagram, MIGrowth, Theorem1
-from .breathers import Breathers
+from cradle.scenes.spec import HomoclinicEntry, MapEntry, Scene, resolved
+from cradle.specs.declare import build
+from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
+
+from .beyond import MIDiagram, Theorem1
 from .breather_interactions import BreatherInteractions
+from .breathers import Breathers
 from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
-from cradle.specs.values import ConfigError, angle_expr, parse_angle, store_times
 
 
 def _validated(config: dict) -> dict:
@@ -40,6 +46,33 @@ def _entry(cfg, section, name):
         raise ConfigError(f"config error: {section}.{name}: no {section} entry of that name ({section} entries: "
                           f"{known})")
     return copy.deepcopy(entries[name])
+
+
+def scene_of(cfg: dict, name: str) -> Scene:
+    """Scene ``name`` of a schema-filled config (defaults filled in, not necessarily checked further:
+    the budget estimates it during validation), resolved: ``alpha`` and ``max_energy_drift`` from
+    defaults unless the scene gives them, ``exact`` and ``dps`` the scene's keys merged over
+    ``defaults.exact`` / ``defaults.dps``."""
+    return resolved(_entry(cfg, "scenes", name), cfg["defaults"])
+
+
+def scene(config: dict, name: str) -> Scene:
+    """Scene ``name`` of ``config``, validated and resolved (:func:`scene_of`)."""
+    return scene_of(_validated(config), name)
+
+
+def homoclinic(config: dict, name: str) -> HomoclinicEntry:
+    """Homoclinic entry ``name`` of ``config``, validated, its ``alpha`` filled from defaults."""
+    cfg = _validated(config)
+    entry = _entry(cfg, "homoclinic", name)
+    return build(HomoclinicEntry, {**entry, "alpha": float(entry.get("alpha", cfg["defaults"]["alpha"]))})
+
+
+def map_entry(config: dict, name: str) -> MapEntry:
+    """Map entry ``name`` of ``config``, validated, its ``alpha`` filled from defaults."""
+    cfg = _validated(config)
+    entry = _entry(cfg, "map", name)
+    return build(MapEntry, {**entry, "alpha": float(entry.get("alpha", cfg["defaults"]["alpha"]))})
 
 
 def resolved_scene(config: dict, name: str) -> dict:
@@ -87,6 +120,7 @@ def typed(config: dict):
     """The validated config as a frozen :class:`.sections.Config` (scenes, entries, analyses as typed
     instances; each initial condition an instance of its kind's class)."""
     from cradle.specs import declare as spec
+
     from .sections import Config
 
     return spec.build(Config, _validated(config))
@@ -114,11 +148,6 @@ def resolved_mi_diagram(config: dict) -> dict:
     return MIDiagram.resolve(_validated(config))
 
 
-def resolved_mi_growth(config: dict) -> dict:
-    """``beyond.mi_growth`` resolved: at least one scene, every one existing."""
-    return MIGrowth.resolve(_validated(config))
-
-
 def resolved_mi_statistics(config: dict, variant: str) -> dict:
     """``beyond.mi_statistics.<variant>`` with the shared keys and the inherited defaults merged in."""
     return MIStatistics.resolve(_validated(config), variant)
@@ -143,3 +172,28 @@ def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
 def resolved_dps_validity(config: dict, form: str = "full") -> dict:
     """``beyond.dps_validity`` of one form (full, or reduced: what ``all`` builds), T sorted."""
     return DpsValidity.resolve(_validated(config), form)
+
+
+def analysis_spec(config: dict, name: str, form: str):
+    """The typed spec of analysis ``name`` (:mod:`cradle.analyses.registry`) in one form, from the validated
+    config's section ``beyond.<name>``."""
+    from cradle.analyses.registry import ANALYSES, form_spec
+    from cradle.specs.declare import from_plain
+
+    a = ANALYSES[name]
+    return form_spec(from_plain(a.spec, _validated(config)["beyond"][a.name], where=f"beyond.{a.name}"), form)
+
+
+def analysis_reads(config: dict, name: str, form: str) -> dict:
+    """What analysis ``name`` reads in one form (:meth:`cradle.analyses.protocol.Analysis.reads_of`): name ->
+    :class:`~cradle.analyses.protocol.Read`; every scene it names must be a ``scenes:`` entry."""
+    from cradle.analyses.registry import ANALYSES
+
+    cfg = _validated(config)
+    reads = ANALYSES[name].reads_of(analysis_spec(cfg, name, form))
+    for read in reads.values():
+        scene = dict(read.names).get("scene")
+        if scene is not None and scene not in cfg["scenes"]:
+            raise ConfigError(f"config error: beyond.{name}: reads scene {scene!r}: no `scenes:` entry of that "
+                              f"name{did_you_mean(scene, cfg['scenes'])}")
+    return reads

@@ -16,9 +16,9 @@ Two layers, both declared in :mod:`.sections`, :mod:`.scenes` and :mod:`.beyond`
    homoclinic entry of the same N and bc, stored times of figures, ...).
 
 :func:`validate` returns a deep copy with the schema defaults filled in;
-:func:`resolved_scene`, :func:`resolved_homoclinic`, :func:`resolved_map` and
-the ``resolved_*`` of the analyses give the fully resolved, JSON-serialisable
-parameters of one entry.
+:func:`.resolve.scene`, :func:`.resolve.homoclinic` and :func:`.resolve.map_entry` give one
+entry as a resolved, typed instance, the ``resolved_*`` of the analyses their plain
+parameters.
 """
 from __future__ import annotations
 
@@ -33,10 +33,10 @@ from pathlib import Path
 from jsonschema import Draft202012Validator
 
 from cradle.specs import declare as spec
+from cradle.specs.values import ANGLE_HINT, ANGLE_PATTERN, ConfigError, Errors, number, show
+
 from . import sections
 from .sections import SECTIONS
-from cradle.specs.declare import ANGLE_PATTERN
-from cradle.specs.values import ANGLE_HINT, ConfigError, Errors, number, show
 
 SCHEMA_FILE = "config.schema.json"
 
@@ -320,7 +320,7 @@ def validate(config: dict) -> dict:
     sections.check(cfg, out)
     if out.lines:
         raise ConfigError(out.lines)
-    # a validated config validates to itself (tested): remember it, so that the resolved_* calls
+    # a validated config validates to itself (tested): remember it, so that the resolving calls
     # the Snakefile makes with it, once per job, do not validate it again
     _remember(_key(cfg), copy.deepcopy(cfg))
     return cfg

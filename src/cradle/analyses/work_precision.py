@@ -33,12 +33,12 @@ data of a ``scenes:`` entry, run to the section's own ``t_end``):
 Output: one Dataset per scene (dims ``method``, ``setting``; the reference
 difference D on ``t_compare``), written to results/work-precision/<scene>.nc
 by ``snakemake work_precision``, which also draws
-results/figures/work-precision.{pdf,png} (:mod:`cradle.figures.workprecision`).
+results/figures/work-precision.{pdf,png} (:mod:`cradle.figures.work_precision`).
 
 Command line (used by workflow/rules/workprecision.smk)::
 
-    python -m cradle.analyses.workprecision scene --spec JSON --initial results/initial/S.nc --out results/work-precision/S.nc
-    python -m cradle.analyses.workprecision figure --out results/figures/work-precision results/work-precision/*.nc
+    python -m cradle.analyses.work_precision scene --spec JSON --initial results/initial/S.nc --out results/work-precision/S.nc
+    python -m cradle.analyses.work_precision figure --out results/figures/work-precision results/work-precision/*.nc
 """
 from __future__ import annotations
 
@@ -281,7 +281,7 @@ def main(argv=None) -> int:
     from cradle.data.io import open_dataset
     from cradle.pipeline.runner import run, setup_logging
 
-    parser = argparse.ArgumentParser(prog="python -m cradle.analyses.workprecision", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="python -m cradle.analyses.work_precision", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
     p = sub.add_parser("scene", help="measure one scene")
     p.add_argument("--spec", required=True, help="resolved parameters (JSON, cradle.pipeline.config.resolved_work_precision)")
@@ -306,7 +306,7 @@ def main(argv=None) -> int:
         return 0
     setup_logging(args.log)
     from cradle.figures import save_figure
-    from cradle.figures.workprecision import draw
+    from cradle.figures.work_precision import draw
 
     data = {}
     for path in args.inputs:

@@ -1,7 +1,7 @@
 """Figure work-precision: error and energy drift of every lattice integrator against wall time.
 
 Drawn by ``snakemake work_precision`` from results/work-precision/<scene>.nc
-(:mod:`cradle.analyses.workprecision`), not through the ``figures:`` registry (its
+(:mod:`cradle.analyses.work_precision`), not through the ``figures:`` registry (its
 inputs are not scene runs): :func:`draw` takes ``{scene: Dataset}``.
 One row per scene; left: error (max over the comparison grid up to
 t_valid, relative to the amplitude) against wall time; right: relative

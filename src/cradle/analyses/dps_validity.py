@@ -67,7 +67,7 @@ def family_amplitude(family: str, alpha: float, spec: dict):
 def dps_growth(family: str, alpha: float, N: int) -> float:
     """Largest DpS growth rate (per unit tau, R = 1) of the sidebands p = 2 pi k / N of the family's
     plane wave (ansatz3); 0 for the breather (no plane wave) and for the stable q <= pi/2."""
-    from cradle.analyses.modulational import growth_rate
+    from cradle.analyses.mi_diagram import growth_rate
 
     if family not in _Q:
         return 0.0

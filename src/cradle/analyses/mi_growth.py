@@ -15,13 +15,13 @@ Measured quantity: the complex amplitude of (ansatz) in both models,
 
 whose plane wave (ansatz3) A_n = R e^{i(Omega tau - q n)} has its carrier at
 the single wavenumber -q. A perturbation beta e^{ipn} + conj(gamma) e^{-ipn} of
-the rotating frame (cradle.analyses.modulational) lives at -q + p and -q - p, so the
+the rotating frame (cradle.analyses.mi_diagram) lives at -q + p and -q - p, so the
 sideband-pair amplitude
 
     S_p(t) = sqrt(|A_hat_{-q+p}|^2 + |A_hat_{-q-p}|^2) / |A_hat_{-q}|,   p = 2 pi m / N, m = 1..N/2,
 
 grows like e^{lambda(q, p) tau} = e^{lambda(q, p) eps^(alpha-1) t} in the linear phase, with
-lambda(q, p) of :func:`cradle.analyses.modulational.growth_rate` (units 1/tau, R = 1 here). Every rate
+lambda(q, p) of :func:`cradle.analyses.mi_diagram.growth_rate` (units 1/tau, R = 1 here). Every rate
 below is per unit t of (nc): rate_t = rate_tau eps^(alpha-1). (Unlike the x spectrum, the A
 spectrum separates -q + p from q - p, so the growing p is read off without ambiguity.) The
 bins where the lattice's harmonics land (p = +-q, +-2q, +-3q, +-4q mod 2 pi: e^{2i theta},
@@ -42,17 +42,54 @@ import time
 
 import numpy as np
 
+from cradle.analyses import mi_diagram as modulational
+from cradle.analyses.protocol import Analysis, scene_reads
+from cradle.data.variables import Var
 from cradle.measurements import compare
 from cradle.models import dps
-from cradle.analyses import modulational
-from cradle.pipeline.config import store_times
-from cradle.data.variables import Var
+from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import ConfigError, entries, store_times
 
 MODELS = ("exact", "dps")
 #: the growth-rate diagram of the mi-growth figure: max_p of the scaled linear DpS rate on THEORY_N_Q
 #: wavenumbers q in [0, pi], each a grid search over THEORY_N_P values of p then a bounded refinement
 THEORY_N_Q = 361
 THEORY_N_P = 1001
+
+
+@declared(doc="Growth rates of the modulational instability measured in the scenes' own runs (exact lattice and DpS, "
+              "rerun from results/initial/<scene>.nc with the scene's integrators, sampled every sample_every), "
+              "fitted on the sideband pairs of the |A_hat| spectrum and compared with the linear DpS rate "
+              "(cradle.analyses.mi_diagram.growth_rate) -> results/mi-growth/mi-growth.nc and "
+              "results/figures/mi-growth.{pdf,png}.")
+class MIGrowth:
+    scenes: list[str] = param([], "Scenes (names under scenes:, travelling waves on a periodic ring) whose runs are "
+                              "measured; the target mi_growth needs at least one.", minItems=0, maxItems=12,
+                              items={"$ref": "#/$defs/name"})
+    sample_every: float = param(0.5, "Sampling interval in t of the spectra (the scenes store only snapshots, so "
+                                "their runs are repeated on this grid).", exclusiveMinimum=0, maximum=10.0)
+    saturation: float = param(0.2, "The fit window ends when the largest sideband pair first reaches this fraction "
+                              "of the carrier (end of the linear phase).", exclusiveMinimum=0, maximum=1.0)
+    decades: float = param(1.0, "The fit window covers the last `decades` decades of growth of the dominant pair "
+                           "before the window end (fewer if the run grew less: then no exponential phase is "
+                           "claimed).", exclusiveMinimum=0, maximum=4.0)
+    r2_min: float = param(0.95, "Smallest coefficient of determination of the log-linear fit for the growth to be "
+                          "called exponential.", exclusiveMinimum=0, maximum=1.0)
+
+    @staticmethod
+    def check(b: dict, path: list, cfg: dict, out) -> None:
+        """Every named scene that exists is a travelling wave on a periodic ring. Names of missing scenes
+        are reported when the target is planned (its reads), so that a config with fewer scenes (a test's)
+        still validates."""
+        scenes = entries(cfg, "scenes")
+        for i, name in enumerate(b.get("scenes") if isinstance(b.get("scenes"), list) else []):
+            sc = scenes.get(name) if isinstance(name, str) else None
+            if sc is None:
+                continue
+            ini = sc.get("initial") if isinstance(sc.get("initial"), dict) else {}
+            if ini.get("kind") != "travelling" or sc.get("bc") != "periodic":
+                out.add(path + ["scenes", i], "must be a travelling-wave scene on a periodic ring (initial.kind "
+                                              "travelling, bc periodic)", name)
 
 
 # ---------------------------------------------------------------- spectra
@@ -156,22 +193,22 @@ def measure(t, S, exclude_m=(), saturation: float = 0.2, decades: float = 1.0, r
 
 # ---------------------------------------------------------------- scene runs
 
-def run_scene(spec: dict, init_ds, every: float):
-    """Rerun scene ``spec`` (resolved) from its initial Dataset: (t, {model: A (T, N)}, {model: x (T, N)}, info)."""
+def run_scene(spec, init_ds, every: float):
+    """Rerun scene ``spec`` (a resolved :class:`cradle.scenes.spec.Scene`) from its initial Dataset:
+    (t, {model: A (T, N)}, {model: x (T, N)}, info)."""
     from cradle.integrators import SPLITTING_METHODS, integrate_dps, integrate_lattice
 
-    alpha, bc = float(spec["alpha"]), spec["bc"]
+    alpha, bc = spec.alpha, spec.bc
     eps = float(init_ds.attrs["eps"])
     # the grid 0, every, ..., t_end plus the scene's own stored times (to check against its files)
-    t = np.asarray(store_times({"every": every, "snapshots": spec["times"]}, spec["t_end"]))
-    ex = spec["exact"]
-    accuracy = ({"dt_factor": ex.get("dt_factor")} if ex["method"] in SPLITTING_METHODS
-                else {"rtol": ex.get("rtol")})
+    t = np.asarray(store_times({"every": every, "snapshots": list(spec.times)}, spec.t_end))
+    ex = spec.exact
+    accuracy = ({"dt_factor": ex.dt_factor} if ex.method in SPLITTING_METHODS else {"rtol": ex.rtol})
     x0, v0 = init_ds["x0"].values, init_ds["v0"].values
-    lat = integrate_lattice(x0, v0, t, alpha=alpha, bc=bc, method=ex["method"], **accuracy)
+    lat = integrate_lattice(x0, v0, t, alpha=alpha, bc=bc, method=ex.method, **accuracy)
     A0 = init_ds["A0_re"].values + 1j * init_ds["A0_im"].values
-    st = spec["dps"]
-    ap = integrate_dps(A0, eps ** (alpha - 1.0) * t, alpha=alpha, bc=bc, method=st["method"], rtol=st["rtol"])
+    st = spec.dps
+    ap = integrate_dps(A0, eps ** (alpha - 1.0) * t, alpha=alpha, bc=bc, method=st.method, rtol=st.rtol)
     A = {"exact": lattice_amplitude(lat.x, lat.v, t, eps), "dps": np.asarray(ap.A)}
     x = {"exact": lat.x, "dps": compare.approximate_displacement(ap.A, t, eps)}
     info = {"exact_integrator": lat.method, "exact_energy_drift": lat.energy_drift,
@@ -249,23 +286,24 @@ VARIABLES = {
 }
 
 
-def compute(spec: dict, scenes: dict, log=None):
-    """The `mi-growth` target as a tree of groups (:data:`VARIABLES`).
-
-    ``spec``: sample_every, saturation, decades, r2_min. ``scenes``: {name: (resolved scene spec,
-    initial Dataset, {"exact": sim Dataset, "dps": sim Dataset})}.
+def compute(spec: MIGrowth, inputs: dict, log=None):
+    """The `mi-growth` analysis as a tree of groups (:data:`VARIABLES`), from the initial data and the
+    exact and DpS runs of every scene of ``spec.scenes`` (``inputs["<scene>/initial"]``, ...); each scene
+    is rerun with the integrators its files were computed with (:func:`cradle.scenes.stored.scene_of`).
     """
     from cradle.data.io import make_tree
+    from cradle.scenes.spec import Travelling
+    from cradle.scenes.stored import scene_of
 
     wall0 = time.perf_counter()
     say = log or (lambda *a: None)
-    every = float(spec["sample_every"])
-    names = list(scenes)
-    if not names:
-        raise ValueError("config error: beyond.mi_growth.scenes is empty: name at least one scene to measure")
-    Ns = [int(scenes[n][0]["N"]) for n in names]
+    every = spec.sample_every
+    names = list(spec.scenes)
+    scenes = {n: (scene_of(inputs[f"{n}/initial"]), inputs[f"{n}/initial"],
+                  {"exact": inputs[f"{n}/exact"], "dps": inputs[f"{n}/dps"]}) for n in names}
+    Ns = [scenes[n][0].N for n in names]
     M = max(Ns) // 2 + 1
-    t_end_max = max(float(scenes[n][0]["t_end"]) for n in names)
+    t_end_max = max(scenes[n][0].t_end for n in names)
     tg = np.arange(int(np.floor(t_end_max / every * (1 + 1e-12))) + 1) * every
     S, Mo, T = len(names), len(MODELS), tg.size
     f = {k: np.full((S, Mo), np.nan) for k in ("rate", "stderr", "r2", "theory", "pstar", "ta", "tb", "check")}
@@ -280,9 +318,10 @@ def compute(spec: dict, scenes: dict, log=None):
     drifts = {}
     for i, name in enumerate(names):
         sc, init_ds, sims = scenes[name]
-        alpha, N = float(sc["alpha"]), int(sc["N"])
+        alpha, N = sc.alpha, sc.N
         alphas.add(alpha)
-        q = float(sc["initial"]["q"])
+        assert isinstance(sc.initial, Travelling)   # mi-growth measures travelling waves (checked in the config)
+        q = sc.initial.wavenumber
         k_q = int(round(q * N / (2 * np.pi)))
         eps = float(init_ds.attrs["eps"])
         a = float(init_ds.attrs["a"])
@@ -296,7 +335,7 @@ def compute(spec: dict, scenes: dict, log=None):
         excl = harmonic_indices(k_q, N)
         for j, m in enumerate(MODELS):
             Sp = pair_spectrum(A[m], k_q)
-            r = measure(t, Sp, excl, float(spec["saturation"]), float(spec["decades"]), float(spec["r2_min"]))
+            r = measure(t, Sp, excl, spec.saturation, spec.decades, spec.r2_min)
             f["rate"][i, j], f["stderr"][i, j], f["r2"][i, j] = r["rate"], r["stderr"], r["r2"]
             f["pstar"][i, j] = p[r["m_star"]]
             f["theory"][i, j] = lam[r["m_star"]]
@@ -327,8 +366,8 @@ def compute(spec: dict, scenes: dict, log=None):
         "/theory": ({"max_growth": max_theory}, {"q": q_theory}),
     }
     attrs = {"scene_names": ", ".join(names), "model_names": ", ".join(MODELS), "alpha": alpha, "tau0": dps.tau0(alpha),
-             "sample_every": every, "saturation": spec["saturation"], "decades": spec["decades"],
-             "r2_min": spec["r2_min"],
+             "sample_every": every, "saturation": spec.saturation, "decades": spec.decades,
+             "r2_min": spec.r2_min,
              "time_units": "every rate is per unit t of (nc); DpS rates lambda (per unit tau of (dfnls)) are "
                            "converted by tau = eps^(alpha-1) t, rate_t = lambda eps^(alpha-1), R = 1",
              "measured_quantity": "S_p = sqrt(|A_hat_{-q+p}|^2 + |A_hat_{-q-p}|^2) / |A_hat_{-q}|; lattice A_n = "
@@ -338,16 +377,18 @@ def compute(spec: dict, scenes: dict, log=None):
     for name, info in drifts.items():   # CF attribute names: letters, digits, underscores
         for key, val in info.items():
             attrs[f"scene_{name.replace('-', '_')}_{key}"] = val
-    return make_tree(groups, VARIABLES, attrs=attrs, params=spec,
+    return make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
                      title="Modulational-instability growth rates measured in the scenes' runs (exact and DpS) "
                               "against the linear DpS theory")
 
 
-def run(spec: dict, files: list, scenes: dict, log=None):
-    """The analysis protocol (:mod:`cradle.analyses.registry`): ``files`` are the initial data, exact
-    and DpS runs of each scene of ``scenes`` (name -> resolved scene spec), in that order."""
-    data = {}
-    for i, (name, scene) in enumerate(scenes.items()):
-        initial, exact, dps = files[3 * i: 3 * i + 3]
-        data[name] = (dict(scene), initial, {"exact": exact, "dps": dps})
-    return compute(spec, data, log=log)
+def reads(spec: MIGrowth) -> dict:
+    """The initial data and both runs of every scene measured (at least one)."""
+    if not spec.scenes:
+        raise ConfigError("config error: beyond.mi-growth.scenes is empty: name at least one scene to measure")
+    return scene_reads(spec.scenes)
+
+
+ANALYSIS = Analysis(
+    name="mi-growth", spec=MIGrowth, compute=compute, reads=reads, variables=VARIABLES,
+    title="Modulational-instability growth rates measured in the scenes' runs, exact and DpS")

@@ -1,6 +1,6 @@
 """Figure beyond the paper: how long and how well DpS describes the lattice (dps-validity).
 
-Reads results/validity/[full/]dps-validity.nc (:mod:`cradle.analyses.dpsvalidity`), so it is listed
+Reads results/validity/[full/]dps-validity.nc (:mod:`cradle.analyses.dps_validity`), so it is listed
 in :data:`cradle.figures.DATASET_FIGURES` and drawn by :func:`cradle.figures.draw_dataset`.
 
 (a) the relative sup-norm error against eps at T = 1, every family, at the reference alpha (1.5 when

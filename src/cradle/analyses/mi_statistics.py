@@ -27,7 +27,7 @@ intervals: q_lo is the largest grid q below the crossing whose interval for
 f lies entirely below 1/2, q_hi the smallest grid q above it whose interval
 lies entirely above 1/2 (so the interval is never narrower than the grid).
 The DpS linear theory puts the threshold at q_c = pi/2 exactly
-(:func:`cradle.analyses.modulational.threshold`).
+(:func:`cradle.analyses.mi_diagram.threshold`).
 
 Stage functions: :func:`batch` runs one (N, model, chunk of q) batch ->
 Dataset; :func:`aggregate` joins the batches and adds the thresholds.
@@ -40,8 +40,8 @@ import numpy as np
 
 from cradle.measurements import compare, sidebands
 from cradle.models import initial
-from cradle.analyses import modulational
-from cradle.pipeline.config import store_times
+from cradle.analyses import mi_diagram as modulational
+from cradle.specs.values import store_times
 from cradle.data.variables import Var
 
 MODELS = ("exact", "dps")

@@ -1,0 +1,107 @@
+"""What an analysis declares about itself: the one protocol every analysis beyond the paper follows.
+
+An analysis is one module of :mod:`cradle.analyses` that defines ``ANALYSIS = Analysis(...)``:
+
+* ``name``: its one stem (``mi-growth``): config key ``beyond: mi-growth:``, module
+  ``cradle/analyses/mi_growth.py``, Snakemake target ``mi_growth``, results folder ``results/mi-growth/``,
+  figure ``results/figures/mi-growth.{pdf,png}`` drawn by ``draw`` of ``cradle/figures/mi_growth.py``;
+* ``spec``: its declared spec class (:func:`cradle.specs.declare.declared`), the full form; a field
+  ``reduced`` (a declared class of optional overrides) makes the cheaper form ``all`` builds;
+* ``reads(spec)``: the files it reads, by name (:class:`Read`: a layout kind and its names), opened and
+  verified by the pipeline and handed to ``compute`` under those names;
+* ``batches``: optionally, the jobs its work is split into (:class:`Batches`), each written apart and
+  handed to ``compute`` as ``batch/<key>``;
+* ``compute(spec, inputs, log)``: the output, a DataTree (or Dataset) of netCDF groups named as in the
+  paper from its ``variables``.
+
+The registry (:mod:`cradle.analyses.registry`) finds the modules; the config section, its schema, the rules
+and the figure table follow from it. Nothing here knows paths or Snakemake.
+"""
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+#: the cheaper form ``all`` builds, and the complete one (its own target ``<name>_full``)
+REDUCED, FULL = "reduced", "full"
+
+
+@dataclass(frozen=True)
+class Read:
+    """One file an analysis reads: a kind of the results layout (``initial``, ``exact``, ``dps``,
+    ``metrics``, ``homoclinic``, ...) and the names that fill its template (``scene="tw-weak"``)."""
+
+    kind: str
+    names: tuple[tuple[str, str], ...] = ()
+
+    @classmethod
+    def of(cls, kind: str, **names: str) -> Read:
+        return cls(kind, tuple(sorted(names.items())))
+
+
+def scene_reads(scenes, parts=("initial", "exact", "dps")) -> dict[str, Read]:
+    """The files of the named scenes, as ``<scene>/<part>``."""
+    return {f"{name}/{part}": Read.of(part, scene=name) for name in scenes for part in parts}
+
+
+@dataclass(frozen=True)
+class Batches:
+    """The jobs an analysis splits a form into: ``keys(spec)`` names them (strings that are file names),
+    ``run(spec, key, inputs, log)`` computes one (a Dataset) from the files ``reads(spec, key)`` names;
+    ``threads``: ``"all"`` when a batch must have the machine to itself (timings), else 1."""
+
+    keys: Callable[[Any], list[str]]
+    run: Callable[..., Any]
+    reads: Callable[[Any, str], Mapping[str, Read]] = lambda spec, key: {}
+    threads: Mapping[str, str | int] = field(default_factory=dict)  # form -> "all" or a count (default 1)
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """One analysis beyond the paper (see the module docstring)."""
+
+    name: str
+    title: str
+    spec: type
+    compute: Callable[..., Any]
+    variables: Mapping[str, Any]
+    reads: Callable[[Any], Mapping[str, Read]] = lambda spec: {}
+    batches: Batches | None = None
+
+    @property
+    def module(self) -> str:
+        """The module stem (``mi_growth``): of the analysis and of its figure."""
+        return self.name.replace("-", "_")
+
+    @property
+    def target(self) -> str:
+        """The Snakemake target (``mi_growth``)."""
+        return self.module
+
+    @property
+    def forms(self) -> tuple[str, ...]:
+        """The forms it is built in, the one ``all`` builds first."""
+        names = {f.name for f in dataclasses.fields(self.spec)}
+        return (REDUCED, FULL) if "reduced" in names else (FULL,)
+
+    def reads_of(self, spec) -> dict[str, Read]:
+        """Everything ``compute`` is handed: the files ``reads`` names and every batch."""
+        out = dict(self.reads(spec))
+        if self.batches is not None:
+            out.update({f"batch/{key}": Read.of("analysis-batch", analysis=self.name, key=key)
+                        for key in self.batches.keys(spec)})
+        return out
+
+
+def form_spec(spec, form: str):
+    """The spec of one form: the full one without its ``reduced`` overrides, or the reduced one (each
+    override given in place of the full value; an override left out keeps it)."""
+    if not any(f.name == "reduced" for f in dataclasses.fields(spec)):
+        return spec
+    overrides = {}
+    if form == REDUCED and spec.reduced is not None:
+        overrides = {f.name: getattr(spec.reduced, f.name) for f in dataclasses.fields(spec.reduced)
+                     if getattr(spec.reduced, f.name) is not None}
+    return dataclasses.replace(spec, **overrides, reduced=None)

@@ -1,0 +1,19 @@
+"""The spec a stored file of a scene was computed from, rebuilt from the file itself."""
+from __future__ import annotations
+
+import json
+
+from cradle.scenes.spec import Scene
+from cradle.specs.declare import from_plain
+from cradle.specs.values import ConfigError
+
+
+def scene_of(ds) -> Scene:
+    """The resolved :class:`Scene` that produced ``ds`` (a scene's initial, exact, dps or metrics Dataset),
+    from its ``parameters`` attribute, validated as it is rebuilt."""
+    name = ds.attrs.get("scene", "?")
+    text = ds.attrs.get("parameters")
+    if text is None:
+        raise ConfigError(f"config error: scene {name!r}: its file stores no parameters (written by an older "
+                          f"cradle): rebuild it")
+    return from_plain(Scene, json.loads(text), where=f"scenes.{name}")
