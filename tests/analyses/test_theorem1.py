@@ -112,15 +112,24 @@ def test_exact_wave_solves_the_lattice():
 
 def test_theorem1_file_is_a_tree_named_as_in_the_paper(tmp_path):
     """A tiny `theorem1` run, written and read back: the groups /waves, /profiles, /convergence,
-    /scenes hold the waves of cradle.models.waves under the paper's names, values as solved."""
+    /scenes hold the waves of cradle.models.waves under the paper's names, values as solved; a scene's
+    a, q, alpha and t_end come from its initial-data file, read by name; the figure draws from the file."""
+    import xarray as xr
+
+    from cradle.analyses.protocol import Read
     from cradle.data.io import open_tree, write_netcdf
+    from cradle.figures import save_figure
+    from cradle.figures.theorem1 import draw
+    from cradle.specs.declare import from_plain
 
     alpha, q = 1.5, np.pi / 2
-    spec = {"alpha": [alpha], "q": [q, np.pi], "q_expr": ["pi/2", "pi"], "a_min": 1e-3, "a_max": 0.1,
-            "n_amplitudes": 3, "modes": 16, "grid_log2": 10, "slope_eps_max": 1.0, "convergence_a": 0.01,
-            "convergence_modes": [8, 16], "n_xi": 9,
-            "scenes": [{"name": "tw", "alpha": alpha, "q": q, "a": 0.05, "omega_tw": 1.0, "t_end": 100.0}]}
-    tree = open_tree(write_netcdf(T.run(spec, [], {}), tmp_path / "theorem1.nc"))
+    spec = from_plain(T.Theorem1, {"alpha": [alpha], "q": ["pi/2", "pi"], "a_min": 1e-3, "a_max": 0.1,
+                                   "n_amplitudes": 3, "modes": 16, "grid_log2": 10, "slope_eps_max": 1.0,
+                                   "convergence_a": 0.01, "convergence_modes": [8, 16], "n_xi": 9, "scenes": ["tw"]})
+    assert spec.wavenumbers == [q, np.pi]
+    assert T.ANALYSIS.reads_of(spec) == {"tw/initial": Read.of("initial", scene="tw")}
+    initial = xr.Dataset(attrs={"scene": "tw", "alpha": alpha, "q": q, "a": 0.05, "omega_tw": 1.0, "t_end": 100.0})
+    tree = open_tree(write_netcdf(T.compute(spec, {"tw/initial": initial}), tmp_path / "theorem1.nc"))
     assert {node.path for node in tree.subtree} == {"/", "/waves", "/profiles", "/convergence", "/scenes"}
     waves = tree["waves"]
     assert waves["omega"].dims == ("alpha", "q", "a") and waves["omega"].attrs["units"] == "1"
@@ -137,3 +146,5 @@ def test_theorem1_file_is_a_tree_named_as_in_the_paper(tmp_path):
     sc = tree["scenes"]
     assert sc["q"].values[0] == q and sc["t_end"].values[0] == 100.0 and tree.attrs["scene_names"] == "tw"
     assert sc["drift"].values[0] == pytest.approx(abs(sc["omega"].values[0] - sc["omega_dps"].values[0]) * 100.0)
+    assert tree.attrs["q_expr"] == "pi/2, pi"
+    assert all(p.stat().st_size > 0 for p in save_figure(draw(tree), tmp_path / "theorem1"))

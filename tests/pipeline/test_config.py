@@ -9,6 +9,7 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
+from cradle.pipeline.config.validate import _VALIDATED, _validated
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -365,6 +366,7 @@ def test_validate_is_idempotent_and_remembered():
     """A validated config validates to itself, which is what lets resolved_* skip revalidating it."""
     cfg = cc.load(CONFIG)
     assert cc.validate(cfg) == cfg
-    cc._VALIDATED.clear()
+    _VALIDATED.clear()
     cfg = cc.load(CONFIG)
-    assert len(cc._VALIDATED) == 1 and cc._validated(cfg) == cfg and len(cc._VALIDATED) == 1
+    assert len(_VALIDATED) == 1 and _validated(cfg) == cfg
+    assert len(_VALIDATED) == 1

@@ -37,8 +37,10 @@ CONFIG = ROOT / "config.yaml"
 # loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope. Then issue 16: the section
 # movies: (no resolved scene changed). Then issue 15: the new section beyond.dps_validity; every other value
 # unchanged. Then issue 21: the key beyond.mi_growth renamed beyond.mi-growth, its spec typed (plain() of it is
-# the old dict; with the old key the hash is the old a61c41d8...).)
-RESOLVED_SHA256 = "17faeaaba9cf11580cb3cd0c8b4c197ee3719a8cc6921e62319fe2abddb61a56"
+# the old dict; with the old key the hash is the old a61c41d8...). Then theorem1 and mi-diagram on the
+# protocol: their entries are plain() of their typed specs (the same values, angles as written; theorem1's scenes
+# by name, their values read from the scenes' files).)
+RESOLVED_SHA256 = "4a3c768e5f10bc4da3a7f37369e79236ecf6766c14aa00f8a31a644ed4a98487"
 
 
 @pytest.fixture(scope="module")
@@ -54,8 +56,8 @@ def _everything_resolved(config) -> dict:
         "scenes": {n: cc.resolved_scene(cfg, n) for n in cfg["scenes"]},
         "homoclinic": {n: cc.resolved_homoclinic(cfg, n) for n in cfg["homoclinic"]},
         "map": {n: cc.resolved_map(cfg, n) for n in cfg["map"]},
-        "theorem1": cc.resolved_theorem1(cfg),
-        "mi_diagram": cc.resolved_mi_diagram(cfg),
+        "theorem1": plain(cc.analysis_spec(cfg, "theorem1", "full")),
+        "mi-diagram": plain(cc.analysis_spec(cfg, "mi-diagram", "full")),
         "mi_growth": plain(cc.analysis_spec(cfg, "mi-growth", "full")),
         "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
         "floquet": cc.resolved_floquet(cfg),
@@ -273,8 +275,9 @@ def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw
     ("theorem1", "q", ["pi/5", "-pi/2"], "beyond.theorem1.q[1] = '-pi/2': must be in (0, pi]"),
     ("theorem1", "a_max", 1e-9, "beyond.theorem1.a_max = 1e-09: must exceed a_min = 1e-08"),
     ("theorem1", "grid_log2", 10, "beyond.theorem1.grid_log2 = 10: 2^grid_log2 must be >= 8 x"),
-    ("mi_diagram", "check_pairs", [[70, 10], [250, 3]], "beyond.mi_diagram.check_pairs[1] = [250, 3]: need 0 <"),
-    ("mi_diagram", "check_pairs", [[10, 150]], "beyond.mi_diagram.check_pairs[0] = [10, 150]: stable for alpha"),
+    ("mi-diagram", "check_pairs", [[70, 10], [250, 3]], "beyond.mi-diagram.check_pairs[1] = [250, 3]: need 0 <"),
+    ("mi-diagram", "check_pairs", [[10, 150]], "beyond.mi-diagram.check_pairs[0] = [10, 150]: stable for alpha"),
+    ("theorem1", "scenes", ["tw-weak", "fini"], "beyond.theorem1.scenes[1] = 'fini': not a travelling-wave scene"),
     ("floquet", "q_max", "0.3pi", "beyond.floquet.q_max = '0.3pi': must exceed q_min = '0.4pi'"),
     ("floquet", "small_q", ["3pi/5", "pi"], "beyond.floquet.small_q[1] = 'pi': must be in (0, pi)"),
     ("mi_statistics", "reduced", {"N": [201]}, "beyond.mi_statistics.reduced.N[0] = 201: must be even"),
@@ -289,15 +292,16 @@ def test_analysis_checks_are_one_line_at_validation(raw, section, key, value, wo
 
 
 def test_analysis_scene_names_are_checked_when_resolved(raw):
-    """Names of scenes are checked when the analysis is resolved, so a config with fewer scenes (a
-    test's) still validates."""
+    """Names of scenes are checked when the analysis is planned (its reads name the files of the scenes, and
+    the rules refuse a scene with no `scenes:` entry), so a config with fewer scenes (a test's) still
+    validates."""
+    from cradle.analyses.protocol import Read
+    from cradle.analyses.registry import ANALYSES
+
     cfg = copy.deepcopy(raw)
-    cfg["beyond"]["theorem1"]["scenes"] = ["tw-weak", "fini"]
-    with pytest.raises(cc.ConfigError, match=r"beyond\.theorem1\.scenes\[1\] = 'fini': not a travelling-wave"):
-        cc.resolved_theorem1(cfg)
     cfg["beyond"]["theorem1"]["scenes"] = ["tw-wek"]
-    with pytest.raises(cc.ConfigError, match=r"scenes\[0\] = 'tw-wek': unknown scene.*did you mean 'tw-weak'"):
-        cc.resolved_theorem1(cfg)
+    spec = cc.analysis_spec(cfg, "theorem1", "full")
+    assert ANALYSES["theorem1"].reads_of(spec) == {"tw-wek/initial": Read.of("initial", scene="tw-wek")}
     cfg["beyond"]["mi-growth"]["scenes"] = []
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes is empty"):
         cc.analysis_reads(cfg, "mi-growth", "full")

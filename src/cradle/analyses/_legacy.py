@@ -27,7 +27,7 @@ REDUCED, FULL = "reduced", "full"
 
 @dataclass(frozen=True)
 class Analysis:
-    name: str              # target stem, figure label and file stem ("mi-diagram")
+    name: str              # target stem, figure label and file stem ("mi-statistics")
     module: str            # cradle.analyses.<module>
     run: str               # "function" of that module: run(spec, files, scenes, log) -> DataTree or Dataset
     folder: str            # under the results folder
@@ -39,7 +39,7 @@ class Analysis:
 
     @property
     def target(self) -> str:
-        """Snakemake target name (``mi_diagram``)."""
+        """Snakemake target name (``mi_statistics``)."""
         return self.name.replace("-", "_")
 
     def output(self, form: str = REDUCED, root=layout.ROOT) -> str:
@@ -80,10 +80,6 @@ class Analysis:
 
 
 LEGACY: dict[str, Analysis] = {a.name: a for a in (
-    Analysis("theorem1", "theorem1", "run", "theorem1",
-             title="Theorem 1 measured: exact travelling waves of (ad) against (wleadingorder)"),
-    Analysis("mi-diagram", "mi_diagram", "run", "mi",
-             title="Modulational instability of the DpS plane waves: growth-rate map and direct checks"),
     Analysis("mi-statistics", "mi_statistics", "run", "mi", forms=(REDUCED, FULL), reads_batches=True,
              title="mi-statistics: thresholds from every batch"),
     Analysis("floquet", "floquet", "run", "floquet", forms=(REDUCED, FULL),

@@ -16,11 +16,52 @@ lambda tau0 R^(1-alpha) depends on (q, p) only: that is what we tabulate.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from cradle.models import dps
-from cradle.models.lattice import check_alpha
+from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
+from cradle.models import dps
+from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import number
+
+
+@declared(doc="Linear stability of the DpS plane waves (ansatz3): growth-rate map over (q, p) -> "
+              "results/mi-diagram/mi-diagram.nc and results/figures/mi-diagram.{pdf,png}.")
+class MIDiagram:
+    alpha: list[float] = param([1.5, 2.0, 3.0], "Exponents alpha of (dfnls) (each > 1).", minItems=1, maxItems=6,
+                               items={"$ref": "#/$defs/alpha", "maximum": 10})
+    n_q: int = param(181, "Number of plane-wave wavenumbers q in [0, pi].", minimum=3, maximum=2001)
+    n_p: int = param(361, "Number of perturbation wavenumbers p in [-pi, pi].", minimum=3, maximum=4001)
+    check_N: int = param(200, "Ring size N of the direct DpS runs that check the growth rates.", minimum=8,
+                         maximum=2000)
+    check_pairs: list[list[int]] = param([[70, 10], [100, 27], [80, 20]], "Direct checks [k_q, m_p]: q = 2 pi k_q / N, "
+                                         "p = 2 pi m_p / N, 0 < k_q, m_p < N, an unstable pair for every alpha.",
+                                         maxItems=10, items={"description": "One pair [k_q, m_p] of integers.",
+                                                             "type": "array", "minItems": 2, "maxItems": 2,
+                                                             "items": {"description": "k_q or m_p.", "type": "integer",
+                                                                       "minimum": 1, "maximum": 1999}})
+
+    @staticmethod
+    def check(b: dict, path: list, cfg: dict, out) -> None:
+        """Each check pair on the ring (0 < k_q, m_p < check_N) and unstable, lambda > 0 (ansatz3), for
+        every alpha (a direct run measures a growth rate)."""
+        N, pairs, alphas = b.get("check_N"), b.get("check_pairs"), b.get("alpha")
+        if not isinstance(N, int) or not isinstance(pairs, list):
+            return
+        for i, pair in enumerate(pairs):
+            if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(x, int) for x in pair)):
+                continue
+            k, m = pair
+            if not (0 < k < N and 0 < m < N):
+                out.add(path + ["check_pairs", i], f"need 0 < k_q, m_p < check_N = {N}", pair)
+                continue
+            for al in alphas if isinstance(alphas, list) else []:
+                if number(al) and al > 1 and not growth_rate(2 * math.pi * k / N, 2 * math.pi * m / N, al) > 0:
+                    out.add(path + ["check_pairs", i], f"stable for alpha = {al}; a check needs an unstable (q, p)",
+                            pair)
+                    break
 
 
 def _g(z, alpha):
@@ -39,7 +80,6 @@ def rotating_rhs(b, q: float, R: float, alpha: float):
 
 def stability_matrix(q, p, alpha: float, R: float = 1.0):
     """L(q, p): d/dtau (beta, gamma) = L (beta, gamma); q, p broadcast; shape (..., 2, 2)."""
-    alpha = check_alpha(alpha)
     q, p = np.broadcast_arrays(np.asarray(q, dtype=float), np.asarray(p, dtype=float))
     t0 = dps.tau0(alpha)
     Om = 2.0**alpha * R ** (alpha - 1.0) * np.abs(np.sin(q / 2.0)) ** (alpha + 1.0) / t0   # (ds)
@@ -92,7 +132,6 @@ def growth_rate(q, p, alpha: float, R: float = 1.0):
     the staggered perturbation p = pi (w = 2) grows as soon as c > -(alpha-1)/(alpha+1). So the
     threshold is q_c = pi/2 exactly, for every alpha, and p = pi goes unstable first.
     """
-    alpha = check_alpha(alpha)
     q, p = np.broadcast_arrays(np.asarray(q, dtype=float), np.asarray(p, dtype=float))
     s = np.abs(np.sin(q / 2.0))
     c = np.cos(q)
@@ -221,11 +260,11 @@ VARIABLES = {
 }
 
 
-def compute(spec: dict, log=None):
-    """The `mi-diagram` target as a tree of groups (:data:`VARIABLES`).
+def compute(spec: MIDiagram, inputs: dict, log=None):
+    """The `mi-diagram` analysis as a tree of groups (:data:`VARIABLES`); it reads no file.
 
-    ``spec``: alpha (list), n_q, n_p (grid of the map), check_N and check_pairs (list of
-    [k_q, m_p]: q = 2 pi k_q / N, p = 2 pi m_p / N, each simulated for every alpha).
+    The map on n_q x n_p points of [0, pi] x [-pi, pi]; each check pair [k_q, m_p] (q = 2 pi k_q / N,
+    p = 2 pi m_p / N, N = check_N) simulated for every alpha.
     """
     import time
 
@@ -233,9 +272,9 @@ def compute(spec: dict, log=None):
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
-    alphas = [float(a) for a in spec["alpha"]]
-    n_q, n_p, N = int(spec["n_q"]), int(spec["n_p"]), int(spec["check_N"])
-    pairs = [tuple(int(x) for x in pq) for pq in spec["check_pairs"]]
+    alphas = list(spec.alpha)
+    n_q, n_p, N = spec.n_q, spec.n_p, spec.check_N
+    pairs = [tuple(pq) for pq in spec.check_pairs]
     q = np.linspace(0.0, np.pi, n_q)
     p = np.linspace(-np.pi, np.pi, n_p)
     G = np.empty((len(alphas), n_q, n_p))
@@ -265,10 +304,10 @@ def compute(spec: dict, log=None):
              "growth_units": "lambda tau0 R^(1-alpha) (scale-free; lambda in units of 1/tau of (dfnls))",
              "max_check_rel_error": float(np.nanmax(np.abs(rel))),
              "wall_time_s": time.perf_counter() - t_start}
-    return make_tree(groups, VARIABLES, attrs=attrs,
+    return make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
                      title="Modulational instability of the DpS plane waves (ansatz3): growth-rate map")
 
 
-def run(spec: dict, files: list, scenes: dict, log=None):
-    """The analysis protocol (:mod:`cradle.analyses.registry`): reads no file."""
-    return compute(spec, log=log)
+ANALYSIS = Analysis(
+    name="mi-diagram", spec=MIDiagram, compute=compute, variables=VARIABLES,
+    title="Modulational instability of the DpS plane waves: growth-rate map and direct checks")

@@ -6,17 +6,82 @@ Here: their frequencies against the DpS relation (wleadingorder)/(freq), the rel
 and its slope in a (estim1), the profile correction v_a against its leading term (va) K_h P_h
 N0(sin) by quadrature of (ph)-(kh), the decay of the sine coefficients, the convergence in the
 number of modes, the q = pi binary oscillation of (inteq) whose period is a quadrature, and the
-paper's travelling-wave scenes; :func:`compute` stores them as a tree of netCDF groups
-(:data:`VARIABLES`).
+paper's travelling-wave scenes (their amplitude, wavenumber, alpha and time span read from their
+initial-data files); :func:`compute` stores them as a tree of netCDF groups (:data:`VARIABLES`).
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from cradle.models import dps
-from cradle.models.lattice import check_alpha
-from cradle.models.waves import Wave, branch, dV0, solve, wave_max
+from cradle.analyses.protocol import Analysis, scene_reads
 from cradle.data.variables import Var
+from cradle.models import dps
+from cradle.models.waves import Wave, branch, dV0, solve, wave_max
+from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import angle_expr, angle_or_none, entries, number, parse_angle, show
+
+
+@declared(doc="Exact periodic travelling waves of (nc) with V = V0 by a sine-series Newton solver of (ad), against "
+              "(wleadingorder) -> results/theorem1/theorem1.nc and results/figures/theorem1.{pdf,png}.")
+class Theorem1:
+    alpha: list[float] = param([1.5, 2.0, 3.0], "Hertz exponents alpha of V0 to solve for (each > 1).", minItems=1,
+                               maxItems=6, items={"$ref": "#/$defs/alpha", "maximum": 10})
+    q: list[float | str] = param(["pi/5", "pi/2", "4pi/5", "pi"], "Wavenumbers q of the travelling waves, in (0, pi] "
+                                 "(numbers or 'pi/5'-style strings); include pi for the (inteq) check.", minItems=1,
+                                 maxItems=8, items={"$ref": "#/$defs/angle"})
+    a_min: float = param(1e-8, "Smallest amplitude a (first sine coefficient of u, ansatzu).", exclusiveMinimum=0,
+                         minimum=1e-12, maximum=1.0)
+    a_max: float = param(1.0, "Largest amplitude a; must exceed a_min.", exclusiveMinimum=0, maximum=100.0)
+    n_amplitudes: int = param(31, "Number of amplitudes, log-spaced from a_min to a_max.", minimum=3, maximum=200)
+    modes: int = param(128, "Number J of sine modes of u (sin(j xi), j = 1..J).", minimum=8, maximum=512)
+    grid_log2: int = param(15, "log2 of the number M of grid points on which N(u) is sampled (aliasing error ~ "
+                           "M^-(alpha+1)); M must exceed 8 J.", minimum=10, maximum=18)
+    slope_eps_max: float = param(0.01, "The slope of the relative frequency correction is fitted where 1e-7 <= "
+                                 "a^(alpha-1) <= slope_eps_max.", exclusiveMinimum=0, maximum=1.0)
+    convergence_a: float = param(0.1, "Amplitude a of the convergence study in the number of modes.",
+                                 exclusiveMinimum=0, maximum=100.0)
+    convergence_modes: list[int] = param([16, 32, 64, 128], "Mode counts J of the convergence study (the reference "
+                                         "is twice the largest).", minItems=2, maxItems=8,
+                                         items={"description": "A number of sine modes.", "type": "integer",
+                                                "minimum": 4, "maximum": 256})
+    n_xi: int = param(129, "Number of samples of xi in [0, 2 pi] for the profiles v_a and K_h P_h N0(sin) (va).",
+                      minimum=9, maximum=2001)
+    scenes: list[str] = param([], "Travelling-wave scenes (names under scenes:, initial.kind travelling) whose "
+                              "amplitude and time span, read from their results/initial/<scene>.nc, give exact vs "
+                              "DpS frequency and the phase drift.", maxItems=10, items={"$ref": "#/$defs/name"})
+
+    @property
+    def wavenumbers(self) -> list[float]:
+        """The wavenumbers q in radians."""
+        return [parse_angle(q) for q in self.q]
+
+    @staticmethod
+    def check(b: dict, path: list, cfg: dict, out) -> None:
+        """q in (0, pi], a_max > a_min, a grid fine enough for the modes (2^grid_log2 >= 8 x
+        max(modes, 2 x max(convergence_modes))), and every named scene that exists a travelling wave.
+        Names of missing scenes are reported when the target is planned (its reads), so that a config
+        with fewer scenes (a test's) still validates."""
+        qs, names = b.get("q"), b.get("scenes")
+        for i, q in enumerate(qs if isinstance(qs, list) else []):
+            x = angle_or_none(q)
+            if x is not None and not 0.0 < x <= math.pi + 1e-12:
+                out.add(path + ["q", i], "must be in (0, pi]", q)
+        lo, hi = b.get("a_min"), b.get("a_max")
+        if number(lo) and number(hi) and not hi > lo:
+            out.add(path + ["a_max"], f"must exceed a_min = {show(lo)}", hi)
+        g, m, cm = b.get("grid_log2"), b.get("modes"), b.get("convergence_modes")
+        if isinstance(g, int) and isinstance(m, int) and isinstance(cm, list) and cm and \
+                all(isinstance(x, int) for x in cm) and 2 ** g < 8 * max(m, 2 * max(cm)):
+            out.add(path + ["grid_log2"], "2^grid_log2 must be >= 8 x max(modes, 2 x max(convergence_modes))", g)
+        scenes = entries(cfg, "scenes")
+        for i, name in enumerate(names if isinstance(names, list) else []):
+            sc = scenes.get(name) if isinstance(name, str) else None
+            ini = sc.get("initial") if sc is not None and isinstance(sc.get("initial"), dict) else None
+            if ini is not None and ini.get("kind") != "travelling":
+                out.add(path + ["scenes", i], "not a travelling-wave scene", name)
+
 
 _AQ = ("alpha", "q")
 _AQA = ("alpha", "q", "a")
@@ -152,7 +217,6 @@ def binary_period(A: float, alpha: float) -> float:
     """
     from scipy.integrate import quad
 
-    alpha = check_alpha(alpha)
     k = 2.0**alpha
 
     def g(th):
@@ -200,14 +264,14 @@ def _sample_v(w: Wave, xi) -> np.ndarray:
     return np.sin(np.multiply.outer(np.asarray(xi, dtype=float), j)) @ w.v
 
 
-def compute(spec: dict, log=None):
-    """The `theorem1` target as a tree of groups (see module docstring and :data:`VARIABLES`).
+def compute(spec: Theorem1, inputs: dict, log=None):
+    """The `theorem1` analysis as a tree of groups (see module docstring and :data:`VARIABLES`).
 
-    ``spec``: alpha (list), q (list, radians), q_expr (list of their texts), a_min, a_max,
-    n_amplitudes, modes, grid_log2 (M = 2^grid_log2), slope_eps_max (the slope is fitted where
-    EPS_FIT_MIN <= a^(alpha-1) <= slope_eps_max),
-    convergence_a, convergence_modes (list), n_xi (profile samples), scenes (list of dicts
-    name, q, a, omega_tw, t_end: amplitudes where exact and DpS frequencies are set side by side).
+    The grid: alpha, q, n_amplitudes amplitudes log-spaced in [a_min, a_max], ``modes`` sine modes
+    on M = 2^grid_log2 points; the slope is fitted where EPS_FIT_MIN <= a^(alpha-1) <= slope_eps_max;
+    the convergence study at convergence_a; profiles on n_xi samples. Each scene of ``spec.scenes``
+    (``inputs["<scene>/initial"]``, its initial data) gives its a, q, alpha and t_end, where exact and
+    DpS frequencies are set side by side.
     """
     import time
 
@@ -215,13 +279,13 @@ def compute(spec: dict, log=None):
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
-    alphas = [float(x) for x in spec["alpha"]]
-    qs = [float(x) for x in spec["q"]]
-    amps = np.geomspace(spec["a_min"], spec["a_max"], int(spec["n_amplitudes"]))
-    J, M = int(spec["modes"]), 2 ** int(spec["grid_log2"])
-    conv_modes = sorted(int(m) for m in spec["convergence_modes"])
+    alphas = list(spec.alpha)
+    qs = spec.wavenumbers
+    amps = np.geomspace(spec.a_min, spec.a_max, spec.n_amplitudes)
+    J, M = spec.modes, 2**spec.grid_log2
+    conv_modes = sorted(spec.convergence_modes)
     J_ref = 2 * conv_modes[-1]
-    xi = np.linspace(0.0, 2.0 * np.pi, int(spec["n_xi"]))
+    xi = np.linspace(0.0, 2.0 * np.pi, spec.n_xi)
     shape = (len(alphas), len(qs), amps.size)
     om, om_dps, lam, res, prof_err, umax, iters = (np.full(shape, np.nan) for _ in range(7))
     slope, decay = np.full(shape[:2], np.nan), np.full(shape[:2], np.nan)
@@ -244,11 +308,11 @@ def compute(spec: dict, log=None):
             v_small[ia, iq], v_large[ia, iq] = _sample_v(ws[0], xi), _sample_v(ws[-1], xi)
             rel = relative_correction(lam[ia, iq], amps, q, al)
             eps = amps ** (al - 1.0)
-            sel_fit = (eps <= spec["slope_eps_max"]) & (eps >= EPS_FIT_MIN)
+            sel_fit = (eps <= spec.slope_eps_max) & (eps >= EPS_FIT_MIN)
             if sel_fit.sum() >= 2:
                 slope[ia, iq] = log_slope(amps[sel_fit], rel[sel_fit])
             # convergence in the number of modes at one amplitude, against 2 x the largest count
-            a_c = float(spec["convergence_a"])
+            a_c = spec.convergence_a
             ref = solve(a_c, q, al, modes=J_ref, M=M, guess=solve(a_c, q, al, modes=conv_modes[-1], M=M))
             decay[ia, iq] = decay_rate(ref.v)
             xs = np.linspace(0.0, 2.0 * np.pi, 4 * J_ref + 1)
@@ -261,16 +325,18 @@ def compute(spec: dict, log=None):
                 f"decay j^-{decay[ia, iq]:.3f}")
     rel_corr = relative_correction(lam, amps, np.asarray(qs)[:, None], np.asarray(alphas)[:, None, None])
     # the paper's travelling-wave scenes: exact vs DpS frequency and the phase drift over the run
-    scenes = spec.get("scenes") or []
+    # (the amplitude as the scene's initial data has it: given, or (freq) inverted from its omega_tw)
+    scenes = list(spec.scenes)
     sc = {k: np.full(len(scenes), np.nan) for k in ("a", "q", "alpha", "om", "omd", "t", "drift", "res")}
-    for i, s in enumerate(scenes):
-        al, q, a = float(s["alpha"]), float(s["q"]), float(s["a"])
+    for i, name in enumerate(scenes):
+        scene_attrs = inputs[f"{name}/initial"].attrs
+        al, q, a = float(scene_attrs["alpha"]), float(scene_attrs["q"]), float(scene_attrs["a"])
         path = np.geomspace(min(1e-3, a), a, 12)
         w = branch(path, q, al, modes=J, M=M)[-1]
-        sc["a"][i], sc["q"][i], sc["alpha"][i], sc["t"][i] = a, q, al, float(s["t_end"])
+        sc["a"][i], sc["q"][i], sc["alpha"][i], sc["t"][i] = a, q, al, float(scene_attrs["t_end"])
         sc["om"][i], sc["omd"][i], sc["res"][i] = w.omega, omega_dps(a, q, al), w.residual
         sc["drift"][i] = abs(sc["om"][i] - sc["omd"][i]) * sc["t"][i]
-        say(f"theorem1: scene {s['name']}: a={a:.6g} omega={w.omega:.10g} omega_DpS={sc['omd'][i]:.10g} "
+        say(f"theorem1: scene {name}: a={a:.6g} omega={w.omega:.10g} omega_DpS={sc['omd'][i]:.10g} "
             f"drift={sc['drift'][i]:.4g} rad over t={sc['t'][i]}")
     alpha_q = {"alpha": alphas, "q": qs}
     groups = {
@@ -285,10 +351,10 @@ def compute(spec: dict, log=None):
                     {"scene": np.arange(len(scenes))}),
     }
     attrs = {
-        "scene_names": ", ".join(str(s["name"]) for s in scenes),
-        "q_expr": ", ".join(str(x) for x in spec.get("q_expr", qs)), "modes": J, "grid_points": M,
-        "reference_modes": J_ref, "convergence_a": float(spec["convergence_a"]),
-        "slope_eps_max": float(spec["slope_eps_max"]), "slope_eps_min": EPS_FIT_MIN,
+        "scene_names": ", ".join(scenes),
+        "q_expr": ", ".join(angle_expr(x) for x in spec.q), "modes": J, "grid_points": M,
+        "reference_modes": J_ref, "convergence_a": spec.convergence_a,
+        "slope_eps_max": spec.slope_eps_max, "slope_eps_min": EPS_FIT_MIN,
         "solver": "sine-series Galerkin/collocation of (ad) with c_1 = a (ansatzu), omega^2 = 1 + a^(alpha-1) "
                   "lambda; Newton with analytic Jacobian, continuation in a",
         "expected_correction_slope": "alpha - 1 (estim1, V = V0)",
@@ -299,11 +365,16 @@ def compute(spec: dict, log=None):
     if np.any(np.isfinite(pi_quad)):
         iq = [i for i, q in enumerate(qs) if abs(abs(q) - np.pi) < 1e-12][0]
         attrs["pi_max_relative_error"] = float(np.nanmax(np.abs(om[:, iq, :] / pi_quad - 1.0)))
-    return make_tree(groups, VARIABLES, attrs=attrs,
+    return make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
                      title="Theorem 1 measured: exact travelling waves of (nc) with V = V0 against the DpS "
                               "dispersion relation (wleadingorder)")
 
 
-def run(spec: dict, files: list, scenes: dict, log=None):
-    """The analysis protocol (:mod:`cradle.analyses.registry`): reads no file."""
-    return compute(spec, log=log)
+def reads(spec: Theorem1) -> dict:
+    """The initial data of every travelling-wave scene named (their a, q, alpha and t_end)."""
+    return scene_reads(spec.scenes, parts=("initial",))
+
+
+ANALYSIS = Analysis(
+    name="theorem1", spec=Theorem1, compute=compute, reads=reads, variables=VARIABLES,
+    title="Theorem 1 measured: exact travelling waves of (ad) against (wleadingorder)")

@@ -12,7 +12,7 @@ further CF attributes of a variable (``comment``, ``flag_values``, ...), also
 written by :func:`cradle.data.io.make_dataset`.
 
 The analyses beyond the paper declare their own variables beside their code, one dict per netCDF
-group (``VARIABLES`` of :mod:`cradle.analyses.theorem1`, ``modulational``, ``migrowth``,
+group (``VARIABLES`` of :mod:`cradle.analyses.theorem1`, ``mi_diagram``, ``migrowth``,
 ``mistatistics``, ``floquet``; :mod:`cradle.analyses.work_precision` likewise), passed to
 :func:`cradle.data.io.make_tree` or ``make_dataset(variables=...)``.
 """

@@ -6,7 +6,8 @@ writes it as ``<stem>.pdf`` and ``<stem>.png``. Modules: :mod:`.maps`
 (traj3, traj2), :mod:`.homoclinic` (bcsc), :mod:`.travelling` (plot4-5,
 plotcomplin), :mod:`.spacetime` (space-time diagrams and profiles),
 :mod:`.spectra` (fft106, fftseuil, fft344), :mod:`.localised` (breathers,
-loc1, fini), :mod:`.beyond` and :mod:`.workprecision` (beyond the paper).
+loc1, fini); beyond the paper, ``draw(tree)`` of the module named as each analysis
+(:mod:`.theorem1`, :mod:`.mi_diagram`, :mod:`.mi_growth`, ...; :func:`draw_analysis`) and :mod:`.workprecision`.
 
 Importing this package is cheap (no matplotlib, no figure module): the
 Snakefile asks it which module draws a label (:func:`module_of`) and
@@ -99,8 +100,6 @@ FIGURES = {
 #: Beyond the paper: label -> "module.function", each drawn from the one netCDF file of its
 #: analysis by :func:`draw_dataset`.
 DATASET_FIGURES = {
-    "theorem1": "beyond.theorem1",
-    "mi-diagram": "beyond.mi_diagram",
     "floquet": "floquet.floquet",
     "mi-statistics": "mi_statistics.mi_statistics",
     "breathers": "breathers.breathers",

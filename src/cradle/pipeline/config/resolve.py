@@ -16,7 +16,6 @@ from cradle.scenes.spec import HomoclinicEntry, MapEntry, Scene, resolved
 from cradle.specs.declare import build
 from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
 
-from .beyond import MIDiagram, Theorem1
 from .breather_interactions import BreatherInteractions
 from .breathers import Breathers
 from .dps_validity import DpsValidity
@@ -135,17 +134,6 @@ def resolved_work_precision(config: dict, name: str, form: str = "full") -> dict
         raise ConfigError(f"config error: work_precision.scenes.{name}: no entry of that name "
                           f"(entries: {', '.join(entries) or 'none'})")
     return WorkPrecision.resolve(cfg, name, resolved_scene(cfg, name), form)
-
-
-def resolved_theorem1(config: dict) -> dict:
-    """``beyond.theorem1`` resolved (:meth:`.beyond.Theorem1.resolve`)."""
-    cfg = _validated(config)
-    return Theorem1.resolve(cfg, resolved_scene)
-
-
-def resolved_mi_diagram(config: dict) -> dict:
-    """``beyond.mi_diagram`` resolved (:meth:`.beyond.MIDiagram.resolve`)."""
-    return MIDiagram.resolve(_validated(config))
 
 
 def resolved_mi_statistics(config: dict, variant: str) -> dict:

@@ -76,3 +76,25 @@ def test_threshold_is_pi_over_2_and_p_pi_goes_first(alpha):
     g, p = MI.max_over_p(np.pi, alpha)
     np.testing.assert_allclose(g, 2 ** (alpha - 1) * (alpha - 1) / np.sqrt(alpha), rtol=1e-12)
     np.testing.assert_allclose(p, np.arccos(1 / alpha), atol=1e-5)
+
+
+def test_mi_diagram_file_is_a_tree_named_as_in_the_paper(tmp_path):
+    """A tiny `mi-diagram` run, written and read back: the thresholds at the root, the map over (q, p)
+    in /map, the direct runs in /checks, values as the closed form gives them; it reads no file; the
+    figure draws from the file."""
+    from cradle.data.io import open_tree, write_netcdf
+    from cradle.figures import save_figure
+    from cradle.figures.mi_diagram import draw
+    from cradle.specs.declare import from_plain
+
+    spec = from_plain(MI.MIDiagram, {"alpha": [1.5], "n_q": 5, "n_p": 7, "check_N": 40, "check_pairs": [[14, 3]]})
+    assert MI.ANALYSIS.reads_of(spec) == {}
+    tree = open_tree(write_netcdf(MI.compute(spec, {}), tmp_path / "mi-diagram.nc"))
+    assert {node.path for node in tree.subtree} == {"/", "/map", "/checks"}
+    assert tree["map"]["growth"].dims == ("alpha", "q", "p")
+    q, p = tree["map"]["q"].values, tree["map"]["p"].values
+    np.testing.assert_array_equal(tree["map"]["growth"].values[0], MI.scaled_growth_rate(q[:, None], p[None, :], 1.5))
+    assert abs(tree["q_threshold"].values[0] - np.pi / 2) < 1e-9
+    chk = tree["checks"]
+    assert chk["q"].values[0, 0] == 2 * np.pi * 14 / 40 and abs(chk["rel_error"].values[0, 0]) < 0.05
+    assert all(path.stat().st_size > 0 for path in save_figure(draw(tree), tmp_path / "mi-diagram"))

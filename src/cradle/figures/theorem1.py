@@ -1,10 +1,5 @@
-"""Figures beyond the paper: Theorem 1 measured (theorem1) and the DpS modulational-instability map (mi-diagram).
-
-These read the netCDF outputs of the `theorem1` and `mi_diagram` rules
-(results/theorem1/theorem1.nc, results/mi/mi-diagram.nc), not scene files, so
-they are listed in :data:`cradle.figures.DATASET_FIGURES` (functions of the one file of their
-analysis, a tree of netCDF groups) and drawn by :func:`cradle.figures.draw_dataset`.
-"""
+"""Figure theorem1: Theorem 1 measured, the exact travelling waves of (nc) with V = V0 against the DpS
+relation (wleadingorder), from results/theorem1/theorem1.nc."""
 from __future__ import annotations
 
 import numpy as np
@@ -13,6 +8,7 @@ from cradle.figures import figure
 
 
 def _qlabel(q):
+    """q as a label: a fraction of pi where it is one (pi/5, 4pi/5), else 3 digits."""
     frac = q / np.pi
     for den in (1, 2, 3, 4, 5, 6, 8, 10):
         num = round(frac * den)
@@ -24,7 +20,7 @@ def _qlabel(q):
     return f"{q:.3g}"
 
 
-def theorem1(tree):
+def draw(tree):
     """Exact frequencies against (wleadingorder), the relative correction, v_a against (va), convergence.
 
     ``tree``: the groups /waves, /profiles, /convergence, /scenes of the theorem1 file."""
@@ -86,37 +82,4 @@ def theorem1(tree):
     D.set_title(f"(d) convergence at a = {tree.attrs.get('convergence_a', np.nan):g} "
                 f"(ref. J = {tree.attrs.get('reference_modes', '')})", fontsize=9)
     D.legend(fontsize=5.5, ncol=2)
-    return fig
-
-
-def mi_diagram(tree):
-    """Growth-rate maps lambda tau0 R^(1-alpha) over (q, p) for each alpha, and the maximum over p.
-
-    ``tree``: the mi-diagram file, thresholds at the root, groups /map and /checks."""
-    ds, mp, chk = tree.to_dataset(), tree["map"], tree["checks"]
-    alphas = ds["alpha"].values
-    n = len(alphas)
-    fig, ax = figure(1, n + 1, width=3.3 * (n + 1), height=3.4)
-    q, p = mp["q"].values, mp["p"].values
-    for ia, al in enumerate(alphas):
-        A = ax[ia]
-        G = mp["growth"].values[ia]
-        # 181 x 361 cells: a raster inside the PDF (70 kB, not 3 MB of vector patches)
-        m = A.pcolormesh(q, p, G.T, shading="auto", cmap="magma", rasterized=True)
-        fig.colorbar(m, ax=A, shrink=0.85)
-        A.axvline(ds["q_threshold"].values[ia], color="w", ls="--", lw=0.8)
-        A.plot(q, mp["argmax_p"].values[ia], "c-", lw=0.8)
-        A.set_xlabel("q")
-        A.set_ylabel("p")
-        A.set_title(rf"$\alpha$ = {al:g}: $q_c$ = {ds['q_threshold'].values[ia]:.6f}", fontsize=9)
-    B = ax[n]
-    for ia, al in enumerate(alphas):
-        B.plot(q, mp["max_growth"].values[ia], color=f"C{ia}", label=rf"$\alpha$ = {al:g}")
-        B.plot(chk["q"].values[ia], chk["growth_simulated"].values[ia], "x", color=f"C{ia}", ms=6)
-        B.plot(chk["q"].values[ia], chk["growth_theory"].values[ia], "o", mfc="none", color=f"C{ia}",
-               ms=6)
-    B.set_xlabel("q")
-    B.set_ylabel(r"$\max_p \lambda \tau_0 R^{1-\alpha}$")
-    B.set_title("max over p; x: DpS runs, o: theory at their (q, p)", fontsize=8)
-    B.legend(fontsize=7)
     return fig
