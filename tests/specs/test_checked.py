@@ -290,10 +290,6 @@ def test_a_schema_lists_only_the_shared_types_its_keys_use(monkeypatch):
 
 #: the removed per-parameter checks: they must not come back
 REMOVED = {"check_alpha", "check_bc", "check_positive", "check_choice"}
-#: transitional: cradle.models.lattice keeps a @checked check_alpha while these analyses (ported by others)
-#: still call it; once none does, it must go too
-TRANSITIONAL_DEF = "models/lattice.py"
-TRANSITIONAL_CALLERS = {"analyses/mi_diagram.py", "analyses/theorem1.py"}
 #: a function named check_<shared type> is a per-parameter check whatever its body
 CHECK_NAMES = REMOVED | {f"check_{k}".lower() for k in SHARED}
 
@@ -400,12 +396,5 @@ def test_no_per_function_parameter_check_remains():
             uses[rel] = found
         if found := hand_checks(tree):
             checks[rel] = found
+    assert uses == {}
     assert checks == {}
-    callers = {rel for rel in uses if rel in TRANSITIONAL_CALLERS}
-    shim = [("def", "check_alpha")]
-    allowed = {rel for rel, found in uses.items()
-               if rel in callers or (rel == TRANSITIONAL_DEF and callers and [u[:2] for u in found] == shim)}
-    assert {rel: found for rel, found in uses.items() if rel not in allowed} == {}, \
-        "a removed per-parameter check is back (or: no analysis calls the transitional check_alpha any more: " \
-        "delete it from cradle.models.lattice)"
-    assert all(name == "check_alpha" for found in uses.values() for _, name, _ in found)

@@ -20,16 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.specs.checked import checked
-
 BOUNDARY_CONDITIONS = ("periodic", "free")
-
-
-@checked
-def check_alpha(alpha: float) -> float:
-    """Transitional, for cradle.analyses.mi_diagram and .theorem1 until they are ported (then deleted,
-    tests/specs/test_checked.py says when): ``alpha`` as the shared type alpha declares it."""
-    return alpha
 
 
 def V0(d, alpha: float):
