@@ -147,15 +147,15 @@ def test_config_errors_name_the_key():
     from cradle.pipeline import config as cc
 
     cfg = yaml.safe_load((cc.schema_path().parents[3] / "config.yaml").read_text())
-    assert cc.resolved_breathers(cfg, "reduced")["N"] == 10
+    assert cc.analysis_spec(cfg, "breathers", "reduced").N == 10
     bad = copy.deepcopy(cfg)
     bad["beyond"]["breathers"]["pn_omega"] = 1.11
     with pytest.raises(ValueError, match="beyond.breathers.pn_omega"):
-        cc.resolved_breathers(bad)
+        cc.analysis_spec(bad, "breathers", "full")
     bad = copy.deepcopy(cfg)
     bad["beyond"]["breathers"]["omegas"] = [1.1, 1.05]
     with pytest.raises(ValueError, match="beyond.breathers.omegas"):
-        cc.resolved_breathers(bad)
+        cc.analysis_spec(bad, "breathers", "full")
 
 
 def test_tail_recursion_continues_the_resolved_tail_double_exponentially():

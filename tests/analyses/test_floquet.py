@@ -7,13 +7,17 @@ import numpy as np
 import pytest
 
 from cradle.analyses import bloch as B, floquet as F
+from cradle.analyses.floquet_spec import Floquet, Numerics
+from cradle.analyses.registry import FULL, REDUCED, form_spec
+from cradle.specs.declare import from_plain, plain
+from cradle.specs.values import parse_angle
 
 ALPHA = 1.5
-NUM = dict(hill_modes=16, grid_log2=16, wave_modes=64, wave_grid_log2=13)
+NUM = Numerics(hill_modes=16, grid_log2=16, wave_modes=64, wave_grid_log2=13)
 
 
 def _wave(q, omega_tw):
-    return B.wave_for(q, ALPHA, omega_tw=omega_tw, modes=NUM["wave_modes"], grid_log2=NUM["wave_grid_log2"])
+    return B.wave_for(q, ALPHA, omega_tw=omega_tw, modes=NUM.wave_modes, grid_log2=NUM.wave_grid_log2)
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +37,7 @@ def test_trivial_multipliers_and_hamiltonian_symmetry(ring10):
     mirrored = 1.0 / np.conj(mu)
     assert B.match_distance(mu, mirrored) < 1e-6
     # Bloch: the central pair at p = 0 is (0, 0) up to the discretisation error; stable modes are neutral
-    H = B.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
+    H = B.Hill(w, L=NUM.hill_modes, M=2 ** NUM.grid_log2)
     assert H.trivial_defect() < 1e-3
     c = H.central(0.3)                     # q = 3pi/5, omega_tw = 1.1: p = 0.3 is unstable ...
     assert c.size == 2 and abs(c[0].real + c[1].real) < 1e-12   # ... as lambda, -conj(lambda)
@@ -45,7 +49,7 @@ def test_bloch_reduction_equals_brute_force_monodromy(ring10):
     w, Mono = ring10
     T = 2 * np.pi / w.omega
     mu = np.linalg.eigvals(Mono)
-    H = B.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
+    H = B.Hill(w, L=NUM.hill_modes, M=2 ** NUM.grid_log2)
     lam = B.ring_exponents_hill(H, 10)
     assert lam.size == 20                   # two central exponents per Bloch wavenumber
     mu_h = B.multipliers(lam, T)
@@ -59,7 +63,7 @@ def test_bloch_reduction_equals_brute_force_monodromy(ring10):
 def test_small_amplitude_growth_matches_dps(q):
     """omega_tw = 1.001: max growth within 1 % of the DpS prediction, the band against p within 2 %."""
     w = _wave(q, 1.001)
-    H = B.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"])
+    H = B.Hill(w, L=NUM.hill_modes, M=2 ** NUM.grid_log2)
     g, p = H.max_growth(61)
     gd, pd = F.dps_max_growth(q, ALPHA, w.a)
     assert abs(g / gd - 1.0) < 0.01
@@ -68,7 +72,7 @@ def test_small_amplitude_growth_matches_dps(q):
     np.testing.assert_allclose(H.growth(ps), F.dps_growth(q, ps, ALPHA, w.a), atol=0.02 * gd)
     # at omega_tw = 1.01 the finite-amplitude correction is a few per cent
     w = _wave(q, 1.01)
-    g1 = B.Hill(w, L=NUM["hill_modes"], M=2 ** NUM["grid_log2"]).max_growth(61)[0]
+    g1 = B.Hill(w, L=NUM.hill_modes, M=2 ** NUM.grid_log2).max_growth(61)[0]
     assert abs(g1 / F.dps_max_growth(q, ALPHA, w.a)[0] - 1.0) < 0.05
 
 
@@ -89,21 +93,34 @@ def test_direct_simulation_grows_at_the_top_floquet_rate():
     assert dist[-1] / dist[0] > 30
 
 
-def test_resolved_floquet_names_the_key():
+def test_floquet_spec_names_the_key():
     from cradle.pipeline import config as cc
 
     cfg = cc.load("config.yaml")
-    b = cc.resolved_floquet(cfg)
-    assert abs(b["q_min"] - 0.4 * np.pi) < 1e-15 and b["convergence"]["hill_modes"] >= b["hill_modes"]
+    spec = cc.analysis_spec(cfg, "floquet", FULL)
+    assert abs(parse_angle(spec.q_min) - 0.4 * np.pi) < 1e-15 and spec.fine.hill_modes >= spec.hill_modes
     bad = copy.deepcopy(cfg)
     bad["beyond"]["floquet"]["q_max"] = "0.3pi"
     with pytest.raises(ValueError, match="beyond.floquet.q_max"):
-        cc.resolved_floquet(bad)
+        cc.analysis_spec(bad, "floquet", FULL)
     bad = copy.deepcopy(cfg)
     bad["beyond"]["floquet"]["ring_k"] = bad["beyond"]["floquet"]["ring_N"]
     with pytest.raises(ValueError, match="beyond.floquet.ring_k"):
-        cc.resolved_floquet(bad)
+        cc.analysis_spec(bad, "floquet", FULL)
     bad = copy.deepcopy(cfg)
     bad["beyond"]["floquet"]["threshold_omega_tw"] = [1.05]
     with pytest.raises(ValueError, match="threshold_omega_tw"):
-        cc.resolved_floquet(bad)
+        cc.analysis_spec(bad, "floquet", FULL)
+
+
+def test_both_forms_round_trip_through_plain_values():
+    """What a rule's params carry (angles as given, the finer numerics as declared) rebuilds the same form;
+    the reduced form takes the reduced keys, convergence included."""
+    spec = Floquet()
+    for form in (REDUCED, FULL):
+        one = form_spec(spec, form)
+        assert form_spec(from_plain(Floquet, plain(one)), FULL) == one
+    reduced = form_spec(spec, REDUCED)
+    assert (reduced.n_q, reduced.q_profiles, reduced.q_min) == (spec.reduced.n_q, spec.reduced.q_profiles, "0.4pi")
+    assert reduced.fine == Numerics(spec.reduced.convergence.hill_modes, spec.reduced.convergence.grid_log2,
+                                    spec.reduced.convergence.wave_modes, spec.reduced.wave_grid_log2)

@@ -95,7 +95,7 @@ def test_module_lookup_by_source_agrees_with_the_imported_registry():
         assert figures.drawer(label, "DATASET_FIGURES").__module__ == f"cradle.figures.{module}"
     assert {"mi-statistics"} <= set(figures.labels("DATASET_FIGURES"))
     # the analyses on the protocol: draw() of cradle.figures.<module>, no entry in DATASET_FIGURES
-    assert {"theorem1", "mi-diagram", "mi-growth"} <= set(ANALYSES)
+    assert {"theorem1", "mi-diagram", "mi-growth", "floquet", "breathers"} <= set(ANALYSES)
     for a in ANALYSES.values():
         assert callable(importlib.import_module(f"cradle.figures.{a.module}").draw), a.name
         assert a.name not in figures.labels("DATASET_FIGURES"), a.name

@@ -11,13 +11,12 @@ from pathlib import Path
 import pytest
 import yaml
 
+from cradle.analyses import breathers_spec, floquet_spec
 from cradle.pipeline import config as cc
 from cradle.pipeline.config import (
     beyond,
     breather_interactions,
-    breathers,
     dps_validity,
-    floquet,
     mi_statistics,
     movies,
     sections,
@@ -39,8 +38,11 @@ CONFIG = ROOT / "config.yaml"
 # unchanged. Then issue 21: the key beyond.mi_growth renamed beyond.mi-growth, its spec typed (plain() of it is
 # the old dict; with the old key the hash is the old a61c41d8...). Then theorem1 and mi-diagram on the
 # protocol: their entries are plain() of their typed specs (the same values, angles as written; theorem1's scenes
-# by name, their values read from the scenes' files).)
-RESOLVED_SHA256 = "4a3c768e5f10bc4da3a7f37369e79236ecf6766c14aa00f8a31a644ed4a98487"
+# by name, their values read from the scenes' files. Then floquet and
+# breathers typed: plain() of their specs; breathers' is the old dict, floquet's keeps its angles as given (with
+# them in radians and their texts in q_profiles_expr and small_q_expr, as the old resolved dict had them, the
+# hash was the previous one).)
+RESOLVED_SHA256 = "b21cba8f5d4cd590f9b44c14d887d1dc1afd097f881a64b81653b53ecf03341a"
 
 
 @pytest.fixture(scope="module")
@@ -60,10 +62,10 @@ def _everything_resolved(config) -> dict:
         "mi-diagram": plain(cc.analysis_spec(cfg, "mi-diagram", "full")),
         "mi_growth": plain(cc.analysis_spec(cfg, "mi-growth", "full")),
         "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
-        "floquet": cc.resolved_floquet(cfg),
-        "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
-        "breathers": cc.resolved_breathers(cfg),
-        "breathers_reduced": cc.resolved_breathers(cfg, "reduced"),
+        "floquet": plain(cc.analysis_spec(cfg, "floquet", "full")),
+        "floquet_reduced": plain(cc.analysis_spec(cfg, "floquet", "reduced")),
+        "breathers": plain(cc.analysis_spec(cfg, "breathers", "full")),
+        "breathers_reduced": plain(cc.analysis_spec(cfg, "breathers", "reduced")),
         "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
         "dps_validity": cc.resolved_dps_validity(cfg),
         "dps_validity_reduced": cc.resolved_dps_validity(cfg, "reduced"),
@@ -88,8 +90,9 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 
 def test_declarations_are_frozen_and_every_field_described():
-    classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics, breather_interactions,
-                           movies, dps_validity) for c in vars(m).values()
+    modules = (scenes, sections, beyond, floquet_spec, breathers_spec, mi_statistics, breather_interactions, movies,
+               dps_validity)
+    classes = [c for m in modules for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:

@@ -82,10 +82,6 @@ class Analysis:
 LEGACY: dict[str, Analysis] = {a.name: a for a in (
     Analysis("mi-statistics", "mi_statistics", "run", "mi", forms=(REDUCED, FULL), reads_batches=True,
              title="mi-statistics: thresholds from every batch"),
-    Analysis("floquet", "floquet", "run", "floquet", forms=(REDUCED, FULL),
-             title="Bloch-Floquet stability of the exact travelling waves against the DpS threshold"),
-    Analysis("breathers", "breathers", "run", "breathers", forms=(REDUCED, FULL),
-             title="Exact breathers of (nc): families, Floquet stability, Peierls-Nabarro barrier, distance to DpS"),
     Analysis("breather-interactions", "breather_interactions", "run", "interactions", forms=(REDUCED, FULL),
              batches="breather_interactions",
              title="Collisions of two breathers, exact (nc) against DpS (dfnls): outcome statistics (loc1)"),

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from cradle.analyses.breathers_spec import Breathers
 from cradle.data.variables import Var
 
 VARIABLES = {
@@ -33,12 +34,12 @@ def sigma(fl, T) -> float:
     return float((z.real / T) ** 2 - (z.imag / T) ** 2)
 
 
-def locate(fam, floquets, name, kind, centre, spec, say, steps: int):
-    """Zeros of sigma along one family (list of Breathers on the grid), refined by ``steps`` regula falsi steps.
-    Returns a list of (omega, half-width)."""
+def locate(fam, floquets, name, kind, centre, spec: Breathers, say, steps: int):
+    """Zeros of sigma along one family (list of Breathers on the grid), refined by ``steps`` regula falsi steps
+    (each breather solved with the spec's newton_tol and rtol). Returns a list of (omega, half-width)."""
     from cradle.models import lattice_breathers as lb
 
-    rtol, tol = float(spec["rtol"]), float(spec["newton_tol"])
+    rtol, tol = spec.rtol, spec.newton_tol
     sig = [sigma(floquets[(name, b.omega)], b.T) for b in fam]
     out = []
     for i in range(len(fam) - 1):

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from cradle.analyses.breathers_spec import Breathers
 from cradle.data.variables import Var
 
 VARIABLES = {
@@ -109,26 +110,27 @@ def direct_growth(b, growth_factor, rel_size=1e-6, rtol=1e-13):
     return float(np.polyfit(t_out[sel], np.log(proj[sel]), 1)[0]), rate, t_out, proj
 
 
-def compute(families: dict, floquets: dict, spec: dict, alpha: float, say, attrs: dict) -> dict:
-    """The /kick and /direct groups from the ring families ``families`` (name -> list of Breathers) and their
-    Floquet results ``floquets`` ((name, omega_b) -> Floquet); the scalar results go into ``attrs``."""
+def compute(families: dict, floquets: dict, spec: Breathers, alpha: float, say, attrs: dict) -> dict:
+    """The /kick and /direct groups of the `breathers` analysis (``spec``: its kick_* and direct_* keys) from
+    the ring families ``families`` (name -> list of Breathers) and their Floquet results ``floquets``
+    ((name, omega_b) -> Floquet); the scalar results go into ``attrs``."""
     import time
 
     groups = {}
     t0 = time.perf_counter()
-    kicks = [float(k) for k in spec["kicks"]]
-    fam_name = f"ring {spec['kick_family']}"
-    fam = [b for b in families.get(fam_name, []) if abs(b.omega - float(spec["kick_omega"])) < 1e-9]
+    kicks = [float(k) for k in spec.kicks]
+    fam_name = f"ring {spec.kick_family}"
+    fam = [b for b in families.get(fam_name, []) if abs(b.omega - spec.kick_omega) < 1e-9]
     vel = rad = drift = np.full(len(kicks), np.nan)
     if kicks and fam:
         b = fam[0]
         fl = floquets[(fam_name, b.omega)]
-        vel, rad, drift = kicked(b, fl, kicks, float(spec["kick_t_end"]), float(spec["kick_window"]), alpha)
+        vel, rad, drift = kicked(b, fl, kicks, spec.kick_t_end, spec.kick_window, alpha)
         say(f"breathers: {fam_name} at omega_b = {b.omega}: kicks {kicks} -> velocities {np.round(vel, 6)}, "
             f"radiation {np.round(rad, 6)}")
     groups["/kick"] = ({"velocity": vel, "radiation": rad, "energy_drift": drift}, {"kick": kicks})
-    attrs.update(kick_family=fam_name, kick_omega=float(spec["kick_omega"]), kick_t_end=float(spec["kick_t_end"]),
-                 kick_window=float(spec["kick_window"]), kick_seconds=time.perf_counter() - t0)
+    attrs.update(kick_family=fam_name, kick_omega=spec.kick_omega, kick_t_end=spec.kick_t_end,
+                 kick_window=spec.kick_window, kick_seconds=time.perf_counter() - t0)
 
     t0 = time.perf_counter()
     best = None
@@ -136,14 +138,14 @@ def compute(families: dict, floquets: dict, spec: dict, alpha: float, say, attrs
         if not name.startswith("ring"):
             continue
         for b in fam:
-            if spec.get("direct_omega") and abs(b.omega - float(spec["direct_omega"])) > 1e-9:
+            if spec.direct_omega and abs(b.omega - spec.direct_omega) > 1e-9:
                 continue
             fl = floquets[(name, b.omega)]
-            if fl.rate > float(spec["stability_threshold"]) and (best is None or fl.rate > best[1].rate):
+            if fl.rate > spec.stability_threshold and (best is None or fl.rate > best[1].rate):
                 best = (b, fl, name)
-    if best is not None and float(spec["direct_growth_factor"]) > 1:
+    if best is not None and spec.direct_growth_factor > 1:
         b, fl, name = best
-        r_run, r_fl, t, dev = direct_growth(b, float(spec["direct_growth_factor"]), rtol=float(spec["rtol"]))
+        r_run, r_fl, t, dev = direct_growth(b, spec.direct_growth_factor, rtol=spec.rtol)
         attrs.update(direct_family=name, direct_omega_b=b.omega, direct_rate_run=r_run, direct_rate_floquet=r_fl,
                      direct_rel_error=r_run / r_fl - 1.0)
         say(f"breathers: direct run of the {name} breather at omega_b = {b.omega:.4g}: growth {r_run:.6g} vs "

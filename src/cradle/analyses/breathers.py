@@ -5,7 +5,8 @@ The breathers and their multipliers are :mod:`cradle.models.lattice_breathers` (
 the variational equations, Newton continuation in omega_b from the DpS start); the DpS side is
 :mod:`cradle.models.dps_breathers`; the kicked breather and the direct growth check are
 :mod:`cradle.analyses.breather_mobility`. :func:`compute` stores them as a tree of netCDF groups
-(:data:`VARIABLES`).
+(:data:`VARIABLES`). Its spec is :class:`cradle.analyses.breathers_spec.Breathers` (config ``beyond:
+breathers:``, a reduced form for ``all``); it reads no file.
 
 Families (``family`` index, names in the root attribute ``family_names``): site- and bond-centred on the
 ring of N beads (plot18) and on the free-end chain of fini. Symmetry classes: (nc) is invariant under
@@ -19,7 +20,10 @@ import numpy as np
 
 from cradle.analyses.breather_exchanges import VARIABLES as _EXCHANGES
 from cradle.analyses.breather_mobility import VARIABLES as _MOBILITY
+from cradle.analyses.breathers_spec import Breathers
+from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
+from cradle.specs.declare import plain
 
 _F = ("family", "omega")
 VARIABLES = {
@@ -70,7 +74,8 @@ VARIABLES = {
         "log10_amplitude": Var(("family", "j"), "log10 max_t |x_n(t)| of the exact breather at pn_omega",
                                attrs=(("comment", ("from the trajectory where resolved, then the tail recursion "
                                                    "in log variables (cradle.models.lattice_breather_tails)")),)),
-        "log10_amplitude_dps": Var(("family", "j"), "log10 |x_n(0)| of the DpS breather at pn_omega (homoclinic_tails)"),
+        "log10_amplitude_dps": Var(("family", "j"),
+                                   "log10 |x_n(0)| of the DpS breather at pn_omega (homoclinic_tails)"),
     },
     "/pn": {
         "action_pn": Var(("action_pn",), "action J at which site and bond breathers of the ring are compared"),
@@ -85,10 +90,10 @@ VARIABLES = {
 }
 
 
-def _family_names(spec):
-    names = [(f"ring {k}", int(spec["N"]), "periodic", k) for k in spec["kinds"]]
-    if int(spec["free_N"]) > 0:
-        names += [("free bond", int(spec["free_N"]), "free", "bond")]   # fini's; no site symmetry on an even chain
+def _family_names(spec: Breathers):
+    names = [(f"ring {k}", spec.N, "periodic", k) for k in spec.kinds]
+    if spec.free_N > 0:
+        names += [("free bond", spec.free_N, "free", "bond")]   # fini's; no site symmetry on an even chain
     return names
 
 
@@ -115,21 +120,24 @@ def _nearest_one(mu, T):
     return float(abs(ln.real) / T), float(abs(ln.imag) / T)
 
 
-def compute(spec: dict, log=None):
-    """The `breathers` target (:data:`VARIABLES`). ``spec`` (:func:`cradle.pipeline.config.resolved_breathers`):
-    alpha, N, free_N, kinds, omegas, rtol, check_rtol, stability_threshold, pn_omega, and the mobility keys."""
-    from cradle.models import dps_breathers as db
-    from cradle.models import homoclinic_tails as ht
-    from cradle.models import lattice_breather_tails as lbt
-    from cradle.models import lattice_breathers as lb
+def compute(spec: Breathers, inputs: dict | None = None, log=None):
+    """The `breathers` analysis (:data:`VARIABLES`) from the spec of one form (it reads no file: ``inputs`` is
+    empty); the kicked breather and the direct growth check by :func:`cradle.analyses.breather_mobility.compute`,
+    the stability exchanges by :func:`cradle.analyses.breather_exchanges.locate`."""
     from cradle.data.io import make_tree
+    from cradle.models import (
+        dps_breathers as db,
+        homoclinic_tails as ht,
+        lattice_breather_tails as lbt,
+        lattice_breathers as lb,
+    )
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
-    al = float(spec["alpha"])
-    omegas = np.asarray(spec["omegas"], float)
+    al = spec.alpha
+    omegas = np.asarray(spec.omegas, float)
     fams = _family_names(spec)
-    F, W, Nmax = len(fams), omegas.size, int(spec["N"])
+    F, W, Nmax = len(fams), omegas.size, spec.N
     out = {k: np.full((F, W), np.nan) for k in VARIABLES["/families"]}
     out["converged"][:] = 0
     x0s, x0d = np.full((F, W, Nmax), np.nan), np.full((F, W, Nmax), np.nan)
@@ -142,7 +150,7 @@ def compute(spec: dict, log=None):
         n_tail = n_tails[f]
         a = _profile(N, kind, al, bc)
         sym, c = kind, _centre(N, bc)
-        fam, last = lb.continue_family(a, omegas, al, bc, sym, c, tol=float(spec["newton_tol"]), log=say)
+        fam, last = lb.continue_family(a, omegas, al, bc, sym, c, tol=spec.newton_tol, log=say)
         ends[name] = last
         odd_basis = None
         if sym is not None:
@@ -152,11 +160,11 @@ def compute(spec: dict, log=None):
         keep[name] = fam
         for b in fam:
             w = int(np.argmin(np.abs(omegas - b.omega)))
-            res, J = lb.period_residual(b, float(spec["rtol"]))
+            res, J = lb.period_residual(b, spec.rtol)
             # resolution check: the breather re-solved (Newton from x0) and measured at the finer tolerance
-            b2 = lb.newton(b.x0, b.omega, al, bc, sym, c, float(spec["newton_tol"]) / 100, max_iter=3,
-                           rtol=float(spec["check_rtol"]))
-            res2, J2 = lb.period_residual(b2, float(spec["check_rtol"]))
+            b2 = lb.newton(b.x0, b.omega, al, bc, sym, c, spec.newton_tol / 100, max_iter=3,
+                           rtol=spec.check_rtol)
+            res2, J2 = lb.period_residual(b2, spec.check_rtol)
             o = out
             o["energy_check"][f, w] = b2.energy()
             o["profile_change"][f, w] = float(np.max(np.abs(b2.x0 - b.x0)) / b.amplitude)
@@ -169,9 +177,9 @@ def compute(spec: dict, log=None):
             o["dps_distance"][f, w] = float(np.max(np.abs(b.x0 - xd)) / b.amplitude)
             o["omega_dps"][f, w] = db.omega_of_amplitude(a, b.amplitude, al)
             cc_ = c + (0.5 if kind == "bond" else 0.0)
-            _, lt_, first = lbt.log10_tail(b, cc_, n_tail, rtol=float(spec["rtol"]))
+            _, lt_, first = lbt.log10_tail(b, cc_, n_tail, rtol=spec.rtol)
             o["tail_slope"][f, w] = lbt.double_exponential_slope(lt_, np.log10(b.amplitude), first)
-            if abs(b.omega - float(spec["pn_omega"])) < 1e-9:
+            if abs(b.omega - spec.pn_omega) < 1e-9:
                 tails[f, :n_tail] = lt_
                 sc = np.log10(lb.dps_start(a, b.omega, al)[c] / a[c])
                 ld = ht.log10_abs(a, al, centre=c) + sc
@@ -184,24 +192,24 @@ def compute(spec: dict, log=None):
                 z = lam_odd[int(np.argmin(np.abs(lam_odd)))]
                 o["dps_pinning_exponent"][f, w], o["dps_pinning_frequency"][f, w] = abs(z.real), abs(z.imag)
             if sym is not None:
-                fl = lb.floquet(b, kind, c, float(spec["rtol"]))
+                fl = lb.floquet(b, kind, c, spec.rtol)
                 floquets[(name, b.omega)] = fl
                 o["trivial_defect"][f, w], o["growth_rate"][f, w] = fl.trivial, fl.rate
                 o["odd_growing"][f, w] = float(fl.odd_growing)
                 o["pinning_exponent"][f, w], o["pinning_frequency"][f, w] = _nearest_one(fl.mu_odd, b.T)
                 mus[f, w, :fl.mu.size] = fl.mu
-                o["unstable"][f, w] = float(fl.rate > float(spec["stability_threshold"]))
-        if sym is not None and int(spec["exchange_steps"]) > 0:
+                o["unstable"][f, w] = float(fl.rate > spec.stability_threshold)
+        if sym is not None and spec.exchange_steps > 0:
             from cradle.analyses.breather_exchanges import locate
 
-            exchanges += [(f, *e) for e in locate(fam, floquets, name, kind, c, spec, say,
-                                                  int(spec["exchange_steps"]))]
+            exchanges += [(f, *e) for e in locate(fam, floquets, name, kind, c, spec, say, spec.exchange_steps)]
         timings[name] = time.perf_counter() - t0
         if fam:
             om = [b.omega for b in fam]
             say(f"breathers: {name} (N = {N}): {len(fam)} breathers, omega_b in [{min(om):.4g}, {max(om):.4g}], "
                 f"family ends at {last}; max residual {np.nanmax(out['residual'][f]):.2g} (finer "
-                f"{np.nanmax(out['residual_check'][f]):.2g}, profile change {np.nanmax(out['profile_change'][f]):.2g}), "
+                f"{np.nanmax(out['residual_check'][f]):.2g}, profile change "
+                f"{np.nanmax(out['profile_change'][f]):.2g}), "
                 f"max trivial defect "
                 f"{np.nanmax(out['trivial_defect'][f]) if sym else float('nan'):.2g}; {timings[name]:.1f} s")
 
@@ -230,15 +238,16 @@ def compute(spec: dict, log=None):
     fit = _distance_fit(out, omegas, spec)
     attrs = {"alpha": al, "family_names": ", ".join(n for n, *_ in fams),
              "family_ends": ", ".join(f"{k}: {v}" for k, v in ends.items()),
-             "rtol": float(spec["rtol"]), "check_rtol": float(spec["check_rtol"]),
-             "stability_threshold": float(spec["stability_threshold"]),
-             "pn_omega": float(spec["pn_omega"]), "pn_barrier_at_pn_omega": pn[1], "pn_barrier_dps_at_pn_omega": pn[2],
+             "rtol": spec.rtol, "check_rtol": spec.check_rtol,
+             "stability_threshold": spec.stability_threshold,
+             "pn_omega": spec.pn_omega, "pn_barrier_at_pn_omega": pn[1], "pn_barrier_dps_at_pn_omega": pn[2],
              "pn_energy_site_at_pn_omega": pn[3], "pn_barrier_uncertainty_at_pn_omega": pn[4],
              "dE_dJ_check": float(max(dedj)) if dedj else np.nan,
-             "dE_dJ_check_comment": "max over grid intervals of |(Delta J + int (omega_b - 1) dJ) / (2 pi Delta E) - 1| "
-                                    "(omega_b - 1 = c J^p through both ends: exact to O((omega_b - 1)^2) per interval)",
+             "dE_dJ_check_comment": "max over grid intervals of |(Delta J + int (omega_b - 1) dJ) / (2 pi Delta E) "
+                                    "- 1| (omega_b - 1 = c J^p through both ends: exact to O((omega_b - 1)^2) per "
+                                    "interval)",
              "dps_distance_exponent": fit[0], "dps_distance_prefactor": fit[1],
-             "dps_distance_fit_omega_max": float(spec["fit_omega_max"]),
+             "dps_distance_fit_omega_max": spec.fit_omega_max,
              "tail_slope_dps": float(np.log(al)),
              "method": "reversible shooting (v(0) = 0; v(T/2) = 0 on Fix(-S) for bond, x(T/4) on Fix(S) and v(T/4) "
                        "on Fix(-S) for site) with DOP853 and the variational equations; Newton continuation in "
@@ -248,12 +257,12 @@ def compute(spec: dict, log=None):
     groups.update(breather_mobility.compute(keep, floquets, spec, al, say, attrs))
     attrs["wall_time_s"] = time.perf_counter() - t_start
     say(f"breathers: done in {attrs['wall_time_s']:.1f} s")
-    return make_tree(groups, VARIABLES, attrs=attrs,
+    return make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
                      title="Exact breathers of (nc): families, Floquet stability, Peierls-Nabarro barrier, distance "
                            "to the DpS breathers")
 
 
-def _pn(out, fams, omegas, spec, al, db):
+def _pn(out, fams, omegas, spec: Breathers, al, db):
     """E_bond - E_site at the site breather's action J_s, from the bond breather of the same omega_b.
 
     Along a family of periodic orbits dE/dJ = 1/T = omega_b / (2 pi), so the bond breather of action J_s
@@ -279,27 +288,27 @@ def _pn(out, fams, omegas, spec, al, db):
     unc = np.abs(bar - barrier(out["energy_check"][fs], out["action_check"][fs], out["energy_check"][fb],
                                out["action_check"][fb]))
     Js, Es = out["action"][fs], out["energy"][fs]
-    N = int(spec["N"])
+    N = spec.N
     a_s, a_b = _profile(N, "site", al, "periodic"), _profile(N, "bond", al, "periodic")
     bar_d = db.pn_barrier(a_s, a_b, Js[ok], al)
     om_s = omegas[ok]
-    j = np.where(np.abs(om_s - float(spec["pn_omega"])) < 1e-9)[0]
+    j = np.where(np.abs(om_s - spec.pn_omega) < 1e-9)[0]
     at = (float(bar[j[0]]), float(bar_d[j[0]]), float(Es[ok][j[0]]), float(unc[j[0]])) if j.size else (np.nan,) * 4
     return ({"barrier": bar, "barrier_dps": bar_d, "barrier_uncertainty": unc, "omega_site": om_s},
             {"action_pn": Js[ok]}), *at
 
 
-def _distance_fit(out, omegas, spec):
+def _distance_fit(out, omegas, spec: Breathers):
     """Power law dps_distance ~ C (omega_b - 1)^p over omega_b <= fit_omega_max, all ring families pooled."""
     d = out["dps_distance"]
     x = np.broadcast_to(omegas - 1.0, d.shape)
-    sel = np.isfinite(d) & (x <= float(spec["fit_omega_max"]) - 1.0) & (d > 0)
+    sel = np.isfinite(d) & (x <= spec.fit_omega_max - 1.0) & (d > 0)
     if np.unique(x[sel]).size < 2:
         return np.nan, np.nan
     p, c = np.polyfit(np.log(x[sel]), np.log(d[sel]), 1)
     return float(p), float(np.exp(c))
 
 
-def run(spec: dict, files: list, scenes: dict, log=None):
-    """The analysis protocol (:mod:`cradle.analyses.registry`): reads no file."""
-    return compute(spec, log=log)
+ANALYSIS = Analysis(
+    name="breathers", spec=Breathers, compute=compute, variables=VARIABLES,
+    title="Exact breathers of (nc): families, Floquet stability, Peierls-Nabarro barrier, distance to DpS")

@@ -6,15 +6,29 @@ growth rate g(p) of each sideband p against the DpS rate of (ansatz3) converted 
 (:func:`dps_growth`, R = a/2), over (q, p) at the amplitude omega_tw fixes by (freq); the lattice
 threshold (:func:`threshold`) against the amplitude, tending to the DpS q_c = pi/2; the small-
 amplitude limit; and :func:`compute`, which stores them as a tree of netCDF groups (:data:`VARIABLES`).
+Its spec is :class:`cradle.analyses.floquet_spec.Floquet` (config ``beyond: floquet:``, a reduced form for
+``all``); it reads no file.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from cradle.analyses.bloch import (NOISE_FLOOR, Hill, direct_growth, match_distance, multipliers,
-                                   ring_exponents_hill, ring_monodromy, wave_for)
-from cradle.models import dps
+from cradle.analyses.bloch import (
+    NOISE_FLOOR,
+    Hill,
+    direct_growth,
+    match_distance,
+    multipliers,
+    ring_exponents_hill,
+    ring_monodromy,
+    wave_for,
+)
+from cradle.analyses.floquet_spec import Floquet, Numerics
+from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
+from cradle.models import dps
+from cradle.specs.declare import plain
+from cradle.specs.values import angle_expr, parse_angle
 
 
 def dps_growth(q, p, alpha: float, a: float):
@@ -34,12 +48,12 @@ def dps_max_growth(q: float, alpha: float, a: float) -> tuple[float, float]:
 
 # ----------------------------------------------------------------- thresholds
 
-def _hill_at(q, alpha, omega_tw, num):
-    w = wave_for(q, alpha, omega_tw=omega_tw, modes=num["wave_modes"], grid_log2=num["wave_grid_log2"])
-    return Hill(w, L=num["hill_modes"], M=2 ** num["grid_log2"])
+def _hill_at(q, alpha, omega_tw, num: Numerics):
+    w = wave_for(q, alpha, omega_tw=omega_tw, modes=num.wave_modes, grid_log2=num.wave_grid_log2)
+    return Hill(w, L=num.hill_modes, M=2 ** num.grid_log2)
 
 
-def threshold(alpha: float, omega_tw: float, q_lo: float, q_hi: float, num: dict, n_scan: int = 16,
+def threshold(alpha: float, omega_tw: float, q_lo: float, q_hi: float, num: Numerics, n_scan: int = 16,
               n_p: int = 61, floor: float = NOISE_FLOOR, tol: float = 2e-6):
     """Smallest q in [q_lo, q_hi] where the exact wave (a from (freq) at omega_tw) has an unstable Bloch mode.
 
@@ -122,13 +136,10 @@ VARIABLES = {
 }
 
 
-def compute(spec: dict, log=None):
-    """The `floquet` target as a tree of groups (:data:`VARIABLES`).
-
-    ``spec`` (:func:`cradle.pipeline.config.resolved_floquet`): alpha, omega_tw, q_min, q_max, n_q, n_p, hill_modes, grid_log2,
-    wave_modes, wave_grid_log2, q_profiles (+ q_profiles_expr), threshold_omega_tw, threshold_q_min,
-    threshold_q_max, threshold_n_scan, convergence (hill_modes, grid_log2, wave_modes), ring_N, ring_k, direct_N,
-    direct_k, direct_growth_factor, small_omega_tw, small_q (+ small_q_expr).
+def compute(spec: Floquet, inputs: dict | None = None, log=None):
+    """The `floquet` analysis as a tree of groups (:data:`VARIABLES`), from the spec of one form (it reads no
+    file: ``inputs`` is empty). Every Hill problem and wave uses ``spec.numerics``, the convergence checks
+    ``spec.fine``.
     """
     import time
 
@@ -136,11 +147,10 @@ def compute(spec: dict, log=None):
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
-    al, om_tw = float(spec["alpha"]), float(spec["omega_tw"])
-    num = {k: int(spec[k]) for k in ("hill_modes", "grid_log2", "wave_modes", "wave_grid_log2")}
-    conv = dict(num, **{k: int(v) for k, v in spec["convergence"].items()})
-    n_p = int(spec["n_p"])
-    qs = np.linspace(float(spec["q_min"]), float(spec["q_max"]), int(spec["n_q"]))
+    al, om_tw = spec.alpha, spec.omega_tw
+    num, conv = spec.numerics, spec.fine
+    n_p = spec.n_p
+    qs = np.linspace(parse_angle(spec.q_min), parse_angle(spec.q_max), spec.n_q)
     ps = np.linspace(0.0, np.pi, n_p)
     timings = {}
 
@@ -165,11 +175,11 @@ def compute(spec: dict, log=None):
 
     # 2. thresholds against the amplitude (omega_tw), and at omega_tw with finer numerics / another floor
     t0 = time.perf_counter()
-    om_list = [float(x) for x in spec["threshold_omega_tw"]]
-    qlo, qhi = float(spec["threshold_q_min"]), float(spec["threshold_q_max"])
+    om_list = [float(x) for x in spec.threshold_omega_tw]
+    qlo, qhi = parse_angle(spec.threshold_q_min), parse_angle(spec.threshold_q_max)
     thr, thr_dq, thr_p = (np.full(len(om_list), np.nan) for _ in range(3))
     for j, om in enumerate(om_list):
-        thr[j], thr_dq[j], thr_p[j], nw = threshold(al, om, qlo, qhi, num, n_scan=int(spec["threshold_n_scan"]))
+        thr[j], thr_dq[j], thr_p[j], nw = threshold(al, om, qlo, qhi, num, n_scan=spec.threshold_n_scan)
         say(f"floquet: omega_tw={om}: lattice threshold q_c = {thr[j]:.8f} = {thr[j] / np.pi:.6f} pi "
             f"(+- {thr_dq[j]:.1g}), first p = {thr_p[j] / np.pi:.4f} pi, {nw} waves")
     j_main = int(np.argmin(np.abs(np.asarray(om_list) - om_tw)))
@@ -203,7 +213,7 @@ def compute(spec: dict, log=None):
 
     # 3. growth against p at selected q, refined maxima, convergence
     t0 = time.perf_counter()
-    qsel = [float(x) for x in spec["q_profiles"]]
+    qsel = [parse_angle(x) for x in spec.q_profiles]
     prof, prof_d = np.zeros((len(qsel), n_p)), np.zeros((len(qsel), n_p))
     pm, pm_p, pm_conv, pm_d, pm_dp = (np.full(len(qsel), np.nan) for _ in range(5))
     for i, q in enumerate(qsel):
@@ -221,19 +231,19 @@ def compute(spec: dict, log=None):
 
     # 4. small amplitude: lattice -> DpS
     t0 = time.perf_counter()
-    sq = [float(x) for x in spec["small_q"]]
+    sq = [parse_angle(x) for x in spec.small_q]
     sm_lat, sm_dps = np.full(len(sq), np.nan), np.full(len(sq), np.nan)
     for i, q in enumerate(sq):
-        H = _hill_at(q, al, float(spec["small_omega_tw"]), num)
+        H = _hill_at(q, al, spec.small_omega_tw, num)
         sm_lat[i] = H.max_growth(n_p)[0]
         sm_dps[i] = dps_max_growth(q, al, H.w.a)[0]
     sm_rel = sm_lat / sm_dps - 1.0
     timings["small_amplitude"] = time.perf_counter() - t0
-    say(f"floquet: omega_tw={spec['small_omega_tw']}: lattice/DpS max growth - 1 = {np.round(sm_rel, 4)}")
+    say(f"floquet: omega_tw={spec.small_omega_tw}: lattice/DpS max growth - 1 = {np.round(sm_rel, 4)}")
 
     # 5. brute force on a ring: monodromy vs Bloch reduction; direct simulation
     t0 = time.perf_counter()
-    N, k = int(spec["ring_N"]), int(spec["ring_k"])
+    N, k = spec.ring_N, spec.ring_k
     Hr = _hill_at(2 * np.pi * k / N, al, om_tw, num)
     T = 2 * np.pi / Hr.w.omega
     mu = np.linalg.eigvals(ring_monodromy(Hr.w, N))
@@ -243,9 +253,9 @@ def compute(spec: dict, log=None):
     ring_trivial = float(np.sort(np.abs(mu - 1.0))[1])
     timings["ring"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    Nd, kd = int(spec["direct_N"]), int(spec["direct_k"])
-    wd = wave_for(2 * np.pi * kd / Nd, al, omega_tw=om_tw, modes=num["wave_modes"], grid_log2=num["wave_grid_log2"])
-    d_mode, d_dist, d_rate, _, _ = direct_growth(wd, Nd, growth_factor=float(spec["direct_growth_factor"]))
+    Nd, kd = spec.direct_N, spec.direct_k
+    wd = wave_for(2 * np.pi * kd / Nd, al, omega_tw=om_tw, modes=num.wave_modes, grid_log2=num.wave_grid_log2)
+    d_mode, d_dist, d_rate, _, _ = direct_growth(wd, Nd, growth_factor=spec.direct_growth_factor)
     timings["direct"] = time.perf_counter() - t0
     say(f"floquet: ring N={N} k={k}: |mu_brute - mu_Bloch| <= {ring_dist:.2g}, top rate {ring_rate:.8g} vs "
         f"{ring_rate_h:.8g}, trivial |mu - 1| = {ring_trivial:.2g}; direct run N={Nd} k={kd}: {d_mode:.6g} "
@@ -270,22 +280,22 @@ def compute(spec: dict, log=None):
         "alpha": al, "omega_tw": om_tw,
         "amplitude": "a from (freq) inverted at omega_tw for each q (as the fftseuil scenes); the exact wave of "
                      "(ad) with that first sine coefficient, frequency omega of /sweep",
-        "hill_modes": num["hill_modes"], "grid_points": 2 ** num["grid_log2"], "wave_modes": num["wave_modes"],
-        "wave_grid_points": 2 ** num["wave_grid_log2"],
-        "fine_numerics": f"hill_modes={conv['hill_modes']}, grid_points=2^{conv['grid_log2']}, "
-                         f"wave_modes={conv['wave_modes']}",
+        "hill_modes": num.hill_modes, "grid_points": 2 ** num.grid_log2, "wave_modes": num.wave_modes,
+        "wave_grid_points": 2 ** num.wave_grid_log2,
+        "fine_numerics": f"hill_modes={conv.hill_modes}, grid_points=2^{conv.grid_log2}, "
+                         f"wave_modes={conv.wave_modes}",
         "noise_floor": NOISE_FLOOR,
-        "q_profiles_expr": ", ".join(spec.get("q_profiles_expr", [repr(x) for x in qsel])),
+        "q_profiles_expr": ", ".join(angle_expr(x) for x in spec.q_profiles),
         "q_threshold_lattice": q_c, "q_threshold_lattice_over_pi": q_c / np.pi,
         "q_threshold_uncertainty": unc, "q_threshold_fine_numerics": q_c_conv, "q_threshold_high_floor": q_c_floor,
         "q_threshold_dps": float(np.pi / 2),
         "q_dip": q_dip, "q_dip_over_pi": q_dip / np.pi, "growth_dip": g_dip,
         "growth_at_pi_over_2": at(np.pi / 2), "growth_at_051pi": at(0.51 * np.pi), "growth_at_052pi": at(0.52 * np.pi),
         "max_profile_fine_change": float(np.nanmax(np.abs(pm_conv - pm))),
-        "small_omega_tw": float(spec["small_omega_tw"]), "small_max_rel_error": float(np.nanmax(np.abs(sm_rel))),
+        "small_omega_tw": spec.small_omega_tw, "small_max_rel_error": float(np.nanmax(np.abs(sm_rel))),
         "ring_N": N, "ring_k": k, "ring_multiplier_distance": ring_dist, "ring_top_rate_monodromy": ring_rate,
         "ring_top_rate_bloch": ring_rate_h, "ring_trivial_multiplier_distance": ring_trivial,
-        "direct_N": Nd, "direct_k": kd, "direct_growth_factor": float(spec["direct_growth_factor"]),
+        "direct_N": Nd, "direct_k": kd, "direct_growth_factor": spec.direct_growth_factor,
         "direct_rate_mode": d_mode, "direct_rate_distance": d_dist, "direct_rate_floquet": d_rate,
         "direct_rel_error": d_mode / d_rate - 1.0,
         "growth_units": "1 / t (lattice time of (nc)); DpS rates converted by growth_rate(q, p, alpha, R = a/2)",
@@ -295,11 +305,11 @@ def compute(spec: dict, log=None):
         "wall_time_s": wall,
     }
     say(f"floquet: done in {wall:.1f} s ({attrs['timings_s']})")
-    return make_tree(groups, VARIABLES, attrs=attrs,
+    return make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
                      title="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) against "
                            "the DpS modulational-instability threshold")
 
 
-def run(spec: dict, files: list, scenes: dict, log=None):
-    """The analysis protocol (:mod:`cradle.analyses.registry`): reads no file."""
-    return compute(spec, log=log)
+ANALYSIS = Analysis(
+    name="floquet", spec=Floquet, compute=compute, variables=VARIABLES,
+    title="Bloch-Floquet stability of the exact travelling waves against the DpS threshold")

@@ -100,9 +100,7 @@ FIGURES = {
 #: Beyond the paper: label -> "module.function", each drawn from the one netCDF file of its
 #: analysis by :func:`draw_dataset`.
 DATASET_FIGURES = {
-    "floquet": "floquet.floquet",
     "mi-statistics": "mi_statistics.mi_statistics",
-    "breathers": "breathers.breathers",
     "breather-interactions": "breather_interactions.breather_interactions",
     "dps-validity": "dps_validity.dps_validity",
 }

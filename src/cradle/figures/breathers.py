@@ -1,7 +1,5 @@
-"""Figure beyond the paper: exact breathers of (nc) against the DpS breathers (breathers).
-
-Reads results/breathers/[full/]breathers.nc (:mod:`cradle.analyses.breathers`), listed in
-:data:`cradle.figures.DATASET_FIGURES`.
+"""Figure breathers: exact breathers of (nc) against the DpS breathers, from results/breathers/breathers.nc
+(or results/breathers/full/breathers.nc; :mod:`cradle.analyses.breathers`).
 
 (a) amplitude max|x_n(0)| against omega_b, exact families and DpS (ansatzapproxst2); (b) the pinning
     Floquet exponent: growth rate of the unstable family, frequency of the stable one's pinning pair, exact
@@ -17,7 +15,7 @@ import numpy as np
 from cradle.figures import figure
 
 
-def breathers(tree):
+def draw(tree):
     """The six panels above from the groups /families, /profiles, /pn, /tails, /exchanges, /kick."""
     fig, ax = figure(2, 3, width=13.0, height=7.4)
     at = tree.attrs

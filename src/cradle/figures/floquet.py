@@ -1,8 +1,5 @@
-"""Figure beyond the paper: Bloch-Floquet stability of the exact travelling waves (floquet).
-
-Reads results/floquet/[full/]floquet.nc (:mod:`cradle.analyses.floquet`), not scene files, so it
-is listed in :data:`cradle.figures.DATASET_FIGURES` (functions of the one file of their analysis) and drawn by
-:func:`cradle.figures.draw_dataset`.
+"""Figure floquet: Bloch-Floquet stability of the exact travelling waves, from results/floquet/floquet.nc
+(or results/floquet/full/floquet.nc; :mod:`cradle.analyses.floquet`).
 
 (a) max over p of the growth rate against q, lattice (exact waves) and DpS, thresholds marked, the
     fftseuil wavenumbers 50, 51, 52 pi/100 shaded; (b) the lattice growth rate over (q, p), with the DpS
@@ -20,7 +17,7 @@ def _frac(q):
     return f"{q / np.pi:.3g}" + r"$\pi$"
 
 
-def floquet(tree):
+def draw(tree):
     """The four panels above from the groups /sweep, /profiles, /thresholds of the floquet file."""
     fig, ax = figure(2, 2, width=10.0, height=7.6)
     ds, sweep, prof, thresholds = tree, tree["sweep"], tree["profiles"], tree["thresholds"]
@@ -72,7 +69,7 @@ def floquet(tree):
     thr = thresholds["q_threshold"].values
     D.semilogx(omt - 1.0, thr / np.pi, "o-", color="C0", label="lattice threshold")
     D.axhline(0.5, color="C3", ls="--", lw=0.8, label=r"DpS: $\pi/2$")
-    for x, y, pp in zip(omt - 1.0, thr / np.pi, thresholds["p_threshold"].values / np.pi):
+    for x, y, pp in zip(omt - 1.0, thr / np.pi, thresholds["p_threshold"].values / np.pi, strict=True):
         D.annotate(f"p={pp:.2f}$\\pi$", (x, y), xytext=(4, -10), textcoords="offset points", fontsize=6.5)
     D.set_xlabel(r"$\omega_{tw} - 1$ (amplitude from (freq))")
     D.set_ylabel(r"$q_c/\pi$")

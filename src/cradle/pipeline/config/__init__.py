@@ -1,7 +1,7 @@
 """The config of the pipeline (config.yaml), declared once and typed.
 
 - :mod:`.spec`: the declaration helpers (:func:`.spec.param`) and the JSON Schema generator;
-- :mod:`.scenes`, :mod:`.sections`, :mod:`.beyond`, :mod:`.mi_statistics`, :mod:`.floquet`, :mod:`.breathers`,
+- :mod:`.scenes`, :mod:`.sections`, :mod:`.beyond`, :mod:`.mi_statistics`,
   :mod:`.breather_interactions`, :mod:`.dps_validity`: each
   section and each kind of initial condition as a frozen dataclass, with the checks the schema
   cannot express as its ``check`` method and, for the analyses, its ``resolve`` method;

@@ -13,9 +13,7 @@ from __future__ import annotations
 from cradle.specs.declare import declared, param
 
 from .breather_interactions import BreatherInteractions
-from .breathers import Breathers
 from .dps_validity import DpsValidity
-from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
 
 BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysis's name (its module "
@@ -23,8 +21,7 @@ BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysi
               "docs/analyses.md.")
 
 #: TRANSITION ONLY: the sections of the analyses not yet declared by their own modules (cradle.analyses._legacy)
-_LEGACY = {"mi_statistics": MIStatistics, "floquet": Floquet,
-           "breathers": Breathers, "breather_interactions": BreatherInteractions, "dps_validity": DpsValidity}
+_LEGACY = {"mi_statistics": MIStatistics, "breather_interactions": BreatherInteractions, "dps_validity": DpsValidity}
 
 
 def _legacy_check(b: dict, cfg: dict, out) -> None:
@@ -34,8 +31,6 @@ def _legacy_check(b: dict, cfg: dict, out) -> None:
         v = sec["mi_statistics"].get(variant)
         if isinstance(v, dict):
             MIVariant.check(v, path + ["mi_statistics", variant], out)
-    Floquet.check(sec["floquet"], path + ["floquet"], out)
-    Breathers.check(sec["breathers"], path + ["breathers"], out)
     BreatherInteractions.check(sec["breather_interactions"], path + ["breather_interactions"], out)
     DpsValidity.check(sec["dps_validity"], path + ["dps_validity"], out)
 

@@ -17,9 +17,7 @@ from cradle.specs.declare import build
 from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
 
 from .breather_interactions import BreatherInteractions
-from .breathers import Breathers
 from .dps_validity import DpsValidity
-from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
 
@@ -139,17 +137,6 @@ def resolved_work_precision(config: dict, name: str, form: str = "full") -> dict
 def resolved_mi_statistics(config: dict, variant: str) -> dict:
     """``beyond.mi_statistics.<variant>`` with the shared keys and the inherited defaults merged in."""
     return MIStatistics.resolve(_validated(config), variant)
-
-
-def resolved_floquet(config: dict, form: str = "full") -> dict:
-    """``beyond.floquet`` of one form (full, or reduced: what ``all`` builds) with angles in radians and
-    ``convergence`` completed."""
-    return Floquet.resolve(_validated(config), form)
-
-
-def resolved_breathers(config: dict, form: str = "full") -> dict:
-    """``beyond.breathers`` of one form (full, or reduced: what ``all`` builds)."""
-    return Breathers.resolve(_validated(config), form)
 
 
 def resolved_breather_interactions(config: dict, form: str = "full") -> dict:

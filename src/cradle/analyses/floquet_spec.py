@@ -1,10 +1,16 @@
-"""Declaration of ``beyond.floquet``: Bloch-Floquet stability of the exact travelling waves of (nc)."""
+"""The spec of the `floquet` analysis (``beyond: floquet:``): Bloch-Floquet stability of the exact travelling
+waves of (nc), its reduced form and its finer numerics (:mod:`cradle.analyses.floquet` computes from it).
+
+Angles stay as given (numbers or 'pi/5'-style text, what :func:`cradle.specs.declare.plain` gives back and a
+file stores); :func:`cradle.specs.values.parse_angle` reads them where they are used.
+"""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from cradle.specs.declare import declared, param
-from cradle.specs.values import angle_expr, angle_or_none, form_section, number, parse_angle, show
+from cradle.specs.values import angle_or_none, form_section, number, show
 
 _ANGLES = {"$ref": "#/$defs/angle"}
 
@@ -12,8 +18,8 @@ _ANGLES = {"$ref": "#/$defs/angle"}
 _OMEGA = {"type": "number", "exclusiveMinimum": 1, "maximum": 2, "description": "One omega_tw."}
 
 
-@declared(doc="Finer numerics for the convergence checks (threshold, growth at q_profiles); missing keys keep the "
-              "main values.")
+@declared(doc="Finer numerics for the convergence checks (threshold, growth at q_profiles), on the main wave grid "
+              "(wave_grid_log2); a key left out takes the default of its form.")
 class FloquetConvergence:
     hill_modes: int = param(32, "Hill modes of the check.", minimum=4, maximum=256)
     grid_log2: int = param(20, "log2 of the K grid of the check.", minimum=8, maximum=22)
@@ -40,6 +46,17 @@ class FloquetReduced:
                                             FloquetConvergence.__schema_doc__)
     direct_growth_factor: float = param(100.0, "The direct run lasts until the mode grows by this factor (> 1).",
                                         exclusiveMinimum=1, maximum=100000000.0)
+
+
+@dataclass(frozen=True)
+class Numerics:
+    """One resolution of Hill's method and of the wave solver: Hill modes |m| <= hill_modes of W, K sampled
+    on 2^grid_log2 points, wave_modes sine modes of the exact wave on 2^wave_grid_log2 points."""
+
+    hill_modes: int
+    grid_log2: int
+    wave_modes: int
+    wave_grid_log2: int
 
 
 _FLOQUET_ANGLES = ("q_min", "q_max", "threshold_q_min", "threshold_q_max")
@@ -94,7 +111,7 @@ class Floquet:
                                         exclusiveMinimum=1, maximum=100000000.0)
 
     @staticmethod
-    def check(b: dict, path: list, out) -> None:
+    def check(b: dict, path: list, cfg: dict, out) -> None:
         """Both forms: the full section, and the section with the reduced keys in place."""
         Floquet._check(b, path, out)
         reduced = b.get("reduced")
@@ -142,18 +159,13 @@ class Floquet:
             if isinstance(n, int) and isinstance(k, int) and not 0 < k < n:
                 out.add(path + [key_k], f"need 0 < {key_k} < {key_n} = {n} (q = 2 pi k / N)", k)
 
-    @staticmethod
-    def resolve(cfg: dict, form: str = "full") -> dict:
-        """``beyond.floquet`` of one form (``full``, or ``reduced``: the reduced keys in place), with angles in
-        radians (the texts of the lists in ``<key>_expr``) and ``convergence`` completed with the main values."""
-        b = form_section(cfg["beyond"]["floquet"], form)
-        for key in _FLOQUET_ANGLES:
-            b[key] = parse_angle(b[key])
-        for key in _FLOQUET_ANGLE_LISTS:
-            b[key + "_expr"] = [angle_expr(q) for q in b[key]]
-            b[key] = [parse_angle(q) for q in b[key]]
-        conv = dict(b["convergence"])
-        for key in ("hill_modes", "grid_log2", "wave_modes"):
-            conv.setdefault(key, b[key])
-        b["convergence"] = conv
-        return b
+    @property
+    def numerics(self) -> Numerics:
+        """The main numerics of every Hill problem and wave."""
+        return Numerics(self.hill_modes, self.grid_log2, self.wave_modes, self.wave_grid_log2)
+
+    @property
+    def fine(self) -> Numerics:
+        """The finer numerics of the convergence checks: those of ``convergence`` on the main wave grid."""
+        conv = self.convergence
+        return Numerics(conv.hill_modes, conv.grid_log2, conv.wave_modes, self.wave_grid_log2)

@@ -1,5 +1,7 @@
-"""Declaration of ``beyond.breathers``: exact breathers of (nc), their Floquet stability, Peierls-Nabarro
-barrier and mobility, against the DpS breathers (ansatzapproxst2)."""
+"""The spec of the `breathers` analysis (``beyond: breathers:``): exact breathers of (nc), their Floquet
+stability, Peierls-Nabarro barrier and mobility, against the DpS breathers (ansatzapproxst2), and its reduced
+form (:mod:`cradle.analyses.breathers`, :mod:`.breather_mobility` and :mod:`.breather_exchanges` compute
+from it)."""
 from __future__ import annotations
 
 import itertools
@@ -57,8 +59,8 @@ class Breathers:
                                 "between grid points (0: none).", minimum=0, maximum=50)
     kick_family: str = param("bond", "Ring family of the kicked breather.", enum=["site", "bond"])
     kick_omega: float = param(1.1, "omega_b of the kicked breather; one of omegas.", exclusiveMinimum=1, maximum=10)
-    kicks: list[float] = param([3e-5, 1e-4, 1e-3, 1e-2, 1e-1], "Kick sizes: velocity along the pinning mode / max|x(0)|.",
-                               maxItems=20, items=_KICK)
+    kicks: list[float] = param([3e-5, 1e-4, 1e-3, 1e-2, 1e-1], "Kick sizes: velocity along the pinning mode / "
+                               "max|x(0)|.", maxItems=20, items=_KICK)
     kick_t_end: float = param(3000.0, "Duration of a kicked run.", exclusiveMinimum=0, maximum=1e6)
     kick_window: float = param(5.0, "Beads from the energy centre beyond which energy counts as radiated.",
                                exclusiveMinimum=0, maximum=100)
@@ -69,7 +71,7 @@ class Breathers:
     reduced: BreathersReduced = param(BreathersReduced(), BreathersReduced.__schema_doc__)
 
     @staticmethod
-    def check(b: dict, path: list, out) -> None:
+    def check(b: dict, path: list, cfg: dict, out) -> None:
         """Both forms: omegas increasing, pn_omega and kick_omega among them."""
         for form, where in (("full", path), ("reduced", path + ["reduced"])):
             sec = form_section(b, form)
@@ -83,8 +85,3 @@ class Breathers:
                     v = sec.get(key)
                     if number(v) and float(v) not in [float(x) for x in om]:
                         out.add(path + [key], f"must be one of omegas = {om}", v)
-
-    @staticmethod
-    def resolve(cfg: dict, form: str = "full") -> dict:
-        """``beyond.breathers`` of one form (the reduced keys in place for ``reduced``)."""
-        return form_section(cfg["beyond"]["breathers"], form)
