@@ -454,20 +454,20 @@ def test_dps_plane_wave():
 # ---------------------------------------------------------------- bad inputs
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(alpha=1.0), "alpha=1.0"),
-    (dict(alpha=1.5, method="euler"), "method='euler'"),
-    (dict(alpha=1.5, bc="fixed"), "bc='fixed'"),
-    (dict(alpha=1.5, potential="fpu"), "potential='fpu'"),
+    (dict(alpha=1.0), "alpha = 1.0"),
+    (dict(alpha=1.5, method="euler"), "method = 'euler'"),
+    (dict(alpha=1.5, bc="fixed"), "bc = 'fixed'"),
+    (dict(alpha=1.5, potential="fpu"), "potential = 'fpu'"),
     (dict(alpha=1.5, t_out=[0.0, 2.0, 1.0]), r"t_out\[1\]=2.0"),
     (dict(alpha=1.5, t_out=[-1.0, 1.0]), r"t_out\[0\]=-1.0"),
     (dict(alpha=1.5, x0=[0.1]), "N=1"),
     (dict(alpha=1.5, x0=[0.1, np.nan, 0.0, 0.0]), r"x0\[1\]=nan"),
     (dict(alpha=1.5, v0=[0.1, np.inf, 0.0, 0.0]), r"v0\[1\]=inf"),
-    (dict(alpha=1.5, dt=-0.1), "dt=-0.1"),
+    (dict(alpha=1.5, dt=-0.1), "dt = -0.1"),
     (dict(alpha=1.5, dt=0.1, dt_factor=0.01), "dt=0.1"),
     (dict(alpha=1.5, rtol=1e-8), "rtol=1e-08"),
     (dict(alpha=1.5, method="dop853", dt=0.1), "dt=0.1"),
-    (dict(alpha=1.5, method="dop853", rtol=0.0), "rtol=0.0"),
+    (dict(alpha=1.5, method="dop853", rtol=0.0), "rtol = 0.0"),
 ])
 def test_bad_lattice_inputs(kwargs, match):
     args = dict(x0=np.zeros(4), v0=np.zeros(4), t_out=[0.0, 1.0])
@@ -482,9 +482,9 @@ def test_bad_lattice_inputs(kwargs, match):
 
 def test_bad_dps_inputs():
     A0 = np.ones(4, dtype=complex)
-    with pytest.raises(ValueError, match="alpha=0.5"):
+    with pytest.raises(ValueError, match="alpha = 0.5"):
         integrate_dps(A0, [0.0, 1.0], alpha=0.5)
-    with pytest.raises(ValueError, match="method='srkn6'"):
+    with pytest.raises(ValueError, match="method = 'srkn6'"):
         integrate_dps(A0, [0.0, 1.0], alpha=1.5, method="srkn6")
     with pytest.raises(ValueError, match=r"tau_out\[1\]=1.0"):
         integrate_dps(A0, [0.0, 1.0, 1.0], alpha=1.5)

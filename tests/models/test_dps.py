@@ -84,7 +84,7 @@ def test_free_end_rhs_conserves_l2_and_P():
 
 
 def test_bad_alpha_and_omega_raise_with_the_value():
-    with pytest.raises(ValueError, match="alpha=1.0"):
+    with pytest.raises(ValueError, match="alpha = 1.0"):
         dps.tau0(1.0)
     with pytest.raises(ValueError, match="omega_tw=0.99"):
         dps.amplitude_from_omega(0.99, np.pi / 5, 1.5)

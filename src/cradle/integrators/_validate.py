@@ -1,4 +1,6 @@
-"""Input checks shared by the lattice and DpS drivers (clear ValueErrors)."""
+"""Checks of the arrays the lattice and DpS drivers take (initial states, output times; clear ValueErrors).
+
+Their scalar arguments are checked against the shared declarations (``cradle.specs.checked``)."""
 from __future__ import annotations
 
 import numpy as np
@@ -39,19 +41,3 @@ def check_state(arr, name: str, dtype=float) -> np.ndarray:
         raise ValueError(f"{name} must be finite, got {name}[{i}]={arr[i].item()!r}")
     return arr
 
-
-def check_positive(value, name: str) -> float:
-    """A finite float > 0."""
-    try:
-        val = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number > 0, got {name}={value!r}") from None
-    if not np.isfinite(val) or val <= 0.0:
-        raise ValueError(f"{name} must be finite and > 0, got {name}={value!r}")
-    return val
-
-
-def check_choice(value, choices, name: str):
-    if value not in choices:
-        raise ValueError(f"{name} must be one of {tuple(choices)}, got {name}={value!r}")
-    return value

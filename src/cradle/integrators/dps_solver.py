@@ -18,11 +18,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from cradle.integrators import _dop853, _kernels as K
+from cradle.integrators._validate import check_state, check_times
 from cradle.models.dps import tau0 as _tau0
-from cradle.models.lattice import check_alpha, check_bc
-from cradle.integrators import _dop853
-from cradle.integrators import _kernels as K
-from cradle.integrators._validate import check_choice, check_positive, check_state, check_times
+from cradle.specs.checked import checked
 
 #: scipy.integrate classes by name (imported when used)
 SCIPY_DPS_METHODS = {"dop853": "DOP853", "rk45": "RK45"}
@@ -71,6 +70,7 @@ class DpsSolution:
     n_rhs_evals: int = 0
 
 
+@checked(method="dpsMethod")
 def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", rtol=DEFAULT_RTOL, atol=None,
                   progress=None) -> DpsSolution:
     """Integrate the DpS equation (dfnls) with tau0 = tau0(alpha) of :mod:`cradle.models.dps`.
@@ -103,7 +103,6 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
     DpsSolution
     """
     wall0 = time.perf_counter()
-    method = check_choice(method, DPS_METHODS, "method")
     run = _DpsRun(A0, tau_out, alpha, bc, rtol, atol, progress)
     tau_out, T, N = run.tau_out, run.tau_out.size, run.N
     if method == "dop853_numba":
@@ -172,16 +171,17 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
 class _DpsRun:
     """One run of (dfnls) from A0 at tau = 0 to tau_out[-1]: its validated inputs, the invariants of
     A0 that every drift is measured from, and (DOP853 in numba) the stepper's state, so the run can
-    be computed in consecutive blocks of output times (:func:`iter_dps`)."""
+    be computed in consecutive blocks of output times (:func:`iter_dps`). alpha, bc, rtol and atol
+    come checked (``@checked`` on :func:`integrate_dps` and :func:`iter_dps`)."""
 
     def __init__(self, A0, tau_out, alpha, bc, rtol, atol, progress):
-        self.alpha = check_alpha(alpha)
-        self.periodic = check_bc(bc) == "periodic"
+        self.alpha = alpha
+        self.periodic = bc == "periodic"
         A0 = check_state(A0, "A0", dtype=complex)
         self.tau_out = check_times(tau_out, "tau_out")
-        self.rtol = check_positive(rtol, "rtol")
+        self.rtol = rtol
         amp = float(np.max(np.abs(A0)))
-        self.atol = (rtol * amp if amp > 0.0 else rtol) if atol is None else check_positive(atol, "atol")
+        self.atol = (rtol * amp if amp > 0.0 else rtol) if atol is None else atol
         if progress is not None and not callable(progress):
             raise ValueError(f"progress must be callable or None, got progress={progress!r}")
         self.progress = progress
@@ -221,6 +221,7 @@ class _DpsRun:
                            "dop853_numba", float(self.rtol), float(self.atol), int(self.counts[1]) - f0)
 
 
+@checked
 def iter_dps(A0, tau_out, rows: int, *, alpha, bc="periodic", rtol=DEFAULT_RTOL, atol=None, progress=None):
     """Yield the :class:`DpsSolution` of consecutive blocks of ``rows`` output times of one run of
     :func:`integrate_dps` (method "dop853_numba") from A0 at tau = 0.

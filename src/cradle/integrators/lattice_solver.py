@@ -34,7 +34,8 @@ O(h^2.5) to O(h^5) and the observed global order well above 2.5
 (benchmarks/onset_correction.py): at equal error srkn6c is the fastest
 (benchmarks/bench_vs_scipy.py, `snakemake work_precision`).
 
-This module checks the arguments and dispatches: the default step is chosen in
+This module checks the arguments (the scalar ones against the shared declarations,
+``@checked``; the arrays and the combinations here) and dispatches: the default step is chosen in
 :mod:`cradle.integrators.lattice_step`, the splittings are run by
 :mod:`cradle.integrators.lattice_splitting`, the adaptive methods by
 :mod:`cradle.integrators.lattice_adaptive`.
@@ -46,12 +47,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cradle.models.lattice import check_alpha, check_bc
 from cradle.integrators import _kernels as K
-from cradle.integrators._validate import check_choice, check_positive, check_state, check_times
+from cradle.integrators._validate import check_state, check_times
 from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, run_dop853_numba, run_scipy
 from cradle.integrators.lattice_splitting import SPLITTING_METHODS, run_splitting
 from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bounds, default_dt
+from cradle.specs.checked import checked
 
 METHODS = SPLITTING_METHODS + ADAPTIVE_METHODS
 POTENTIALS = ("hertz", "smooth")
@@ -118,6 +119,7 @@ class LatticeSolution:
     n_onset_corrections: int = 0
 
 
+@checked(method="latticeMethod")
 def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", dt=None, dt_factor=None,
                       rtol=None, atol=None, potential="hertz", progress=None, t0=0.0,
                       energy0=None) -> LatticeSolution:
@@ -184,10 +186,6 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
         splitting.
     """
     wall0 = time.perf_counter()
-    alpha = check_alpha(alpha)
-    bc = check_bc(bc)
-    method = check_choice(method, METHODS, "method")
-    potential = check_choice(potential, POTENTIALS, "potential")
     x0 = check_state(x0, "x0")
     v0 = check_state(v0, "v0")
     if v0.shape != x0.shape:
@@ -213,10 +211,9 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
         c_assumed = None
         n_reruns = 0
         if dt is not None:
-            dt = check_positive(dt, "dt")
             out = run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, t0=t0, energy0=energy0)
         else:
-            fac = DEFAULT_DT_FACTOR[method] if dt_factor is None else check_positive(dt_factor, "dt_factor")
+            fac = DEFAULT_DT_FACTOR[method] if dt_factor is None else dt_factor
             c_assumed, c_energy = compression_bounds(x0, v0, alpha, bc, potential)
             while True:
                 dt = default_dt(c_assumed, alpha, method, fac)
@@ -234,12 +231,10 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
     if dt is not None or dt_factor is not None:
         raise ValueError(f"dt/dt_factor apply to splitting methods only, got dt={dt!r}, dt_factor={dt_factor!r} "
                          f"with method={method!r} (use rtol/atol)")
-    rtol = DEFAULT_RTOL if rtol is None else check_positive(rtol, "rtol")
+    rtol = DEFAULT_RTOL if rtol is None else rtol
     if atol is None:
         amp = max(float(np.max(np.abs(x0))), float(np.max(np.abs(v0))))
         atol = rtol * amp if amp > 0.0 else rtol
-    else:
-        atol = check_positive(atol, "atol")
     if method == "dop853_numba":
         X, V, E, drift, n_steps, nfev, cmax = run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic,
                                                                 progress)

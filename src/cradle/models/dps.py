@@ -10,15 +10,21 @@ Contents: the coefficient tau0(alpha) (tau0) and the Wallis integral c_alpha
 Hamiltonian H, P = sum A_n); the plane waves (ansatz3) with the dispersion
 relation (ds) and the amplitude-frequency relation (freq) of the
 approximate travelling waves (ansatzapprox).
+
+The coefficients (c_alpha, tau0) and :func:`amplitude_from_omega` check alpha (``@checked``); the
+right-hand side, the invariants and the plane waves are formulas that solvers call in loops, and
+trust their caller (alpha > 1, bc periodic or free).
 """
 from __future__ import annotations
 
-import numpy as np
 import math
 
-from cradle.models.lattice import check_alpha, check_bc
+import numpy as np
+
+from cradle.specs.checked import checked
 
 
+@checked
 def c_alpha(alpha: float) -> float:
     """Wallis integral with fractional index alpha+1, closed form (thec).
 
@@ -26,7 +32,6 @@ def c_alpha(alpha: float) -> float:
     Evaluated through log-Gamma so that alpha -> 1+ (Gamma((alpha-1)/2) -> inf)
     stays finite.
     """
-    alpha = check_alpha(alpha)
     log_c = (
         math.log(2.0 * alpha)
         + math.lgamma(alpha / 2.0)
@@ -37,18 +42,19 @@ def c_alpha(alpha: float) -> float:
     return math.exp(log_c)
 
 
+@checked
 def c_alpha_wallis(alpha: float) -> float:
     """c_alpha = (2/pi) int_0^{pi/2} cos(t)^(alpha+1) dt by quadrature (wallis)."""
     from scipy.integrate import quad  # imported here: scipy.integrate costs 0.5 s at start-up
 
-    alpha = check_alpha(alpha)
     val, _ = quad(lambda t: np.cos(t) ** (alpha + 1.0), 0.0, np.pi / 2.0, epsabs=0.0, epsrel=1e-13, limit=200)
     return 2.0 / np.pi * val
 
 
+@checked
 def tau0(alpha: float) -> float:
     """tau0 = 2^(1-alpha) / c_alpha   (tau0); tau0(3/2) = 5 Gamma(1/4)^2/(24 sqrt(pi)) ~ 1.545."""
-    return 2.0 ** (1.0 - check_alpha(alpha)) / c_alpha(alpha)
+    return 2.0 ** (1.0 - alpha) / c_alpha(alpha)
 
 
 def _g(z, alpha):
@@ -60,7 +66,7 @@ def differences(A, bc: str = "periodic"):
     """Forward differences A_{n+1} - A_n along the last axis (0 past a free end)."""
     A = np.asarray(A)
     D = np.roll(A, -1, axis=-1) - A
-    if check_bc(bc) == "free":
+    if bc == "free":
         D[..., -1] = 0.0
     return D
 
@@ -125,12 +131,12 @@ def omega_tw(a: float, q: float, alpha: float) -> float:
     return 1.0 + 2.0 / tau0(alpha) * a ** (alpha - 1.0) * abs(np.sin(q / 2.0)) ** (alpha + 1.0)
 
 
+@checked
 def amplitude_from_omega(omega: float, q: float, alpha: float) -> float:
     """Invert (freq): the amplitude a > 0 whose travelling wave has frequency omega.
 
     Needs omega > 1 and sin(q/2) != 0 (for q = 0 every amplitude has omega = 1).
     """
-    alpha = check_alpha(alpha)
     if not omega > 1.0:
         raise ValueError(f"omega_tw must be > 1 to derive a from (freq), got omega_tw={omega!r}")
     s = abs(np.sin(q / 2.0))

@@ -23,8 +23,7 @@ import numpy as np
 from scipy.optimize import root
 
 from cradle.models.dps import differences, p_laplacian
-from cradle.models.lattice import check_alpha, check_bc
-
+from cradle.specs.checked import checked
 
 RESIDUAL_TOL = 1e-10  # max |residual| / max |a_n| accepted as converged
 
@@ -95,18 +94,17 @@ def initial_guess(N: int, kind: str, alpha: float = 1.5, amplitude: float = 0.1,
     return a
 
 
-def _checked(guess, alpha: float, bc: str, mu: float):
-    """(alpha, guess as a float array) after checking alpha > 1, bc, mu > 0 and N >= 2."""
-    alpha = check_alpha(alpha)
-    check_bc(bc)
+def _start(guess, mu: float) -> np.ndarray:
+    """``guess`` as a float array after checking mu > 0 and N >= 2 (alpha and bc: ``@checked``)."""
     if not mu > 0:
         raise ValueError(f"mu must be > 0 for nontrivial localised solutions (section 2.2), got mu={mu!r}")
     guess = np.asarray(guess, dtype=float)
     if guess.ndim != 1 or guess.size < 2:
         raise ValueError(f"need N >= 2 sites, got N={guess.size}")
-    return alpha, guess
+    return guess
 
 
+@checked
 def solve(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: float = 1e-14,
           newton_steps: int = 3) -> Homoclinic:
     """Solve (dpsst) -mu a_n = g(a_{n+1}-a_n) - g(a_n-a_{n-1}) from ``guess`` (a mu = 1 guess).
@@ -116,7 +114,7 @@ def solve(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: floa
     scaled by mu^(1/(alpha-1)). ``residual`` is the max-norm residual of the
     scaled equation (dpsst).
     """
-    alpha, guess = _checked(guess, alpha, bc, mu)
+    guess = _start(guess, mu)
     sol = root(residual, guess, args=(alpha, bc), jac=jacobian, method="hybr", options={"xtol": xtol})
     a = sol.x
     for _ in range(newton_steps):  # quadratic convergence from hybr's answer

@@ -18,10 +18,19 @@ import numpy as np
 from scipy.optimize import root
 
 from cradle.models.dps import p_laplacian
-from cradle.models.homoclinic import (RESIDUAL_TOL, Homoclinic, _checked, initial_guess, jacobian, localised,
-                                      residual, solve)
+from cradle.models.homoclinic import (
+    RESIDUAL_TOL,
+    Homoclinic,
+    _start,
+    initial_guess,
+    jacobian,
+    localised,
+    residual,
+    solve,
+)
 from cradle.models.homoclinic_tails import decay_sites, log10_abs_scaled
-from cradle.models.lattice import check_alpha
+from cradle.specs.checked import checked
+
 
 @dataclass
 class ScaledHomoclinic:
@@ -80,6 +89,7 @@ def _sparse_solve(J, r):
     return x if np.all(np.isfinite(x)) else None
 
 
+@checked
 def solve_scaled(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: float = 1e-14,
                  newton_steps: int = 4) -> ScaledHomoclinic:
     """Solve (dpsst) through a unit-amplitude profile: robust for any alpha > 1.
@@ -96,7 +106,7 @@ def solve_scaled(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xto
     Jacobian, then Newton steps. The start for nu is the balance at the
     pinned site, nu0 = -(p-Laplacian of b)_c / b_c (2 for a single-site guess).
     """
-    alpha, guess = _checked(guess, alpha, bc, mu)
+    guess = _start(guess, mu)
     top = float(np.max(np.abs(guess)))
     if not (np.isfinite(top) and top > 0):
         raise ValueError(f"the guess must be finite and not identically 0, got max|guess| = {top!r}")
@@ -147,6 +157,7 @@ def solve_scaled(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xto
                             pin=c)
 
 
+@checked
 def continued(kind: str, alpha: float, N: int, bc: str = "periodic", mu: float = 1.0, centre: int | None = None,
               separation: int = 9, alpha_start: float = 1.5, step: float = 0.25) -> ScaledHomoclinic:
     """A homoclinic of (dpsst) at any alpha > 1 by continuation in alpha from the paper's case.
@@ -161,7 +172,6 @@ def continued(kind: str, alpha: float, N: int, bc: str = "periodic", mu: float =
     solved once more at ``alpha``. Raises ValueError naming alpha if a step
     does not converge.
     """
-    alpha = check_alpha(alpha)
     if kind == "double":
         hump = continued("site", alpha, N, bc, 1.0, centre, alpha_start=alpha_start, step=step).profile
         guess = np.roll(hump, -(separation // 2)) + np.roll(hump, separation - separation // 2)
@@ -183,6 +193,7 @@ def continued(kind: str, alpha: float, N: int, bc: str = "periodic", mu: float =
     return sol
 
 
+@checked
 def solve_sized(kind: str, alpha: float, mu: float = 1.0, decades: float = 16.0, margin: int = 2,
                 N_min: int = 16, N_max: int = 1 << 14) -> tuple[ScaledHomoclinic, int]:
     """A periodic homoclinic of (dpsst) on a ring just wide enough for its core: N chosen from its decay.
@@ -197,7 +208,6 @@ def solve_sized(kind: str, alpha: float, mu: float = 1.0, decades: float = 16.0,
     decades: 14 at alpha = 1.1, 44 at 1.01), so N = 50 no longer holds the
     breather of figure bcsc below alpha ~ 1.05. Returns (solution, N).
     """
-    alpha = check_alpha(alpha)
     if kind not in ("site", "bond"):
         raise ValueError(f"solve_sized: kind must be 'site' or 'bond' (a double hump has a set separation), "
                          f"got kind={kind!r}")
@@ -222,6 +232,7 @@ def solve_sized(kind: str, alpha: float, mu: float = 1.0, decades: float = 16.0,
     return sol, N
 
 
+@checked
 def solve_kind(N: int, kind: str, alpha: float, bc: str = "periodic", mu: float = 1.0, amplitude: float = 0.1,
                centre: int | None = None, separation: int = 9) -> Homoclinic:
     """The homoclinic of figure bcsc for any alpha > 1: the paper's start first, continuation if it fails.
@@ -237,7 +248,6 @@ def solve_kind(N: int, kind: str, alpha: float, bc: str = "periodic", mu: float 
     naming alpha, mu and the amplitude (the rescaled profile of
     :func:`continued` / :func:`solve_scaled` remains available).
     """
-    alpha = check_alpha(alpha)
     sol = solve(initial_guess(N, kind, alpha, amplitude, centre=centre, separation=separation), alpha, bc, mu=mu) \
         if kind != "double" or alpha == 1.5 else None
     if sol is not None and sol.converged and localised(sol.a) and np.max(np.abs(sol.a)) > 0:

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.models.lattice import check_alpha
+from cradle.specs.checked import checked
 
 if TYPE_CHECKING:
     from cradle.models.homoclinic_continuation import ScaledHomoclinic
@@ -119,11 +119,11 @@ def log10_abs_scaled(sol: "ScaledHomoclinic", floor: float = 1e-9, centre: int |
     return out + sol.log10_scale
 
 
+@checked
 def log_tail_log(sign_j: float, L_j: float, alpha: float, length: int, extra: int = 8):
     """:func:`log_tail` with the junction value given as (sign, ln|a_j|), so that it may be far below
     the smallest double (mu = 1 solutions near alpha = 1). The bracket on ln|a_M| is widened until it
     holds the root."""
-    alpha = check_alpha(alpha)
     depth = length + extra
     s_far = sign_j * (-1.0) ** depth
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cradle.models import dps
-from cradle.models.lattice import check_alpha, check_bc
+from cradle.specs.checked import checked
 
 NOISE_KINDS = ("none", "uniform", "gaussian")
 
@@ -59,6 +59,7 @@ def noise(N: int, kind: str, amplitude: float, seed: int):
     raise ValueError(f"noise kind must be 'uniform' or 'gaussian', got {kind!r}")
 
 
+@checked
 def travelling_wave(N: int, q: float, alpha: float, *, a: float | None = None, omega_tw: float | None = None,
                     phi: float = 0.0, bc: str = "periodic", noise_kind: str = "none",
                     noise_amplitude: float = 0.0, seed: int | None = None) -> InitialData:
@@ -69,10 +70,6 @@ def travelling_wave(N: int, q: float, alpha: float, *, a: float | None = None, o
     A_n(0) = (1 + rho1_n) cos(q n + phi) - i (1 + rho2_n) sin(q n + phi)
     (perturb; the paper has phi = 0).
     """
-    alpha = check_alpha(alpha)
-    check_bc(bc)
-    if N < 2:
-        raise ValueError(f"N must be >= 2, got N={N}")
     if (a is None) == (omega_tw is None):
         raise ValueError(f"give exactly one of a and omega_tw (got a={a!r}, omega_tw={omega_tw!r})")
     if a is None:
@@ -96,6 +93,7 @@ def travelling_wave(N: int, q: float, alpha: float, *, a: float | None = None, o
     return InitialData(A0=A0, eps=eps, x0=x0, v0=v0, rho1=rho1, rho2=rho2, info=info)
 
 
+@checked
 def breather(a_n, alpha: float, *, omega_sw: float | None = None, amplitude: float | None = None,
              site: int | None = None, bc: str = "periodic") -> InitialData:
     """Breather data (ansatzapproxst2)/(breatherdps) from a mu = 1 solution ``a_n`` of (dpsstn).
@@ -105,7 +103,6 @@ def breather(a_n, alpha: float, *, omega_sw: float | None = None, amplitude: flo
     or the initial ``amplitude`` |x_site(0)| at bead ``site`` (default: the
     largest |a_n|), from which mu and omega_sw are derived.
     """
-    alpha = check_alpha(alpha)
     a_n = np.asarray(a_n, dtype=float)
     if (omega_sw is None) == (amplitude is None):
         raise ValueError(f"give exactly one of omega_sw and amplitude (got {omega_sw!r}, {amplitude!r})")
@@ -131,6 +128,7 @@ ENVELOPES = ("gaussian", "cos2")
 PAIR_PROFILES = ("site", "bond")
 
 
+@checked
 def from_displacements(x0, alpha: float, bc: str = "periodic", info: dict | None = None) -> InitialData:
     """Data with zero velocities whose DpS start is tau = 0 in (breatherdps): A_n(0) = x_n(0)/2, eps = 1.
 
@@ -138,8 +136,6 @@ def from_displacements(x0, alpha: float, bc: str = "periodic", info: dict | None
     ansatz velocities v_n(0) = 2 (-Im A_n(0) + Re dA_n/dtau(0)) vanish:
     the lattice starts at rest from x_n(0), as in figure loc1.
     """
-    alpha = check_alpha(alpha)
-    check_bc(bc)
     x0 = np.asarray(x0, dtype=float)
     A0 = 0.5 * x0.astype(complex)
     x0_ansatz, v0 = lattice_state(A0, 1.0, alpha, bc)
@@ -167,6 +163,7 @@ def envelope(s, kind: str, width: float):
     raise ValueError(f"unknown envelope {kind!r} (known: {', '.join(ENVELOPES)})")
 
 
+@checked
 def packet(N: int, alpha: float, *, amplitude: float, width: float, envelope_kind: str = "gaussian",
            centre: float | None = None, bc: str = "periodic") -> InitialData:
     """A modulated binary oscillation at rest (figure loc1, left):
@@ -178,8 +175,6 @@ def packet(N: int, alpha: float, *, amplitude: float, width: float, envelope_kin
     (N - 1)/2, the bond in the middle of the chain, so an even number of
     sites sits symmetrically under the envelope.
     """
-    if N < 2:
-        raise ValueError(f"N must be >= 2, got N={N}")
     if not amplitude > 0:
         raise ValueError(f"amplitude must be > 0, got amplitude={amplitude!r}")
     c = (N - 1) / 2.0 if centre is None else float(centre)
@@ -193,6 +188,7 @@ def packet(N: int, alpha: float, *, amplitude: float, width: float, envelope_kin
     return from_displacements(x0, alpha, bc, info)
 
 
+@checked
 def pair(N: int, alpha: float, *, amplitude: float, separation: int, profile: str = "bond", sign: int = 1,
          centre: int | None = None, bc: str = "periodic", a_n=None) -> InitialData:
     """Two static breathers at rest (figure loc1, right): the sum of two copies of one
@@ -211,8 +207,6 @@ def pair(N: int, alpha: float, *, amplitude: float, separation: int, profile: st
     """
     from cradle.models import homoclinic
 
-    alpha = check_alpha(alpha)
-    check_bc(bc)
     if not amplitude > 0:
         raise ValueError(f"amplitude must be > 0, got amplitude={amplitude!r}")
     if profile not in PAIR_PROFILES:

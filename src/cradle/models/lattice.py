@@ -12,28 +12,15 @@ Boundary conditions:
     force is reported as 0 (figure fini).
 
 All functions take arrays whose last axis is n, so they work on one state
-(shape (N,)) or on a stored trajectory (shape (T, N)).
+(shape (N,)) or on a stored trajectory (shape (T, N)). They are formulas that
+right-hand sides and measurements call, and trust their caller: alpha > 1 and
+bc one of ``BOUNDARY_CONDITIONS`` (the entry points check them, ``@checked``).
 """
 from __future__ import annotations
 
 import numpy as np
 
 BOUNDARY_CONDITIONS = ("periodic", "free")
-
-
-def check_alpha(alpha: float) -> float:
-    """Return ``alpha`` as a float, or raise if the Hertz exponent is not > 1."""
-    alpha = float(alpha)
-    if not np.isfinite(alpha) or alpha <= 1.0:
-        raise ValueError(f"alpha must be > 1 (vhertz), got alpha={alpha!r}")
-    return alpha
-
-
-def check_bc(bc: str) -> str:
-    """Return ``bc`` or raise if it is not a known boundary condition."""
-    if bc not in BOUNDARY_CONDITIONS:
-        raise ValueError(f"bc must be one of {BOUNDARY_CONDITIONS}, got bc={bc!r}")
-    return bc
 
 
 def V0(d, alpha: float):
@@ -52,7 +39,7 @@ def bond_elongations(x, bc: str = "periodic"):
     """d_n = x_{n+1} - x_n for n = 0..N-1; with free ends d_{N-1} = 0 (no bond)."""
     x = np.asarray(x, dtype=float)
     d = np.roll(x, -1, axis=-1) - x
-    if check_bc(bc) == "free":
+    if bc == "free":
         d[..., -1] = 0.0
     return d
 

@@ -36,7 +36,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cradle.models.lattice import check_alpha, check_bc, hamiltonian
+from cradle.models.lattice import hamiltonian
+from cradle.specs.checked import checked
 
 RTOL = 1e-13         # DOP853 relative tolerance of the shooting (period residuals 1e-11 .. 2e-9)
 
@@ -136,6 +137,7 @@ def _eigenbasis(S, sign):
     return V[:, np.abs(w - sign) < 0.5]
 
 
+@checked
 def newton(x_guess, omega, alpha, bc="periodic", kind=None, centre=None, tol=1e-11, max_iter=12,
            rtol=RTOL, core_rel=1e-14) -> Breather:
     """Solve the periodic-orbit equations of a time-reversible breather by Newton's method from ``x_guess``.
@@ -154,8 +156,6 @@ def newton(x_guess, omega, alpha, bc="periodic", kind=None, centre=None, tol=1e-
     Peierls-Nabarro barrier), along which an unconstrained iteration drifts. Converged when
     max|F| <= tol max|x0|; the step is halved while the residual does not decrease.
     """
-    alpha = check_alpha(alpha)
-    check_bc(bc)
     x = np.asarray(x_guess, float).copy()
     N = x.size
     S = None

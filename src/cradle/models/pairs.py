@@ -25,7 +25,7 @@ import numpy as np
 
 from cradle.models import dps
 from cradle.models.initial import InitialData, lattice_state
-from cradle.models.lattice import check_alpha, check_bc
+from cradle.specs.checked import checked
 
 PROFILES = ("site", "bond")
 
@@ -60,13 +60,12 @@ def _placed(e, centre, target):
     return np.roll(e, round(k))
 
 
+@checked
 def two_breathers(N: int, alpha: float, *, profiles=("site", "site"), centres=(None, None),
                   amplitudes=(0.01, 0.01), theta: float = 0.0, bc: str = "periodic") -> InitialData:
     """Initial data of two breathers (module docstring). ``centres``: where copy k sits (a site for
     a site profile, a half-integer for a bond profile); ``amplitudes``: peak |x| of each copy alone.
     info: the spacing c_2 - c_1, both mu_k and omega_sw_k = 1 + mu_k / (2^alpha tau0)."""
-    alpha = check_alpha(alpha)
-    check_bc(bc)
     A0 = np.zeros(N, dtype=complex)
     info = {"profile_1": profiles[0], "profile_2": profiles[1], "theta": float(theta)}
     for k, (prof, c, amp) in enumerate(zip(profiles, centres, amplitudes), start=1):

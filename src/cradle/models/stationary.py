@@ -16,14 +16,16 @@ reversible with respect to ``R(a, b) = (a, -a - b)``: ``R G^{-1} = G R``.
 Its orbits are figures traj3 and traj2 of the paper.
 
 Everything here is pure numpy and vectorised over leading axes: a point U
-is an array of shape ``(..., 2)`` holding ``(a, b)`` in its last axis.
+is an array of shape ``(..., 2)`` holding ``(a, b)`` in its last axis. One step
+of the map (:func:`G`, :func:`G_inverse`, :func:`jacobian`) trusts its caller
+(alpha > 1: loops call it); orbits and the residual check alpha (``@checked``).
 """
 from __future__ import annotations
 
 import numpy as np
 
 from cradle.models.dps import p_laplacian
-from cradle.models.lattice import check_alpha, check_bc
+from cradle.specs.checked import checked
 
 
 def g(s, alpha: float):
@@ -64,7 +66,6 @@ def G(U, alpha: float):
         ``a_{n+1} = a_n + sign(b_{n+1}) |b_{n+1}|^(1/alpha)``        (comp1),
         ``b_{n+2} = b_{n+1} - a_{n+1}``                               (comp2).
     """
-    alpha = check_alpha(alpha)
     a, b = _split(U)
     a1 = a + g_inverse(b, alpha)
     return np.stack([a1, b - a1], axis=-1)
@@ -85,7 +86,6 @@ def G_inverse(U, alpha: float):
     -------
     ndarray, shape (..., 2)
     """
-    alpha = check_alpha(alpha)
     a1, b2 = _split(U)
     b = b2 + a1
     return np.stack([a1 - g_inverse(b, alpha), b], axis=-1)
@@ -110,7 +110,6 @@ def jacobian(U, alpha: float):
     -------
     ndarray, shape (..., 2, 2)
     """
-    alpha = check_alpha(alpha)
     a, b = _split(U)
     with np.errstate(divide="ignore"):
         dphi = np.abs(b) ** (1.0 / alpha - 1.0) / alpha
@@ -130,6 +129,7 @@ def reversor(U):
     return np.stack([a, -a - b], axis=-1)
 
 
+@checked
 def orbits(starts, n_iter: int, alpha: float, box: float | None = None):
     """Orbits of G from several starting points at once.
 
@@ -148,7 +148,6 @@ def orbits(starts, n_iter: int, alpha: float, box: float | None = None):
     -------
     ndarray, shape (n_orbits, n_iter + 1, 2)
     """
-    alpha = check_alpha(alpha)
     n_iter = int(n_iter)
     if n_iter < 0:
         raise ValueError(f"n_iter must be >= 0, got {n_iter}")
@@ -190,6 +189,7 @@ def starting_points(starts=None, line=None):
     return np.concatenate(parts, axis=0)
 
 
+@checked
 def explicit_periodic_orbits(alpha: float) -> dict:
     """The explicit period-2, -3 and -4 orbits of G (caption of figure traj2).
 
@@ -206,7 +206,6 @@ def explicit_periodic_orbits(alpha: float) -> dict:
         name -> ndarray of shape (period, 2); also ``"<name>_a"`` -> the
         one-period sequence ``a_n`` itself.
     """
-    alpha = check_alpha(alpha)
     c2 = 2.0 ** ((alpha + 1.0) / (1.0 - alpha))
     c3 = (1.0 + 2.0**alpha) ** (1.0 / (1.0 - alpha))
     c4 = 2.0 ** (1.0 / (1.0 - alpha))
@@ -223,6 +222,7 @@ def explicit_periodic_orbits(alpha: float) -> dict:
     return out
 
 
+@checked
 def stationary_residual(a, alpha: float, mu: float = 1.0, bc: str = "periodic"):
     """Residual of the stationary DpS equation (dpsstn).
 
@@ -243,8 +243,6 @@ def stationary_residual(a, alpha: float, mu: float = 1.0, bc: str = "periodic"):
     -------
     ndarray, shape (..., N)
     """
-    alpha = check_alpha(alpha)
-    bc = check_bc(bc)
     if mu == 0:
         raise ValueError("mu must be nonzero in (dpsstn)")
     return p_laplacian(np.asarray(a, dtype=float), alpha, bc) + np.sign(mu) * a

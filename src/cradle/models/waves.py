@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cradle.models.lattice import check_alpha
+from cradle.specs.checked import checked
 
 DEFAULT_M = 2**16
 
@@ -162,13 +162,13 @@ def jacobian(x, a, q, alpha, J, M_jac):
     return Jm
 
 
+@checked
 def solve(a: float, q: float, alpha: float, modes: int = 128, M: int = DEFAULT_M, guess: Wave | None = None,
           tol: float = 1e-13, max_iter: int = 40) -> Wave:
     """The exact wave of amplitude a (first sine coefficient) and wavenumber q, by Newton.
 
     ``guess``: a nearby solution (continuation); otherwise the eps -> 0 fixed point.
     """
-    alpha = check_alpha(alpha)
     if not a > 0:
         raise ValueError(f"amplitude a must be > 0, got {a!r}")
     J = int(modes)

@@ -99,7 +99,26 @@ SHARED: dict[str, dict[str, Any]] = {
                                    "number written as a string.", "type": "string", "pattern": ANGLE_PATTERN},
     "angle": {"description": "An angle: a number (radians) or a multiple of pi as a string ('pi/5', '4pi/5', "
                              "'-52pi/100', '4*pi/5').", "anyOf": [{"type": "number"}, {"$ref": "#/$defs/angleString"}]},
+    # arguments of public functions (cradle.specs.checked) that no config key refers to yet: a schema
+    # lists only the shared types its keys use, so these are not in config.schema.json
+    "atol": {"description": "Absolute tolerance of an adaptive integrator; > 0.", "type": "number",
+             "exclusiveMinimum": 0},
+    "dt": {"description": "Time step of a fixed-step splitting; > 0.", "type": "number", "exclusiveMinimum": 0},
+    "dt_factor": {"description": "Splitting step as a fraction of the shortest linearised period 2 pi / omega_max; "
+                                 "> 0.", "type": "number", "exclusiveMinimum": 0},
+    "latticeMethod": {"description": "Integrator of the lattice (nc): a splitting (srkn6c, srkn4c with the "
+                                     "contact-onset correction; srkn6, srkn4, strang) or an adaptive method "
+                                     "(dop853_numba; scipy's dop853, rk45, lsoda, radau).", "type": "string",
+                      "enum": ["srkn6c", "srkn4c", "srkn6", "srkn4", "strang", "dop853_numba", "dop853", "rk45",
+                               "lsoda", "radau"]},
+    "dpsMethod": {"description": "Integrator of the DpS equation (dfnls): dop853_numba, or scipy's dop853, rk45.",
+                  "type": "string", "enum": ["dop853_numba", "dop853", "rk45"]},
+    "potential": {"description": "Interaction potential: hertz, V0 of (vhertz), or smooth, |d|^(alpha+1)/(alpha+1) "
+                                 "of (meca) with kappa = 1.", "type": "string", "enum": ["hertz", "smooth"]},
 }
+
+#: words a message adds to a bound of a shared type, by (type, keyword): what the bound is
+BOUND_HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))"}
 
 
 def _ref(name: str) -> dict:
@@ -264,8 +283,30 @@ def generate(root, *, title: str, extra_defs=None) -> dict:
     if "$ref" in body:  # a named class: its schema is under $defs
         body = defs[root.__schema_name__]
     out = {"$schema": SCHEMA_DRAFT, "title": title, "description": root.__schema_doc__, "type": "object",
-           "additionalProperties": False, "properties": body["properties"], "$defs": defs}
+           "additionalProperties": False, "properties": body["properties"], "$defs": _used_shared(defs, body)}
     return out
+
+
+def _refs(node) -> set[str]:
+    """The ``$defs`` names a schema node refers to (``#/$defs/<name>``), anywhere inside it."""
+    if isinstance(node, dict):
+        ref = node.get("$ref")
+        found = {ref[len("#/$defs/"):]} if isinstance(ref, str) and ref.startswith("#/$defs/") else set()
+        return found.union(*(_refs(v) for v in node.values()))
+    if isinstance(node, list):
+        return set().union(*(_refs(v) for v in node))
+    return set()
+
+
+def _used_shared(defs: dict, body: dict) -> dict:
+    """``defs`` without the shared types nothing refers to (those only functions' arguments use), in order."""
+    keep = set(defs) - set(SHARED)
+    todo = [body, *(defs[k] for k in keep)]
+    while todo:
+        for name in _refs(todo.pop()) - keep:
+            keep.add(name)
+            todo.append(defs[name])
+    return {k: v for k, v in defs.items() if k in keep}
 
 
 def dump(schema: dict) -> str:

@@ -60,6 +60,16 @@ def show(value) -> str:
     return text if len(text) <= 80 else text[:77] + "..."
 
 
+#: how a message names a JSON type ("must be a number")
+TYPE_WORDS = {"integer": "an integer", "number": "a number", "string": "a string", "object": "a mapping",
+              "array": "a list", "boolean": "true or false", "null": "null"}
+
+
+def bound_text(x) -> str:
+    """A bound as a message writes it: 1 not 1.0, 0.01 as is ("must be > 1", "must be <= 0.01")."""
+    return repr(x) if isinstance(x, float) and not float(x).is_integer() else str(int(x)) if number(x) else str(x)
+
+
 def number(x) -> bool:
     """A real number (not a boolean)."""
     return isinstance(x, (int, float)) and not isinstance(x, bool)
