@@ -1,4 +1,4 @@
-"""Exact breathers of (nc) (cradle.models.lattice_breathers, cradle.models.dps_breathers,
+"""Exact breathers of (nc) (cradle.integrators.lattice_breathers, cradle.models.dps_breathers,
 cradle.analyses.breathers): the period map fixes them, their multipliers are symplectic with the trivial
 pair at +1, their symmetry classes, dE/dJ = omega_b / (2 pi) along a family, the DpS limit with its
 exponent, the DpS stability scaling and barrier formula, a tiny family in seconds."""
@@ -8,7 +8,8 @@ import time
 import numpy as np
 import pytest
 
-from cradle.models import dps, dps_breathers as db, homoclinic, lattice_breathers as lb
+from cradle.integrators import lattice_breathers as lb
+from cradle.models import dps, dps_breathers as db, homoclinic
 
 ALPHA = 1.5
 N = 10
@@ -159,11 +160,11 @@ def test_config_errors_name_the_key():
 
 
 def test_tail_recursion_continues_the_resolved_tail_double_exponentially():
-    """The tail recursion in log variables (cradle.models.lattice_breather_tails), started where |x_n| drops
+    """The tail recursion in log variables (cradle.integrators.lattice_breather_tails), started where |x_n| drops
     below 1e-4 max|x|, reproduces the beads the trajectory still resolves (down to 1e-11) to within the
     neglected relative terms O(|x_n / x_{n-1}|), and decays double-exponentially: ln(-ln|x_n|) has slope
     -> ln(alpha) (the DpS value) along the tail."""
-    from cradle.models import lattice_breather_tails as lbt
+    from cradle.integrators import lattice_breather_tails as lbt
 
     n = 30
     a = homoclinic.solve(homoclinic.initial_guess(n, "site", ALPHA, 0.1), ALPHA).a

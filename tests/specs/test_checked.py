@@ -224,7 +224,7 @@ def test_a_public_function_refuses_before_any_work(monkeypatch):
     ("cradle.models.stationary", "explicit_periodic_orbits", {"alpha"}),
     ("cradle.models.stationary", "stationary_residual", {"alpha", "bc"}),
     ("cradle.models.waves", "solve", {"alpha"}),
-    ("cradle.models.lattice_breathers", "newton", {"alpha", "bc", "rtol"}),
+    ("cradle.integrators.lattice_breathers", "newton", {"alpha", "bc", "rtol"}),
 ])
 def test_the_public_entry_points_are_checked(where, name, arguments):
     import importlib

@@ -37,7 +37,7 @@ def sigma(fl, T) -> float:
 def locate(fam, floquets, name, kind, centre, spec: Breathers, say, steps: int):
     """Zeros of sigma along one family (list of Breathers on the grid), refined by ``steps`` regula falsi steps
     (each breather solved with the spec's newton_tol and rtol). Returns a list of (omega, half-width)."""
-    from cradle.models import lattice_breathers as lb
+    from cradle.integrators import lattice_breathers as lb
 
     rtol, tol = spec.rtol, spec.newton_tol
     sig = [sigma(floquets[(name, b.omega)], b.T) for b in fam]

@@ -1,7 +1,7 @@
 """Exact breathers of the lattice (nc): families in omega_b, Floquet stability, Peierls-Nabarro barrier and
 distance to the DpS breathers (ansatzapproxst2), against the DpS predictions.
 
-The breathers and their multipliers are :mod:`cradle.models.lattice_breathers` (reversible shooting with
+The breathers and their multipliers are :mod:`cradle.integrators.lattice_breathers` (reversible shooting with
 the variational equations, Newton continuation in omega_b from the DpS start); the DpS side is
 :mod:`cradle.models.dps_breathers`; the kicked breather and the direct growth check are
 :mod:`cradle.analyses.breather_mobility`. :func:`compute` stores them as a tree of netCDF groups
@@ -73,7 +73,7 @@ VARIABLES = {
         "j": Var(("j",), "distance from the breather's centre, beads (right tail)"),
         "log10_amplitude": Var(("family", "j"), "log10 max_t |x_n(t)| of the exact breather at pn_omega",
                                attrs=(("comment", ("from the trajectory where resolved, then the tail recursion "
-                                                   "in log variables (cradle.models.lattice_breather_tails)")),)),
+                                                   "in log variables (cradle.integrators.lattice_breather_tails)")),)),
         "log10_amplitude_dps": Var(("family", "j"),
                                    "log10 |x_n(0)| of the DpS breather at pn_omega (homoclinic_tails)"),
     },
@@ -125,12 +125,8 @@ def compute(spec: Breathers, inputs: dict | None = None, log=None):
     empty); the kicked breather and the direct growth check by :func:`cradle.analyses.breather_mobility.compute`,
     the stability exchanges by :func:`cradle.analyses.breather_exchanges.locate`."""
     from cradle.data.io import make_tree
-    from cradle.models import (
-        dps_breathers as db,
-        homoclinic_tails as ht,
-        lattice_breather_tails as lbt,
-        lattice_breathers as lb,
-    )
+    from cradle.integrators import lattice_breather_tails as lbt, lattice_breathers as lb
+    from cradle.models import dps_breathers as db, homoclinic_tails as ht
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)

@@ -24,7 +24,7 @@ def trajectory(b, M: int = 1024, rtol: float = 1e-13):
     """x_n(t) at t = k T / M, k = 0..M-1, of the breather ``b`` (shape (M, N)), by DOP853 with dense output."""
     from scipy.integrate import solve_ivp
 
-    from cradle.models.lattice_breathers import _rhs_factory
+    from cradle.integrators.lattice_breathers import _rhs_factory
 
     N = b.x0.size
     y0 = np.concatenate([b.x0, np.zeros(N), [0.0]])
