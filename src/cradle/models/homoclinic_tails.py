@@ -10,14 +10,21 @@ and the half-width of the core at a given depth (:func:`decay_sites`).
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
 from cradle.specs.checked import checked
 
-if TYPE_CHECKING:
-    from cradle.models.homoclinic_continuation import ScaledHomoclinic
+
+class ScaledProfile(Protocol):
+    """What :func:`log10_abs_scaled` reads of a solution (a
+    :class:`~cradle.models.homoclinic_continuation.ScaledHomoclinic`)."""
+
+    profile: np.ndarray
+    nu: float
+    alpha: float
+    log10_scale: float
 
 
 def _backward_step(s1, L1, s0, L0, alpha):
@@ -93,7 +100,7 @@ def log10_abs(a, alpha: float, floor: float = 1e-9, centre: int | None = None):
     return out
 
 
-def log10_abs_scaled(sol: "ScaledHomoclinic", floor: float = 1e-9, centre: int | None = None):
+def log10_abs_scaled(sol: ScaledProfile, floor: float = 1e-9, centre: int | None = None):
     """log10 |a_n| of a :class:`~cradle.models.homoclinic_continuation.ScaledHomoclinic` on every site
     (periodic ends), never underflowing.
 
