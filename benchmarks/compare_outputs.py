@@ -39,7 +39,9 @@ import netCDF4
 import numpy as np
 
 #: the results-layout renames made so far, OLD_REGEX -> NEW_TEMPLATE on relative paths (after --map)
-RENAMES: list[tuple[str, str]] = []
+RENAMES: list[tuple[str, str]] = [
+    (r"validity/(full/)?dps-validity\.nc", r"dps-validity/\1dps-validity.nc"),  # dps-validity on the protocol
+]
 
 #: units of a wall-clock duration
 SECONDS = {"s", "sec", "second", "seconds"}

@@ -99,7 +99,7 @@ def test_cf_compliant(outputs, kind, tmp_path):
 #: analysis -> module declaring its VARIABLES (one dict per netCDF group)
 TREES = {"theorem1": "theorem1", "mi-diagram": "modulational", "mi-growth": "migrowth",
          "mi-statistics": "mistatistics", "floquet": "floquet", "breathers": "breathers",
-         "dps-validity": "dpsvalidity", "breather-interactions": "breather_interactions"}
+         "dps-validity": "dps_validity", "breather-interactions": "breather_interactions"}
 
 
 def _declared_tree(module: str):

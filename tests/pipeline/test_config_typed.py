@@ -11,10 +11,12 @@ from pathlib import Path
 import pytest
 import yaml
 
+from cradle.analyses import dps_validity
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import (beyond, breather_interactions, breathers, dps_validity, floquet, mi_statistics,
-                                    movies, sections)
+from cradle.pipeline.config import (beyond, breather_interactions, breathers, floquet, mi_statistics, movies,
+                                    sections)
 from cradle.scenes import spec as scenes
+from cradle.specs.declare import plain
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -53,8 +55,8 @@ def _everything_resolved(config) -> dict:
         "breathers": cc.resolved_breathers(cfg),
         "breathers_reduced": cc.resolved_breathers(cfg, "reduced"),
         "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
-        "dps_validity": cc.resolved_dps_validity(cfg),
-        "dps_validity_reduced": cc.resolved_dps_validity(cfg, "reduced"),
+        "dps_validity": plain(cc.analysis_spec(cfg, "dps-validity", "full")),
+        "dps_validity_reduced": plain(cc.analysis_spec(cfg, "dps-validity", "reduced")),
         "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
         "work_precision_reduced": {n: cc.resolved_work_precision(cfg, n, "reduced")
                                    for n in cfg["work_precision"]["reduced"]["scenes"]},

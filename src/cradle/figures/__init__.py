@@ -105,7 +105,6 @@ DATASET_FIGURES = {
     "mi-statistics": "mi_statistics.mi_statistics",
     "breathers": "breathers.breathers",
     "breather-interactions": "breather_interactions.breather_interactions",
-    "dps-validity": "dps_validity.dps_validity",
 }
 
 #: Drawn from several analysis files by its own rule (``workprecision.draw``).

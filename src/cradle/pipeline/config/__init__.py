@@ -2,7 +2,7 @@
 
 - :mod:`.spec`: the declaration helpers (:func:`.spec.param`) and the JSON Schema generator;
 - :mod:`.scenes`, :mod:`.sections`, :mod:`.beyond`, :mod:`.mi_statistics`, :mod:`.floquet`, :mod:`.breathers`,
-  :mod:`.breather_interactions`, :mod:`.dps_validity`: each
+  :mod:`.breather_interactions`: each
   section and each kind of initial condition as a frozen dataclass, with the checks the schema
   cannot express as its ``check`` method and, for the analyses, its ``resolve`` method;
 - :mod:`.validate`: coercion of strings, one-line messages, defaults; :mod:`.loading`: reading
@@ -11,7 +11,7 @@
 
 ``python -m cradle.pipeline.config --write-schema`` regenerates ``config.schema.json``.
 """
-from .resolve import (resolved_breather_interactions, resolved_breathers, resolved_dps_validity, resolved_floquet,
+from .resolve import (resolved_breather_interactions, resolved_breathers, resolved_floquet,
                       resolved_homoclinic, resolved_map, resolved_mi_diagram,
                       analysis_spec, resolved_mi_statistics, resolved_scene, resolved_theorem1,
                       resolved_work_precision, typed)
@@ -26,5 +26,5 @@ __all__ = [
     "generated_schema", "schema_path", "write_schema", "parse_angle", "validate", "store_times", "resolved_scene",
     "resolved_homoclinic", "resolved_map", "resolved_work_precision", "resolved_theorem1", "resolved_mi_diagram",
     "analysis_spec", "resolved_mi_statistics", "resolved_floquet", "resolved_breathers",
-    "resolved_breather_interactions", "resolved_dps_validity", "load", "read_yaml", "StrictLoader", "main", "typed",
+    "resolved_breather_interactions", "load", "read_yaml", "StrictLoader", "main", "typed",
 ]

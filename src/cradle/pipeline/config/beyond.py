@@ -2,8 +2,7 @@
 
 Each analysis is a frozen dataclass (Theorem 1 on exact travelling waves of
 (ad), the DpS modulational-instability map (ansatz3), its growth rates in the
-scenes' runs, threshold statistics over noise seeds, Bloch-Floquet stability, the DpS approximation
-error against eps and T).
+scenes' runs, threshold statistics over noise seeds, Bloch-Floquet stability).
 ``check`` reports, one line per problem, what the schema cannot express;
 ``resolve`` turns the section of a validated config into the plain dict the
 analysis module computes from (angles in radians, inherited settings merged),
@@ -15,7 +14,6 @@ import math
 
 from .breathers import Breathers
 from .breather_interactions import BreatherInteractions
-from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
 from cradle.specs.declare import declared, param
@@ -148,7 +146,7 @@ BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysi
 
 #: TRANSITION ONLY: the sections of the analyses not yet declared by their own modules (cradle.analyses._legacy)
 _LEGACY = {"theorem1": Theorem1, "mi_diagram": MIDiagram, "mi_statistics": MIStatistics, "floquet": Floquet,
-           "breathers": Breathers, "breather_interactions": BreatherInteractions, "dps_validity": DpsValidity}
+           "breathers": Breathers, "breather_interactions": BreatherInteractions}
 
 
 def _legacy_check(b: dict, cfg: dict, out) -> None:
@@ -163,7 +161,6 @@ def _legacy_check(b: dict, cfg: dict, out) -> None:
     Floquet.check(sec["floquet"], path + ["floquet"], out)
     Breathers.check(sec["breathers"], path + ["breathers"], out)
     BreatherInteractions.check(sec["breather_interactions"], path + ["breather_interactions"], out)
-    DpsValidity.check(sec["dps_validity"], path + ["dps_validity"], out)
 
 
 def _beyond_class():

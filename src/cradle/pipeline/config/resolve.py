@@ -12,7 +12,6 @@ import copy
 from .beyond import MIDiagram, Theorem1
 from .breathers import Breathers
 from .breather_interactions import BreatherInteractions
-from .dps_validity import DpsValidity
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
@@ -133,11 +132,6 @@ def resolved_breathers(config: dict, form: str = "full") -> dict:
 def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
     """``beyond.breather_interactions`` of one form (full, or reduced: what ``all`` builds)."""
     return BreatherInteractions.resolve(_validated(config), form)
-
-
-def resolved_dps_validity(config: dict, form: str = "full") -> dict:
-    """``beyond.dps_validity`` of one form (full, or reduced: what ``all`` builds), T sorted."""
-    return DpsValidity.resolve(_validated(config), form)
 
 
 def analysis_spec(config: dict, name: str, form: str):
