@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from cradle.analyses import dps_validity
+from cradle.analyses import dps_validity, work_precision
 from cradle.pipeline import config as cc
 from cradle.pipeline.config import (beyond, breather_interactions, breathers, floquet, mi_statistics, movies,
                                     sections)
@@ -57,9 +57,8 @@ def _everything_resolved(config) -> dict:
         "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
         "dps_validity": plain(cc.analysis_spec(cfg, "dps-validity", "full")),
         "dps_validity_reduced": plain(cc.analysis_spec(cfg, "dps-validity", "reduced")),
-        "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
-        "work_precision_reduced": {n: cc.resolved_work_precision(cfg, n, "reduced")
-                                   for n in cfg["work_precision"]["reduced"]["scenes"]},
+        "work_precision": plain(cc.analysis_spec(cfg, "work-precision", "full")),
+        "work_precision_reduced": plain(cc.analysis_spec(cfg, "work-precision", "reduced")),
     }
 
 
@@ -79,7 +78,7 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 def test_declarations_are_frozen_and_every_field_described():
     classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics, breather_interactions,
-                           movies, dps_validity) for c in vars(m).values()
+                           movies, dps_validity, work_precision) for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:
@@ -166,7 +165,8 @@ def test_nan_alpha_is_reported_once(raw):
 @pytest.mark.parametrize("where,value", [
     (("scenes", "tw-weak", "t_end"), math.inf), (("scenes", "tw-weak", "t_end"), math.nan),
     (("scenes", "tw-weak", "store", "every"), math.inf), (("scenes", "tw-weak", "store", "snapshots", 0), math.nan),
-    (("work_precision", "scenes", "tw-weak", "t_end"), math.inf), (("figures", "plot4-5", "times", 0), math.nan),
+    (("beyond", "work-precision", "scenes", "tw-weak", "t_end"), math.inf),
+    (("figures", "plot4-5", "times", 0), math.nan),
     (("beyond", "mi_statistics", "t_end"), "inf"),
 ])
 def test_non_finite_times_are_refused_once(raw, where, value):
@@ -183,17 +183,18 @@ def test_non_finite_times_are_refused_once(raw, where, value):
 
 
 def test_config_yaml_beyond_restates_the_defaults_as_its_comment_says(raw):
-    """config.yaml says that under `beyond:` only theorem1.scenes and mi_growth.scenes differ from the
-    declared defaults, and that work_precision's compare_every, repeat_time and reference restate them."""
+    """config.yaml says that under `beyond:` only theorem1.scenes, mi_growth.scenes and work-precision's
+    scenes and methods differ from the declared defaults (work-precision's compare_every, repeat_time and
+    reference restate them)."""
     declared = cc.validate({"map": {"m": {"box": 1.0, "iterations": 2, "starts": [[0.0, 0.1]]}}})
     given = copy.deepcopy(raw["beyond"])
-    for section in ("theorem1", "mi_growth"):
+    for section in ("theorem1", "mi_growth", "work-precision"):
         assert given[section].pop("scenes")
+    assert given["work-precision"].pop("methods")
+    assert {"compare_every", "repeat_time", "reference"} <= set(given["work-precision"])
     for section, values in given.items():
         for key, value in values.items():
             assert declared["beyond"][section][key] == value, f"beyond.{section}.{key}"
-    for key in ("compare_every", "repeat_time", "reference"):
-        assert raw["work_precision"][key] == declared["work_precision"][key], key
 
 
 def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw):

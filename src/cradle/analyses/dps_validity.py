@@ -113,7 +113,7 @@ class DpsValidity:
             out.add(path + ["eps_min"], f"needs one value per alpha ({len(al)}: {show(al)})", em)
         if isinstance(em, list) and number(hi) and mine("eps_min"):
             for i, e in enumerate(em):
-                if number(e) and not float(e) < float(hi):
+                if number(e) and not e < hi:
                     out.add(path + ["eps_min", i], f"must be below eps_max = {show(hi)}", e)
         fam = b.get("families")
         if isinstance(fam, list) and len(set(map(str, fam))) != len(fam) and mine("families"):

@@ -6,7 +6,7 @@ writes it as ``<stem>.pdf`` and ``<stem>.png``. Modules: :mod:`.maps`
 (traj3, traj2), :mod:`.homoclinic` (bcsc), :mod:`.travelling` (plot4-5,
 plotcomplin), :mod:`.spacetime` (space-time diagrams and profiles),
 :mod:`.spectra` (fft106, fftseuil, fft344), :mod:`.localised` (breathers,
-loc1, fini), :mod:`.beyond` and :mod:`.workprecision` (beyond the paper).
+loc1, fini), :mod:`.beyond` and one module per analysis beyond the paper (``draw(tree)``).
 
 Importing this package is cheap (no matplotlib, no figure module): the
 Snakefile asks it which module draws a label (:func:`module_of`) and
@@ -106,9 +106,6 @@ DATASET_FIGURES = {
     "breathers": "breathers.breathers",
     "breather-interactions": "breather_interactions.breather_interactions",
 }
-
-#: Drawn from several analysis files by its own rule (``workprecision.draw``).
-OTHER_FIGURES = ("work-precision",)
 
 REGISTRIES = {"FIGURES": FIGURES, "DATASET_FIGURES": DATASET_FIGURES}
 

@@ -14,7 +14,7 @@
 from .resolve import (resolved_breather_interactions, resolved_breathers, resolved_floquet,
                       resolved_homoclinic, resolved_map, resolved_mi_diagram,
                       analysis_spec, resolved_mi_statistics, resolved_scene, resolved_theorem1,
-                      resolved_work_precision, typed)
+                      typed)
 from .sections import KNOWN_FIGURES, SECTIONS
 from cradle.specs.declare import ANGLE_PATTERN
 from .loading import StrictLoader, load, main, read_yaml
@@ -24,7 +24,7 @@ from cradle.specs.values import TIME_TOL, ConfigError, parse_angle, store_times
 __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SECTIONS", "SCHEMA_FILE", "ANGLE_PATTERN", "TIME_TOL", "schema",
     "generated_schema", "schema_path", "write_schema", "parse_angle", "validate", "store_times", "resolved_scene",
-    "resolved_homoclinic", "resolved_map", "resolved_work_precision", "resolved_theorem1", "resolved_mi_diagram",
+    "resolved_homoclinic", "resolved_map", "resolved_theorem1", "resolved_mi_diagram",
     "analysis_spec", "resolved_mi_statistics", "resolved_floquet", "resolved_breathers",
     "resolved_breather_interactions", "load", "read_yaml", "StrictLoader", "main", "typed",
 ]

@@ -14,7 +14,6 @@ from .breathers import Breathers
 from .breather_interactions import BreatherInteractions
 from .floquet import Floquet
 from .mi_statistics import MIStatistics
-from .sections import WorkPrecision
 from cradle.specs.values import ConfigError, angle_expr, parse_angle, store_times
 
 
@@ -89,17 +88,6 @@ def typed(config: dict):
     from .sections import Config
 
     return spec.build(Config, _validated(config))
-
-
-def resolved_work_precision(config: dict, name: str, form: str = "full") -> dict:
-    """The parameters of work-precision scene ``name``: ``alpha``, ``N``, ``bc`` from the ``scenes:``
-    entry of the same name (whose initial data are used), the rest from ``work_precision``."""
-    cfg = _validated(config)
-    entries = cfg["work_precision"]["scenes"]
-    if name not in entries:
-        raise ConfigError(f"config error: work_precision.scenes.{name}: no entry of that name "
-                          f"(entries: {', '.join(entries) or 'none'})")
-    return WorkPrecision.resolve(cfg, name, resolved_scene(cfg, name), form)
 
 
 def resolved_theorem1(config: dict) -> dict:
