@@ -13,7 +13,13 @@ An analysis is one module of :mod:`cradle.analyses` that defines ``ANALYSIS = An
 * ``batches``: optionally, the jobs its work is split into (:class:`Batches`), each written apart and
   handed to ``compute`` as ``batch/<key>``;
 * ``compute(spec, inputs, log)``: the output, a DataTree (or Dataset) of netCDF groups named as in the
-  paper from its ``variables``.
+  paper from its ``variables``;
+* ``tables``: the text formats (``("csv", "md")``) its drawing step writes instead of a figure: then
+  ``cradle/figures/<module>.py`` defines ``tables(tree) -> {format: text}`` rather than ``draw(tree)``,
+  and the files go beside its netCDF file (``results/<name>/<name>.<format>``; the claims table).
+
+A spec field ``scenes``, ``homoclinic`` or ``map`` whose declaration allows the text ``"all"`` is filled by
+the pipeline with the names of every entry of that config section (:func:`cradle.pipeline.config.analysis_spec`).
 
 The registry (:mod:`cradle.analyses.registry`) finds the modules; the config section, its schema, the rules
 and the figure table follow from it. Nothing here knows paths or Snakemake.
@@ -70,6 +76,7 @@ class Analysis:
     variables: Mapping[str, Any]
     reads: Callable[[Any], Mapping[str, Read]] = lambda spec: {}
     batches: Batches | None = None
+    tables: tuple[str, ...] = ()  # text formats written by figures/<module>.py tables(tree), in place of a figure
 
     @property
     def module(self) -> str:

@@ -186,6 +186,17 @@ def draw_analysis(module: str, tree, stem, note: str = "") -> list[Path]:
     return save_figure(fig, stem)
 
 
+def write_tables(module: str, tree, paths: dict) -> list[Path]:
+    """Write the tables of an analysis (``tables`` of ``cradle.figures.<module>``: format -> text) from its
+    output ``tree`` to ``paths`` (format -> file), each atomically."""
+    import importlib
+
+    from cradle.data.io import write_text
+
+    tables = importlib.import_module(f"{__name__}.{module}").tables(tree)
+    return [write_text(tables[ext], path) for ext, path in paths.items()]
+
+
 def draw(label: str, data: dict, options: dict, stem) -> list[Path]:
     """Draw figure ``label`` and save it as ``stem``.pdf/.png (times go to the log)."""
     import logging

@@ -124,9 +124,15 @@ def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
 
 def analysis_spec(config: dict, name: str, form: str):
     """The typed spec of analysis ``name`` (:mod:`cradle.analyses.registry`) in one form, from the validated
-    config's section ``beyond.<name>``."""
+    config's section ``beyond.<name>``; a key named after a section of entries (scenes, homoclinic, map) given
+    as ``all`` becomes the names of every entry of that section (the claims table reads them all)."""
     from cradle.analyses.registry import ANALYSES, form_spec
     from cradle.specs.declare import from_plain
 
+    from .sections import SECTIONS
+
     a = ANALYSES[name]
-    return form_spec(from_plain(a.spec, _validated(config)["beyond"][a.name], where=f"beyond.{a.name}"), form)
+    cfg = _validated(config)
+    section = {key: (list(cfg.get(key) or {}) if key in SECTIONS and value == "all" else value)
+               for key, value in cfg["beyond"][a.name].items()}
+    return form_spec(from_plain(a.spec, section, where=f"beyond.{a.name}"), form)
