@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from cradle.analyses import dps_validity, work_precision
+from cradle.analyses import dps_validity, paper_checks, work_precision
 from cradle.pipeline import config as cc
 from cradle.pipeline.config import (beyond, breather_interactions, breathers, floquet, mi_statistics, movies,
                                     sections)
@@ -78,7 +78,7 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 def test_declarations_are_frozen_and_every_field_described():
     classes = [c for m in (scenes, sections, beyond, floquet, breathers, mi_statistics, breather_interactions,
-                           movies, dps_validity, work_precision) for c in vars(m).values()
+                           movies, dps_validity, work_precision, paper_checks) for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
     for cls in classes:
