@@ -4,8 +4,8 @@
 #
 # Stages (workflow/rules): homoclinic & map orbits (homoclinic.smk) -> initial data,
 # exact and DpS integration and their comparison, one job per scene (simulate.smk) ->
-# figures (figures.smk) and the claims table (checks.smk); the analyses beyond the paper
-# (analyses.smk, with the mi-statistics batches in mi.smk) and work-precision (workprecision.smk); movies of
+# figures (figures.smk); the claims table (paper-checks) and the analyses beyond the paper, work-precision
+# among them (analyses.smk, with the mi-statistics batches in mi.smk); movies of
 # the scenes' runs (movies.smk, target `movies`, not in `all`).
 
 
@@ -27,8 +27,6 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/homoclinic.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/figures.smk"
-include: "workflow/rules/workprecision.smk"
-include: "workflow/rules/checks.smk"
 include: "workflow/rules/analyses.smk"
 include: "workflow/rules/legacy_analyses.smk"
 include: "workflow/rules/mi.smk"
@@ -36,21 +34,24 @@ include: "workflow/rules/interactions.smk"
 include: "workflow/rules/movies.smk"
 
 
-PAPER = figure_targets() + [L.path("checks", ext=ext) for ext in ("csv", "md")]
+# the paper's figures and its claims table (the analysis paper-checks: its netCDF file and its tables)
+PAPER = figure_targets() + [
+    L.analysis_output("paper-checks", "full", "full"),
+    *L.analysis_drawn(ANALYSES["paper-checks"], "full", "full").values(),
+]
 
 
-# the reduced form of every analysis beyond the paper (cradle.analyses.registry), and work-precision
+# the reduced form of every analysis beyond the paper (cradle.analyses.registry)
 BEYOND = [
     f
     for a in ANALYSES.values()
-    for f in (L.analysis_output(a.name, a.forms[0], a.forms[0]), *L.analysis_figures(a.name, a.forms[0], a.forms[0]).values())
+    for f in (L.analysis_output(a.name, a.forms[0], a.forms[0]), *L.analysis_drawn(a, a.forms[0], a.forms[0]).values())
 ]
 BEYOND += [f for a in LEGACY.values() for f in (a.output(a.forms[0]), *a.figure(a.forms[0]).values())]
-BEYOND += figure_targets(["work-precision"])
 
 
 rule all:
-    # the paper, and the analyses beyond it in their reduced forms (workflow/rules/analyses.smk, workprecision.smk)
+    # the paper, and the analyses beyond it in their reduced forms (workflow/rules/analyses.smk)
     default_target: True
     input:
         PAPER,

@@ -1,7 +1,8 @@
 """Compare two results folders netCDF file by netCDF file: are the numbers bitwise the same?
 
     python benchmarks/compare_outputs.py OLD_RESULTS NEW_RESULTS [--map OLD_REGEX=NEW_TEMPLATE ...]
-        [--var-map [FILE_REGEX::]OLD_REGEX=NEW_TEMPLATE ...] [--coord-names model,scene] [--table FILE]
+        [--group-map OLD_REGEX=GROUP_TEMPLATE ...] [--var-map [FILE_REGEX::]OLD_REGEX=NEW_TEMPLATE ...]
+        [--coord-names model,scene] [--table FILE]
 
 Every ``*.nc`` under OLD_RESULTS is paired with a file under NEW_RESULTS: the same relative path, or
 the first rename rule whose regex matches the whole relative path (``--map`` rules first, then
@@ -16,6 +17,11 @@ attributes (provenance, parameters, timings) are not compared. Exceptions, all e
 * a measured timing (:func:`is_wall_clock`: units of seconds and a name or long_name saying wall,
   clock, elapsed, run time, ...; today work-precision's ``wall_time``) is checked for dimensions and
   units only;
+* ``--group-map`` compares an old file with one group of its new file (several old files gathered into
+  one new file, a group each): for an old file whose relative path the regex matches whole, its variables
+  are paired with those under the group the template names (``--group-map
+  'work-precision/([^/]+)\\.nc=/\\1'`` with ``--map 'work-precision/[^/]+\\.nc=work-precision/work-precision.nc'``),
+  and only that group's variables count as "only in new" (then :data:`GROUPS`, the gatherings made so far);
 * ``--var-map`` renames variables (and the dimensions they name) inside files: the regex is matched
   against the variable's path in its file (``/wall_time``, ``/cases/pair``); ``FILE_REGEX::`` limits the
   rule to old files whose relative path it matches;
@@ -39,7 +45,15 @@ import netCDF4
 import numpy as np
 
 #: the results-layout renames made so far, OLD_REGEX -> NEW_TEMPLATE on relative paths (after --map)
-RENAMES: list[tuple[str, str]] = []
+RENAMES: list[tuple[str, str]] = [
+    (r"validity/(full/)?dps-validity\.nc", r"dps-validity/\1dps-validity.nc"),  # dps-validity on the protocol
+    # work-precision on the protocol: one file per scene gathered into one, a group per scene (GROUPS)
+    (r"work-precision/(full/)?[^/]+\.nc", r"work-precision/\1work-precision.nc"),
+]
+#: old files that became a group of a gathered file, OLD_REGEX -> GROUP_TEMPLATE (after --group-map)
+GROUPS: list[tuple[str, str]] = [
+    (r"work-precision/(?:full/)?([^/]+)\.nc", r"/\1"),
+]
 
 #: units of a wall-clock duration
 SECONDS = {"s", "sec", "second", "seconds"}
@@ -223,6 +237,7 @@ class FileReport:
     timings: list[str] = field(default_factory=list)
     coded: list[str] = field(default_factory=list)
     differences: list[tuple[str, str, str]] = field(default_factory=list)  # variable, problem, max |diff|
+    group: str | None = None  # the group of the new file compared (--group-map)
 
 
 def compare_variable(old: Variable, new: Variable, new_dims: tuple, coord_names: set[str]) -> tuple[str, str] | None:
@@ -247,11 +262,23 @@ def compare_variable(old: Variable, new: Variable, new_dims: tuple, coord_names:
     return None
 
 
+def _under(path: str, group: str) -> bool:
+    return path.startswith("/" + group.strip("/") + "/")
+
+
+def in_group(variables: dict[str, Variable], group: str) -> dict[str, Variable]:
+    """The variables under ``group`` (``/tw-weak``), by their paths relative to it (``/error``)."""
+    cut = len(group.strip("/")) + 1
+    return {path[cut:]: var for path, var in variables.items() if _under(path, group)}
+
+
 def compare_file(old_path: Path, new_path: Path, old_rel: str, new_rel: str, var_rules: list[Rule],
-                 coord_names: set[str]) -> FileReport:
-    """Every variable of ``old_path`` against its counterpart in ``new_path``."""
-    report = FileReport(old_rel, new_rel)
+                 coord_names: set[str], group: str | None = None) -> FileReport:
+    """Every variable of ``old_path`` against its counterpart in ``new_path`` (in its group ``group``)."""
+    report = FileReport(old_rel, new_rel if group is None else f"{new_rel}:{group}", group=group)
     old_vars, new_vars = read_variables(old_path), read_variables(new_path)
+    if group is not None:
+        new_vars = in_group(new_vars, group)
     matched = set()
     for path, old in old_vars.items():
         new_path_in_file = rename(var_rules, path, old_rel)
@@ -277,6 +304,17 @@ def compare_file(old_path: Path, new_path: Path, old_rel: str, new_rel: str, var
     return report
 
 
+def ungrouped(new_root: Path, pairs, reports: list[FileReport]) -> list[str]:
+    """``file:/variable`` for each variable of a new file compared by groups (--group-map) that lies in
+    none of the groups compared: a group no old file stands for."""
+    groups: dict[str, list[str]] = {}
+    for (_, new), report in zip(pairs, reports, strict=True):
+        if report.group is not None:
+            groups.setdefault(new, []).append(report.group)
+    return [f"{new}:{path}" for new, names in groups.items() for path in read_variables(new_root / new)
+            if not any(_under(path, g) for g in names)]
+
+
 def pair_files(old_root: Path, new_root: Path, file_rules: list[Rule]):
     """(pairs of relative paths, old files without a new one, new files without an old one)."""
     old_files = sorted(p.relative_to(old_root).as_posix() for p in old_root.rglob("*.nc"))
@@ -297,7 +335,7 @@ def _cell(text: str) -> str:
 
 
 def markdown(old_root: Path, new_root: Path, reports: list[FileReport], only_old: list[str], only_new: list[str],
-             renames: list[Rule], var_rules: list[Rule], coord_names: set[str]) -> str:
+             renames: list[Rule], var_rules: list[Rule], coord_names: set[str], group_rules=()) -> str:
     """The report: summary, unpaired files, one row per pair, one row per difference."""
     differing = [r for r in reports if r.differences]
     equal = not differing and not only_old and not only_new
@@ -307,6 +345,9 @@ def markdown(old_root: Path, new_root: Path, reports: list[FileReport], only_old
              f"{len(only_old)} only in old, {len(only_new)} only in new.", ""]
     if renames:
         lines.append("File renames: " + ", ".join(f"`{r.pattern.pattern}` -> `{r.template}`" for r in renames))
+    if group_rules:
+        lines.append("Old files compared with a group of their new file: "
+                     + ", ".join(f"`{r.pattern.pattern}` -> group `{r.template}`" for r in group_rules))
     if var_rules:
         lines.append("Variable renames: " + ", ".join(
             f"`{(r.files.pattern + '::') if r.files else ''}{r.pattern.pattern}` -> `{r.template}`" for r in var_rules))
@@ -338,6 +379,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("new", type=Path, help="the results folder to check")
     parser.add_argument("--map", action="append", default=[], type=Rule.parse, metavar="OLD_REGEX=NEW_TEMPLATE",
                         help="rename of a file's relative path (tried in order, before the built-in RENAMES)")
+    parser.add_argument("--group-map", action="append", default=[], type=Rule.parse,
+                        metavar="OLD_REGEX=GROUP_TEMPLATE",
+                        help="compare an old file with this group of its new file (e.g. one group per old file)")
     parser.add_argument("--var-map", action="append", default=[], type=lambda s: Rule.parse(s, scoped=True),
                         metavar="[FILE_REGEX::]OLD_REGEX=NEW_TEMPLATE",
                         help="rename of a variable's path inside a file (/name, /group/name)")
@@ -349,10 +393,15 @@ def main(argv: list[str] | None = None) -> int:
         if not root.is_dir():
             parser.error(f"{root}: not a folder")
     file_rules = args.map + [Rule.parse(f"{old}={new}") for old, new in RENAMES]
+    group_rules = args.group_map + [Rule.parse(f"{old}={new}") for old, new in GROUPS]
     coord_names = {c.strip() for c in args.coord_names.split(",") if c.strip()}
     pairs, only_old, only_new = pair_files(args.old, args.new, file_rules)
-    reports = [compare_file(args.old / o, args.new / n, o, n, args.var_map, coord_names) for o, n in pairs]
-    text = markdown(args.old, args.new, reports, only_old, only_new, file_rules, args.var_map, coord_names)
+    reports = [compare_file(args.old / o, args.new / n, o, n, args.var_map, coord_names,
+                            group=next((g for g in (r.apply(o) for r in group_rules) if g is not None), None))
+               for o, n in pairs]
+    only_new += ungrouped(args.new, pairs, reports)
+    text = markdown(args.old, args.new, reports, only_old, only_new, file_rules, args.var_map, coord_names,
+                    group_rules)
     if args.table:
         args.table.write_text(text)
         print(text.splitlines()[2])

@@ -196,3 +196,45 @@ def test_integer_codes_equal_strings_only_when_asked(tmp_path, storage):
             ds["model"][:] = netCDF4.stringtochar(np.array(["dps", "exact"], dtype="S5"))
     code, table = run(old.parent, new.parent, "--coord-names", "model")
     assert code == 1 and "names ['dps', 'exact'] != ['exact', 'dps']" in table
+
+
+def test_old_files_compare_with_groups_of_one_gathered_file(tmp_path):
+    """--group-map: each old file against its group of the new file; a group no old file stands for is
+    only in new, a changed byte in a group is a difference."""
+    old_a, old_b = write(tmp_path / "old" / "wp" / "a.nc"), write(tmp_path / "old" / "wp" / "b.nc")
+    new = tmp_path / "new" / "wp" / "wp.nc"
+    new.parent.mkdir(parents=True)
+    with netCDF4.Dataset(new, "w") as out:
+        for name, src in (("a", old_a), ("b", old_b)):
+            _copy_into(src, out.createGroup(name))
+    options = ("--map", r"wp/\w+\.nc=wp/wp.nc", "--group-map", r"wp/(\w+)\.nc=/\1")
+    code, table = run(tmp_path / "old", tmp_path / "new", *options)
+    assert code == 0, table
+    assert "`wp/wp.nc:/a`" in table and "`wp/wp.nc:/b`" in table
+    code, table = run(tmp_path / "old", tmp_path / "new", "--map", r"wp/\w+\.nc=wp/wp.nc")
+    assert code == 1 and "`/a/x` | only in new" in table  # without the groups the paths differ
+    old_b.unlink()
+    code, table = run(tmp_path / "old", tmp_path / "new", *options)
+    assert code == 1 and "- `wp/wp.nc:/b/x`" in table
+    write(old_b)
+    _flip_bit(new, "/b/x", (0, 0))
+    code, table = run(tmp_path / "old", tmp_path / "new", *options)
+    differences = table.split("## Differences", 1)[-1]
+    assert code == 1 and "| `wp/b.nc` | `/x` | values |" in differences and "`wp/a.nc`" not in differences, table
+
+
+def _copy_into(path: Path, group) -> None:
+    """Every dimension, variable (values, units, long_name) and subgroup of the file ``path`` into ``group``."""
+    def copy(src, dst):
+        for name, dim in src.dimensions.items():
+            dst.createDimension(name, len(dim))
+        for name, var in src.variables.items():
+            out = dst.createVariable(name, var.datatype, var.dimensions)
+            out.setncatts({k: var.getncattr(k) for k in var.ncattrs()})
+            out[...] = var[...]
+        for name, sub in src.groups.items():
+            copy(sub, dst.createGroup(name))
+
+    with netCDF4.Dataset(path) as src:
+        src.set_auto_maskandscale(False)
+        copy(src, group)

@@ -18,6 +18,8 @@ Sub-packages, one layer each, each importing only from the layers before it (doc
 """
 from cradle.data.provenance import VERSION as __version__
 
+__all__ = ["__version__", "open_scene"]
+
 
 def __getattr__(name):
     # cradle.open_scene without importing xarray at `import cradle` (the Snakefile imports cradle.pipeline.config)

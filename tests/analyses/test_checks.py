@@ -1,9 +1,16 @@
-"""The paper-claims table: verdict rules, sideband measures, and rows from real outputs."""
+"""The paper-claims table (the analysis paper-checks): verdict rules, sideband measures, its rows, its file
+and the tables written from it."""
+import dataclasses
+
 import numpy as np
 import pytest
 
 from cradle.analyses import paper_checks as checks
+from cradle.analyses.protocol import Read
+from cradle.data.io import open_tree, write_netcdf
+from cradle.figures import paper_checks as tables
 from cradle.measurements import compare, sidebands
+from cradle.pipeline import config as cc
 
 
 @pytest.mark.parametrize("text, unit", [("2e-2", 1e-2), ("2.11", 1e-2), ("52.9", 0.1), ("3.8e-3", 1e-4),
@@ -30,17 +37,21 @@ def test_sideband_ratio_and_harmonic_height():
     assert sidebands.harmonic_height(k, np.abs(mixed), q, "2(q-pi)") == pytest.approx(0.05, rel=1e-9)
 
 
+def _texts(rows):
+    return [{c: str(v) for c, v in dataclasses.asdict(r).items()} for r in rows]
+
+
 def test_rows_from_closed_forms_and_map():
     rows = checks.closed_forms() + checks.periodic_orbits()
     assert all(r.verdict == "agrees" for r in rows)
-    md = checks.to_markdown(rows)
+    md = tables.to_markdown(_texts(rows))
     assert md.count("\n|") == len(rows) + 2
-    csv = checks.to_csv(rows)
+    csv = tables.to_csv(_texts(rows))
     assert csv.splitlines()[0] == ",".join(checks.COLUMNS)
 
 
-def test_missing_scenes_leave_their_rows_out(tmp_path):
-    rows = checks.paper_checks(tmp_path, scenes=[], homoclinic=[])
+def test_missing_scenes_leave_their_rows_out():
+    rows = checks.rows(checks.PaperChecks(scenes=[], homoclinic=[]), {})
     labels = {r.label for r in rows}
     assert labels == {"(tau0)", "traj2"}
 
@@ -48,7 +59,38 @@ def test_missing_scenes_leave_their_rows_out(tmp_path):
 def test_every_row_states_its_tolerance():
     rows = checks.closed_forms() + checks.periodic_orbits()
     assert all(r.tolerance for r in rows)
-    assert checks.to_csv(rows).splitlines()[0].split(",")[4] == "tolerance"
+    assert tables.to_csv(_texts(rows)).splitlines()[0].split(",")[4] == "tolerance"
+
+
+def test_the_file_holds_the_rows_and_its_tables_write_them_out(tmp_path):
+    """compute -> netCDF (one text variable per column, one entry per row) -> the CSV and Markdown tables,
+    the same text as the rows themselves give."""
+    spec = checks.PaperChecks(scenes=[], homoclinic=[])
+    rows = checks.rows(spec, {})
+    tree = open_tree(write_netcdf(checks.compute(spec, {}), tmp_path / "paper-checks.nc"))
+    ds = tree.to_dataset()
+    assert ds.sizes["row"] == len(rows) and list(ds["verdict"].values) == [r.verdict for r in rows]
+    assert ds.attrs["n_agrees"] == len(rows) and ds.attrs["n_disagrees"] == 0
+    out = tables.tables(tree)
+    assert out == {"csv": tables.to_csv(_texts(rows)), "md": tables.to_markdown(_texts(rows))}
+    assert f"{len(rows)} statements: {len(rows)} agrees, 0 disagrees, 0 not comparable." in out["md"]
+
+
+def test_its_spec_names_every_scene_and_homoclinic_of_the_config_and_reads_them_by_name():
+    from pathlib import Path
+
+    import yaml
+
+    raw = yaml.safe_load((Path(__file__).resolve().parents[2] / "config.yaml").read_text())
+    spec = cc.analysis_spec(raw, "paper-checks", "full")
+    assert spec.scenes == list(raw["scenes"]) and spec.homoclinic == list(raw["homoclinic"])
+    reads = checks.ANALYSIS.reads_of(spec)
+    assert len(reads) == 4 * len(raw["scenes"]) + len(raw["homoclinic"])
+    assert reads["fft106/metrics"] == Read.of("metrics", scene="fft106")
+    assert reads["homoclinic/site"] == Read.of("homoclinic", name="site")
+    raw.setdefault("beyond", {})["paper-checks"] = {"scenes": ["tw-weak"], "homoclinic": []}
+    assert set(checks.ANALYSIS.reads_of(cc.analysis_spec(raw, "paper-checks", "full"))) == {
+        "tw-weak/initial", "tw-weak/exact", "tw-weak/dps", "tw-weak/metrics"}
 
 
 def test_a_harmonic_is_a_coherent_peak_above_the_local_band():

@@ -17,9 +17,11 @@ import yaml
 
 from cradle.analyses import dps_validity as dv
 from cradle.pipeline import config as cc
+from cradle.specs.declare import from_plain
 
 ALPHA = 1.5
-SPEC = {"N_wave": 10, "N_breather": 32, "N_noise": 50, "noise_amplitude": 0.01, "seed": 20261122}
+SPEC = from_plain(dv.DpsValidity, {"N_wave": 10, "N_breather": 32, "N_noise": 50, "noise_amplitude": 0.01,
+                                   "seed": 20261122})
 RUN = {"sample_every": 0.2, "dt_factor": 0.01, "rtol": 1e-11}
 
 
@@ -69,7 +71,7 @@ def test_running_sup_is_monotone_in_T_and_chunking_changes_nothing():
 def test_noise_family_is_reproducible_from_its_seed():
     a, _, info = dv.family_amplitude("mi-4pi5-noise", ALPHA, SPEC)
     b, _, _ = dv.family_amplitude("mi-4pi5-noise", ALPHA, SPEC)
-    assert np.array_equal(a, b) and info["seed"] == SPEC["seed"] + 150
+    assert np.array_equal(a, b) and info["seed"] == SPEC.seed + 150
 
 
 def test_dps_growth_of_the_families():
@@ -79,10 +81,15 @@ def test_dps_growth_of_the_families():
     assert dv.dps_growth("tw-4pi5", ALPHA, 10) > 0.1
 
 
+def _tiny(families):
+    return from_plain(dv.DpsValidity, {"N_wave": 10, "N_breather": 32, "N_noise": 50, "noise_amplitude": 0.01,
+                                       "seed": 20261122, "alpha": [1.5], "eps_min": [1e-3], "eps_max": 1e-2,
+                                       "n_eps": 3, "T": [1.0, 2.0], "families": families, "sample_every": 0.2,
+                                       "dt_factor": 0.01, "dps_rtol": 1e-11, "chunk": 20000})
+
+
 def test_tiny_end_to_end_run():
-    spec = dict(SPEC, alpha=[1.5], eps_min=[1e-3], eps_max=1e-2, n_eps=3, T=[1.0, 2.0],
-                families=["tw-pi5", "breather-bond"], sample_every=0.2, dt_factor=0.01, dps_rtol=1e-11, chunk=20000)
-    tree = dv.compute(spec)
+    tree = dv.compute(_tiny(["tw-pi5", "breather-bond"]), {})
     err, fits, checks = tree["errors"], tree["fits"], tree["checks"]
     eps = err["eps"].values[0]
     assert np.allclose(err["rel_error"].values, err["abs_error"].values / (2 * eps[None, None, :, None]))
@@ -98,19 +105,20 @@ def test_tiny_end_to_end_run():
 
 
 def test_figure_draws_from_the_tiny_run(tmp_path):
-    from cradle.figures import draw_dataset
+    from cradle.figures import draw_analysis
 
-    spec = dict(SPEC, alpha=[1.5], eps_min=[1e-3], eps_max=1e-2, n_eps=3, T=[1.0, 2.0],
-                families=["tw-pi5", "mi-4pi5-noise"], sample_every=0.2, dt_factor=0.01, dps_rtol=1e-11, chunk=20000)
-    paths = draw_dataset("dps-validity", dv.compute(spec), tmp_path / "dps-validity", note="test")
+    tree = dv.compute(_tiny(["tw-pi5", "mi-4pi5-noise"]), {})
+    paths = draw_analysis("dps_validity", tree, tmp_path / "dps-validity", note="test")
     assert len(paths) == 2 and all(p.stat().st_size > 0 for p in paths)
 
 
 def test_config_one_eps_min_per_alpha():
     raw = yaml.safe_load((Path(__file__).resolve().parents[2] / "config.yaml").read_text())
     bad = copy.deepcopy(raw)
-    bad["beyond"]["dps_validity"]["eps_min"] = [1e-5, 1e-5]
-    with pytest.raises(cc.ConfigError, match=r"beyond\.dps_validity\.eps_min .*one value per alpha"):
-        cc.resolved_dps_validity(bad)
-    spec = cc.resolved_dps_validity(raw, "reduced")
-    assert spec["alpha"] == [1.5] and spec["n_eps"] == 3 and spec["T"] == [1.0, 2.0]
+    bad["beyond"]["dps-validity"]["eps_min"] = [1e-5, 1e-5]
+    with pytest.raises(cc.ConfigError, match=r"beyond\.dps-validity\.eps_min .*one value per alpha"):
+        cc.analysis_spec(bad, "dps-validity", "full")
+    spec = cc.analysis_spec(raw, "dps-validity", "reduced")
+    assert isinstance(spec, dv.DpsValidity) and spec.reduced is None
+    assert spec.alpha == [1.5] and spec.n_eps == 3 and spec.T == [1.0, 2.0]
+    assert cc.analysis_spec(raw, "dps-validity", "full").n_eps == 9

@@ -1,8 +1,9 @@
 """Work-precision measurements (cradle.analyses.work_precision): a tiny ladder, the reference logic,
-the config section, the netCDF output and the figure."""
+the spec and its forms, the netCDF output (one group per scene) and the figure."""
 from __future__ import annotations
 
 import copy
+import dataclasses
 import json
 from pathlib import Path
 
@@ -11,19 +12,20 @@ import pytest
 import yaml
 
 from cradle.analyses import work_precision as wp
-from cradle.data.io import open_dataset, write_netcdf
+from cradle.analyses.protocol import Read
+from cradle.data.io import open_dataset, open_tree, write_netcdf
 from cradle.pipeline import config as cc
 from cradle.scenes import stages
+from cradle.specs.declare import from_plain
 
 ROOT = Path(__file__).resolve().parents[2]
 
-TINY = {
-    "name": "tiny", "alpha": 1.5, "N": 16, "bc": "periodic", "t_end": 10.0, "compare_every": 1.0,
-    "repeat_time": 0.0,
+TINY = from_plain(wp.WorkPrecision, {
+    "scenes": {"tiny": {"t_end": 10.0}}, "compare_every": 1.0, "repeat_time": 0.0,
     "reference": {"method": "srkn6c", "dt_factor": 0.0005, "tolerance": 1e-10},
     "methods": {"srkn6c": {"dt_factor": [0.04, 0.02, 0.01]}, "srkn6": {"dt_factor": [0.004, 0.002, 0.001]},
                 "dop853_numba": {"rtol": [1e-6, 1e-8, 1e-10]}, "dop853": {"rtol": [1e-5, 1e-8]}},
-}
+})
 
 
 def tiny_state():
@@ -32,16 +34,20 @@ def tiny_state():
     return a * np.cos(q * n), 1.1 * a * np.sin(q * n), a
 
 
+def _measure(spec, *, scene="tiny"):
+    x0, v0, a = tiny_state()
+    return wp.measure(spec, scene, x0, v0, 1.5, "periodic", a)
+
+
 @pytest.fixture(scope="module")
 def tiny_ds():
-    x0, v0, a = tiny_state()
-    return wp.measure(TINY, x0, v0, a)
+    return _measure(TINY)
 
 
 def test_tiny_ladder_error_decreases_with_cost(tiny_ds):
     ds = tiny_ds
     assert ds.sizes == {"method": 4, "setting": 3, "t_compare": 11}
-    assert list(ds["method"].values) == list(TINY["methods"])
+    assert list(ds["method"].values) == list(TINY.methods)
     for name in ("error", "energy_drift", "wall_time", "n_force_evals", "accuracy_parameter", "statistic_error",
                  "reference_difference", "method", "setting", "t_compare"):
         assert ds[name].attrs["long_name"] and "units" in ds[name].attrs, name
@@ -67,11 +73,9 @@ def test_tiny_ladder_error_decreases_with_cost(tiny_ds):
 def test_reference_limit_and_statistics():
     """With a tolerance below what the references achieve, t_valid comes early and the
     statistic over (t_valid, t_end] is reported."""
-    x0, v0, a = tiny_state()
-    spec = copy.deepcopy(TINY)
-    spec["reference"]["tolerance"] = 1e-16
-    spec["methods"] = {"srkn6c": {"dt_factor": [0.02, 0.01]}}
-    ds = wp.measure(spec, x0, v0, a)
+    spec = dataclasses.replace(TINY, reference=dataclasses.replace(TINY.reference, tolerance=1e-16),
+                               methods={"srkn6c": wp.WorkPrecisionLadder(dt_factor=[0.02, 0.01])})
+    ds = _measure(spec)
     assert ds.attrs["t_valid"] < 10.0
     assert np.isfinite(ds["statistic_error"].values).all()
     D = ds["reference_difference"].values
@@ -90,64 +94,88 @@ def test_valid_until_and_compare_grid():
 
 
 def test_ladder_kind_is_checked():
-    x0, v0, a = tiny_state()
-    spec = copy.deepcopy(TINY)
-    spec["methods"] = {"srkn6c": {"rtol": [1e-8]}}
+    spec = dataclasses.replace(TINY, methods={"srkn6c": wp.WorkPrecisionLadder(rtol=[1e-8])})
     with pytest.raises(ValueError, match="dt_factor"):
-        wp.measure(spec, x0, v0, a)
+        _measure(spec)
 
 
-def test_netcdf_figure_and_summary(tiny_ds, tmp_path):
-    from cradle.figures import save_figure
-    from cradle.figures.work_precision import draw
+def test_netcdf_one_group_per_scene_figure_and_summary(tiny_ds, tmp_path):
+    from cradle.figures import draw_analysis
 
     path = write_netcdf(tiny_ds, tmp_path / "tiny.nc")
     back = open_dataset(path)
     np.testing.assert_array_equal(back["error"].values, tiny_ds["error"].values)
-    assert list(back["method"].values) == list(TINY["methods"])
-    assert json.loads(back.attrs["parameter_kind"]) == {m: next(iter(v)) for m, v in TINY["methods"].items()}
+    assert list(back["method"].values) == list(TINY.methods)
+    assert json.loads(back.attrs["parameter_kind"]) == {m: wp.ladder(TINY, m)[0] for m in TINY.methods}
     lines = wp.summary(back)
     assert len(lines) == 4 and "srkn6c" in lines[0] and "decades" in lines[0]
-    out = save_figure(draw({"tiny": back, "tiny2": back}), tmp_path / "work-precision")
+    # the analysis gathers its batches (here the same one twice) into one group per scene
+    two = dataclasses.replace(TINY, scenes={"tiny2": TINY.scenes["tiny"], "tiny": TINY.scenes["tiny"]})
+    assert wp.ANALYSIS.batches.keys(two) == ["tiny", "tiny2"]
+    tree = open_tree(write_netcdf(wp.compute(two, {"batch/tiny": back, "batch/tiny2": back}), tmp_path / "wp.nc"))
+    assert list(tree.children) == ["tiny", "tiny2"] and tree.attrs["scene_names"] == "tiny, tiny2"
+    for name in ("tiny", "tiny2"):
+        group = tree[name].to_dataset()
+        for var in back.variables:
+            np.testing.assert_array_equal(group[var].values, back[var].values)
+        assert group.attrs["t_valid"] == back.attrs["t_valid"]
+    out = draw_analysis("work_precision", tree, tmp_path / "work-precision")
     assert all(p.stat().st_size > 1000 for p in out)
 
 
-def test_config_section_and_command_line(tmp_path):
+def test_spec_its_forms_and_the_config_checks():
     raw = yaml.safe_load((ROOT / "config.yaml").read_text())
-    cfg = cc.validate(raw)
-    r = cc.resolved_work_precision(cfg, "fft106")
-    json.dumps(r)
-    assert r["N"] == 200 and r["t_end"] == 100.0 and r["reference"]["method"] == "srkn6c"
-    assert {"srkn6", "srkn4", "strang", "dop853", "lsoda", "dop853_numba", "srkn6c"} <= set(r["methods"])
-    assert all(len(wp.ladder(r, m)[1]) >= 5 for m in r["methods"])
-    with pytest.raises(cc.ConfigError, match="nosuch"):
-        cc.resolved_work_precision(cfg, "nosuch")
+    full = cc.analysis_spec(raw, "work-precision", "full")
+    assert isinstance(full, wp.WorkPrecision) and full.reference.method == "srkn6c"
+    assert full.scenes["fft106"].t_end == 100.0 and wp.ANALYSIS.batches.keys(full) == ["fft106", "tw-strong", "tw-weak"]
+    assert {"srkn6", "srkn4", "strang", "dop853", "lsoda", "dop853_numba", "srkn6c"} <= set(full.methods)
+    assert all(len(wp.ladder(full, m)[1]) >= 5 for m in full.methods)
+    # the reduced form: its scenes to its t_end, its methods on the first settings of their ladders
+    red = cc.analysis_spec(raw, "work-precision", "reduced")
+    assert red.reduced is None and {n: s.t_end for n, s in red.scenes.items()} == {"tw-weak": 100.0}
+    assert list(red.methods) == [m for m in full.methods if m in ("srkn6c", "srkn4c", "srkn6", "dop853_numba")]
+    assert all(wp.ladder(red, m)[1] == wp.ladder(full, m)[1][:4] for m in red.methods)
+    # every batch reads the initial data of its scene; a batch of the full form has the machine to itself
+    assert wp.ANALYSIS.batches.reads(red, "tw-weak") == {"initial": Read.of("initial", scene="tw-weak")}
+    assert wp.ANALYSIS.batches.threads == {"full": "all"}
     bad = copy.deepcopy(raw)
-    bad["work_precision"]["scenes"]["tw-wek"] = {"t_end": 10.0}
-    with pytest.raises(cc.ConfigError, match=r"work_precision.scenes.tw-wek.*did you mean 'tw-weak'"):
+    bad["beyond"]["work-precision"]["scenes"]["tw-wek"] = {"t_end": 10.0}
+    with pytest.raises(cc.ConfigError, match=r"beyond.work-precision.scenes.tw-wek.*did you mean 'tw-weak'"):
         cc.validate(bad)
     bad = copy.deepcopy(raw)
-    bad["work_precision"]["methods"]["srkn6c"] = {"rtol": [1e-8]}
-    with pytest.raises(cc.ConfigError, match="work_precision.methods.srkn6c"):
+    bad["beyond"]["work-precision"]["methods"]["srkn6c"] = {"rtol": [1e-8]}
+    with pytest.raises(cc.ConfigError, match="work-precision.methods.srkn6c"):
         cc.validate(bad)
     bad = copy.deepcopy(raw)
-    bad["work_precision"]["methods"]["euler"] = {"dt_factor": [0.1]}
+    bad["beyond"]["work-precision"]["methods"]["euler"] = {"dt_factor": [0.1]}
     with pytest.raises(cc.ConfigError, match="euler"):
         cc.validate(bad)
+    bad = copy.deepcopy(raw)
+    bad["beyond"]["work-precision"]["scenes"] = {}
+    with pytest.raises(cc.ConfigError, match="no scene to measure"):
+        wp.ANALYSIS.batches.keys(cc.analysis_spec(bad, "work-precision", "reduced"))
 
-    # the command line used by the workflow, on a tiny scene
+
+def test_a_tiny_scene_through_the_protocol(tmp_path):
+    """What the jobs do: a batch from the scene's initial data file (alpha, N, bc read from it), written,
+    gathered into the analysis file, drawn."""
+    from cradle.figures import draw_analysis
+
+    raw = yaml.safe_load((ROOT / "config.yaml").read_text())
     tiny_cfg = copy.deepcopy(raw)
     tiny_cfg["scenes"] = {"tw-weak": {**raw["scenes"]["tw-weak"], "N": 20, "t_end": 5.0, "store": {"every": 1.0}}}
     tiny_cfg["figures"] = {}
-    tiny_cfg["work_precision"] = {"scenes": {"tw-weak": {"t_end": 5.0}}, "repeat_time": 0.0,
-                                  "reference": {"dt_factor": 0.001},
-                                  "methods": {"srkn6c": {"dt_factor": [0.02, 0.01]}, "lsoda": {"rtol": [1e-6, 1e-8]}}}
-    spec = cc.resolved_work_precision(tiny_cfg, "tw-weak")
+    tiny_cfg["beyond"]["work-precision"] = {
+        "scenes": {"tw-weak": {"t_end": 5.0}}, "repeat_time": 0.0, "reference": {"dt_factor": 0.001},
+        "methods": {"srkn6c": {"dt_factor": [0.02, 0.01]}, "lsoda": {"rtol": [1e-6, 1e-8]}}}
+    spec = cc.analysis_spec(tiny_cfg, "work-precision", "full")
     init = write_netcdf(stages.initial_data(cc.scene(tiny_cfg, "tw-weak"), "tw-weak"), tmp_path / "i.nc")
-    out = tmp_path / "wp" / "tw-weak.nc"
-    assert wp.main(["scene", "--spec", json.dumps(spec), "--initial", str(init), "--out", str(out)]) == 0
-    ds = open_dataset(out)
+    a = wp.ANALYSIS
+    batch = write_netcdf(a.batches.run(spec, "tw-weak", {"initial": open_dataset(init)}), tmp_path / "b.nc")
+    tree = open_tree(write_netcdf(a.compute(spec, {"batch/tw-weak": open_dataset(batch)}), tmp_path / "wp.nc"))
+    ds = tree["tw-weak"].to_dataset()
     assert ds.attrs["scene"] == "tw-weak" and ds.attrs["a"] == pytest.approx(0.021180, rel=1e-3)
+    assert ds.attrs["N"] == 20 and ds.attrs["bc"] == "periodic" and ds.attrs["alpha"] == 1.5
     assert ds.sizes["method"] == 2 and np.all(np.isfinite(ds["error"].values))
-    assert wp.main(["figure", "--out", str(tmp_path / "fig"), str(out)]) == 0
-    assert (tmp_path / "fig.png").stat().st_size > 1000
+    out = draw_analysis("work_precision", tree, tmp_path / "fig")
+    assert (tmp_path / "fig.png").stat().st_size > 1000 and len(out) == 2

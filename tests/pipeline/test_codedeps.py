@@ -68,13 +68,14 @@ def _entries(row) -> tuple[str, ...]:
                                 if f.startswith("src/cradle/analyses/") or f.startswith("src/cradle/figures/")
                                 and not f.endswith("__init__.py")}))
     label = Path(row["output_file"]).stem
-    if "workflow/scripts/analysis.py" in scripts:  # the old analysis rule runs the module its table names
+    if "workflow/scripts/analysis.py" in scripts:  # the legacy analysis rule runs the module its table names
         entries += (f"cradle.analyses.{LEGACY[label].module}",)
-    if {"workflow/scripts/analysis_compute.py", "workflow/scripts/analysis_batch.py"} & set(scripts):
-        # the generated rules run the analysis's module: results/<name>/... (cradle.analyses.protocol)
-        entries += (f"cradle.analyses.{ANALYSES[Path(row['output_file']).parts[1]].module}",)
-    if "workflow/scripts/analysis_figure.py" in scripts:  # and draw with figures/<module>.py
-        entries += (f"cradle.figures.{ANALYSES[label].module}",)
+    # the generated rules of an analysis (<target>_batch|compute|figure_<form>) run its module, its figure's
+    by_target = {a.target: a for a in ANALYSES.values()}
+    if {"workflow/scripts/analysis_batch.py", "workflow/scripts/analysis_compute.py"} & set(scripts):
+        entries += (f"cradle.analyses.{by_target[row['rule'].rsplit('_', 2)[0]].module}",)
+    if "workflow/scripts/analysis_figure.py" in scripts:
+        entries += (f"cradle.figures.{by_target[row['rule'].rsplit('_', 2)[0]].module}",)
     if {"workflow/scripts/figure.py", "workflow/scripts/dataset_figure.py"} & set(scripts):
         table = figures.FIGURES if label in figures.FIGURES else figures.DATASET_FIGURES
         entries += (f"cradle.figures.{table[label].split('.')[0]}",)

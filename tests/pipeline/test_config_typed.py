@@ -11,16 +11,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from cradle.analyses import breathers_spec, floquet_spec
+from cradle.analyses import breathers_spec, dps_validity, floquet_spec, paper_checks, work_precision
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import (
-    beyond,
-    breather_interactions,
-    dps_validity,
-    mi_statistics,
-    movies,
-    sections,
-)
+from cradle.pipeline.config import beyond, breather_interactions, mi_statistics, movies, sections
 from cradle.scenes import spec as scenes
 from cradle.specs.declare import from_plain, plain, plain as spec_plain
 
@@ -41,8 +34,10 @@ CONFIG = ROOT / "config.yaml"
 # by name, their values read from the scenes' files. Then floquet and
 # breathers typed: plain() of their specs; breathers' is the old dict, floquet's keeps its angles as given (with
 # them in radians and their texts in q_profiles_expr and small_q_expr, as the old resolved dict had them, the
-# hash was the previous one).)
-RESOLVED_SHA256 = "b21cba8f5d4cd590f9b44c14d887d1dc1afd097f881a64b81653b53ecf03341a"
+# hash was the previous one). Then dps-validity, work-precision (moved under beyond:, its scenes' alpha, N and bc
+# read from their initial files) and paper-checks (a new section) on the protocol: plain() of their specs, the
+# same values.)
+RESOLVED_SHA256 = "9b293a99b3670a4151c9f147aca075d027c5c5054d05b44b69702a4ccc98a8f5"
 
 
 @pytest.fixture(scope="module")
@@ -67,11 +62,10 @@ def _everything_resolved(config) -> dict:
         "breathers": plain(cc.analysis_spec(cfg, "breathers", "full")),
         "breathers_reduced": plain(cc.analysis_spec(cfg, "breathers", "reduced")),
         "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
-        "dps_validity": cc.resolved_dps_validity(cfg),
-        "dps_validity_reduced": cc.resolved_dps_validity(cfg, "reduced"),
-        "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
-        "work_precision_reduced": {n: cc.resolved_work_precision(cfg, n, "reduced")
-                                   for n in cfg["work_precision"]["reduced"]["scenes"]},
+        "dps_validity": plain(cc.analysis_spec(cfg, "dps-validity", "full")),
+        "dps_validity_reduced": plain(cc.analysis_spec(cfg, "dps-validity", "reduced")),
+        "work_precision": plain(cc.analysis_spec(cfg, "work-precision", "full")),
+        "work_precision_reduced": plain(cc.analysis_spec(cfg, "work-precision", "reduced")),
     }
 
 
@@ -91,7 +85,7 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 def test_declarations_are_frozen_and_every_field_described():
     modules = (scenes, sections, beyond, floquet_spec, breathers_spec, mi_statistics, breather_interactions, movies,
-               dps_validity)
+               dps_validity, work_precision, paper_checks)
     classes = [c for m in modules for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
     assert len(classes) >= 20
@@ -232,7 +226,8 @@ def test_nan_alpha_is_reported_once(raw):
 @pytest.mark.parametrize("where,value", [
     (("scenes", "tw-weak", "t_end"), math.inf), (("scenes", "tw-weak", "t_end"), math.nan),
     (("scenes", "tw-weak", "store", "every"), math.inf), (("scenes", "tw-weak", "store", "snapshots", 0), math.nan),
-    (("work_precision", "scenes", "tw-weak", "t_end"), math.inf), (("figures", "plot4-5", "times", 0), math.nan),
+    (("beyond", "work-precision", "scenes", "tw-weak", "t_end"), math.inf),
+    (("figures", "plot4-5", "times", 0), math.nan),
     (("beyond", "mi_statistics", "t_end"), "inf"),
 ])
 def test_non_finite_times_are_refused_once(raw, where, value):
@@ -249,17 +244,18 @@ def test_non_finite_times_are_refused_once(raw, where, value):
 
 
 def test_config_yaml_beyond_restates_the_defaults_as_its_comment_says(raw):
-    """config.yaml says that under `beyond:` only theorem1.scenes and mi_growth.scenes differ from the
-    declared defaults, and that work_precision's compare_every, repeat_time and reference restate them."""
+    """config.yaml says that under `beyond:` only theorem1.scenes, mi_growth.scenes and work-precision's
+    scenes and methods differ from the declared defaults (work-precision's compare_every, repeat_time and
+    reference restate them)."""
     declared = cc.validate({"map": {"m": {"box": 1.0, "iterations": 2, "starts": [[0.0, 0.1]]}}})
     given = copy.deepcopy(raw["beyond"])
-    for section in ("theorem1", "mi-growth"):
+    for section in ("theorem1", "mi-growth", "work-precision"):
         assert given[section].pop("scenes")
+    assert given["work-precision"].pop("methods")
+    assert {"compare_every", "repeat_time", "reference"} <= set(given["work-precision"])
     for section, values in given.items():
         for key, value in values.items():
             assert declared["beyond"][section][key] == value, f"beyond.{section}.{key}"
-    for key in ("compare_every", "repeat_time", "reference"):
-        assert raw["work_precision"][key] == declared["work_precision"][key], key
 
 
 def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw):

@@ -33,15 +33,32 @@ def _rules():
     return rules
 
 
+def _generated():
+    """{kind: the text of the generated rule} of workflow/rules/analyses.smk: batch, compute, figure."""
+    text = (RULES / "analyses.smk").read_text()
+    blocks = re.split(r"^\s+rule:\n", text, flags=re.M)[1:]
+    return {re.search(r'f"\{_a\.target\}_(\w+?)_\{_form\}"', b).group(1): b for b in blocks
+            if re.search(r'f"\{_a\.target\}_(\w+?)_\{_form\}"', b)}
+
+
 def test_every_rule_logs_and_costly_rules_benchmark():
     rules = _rules()
-    assert {"homoclinic", "map_orbits", "simulate", "figure", "paper_checks"} <= set(rules)
+    assert {"homoclinic", "map_orbits", "simulate", "figure"} <= set(rules)
     for name, body in rules.items():
         if re.search(r"^\s+(script|shell|run|notebook|wrapper):", body, re.M):  # target rules run nothing
             assert re.search(r"^\s+log:", body, re.M), f"rule {name} has no log:"
-    for name in ("simulate", "figure", "paper_checks"):
+    for name in ("simulate", "figure"):
         assert re.search(r"^\s+benchmark:", rules[name], re.M), f"rule {name} has no benchmark:"
-    assert "report(" in rules["figure"] and "report(" in rules["paper_checks"]
+    # the rules of the analyses (the claims table among them) are generated: each logs, the costly ones
+    # (batches, compute) benchmark, and a captioned analysis's drawn files go into the report
+    generated = _generated()
+    assert set(generated) == {"batch", "compute", "figure"}
+    for kind, body in generated.items():
+        assert re.search(r"^\s+log:", body, re.M), kind
+    assert all(re.search(r"^\s+benchmark:", generated[k], re.M) for k in ("batch", "compute"))
+    assert "drawn_outputs(" in generated["figure"] and "report(" in (RULES / "analyses.smk").read_text()
+    assert (ROOT / "workflow" / "report" / "paper-checks.rst").exists()
+    assert "report(" in rules["figure"]
 
 
 def test_report_captions_render_for_every_figure():
@@ -65,7 +82,7 @@ def test_report_captions_render_for_every_figure():
         html = docutils_core.publish_parts(text, writer="html",
                                            settings_overrides={"halt_level": 2, "report_level": 5})["body"]
         assert label in html
-    for rst in ("paper_checks.rst", "workflow.rst"):
+    for rst in ("paper-checks.rst", "workflow.rst"):
         docutils_core.publish_parts((ROOT / "workflow" / "report" / rst).read_text(), writer="html",
                                     settings_overrides={"halt_level": 2, "report_level": 5})
 

@@ -1,12 +1,19 @@
 # Analyses beyond the paper, generated from the registry (cradle.analyses.registry): for each analysis
 # and form, `<target>_batch_<form>` (its batches, if it has any), `<target>_compute_<form>` (its netCDF
-# file) and `<target>_figure_<form>` (its figure, drawn by cradle/figures/<module>.py); target `<target>`
-# builds the form `all` builds (results/<name>/<name>.nc, results/figures/<name>.*), `<target>_full` the
-# full one (the same files when the analysis has one form, else results/<name>/full/). Config:
+# file) and `<target>_figure_<form>` (its figure, drawn by cradle/figures/<module>.py, or the tables that
+# module writes: the claims table); target `<target>` builds the form `all` builds (results/<name>/<name>.nc,
+# results/figures/<name>.*), `<target>_full` the full one (the same files when the analysis has one form,
+# else results/<name>/full/). A workflow/report/<name>.rst captions the form's drawn files in the Snakemake
+# report. Config:
 # `beyond: <name>:` in config.yaml. Every rule passes the spec as plain values, so a changed number
 # reruns exactly its jobs.
+from pathlib import Path as _Path
+
 from cradle.analyses.registry import ANALYSES, FULL
 from cradle.specs.declare import plain as _plain
+
+#: report captions, one per analysis that has one (workflow/report/<name>.rst)
+_REPORT = _Path(workflow.current_basedir).parent / "report"
 
 
 def analysis_spec(a, form):
@@ -31,6 +38,20 @@ def analysis_inputs(a, form):
         raise WorkflowError(str(err)) from None
     code = code_of("workflow/scripts/analysis_compute.py", f"cradle.analyses.{a.module}")
     return {"code": code, **analysis_reads(a, form, reads)}
+
+
+def drawn_outputs(a, form, main):
+    """ext -> the files of an analysis's drawing step (its figure, or its tables), each restored if the job
+    fails (update(): docs/recovery.md); those of the form `all` builds in the report when captioned.
+    """
+    out = {}
+    for ext, f in L.analysis_drawn(a, form, main).items():
+        out[ext] = update(f)
+        if form == main and (_REPORT / f"{a.name}.rst").exists():
+            out[ext] = report(
+                out[ext], caption=f"../report/{a.name}.rst", category=a.title
+            )
+    return out
 
 
 for _a in ANALYSES.values():
@@ -99,14 +120,15 @@ for _a in ANALYSES.values():
             conda:
                 "../envs/cradle.yaml"
             message:
-                f"Drawing figure {_a.name} ({_form})"
+                (f"Writing the tables of {_a.name} ({_form})" if _a.tables else f"Drawing figure {_a.name} ({_form})")
             input:
                 code=code_of("workflow/scripts/analysis_figure.py", f"cradle.figures.{_a.module}"),
                 data=L.analysis_output(_a.name, _form, _main),
-            output:  # update(): the previous figure is restored if the job fails (docs/recovery.md)
-                **{ext: update(f) for ext, f in L.analysis_figures(_a.name, _form, _main).items()},
+            output:
+                **drawn_outputs(_a, _form, _main),
             params:
                 module=_a.module,
+                tables=list(_a.tables),
                 # the reduced form says so on the figure, and where the full one is
                 note=f"reduced form: `snakemake -j2 {_a.target}_full` builds the full one" if _form != FULL else "",
             log:
@@ -119,11 +141,11 @@ for _a in ANALYSES.values():
             _a.target
         input:
             L.analysis_output(_a.name, _main, _main),
-            *L.analysis_figures(_a.name, _main, _main).values(),
+            *L.analysis_drawn(_a, _main, _main).values(),
 
     rule:
         name:
             f"{_a.target}_full"
         input:
             L.analysis_output(_a.name, FULL, _main),
-            *L.analysis_figures(_a.name, FULL, _main).values(),
+            *L.analysis_drawn(_a, FULL, _main).values(),

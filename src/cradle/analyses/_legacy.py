@@ -18,8 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from importlib import import_module
 
-from cradle.pipeline import config as cc
-from cradle.pipeline import layout
+from cradle.pipeline import config as cc, layout
 
 #: the form ``all`` builds, and the complete one (its own target)
 REDUCED, FULL = "reduced", "full"
@@ -85,6 +84,4 @@ LEGACY: dict[str, Analysis] = {a.name: a for a in (
     Analysis("breather-interactions", "breather_interactions", "run", "interactions", forms=(REDUCED, FULL),
              batches="breather_interactions",
              title="Collisions of two breathers, exact (nc) against DpS (dfnls): outcome statistics (loc1)"),
-    Analysis("dps-validity", "dps_validity", "run", "validity", forms=(REDUCED, FULL),
-             title="DpS approximation error: sup over t <= T eps^(1-alpha) of |x - x_app| against eps, T, family, alpha"),
 )}

@@ -84,8 +84,7 @@ def direct_growth(b, growth_factor, rel_size=1e-6, rtol=1e-13):
     grows like mu^k, free of the secular drift of the trivial (Jordan) pair that |delta| also holds
     (a phase drift from the finite accuracy of omega_b); the rate is fitted on log|c_k| over the second
     half of the samples."""
-    from cradle.integrators import integrate_lattice
-    from cradle.integrators import lattice_breathers as lb
+    from cradle.integrators import integrate_lattice, lattice_breathers as lb
 
     N = b.x0.size
     M, _, idx = lb.monodromy(b, rtol)

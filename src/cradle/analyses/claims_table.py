@@ -1,10 +1,8 @@
-"""The claims table's rows and their rendering (results/paper_checks.{csv,md}): the row, the verdict rule
-"within the paper's printed precision", and the CSV and Markdown writers (:mod:`cradle.analyses.paper_checks`
-computes the rows)."""
+"""The claims table's rows: the row, its columns and the verdict rule "within the paper's printed precision"
+(:mod:`cradle.analyses.paper_checks` computes the rows; :mod:`cradle.figures.paper_checks` writes them out as
+CSV and Markdown)."""
 from __future__ import annotations
 
-import csv
-import io as _io
 from dataclasses import dataclass
 
 import numpy as np
@@ -51,23 +49,3 @@ def _fmt(x, digits=4) -> str:
     if x is None or (isinstance(x, float) and not np.isfinite(x)):
         return "none"
     return f"{x:.{digits}g}"
-
-
-def to_csv(rows) -> str:
-    buf = _io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(COLUMNS)
-    for r in rows:
-        w.writerow([getattr(r, c) for c in COLUMNS])
-    return buf.getvalue()
-
-
-def to_markdown(rows) -> str:
-    def cell(s):
-        return str(s).replace("|", "\\|")
-    lines = ["| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
-    lines += ["| " + " | ".join(cell(getattr(r, c)) for c in COLUMNS) + " |" for r in rows]
-    counts = {v: sum(r.verdict == v for r in rows) for v in ("agrees", "disagrees", "not comparable")}
-    summary = ", ".join(f"{n} {v}" for v, n in counts.items())
-    return (f"# The paper's numerical statements against ours\n\n{len(rows)} statements: {summary}.\n\n"
-            + "\n".join(lines) + "\n")

@@ -27,25 +27,113 @@ from __future__ import annotations
 
 import numpy as np
 
+from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
+from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import form_section, number, show
 
 FAMILIES = ("tw-pi5", "tw-4pi5", "breather-bond", "mi-4pi5-noise")
 _Q = {"tw-pi5": np.pi / 5.0, "tw-4pi5": 4.0 * np.pi / 5.0, "mi-4pi5-noise": 4.0 * np.pi / 5.0}
 
+# ----------------------------------------------------------------- the spec (config `beyond: dps-validity:`)
+
+_ALPHAS = {"$ref": "#/$defs/alpha", "maximum": 10}
+_EPS = {"description": "Smallest eps of one alpha.", "type": "number", "exclusiveMinimum": 0, "maximum": 1}
+_TS = {"description": "A slow time T = eps^(alpha-1) t (> 0).", "type": "number", "exclusiveMinimum": 0,
+       "maximum": 1000}
+_FAMILY = {"description": "A family of well-prepared data.", "type": "string", "enum": list(FAMILIES)}
+
+
+@declared(doc="The reduced form `snakemake all` builds (results/dps-validity/dps-validity.nc, "
+              "results/figures/dps-validity.*): these keys replace those of the full form, `snakemake "
+              "dps_validity_full` (results/dps-validity/full/).")
+class DpsValidityReduced:
+    alpha: list[float] = param([1.5], "Hertz exponents alpha.", minItems=1, maxItems=6, items=_ALPHAS)
+    eps_min: list[float] = param([1e-3], "Smallest eps, one per alpha.", minItems=1, maxItems=6, items=_EPS)
+    n_eps: int = param(3, "Number of eps, log-spaced from eps_min to eps_max.", minimum=3, maximum=41)
+    T: list[float] = param([1.0, 2.0], "Slow times T.", minItems=1, maxItems=12, items=_TS)
+
+
+@declared(doc="How long and how well DpS describes the lattice: sup_{t <= T eps^(1-alpha)} |x - x_app| with x_app "
+              "from (ansatz), for well-prepared data (travelling waves q = pi/5, 4 pi/5, a bond-centred breather, "
+              "a modulationally unstable wave with small noise) over eps and T, and the fitted power of eps "
+              "against the consistency order eps^alpha -> results/dps-validity/dps-validity.nc and "
+              "results/figures/dps-validity.{pdf,png}.")
+class DpsValidity:
+    alpha: list[float] = param([1.1, 1.5, 2.0, 3.0], "Hertz exponents alpha of V0 (each > 1).", minItems=1,
+                               maxItems=6, items=_ALPHAS)
+    eps_min: list[float] = param([1e-5, 1e-5, 1e-4, 1e-2], "Smallest eps of (ansatz), one per alpha (< eps_max): "
+                                 "the lattice runs last T eps^(1-alpha) (alpha = 3: T eps^-2, unreachable at "
+                                 "eps = 1e-5), so the range shrinks as alpha grows.", minItems=1, maxItems=6,
+                                 items=_EPS)
+    eps_max: float = param(0.1, "Largest eps (half the largest initial displacement).", exclusiveMinimum=0,
+                           maximum=1.0)
+    n_eps: int = param(9, "Number of eps, log-spaced from eps_min to eps_max.", minimum=3, maximum=41)
+    T: list[float] = param([0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0], "Slow times T = tau: the sup "
+                           "over t is taken up to t = T eps^(1-alpha) (one run to the largest T gives them all).",
+                           minItems=1, maxItems=12, items=_TS)
+    families: list[str] = param(list(FAMILIES), "Families of well-prepared data (cradle.analyses.dps_validity."
+                                "FAMILIES).", minItems=1, maxItems=4, items=_FAMILY)
+    N_wave: int = param(10, "Ring size of the travelling waves (q N / 2 pi an integer for q = pi/5, 4 pi/5).",
+                        minimum=10, maximum=1000, multipleOf=10)
+    N_breather: int = param(32, "Ring size of the bond-centred breather.", minimum=8, maximum=1000)
+    N_noise: int = param(50, "Ring size of the noisy unstable wave (q N / 2 pi an integer for q = 4 pi/5).",
+                         minimum=10, maximum=1000, multipleOf=5)
+    noise_amplitude: float = param(0.01, "Amplitude of the uniform noise rho of (perturb) of mi-4pi5-noise.",
+                                   exclusiveMinimum=0, maximum=0.5)
+    seed: int = param(20261122, "Seed of the noise (numpy default_rng); alpha number k uses seed + round(100 "
+                      "alpha).", minimum=0)
+    sample_every: float = param(0.2, "Lattice-time spacing of the samples of the sup over t.", exclusiveMinimum=0,
+                                maximum=1.0)
+    dt_factor: float = param(0.01, "srkn6c step as a fraction of the shortest linearised period (the run at the "
+                             "smallest eps is repeated with dt / 2).", exclusiveMinimum=0, maximum=0.05)
+    dps_rtol: float = param(1e-11, "Relative tolerance of the DpS runs (dop853_numba).", exclusiveMinimum=0,
+                            maximum=1e-6)
+    chunk: int = param(20000, "Samples per integration chunk (bounds the memory of the long runs).", minimum=100,
+                       maximum=1000000)
+    reduced: DpsValidityReduced = param(DpsValidityReduced(), DpsValidityReduced.__schema_doc__)
+
+    @staticmethod
+    def check(b: dict, path: list, cfg: dict, out) -> None:
+        """Both forms: one eps_min per alpha, each below eps_max; the families distinct."""
+        DpsValidity._check(b, path, out)
+        reduced = b.get("reduced")
+        if isinstance(reduced, dict):
+            DpsValidity._check(form_section(b, "reduced"), path + ["reduced"], out, own=set(reduced))
+
+    @staticmethod
+    def _check(b: dict, path: list, out, own=None) -> None:
+        al, em, hi = b.get("alpha"), b.get("eps_min"), b.get("eps_max")
+
+        def mine(key):  # the reduced form reports only the keys it replaces
+            return own is None or key in own
+
+        if isinstance(al, list) and isinstance(em, list) and len(al) != len(em) and \
+                (mine("eps_min") or mine("alpha")):
+            out.add(path + ["eps_min"], f"needs one value per alpha ({len(al)}: {show(al)})", em)
+        if isinstance(em, list) and number(hi) and mine("eps_min"):
+            for i, e in enumerate(em):
+                if number(e) and not e < hi:
+                    out.add(path + ["eps_min", i], f"must be below eps_max = {show(hi)}", e)
+        fam = b.get("families")
+        if isinstance(fam, list) and len(set(map(str, fam))) != len(fam) and mine("families"):
+            out.add(path + ["families"], "lists a family twice", fam)
+
+
 # ----------------------------------------------------------------- the initial data of a family
 
 
-def family_amplitude(family: str, alpha: float, spec: dict):
+def family_amplitude(family: str, alpha: float, spec: DpsValidity):
     """(A_n(0) with max_n |A_n(0)| = 1 (noise aside), N, info) of a family (see module docstring)."""
     from cradle.models import initial
 
     if family in ("tw-pi5", "tw-4pi5"):
-        N = int(spec["N_wave"])
+        N = spec.N_wave
         return np.exp(-1j * _Q[family] * np.arange(N)), N, {}
     if family == "mi-4pi5-noise":
-        N = int(spec["N_noise"])
-        seed = int(spec["seed"]) + round(100 * alpha)  # one recorded realisation per alpha
-        rho1, rho2 = initial.noise(N, "uniform", float(spec["noise_amplitude"]), seed)
+        N = spec.N_noise
+        seed = spec.seed + round(100 * alpha)  # one recorded realisation per alpha
+        rho1, rho2 = initial.noise(N, "uniform", spec.noise_amplitude, seed)
         n = np.arange(N)
         q = _Q[family]
         # (perturb): A_n(0) = (1 + rho1_n) cos(q n) - i (1 + rho2_n) sin(q n)
@@ -53,7 +141,7 @@ def family_amplitude(family: str, alpha: float, spec: dict):
     if family == "breather-bond":
         from cradle.models import homoclinic_continuation
 
-        N = int(spec["N_breather"])
+        N = spec.N_breather
         sol = homoclinic_continuation.solve_kind(N, "bond", alpha, "periodic")
         if not sol.converged:
             raise ValueError(f"dps-validity: bond homoclinic at alpha={alpha} did not converge "
@@ -217,28 +305,24 @@ VARIABLES = {
 LOST_LEVEL = 0.5
 
 
-def eps_grid(spec: dict, ia: int) -> np.ndarray:
+def eps_grid(spec: DpsValidity, ia: int) -> np.ndarray:
     """The eps of alpha number ``ia``: n_eps log-spaced from eps_min[ia] to eps_max."""
-    return np.geomspace(float(spec["eps_min"][ia]), float(spec["eps_max"]), int(spec["n_eps"]))
+    return np.geomspace(spec.eps_min[ia], spec.eps_max, spec.n_eps)
 
 
-def compute(spec: dict, log=None):
-    """The `dps-validity` target as a tree of groups (see module docstring and :data:`VARIABLES`).
-
-    ``spec`` (:func:`cradle.pipeline.config.resolved_dps_validity`): alpha (list), eps_min (list, one per
-    alpha), eps_max, n_eps, T (list of slow times), families, N_wave, N_breather, N_noise,
-    noise_amplitude, seed, sample_every, dt_factor, dps_rtol, chunk.
-    """
+def compute(spec: DpsValidity, inputs=None, log=None):
+    """The `dps-validity` analysis as a tree of groups (see module docstring and :data:`VARIABLES`) for
+    one form of its spec; it reads no file (``inputs`` is empty)."""
     import time
 
     from cradle.data.io import make_tree
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
-    alphas = [float(a) for a in spec["alpha"]]
-    fams = list(spec["families"])
-    Ts = np.sort(np.asarray(spec["T"], dtype=float))
-    n_eps = int(spec["n_eps"])
+    alphas = [float(a) for a in spec.alpha]
+    fams = list(spec.families)
+    Ts = np.sort(np.asarray(spec.T, dtype=float))
+    n_eps = spec.n_eps
     shape = (len(fams), len(alphas), n_eps, Ts.size)
     E = np.full(shape, np.nan)
     eps_all = np.array([eps_grid(spec, ia) for ia in range(len(alphas))])
@@ -253,9 +337,8 @@ def compute(spec: dict, log=None):
                 seeds[f"{fam}_alpha{al:g}"] = info["seed"]
             growth[jf, ia] = dps_growth(fam, al, N)
             for ie, eps in enumerate(eps_all[ia]):
-                r = sup_error(A0, eps, al, Ts, sample_every=float(spec["sample_every"]),
-                              dt_factor=float(spec["dt_factor"]), rtol=float(spec["dps_rtol"]),
-                              chunk=int(spec["chunk"]), check=ie == 0)
+                r = sup_error(A0, eps, al, Ts, sample_every=spec.sample_every, dt_factor=spec.dt_factor,
+                              rtol=spec.dps_rtol, chunk=spec.chunk, check=ie == 0)
                 E[jf, ia, ie] = r["abs_error"]
                 dts[jf, ia, ie], drifts[jf, ia, ie], nsamp[jf, ia, ie] = r["dt"], r["energy_drift"], r["n_samples"]
                 if ie == 0:
@@ -292,22 +375,22 @@ def compute(spec: dict, log=None):
     attrs = {
         "family_names": ", ".join(fams),
         "families": "tw-pi5, tw-4pi5: travelling waves (ansatzapprox) A_n(0) = e^{-i q n}, q = pi/5, 4 pi/5, "
-                    f"ring of N_wave = {int(spec['N_wave'])}; breather-bond: bond-centred homoclinic of (dpsstn), "
-                    f"A_n(0) = a_n / max|a_n|, ring of N_breather = {int(spec['N_breather'])}; mi-4pi5-noise: "
-                    f"q = 4 pi/5 perturbed as in (perturb), uniform noise of amplitude {float(spec['noise_amplitude'])}"
-                    f", seed + round(100 alpha) from seed = {int(spec['seed'])}, ring of N_noise = "
-                    f"{int(spec['N_noise'])}",
+                    f"ring of N_wave = {spec.N_wave}; breather-bond: bond-centred homoclinic of (dpsstn), "
+                    f"A_n(0) = a_n / max|a_n|, ring of N_breather = {spec.N_breather}; mi-4pi5-noise: "
+                    f"q = 4 pi/5 perturbed as in (perturb), uniform noise of amplitude {spec.noise_amplitude}"
+                    f", seed + round(100 alpha) from seed = {spec.seed}, ring of N_noise = "
+                    f"{spec.N_noise}",
         "noise_seeds": ", ".join(f"{k}={v}" for k, v in seeds.items()),
         "reference_law": "abs_error = O(eps^alpha) (rel_error = O(eps^(alpha-1))) for t <= T eps^(1-alpha): "
                          "consistency order of (ansatz) (non-resonant harmonics of size eps^alpha, Gronwall "
                          "factor e^{C T}); the exact bound of Bidegaray-Fesquet, Dumas & James, SIAM J. Math. "
                          "Anal. 45 (2013) was not available to us",
-        "eps_ranges": "per alpha: eps_min = " + ", ".join(f"{a:g}: {m:g}" for a, m in zip(alphas, spec["eps_min"]))
-                      + f"; eps_max = {float(spec['eps_max']):g}. The lattice time T eps^(1-alpha) sets the cost "
+        "eps_ranges": "per alpha: eps_min = " + ", ".join(f"{a:g}: {m:g}" for a, m in zip(alphas, spec.eps_min))
+                      + f"; eps_max = {spec.eps_max:g}. The lattice time T eps^(1-alpha) sets the cost "
                         "(alpha = 3: T eps^-2), hence the larger eps_min at large alpha",
-        "lattice_integrator": f"srkn6c, fixed dt = dt_factor 2 pi / omega_max, dt_factor = {float(spec['dt_factor'])}",
-        "dps_integrator": f"dop853_numba, rtol = {float(spec['dps_rtol'])}",
-        "sample_every": float(spec["sample_every"]),
+        "lattice_integrator": f"srkn6c, fixed dt = dt_factor 2 pi / omega_max, dt_factor = {spec.dt_factor}",
+        "dps_integrator": f"dop853_numba, rtol = {spec.dps_rtol}",
+        "sample_every": spec.sample_every,
         "lost_level": LOST_LEVEL,
         "departure_band": "[0.5, 2]",
         "sup_sampling": "the sup over t is taken on samples every sample_every (the error oscillates at "
@@ -319,11 +402,11 @@ def compute(spec: dict, log=None):
         "max_energy_drift": float(np.nanmax(drifts)),
         "wall_time_s": time.perf_counter() - t_start,
     }
-    return make_tree(groups, VARIABLES, attrs=attrs,
+    return make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
                      title="DpS approximation error: sup_{t <= T eps^(1-alpha)} |x - x_app| against eps, T, family "
                            "and alpha")
 
 
-def run(spec: dict, files: list, scenes: dict, log=None):
-    """The analysis protocol (:mod:`cradle.analyses.registry`): reads no file."""
-    return compute(spec, log=log)
+ANALYSIS = Analysis(
+    name="dps-validity", spec=DpsValidity, compute=compute, variables=VARIABLES,
+    title="DpS approximation error: sup over t <= T eps^(1-alpha) of |x - x_app| against eps, T, family, alpha")

@@ -1,9 +1,12 @@
-"""The paper's numerical statements against ours: results/paper_checks.{csv,md}.
+"""The paper's numerical statements against ours: the analysis ``paper-checks`` (the claims table),
+results/paper-checks/paper-checks.nc, written out as results/paper-checks/paper-checks.{csv,md} by
+:mod:`cradle.figures.paper_checks`.
 
 One row per statement: label or equation, quantity, the paper's value, ours,
 verdict, and how ours is measured. Every "ours" is computed here from the
-pipeline's netCDF outputs (or, for closed forms, from cradle's functions),
-never typed in. Verdicts:
+pipeline's netCDF outputs (the initial data, runs and metrics of every scene and
+the homoclinic solutions, read by name) or, for closed forms, from cradle's
+functions, never typed in. Verdicts:
 
 * ``agrees``: within the precision the paper prints (one unit of its last
   digit, which also covers the paper's truncations such as a ~ 2.11 for
@@ -15,8 +18,6 @@ Thresholds that turn a measurement into yes/no are module constants,
 documented where they are defined.
 """
 from __future__ import annotations
-
-from pathlib import Path
 
 import numpy as np
 
@@ -34,11 +35,16 @@ from cradle.analyses.claims_table import (
     agrees_printed,
     printed_tol,
     printed_unit,
-    to_csv,
-    to_markdown,
 )
+from cradle.analyses.protocol import Analysis, Read, scene_reads
+from cradle.data.variables import Var
 from cradle.measurements import compare, sidebands
 from cradle.models import dps, stationary
+from cradle.specs.declare import declared, param, plain
+
+#: the files of a scene the table may read
+SCENE_PARTS = ("initial", "exact", "dps", "metrics")
+_ALL = {"type": "string", "const": "all", "description": "Every entry of that config section."}
 
 #: A run is modulationally unstable at time t when its largest sideband
 #: (sidebands.sideband_ratio, harmonics excluded) reaches this fraction of the
@@ -56,33 +62,43 @@ OUT_OF_PHASE = np.pi / 2
 #: A phase shift is "small" below this.
 SMALL_SHIFT = np.pi / 4
 
+
+@declared(doc="The paper's numerical statements against ours (the claims table), from the outputs of the scenes "
+              "and homoclinic solutions named here -> results/paper-checks/paper-checks.nc and "
+              "results/paper-checks/paper-checks.{csv,md}; a group of rows that reads an entry not named is left out.")
+class PaperChecks:
+    scenes: list[str] | str = param("all", "The scenes whose initial data, runs and metrics the table reads (names "
+                                    "under scenes:), or all: every scene of the config.",
+                                    anyOf=[_ALL, {"type": "array", "items": {"$ref": "#/$defs/name"}}])
+    homoclinic: list[str] | str = param("all", "The homoclinic solutions the table reads (names under homoclinic:), "
+                                        "or all: every one of the config.",
+                                        anyOf=[_ALL, {"type": "array", "items": {"$ref": "#/$defs/name"}}])
+
+
+def reads(spec: PaperChecks) -> dict[str, Read]:
+    """The initial data, both runs and the metrics of every scene of the spec (``<scene>/<part>``), and
+    every homoclinic solution (``homoclinic/<name>``)."""
+    return {**scene_reads(spec.scenes, SCENE_PARTS),
+            **{f"homoclinic/{name}": Read.of("homoclinic", name=name) for name in spec.homoclinic}}
+
+
 class Results:
-    """Lazy access to the pipeline's outputs under a results folder."""
+    """The outputs the table reads, by kind and name, from the Datasets :func:`reads` names."""
 
-    def __init__(self, root):
-        self.root = Path(root)
-        self._cache = {}
-
-    def _open(self, kind, **names):
-        from cradle.pipeline import layout
-        from cradle.data.io import open_dataset
-
-        key = layout.path(kind, self.root, **names)
-        if key not in self._cache:
-            self._cache[key] = open_dataset(key)
-        return self._cache[key]
+    def __init__(self, inputs: dict):
+        self.inputs = inputs
 
     def initial(self, scene):
-        return self._open("initial", scene=scene)
+        return self.inputs[f"{scene}/initial"]
 
     def sim(self, scene, model):
-        return self._open(model, scene=scene)
+        return self.inputs[f"{scene}/{model}"]
 
     def metrics(self, scene):
-        return self._open("metrics", scene=scene)
+        return self.inputs[f"{scene}/metrics"]
 
     def homoclinic(self, name):
-        return self._open("homoclinic", name=name)
+        return self.inputs[f"homoclinic/{name}"]
 
 
 # ------------------------------------------------------------------ the rows
@@ -289,30 +305,62 @@ def _groups(res: Results, scenes):
     ]
 
 
-def paper_checks(root, scenes, homoclinic=()) -> list[Row]:
-    """All rows whose inputs exist in the config, computed from the outputs under ``root``.
-
-    ``scenes`` and ``homoclinic`` are the entry names of those config
-    sections; a group of rows that reads an entry the config lacks is left out.
-    """
-    res = Results(root)
-    present = set(scenes) | set(homoclinic)
-    rows = []
-    for group, thunk in _groups(res, scenes):
+def rows(spec: PaperChecks, inputs: dict) -> list[Row]:
+    """Every row whose inputs the spec names, computed from the Datasets ``inputs`` (:func:`reads`); a
+    group of rows that reads an entry the spec does not name is left out."""
+    res = Results(inputs)
+    present = set(spec.scenes) | set(spec.homoclinic)
+    out = []
+    for group, thunk in _groups(res, spec.scenes):
         if all(n in present for n in group):
-            rows += thunk()
-    return rows
+            out += thunk()
+    return out
+
+
+#: the stored variables of the `paper-checks` file: one row per statement, every column text
+VARIABLES = {"/": {
+    "row": Var(("row",), "index of a statement of the paper, in table order"),
+    "label": Var(("row",), "figure label or equation of the paper the statement is in"),
+    "quantity": Var(("row",), "what is compared"),
+    "paper": Var(("row",), "the paper's value or claim, as printed"),
+    "ours": Var(("row",), "our value, computed from the pipeline's outputs"),
+    "tolerance": Var(("row",), "the tolerance the verdict is judged with"),
+    "verdict": Var(("row",), "agrees, disagrees or not comparable"),
+    "measured": Var(("row",), "how our value is measured"),
+}}
+
+
+def compute(spec: PaperChecks, inputs: dict, log=None):
+    """The claims table as a Dataset, one row per statement (:data:`COLUMNS`, text), the verdict counts as
+    attributes."""
+    from cradle.data.io import make_dataset
+
+    table = rows(spec, inputs)
+    counts = {v: sum(r.verdict == v for r in table) for v in ("agrees", "disagrees", "not comparable")}
+    if log:
+        log(f"paper-checks: {len(table)} statements: " + ", ".join(f"{n} {v}" for v, n in counts.items()))
+    data = {c: np.array([getattr(r, c) for r in table], dtype=object) for c in COLUMNS}
+    attrs = {f"n_{v.replace(' ', '_')}": n for v, n in counts.items()}
+    return make_dataset(data, coords={"row": np.arange(len(table))}, attrs=attrs, params=plain(spec),
+                        variables=VARIABLES["/"], title="The paper's numerical statements against ours")
+
+
+ANALYSIS = Analysis(
+    name="paper-checks", spec=PaperChecks, compute=compute, reads=reads, variables=VARIABLES, tables=("csv", "md"),
+    title="The paper's claims against ours")
 
 
 __all__ = [
+    "ANALYSIS",
     "COLUMNS",
     "HARMONIC_PRESENT",
+    "PaperChecks",
     "Results",
     "Row",
     "agrees_printed",
-    "paper_checks",
+    "compute",
     "printed_tol",
     "printed_unit",
-    "to_csv",
-    "to_markdown",
+    "reads",
+    "rows",
 ]

@@ -6,13 +6,20 @@ An analysis is one module of :mod:`cradle.analyses` that defines ``ANALYSIS = An
   ``cradle/analyses/mi_growth.py``, Snakemake target ``mi_growth``, results folder ``results/mi-growth/``,
   figure ``results/figures/mi-growth.{pdf,png}`` drawn by ``draw`` of ``cradle/figures/mi_growth.py``;
 * ``spec``: its declared spec class (:func:`cradle.specs.declare.declared`), the full form; a field
-  ``reduced`` (a declared class of optional overrides) makes the cheaper form ``all`` builds;
+  ``reduced`` (a declared class of optional overrides, or of what a method ``reduced_form()`` keeps)
+  makes the cheaper form ``all`` builds (:func:`form_spec`);
 * ``reads(spec)``: the files it reads, by name (:class:`Read`: a layout kind and its names), opened and
   verified by the pipeline and handed to ``compute`` under those names;
 * ``batches``: optionally, the jobs its work is split into (:class:`Batches`), each written apart and
   handed to ``compute`` as ``batch/<key>``;
 * ``compute(spec, inputs, log)``: the output, a DataTree (or Dataset) of netCDF groups named as in the
-  paper from its ``variables``.
+  paper from its ``variables``;
+* ``tables``: the text formats (``("csv", "md")``) its drawing step writes instead of a figure: then
+  ``cradle/figures/<module>.py`` defines ``tables(tree) -> {format: text}`` rather than ``draw(tree)``,
+  and the files go beside its netCDF file (``results/<name>/<name>.<format>``; the claims table).
+
+A spec field ``scenes``, ``homoclinic`` or ``map`` whose declaration allows the text ``"all"`` is filled by
+the pipeline with the names of every entry of that config section (:func:`cradle.pipeline.config.analysis_spec`).
 
 The registry (:mod:`cradle.analyses.registry`) finds the modules; the config section, its schema, the rules
 and the figure table follow from it. Nothing here knows paths or Snakemake.
@@ -69,6 +76,7 @@ class Analysis:
     variables: Mapping[str, Any]
     reads: Callable[[Any], Mapping[str, Read]] = lambda spec: {}
     batches: Batches | None = None
+    tables: tuple[str, ...] = ()  # text formats written by figures/<module>.py tables(tree), in place of a figure
 
     @property
     def module(self) -> str:
@@ -97,9 +105,13 @@ class Analysis:
 
 def form_spec(spec, form: str):
     """The spec of one form: the full one without its ``reduced`` overrides, or the reduced one (each
-    override given in place of the full value; an override left out keeps it)."""
+    override given in place of the full value; an override left out keeps it). A spec whose reduced form
+    keeps a part of the full one rather than replacing keys (work-precision: some scenes, methods and
+    settings) builds it by its method ``reduced_form()``."""
     if not any(f.name == "reduced" for f in dataclasses.fields(spec)):
         return spec
+    if form == REDUCED and hasattr(spec, "reduced_form"):
+        return spec.reduced_form()
     overrides = {}
     if form == REDUCED and spec.reduced is not None:
         overrides = {f.name: getattr(spec.reduced, f.name) for f in dataclasses.fields(spec.reduced)

@@ -1,7 +1,8 @@
 """Work-precision of the lattice integrators: error and energy drift against wall time.
 
-For one scene of the ``work_precision:`` section of config.yaml (the initial
-data of a ``scenes:`` entry, run to the section's own ``t_end``):
+For each scene of ``beyond: work-precision: scenes:`` in config.yaml (the initial data of a
+``scenes:`` entry, results/initial/<scene>.nc, whose alpha and bc the file states, run to the
+section's own ``t_end``):
 
 1. **Reference.** Two runs of the reference method (default srkn6c) at
    ``dt_factor`` and at twice it, stored on the comparison grid
@@ -12,7 +13,7 @@ data of a ``scenes:`` entry, run to the section's own ``t_end``):
    ``tolerance``: on chaotic scenes (strongly nonlinear waves, modulational
    instability) two runs of any accuracy separate exponentially, and
    pointwise errors mean something only before ``t_valid``.
-2. **Ladders.** Every method of ``work_precision.methods`` at every setting of
+2. **Ladders.** Every method of ``work-precision.methods`` at every setting of
    its ladder (``dt_factor`` for the splittings, ``rtol`` with
    ``atol = rtol * a`` for the adaptive methods):
 
@@ -30,37 +31,40 @@ data of a ``scenes:`` entry, run to the section's own ``t_end``):
      up to 5 times and the fastest kept), and ``n_force_evals``, ``n_steps``,
      ``dt``.
 
-Output: one Dataset per scene (dims ``method``, ``setting``; the reference
-difference D on ``t_compare``), written to results/work-precision/<scene>.nc
-by ``snakemake work_precision``, which also draws
-results/figures/work-precision.{pdf,png} (:mod:`cradle.figures.work_precision`).
-
-Command line (used by workflow/rules/workprecision.smk)::
-
-    python -m cradle.analyses.work_precision scene --spec JSON --initial results/initial/S.nc --out results/work-precision/S.nc
-    python -m cradle.analyses.work_precision figure --out results/figures/work-precision results/work-precision/*.nc
+Output: one batch per scene (:func:`measure_scene`: a Dataset with dims ``method``, ``setting``, the
+reference difference D on ``t_compare``; results/work-precision/batch/<form>/<scene>.nc), gathered by
+:func:`compute` into one file of one group per scene, results/work-precision/work-precision.nc (the
+full form: results/work-precision/full/), drawn as results/figures/work-precision.{pdf,png}
+(:mod:`cradle.figures.work_precision`). A batch of the full form takes every core given to Snakemake
+(``threads: "all"``), so no other job runs beside it and its times are the machine's; the reduced
+form's batches take one core each and run beside the other jobs of ``all`` (their times are those of
+a shared machine: the full form is the measurement).
 """
 from __future__ import annotations
 
-import argparse
+import dataclasses
 import datetime as _dt
 import json
-import logging
 import platform
 import subprocess
-import sys
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.models import lattice
+from cradle.analyses.protocol import Analysis, Batches, Read
 from cradle.data.variables import Var
+from cradle.models import lattice
+from cradle.scenes.spec import LATTICE_ADAPTIVE, SPLITTINGS
+from cradle.specs.declare import REQUIRED, declared, param, plain
+from cradle.specs.values import ConfigError, did_you_mean, entries
 
-log = logging.getLogger("cradle")
+if TYPE_CHECKING:
+    import xarray as xr
 
-#: Variables of the work-precision files (flat, one per scene), declared beside the analysis:
+#: Variables of one scene's group (and of its batch file), declared beside the analysis:
 #: :func:`cradle.data.io.make_dataset` takes their dims, long names and units from here.
-VARIABLES: dict[str, Var] = {
+SCENE_VARIABLES: dict[str, Var] = {
     "method": Var(("method",), "integration method of the lattice (nc)"),
     "setting": Var(("setting",), "index of the accuracy setting on the method's ladder"),
     "t_compare": Var(("t_compare",), "time of the comparison grid"),
@@ -78,8 +82,121 @@ VARIABLES: dict[str, Var] = {
                                 "max_n max(|x_n - x'_n|, |v_n - v'_n|) / a between the two reference runs"),
 }
 
+#: the stored variables of the `work-precision` file: one group per measured scene, named by the scene
+#: (``/tw-weak``), each holding that scene's batch; the root holds the spec and the scene names
+VARIABLES = {"/": {}, "/{scene}": SCENE_VARIABLES}
+
 ADAPTIVE_KEY, SPLITTING_KEY = "rtol", "dt_factor"
 MAX_REPEATS = 5
+
+
+# --------------------------------------------------------------------------- the spec (`beyond: work-precision:`)
+
+def _ladder(method: str) -> dict:
+    """The schema of one method's ladder of settings in work-precision.methods."""
+    key, top, what = (("dt_factor", 1, "splitting step = dt_factor * 2 pi / omega_max") if method in SPLITTINGS
+                      else ("rtol", 0.01, "relative tolerances (atol = rtol * a)"))
+    return {"description": f"Ladder of {method}: {what}.", "type": "object", "additionalProperties": False,
+            "required": [key], "properties": {key: {
+                "description": f"The settings ({key}), each > 0.", "type": "array", "minItems": 1,
+                "items": {"type": "number", "exclusiveMinimum": 0, "maximum": top}}}}
+
+
+@declared(doc="The ladder of settings of one method: dt_factor for a splitting, rtol for an adaptive method.")
+class WorkPrecisionLadder:
+    dt_factor: list[float] = param(None, "Step factors of a splitting (step = dt_factor * 2 pi / omega_max).")
+    rtol: list[float] = param(None, "Relative tolerances of an adaptive method (atol = rtol * a).")
+
+
+@declared(doc="One measured scene.")
+class WorkPrecisionScene:
+    t_end: float = param(REQUIRED, "End of every run; > 0.", exclusiveMinimum=0)
+
+
+@declared(doc="Reference: two runs of a splitting at dt_factor and 2 dt_factor; it holds up to the last comparison "
+              "time before their difference (relative to a) exceeds tolerance.")
+class WorkPrecisionReference:
+    method: str = param("srkn6c", "Splitting used for the reference.", enum=list(SPLITTINGS))
+    dt_factor: float = param(0.0002, "Step factor of the finer reference run; > 0.", exclusiveMinimum=0, maximum=1)
+    tolerance: float = param(1e-10, "Largest difference between the two reference runs, relative to a, for the "
+                             "reference to hold; > 0.", exclusiveMinimum=0)
+
+
+@declared(doc="The reduced form `snakemake all` builds (results/work-precision/work-precision.nc, "
+              "results/figures/work-precision.*); the full one is `snakemake work_precision_full` "
+              "(results/work-precision/full/).")
+class WorkPrecisionReduced:
+    scenes: list[str] = param(["tw-weak"], "The measured scenes kept (names under work-precision.scenes).",
+                              minItems=1, items={"$ref": "#/$defs/name"})
+    t_end: float = param(100.0, "Runs end at the smaller of this and the scene's t_end; > 0.", exclusiveMinimum=0)
+    methods: list[str] = param(["srkn6c", "srkn4c", "srkn6", "dop853_numba"], "The methods kept (those of them "
+                               "that work-precision.methods measures).", minItems=1,
+                               items={"type": "string", "enum": [*SPLITTINGS, *LATTICE_ADAPTIVE]})
+    settings: int = param(4, "The first (coarsest) settings of each ladder kept.", minimum=1, maximum=20)
+
+
+@declared(doc="Work-precision of the lattice integrators (`snakemake -j2 work_precision`): for each scene, a reference "
+              "from two runs of different accuracy, then every method on a ladder of settings; error and energy drift "
+              "against wall time in results/work-precision/work-precision.nc (one group per scene) and "
+              "results/figures/work-precision.{pdf,png}.")
+class WorkPrecision:
+    scenes: dict[str, WorkPrecisionScene] = param({}, "Scenes measured, by the name of a `scenes:` entry (its initial "
+                                                  "data are used, with the N, bc and alpha its file states), each "
+                                                  "with its own t_end.")
+    compare_every: float = param(1.0, "Spacing of the comparison grid 0, compare_every, ..., t_end on which states "
+                                 "are compared; > 0.", exclusiveMinimum=0)
+    repeat_time: float = param(0.2, "A run shorter than this many seconds is repeated (at most 5 times) and its "
+                               "fastest wall time kept; >= 0.", minimum=0)
+    reference: WorkPrecisionReference = param(WorkPrecisionReference(), "Reference: two runs of a splitting at "
+                                              "dt_factor and 2 dt_factor; it holds up to the last comparison time "
+                                              "before their difference (relative to a) exceeds tolerance.")
+    methods: dict[str, WorkPrecisionLadder] = param({}, "The methods measured and the ladder of settings of each: "
+                                                    "dt_factor for the splittings, rtol for the adaptive methods.",
+                                                    additionalProperties=False,
+                                                    properties={m: _ladder(m) for m in (*SPLITTINGS,
+                                                                                        *LATTICE_ADAPTIVE)})
+    reduced: WorkPrecisionReduced = param(WorkPrecisionReduced(), WorkPrecisionReduced.__schema_doc__)
+
+    @staticmethod
+    def check(b: dict, path: list, cfg: dict, out) -> None:
+        """The scenes name `scenes:` entries (their initial data are measured); the reduced form keeps
+        some of those scenes and methods."""
+        if not isinstance(b.get("scenes"), dict):
+            return
+        scenes = entries(cfg, "scenes")
+        for name in b["scenes"]:
+            if name not in scenes:
+                out.add(path + ["scenes", name], f"unknown scene: no `scenes:` entry of that "
+                                                 f"name{did_you_mean(name, scenes)}")
+        given = b.get("reduced")
+        red: dict = given if isinstance(given, dict) else {}
+        if not b["scenes"]:  # nothing measured: the reduced form's defaults name nothing to check
+            return
+        for i, name in enumerate(red.get("scenes") or []):
+            if name not in b["scenes"]:
+                out.add(path + ["reduced", "scenes", i], f"not a work-precision scene"
+                                                         f"{did_you_mean(name, list(b['scenes']))}", name)
+        kept = [m for m in red.get("methods") or [] if m in (b.get("methods") or {})]
+        if red.get("methods") and isinstance(b.get("methods"), dict) and b["methods"] and not kept:
+            out.add(path + ["reduced", "methods"], "names no method of work-precision.methods", red["methods"])
+
+    def reduced_form(self) -> WorkPrecision:
+        """The reduced form: the scenes of ``reduced.scenes`` measured (those this spec measures), run to
+        the smaller of their t_end and ``reduced.t_end``, the methods of ``reduced.methods`` on the first
+        ``reduced.settings`` settings of their ladders (:func:`cradle.analyses.protocol.form_spec`)."""
+        red = self.reduced
+        if red is None:  # already one form
+            return self
+        scenes = {n: WorkPrecisionScene(t_end=min(self.scenes[n].t_end, red.t_end))
+                  for n in red.scenes if n in self.scenes}
+        methods = {m: WorkPrecisionLadder(**{k: v[:red.settings] for k, v in _ladder_of(lad)})
+                   for m, lad in self.methods.items() if m in red.methods}
+        return dataclasses.replace(self, scenes=scenes, methods=methods, reduced=None)
+
+
+def _ladder_of(lad: WorkPrecisionLadder) -> list[tuple[str, list[float]]]:
+    """(parameter name, settings) of the keys a ladder gives (one, by the schema)."""
+    return [(k, list(v)) for k, v in ((SPLITTING_KEY, lad.dt_factor), (ADAPTIVE_KEY, lad.rtol)) if v is not None]
 
 
 def machine() -> str:
@@ -94,10 +211,10 @@ def machine() -> str:
     return platform.processor() or platform.machine()
 
 
-def ladder(spec: dict, method: str) -> tuple[str, list[float]]:
-    """(parameter name, settings) of one method of a resolved spec."""
-    (key, values), = spec["methods"][method].items()
-    return key, list(values)
+def ladder(spec: WorkPrecision, method: str) -> tuple[str, list[float]]:
+    """(parameter name, settings) of one method of a spec."""
+    (key, values), = _ladder_of(spec.methods[method])
+    return key, values
 
 
 # --------------------------------------------------------------------------- measurements
@@ -164,35 +281,39 @@ def warm_up(methods, alpha: float, bc: str) -> None:
                           **_kwargs(method, 1e-3, 0.1))
 
 
-def measure(spec: dict, x0, v0, a: float | None = None) -> xr.Dataset:
-    """The work-precision Dataset of one scene (see module docstring)."""
+def measure(spec: WorkPrecision, scene: str, x0, v0, alpha: float, bc: str, a: float | None = None,
+            log=None) -> xr.Dataset:
+    """The work-precision Dataset of ``scene`` of ``spec`` (see module docstring) from its initial state
+    x0, v0 on a chain with exponent ``alpha`` and boundary conditions ``bc``; ``a`` the amplitude errors
+    are relative to (default max |x_n(0)|, |v_n(0)|). Methods in the order of ``spec.methods``."""
     from cradle.integrators import SPLITTING_METHODS, integrate_lattice
 
-    alpha, bc, t_end = spec["alpha"], spec["bc"], spec["t_end"]
+    say = log or (lambda *a: None)
+    t_end = spec.scenes[scene].t_end
     x0 = np.asarray(x0, dtype=float)
     v0 = np.asarray(v0, dtype=float)
     if a is None:
         a = max(float(np.abs(x0).max()), float(np.abs(v0).max()))
-    t = compare_grid(t_end, spec["compare_every"])
-    methods = list(spec["methods"])
-    ref_spec = spec["reference"]
-    warm_up(sorted(set(methods) | {ref_spec["method"]}), alpha, bc)
+    t = compare_grid(t_end, spec.compare_every)
+    methods = list(spec.methods)
+    ref_spec = spec.reference
+    warm_up(sorted(set(methods) | {ref_spec.method}), alpha, bc)
 
     wall0 = time.perf_counter()
-    fine = integrate_lattice(x0, v0, t, alpha=alpha, bc=bc, method=ref_spec["method"],
-                             dt_factor=ref_spec["dt_factor"])
-    check = integrate_lattice(x0, v0, t, alpha=alpha, bc=bc, method=ref_spec["method"],
-                              dt_factor=2.0 * ref_spec["dt_factor"])
+    fine = integrate_lattice(x0, v0, t, alpha=alpha, bc=bc, method=ref_spec.method,
+                             dt_factor=ref_spec.dt_factor)
+    check = integrate_lattice(x0, v0, t, alpha=alpha, bc=bc, method=ref_spec.method,
+                              dt_factor=2.0 * ref_spec.dt_factor)
     ref_wall = time.perf_counter() - wall0
     D = state_difference(check.x, check.v, fine.x, fine.v, a)
-    t_valid = valid_until(t, D, ref_spec["tolerance"])
+    t_valid = valid_until(t, D, ref_spec.tolerance)
     upto = t <= t_valid + 1e-9
     after = t > t_valid + 1e-9
     H0 = float(fine.energy[0])
     stat_ref = float(contact_energy(fine.x[after], alpha, bc).mean() / H0) if after.any() else np.nan
-    log.info("%s: reference %s dt_factor=%g (%.2f s for both runs): difference %.2e at t_valid=%g "
-             "(max %.2e over [0, %g]), energy drift %.1e", spec["name"], ref_spec["method"], ref_spec["dt_factor"],
-             ref_wall, float(D[upto].max()), t_valid, float(D.max()), t_end, fine.energy_drift)
+    say(f"{scene}: reference {ref_spec.method} dt_factor={ref_spec.dt_factor:g} ({ref_wall:.2f} s for both "
+        f"runs): difference {float(D[upto].max()):.2e} at t_valid={t_valid:g} (max {float(D.max()):.2e} over "
+        f"[0, {t_end:g}]), energy drift {fine.energy_drift:.1e}")
 
     S = max(len(ladder(spec, m)[1]) for m in methods) if methods else 0
     shape = (len(methods), S)
@@ -204,9 +325,9 @@ def measure(spec: dict, x0, v0, a: float | None = None) -> xr.Dataset:
         kinds.append(key)
         expected = SPLITTING_KEY if method in SPLITTING_METHODS else ADAPTIVE_KEY
         if key != expected:
-            raise ValueError(f"work_precision.methods.{method}: a ladder of {expected!r} is expected, got {key!r}")
+            raise ValueError(f"work-precision.methods.{method}: a ladder of {expected!r} is expected, got {key!r}")
         for j, value in enumerate(values):
-            sol, wall = run_once(x0, v0, t, alpha, bc, method, value, a, spec["repeat_time"])
+            sol, wall = run_once(x0, v0, t, alpha, bc, method, value, a, spec.repeat_time)
             err = float(state_difference(sol.x[upto], sol.v[upto], fine.x[upto], fine.v[upto], a).max())
             stat = np.nan
             if after.any():
@@ -216,22 +337,22 @@ def measure(spec: dict, x0, v0, a: float | None = None) -> xr.Dataset:
                    "n_force_evals": sol.n_force_evals, "n_steps": sol.n_steps}
             for name, val in row.items():
                 out[name][i, j] = val
-            log.info("%s: %-12s %s=%-8.3g error %.2e  energy drift %.2e  wall %.4f s  %d force evals",
-                     spec["name"], method, key, value, err, sol.energy_drift, wall, sol.n_force_evals)
+            say(f"{scene}: {method:<12s} {key}={value:<8.3g} error {err:.2e}  energy drift {sol.energy_drift:.2e}  "
+                f"wall {wall:.4f} s  {int(sol.n_force_evals)} force evals")
 
-    attrs = {"scene": spec["name"], "alpha": alpha, "N": int(x0.size), "bc": bc, "t_end": t_end, "a": a,
-             "compare_every": spec["compare_every"], "t_valid": t_valid,
-             "reference_method": ref_spec["method"], "reference_dt_factor": ref_spec["dt_factor"],
-             "reference_check_dt_factor": 2.0 * ref_spec["dt_factor"], "reference_dt": fine.dt,
-             "reference_tolerance": ref_spec["tolerance"], "reference_error": float(D[upto].max()),
+    attrs = {"scene": scene, "alpha": alpha, "N": int(x0.size), "bc": bc, "t_end": t_end, "a": a,
+             "compare_every": spec.compare_every, "t_valid": t_valid,
+             "reference_method": ref_spec.method, "reference_dt_factor": ref_spec.dt_factor,
+             "reference_check_dt_factor": 2.0 * ref_spec.dt_factor, "reference_dt": fine.dt,
+             "reference_tolerance": ref_spec.tolerance, "reference_error": float(D[upto].max()),
              "reference_energy_drift": fine.energy_drift, "reference_wall_time_s": ref_wall,
              "statistic": "time mean of sum_n V0(x_{n+1} - x_n) / H(0) over grid times in (t_valid, t_end]",
              "statistic_reference": stat_ref,
-             "parameter_kind": json.dumps(dict(zip(methods, kinds))), "repeat_time_s": spec["repeat_time"],
+             "parameter_kind": json.dumps(dict(zip(methods, kinds))), "repeat_time_s": spec.repeat_time,
              "machine": machine(), "date": _dt.date.today().isoformat(), "numba_version": _version("numba"),
              "scipy_version": _version("scipy")}
     return _dataset(out, methods, S, t, D, attrs, title=f"work-precision of the lattice integrators, scene "
-                                                          f"'{spec['name']}'")
+                                                          f"'{scene}'")
 
 
 def _version(pkg: str) -> str:
@@ -244,20 +365,22 @@ def _version(pkg: str) -> str:
 
 
 def _dataset(fields: dict, methods, S, t, D, attrs, title) -> xr.Dataset:
-    """A self-describing Dataset (:func:`cradle.data.io.make_dataset`, :data:`VARIABLES`) from the
+    """A self-describing Dataset (:func:`cradle.data.io.make_dataset`, :data:`SCENE_VARIABLES`) from the
     measured arrays."""
     from cradle.data.io import make_dataset
 
     coords = {"method": np.array(methods, dtype=object), "setting": np.arange(S),
               "t_compare": np.asarray(t, dtype=float)}
     data = {**fields, "reference_difference": np.asarray(D, dtype=float)}
-    return make_dataset(data, coords=coords, attrs=attrs, title=title, variables=VARIABLES)
+    return make_dataset(data, coords=coords, attrs=attrs, title=title, variables=SCENE_VARIABLES)
 
 
-def scene_dataset(spec: dict, initial: xr.Dataset) -> xr.Dataset:
-    """:func:`measure` on the initial data of a scene (results/initial/<scene>.nc)."""
+def scene_dataset(spec: WorkPrecision, scene: str, initial: xr.Dataset, log=None) -> xr.Dataset:
+    """:func:`measure` on the initial data of ``scene`` (results/initial/<scene>.nc): its state, and the
+    alpha, bc and amplitude a its file states."""
     a = initial.attrs.get("a")
-    return measure(spec, initial["x0"].values, initial["v0"].values, None if a is None else float(a))
+    return measure(spec, scene, initial["x0"].values, initial["v0"].values, float(initial.attrs["alpha"]),
+                   str(initial.attrs["bc"]), None if a is None else float(a), log=log)
 
 
 def summary(ds: xr.Dataset) -> list[str]:
@@ -275,47 +398,48 @@ def summary(ds: xr.Dataset) -> list[str]:
     return lines
 
 
-# --------------------------------------------------------------------------- command line
+# --------------------------------------------------------------------------- the analysis protocol
 
-def main(argv=None) -> int:
-    from cradle.data.io import open_dataset
-    from cradle.pipeline.runner import run, setup_logging
-
-    parser = argparse.ArgumentParser(prog="python -m cradle.analyses.work_precision", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("scene", help="measure one scene")
-    p.add_argument("--spec", required=True, help="resolved parameters (JSON, cradle.pipeline.config.resolved_work_precision)")
-    p.add_argument("--initial", required=True, help="results/initial/<scene>.nc")
-    p.add_argument("--out", required=True)
-    p.add_argument("--log")
-    f = sub.add_parser("figure", help="draw the work-precision figure")
-    f.add_argument("--out", required=True, help="output stem (writes .pdf and .png)")
-    f.add_argument("--log")
-    f.add_argument("inputs", nargs="+")
-    args = parser.parse_args(argv)
-    if args.command == "scene":
-        spec = json.loads(args.spec)
-
-        def compute():
-            ds = scene_dataset(spec, open_dataset(args.initial))
-            for line in summary(ds):
-                log.info("%s", line)
-            return ds
-
-        run(compute, args.out, args.log, label=f"work-precision {spec['name']}")
-        return 0
-    setup_logging(args.log)
-    from cradle.figures import save_figure
-    from cradle.figures.work_precision import draw
-
-    data = {}
-    for path in args.inputs:
-        ds = open_dataset(path)
-        data[ds.attrs["scene"]] = ds
-    for path in save_figure(draw(data), args.out):
-        log.info("wrote %s", path)
-    return 0
+def scenes_of(spec: WorkPrecision) -> list[str]:
+    """The scenes one form measures, in the order of their names: one batch and one group each."""
+    if not spec.scenes:
+        raise ConfigError("config error: beyond.work-precision.scenes: no scene to measure in this form (name "
+                          "`scenes:` entries under work-precision.scenes, and those of reduced.scenes for the "
+                          "reduced form)")
+    return sorted(spec.scenes)
 
 
-if __name__ == "__main__":
-    sys.exit(main())
+def scene_reads(spec: WorkPrecision, scene: str) -> dict[str, Read]:
+    """A batch reads the initial data of its scene."""
+    return {"initial": Read.of("initial", scene=scene)}
+
+
+def measure_scene(spec: WorkPrecision, scene: str, inputs: dict, log=None) -> xr.Dataset:
+    """One batch: the Dataset of ``scene`` (:func:`scene_dataset`), its summary in the log."""
+    ds = scene_dataset(spec, scene, inputs["initial"], log=log)
+    for line in summary(ds):
+        (log or (lambda *a: None))(line)
+    return ds
+
+
+def compute(spec: WorkPrecision, inputs: dict, log=None) -> xr.DataTree:
+    """The `work-precision` file: the batch of every scene (``inputs["batch/<scene>"]``) as its group
+    ``/<scene>``, values and attributes as measured; the spec and the scene names on the root."""
+    import xarray as xr
+
+    from cradle.data.io import make_dataset
+
+    names = scenes_of(spec)
+    root = make_dataset({}, attrs={"scene_names": ", ".join(names)}, params=plain(spec), variables={},
+                        title="work-precision of the lattice integrators: error and energy drift against wall "
+                              "time, one group per scene")
+    # the batches as read (their own attributes, no file encoding: the writer sets it)
+    groups = {f"/{name}": inputs[f"batch/{name}"].drop_encoding() for name in names}
+    return xr.DataTree.from_dict({"/": root, **groups})
+
+
+ANALYSIS = Analysis(
+    name="work-precision", spec=WorkPrecision, compute=compute, variables=VARIABLES,
+    # a batch of the full form has the machine to itself: its wall times are the measurement
+    batches=Batches(keys=scenes_of, run=measure_scene, reads=scene_reads, threads={"full": "all"}),
+    title="Work-precision of the lattice integrators: error and energy drift against wall time")

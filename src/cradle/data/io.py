@@ -104,7 +104,7 @@ def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = No
                                                 f"{', dirty' if prov.get('git_dirty') else ''})"
                                                 if "git_commit" in prov else ""),
             "references": REFERENCE,
-            "history": f"{_dt.datetime.now(_dt.timezone.utc).isoformat(timespec='seconds')} {prov['command']}",
+            "history": f"{_dt.datetime.now(_dt.UTC).isoformat(timespec='seconds')} {prov['command']}",
         }
     )
     for key, value in (attrs or {}).items():

@@ -29,7 +29,7 @@ import math
 import platform
 import subprocess
 import sys
-from functools import lru_cache
+from functools import cache
 from importlib.metadata import PackageNotFoundError, version as _version
 from pathlib import Path
 
@@ -92,7 +92,7 @@ def _git(args, cwd) -> str | None:
     return out.stdout.strip() if out.returncode == 0 else None
 
 
-@lru_cache(maxsize=None)
+@cache
 def git_info(path: str | None = None) -> dict:
     """``{"git_commit": sha, "git_dirty": 0|1}`` for the git checkout holding ``path``; {} if there is none.
 
@@ -114,7 +114,7 @@ def git_info(path: str | None = None) -> dict:
     return {"git_commit": commit, "git_dirty": int(bool(status))}
 
 
-@lru_cache(maxsize=None)
+@cache
 def software_versions() -> str:
     """``python=X numpy=Y ...`` for :data:`PACKAGES` that are installed."""
     parts = [f"python={platform.python_version()}"]

@@ -7,7 +7,7 @@ writes it as ``<stem>.pdf`` and ``<stem>.png``. Modules: :mod:`.maps`
 plotcomplin), :mod:`.spacetime` (space-time diagrams and profiles),
 :mod:`.spectra` (fft106, fftseuil, fft344), :mod:`.localised` (breathers,
 loc1, fini); beyond the paper, ``draw(tree)`` of the module named as each analysis
-(:mod:`.theorem1`, :mod:`.mi_diagram`, :mod:`.mi_growth`, ...; :func:`draw_analysis`) and :mod:`.workprecision`.
+(:mod:`.theorem1`, :mod:`.mi_diagram`, :mod:`.mi_growth`, ...; :func:`draw_analysis`).
 
 Importing this package is cheap (no matplotlib, no figure module): the
 Snakefile asks it which module draws a label (:func:`module_of`) and
@@ -102,11 +102,7 @@ FIGURES = {
 DATASET_FIGURES = {
     "mi-statistics": "mi_statistics.mi_statistics",
     "breather-interactions": "breather_interactions.breather_interactions",
-    "dps-validity": "dps_validity.dps_validity",
 }
-
-#: Drawn from several analysis files by its own rule (``workprecision.draw``).
-OTHER_FIGURES = ("work-precision",)
 
 REGISTRIES = {"FIGURES": FIGURES, "DATASET_FIGURES": DATASET_FIGURES}
 
@@ -163,6 +159,17 @@ def draw_analysis(module: str, tree, stem, note: str = "") -> list[Path]:
     if note:  # a figure-level x label: the layout keeps room for it below the panels
         fig.supxlabel(note, x=0.998, ha="right", fontsize=6, color="0.4")
     return save_figure(fig, stem)
+
+
+def write_tables(module: str, tree, paths: dict) -> list[Path]:
+    """Write the tables of an analysis (``tables`` of ``cradle.figures.<module>``: format -> text) from its
+    output ``tree`` to ``paths`` (format -> file), each atomically."""
+    import importlib
+
+    from cradle.data.io import write_text
+
+    tables = importlib.import_module(f"{__name__}.{module}").tables(tree)
+    return [write_text(tables[ext], path) for ext, path in paths.items()]
 
 
 def draw(label: str, data: dict, options: dict, stem) -> list[Path]:

@@ -1,7 +1,6 @@
 """Figure beyond the paper: how long and how well DpS describes the lattice (dps-validity).
 
-Reads results/validity/[full/]dps-validity.nc (:mod:`cradle.analyses.dps_validity`), so it is listed
-in :data:`cradle.figures.DATASET_FIGURES` and drawn by :func:`cradle.figures.draw_dataset`.
+Drawn by :func:`draw` from results/dps-validity/[full/]dps-validity.nc (:mod:`cradle.analyses.dps_validity`).
 
 (a) the relative sup-norm error against eps at T = 1, every family, at the reference alpha (1.5 when
     computed), with the law eps^(alpha-1) dotted; (b) the relative error against T for the noisy
@@ -30,7 +29,7 @@ def _k_of(Ts, T=1.0) -> int:
     return int(np.argmin(np.abs(np.log(np.asarray(Ts) / T))))
 
 
-def dps_validity(tree):
+def draw(tree):
     """The four panels above from the groups /errors and /fits of the dps-validity file."""
     fig, ax = figure(2, 2, width=10.0, height=7.6)
     err, fits, checks = tree["errors"], tree["fits"], tree["checks"]

@@ -1,9 +1,7 @@
 """Figure work-precision: error and energy drift of every lattice integrator against wall time.
 
-Drawn by ``snakemake work_precision`` from results/work-precision/<scene>.nc
-(:mod:`cradle.analyses.work_precision`), not through the ``figures:`` registry (its
-inputs are not scene runs): :func:`draw` takes ``{scene: Dataset}``.
-One row per scene; left: error (max over the comparison grid up to
+Drawn by :func:`draw` from results/work-precision/[full/]work-precision.nc
+(:mod:`cradle.analyses.work_precision`), one group per scene. One row per scene; left: error (max over the comparison grid up to
 t_valid, relative to the amplitude) against wall time; right: relative
 energy drift (max over every step up to t_end) against wall time. The
 shaded band is where the two reference runs differ (the error floor of the
@@ -34,8 +32,9 @@ def _curve(ax, ds, i, var):
     ax.loglog(w[ok], y[ok], ls, color=colour, marker=marker, ms=3.5, lw=1.0, label=method)
 
 
-def draw(data: dict):
-    """The figure for ``{scene: Dataset}`` (rows in the order given)."""
+def draw(tree):
+    """The figure of the work-precision file ``tree``: one row per scene group, in the file's order."""
+    data = {name: node.to_dataset() for name, node in tree.children.items()}
     scenes = list(data)
     fig, axes = figure(len(scenes), 2, width=9.5, height=2.9 * len(scenes) + 0.4, squeeze=False)
     for r, name in enumerate(scenes):

@@ -2,7 +2,7 @@
 
 Paths are relative to a results folder (``results`` for the workflow, a
 folder of its own for ``cradle run``). Rules, scripts, the CLI,
-:func:`cradle.open_scene`, the figure loader and the claims table all ask
+:func:`cradle.open_scene` and the figure loader all ask
 here; nothing else spells a path. Templates keep Snakemake wildcards
 (``{scene}``, ``{name}``, ``{label}``) when those are passed through::
 
@@ -28,7 +28,6 @@ TEMPLATES = {
     "metrics": "metrics/{scene}.nc",
     # stage 4
     "figure": "figures/{label}.{ext}",
-    "checks": "paper_checks.{ext}",
     "movie": "movies/{scene}.{ext}",       # cradle.figures.movie: a scene's runs in motion (mp4, gif)
     # analyses beyond the paper: their files follow form_folder (below); here the batches some read
     "mi-batch": "mi/batch/{variant}/N{N}-{model}-{chunk}.nc",
@@ -88,6 +87,20 @@ def analysis_figures(name: str, form: str, main_form: str, root: str | Path = RO
     """ext -> the figure files of one form of analysis ``name`` (``root/figures/<name>.<ext>`` for the form
     ``all`` builds, beside the form's netCDF file for another)."""
     return form_figure_paths(name, name, form, main_form, root)
+
+
+def analysis_tables(name: str, form: str, main_form: str, formats, root: str | Path = ROOT) -> dict[str, str]:
+    """ext -> the tables an analysis's drawing step writes in place of a figure (the claims table):
+    beside its netCDF file, ``root/<name>/[<form>/]<name>.<ext>``."""
+    return {ext: f"{form_folder(name, form, main_form, root)}/{name}.{ext}" for ext in formats}
+
+
+def analysis_drawn(analysis, form: str, main_form: str, root: str | Path = ROOT) -> dict[str, str]:
+    """ext -> what the drawing step of one form of ``analysis`` (:class:`cradle.analyses.protocol.Analysis`)
+    writes: its tables when it declares some, else its figure."""
+    if analysis.tables:
+        return analysis_tables(analysis.name, form, main_form, analysis.tables, root)
+    return analysis_figures(analysis.name, form, main_form, root)
 
 
 def read_path(read, form: str, root: str | Path = ROOT) -> str:

@@ -13,9 +13,9 @@ import logging
 import time
 
 from cradle.pipeline import budget
+from cradle.pipeline.runner import Progress, run_chain, setup_logging
 from cradle.scenes import stages
 from cradle.scenes.spec import Scene
-from cradle.pipeline.runner import Progress, run_chain, setup_logging
 
 log = logging.getLogger("cradle")
 
@@ -37,8 +37,8 @@ def run_scene(spec: Scene, name: str, outs: dict, log_path=None, homoclinic=None
         ]
         run_chain(steps, outs, log_path, label=name)
         return
-    from cradle.scenes import streamed
     from cradle.data.io import write_netcdf
+    from cradle.scenes import streamed
 
     setup_logging(log_path)
     t0 = time.perf_counter()

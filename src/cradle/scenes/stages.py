@@ -20,13 +20,12 @@ import time
 import numpy as np
 import xarray as xr
 
+from cradle.data.io import make_dataset
 from cradle.measurements import breathers, compare, interactions, sidebands
 from cradle.models import dps, initial, lattice
-from cradle.data.io import make_dataset
 from cradle.scenes.failure import StageFailure
 from cradle.scenes.spec import Breather, HomoclinicEntry, MapEntry, Packet, Pair, Scene, Travelling
 from cradle.specs.declare import plain
-
 
 # ---------------------------------------------------------------- stationary DpS
 

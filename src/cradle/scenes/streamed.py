@@ -30,12 +30,12 @@ import time
 import numpy as np
 import xarray as xr
 
-from cradle.measurements import breathers, interactions
-from cradle.models import lattice
-from cradle.scenes import stages
 from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
 from cradle.data.io import GLOBAL_KEYS, make_dataset, write_netcdf
 from cradle.data.provenance import provenance
+from cradle.measurements import breathers, interactions
+from cradle.models import lattice
+from cradle.scenes import stages
 from cradle.scenes.failure import StageFailure
 from cradle.scenes.spec import Scene
 from cradle.specs.declare import plain

@@ -319,7 +319,7 @@ def write(schema: dict, path: Path) -> Path:
     return path
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _nullable(cls) -> frozenset[str]:
     """The fields of a declared class where null is a value of its own: declared with a NULL default, or
     typed ``X | None`` with a default other than None (``direct_omega: null`` = the most unstable one)."""
@@ -349,7 +349,7 @@ def plain(value):
     return value
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _validator_of(cls):
     from jsonschema import Draft202012Validator
 

@@ -39,9 +39,9 @@ def _note_workflow_results(out: Path, config: Path) -> None:
 
 def cmd_run(args) -> int:
     from cradle.pipeline import budget, config as cc
+    from cradle.pipeline.scene_job import run_scene
     from cradle.scenes import stages
     from cradle.scenes.failure import StageFailure
-    from cradle.pipeline.scene_job import run_scene
     from cradle.scenes.spec import Breather
 
     cfg = load_config(args.config)  # validate: an over-budget job is refused here, before any work

@@ -2,7 +2,7 @@
 
 - :mod:`.spec`: the declaration helpers (:func:`.spec.param`) and the JSON Schema generator;
 - :mod:`.scenes`, :mod:`.sections`, :mod:`.beyond`, :mod:`.mi_statistics`,
-  :mod:`.breather_interactions`, :mod:`.dps_validity`: each
+  :mod:`.breather_interactions`: each
   section and each kind of initial condition as a frozen dataclass, with the checks the schema
   cannot express as its ``check`` method and, for the analyses, its ``resolve`` method;
 - :mod:`.validate`: coercion of strings, one-line messages, defaults; :mod:`.loading`: reading

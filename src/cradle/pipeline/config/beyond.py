@@ -2,7 +2,7 @@
 
 Each analysis is a frozen dataclass (threshold statistics over noise seeds, Bloch-Floquet stability,
 the DpS approximation error against eps and T, ...); the analyses on the protocol declare theirs in
-their own modules (theorem1, mi-diagram, mi-growth).
+their own modules.
 ``check`` reports, one line per problem, what the schema cannot express;
 ``resolve`` turns the section of a validated config into the plain dict the
 analysis module computes from (angles in radians, inherited settings merged),
@@ -13,7 +13,6 @@ from __future__ import annotations
 from cradle.specs.declare import declared, param
 
 from .breather_interactions import BreatherInteractions
-from .dps_validity import DpsValidity
 from .mi_statistics import VARIANTS, MIStatistics, MIVariant
 
 BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysis's name (its module "
@@ -21,7 +20,7 @@ BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysi
               "docs/analyses.md.")
 
 #: TRANSITION ONLY: the sections of the analyses not yet declared by their own modules (cradle.analyses._legacy)
-_LEGACY = {"mi_statistics": MIStatistics, "breather_interactions": BreatherInteractions, "dps_validity": DpsValidity}
+_LEGACY = {"mi_statistics": MIStatistics, "breather_interactions": BreatherInteractions}
 
 
 def _legacy_check(b: dict, cfg: dict, out) -> None:
@@ -32,7 +31,6 @@ def _legacy_check(b: dict, cfg: dict, out) -> None:
         if isinstance(v, dict):
             MIVariant.check(v, path + ["mi_statistics", variant], out)
     BreatherInteractions.check(sec["breather_interactions"], path + ["breather_interactions"], out)
-    DpsValidity.check(sec["dps_validity"], path + ["dps_validity"], out)
 
 
 def _beyond_class():

@@ -17,9 +17,7 @@ from cradle.specs.declare import build
 from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
 
 from .breather_interactions import BreatherInteractions
-from .dps_validity import DpsValidity
 from .mi_statistics import MIStatistics
-from .sections import WorkPrecision
 
 
 def _validated(config: dict) -> dict:
@@ -123,15 +121,6 @@ def typed(config: dict):
     return spec.build(Config, _validated(config))
 
 
-def resolved_work_precision(config: dict, name: str, form: str = "full") -> dict:
-    """The parameters of work-precision scene ``name``: ``alpha``, ``N``, ``bc`` from the ``scenes:``
-    entry of the same name (whose initial data are used), the rest from ``work_precision``."""
-    cfg = _validated(config)
-    entries = cfg["work_precision"]["scenes"]
-    if name not in entries:
-        raise ConfigError(f"config error: work_precision.scenes.{name}: no entry of that name "
-                          f"(entries: {', '.join(entries) or 'none'})")
-    return WorkPrecision.resolve(cfg, name, resolved_scene(cfg, name), form)
 
 
 def resolved_mi_statistics(config: dict, variant: str) -> dict:
@@ -144,19 +133,20 @@ def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
     return BreatherInteractions.resolve(_validated(config), form)
 
 
-def resolved_dps_validity(config: dict, form: str = "full") -> dict:
-    """``beyond.dps_validity`` of one form (full, or reduced: what ``all`` builds), T sorted."""
-    return DpsValidity.resolve(_validated(config), form)
-
-
 def analysis_spec(config: dict, name: str, form: str):
     """The typed spec of analysis ``name`` (:mod:`cradle.analyses.registry`) in one form, from the validated
-    config's section ``beyond.<name>``."""
+    config's section ``beyond.<name>``; a key named after a section of entries (scenes, homoclinic, map) given
+    as ``all`` becomes the names of every entry of that section (the claims table reads them all)."""
     from cradle.analyses.registry import ANALYSES, form_spec
     from cradle.specs.declare import from_plain
 
+    from .sections import SECTIONS
+
     a = ANALYSES[name]
-    return form_spec(from_plain(a.spec, _validated(config)["beyond"][a.name], where=f"beyond.{a.name}"), form)
+    cfg = _validated(config)
+    section = {key: (list(cfg.get(key) or {}) if key in SECTIONS and value == "all" else value)
+               for key, value in cfg["beyond"][a.name].items()}
+    return form_spec(from_plain(a.spec, section, where=f"beyond.{a.name}"), form)
 
 
 def analysis_reads(config: dict, name: str, form: str) -> dict:
