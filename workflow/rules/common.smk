@@ -19,11 +19,12 @@ from cradle.pipeline.config.movies import Movies
 PYTHON = shlex.quote(sys.executable)
 
 try:
-    for _file in workflow.configfiles:   # Snakemake's own loader keeps the last of two equal keys silently
+    for _file in workflow.configfiles:  # Snakemake's own loader keeps the last of two equal keys silently
         cc.read_yaml(_file)
     config.update(cc.validate(config))
 except cc.ConfigError as err:
     raise WorkflowError(str(err)) from None
+
 
 def code_of(*entries):
     """A rule's code inputs: its script (or module) and every cradle source file it can import,

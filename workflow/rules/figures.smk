@@ -2,10 +2,6 @@
 
 
 rule figure:
-    conda:
-        "../envs/cradle.yaml"
-    message:
-        "Drawing figure {wildcards.label}"
     input:
         code=lambda w: figure_code(w.label),
         data=figure_inputs,
@@ -13,21 +9,27 @@ rule figure:
         # update(): Snakemake keeps a backup of the previous figure and restores it if this job fails
         # (a damaged input), instead of deleting it first (docs/recovery.md)
         pdf=update(L.path("figure", label="{label}", ext="pdf")),
-        png=update(report(
-            L.path("figure", label="{label}", ext="png"),
-            caption="../report/figure.rst",
-            category="Figures",
-            labels={"figure": "{label}"},
-        )),
-    params:
-        label=lambda w: w.label,
-        options=lambda w: config["figures"][w.label],
-        scenes=lambda w: {name: kind_of(name) for name in config["figures"][w.label]["scenes"]},
+        png=update(
+            report(
+                L.path("figure", label="{label}", ext="png"),
+                caption="../report/figure.rst",
+                category="Figures",
+                labels={"figure": "{label}"},
+            )
+        ),
     log:
         L.path("log", job="figures/{label}"),
     benchmark:
         L.path("benchmark", job="figures/{label}")
     wildcard_constraints:
         label=names_regex("figures"),
+    conda:
+        "../envs/cradle.yaml"
+    params:
+        label=lambda w: w.label,
+        options=lambda w: config["figures"][w.label],
+        scenes=lambda w: {name: kind_of(name) for name in config["figures"][w.label]["scenes"]},
+    message:
+        "Drawing figure {wildcards.label}"
     script:
         "../scripts/figure.py"

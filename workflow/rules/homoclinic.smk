@@ -2,44 +2,44 @@
 
 
 rule homoclinic:
-    priority: 30  # stage 1 first: it unlocks the breather scenes
-    conda:
-        "../envs/cradle.yaml"
-    message:
-        "Solving (dpsstn) for the homoclinic solution '{wildcards.name}'"
     input:
         code=code_of("workflow/scripts/homoclinic.py"),
     output:
         L.path("homoclinic", name="{name}"),
-    params:
-        spec=lambda w: plain(cc.homoclinic(config, w.name)),
     log:
         L.path("log", job="homoclinic/{name}"),
     benchmark:  # measured against cradle.pipeline.budget's estimate by benchmarks/estimates.py
         L.path("benchmark", job="homoclinic/{name}")
     wildcard_constraints:
         name=names_regex("homoclinic"),
+    priority: 30  # stage 1 first: it unlocks the breather scenes
+    conda:
+        "../envs/cradle.yaml"
+    params:
+        spec=lambda w: plain(cc.homoclinic(config, w.name)),
+    message:
+        "Solving (dpsstn) for the homoclinic solution '{wildcards.name}'"
     script:
         "../scripts/homoclinic.py"
 
 
 rule map_orbits:
-    priority: 30  # stage 1 first, not left to the end beside one figure
-    conda:
-        "../envs/cradle.yaml"
-    message:
-        "Iterating the map G (comp1)-(comp2) for '{wildcards.name}'"
     input:
         code=code_of("workflow/scripts/map_orbits.py"),
     output:
         L.path("map", name="{name}"),
-    params:
-        spec=lambda w: plain(cc.map_entry(config, w.name)),
     log:
         L.path("log", job="map/{name}"),
     benchmark:
         L.path("benchmark", job="map/{name}")
     wildcard_constraints:
         name=names_regex("map"),
+    priority: 30  # stage 1 first, not left to the end beside one figure
+    conda:
+        "../envs/cradle.yaml"
+    params:
+        spec=lambda w: plain(cc.map_entry(config, w.name)),
+    message:
+        "Iterating the map G (comp1)-(comp2) for '{wildcards.name}'"
     script:
         "../scripts/map_orbits.py"

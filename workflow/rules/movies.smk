@@ -3,10 +3,6 @@
 # seconds to draw and encode); `snakemake -j2 movies` builds those listed under `movies.scenes`, and
 # any scene's movie is built by its path, e.g. `snakemake -j2 results/movies/loc1-pair.mp4`.
 rule movie:
-    conda:
-        "../envs/cradle.yaml"
-    message:
-        "Drawing the movie of scene {wildcards.scene}"
     input:
         code=code_of("workflow/scripts/movie.py", "cradle.figures.movie"),
         data=lambda w: [L.path(part, scene=w.scene) for part in ("exact", "dps")],
@@ -18,14 +14,18 @@ rule movie:
             labels={"movie": "{scene}"},
         ),
         gif=L.path("movie", scene="{scene}", ext="gif"),
-    params:
-        movies=lambda w: dict(config["movies"]),
     log:
         L.path("log", job="movies/{scene}"),
     benchmark:
         L.path("benchmark", job="movies/{scene}")
     wildcard_constraints:
         scene=names_regex("scenes"),
+    conda:
+        "../envs/cradle.yaml"
+    params:
+        movies=lambda w: dict(config["movies"]),
+    message:
+        "Drawing the movie of scene {wildcards.scene}"
     script:
         "../scripts/movie.py"
 

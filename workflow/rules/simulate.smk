@@ -7,43 +7,43 @@
 
 
 rule kernels:
-    priority: 40  # first: on an empty compiled-kernel cache it compiles while the other core does stage 1,
-    # instead of the first scene jobs each compiling the same kernels at once
-    conda:
-        "../envs/cradle.yaml"
-    message:
-        "Compiling the kernels of (nc) and (dfnls) (or loading them from the cache)"
     input:
         code=code_of("workflow/scripts/kernels.py"),
     output:
         L.path("kernels"),
     log:
         L.path("log", job="kernels"),
+    priority: 40  # first: on an empty compiled-kernel cache it compiles while the other core does stage 1,
+    # instead of the first scene jobs each compiling the same kernels at once
+    conda:
+        "../envs/cradle.yaml"
+    message:
+        "Compiling the kernels of (nc) and (dfnls) (or loading them from the cache)"
     script:
         "../scripts/kernels.py"
 
 
 rule simulate:
-    priority: 20  # all scenes before the figures: the two cores stay busy to the end
-    conda:
-        "../envs/cradle.yaml"
-    message:
-        "Scene '{wildcards.scene}': initial data, lattice (nc) and DpS (dfnls) runs, comparison"
     input:
         code=code_of("workflow/scripts/simulate.py"),  # pair scenes solve a profile (homoclinic)
         homoclinic=initial_inputs,
         kernels=L.path("kernels"),  # compiled once, before (the cache key: unchanged content, no rerun)
     output:
         **L.scene_paths("{scene}"),
-    params:
-        # the resolved scene's plain values, sorted (the store description, not the expanded stored
-        # times): a changed value reruns the job, a reordered config.yaml does not, a dry run stays readable
-        spec=lambda w: plain(cc.scene(config, w.scene)),
     log:
         L.path("log", job="sim/{scene}"),
     benchmark:
         L.path("benchmark", job="sim/{scene}")
     wildcard_constraints:
         scene=names_regex("scenes"),
+    priority: 20  # all scenes before the figures: the two cores stay busy to the end
+    conda:
+        "../envs/cradle.yaml"
+    params:
+        # the resolved scene's plain values, sorted (the store description, not the expanded stored
+        # times): a changed value reruns the job, a reordered config.yaml does not, a dry run stays readable
+        spec=lambda w: plain(cc.scene(config, w.scene)),
+    message:
+        "Scene '{wildcards.scene}': initial data, lattice (nc) and DpS (dfnls) runs, comparison"
     script:
         "../scripts/simulate.py"
