@@ -150,11 +150,11 @@ def test_config_errors_name_the_key():
     cfg = yaml.safe_load((cc.schema_path().parents[3] / "config.yaml").read_text())
     assert cc.analysis_spec(cfg, "breathers", "reduced").N == 10
     bad = copy.deepcopy(cfg)
-    bad["beyond"]["breathers"]["pn_omega"] = 1.11
+    bad["beyond"].setdefault("breathers", {})["pn_omega"] = 1.11
     with pytest.raises(ValueError, match="beyond.breathers.pn_omega"):
         cc.analysis_spec(bad, "breathers", "full")
     bad = copy.deepcopy(cfg)
-    bad["beyond"]["breathers"]["omegas"] = [1.1, 1.05]
+    bad["beyond"].setdefault("breathers", {})["omegas"] = [1.1, 1.05]
     with pytest.raises(ValueError, match="beyond.breathers.omegas"):
         cc.analysis_spec(bad, "breathers", "full")
 

@@ -115,7 +115,7 @@ def test_figure_draws_from_the_tiny_run(tmp_path):
 def test_config_one_eps_min_per_alpha():
     raw = yaml.safe_load((Path(__file__).resolve().parents[2] / "config.yaml").read_text())
     bad = copy.deepcopy(raw)
-    bad["beyond"]["dps-validity"]["eps_min"] = [1e-5, 1e-5]
+    bad["beyond"].setdefault("dps-validity", {})["eps_min"] = [1e-5, 1e-5]
     with pytest.raises(cc.ConfigError, match=r"beyond\.dps-validity\.eps_min .*one value per alpha"):
         cc.analysis_spec(bad, "dps-validity", "full")
     spec = cc.analysis_spec(raw, "dps-validity", "reduced")

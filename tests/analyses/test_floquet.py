@@ -100,15 +100,15 @@ def test_floquet_spec_names_the_key():
     spec = cc.analysis_spec(cfg, "floquet", FULL)
     assert abs(parse_angle(spec.q_min) - 0.4 * np.pi) < 1e-15 and spec.fine.hill_modes >= spec.hill_modes
     bad = copy.deepcopy(cfg)
-    bad["beyond"]["floquet"]["q_max"] = "0.3pi"
+    bad["beyond"].setdefault("floquet", {})["q_max"] = "0.3pi"
     with pytest.raises(ValueError, match="beyond.floquet.q_max"):
         cc.analysis_spec(bad, "floquet", FULL)
     bad = copy.deepcopy(cfg)
-    bad["beyond"]["floquet"]["ring_k"] = bad["beyond"]["floquet"]["ring_N"]
+    bad["beyond"].setdefault("floquet", {})["ring_k"] = bad["beyond"]["floquet"]["ring_N"]
     with pytest.raises(ValueError, match="beyond.floquet.ring_k"):
         cc.analysis_spec(bad, "floquet", FULL)
     bad = copy.deepcopy(cfg)
-    bad["beyond"]["floquet"]["threshold_omega_tw"] = [1.05]
+    bad["beyond"].setdefault("floquet", {})["threshold_omega_tw"] = [1.05]
     with pytest.raises(ValueError, match="threshold_omega_tw"):
         cc.analysis_spec(bad, "floquet", FULL)
 

@@ -151,7 +151,7 @@ def test_spec_its_forms_and_the_config_checks():
     with pytest.raises(cc.ConfigError, match="euler"):
         cc.validate(bad)
     bad = copy.deepcopy(raw)
-    bad["beyond"]["work-precision"]["scenes"] = {}
+    bad["beyond"].setdefault("work-precision", {})["scenes"] = {}
     with pytest.raises(cc.ConfigError, match="no scene to measure"):
         wp.ANALYSIS.batches.keys(cc.analysis_spec(bad, "work-precision", "reduced"))
 

@@ -141,7 +141,7 @@ def test_schema_is_complete():
 # ------------------------------------------------------------------ one test per class of bad input
 
 def test_alpha_not_above_one(cfg):
-    cfg["defaults"]["alpha"] = 1.0
+    cfg.setdefault("defaults", {})["alpha"] = 1.0
     one_error(cfg, "defaults.alpha = 1.0", "must be > 1")
 
 
@@ -240,7 +240,7 @@ def test_wrong_type(cfg):
 
 def test_numeric_strings_are_read_as_numbers(cfg):
     """PyYAML reads 1e-10 as a string; snakemake --config nested values are all strings."""
-    cfg["defaults"]["exact"]["rtol"] = "1e-10"
+    cfg.setdefault("defaults", {}).setdefault("exact", {})["rtol"] = "1e-10"
     assert cc.validate(cfg)["defaults"]["exact"]["rtol"] == 1e-10
 
 
@@ -264,7 +264,7 @@ def test_missing_key(cfg):
 
 
 def test_enum(cfg):
-    cfg["defaults"]["dps"]["method"] = "srkn6"
+    cfg.setdefault("defaults", {}).setdefault("dps", {})["method"] = "srkn6"
     one_error(cfg, "defaults.dps.method = 'srkn6'", "must be one of dop853, dop853_numba, rk45")
 
 
@@ -298,7 +298,7 @@ def test_names_unique_across_sections(cfg):
 def test_all_problems_are_reported(cfg):
     tw(cfg)["N"] = 1
     tw(cfg)["Nn"] = 2
-    cfg["defaults"]["alpha"] = 0.9
+    cfg.setdefault("defaults", {})["alpha"] = 0.9
     cfg["figures"]["plot4-5"]["scenes"] = ["nosuch"]
     lines = errors(cfg)
     assert len(lines) == 4, lines
