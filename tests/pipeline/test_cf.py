@@ -106,7 +106,8 @@ def _variables(module: str) -> dict:
     """The declared groups of an analysis, a group per scene (``/{scene}``) named ``s0``."""
     from importlib import import_module
 
-    return {path.format(scene="s0"): decl for path, decl in import_module(f"cradle.analyses.{module}").VARIABLES.items()}
+    variables = import_module(f"cradle.analyses.{module}").VARIABLES
+    return {path.format(scene="s0"): decl for path, decl in variables.items()}
 
 
 def _declared_tree(module: str):

@@ -252,7 +252,7 @@ def test_config_yaml_states_only_what_differs_from_the_defaults(raw):
     assert "defaults" not in raw
     for section, values in raw["beyond"].items():
         for key, value in values.items():
-            if key in ("mi_statistics", "breather_interactions") or section in ("mi_statistics", "breather_interactions"):
+            if section in ("mi_statistics", "breather_interactions"):
                 continue   # TRANSITION ONLY: restated until their analyses are ported
             assert declared["beyond"][section][key] != value, f"beyond.{section}.{key} restates its default"
     for key, value in raw["movies"].items():
