@@ -281,6 +281,10 @@ def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw
     ("floquet", "q_max", "0.3pi", "beyond.floquet.q_max = '0.3pi': must exceed q_min = '0.4pi'"),
     ("floquet", "small_q", ["3pi/5", "pi"], "beyond.floquet.small_q[1] = 'pi': must be in (0, pi)"),
     ("mi_statistics", "reduced", {"N": [201]}, "beyond.mi_statistics.reduced.N[0] = 201: must be even"),
+    # the reduced form reports the keys it replaces, once; what it keeps of the full form is said there only
+    ("floquet", "reduced", {"small_q": ["pi"]}, "beyond.floquet.reduced.small_q[0] = 'pi': must be in (0, pi)"),
+    ("floquet", "ring_k", 20, "beyond.floquet.ring_k = 20: need 0 < ring_k < ring_N = 20"),
+    ("breathers", "reduced", {"omegas": [1.2, 1.1]}, "beyond.breathers.reduced.omegas = [1.2, 1.1]: must be strictly"),
 ])
 def test_analysis_checks_are_one_line_at_validation(raw, section, key, value, words):
     """The checks the analysis modules used to make when their target was built, now made with the
@@ -289,6 +293,25 @@ def test_analysis_checks_are_one_line_at_validation(raw, section, key, value, wo
     cfg["beyond"].setdefault(section, {})[key] = value
     lines = _lines(cfg)
     assert len(lines) == 1 and words in lines[0], lines
+
+
+def test_an_entry_with_a_schema_error_is_not_checked_further(raw):
+    """The checks run on the typed objects of the entries the schema passed: a bad value is one line, with no
+    line about what follows from it (mi-growth does not call fft344 'not a travelling wave' for a misspelt
+    kind, the breathers do not compare their N with homoclinic.bond.N = 0.3, figure fft344 does not look for
+    its times in a store that is not a list) and no traceback (a q grid of 1e9 points is not built)."""
+    cfg = copy.deepcopy(raw)
+    cfg["scenes"]["tw-weak"]["store"]["snapshots"] = 3
+    cfg["scenes"]["fft344"]["initial"]["kind"] = "travelling-wave"
+    cfg["homoclinic"]["bond"]["N"] = 0.3
+    cfg["beyond"].setdefault("mi_statistics", {}).setdefault("full", {})["q_over_pi"] = {
+        "start": 0.45, "stop": 0.65, "count": 1e9}
+    assert _lines(cfg) == [
+        "config error: beyond.mi_statistics.full.q_over_pi.count = 1000000000.0: must be <= 1000",
+        "config error: homoclinic.bond.N = 0.3: must be an integer",
+        "config error: scenes.fft344.initial.kind = 'travelling-wave': must be one of travelling, breather, packet, "
+        "pair",
+        "config error: scenes.tw-weak.store.snapshots = 3: must be a list"]
 
 
 def test_analysis_scene_names_are_checked_when_resolved(raw):

@@ -5,9 +5,14 @@ from it)."""
 from __future__ import annotations
 
 import itertools
+from typing import TYPE_CHECKING
 
+from cradle.analyses.protocol import FULL, REDUCED, form_spec
 from cradle.specs.declare import declared, param
-from cradle.specs.values import form_section, number
+
+if TYPE_CHECKING:
+    from cradle.scenes.context import Context, Where
+    from cradle.specs.values import Errors
 
 _OMEGA = {"type": "number", "exclusiveMinimum": 1, "maximum": 10, "description": "One breather frequency omega_b."}
 _KINDS = {"type": "string", "enum": ["site", "bond"], "description": "A breather family: site- or bond-centred."}
@@ -68,20 +73,16 @@ class Breathers:
                                        "ring breather).", exclusiveMinimum=1, maximum=10)
     direct_growth_factor: float = param(30.0, "The direct run lasts until the unstable mode grows by this factor "
                                         "(1: no direct run).", minimum=1, maximum=1e8)
-    reduced: BreathersReduced = param(BreathersReduced(), BreathersReduced.__schema_doc__)
+    reduced: BreathersReduced = param(BreathersReduced())
 
-    @staticmethod
-    def check(b: dict, path: list, cfg: dict, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """Both forms: omegas increasing, pn_omega and kick_omega among them."""
-        for form, where in (("full", path), ("reduced", path + ["reduced"])):
-            sec = form_section(b, form)
-            om = sec.get("omegas")
-            if not (isinstance(om, list) and om and all(number(x) for x in om)):
-                continue
+        for form, at in ((FULL, where), (REDUCED, where + ["reduced"])):
+            spec = form_spec(self, form)
+            om = spec.omegas
             if any(y <= x for x, y in itertools.pairwise(om)):
-                out.add(where + ["omegas"], "must be strictly increasing", om)
-            if form == "full":
-                for key in ("pn_omega", "kick_omega"):
-                    v = sec.get(key)
-                    if number(v) and float(v) not in [float(x) for x in om]:
-                        out.add(path + [key], f"must be one of omegas = {om}", v)
+                out.add(at + ["omegas"], "must be strictly increasing", om)
+            if form == FULL:
+                for key, v in (("pn_omega", spec.pn_omega), ("kick_omega", spec.kick_omega)):
+                    if float(v) not in [float(x) for x in om]:
+                        out.add(where + [key], f"must be one of omegas = {om}", v)

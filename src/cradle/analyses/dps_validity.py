@@ -25,12 +25,18 @@ in (perturb) with small uniform noise on ``N_noise`` beads (DpS growth rate: (an
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.analyses.protocol import Analysis
+from cradle.analyses.protocol import REDUCED, Analysis, form_spec, reduced_keys
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
-from cradle.specs.values import form_section, number, show
+from cradle.specs.values import show
+
+if TYPE_CHECKING:
+    from cradle.scenes.context import Context, Where
+    from cradle.specs.values import Errors
 
 FAMILIES = ("tw-pi5", "tw-4pi5", "breather-bond", "mi-4pi5-noise")
 _Q = {"tw-pi5": np.pi / 5.0, "tw-4pi5": 4.0 * np.pi / 5.0, "mi-4pi5-noise": 4.0 * np.pi / 5.0}
@@ -91,33 +97,28 @@ class DpsValidity:
                             maximum=1e-6)
     chunk: int = param(20000, "Samples per integration chunk (bounds the memory of the long runs).", minimum=100,
                        maximum=1000000)
-    reduced: DpsValidityReduced = param(DpsValidityReduced(), DpsValidityReduced.__schema_doc__)
+    reduced: DpsValidityReduced = param(DpsValidityReduced())
 
-    @staticmethod
-    def check(b: dict, path: list, cfg: dict, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """Both forms: one eps_min per alpha, each below eps_max; the families distinct."""
-        DpsValidity._check(b, path, out)
-        reduced = b.get("reduced")
-        if isinstance(reduced, dict):
-            DpsValidity._check(form_section(b, "reduced"), path + ["reduced"], out, own=set(reduced))
+        self._check(where, out)
+        if self.reduced is not None:
+            form_spec(self, REDUCED)._check(where + ["reduced"], out, own=reduced_keys(self))
 
-    @staticmethod
-    def _check(b: dict, path: list, out, own=None) -> None:
-        al, em, hi = b.get("alpha"), b.get("eps_min"), b.get("eps_max")
+    def _check(self, where: Where, out: Errors, own: list[str] | None = None) -> None:
+        al, em, hi = self.alpha, self.eps_min, self.eps_max
 
-        def mine(key):  # the reduced form reports only the keys it replaces
+        def mine(key: str) -> bool:  # the reduced form reports only the keys it replaces
             return own is None or key in own
 
-        if isinstance(al, list) and isinstance(em, list) and len(al) != len(em) and \
-                (mine("eps_min") or mine("alpha")):
-            out.add(path + ["eps_min"], f"needs one value per alpha ({len(al)}: {show(al)})", em)
-        if isinstance(em, list) and number(hi) and mine("eps_min"):
+        if len(al) != len(em) and (mine("eps_min") or mine("alpha")):
+            out.add(where + ["eps_min"], f"needs one value per alpha ({len(al)}: {show(al)})", em)
+        if mine("eps_min"):
             for i, e in enumerate(em):
-                if number(e) and not e < hi:
-                    out.add(path + ["eps_min", i], f"must be below eps_max = {show(hi)}", e)
-        fam = b.get("families")
-        if isinstance(fam, list) and len(set(map(str, fam))) != len(fam) and mine("families"):
-            out.add(path + ["families"], "lists a family twice", fam)
+                if not e < hi:
+                    out.add(where + ["eps_min", i], f"must be below eps_max = {show(hi)}", e)
+        if len(set(map(str, self.families))) != len(self.families) and mine("families"):
+            out.add(where + ["families"], "lists a family twice", self.families)
 
 
 # ----------------------------------------------------------------- the initial data of a family
@@ -221,7 +222,8 @@ def sup_error(A0, eps: float, alpha: float, T_marks, *, sample_every: float, dt_
             x2, v2 = fine.x[-1], fine.v[-1]
         x, v, A = lat.x[-1], lat.v[-1], sol.A[-1]
     return {"abs_error": running[at_mark], "dt": dt, "energy_drift": drift, "max_compression": cmax,
-            "n_samples": t_grid.size, "t_end": float(t_grid[-1]), "halving_deviation": running_dev[at_mark] if check else np.nan,
+            "n_samples": t_grid.size, "t_end": float(t_grid[-1]),
+            "halving_deviation": running_dev[at_mark] if check else np.nan,
             "halving_energy_drift": drift2 if check else np.nan}
 
 
@@ -385,7 +387,8 @@ def compute(spec: DpsValidity, inputs=None, log=None):
                          "consistency order of (ansatz) (non-resonant harmonics of size eps^alpha, Gronwall "
                          "factor e^{C T}); the exact bound of Bidegaray-Fesquet, Dumas & James, SIAM J. Math. "
                          "Anal. 45 (2013) was not available to us",
-        "eps_ranges": "per alpha: eps_min = " + ", ".join(f"{a:g}: {m:g}" for a, m in zip(alphas, spec.eps_min))
+        "eps_ranges": "per alpha: eps_min = "
+                      + ", ".join(f"{a:g}: {m:g}" for a, m in zip(alphas, spec.eps_min, strict=False))
                       + f"; eps_max = {spec.eps_max:g}. The lattice time T eps^(1-alpha) sets the cost "
                         "(alpha = 3: T eps^-2), hence the larger eps_min at large alpha",
         "lattice_integrator": f"srkn6c, fixed dt = dt_factor 2 pi / omega_max, dt_factor = {spec.dt_factor}",

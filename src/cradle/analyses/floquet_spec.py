@@ -8,9 +8,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
+from cradle.analyses.protocol import REDUCED, form_spec, reduced_keys
 from cradle.specs.declare import declared, param
-from cradle.specs.values import angle_or_none, form_section, number, show
+from cradle.specs.values import angle_or_none, show
+
+if TYPE_CHECKING:
+    from cradle.scenes.context import Context, Where
+    from cradle.specs.values import Errors
 
 _ANGLES = {"$ref": "#/$defs/angle"}
 
@@ -42,8 +48,7 @@ class FloquetReduced:
                                           minItems=1, maxItems=10, items={"$ref": "#/$defs/angle"})
     small_q: list[float | str] = param(["3pi/5"], "Wavenumbers of the small-amplitude check.", minItems=1,
                                        maxItems=8, items={"$ref": "#/$defs/angle"})
-    convergence: FloquetConvergence = param(FloquetConvergence(hill_modes=16, grid_log2=17, wave_modes=96),
-                                            FloquetConvergence.__schema_doc__)
+    convergence: FloquetConvergence = param(FloquetConvergence(hill_modes=16, grid_log2=17, wave_modes=96))
     direct_growth_factor: float = param(100.0, "The direct run lasts until the mode grows by this factor (> 1).",
                                         exclusiveMinimum=1, maximum=100000000.0)
 
@@ -57,10 +62,6 @@ class Numerics:
     grid_log2: int
     wave_modes: int
     wave_grid_log2: int
-
-
-_FLOQUET_ANGLES = ("q_min", "q_max", "threshold_q_min", "threshold_q_max")
-_FLOQUET_ANGLE_LISTS = ("q_profiles", "small_q")
 
 
 @declared(doc="Spectral (Bloch-Floquet) stability of the exact travelling waves of (nc) in the co-moving frame "
@@ -82,7 +83,7 @@ class Floquet:
     wave_modes: int = param(128, "Sine modes of the exact wave (theorem1.solve).", minimum=8, maximum=1024)
     wave_grid_log2: int = param(15, "Grid 2^wave_grid_log2 of the wave solver; >= 8 x wave_modes (also those of "
                                 "`convergence`).", minimum=8, maximum=20)
-    convergence: FloquetConvergence = param(FloquetConvergence(), FloquetConvergence.__schema_doc__)
+    convergence: FloquetConvergence = param(FloquetConvergence())
     q_profiles: list[float | str] = param(["pi/2", "51pi/100", "52pi/100", "55pi/100", "3pi/5"], "Wavenumbers q where "
                                           "the growth rate against p is stored (numbers or 'pi/2'-style strings, in "
                                           "(0, pi)).", minItems=1, maxItems=10, items=_ANGLES)
@@ -106,58 +107,50 @@ class Floquet:
                           maximum=200)
     direct_k: int = param(5, "q = 2 pi direct_k / direct_N of the direct run (must be unstable).", minimum=1,
                           maximum=199)
-    reduced: FloquetReduced = param(FloquetReduced(), FloquetReduced.__schema_doc__)
+    reduced: FloquetReduced = param(FloquetReduced())
     direct_growth_factor: float = param(1000.0, "The direct run lasts until the mode grows by this factor (> 1).",
                                         exclusiveMinimum=1, maximum=100000000.0)
 
-    @staticmethod
-    def check(b: dict, path: list, cfg: dict, out) -> None:
-        """Both forms: the full section, and the section with the reduced keys in place."""
-        Floquet._check(b, path, out)
-        reduced = b.get("reduced")
-        if isinstance(reduced, dict):  # errors of keys the reduced form replaces; the rest are said above
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """Both forms: the full spec, and the reduced one (its keys in place)."""
+        self._check(where, out)
+        if self.reduced is not None:  # errors of keys the reduced form replaces; the rest are said above
+            at = where + ["reduced"]
+            form_spec(self, REDUCED)._check(at, out.only(at, reduced_keys(self)))
 
-            class _Own:
-                def add(self, where, *rest):
-                    if where[len(path) + 1] in reduced:
-                        out.add(where, *rest)
-
-            Floquet._check(form_section(b, "reduced"), path + ["reduced"], _Own())
-
-    @staticmethod
-    def _check(b: dict, path: list, out) -> None:
+    def _check(self, where: Where, out: Errors) -> None:
         """Angles in (0, pi) with q_min < q_max and threshold_q_min < threshold_q_max, omega_tw among
         threshold_omega_tw, grids fine enough for the Hill and sine modes, 0 < k < N for the ring checks."""
-        q = {key: angle_or_none(b.get(key)) for key in _FLOQUET_ANGLES}
+        given = {"q_min": self.q_min, "q_max": self.q_max, "threshold_q_min": self.threshold_q_min,
+                 "threshold_q_max": self.threshold_q_max}
+        q = {key: angle_or_none(value) for key, value in given.items()}
         for key, x in q.items():
             if x is not None and not 0.0 < x < math.pi:
-                out.add(path + [key], "must be in (0, pi)", b.get(key))
+                out.add(where + [key], "must be in (0, pi)", given[key])
         for lo, hi in (("q_min", "q_max"), ("threshold_q_min", "threshold_q_max")):
-            if q[lo] is not None and q[hi] is not None and 0 < q[lo] < math.pi and not q[hi] > q[lo]:
-                out.add(path + [hi], f"must exceed {lo} = {show(b.get(lo))}", b.get(hi))
-        for key in _FLOQUET_ANGLE_LISTS:
-            for i, e in enumerate(b.get(key) if isinstance(b.get(key), list) else []):
+            x_lo, x_hi = q[lo], q[hi]
+            if x_lo is not None and x_hi is not None and 0 < x_lo < math.pi and not x_hi > x_lo:
+                out.add(where + [hi], f"must exceed {lo} = {show(given[lo])}", given[hi])
+        for key, angles in (("q_profiles", self.q_profiles), ("small_q", self.small_q)):
+            for i, e in enumerate(angles):
                 x = angle_or_none(e)
                 if x is not None and not 0.0 < x < math.pi:
-                    out.add(path + [key, i], "must be in (0, pi)", e)
-        om, ths = b.get("omega_tw"), b.get("threshold_omega_tw")
-        if number(om) and isinstance(ths, list) and all(number(x) for x in ths) and \
-                float(om) not in [float(x) for x in ths]:
-            out.add(path + ["threshold_omega_tw"], f"must contain omega_tw = {show(om)}", ths)
-        conv = {**{k: b.get(k) for k in ("hill_modes", "grid_log2", "wave_modes")},
-                **(b.get("convergence") if isinstance(b.get("convergence"), dict) else {})}
-        for where, sec in ((path, b), (path + ["convergence"], conv)):
-            g, h = sec.get("grid_log2"), sec.get("hill_modes")
-            if isinstance(g, int) and isinstance(h, int) and 2 ** g < 8 * (2 * h + 1):
-                out.add(where + ["grid_log2"], f"2^grid_log2 must be >= 8 (2 hill_modes + 1) = {8 * (2 * h + 1)}", g)
-        wg, wm, cm = b.get("wave_grid_log2"), b.get("wave_modes"), conv.get("wave_modes")
-        if all(isinstance(x, int) for x in (wg, wm, cm)) and 2 ** wg < 8 * max(wm, cm):
-            out.add(path + ["wave_grid_log2"], "2^wave_grid_log2 must be >= 8 x wave_modes (also those of "
-                                               "`convergence`)", wg)
-        for key_n, key_k in (("ring_N", "ring_k"), ("direct_N", "direct_k")):
-            n, k = b.get(key_n), b.get(key_k)
-            if isinstance(n, int) and isinstance(k, int) and not 0 < k < n:
-                out.add(path + [key_k], f"need 0 < {key_k} < {key_n} = {n} (q = 2 pi k / N)", k)
+                    out.add(where + [key, i], "must be in (0, pi)", e)
+        if float(self.omega_tw) not in [float(x) for x in self.threshold_omega_tw]:
+            out.add(where + ["threshold_omega_tw"], f"must contain omega_tw = {show(self.omega_tw)}",
+                    self.threshold_omega_tw)
+        conv = self.convergence
+        for at, g, h in ((where, self.grid_log2, self.hill_modes), (where + ["convergence"], conv.grid_log2,
+                                                                     conv.hill_modes)):
+            if 2 ** g < 8 * (2 * h + 1):
+                out.add(at + ["grid_log2"], f"2^grid_log2 must be >= 8 (2 hill_modes + 1) = {8 * (2 * h + 1)}", g)
+        if 2 ** self.wave_grid_log2 < 8 * max(self.wave_modes, conv.wave_modes):
+            out.add(where + ["wave_grid_log2"], "2^wave_grid_log2 must be >= 8 x wave_modes (also those of "
+                                                "`convergence`)", self.wave_grid_log2)
+        for key_n, key_k, n, k in (("ring_N", "ring_k", self.ring_N, self.ring_k),
+                                   ("direct_N", "direct_k", self.direct_N, self.direct_k)):
+            if not 0 < k < n:
+                out.add(where + [key_k], f"need 0 < {key_k} < {key_n} = {n} (q = 2 pi k / N)", k)
 
     @property
     def numerics(self) -> Numerics:

@@ -17,6 +17,7 @@ lambda tau0 R^(1-alpha) depends on (q, p) only: that is what we tabulate.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,7 +25,10 @@ from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.models import dps
 from cradle.specs.declare import declared, param, plain
-from cradle.specs.values import number
+
+if TYPE_CHECKING:
+    from cradle.scenes.context import Context, Where
+    from cradle.specs.values import Errors
 
 
 @declared(doc="Linear stability of the DpS plane waves (ansatz3): growth-rate map over (q, p) -> "
@@ -43,24 +47,19 @@ class MIDiagram:
                                                              "items": {"description": "k_q or m_p.", "type": "integer",
                                                                        "minimum": 1, "maximum": 1999}})
 
-    @staticmethod
-    def check(b: dict, path: list, cfg: dict, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """Each check pair on the ring (0 < k_q, m_p < check_N) and unstable, lambda > 0 (ansatz3), for
         every alpha (a direct run measures a growth rate)."""
-        N, pairs, alphas = b.get("check_N"), b.get("check_pairs"), b.get("alpha")
-        if not isinstance(N, int) or not isinstance(pairs, list):
-            return
-        for i, pair in enumerate(pairs):
-            if not (isinstance(pair, list) and len(pair) == 2 and all(isinstance(x, int) for x in pair)):
-                continue
+        N = self.check_N
+        for i, pair in enumerate(self.check_pairs):
             k, m = pair
             if not (0 < k < N and 0 < m < N):
-                out.add(path + ["check_pairs", i], f"need 0 < k_q, m_p < check_N = {N}", pair)
+                out.add(where + ["check_pairs", i], f"need 0 < k_q, m_p < check_N = {N}", pair)
                 continue
-            for al in alphas if isinstance(alphas, list) else []:
-                if number(al) and al > 1 and not growth_rate(2 * math.pi * k / N, 2 * math.pi * m / N, al) > 0:
-                    out.add(path + ["check_pairs", i], f"stable for alpha = {al}; a check needs an unstable (q, p)",
-                            pair)
+            for al in self.alpha:
+                if not growth_rate(2 * math.pi * k / N, 2 * math.pi * m / N, al) > 0:
+                    out.add(where + ["check_pairs", i], f"stable for alpha = {al}; a check needs an unstable "
+                                                        f"(q, p)", pair)
                     break
 
 
@@ -125,7 +124,8 @@ def growth_rate(q, p, alpha: float, R: float = 1.0):
     entries of L are L00 = i K X, L11 = -i K Y, L01 L10 = K^2 (alpha-1)^2 (c - cos p)^2 / 4 with
     X + Y = (alpha-1)(1-c) + (alpha+1) c w, so that
 
-        lambda = (K/2) sqrt(max(0, f)),  f = w [(alpha-1) + (alpha+1) c] [w ((alpha-1) - (alpha+1) c) - 4 (alpha-1) s^2],
+        lambda = (K/2) sqrt(max(0, f)),
+        f = w [(alpha-1) + (alpha+1) c] [w ((alpha-1) - (alpha+1) c) - 4 (alpha-1) s^2],
 
     written without cancellation (the Goldstone mode p = 0 is exactly neutral). For c >= 0 the last
     bracket is <= -4c <= 0 (w <= 2): every plane wave with |q| <= pi/2 is linearly stable; for c < 0

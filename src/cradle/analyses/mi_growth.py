@@ -39,6 +39,7 @@ for every p gives the measured rate-versus-p curve.
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -47,8 +48,13 @@ from cradle.analyses.protocol import Analysis, scene_reads
 from cradle.data.variables import Var
 from cradle.measurements import compare
 from cradle.models import dps
+from cradle.scenes.spec import Travelling
 from cradle.specs.declare import declared, param, plain
-from cradle.specs.values import ConfigError, entries, store_times
+from cradle.specs.values import ConfigError, store_times
+
+if TYPE_CHECKING:
+    from cradle.scenes.context import Context, Where
+    from cradle.specs.values import Errors
 
 MODELS = ("exact", "dps")
 #: the growth-rate diagram of the mi-growth figure: max_p of the scaled linear DpS rate on THEORY_N_Q
@@ -76,20 +82,15 @@ class MIGrowth:
     r2_min: float = param(0.95, "Smallest coefficient of determination of the log-linear fit for the growth to be "
                           "called exponential.", exclusiveMinimum=0, maximum=1.0)
 
-    @staticmethod
-    def check(b: dict, path: list, cfg: dict, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """Every named scene that exists is a travelling wave on a periodic ring. Names of missing scenes
         are reported when the target is planned (its reads), so that a config with fewer scenes (a test's)
         still validates."""
-        scenes = entries(cfg, "scenes")
-        for i, name in enumerate(b.get("scenes") if isinstance(b.get("scenes"), list) else []):
-            sc = scenes.get(name) if isinstance(name, str) else None
-            if sc is None:
-                continue
-            ini = sc.get("initial") if isinstance(sc.get("initial"), dict) else {}
-            if ini.get("kind") != "travelling" or sc.get("bc") != "periodic":
-                out.add(path + ["scenes", i], "must be a travelling-wave scene on a periodic ring (initial.kind "
-                                              "travelling, bc periodic)", name)
+        for i, name in enumerate(self.scenes):
+            sc = context.scenes.get(name)
+            if sc is not None and not (isinstance(sc.initial, Travelling) and sc.bc == "periodic"):
+                out.add(where + ["scenes", i], "must be a travelling-wave scene on a periodic ring (initial.kind "
+                                               "travelling, bc periodic)", name)
 
 
 # ---------------------------------------------------------------- spectra
@@ -292,7 +293,6 @@ def compute(spec: MIGrowth, inputs: dict, log=None):
     is rerun with the integrators its files were computed with (:func:`cradle.scenes.stored.scene_of`).
     """
     from cradle.data.io import make_tree
-    from cradle.scenes.spec import Travelling
     from cradle.scenes.stored import scene_of
 
     wall0 = time.perf_counter()

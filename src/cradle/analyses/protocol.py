@@ -7,7 +7,9 @@ An analysis is one module of :mod:`cradle.analyses` that defines ``ANALYSIS = An
   figure ``results/figures/mi-growth.{pdf,png}`` drawn by ``draw`` of ``cradle/figures/mi_growth.py``;
 * ``spec``: its declared spec class (:func:`cradle.specs.declare.declared`), the full form; a field
   ``reduced`` (a declared class of optional overrides, or of what a method ``reduced_form()`` keeps)
-  makes the cheaper form ``all`` builds (:func:`form_spec`);
+  makes the cheaper form ``all`` builds (:func:`form_spec`); what the schema cannot express is its method
+  ``check(where, context, out)`` (:class:`cradle.scenes.context.Checked`), run on the typed section when
+  the config is validated (a reduced form reports its own keys, :func:`reduced_keys`);
 * ``reads(spec)``: the files it reads, by name (:class:`Read`: a layout kind and its names), opened and
   verified by the pipeline and handed to ``compute`` under those names;
 * ``batches``: optionally, the jobs its work is split into (:class:`Batches`), each written apart and
@@ -113,7 +115,15 @@ def form_spec(spec, form: str):
     if form == REDUCED and hasattr(spec, "reduced_form"):
         return spec.reduced_form()
     overrides = {}
-    if form == REDUCED and spec.reduced is not None:
-        overrides = {f.name: getattr(spec.reduced, f.name) for f in dataclasses.fields(spec.reduced)
-                     if getattr(spec.reduced, f.name) is not None}
+    if form == REDUCED:
+        overrides = {name: getattr(spec.reduced, name) for name in reduced_keys(spec)}
     return dataclasses.replace(spec, **overrides, reduced=None)
+
+
+def reduced_keys(spec) -> list[str]:
+    """The fields whose values the reduced form of ``spec`` gives in place of the full ones (its overrides
+    that are not left out; none for a spec without ``reduced``): its check reports only those."""
+    reduced = getattr(spec, "reduced", None)
+    if reduced is None:
+        return []
+    return [f.name for f in dataclasses.fields(reduced) if getattr(reduced, f.name) is not None]

@@ -11,7 +11,9 @@ initial-data files); :func:`compute` stores them as a tree of netCDF groups (:da
 """
 from __future__ import annotations
 
+import itertools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,8 +21,13 @@ from cradle.analyses.protocol import Analysis, scene_reads
 from cradle.data.variables import Var
 from cradle.models import dps
 from cradle.models.waves import Wave, branch, dV0, solve, wave_max
+from cradle.scenes.spec import Travelling
 from cradle.specs.declare import declared, param, plain
-from cradle.specs.values import angle_expr, angle_or_none, entries, number, parse_angle, show
+from cradle.specs.values import angle_expr, angle_or_none, parse_angle, show
+
+if TYPE_CHECKING:
+    from cradle.scenes.context import Context, Where
+    from cradle.specs.values import Errors
 
 
 @declared(doc="Exact periodic travelling waves of (nc) with V = V0 by a sine-series Newton solver of (ad), against "
@@ -57,30 +64,24 @@ class Theorem1:
         """The wavenumbers q in radians."""
         return [parse_angle(q) for q in self.q]
 
-    @staticmethod
-    def check(b: dict, path: list, cfg: dict, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """q in (0, pi], a_max > a_min, a grid fine enough for the modes (2^grid_log2 >= 8 x
         max(modes, 2 x max(convergence_modes))), and every named scene that exists a travelling wave.
         Names of missing scenes are reported when the target is planned (its reads), so that a config
         with fewer scenes (a test's) still validates."""
-        qs, names = b.get("q"), b.get("scenes")
-        for i, q in enumerate(qs if isinstance(qs, list) else []):
+        for i, q in enumerate(self.q):
             x = angle_or_none(q)
             if x is not None and not 0.0 < x <= math.pi + 1e-12:
-                out.add(path + ["q", i], "must be in (0, pi]", q)
-        lo, hi = b.get("a_min"), b.get("a_max")
-        if number(lo) and number(hi) and not hi > lo:
-            out.add(path + ["a_max"], f"must exceed a_min = {show(lo)}", hi)
-        g, m, cm = b.get("grid_log2"), b.get("modes"), b.get("convergence_modes")
-        if isinstance(g, int) and isinstance(m, int) and isinstance(cm, list) and cm and \
-                all(isinstance(x, int) for x in cm) and 2 ** g < 8 * max(m, 2 * max(cm)):
-            out.add(path + ["grid_log2"], "2^grid_log2 must be >= 8 x max(modes, 2 x max(convergence_modes))", g)
-        scenes = entries(cfg, "scenes")
-        for i, name in enumerate(names if isinstance(names, list) else []):
-            sc = scenes.get(name) if isinstance(name, str) else None
-            ini = sc.get("initial") if sc is not None and isinstance(sc.get("initial"), dict) else None
-            if ini is not None and ini.get("kind") != "travelling":
-                out.add(path + ["scenes", i], "not a travelling-wave scene", name)
+                out.add(where + ["q", i], "must be in (0, pi]", q)
+        if not self.a_max > self.a_min:
+            out.add(where + ["a_max"], f"must exceed a_min = {show(self.a_min)}", self.a_max)
+        if 2 ** self.grid_log2 < 8 * max(self.modes, 2 * max(self.convergence_modes)):
+            out.add(where + ["grid_log2"], "2^grid_log2 must be >= 8 x max(modes, 2 x max(convergence_modes))",
+                    self.grid_log2)
+        for i, name in enumerate(self.scenes):
+            sc = context.scenes.get(name)
+            if sc is not None and not isinstance(sc.initial, Travelling):
+                out.add(where + ["scenes", i], "not a travelling-wave scene", name)
 
 
 _AQ = ("alpha", "q")
@@ -186,12 +187,11 @@ def va_leading(xi, q, alpha):
 
     f = lambda s: float(N0(s, q, alpha))  # noqa: E731
     br = _breaks(q)
-    opts = dict(epsabs=1e-13, epsrel=1e-11, limit=400)
 
     def integral(g, lo, hi):
         pts = [p for p in br if lo < p < hi]
         edges = [lo] + pts + [hi]
-        return sum(quad(g, x0, x1, **opts)[0] for x0, x1 in zip(edges[:-1], edges[1:]))
+        return sum(quad(g, x0, x1, epsabs=1e-13, epsrel=1e-11, limit=400)[0] for x0, x1 in itertools.pairwise(edges))
 
     import warnings
 
@@ -202,7 +202,7 @@ def va_leading(xi, q, alpha):
     xi = np.atleast_1d(np.asarray(xi, dtype=float))
     out = np.empty_like(xi)
     for i, x in enumerate(xi):
-        conv = integral(lambda s: np.sin(x - s) * Ph(s), 0.0, x) if x > 0 else 0.0
+        conv = integral(lambda s, x=x: np.sin(x - s) * Ph(s), 0.0, x) if x > 0 else 0.0
         out[i] = np.sin(x) * kcoef + conv
     return out
 

@@ -57,10 +57,13 @@ from cradle.data.variables import Var
 from cradle.models import lattice
 from cradle.scenes.spec import LATTICE_ADAPTIVE, SPLITTINGS
 from cradle.specs.declare import REQUIRED, declared, param, plain
-from cradle.specs.values import ConfigError, did_you_mean, entries
+from cradle.specs.values import ConfigError, did_you_mean
 
 if TYPE_CHECKING:
     import xarray as xr
+
+    from cradle.scenes.context import Context, Where
+    from cradle.specs.values import Errors
 
 #: Variables of one scene's group (and of its batch file), declared beside the analysis:
 #: :func:`cradle.data.io.make_dataset` takes their dims, long names and units from here.
@@ -155,30 +158,25 @@ class WorkPrecision:
                                                     additionalProperties=False,
                                                     properties={m: _ladder(m) for m in (*SPLITTINGS,
                                                                                         *LATTICE_ADAPTIVE)})
-    reduced: WorkPrecisionReduced = param(WorkPrecisionReduced(), WorkPrecisionReduced.__schema_doc__)
+    reduced: WorkPrecisionReduced = param(WorkPrecisionReduced())
 
-    @staticmethod
-    def check(b: dict, path: list, cfg: dict, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """The scenes name `scenes:` entries (their initial data are measured); the reduced form keeps
         some of those scenes and methods."""
-        if not isinstance(b.get("scenes"), dict):
-            return
-        scenes = entries(cfg, "scenes")
-        for name in b["scenes"]:
+        scenes = context.given["scenes"]
+        for name in self.scenes:
             if name not in scenes:
-                out.add(path + ["scenes", name], f"unknown scene: no `scenes:` entry of that "
-                                                 f"name{did_you_mean(name, scenes)}")
-        given = b.get("reduced")
-        red: dict = given if isinstance(given, dict) else {}
-        if not b["scenes"]:  # nothing measured: the reduced form's defaults name nothing to check
+                out.add(where + ["scenes", name], f"unknown scene: no `scenes:` entry of that "
+                                                  f"name{did_you_mean(name, scenes)}")
+        if not self.scenes:  # nothing measured: the reduced form's defaults name nothing to check
             return
-        for i, name in enumerate(red.get("scenes") or []):
-            if name not in b["scenes"]:
-                out.add(path + ["reduced", "scenes", i], f"not a work-precision scene"
-                                                         f"{did_you_mean(name, list(b['scenes']))}", name)
-        kept = [m for m in red.get("methods") or [] if m in (b.get("methods") or {})]
-        if red.get("methods") and isinstance(b.get("methods"), dict) and b["methods"] and not kept:
-            out.add(path + ["reduced", "methods"], "names no method of work-precision.methods", red["methods"])
+        red = self.reduced
+        for i, name in enumerate(red.scenes):
+            if name not in self.scenes:
+                out.add(where + ["reduced", "scenes", i], f"not a work-precision scene"
+                                                          f"{did_you_mean(name, list(self.scenes))}", name)
+        if self.methods and not [m for m in red.methods if m in self.methods]:
+            out.add(where + ["reduced", "methods"], "names no method of work-precision.methods", red.methods)
 
     def reduced_form(self) -> WorkPrecision:
         """The reduced form: the scenes of ``reduced.scenes`` measured (those this spec measures), run to
@@ -348,7 +346,8 @@ def measure(spec: WorkPrecision, scene: str, x0, v0, alpha: float, bc: str, a: f
              "reference_energy_drift": fine.energy_drift, "reference_wall_time_s": ref_wall,
              "statistic": "time mean of sum_n V0(x_{n+1} - x_n) / H(0) over grid times in (t_valid, t_end]",
              "statistic_reference": stat_ref,
-             "parameter_kind": json.dumps(dict(zip(methods, kinds))), "repeat_time_s": spec.repeat_time,
+             "parameter_kind": json.dumps(dict(zip(methods, kinds, strict=True))),
+             "repeat_time_s": spec.repeat_time,
              "machine": machine(), "date": _dt.date.today().isoformat(), "numba_version": _version("numba"),
              "scipy_version": _version("scipy")}
     return _dataset(out, methods, S, t, D, attrs, title=f"work-precision of the lattice integrators, scene "

@@ -13,14 +13,16 @@ or :class:`MapEntry` has its ``alpha`` filled in.
 
 Each class's ``check`` holds the physical checks the schema cannot express (a
 wave that fits the ring, a breather built from an existing homoclinic entry
-with the same N and bc, ...). Checks read the schema-filled mapping, which may
-hold values of the wrong type (the schema reports those): they test before use.
+with the same N and bc, ...). It is a method of the typed object, run on the
+entries the schema passed (:mod:`cradle.scenes.context`): it reads attributes
+of the types they are declared with.
 """
 from __future__ import annotations
 
 import copy
 import math
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
 from cradle.specs.values import (
@@ -28,15 +30,16 @@ from cradle.specs.values import (
     MAX_STORED_TIMES,
     TIME_TOL,
     ConfigError,
+    Errors,
     angle_expr,
-    entries,
-    finite,
     grid_size,
-    number,
     parse_angle,
     show,
     store_times,
 )
+
+if TYPE_CHECKING:
+    from .context import Context, Where
 
 SPLITTINGS = ("srkn6c", "srkn4c", "srkn6", "srkn4", "strang")   # fixed step: dt_factor
 LATTICE_ADAPTIVE = ("dop853_numba", "dop853", "rk45", "lsoda", "radau")   # error control: rtol
@@ -111,38 +114,36 @@ class Travelling:
         """q as written ('pi/5'; a number as its repr), kept beside its value in radians."""
         return angle_expr(self.q)
 
-    @staticmethod
-    def check(ini: dict, N, bc, alpha, path: list, out) -> None:
+    def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
         """q in (-pi, pi], q N / (2 pi) an integer on a ring, exactly one of a and omega_tw, and a
-        finite a > 0 from (freq) when omega_tw is given."""
-        q_raw = ini.get("q")
+        finite a > 0 from (freq) when omega_tw is given (``where``: the scene's key path)."""
+        path = where + ["initial"]
         q = None
-        if q_raw is not None:
-            try:
-                q = parse_angle(q_raw)
-            except ConfigError as err:
-                out.add(path + ["q"], "not an angle: " + str(err).split("as an angle: ", 1)[-1], q_raw)
+        try:
+            q = parse_angle(self.q)
+        except ConfigError as err:
+            out.add(path + ["q"], "not an angle: " + str(err).split("as an angle: ", 1)[-1], self.q)
         if q is not None:
             if not (-math.pi + 1e-12 < q <= math.pi + 1e-12):
-                out.add(path + ["q"], f"must be in (-pi, pi], got q = {q:.10g} rad", q_raw)
-            elif bc == "periodic" and isinstance(N, int) and N >= 2:
-                m = q * N / (2.0 * math.pi)
+                out.add(path + ["q"], f"must be in (-pi, pi], got q = {q:.10g} rad", self.q)
+            elif scene.bc == "periodic":
+                m = q * scene.N / (2.0 * math.pi)
                 if abs(m - round(m)) > INTEGER_TOL:
                     out.add(path + ["q"], f"with periodic ends q N/(2 pi) must be an integer (the wave must fit the "
-                                          f"ring), got q N/(2 pi) = {m:.10g} (N = {N})", q_raw)
-        a, om = ini.get("a"), ini.get("omega_tw")
+                                          f"ring), got q N/(2 pi) = {m:.10g} (N = {scene.N})", self.q)
+        a, om = self.a, self.omega_tw
         if a is not None and om is not None:
             out.add(path, f"give exactly one of a and omega_tw, got both (a = {show(a)}, omega_tw = {show(om)})")
         elif a is None and om is None:
             out.add(path, "give exactly one of a and omega_tw, got neither")
-        elif finite(om) and om > 1 and q is not None:
+        elif om is not None and q is not None:
             if abs(math.sin(q / 2.0)) < 1e-12:
                 out.add(path + ["q"], "must not be 0 with omega_tw: (freq) gives omega_tw = 1 for every a when "
-                                      "q = 0; give a instead of omega_tw", q_raw)
-            elif finite(alpha) and alpha > 1:
+                                      "q = 0; give a instead of omega_tw", self.q)
+            else:
                 from cradle.models import dps  # the amplitude must come out finite and positive
                 try:
-                    a_derived = dps.amplitude_from_omega(float(om), q, alpha)
+                    a_derived = dps.amplitude_from_omega(float(om), q, scene.alpha)
                 except (ValueError, OverflowError, ZeroDivisionError) as err:
                     out.add(path + ["omega_tw"], f"cannot derive a from (freq): {err}", om)
                 else:
@@ -163,38 +164,33 @@ class Breather:
     site: int = param(None, "Bead where amplitude is measured (0 <= site < N); default: the largest |a_n|.",
                       minimum=0)
 
-    @staticmethod
-    def check(ini: dict, scene: dict, cfg: dict, alpha, path: list, scene_path: list, out) -> None:
+    def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
         """Exactly one of omega_sw and amplitude, a site on the chain, and a homoclinic entry of the
-        same N, bc and alpha (the breather is built from it)."""
-        om, amp = ini.get("omega_sw"), ini.get("amplitude")
+        same N, bc and alpha (the breather is built from it; ``where``: the scene's key path)."""
+        path = where + ["initial"]
+        om, amp = self.omega_sw, self.amplitude
         if om is not None and amp is not None:
             out.add(path, f"give exactly one of omega_sw and amplitude, got both "
                           f"(omega_sw = {show(om)}, amplitude = {show(amp)})")
         elif om is None and amp is None:
             out.add(path, "give exactly one of omega_sw and amplitude, got neither")
-        N = scene.get("N")
-        site = ini.get("site")
-        if number(site) and isinstance(N, int) and not 0 <= site < N:
-            out.add(path + ["site"], f"must be a bead index in [0, N-1] = [0, {N - 1}]", site)
-        name = ini.get("homoclinic")
-        if not isinstance(name, str):
+        if self.site is not None and not 0 <= self.site < scene.N:
+            out.add(path + ["site"], f"must be a bead index in [0, N-1] = [0, {scene.N - 1}]", self.site)
+        name, known = self.homoclinic, context.given.get("homoclinic", ())
+        if name not in known:
+            out.add(path + ["homoclinic"], f"no homoclinic entry of that name (homoclinic entries: "
+                                           f"{', '.join(known) or 'none'})", name)
             return
-        homs = entries(cfg, "homoclinic")
-        if name not in homs:
-            known = ", ".join(homs) or "none"
-            out.add(path + ["homoclinic"], f"no homoclinic entry of that name (homoclinic entries: {known})", name)
+        h = context.homoclinic.get(name)
+        if h is None:  # an entry with schema errors: those are said
             return
-        h = homs[name]
-        for key in ("N", "bc"):
-            if scene.get(key) is not None and h.get(key) is not None and scene.get(key) != h.get(key):
-                out.add(scene_path + [key], f"must equal homoclinic.{name}.{key} = {show(h.get(key))} "
-                                            f"(the breather is built from that solution)", scene.get(key))
-        h_alpha = alpha_of(cfg, h)
-        # a non-finite alpha is reported once, where it is written
-        if finite(alpha) and finite(h_alpha) and alpha != h_alpha:
-            out.add(scene_path + ["alpha"], f"must equal the alpha of homoclinic.{name} ({h_alpha!r}): the breather "
-                                            f"is built from that solution", alpha)
+        for key, value, theirs in (("N", scene.N, h.N), ("bc", scene.bc, h.bc)):
+            if value != theirs:
+                out.add(where + [key], f"must equal homoclinic.{name}.{key} = {show(theirs)} "
+                                       f"(the breather is built from that solution)", value)
+        if scene.alpha != h.alpha:
+            out.add(where + ["alpha"], f"must equal the alpha of homoclinic.{name} ({h.alpha!r}): the breather "
+                                       f"is built from that solution", scene.alpha)
 
 
 @declared("packet", doc="Modulated binary oscillation at rest (figure loc1, left): x_n(0) = amplitude (-1)^n "
@@ -210,16 +206,13 @@ class Packet:
     centre: float = param(None, "Centre of the envelope, a site (integer) or a bond (half-integer) in [0, N-1]; "
                           "default (N-1)/2.", minimum=0)
 
-    @staticmethod
-    def check(ini: dict, N, path: list, out) -> None:
-        """The envelope must fit the chain and be centred on it (loc1, left)."""
-        if not isinstance(N, int) or N < 2:
-            return
-        width, centre = ini.get("width"), ini.get("centre")
-        if number(width) and width > N:
-            out.add(path + ["width"], f"must be <= N = {N} (the envelope must fit the chain)", width)
-        if number(centre) and not 0 <= centre <= N - 1:
-            out.add(path + ["centre"], f"must be in [0, N-1] = [0, {N - 1}]", centre)
+    def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
+        """The envelope must fit the chain and be centred on it (loc1, left; ``where``: the scene's key path)."""
+        path, N = where + ["initial"], scene.N
+        if self.width > N:
+            out.add(path + ["width"], f"must be <= N = {N} (the envelope must fit the chain)", self.width)
+        if self.centre is not None and not 0 <= self.centre <= N - 1:
+            out.add(path + ["centre"], f"must be in [0, N-1] = [0, {N - 1}]", self.centre)
 
 
 @declared("pair", doc="Two static breathers at rest (figure loc1, right): two copies of a homoclinic profile of "
@@ -237,16 +230,13 @@ class Pair:
     centre: int = param(None, "Site the profile is centred on before the copies are shifted (0 <= centre < N); "
                         "default N // 2.", minimum=0)
 
-    @staticmethod
-    def check(ini: dict, N, path: list, out) -> None:
-        """The two copies must be distinct and the centre a site (loc1, right)."""
-        if not isinstance(N, int) or N < 2:
-            return
-        sep, centre = ini.get("separation"), ini.get("centre")
-        if number(sep) and not 1 <= sep < N:
-            out.add(path + ["separation"], f"must be in [1, N-1] = [1, {N - 1}]", sep)
-        if number(centre) and not 0 <= centre < N:
-            out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", centre)
+    def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
+        """The two copies must be distinct and the centre a site (loc1, right; ``where``: the scene's key path)."""
+        path, N = where + ["initial"], scene.N
+        if not 1 <= self.separation < N:
+            out.add(path + ["separation"], f"must be in [1, N-1] = [1, {N - 1}]", self.separation)
+        if self.centre is not None and not 0 <= self.centre < N:
+            out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", self.centre)
 
 
 INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair}
@@ -283,55 +273,25 @@ class Scene:
         """The stored times: 0, the grid of ``store.every``, the snapshots and t_end (:func:`store_times`)."""
         return tuple(store_times(plain(self.store), self.t_end))
 
-    @staticmethod
-    def check(name: str, scene: dict, cfg: dict, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """Snapshots increasing within [0, t_end], a stored grid of sane size, and the checks of the
         initial condition's kind."""
-        path = ["scenes", name]
-        N, bc = scene.get("N"), scene.get("bc", "periodic")
-        alpha = alpha_of(cfg, scene)
-        t_end = scene.get("t_end")
-        t_ok = finite(t_end) and t_end > 0
-        store = scene.get("store")
-        if isinstance(store, dict):
-            snaps = store.get("snapshots")
-            prev = None
-            for i, t in enumerate(snaps if isinstance(snaps, list) else []):
-                if not finite(t):
-                    continue
-                p = path + ["store", "snapshots", i]
-                if t_ok and t > t_end + TIME_TOL:
-                    out.add(p, f"must be <= t_end = {show(t_end)}", t)
-                elif prev is not None and not t > prev:
-                    out.add(p, f"must be > the previous snapshot {show(prev)} (snapshots must be strictly "
-                               f"increasing)", t)
-                prev = t
-            every = store.get("every")
-            if t_ok and finite(every) and every > 0:
-                n = grid_size(store, t_end)
-                if n > MAX_STORED_TIMES:
-                    out.add(path + ["store", "every"], f"stores ~{n} times on [0, t_end = {show(t_end)}], more "
-                                                       f"than {MAX_STORED_TIMES}", every)
-        ini = scene.get("initial")
-        if not isinstance(ini, dict):
-            return
-        kind, where = ini.get("kind"), path + ["initial"]
-        if kind == "travelling":
-            Travelling.check(ini, N, bc, alpha, where, out)
-        elif kind == "breather":
-            Breather.check(ini, scene, cfg, alpha, where, path, out)
-        elif kind == "packet":
-            Packet.check(ini, N, where, out)
-        elif kind == "pair":
-            Pair.check(ini, N, where, out)
-
-
-def alpha_of(cfg: dict, entry: dict) -> float | None:
-    """The alpha an entry runs with: its own, else defaults.alpha (None if neither is a number)."""
-    a = entry.get("alpha")
-    if a is None and isinstance(cfg.get("defaults"), dict):
-        a = cfg["defaults"].get("alpha")
-    return float(a) if number(a) else None
+        t_end, prev = self.t_end, None
+        for i, t in enumerate(self.store.snapshots or []):
+            p = where + ["store", "snapshots", i]
+            if t > t_end + TIME_TOL:
+                out.add(p, f"must be <= t_end = {show(t_end)}", t)
+            elif prev is not None and not t > prev:
+                out.add(p, f"must be > the previous snapshot {show(prev)} (snapshots must be strictly "
+                           f"increasing)", t)
+            prev = t
+        every = self.store.every
+        if every is not None:
+            n = grid_size(self.store.snapshots, every, t_end)
+            if n > MAX_STORED_TIMES:
+                out.add(where + ["store", "every"], f"stores ~{n} times on [0, t_end = {show(t_end)}], more "
+                                                    f"than {MAX_STORED_TIMES}", every)
+        self.initial.check(self, where, context, out)
 
 
 _POINT = {"type": "number"}
@@ -359,18 +319,14 @@ class MapEntry:
     line: MapLine = param(None, "`count` starting points equally spaced on the segment from `from` to `to` (both "
                           "ends included); added after `starts`.")
 
-    @staticmethod
-    def check(name: str, entry: dict, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """Every starting point inside the box ||U||_inf <= box."""
-        box, starts = entry.get("box"), entry.get("starts")
-        points = [(["map", name, "starts", i], u) for i, u in enumerate(starts if isinstance(starts, list) else [])]
-        line = entry.get("line")
-        if isinstance(line, dict):
-            points += [(["map", name, "line", end], line.get(end)) for end in ("from", "to")]
-        if number(box):
-            for key, u in points:
-                if isinstance(u, list) and u and all(number(x) for x in u) and max(abs(x) for x in u) > box:
-                    out.add(key, f"must lie in the box ||U||_inf <= box = {show(box)}", u)
+        points = [(where + ["starts", i], u) for i, u in enumerate(self.starts or [])]
+        if self.line is not None:
+            points += [(where + ["line", "from"], self.line.from_), (where + ["line", "to"], self.line.to)]
+        for key, u in points:
+            if max(abs(x) for x in u) > self.box:
+                out.add(key, f"must lie in the box ||U||_inf <= box = {show(self.box)}", u)
 
 
 @declared("homoclinicEntry", doc="A homoclinic solution of (dpsstn) found by Powell's hybrid method from an initial "
@@ -389,16 +345,12 @@ class HomoclinicEntry:
                       exclusiveMinimum=0)
     centre: int = param(None, "Site the guess is centred on (0 <= centre < N); default N // 2.", minimum=0)
 
-    @staticmethod
-    def check(name: str, entry: dict, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """The centre a site of the chain, the two humps of a double guess distinct."""
-        path, N = ["homoclinic", name], entry.get("N")
-        c = entry.get("centre")
-        if number(c) and isinstance(N, int) and not 0 <= c < N:
-            out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", c)
-        sep = entry.get("separation")
-        if entry.get("guess") == "double" and number(sep) and isinstance(N, int) and not 1 <= sep < N:
-            out.add(path + ["separation"], f"must be in [1, N-1] = [1, {N - 1}]", sep)
+        if self.centre is not None and not 0 <= self.centre < self.N:
+            out.add(where + ["centre"], f"must be a site index in [0, N-1] = [0, {self.N - 1}]", self.centre)
+        if self.guess == "double" and not 1 <= self.separation < self.N:
+            out.add(where + ["separation"], f"must be in [1, N-1] = [1, {self.N - 1}]", self.separation)
 
 
 def _merged(base, override):

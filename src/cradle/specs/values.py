@@ -6,6 +6,7 @@ Every problem is one line naming the key path and the value::
 """
 from __future__ import annotations
 
+import copy
 import json
 import math
 import re
@@ -83,11 +84,16 @@ def finite(x) -> bool:
 class Errors:
     """Problems by key path, in order; at most one kind of complaint per path."""
 
-    def __init__(self):
+    def __init__(self) -> None:
         self.lines: list[str] = []
         self.paths: set[str] = set()
+        self._keys: tuple[int, frozenset] | None = None   # a view's filter (:meth:`only`)
 
-    def add(self, path, what: str, value=..., *, force: bool = False):
+    def add(self, path, what: str, value=..., *, force: bool = False) -> None:
+        if self._keys is not None:
+            depth, keys = self._keys
+            if not (isinstance(path, list) and len(path) > depth and path[depth] in keys):
+                return
         p = path if isinstance(path, str) else key_path(path)
         if p in self.paths and not force:
             return
@@ -100,24 +106,21 @@ class Errors:
     def has(self, path) -> bool:
         return (path if isinstance(path, str) else key_path(path)) in self.paths
 
-    def raise_any(self):
+    def within(self, path: list) -> bool:
+        """Whether a problem was reported at ``path`` or at a key below it."""
+        p = key_path(path)
+        return any(q == p or q.startswith((p + ".", p + "[")) for q in self.paths)
+
+    def only(self, path: list, keys) -> Errors:
+        """A view of these problems that takes only those at one of ``keys`` under ``path`` (a reduced form
+        reports the keys it replaces; the others are said with the full form)."""
+        view = copy.copy(self)   # the same lines and paths
+        view._keys = (len(path), frozenset(keys))
+        return view
+
+    def raise_any(self) -> None:
         if self.lines:
             raise ConfigError(self.lines)
-
-
-def entries(cfg, section) -> dict:
-    """The mapping entries of one name-keyed section (map, homoclinic, scenes), skipping malformed ones."""
-    sec = cfg.get(section)
-    return {k: v for k, v in sec.items() if isinstance(v, dict)} if isinstance(sec, dict) else {}
-
-
-def form_section(b: dict, form: str) -> dict:
-    """An analysis section of one form: its full keys, with the keys given under ``reduced`` in place for
-    ``form == "reduced"`` (a null there keeps the full value)."""
-    out = {k: v for k, v in b.items() if k != "reduced"}
-    if form == "reduced":
-        out.update({k: v for k, v in (b.get("reduced") or {}).items() if v is not None})
-    return out
 
 
 def parse_angle(value) -> float:
@@ -158,10 +161,9 @@ def angle_expr(value) -> str:
     return value if isinstance(value, str) else repr(float(value))
 
 
-def grid_size(store: dict, t_end: float) -> int:
-    """An upper bound on the number of times :func:`store_times` gives."""
-    every = store.get("every")
-    n = len(store.get("snapshots") or ()) + 2
+def grid_size(snapshots, every: float | None, t_end: float) -> int:
+    """An upper bound on the number of times :func:`store_times` gives for these ``snapshots`` and ``every``."""
+    n = len(snapshots or ()) + 2
     if every:
         n += int(math.floor(t_end / every * (1.0 + 1e-12) + TIME_TOL)) + 1
     return n

@@ -2,8 +2,19 @@
 (cradle.analyses.breather_interactions)."""
 from __future__ import annotations
 
+from cradle.scenes.context import Context, Where
 from cradle.specs.declare import declared, param
-from cradle.specs.values import form_section
+from cradle.specs.values import Errors
+
+
+def form_section(b: dict, form: str) -> dict:
+    """An analysis section of one form: its full keys, with the keys given under ``reduced`` in place for
+    ``form == "reduced"`` (a null there keeps the full value)."""
+    out = {k: v for k, v in b.items() if k != "reduced"}
+    if form == "reduced":
+        out.update({k: v for k, v in (b.get("reduced") or {}).items() if v is not None})
+    return out
+
 
 _PAIRS = {"type": "string", "enum": ["site-site", "bond-bond", "site-bond"]}
 _SPACING = {"type": "integer", "minimum": 1, "maximum": 24}
@@ -49,28 +60,25 @@ class BreatherInteractions:
                            minimum=0)
     periods: float = param(600.0, "Run length in breather periods 2 pi / omega_sw (the paper: up to 600).",
                            exclusiveMinimum=0, maximum=5000)
-    ratios: list[float] = param([0.8, 1.0, 1.25], "Amplitude ratios (second copy / first) of the amplitude sweep, at the base amplitude.",
-                                minItems=1, maxItems=8, items={"type": "number", "exclusiveMinimum": 0,
-                                                               "maximum": 10})
-    amplitudes: list[float] = param([0.005, 0.01, 0.02], "Overall amplitudes of the amplitude sweep, at ratio 1.", minItems=1,
-                                    maxItems=8, items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.1})
+    ratios: list[float] = param([0.8, 1.0, 1.25], "Amplitude ratios (second copy / first) of the amplitude sweep, at "
+                                "the base amplitude.", minItems=1, maxItems=8,
+                                items={"type": "number", "exclusiveMinimum": 0, "maximum": 10})
+    amplitudes: list[float] = param([0.005, 0.01, 0.02], "Overall amplitudes of the amplitude sweep, at ratio 1.",
+                                    minItems=1, maxItems=8,
+                                    items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.1})
     amplitude_thetas: list[float] = param([0.0, 3.141592653589793], "Phases (radians) of the amplitude sweep.",
                                           minItems=1, maxItems=8, items=_THETA)
     chunks: int = param(4, "Jobs the full sweep is split into (round robin over (pair, spacing)).", minimum=1,
                         maximum=64)
-    reduced: BreatherInteractionsReduced = param(BreatherInteractionsReduced(),
-                                                 BreatherInteractionsReduced.__schema_doc__)
+    reduced: BreatherInteractionsReduced = param(BreatherInteractionsReduced())
 
-    @staticmethod
-    def check(b: dict, path: list, out) -> None:
+    def check(self, where: Where, context: Context, out: Errors) -> None:
         """Spacings distinct; the pair must fit the ring."""
-        for where, sec in ((path, b), (path + ["reduced"], b.get("reduced") or {})):
-            sp = sec.get("spacings")
-            if isinstance(sp, list) and len(set(map(str, sp))) != len(sp):
-                out.add(where + ["spacings"], "must be distinct", sp)
-            N = b.get("N")
-            if isinstance(sp, list) and isinstance(N, int) and any(isinstance(s, int) and s + 10 > N for s in sp):
-                out.add(where + ["spacings"], f"must leave room for both breathers: spacing + 10 <= N = {N}", sp)
+        for at, sp in ((where, self.spacings), (where + ["reduced"], self.reduced.spacings)):
+            if len(set(map(str, sp))) != len(sp):
+                out.add(at + ["spacings"], "must be distinct", sp)
+            if any(s + 10 > self.N for s in sp):
+                out.add(at + ["spacings"], f"must leave room for both breathers: spacing + 10 <= N = {self.N}", sp)
 
     @staticmethod
     def resolve(cfg: dict, form: str = "full") -> dict:

@@ -6,9 +6,12 @@ shared settings at the top, the sweep per variant (reduced, full).
 """
 from __future__ import annotations
 
+import dataclasses
+
+from cradle.scenes.context import Context, Where
 from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
 from cradle.specs.declare import NULL, declared, param
-from cradle.specs.values import INTEGER_TOL, ConfigError, number
+from cradle.specs.values import INTEGER_TOL, ConfigError, Errors
 
 
 @declared(doc="Lattice integrator (null keys: defaults.exact).")
@@ -43,32 +46,27 @@ class MIVariant:
     chunks: int = param(1, "Batches (Snakemake jobs) per (N, model); q values dealt round-robin.", minimum=1,
                         maximum=100)
 
-    @staticmethod
-    def check(v: dict, path: list, out) -> None:
+    def check(self, where: Where, out: Errors) -> None:
         """start < stop, no more batches than q values, and every q of the grid on every ring's
         wavenumber grid (N even for Gamma*, q N / (2 pi) an integer)."""
-        g = v.get("q_over_pi")
-        if not isinstance(g, dict) or not all(number(g.get(k)) for k in ("start", "stop", "count")):
+        g = self.q_over_pi
+        if not g.start < g.stop:
+            out.add(where + ["q_over_pi"], "need start < stop", dataclasses.asdict(g))
             return
-        if not g["start"] < g["stop"]:
-            out.add(path + ["q_over_pi"], "need start < stop", g)
-            return
-        count = int(g["count"])
-        vals = [g["start"] + i * (g["stop"] - g["start"]) / (count - 1) for i in range(count)]
-        if number(v.get("chunks")) and v["chunks"] > count:
-            out.add(path + ["chunks"], f"more batches than q values (count = {count})", v["chunks"])
-        for j, N in enumerate(v.get("N") if isinstance(v.get("N"), list) else []):
-            if not isinstance(N, int):
-                continue
+        count = int(g.count)
+        vals = [g.start + i * (g.stop - g.start) / (count - 1) for i in range(count)]
+        if self.chunks > count:
+            out.add(where + ["chunks"], f"more batches than q values (count = {count})", self.chunks)
+        for j, N in enumerate(self.N):
             if N % 2:
-                out.add(path + ["N", j], "must be even (Gamma* of the spatial DFT)", N)
+                out.add(where + ["N", j], "must be even (Gamma* of the spatial DFT)", N)
                 continue
             for x in vals:
                 m = x * N / 2.0
                 if abs(m - round(m)) > INTEGER_TOL:
-                    out.add(path + ["q_over_pi"], f"q = {x:.10g} pi gives q N/(2 pi) = {m:.10g} for N = {N}: with "
-                                                  f"periodic ends it must be an integer (choose start, stop, count "
-                                                  f"so that the step is a multiple of 2/N)", g)
+                    out.add(where + ["q_over_pi"], f"q = {x:.10g} pi gives q N/(2 pi) = {m:.10g} for N = {N}: with "
+                                                   f"periodic ends it must be an integer (choose start, stop, count "
+                                                   f"so that the step is a multiple of 2/N)", dataclasses.asdict(g))
                     break
 
 
@@ -102,9 +100,15 @@ class MIStatistics:
     dps: MIStatisticsDps = param(MIStatisticsDps(), "DpS integrator.")
     reduced: MIVariant = param(MIVariant(), "The small sweep built by `snakemake all` (minutes): "
                                "results/mi/mi-statistics.nc, results/figures/mi-statistics.{pdf,png}.")
-    full: MIVariant = param(MIVariant(N=[200, 400], q_over_pi=QGrid(start=0.45, stop=0.65, count=21), n_seeds=32, chunks=3),
+    full: MIVariant = param(MIVariant(N=[200, 400], q_over_pi=QGrid(start=0.45, stop=0.65, count=21), n_seeds=32,
+                                      chunks=3),
                             "The full sweep (`snakemake -j2 mi_statistics_full`): results/mi/full/mi-statistics.nc "
                             "and results/mi/full/mi-statistics.{pdf,png}.")
+
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """Each sweep (reduced, full) on the wavenumber grids of its rings."""
+        self.reduced.check(where + ["reduced"], out)
+        self.full.check(where + ["full"], out)
 
     @staticmethod
     def resolve(cfg: dict, variant: str) -> dict:

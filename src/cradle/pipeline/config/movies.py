@@ -6,7 +6,7 @@ no computed number: they are not part of any scene's resolved parameters.
 from __future__ import annotations
 
 from cradle.specs.declare import declared, param
-from cradle.specs.values import ConfigError, did_you_mean, entries
+from cradle.specs.values import ConfigError, did_you_mean
 
 _NAMES = {"$ref": "#/$defs/name"}
 
@@ -34,7 +34,7 @@ class Movies:
         """``movies``, with every name of ``scenes`` an existing scene (checked when the target is built, so
         that a config with fewer scenes, a test's, still validates)."""
         spec = dict(cfg.get("movies") or {})
-        scenes = entries(cfg, "scenes")
+        scenes = cfg.get("scenes") or {}
         for i, name in enumerate(spec.get("scenes") or []):
             if name not in scenes:
                 raise ConfigError(f"config error: movies.scenes[{i}] = {name!r}: unknown scene: no `scenes:` entry "

@@ -4,22 +4,24 @@ its module, the budget by cradle.pipeline.budget).
 Each section is a frozen dataclass whose fields carry description, bounds and
 default (:func:`cradle.specs.declare.param`); :class:`Config` is the whole file. The entries a
 job computes from (defaults, map, homoclinic, scenes) are declared in :mod:`cradle.scenes.spec`.
-The checks that span several keys or sections are the ``check`` methods here, in
-:mod:`cradle.scenes.spec` and in :mod:`.beyond`; :func:`check` runs them all in order.
+The checks that span several keys or sections are the ``check`` methods of the typed objects, here,
+in :mod:`cradle.scenes.spec` and in the analyses' spec classes; :func:`.checks.check` runs them all in
+order (:mod:`cradle.scenes.context`).
 """
 from __future__ import annotations
 
 import math
 
 from cradle.pipeline.budget import Budget
+from cradle.scenes.context import ENTRY_SECTIONS, Context, Where
 from cradle.scenes.spec import Defaults, HomoclinicEntry, MapEntry, Scene
 from cradle.specs.declare import REQUIRED, declared, param
-from cradle.specs.values import TIME_TOL, did_you_mean, entries, finite, store_times
+from cradle.specs.values import TIME_TOL, Errors, did_you_mean
 
 from .beyond import Beyond
 from .movies import Movies
 
-SECTIONS = ("map", "homoclinic", "scenes")  # the name spaces a figure's `scenes:` list reads from
+SECTIONS = ENTRY_SECTIONS  # the name spaces a figure's `scenes:` list reads from
 
 
 def _known_figures() -> tuple[str, ...]:
@@ -38,39 +40,30 @@ class Figure:
     times: list[float] = param(None, "Times shown by the panels; each >= 0 and stored by one of the figure's scenes.",
                                items={"type": "number", "minimum": 0})
 
-    @staticmethod
-    def check(label: str, fig: dict, cfg: dict, names: dict, out) -> None:
-        """A known label, names of existing entries, and times stored by the scenes it reads."""
-        if label not in KNOWN_FIGURES:
-            out.add(["figures", label], f"unknown figure label {label!r} (known labels: {', '.join(KNOWN_FIGURES)})")
-        if not isinstance(fig, dict) or not isinstance(fig.get("scenes"), list):
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """Names of existing entries, and times stored by the scenes it reads (its label is known: the
+        schema lists the labels)."""
+        names = context.names
+        for i, n in enumerate(self.scenes):
+            if n not in names:
+                out.add(where + ["scenes", i], f"unknown scene: no map, homoclinic or scene entry of that "
+                                               f"name{did_you_mean(n, names)}", n)
+        read = [n for n in self.scenes if n in context.given["scenes"]]
+        if not read or self.times is None:
             return
-        scenes = entries(cfg, "scenes")
-        for i, n in enumerate(fig["scenes"]):
-            if isinstance(n, str) and n not in names:
-                out.add(["figures", label, "scenes", i], f"unknown scene: no map, homoclinic or scene entry of "
-                                                         f"that name{did_you_mean(n, names)}", n)
-        read = [n for n in fig["scenes"] if isinstance(n, str) and n in scenes]
-        times = fig.get("times")
-        if not read or not isinstance(times, list):
-            return
-        stored = []
+        stored: list[float] = []
         for n in read:
-            s = scenes[n]
-            if not (isinstance(s.get("store"), dict) and finite(s.get("t_end")) and s["t_end"] > 0
-                    and not out.has(["scenes", n, "store", "every"])):
+            scene = context.scenes.get(n)
+            if scene is None or out.has(["scenes", n, "store", "every"]):  # its errors are said
                 return
-            try:
-                stored += store_times(s["store"], s["t_end"])
-            except (TypeError, ValueError):
-                return
+            stored += scene.times
         import numpy as np
 
-        stored = np.asarray(stored)
-        for i, t in enumerate(times):
-            if finite(t) and not np.any(np.abs(stored - t) <= TIME_TOL):
-                out.add(["figures", label, "times", i], f"not a stored time of {', '.join(read)} "
-                                                        f"(add it to a store.snapshots list)", t)
+        grid = np.asarray(stored)
+        for i, t in enumerate(self.times):
+            if not np.any(np.abs(grid - t) <= TIME_TOL):
+                out.add(where + ["times", i], f"not a stored time of {', '.join(read)} "
+                                              f"(add it to a store.snapshots list)", t)
 
 
 
@@ -90,9 +83,9 @@ class Config:
                                        "entries each reads and the times its panels show.",
                                        propertyNames={"description": "A known figure label.",
                                                       "enum": list(KNOWN_FIGURES)})
-    beyond: Beyond = param(Beyond(), Beyond.__schema_doc__)
-    budget: Budget = param(Budget(), Budget.__schema_doc__)
-    movies: Movies = param(Movies(), Movies.__schema_doc__)
+    beyond: Beyond = param(Beyond())
+    budget: Budget = param(Budget())
+    movies: Movies = param(Movies())
 
 
 def check_finite(node, out, path=()) -> None:
@@ -107,26 +100,3 @@ def check_finite(node, out, path=()) -> None:
             check_finite(v, out, path + [i])
     elif isinstance(node, float) and not math.isfinite(node):
         out.add(path, "must be a finite number", node)
-
-
-def check(cfg: dict, out) -> None:
-    """The checks the schema cannot express, section by section (``cfg`` has the schema defaults)."""
-    names: dict[str, str] = {}   # unique across the sections a figure reads from
-    for section in SECTIONS:
-        sec = cfg.get(section)
-        for name in sec if isinstance(sec, dict) else ():
-            if name in names:
-                out.add([section, name], f"name {name!r} is also used by {names[name]}.{name} (map, homoclinic "
-                                         f"and scenes names must be unique)")
-            else:
-                names[name] = section
-    for name, entry in entries(cfg, "map").items():
-        MapEntry.check(name, entry, out)
-    for name, entry in entries(cfg, "homoclinic").items():
-        HomoclinicEntry.check(name, entry, out)
-    for name, scene in entries(cfg, "scenes").items():
-        Scene.check(name, scene, cfg, out)
-    Beyond.check(cfg.get("beyond"), cfg, out)
-    figures = cfg.get("figures")
-    for label, fig in (figures.items() if isinstance(figures, dict) else ()):
-        Figure.check(label, fig, cfg, names, out)

@@ -7,11 +7,12 @@ starts, one line per problem, naming the key path and the value::
 
     config error: scenes.tw-weak.N = 1: must be >= 2
 
-Two layers, both declared in :mod:`.sections`, :mod:`.scenes` and :mod:`.beyond`:
+Two layers, both declared in :mod:`.sections`, :mod:`cradle.scenes.spec` and :mod:`.beyond`:
 
 1. the JSON Schema generated from the declarations (``config.schema.json``):
    keys, types, bounds, enums; its errors are rewritten as one readable line each;
-2. the ``check`` methods of the declared types: what the schema cannot express
+2. the ``check`` methods of the declared types, run by :func:`.checks.check` on the
+   typed object of every entry the schema passed: what the schema cannot express
    (q N / (2 pi) an integer on a ring, a breather built from an existing
    homoclinic entry of the same N and bc, stored times of figures, ...).
 
@@ -29,13 +30,14 @@ import re
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
+from typing import cast
 
 from jsonschema import Draft202012Validator
 
 from cradle.specs import declare as spec
 from cradle.specs.values import ANGLE_HINT, ANGLE_PATTERN, ConfigError, Errors, number, show
 
-from . import sections
+from . import checks, sections
 from .sections import SECTIONS
 
 SCHEMA_FILE = "config.schema.json"
@@ -43,7 +45,8 @@ SCHEMA_FILE = "config.schema.json"
 # Extra words appended to schema messages for some keys, by (last key, schema keyword).
 _HINTS = {
     ("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))",
-    ("omega_tw", "exclusiveMinimum"): " (a is derived from (freq), omega_tw = 1 + (2/tau0) a^(alpha-1) |sin(q/2)|^(alpha+1))",
+    ("omega_tw", "exclusiveMinimum"): " (a is derived from (freq), omega_tw = 1 + (2/tau0) a^(alpha-1) "
+                                      "|sin(q/2)|^(alpha+1))",
     ("omega_sw", "exclusiveMinimum"): " (mu = (omega_sw - 1) 2^alpha tau0 must be > 0)",
 }
 
@@ -82,12 +85,17 @@ def _validator() -> Draft202012Validator:
     return Draft202012Validator(s)
 
 
+def _root() -> dict:
+    """The schema the validator checks against (a mapping: the generated schema is never a boolean one)."""
+    return cast(dict, _validator().schema)
+
+
 def _resolve(node: dict) -> dict:
     """Follow a local "$ref" ("#/$defs/...") of the schema."""
     ref = node["$ref"]
     if not ref.startswith("#/"):
         raise ValueError(f"only local $ref are supported, got {ref!r}")
-    target = _validator().schema
+    target = _root()
     for part in ref[2:].split("/"):
         target = target[part]
     return target
@@ -250,7 +258,7 @@ def _schema_messages(err, out: Errors):
         flat = []
         for t in types:
             flat += [t] if isinstance(t, str) else list(t)
-        if err.schema.get("anyOf") == _validator().schema["$defs"]["angle"]["anyOf"]:
+        if err.schema.get("anyOf") == _root()["$defs"]["angle"]["anyOf"]:
             out.add(path, f"must be {ANGLE_HINT}", inst)
         else:
             out.add(path, f"must be {_type_words(list(dict.fromkeys(flat)))}", inst)
@@ -307,17 +315,17 @@ def validate(config: dict) -> dict:
         # an empty file, or the wrong one: refused here rather than as a traceback while the DAG is built
         raise ConfigError(f"config error: config: no {', '.join(SECTIONS)} entries, nothing to build (keys given: "
                           f"{', '.join(map(str, config)) or 'none'})")
-    cfg = _coerce(_validator().schema, copy.deepcopy(dict(config)))
+    cfg = _coerce(_root(), copy.deepcopy(dict(config)))
     out = Errors()
     sections.check_finite(cfg, out)
     for err in sorted(_validator().iter_errors(cfg), key=lambda e: [str(p) for p in e.absolute_path]):
         _schema_messages(err, out)
-    cfg = _fill(_validator().schema, cfg)
+    cfg = _fill(_root(), cfg)
     if not out.lines:  # every job's estimated memory, output and time within budget, before the physical
         from cradle.pipeline import budget  # checks build stored-time arrays (cradle.pipeline.budget)
 
         budget.check(cfg)
-    sections.check(cfg, out)
+    checks.check(cfg, out)
     if out.lines:
         raise ConfigError(out.lines)
     # a validated config validates to itself (tested): remember it, so that the resolving calls
