@@ -5,7 +5,7 @@
 # Stages (workflow/rules): homoclinic & map orbits (homoclinic.smk) -> initial data,
 # exact and DpS integration and their comparison, one job per scene (simulate.smk) ->
 # figures (figures.smk) and the claims table (checks.smk); the analyses beyond the paper
-# (analyses.smk, with the mi-statistics batches in mi.smk) and work-precision (workprecision.smk); movies of
+# (analyses.smk, their batches too) and work-precision (workprecision.smk); movies of
 # the scenes' runs (movies.smk, target `movies`, not in `all`).
 
 
@@ -31,8 +31,6 @@ include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/checks.smk"
 include: "workflow/rules/analyses.smk"
 include: "workflow/rules/legacy_analyses.smk"
-include: "workflow/rules/mi.smk"
-include: "workflow/rules/interactions.smk"
 include: "workflow/rules/movies.smk"
 
 

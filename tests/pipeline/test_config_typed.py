@@ -11,14 +11,13 @@ from pathlib import Path
 import pytest
 import yaml
 
+from cradle.analyses import breather_interactions, mi_statistics
 from cradle.pipeline import config as cc
 from cradle.pipeline.config import (
     beyond,
-    breather_interactions,
     breathers,
     dps_validity,
     floquet,
-    mi_statistics,
     movies,
     sections,
 )
@@ -37,8 +36,11 @@ CONFIG = ROOT / "config.yaml"
 # loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope. Then issue 16: the section
 # movies: (no resolved scene changed). Then issue 15: the new section beyond.dps_validity; every other value
 # unchanged. Then issue 21: the key beyond.mi_growth renamed beyond.mi-growth, its spec typed (plain() of it is
-# the old dict; with the old key the hash is the old a61c41d8...).)
-RESOLVED_SHA256 = "17faeaaba9cf11580cb3cd0c8b4c197ee3719a8cc6921e62319fe2abddb61a56"
+# the old dict; with the old key the hash is the old a61c41d8...). Then beyond.mi_statistics and
+# beyond.breather_interactions renamed beyond.mi-statistics and beyond.breather-interactions, their specs typed,
+# mi-statistics' full sweep at the top of its section (its `full:` gone) and its alpha its own (1.5, was null =
+# defaults.alpha): plain() of each form is the old resolved dict, but for mi-statistics' key `variant` (the form).)
+RESOLVED_SHA256 = "30a5b010c4a32c56775dffd704f14d7aaaa5d09672df843a28de89d4e90f1172"
 
 
 @pytest.fixture(scope="module")
@@ -57,12 +59,13 @@ def _everything_resolved(config) -> dict:
         "theorem1": cc.resolved_theorem1(cfg),
         "mi_diagram": cc.resolved_mi_diagram(cfg),
         "mi_growth": plain(cc.analysis_spec(cfg, "mi-growth", "full")),
-        "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
+        "mi_statistics": {v: plain(cc.analysis_spec(cfg, "mi-statistics", v)) for v in ("reduced", "full")},
         "floquet": cc.resolved_floquet(cfg),
         "floquet_reduced": cc.resolved_floquet(cfg, "reduced"),
         "breathers": cc.resolved_breathers(cfg),
         "breathers_reduced": cc.resolved_breathers(cfg, "reduced"),
-        "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
+        "breather_interactions": {f: plain(cc.analysis_spec(cfg, "breather-interactions", f))
+                                  for f in ("reduced", "full")},
         "dps_validity": cc.resolved_dps_validity(cfg),
         "dps_validity_reduced": cc.resolved_dps_validity(cfg, "reduced"),
         "work_precision": {n: cc.resolved_work_precision(cfg, n) for n in cfg["work_precision"]["scenes"]},
@@ -175,7 +178,7 @@ def test_nan_alpha_is_reported_once(raw):
     (("scenes", "tw-weak", "t_end"), math.inf), (("scenes", "tw-weak", "t_end"), math.nan),
     (("scenes", "tw-weak", "store", "every"), math.inf), (("scenes", "tw-weak", "store", "snapshots", 0), math.nan),
     (("work_precision", "scenes", "tw-weak", "t_end"), math.inf), (("figures", "plot4-5", "times", 0), math.nan),
-    (("beyond", "mi_statistics", "t_end"), "inf"),
+    (("beyond", "mi-statistics", "t_end"), "inf"),
 ])
 def test_non_finite_times_are_refused_once(raw, where, value):
     cfg = copy.deepcopy(raw)
@@ -211,7 +214,7 @@ def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw
     assert kinds["tw-weak"] is scenes.Travelling and kinds["breather-small"] is scenes.Breather
     assert kinds["loc1-packet"] is scenes.Packet and kinds["loc1-pair"] is scenes.Pair
     assert c.scenes["tw-weak-noise"].initial.noise == scenes.Noise(kind="uniform", amplitude=0.5, seed=20110605)
-    assert c.map["traj2-8"].line.from_ == [0.2, -0.1] and c.beyond.mi_statistics.full.q_over_pi.count == 21
+    assert c.map["traj2-8"].line.from_ == [0.2, -0.1] and c.beyond.mi_statistics.q_over_pi.count == 21
     with pytest.raises(dataclasses.FrozenInstanceError):
         c.defaults.alpha = 2.0
 
@@ -224,7 +227,7 @@ def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw
     ("mi_diagram", "check_pairs", [[10, 150]], "beyond.mi_diagram.check_pairs[0] = [10, 150]: stable for alpha"),
     ("floquet", "q_max", "0.3pi", "beyond.floquet.q_max = '0.3pi': must exceed q_min = '0.4pi'"),
     ("floquet", "small_q", ["3pi/5", "pi"], "beyond.floquet.small_q[1] = 'pi': must be in (0, pi)"),
-    ("mi_statistics", "reduced", {"N": [201]}, "beyond.mi_statistics.reduced.N[0] = 201: must be even"),
+    ("mi-statistics", "reduced", {"N": [201]}, "beyond.mi-statistics.reduced.N[0] = 201: must be even"),
 ])
 def test_analysis_checks_are_one_line_at_validation(raw, section, key, value, words):
     """The checks the analysis modules used to make when their target was built, now made with the
@@ -248,5 +251,5 @@ def test_analysis_scene_names_are_checked_when_resolved(raw):
     cfg["beyond"]["mi-growth"]["scenes"] = []
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes is empty"):
         cc.analysis_reads(cfg, "mi-growth", "full")
-    with pytest.raises(cc.ConfigError, match="unknown variant 'tiny'"):
-        cc.resolved_mi_statistics(raw, "tiny")
+    with pytest.raises(cc.ConfigError, match=r"beyond\.mi-statistics: unknown form 'tiny' \(forms: reduced, full\)"):
+        cc.analysis_spec(raw, "mi-statistics", "tiny")

@@ -34,8 +34,6 @@ class Analysis:
     forms: tuple = (FULL,)  # (REDUCED, FULL) when `all` builds a cheaper form than the full target
     title: str = ""
     reads_scenes: str = ""  # key under `beyond:` whose `scenes` list names the scenes whose runs it reads
-    reads_batches: bool = False  # its input is the mi-statistics batches of its form
-    batches: str = ""       # cradle.analyses.<batches>.batch_files(spec, form): its batch files (its own rules)
 
     @property
     def target(self) -> str:
@@ -61,17 +59,8 @@ class Analysis:
 
     def inputs(self, config: dict, form: str) -> list[str]:
         """The files this analysis reads, in the order its run function takes them."""
-        files = [p for name in self.scenes(config)
-                 for p in layout.scene_paths(name, parts=("initial", "exact", "dps")).values()]
-        if self.reads_batches:
-            from cradle.analyses import mi_statistics as mistatistics
-
-            spec = self.spec(config, form)
-            files += [layout.path("mi-batch", variant=form, N=N, model=m, chunk=c) for N in spec["N"]
-                      for m in mistatistics.MODELS for c in range(int(spec["chunks"]))]
-        if self.batches:
-            files += import_module(f"cradle.analyses.{self.batches}").batch_files(self.spec(config, form), form)
-        return files
+        return [p for name in self.scenes(config)
+                for p in layout.scene_paths(name, parts=("initial", "exact", "dps")).values()]
 
     def compute(self, spec: dict, files=(), scenes=None, log=None):
         """The output of this analysis, a DataTree (or Dataset) (imports its module only now)."""
@@ -84,15 +73,10 @@ LEGACY: dict[str, Analysis] = {a.name: a for a in (
              title="Theorem 1 measured: exact travelling waves of (ad) against (wleadingorder)"),
     Analysis("mi-diagram", "mi_diagram", "run", "mi",
              title="Modulational instability of the DpS plane waves: growth-rate map and direct checks"),
-    Analysis("mi-statistics", "mi_statistics", "run", "mi", forms=(REDUCED, FULL), reads_batches=True,
-             title="mi-statistics: thresholds from every batch"),
     Analysis("floquet", "floquet", "run", "floquet", forms=(REDUCED, FULL),
              title="Bloch-Floquet stability of the exact travelling waves against the DpS threshold"),
     Analysis("breathers", "breathers", "run", "breathers", forms=(REDUCED, FULL),
              title="Exact breathers of (nc): families, Floquet stability, Peierls-Nabarro barrier, distance to DpS"),
-    Analysis("breather-interactions", "breather_interactions", "run", "interactions", forms=(REDUCED, FULL),
-             batches="breather_interactions",
-             title="Collisions of two breathers, exact (nc) against DpS (dfnls): outcome statistics (loc1)"),
     Analysis("dps-validity", "dps_validity", "run", "validity", forms=(REDUCED, FULL),
              title="DpS approximation error: sup over t <= T eps^(1-alpha) of |x - x_app| against eps, T, family, alpha"),
 )}

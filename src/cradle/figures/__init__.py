@@ -102,9 +102,7 @@ DATASET_FIGURES = {
     "theorem1": "beyond.theorem1",
     "mi-diagram": "beyond.mi_diagram",
     "floquet": "floquet.floquet",
-    "mi-statistics": "mi_statistics.mi_statistics",
     "breathers": "breathers.breathers",
-    "breather-interactions": "breather_interactions.breather_interactions",
     "dps-validity": "dps_validity.dps_validity",
 }
 

@@ -30,9 +30,6 @@ TEMPLATES = {
     "figure": "figures/{label}.{ext}",
     "checks": "paper_checks.{ext}",
     "movie": "movies/{scene}.{ext}",       # cradle.figures.movie: a scene's runs in motion (mp4, gif)
-    # analyses beyond the paper: their files follow form_folder (below); here the batches some read
-    "mi-batch": "mi/batch/{variant}/N{N}-{model}-{chunk}.nc",
-    "interactions-batch": "interactions/batch/{form}/{chunk}.nc",
     # an analysis of cradle.analyses.registry: its batches (its output and figure follow analysis_output)
     "analysis-batch": "{analysis}/batch/{form}/{key}.nc",
     # bookkeeping

@@ -1,8 +1,8 @@
 """The config of the pipeline (config.yaml), declared once and typed.
 
 - :mod:`.spec`: the declaration helpers (:func:`.spec.param`) and the JSON Schema generator;
-- :mod:`.scenes`, :mod:`.sections`, :mod:`.beyond`, :mod:`.mi_statistics`, :mod:`.floquet`, :mod:`.breathers`,
-  :mod:`.breather_interactions`, :mod:`.dps_validity`: each
+- :mod:`.scenes`, :mod:`.sections`, :mod:`.beyond`, :mod:`.floquet`, :mod:`.breathers`,
+  :mod:`.dps_validity`: each
   section and each kind of initial condition as a frozen dataclass, with the checks the schema
   cannot express as its ``check`` method and, for the analyses, its ``resolve`` method;
 - :mod:`.validate`: coercion of strings, one-line messages, defaults; :mod:`.loading`: reading
@@ -11,9 +11,9 @@
 
 ``python -m cradle.pipeline.config --write-schema`` regenerates ``config.schema.json``.
 """
-from .resolve import (resolved_breather_interactions, resolved_breathers, resolved_dps_validity, resolved_floquet,
+from .resolve import (resolved_breathers, resolved_dps_validity, resolved_floquet,
                       resolved_homoclinic, resolved_map, resolved_mi_diagram,
-                      analysis_reads, analysis_spec, resolved_mi_statistics, resolved_scene, resolved_theorem1,
+                      analysis_reads, analysis_spec, resolved_scene, resolved_theorem1,
                       resolved_work_precision, typed)
 from .sections import KNOWN_FIGURES, SECTIONS
 from cradle.specs.values import ANGLE_PATTERN
@@ -25,6 +25,6 @@ __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SECTIONS", "SCHEMA_FILE", "ANGLE_PATTERN", "TIME_TOL", "schema",
     "generated_schema", "schema_path", "write_schema", "parse_angle", "validate", "store_times", "resolved_scene",
     "resolved_homoclinic", "resolved_map", "resolved_work_precision", "resolved_theorem1", "resolved_mi_diagram",
-    "analysis_reads", "analysis_spec", "resolved_mi_statistics", "resolved_floquet", "resolved_breathers",
-    "resolved_breather_interactions", "resolved_dps_validity", "load", "read_yaml", "StrictLoader", "main", "typed",
+    "analysis_reads", "analysis_spec", "resolved_floquet", "resolved_breathers",
+    "resolved_dps_validity", "load", "read_yaml", "StrictLoader", "main", "typed",
 ]

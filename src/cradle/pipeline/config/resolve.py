@@ -11,10 +11,8 @@ import copy
 
 from .beyond import MIDiagram, Theorem1
 from .breathers import Breathers
-from .breather_interactions import BreatherInteractions
 from .dps_validity import DpsValidity
 from .floquet import Floquet
-from .mi_statistics import MIStatistics
 from .sections import WorkPrecision
 from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
 
@@ -114,11 +112,6 @@ def resolved_mi_diagram(config: dict) -> dict:
     return MIDiagram.resolve(_validated(config))
 
 
-def resolved_mi_statistics(config: dict, variant: str) -> dict:
-    """``beyond.mi_statistics.<variant>`` with the shared keys and the inherited defaults merged in."""
-    return MIStatistics.resolve(_validated(config), variant)
-
-
 def resolved_floquet(config: dict, form: str = "full") -> dict:
     """``beyond.floquet`` of one form (full, or reduced: what ``all`` builds) with angles in radians and
     ``convergence`` completed."""
@@ -128,11 +121,6 @@ def resolved_floquet(config: dict, form: str = "full") -> dict:
 def resolved_breathers(config: dict, form: str = "full") -> dict:
     """``beyond.breathers`` of one form (full, or reduced: what ``all`` builds)."""
     return Breathers.resolve(_validated(config), form)
-
-
-def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
-    """``beyond.breather_interactions`` of one form (full, or reduced: what ``all`` builds)."""
-    return BreatherInteractions.resolve(_validated(config), form)
 
 
 def resolved_dps_validity(config: dict, form: str = "full") -> dict:
@@ -147,6 +135,8 @@ def analysis_spec(config: dict, name: str, form: str):
     from cradle.specs.declare import from_plain
 
     a = ANALYSES[name]
+    if form not in a.forms:
+        raise ConfigError(f"config error: beyond.{a.name}: unknown form {form!r} (forms: {', '.join(a.forms)})")
     return form_spec(from_plain(a.spec, _validated(config)["beyond"][a.name], where=f"beyond.{a.name}"), form)
 
 
