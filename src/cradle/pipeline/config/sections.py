@@ -23,9 +23,9 @@ SECTIONS = ("map", "homoclinic", "scenes")  # the name spaces a figure's `scenes
 
 
 def _known_figures() -> tuple[str, ...]:
-    from cradle.figures import DATASET_FIGURES, FIGURES
+    from cradle.figures import FIGURES
 
-    return (*FIGURES, *DATASET_FIGURES)
+    return tuple(FIGURES)
 
 
 KNOWN_FIGURES = _known_figures()
