@@ -7,7 +7,7 @@ from cradle.data.io import open_dataset
 from cradle.pipeline.params import expand_scene
 from cradle.pipeline.runner import run
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 log = logging.getLogger("cradle")
 analysis = ANALYSES[sm.params.analysis]
 run(lambda: analysis.compute(dict(sm.params.spec), [open_dataset(p) for p in sm.input.data],

@@ -5,7 +5,7 @@ import logging
 from cradle.analyses import breather_interactions
 from cradle.pipeline.runner import run
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 log = logging.getLogger("cradle")
 spec, w = dict(sm.params.spec), sm.wildcards
 run(lambda: breather_interactions.batch_dataset(spec, int(w.chunk), log=log.info), sm.output[0],

@@ -26,9 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from cradle.figures import figure
-from cradle.figures.spacetime import FORCE_LABEL, _at, period_minimum, spacetime
-from cradle.figures.spacetime import common_vmin as _vmin
-
+from cradle.figures.spacetime import FORCE_LABEL, _at, common_vmin as _vmin, period_minimum, spacetime
 
 # plot18 (bottom left): the paper likens this diagram to the detail plot28 (the central breather of
 # the q = pi instability), a 100-time-unit, 20-bond window. We show the last 100 time units of the

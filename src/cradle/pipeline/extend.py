@@ -32,9 +32,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from cradle.models import lattice
 from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
 from cradle.data.io import make_dataset, verify_file
+from cradle.models import lattice
 
 TIME_TOL = 1e-9
 VARS = ("x", "v", "force", "energy")
@@ -144,8 +144,8 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
     n_onset_corrections; ``extended`` records the history. Raises ValueError naming the value for
     an adaptive integrator, t_end <= the last stored time, or a file without x/v.
     """
-    from cradle.specs.values import store_times
     from cradle.integrators import SPLITTING_METHODS
+    from cradle.specs.values import store_times
 
     path = Path(path)
     out = path if out is None else Path(out)
@@ -181,7 +181,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
                            alpha=alpha, bc=bc, method=method, dt=dt, t0=t_last, energy0=H0, prefix=prefix,
                            chunk_bytes=chunk_bytes, progress=progress)
     # the old run's statistics and the new part's combine into those of one run
-    stamp = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    stamp = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
     attrs = {k: val for k, val in a.items()}
     attrs.update({
         "t_end": float(new[-1]),

@@ -20,7 +20,6 @@ from pathlib import Path
 from cradle.data.io import write_netcdf
 from cradle.scenes.failure import StageFailure
 
-
 log = logging.getLogger("cradle")
 
 
