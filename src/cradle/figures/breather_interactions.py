@@ -37,7 +37,7 @@ def breather_interactions(tree):
                         + (f"\nmodels agree on {np.nanmean(agree):.0%} of seeds" if j == 1 else ""), fontsize=8)
             A.set_xlabel(r"$\theta/\pi$")
             A.set_ylabel("spacing (sites)")
-        handles = [A.scatter([], [], color=c, marker="s", label=o) for o, c in zip(OUTCOMES, COLOURS)]
+        handles = [A.scatter([], [], color=c, marker="s", label=o) for o, c in zip(OUTCOMES, COLOURS, strict=True)]
         ax[i, 1].legend(handles=handles, fontsize=6, loc="upper right")
         # (c) merging time against spacing at theta = 0
         C = ax[i, 2]
