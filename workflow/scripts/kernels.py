@@ -4,7 +4,7 @@ from cradle.data.io import write_text
 from cradle.integrators.warmup import compile_kernels
 from cradle.pipeline.runner import log, setup_logging
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 setup_logging(sm.log[0])
 key = compile_kernels()
 log.info("kernels compiled or loaded: cache key %s", key)

@@ -29,7 +29,7 @@ import numpy as np
 
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
-from cradle.specs.declare import declared, param, plain
+from cradle.specs.declare import declared, param, plain, schema_doc
 from cradle.specs.values import form_section, number, show
 
 FAMILIES = ("tw-pi5", "tw-4pi5", "breather-bond", "mi-4pi5-noise")
@@ -91,7 +91,7 @@ class DpsValidity:
                             maximum=1e-6)
     chunk: int = param(20000, "Samples per integration chunk (bounds the memory of the long runs).", minimum=100,
                        maximum=1000000)
-    reduced: DpsValidityReduced = param(DpsValidityReduced(), DpsValidityReduced.__schema_doc__)
+    reduced: DpsValidityReduced = param(DpsValidityReduced(), schema_doc(DpsValidityReduced))
 
     @staticmethod
     def check(b: dict, path: list, cfg: dict, out) -> None:
@@ -221,7 +221,8 @@ def sup_error(A0, eps: float, alpha: float, T_marks, *, sample_every: float, dt_
             x2, v2 = fine.x[-1], fine.v[-1]
         x, v, A = lat.x[-1], lat.v[-1], sol.A[-1]
     return {"abs_error": running[at_mark], "dt": dt, "energy_drift": drift, "max_compression": cmax,
-            "n_samples": t_grid.size, "t_end": float(t_grid[-1]), "halving_deviation": running_dev[at_mark] if check else np.nan,
+            "n_samples": t_grid.size, "t_end": float(t_grid[-1]),
+            "halving_deviation": running_dev[at_mark] if check else np.nan,
             "halving_energy_drift": drift2 if check else np.nan}
 
 
@@ -385,7 +386,8 @@ def compute(spec: DpsValidity, inputs=None, log=None):
                          "consistency order of (ansatz) (non-resonant harmonics of size eps^alpha, Gronwall "
                          "factor e^{C T}); the exact bound of Bidegaray-Fesquet, Dumas & James, SIAM J. Math. "
                          "Anal. 45 (2013) was not available to us",
-        "eps_ranges": "per alpha: eps_min = " + ", ".join(f"{a:g}: {m:g}" for a, m in zip(alphas, spec.eps_min))
+        "eps_ranges": "per alpha: eps_min = "
+                      + ", ".join(f"{a:g}: {m:g}" for a, m in zip(alphas, spec.eps_min, strict=True))
                       + f"; eps_max = {spec.eps_max:g}. The lattice time T eps^(1-alpha) sets the cost "
                         "(alpha = 3: T eps^-2), hence the larger eps_min at large alpha",
         "lattice_integrator": f"srkn6c, fixed dt = dt_factor 2 pi / omega_max, dt_factor = {spec.dt_factor}",

@@ -82,7 +82,8 @@ class MIGrowth:
         are reported when the target is planned (its reads), so that a config with fewer scenes (a test's)
         still validates."""
         scenes = entries(cfg, "scenes")
-        for i, name in enumerate(b.get("scenes") if isinstance(b.get("scenes"), list) else []):
+        given = b.get("scenes")
+        for i, name in enumerate(given if isinstance(given, list) else []):
             sc = scenes.get(name) if isinstance(name, str) else None
             if sc is None:
                 continue

@@ -186,12 +186,12 @@ def va_leading(xi, q, alpha):
 
     f = lambda s: float(N0(s, q, alpha))  # noqa: E731
     br = _breaks(q)
-    opts = dict(epsabs=1e-13, epsrel=1e-11, limit=400)
 
     def integral(g, lo, hi):
         pts = [p for p in br if lo < p < hi]
         edges = [lo] + pts + [hi]
-        return sum(quad(g, x0, x1, **opts)[0] for x0, x1 in zip(edges[:-1], edges[1:]))
+        return sum(quad(g, x0, x1, epsabs=1e-13, epsrel=1e-11, limit=400)[0]
+                   for x0, x1 in zip(edges[:-1], edges[1:], strict=True))
 
     import warnings
 
@@ -202,7 +202,7 @@ def va_leading(xi, q, alpha):
     xi = np.atleast_1d(np.asarray(xi, dtype=float))
     out = np.empty_like(xi)
     for i, x in enumerate(xi):
-        conv = integral(lambda s: np.sin(x - s) * Ph(s), 0.0, x) if x > 0 else 0.0
+        conv = integral(lambda s, x=x: np.sin(x - s) * Ph(s), 0.0, x) if x > 0 else 0.0
         out[i] = np.sin(x) * kcoef + conv
     return out
 

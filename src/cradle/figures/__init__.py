@@ -1,7 +1,8 @@
 """One drawing function per paper figure, reading netCDF outputs only.
 
-:data:`FIGURES` maps each label to its drawing function; a function takes opened :class:`xarray.Dataset` objects (and the figure's
-options from config.yaml) and returns a matplotlib Figure; :func:`save_figure`
+:data:`FIGURES` maps each label to its drawing function; a function takes
+opened :class:`xarray.Dataset` objects (and the figure's options from
+config.yaml) and returns a matplotlib Figure; :func:`save_figure`
 writes it as ``<stem>.pdf`` and ``<stem>.png``. Modules: :mod:`.maps`
 (traj3, traj2), :mod:`.homoclinic` (bcsc), :mod:`.travelling` (plot4-5,
 plotcomplin), :mod:`.spacetime` (space-time diagrams and profiles),

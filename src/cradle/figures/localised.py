@@ -148,7 +148,8 @@ def draw_loc1(data, options):
         t_end = float(ex["t"].values[-1])
         info = f"max $|x_n(0)|$ = {np.max(np.abs(x0)):.3g}"
         if "omega_sw" in ex.attrs:
-            info += f", $\\omega_{{sw}}$ = {_omega(ex):.4f}, $t_{{end}}$ = {t_end * _omega(ex) / (2 * np.pi):.0f} periods"
+            info += (f", $\\omega_{{sw}}$ = {_omega(ex):.4f}, "
+                     f"$t_{{end}}$ = {t_end * _omega(ex) / (2 * np.pi):.0f} periods")
         ax.set_title(f"{name}: $x_n(0)$, $v_n(0) = 0$\n{info}", fontsize=8)
         vmin = _vmin(ex, ap)
         m = data[name]["metrics"]

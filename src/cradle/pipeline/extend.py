@@ -28,6 +28,7 @@ import math
 import os
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -67,7 +68,7 @@ def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c"
     N = x.size
     t_out = np.asarray(t_out, dtype=float)
     t_cur = float(t_out[0]) if t0 is None else float(t0)
-    summary = {"c_assumed": "none"}
+    summary: dict[str, Any] = {"c_assumed": "none"}
     if dt is None:
         c, _ = compression_bounds(x, v, alpha, bc)
         dt = default_dt(c, alpha, method)
@@ -158,7 +159,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
         missing = [k for k in VARS if k not in ds]
         if missing:
             raise ValueError(f"{path}: not an exact run of (nc) (no {', '.join(missing)}): cannot extend it")
-        a = dict(ds.attrs)
+        a: dict[str, Any] = dict(ds.attrs)
         method = a.get("integrator")
         if method not in SPLITTING_METHODS:
             raise ValueError(f"{path}: integrator={method!r} is adaptive; extending needs a fixed-step splitting "

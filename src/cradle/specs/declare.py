@@ -62,6 +62,9 @@ def param(default=REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict
     return dataclasses.field(default=default, metadata=meta)
 
 
+# for a type checker, a declared class is a frozen keyword-only dataclass. `param` is not named a field
+# specifier: it takes its default by position, which the checker would read as no default
+@typing.dataclass_transform(kw_only_default=True, frozen_default=True)
 def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of=None, extra=None):
     """Class decorator: a frozen dataclass declaring one object of the config.
 
@@ -80,6 +83,12 @@ def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of
         cls.__schema_extra__ = extra or {}
         return cls
     return wrap
+
+
+def schema_doc(cls: Any) -> str:
+    """The description :func:`declared` gave the class ``cls`` (the type checker does not see the attribute
+    the decorator sets)."""
+    return cls.__schema_doc__
 
 
 # Shared scalar types ($defs), each bound written here only.

@@ -11,6 +11,7 @@ repeated calls cost one validation).
 from __future__ import annotations
 
 import copy
+from typing import Any
 
 from cradle.scenes.spec import HomoclinicEntry, MapEntry, Scene, resolved
 from cradle.specs.declare import build
@@ -77,7 +78,7 @@ def resolved_scene(config: dict, name: str) -> dict:
     cfg = _validated(config)
     scene = _entry(cfg, "scenes", name)
     d = cfg["defaults"]
-    out = {"name": name}
+    out: dict[str, Any] = {"name": name}
     out.update(scene)
     out["alpha"] = float(scene.get("alpha", d["alpha"]))
     out["exact"] = _merged(d["exact"], scene.get("exact"))
