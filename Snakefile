@@ -5,7 +5,7 @@
 # Stages (workflow/rules): homoclinic & map orbits (homoclinic.smk) -> initial data,
 # exact and DpS integration and their comparison, one job per scene (simulate.smk) ->
 # figures (figures.smk); the claims table (paper-checks) and the analyses beyond the paper, work-precision
-# among them (analyses.smk, with the mi-statistics batches in mi.smk); movies of
+# among them, with their batches (analyses.smk, generated from cradle.analyses.registry); movies of
 # the scenes' runs (movies.smk, target `movies`, not in `all`).
 
 
@@ -28,9 +28,6 @@ include: "workflow/rules/homoclinic.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/analyses.smk"
-include: "workflow/rules/legacy_analyses.smk"
-include: "workflow/rules/mi.smk"
-include: "workflow/rules/interactions.smk"
 include: "workflow/rules/movies.smk"
 
 
@@ -47,7 +44,6 @@ BEYOND = [
     for a in ANALYSES.values()
     for f in (L.analysis_output(a.name, a.forms[0], a.forms[0]), *L.analysis_drawn(a, a.forms[0], a.forms[0]).values())
 ]
-BEYOND += [f for a in LEGACY.values() for f in (a.output(a.forms[0]), *a.figure(a.forms[0]).values())]
 
 
 rule all:

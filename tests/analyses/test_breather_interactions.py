@@ -8,15 +8,22 @@ import numpy as np
 import pytest
 
 from cradle.analyses import breather_interactions as B, pair_runs
+from cradle.analyses.protocol import FULL, form_spec
 from cradle.measurements.interactions import OUTCOMES
 from cradle.models import pairs
 from cradle.pipeline import config as cc
+from cradle.specs.declare import from_plain
 
 ROOT = Path(__file__).resolve().parents[2]
 N, ALPHA = 50, 1.5
 TINY = {"N": N, "alpha": ALPHA, "amplitude": 0.01, "pairs": ["site-site"], "spacings": [2, 6], "n_theta": 2,
         "refine": 0, "n_seeds": 1, "noise": 0.01, "seed_base": 20261122, "periods": 100.0, "ratios": [1.0],
         "amplitudes": [0.01], "amplitude_thetas": [0.0], "chunks": 1}
+
+
+def _spec(**changes):
+    """The typed spec of a sweep given as plain values (the full form: no reduced overrides)."""
+    return form_spec(from_plain(B.BreatherInteractions, {**TINY, **changes}), FULL)
 
 
 def _pair(spacing, theta, prof=("site", "site")):
@@ -66,8 +73,9 @@ def test_a_symmetric_pair_stays_centred_in_dps():
 
 
 def test_the_tiny_sweep_runs_in_seconds_and_is_bitwise_reproducible():
-    a = B.run(TINY, [], {})
-    b = B.run(TINY, [], {})
+    assert B.ANALYSIS.batches.keys(_spec()) == []        # one job: the sweep runs in the analysis job
+    a = B.ANALYSIS.compute(_spec(), {})
+    b = B.ANALYSIS.compute(_spec(), {})
     ca, cb = a["cases"].to_dataset(), b["cases"].to_dataset()
     assert ca.sizes["case"] == 4
     for k in ca.data_vars:
@@ -82,30 +90,34 @@ def test_the_tiny_sweep_runs_in_seconds_and_is_bitwise_reproducible():
 
 def test_config_of_both_forms_and_a_bad_value():
     cfg = cc.load(ROOT / "config.yaml")
-    red = cc.resolved_breather_interactions(cfg, "reduced")
-    full = cc.resolved_breather_interactions(cfg, "full")
-    assert red["pairs"] == ["site-site"] and full["n_theta"] == 24 and full["n_seeds"] == 8
+    red = cc.analysis_spec(cfg, "breather-interactions", "reduced")
+    full = cc.analysis_spec(cfg, "breather-interactions", "full")
+    assert red.pairs == ["site-site"] and full.n_theta == 24 and full.n_seeds == 8
     assert len(B.chunk_batches(full, 0)) + len(B.chunk_batches(full, 1)) + len(B.chunk_batches(full, 2)) \
         + len(B.chunk_batches(full, 3)) == len(B.batches(full)) == 15
-    bad = {**cfg, "beyond": {**cfg["beyond"], "breather_interactions": {**cfg["beyond"]["breather_interactions"],
+    # only the full form has batch jobs, one per chunk; the reduced one runs in the analysis job
+    assert B.ANALYSIS.batches.keys(full) == ["0", "1", "2", "3"] and B.ANALYSIS.batches.keys(red) == []
+    assert list(B.ANALYSIS.reads_of(full)) == ["batch/0", "batch/1", "batch/2", "batch/3"]
+    bad = {**cfg, "beyond": {**cfg["beyond"], "breather-interactions": {**cfg["beyond"]["breather-interactions"],
                                                                          "spacings": [4, 4]}}}
-    with pytest.raises(cc.ConfigError, match=r"beyond\.breather_interactions\.spacings.*distinct"):
+    with pytest.raises(cc.ConfigError, match=r"beyond\.breather-interactions\.spacings.*distinct"):
         cc.validate(bad)
 
 
 def test_batches_gathered_equal_the_sweep_in_one_job(tmp_path):
-    """The full form's path: chunk files written by batch_dataset, read back and gathered, give the same
+    """The full form's path: batch files written by its batch jobs, read back and gathered, give the same
     cases as the sweep run in one job."""
     import xarray as xr
 
-    spec = {**TINY, "chunks": 2, "periods": 40.0}
-    files = []
-    for c in range(2):
-        path = tmp_path / f"{c}.nc"
-        B.batch_dataset(spec, c).to_netcdf(path)
-        files.append(xr.open_dataset(path))
-    gathered = B.run(spec, files, {})["cases"].to_dataset()
-    direct = B.run(spec, [], {})["cases"].to_dataset()
+    spec = _spec(chunks=2, periods=40.0)
+    files = {}
+    for key in B.ANALYSIS.batches.keys(spec):
+        path = tmp_path / f"{key}.nc"
+        B.ANALYSIS.batches.run(spec, key, {}).to_netcdf(path)
+        files[f"batch/{key}"] = xr.open_dataset(path)
+    assert sorted(files) == ["batch/0", "batch/1"]
+    gathered = B.ANALYSIS.compute(spec, files)["cases"].to_dataset()
+    direct = B.ANALYSIS.compute(_spec(periods=40.0), {})["cases"].to_dataset()
     order = np.lexsort((direct["theta"].values, direct["spacing"].values))
     for k in direct.data_vars:
         a, b = direct[k].values[order], gathered[k].values

@@ -1,6 +1,8 @@
 """Modulational instability measured (cradle.analyses.mi_growth, cradle.analyses.mi_statistics): the growth fit
 and its window on synthetic series, a direct DpS run against mi_diagram.growth_rate, crossing times and the threshold
-estimator on synthetic data, determinism, and a tiny batch through the stage functions."""
+estimator on synthetic data, determinism, and a tiny sweep through its batches (cradle.analyses.protocol)."""
+import copy
+
 import numpy as np
 import pytest
 
@@ -103,13 +105,11 @@ def test_threshold_estimator_on_synthetic_fractions():
 
 
 def _tiny_spec(raw_config):
-    cfg = cc.validate(raw_config)
-    cfg["beyond"]["mi_statistics"]["reduced"] = {"N": [40], "q_over_pi": {"start": 0.6, "stop": 0.8, "count": 2},
-                                                 "n_seeds": 2, "chunks": 1}
-    cfg["beyond"]["mi_statistics"]["t_end"] = 60.0
-    cfg["beyond"]["mi_statistics"]["fraction"] = 0.02
-    cfg["beyond"]["mi_statistics"]["sample_every"] = 2.0
-    return cc.resolved_mi_statistics(cc.validate(cfg), "reduced")
+    cfg = copy.deepcopy(raw_config)
+    ms = cfg["beyond"].setdefault("mi-statistics", {})
+    ms["reduced"] = {"N": [40], "q_over_pi": {"start": 0.6, "stop": 0.8, "count": 2}, "n_seeds": 2, "chunks": 1}
+    ms.update(t_end=60.0, fraction=0.02, sample_every=2.0)
+    return cc.analysis_spec(cfg, "mi-statistics", "reduced")
 
 
 @pytest.fixture(scope="module")
@@ -124,10 +124,17 @@ def raw():
 def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):
     spec = _tiny_spec(raw)
     assert MS.q_indices(spec, 40) == [12, 16]
-    bs = [MS.batch(spec, 40, m, 0) for m in MS.MODELS]
+    keys = MS.ANALYSIS.batches.keys(spec)
+    assert keys == ["N40-exact-0", "N40-dps-0"]
+    bs = [MS.ANALYSIS.batches.run(spec, key, {}) for key in keys]
     again = MS.batch(spec, 40, "dps", 0)
     np.testing.assert_array_equal(again["ratio"].values, bs[1]["ratio"].values)    # same seed, same numbers
+    with pytest.raises(ValueError, match="no batch 'N40-exact-1'"):
+        MS.ANALYSIS.batches.run(spec, "N40-exact-1", {})
     tree = MS.aggregate(bs[::-1], spec)                                            # any order
+    gathered = MS.ANALYSIS.compute(spec, {f"batch/{k}": b for k, b in zip(keys, bs, strict=True)})
+    for name, var in tree["runs"].data_vars.items():
+        np.testing.assert_array_equal(gathered["runs"][name].values, var.values)
     ds, runs = tree.to_dataset(), tree["runs"]
     assert runs["ratio"].dims == ("N", "model", "q", "seed", "t") and runs["ratio"].shape == (1, 2, 2, 2, 31)
     assert list(ds["model"].values) == [0, 1] and ds.attrs["model_names"] == "exact, dps"
@@ -135,32 +142,31 @@ def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):
     assert np.all(np.isfinite(r)) and np.all(r[..., 0] < 0.1)
     tc, crossed = runs["crossing_time"].values, runs["crossed"].values
     assert np.array_equal(np.isfinite(tc), crossed == 1)
-    assert set(runs["seed"].values) == {spec["seed0"], spec["seed0"] + 1}
+    assert set(runs["seed"].values) == {spec.seed0, spec.seed0 + 1}
     np.testing.assert_array_equal(ds["fraction_unstable"].values, crossed.mean(axis=-1))
     assert ds.attrs["fraction"] == 0.02 and ds.attrs["exact_integrator"] == "srkn6c"
     # the ratio at t = 0 is the noise of (perturb), the same realisation in both models (x(0) is shared)
     np.testing.assert_allclose(r[0, 0, :, :, 0], r[0, 1, :, :, 0], rtol=1e-6)
     d = initial.travelling_wave(40, 2 * np.pi * 12 / 40, 1.5, omega_tw=1.1, noise_kind="gaussian",
-                                noise_amplitude=0.05, seed=spec["seed0"])
+                                noise_amplitude=0.05, seed=spec.seed0)
     assert ds["a"].values[0, 0] == pytest.approx(d.info["a"])
     assert dps.omega_tw(d.info["a"], 2 * np.pi * 12 / 40, 1.5) == pytest.approx(1.1)
     # written, read back and drawn
     from cradle.data.io import open_tree, write_netcdf
-    from cradle.figures import drawer, save_figure
+    from cradle.figures import save_figure
+    from cradle.figures.mi_statistics import draw
 
     back = open_tree(write_netcdf(tree, tmp_path / "mis.nc"))
     np.testing.assert_array_equal(back["runs"]["crossed"].values, crossed)
     assert back["runs"]["crossed"].encoding["fletcher32"] and back["threshold"].encoding["fletcher32"]
-    drawn = save_figure(drawer("mi-statistics", "DATASET_FIGURES")(back), tmp_path / "mis")
+    drawn = save_figure(draw(back), tmp_path / "mis")
     assert all(p.stat().st_size > 0 for p in drawn)
 
 
 def test_config_rejects_a_q_grid_off_the_ring(raw):
-    import copy
-
     bad = copy.deepcopy(raw)
-    bad["beyond"]["mi_statistics"]["full"]["q_over_pi"]["count"] = 20
-    with pytest.raises(cc.ConfigError, match=r"beyond\.mi_statistics\.full\.q_over_pi.*not|must be an integer"):
+    bad["beyond"].setdefault("mi-statistics", {})["q_over_pi"] = {"start": 0.45, "stop": 0.65, "count": 20}
+    with pytest.raises(cc.ConfigError, match=r"beyond\.mi-statistics\.q_over_pi.*not|must be an integer"):
         cc.validate(bad)
     bad = copy.deepcopy(raw)
     bad["beyond"]["mi-growth"]["scenes"] = ["fftseuil-5"]

@@ -90,16 +90,9 @@ def test_module_lookup_by_source_agrees_with_the_imported_registry():
     for label, func in reg.items():
         assert func.__module__ == f"cradle.figures.{figures.module_of(label)}"
         assert figures.drawer(label) is func
-    for label in figures.labels("DATASET_FIGURES"):   # beyond the paper: one netCDF file each
-        module = figures.module_of(label, "DATASET_FIGURES")
-        assert figures.drawer(label, "DATASET_FIGURES").__module__ == f"cradle.figures.{module}"
-    assert {"mi-statistics"} <= set(figures.labels("DATASET_FIGURES"))
-    # the analyses on the protocol: draw() of cradle.figures.<module>, no entry in DATASET_FIGURES
-    assert {"theorem1", "mi-diagram", "mi-growth", "floquet", "breathers"} <= set(ANALYSES)
     for a in ANALYSES.values():   # a drawing, or the tables an analysis declares (the claims table)
         module = importlib.import_module(f"cradle.figures.{a.module}")
         assert callable(module.tables if a.tables else module.draw), a.name
-        assert a.name not in figures.labels("DATASET_FIGURES"), a.name
     with pytest.raises(KeyError, match="'no-such-figure'"):
         figures.module_of("no-such-figure")
     code = ("import sys; from cradle.figures import drawer; drawer('bcsc'); "

@@ -36,7 +36,7 @@ def _imports(path: Path) -> list[str]:
 
 
 def test_there_are_figure_modules():
-    assert {p.stem for p in MODULES} >= {"maps", "localised", "spacetime", "spectra", "travelling", "mi"}
+    assert {p.stem for p in MODULES} >= {"maps", "localised", "spacetime", "spectra", "travelling", "mi_growth"}
 
 
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: p.name)

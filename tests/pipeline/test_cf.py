@@ -19,7 +19,6 @@ import json
 import numpy as np
 import pytest
 
-from cradle.analyses._legacy import LEGACY
 from cradle.analyses.registry import ANALYSES
 from cradle.data import provenance
 from cradle.data.io import make_dataset, make_tree, open_dataset, open_tree, write_netcdf
@@ -99,7 +98,7 @@ def test_cf_compliant(outputs, kind, tmp_path):
 
 
 #: analysis -> module declaring its VARIABLES (one dict per netCDF group)
-TREES = {a.name: a.module for a in ANALYSES.values()} | {a.name: a.module for a in LEGACY.values()}
+TREES = {a.name: a.module for a in ANALYSES.values()}
 
 
 def _variables(module: str) -> dict:

@@ -25,7 +25,6 @@ import pytest
 
 from conftest import run_snakemake
 from cradle import figures
-from cradle.analyses._legacy import LEGACY
 from cradle.analyses.registry import ANALYSES
 from cradle.pipeline.codedeps import code_files
 
@@ -68,17 +67,15 @@ def _entries(row) -> tuple[str, ...]:
                                 if f.startswith("src/cradle/analyses/") or f.startswith("src/cradle/figures/")
                                 and not f.endswith("__init__.py")}))
     label = Path(row["output_file"]).stem
-    if "workflow/scripts/analysis.py" in scripts:  # the legacy analysis rule runs the module its table names
-        entries += (f"cradle.analyses.{LEGACY[label].module}",)
-    # the generated rules of an analysis (<target>_batch|compute|figure_<form>) run its module, its figure's
-    by_target = {a.target: a for a in ANALYSES.values()}
-    if {"workflow/scripts/analysis_batch.py", "workflow/scripts/analysis_compute.py"} & set(scripts):
-        entries += (f"cradle.analyses.{by_target[row['rule'].rsplit('_', 2)[0]].module}",)
-    if "workflow/scripts/analysis_figure.py" in scripts:
-        entries += (f"cradle.figures.{by_target[row['rule'].rsplit('_', 2)[0]].module}",)
-    if {"workflow/scripts/figure.py", "workflow/scripts/dataset_figure.py"} & set(scripts):
-        table = figures.FIGURES if label in figures.FIGURES else figures.DATASET_FIGURES
-        entries += (f"cradle.figures.{table[label].split('.')[0]}",)
+    for script, package in (("analysis_compute", "analyses"), ("analysis_batch", "analyses"),
+                            ("analysis_figure", "figures")):
+        # the generated rules (analyses.smk) run the modules of the analysis whose files they write: results/<name>/...
+        # (its netCDF files and batches), results/figures/<name>.* or results/<name>/<form>/<name>.* (its figures)
+        if f"workflow/scripts/{script}.py" in scripts:
+            name = label if package == "figures" else Path(row["output_file"]).parts[1]
+            entries += (f"cradle.{package}.{ANALYSES[name].module}",)
+    if "workflow/scripts/figure.py" in scripts:
+        entries += (f"cradle.figures.{figures.module_of(label)}",)
     return entries
 
 

@@ -11,9 +11,17 @@ from pathlib import Path
 import pytest
 import yaml
 
-from cradle.analyses import breathers_spec, dps_validity, floquet_spec, paper_checks, work_precision
+from cradle.analyses import (
+    breather_interactions,
+    breathers_spec,
+    dps_validity,
+    floquet_spec,
+    mi_statistics,
+    paper_checks,
+    work_precision,
+)
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import beyond, breather_interactions, mi_statistics, movies, sections
+from cradle.pipeline.config import beyond, movies, sections
 from cradle.scenes import spec as scenes
 from cradle.specs.declare import from_plain, plain, plain as spec_plain
 
@@ -36,8 +44,9 @@ CONFIG = ROOT / "config.yaml"
 # them in radians and their texts in q_profiles_expr and small_q_expr, as the old resolved dict had them, the
 # hash was the previous one). Then dps-validity, work-precision (moved under beyond:, its scenes' alpha, N and bc
 # read from their initial files) and paper-checks (a new section) on the protocol: plain() of their specs, the
-# same values.)
-RESOLVED_SHA256 = "9b293a99b3670a4151c9f147aca075d027c5c5054d05b44b69702a4ccc98a8f5"
+# same values. Then mi-statistics and breather-interactions
+# (mi-statistics' full sweep at the top of its section, its alpha its own): plain() of each form, the same values.)
+RESOLVED_SHA256 = "a217a1022c1d2f4689ec37dfce93e7b62a4d1cfdb2f3f346a2ec751f6fdf53d1"
 
 
 @pytest.fixture(scope="module")
@@ -56,12 +65,13 @@ def _everything_resolved(config) -> dict:
         "theorem1": plain(cc.analysis_spec(cfg, "theorem1", "full")),
         "mi-diagram": plain(cc.analysis_spec(cfg, "mi-diagram", "full")),
         "mi_growth": plain(cc.analysis_spec(cfg, "mi-growth", "full")),
-        "mi_statistics": {v: cc.resolved_mi_statistics(cfg, v) for v in ("reduced", "full")},
+        "mi_statistics": {v: plain(cc.analysis_spec(cfg, "mi-statistics", v)) for v in ("reduced", "full")},
         "floquet": plain(cc.analysis_spec(cfg, "floquet", "full")),
         "floquet_reduced": plain(cc.analysis_spec(cfg, "floquet", "reduced")),
         "breathers": plain(cc.analysis_spec(cfg, "breathers", "full")),
         "breathers_reduced": plain(cc.analysis_spec(cfg, "breathers", "reduced")),
-        "breather_interactions": {f: cc.resolved_breather_interactions(cfg, f) for f in ("reduced", "full")},
+        "breather_interactions": {f: plain(cc.analysis_spec(cfg, "breather-interactions", f))
+                                  for f in ("reduced", "full")},
         "dps_validity": plain(cc.analysis_spec(cfg, "dps-validity", "full")),
         "dps_validity_reduced": plain(cc.analysis_spec(cfg, "dps-validity", "reduced")),
         "work_precision": plain(cc.analysis_spec(cfg, "work-precision", "full")),
@@ -230,13 +240,13 @@ def test_nan_alpha_is_reported_once(raw):
     (("scenes", "tw-weak", "store", "every"), math.inf), (("scenes", "tw-weak", "store", "snapshots", 0), math.nan),
     (("beyond", "work-precision", "scenes", "tw-weak", "t_end"), math.inf),
     (("figures", "plot4-5", "times", 0), math.nan),
-    (("beyond", "mi_statistics", "t_end"), "inf"),
+    (("beyond", "mi-statistics", "t_end"), "inf"),
 ])
 def test_non_finite_times_are_refused_once(raw, where, value):
     cfg = copy.deepcopy(raw)
     node = cfg
     for k in where[:-1]:
-        node = node[k]
+        node = node.setdefault(k, {})   # a section config.yaml leaves to its declared defaults
     node[where[-1]] = value
     lines = _lines(cfg)
     assert len(lines) == 1, lines
@@ -252,8 +262,6 @@ def test_config_yaml_states_only_what_differs_from_the_defaults(raw):
     assert "defaults" not in raw
     for section, values in raw["beyond"].items():
         for key, value in values.items():
-            if section in ("mi_statistics", "breather_interactions"):
-                continue   # TRANSITION ONLY: restated until their analyses are ported
             assert declared["beyond"][section][key] != value, f"beyond.{section}.{key} restates its default"
     for key, value in raw["movies"].items():
         assert declared["movies"][key] != value, f"movies.{key} restates its default"
@@ -266,7 +274,7 @@ def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw
     assert kinds["tw-weak"] is scenes.Travelling and kinds["breather-small"] is scenes.Breather
     assert kinds["loc1-packet"] is scenes.Packet and kinds["loc1-pair"] is scenes.Pair
     assert c.scenes["tw-weak-noise"].initial.noise == scenes.Noise(kind="uniform", amplitude=0.5, seed=20110605)
-    assert c.map["traj2-8"].line.from_ == [0.2, -0.1] and c.beyond.mi_statistics.full.q_over_pi.count == 21
+    assert c.map["traj2-8"].line.from_ == [0.2, -0.1] and c.beyond.mi_statistics.q_over_pi.count == 21
     with pytest.raises(dataclasses.FrozenInstanceError):
         c.defaults.alpha = 2.0
 
@@ -280,7 +288,7 @@ def test_typed_config_is_frozen_and_picks_the_kind_of_each_initial_condition(raw
     ("theorem1", "scenes", ["tw-weak", "fini"], "beyond.theorem1.scenes[1] = 'fini': not a travelling-wave scene"),
     ("floquet", "q_max", "0.3pi", "beyond.floquet.q_max = '0.3pi': must exceed q_min = '0.4pi'"),
     ("floquet", "small_q", ["3pi/5", "pi"], "beyond.floquet.small_q[1] = 'pi': must be in (0, pi)"),
-    ("mi_statistics", "reduced", {"N": [201]}, "beyond.mi_statistics.reduced.N[0] = 201: must be even"),
+    ("mi-statistics", "reduced", {"N": [201]}, "beyond.mi-statistics.reduced.N[0] = 201: must be even"),
     # the reduced form reports the keys it replaces, once; what it keeps of the full form is said there only
     ("floquet", "reduced", {"small_q": ["pi"]}, "beyond.floquet.reduced.small_q[0] = 'pi': must be in (0, pi)"),
     ("floquet", "ring_k", 20, "beyond.floquet.ring_k = 20: need 0 < ring_k < ring_N = 20"),
@@ -304,10 +312,9 @@ def test_an_entry_with_a_schema_error_is_not_checked_further(raw):
     cfg["scenes"]["tw-weak"]["store"]["snapshots"] = 3
     cfg["scenes"]["fft344"]["initial"]["kind"] = "travelling-wave"
     cfg["homoclinic"]["bond"]["N"] = 0.3
-    cfg["beyond"].setdefault("mi_statistics", {}).setdefault("full", {})["q_over_pi"] = {
-        "start": 0.45, "stop": 0.65, "count": 1e9}
+    cfg["beyond"].setdefault("mi-statistics", {})["q_over_pi"] = {"start": 0.45, "stop": 0.65, "count": 1e9}
     assert _lines(cfg) == [
-        "config error: beyond.mi_statistics.full.q_over_pi.count = 1000000000.0: must be <= 1000",
+        "config error: beyond.mi-statistics.q_over_pi.count = 1000000000.0: must be <= 1000",
         "config error: homoclinic.bond.N = 0.3: must be an integer",
         "config error: scenes.fft344.initial.kind = 'travelling-wave': must be one of travelling, breather, packet, "
         "pair",
@@ -328,5 +335,5 @@ def test_analysis_scene_names_are_checked_when_resolved(raw):
     cfg["beyond"]["mi-growth"]["scenes"] = []
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes is empty"):
         cc.analysis_reads(cfg, "mi-growth", "full")
-    with pytest.raises(cc.ConfigError, match="unknown variant 'tiny'"):
-        cc.resolved_mi_statistics(raw, "tiny")
+    with pytest.raises(cc.ConfigError, match=r"beyond\.mi-statistics: unknown form 'tiny' \(forms: reduced, full\)"):
+        cc.analysis_spec(raw, "mi-statistics", "tiny")

@@ -10,7 +10,6 @@ from cradle.pipeline import config as cc
 from cradle import figures as _figures
 from cradle.pipeline import layout as L
 from cradle.pipeline.codedeps import code_files
-from cradle.pipeline.params import compact_scene
 from cradle.specs.declare import plain
 from cradle.pipeline.config.movies import Movies
 
@@ -34,14 +33,12 @@ def code_of(*entries):
 
 
 def figure_code(label):
-    """Code inputs of the job drawing ``label``: its adapter script and its drawing module."""
-    registry = "FIGURES" if label in _figures.FIGURES else "DATASET_FIGURES"
-    script = "workflow/scripts/figure.py" if registry == "FIGURES" else "workflow/scripts/dataset_figure.py"
+    """Code inputs of the job drawing paper figure ``label``: its adapter script and its drawing module."""
     try:
-        drawing = _figures.module_of(label, registry)
+        drawing = _figures.module_of(label)
     except KeyError as err:
         raise WorkflowError(str(err)) from None
-    return code_of(script, f"cradle.figures.{drawing}")
+    return code_of("workflow/scripts/figure.py", f"cradle.figures.{drawing}")
 
 
 def names_regex(section):

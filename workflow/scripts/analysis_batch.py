@@ -7,7 +7,7 @@ from cradle.data.io import open_dataset
 from cradle.pipeline.runner import run
 from cradle.specs.declare import from_plain
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 log = logging.getLogger("cradle")
 analysis = ANALYSES[sm.params.analysis]
 # the form's spec as the rule resolved it (form_spec: no `reduced` overrides left to apply)

@@ -7,7 +7,7 @@ from cradle.data.io import open_tree
 from cradle.figures import draw_analysis, write_tables
 from cradle.pipeline.runner import setup_logging
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 setup_logging(sm.log[0])
 if sm.params.tables:
     write_tables(sm.params.module, open_tree(sm.input.data), {ext: sm.output[ext] for ext in sm.params.tables})

@@ -5,7 +5,7 @@ from cradle.figures import draw
 from cradle.pipeline.outputs import load_inputs
 from cradle.pipeline.runner import setup_logging
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 setup_logging(sm.log[0])
 data = load_inputs(sm.params.scenes, Path(sm.output.pdf).parent.parent)
 draw(sm.params.label, data, dict(sm.params.options), Path(sm.output.pdf).with_suffix(""))

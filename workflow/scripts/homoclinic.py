@@ -4,6 +4,6 @@ from cradle.scenes import stages
 from cradle.scenes.spec import HomoclinicEntry
 from cradle.specs.declare import from_plain
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 spec, name = from_plain(HomoclinicEntry, sm.params.spec), sm.wildcards.name
 run(lambda: stages.homoclinic_solution(spec, name), sm.output[0], sm.log[0], label=f"homoclinic {name}")

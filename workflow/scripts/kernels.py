@@ -1,10 +1,10 @@
 """Snakemake adapter: compile every kernel a scene's job uses, once, before the scene jobs start
 (cradle.integrators.warmup) -> results/kernels.txt, the cache key of the kernels' sources."""
-from cradle.integrators.warmup import compile_kernels
 from cradle.data.io import write_text
+from cradle.integrators.warmup import compile_kernels
 from cradle.pipeline.runner import log, setup_logging
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 setup_logging(sm.log[0])
 key = compile_kernels()
 log.info("kernels compiled or loaded: cache key %s", key)

@@ -4,6 +4,6 @@ from cradle.scenes import stages
 from cradle.scenes.spec import MapEntry
 from cradle.specs.declare import from_plain
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 spec, name = from_plain(MapEntry, sm.params.spec), sm.wildcards.name
 run(lambda: stages.map_orbits(spec, name), sm.output[0], sm.log[0], label=f"map {name}")

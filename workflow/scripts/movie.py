@@ -6,7 +6,7 @@ from cradle.figures.movie import MovieSpec, animate
 from cradle.pipeline.outputs import open_scene
 from cradle.pipeline.runner import setup_logging
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 setup_logging(sm.log[0])
 m = sm.params.movies
 spec = MovieSpec(fps=m["fps"], duration=m["duration"], width=m["width"], height=m["height"])

@@ -6,7 +6,7 @@ from cradle.pipeline.scene_job import run_scene
 from cradle.scenes.spec import Scene
 from cradle.specs.declare import from_plain
 
-sm = snakemake  # noqa: F821 (injected by Snakemake)
+sm = snakemake  # injected by Snakemake
 run_scene(from_plain(Scene, sm.params.spec), sm.wildcards.scene,
           {key: sm.output[key] for key in ("initial", "exact", "dps", "metrics")}, sm.log[0],
           homoclinic=open_dataset(sm.input.homoclinic[0]) if sm.input.homoclinic else None)

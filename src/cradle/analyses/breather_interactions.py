@@ -14,8 +14,10 @@ ring, started from (ansatzapproxst2) at tau = 0 of (breatherdps), run in (nc) an
 * ``n_seeds`` noise seeds per case: A_n(0) += noise * amplitude / 2 * xi_n, xi_n ~ N(0, 1) from
   numpy's default_rng((seed_base, seed)) (bitwise reproducible).
 
-A batch is one (profile pair, spacing) with all its thetas, amplitudes and seeds; the full form
-runs its batches in ``chunks`` jobs (workflow/rules/interactions.smk), the reduced one in this job.
+A batch is one (profile pair, spacing) with all its thetas, amplitudes and seeds; they are dealt round
+robin to ``chunks`` jobs (:data:`ANALYSIS`'s batches, keys ``0``, ``1``, ...; the full form), or run in the
+analysis job itself when ``chunks`` is 1 (the reduced form). Config: ``beyond: breather-interactions:``
+(:class:`BreatherInteractions`, the reduced form's keys under ``reduced``).
 Output: a tree (:data:`VARIABLES`): ``/cases`` (every run: parameters and, per model, outcome,
 merging period, separation and drift velocities, norm moved to the larger breather) and ``/maps``
 (per profile pair, spacing and base theta, the share of seeds that merge and the modal outcome in
@@ -24,15 +26,95 @@ each model, and how often the two models agree).
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
+from cradle.specs.declare import declared, param, plain, schema_doc
+
+if TYPE_CHECKING:
+    from cradle.scenes.context import Context, Where
+    from cradle.specs.values import Errors
 
 MODELS = ("exact", "dps")
 PAIRS = {"site-site": ("site", "site"), "bond-bond": ("bond", "bond"), "site-bond": ("site", "bond")}
 #: per-case result fields (per model)
 FIELDS = ("outcome", "merge_period", "separation_velocity", "drift_velocity", "norm_transfer")
+
+
+# ----------------------------------------------------------------- spec
+
+_PAIRS = {"type": "string", "enum": ["site-site", "bond-bond", "site-bond"]}
+_SPACING = {"type": "integer", "minimum": 1, "maximum": 24}
+_THETA = {"type": "number", "minimum": 0, "exclusiveMaximum": 6.283185307179586}
+
+
+@declared(doc="The reduced form `snakemake all` builds (results/breather-interactions/breather-interactions.nc): "
+              "these keys replace those of the full form, `snakemake -j2 breather_interactions_full` "
+              "(results/breather-interactions/full/).")
+class BreatherInteractionsReduced:
+    pairs: list[str] = param(["site-site"], "Profile pairs.", minItems=1, maxItems=3, items=_PAIRS)
+    spacings: list[int] = param([2, 6], "Centre spacings.", minItems=1, maxItems=24, items=_SPACING)
+    n_theta: int = param(2, "Number of base phases theta.", minimum=1, maximum=96)
+    refine: int = param(0, "Bisection levels of theta where the outcome changes.", minimum=0, maximum=4)
+    n_seeds: int = param(1, "Noise seeds per case.", minimum=1, maximum=64)
+    periods: float = param(100.0, "Run length in breather periods.", exclusiveMinimum=0, maximum=5000)
+    ratios: list[float] = param([1.0], "Amplitude ratios.", minItems=1, maxItems=8, items={"type": "number"})
+    amplitudes: list[float] = param([0.01], "Overall amplitudes.", minItems=1, maxItems=8, items={"type": "number"})
+    chunks: int = param(1, "Jobs of the sweep (reduced: computed in the analysis job itself).", minimum=1,
+                        maximum=1)
+
+
+@declared(doc="Collisions of two breathers of the DpS family (omega_sw ~ 1.1) on a ring, exact (nc) against DpS "
+              "(dfnls), over profile pair, spacing, relative phase, amplitude ratio, amplitude and noise seeds "
+              "-> results/breather-interactions/full/breather-interactions.nc (target breather_interactions_full) "
+              "and results/breather-interactions/full/breather-interactions.{pdf,png}; the reduced form "
+              "(`reduced`) is built by all.")
+class BreatherInteractions:
+    N: int = param(50, "Ring size (periodic).", minimum=16, maximum=400)
+    alpha: float = param(1.5, "Hertz exponent alpha of V0 (> 1).", ref="alpha", maximum=10)
+    amplitude: float = param(0.01, "Peak |x_n(0)| of the first copy alone in the theta sweep (omega_sw ~ 1.1).",
+                             exclusiveMinimum=0, maximum=0.1)
+    pairs: list[str] = param(["site-site", "bond-bond", "site-bond"], "Profile pairs of the two copies of (dpsstn) "
+                             "solutions.", minItems=1, maxItems=3, items=_PAIRS)
+    spacings: list[int] = param([4, 5, 6, 7, 8], "Centre spacings (site-bond: each + 1/2), the interacting range "
+                                "of docs/loc1-readings.md.", minItems=1, maxItems=24, items=_SPACING)
+    n_theta: int = param(24, "Number of base phases theta = 2 pi j / n_theta of the second copy on the carrier.",
+                         minimum=1, maximum=96)
+    refine: int = param(1, "Bisection levels between neighbouring base thetas whose outcome (exact, modal over seeds) "
+                        "differs.", minimum=0, maximum=4)
+    n_seeds: int = param(8, "Noise seeds per case.", minimum=1, maximum=64)
+    noise: float = param(0.01, "Noise on A_n(0), relative to the amplitude (Gaussian, sd noise * amplitude / 2).",
+                         minimum=0, maximum=1)
+    seed_base: int = param(20261122, "First entry of the seed sequence (seed_base, seed) of numpy's default_rng.",
+                           minimum=0)
+    periods: float = param(600.0, "Run length in breather periods 2 pi / omega_sw (the paper: up to 600).",
+                           exclusiveMinimum=0, maximum=5000)
+    ratios: list[float] = param([0.8, 1.0, 1.25], "Amplitude ratios (second copy / first) of the amplitude sweep, at "
+                                "the base amplitude.", minItems=1, maxItems=8,
+                                items={"type": "number", "exclusiveMinimum": 0, "maximum": 10})
+    amplitudes: list[float] = param([0.005, 0.01, 0.02], "Overall amplitudes of the amplitude sweep, at ratio 1.",
+                                    minItems=1, maxItems=8,
+                                    items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.1})
+    amplitude_thetas: list[float] = param([0.0, 3.141592653589793], "Phases (radians) of the amplitude sweep.",
+                                          minItems=1, maxItems=8, items=_THETA)
+    chunks: int = param(4, "Jobs the full sweep is split into (round robin over (pair, spacing)); 1: the sweep runs "
+                        "in the analysis job itself.", minimum=1, maximum=64)
+    reduced: BreatherInteractionsReduced = param(BreatherInteractionsReduced(),
+                                                 schema_doc(BreatherInteractionsReduced))
+
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """Spacings distinct; the pair must fit the ring."""
+        forms = [(where, self.spacings)]
+        if self.reduced is not None:
+            forms.append((where + ["reduced"], self.reduced.spacings))
+        for at, sp in forms:
+            if len(set(map(str, sp))) != len(sp):
+                out.add(at + ["spacings"], "must be distinct", sp)
+            if any(s + 10 > self.N for s in sp):
+                out.add(at + ["spacings"], f"must leave room for both breathers: spacing + 10 <= N = {self.N}", sp)
 
 
 def spacings_of(pair: str, spacings) -> list[float]:
@@ -41,41 +123,42 @@ def spacings_of(pair: str, spacings) -> list[float]:
     return [float(s) + (0.5 if pair == "site-bond" else 0.0) for s in spacings]
 
 
-def batches(spec: dict) -> list[tuple[str, float]]:
+def batches(spec: BreatherInteractions) -> list[tuple[str, float]]:
     """Every (profile pair, spacing) of the sweep, in a fixed order."""
-    return [(p, s) for p in spec["pairs"] for s in spacings_of(p, spec["spacings"])]
+    return [(p, s) for p in spec.pairs for s in spacings_of(p, spec.spacings)]
 
 
-def chunk_batches(spec: dict, chunk: int) -> list[tuple[str, float]]:
-    """The batches of job ``chunk`` (round robin over ``spec['chunks']`` jobs)."""
-    return batches(spec)[chunk::int(spec["chunks"])]
+def chunk_batches(spec: BreatherInteractions, chunk: int) -> list[tuple[str, float]]:
+    """The batches of job ``chunk`` (round robin over ``spec.chunks`` jobs)."""
+    return batches(spec)[chunk::spec.chunks]
 
 
-def initial(spec: dict, pair: str, spacing: float, theta: float, ratio: float, amplitude: float, seed: int):
+def initial(spec: BreatherInteractions, pair: str, spacing: float, theta: float, ratio: float, amplitude: float,
+            seed: int):
     """Initial data of one case: the pair (:func:`cradle.models.pairs.two_breathers`) plus the noise."""
     from cradle.models import pairs
     from cradle.models.initial import InitialData, lattice_state
 
-    N, alpha = int(spec["N"]), float(spec["alpha"])
+    N, alpha = spec.N, spec.alpha
     prof = PAIRS[pair]
     c = pairs.symmetric_centres(N, prof, spacing)
     d = pairs.two_breathers(N, alpha, profiles=prof, centres=c, amplitudes=(amplitude, ratio * amplitude),
                             theta=theta)
-    if spec["noise"] > 0:
-        xi = np.random.default_rng((int(spec["seed_base"]), int(seed))).standard_normal(N)
-        A0 = d.A0 + 0.5 * spec["noise"] * amplitude * xi
+    if spec.noise > 0:
+        xi = np.random.default_rng((spec.seed_base, int(seed))).standard_normal(N)
+        A0 = d.A0 + 0.5 * spec.noise * amplitude * xi
         x0, v0 = lattice_state(A0, 1.0, alpha, "periodic")
         d = InitialData(A0=A0, eps=1.0, x0=x0, v0=v0, info=d.info)
     return d
 
 
-def run_case(spec: dict, pair, spacing, theta, ratio, amplitude, seed) -> dict:
+def run_case(spec: BreatherInteractions, pair, spacing, theta, ratio, amplitude, seed) -> dict:
     """One case in both models -> {f"{field}_{model}": value}."""
     from cradle.analyses import pair_runs
 
     d = initial(spec, pair, spacing, theta, ratio, amplitude, seed)
     T = 2 * np.pi / d.info["omega_sw"]
-    res = pair_runs.run_pair(d, float(spec["periods"]) * T, float(spec["alpha"]))
+    res = pair_runs.run_pair(d, spec.periods * T, spec.alpha)
     out = {}
     for m in MODELS:
         oc = res[m]["outcome"]
@@ -85,21 +168,21 @@ def run_case(spec: dict, pair, spacing, theta, ratio, amplitude, seed) -> dict:
     return out
 
 
-def _theta_grid(spec):
-    return 2 * np.pi * np.arange(int(spec["n_theta"])) / int(spec["n_theta"])
+def _theta_grid(spec: BreatherInteractions):
+    return 2 * np.pi * np.arange(spec.n_theta) / spec.n_theta
 
 
 def _modal(codes):
     return int(np.bincount(np.asarray(codes, dtype=int), minlength=5).argmax())
 
 
-def run_batch(spec: dict, pair: str, spacing: float, log=None) -> list[dict]:
+def run_batch(spec: BreatherInteractions, pair: str, spacing: float, log=None) -> list[dict]:
     """Every case of one (pair, spacing): the theta grid at ratio 1 and the base amplitude, refined where the
     modal outcome (over seeds, exact model) changes between neighbours; then the ratios (at the base
     amplitude) and the amplitudes (at ratio 1) at ``amplitude_thetas``. Returns one dict per case."""
     say = log or (lambda *a: None)
-    seeds = range(int(spec["n_seeds"]))
-    A, rows = float(spec["amplitude"]), []
+    seeds = range(spec.n_seeds)
+    A, rows = spec.amplitude, []
 
     def cases(theta, ratio, amp, kind):
         got = []
@@ -112,7 +195,7 @@ def run_batch(spec: dict, pair: str, spacing: float, log=None) -> list[dict]:
 
     t0 = time.perf_counter()
     grid = {float(th): cases(th, 1.0, A, 0) for th in _theta_grid(spec)}
-    for _level in range(int(spec["refine"])):
+    for _level in range(spec.refine):
         ths = sorted(grid)
         for i, a in enumerate(ths):
             b = ths[(i + 1) % len(ths)]
@@ -125,8 +208,8 @@ def run_batch(spec: dict, pair: str, spacing: float, log=None) -> list[dict]:
         rows += rs
     # one parameter at a time: the ratios at the base amplitude, the amplitudes at ratio 1 (the base case
     # itself is in the theta grid when its theta is)
-    combos = [(r, A) for r in spec["ratios"]] + [(1.0, a) for a in spec["amplitudes"]]
-    for th in spec["amplitude_thetas"]:
+    combos = [(r, A) for r in spec.ratios] + [(1.0, a) for a in spec.amplitudes]
+    for th in spec.amplitude_thetas:
         for ratio, amp in dict.fromkeys(combos):
             if ratio == 1.0 and amp == A and any(abs(th - t) < 1e-12 for t in grid):
                 continue
@@ -198,10 +281,10 @@ def case_table(rows: list[dict]) -> dict:
     return cols
 
 
-def maps(cols: dict, spec: dict) -> dict:
+def maps(cols: dict, spec: BreatherInteractions) -> tuple[dict, dict]:
     """Per (pair, spacing, base theta): merge share, modal outcome, median merging period, agreement."""
-    pairs = list(spec["pairs"])
-    nsp = len(spec["spacings"])
+    pairs = list(spec.pairs)
+    nsp = len(spec.spacings)
     ths = _theta_grid(spec)
     shape = (len(pairs), nsp, ths.size)
     out = {f"{k}_{m}": np.full(shape, np.nan) for k in ("merge_share", "modal_outcome", "median_merge_period")
@@ -209,7 +292,7 @@ def maps(cols: dict, spec: dict) -> dict:
     out["agreement"] = np.full(shape, np.nan)
     base = cols["sweep"] == 0
     for i, p in enumerate(pairs):
-        for j, s in enumerate(spacings_of(p, spec["spacings"])):
+        for j, s in enumerate(spacings_of(p, spec.spacings)):
             for k, th in enumerate(ths):
                 sel = base & (cols["pair"] == p) & (cols["spacing"] == s) & np.isclose(cols["theta"], th)
                 if not sel.any():
@@ -225,7 +308,7 @@ def maps(cols: dict, spec: dict) -> dict:
     return out, {"pair": np.array(pairs), "spacing": np.arange(nsp), "theta": ths}
 
 
-def tree(rows: list[dict], spec: dict, wall: float):
+def tree(rows: list[dict], spec: BreatherInteractions, wall: float):
     from cradle.data.io import make_tree
 
     cols = case_table(rows)
@@ -235,11 +318,11 @@ def tree(rows: list[dict], spec: dict, wall: float):
              "outcomes": "merge bound repel transmit none"}
     case_coords = {"case": np.arange(len(rows))}
     return make_tree({"/cases": (dict(cols), case_coords),
-                      "/maps": (mp, coords)}, variables=VARIABLES, attrs=attrs, params=spec,
+                      "/maps": (mp, coords)}, variables=VARIABLES, attrs=attrs, params=plain(spec),
                      title="breather-interactions: two DpS-family breathers, exact (nc) against DpS (dfnls)")
 
 
-def batch(spec: dict, chunk: int, log=None) -> list[dict]:
+def batch(spec: BreatherInteractions, chunk: int, log=None) -> list[dict]:
     """Every case of job ``chunk``."""
     rows = []
     for pair, spacing in chunk_batches(spec, chunk):
@@ -247,17 +330,7 @@ def batch(spec: dict, chunk: int, log=None) -> list[dict]:
     return rows
 
 
-def batch_files(spec: dict, form: str) -> list[str]:
-    """The batch files the analysis reads: none for the reduced form (its sweep runs in the analysis job),
-    ``chunks`` files for the full one (workflow/rules/interactions.smk)."""
-    from cradle.pipeline import layout
-
-    if form != "full":
-        return []
-    return [layout.path("interactions-batch", form=form, chunk=c) for c in range(int(spec["chunks"]))]
-
-
-def batch_dataset(spec: dict, chunk: int, log=None):
+def batch_dataset(spec: BreatherInteractions, chunk: int, log=None):
     """The /cases table of one batch job as a netCDF Dataset."""
     from cradle.data.io import make_dataset
 
@@ -266,24 +339,46 @@ def batch_dataset(spec: dict, chunk: int, log=None):
     cols = case_table(rows)
     return make_dataset(cols, coords={"case": np.arange(len(rows))}, attrs={"chunk": chunk, "n_cases": len(rows),
                                                                             "wall_time_s": time.perf_counter() - t0},
-                        params=spec, variables=_CASE, title=f"breather-interactions batch {chunk}")
+                        params=plain(spec), variables=_CASE, title=f"breather-interactions batch {chunk}")
 
 
-def run(spec: dict, files: list, scenes: dict, log=None):
-    """The analysis protocol: the reduced form computes its (tiny) sweep here; the full form reads the
-    ``chunks`` batch files (workflow/rules/interactions.smk)."""
+def _rows_of(ds) -> list[dict]:
+    """The case dicts of one batch file (merge_ratio is recomputed from them)."""
+    return [{k: (str(ds[k].values[i]) if ds[k].dtype.kind in "USO" else ds[k].values[i].item())
+             for k in _CASE if k in ds and k not in ("merge_ratio", "case")} for i in range(ds.sizes["case"])]
+
+
+# ----------------------------------------------------------------- the protocol
+
+def batch_keys(spec: BreatherInteractions) -> list[str]:
+    """The batch jobs of a form, ``0`` ... ``chunks - 1``: none when ``chunks`` is 1 (the reduced form's
+    tiny sweep runs in the analysis job itself)."""
+    return [str(c) for c in range(spec.chunks)] if spec.chunks > 1 else []
+
+
+def run_batch_job(spec: BreatherInteractions, key: str, inputs: dict, log=None):
+    """Batch ``key`` of :func:`batch_keys` (it reads no file)."""
+    if key not in batch_keys(spec):
+        raise ValueError(f"breather-interactions: no batch {key!r} in this form "
+                         f"(batches: {', '.join(batch_keys(spec)) or 'none'})")
+    return batch_dataset(spec, int(key), log)
+
+
+def compute(spec: BreatherInteractions, inputs: dict, log=None):
+    """The analysis of one form: its batches gathered (``inputs["batch/<key>"]``), or, without batches,
+    the sweep run here. The cases are in one order whatever the split: by pair, spacing, sweep, theta,
+    ratio, amplitude and seed."""
     t0 = time.perf_counter()
-    if files:
-        rows = []
-        for ds in files:
-            n = ds.sizes["case"]
-            for i in range(n):
-                rows.append({k: (str(ds[k].values[i]) if ds[k].dtype.kind in "USO" else ds[k].values[i].item())
-                             for k in _CASE if k in ds and k not in ("merge_ratio", "case")})
-        rows.sort(key=lambda r: (r["pair"], r["spacing"], r["sweep"], r["theta"], r["ratio"], r["amplitude"],
-                                 r["seed"]))
+    keys = batch_keys(spec)
+    if keys:
+        rows = [row for key in keys for row in _rows_of(inputs[f"batch/{key}"])]
     else:
-        rows = []
-        for c in range(int(spec["chunks"])):
-            rows += batch(spec, c, log)
+        rows = batch(spec, 0, log)
+    rows.sort(key=lambda r: (r["pair"], r["spacing"], r["sweep"], r["theta"], r["ratio"], r["amplitude"], r["seed"]))
     return tree(rows, spec, time.perf_counter() - t0)
+
+
+ANALYSIS = Analysis(
+    name="breather-interactions", spec=BreatherInteractions, compute=compute, variables=VARIABLES,
+    batches=Batches(keys=batch_keys, run=run_batch_job),
+    title="Collisions of two breathers, exact (nc) against DpS (dfnls): outcome statistics (loc1)")

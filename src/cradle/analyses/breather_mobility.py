@@ -16,6 +16,8 @@
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from cradle.analyses.breathers_spec import Breathers
@@ -115,7 +117,7 @@ def compute(families: dict, floquets: dict, spec: Breathers, alpha: float, say, 
     ((name, omega_b) -> Floquet); the scalar results go into ``attrs``."""
     import time
 
-    groups = {}
+    groups: dict[str, tuple[dict[str, Any], dict[str, Any]]] = {}   # path -> (data_vars, coords)
     t0 = time.perf_counter()
     kicks = [float(k) for k in spec.kicks]
     fam_name = f"ring {spec.kick_family}"

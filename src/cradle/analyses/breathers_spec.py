@@ -8,7 +8,7 @@ import itertools
 from typing import TYPE_CHECKING
 
 from cradle.analyses.protocol import FULL, REDUCED, form_spec
-from cradle.specs.declare import declared, param
+from cradle.specs.declare import declared, param, schema_doc
 
 if TYPE_CHECKING:
     from cradle.scenes.context import Context, Where
@@ -73,7 +73,7 @@ class Breathers:
                                        "ring breather).", exclusiveMinimum=1, maximum=10)
     direct_growth_factor: float = param(30.0, "The direct run lasts until the unstable mode grows by this factor "
                                         "(1: no direct run).", minimum=1, maximum=1e8)
-    reduced: BreathersReduced = param(BreathersReduced())
+    reduced: BreathersReduced = param(BreathersReduced(), schema_doc(BreathersReduced))
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Both forms: omegas increasing, pn_omega and kick_omega among them."""

@@ -31,7 +31,7 @@ import numpy as np
 
 from cradle.analyses.protocol import REDUCED, Analysis, form_spec, reduced_keys
 from cradle.data.variables import Var
-from cradle.specs.declare import declared, param, plain
+from cradle.specs.declare import declared, param, plain, schema_doc
 from cradle.specs.values import show
 
 if TYPE_CHECKING:
@@ -97,7 +97,7 @@ class DpsValidity:
                             maximum=1e-6)
     chunk: int = param(20000, "Samples per integration chunk (bounds the memory of the long runs).", minimum=100,
                        maximum=1000000)
-    reduced: DpsValidityReduced = param(DpsValidityReduced())
+    reduced: DpsValidityReduced = param(DpsValidityReduced(), schema_doc(DpsValidityReduced))
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Both forms: one eps_min per alpha, each below eps_max; the families distinct."""
@@ -388,7 +388,7 @@ def compute(spec: DpsValidity, inputs=None, log=None):
                          "factor e^{C T}); the exact bound of Bidegaray-Fesquet, Dumas & James, SIAM J. Math. "
                          "Anal. 45 (2013) was not available to us",
         "eps_ranges": "per alpha: eps_min = "
-                      + ", ".join(f"{a:g}: {m:g}" for a, m in zip(alphas, spec.eps_min, strict=False))
+                      + ", ".join(f"{a:g}: {m:g}" for a, m in zip(alphas, spec.eps_min, strict=True))
                       + f"; eps_max = {spec.eps_max:g}. The lattice time T eps^(1-alpha) sets the cost "
                         "(alpha = 3: T eps^-2), hence the larger eps_min at large alpha",
         "lattice_integrator": f"srkn6c, fixed dt = dt_factor 2 pi / omega_max, dt_factor = {spec.dt_factor}",

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from cradle.analyses.protocol import REDUCED, form_spec, reduced_keys
-from cradle.specs.declare import declared, param
+from cradle.specs.declare import declared, param, schema_doc
 from cradle.specs.values import angle_or_none, show
 
 if TYPE_CHECKING:
@@ -48,7 +48,8 @@ class FloquetReduced:
                                           minItems=1, maxItems=10, items={"$ref": "#/$defs/angle"})
     small_q: list[float | str] = param(["3pi/5"], "Wavenumbers of the small-amplitude check.", minItems=1,
                                        maxItems=8, items={"$ref": "#/$defs/angle"})
-    convergence: FloquetConvergence = param(FloquetConvergence(hill_modes=16, grid_log2=17, wave_modes=96))
+    convergence: FloquetConvergence = param(FloquetConvergence(hill_modes=16, grid_log2=17, wave_modes=96),
+                                            schema_doc(FloquetConvergence))
     direct_growth_factor: float = param(100.0, "The direct run lasts until the mode grows by this factor (> 1).",
                                         exclusiveMinimum=1, maximum=100000000.0)
 
@@ -83,7 +84,7 @@ class Floquet:
     wave_modes: int = param(128, "Sine modes of the exact wave (theorem1.solve).", minimum=8, maximum=1024)
     wave_grid_log2: int = param(15, "Grid 2^wave_grid_log2 of the wave solver; >= 8 x wave_modes (also those of "
                                 "`convergence`).", minimum=8, maximum=20)
-    convergence: FloquetConvergence = param(FloquetConvergence())
+    convergence: FloquetConvergence = param(FloquetConvergence(), schema_doc(FloquetConvergence))
     q_profiles: list[float | str] = param(["pi/2", "51pi/100", "52pi/100", "55pi/100", "3pi/5"], "Wavenumbers q where "
                                           "the growth rate against p is stored (numbers or 'pi/2'-style strings, in "
                                           "(0, pi)).", minItems=1, maxItems=10, items=_ANGLES)
@@ -107,7 +108,7 @@ class Floquet:
                           maximum=200)
     direct_k: int = param(5, "q = 2 pi direct_k / direct_N of the direct run (must be unstable).", minimum=1,
                           maximum=199)
-    reduced: FloquetReduced = param(FloquetReduced())
+    reduced: FloquetReduced = param(FloquetReduced(), schema_doc(FloquetReduced))
     direct_growth_factor: float = param(1000.0, "The direct run lasts until the mode grows by this factor (> 1).",
                                         exclusiveMinimum=1, maximum=100000000.0)
 

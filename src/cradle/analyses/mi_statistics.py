@@ -29,30 +29,147 @@ lies entirely above 1/2 (so the interval is never narrower than the grid).
 The DpS linear theory puts the threshold at q_c = pi/2 exactly
 (:func:`cradle.analyses.mi_diagram.threshold`).
 
-Stage functions: :func:`batch` runs one (N, model, chunk of q) batch ->
-Dataset; :func:`aggregate` joins the batches and adds the thresholds.
+The sweep is split into batches (:data:`ANALYSIS`: one job per ring size N, model and chunk of q,
+key ``N<N>-<model>-<chunk>``): :func:`batch` runs one -> Dataset; :func:`aggregate` joins the batches
+of a form and adds the thresholds. Config: ``beyond: mi-statistics:`` (:class:`MIStatistics`), the full
+sweep at its top level and the smaller one `all` builds under ``reduced``.
 """
 from __future__ import annotations
 
+import dataclasses
+import re
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from cradle.analyses import mi_diagram as modulational
+from cradle.analyses.protocol import Analysis, Batches
+from cradle.data.variables import Var
 from cradle.measurements import compare, sidebands
 from cradle.models import initial
-from cradle.analyses import mi_diagram as modulational
-from cradle.specs.values import store_times
-from cradle.data.variables import Var
+from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
+from cradle.specs.declare import NULL, declared, param, plain, schema_doc
+from cradle.specs.values import INTEGER_TOL, store_times
+
+if TYPE_CHECKING:
+    from cradle.scenes.context import Context, Where
+    from cradle.specs.values import Errors
 
 MODELS = ("exact", "dps")
 WILSON_Z = 1.959963984540054   # two-sided 95 %
 
 
+# ---------------------------------------------------------------- spec
+
+@declared(doc="Lattice integrator.")
+class MIStatisticsExact:
+    method: str = param("srkn6c", "A splitting of cradle.integrators (srkn6c is the fastest at the default "
+                        "accuracy).", enum=list(SPLITTINGS))
+    dt_factor: float | None = param(NULL, "Step as a fraction of the shortest linear period; null = the method's "
+                                    "default.", exclusiveMinimum=0, maximum=0.5)
+
+
+@declared(doc="DpS integrator.")
+class MIStatisticsDps:
+    method: str = param("dop853_numba", "dop853_numba: DOP853 compiled (fastest for these N).", enum=list(DPS_METHODS))
+    rtol: float = param(1e-10, "Relative tolerance (atol = rtol max |A_n(0)|), as defaults.dps.rtol.",
+                        exclusiveMinimum=0, maximum=0.001)
+
+
+@declared(doc="Grid of carrier wavenumbers q / pi: count values from start to stop.")
+class QGrid:
+    start: float = param(0.47, "Smallest q / pi.", exclusiveMinimum=0, maximum=1.0)
+    stop: float = param(0.59, "Largest q / pi.", exclusiveMinimum=0, maximum=1.0)
+    count: int = param(7, "Number of q values.", minimum=2, maximum=1000)
+
+
+_N_DOC = "Ring sizes N (even; q N / (2 pi) must be an integer for every q of the grid)."
+_N_ITEMS = {"type": "integer", "minimum": 8, "maximum": 4096, "description": "A ring size."}
+_Q_DOC = "Grid of carrier wavenumbers q / pi: count values from start to stop."
+_SEEDS_DOC = "Noise realisations per (q, N, model)."
+_CHUNKS_DOC = "Batches (Snakemake jobs) per (N, model); q values dealt round-robin."
+
+
+@declared(doc="The small sweep `snakemake all` builds (results/mi-statistics/mi-statistics.nc, "
+              "results/figures/mi-statistics.{pdf,png}): these keys replace those of the full form, "
+              "`snakemake -j2 mi_statistics_full` (results/mi-statistics/full/).")
+class MIStatisticsReduced:
+    N: list[int] = param([200], _N_DOC, minItems=1, maxItems=6, items=_N_ITEMS)
+    q_over_pi: QGrid = param(QGrid(), _Q_DOC)
+    n_seeds: int = param(4, _SEEDS_DOC, minimum=1, maximum=1000)
+    chunks: int = param(1, _CHUNKS_DOC, minimum=1, maximum=100)
+
+
+def _check_sweep(N: list[int], g: QGrid, chunks: int, where: Where, out: Errors) -> None:
+    """One sweep (the full form's keys, or ``reduced``): start < stop, no more batches than q values, and
+    every q of the grid on every ring's wavenumber grid (N even for Gamma*, q N / (2 pi) an integer)."""
+    if not g.start < g.stop:
+        out.add(where + ["q_over_pi"], "need start < stop", dataclasses.asdict(g))
+        return
+    count = int(g.count)
+    vals = [g.start + i * (g.stop - g.start) / (count - 1) for i in range(count)]
+    if chunks > count:
+        out.add(where + ["chunks"], f"more batches than q values (count = {count})", chunks)
+    for j, n in enumerate(N):
+        if n % 2:
+            out.add(where + ["N", j], "must be even (Gamma* of the spatial DFT)", n)
+            continue
+        for x in vals:
+            m = x * n / 2.0
+            if abs(m - round(m)) > INTEGER_TOL:
+                out.add(where + ["q_over_pi"], f"q = {x:.10g} pi gives q N/(2 pi) = {m:.10g} for N = {n}: with "
+                                               f"periodic ends it must be an integer (choose start, stop, count "
+                                               f"so that the step is a multiple of 2/N)", dataclasses.asdict(g))
+                break
+
+
+@declared(doc="Threshold of the modulational instability over noise seeds, ring sizes N and both models "
+              "(cradle.analyses.mi_statistics): the fftseuil experiment repeated; the settings of both forms, the "
+              "full sweep's q grid, N, seeds and batching (`snakemake -j2 mi_statistics_full`: "
+              "results/mi-statistics/full/mi-statistics.nc and results/mi-statistics/full/mi-statistics.{pdf,png}), "
+              "and under `reduced` the small sweep `all` builds.")
+class MIStatistics:
+    alpha: float = param(1.5, "Hertz exponent alpha of V0 (> 1).", ref="alpha", maximum=10)
+    omega_tw: float = param(1.1, "Frequency omega_tw of the travelling wave (freq); a follows from q (the fftseuil "
+                            "scenes: 1.1).", exclusiveMinimum=1.0, maximum=3.0)
+    noise_kind: str = param("gaussian", "Distribution of rho_n^(1), rho_n^(2) of (perturb) (the fftseuil scenes: "
+                            "gaussian).", enum=["gaussian", "uniform"])
+    noise_amplitude: float = param(0.05, "Standard deviation (gaussian) or half-width (uniform) of the noise of "
+                                   "(perturb) (the fftseuil scenes: 0.05).", exclusiveMinimum=0, maximum=1.0)
+    t_end: float = param(913.7, "Final time t of every run (the fftseuil scenes: 913.7).", exclusiveMinimum=0,
+                         maximum=100000.0)
+    sample_every: float = param(1.0, "The spectrum is measured every sample_every time units (the fields are not "
+                                "stored).", exclusiveMinimum=0, maximum=100.0)
+    fraction: float = param(0.5, "A run is unstable when its sideband-to-carrier ratio reaches this fraction by "
+                            "t_end. Below the DpS threshold the noise alone brings the ratio to ~0.2 by t = 913.7, "
+                            "hence 0.5.",
+                            exclusiveMinimum=0, maximum=10.0)
+    exclude_bins: int = param(0, "Bins left out on each side of +-q and of the lattice harmonics +-2(q-pi), "
+                              "+-(3q-2pi) in the sideband ratio (0: only those bins).", minimum=0, maximum=10)
+    seed0: int = param(20111000, "Seeds are seed0, seed0+1, ..., seed0+n_seeds-1, the same at every q and N.",
+                       minimum=0, maximum=4611686018427387904)
+    exact: MIStatisticsExact = param(MIStatisticsExact(), "Lattice integrator.")
+    dps: MIStatisticsDps = param(MIStatisticsDps(), "DpS integrator.")
+    N: list[int] = param([200, 400], _N_DOC, minItems=1, maxItems=6, items=_N_ITEMS)
+    q_over_pi: QGrid = param(QGrid(start=0.45, stop=0.65, count=21), _Q_DOC)
+    n_seeds: int = param(32, _SEEDS_DOC, minimum=1, maximum=1000)
+    chunks: int = param(3, _CHUNKS_DOC, minimum=1, maximum=100)
+    reduced: MIStatisticsReduced = param(MIStatisticsReduced(), schema_doc(MIStatisticsReduced))
+
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """The sweep of each form (:func:`_check_sweep`): the full one at the top, ``reduced``."""
+        _check_sweep(self.N, self.q_over_pi, self.chunks, where, out)
+        red = self.reduced
+        if red is not None:
+            _check_sweep(red.N, red.q_over_pi, red.chunks, where + ["reduced"], out)
+
+
 # ---------------------------------------------------------------- measurement
 
-def sample_times(spec: dict) -> np.ndarray:
+def sample_times(spec: MIStatistics) -> np.ndarray:
     """0, sample_every, ..., t_end: where the sideband ratio of every run is sampled."""
-    return np.asarray(store_times({"every": spec["sample_every"]}, spec["t_end"]))
+    return np.asarray(store_times({"every": spec.sample_every}, spec.t_end))
 
 
 def crossing_time(t, r, fraction: float) -> float:
@@ -75,30 +192,27 @@ def crossing_time(t, r, fraction: float) -> float:
     return float(t[i - 1] + s * (t[i] - t[i - 1]))
 
 
-def run_ratio(model: str, N: int, k: int, seed: int, spec: dict):
-    """One run: (t, r(t), k_peak(t), info) for carrier q = 2 pi k / N, noise seed ``seed``.
-
-    ``spec``: alpha, omega_tw, noise_kind, noise_amplitude, t_end, sample_every, exclude_bins,
-    exact {method, dt_factor}, dps {method, rtol}.
-    """
+def run_ratio(model: str, N: int, k: int, seed: int, spec: MIStatistics):
+    """One run: (t, r(t), k_peak(t), info) for carrier q = 2 pi k / N, noise seed ``seed``, with the
+    settings of ``spec`` (alpha, omega_tw, noise, t_end, sample_every, exclude_bins, exact, dps)."""
     from cradle.integrators import integrate_dps, integrate_lattice
 
-    alpha = float(spec["alpha"])
+    alpha = spec.alpha
     q = 2.0 * np.pi * k / N
     t = sample_times(spec)
-    data = initial.travelling_wave(N, q, alpha, omega_tw=float(spec["omega_tw"]), bc="periodic",
-                                   noise_kind=spec["noise_kind"], noise_amplitude=float(spec["noise_amplitude"]),
+    data = initial.travelling_wave(N, q, alpha, omega_tw=spec.omega_tw, bc="periodic",
+                                   noise_kind=spec.noise_kind, noise_amplitude=spec.noise_amplitude,
                                    seed=int(seed))
     if model == "exact":
-        ex = spec["exact"]
-        sol = integrate_lattice(data.x0, data.v0, t, alpha=alpha, bc="periodic", method=ex["method"],
-                                dt_factor=ex.get("dt_factor"))
-        x = sol.x
-        info = {"drift": sol.energy_drift, "wall": sol.wall_time_s}
+        ex = spec.exact
+        lat = integrate_lattice(data.x0, data.v0, t, alpha=alpha, bc="periodic", method=ex.method,
+                                dt_factor=ex.dt_factor)
+        x = lat.x
+        info = {"drift": lat.energy_drift, "wall": lat.wall_time_s}
     elif model == "dps":
-        st = spec["dps"]
+        st = spec.dps
         sol = integrate_dps(data.A0, data.eps ** (alpha - 1.0) * t, alpha=alpha, bc="periodic",
-                            method=st["method"], rtol=float(st["rtol"]))
+                            method=st.method, rtol=st.rtol)
         x = compare.approximate_displacement(sol.A, t, data.eps)
         info = {"drift": sol.max_l2_drift, "wall": sol.wall_time_s}
     else:
@@ -106,7 +220,7 @@ def run_ratio(model: str, N: int, k: int, seed: int, spec: dict):
     if not np.all(np.isfinite(x)):
         raise RuntimeError(f"mi-statistics: {model} run N={N} k={k} seed={seed} is not finite")
     kk, xh = compare.spatial_dft(x)
-    r, kp = sidebands.sideband_peak(kk, np.abs(xh), q, exclude_bins=int(spec["exclude_bins"]))
+    r, kp = sidebands.sideband_peak(kk, np.abs(xh), q, exclude_bins=spec.exclude_bins)
     info.update({"a": data.info["a"], "eps": data.eps})
     return t, r, kp, info
 
@@ -158,39 +272,39 @@ def threshold(q, unstable) -> dict:
 
 # ---------------------------------------------------------------- config
 
-def q_indices(spec: dict, N: int) -> list[int]:
+def q_indices(spec: MIStatistics, N: int) -> list[int]:
     """The integers k with q = 2 pi k / N for the grid q / pi = start ... stop (count values)."""
-    g = spec["q_over_pi"]
-    vals = np.linspace(float(g["start"]), float(g["stop"]), int(g["count"]))
+    g = spec.q_over_pi
+    vals = np.linspace(g.start, g.stop, g.count)
     k = vals * N / 2.0
     return [int(round(x)) for x in k]
 
 
-def chunk_indices(spec: dict, N: int, chunk: int) -> list[int]:
+def chunk_indices(spec: MIStatistics, N: int, chunk: int) -> list[int]:
     """The k of chunk ``chunk`` (0-based; q values dealt round-robin so the chunks cost about the same)."""
     ks = q_indices(spec, N)
-    c = int(spec["chunks"])
+    c = spec.chunks
     if not 0 <= chunk < c:
         raise ValueError(f"chunk must be in [0, {c - 1}], got {chunk}")
     return ks[chunk::c]
 
 
-def seeds(spec: dict) -> list[int]:
+def seeds(spec: MIStatistics) -> list[int]:
     """seed0, seed0 + 1, ...: the same noise realisations at every q (common random numbers)."""
-    return [int(spec["seed0"]) + s for s in range(int(spec["n_seeds"]))]
+    return [spec.seed0 + s for s in range(spec.n_seeds)]
 
 
-def _attrs(spec: dict) -> dict:
-    g = spec["q_over_pi"]
-    return {"variant": spec["variant"], "model_names": ", ".join(MODELS), "alpha": spec["alpha"], "omega_tw": spec["omega_tw"],
-            "noise": spec["noise_kind"], "noise_amplitude": spec["noise_amplitude"], "t_end": spec["t_end"],
-            "sample_every": spec["sample_every"], "fraction": spec["fraction"],
-            "exclude_bins": spec["exclude_bins"], "seed0": spec["seed0"], "n_seeds": spec["n_seeds"],
-            "seeds": str(seeds(spec)), "q_over_pi_grid": f"{g['start']}..{g['stop']} ({g['count']} values)",
-            "exact_integrator": spec["exact"]["method"],
-            "exact_dt_factor": spec["exact"]["dt_factor"] if spec["exact"]["dt_factor"] is not None
+def _attrs(spec: MIStatistics) -> dict:
+    g = spec.q_over_pi
+    return {"model_names": ", ".join(MODELS), "alpha": spec.alpha, "omega_tw": spec.omega_tw,
+            "noise": spec.noise_kind, "noise_amplitude": spec.noise_amplitude, "t_end": spec.t_end,
+            "sample_every": spec.sample_every, "fraction": spec.fraction,
+            "exclude_bins": spec.exclude_bins, "seed0": spec.seed0, "n_seeds": spec.n_seeds,
+            "seeds": str(seeds(spec)), "q_over_pi_grid": f"{g.start}..{g.stop} ({g.count} values)",
+            "exact_integrator": spec.exact.method,
+            "exact_dt_factor": spec.exact.dt_factor if spec.exact.dt_factor is not None
             else "method default (cradle.integrators.DEFAULT_DT_FACTOR)",
-            "dps_integrator": spec["dps"]["method"], "dps_rtol": spec["dps"]["rtol"],
+            "dps_integrator": spec.dps.method, "dps_rtol": spec.dps.rtol,
             "dps_atol": "rtol * max |A_n(0)|", "boundary": "periodic",
             "initial_data": "travelling wave (ansatzapprox)-(freq), R = 1, phi = 0, perturbed as in (perturb)",
             "ratio": "max |x_hat_k| / |x_hat_{+-q}| over Gamma* without +-q, +-2(q-pi), +-(3q-2pi) "
@@ -198,7 +312,7 @@ def _attrs(spec: dict) -> dict:
             "unstable_when": "ratio >= fraction at some sampled t <= t_end",
             "threshold_method": "last upward crossing of 1/2 by the unstable fraction, linear interpolation; "
                                 "interval from Wilson 95 % binomial intervals at the grid points",
-            "dps_threshold_linear_theory": modulational.threshold(spec["alpha"])[0]}
+            "dps_threshold_linear_theory": modulational.threshold(spec.alpha)[0]}
 
 
 # ---------------------------------------------------------------- stages
@@ -240,7 +354,7 @@ VARIABLES = {
 BATCH_VARIABLES = {**VARIABLES["/"], **VARIABLES["/runs"]}
 
 
-def batch(spec: dict, N: int, model: str, chunk: int, log=None):
+def batch(spec: MIStatistics, N: int, model: str, chunk: int, log=None):
     """Runs of one (N, model, chunk): every q of the chunk times every seed -> a flat Dataset
     (:data:`BATCH_VARIABLES`: the "/runs" table with k_index and a)."""
     from cradle.data.io import make_dataset
@@ -259,12 +373,12 @@ def batch(spec: dict, N: int, model: str, chunk: int, log=None):
         for js, s in enumerate(sd):
             tt, r, kp, info = run_ratio(model, N, k, s, spec)
             R[iq, js] = r
-            TC[iq, js] = crossing_time(tt, r, float(spec["fraction"]))
-            i = int(np.argmax(r >= float(spec["fraction"]))) if np.isfinite(TC[iq, js]) else int(np.argmax(r))
+            TC[iq, js] = crossing_time(tt, r, spec.fraction)
+            i = int(np.argmax(r >= spec.fraction)) if np.isfinite(TC[iq, js]) else int(np.argmax(r))
             KP[iq, js] = kp[i]
             DR[iq, js] = info["drift"]
             amp[iq] = info["a"]
-        say(f"mi-statistics {spec['variant']}: N={N} {model} q={2 * k / N:.4f} pi: "
+        say(f"mi-statistics: N={N} {model} q={2 * k / N:.4f} pi: "
             f"{int(np.sum(np.isfinite(TC[iq])))}/{len(sd)} unstable, {time.perf_counter() - wall0:.1f} s")
     q = 2.0 * np.pi * np.asarray(ks) / N
     data = {"ratio": R[None, None], "crossing_time": TC[None, None],
@@ -272,11 +386,11 @@ def batch(spec: dict, N: int, model: str, chunk: int, log=None):
             "drift": DR[None, None], "k_index": np.asarray(ks)[None, :], "a": amp[None, :]}
     coords = {"N": [N], "model": [MODELS.index(model)], "q": q, "seed": sd, "t": t}
     attrs = _attrs(spec) | {"chunk": chunk, "wall_time_s": time.perf_counter() - wall0}
-    return make_dataset(data, coords=coords, attrs=attrs, params=spec, variables=BATCH_VARIABLES,
+    return make_dataset(data, coords=coords, attrs=attrs, params=plain(spec), variables=BATCH_VARIABLES,
                         title=f"mi-statistics batch: N = {N}, {model}, chunk {chunk}")
 
 
-def aggregate(batches, spec: dict):
+def aggregate(batches, spec: MIStatistics):
     """Join the batches of one variant (any order) and add the thresholds per (N, model): a tree of
     groups (:data:`VARIABLES`), the summary per q at the root and every run in "/runs"."""
     import warnings
@@ -309,7 +423,7 @@ def aggregate(batches, spec: dict):
         amp[iN, iq] = b["a"].values[0]
         filled[iN, im, iq] = True
     if not filled.all():
-        missing = [(Ns[a], models[b_], float(qo[c])) for a, b_, c in zip(*np.nonzero(~filled))]
+        missing = [(Ns[a], models[b_], float(qo[c])) for a, b_, c in zip(*np.nonzero(~filled), strict=True)]
         raise ValueError(f"mi-statistics: no batch for (N, model, q/pi) = {missing[:5]} ...")
     out["crossed"] = out["crossed"].astype(np.int8)
     frac = out["crossed"].mean(axis=-1)
@@ -332,11 +446,37 @@ def aggregate(batches, spec: dict):
                     {"N": Ns, "model": [MODELS.index(m) for m in models], "q": q}),
               "/runs": (out, {"seed": sd, "t": t})}
     attrs = _attrs(spec) | status | {"batch_wall_time_s_total": wall, "n_runs": int(np.prod(frac.shape)) * sd.size}
-    return make_tree(groups, VARIABLES, attrs=attrs, params=spec,
-                     title=f"Modulational-instability threshold statistics ({spec['variant']}): "
-                           "lattice (nc) and DpS (dfnls) over noise seeds")
+    return make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
+                     title="Modulational-instability threshold statistics: lattice (nc) and DpS (dfnls) over "
+                           "noise seeds")
 
 
-def run(spec: dict, files: list, scenes: dict, log=None):
-    """The analysis protocol (:mod:`cradle.analyses.registry`): ``files`` are the batches of the form."""
-    return aggregate(files, spec)
+# ---------------------------------------------------------------- the protocol
+
+_KEY = re.compile(r"N(\d+)-(exact|dps)-(\d+)")
+
+
+def batch_keys(spec: MIStatistics) -> list[str]:
+    """The batches of one form, ``N<N>-<model>-<chunk>`` (``N200-exact-0``): every ring size, model and
+    chunk of q values."""
+    return [f"N{N}-{model}-{chunk}" for N in spec.N for model in MODELS for chunk in range(spec.chunks)]
+
+
+def run_batch(spec: MIStatistics, key: str, inputs: dict, log=None):
+    """The batch ``key`` of :func:`batch_keys` (it reads no file)."""
+    found = _KEY.fullmatch(key)
+    if found is None or key not in batch_keys(spec):
+        raise ValueError(f"mi-statistics: no batch {key!r} in this form (batches: {', '.join(batch_keys(spec))})")
+    N, model, chunk = found.groups()
+    return batch(spec, int(N), model, int(chunk), log=log)
+
+
+def compute(spec: MIStatistics, inputs: dict, log=None):
+    """The `mi-statistics` file of one form from its batches (``inputs["batch/<key>"]``)."""
+    return aggregate([inputs[f"batch/{key}"] for key in batch_keys(spec)], spec)
+
+
+ANALYSIS = Analysis(
+    name="mi-statistics", spec=MIStatistics, compute=compute, variables=VARIABLES,
+    batches=Batches(keys=batch_keys, run=run_batch),
+    title="Modulational-instability threshold over noise seeds: thresholds from every batch")

@@ -53,11 +53,11 @@ def run_pair(data, t_end: float, alpha: float = 1.5, bc: str = "periodic", model
     out = {}
     for model in models:
         if model == "exact":
-            sol = integrate_lattice(data.x0, data.v0, times, alpha=alpha, bc=bc, method=method)
-            x = sol.x
-            rho0 = norm_density(model, x=x[0], v=sol.v[0])
-            rho1 = norm_density(model, x=x[-1], v=sol.v[-1])
-            wall = sol.wall_time_s
+            lat = integrate_lattice(data.x0, data.v0, times, alpha=alpha, bc=bc, method=method)
+            x = lat.x
+            rho0 = norm_density(model, x=x[0], v=lat.v[0])
+            rho1 = norm_density(model, x=x[-1], v=lat.v[-1])
+            wall = lat.wall_time_s
         else:
             sol = integrate_dps(data.A0, times * data.eps ** (alpha - 1.0), alpha=alpha, bc=bc,
                                 method="dop853_numba", rtol=dps_rtol)

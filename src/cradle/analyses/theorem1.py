@@ -191,7 +191,8 @@ def va_leading(xi, q, alpha):
     def integral(g, lo, hi):
         pts = [p for p in br if lo < p < hi]
         edges = [lo] + pts + [hi]
-        return sum(quad(g, x0, x1, epsabs=1e-13, epsrel=1e-11, limit=400)[0] for x0, x1 in itertools.pairwise(edges))
+        return sum(quad(g, x0, x1, epsabs=1e-13, epsrel=1e-11, limit=400)[0]
+                   for x0, x1 in zip(edges[:-1], edges[1:], strict=True))
 
     import warnings
 

@@ -48,7 +48,7 @@ import json
 import platform
 import subprocess
 import time
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
@@ -56,7 +56,7 @@ from cradle.analyses.protocol import Analysis, Batches, Read
 from cradle.data.variables import Var
 from cradle.models import lattice
 from cradle.scenes.spec import LATTICE_ADAPTIVE, SPLITTINGS
-from cradle.specs.declare import REQUIRED, declared, param, plain
+from cradle.specs.declare import REQUIRED, declared, param, plain, schema_doc
 from cradle.specs.values import ConfigError, did_you_mean
 
 if TYPE_CHECKING:
@@ -158,7 +158,7 @@ class WorkPrecision:
                                                     additionalProperties=False,
                                                     properties={m: _ladder(m) for m in (*SPLITTINGS,
                                                                                         *LATTICE_ADAPTIVE)})
-    reduced: WorkPrecisionReduced = param(WorkPrecisionReduced())
+    reduced: WorkPrecisionReduced = param(WorkPrecisionReduced(), schema_doc(WorkPrecisionReduced))
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """The scenes name `scenes:` entries (their initial data are measured); the reduced form keeps
@@ -189,7 +189,8 @@ class WorkPrecision:
                   for n in red.scenes if n in self.scenes}
         methods = {m: WorkPrecisionLadder(**{k: v[:red.settings] for k, v in _ladder_of(lad)})
                    for m, lad in self.methods.items() if m in red.methods}
-        return dataclasses.replace(self, scenes=scenes, methods=methods, reduced=None)
+        # a form has no reduced part: None, as protocol.form_spec leaves it (the declared type is the config's)
+        return dataclasses.replace(self, scenes=scenes, methods=methods, reduced=cast(WorkPrecisionReduced, None))
 
 
 def _ladder_of(lad: WorkPrecisionLadder) -> list[tuple[str, list[float]]]:
@@ -317,7 +318,7 @@ def measure(spec: WorkPrecision, scene: str, x0, v0, alpha: float, bc: str, a: f
     shape = (len(methods), S)
     out = {name: np.full(shape, np.nan) for name in ("accuracy_parameter", "dt", "error", "energy_drift",
                                                       "statistic_error", "wall_time", "n_force_evals", "n_steps")}
-    kinds = []
+    kinds: list[str] = []
     for i, method in enumerate(methods):
         key, values = ladder(spec, method)
         kinds.append(key)
@@ -346,8 +347,7 @@ def measure(spec: WorkPrecision, scene: str, x0, v0, alpha: float, bc: str, a: f
              "reference_energy_drift": fine.energy_drift, "reference_wall_time_s": ref_wall,
              "statistic": "time mean of sum_n V0(x_{n+1} - x_n) / H(0) over grid times in (t_valid, t_end]",
              "statistic_reference": stat_ref,
-             "parameter_kind": json.dumps(dict(zip(methods, kinds, strict=True))),
-             "repeat_time_s": spec.repeat_time,
+             "parameter_kind": json.dumps(dict(zip(methods, kinds, strict=True))), "repeat_time_s": spec.repeat_time,
              "machine": machine(), "date": _dt.date.today().isoformat(), "numba_version": _version("numba"),
              "scipy_version": _version("scipy")}
     return _dataset(out, methods, S, t, D, attrs, title=f"work-precision of the lattice integrators, scene "

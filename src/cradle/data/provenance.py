@@ -223,7 +223,8 @@ if __name__ == "__main__":
     import argparse
 
     _p = argparse.ArgumentParser(prog="python -m cradle.data.provenance", description="provenance of this installation")
-    _p.add_argument("what", choices=("show", "lock"), help="show: the attributes outputs get; lock: requirements-lock.txt")
+    _p.add_argument("what", choices=("show", "lock"),
+                    help="show: the attributes outputs get; lock: requirements-lock.txt")
     _p.add_argument("--extras", default="workflow", help="comma-separated extras of cradle to lock (default: workflow)")
     _a = _p.parse_args()
     if _a.what == "lock":

@@ -98,7 +98,8 @@ VARIABLES: dict[str, Var] = {
                             attrs=(("comment", "cradle.measurements.interactions.classify on max_t |x_n| per "
                                                "period: first period of the final single breather"),)),
     "outcome_exact": Var((), "interaction outcome of the two breathers, exact",
-                         attrs=(("flag_values", (0, 1, 2, 3, 4)), ("flag_meanings", "merge bound repel transmit none"))),
+                         attrs=(("flag_values", (0, 1, 2, 3, 4)),
+                                ("flag_meanings", "merge bound repel transmit none"))),
     "outcome_dps": Var((), "interaction outcome of the two breathers, approximate",
                        attrs=(("flag_values", (0, 1, 2, 3, 4)), ("flag_meanings", "merge bound repel transmit none"))),
     "breather_site": Var((), "bead n of largest |x_n(0)|, where the frequencies are measured"),

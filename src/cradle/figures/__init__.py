@@ -1,7 +1,8 @@
 """One drawing function per paper figure, reading netCDF outputs only.
 
-:data:`FIGURES` maps each label to its drawing function; a function takes opened :class:`xarray.Dataset` objects (and the figure's
-options from config.yaml) and returns a matplotlib Figure; :func:`save_figure`
+:data:`FIGURES` maps each label to its drawing function; a function takes
+opened :class:`xarray.Dataset` objects (and the figure's options from
+config.yaml) and returns a matplotlib Figure; :func:`save_figure`
 writes it as ``<stem>.pdf`` and ``<stem>.png``. Modules: :mod:`.maps`
 (traj3, traj2), :mod:`.homoclinic` (bcsc), :mod:`.travelling` (plot4-5,
 plotcomplin), :mod:`.spacetime` (space-time diagrams and profiles),
@@ -97,35 +98,24 @@ FIGURES = {
     "fini": "localised.draw_fini",
 }
 
-#: Beyond the paper: label -> "module.function", each drawn from the one netCDF file of its
-#: analysis by :func:`draw_dataset`.
-DATASET_FIGURES = {
-    "mi-statistics": "mi_statistics.mi_statistics",
-    "breather-interactions": "breather_interactions.breather_interactions",
-}
-
-REGISTRIES = {"FIGURES": FIGURES, "DATASET_FIGURES": DATASET_FIGURES}
+def module_of(label: str) -> str:
+    """Name of the module here that draws the paper figure ``label`` (nothing is imported)."""
+    if label not in FIGURES:
+        raise KeyError(f"no figure {label!r} (known: {sorted(FIGURES)})")
+    return FIGURES[label].split(".")[0]
 
 
-def module_of(label: str, registry: str = "FIGURES") -> str:
-    """Name of the module here that draws ``label`` (nothing is imported)."""
-    table = REGISTRIES[registry]
-    if label not in table:
-        raise KeyError(f"no figure {label!r} in {registry} (known: {sorted(table)})")
-    return table[label].split(".")[0]
+def labels() -> list[str]:
+    """Every paper figure label."""
+    return list(FIGURES)
 
 
-def labels(registry: str = "FIGURES") -> list[str]:
-    """Every label of ``registry``."""
-    return list(REGISTRIES[registry])
-
-
-def drawer(label: str, registry: str = "FIGURES"):
-    """The drawing function of ``label``, importing only its module."""
+def drawer(label: str):
+    """The drawing function of paper figure ``label``, importing only its module."""
     import importlib
 
-    module_of(label, registry)  # the clear KeyError for an unknown label
-    module, func = REGISTRIES[registry][label].split(".")
+    module_of(label)  # the clear KeyError for an unknown label
+    module, func = FIGURES[label].split(".")
     return getattr(importlib.import_module(f"{__name__}.{module}"), func)
 
 
@@ -137,16 +127,6 @@ def registry() -> dict:
     :func:`load_inputs`), ``options`` is the figure's entry in config.yaml.
     """
     return {label: drawer(label) for label in FIGURES}
-
-
-def draw_dataset(label: str, ds, stem, note: str = "") -> list[Path]:
-    """Draw the beyond-the-paper figure ``label`` (a ``DATASET_FIGURES`` entry) from the Dataset
-    of its analysis and save it as ``stem``.pdf/.png; ``note`` (e.g. which form of the analysis it
-    shows) goes small in the bottom right corner."""
-    fig = drawer(label, "DATASET_FIGURES")(ds)
-    if note:  # a figure-level x label: the layout keeps room for it below the panels
-        fig.supxlabel(note, x=0.998, ha="right", fontsize=6, color="0.4")
-    return save_figure(fig, stem)
 
 
 def draw_analysis(module: str, tree, stem, note: str = "") -> list[Path]:

@@ -1,6 +1,6 @@
 """Figure beyond the paper: collisions of two breathers, exact (nc) against DpS (breather-interactions).
 
-Reads results/interactions/[full/]breather-interactions.nc (:mod:`cradle.analyses.breather_interactions`):
+Reads results/breather-interactions/[full/]breather-interactions.nc (:mod:`cradle.analyses.breather_interactions`):
 row by profile pair, (a) and (b) the modal outcome over the seeds on (spacing, theta), exact and
 DpS side by side, with the share of seeds whose outcome the two models share; (c) the median
 merging time against the spacing at theta = 0, both models; (d) the exact/DpS ratio of the merging
@@ -18,7 +18,8 @@ OUTCOMES = ("merge", "bound", "repel", "transmit", "none")
 COLOURS = ("#1b9e77", "#7570b3", "#d95f02", "#e7298a", "#bbbbbb")
 
 
-def breather_interactions(tree):
+def draw(tree):
+    """The figure of the module docstring from the breather-interactions file ``tree`` (/cases, /maps)."""
     maps, cases = tree["maps"], tree["cases"]
     pairs = [str(p) for p in maps["pair"].values]
     theta = maps["theta"].values
@@ -37,7 +38,7 @@ def breather_interactions(tree):
                         + (f"\nmodels agree on {np.nanmean(agree):.0%} of seeds" if j == 1 else ""), fontsize=8)
             A.set_xlabel(r"$\theta/\pi$")
             A.set_ylabel("spacing (sites)")
-        handles = [A.scatter([], [], color=c, marker="s", label=o) for o, c in zip(OUTCOMES, COLOURS)]
+        handles = [A.scatter([], [], color=c, marker="s", label=o) for o, c in zip(OUTCOMES, COLOURS, strict=True)]
         ax[i, 1].legend(handles=handles, fontsize=6, loc="upper right")
         # (c) merging time against spacing at theta = 0
         C = ax[i, 2]

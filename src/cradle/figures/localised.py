@@ -26,9 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from cradle.figures import figure
-from cradle.figures.spacetime import FORCE_LABEL, _at, period_minimum, spacetime
-from cradle.figures.spacetime import common_vmin as _vmin
-
+from cradle.figures.spacetime import FORCE_LABEL, _at, common_vmin as _vmin, period_minimum, spacetime
 
 # plot18 (bottom left): the paper likens this diagram to the detail plot28 (the central breather of
 # the q = pi instability), a 100-time-unit, 20-bond window. We show the last 100 time units of the
@@ -150,7 +148,8 @@ def draw_loc1(data, options):
         t_end = float(ex["t"].values[-1])
         info = f"max $|x_n(0)|$ = {np.max(np.abs(x0)):.3g}"
         if "omega_sw" in ex.attrs:
-            info += f", $\\omega_{{sw}}$ = {_omega(ex):.4f}, $t_{{end}}$ = {t_end * _omega(ex) / (2 * np.pi):.0f} periods"
+            info += (f", $\\omega_{{sw}}$ = {_omega(ex):.4f}, "
+                     f"$t_{{end}}$ = {t_end * _omega(ex) / (2 * np.pi):.0f} periods")
         ax.set_title(f"{name}: $x_n(0)$, $v_n(0) = 0$\n{info}", fontsize=8)
         vmin = _vmin(ex, ap)
         m = data[name]["metrics"]

@@ -54,7 +54,8 @@ def draw_traj2(data, options):
     orbits and invariant tori, right orbits near stable and unstable manifolds; marks for the
     explicit periodic orbits where the entry has ``marks``."""
     fig, axes = figure(3, 2, width=8.0, height=11.5)
-    for ax, name in zip(axes.flat, options["scenes"]):
+    # six panels: a shorter list of scenes leaves the last ones blank
+    for ax, name in zip(axes.flat, options["scenes"], strict=False):
         ds = data[name]
         _orbits(ax, ds)
         if ds.attrs.get("marks"):

@@ -1,5 +1,6 @@
 """Figure mi-statistics: the modulational-instability threshold over noise seeds, ring sizes and both models
-(the fftseuil experiment repeated), from results/mi/mi-statistics.nc."""
+(the fftseuil experiment repeated), from results/mi-statistics/[full/]mi-statistics.nc
+(:mod:`cradle.analyses.mi_statistics`)."""
 from __future__ import annotations
 
 import numpy as np
@@ -16,7 +17,7 @@ def _names(ds, key="scene_names"):
     return [s.strip() for s in str(ds.attrs.get(key, "")).split(",")]
 
 
-def mi_statistics(tree):
+def draw(tree):
     """Fraction of unstable seeds and crossing-time distributions against q, per N, both models.
 
     ``tree``: the mi-statistics file, the summary per q at the root and every run in /runs."""

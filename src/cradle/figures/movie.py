@@ -216,7 +216,7 @@ def ffmpeg_exe() -> str:
 
         exe = os.environ.get("IMAGEIO_FFMPEG_EXE") or shutil.which("ffmpeg")
         if not exe:
-            raise RuntimeError("no ffmpeg: pip install imageio-ffmpeg (the extra `movies`) or install ffmpeg")
+            raise RuntimeError("no ffmpeg: pip install imageio-ffmpeg (the extra `movies`) or install ffmpeg") from None
         return exe
     return imageio_ffmpeg.get_ffmpeg_exe()
 

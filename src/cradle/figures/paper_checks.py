@@ -2,8 +2,9 @@
 results/paper-checks/paper-checks.nc (:mod:`cradle.analyses.paper_checks`).
 
 The "figure" of the analysis paper-checks is two tables (:func:`tables`), written by the generic drawing rule
-(``tables`` of :class:`cradle.analyses.protocol.Analysis`): the CSV (one line per statement, the columns of
-:data:`cradle.analyses.claims_table.COLUMNS`) and the Markdown page with the verdict counts.
+(``tables`` of :class:`cradle.analyses.protocol.Analysis`): the CSV (one line per statement, the file's text
+variables in their order: :data:`cradle.analyses.claims_table.COLUMNS`) and the Markdown page with the verdict
+counts.
 """
 from __future__ import annotations
 
@@ -12,24 +13,23 @@ import io as _io
 
 import xarray as xr
 
-from cradle.analyses.claims_table import COLUMNS
-
 VERDICTS = ("agrees", "disagrees", "not comparable")
 
 
 def table_rows(tree) -> list[dict[str, str]]:
     """The rows of the claims table file (a tree, or its root Dataset), each ``{column: text}``."""
     ds = tree.to_dataset() if isinstance(tree, xr.DataTree) else tree
-    return [{c: str(ds[c].values[i]) for c in COLUMNS} for i in range(ds.sizes.get("row", 0))]
+    return [{c: str(ds[c].values[i]) for c in ds.data_vars} for i in range(ds.sizes.get("row", 0))]
 
 
 def to_csv(rows) -> str:
     """The rows (``{column: text}``) as CSV, the header first."""
     buf = _io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(COLUMNS)
+    columns = list(rows[0]) if rows else []
+    w.writerow(columns)
     for r in rows:
-        w.writerow([r[c] for c in COLUMNS])
+        w.writerow([r[c] for c in columns])
     return buf.getvalue()
 
 
@@ -37,8 +37,9 @@ def to_markdown(rows) -> str:
     """The rows (``{column: text}``) as a Markdown page: a title, the verdict counts, the table."""
     def cell(s):
         return str(s).replace("|", "\\|")
-    lines = ["| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
-    lines += ["| " + " | ".join(cell(r[c]) for c in COLUMNS) + " |" for r in rows]
+    columns = list(rows[0]) if rows else []
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    lines += ["| " + " | ".join(cell(r[c]) for c in columns) + " |" for r in rows]
     counts = {v: sum(r["verdict"] == v for r in rows) for v in VERDICTS}
     summary = ", ".join(f"{n} {v}" for v, n in counts.items())
     return (f"# The paper's numerical statements against ours\n\n{len(rows)} statements: {summary}.\n\n"

@@ -151,7 +151,7 @@ def _profiles(ax, sim, t, approx_style="-.", title=""):
 def _profile_pair(data, options, width=9.0, height=3.4):
     (name,) = options["scenes"]
     fig, axes = figure(1, len(options["times"]), width=width, height=height)
-    for ax, t in zip(np.atleast_1d(axes), options["times"]):
+    for ax, t in zip(np.atleast_1d(axes), options["times"], strict=True):
         _profiles(ax, data[name], t)
     np.atleast_1d(axes)[0].legend(fontsize=8, loc="upper right")
     return fig

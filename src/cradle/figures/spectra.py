@@ -102,8 +102,8 @@ def _ratio_note(fig, sim):
         raise ValueError(f"scene '{m.attrs.get('scene', '?')}': no sideband_exclude_bins in its metrics file: "
                          "rebuild the metrics")
     bins = int(m.attrs["sideband_exclude_bins"])
-    fig.text(0.5, 0.0, r"$r$ = max $|\hat{x}_k|$ outside $\pm$%d bins of $k = \pm q$, $\pm 2(q-\pi)$, "
-             r"$\pm(3q-2\pi)$, divided by $|\hat{x}_{\pm q}|$; dotted lines: $k = \pm q$" % bins,
+    fig.text(0.5, 0.0, r"$r$ = max $|\hat{x}_k|$ outside $\pm$" f"{bins}" r" bins of $k = \pm q$, $\pm 2(q-\pi)$, "
+             r"$\pm(3q-2\pi)$, divided by $|\hat{x}_{\pm q}|$; dotted lines: $k = \pm q$",
              ha="center", va="bottom", fontsize=7, color="0.3")
 
 

@@ -75,8 +75,9 @@ def draw(tree):
     for ja, al in enumerate(alphas):
         for iq, q in enumerate(qs):
             e = conv["profile_error"].values[ja, iq]
+            rate = conv["decay_rate"].values[ja, iq]
             D.loglog(modes[e > 0], e[e > 0], styles[ja % 4] + "o", color=colors[iq], ms=3, lw=0.8,
-                     label=rf"$\alpha$={al:g}, q={_qlabel(q)}: $|v_j| \sim j^{{-{conv['decay_rate'].values[ja, iq]:.2f}}}$")
+                     label=rf"$\alpha$={al:g}, q={_qlabel(q)}: $|v_j| \sim j^{{-{rate:.2f}}}$")
     D.set_xlabel("modes J")
     D.set_ylabel(r"$\max_\xi |v_J - v_{ref}|$")
     D.set_title(f"(d) convergence at a = {tree.attrs.get('convergence_a', np.nan):g} "

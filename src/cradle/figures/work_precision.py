@@ -1,8 +1,9 @@
 """Figure work-precision: error and energy drift of every lattice integrator against wall time.
 
 Drawn by :func:`draw` from results/work-precision/[full/]work-precision.nc
-(:mod:`cradle.analyses.work_precision`), one group per scene. One row per scene; left: error (max over the comparison grid up to
-t_valid, relative to the amplitude) against wall time; right: relative
+(:mod:`cradle.analyses.work_precision`), one group per scene. One row per
+scene; left: error (max over the comparison grid up to t_valid, relative to
+the amplitude) against wall time; right: relative
 energy drift (max over every step up to t_end) against wall time. The
 shaded band is where the two reference runs differ (the error floor of the
 comparison).

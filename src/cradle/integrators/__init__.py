@@ -24,10 +24,6 @@ tests/test_integrators.py.
 """
 from __future__ import annotations
 
-from cradle.integrators import _cache
-
-_cache.activate()   # numba's cache folder for these sources, before any kernel is decorated
-
 from cradle.integrators.dps_solver import DPS_METHODS, DpsSolution, integrate_dps
 from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, SCIPY_METHODS
 from cradle.integrators.lattice_solver import MAX_RERUNS, METHODS, LatticeSolution, integrate_lattice

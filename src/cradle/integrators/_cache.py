@@ -34,8 +34,9 @@ under a running process is only a cache miss for it, since numba recreates
 its cache path before every save.
 
 :func:`activate` must run before numba decorates a kernel (the locator reads
-the directory when ``njit(cache=True)`` is applied): ``cradle.integrators``
-calls it first, and so does each kernel module before its first ``@njit``.
+the directory when ``njit(cache=True)`` is applied): each kernel module calls
+it after its imports, before its first ``@njit``, so importing
+``cradle.integrators`` (which imports them all) activates it.
 See docs/compiled-kernels.md.
 """
 from __future__ import annotations
@@ -50,6 +51,7 @@ import time
 import uuid
 import warnings
 from pathlib import Path
+from typing import Any, cast
 
 #: Environment variable naming the root folder of the per-key folders.
 ENV_VAR = "CRADLE_KERNEL_CACHE"
@@ -64,7 +66,7 @@ PACKAGE_DIR = Path(__file__).resolve().parents[1]   # src/cradle
 KERNEL_DIR = Path(__file__).resolve().parent         # src/cradle/integrators
 INFO_FILE = "cradle-kernel-cache.txt"
 
-_active: dict = {}
+_active: dict[str, Any] = {}
 
 
 def _module_file(name: str) -> Path | None:
@@ -96,7 +98,7 @@ def _imported_files(path: Path, text: str) -> set[Path]:
     would cost more than the rest of :func:`activate`. A docstring line that looks
     like an import can only add a file to the key, never drop one.
     """
-    found = set()
+    found: set[Path | None] = set()
     package = _module_name(path) if path.name == "__init__.py" else _module_name(path).rpartition(".")[0]
     for m in _IMPORT.finditer(text):
         if m.group(3) is not None:
@@ -111,8 +113,7 @@ def _imported_files(path: Path, text: str) -> set[Path]:
             if item.split():
                 # ``from pkg import sub``: the submodule if there is one, else what pkg defines
                 found.add(_module_file(f"{module}.{item.split()[0]}") or _module_file(module))
-    found.discard(None)
-    return found
+    return {path for path in found if path is not None}
 
 
 def kernel_sources() -> list[Path]:
@@ -133,6 +134,7 @@ def _external_sources() -> list[tuple[str, bytes]]:
     import importlib.util
 
     spec = importlib.util.find_spec("scipy")
+    assert spec is not None and spec.origin is not None, "scipy is a dependency"
     path = Path(spec.origin).parent / "integrate" / "_ivp" / "dop853_coefficients.py"
     return [("scipy/integrate/_ivp/dop853_coefficients.py", path.read_bytes())]
 
@@ -186,7 +188,8 @@ def _prepare(folder: Path, info: str) -> None:
     os.utime(folder)
 
 
-def prune(root: Path, current: Path, keep: int = KEEP, grace_s: float = GRACE_S, now: float | None = None) -> list[Path]:
+def prune(root: Path, current: Path, keep: int = KEEP, grace_s: float = GRACE_S,
+          now: float | None = None) -> list[Path]:
     """Remove the key folders of ``root`` beyond the ``keep`` most recently used, except ``current``
     and those used within ``grace_s`` seconds; return the folders removed.
 
@@ -246,5 +249,6 @@ def activate() -> Path:
             _prepare(folder, info)
         prune(root, folder)
         _active.update(root=root, folder=folder, key=key)
-    numba_config.CACHE_DIR = str(_active["folder"])
+    # numba's config module sets its attributes from the environment at run time, unseen by mypy
+    cast(Any, numba_config).CACHE_DIR = str(_active["folder"])
     return _active["folder"]

@@ -14,28 +14,29 @@ from __future__ import annotations
 
 import math
 import time
+from types import ModuleType
 
 import numpy as np
+from numba import njit
 
-from cradle.integrators import _cache
+from cradle.integrators import _cache, _kernels as K
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
-from numba import njit  # noqa: E402
 
-from cradle.integrators import _kernels as K
-
-
-def _scipy_dop853_tableau():
+def _scipy_dop853_tableau() -> ModuleType:
     """scipy's DOP853 tableau (scipy/integrate/_ivp/dop853_coefficients.py, numpy only), loaded
     from its file: importing it as scipy.integrate._ivp... would import all of scipy.integrate
     (0.5 s per process start)."""
     import importlib.util
     from pathlib import Path
 
-    scipy_dir = Path(importlib.util.find_spec("scipy").origin).parent
+    scipy = importlib.util.find_spec("scipy")
+    assert scipy is not None and scipy.origin is not None, "scipy is a dependency"
+    scipy_dir = Path(scipy.origin).parent
     spec = importlib.util.spec_from_file_location(
         "_cradle_dop853_coefficients", scipy_dir / "integrate" / "_ivp" / "dop853_coefficients.py")
+    assert spec is not None and spec.loader is not None, "a .py file has a source loader"
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module

@@ -23,12 +23,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
 from cradle.integrators import _cache
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
-
-from numba import njit  # noqa: E402
 
 HERTZ_15, HERTZ, SMOOTH_15, SMOOTH = 0, 1, 2, 3
 

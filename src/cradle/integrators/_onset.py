@@ -67,15 +67,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
 from cradle.integrators import _cache
-
-_cache.activate()   # before the first @njit: numba picks the cache folder when decorating
-
-from numba import njit  # noqa: E402
-
 from cradle.integrators._kernels import _bond, forces, forces_only, kick_rotate, last_kick
 from cradle.integrators._onset_impulse import cubic, extrema, hermite, integrate_pieces
+
+_cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
 #: Default ``near`` of the onset screen: a cubic Hermite on [0, h] stays within
 #: (4/27) h (|d'(0)| + |d'(h)|) of its chord's range.

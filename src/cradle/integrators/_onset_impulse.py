@@ -21,14 +21,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
 from cradle.integrators import _cache
+from cradle.integrators._kernels import _bond
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
-
-from numba import njit  # noqa: E402
-
-from cradle.integrators._kernels import _bond
 
 # 8-point Gauss-Legendre on [0, 1]
 _GX, _GW = np.polynomial.legendre.leggauss(8)

@@ -13,8 +13,7 @@ import time
 
 import numpy as np
 
-from cradle.integrators import _dop853
-from cradle.integrators import _kernels as K
+from cradle.integrators import _dop853, _kernels as K
 
 #: scipy.integrate.solve_ivp classes, the baselines (looked up when used: scipy.integrate costs 0.5 s to import)
 SCIPY_METHODS = {"dop853": "DOP853", "rk45": "RK45", "lsoda": "LSODA", "radau": "Radau"}

@@ -58,6 +58,7 @@ def log10_tail(b, centre: float, length: int, start_rel: float = 1e-7, M: int = 
                 s_prev, L_prev = X[:, n] / m, np.log(m)
                 continue
             s, L, first = s_prev, L_prev, i
+        assert s is not None, "the recursion starts inside the chain: its end bead is below start_rel max|x|"
         f = np.maximum(s, 0.0) ** b.alpha
         y = np.fft.irfft(np.fft.rfft(f) * mult, M)
         m = float(np.max(np.abs(y)))

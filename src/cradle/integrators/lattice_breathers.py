@@ -353,7 +353,7 @@ def continue_family(a_n, omegas, alpha, bc="periodic", kind=None, centre=None, t
     the family is reported to end where it still fails. Returns the list of converged Breathers (an
     omega that could not be reached is absent) and the last omega reached."""
     say = log or (lambda *a: None)
-    out = []
+    out: list[Breather] = []
     prev = None
     for om in omegas:
         if prev is None:

@@ -12,8 +12,7 @@ import time
 
 import numpy as np
 
-from cradle.integrators import _kernels as K
-from cradle.integrators import _onset
+from cradle.integrators import _kernels as K, _onset
 from cradle.integrators._coefficients import SPLITTINGS
 
 #: Splittings with the contact-onset correction (:mod:`._onset`) -> the splitting they correct.

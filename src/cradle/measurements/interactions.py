@@ -219,7 +219,7 @@ def classify_peaks(starts, P, *, periodic: bool = True, rel: float = REL, dip: f
     K = len(starts)
     if K == 0:
         return Outcome("none")
-    cent, _tops = zip(*(humps(p, rel, dip, periodic) for p in P))
+    cent, _tops = zip(*(humps(p, rel, dip, periodic) for p in P), strict=True)
     counts = np.array([len(c) for c in cent])
     big = np.array([c[0] if len(c) else np.nan for c in cent])
     sep = np.array([ring_distance(c[0], c[1], N, periodic) if len(c) >= 2 else 0.0 for c in cent])

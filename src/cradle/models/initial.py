@@ -111,6 +111,7 @@ def breather(a_n, alpha: float, *, omega_sw: float | None = None, amplitude: flo
             raise ValueError(f"omega_sw must be > 1 (mu > 0), got omega_sw={omega_sw!r}")
         mu = dps.mu_from_omega_sw(omega_sw, alpha)
     else:
+        assert amplitude is not None   # exactly one of the two is given
         k = int(np.argmax(np.abs(a_n))) if site is None else site
         if not (amplitude > 0 and a_n[k] != 0):
             raise ValueError(f"need amplitude > 0 at a site where a_n != 0 (amplitude={amplitude!r}, site={k})")

@@ -68,7 +68,7 @@ def two_breathers(N: int, alpha: float, *, profiles=("site", "site"), centres=(N
     info: the spacing c_2 - c_1, both mu_k and omega_sw_k = 1 + mu_k / (2^alpha tau0)."""
     A0 = np.zeros(N, dtype=complex)
     info = {"profile_1": profiles[0], "profile_2": profiles[1], "theta": float(theta)}
-    for k, (prof, c, amp) in enumerate(zip(profiles, centres, amplitudes), start=1):
+    for k, (prof, c, amp) in enumerate(zip(profiles, centres, amplitudes, strict=True), start=1):
         if not amp > 0:
             raise ValueError(f"amplitude {k} must be > 0, got {amp!r}")
         e, c0, res = envelope_profile(N, prof, alpha, bc)

@@ -234,18 +234,20 @@ def map_estimate(cfg: dict, name: str) -> Estimate:
 
 
 def mi_statistics_estimate(cfg: dict, form: str) -> Estimate:
-    """The largest batch job of ``beyond.mi_statistics.<form>``: ceil(q values / chunks) x seeds runs of
-    the largest N to t_end, at the scenes' measured cost per bead-step of the exact method (a DpS
-    batch costs less: 5.4 s against 7.9 s for the reduced form's batches), the spectra sampled every
-    ``sample_every`` held per run."""
-    from cradle.pipeline.config.mi_statistics import MIStatistics
+    """The largest batch job of one form of ``beyond.mi-statistics`` (the full one at the top of the section,
+    ``reduced``): ceil(q values / chunks) x seeds runs of the largest N to t_end, at the scenes' measured
+    cost per bead-step of the exact method (a DpS batch costs less: 5.4 s against 7.9 s for the reduced
+    form's batches), the spectra sampled every ``sample_every`` held per run."""
+    from cradle.analyses.mi_statistics import MIStatistics
+    from cradle.analyses.protocol import REDUCED, form_spec
 
-    spec = MIStatistics.resolve(cfg, form)
-    N, t_end = max(int(n) for n in spec["N"]), float(spec["t_end"])
-    runs = math.ceil(int(spec["q_over_pi"]["count"]) / int(spec["chunks"])) * int(spec["n_seeds"])
-    one, steps = _exact_seconds(N, t_end, build(ExactIntegrator, spec["exact"]), 2)
-    samples = t_end / float(spec["sample_every"]) + 1
-    return Estimate(f"beyond.mi_statistics.{form}",
+    # the section is schema-valid here (validate() asks for the budget before its physical checks)
+    spec = form_spec(build(MIStatistics, cfg["beyond"]["mi-statistics"]), form)
+    N, t_end = max(spec.N), spec.t_end
+    runs = math.ceil(spec.q_over_pi.count / spec.chunks) * spec.n_seeds
+    one, steps = _exact_seconds(N, t_end, build(ExactIntegrator, {"method": spec.exact.method, "dt_factor": spec.exact.dt_factor}), 2)
+    samples = t_end / spec.sample_every + 1
+    return Estimate("beyond.mi-statistics" + (".reduced" if form == REDUCED else ""),
                     f"{runs} runs per batch (q values / chunks x n_seeds), N = {N}, t_end = {_g(t_end)}",
                     memory_bytes=BASE_BYTES + 8.0 * (STATE_ARRAYS * N + 2 * N * samples),
                     disk_bytes=8.0 * 8 * runs * samples, seconds=BASE_SECONDS + runs * one, steps=runs * steps)
@@ -253,12 +255,12 @@ def mi_statistics_estimate(cfg: dict, form: str) -> Estimate:
 
 def estimates(cfg: dict) -> list[Estimate]:
     """An :class:`Estimate` for every scene, homoclinic and map entry of a validated config, and for
-    the batch jobs of each form of ``beyond.mi_statistics``."""
+    the batch jobs of each form of ``beyond.mi-statistics``."""
     out = []
     jobs = [(section, name, fn) for section, fn in (("scenes", scene_estimate), ("homoclinic", homoclinic_estimate),
                                                      ("map", map_estimate))
             for name in (cfg.get(section) or {})]
-    if ((cfg.get("beyond") or {}).get("mi_statistics")):
+    if ((cfg.get("beyond") or {}).get("mi-statistics")):
         jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
     for _section, name, fn in jobs:
         try:

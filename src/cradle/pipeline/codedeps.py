@@ -16,7 +16,7 @@ without numpy or matplotlib.
 from __future__ import annotations
 
 import ast
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 PACKAGE = "cradle"
@@ -37,7 +37,7 @@ def _package_of(src: Path, path: Path) -> str:
     return ".".join(path.resolve().relative_to(src.resolve()).parts[:-1])
 
 
-@lru_cache(maxsize=None)
+@cache
 def _imports(path: Path, package: str | None) -> tuple[str, ...]:
     """Every module name the file at ``path`` may import (relative ones resolved in ``package``);
     ``from X import y`` gives both X and X.y (y may be a submodule)."""

@@ -28,13 +28,14 @@ import math
 import os
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from cradle.models import lattice
 from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
 from cradle.data.io import make_dataset, verify_file
+from cradle.models import lattice
 
 TIME_TOL = 1e-9
 VARS = ("x", "v", "force", "energy")
@@ -67,7 +68,7 @@ def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c"
     N = x.size
     t_out = np.asarray(t_out, dtype=float)
     t_cur = float(t_out[0]) if t0 is None else float(t0)
-    summary = {"c_assumed": "none"}
+    summary: dict[str, Any] = {"c_assumed": "none"}
     if dt is None:
         c, _ = compression_bounds(x, v, alpha, bc)
         dt = default_dt(c, alpha, method)
@@ -144,8 +145,8 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
     n_onset_corrections; ``extended`` records the history. Raises ValueError naming the value for
     an adaptive integrator, t_end <= the last stored time, or a file without x/v.
     """
-    from cradle.specs.values import store_times
     from cradle.integrators import SPLITTING_METHODS
+    from cradle.specs.values import store_times
 
     path = Path(path)
     out = path if out is None else Path(out)
@@ -158,7 +159,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
         missing = [k for k in VARS if k not in ds]
         if missing:
             raise ValueError(f"{path}: not an exact run of (nc) (no {', '.join(missing)}): cannot extend it")
-        a = dict(ds.attrs)
+        a: dict[str, Any] = dict(ds.attrs)
         method = a.get("integrator")
         if method not in SPLITTING_METHODS:
             raise ValueError(f"{path}: integrator={method!r} is adaptive; extending needs a fixed-step splitting "
@@ -181,7 +182,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
                            alpha=alpha, bc=bc, method=method, dt=dt, t0=t_last, energy0=H0, prefix=prefix,
                            chunk_bytes=chunk_bytes, progress=progress)
     # the old run's statistics and the new part's combine into those of one run
-    stamp = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    stamp = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
     attrs = {k: val for k, val in a.items()}
     attrs.update({
         "t_end": float(new[-1]),

@@ -29,9 +29,6 @@ TEMPLATES = {
     # stage 4
     "figure": "figures/{label}.{ext}",
     "movie": "movies/{scene}.{ext}",       # cradle.figures.movie: a scene's runs in motion (mp4, gif)
-    # analyses beyond the paper: their files follow form_folder (below); here the batches some read
-    "mi-batch": "mi/batch/{variant}/N{N}-{model}-{chunk}.nc",
-    "interactions-batch": "interactions/batch/{form}/{chunk}.nc",
     # an analysis of cradle.analyses.registry: its batches (its output and figure follow analysis_output)
     "analysis-batch": "{analysis}/batch/{form}/{key}.nc",
     # bookkeeping

@@ -80,7 +80,7 @@ def load_inputs(scenes: dict, root) -> dict:
     (:func:`cradle.data.io.open_dataset`): a damaged or truncated one stops the figure with one
     line naming it and its rebuild command, before anything is drawn or written.
     """
-    data = {}
+    data: dict[str, xr.Dataset | dict[str, xr.Dataset]] = {}
     for name, kind in scenes.items():
         if kind in ("map", "homoclinic"):
             data[name] = open_dataset(layout.path(kind, root, name=name))

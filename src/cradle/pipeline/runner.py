@@ -16,10 +16,10 @@ import os
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 from cradle.data.io import write_netcdf
 from cradle.scenes.failure import StageFailure
-
 
 log = logging.getLogger("cradle")
 
@@ -155,7 +155,7 @@ def run_chain(steps, outs: dict, log_path: str | None = None, label: str = "") -
     """
     setup_logging(log_path)
     t0 = time.perf_counter()
-    done = {}
+    done: dict[str, Any] = {}
     for key, compute in steps:
         t1 = time.perf_counter()
         log.info("%s %s: start", key, label)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 import time
+from typing import Any
 
 from cradle.pipeline import budget
 from cradle.pipeline.runner import Progress, run_chain, setup_logging
@@ -42,7 +43,7 @@ def run_scene(spec: Scene, name: str, outs: dict, log_path=None, homoclinic=None
 
     setup_logging(log_path)
     t0 = time.perf_counter()
-    done = {}
+    done: dict[str, Any] = {}
     for key, compute in steps:
         done[key] = compute(done)
     log.info("%s: %s; streamed block by block", name, budget.spec_estimate(spec, name).describe())

@@ -16,6 +16,7 @@ A run that fails (no convergence, NaN, drift above the bound) raises
 from __future__ import annotations
 
 import time
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -294,7 +295,7 @@ def localised_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset) -> tuple[dict, d
     omega = float(exact_ds.attrs["omega_sw"]) if "omega_sw" in exact_ds.attrs else PACKET_OMEGA
     period = 2.0 * np.pi / omega
     t = exact_ds["t"].values
-    data = {"breather_omega": omega}
+    data: dict[str, Any] = {"breather_omega": omega}
     for model, ds in (("exact", exact_ds), ("dps", dps_ds)):
         starts, P = breathers.peak_compression(t, ds["force"].values, period)
         data[f"peak_compression_{model}"] = P

@@ -26,6 +26,7 @@ interrupt leaves none of them. Which job a scene gets is decided by
 from __future__ import annotations
 
 import time
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -105,8 +106,11 @@ def simulate_streamed(spec: Scene, init_ds: xr.Dataset, name: str, outs: dict, *
     while True:  # as integrate_lattice: rerun with a larger compression while the assumed one is exceeded
         run = _Run(spec, init_ds, name, outs, rows, default_dt(c_assumed, spec.alpha, method, fac), c_assumed)
         try:
-            summary = _attempt(run, progress, lambda cmax: not (cmax <= c_assumed * (1.0 + 1e-12)
-                                                                 or c_assumed >= c_energy or n_reruns >= MAX_RERUNS))
+            # this attempt's c_assumed and n_reruns, bound
+            summary = _attempt(run, progress,
+                               lambda cmax, c_assumed=c_assumed, n_reruns=n_reruns:
+                               not (cmax <= c_assumed * (1.0 + 1e-12) or c_assumed >= c_energy
+                                    or n_reruns >= MAX_RERUNS))
         except BaseException:
             run.abort()
             raise
@@ -155,7 +159,9 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
     stats = {"energy_drift": 0.0, "n_steps": 0, "n_force_evals": 0, "max_compression": 0.0,
              "n_onset_corrections": 0, "wall_time_s": 0.0}
     dps_stats = {"n_steps": 0, "wall_time_s": 0.0}
-    E_max, site_series, first = -np.inf, {"exact": [], "dps": []}, {}
+    E_max = -np.inf
+    site_series: dict[str, list[np.ndarray]] = {"exact": [], "dps": []}
+    first: dict[str, xr.Dataset] = {}
     for start in range(0, times.size, run.rows):
         tb = times[start:start + run.rows]
         sol = integrate_lattice(x, v, tb, alpha=alpha, bc=bc, method=spec.exact.method, dt=run.dt,
@@ -201,7 +207,8 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
             if key in run.files:
                 run.files[key].append_block(ds)
             else:  # the variables over the whole run get their final shape now, their values at the end
-                run.files[key] = Appender(run.outs[key], _whole_run_shapes(ds, peaks) if localised and key == "metrics" else ds)
+                run.files[key] = Appender(run.outs[key],
+                                          _whole_run_shapes(ds, peaks) if localised and key == "metrics" else ds)
         x, v, t_cur = sol.x[-1].copy(), sol.v[-1].copy(), float(tb[-1])
         if progress is not None:
             progress(t_cur, float(times[-1]))
@@ -213,8 +220,8 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
     run.files["exact"].set_attrs({k: v for k, v in exact_attrs.items() if k not in GLOBAL_KEYS})
     run.files["dps"].set_attrs({"max_l2_drift": dsol.max_l2_drift, "max_dps_energy_drift": dsol.max_energy_drift,
                                 **dps_stats, "streamed": streamed})
-    values, attrs = {}, {"E_max": E_max, "E_final": float(met["E"].values[-1]), "t_final": float(times[-1]),
-                         "streamed": streamed}
+    values: dict[str, Any] = {}
+    attrs = {"E_max": E_max, "E_final": float(met["E"].values[-1]), "t_final": float(times[-1]), "streamed": streamed}
     if localised:
         period = peaks["exact"].period
         for m in ("exact", "dps"):
@@ -230,7 +237,7 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
                                              np.concatenate(site_series["dps"]), 2.0 * np.pi / period)
             values.update({"omega_exact": sh["omega_exact"], "omega_approx": sh["omega_approx"],
                            "half_shift_periods": sh["half_shift_periods"]})
-    unknown = [k for k in met.data_vars if "t" not in met[k].dims and k not in WHOLE_RUN]
+    unknown = [str(k) for k in met.data_vars if "t" not in met[k].dims and k not in WHOLE_RUN]
     if unknown:  # a metric over the whole run that this job does not accumulate: refuse rather than mislead
         raise StageFailure(f"scene '{name}': the streamed job cannot compute {', '.join(unknown)} over the run")
     run.files["metrics"].set_values(values)

@@ -21,13 +21,10 @@ import functools
 import json
 import types
 import typing
-from collections.abc import Callable
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any
 
 from .values import ANGLE_PATTERN, NAME_PATTERN, ConfigError, key_path, show
-
-T = TypeVar("T")
 
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
 
@@ -51,13 +48,10 @@ def param(default=REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict
 
     ``default``: REQUIRED (the config must give the key), None (optional, absent unless given), NULL
     (filled in as null) or a value (filled in). A mutable default (list, dict) is copied into every
-    instance; a declared instance (a nested section) gives ``doc`` its class's description when ``doc``
-    is left out. ``fill``: for a nested object whose class is a partial override (an integrator), the
+    instance. ``fill``: for a nested object whose class is a partial override (an integrator), the
     descriptions of its keys in this place, where they get the defaults of the class. ``key``: the
     config key when it is not a Python name (``from``).
     """
-    if not doc and _is_declared(type(default)):
-        doc = type(default).__schema_doc__
     meta = {"key": key, "doc": doc, "ref": ref, "keywords": keywords, "fill": fill, "required": default is REQUIRED,
             "null_default": default is NULL}
     if default is NULL:
@@ -68,9 +62,10 @@ def param(default=REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict
     return dataclasses.field(default=default, metadata=meta)
 
 
+# for a type checker, a declared class is a frozen keyword-only dataclass. `param` is not named a field
+# specifier: it takes its default by position, which the checker would read as no default
 @typing.dataclass_transform(kw_only_default=True, frozen_default=True)
-def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of=None,
-             extra=None) -> Callable[[type[T]], type[T]]:
+def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of=None, extra=None):
     """Class decorator: a frozen dataclass declaring one object of the config.
 
     ``name``: its key under ``$defs`` (None: written inline where it is used); ``doc``: its
@@ -78,7 +73,7 @@ def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of
     defaults in ``$defs``); ``any_of``: alternatives of required keys (e.g. snapshots or every);
     ``extra``: further schema keywords.
     """
-    def wrap(cls: Any) -> Any:
+    def wrap(cls):
         # keyword-only: fields are declared in the order of the config's keys, required or not
         cls = dataclasses.dataclass(frozen=True, kw_only=True)(cls)
         cls.__schema_name__ = name
@@ -88,6 +83,12 @@ def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of
         cls.__schema_extra__ = extra or {}
         return cls
     return wrap
+
+
+def schema_doc(cls: Any) -> str:
+    """The description :func:`declared` gave the class ``cls`` (the type checker does not see the attribute
+    the decorator sets)."""
+    return cls.__schema_doc__
 
 
 # Shared scalar types ($defs), each bound written here only.

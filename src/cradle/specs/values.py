@@ -10,6 +10,7 @@ import copy
 import json
 import math
 import re
+from typing import TypeGuard
 
 _NUM = r"(\d+(\.\d*)?|\.\d+)"
 # Angles: a number, or [sign] [coefficient [*]] pi [/ denominator], e.g. pi, pi/5, 4pi/5, -52pi/100, 4*pi/5.
@@ -71,7 +72,7 @@ def bound_text(x) -> str:
     return repr(x) if isinstance(x, float) and not float(x).is_integer() else str(int(x)) if number(x) else str(x)
 
 
-def number(x) -> bool:
+def number(x: object) -> TypeGuard[int | float]:
     """A real number (not a boolean)."""
     return isinstance(x, (int, float)) and not isinstance(x, bool)
 

@@ -6,7 +6,6 @@ from pathlib import Path
 
 from cradle.pipeline.cli.common import CliError
 
-
 #: global attributes that are checks of the result (accuracy, convergence, failure)
 CHECKS = ("energy_drift", "max_energy_drift_allowed", "max_l2_drift", "max_dps_energy_drift", "residual",
           "converged", "symmetry_error", "E_max", "E_final", "n_steps", "n_force_evals", "wall_time_s", "failure")
@@ -36,9 +35,8 @@ def _describe_variables(heading: str, ds) -> list[str]:
 def cmd_describe(args) -> int:
     import xarray as xr
 
-    from cradle.data.provenance import KEYS as PROV
-
     from cradle.data.io import DamagedOutput, verify_file
+    from cradle.data.provenance import KEYS as PROV
 
     path = Path(args.file)
     if not path.exists():
@@ -83,8 +81,8 @@ def _workflow_scene_of(path: Path) -> str | None:
 def cmd_extend(args) -> int:
     import math
 
-    from cradle.pipeline.extend import extend
     from cradle.data.io import DamagedOutput
+    from cradle.pipeline.extend import extend
 
     path = Path(args.file)
     if not path.exists():

@@ -1,8 +1,7 @@
 """The config of the pipeline (config.yaml), declared once and typed.
 
 - :mod:`.spec`: the declaration helpers (:func:`.spec.param`) and the JSON Schema generator;
-- :mod:`.scenes`, :mod:`.sections`, :mod:`.beyond`, :mod:`.mi_statistics`,
-  :mod:`.breather_interactions`: each
+- :mod:`.scenes`, :mod:`.sections`, :mod:`.beyond`: each
   section and each kind of initial condition as a frozen dataclass, with the checks the schema
   cannot express as its ``check`` method and, for the analyses, its ``resolve`` method;
 - :mod:`.validate`: coercion of strings, one-line messages, defaults; :mod:`.loading`: reading
@@ -14,7 +13,6 @@
 """
 from cradle.specs.values import ANGLE_PATTERN, TIME_TOL, ConfigError, parse_angle, store_times
 
-from . import resolve as _resolve
 from .loading import StrictLoader, load, main, read_yaml
 from .resolve import (
     analysis_reads,
@@ -29,9 +27,6 @@ from .resolve import (
 )
 from .sections import KNOWN_FIGURES, SECTIONS
 from .validate import SCHEMA_FILE, generated_schema, schema, schema_path, validate, write_schema
-
-# TRANSITION ONLY: the resolvers of the analyses not yet on the protocol (cradle.analyses._legacy)
-globals().update({k: v for k, v in vars(_resolve).items() if k.startswith("resolved_")})
 
 __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SECTIONS", "SCHEMA_FILE", "ANGLE_PATTERN", "TIME_TOL", "schema",

@@ -2,7 +2,8 @@
 
 ``python -m cradle.pipeline.config [config.yaml]`` validates a file; with
 ``--scene``/``--homoclinic``/``--map NAME`` it prints that entry's resolved
-parameters (what its job receives, and what the ``params_sha256`` of its files hashes); ``--write-schema`` regenerates config.schema.json.
+parameters (what its job receives, and what the ``params_sha256`` of its files
+hashes); ``--write-schema`` regenerates config.schema.json.
 """
 from __future__ import annotations
 
@@ -26,7 +27,7 @@ class StrictLoader(yaml.SafeLoader):
     def construct_mapping(self, node, deep=False):
         if isinstance(node, yaml.MappingNode):
             self.flatten_mapping(node)
-            seen = {}
+            seen: dict[object, int] = {}   # key -> line of its first occurrence
             for key_node, _ in node.value:
                 key = self.construct_object(key_node, deep=True)
                 try:
@@ -71,12 +72,14 @@ def main(argv=None) -> int:
     """
     import argparse
 
-    parser = argparse.ArgumentParser(prog="python -m cradle.pipeline.config", description=main.__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="python -m cradle.pipeline.config",
+                                     description=main.__doc__.splitlines()[0] if main.__doc__ else None)
     parser.add_argument("config", nargs="?", default="config.yaml")
     parser.add_argument("--write-schema", action="store_true",
                         help="regenerate src/cradle/pipeline/config.schema.json from the declarations and exit")
     parser.add_argument("--write-reference", action="store_true",
-                        help="regenerate docs/config-reference.md (every key documented) from the declarations and exit")
+                        help="regenerate docs/config-reference.md (every key documented) from the declarations "
+                             "and exit")
     group = parser.add_mutually_exclusive_group()
     group.add_argument("--scene", metavar="NAME")
     group.add_argument("--homoclinic", metavar="NAME")

@@ -11,13 +11,11 @@ repeated calls cost one validation).
 from __future__ import annotations
 
 import copy
+from typing import Any
 
 from cradle.scenes.spec import HomoclinicEntry, MapEntry, Scene, resolved
 from cradle.specs.declare import build
 from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
-
-from .breather_interactions import BreatherInteractions
-from .mi_statistics import MIStatistics
 
 
 def _validated(config: dict) -> dict:
@@ -80,7 +78,7 @@ def resolved_scene(config: dict, name: str) -> dict:
     cfg = _validated(config)
     scene = _entry(cfg, "scenes", name)
     d = cfg["defaults"]
-    out = {"name": name}
+    out: dict[str, Any] = {"name": name}
     out.update(scene)
     out["alpha"] = float(scene.get("alpha", d["alpha"]))
     out["exact"] = _merged(d["exact"], scene.get("exact"))
@@ -123,14 +121,6 @@ def typed(config: dict):
 
 
 
-def resolved_mi_statistics(config: dict, variant: str) -> dict:
-    """``beyond.mi_statistics.<variant>`` with the shared keys and the inherited defaults merged in."""
-    return MIStatistics.resolve(_validated(config), variant)
-
-
-def resolved_breather_interactions(config: dict, form: str = "full") -> dict:
-    """``beyond.breather_interactions`` of one form (full, or reduced: what ``all`` builds)."""
-    return BreatherInteractions.resolve(_validated(config), form)
 
 
 def analysis_spec(config: dict, name: str, form: str):
@@ -143,6 +133,8 @@ def analysis_spec(config: dict, name: str, form: str):
     from .sections import SECTIONS
 
     a = ANALYSES[name]
+    if form not in a.forms:
+        raise ConfigError(f"config error: beyond.{a.name}: unknown form {form!r} (forms: {', '.join(a.forms)})")
     cfg = _validated(config)
     section = {key: (list(cfg.get(key) or {}) if key in SECTIONS and value == "all" else value)
                for key, value in cfg["beyond"][a.name].items()}

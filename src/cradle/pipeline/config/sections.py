@@ -15,7 +15,7 @@ import math
 from cradle.pipeline.budget import Budget
 from cradle.scenes.context import ENTRY_SECTIONS, Context, Where
 from cradle.scenes.spec import Defaults, HomoclinicEntry, MapEntry, Scene
-from cradle.specs.declare import REQUIRED, declared, param
+from cradle.specs.declare import REQUIRED, declared, param, schema_doc
 from cradle.specs.values import TIME_TOL, Errors, did_you_mean
 
 from .beyond import Beyond
@@ -25,9 +25,9 @@ SECTIONS = ENTRY_SECTIONS  # the name spaces a figure's `scenes:` list reads fro
 
 
 def _known_figures() -> tuple[str, ...]:
-    from cradle.figures import DATASET_FIGURES, FIGURES
+    from cradle.figures import FIGURES
 
-    return (*FIGURES, *DATASET_FIGURES)
+    return tuple(FIGURES)
 
 
 KNOWN_FIGURES = _known_figures()
@@ -83,9 +83,9 @@ class Config:
                                        "entries each reads and the times its panels show.",
                                        propertyNames={"description": "A known figure label.",
                                                       "enum": list(KNOWN_FIGURES)})
-    beyond: Beyond = param(Beyond())
-    budget: Budget = param(Budget())
-    movies: Movies = param(Movies())
+    beyond: Beyond = param(Beyond(), schema_doc(Beyond))
+    budget: Budget = param(Budget(), schema_doc(Budget))
+    movies: Movies = param(Movies(), schema_doc(Movies))
 
 
 def check_finite(node, out, path=()) -> None:
