@@ -31,7 +31,7 @@ import numpy as np
 
 from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
-from cradle.specs.declare import declared, param, plain
+from cradle.specs.declare import declared, param, plain, schema_doc
 
 MODELS = ("exact", "dps")
 PAIRS = {"site-site": ("site", "site"), "bond-bond": ("bond", "bond"), "site-bond": ("site", "bond")}
@@ -98,7 +98,7 @@ class BreatherInteractions:
     chunks: int = param(4, "Jobs the full sweep is split into (round robin over (pair, spacing)); 1: the sweep runs "
                         "in the analysis job itself.", minimum=1, maximum=64)
     reduced: BreatherInteractionsReduced = param(BreatherInteractionsReduced(),
-                                                 BreatherInteractionsReduced.__schema_doc__)
+                                                 schema_doc(BreatherInteractionsReduced))
 
     @staticmethod
     def check(raw: dict, path: list, cfg: dict, out) -> None:

@@ -125,7 +125,8 @@ def growth_rate(q, p, alpha: float, R: float = 1.0):
     entries of L are L00 = i K X, L11 = -i K Y, L01 L10 = K^2 (alpha-1)^2 (c - cos p)^2 / 4 with
     X + Y = (alpha-1)(1-c) + (alpha+1) c w, so that
 
-        lambda = (K/2) sqrt(max(0, f)),  f = w [(alpha-1) + (alpha+1) c] [w ((alpha-1) - (alpha+1) c) - 4 (alpha-1) s^2],
+        lambda = (K/2) sqrt(max(0, f)),
+        f = w [(alpha-1) + (alpha+1) c] [w ((alpha-1) - (alpha+1) c) - 4 (alpha-1) s^2],
 
     written without cancellation (the Goldstone mode p = 0 is exactly neutral). For c >= 0 the last
     bracket is <= -4c <= 0 (w <= 2): every plane wave with |q| <= pi/2 is linearly stable; for c < 0

@@ -47,7 +47,7 @@ from cradle.data.variables import Var
 from cradle.measurements import compare, sidebands
 from cradle.models import initial
 from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
-from cradle.specs.declare import NULL, declared, param, plain
+from cradle.specs.declare import NULL, declared, param, plain, schema_doc
 from cradle.specs.values import INTEGER_TOL, number, store_times
 
 MODELS = ("exact", "dps")
@@ -155,7 +155,7 @@ class MIStatistics:
     q_over_pi: QGrid = param(QGrid(start=0.45, stop=0.65, count=21), _Q_DOC)
     n_seeds: int = param(32, _SEEDS_DOC, minimum=1, maximum=1000)
     chunks: int = param(3, _CHUNKS_DOC, minimum=1, maximum=100)
-    reduced: MIStatisticsReduced = param(MIStatisticsReduced(), MIStatisticsReduced.__schema_doc__)
+    reduced: MIStatisticsReduced = param(MIStatisticsReduced(), schema_doc(MIStatisticsReduced))
 
     @staticmethod
     def check(raw: dict, path: list, cfg: dict, out) -> None:
