@@ -46,6 +46,11 @@ import numpy as np
 
 #: the results-layout renames made so far, OLD_REGEX -> NEW_TEMPLATE on relative paths (after --map)
 RENAMES: list[tuple[str, str]] = [
+    # issue 21, one name per analysis: results/<name>/<name>.nc (and <name>/full/, <name>/batch/<form>/)
+    (r"mi/(full/)?(mi-diagram|mi-growth|mi-statistics)\.nc", r"\2/\1\2.nc"),
+    (r"mi/batch/(reduced|full)/(N\d+-\w+-\d+)\.nc", r"mi-statistics/batch/\1/\2.nc"),
+    (r"interactions/(full/)?breather-interactions\.nc", r"breather-interactions/\1breather-interactions.nc"),
+    (r"interactions/batch/full/(\d+)\.nc", r"breather-interactions/batch/full/\1.nc"),
     (r"validity/(full/)?dps-validity\.nc", r"dps-validity/\1dps-validity.nc"),  # dps-validity on the protocol
     # work-precision on the protocol: one file per scene gathered into one, a group per scene (GROUPS)
     (r"work-precision/(full/)?[^/]+\.nc", r"work-precision/\1work-precision.nc"),

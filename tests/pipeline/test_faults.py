@@ -243,7 +243,7 @@ def test_mi_statistics_batch_over_budget_refused():
     from cradle.pipeline import budget
 
     cfg = yaml.safe_load((ROOT / "config.yaml").read_text())
-    cfg["beyond"]["mi-statistics"]["n_seeds"] = 1000
+    cfg["beyond"].setdefault("mi-statistics", {})["n_seeds"] = 1000
     cfg["beyond"]["mi-statistics"]["t_end"] = 1e5
     with pytest.raises(cc.ConfigError) as err:
         cc.validate(cfg)

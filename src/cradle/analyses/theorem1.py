@@ -11,7 +11,6 @@ initial-data files); :func:`compute` stores them as a tree of netCDF groups (:da
 """
 from __future__ import annotations
 
-import itertools
 import math
 from typing import TYPE_CHECKING
 

@@ -19,7 +19,7 @@ VERDICTS = ("agrees", "disagrees", "not comparable")
 def table_rows(tree) -> list[dict[str, str]]:
     """The rows of the claims table file (a tree, or its root Dataset), each ``{column: text}``."""
     ds = tree.to_dataset() if isinstance(tree, xr.DataTree) else tree
-    return [{c: str(ds[c].values[i]) for c in ds.data_vars} for i in range(ds.sizes.get("row", 0))]
+    return [{str(c): str(ds[c].values[i]) for c in ds.data_vars} for i in range(ds.sizes.get("row", 0))]
 
 
 def to_csv(rows) -> str:

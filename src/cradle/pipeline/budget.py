@@ -42,6 +42,7 @@ in-memory peak as before.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, fields
 
 from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store, resolved
@@ -245,7 +246,8 @@ def mi_statistics_estimate(cfg: dict, form: str) -> Estimate:
     spec = form_spec(build(MIStatistics, cfg["beyond"]["mi-statistics"]), form)
     N, t_end = max(spec.N), spec.t_end
     runs = math.ceil(spec.q_over_pi.count / spec.chunks) * spec.n_seeds
-    one, steps = _exact_seconds(N, t_end, build(ExactIntegrator, {"method": spec.exact.method, "dt_factor": spec.exact.dt_factor}), 2)
+    exact = build(ExactIntegrator, {"method": spec.exact.method, "dt_factor": spec.exact.dt_factor})
+    one, steps = _exact_seconds(N, t_end, exact, 2)
     samples = t_end / spec.sample_every + 1
     return Estimate("beyond.mi-statistics" + (".reduced" if form == REDUCED else ""),
                     f"{runs} runs per batch (q values / chunks x n_seeds), N = {N}, t_end = {_g(t_end)}",
@@ -257,9 +259,9 @@ def estimates(cfg: dict) -> list[Estimate]:
     """An :class:`Estimate` for every scene, homoclinic and map entry of a validated config, and for
     the batch jobs of each form of ``beyond.mi-statistics``."""
     out = []
-    jobs = [(section, name, fn) for section, fn in (("scenes", scene_estimate), ("homoclinic", homoclinic_estimate),
-                                                     ("map", map_estimate))
-            for name in (cfg.get(section) or {})]
+    per_entry = (("scenes", scene_estimate), ("homoclinic", homoclinic_estimate), ("map", map_estimate))
+    jobs: list[tuple[str, str, Callable[[dict, str], Estimate]]] = [
+        (section, name, fn) for section, fn in per_entry for name in (cfg.get(section) or {})]
     if ((cfg.get("beyond") or {}).get("mi-statistics")):
         jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
     for _section, name, fn in jobs:
