@@ -246,7 +246,7 @@ def test_non_finite_times_are_refused_once(raw, where, value):
     cfg = copy.deepcopy(raw)
     node = cfg
     for k in where[:-1]:
-        node = node.setdefault(k, {})   # a section config.yaml leaves to its declared defaults
+        node = node.setdefault(k, {}) if isinstance(k, str) else node[k]   # a section config.yaml leaves out
     node[where[-1]] = value
     lines = _lines(cfg)
     assert len(lines) == 1, lines

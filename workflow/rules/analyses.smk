@@ -48,9 +48,7 @@ def drawn_outputs(a, form, main):
     for ext, f in L.analysis_drawn(a, form, main).items():
         out[ext] = update(f)
         if form == main and (_REPORT / f"{a.name}.rst").exists():
-            out[ext] = report(
-                out[ext], caption=f"../report/{a.name}.rst", category=a.title
-            )
+            out[ext] = report(out[ext], caption=f"../report/{a.name}.rst", category=a.title)
     return out
 
 
@@ -62,77 +60,75 @@ for _a in ANALYSES.values():
             rule:
                 name:
                     f"{_a.target}_batch_{_form}"
-                priority: 10  # long jobs that need no scene start before the figures
-                conda:
-                    "../envs/cradle.yaml"
-                message:
-                    f"{_a.name} ({_form}): batch {{wildcards.key}}"
                 input:
                     unpack(
                         lambda w, a=_a, form=_form: {
-                            "code": code_of(
-                                "workflow/scripts/analysis_batch.py", f"cradle.analyses.{a.module}"
-                            ),
+                            "code": code_of("workflow/scripts/analysis_batch.py", f"cradle.analyses.{a.module}"),
                             **analysis_reads(a, form, a.batches.reads(analysis_spec(a, form), w.key)),
                         }
                     ),
                 output:
                     L.path("analysis-batch", analysis=_a.name, form=_form, key="{key}"),
-                params:
-                    analysis=_a.name,
-                    spec=lambda w, a=_a, form=_form: _plain(analysis_spec(a, form)),
                 log:
                     L.path("log", job=f"{_a.name}/{_form}/batch-{{key}}"),
                 benchmark:
                     L.path("benchmark", job=f"{_a.name}/{_form}/batch-{{key}}")
-                threads: (lambda n: workflow.cores if n == "all" else int(n))(_a.batches.threads.get(_form, 1))
                 wildcard_constraints:
                     key=r"[A-Za-z0-9][A-Za-z0-9_.-]*",
+                priority: 10  # long jobs that need no scene start before the figures
+                conda:
+                    "../envs/cradle.yaml"
+                threads: (lambda n: workflow.cores if n == "all" else int(n))(_a.batches.threads.get(_form, 1))
+                params:
+                    analysis=_a.name,
+                    spec=lambda w, a=_a, form=_form: _plain(analysis_spec(a, form)),
+                message:
+                    f"{_a.name} ({_form}): batch {{wildcards.key}}"
                 script:
                     "../scripts/analysis_batch.py"
 
         rule:
             name:
                 f"{_a.target}_compute_{_form}"
-            priority: 10  # before the figures of the paper: the longest jobs start early
-            conda:
-                "../envs/cradle.yaml"
-            message:
-                f"{_a.title} ({_form})"
             input:
                 unpack(lambda w, a=_a, form=_form: analysis_inputs(a, form)),
             output:
                 L.analysis_output(_a.name, _form, _main),
-            params:
-                analysis=_a.name,
-                # resolved when the job is planned: an analysis not asked for is not resolved
-                spec=lambda w, a=_a, form=_form: _plain(analysis_spec(a, form)),
             log:
                 L.path("log", job=f"{_a.name}/{_form}/{_a.name}"),
             benchmark:
                 L.path("benchmark", job=f"{_a.name}/{_form}/{_a.name}")
+            priority: 10  # before the figures of the paper: the longest jobs start early
+            conda:
+                "../envs/cradle.yaml"
+            params:
+                analysis=_a.name,
+                # resolved when the job is planned: an analysis not asked for is not resolved
+                spec=lambda w, a=_a, form=_form: _plain(analysis_spec(a, form)),
+            message:
+                f"{_a.title} ({_form})"
             script:
                 "../scripts/analysis_compute.py"
 
         rule:
             name:
                 f"{_a.target}_figure_{_form}"
-            conda:
-                "../envs/cradle.yaml"
-            message:
-                (f"Writing the tables of {_a.name} ({_form})" if _a.tables else f"Drawing figure {_a.name} ({_form})")
             input:
                 code=code_of("workflow/scripts/analysis_figure.py", f"cradle.figures.{_a.module}"),
                 data=L.analysis_output(_a.name, _form, _main),
             output:
                 **drawn_outputs(_a, _form, _main),
+            log:
+                L.path("log", job=f"figures/{_form}/{_a.name}"),
+            conda:
+                "../envs/cradle.yaml"
             params:
                 module=_a.module,
                 tables=list(_a.tables),
                 # the reduced form says so on the figure, and where the full one is
                 note=f"reduced form: `snakemake -j2 {_a.target}_full` builds the full one" if _form != FULL else "",
-            log:
-                L.path("log", job=f"figures/{_form}/{_a.name}"),
+            message:
+                (f"Writing the tables of {_a.name} ({_form})" if _a.tables else f"Drawing figure {_a.name} ({_form})")
             script:
                 "../scripts/analysis_figure.py"
 

@@ -42,7 +42,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from cradle import __version__
+from cradle.data.provenance import VERSION as __version__
 from cradle.pipeline.cli.animate import cmd_animate
 from cradle.pipeline.cli.common import PROG, CliError
 from cradle.pipeline.cli.files import cmd_describe, cmd_extend, cmd_verify
