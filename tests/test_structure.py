@@ -127,7 +127,7 @@ def imports(module: str) -> list[Import]:
                 # import cradle.a.b.name: the longest prefix that is a module
                 while target not in MODULES and "." in target:
                     target = target.rsplit(".", 1)[0]
-                out.append(Import(module, target, node.lineno))  # type: ignore[attr-defined]
+                out.append(Import(module, target, node.lineno))
     return sorted(out, key=lambda imp: (imp.line, imp.target))
 
 
@@ -199,7 +199,7 @@ def _spec_name(node: ast.AST) -> str | None:
 
 def _data_names(function: ast.AST) -> set[str]:
     """The parameters of ``function`` annotated as Datasets or arrays."""
-    args = function.args  # type: ignore[attr-defined]
+    args = function.args
     return {a.arg for a in [*args.posonlyargs, *args.args, *args.kwonlyargs]
             if a.annotation is not None and any(t in ast.unparse(a.annotation) for t in DATA_TYPES)}
 
@@ -245,7 +245,7 @@ def spec_mapping_uses(source: str) -> list[tuple[int, str, str]]:
               and len(node.args) >= 2 and isinstance(node.args[1], ast.JoinedStr)):
             kind = "getattr"
         if kind:
-            out.append((node.lineno, node.col_offset, kind, ast.unparse(node)[:80]))  # type: ignore[attr-defined]
+            out.append((node.lineno, node.col_offset, kind, ast.unparse(node)[:80]))
     return [(line, kind, code) for line, _, kind, code in sorted(out)]
 
 
