@@ -68,6 +68,17 @@ def save_figure(fig, stem) -> list[Path]:
     return [path for _, path in done][::-1]
 
 
+MODELS = ("exact", "dps")      # the model index of an analysis file's `model` coordinate
+#: how each model is marked wherever both are plotted
+MODEL_STYLE = {"exact": dict(color="C0", marker="o", label="exact (nc)"),
+               "dps": dict(color="C3", marker="x", label="DpS (dfnls)")}
+
+
+def names_attr(ds, key="scene_names") -> list[str]:
+    """The names an analysis file lists in a comma-separated attribute (``scene_names``, ``model_names``)."""
+    return [s.strip() for s in str(ds.attrs.get(key, "")).split(",")]
+
+
 def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
     """A new figure with the project's layout defaults."""
     return _pyplot().subplots(nrows, ncols, figsize=(width, height), constrained_layout=True, **kw)

@@ -5,16 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import figure
-
-MODELS = ("exact", "dps")      # the model index of the `model` coordinate
-
-MODEL_STYLE = {"exact": dict(color="C0", marker="o", label="exact (nc)"),
-               "dps": dict(color="C3", marker="x", label="DpS (dfnls)")}
-
-
-def _names(ds, key="scene_names"):
-    return [s.strip() for s in str(ds.attrs.get(key, "")).split(",")]
+from cradle.figures import MODEL_STYLE, MODELS, figure
 
 
 def draw(tree):
