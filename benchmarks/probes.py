@@ -101,12 +101,13 @@ def run(repo: Path) -> list:
             ("fft106 stored every 0.001 (7.9 GB)", lambda c: c["scenes"]["fft106"]["store"].update(every=0.001)),
             ("fft106 every 0.01 to t = 99000 (~140 GB)", fft106(t_end=99000.0, store={"every": 0.01})),
             ("`t_end: 1e12`, snapshots only", fft106(t_end=1e12, store={"snapshots": [1.0]})),
-            ("`alpha: nan`", lambda c: c["defaults"].update(alpha=float("nan"))),
+            ("`alpha: nan`", lambda c: c.setdefault("defaults", {}).update(alpha=float("nan"))),
     ]:
         cfg = pr.config_variant(str(len(pr.rows)), edit)
         pr.record(f"{label} (`snakemake -n --configfile`)", pr.snakemake("-n", "all", "--configfile", cfg))
-    (repo / "probe-dup.yaml").write_text((repo / "config.yaml").read_text().replace(
-        "defaults:\n", "defaults:\n  alpha: 2.0\n", 1))
+    # config.yaml leaves `defaults:` to the declarations: the probe writes it, with `alpha` twice
+    (repo / "probe-dup.yaml").write_text((repo / "config.yaml").read_text()
+                                         + "\ndefaults:\n  alpha: 1.5\n  alpha: 2.0\n")
     pr.record("duplicate YAML key (`alpha` twice)", pr.snakemake("-n", "all", "--configfile", "probe-dup.yaml"))
     (repo / "probe-empty.yaml").write_text("")
     pr.record("empty config (`--configfile empty.yaml`)",
