@@ -35,7 +35,7 @@ from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain, schema_doc
 
 if TYPE_CHECKING:
-    from cradle.scenes.context import Context, Where
+    from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
 MODELS = ("exact", "dps")

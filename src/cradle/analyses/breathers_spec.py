@@ -11,7 +11,7 @@ from cradle.analyses.protocol import FULL, REDUCED, form_spec
 from cradle.specs.declare import declared, param, schema_doc
 
 if TYPE_CHECKING:
-    from cradle.scenes.context import Context, Where
+    from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
 _OMEGA = {"type": "number", "exclusiveMinimum": 1, "maximum": 10, "description": "One breather frequency omega_b."}

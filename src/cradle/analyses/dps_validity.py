@@ -35,7 +35,7 @@ from cradle.specs.declare import declared, param, plain, schema_doc
 from cradle.specs.values import show
 
 if TYPE_CHECKING:
-    from cradle.scenes.context import Context, Where
+    from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
 FAMILIES = ("tw-pi5", "tw-4pi5", "breather-bond", "mi-4pi5-noise")

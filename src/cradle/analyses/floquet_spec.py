@@ -15,7 +15,7 @@ from cradle.specs.declare import declared, param, schema_doc
 from cradle.specs.values import angle_or_none, show
 
 if TYPE_CHECKING:
-    from cradle.scenes.context import Context, Where
+    from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
 _ANGLES = {"$ref": "#/$defs/angle"}

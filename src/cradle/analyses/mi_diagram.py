@@ -27,7 +27,7 @@ from cradle.models import dps
 from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
-    from cradle.scenes.context import Context, Where
+    from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
 

@@ -53,7 +53,7 @@ from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import ConfigError, store_times
 
 if TYPE_CHECKING:
-    from cradle.scenes.context import Context, Where
+    from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
 MODELS = ("exact", "dps")

@@ -53,7 +53,7 @@ from cradle.specs.declare import NULL, declared, param, plain, schema_doc
 from cradle.specs.values import INTEGER_TOL, store_times
 
 if TYPE_CHECKING:
-    from cradle.scenes.context import Context, Where
+    from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
 MODELS = ("exact", "dps")

@@ -25,7 +25,7 @@ from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import angle_expr, angle_or_none, parse_angle, show
 
 if TYPE_CHECKING:
-    from cradle.scenes.context import Context, Where
+    from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
 

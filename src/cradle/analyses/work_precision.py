@@ -62,7 +62,7 @@ from cradle.specs.values import ConfigError, did_you_mean
 if TYPE_CHECKING:
     import xarray as xr
 
-    from cradle.scenes.context import Context, Where
+    from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
 #: Variables of one scene's group (and of its batch file), declared beside the analysis:

@@ -11,18 +11,23 @@ property, not a field (:attr:`Scene.times`, :attr:`Travelling.wavenumber`), so
 ``from_plain(Scene, plain(scene)) == scene``. A resolved :class:`HomoclinicEntry`
 or :class:`MapEntry` has its ``alpha`` filled in.
 
-Each class's ``check`` holds the physical checks the schema cannot express (a
-wave that fits the ring, a breather built from an existing homoclinic entry
-with the same N and bc, ...). It is a method of the typed object, run on the
-entries the schema passed (:mod:`cradle.scenes.context`): it reads attributes
-of the types they are declared with.
+Each class's ``check`` holds the physical checks the schema of config.yaml cannot express, since it
+checks each key alone (a wave that fits the ring, a breather built from an existing homoclinic entry
+with the same N and bc, a figure's times stored by its scenes, an analysis's grids fine enough for its
+modes, ...): the protocol :class:`Checked`. :func:`cradle.pipeline.config.validate.validate` builds
+every entry the schema passed as its typed object and runs ``check(where, context, out)``: ``where``
+the entry's key path, ``out`` the :class:`~cradle.specs.values.Errors` the one-line messages go to,
+``context`` (:class:`Context`) the entries it may refer to. An entry with a schema error is not
+checked further (its errors are said), so a check reads attributes of the types they are declared with.
 """
 from __future__ import annotations
 
 import copy
 import math
+from collections.abc import Mapping
+from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
 from cradle.specs.values import (
@@ -38,8 +43,44 @@ from cradle.specs.values import (
     store_times,
 )
 
-if TYPE_CHECKING:
-    from .context import Context, Where
+# ---- what the check of one entry sees of the others
+#: a key path: ``["scenes", "tw-weak", "store", "snapshots", 1]``
+Where = list[str | int]
+
+#: the name-keyed sections whose entries a figure reads, in the order their names are claimed
+ENTRY_SECTIONS = ("map", "homoclinic", "scenes")
+
+
+@dataclass(frozen=True)
+class Context:
+    """The entries one entry's check may refer to.
+
+    ``given``: for each of :data:`ENTRY_SECTIONS`, every entry name the config gives (those with
+    schema errors too: a name that exists is not unknown); ``scenes``: the scenes the schema passed,
+    resolved against ``defaults:``; ``homoclinic``: the homoclinic entries the schema passed, ``alpha``
+    filled from ``defaults:``.
+    """
+
+    given: Mapping[str, tuple[str, ...]]
+    scenes: Mapping[str, Scene]
+    homoclinic: Mapping[str, HomoclinicEntry]
+
+    @property
+    def names(self) -> dict[str, str]:
+        """Every map, homoclinic and scene name -> its section (the first that uses it)."""
+        out: dict[str, str] = {}
+        for section in ENTRY_SECTIONS:
+            for name in self.given.get(section, ()):
+                out.setdefault(name, section)
+        return out
+
+
+class Checked(Protocol):
+    """A declared class with the checks its schema cannot express."""
+
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """Report each problem of this entry, at ``where`` (its key path) or below, to ``out``."""
+
 
 SPLITTINGS = ("srkn6c", "srkn4c", "srkn6", "srkn4", "strang")   # fixed step: dt_factor
 LATTICE_ADAPTIVE = ("dop853_numba", "dop853", "rk45", "lsoda", "radau")   # error control: rtol

@@ -3,15 +3,14 @@
 After the schema pass and the default fill (:func:`.validate.validate`), :func:`check` builds every
 entry whose key path has no schema error as its declared class (:func:`cradle.specs.declare.build`; a
 scene resolved against ``defaults:``, a homoclinic entry with its alpha filled from there) and runs its
-``check(where, context, out)`` (:mod:`cradle.scenes.context`), in the order of the file: map,
+``check(where, context, out)`` (:mod:`cradle.scenes.spec`), in the order of the file: map,
 homoclinic and scene entries, the sections of ``beyond:`` (one per analysis), figures. An entry with a
 schema error is skipped: its errors are said, and its check could not trust its types. A scene is
 checked only when ``defaults:`` passed too (it is resolved against them).
 """
 from __future__ import annotations
 
-from cradle.scenes.context import ENTRY_SECTIONS, Checked, Context, Where
-from cradle.scenes.spec import HomoclinicEntry, MapEntry, resolved
+from cradle.scenes.spec import ENTRY_SECTIONS, Checked, Context, HomoclinicEntry, MapEntry, Where, resolved
 from cradle.specs.declare import build
 from cradle.specs.values import Errors
 

@@ -6,15 +6,14 @@ default (:func:`cradle.specs.declare.param`); :class:`Config` is the whole file.
 job computes from (defaults, map, homoclinic, scenes) are declared in :mod:`cradle.scenes.spec`.
 The checks that span several keys or sections are the ``check`` methods of the typed objects, here,
 in :mod:`cradle.scenes.spec` and in the analyses' spec classes; :func:`.checks.check` runs them all in
-order (:mod:`cradle.scenes.context`).
+order (:mod:`cradle.scenes.spec`).
 """
 from __future__ import annotations
 
 import math
 
 from cradle.pipeline.budget import Budget
-from cradle.scenes.context import ENTRY_SECTIONS, Context, Where
-from cradle.scenes.spec import Defaults, HomoclinicEntry, MapEntry, Scene
+from cradle.scenes.spec import ENTRY_SECTIONS, Context, Defaults, HomoclinicEntry, MapEntry, Scene, Where
 from cradle.specs.declare import REQUIRED, declared, param, schema_doc
 from cradle.specs.values import TIME_TOL, Errors, did_you_mean
 
