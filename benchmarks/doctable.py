@@ -26,3 +26,24 @@ def publish(page: str, name: str, text: str, docs: Path = DOCS) -> Path:
         raise SystemExit(f"{path}: no markers for table {name!r}")
     path.write_text(pattern.sub(lambda m: m.group(1) + text.strip("\n") + "\n" + m.group(2), source))
     return path
+
+
+def anchors(markdown: str) -> set[str]:
+    """The link targets a Markdown page offers on GitHub: every ``<a id="...">`` and every heading's slug
+    (lowercased, punctuation dropped, spaces to hyphens; a repeated slug gets -1, -2, ...)."""
+    found = set(re.findall(r'<a id="([^"]+)"', markdown))
+    seen: dict[str, int] = {}
+    body = re.sub(r"^```.*?^```", "", markdown, flags=re.S | re.M)      # no headings inside code blocks
+    for title in re.findall(r"^#{1,6} +(.+?) *#*$", body, re.M):
+        slug = re.sub(r"[^\w\- ]", "", title.lower()).replace(" ", "-")
+        n = seen.get(slug, 0)
+        seen[slug] = n + 1
+        found.add(slug if n == 0 else f"{slug}-{n}")
+    return found
+
+
+def link_resolves(page: Path, link: str) -> bool:
+    """Whether a relative link written in ``page`` ("other.md#anchor", "#anchor", "other.md") resolves."""
+    target, _, anchor = link.partition("#")
+    path = (page.parent / target).resolve() if target else page
+    return path.exists() and (not anchor or anchor in anchors(path.read_text()))

@@ -106,3 +106,71 @@ def test_a_harmonic_is_a_coherent_peak_above_the_local_band():
     k, broad = compare.spatial_dft(np.cos(q * n) + band)
     assert sidebands.harmonic_height(k, np.abs(broad), q, "2(q-pi)") > checks.HARMONIC_PRESENT
     assert sidebands.harmonic_over_band(k, np.abs(broad), q, "2(q-pi)") < checks.PEAK_OVER_BAND
+
+
+def _doctable():
+    import importlib.util
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    spec = importlib.util.spec_from_file_location("doctable", root / "benchmarks" / "doctable.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return root, module
+
+
+def test_every_explanation_a_claim_declares_exists():
+    """The paragraphs the claims point at ("<page>.md#<anchor>" under docs/, beside each claim in the
+    analyses' modules): the page has the anchor."""
+    import re
+
+    root, doctable = _doctable()
+    declared = set()
+    for module in (root / "src" / "cradle" / "analyses").glob("*.py"):
+        declared |= set(re.findall(r'"([\w-]+\.md#[\w-]+)"', module.read_text()))
+    assert {checks.FFTSEUIL, checks.HARMONICS, checks.LOC1_MERGING} <= declared
+    assert [w for w in declared if not doctable.link_resolves(root / "docs" / "x.md", w)] == []
+
+
+def test_a_disagreement_links_to_its_explanation():
+    """In the Markdown table a verdict other than agrees links to its paragraph, relative to where the layout
+    puts the table; one with no paragraph says so."""
+    from pathlib import Path
+
+    from cradle.analyses.claims_table import Row, explained
+    from cradle.pipeline import layout
+
+    root, doctable = _doctable()
+    rows = explained(checks.HARMONICS, [Row("fft344", "h", "yes", "no", "disagrees", "m", "t"),
+                                        Row("fft344", "h", "no", "no", "agrees", "m", "t"),
+                                        Row("fft344", "h", "yes", "no", "disagrees", "m", "t", "analyses.md#x")])
+    rows.append(Row("loc1", "m", "175", "223", "disagrees", "m", "t"))
+    md = tables.to_markdown(_texts(rows))
+    lines = md.splitlines()[-4:]
+    link = f"{tables.DOCS_FROM_TABLE}{checks.HARMONICS}"
+    assert f"| disagrees ([why]({link})) |" in lines[0]
+    assert "| agrees |" in lines[1] and "analyses.md#x" in lines[2] and "(no explanation yet)" in lines[3]
+    assert "explained_in" not in md.splitlines()[4]                   # the header: the link is in the verdict
+    table = Path(layout.analysis_tables("paper-checks", "full", "full", ("md",), root=root / "results")["md"])
+    assert doctable.link_resolves(table, link)
+
+
+def test_every_disagreement_of_the_built_table_is_explained():
+    """The table of the build in results/ (when there is one): every row that does not agree names a paragraph
+    that exists."""
+    from pathlib import Path
+
+    from cradle.pipeline import layout
+
+    root, doctable = _doctable()
+    path = Path(layout.analysis_output("paper-checks", "full", "full", root=root / "results"))
+    if not path.exists():
+        pytest.skip(f"{path} absent: no built claims table to check (snakemake -j2 paper_checks builds it)")
+    ds = open_tree(path).to_dataset()
+    if "explained_in" not in ds:
+        pytest.skip(f"{path} was written before rows named their explanations: rebuild it")
+    rows = [(str(v), str(w), str(lab)) for v, w, lab in zip(ds["verdict"].values, ds["explained_in"].values,
+                                                           ds["label"].values, strict=True)]
+    unexplained = [(lab, w) for v, w, lab in rows
+                   if v != "agrees" and not (w and doctable.link_resolves(root / "docs" / "x.md", w))]
+    assert unexplained == []

@@ -11,7 +11,7 @@ import numpy as np
 #: fraction of the carrier (and, for a harmonic, a coherent peak: checks.PEAK_OVER_BAND)
 HARMONIC_PRESENT = 0.01
 
-COLUMNS = ("label", "quantity", "paper", "ours", "tolerance", "verdict", "measured")
+COLUMNS = ("label", "quantity", "paper", "ours", "tolerance", "verdict", "measured", "explained_in")
 
 
 @dataclass
@@ -23,6 +23,17 @@ class Row:
     verdict: str
     measured: str
     tolerance: str = ""
+    #: the paragraph of the docs that explains the verdict, "<page>.md#<anchor>" under docs/; every row that
+    #: disagrees needs one (tests/analyses/test_checks.py), declared beside its claim (:func:`explained`)
+    explained_in: str = ""
+
+
+def explained(where: str, rows: list[Row]) -> list[Row]:
+    """The rows of one claim, each pointing at the paragraph ``where`` ("<page>.md#<anchor>" under docs/) that
+    explains its verdict, unless a row names its own."""
+    for r in rows:
+        r.explained_in = r.explained_in or where
+    return rows
 
 
 def printed_tol(paper: str) -> str:

@@ -33,6 +33,7 @@ from cradle.analyses.claims_table import (
     Row,
     _fmt,
     agrees_printed,
+    explained,
     printed_tol,
     printed_unit,
 )
@@ -271,6 +272,12 @@ def periodic_orbits(alpha=1.5) -> list[Row]:
 
 # ------------------------------------------------------------------ assembly
 
+#: where the docs explain a claim's verdict ("<page>.md#<anchor>" under docs/), declared beside the claim
+#: in :func:`_groups`; a claim that can disagree names one
+FFTSEUIL = "analyses.md#claims-fftseuil"
+HARMONICS = "analyses.md#claims-harmonics"
+LOC1_MERGING = "loc1-readings.md#merging-times"
+
 def _groups(res: Results, scenes):
     """(names the group reads, thunk) for every group of rows, in table order."""
     return [
@@ -283,22 +290,23 @@ def _groups(res: Results, scenes):
         (("tw-weak",), lambda: linear_wave_phase(res, "tw-weak", 333.7)),
         (("fft106",), lambda: harmonics_present(res, "fft106", "fft106", 106.7, "2(q-pi)",
                                                 {"exact": "yes", "dps": "no"})),
-        (("fftseuil-52", "fftseuil-51", "fftseuil-50", "fft344"), lambda: instability(res, [
+        (("fftseuil-52", "fftseuil-51", "fftseuil-50", "fft344"), lambda: explained(FFTSEUIL, instability(res, [
             ("fftseuil", "fftseuil-52", 913.7, {"exact": "yes", "dps": "yes"}),
             ("fftseuil", "fftseuil-51", 913.7, {"exact": "no", "dps": "yes"}),
             ("fftseuil", "fftseuil-50", 913.7, {"exact": "no", "dps": "no"}),
             ("fft344", "fft344", 913.7, {"exact": "yes", "dps": "yes"}),
-        ])),
-        (("fftseuil-50",), lambda: harmonics_present(res, "fftseuil", "fftseuil-50", 913.7, "2(q-pi)",
-                                                     {"exact": "yes", "dps": "no"})),
-        (("fft344",), lambda: harmonics_present(res, "fft344", "fft344", 344.95, "2(q-pi)",
-                                                {"exact": "yes", "dps": "no"})
-         + harmonics_present(res, "fft344", "fft344", 344.95, "3q-2pi", {"exact": "yes", "dps": "no"})),
+        ]))),
+        (("fftseuil-50",), lambda: explained(HARMONICS, harmonics_present(
+            res, "fftseuil", "fftseuil-50", 913.7, "2(q-pi)", {"exact": "yes", "dps": "no"}))),
+        (("fft344",), lambda: explained(HARMONICS, harmonics_present(res, "fft344", "fft344", 344.95, "2(q-pi)",
+                                                                     {"exact": "yes", "dps": "no"})
+                                        + harmonics_present(res, "fft344", "fft344", 344.95, "3q-2pi",
+                                                            {"exact": "yes", "dps": "no"}))),
         (("breather-small", "breather-large"),
          lambda: breather_frequencies(res, [("breather-small", "9.7e-3", "1.1"), ("breather-large", "0.34", "1.6")])),
         (("breather-small",), lambda: half_period(res, "breather-small", site=26)),
         (("breather-large",), lambda: radiation(res, "breather-large", 293.2, core=25.5)),
-        (("loc1-pair",), lambda: merging(res, "loc1-pair")),
+        (("loc1-pair",), lambda: explained(LOC1_MERGING, merging(res, "loc1-pair"))),
         (("site",), lambda: super_exponential(res, "site")),
         ((), periodic_orbits),
         ((), lambda: energy_errors(res, sorted(scenes))),
@@ -327,6 +335,7 @@ VARIABLES = {"/": {
     "tolerance": Var(("row",), "the tolerance the verdict is judged with"),
     "verdict": Var(("row",), "agrees, disagrees or not comparable"),
     "measured": Var(("row",), "how our value is measured"),
+    "explained_in": Var(("row",), "the paragraph of the docs explaining the verdict, <page>.md#<anchor> under docs/"),
 }}
 
 
@@ -359,6 +368,7 @@ __all__ = [
     "Row",
     "agrees_printed",
     "compute",
+    "explained",
     "printed_tol",
     "printed_unit",
     "reads",

@@ -4,7 +4,8 @@ results/paper-checks/paper-checks.nc (:mod:`cradle.analyses.paper_checks`).
 The "figure" of the analysis paper-checks is two tables (:func:`tables`), written by the generic drawing rule
 (``tables`` of :class:`cradle.analyses.protocol.Analysis`): the CSV (one line per statement, the file's text
 variables in their order: :data:`cradle.analyses.claims_table.COLUMNS`) and the Markdown page with the verdict
-counts.
+counts, where a row that does not agree links its verdict to the paragraph of the docs that explains it (the
+row's ``explained_in``).
 """
 from __future__ import annotations
 
@@ -14,6 +15,17 @@ import io as _io
 import xarray as xr
 
 VERDICTS = ("agrees", "disagrees", "not comparable")
+#: the docs folder seen from the Markdown table, results/paper-checks/paper-checks.md (cradle.pipeline.layout)
+DOCS_FROM_TABLE = "../../docs/"
+
+
+def verdict_cell(row: dict[str, str]) -> str:
+    """The verdict, linked to its explanation when it is not "agrees"; "(no explanation yet)" when none is
+    declared."""
+    verdict, where = row["verdict"], row.get("explained_in", "")
+    if verdict == "agrees" or "explained_in" not in row:
+        return verdict
+    return f"{verdict} ([why]({DOCS_FROM_TABLE}{where}))" if where else f"{verdict} (no explanation yet)"
 
 
 def table_rows(tree) -> list[dict[str, str]]:
@@ -37,9 +49,10 @@ def to_markdown(rows) -> str:
     """The rows (``{column: text}``) as a Markdown page: a title, the verdict counts, the table."""
     def cell(s):
         return str(s).replace("|", "\\|")
-    columns = list(rows[0]) if rows else []
+    columns = [c for c in (rows[0] if rows else []) if c != "explained_in"]
     lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
-    lines += ["| " + " | ".join(cell(r[c]) for c in columns) + " |" for r in rows]
+    lines += ["| " + " | ".join(verdict_cell(r) if c == "verdict" else cell(r[c]) for c in columns) + " |"
+              for r in rows]
     counts = {v: sum(r["verdict"] == v for r in rows) for v in VERDICTS}
     summary = ", ".join(f"{n} {v}" for v, n in counts.items())
     return (f"# The paper's numerical statements against ours\n\n{len(rows)} statements: {summary}.\n\n"
