@@ -161,3 +161,12 @@ def test_the_readme_sections_hold_their_figures():
     for section, cell in rows:
         for label in re.findall(r"`([^`]+)`", cell):
             assert MAP[label].section == section, (label, section, MAP[label].section)
+
+
+def test_numbers_quoted_in_the_readme_are_the_maps():
+    """'(nc) is (1)', 'plot4-5 Figure 5': a number the README quotes for a label is the map's."""
+    text = (ROOT / "README.md").read_text()
+    quoted = re.findall(r"\((\w+)\)(?: is)? (\(\d+\))", text) + re.findall(r"([\w-]+) (Figure \d+)", text)
+    assert len(quoted) >= 4
+    for label, printed in quoted:
+        assert MAP[label].printed == printed, (label, printed)

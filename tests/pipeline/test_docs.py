@@ -42,3 +42,19 @@ def test_readme_links_resolve():
     text = (ROOT / "README.md").read_text()
     for link in re.findall(r"\]\(([^)#]+)\)", text):
         assert (ROOT / link).exists(), link
+
+
+def test_every_link_in_the_docs_resolves_to_its_anchor():
+    """Links between the pages and to their paragraphs (docs/*.md, README.md): the file exists and so does the
+    anchor (a heading's slug or an <a id>)."""
+    doctable = _doctable()
+    assert {"what-was-found", "claims-harmonics"} <= doctable.anchors((ROOT / "docs" / "analyses.md").read_text())
+    bad, n = [], 0
+    for page in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+        for link in re.findall(r"\]\(([^)\s]+)\)", page.read_text()):
+            if "://" in link or not (link.startswith("#") or ".md" in link):
+                continue
+            n += 1
+            if not doctable.link_resolves(page, link):
+                bad.append((page.name, link))
+    assert n >= 15 and not bad, bad
