@@ -3,21 +3,24 @@
 :class:`Appender` creates the file from a first block (an :class:`xarray.Dataset` with every
 variable, each checksummed as :func:`cradle.data.io.encoding_of` does) with ``t`` unlimited,
 appends later blocks row by row, can overwrite the values of variables without ``t`` (known only
-at the end) and the global attributes, and renames the temporary file to its target on
+at the end) and the global attributes, records the checksums of the variables a filter cannot protect
+(:func:`cradle.data.checksums.stamp`) and renames the temporary file to its target on
 :meth:`Appender.commit`: an interrupted run leaves nothing at the target. Used by
 :mod:`cradle.pipeline.extend` (long exact runs) and :mod:`cradle.scenes.streamed` (a scene's
 job whose store exceeds memory).
 """
 from __future__ import annotations
 
+import contextlib
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
-from cradle.data.io import _attr_value, _umask_mode, encoding_of
+from cradle.data import checksums
+from cradle.data.io import _attr_value, _umask_mode, disk_full, encoding_of
+from cradle.data.temporaries import temporary_beside
 
 #: memory per block of stored states
 DEFAULT_CHUNK_BYTES = 64 * 2**20
@@ -39,22 +42,38 @@ class Appender:
 
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
-        fd, self.tmp = tempfile.mkstemp(prefix=f".{self.path.name}.", suffix=".tmp", dir=self.path.parent)
-        os.close(fd)
-        first.to_netcdf(self.tmp, engine="netcdf4", unlimited_dims=["t"], encoding=encoding_of(first))
-        self.nc = netCDF4.Dataset(self.tmp, "a")
+        self.tmp = temporary_beside(self.path)
+        try:
+            with self._space():
+                first.to_netcdf(self.tmp, engine="netcdf4", unlimited_dims=["t"], encoding=encoding_of(first))
+            self.nc = netCDF4.Dataset(self.tmp, "a")
+        except BaseException:
+            os.remove(self.tmp)
+            raise
         for var in self.nc.variables.values():   # HDF5 would otherwise cache up to 64 MiB per variable
             var.set_var_chunk_cache(size=CHUNK_CACHE_BYTES, nelems=61)
         self.rows = first.sizes["t"]
         #: the variables on t (appended) and the others (set once, :meth:`set_values`)
         self.on_t = [k for k in list(first.coords) + list(first.data_vars) if "t" in first[k].dims]
 
+    @contextlib.contextmanager
+    def _space(self):
+        """A write that fails on a full file system raises :class:`cradle.data.io.DiskFull` (one line)."""
+        try:
+            yield
+        except (OSError, RuntimeError) as err:
+            full = disk_full(self.path, self.tmp, 0, err)
+            if full is None:
+                raise
+            raise full from None
+
     def append(self, t, fields: dict):
         """Append the rows of stored times ``t``: ``fields`` maps each variable on t (but t) to its rows."""
         n0, n1 = self.rows, self.rows + len(t)
-        self.nc.variables["t"][n0:n1] = np.asarray(t)
-        for name, arr in fields.items():
-            self.nc.variables[name][n0:n1, ...] = arr
+        with self._space():
+            self.nc.variables["t"][n0:n1] = np.asarray(t)
+            for name, arr in fields.items():
+                self.nc.variables[name][n0:n1, ...] = arr
         self.rows = n1
 
     def append_block(self, ds: xr.Dataset):
@@ -71,7 +90,9 @@ class Appender:
             self.nc.setncattr(k, _attr_value(v))
 
     def commit(self):
-        self.nc.close()
+        with self._space():
+            checksums.stamp(self.nc)  # the values without t are final now
+            self.nc.close()
         os.chmod(self.tmp, _umask_mode())
         os.replace(self.tmp, self.path)
 

@@ -11,8 +11,13 @@ an interrupted or failed rule never leaves a file that Snakemake would take
 as done. Every variable carries a Fletcher-32 checksum (:func:`encoding_of`),
 and :func:`open_dataset` reads every value, so a damaged or truncated file
 stops its reader with one line naming the file and the command that rebuilds
-it (:class:`DamagedOutput`, docs/recovery.md). :func:`open_scene` opens the
-exact and DpS runs of one scene as a single Dataset.
+it (:class:`DamagedOutput`, docs/recovery.md). A variable that cannot carry the
+filter (0-d, strings, empty) carries a recorded SHA-256 of its values instead
+(:mod:`cradle.data.checksums`), computed from the written file and checked by
+every reader here. A write that fails on a full file system is one line
+(:class:`DiskFull`); a killed write leaves a temporary file named after its
+process, which :func:`remove_stale_temporaries` deletes once that process is
+gone (:mod:`cradle.data.temporaries`).
 
 A file holding several tables is a tree of netCDF groups (:class:`xarray.DataTree`, read by
 ``xarray.open_datatree``): :func:`make_tree` builds it from the declarations of its analysis
@@ -23,15 +28,21 @@ A file holding several tables is a tree of netCDF groups (:class:`xarray.DataTre
 from __future__ import annotations
 
 import datetime as _dt
+import errno
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
+from cradle.data import checksums
 from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, VERSION, provenance
+from cradle.data.temporaries import remove_stale_temporaries, stale_temporaries, temporary_beside
 from cradle.data.variables import declared
+
+__all__ = ["DamagedOutput", "DiskFull", "make_dataset", "make_tree", "open_dataset", "open_tree",
+           "remove_stale_temporaries", "stale_temporaries", "verify_file", "write_datatree", "write_netcdf",
+           "write_text"]
 
 REFERENCE = (
     "G. James, Nonlinear waves in Newton's cradle and the discrete p-Schroedinger "
@@ -156,7 +167,8 @@ def encoding_of(ds: xr.Dataset) -> dict:
     HDF5 whenever the data is read (:func:`open_dataset` reads it all), and no _FillValue on
     floats (CF forbids it on coordinates). The checksum needs chunked storage: chunks of whole
     rows, :data:`CHUNK_BYTES` at most (one row if a row is larger); the stored values are the same
-    bits. A 0-d or string variable cannot carry a filter and is stored without one."""
+    bits. A 0-d, string or empty variable cannot carry a filter: the writers record its checksum as
+    an attribute instead (:func:`cradle.data.checksums.stamp`)."""
     encoding = {}
     for name in list(ds.coords) + list(ds.data_vars):
         var = ds[name]
@@ -172,41 +184,115 @@ def encoding_of(ds: xr.Dataset) -> dict:
     return encoding
 
 
+def _stamped(tmp) -> None:
+    """Record the checksum of every variable of the written file ``tmp`` that has no Fletcher-32
+    filter (:func:`cradle.data.checksums.stamp`): computed from the stored values, so a checksum
+    attribute copied from a Dataset read earlier is replaced, never kept."""
+    import netCDF4
+
+    with netCDF4.Dataset(tmp, "a") as nc:
+        checksums.stamp(nc)
+
+
 def write_netcdf(ds: xr.Dataset | xr.DataTree, path: str | os.PathLike) -> Path:
     """Write ``ds`` to ``path`` atomically (temporary file, then rename), every variable checksummed
-    (:func:`encoding_of`). A :class:`xarray.DataTree` is written by :func:`write_datatree`."""
+    (:func:`encoding_of`, and :func:`_stamped` for the variables a filter cannot protect). A
+    :class:`xarray.DataTree` is written by :func:`write_datatree`."""
     if isinstance(ds, xr.DataTree):
         return write_datatree(ds, path)
-    return _atomic(Path(path), lambda tmp: ds.to_netcdf(tmp, encoding=encoding_of(ds), engine="netcdf4"))
+
+    def write(tmp):
+        ds.to_netcdf(tmp, encoding=encoding_of(ds), engine="netcdf4")
+        _stamped(tmp)
+
+    return _atomic(Path(path), write, needs=int(ds.nbytes))
 
 
 def write_datatree(tree: xr.DataTree, path: str | os.PathLike) -> Path:
     """Write a tree of groups to ``path`` atomically, every variable of every group checksummed
-    (:func:`encoding_of` per group); ``xarray.open_datatree`` (and :func:`open_tree`) reads it."""
+    (:func:`encoding_of` per group, :func:`_stamped`); ``xarray.open_datatree`` (and :func:`open_tree`)
+    reads it."""
     encoding = {node.path: encoding_of(node.to_dataset(inherit=False)) for node in tree.subtree}
-    return _atomic(Path(path), lambda tmp: tree.to_netcdf(tmp, encoding=encoding, engine="netcdf4"))
+
+    def write(tmp):
+        tree.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
+        _stamped(tmp)
+
+    needs = sum(int(node.to_dataset(inherit=False).nbytes) for node in tree.subtree)
+    return _atomic(Path(path), write, needs=needs)
 
 
 def write_text(text: str, path: str | os.PathLike) -> Path:
     """Write a text file atomically (temporary file, then rename)."""
-    return _atomic(Path(path), lambda tmp: Path(tmp).write_text(text))
+    return _atomic(Path(path), lambda tmp: Path(tmp).write_text(text), needs=len(text.encode()))
 
 
-def _atomic(path: Path, write) -> Path:
-    """Call ``write(tmp)`` on a temporary file beside ``path``, then rename it to ``path``.
+class DiskFull(OSError):
+    """A write that failed because its file system is full. The message is one line naming the file,
+    about how many bytes it needed and how many are free."""
 
-    An interrupted or failed write leaves nothing at ``path`` (and no temporary file).
-    """
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
+
+#: a write that fails with less than this free beyond what the file still needed is taken for a full
+#: disk: HDF5 reports a full disk as "NetCDF: HDF error", without the errno
+SPACE_MARGIN_BYTES = 16 * 2**20
+
+
+def _size(n: float) -> str:
+    """Bytes as '512 B', '3.2 kB', '290 MB', '1.4 GB'."""
+    for unit, scale in (("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if n >= scale:
+            return f"{n / scale:.3g} {unit}"
+    return f"{int(n)} B"
+
+
+def disk_full(path: Path, tmp, needs: int, err: BaseException) -> DiskFull | None:
+    """The :class:`DiskFull` error for a write of ``path`` (to ``tmp``, about ``needs`` bytes; 0 when
+    unknown, a file written in blocks) that failed with ``err``, if the file system is full: errno
+    ENOSPC, or an HDF5/netCDF error while less than the rest of the file plus
+    :data:`SPACE_MARGIN_BYTES` is free; else None."""
+    if not isinstance(err, (OSError, RuntimeError)):
+        return None
     try:
+        written = os.path.getsize(tmp) if tmp is not None else 0
+    except OSError:
+        written = 0
+    try:
+        st = os.statvfs(path.parent)
+        free: int | None = st.f_bavail * st.f_frsize
+    except (OSError, AttributeError):  # no statvfs (not POSIX) or no folder
+        free = None
+    rest = max(needs - written, 0)
+    if getattr(err, "errno", None) != errno.ENOSPC and (free is None or free >= rest + SPACE_MARGIN_BYTES):
+        return None
+    where = f"{_size(free)} free" if free is not None else "free space unknown"
+    need = f"about {_size(needs)}" if needs > written else f"more than {_size(written)}"  # a file written in blocks
+    full = DiskFull(f"{path}: no space left on the file system: the file needs {need}, {where} "
+                    f"in {path.parent} ({_size(written)} written before the write failed: {_why(err)}); "
+                    f"free space there (or write the results elsewhere) and rerun")
+    full.errno = errno.ENOSPC
+    return full
+
+
+def _atomic(path: Path, write, needs: int = 0) -> Path:
+    """Call ``write(tmp)`` on a temporary file beside ``path`` (named after this process:
+    :func:`cradle.data.temporaries.temporary_beside`), then rename it to ``path``.
+
+    An interrupted or failed write leaves nothing at ``path`` (and no temporary file); a write that
+    fails on a full file system raises :class:`DiskFull` (``needs``: about how many bytes the file takes).
+    """
+    tmp = None
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = temporary_beside(path)
         write(tmp)
         os.chmod(tmp, _umask_mode())
         os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
+    except BaseException as err:
+        full = disk_full(path, tmp, needs, err)
+        if tmp is not None and os.path.exists(tmp):
             os.remove(tmp)
+        if full is not None:
+            raise full from None
         raise
     return path
 
@@ -255,6 +341,10 @@ def _checked(path, read):
                             + (f"; {rebuild_hint(path)}" if "results" in path.parts else ""))
     try:
         return read(path)
+    except DamagedOutput:
+        raise
+    except checksums.ChecksumMismatch as err:
+        raise DamagedOutput(f"{path}: {err}; {rebuild_hint(path)}") from None
     except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
         raise DamagedOutput(f"{path}: damaged or truncated, cannot be read ({_why(err)}); "
                             f"{rebuild_hint(path)}") from None
@@ -264,12 +354,23 @@ def _checked(path, read):
 LAZY_ABOVE_BYTES = 512 * 2**20
 
 
+def _check_recorded(path) -> None:
+    """Compare every recorded checksum of the file (:func:`cradle.data.checksums.check_recorded`): the
+    variables HDF5 cannot checksum are small (0-d, strings), so this reads little."""
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        checksums.check_recorded(nc)
+
+
 def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     """Open a cradle output fully into memory (the file is closed on return), verified.
 
-    Every variable is read (so HDF5 checks every chunk's Fletcher-32 checksum). A missing file
-    raises FileNotFoundError; a file that is not netCDF, is truncated or fails a checksum raises
-    :class:`DamagedOutput` with one line naming the file and the command that rebuilds it.
+    Every variable is read (so HDF5 checks every chunk's Fletcher-32 checksum) and every recorded
+    checksum compared (:mod:`cradle.data.checksums`; the attribute is dropped from what is returned).
+    A missing file raises FileNotFoundError; a file that is not netCDF, is truncated or fails a
+    checksum raises :class:`DamagedOutput` with one line naming the file (and the variable, for a
+    recorded checksum) and the command that rebuilds it.
 
     A file larger than :data:`LAZY_ABOVE_BYTES` (a large store, :mod:`cradle.scenes.streamed`)
     is verified block by block (:func:`verify_file`) and returned opened lazily: what the reader
@@ -278,40 +379,57 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     def read(p):
         if Path(p).stat().st_size > LAZY_ABOVE_BYTES:
             verify_file(p)
-            return xr.open_dataset(p, engine="netcdf4")
-        with xr.open_dataset(p, engine="netcdf4") as ds:
-            return ds.load()
+            ds = xr.open_dataset(p, engine="netcdf4")
+        else:  # one handle for both: HDF5 may crash when a file with strings is open twice at once
+            store = xr.backends.NetCDF4DataStore.open(p)
+            try:
+                checksums.check_recorded(store.ds)
+                with xr.open_dataset(store) as lazy:
+                    ds = lazy.load()
+            finally:
+                store.close()
+        checksums.drop(ds.variables.values())
+        return ds
 
     return _checked(path, read)
 
 
 def open_tree(path: str | os.PathLike) -> xr.DataTree:
     """Open a cradle output as a tree of groups, fully into memory (the file is closed on return),
-    verified: every variable of every group is read, so HDF5 checks every checksum. A flat file is
-    a tree with a root group only. Errors as :func:`open_dataset`."""
+    verified: every variable of every group is read, so HDF5 checks every checksum, and every recorded
+    checksum is compared. A flat file is a tree with a root group only. Errors as :func:`open_dataset`."""
     def read(p):
+        _check_recorded(p)
         tree = xr.open_datatree(p, engine="netcdf4")
         try:
-            return tree.load()
+            tree.load()
         finally:
             tree.close()
+        for node in tree.subtree:
+            checksums.drop(node.variables.values())
+        return tree
 
     return _checked(path, read)
 
 
 def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[str]:
     """Read every value of a netCDF file, ``block_bytes`` at a time (bounded memory whatever its
-    size), so that HDF5 checks every checksum. Returns the variables stored without a checksum
-    (written before checksums); raises FileNotFoundError or :class:`DamagedOutput` (one line)."""
+    size), so that HDF5 checks every Fletcher-32 checksum, and compare every recorded checksum
+    (:mod:`cradle.data.checksums`), in every group. Returns the variables stored with neither (written
+    before checksums; an empty variable holds nothing to protect and is not listed); raises
+    FileNotFoundError or :class:`DamagedOutput` (one line)."""
     import netCDF4
 
     def walk(group, prefix, bare):
         for name, var in group.variables.items():
+            if checksums.ATTR in var.ncattrs():
+                checksums.check(var, prefix + name, block_bytes)
+                continue
+            if var.size and not checksums.has_filter(var):
+                bare.append(prefix + name)
             if var.ndim == 0:
                 var[...]
                 continue
-            if var.size and not (var.filters() or {}).get("fletcher32"):  # an empty variable holds no data
-                bare.append(prefix + name)
             row = int(np.prod(var.shape[1:], dtype=np.int64)) * getattr(var.dtype, "itemsize", 1)
             step = max(1, block_bytes // max(row, 1))
             for i in range(0, var.shape[0], step):

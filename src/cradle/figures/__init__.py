@@ -42,7 +42,8 @@ def save_figure(fig, stem) -> list[Path]:
     that fails part way leaves the previous figure (both files) in place.
     """
     import os
-    import tempfile
+
+    from cradle.data.temporaries import temporary_beside
 
     stem = Path(stem)
     stem.parent.mkdir(parents=True, exist_ok=True)
@@ -50,8 +51,7 @@ def save_figure(fig, stem) -> list[Path]:
     try:
         for ext, meta in (("png", {"Software": None}), ("pdf", {"CreationDate": None, "ModDate": None})):
             path = stem.with_suffix(f".{ext}")
-            fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=f".tmp.{ext}", dir=path.parent)
-            os.close(fd)
+            tmp = temporary_beside(path, suffix=f".tmp.{ext}")  # named after this process: stale if it dies
             done.append((tmp, path))
             fig.savefig(tmp, dpi=PNG_DPI, metadata=meta, format=ext)
             fig.set_layout_engine("none")  # keeps the positions found for the PNG

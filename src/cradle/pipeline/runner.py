@@ -7,7 +7,8 @@
   the error propagates (the rule fails with the message);
 * progress and timing go to the log file (and to the terminal);
 * a damaged, truncated or missing input stops the job with one line naming the file and its
-  rebuild command (:class:`cradle.data.io.DamagedOutput`), not a traceback.
+  rebuild command (:class:`cradle.data.io.DamagedOutput`), not a traceback; so does an output that
+  does not fit on its file system (:class:`cradle.data.io.DiskFull`: the path, the bytes needed and free).
 """
 from __future__ import annotations
 
@@ -61,10 +62,13 @@ def setup_logging(log_path: str | None = None) -> None:
 
 def _one_line_excepthook(exc_type, exc, tb):
     """A job stopped by a missing, damaged or truncated input says so in one line (log and stderr),
-    naming the file and the command that rebuilds it, instead of a traceback through the readers."""
-    from cradle.data.io import DamagedOutput
+    naming the file and the command that rebuilds it, instead of a traceback through the readers; a
+    job whose output does not fit on the disk names the path, the bytes it needed and those free."""
+    from cradle.data.io import DamagedOutput, DiskFull
 
-    if issubclass(exc_type, (DamagedOutput, FileNotFoundError)):
+    if issubclass(exc_type, DiskFull):
+        log.error("output error: %s", " ".join(str(exc).split()))
+    elif issubclass(exc_type, (DamagedOutput, FileNotFoundError)):
         log.error("input error: %s", " ".join(str(exc).split()))
     else:
         sys.__excepthook__(exc_type, exc, tb)

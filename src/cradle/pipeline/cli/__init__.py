@@ -128,8 +128,8 @@ def main(argv=None) -> int:
         print(f"{PROG}: interrupted", file=sys.stderr)
         return 130
     except Exception as err:  # noqa: BLE001 - one line for the user; CRADLE_DEBUG=1 shows the traceback
-        io = sys.modules.get("cradle.data.io")  # a damaged input can only come from the readers there
-        if io is not None and isinstance(err, io.DamagedOutput):
+        io = sys.modules.get("cradle.data.io")  # a damaged input or a full disk: only from the io there
+        if io is not None and isinstance(err, (io.DamagedOutput, io.DiskFull)):
             text = " ".join(str(err).split())
         elif os.environ.get("CRADLE_DEBUG"):
             raise

@@ -114,7 +114,7 @@ def cmd_extend(args) -> int:
 
 
 def cmd_verify(args) -> int:
-    from cradle.data.io import DamagedOutput, rebuild_hint, verify_file
+    from cradle.data.io import DamagedOutput, rebuild_hint, stale_temporaries, verify_file
 
     root = Path(args.root)
     if not root.exists():
@@ -132,6 +132,9 @@ def cmd_verify(args) -> int:
         print(f"DAMAGED {line}")
     for p in bare:
         print(f"note    {p}: readable, but written before checksums; {rebuild_hint(p)} to protect it")
+    stale = [] if root.is_file() else stale_temporaries(root)
+    for p in stale:
+        print(f"note    stale temporary file {p} (a killed write; delete it)")
     print(f"{len(files)} files checked: {len(files) - len(damaged) - len(bare)} verified, {len(bare)} without "
-          f"checksums, {len(damaged)} to rebuild")
+          f"checksums, {len(damaged)} to rebuild" + (f"; {len(stale)} stale temporary files" if stale else ""))
     return 1 if damaged else 0
