@@ -16,7 +16,8 @@ in (breatherdps)) and writes the table reading -> outcome:
   (dpsstn) (:mod:`cradle.models.pairs`), centre spacings from adjacent cores
   to 10 sites, theta = 0 (in phase on the (-1)^n carrier) and pi
   (antiphase), each copy of peak |x| = 0.01; outcome and merging period by
-  :func:`cradle.measurements.interactions.classify`;
+  :func:`cradle.measurements.interactions.classify`, both merging times (first coalescence, final
+  single breather); then the noise seeds of the breather-interactions sweep at the loc1-pair reading;
 * packet: Gaussian envelopes of a few widths, sech, super-Gaussian, box and
   cos^2 on ~12 sites, peak 0.016; the number of humps that leave the centre
   and how many stay (:func:`packet_outcome`).
@@ -69,13 +70,51 @@ def pair_rows(periods: float):
 
 def _cell(res) -> str:
     o = res["outcome"]
+    first = "" if not np.isfinite(o.first_coalescence) else f" (first coalescence {o.first_coalescence:.0f})"
     if o.outcome == "merge":
-        return f"merge at {o.merge_period:.0f}"
+        return f"merge at {o.merge_period:.0f}{first}"
     if o.outcome == "repel":
         return f"repel ({o.separation_velocity:.3f} sites/period)"
     if o.outcome == "none":
         return "one hump from the start"
-    return o.outcome
+    return o.outcome + first
+
+
+def seed_rows():
+    """The noise seeds of the breather-interactions sweep (its full form's declared defaults) at the loc1-pair
+    reading (site-site 6 apart, in phase): both merging times of each seed, in both models."""
+    from cradle.analyses import breather_interactions as bi
+
+    spec = bi.BreatherInteractions()
+    rows = []
+    for seed in range(spec.n_seeds):
+        r = bi.run_case(spec, "site-site", 6.0, 0.0, 1.0, spec.amplitude, seed)
+        rows.append({"seed": seed, **r})
+        print("seed", seed, {k: v for k, v in r.items() if "merge_period" in k or "first_coalescence" in k}, flush=True)
+    return rows, spec
+
+
+def seed_markdown(rows, spec) -> list[str]:
+    def cell(r, m):
+        merged = f"{r[f'merge_period_{m}']:.0f}" if np.isfinite(r[f"merge_period_{m}"]) else f"none in {spec.periods:g}"
+        return f"{r[f'first_coalescence_{m}']:.0f} | {merged}"
+
+    def spread(key):
+        v = np.array([r[key] for r in rows], float)
+        ok = v[np.isfinite(v)]
+        return (f"{ok.min():.0f}-{ok.max():.0f}, median {np.median(ok):.0f} ({ok.size} of {v.size})" if ok.size
+                else f"none of {v.size}")
+
+    lines = ["", "### Pair: the noise seeds of breather-interactions at the loc1-pair reading", "",
+             (f"Site-site 6 apart in phase, |x| = {spec.amplitude:g} each, plus the sweep's noise "
+              f"(A_n(0) += {spec.noise:g} amplitude / 2 xi_n, seeds (seed_base, s)); {spec.periods:g} periods. "
+              "First coalescence: first period of the first single state; final: first period of the final "
+              "single breather (`Outcome.first_coalescence`, `Outcome.merge_period`)."), "",
+             "| seed | exact first | exact final | DpS first | DpS final |", "|---|---|---|---|---|"]
+    lines += [f"| {r['seed']} | {cell(r, 'exact')} | {cell(r, 'dps')} |" for r in rows]
+    lines += ["", *(f"* {m}: first coalescence {spread(f'first_coalescence_{m}')}; final single breather "
+                    f"{spread(f'merge_period_{m}')}" for m in ("exact", "dps"))]
+    return lines
 
 
 # ------------------------------------------------------------------ packets
@@ -143,7 +182,7 @@ def packet_rows(periods: float, widths=(12,)):
     return rows
 
 
-def markdown(prs, pks, periods, packet_periods, wall) -> str:
+def markdown(prs, pks, periods, packet_periods, wall, seeds=None) -> str:
     lines = [f"<!-- written by benchmarks/loc1_readings.py ({wall:.0f} s); do not edit by hand -->",
              (f"N = {N}, periodic, zero velocities; pairs run {periods:g} breather periods 2 pi/omega_sw, packets "
               f"{packet_periods:g} periods 2 pi/1.1; DpS from tau = 0 in (breatherdps)."), "",
@@ -155,6 +194,8 @@ def markdown(prs, pks, periods, packet_periods, wall) -> str:
     for r in prs:
         lines.append(f"| {r['profiles']} | {r['spacing']:g} | {r['theta']} | {r['omega_sw']:.4f} | "
                      f"{_cell(r['exact'])} | {_cell(r['dps'])} |")
+    if seeds:
+        lines += seed_markdown(*seeds)
     lines += ["", "### Packet (loc1, left): peak 0.016, ~12 sites", "",
               ("Humps of max_t |x_n| per period (omega = 1.1, humps down to 5 % of the largest) over periods "
                "20-250 (after the split, before the pulses meet on the far side of the ring), the largest count "
@@ -178,8 +219,9 @@ def main(argv=None):
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
     prs = pair_rows(args.periods) if args.only in ("pair", "both") else []
+    seeds = seed_rows() if args.only in ("pair", "both") else None
     pks = packet_rows(args.packet_periods) if args.only in ("packet", "both") else []
-    text = markdown(prs, pks, args.periods, args.packet_periods, time.perf_counter() - t0)
+    text = markdown(prs, pks, args.periods, args.packet_periods, time.perf_counter() - t0, seeds)
     Path(args.out).write_text(text)
     print(text)
 

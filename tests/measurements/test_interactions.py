@@ -92,6 +92,22 @@ def test_a_merged_breather_that_shows_two_humps_briefly_still_merged():
     assert o.outcome == "merge" and o.merge_period == 100.0
 
 
+def test_a_breathing_bound_pair_coalesces_first_long_before_its_final_merge():
+    """The two definitions of a merging time: the pair is one hump over periods 40-69 (a bound state that
+    breathes), two again, and one from 150 on: first coalescence 40, final single breather 150; a short
+    overlap the 11-period median smooths away (periods 20-22) is not a coalescence. A pair that never
+    overlaps has none."""
+    def c2(k):
+        return 25.0 if 40 <= k < 70 or k >= 150 or 20 <= k < 23 else 31.0
+
+    t, f = run(lambda k: 25.0, c2, periods=300)
+    o = I.classify(t, f, T)
+    assert o.outcome == "merge" and o.merge_period == 150.0 and o.first_coalescence == 40.0
+    t, f = run(lambda k: 20.0, lambda k: 30.0, periods=100)
+    o = I.classify(t, f, T)
+    assert o.outcome == "bound" and np.isnan(o.first_coalescence)
+
+
 def test_breathers_that_overlap_and_come_apart_are_not_merged():
     # they approach, overlap for ~30 periods and pass through each other: transmit, not merge
     t, f = run(lambda k: 10.0 + 0.1 * k, lambda k: 30.0 - 0.1 * k, periods=300)

@@ -211,6 +211,7 @@ def test_metrics_stage_stores_the_outcome_of_the_interaction_measure():
         oc = interactions.classify_run(run)
         assert oc.outcome == "merge"
         assert float(m[f"merging_time_{model}"]) == oc.merge_period
+        assert float(m[f"first_coalescence_{model}"]) == oc.first_coalescence <= oc.merge_period
         assert int(m[f"outcome_{model}"]) == interactions.OUTCOMES.index("merge")
         assert m[f"merging_time_{model}"].attrs["units"] == "1" and m[f"merging_time_{model}"].attrs["long_name"]
     # the period holding t_merge still shows both breathers: the merge is the next period

@@ -115,6 +115,15 @@ class Hill:
     def eigenvalues(self, p: float, vectors: bool = False):
         """All 2 (2L + 1) eigenvalues lambda of the truncated pencil (and the W-parts of the eigenvectors)."""
         n = self.m.size
+        A = self.matrix(p)
+        if vectors:
+            lam, V = np.linalg.eig(A)
+            return lam, V[:n]
+        return np.linalg.eigvals(A)
+
+    def matrix(self, p: float) -> np.ndarray:
+        """The first-order companion matrix of the truncated pencil at p (its eigenvalues are the lambda)."""
+        n = self.m.size
         om, m = self.omega, self.m
         D = np.diag(1.0 - om**2 * m**2).astype(complex) - self.operator(p)
         C = np.diag(-2j * om * m)
@@ -122,10 +131,7 @@ class Hill:
         A[:n, n:] = np.eye(n)
         A[n:, :n] = -D
         A[n:, n:] = -C
-        if vectors:
-            lam, V = np.linalg.eig(A)
-            return lam, V[:n]
-        return np.linalg.eigvals(A)
+        return A
 
     def central(self, p: float) -> np.ndarray:
         """The eigenvalues in the central strip |Im lambda| < omega / 2 (the sidebands p; two expected)."""

@@ -19,7 +19,8 @@ robin to ``chunks`` jobs (:data:`ANALYSIS`'s batches, keys ``0``, ``1``, ...; th
 analysis job itself when ``chunks`` is 1 (the reduced form). Config: ``beyond: breather-interactions:``
 (:class:`BreatherInteractions`, the reduced form's keys under ``reduced``).
 Output: a tree (:data:`VARIABLES`): ``/cases`` (every run: parameters and, per model, outcome,
-merging period, separation and drift velocities, norm moved to the larger breather) and ``/maps``
+merging period (final single breather) and first coalescence, separation and drift velocities, norm moved
+to the larger breather) and ``/maps``
 (per profile pair, spacing and base theta, the share of seeds that merge and the modal outcome in
 each model, and how often the two models agree).
 """
@@ -41,7 +42,7 @@ if TYPE_CHECKING:
 MODELS = ("exact", "dps")
 PAIRS = {"site-site": ("site", "site"), "bond-bond": ("bond", "bond"), "site-bond": ("site", "bond")}
 #: per-case result fields (per model)
-FIELDS = ("outcome", "merge_period", "separation_velocity", "drift_velocity", "norm_transfer")
+FIELDS = ("outcome", "merge_period", "first_coalescence", "separation_velocity", "drift_velocity", "norm_transfer")
 
 
 # ----------------------------------------------------------------- spec
@@ -163,6 +164,7 @@ def run_case(spec: BreatherInteractions, pair, spacing, theta, ratio, amplitude,
     for m in MODELS:
         oc = res[m]["outcome"]
         out.update({f"outcome_{m}": oc.code, f"merge_period_{m}": oc.merge_period,
+                    f"first_coalescence_{m}": oc.first_coalescence,
                     f"separation_velocity_{m}": oc.separation_velocity, f"drift_velocity_{m}": oc.drift_velocity,
                     f"norm_transfer_{m}": res[m]["norm_share_end"] - res[m]["norm_share_0"]})
     return out
@@ -237,7 +239,11 @@ for _m, _model in (("exact", "exact (nc)"), ("dps", "DpS (dfnls)/(ansatz)")):
         f"outcome_{_m}": Var(("case",), f"interaction outcome, {_model}",
                              attrs=(("flag_values", (0, 1, 2, 3, 4)),
                                     ("flag_meanings", "merge bound repel transmit none"))),
-        f"merge_period_{_m}": Var(("case",), f"merging time in breather periods, {_model} (NaN: no merge)"),
+        f"merge_period_{_m}": Var(("case",), f"merging time in breather periods, {_model} (NaN: no merge)",
+                                  attrs=(("comment", "first period of the final single breather"),)),
+        f"first_coalescence_{_m}": Var(("case",), f"first coalescence in breather periods, {_model} (NaN: none)",
+                                       attrs=(("comment", "first period of the first single state, which a "
+                                                          "breathing bound pair may leave again"),)),
         f"separation_velocity_{_m}": Var(("case",), f"separation velocity of a repelled pair, {_model} "
                                                      "(sites per breather period; NaN: not repelled)"),
         f"drift_velocity_{_m}": Var(("case",), f"drift velocity of the merged breather, {_model} "

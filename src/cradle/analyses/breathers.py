@@ -18,7 +18,7 @@ import time
 
 import numpy as np
 
-from cradle.analyses.breather_exchanges import VARIABLES as _EXCHANGES
+from cradle.analyses.breather_exchanges import REFINE_RING, VARIABLES as _EXCHANGES
 from cradle.analyses.breather_mobility import VARIABLES as _MOBILITY
 from cradle.analyses.breathers_spec import Breathers
 from cradle.analyses.protocol import Analysis
@@ -90,6 +90,13 @@ VARIABLES = {
 }
 
 
+#: the refined-check variables of /exchanges and the shape of one exchange's value (per side, or one)
+_CHECK_SHAPES: dict[str, tuple[tuple[int, ...], type]] = {
+    k: ((2,), float) for k in ("omega_side", "unstable_side", "pinning_offset", "pinning_precision",
+                               "unstable_refined", "pinning_offset_refined", "pinning_precision_refined")}
+_CHECK_SHAPES.update({"refined_N": ((), int), "refined_agrees": ((), float)})
+
+
 def _family_names(spec: Breathers):
     names = [(f"ring {k}", spec.N, "periodic", k) for k in spec.kinds]
     if spec.free_N > 0:
@@ -139,6 +146,7 @@ def compute(spec: Breathers, inputs: dict | None = None, log=None):
     x0s, x0d = np.full((F, W, Nmax), np.nan), np.full((F, W, Nmax), np.nan)
     mus = np.full((F, W, 2 * Nmax), np.nan, complex)
     ends, timings, keep, floquets, exchanges = {}, {}, {}, {}, []
+    checks: list[dict] = []       # the refined verdicts of each exchange (breather_exchanges.refine)
     n_tails = [(N // 2 - 1 if bc == "periodic" else N - 1 - _centre(N, bc)) for _, N, bc, _ in fams]
     tails, tails_d = np.full((F, max(n_tails)), np.nan), np.full((F, max(n_tails)), np.nan)
     for f, (name, N, bc, kind) in enumerate(fams):
@@ -196,9 +204,13 @@ def compute(spec: Breathers, inputs: dict | None = None, log=None):
                 mus[f, w, :fl.mu.size] = fl.mu
                 o["unstable"][f, w] = float(fl.rate > spec.stability_threshold)
         if sym is not None and spec.exchange_steps > 0:
-            from cradle.analyses.breather_exchanges import locate
+            from cradle.analyses.breather_exchanges import locate, refine
 
-            exchanges += [(f, *e) for e in locate(fam, floquets, name, kind, c, spec, say, spec.exchange_steps)]
+            found = locate(fam, floquets, name, kind, c, spec, say, spec.exchange_steps)
+            exchanges += [(f, *e) for e in found]
+            t_refine = time.perf_counter()
+            checks += refine(fam, floquets, name, kind, c, found, spec, say)
+            timings[f"{name} refinement"] = time.perf_counter() - t_refine
         timings[name] = time.perf_counter() - t0
         if fam:
             om = [b.omega for b in fam]
@@ -229,12 +241,18 @@ def compute(spec: Breathers, inputs: dict | None = None, log=None):
         "/pn": pn[0],
         "/tails": ({"log10_amplitude": tails, "log10_amplitude_dps": tails_d}, {"j": np.arange(1, tails.shape[1] + 1)}),
         "/exchanges": ({"omega_exchange": [e[1] for e in exchanges], "omega_halfwidth": [e[2] for e in exchanges],
-                        "family_exchange": [e[0] for e in exchanges]}, {"exchange": np.arange(len(exchanges))}),
+                        "family_exchange": [e[0] for e in exchanges],
+                        **{k: np.array([r[k] for r in checks], dtype).reshape((len(checks), *shape))
+                           for k, (shape, dtype) in _CHECK_SHAPES.items()}},
+                       {"exchange": np.arange(len(exchanges)), "side": np.arange(2)}),
     }
     fit = _distance_fit(out, omegas, spec)
     attrs = {"alpha": al, "family_names": ", ".join(n for n, *_ in fams),
              "family_ends": ", ".join(f"{k}: {v}" for k, v in ends.items()),
              "rtol": spec.rtol, "check_rtol": spec.check_rtol,
+             "exchange_refinement": "each exchange's grid breathers re-solved from x(0) at check_rtol on a ring "
+                                    f"{REFINE_RING:g} times larger (free chain: same length); verdicts by the sign "
+                                    "of the pinning pair's sigma (breather_exchanges.sigma)",
              "stability_threshold": spec.stability_threshold,
              "pn_omega": spec.pn_omega, "pn_barrier_at_pn_omega": pn[1], "pn_barrier_dps_at_pn_omega": pn[2],
              "pn_energy_site_at_pn_omega": pn[3], "pn_barrier_uncertainty_at_pn_omega": pn[4],

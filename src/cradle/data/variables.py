@@ -97,6 +97,15 @@ VARIABLES: dict[str, Var] = {
     "merging_time_dps": Var((), "merging time of the two breathers in breather periods, approximate (NaN: none)",
                             attrs=(("comment", "cradle.measurements.interactions.classify on max_t |x_n| per "
                                                "period: first period of the final single breather"),)),
+    "first_coalescence_exact": Var((), "first coalescence of the two breathers in breather periods, exact (NaN: none)",
+                                   attrs=(("comment", "cradle.measurements.interactions.classify on max_t |x_n| per "
+                                                      "period: first period of the first single state, which a "
+                                                      "breathing bound pair may leave again"),)),
+    "first_coalescence_dps": Var((), "first coalescence of the two breathers in breather periods, approximate "
+                                     "(NaN: none)",
+                                 attrs=(("comment", "cradle.measurements.interactions.classify on max_t |x_n| per "
+                                                    "period: first period of the first single state, which a "
+                                                    "breathing bound pair may leave again"),)),
     "outcome_exact": Var((), "interaction outcome of the two breathers, exact",
                          attrs=(("flag_values", (0, 1, 2, 3, 4)),
                                 ("flag_meanings", "merge bound repel transmit none"))),

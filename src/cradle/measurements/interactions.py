@@ -22,6 +22,11 @@ humps of every period:
   count) is 1 until the end, the single state lasting at least
   ``min_periods`` periods (a small breather or radiation the merger sends
   round the ring is not one of the pair);
+* first coalescence (any outcome but ``repel`` and ``none``): the first period
+  from which that smoothed count is 1, however long it stays so. A bound pair
+  breathes (its humps approach, overlap and part), so the first coalescence
+  can come long before the final single breather: the two definitions of a
+  merging time (``Outcome.first_coalescence``, ``Outcome.merge_period``);
 * ``transmit``: two breathers that approach, overlap and come out on the
   other side of each other (tracked positions swap their order);
 * ``bound``: two breathers to the end, neither merging nor separating.
@@ -133,6 +138,7 @@ class Outcome:
     """What :func:`classify` found; times in breather periods from the first stored time."""
     outcome: str
     merge_period: float = float("nan")         # merge: first period of the final single breather
+    first_coalescence: float = float("nan")    # first period of the first single state (NaN: never one)
     separation_velocity: float = float("nan")  # repel: sites per period
     drift_velocity: float = float("nan")       # merge: velocity of the remaining breather, sites per period
     separation0: float = float("nan")          # distance of the two humps in the first period
@@ -245,6 +251,7 @@ def classify_peaks(starts, P, *, periodic: bool = True, rel: float = REL, dip: f
     near = np.array([1 + int(np.sum(ring_distance(c[1:], c[0], N, periodic) <= reach)) if len(c) else 0
                      for c in cent])
     sm = running_median(np.minimum(near, 2), smooth)
+    base["first_coalescence"] = _first_coalescence(near, sm)
     multi = np.flatnonzero(sm != 1)
     first_single = int(multi[-1]) + 1 if multi.size else 0
     if sm[-1] == 1 and K - first_single >= min_periods:
@@ -261,6 +268,18 @@ def classify_peaks(starts, P, *, periodic: bool = True, rel: float = REL, dip: f
     if _crossed(cent, counts, N, periodic):
         return Outcome("transmit", separation0=sep0, **base)
     return Outcome("bound", separation0=sep0, **base)
+
+
+def _first_coalescence(near, sm) -> float:
+    """First period of the first single state: where the smoothed count ``sm`` first reads 1, moved back to
+    the first single period of the raw count ``near`` (the median lags by < smooth periods). NaN: never."""
+    single = np.flatnonzero(sm == 1)
+    if not single.size:
+        return float("nan")
+    k = int(single[0])
+    while k > 0 and near[k - 1] == 1:
+        k -= 1
+    return float(k)
 
 
 def classify_run(ds, period: float | None = None, **kw) -> Outcome:

@@ -43,12 +43,9 @@ def _laplacian(w, bc):
     return L
 
 
-def stability(a_n, omega, alpha, bc="periodic", odd_basis=None):
-    """Eigenvalues lambda (per unit t) of the DpS breather of frequency omega from the mu = 1 profile a_n.
-
-    Returns (lambda of all modes, lambda of the symmetry-breaking modes (on ``odd_basis``, N x m
-    orthonormal columns, if given)).
-    """
+def operators(a_n, omega, alpha, bc="periodic"):
+    """(A, B): the symmetric operators of the DpS breather of frequency omega linearised in its rotating frame,
+    real and imaginary parts of the perturbation (u' = A v, v' = -B u): lambda^2 are the eigenvalues of -A B."""
     mu = dps.mu_from_omega_sw(omega, alpha)
     t0 = dps.tau0(alpha)
     phi = 0.5 * mu ** (1.0 / (alpha - 1.0)) * np.asarray(a_n, float)
@@ -58,6 +55,16 @@ def stability(a_n, omega, alpha, bc="periodic", odd_basis=None):
     N = phi.size
     A = (_laplacian(w, bc) + 2 * t0 * Om * np.eye(N)) / (2 * t0)
     B = (_laplacian(alpha * w, bc) + 2 * t0 * Om * np.eye(N)) / (2 * t0)
+    return A, B
+
+
+def stability(a_n, omega, alpha, bc="periodic", odd_basis=None):
+    """Eigenvalues lambda (per unit t) of the DpS breather of frequency omega from the mu = 1 profile a_n.
+
+    Returns (lambda of all modes, lambda of the symmetry-breaking modes (on ``odd_basis``, N x m
+    orthonormal columns, if given)).
+    """
+    A, B = operators(a_n, omega, alpha, bc)
 
     def lam(A_, B_):
         ev = np.linalg.eigvals(-A_ @ B_).astype(complex)

@@ -287,8 +287,9 @@ def localised_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset) -> tuple[dict, d
     Every localised scene: the peak compression of every bond per breather period (loc1's
     diagrams). A breather: its frequency in both models at the site of largest |x_n(0)| and the
     half-period shift (plot18, fini), and the amplitude radiated beyond 6 sites of its core at
-    every stored time (plot18). A pair: the outcome (merge, bound, repel, ...) and merging time of the two
-    breathers in both models (loc1), by :func:`cradle.measurements.interactions.classify`.
+    every stored time (plot18). A pair: the outcome (merge, bound, repel, ...) and the merging
+    time of the two breathers under both definitions (final single breather, first coalescence) in both
+    models (loc1), by :func:`cradle.measurements.interactions.classify`.
     """
     kind = exact_ds.attrs["initial_kind"]
     periodic = exact_ds.attrs["bc"] == "periodic"
@@ -306,6 +307,7 @@ def localised_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset) -> tuple[dict, d
         for model, ds in (("exact", exact_ds), ("dps", dps_ds)):
             oc = interactions.classify(t, ds["x"].values, period, periodic=periodic)
             data[f"merging_time_{model}"] = oc.merge_period
+            data[f"first_coalescence_{model}"] = oc.first_coalescence
             data[f"outcome_{model}"] = np.int64(oc.code)
     elif kind == "breather":
         x = exact_ds["x"].values

@@ -47,8 +47,8 @@ BLOCK_ARRAYS = 16
 
 #: metrics variables without t that this job computes over the whole run (the others are per stored time)
 WHOLE_RUN = ("breather_omega", "peak_compression_exact", "peak_compression_dps", "merging_time_exact",
-             "merging_time_dps", "outcome_exact", "outcome_dps", "breather_site", "omega_exact", "omega_approx",
-             "half_shift_periods")
+             "merging_time_dps", "first_coalescence_exact", "first_coalescence_dps", "outcome_exact", "outcome_dps",
+             "breather_site", "omega_exact", "omega_approx", "half_shift_periods")
 
 
 class _Peaks:
@@ -231,6 +231,7 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
             for m in ("exact", "dps"):
                 oc = interactions.classify_peaks(site_peaks[m].starts, site_peaks[m].P, periodic=periodic)
                 values[f"merging_time_{m}"] = oc.merge_period
+                values[f"first_coalescence_{m}"] = oc.first_coalescence
                 values[f"outcome_{m}"] = np.int64(oc.code)
         elif kind == "breather":
             sh = breathers.half_period_shift(times, np.concatenate(site_series["exact"]),
