@@ -90,6 +90,7 @@ __doc__ = f"{__doc__}\n{_table()}"
 
 
 def __getattr__(name):
+    """A name of the public API (the table above), imported from its module on first use."""
     # the public names on first use: the Snakefile imports cradle.pipeline.config to plan and must not pay for
     # numpy, xarray or numba
     where = _WHERE.get(name)
@@ -104,4 +105,5 @@ def __getattr__(name):
 
 
 def __dir__():
+    """The module's names with the whole public API, imported or not yet."""
     return sorted(set(globals()) | set(__all__))
