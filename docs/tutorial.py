@@ -83,7 +83,8 @@ ds  # noqa: B018 - the notebook shows the Dataset
 # %%
 t_last = float(ds.t[-1])
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.2), constrained_layout=True)
-ds.x.sel(t=t_last).plot.line(x="n", hue="model", ax=ax1, marker="o", ms=3)
+ds.x.sel(t=t_last).plot.line(x="n", hue="model", ax=ax1, marker="o", ms=3, add_legend=False)
+ax1.legend(list(ds.model.values), title="model", loc="center left", bbox_to_anchor=(1.0, 0.5))  # beside the data
 ax1.set_title(f"x_n(t = {t_last:g})")
 ds.E.plot(ax=ax2)
 ax2.set_title("relative error E(t) of the DpS approximation")
@@ -166,7 +167,8 @@ plt.show()
 # %% [markdown]
 # ## 6. Your own initial data, your own figure
 #
-# `integrate_lattice(x0, v0, t_out, alpha=...)` integrates (nc) from any state. The classic experiment of a
+# `cradle.integrate_lattice(x0, v0, t_out, alpha=...)` integrates (nc) from any state (`help(cradle)` lists the
+# rest of the public API: initial data, the DpS integrator, their comparison, ...). The classic experiment of a
 # Newton's cradle: 30 beads at rest, touching, free ends, the first one hit with velocity 0.1. Without the
 # pendulums, the kick would run down the chain as Nesterenko's compact solitary wave; in (nc) each bead is
 # also pulled back to its rest position (the linear term x_n), and the kick instead becomes a localised
@@ -175,13 +177,11 @@ plt.show()
 # largest compression moves, and check that the energy (ham) is conserved.
 
 # %%
-from cradle.integrators import integrate_lattice
-
 N = 30
 x0, v0 = np.zeros(N), np.zeros(N)
 v0[0] = 0.1
 t_out = np.linspace(0.0, 300.0, 3001)
-sol = integrate_lattice(x0, v0, t_out, alpha=1.5, bc="free")
+sol = cradle.integrate_lattice(x0, v0, t_out, alpha=1.5, bc="free")
 print(f"{sol.method}: {sol.n_steps} steps, energy drift {sol.energy_drift:.2g}, wall {sol.wall_time_s:.2f} s")
 assert sol.energy_drift < 1e-6                                       # (ham) is conserved by the splitting
 compression = np.maximum(-(sol.x[:, 1:] - sol.x[:, :-1]), 0.0)     # bond n: beads n and n+1

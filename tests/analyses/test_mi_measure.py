@@ -137,7 +137,7 @@ def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):
         np.testing.assert_array_equal(gathered["runs"][name].values, var.values)
     ds, runs = tree.to_dataset(), tree["runs"]
     assert runs["ratio"].dims == ("N", "model", "q", "seed", "t") and runs["ratio"].shape == (1, 2, 2, 2, 31)
-    assert list(ds["model"].values) == [0, 1] and ds.attrs["model_names"] == "exact, dps"
+    assert list(ds["model"].values) == ["exact", "dps"] and [str(b["model"].values[0]) for b in bs] == ["exact", "dps"]
     r = runs["ratio"].values
     assert np.all(np.isfinite(r)) and np.all(r[..., 0] < 0.1)
     tc, crossed = runs["crossing_time"].values, runs["crossed"].values
@@ -152,12 +152,17 @@ def test_tiny_batch_end_to_end_and_deterministic(raw, tmp_path):
     assert ds["a"].values[0, 0] == pytest.approx(d.info["a"])
     assert dps.omega_tw(d.info["a"], 2 * np.pi * 12 / 40, 1.5) == pytest.approx(1.1)
     # written, read back and drawn
-    from cradle.data.io import open_tree, write_netcdf
+    from cradle.data.io import open_dataset, open_tree, write_netcdf
     from cradle.figures import save_figure
     from cradle.figures.mi_statistics import draw
 
     back = open_tree(write_netcdf(tree, tmp_path / "mis.nc"))
     np.testing.assert_array_equal(back["runs"]["crossed"].values, crossed)
+    # the models by name, in the file as in the batches
+    np.testing.assert_array_equal(back["runs"]["crossed"].sel(model="exact").values, crossed[:, 0])
+    np.testing.assert_array_equal(back["threshold"].sel(model="dps").values, ds["threshold"].values[:, 1])
+    batch_back = open_dataset(write_netcdf(bs[1], tmp_path / "batch.nc"))
+    np.testing.assert_array_equal(batch_back["ratio"].sel(model="dps").values, r[:, 1])
     assert back["runs"]["crossed"].encoding["fletcher32"] and back["threshold"].encoding["fletcher32"]
     drawn = save_figure(draw(back), tmp_path / "mis")
     assert all(p.stat().st_size > 0 for p in drawn)
@@ -175,3 +180,29 @@ def test_config_rejects_a_q_grid_off_the_ring(raw):
     bad["beyond"]["mi-growth"]["scenes"] = ["loc1-pair"]
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes\[0\] = 'loc1-pair'"):
         cc.validate(bad)
+
+
+def test_mi_growth_tiny_end_to_end_names_its_scenes_and_models(tmp_path):
+    """mi-growth on one short unstable scene: computed, written, read back; rows selected by scene and model name."""
+    from cradle.data.io import open_tree, write_netcdf
+    from cradle.scenes import stages
+    from cradle.specs.declare import from_plain
+
+    name = "mi-tiny"
+    cfg = cc.validate({"defaults": {"alpha": 1.5},
+                       "scenes": {name: {"N": 20, "bc": "periodic",
+                                         "initial": {"kind": "travelling", "q": "4*pi/5", "omega_tw": 1.1,
+                                                     "noise": {"kind": "uniform", "amplitude": 0.01, "seed": 1}},
+                                         "t_end": 30.0, "store": {"every": 1.0}}}})
+    sc = cc.scene(cfg, name)
+    init = stages.initial_data(sc, name)
+    inputs = {f"{name}/initial": init, f"{name}/exact": stages.exact_run(sc, init, name),
+              f"{name}/dps": stages.dps_run(sc, init, name)}
+    spec = from_plain(MG.MIGrowth, {"scenes": [name], "sample_every": 1.0})
+    tree = open_tree(write_netcdf(MG.compute(spec, inputs), tmp_path / "mi-growth.nc"))
+    ds = tree.to_dataset()
+    assert list(ds["scene"].values) == [name] and list(ds["model"].values) == ["exact", "dps"]
+    assert ds["growth"].dims == ("scene", "model")
+    np.testing.assert_array_equal(ds["growth"].sel(scene=name, model="exact").values, ds["growth"].values[0, 0])
+    np.testing.assert_array_equal(tree["series"]["pair"].sel(model="dps").values, tree["series"]["pair"].values[:, 1])
+    assert float(ds["sim_check"].sel(model="exact").max()) < 1e-12   # the rerun is the stored run

@@ -144,7 +144,8 @@ def test_theorem1_file_is_a_tree_named_as_in_the_paper(tmp_path):
     assert list(tree["convergence"]["modes"].values) == [8, 16]
     assert tree["convergence"]["decay_rate"].dims == ("alpha", "q")
     sc = tree["scenes"]
-    assert sc["q"].values[0] == q and sc["t_end"].values[0] == 100.0 and tree.attrs["scene_names"] == "tw"
+    assert sc["q"].values[0] == q and sc["t_end"].values[0] == 100.0 and list(sc["scene"].values) == ["tw"]
+    assert sc["a"].sel(scene="tw") == 0.05                                  # the scene by name
     assert sc["drift"].values[0] == pytest.approx(abs(sc["omega"].values[0] - sc["omega_dps"].values[0]) * 100.0)
     assert tree.attrs["q_expr"] == "pi/2, pi"
     assert all(p.stat().st_size > 0 for p in save_figure(draw(tree), tmp_path / "theorem1"))

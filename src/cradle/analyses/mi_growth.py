@@ -45,7 +45,7 @@ import numpy as np
 
 from cradle.analyses import mi_diagram as modulational
 from cradle.analyses.protocol import Analysis, scene_reads
-from cradle.data.variables import Var
+from cradle.data.variables import MODEL, MODELS, Var
 from cradle.measurements import compare
 from cradle.models import dps
 from cradle.scenes.spec import Travelling
@@ -56,7 +56,6 @@ if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
-MODELS = ("exact", "dps")
 #: the growth-rate diagram of the mi-growth figure: max_p of the scaled linear DpS rate on THEORY_N_Q
 #: wavenumbers q in [0, pi], each a grid search over THEORY_N_P values of p then a bounded refinement
 THEORY_N_Q = 361
@@ -247,9 +246,8 @@ _SC, _SM = ("scene",), ("scene", "model")
 #: against t, "/theory" the linear DpS diagram. Rates are per unit t of (nc)
 VARIABLES = {
     "/": {
-        "scene": Var(_SC, "index of a scene (names in the global attribute scene_names)"),
-        "model": Var(("model",), "model index: 0 exact lattice (nc), 1 DpS approximation (dfnls)/(ansatz)",
-                     attrs=(("comment", "names in the global attribute model_names"),)),
+        "scene": Var(_SC, "name of a travelling-wave scene of config.yaml"),
+        "model": MODEL,
         "q": Var(_SC, "carrier wavenumber q of the scene", "rad"),
         "N": Var(_SC, "number N of beads of the scene"),
         "eps": Var(_SC, "small parameter eps = a/2 of (ansatz); tau = eps^(alpha-1) t"),
@@ -360,12 +358,12 @@ def compute(spec: MIGrowth, inputs: dict, log=None):
                "growth_theory_max": tmax, "growth": f["rate"], "growth_stderr": f["stderr"], "r2": f["r2"],
                "growth_theory": f["theory"], "p_star": f["pstar"], "window_start": f["ta"], "window_end": f["tb"],
                "exponential": expo, "sim_check": f["check"]},
-              {"scene": np.arange(S), "model": np.arange(len(MODELS))}),
+              {"scene": np.array(names, dtype=object), "model": np.array(MODELS, dtype=object)}),
         "/sidebands": ({"p": pgrid, "growth_theory": theo, "growth": rate_p}, {"m": np.arange(M)}),
         "/series": ({"pair": pair, "envelope": env}, {"t": tg}),
         "/theory": ({"max_growth": max_theory}, {"q": q_theory}),
     }
-    attrs = {"scene_names": ", ".join(names), "model_names": ", ".join(MODELS), "alpha": alpha, "tau0": dps.tau0(alpha),
+    attrs = {"alpha": alpha, "tau0": dps.tau0(alpha),
              "sample_every": every, "saturation": spec.saturation, "decades": spec.decades,
              "r2_min": spec.r2_min,
              "time_units": "every rate is per unit t of (nc); DpS rates lambda (per unit tau of (dfnls)) are "

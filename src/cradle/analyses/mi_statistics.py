@@ -45,7 +45,7 @@ import numpy as np
 
 from cradle.analyses import mi_diagram as modulational
 from cradle.analyses.protocol import Analysis, Batches
-from cradle.data.variables import Var
+from cradle.data.variables import MODEL, MODELS, Var
 from cradle.measurements import compare, sidebands
 from cradle.models import initial
 from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
@@ -56,7 +56,6 @@ if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
-MODELS = ("exact", "dps")
 WILSON_Z = 1.959963984540054   # two-sided 95 %
 
 
@@ -296,7 +295,7 @@ def seeds(spec: MIStatistics) -> list[int]:
 
 def _attrs(spec: MIStatistics) -> dict:
     g = spec.q_over_pi
-    return {"model_names": ", ".join(MODELS), "alpha": spec.alpha, "omega_tw": spec.omega_tw,
+    return {"alpha": spec.alpha, "omega_tw": spec.omega_tw,
             "noise": spec.noise_kind, "noise_amplitude": spec.noise_amplitude, "t_end": spec.t_end,
             "sample_every": spec.sample_every, "fraction": spec.fraction,
             "exclude_bins": spec.exclude_bins, "seed0": spec.seed0, "n_seeds": spec.n_seeds,
@@ -324,8 +323,7 @@ _NMQ, _RUN = ("N", "model", "q"), ("N", "model", "q", "seed")
 VARIABLES = {
     "/": {
         "N": Var(("N",), "number N of beads on the ring"),
-        "model": Var(("model",), "model index: 0 exact lattice (nc), 1 DpS approximation (dfnls)/(ansatz)",
-                     attrs=(("comment", "names in the global attribute model_names"),)),
+        "model": MODEL,
         "q": Var(("q",), "carrier wavenumber q of the travelling wave", "rad"),
         "k_index": Var(("N", "q"), "integer k with q = 2 pi k / N"),
         "a": Var(("N", "q"), "wave amplitude a from (freq) at omega_tw"),
@@ -384,7 +382,7 @@ def batch(spec: MIStatistics, N: int, model: str, chunk: int, log=None):
     data = {"ratio": R[None, None], "crossing_time": TC[None, None],
             "crossed": np.isfinite(TC)[None, None].astype(np.int8), "k_peak": KP[None, None],
             "drift": DR[None, None], "k_index": np.asarray(ks)[None, :], "a": amp[None, :]}
-    coords = {"N": [N], "model": [MODELS.index(model)], "q": q, "seed": sd, "t": t}
+    coords = {"N": [N], "model": np.array([model], dtype=object), "q": q, "seed": sd, "t": t}
     attrs = _attrs(spec) | {"chunk": chunk, "wall_time_s": time.perf_counter() - wall0}
     return make_dataset(data, coords=coords, attrs=attrs, params=plain(spec), variables=BATCH_VARIABLES,
                         title=f"mi-statistics batch: N = {N}, {model}, chunk {chunk}")
@@ -398,7 +396,7 @@ def aggregate(batches, spec: MIStatistics):
     from cradle.data.io import make_tree
 
     Ns = sorted({int(n) for b in batches for n in b["N"].values})
-    models = [m for i, m in enumerate(MODELS) if any(i in b["model"].values for b in batches)]
+    models = [m for m in MODELS if any(m in b["model"].values for b in batches)]
     q = np.unique(np.concatenate([b["q"].values for b in batches]))
     qo = np.round(q / np.pi, 9)
     names = ["ratio", "crossing_time", "crossed", "k_peak", "drift"]
@@ -415,7 +413,7 @@ def aggregate(batches, spec: MIStatistics):
             raise ValueError("mi-statistics: batches with different sample times or seeds")
         wall += float(b.attrs.get("wall_time_s", 0.0))
         iN = Ns.index(int(b["N"].values[0]))
-        im = models.index(MODELS[int(b["model"].values[0])])
+        im = models.index(str(b["model"].values[0]))
         iq = np.searchsorted(qo, np.round(b["q"].values / np.pi, 9))
         for nm in names:
             out[nm][iN, im, iq] = b[nm].values[0, 0]
@@ -443,7 +441,7 @@ def aggregate(batches, spec: MIStatistics):
     groups = {"/": ({"k_index": kidx, "a": amp, "fraction_unstable": frac, "fraction_low": lo, "fraction_high": hi,
                      "median_crossing_time": med, "threshold": thr["estimate"], "threshold_low": thr["low"],
                      "threshold_high": thr["high"]},
-                    {"N": Ns, "model": [MODELS.index(m) for m in models], "q": q}),
+                    {"N": Ns, "model": np.array(models, dtype=object), "q": q}),
               "/runs": (out, {"seed": sd, "t": t})}
     attrs = _attrs(spec) | status | {"batch_wall_time_s_total": wall, "n_runs": int(np.prod(frac.shape)) * sd.size}
     return make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),

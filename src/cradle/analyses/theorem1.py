@@ -123,7 +123,7 @@ VARIABLES = {
         "decay_rate": Var(_AQ, "exponent s of the algebraic decay |v_j| ~ j^-s"),
     },
     "/scenes": {
-        "scene": Var(_SCENE, "index of a travelling-wave scene of the paper (names in attribute scene_names)"),
+        "scene": Var(_SCENE, "name of a travelling-wave scene of config.yaml"),
         "a": Var(_SCENE, "amplitude a of the scene (from its omega_tw by (freq))"),
         "q": Var(_SCENE, "wavenumber q of the scene", "rad"),
         "alpha": Var(_SCENE, "Hertz exponent of the scene"),
@@ -348,10 +348,9 @@ def compute(spec: Theorem1, inputs: dict, log=None):
                          {**alpha_q, "modes": conv_modes}),
         "/scenes": ({"a": sc["a"], "q": sc["q"], "alpha": sc["alpha"], "t_end": sc["t"], "omega": sc["om"],
                      "omega_dps": sc["omd"], "drift": sc["drift"], "residual": sc["res"]},
-                    {"scene": np.arange(len(scenes))}),
+                    {"scene": np.array(scenes, dtype=object)}),
     }
     attrs = {
-        "scene_names": ", ".join(scenes),
         "q_expr": ", ".join(angle_expr(x) for x in spec.q), "modes": J, "grid_points": M,
         "reference_modes": J_ref, "convergence_a": spec.convergence_a,
         "slope_eps_max": spec.slope_eps_max, "slope_eps_min": EPS_FIT_MIN,

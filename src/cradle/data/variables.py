@@ -118,6 +118,12 @@ VARIABLES: dict[str, Var] = {
     "radiated_exact": Var(("t",), "max |x_n(t)| beyond 6 sites of the breather core, exact solution"),
 }
 
+#: the two models along one dimension, by name (``ds.sel(model="exact")``): the analyses that store both
+#: models' results in one array declare it in their VARIABLES
+MODELS = ("exact", "dps")
+MODEL = Var(("model",), "model: exact lattice (nc) or DpS approximation (dfnls)/(ansatz)",
+            attrs=(("comment", "'exact' or 'dps'"),))
+
 
 def declared(name: str) -> Var:
     """The declaration of ``name``; a KeyError names the undeclared variable."""

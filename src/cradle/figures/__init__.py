@@ -14,21 +14,16 @@ Importing this package is cheap (no matplotlib, no figure module): the
 Snakefile asks it which module draws a label (:func:`module_of`) and
 derives the job's code inputs from that module's imports; a figure job
 imports only that module.
+
+The figures are :class:`matplotlib.figure.Figure` objects made outside pyplot (:func:`figure`): drawing
+one neither changes the session's backend nor adds to pyplot's open figures, so a notebook's
+``plt.show()`` keeps drawing; they are rendered to files by matplotlib's own canvases (Agg, PDF).
 """
 from __future__ import annotations
 
 from pathlib import Path
 
 PNG_DPI = 150
-
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def save_figure(fig, stem) -> list[Path]:
@@ -64,24 +59,21 @@ def save_figure(fig, stem) -> list[Path]:
         for tmp, _ in done:
             if os.path.exists(tmp):
                 os.remove(tmp)
-        _pyplot().close(fig)
     return [path for _, path in done][::-1]
 
 
-MODELS = ("exact", "dps")      # the model index of an analysis file's `model` coordinate
-#: how each model is marked wherever both are plotted
+#: how each model (the names of an analysis file's `model` coordinate) is marked wherever both are plotted
 MODEL_STYLE = {"exact": dict(color="C0", marker="o", label="exact (nc)"),
                "dps": dict(color="C3", marker="x", label="DpS (dfnls)")}
 
 
-def names_attr(ds, key="scene_names") -> list[str]:
-    """The names an analysis file lists in a comma-separated attribute (``scene_names``, ``model_names``)."""
-    return [s.strip() for s in str(ds.attrs.get(key, "")).split(",")]
-
-
 def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
-    """A new figure with the project's layout defaults."""
-    return _pyplot().subplots(nrows, ncols, figsize=(width, height), constrained_layout=True, **kw)
+    """A new figure and its axes (``kw``: those of :meth:`~matplotlib.figure.Figure.subplots`) with the project's
+    layout defaults, outside pyplot: the session's backend and pyplot's figures are left alone."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width, height), layout="constrained")
+    return fig, fig.subplots(nrows, ncols, **kw)
 
 
 #: Paper figures: label -> "module.function" of this package, drawn from the scenes' files by

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import MODEL_STYLE, MODELS, figure, names_attr as _names
+from cradle.figures import MODEL_STYLE, figure
 
 
 def draw(tree):
@@ -13,9 +13,9 @@ def draw(tree):
     ``tree``: the mi-growth file, one row per scene and model at the root, groups /sidebands, /series
     and /theory."""
     ds, sb, series, theory = tree.to_dataset(), tree["sidebands"], tree["series"], tree["theory"]
-    names = _names(ds)
+    names = [str(s) for s in ds["scene"].values]
     S = len(names)
-    models = [MODELS[int(i)] for i in ds["model"].values]
+    models = [str(m) for m in ds["model"].values]
     ncol = 4
     nrow = int(np.ceil((S + 2) / ncol))
     fig, ax = figure(nrow, ncol, width=3.2 * ncol, height=2.9 * nrow)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import MODEL_STYLE, MODELS, figure
+from cradle.figures import MODEL_STYLE, figure
 
 
 def draw(tree):
@@ -14,7 +14,7 @@ def draw(tree):
     ``tree``: the mi-statistics file, the summary per q at the root and every run in /runs."""
     ds, runs = tree.to_dataset(), tree["runs"]
     Ns = [int(n) for n in ds["N"].values]
-    models = [MODELS[int(i)] for i in ds["model"].values]
+    models = [str(m) for m in ds["model"].values]
     q = ds["q"].values / np.pi
     qc = float(ds.attrs.get("dps_threshold_linear_theory", np.pi / 2)) / np.pi
     fig, ax = figure(2, len(Ns), width=4.6 * len(Ns), height=6.4)

@@ -29,12 +29,8 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, cast
 
 import numpy as np
-
-if TYPE_CHECKING:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
 
 MAX_SHIFT = 0.4      # largest drawn displacement, in bead spacings: discs of neighbours never pass each other
 DPI = 100
@@ -104,10 +100,9 @@ def render(ds, spec: MovieSpec):
     """Yield the frames (height x width x 3 uint8 arrays) of the scene ``ds`` (from :func:`cradle.open_scene`),
     and as the generator's first item a dict describing the movie (frame times, magnification, ...)."""
     import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.collections import LineCollection
+    from matplotlib.figure import Figure
 
     t = np.asarray(ds["t"].values, dtype=float)
     idx = frame_indices(t, spec)
@@ -127,13 +122,15 @@ def render(ds, spec: MovieSpec):
             "force_min": fmin, "size": (spec.width, spec.height)}
     yield info
 
-    fig = plt.figure(figsize=(spec.width / DPI, spec.height / DPI), dpi=DPI)
+    # an Agg canvas of its own, outside pyplot: the session's backend is left alone
+    fig = Figure(figsize=(spec.width / DPI, spec.height / DPI), dpi=DPI)
+    canvas = FigureCanvasAgg(fig)
     fig.text(0.5, 0.965, scene_line(ds.attrs), ha="center", va="center", fontsize=11)
     strobe = f"  ({dt_frame / period:.2g} periods 2π/ω)" if period and dt_frame else ""
     fig.text(0.5, 0.925, f"displacements × {scale:.3g};  one frame = Δt {dt_frame:.3g}{strobe};  grey bars: "
              f"range swept since the previous frame", ha="center", va="center", fontsize=9, color="0.3")
     clock = fig.text(0.02, 0.025, "", ha="left", va="bottom", fontsize=12, family="monospace")
-    cmap = plt.get_cmap("magma")
+    cmap = matplotlib.colormaps["magma"]
     norm = matplotlib.colors.Normalize(vmin=fmin, vmax=0.0)
     n = np.arange(n_beads, dtype=float)
     artists = {}
@@ -165,32 +162,27 @@ def render(ds, spec: MovieSpec):
     moving = [a for group in artists.values() for a in group] + [clock]
     for a in moving:
         a.set_animated(True)
-    # frames are read from an Agg canvas whatever the session's backend (pyplot's canvases derive from it)
-    canvas = cast("FigureCanvasAgg", fig.canvas)
     canvas.draw()
     background = canvas.copy_from_bbox(fig.bbox)
     top, rest, low = np.full(n_beads, 1.0), np.full(n_beads, 0.25), np.full(n_beads, -0.12)
     prev = 0
-    try:
-        for k, i in enumerate(idx):
-            j = int(i) - lo
-            for model, (strings, swept, discs, bonds) in artists.items():
-                pos = n + scale * x[model][j]
-                seg = x[model][prev:j + 1]
-                left, right = n + scale * seg.min(axis=0), n + scale * seg.max(axis=0)
-                discs.set_offsets(np.column_stack([pos, rest]))
-                strings.set_segments(list(np.stack([np.column_stack([n, top]), np.column_stack([pos, rest])], axis=1)))
-                swept.set_segments(list(np.stack([np.column_stack([left, low]), np.column_stack([right, low])],
-                                                 axis=1)))
-                bonds.set_data(f[model][k:k + 1, :n_bonds])
-            clock.set_text(f"t = {t[i]:10.2f}   frame {k + 1:4d}/{len(idx)}")
-            prev = j
-            canvas.restore_region(background)
-            for a in moving:
-                a.axes.draw_artist(a) if a.axes is not None else fig.draw_artist(a)
-            yield np.asarray(canvas.buffer_rgba())[..., :3].copy()
-    finally:
-        plt.close(fig)
+    for k, i in enumerate(idx):
+        j = int(i) - lo
+        for model, (strings, swept, discs, bonds) in artists.items():
+            pos = n + scale * x[model][j]
+            seg = x[model][prev:j + 1]
+            left, right = n + scale * seg.min(axis=0), n + scale * seg.max(axis=0)
+            discs.set_offsets(np.column_stack([pos, rest]))
+            strings.set_segments(list(np.stack([np.column_stack([n, top]), np.column_stack([pos, rest])], axis=1)))
+            swept.set_segments(list(np.stack([np.column_stack([left, low]), np.column_stack([right, low])],
+                                             axis=1)))
+            bonds.set_data(f[model][k:k + 1, :n_bonds])
+        clock.set_text(f"t = {t[i]:10.2f}   frame {k + 1:4d}/{len(idx)}")
+        prev = j
+        canvas.restore_region(background)
+        for a in moving:
+            a.axes.draw_artist(a) if a.axes is not None else fig.draw_artist(a)
+        yield np.asarray(canvas.buffer_rgba())[..., :3].copy()
 
 
 def _atomic(path, write):

@@ -18,8 +18,8 @@ Axes are linear, as in the paper.
 """
 from __future__ import annotations
 
-import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.figure import Figure
 
 TIME_TOL = 1e-6          # a requested time must be stored to within this
 MODELS = (("exact", "spectrum_exact", "exact"), ("dps", "spectrum_dps", "approx. (DpS)"))
@@ -108,8 +108,9 @@ def _ratio_note(fig, sim):
 
 
 def _new(nrows, ncols, width, height):
-    fig, axes = plt.subplots(nrows, ncols, figsize=(width, height), squeeze=False,
-                             gridspec_kw={"bottom": 0.75 / height, "top": 1.0 - 0.55 / height, "hspace": 0.6,
+    fig = Figure(figsize=(width, height))   # outside pyplot, as cradle.figures.figure
+    axes = fig.subplots(nrows, ncols, squeeze=False,
+                        gridspec_kw={"bottom": 0.75 / height, "top": 1.0 - 0.55 / height, "hspace": 0.6,
                                           "wspace": 0.25, "left": 0.08, "right": 0.98})
     return fig, axes
 
@@ -166,7 +167,7 @@ def draw_fft344(data, options):
     (name,) = options["scenes"]
     t_spec, t1, t2 = [float(t) for t in options["times"]]
     sim = data[name]
-    fig = plt.figure(figsize=(9.0, 8.0))
+    fig = Figure(figsize=(9.0, 8.0))
     gs = fig.add_gridspec(3, 4, bottom=0.75 / 8.0, top=1.0 - 0.55 / 8.0, hspace=0.6, wspace=0.9,
                           left=0.09, right=0.98)
     se, sa = fig.add_subplot(gs[0, 0:2]), fig.add_subplot(gs[0, 2:4])

@@ -41,7 +41,7 @@ def draw(tree):
     A.legend(fontsize=7)
     if scenes.sizes.get("scene", 0):
         lines = [f"{n}: a={scenes['a'].values[i]:.4g}, drift {scenes['drift'].values[i]:.3g} rad"
-                 for i, n in enumerate(str(tree.attrs.get("scene_names", "")).split(", "))]
+                 for i, n in enumerate(str(s) for s in scenes["scene"].values)]
         A.text(0.98, 0.02, "\n".join(lines), transform=A.transAxes, ha="right", va="bottom", fontsize=6.5)
     # (b) relative correction
     B = ax[0, 1]

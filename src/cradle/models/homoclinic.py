@@ -59,6 +59,8 @@ def jacobian(a, alpha: float, bc: str = "periodic", sign: float = 1.0):
 
 @dataclass
 class Homoclinic:
+    """A solution a_n of (dpsst) (mu = 1: (dpsstn)), its max-norm residual and how the solver got there."""
+
     a: np.ndarray          # solution a_n, n = 0..N-1 (mu = 1 scaling unless mu given)
     residual: float        # max_n |r_n| of (dpsst) at the returned a
     converged: bool

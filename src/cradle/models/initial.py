@@ -27,6 +27,9 @@ NOISE_KINDS = ("none", "uniform", "gaussian")
 
 @dataclass
 class InitialData:
+    """Initial data of both models: the DpS amplitude A_n(0) and eps of (ansatz), the lattice state it gives
+    (x_n(0), v_n(0)), the noise of (perturb) if any, and the derived parameters in ``info``."""
+
     A0: np.ndarray          # complex DpS amplitude A_n(0)
     eps: float              # small parameter of (ansatz); tau = eps^(alpha-1) t
     x0: np.ndarray          # x_n(0)

@@ -74,8 +74,11 @@ def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of
     ``extra``: further schema keywords.
     """
     def wrap(cls):
+        documented = cls.__dict__.get("__doc__") is not None
         # keyword-only: fields are declared in the order of the config's keys, required or not
         cls = dataclasses.dataclass(frozen=True, kw_only=True)(cls)
+        if not documented:  # help() shows the description, not the signature dataclass puts there
+            cls.__doc__ = doc
         cls.__schema_name__ = name
         cls.__schema_doc__ = doc
         cls.__schema_partial__ = partial
