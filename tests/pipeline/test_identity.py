@@ -119,6 +119,7 @@ def test_changed_config_without_rebuild_names_every_stale_file(work, capsys):
     root = work / "results"
     assert code == 1 and mismatched == sorted(map(str, layout.scene_paths("tw-weak", root).values())), out
     assert all("holds scene 'tw-weak' (params" in line and "expected scene 'tw-weak' (params" in line
+               and f": initial.omega_tw 1.01 in the file, 1.02 in {work / 'config.yaml'}; rebuild it" in line
                for line in out if line.startswith("MISMATCH"))
     with pytest.raises(WrongOutput, match=r"sim/tw-weak/exact\.nc holds scene 'tw-weak' \(params [0-9a-f]{12}\)"):
         open_scene("tw-weak", root=root)

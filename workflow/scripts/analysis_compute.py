@@ -5,12 +5,12 @@ import logging
 
 from cradle.analyses.registry import ANALYSES, FULL, form_spec
 from cradle.data.provenance import identify
-from cradle.pipeline.identity import CONFIG, Expectations, open_checked
+from cradle.pipeline.identity import job_expectations, open_checked
 from cradle.pipeline.runner import run
 from cradle.specs.declare import from_plain
 
 sm = snakemake  # injected by Snakemake
-expect = Expectations(sm.config, source=CONFIG)  # what each input must be: its entry, today's parameters
+expect = job_expectations(sm.config)  # what each input must be: its entry, today's parameters
 log = logging.getLogger("cradle")
 analysis = ANALYSES[sm.params.analysis]
 # the form's spec as the rule resolved it (form_spec: no `reduced` overrides left to apply)

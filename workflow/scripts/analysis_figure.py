@@ -5,12 +5,12 @@ config expects (cradle.pipeline.identity)."""
 from pathlib import Path
 
 from cradle.figures import draw_analysis, write_tables
-from cradle.pipeline.identity import CONFIG, Expectations, open_checked
+from cradle.pipeline.identity import job_expectations, open_checked
 from cradle.pipeline.runner import setup_logging
 
 sm = snakemake  # injected by Snakemake
 setup_logging(sm.log[0])
-tree = open_checked(sm.input.data, Expectations(sm.config, source=CONFIG), tree=True)
+tree = open_checked(sm.input.data, job_expectations(sm.config), tree=True)
 if sm.params.tables:
     write_tables(sm.params.module, tree, {ext: sm.output[ext] for ext in sm.params.tables})
 else:

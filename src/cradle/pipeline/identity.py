@@ -25,12 +25,12 @@ from pathlib import Path
 from typing import Any
 
 from cradle.data.io import DamagedOutput, open_dataset, open_tree, rebuild_hint
-from cradle.data.provenance import params_hash
+from cradle.data.provenance import canonical_json, params_hash
 from cradle.pipeline import layout
 from cradle.specs.declare import plain
 
 __all__ = ["CONFIG", "Identity", "WrongOutput", "Expectations", "locate", "expected_identity", "stored_identity",
-           "mismatch", "check_identity", "open_checked"]
+           "mismatch", "check_identity", "job_expectations", "open_checked"]
 
 #: how messages name the config of a Snakemake job (config.yaml, with any --configfile and --config)
 CONFIG = "the workflow's config"
@@ -120,29 +120,33 @@ class Expectations:
 
     def expected(self, path) -> Identity | None:
         """The identity the file at ``path`` should have, or None when the config expects nothing there."""
+        return self._expected(path)[0]
+
+    def _expected(self, path) -> tuple[Identity | None, tuple[str, str, str]]:
+        """:meth:`expected`, and the key of the entry whose spec it resolved (see :meth:`_digest`)."""
         where = locate(path, self.root)
         if where is None:
-            return None
+            return None, ("", "", "")
         kind, names = where
         if kind in SCENE_KINDS:
-            name, digest = names["scene"], self._digest("scenes", names["scene"])
+            entry = ("scenes", names["scene"], "")
         elif kind in ENTRY_KINDS:
-            name, digest = names["name"], self._digest(kind, names["name"])
+            entry = (kind, names["name"], "")
         else:
-            name, digest = names["analysis"], self._digest("beyond", names["analysis"], names["form"])
-            if kind == "analysis-batch":
-                keys = self._batch_keys(names["analysis"], names["form"]) if digest else []
-                name, digest = f"{name}/{names['key']}", digest if names["key"] in keys else None
-        return None if digest is None else Identity(kind, name, digest)
+            entry = ("beyond", names["analysis"], names["form"])
+        name, digest = entry[1], self._digest(entry)
+        if kind == "analysis-batch":
+            keys = self._batch_keys(entry) if digest else []
+            name, digest = f"{name}/{names['key']}", digest if names["key"] in keys else None
+        return (None if digest is None else Identity(kind, name, digest)), entry
 
-    def _digest(self, section: str, name: str, form: str = "") -> str | None:
-        """params_sha256 of the resolved spec of one entry (a scene, homoclinic or map entry, or an
-        analysis's form), resolved once; None when the config has no such entry."""
-        key = (section, name, form)
-        if key not in self._specs:
-            spec = self._spec(section, name, form)
-            self._specs[key] = (spec, None if spec is None else params_hash(plain(spec)))
-        return self._specs[key][1]
+    def _digest(self, entry: tuple[str, str, str]) -> str | None:
+        """params_sha256 of the resolved spec of one ``entry`` (section, name, form: a scene, homoclinic or
+        map entry, or an analysis's form), resolved once; None when the config has no such entry."""
+        if entry not in self._specs:
+            spec = self._spec(*entry)
+            self._specs[entry] = (spec, None if spec is None else params_hash(plain(spec)))
+        return self._specs[entry][1]
 
     def _spec(self, section: str, name: str, form: str):
         from cradle.pipeline import config as cc
@@ -156,13 +160,13 @@ class Expectations:
             return None
         return {"scenes": cc.scene, "homoclinic": cc.homoclinic, "map": cc.map_entry}[section](self.config, name)
 
-    def _batch_keys(self, name: str, form: str) -> list[str]:
-        """The batches of one form of analysis ``name``; none where the form has nothing to split (a
-        work-precision form without scenes refuses itself when it is built, not here)."""
+    def _batch_keys(self, entry: tuple[str, str, str]) -> list[str]:
+        """The batches of the form of an analysis (``entry``: "beyond", its name, the form); none where the
+        form has nothing to split (a work-precision form without scenes refuses itself when built, not here)."""
         from cradle.analyses.registry import ANALYSES
         from cradle.pipeline.config import ConfigError
 
-        batches, spec = ANALYSES[name].batches, self._specs[("beyond", name, form)][0]
+        batches, spec = ANALYSES[entry[1]].batches, self._specs[entry][0]
         try:
             return [] if batches is None else list(batches.keys(spec))
         except ConfigError:
@@ -171,16 +175,20 @@ class Expectations:
     def mismatch(self, path, attrs) -> str | None:
         """The one line saying how the file at ``path`` (its global attributes ``attrs``) differs from what
         the config expects there, or None when it is what is expected (or nothing is)."""
-        want = self.expected(path)
+        want, entry = self._expected(path)
         if want is None:
             return None
         have = stored_identity(attrs, want.kind)
-        if ((have.kind is None or have.kind == want.kind) and (have.name is None or have.name == want.name)
-                and have.params == want.params):
+        same_kind = have.kind is None or have.kind == want.kind
+        same_name = have.name is None or have.name == want.name
+        if same_kind and same_name and have.params == want.params:
             return None
-        show_kind = have.kind is not None and have.kind != want.kind
-        return (f"{path} holds {have.describe(show_kind)} ({_short(have.params)}), expected "
-                f"{want.describe(show_kind)} ({_short(want.params)} from {self.source}); {self._rebuild(path, want)}")
+        differs = ""
+        if same_kind and same_name and have.params is not None:  # the same entry made from other values: which
+            differs = _differences(attrs.get("parameters"), plain(self._specs[entry][0]), self.source)
+        return (f"{path} holds {have.describe(not same_kind)} ({_short(have.params)}), expected "
+                f"{want.describe(not same_kind)} ({_short(want.params)} from {self.source}){differs}; "
+                f"{self._rebuild(path, want)}")
 
     def _rebuild(self, path, want: Identity) -> str:
         """Snakemake's command for a file under results/, else ``cradle run`` for a scene's or entry's."""
@@ -209,6 +217,29 @@ class Expectations:
         except (OSError, RuntimeError, ValueError):
             return None
         return self.mismatch(path, attrs)
+
+
+def _flat(value, prefix: str = "") -> dict[str, object]:
+    """A nested mapping of plain values as ``{"initial.omega_tw": 1.01, ...}``."""
+    if isinstance(value, dict):
+        return {k: v for key, sub in value.items() for k, v in _flat(sub, f"{prefix}{key}.").items()}
+    return {prefix[:-1]: value}
+
+
+def _differences(stored, expected, source: str, most: int = 3) -> str:
+    """``: initial.omega_tw 1.02 in the file, 1.01 in config.yaml`` for the first ``most`` keys whose values
+    differ between a file's ``parameters`` (canonical JSON) and the spec resolved now; "" if it stores none."""
+    import json
+
+    try:
+        have = _flat(json.loads(str(stored)))
+    except (TypeError, ValueError):
+        return ""
+    want = _flat(json.loads(canonical_json(expected)))
+    keys = sorted(k for k in set(have) | set(want) if have.get(k, "(absent)") != want.get(k, "(absent)"))
+    shown = [f"{k} {have.get(k, '(absent)')} in the file, {want.get(k, '(absent)')} in {source}" for k in keys[:most]]
+    more = f" and {len(keys) - most} more" if len(keys) > most else ""
+    return f": {'; '.join(shown)}{more}" if shown else ""
 
 
 def _short(digest: str | None) -> str:
@@ -245,10 +276,18 @@ def check_identity(path, ds, config: dict, root: str | Path = layout.ROOT, sourc
     Expectations(config, root, source).check(path, ds)
 
 
+def job_expectations(config: dict) -> Expectations:
+    """What a Snakemake job's inputs must be by its ``config`` (``snakemake.config``: validated by the
+    Snakefile, so not validated again in the job: :func:`cradle.pipeline.config.assume_validated`)."""
+    from cradle.pipeline.config import assume_validated
+
+    return Expectations(assume_validated(config), layout.ROOT, source=CONFIG)
+
+
 def open_checked(path, expect: Expectations, tree: bool = False):
     """A workflow job's input: :func:`cradle.data.io.open_dataset` (``tree``: :func:`~cradle.data.io.open_tree`)
-    of ``path``, verified, then refused unless it is what ``expect`` (the job's config: ``Expectations(
-    snakemake.config, source=CONFIG)``) expects there (:class:`WrongOutput`)."""
+    of ``path``, verified, then refused unless it is what ``expect`` (:func:`job_expectations`) expects there
+    (:class:`WrongOutput`)."""
     ds = open_tree(path) if tree else open_dataset(path)
     expect.check(path, ds)
     return ds
