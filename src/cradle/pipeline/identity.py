@@ -60,14 +60,11 @@ class Identity:
     params: str | None
 
     def describe(self, show_kind: bool) -> str:
-        """``scene 'tw-weak' (params 9a41f0c3d2e8)``; with ``show_kind``, ``the DpS run of scene ...``."""
+        """``scene 'tw-weak'``; with ``show_kind``, which of the scene's files: ``the DpS run of scene
+        'tw-weak'`` (the other kinds' nouns say their kind: ``homoclinic entry 'bond'``, ``batch ...``)."""
         noun = NOUN.get(self.kind or "", self.kind or "file")
         what = f"{noun} '{self.name}'" if self.name else f"{noun} (name not recorded)"
-        if show_kind and self.kind in PART:
-            what = f"{PART[self.kind]} of {what}"
-        elif show_kind:
-            what = f"{self.kind or 'a file of unrecorded kind'}: {what}"
-        return what
+        return f"{PART[self.kind]} of {what}" if show_kind and self.kind in PART else what
 
 
 def _templates() -> list[tuple[str, re.Pattern]]:
@@ -236,8 +233,12 @@ def _differences(stored, expected, source: str, most: int = 3) -> str:
     except (TypeError, ValueError):
         return ""
     want = _flat(json.loads(canonical_json(expected)))
+    def show(values, key) -> str:  # a long list (stored times) shortened: the line stays one line
+        text = str(values.get(key, "(absent)"))
+        return text if len(text) <= 40 else f"{text[:37]}..."
+
     keys = sorted(k for k in set(have) | set(want) if have.get(k, "(absent)") != want.get(k, "(absent)"))
-    shown = [f"{k} {have.get(k, '(absent)')} in the file, {want.get(k, '(absent)')} in {source}" for k in keys[:most]]
+    shown = [f"{k} {show(have, k)} in the file, {show(want, k)} in {source}" for k in keys[:most]]
     more = f" and {len(keys) - most} more" if len(keys) > most else ""
     return f": {'; '.join(shown)}{more}" if shown else ""
 

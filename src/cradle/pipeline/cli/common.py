@@ -59,15 +59,15 @@ def expectations(config_arg):
     return Expectations(cfg, path.parent / "results", source=str(path))
 
 
-def identity_line(expect, path) -> str:
-    """What ``cradle describe`` says of a file's identity: ``MISMATCH ...`` (the line of
-    :meth:`~cradle.pipeline.identity.Expectations.mismatch`), as expected, or why it was not checked."""
+def identity_line(expect, path, attrs) -> str:
+    """What ``cradle describe`` says of a file's identity (its global attributes ``attrs``): ``MISMATCH ...``
+    (the line of :meth:`~cradle.pipeline.identity.Expectations.mismatch`), as expected, or why not checked."""
     if expect is None:
         return f"not checked (no {DEFAULT_CONFIG}; give one with --config)"
     want = expect.expected(path)
     if want is None:
         return f"not checked (no file of {expect.source} is expected at this path)"
-    line = expect.check_file(path)
+    line = expect.mismatch(path, attrs)
     if line:
         return f"MISMATCH {line}"
     return f"{want.describe(False)}, params {(want.params or '')[:12]}, as {expect.source} expects"

@@ -61,7 +61,7 @@ def cmd_describe(args) -> int:
                 out.append(f"  {'max|' + name + '|':<{width}} {float(abs(ds[name]).max()):.6g}")
         out.append(f"  {'checksums':<{width}} " + ("verified (every variable)" if not bare else
                    f"verified; no checksum on {', '.join(bare)} (written before checksums: rebuild to protect)"))
-        out.append(f"  {'identity':<{width}} {identity_line(expectations(args.config), path)}")
+        out.append(f"  {'identity':<{width}} {identity_line(expectations(args.config), path, attrs)}")
         out += ["", "provenance:"]
         out += [f"  {k:<{width}} {_fmt(attrs[k])}" for k in PROV + ("history", "Conventions") if k in attrs]
         out += _describe_variables("variables:", ds)
