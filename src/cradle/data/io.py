@@ -36,7 +36,7 @@ import numpy as np
 import xarray as xr
 
 from cradle.data import checksums
-from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, VERSION, provenance
+from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, VERSION, identity as _identity, provenance
 from cradle.data.temporaries import remove_stale_temporaries, stale_temporaries, temporary_beside
 from cradle.data.variables import declared
 
@@ -95,7 +95,7 @@ GLOBAL_KEYS = ("title", "Conventions", "source", "references", "history") + _PRO
 
 
 def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = None, title: str = "",
-                 params=None, variables: dict | None = None) -> xr.Dataset:
+                 params=None, variables: dict | None = None, identity: tuple[str, str] | None = None) -> xr.Dataset:
     """A Dataset from ``{name: array}`` with declared dims, long names and units.
 
     ``coords`` maps coordinate names to 1-D arrays (also declared). ``attrs``
@@ -104,6 +104,8 @@ def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = No
     ``params_sha256``; the other provenance attributes are always written.
     ``variables`` (name -> :class:`cradle.data.variables.Var`) holds the declarations of an
     analysis's own variables; without it the global :data:`cradle.data.variables.VARIABLES`.
+    ``identity`` ``(kind, name)`` names what the file is (``("exact", "tw-weak")``):
+    :func:`cradle.data.provenance.identity`, what readers check (:mod:`cradle.pipeline.identity`).
     """
     ds = _table(data, coords, variables)
     prov = provenance(params)
@@ -122,21 +124,23 @@ def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = No
         if key not in GLOBAL_KEYS:
             ds.attrs[key] = _attr_value(value)
     ds.attrs.update(prov)
+    if identity is not None:
+        ds.attrs.update(_identity(*identity))
     return ds
 
 
 def make_tree(groups: dict, variables: dict, attrs: dict | None = None, title: str = "",
-               params=None) -> xr.DataTree:
+               params=None, identity: tuple[str, str] | None = None) -> xr.DataTree:
     """A tree of netCDF groups: ``groups`` maps a group path ("/", "/scenes", ...) to its
     ``(data, coords)``, ``variables`` maps the same paths to their declarations (name -> Var).
 
-    The root group carries the global attributes and provenance of :func:`make_dataset`; a child
+    The root group carries the global attributes, provenance and ``identity`` of :func:`make_dataset`; a child
     group carries only its variables (it inherits the root's coordinates in xarray, so a child
     never reuses a name of its parents' coordinates).
     """
     root_data, root_coords = groups.get("/", ({}, {}))
     nodes = {"/": make_dataset(root_data, root_coords, attrs=attrs, title=title, params=params,
-                               variables=variables["/"])}
+                               variables=variables["/"], identity=identity)}
     for path, (data, coords) in groups.items():
         if path != "/":
             nodes[path] = _table(data, coords, variables[path])

@@ -19,7 +19,12 @@ digits and underscores, values strings or integers, as CF wants), added by
 ``command``
     ``snakemake rule exact (scene=tw-weak)`` inside a Snakemake job,
     otherwise the command line (``sys.argv``), or what :func:`set_command`
-    was told.
+    was told;
+``cradle_kind``, ``cradle_name``
+    what the file is (:func:`identity`): its kind in the results layout (``exact``, ``dps``, ``initial``,
+    ``metrics``, ``homoclinic``, ``map``, ``analysis``, ``analysis-batch``) and the name of its scene, entry,
+    analysis or batch, set by the writer that knows them (:func:`identify`); with ``params_sha256`` they are
+    what a reader compares with what the config resolves to now (:mod:`cradle.pipeline.identity`).
 """
 from __future__ import annotations
 
@@ -38,14 +43,17 @@ try:
 except PackageNotFoundError:  # running from a source tree that is not installed
     VERSION = "0.0.0+unknown"
 
-__all__ = ["VERSION", "PACKAGES", "KEYS", "canonical_json", "params_hash", "git_info", "software_versions", "command",
-           "set_command", "provenance"]
+__all__ = ["VERSION", "PACKAGES", "KEYS", "IDENTITY_KEYS", "canonical_json", "params_hash", "git_info",
+           "software_versions", "command", "set_command", "provenance", "identity", "identify"]
 
 #: the libraries whose versions can change a result
 PACKAGES = ("numpy", "scipy", "numba", "xarray", "netCDF4")
 
+#: the global attributes naming what a file is: its kind in the results layout and its name
+IDENTITY_KEYS = ("cradle_kind", "cradle_name")
 #: every global attribute this module may write (an inherited one is dropped before new ones are set)
-KEYS = ("cradle_version", "git_commit", "git_dirty", "parameters", "params_sha256", "software_versions", "command")
+KEYS = ("cradle_version", "git_commit", "git_dirty", "parameters", "params_sha256", "software_versions",
+        "command") + IDENTITY_KEYS
 
 _COMMAND: str | None = None
 
@@ -168,6 +176,21 @@ def provenance(params=None) -> dict:
     attrs["software_versions"] = software_versions()
     attrs["command"] = command()
     return attrs
+
+
+def identity(kind: str, name: str) -> dict:
+    """The attributes naming a file: ``{"cradle_kind": kind, "cradle_name": name}`` (see the module docstring)."""
+    return dict(zip(IDENTITY_KEYS, (kind, name), strict=True))
+
+
+def identify(obj, kind: str, name: str, params=None):
+    """Name ``obj`` (a Dataset, or a DataTree: its root) as ``kind`` ``name`` (:func:`identity`), in place, and
+    return it; with ``params``, also record their hash where its writer recorded none (a batch that stores
+    measurements only)."""
+    obj.attrs.update(identity(kind, name))
+    if params is not None and "params_sha256" not in obj.attrs:
+        obj.attrs.update({"parameters": canonical_json(params), "params_sha256": params_hash(params)})
+    return obj
 
 
 # ------------------------------------------------------------------ lock file

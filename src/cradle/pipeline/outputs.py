@@ -1,5 +1,5 @@
 """The workflow's outputs opened by name: a scene's exact and DpS runs as one Dataset, the files a paper
-figure reads."""
+figure reads; each checked to be the file the config expects (:mod:`cradle.pipeline.identity`)."""
 from __future__ import annotations
 
 import os
@@ -10,11 +10,13 @@ import xarray as xr
 
 from cradle.data.io import open_dataset
 from cradle.pipeline import layout
+from cradle.pipeline.identity import Expectations
 
 SHARED = ("x", "force")  # variables both models store on the same (t, n) grid
 
 
-def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = True) -> xr.Dataset:
+def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = True, check: bool = True,
+               config: str | os.PathLike | dict | None = None) -> xr.Dataset:
     """The exact and DpS runs of ``scene`` as one Dataset, read from ``root``/sim/``scene``/{exact,dps}.nc.
 
     ``x`` and ``force`` get a ``model`` dimension (``exact``, ``dps``); the
@@ -27,6 +29,12 @@ def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = 
 
         ds = cradle.open_scene("tw-weak")
         (ds.x.sel(model="exact") - ds.x.sel(model="dps")).sel(t=621.95).plot()
+
+    Each file must be the one ``config`` expects (:mod:`cradle.pipeline.identity`): this scene's, made
+    from the parameters the config resolves to now; else :class:`~cradle.pipeline.identity.WrongOutput`,
+    one line naming the file, what it holds and what was expected. ``config``: a config file or mapping;
+    by default the ``config.yaml`` beside ``root`` (in ``root``'s parent folder), and when there is none
+    nothing is checked. ``check=False`` opens whatever is there.
     """
     root = Path(root)
     paths = {m: Path(p) for m, p in layout.scene_paths(scene, root, ("exact", "dps")).items()}
@@ -34,7 +42,8 @@ def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = 
     if missing:
         raise FileNotFoundError(f"scene {scene!r}: no {' and no '.join(missing)} (run `cradle run {scene} "
                                 f"--out {root}` or `snakemake {' '.join(missing)}`)")
-    runs = {m: open_dataset(p) for m, p in paths.items()}
+    expect = _expectations(root, config) if check else None
+    runs = {m: _opened(p, expect) for m, p in paths.items()}
     if not np.array_equal(runs["exact"]["t"].values, runs["dps"]["t"].values):
         raise ValueError(f"scene {scene!r}: exact and dps runs are stored at different times (rerun one)")
     model = xr.DataArray(["exact", "dps"], dims="model", name="model",
@@ -47,7 +56,7 @@ def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = 
     parts = [shared, *rest]
     mpath = Path(layout.path("metrics", root, scene=scene))
     if metrics and mpath.exists():
-        parts.append(open_dataset(mpath))
+        parts.append(_opened(mpath, expect))
     ds = xr.merge(parts, compat="override", join="exact", combine_attrs="override")
     ex, ap = runs["exact"].attrs, runs["dps"].attrs
     attrs = {}
@@ -71,20 +80,45 @@ def _same(a, b) -> bool:
         return False
 
 
-def load_inputs(scenes: dict, root) -> dict:
+def _expectations(root: Path, config) -> Expectations | None:
+    """What ``config`` (a mapping, a file, or None: ``root``'s parent's config.yaml if there is one) expects
+    under ``root``; None when there is no config to check against."""
+    from cradle.pipeline.config import read_yaml
+
+    if config is None:
+        config = root.parent / "config.yaml"
+        if not config.is_file():
+            return None
+    if isinstance(config, dict):
+        return Expectations(config, root, source="the config")
+    return Expectations(read_yaml(config), root, source=str(config))
+
+
+def _opened(path, expect: Expectations | None) -> xr.Dataset:
+    """:func:`open_dataset`, then refused unless it is the file ``expect`` expects (None: not checked)."""
+    ds = open_dataset(path)
+    if expect is not None:
+        expect.check(path, ds)
+    return ds
+
+
+def load_inputs(scenes: dict, root, config: dict | None = None, source: str = "the config") -> dict:
     """Open the netCDF files of a figure's scenes.
 
     ``scenes`` maps each name to its config section (map, homoclinic,
     scenes). Map and homoclinic names give one Dataset; a scene gives
     ``{"exact": ..., "dps": ..., "metrics": ...}``. Every file is verified as it is read
     (:func:`cradle.data.io.open_dataset`): a damaged or truncated one stops the figure with one
-    line naming it and its rebuild command, before anything is drawn or written.
+    line naming it and its rebuild command, before anything is drawn or written. With ``config`` (the
+    workflow's, named ``source`` in messages), every file must also be the one it expects
+    (:mod:`cradle.pipeline.identity`: its scene or entry, made from the parameters it resolves to now).
     """
+    expect = None if config is None else Expectations(config, root, source)
     data: dict[str, xr.Dataset | dict[str, xr.Dataset]] = {}
     for name, kind in scenes.items():
         if kind in ("map", "homoclinic"):
-            data[name] = open_dataset(layout.path(kind, root, name=name))
+            data[name] = _opened(layout.path(kind, root, name=name), expect)
         else:
-            data[name] = {part: open_dataset(path)
+            data[name] = {part: _opened(path, expect)
                           for part, path in layout.scene_paths(name, root, layout.RUN_PARTS).items()}
     return data

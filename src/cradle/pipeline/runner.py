@@ -60,6 +60,12 @@ def setup_logging(log_path: str | None = None) -> None:
         _STARTUP_LOGGED = True
 
 
+def one_line_errors() -> None:
+    """Report a missing, damaged or wrong input in one line (:func:`_one_line_excepthook`) before logging is
+    set up: a job that reads an input before its first stage starts."""
+    sys.excepthook = _one_line_excepthook
+
+
 def _one_line_excepthook(exc_type, exc, tb):
     """A job stopped by a missing, damaged or truncated input says so in one line (log and stderr),
     naming the file and the command that rebuilds it, instead of a traceback through the readers; a

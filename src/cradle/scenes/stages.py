@@ -8,7 +8,8 @@ Each function takes the resolved spec of one config entry (a frozen instance of
 :func:`~cradle.pipeline.config.homoclinic` and :func:`~cradle.pipeline.config.map_entry` build it)
 and the Datasets of the stage before, and returns a self-describing Dataset (see
 :mod:`cradle.data.variables`, :mod:`cradle.data.io`) that stores the spec's plain values
-(:func:`cradle.specs.declare.plain`) as its parameters. No file paths and no Snakemake:
+(:func:`cradle.specs.declare.plain`) as its parameters, and names itself (kind and name,
+:func:`cradle.data.provenance.identity`). No file paths and no Snakemake:
 the workflow scripts and the command line are thin adapters around these.
 A run that fails (no convergence, NaN, drift above the bound) raises
 :class:`StageFailure` carrying what was computed, for diagnosis.
@@ -60,7 +61,8 @@ def homoclinic_solution(spec: HomoclinicEntry, name: str = "") -> xr.Dataset:
               else np.log10(np.abs(a)))
     attrs["log10_tail_min"] = float(np.min(log10a))
     ds = make_dataset({"a": a, "residual_n": r, "log10_abs_a": log10a}, coords={"n": np.arange(N)}, attrs=attrs,
-                      params=plain(spec), title=f"solution '{name}' of the stationary DpS equation (dpsstn)")
+                      params=plain(spec), title=f"solution '{name}' of the stationary DpS equation (dpsstn)",
+                      identity=("homoclinic", name))
     if not sol.converged or not np.all(np.isfinite(a)):
         raise StageFailure(f"homoclinic '{name}': Powell hybrid did not converge "
                            f"(residual {sol.residual:.3e}, {sol.message})", ds)
@@ -93,7 +95,7 @@ def map_orbits(spec: MapEntry, name: str = "") -> xr.Dataset:
     attrs = {"name": name, "alpha": spec.alpha, "box": spec.box, "iterations": spec.iterations,
              "marks": spec.marks, "wall_time_s": time.perf_counter() - t0}
     return make_dataset(data, coords=coords, attrs=attrs, params=plain(spec),
-                        title=f"orbits '{name}' of the map G (comp1)-(comp2)")
+                        title=f"orbits '{name}' of the map G (comp1)-(comp2)", identity=("map", name))
 
 
 # ---------------------------------------------------------------- initial data
@@ -142,7 +144,7 @@ def initial_data(spec: Scene, name: str = "", homoclinic_ds: xr.Dataset | None =
     attrs = _scene_attrs(spec, name) | data.info
     attrs["energy0"] = float(lattice.hamiltonian(data.x0, data.v0, alpha, bc))
     return make_dataset(fields, coords={"n": np.arange(N)}, attrs=attrs,
-                        params=plain(spec), title=f"initial data of scene '{name}'")
+                        params=plain(spec), title=f"initial data of scene '{name}'", identity=("initial", name))
 
 
 # ---------------------------------------------------------------- integration
@@ -215,7 +217,7 @@ def exact_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -
                                                      "n_onset_corrections": getattr(sol, "n_onset_corrections", 0)})
     ds = make_dataset({"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy},
                       coords={"t": times, "n": np.arange(spec.N)}, attrs=attrs,
-                      params=plain(spec), title=exact_title(name))
+                      params=plain(spec), title=exact_title(name), identity=("exact", name))
     check_finite(name, "exact", {"x": sol.x, "v": sol.v}, ds)
     if not sol.energy_drift <= spec.max_energy_drift:
         raise StageFailure(f"scene '{name}' (exact): relative energy drift {sol.energy_drift:.3e} exceeds "
@@ -238,7 +240,8 @@ def dps_dataset(spec: Scene, init_ds: xr.Dataset, name: str, times, sol) -> xr.D
     return make_dataset({"A_re": sol.A.real, "A_im": sol.A.imag, "x": x_app, "force": force,
                          "l2_drift": sol.l2_drift, "dps_energy_drift": sol.energy_drift, "P_drift": sol.P_drift},
                         coords={"t": times, "n": np.arange(spec.N), "tau": sol.tau}, attrs=attrs,
-                        params=plain(spec), title=f"DpS approximation (dfnls)/(ansatz), scene '{name}'")
+                        params=plain(spec), title=f"DpS approximation (dfnls)/(ansatz), scene '{name}'",
+                        identity=("dps", name))
 
 
 def dps_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
@@ -346,4 +349,4 @@ def metrics(spec: Scene | None, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: 
         data.update(extra)
         coords.update(extra_coords)
     return make_dataset(data, coords=coords, attrs=attrs, params=None if spec is None else plain(spec),
-                        title=f"exact vs DpS comparison metrics, scene '{name}'")
+                        title=f"exact vs DpS comparison metrics, scene '{name}'", identity=("metrics", name))

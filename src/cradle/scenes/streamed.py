@@ -176,7 +176,8 @@ def _attempt(run: _Run, progress, exceeded) -> dict:
         stages.check_finite(name, "exact", {"x": sol.x, "v": sol.v}, None, start)
         exact_ds = make_dataset({"x": sol.x, "v": sol.v, "force": lattice.bond_forces(sol.x, alpha, bc),
                                  "energy": sol.energy}, coords={"t": tb, "n": np.arange(N)},
-                                attrs=dict(init_ds.attrs), params=params, title=stages.exact_title(name))
+                                attrs=dict(init_ds.attrs), params=params, title=stages.exact_title(name),
+                                identity=("exact", name))
         dsol = next(dps_blocks)
         stages.check_finite(name, "dps", {"A": dsol.A}, None, start)
         stats["wall_time_s"] += sol.wall_time_s

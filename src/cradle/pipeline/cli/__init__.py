@@ -4,9 +4,9 @@
 
     cradle scenes   [--config config.yaml]                 # scenes, figures and what each needs
     cradle run      SCENE [--out cradle-runs] [--config ...]   # one scene without Snakemake
-    cradle describe FILE.nc                                # parameters, checks, provenance of a result
+    cradle describe FILE.nc [--config config.yaml]         # parameters, checks, provenance of a result
     cradle extend   FILE.nc --t-end T [--every DT] [--out FILE.nc | --in-place]   # continue an exact run
-    cradle verify   [results]                              # every output's checksums; what to rebuild
+    cradle verify   [results] [--config config.yaml]       # every output's checksums and identity; what to rebuild
     cradle animate  SCENE [--results results] [--gif] [--fps F --duration S]   # a movie of the stored runs
 
 ``cradle run`` computes a scene's initial data, exact and DpS runs and
@@ -28,7 +28,11 @@ exact run next to its DpS run (a workflow output): extending it alone would
 leave the DpS run, the metrics and the config at the old t_end.
 
 Every error is one line on stderr, ``cradle: error: ...``, exit status 2,
-no traceback. ``cradle verify`` exits 1 when an output must be rebuilt.
+no traceback. ``cradle verify`` exits 1 when an output must be rebuilt: damaged (``DAMAGED``), or not the
+file the config expects there (``MISMATCH``: another scene's, or made from other parameters than the config
+resolves to now; :mod:`cradle.pipeline.identity`). ``describe`` says the same of one file and goes on.
+Both check the files of the ``results/`` folder beside the config (``--config``, default ``config.yaml``:
+when there is none, identities are not checked).
 
 ``cradle animate`` draws a movie from a scene's stored runs only
 (:mod:`cradle.figures.movie`): ``RESULTS/movies/SCENE.mp4`` (and ``.gif``).
@@ -70,6 +74,8 @@ def parser() -> argparse.ArgumentParser:
     r.set_defaults(func=cmd_run)
     d = sub.add_parser("describe", help="print a result's parameters, checks and provenance")
     d.add_argument("file", metavar="FILE.nc")
+    d.add_argument("--config", default=None, help="the config whose results/ the file should match "
+                                                  "(default: config.yaml, if there is one)")
     d.set_defaults(func=cmd_describe)
     e = sub.add_parser("extend", help="continue a finished exact run (exact.nc) to a later time and append; "
                                       "bitwise the same as one longer run for splitting methods")
@@ -85,6 +91,8 @@ def parser() -> argparse.ArgumentParser:
                                       "(exit 1 if any)")
     v.add_argument("root", nargs="?", default="results", metavar="RESULTS",
                    help="a folder of outputs (every *.nc below it) or one file (default: results)")
+    v.add_argument("--config", default=None, help="the config whose results/ the files should match "
+                                                  "(default: config.yaml, if there is one)")
     v.set_defaults(func=cmd_verify)
     a = sub.add_parser("animate", help="a movie (MP4, optionally GIF) of a scene's stored exact and DpS runs")
     a.add_argument("scene", metavar="SCENE", help="a scene whose runs are stored under RESULTS/sim/SCENE/")

@@ -1,10 +1,11 @@
 """The commands on result files: ``cradle describe`` (parameters, checks, provenance), ``cradle extend``
-(continue a finished exact run of (nc) to a later time) and ``cradle verify`` (every output's checksums)."""
+(continue a finished exact run of (nc) to a later time) and ``cradle verify`` (every output's checksums);
+describe and verify also say which files are not what the config expects (:mod:`cradle.pipeline.identity`)."""
 from __future__ import annotations
 
 from pathlib import Path
 
-from cradle.pipeline.cli.common import CliError
+from cradle.pipeline.cli.common import CliError, expectations, identity_line
 
 #: global attributes that are checks of the result (accuracy, convergence, failure)
 CHECKS = ("energy_drift", "max_energy_drift_allowed", "max_l2_drift", "max_dps_energy_drift", "residual",
@@ -60,6 +61,7 @@ def cmd_describe(args) -> int:
                 out.append(f"  {'max|' + name + '|':<{width}} {float(abs(ds[name]).max()):.6g}")
         out.append(f"  {'checksums':<{width}} " + ("verified (every variable)" if not bare else
                    f"verified; no checksum on {', '.join(bare)} (written before checksums: rebuild to protect)"))
+        out.append(f"  {'identity':<{width}} {identity_line(expectations(args.config), path, attrs)}")
         out += ["", "provenance:"]
         out += [f"  {k:<{width}} {_fmt(attrs[k])}" for k in PROV + ("history", "Conventions") if k in attrs]
         out += _describe_variables("variables:", ds)
@@ -128,8 +130,12 @@ def cmd_verify(args) -> int:
                 bare.append(p)
         except (DamagedOutput, OSError) as err:
             damaged.append(" ".join(str(err).split()))
+    expect = expectations(args.config)  # what the config expects of each file: kind, name, parameters
+    mismatched = [line for p in files if expect is not None and (line := expect.check_file(p))]
     for line in damaged:
         print(f"DAMAGED {line}")
+    for line in mismatched:
+        print(f"MISMATCH {line}")
     for p in bare:
         print(f"note    {p}: readable, but written before checksums; {rebuild_hint(p)} to protect it")
     stale = [] if root.is_file() else stale_temporaries(root)
@@ -137,4 +143,7 @@ def cmd_verify(args) -> int:
         print(f"note    stale temporary file {p} (a killed write; delete it)")
     print(f"{len(files)} files checked: {len(files) - len(damaged) - len(bare)} verified, {len(bare)} without "
           f"checksums, {len(damaged)} to rebuild" + (f"; {len(stale)} stale temporary files" if stale else ""))
-    return 1 if damaged else 0
+    if mismatched:
+        print(f"{len(mismatched)} files not what {expect.source} expects (another entry's, or older parameters): "
+              "rebuild them")
+    return 1 if damaged or mismatched else 0

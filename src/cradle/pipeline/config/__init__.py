@@ -26,11 +26,11 @@ from .resolve import (
     typed,
 )
 from .sections import KNOWN_FIGURES, SECTIONS
-from .validate import SCHEMA_FILE, generated_schema, schema, schema_path, validate, write_schema
+from .validate import SCHEMA_FILE, assume_validated, generated_schema, schema, schema_path, validate, write_schema
 
 __all__ = [
     "ConfigError", "KNOWN_FIGURES", "SECTIONS", "SCHEMA_FILE", "ANGLE_PATTERN", "TIME_TOL", "schema",
     "generated_schema", "schema_path", "write_schema", "parse_angle", "validate", "store_times", "scene", "homoclinic",
     "map_entry", "resolved_scene", "resolved_homoclinic", "resolved_map", "analysis_reads", "analysis_spec", "load",
-    "read_yaml", "StrictLoader", "main", "typed",
+    "read_yaml", "StrictLoader", "main", "typed", "assume_validated",
 ]

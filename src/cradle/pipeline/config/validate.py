@@ -354,6 +354,14 @@ def _remember(key: str | None, validated: dict) -> None:
     _VALIDATED[key] = validated
 
 
+def assume_validated(config: dict) -> dict:
+    """``config``, taken as validated without validating it again: a Snakemake job's copy of the config its
+    Snakefile validated (workflow/rules/common.smk), which the job resolves entries from to check its inputs
+    (:mod:`cradle.pipeline.identity`); validating it again would cost every job a validation."""
+    _remember(_key(config), copy.deepcopy(config))
+    return config
+
+
 def _validated(config: dict) -> dict:
     """validate(config), remembered for the last few configs (the Snakefile resolves one entry per job)."""
     key = _key(config)
