@@ -79,6 +79,28 @@ def names_attr(ds, key="scene_names") -> list[str]:
     return [s.strip() for s in str(ds.attrs.get(key, "")).split(",")]
 
 
+def legend_outside(ax, fontsize=7, **kw):
+    """The legend of ``ax`` beside its right edge, off the data (the layout keeps room for it)."""
+    return ax.legend(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kw)
+
+
+def scene_caption(name: str, ds) -> str:
+    """One line of the parameters a scene's file stores (``attrs`` of its exact or DpS run): N, q,
+    omega_tw, a, noise, so a changed run is told from the paper's at a glance."""
+    a = ds.attrs
+    parts = [f"{name}:", f"$N = {int(a['N'])}$"]
+    if "q_expr" in a:
+        parts.append(f"$q = {str(a['q_expr']).replace('pi', chr(92) + 'pi ').strip()}$")
+    for key, tex in (("omega_tw", "\\omega_{tw}"), ("omega_sw", "\\omega_{sw}")):
+        if key in a:
+            parts.append(f"${tex} = {float(a[key]):.5g}$")
+    if "a" in a:
+        parts.append(f"$a = {float(a['a']):.4g}$")
+    if str(a.get("noise", "none")) != "none":
+        parts.append(f"{a['noise']} noise {float(a['noise_amplitude']):g}")
+    return ", ".join(parts[:1]) + " " + ", ".join(parts[1:])
+
+
 def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
     """A new figure with the project's layout defaults."""
     return _pyplot().subplots(nrows, ncols, figsize=(width, height), constrained_layout=True, **kw)
