@@ -28,8 +28,7 @@ import pytest
 from cradle.analyses.registry import ANALYSES
 from cradle.data.io import open_tree, write_netcdf
 from cradle.figures import FIGURES, drawer, figure, module_of
-from cradle.pipeline import config as cc
-from cradle.pipeline import layout
+from cradle.pipeline import config as cc, layout
 
 ROOT = Path(__file__).resolve().parents[2]
 RESULTS = Path(os.environ.get("CRADLE_RESULTS", ROOT / "results"))

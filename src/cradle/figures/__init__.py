@@ -84,6 +84,28 @@ def legend_outside(ax, fontsize=7, **kw):
     return ax.legend(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kw)
 
 
+def plain_log_ticks(ax) -> None:
+    """Log axes of ``ax`` spanning less than two decades labelled as plain numbers at 1, 2 and 5 times a
+    power of ten (matplotlib labels every minor tick there, in scientific notation, on top of each other)."""
+    import math
+
+    from matplotlib.ticker import FuncFormatter
+
+    def label(value, _pos, axis):
+        lo, hi = sorted(abs(v) for v in axis.get_view_interval())
+        if value <= 0 or lo <= 0 or hi / lo >= 100:
+            return ""
+        mantissa = round(value / 10 ** math.floor(math.log10(value) + 1e-9), 6)
+        return f"{value:.3g}" if mantissa in (1.0, 2.0, 5.0) else ""
+
+    for axis in (ax.xaxis, ax.yaxis):
+        if axis.get_scale() == "log":
+            lo, hi = sorted(abs(v) for v in axis.get_view_interval())
+            if lo > 0 and hi / lo < 100:
+                axis.set_major_formatter(FuncFormatter(lambda v, p, a=axis: label(v, p, a)))
+                axis.set_minor_formatter(FuncFormatter(lambda v, p, a=axis: label(v, p, a)))
+
+
 def scene_caption(name: str, ds) -> str:
     """One line of the parameters a scene's file stores (``attrs`` of its exact or DpS run): N, q,
     omega_tw, a, noise, so a changed run is told from the paper's at a glance."""
