@@ -197,7 +197,7 @@ def problems(fig, min_points: int) -> list[str]:
 def min_points(module: str, label: str) -> int:
     """The minimum of finite points per data panel declared beside the figure (``MIN_POINTS`` of its
     module: a number, or label -> number)."""
-    declared = getattr(importlib.import_module(f"cradle.figures.{module}"), "MIN_POINTS", 1)
+    declared = importlib.import_module(f"cradle.figures.{module}").MIN_POINTS
     return declared[label] if isinstance(declared, dict) else declared
 
 

@@ -10,7 +10,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import figure
+from cradle.figures import figure, legend_outside
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): a coarse (q, p) grid
+MIN_POINTS = 5
 
 
 def _frac(q):
@@ -40,7 +43,7 @@ def draw(tree):
     if np.isfinite(ds.attrs.get("q_dip", np.nan)):
         A.annotate(f"dip {ds.attrs['growth_dip']:.1g}", (ds.attrs["q_dip_over_pi"], 0.0), xytext=(0, 18),
                    textcoords="offset points", fontsize=6.5, ha="center", arrowprops={"arrowstyle": "->", "lw": 0.6})
-    A.legend(fontsize=7, loc="upper left")
+    legend_outside(A)
     # (b)
     B = ax[0, 1]
     G = sweep["growth"].values
