@@ -110,8 +110,8 @@ def draw(tree):
     F.set_ylabel("velocity, radiated fraction")
     F.set_title(f"(f) {at['kick_family']} breather, $\\omega_b$ = {at['kick_omega']:g},\n"
                 "kicked along its pinning mode", fontsize=8)
-    fig.suptitle(f"exact breathers of (nc), $\\alpha$ = {at.get('alpha', 1.5):g}, ring N = {tree['profiles'].sizes['n']}",
-                 fontsize=10)
+    ring = tree["profiles"].sizes["n"]
+    fig.suptitle(f"exact breathers of (nc), $\\alpha$ = {at.get('alpha', 1.5):g}, ring N = {ring}", fontsize=10)
     for panel in ax.flat:
         plain_log_ticks(panel)
     return fig

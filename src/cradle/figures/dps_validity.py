@@ -70,7 +70,8 @@ def draw(tree):
     B.set_xlabel(r"slow time T = $\varepsilon^{\alpha-1} t$")
     B.set_ylabel("relative sup-norm error")
     B.set_title(rf"(b) {fams[jf]}, $\alpha$ = {al:g}, DpS growth {g:.3g}/$\tau$:" "\n"
-                r"curves parallel while E $\sim \varepsilon^\alpha$;" "\n" r"dashed: relative error 1/2 (lost)", fontsize=8)
+                r"curves parallel while E $\sim \varepsilon^\alpha$;" "\n"
+                r"dashed: relative error 1/2 (lost)", fontsize=8)
     B.legend(fontsize=7, loc="lower right")
     # (c)
     C = ax[1, 0]

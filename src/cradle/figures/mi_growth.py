@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import MODELS, MODEL_STYLE, figure, legend_outside, names_attr as _names
+from cradle.figures import MODEL_STYLE, MODELS, figure, legend_outside, names_attr as _names
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): the sideband spectrum of a scene
 MIN_POINTS = 5

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import MODELS, MODEL_STYLE, figure, legend_outside
+from cradle.figures import MODEL_STYLE, MODELS, figure, legend_outside
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few q of the sweep
 MIN_POINTS = 5
