@@ -110,16 +110,16 @@ def scene_caption(name: str, ds) -> str:
     """One line of the parameters a scene's file stores (``attrs`` of its exact or DpS run): N, q,
     omega_tw, a, noise, so a changed run is told from the paper's at a glance."""
     a = ds.attrs
-    parts = [f"{name}:", f"$N = {int(a['N'])}$"]
+    parts = [f"{name}:", f"$N = {int(a.get('N', ds.sizes.get('n', 0)))}$"]
     if "q_expr" in a:
         parts.append(f"$q = {str(a['q_expr']).replace('pi', chr(92) + 'pi ').strip()}$")
     for key, tex in (("omega_tw", "\\omega_{tw}"), ("omega_sw", "\\omega_{sw}")):
-        if key in a:
+        if key in a:  # a file written before these attributes, or a test's Dataset, shows what it has
             parts.append(f"${tex} = {float(a[key]):.5g}$")
     if "a" in a:
         parts.append(f"$a = {float(a['a']):.4g}$")
     if str(a.get("noise", "none")) != "none":
-        parts.append(f"{a['noise']} noise {float(a['noise_amplitude']):g}")
+        parts.append(f"{a['noise']} noise {float(a.get('noise_amplitude', float('nan'))):g}")
     return ", ".join(parts[:1]) + " " + ", ".join(parts[1:])
 
 

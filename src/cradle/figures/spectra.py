@@ -148,7 +148,8 @@ def draw_fftseuil(data, options):
         _spectrum_panel(axes[row, 1], sim, "dps", t, prefix)
         _same_ylim(axes[row])
     first = data[names[0]]["exact"].attrs
-    fig.suptitle(f"fftseuil: $t = {t:g}$, $N = {int(first['N'])}$, $\\omega_{{tw}} = {float(first['omega_tw']):g}$ "
+    wave = f", $\\omega_{{tw}} = {float(first['omega_tw']):g}$" if "omega_tw" in first else ""
+    fig.suptitle(f"fftseuil: $t = {t:g}$, $N = {data[names[0]]['exact'].sizes['n']}${wave} "
                  "(left: exact, right: approx. DpS)", fontsize=10)
     _ratio_note(fig, data[names[0]])
     return fig
