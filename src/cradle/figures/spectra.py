@@ -131,7 +131,7 @@ def draw_fft106(data, options):
         _spectrum_panel(axes[row, 0], sim, "exact", times[row])
         _spectrum_panel(axes[row, 1], sim, "dps", times[row] if row < 3 else times[4])
         _same_ylim(axes[row])
-    fig.suptitle(f"fft106, {scene_caption(name, sim['exact'])} (left: exact, right: approx. DpS)", fontsize=9)
+    fig.suptitle(f"{scene_caption(name, sim['exact'])} (left: exact, right: approx. DpS)", fontsize=9)
     _ratio_note(fig, sim)
     return fig
 
@@ -188,7 +188,7 @@ def draw_fft344(data, options):
     lim = max(abs(v) for a in (x1, x2, xa) for v in a.get_ylim())
     for a in (x1, x2, xa):
         a.set_ylim(-lim, lim)
-    fig.suptitle(f"fft344, {scene_caption(name, sim['exact'])}", fontsize=10)
+    fig.suptitle(scene_caption(name, sim['exact']), fontsize=10)
     _ratio_note(fig, sim)
     return fig
 
