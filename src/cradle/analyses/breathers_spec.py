@@ -24,11 +24,12 @@ _KICK = {"type": "number", "exclusiveMinimum": 0, "maximum": 10, "description": 
 class BreathersReduced:
     N: int = param(10, "Beads of the ring.", minimum=6, maximum=400)
     free_N: int = param(0, "Beads of the free-end chain (0: none).", minimum=0, maximum=400)
-    omegas: list[float] = param([1.1], "Continuation grid of omega_b.", minItems=1, maxItems=200,
+    omegas: list[float] = param([1.05, 1.1, 1.3, 1.6], "Continuation grid of omega_b.", minItems=1, maxItems=200,
                                 items=_OMEGA)
     rtol: float = param(1e-13, "DOP853 relative tolerance of the shooting.", minimum=2.3e-14, maximum=1e-6)
     check_rtol: float = param(2.5e-14, "Tolerance of the resolution check.", minimum=2.3e-14, maximum=1e-6)
-    kicks: list[float] = param([], "Kick sizes of the mobility runs.", maxItems=20, items=_KICK)
+    kicks: list[float] = param([1e-2, 1e-1], "Kick sizes of the mobility runs.", maxItems=20, items=_KICK)
+    kick_t_end: float = param(300.0, "Duration of a kicked run.", exclusiveMinimum=0, maximum=1e6)
     exchange_steps: int = param(0, "Regula falsi steps per stability exchange (0: none).", minimum=0, maximum=50)
     direct_growth_factor: float = param(1.0, "Growth factor of the direct run (1: no direct run).", minimum=1,
                                         maximum=1e8)

@@ -42,7 +42,8 @@ class FloquetReduced:
     wave_modes: int = param(64, "Sine modes of the exact wave.", minimum=8, maximum=1024)
     wave_grid_log2: int = param(13, "Grid 2^wave_grid_log2 of the wave solver.", minimum=8, maximum=20)
     threshold_n_scan: int = param(6, "Scan points before the bisection of the threshold.", minimum=2, maximum=200)
-    threshold_omega_tw: list[float] = param([1.1], "omega_tw values of the threshold search; must contain omega_tw.",
+    threshold_omega_tw: list[float] = param([1.1, 1.03], "omega_tw values of the threshold search; must contain "
+                                            "omega_tw.",
                                             minItems=1, maxItems=8, items=_OMEGA)
     q_profiles: list[float | str] = param(["pi/2"], "Wavenumbers q of the stored growth-against-p profiles.",
                                           minItems=1, maxItems=10, items={"$ref": "#/$defs/angle"})

@@ -67,6 +67,50 @@ MODEL_STYLE = {"exact": dict(color="C0", marker="o", label="exact (nc)"),
                "dps": dict(color="C3", marker="x", label="DpS (dfnls)")}
 
 
+def legend_outside(ax, fontsize=7, **kw):
+    """The legend of ``ax`` beside its right edge, off the data (the layout keeps room for it)."""
+    return ax.legend(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kw)
+
+
+def plain_log_ticks(ax) -> None:
+    """Log axes of ``ax`` spanning less than two decades labelled as plain numbers at 1, 2 and 5 times a
+    power of ten (matplotlib labels every minor tick there, in scientific notation, on top of each other)."""
+    import math
+
+    from matplotlib.ticker import FuncFormatter
+
+    def label(value, _pos, axis):
+        lo, hi = sorted(abs(v) for v in axis.get_view_interval())
+        if value <= 0 or lo <= 0 or hi / lo >= 100:
+            return ""
+        mantissa = round(value / 10 ** math.floor(math.log10(value) + 1e-9), 6)
+        return f"{value:.3g}" if mantissa in (1.0, 2.0, 5.0) else ""
+
+    for axis in (ax.xaxis, ax.yaxis):
+        if axis.get_scale() == "log":
+            lo, hi = sorted(abs(v) for v in axis.get_view_interval())
+            if lo > 0 and hi / lo < 100:
+                axis.set_major_formatter(FuncFormatter(lambda v, p, a=axis: label(v, p, a)))
+                axis.set_minor_formatter(FuncFormatter(lambda v, p, a=axis: label(v, p, a)))
+
+
+def scene_caption(name: str, ds) -> str:
+    """One line of the parameters a scene's file stores (``attrs`` of its exact or DpS run): N, q,
+    omega_tw, a, noise, so a changed run is told from the paper's at a glance."""
+    a = ds.attrs
+    parts = [f"{name}:", f"$N = {int(a.get('N', ds.sizes.get('n', 0)))}$"]
+    if "q_expr" in a:
+        parts.append(f"$q = {str(a['q_expr']).replace('pi', chr(92) + 'pi ').strip()}$")
+    for key, tex in (("omega_tw", "\\omega_{tw}"), ("omega_sw", "\\omega_{sw}")):
+        if key in a:  # a file written before these attributes, or a test's Dataset, shows what it has
+            parts.append(f"${tex} = {float(a[key]):.5g}$")
+    if "a" in a:
+        parts.append(f"$a = {float(a['a']):.4g}$")
+    if str(a.get("noise", "none")) != "none":
+        parts.append(f"{a['noise']} noise {float(a.get('noise_amplitude', float('nan'))):g}")
+    return ", ".join(parts[:1]) + " " + ", ".join(parts[1:])
+
+
 def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
     """A new figure and its axes (``kw``: those of :meth:`~matplotlib.figure.Figure.subplots`) with the project's
     layout defaults, outside pyplot: the session's backend and pyplot's figures are left alone."""

@@ -17,6 +17,10 @@ from cradle.figures import figure
 OUTCOMES = ("merge", "bound", "repel", "transmit", "none")
 COLOURS = ("#1b9e77", "#7570b3", "#d95f02", "#e7298a", "#bbbbbb")
 
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): one case of an outcome
+#: (a panel gathers the cases of one pair kind and outcome; the reduced form runs four cases)
+MIN_POINTS = 1
+
 
 def draw(tree):
     """The figure of the module docstring from the breather-interactions file ``tree`` (/cases, /maps)."""

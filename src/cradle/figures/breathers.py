@@ -12,7 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import figure
+from cradle.figures import figure, legend_outside, plain_log_ticks
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few omega_b of each
+#: family, a few kicks
+MIN_POINTS = 2
 
 
 def draw(tree):
@@ -49,7 +53,7 @@ def draw(tree):
     B.set_xlabel(r"$\omega_b - 1$")
     B.set_ylabel("pinning exponent (1/t)")
     B.set_title("(b) pinning pair: growth (unstable) / frequency (stable)", fontsize=8)
-    B.legend(fontsize=6.5)
+    legend_outside(B, fontsize=6.5)
     # (c) distance to DpS
     C = ax[0, 2]
     for f, name in enumerate(names):
@@ -86,7 +90,8 @@ def draw(tree):
     for f, name in enumerate(names):
         E.plot(j, tl["log10_amplitude"].values[f], "o-", ms=3, color=f"C{f}", label=f"exact, {name}")
         E.plot(j, tl["log10_amplitude_dps"].values[f], "--", color=f"C{f}", lw=0.8)
-    E.set_yscale("symlog", linthresh=10)
+    if np.nanmin(tl["log10_amplitude_dps"].values) < -10:  # tails far below machine precision: symlog
+        E.set_yscale("symlog", linthresh=10)
     E.set_xlabel("beads from the centre")
     E.set_ylabel(r"log$_{10}$ max$_t |x_n|$")
     E.set_title(rf"(e) tails at $\omega_b$ = {at['pn_omega']:g} (DpS dashed)", fontsize=8)
@@ -98,10 +103,15 @@ def draw(tree):
         F.loglog(k, np.abs(tree["kick"]["velocity"].values), "o-", label="|velocity| (beads / t)")
         F.loglog(k, np.maximum(tree["kick"]["radiation"].values, 1e-17), "s--", color="C3",
                  label="radiated energy fraction (floored at 1e-17)")
-        F.legend(fontsize=7, loc="upper left")
+        legend_outside(F)
     else:
         F.text(0.5, 0.5, "no kicked runs in this form", ha="center", transform=F.transAxes)
     F.set_xlabel("kick / max|x(0)|")
     F.set_ylabel("velocity, radiated fraction")
-    F.set_title(f"(f) {at['kick_family']} breather, omega_b = {at['kick_omega']:g}, kicked (pinning mode)", fontsize=8)
+    F.set_title(f"(f) {at['kick_family']} breather, $\\omega_b$ = {at['kick_omega']:g},\n"
+                "kicked along its pinning mode", fontsize=8)
+    ring = tree["profiles"].sizes["n"]
+    fig.suptitle(f"exact breathers of (nc), $\\alpha$ = {at.get('alpha', 1.5):g}, ring N = {ring}", fontsize=10)
+    for panel in ax.flat:
+        plain_log_ticks(panel)
     return fig

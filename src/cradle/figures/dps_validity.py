@@ -14,9 +14,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import figure
+from cradle.figures import figure, legend_outside
 
 _MARKERS = ("o", "s", "^", "D", "v", "P")
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few eps and T
+MIN_POINTS = 3
 
 
 def _reference_alpha(alphas) -> int:
@@ -54,7 +57,7 @@ def draw(tree):
     A.set_ylabel(r"sup$_t$ max$_n |x_n - x_n^{app}|$ / $2\varepsilon$")
     A.set_title(rf"(a) $\alpha$ = {al:g}, $t \leq T \varepsilon^{{1-\alpha}}$, T = {Ts[k1]:g} "
                 "(p: fitted power of the absolute error)", fontsize=9)
-    A.legend(fontsize=7, loc="lower right")
+    legend_outside(A)
     # (b)
     B = ax[0, 1]
     jf = fams.index("mi-4pi5-noise") if "mi-4pi5-noise" in fams else 0
@@ -67,7 +70,8 @@ def draw(tree):
     B.set_xlabel(r"slow time T = $\varepsilon^{\alpha-1} t$")
     B.set_ylabel("relative sup-norm error")
     B.set_title(rf"(b) {fams[jf]}, $\alpha$ = {al:g}, DpS growth {g:.3g}/$\tau$:" "\n"
-                r"curves parallel while E $\sim \varepsilon^\alpha$; dashed: relative error 1/2 (lost)", fontsize=9)
+                r"curves parallel while E $\sim \varepsilon^\alpha$;" "\n"
+                r"dashed: relative error 1/2 (lost)", fontsize=8)
     B.legend(fontsize=7, loc="lower right")
     # (c)
     C = ax[1, 0]
@@ -92,8 +96,8 @@ def draw(tree):
     D.set_xlabel(r"$\varepsilon$")
     D.set_ylabel("relative sup-norm error")
     ratio = float(np.nanmax(checks["halving_ratio"].values[jf, :, k1]))
-    D.set_title(f"(d) {fams[jf]}, T = {Ts[k1]:g}, every alpha; lattice dt-halving error "
-                f"/ E $\\leq$ {ratio:.1g}", fontsize=9)
+    D.set_title(f"(d) {fams[jf]}, T = {Ts[k1]:g}, every alpha;\nlattice dt-halving error "
+                f"/ E $\\leq$ {ratio:.1g}", fontsize=8)
     D.legend(fontsize=7, loc="lower right")
     return fig
 

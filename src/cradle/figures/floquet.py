@@ -10,7 +10,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import figure
+from cradle.figures import figure, legend_outside, plain_log_ticks
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): the thresholds at two
+#: amplitudes (the reduced form), a coarse (q, p) grid elsewhere
+MIN_POINTS = 2
 
 
 def _frac(q):
@@ -35,12 +39,12 @@ def draw(tree):
         A.axvline(qq, color="0.6", lw=0.5)
     A.set_xlabel(r"$q/\pi$")
     A.set_ylabel(r"max$_p$ growth rate (1/t)")
-    A.set_title(rf"(a) $\omega_{{tw}}$ = {om:g}: $q_c$(lattice) = {qc / np.pi:.5f}$\pi$ $\pm$ {dq:.1g} rad, "
-                rf"$q_c$(DpS) = $\pi/2$", fontsize=9)
+    A.set_title(rf"(a) $\omega_{{tw}}$ = {om:g}: $q_c$(lattice) = {qc / np.pi:.5f}$\pi$ $\pm$ {dq:.1g} rad," "\n"
+                rf"$q_c$(DpS) = $\pi/2$ (dotted lines); grey: the q of fftseuil", fontsize=9)
     if np.isfinite(ds.attrs.get("q_dip", np.nan)):
         A.annotate(f"dip {ds.attrs['growth_dip']:.1g}", (ds.attrs["q_dip_over_pi"], 0.0), xytext=(0, 18),
                    textcoords="offset points", fontsize=6.5, ha="center", arrowprops={"arrowstyle": "->", "lw": 0.6})
-    A.legend(fontsize=7, loc="upper left")
+    legend_outside(A)
     # (b)
     B = ax[0, 1]
     G = sweep["growth"].values
@@ -74,10 +78,12 @@ def draw(tree):
     D.set_xlabel(r"$\omega_{tw} - 1$ (amplitude from (freq))")
     D.set_ylabel(r"$q_c/\pi$")
     D.set_title(r"(d) lattice threshold $\to \pi/2$ as the amplitude $\to 0$", fontsize=9)
+    plain_log_ticks(D)
     D.legend(fontsize=7)
     lines = [f"small amplitude (omega_tw = {ds.attrs['small_omega_tw']:g}): |lattice/DpS - 1| <= "
              f"{ds.attrs['small_max_rel_error']:.2g}",
              f"ring N = {ds.attrs['ring_N']}: |mu_monodromy - mu_Bloch| <= {ds.attrs['ring_multiplier_distance']:.1g}",
              f"direct run: rate {ds.attrs['direct_rate_mode']:.4g} vs Floquet {ds.attrs['direct_rate_floquet']:.4g}"]
-    D.text(0.02, 0.02, "\n".join(lines), transform=D.transAxes, fontsize=6.5, va="bottom")
+    # below the panel: inside it the note would cover threshold points
+    D.text(0.0, -0.22, "\n".join(lines), transform=D.transAxes, fontsize=6.5, va="top")
     return fig

@@ -5,6 +5,9 @@ import numpy as np
 
 from cradle.figures import figure
 
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): N sites
+MIN_POINTS = 20
+
 
 def _profile(ax, ds, title):
     n, a = ds["n"].values, ds["a"].values
@@ -31,8 +34,10 @@ def draw_bcsc(data, options):
     ax.set_ylabel("$\\log_{10}|a_n|$")
     ax.set_yscale("symlog", linthresh=10)
     ax.set_ylim(top=1.0)
-    ax.set_title("site-centred, $\\log_{10}|a_n|$ (shaded: the paper's $18 \\leq n \\leq 34$;\n"
-                 "dashed: machine precision; tails: (dpsstn) in log variables)", fontsize=8)
+    ax.set_title("site-centred, $\\log_{10}|a_n|$; shaded: the paper's $18 \\leq n \\leq 34$;\n"
+                 "dashed: machine precision; tails: (dpsstn) in log variables", fontsize=8)
     _profile(axes[1, 0], bond, "bond-centred")
     _profile(axes[1, 1], double, "double-humped")
+    fig.suptitle(f"(dpsstn): $\\alpha$ = {float(site.attrs['alpha']):g}, $\\mu$ = {float(site.attrs['mu']):g}, "
+                 f"N = {int(site.attrs['N'])}, {site.attrs['bc']}", fontsize=9)
     return fig

@@ -34,6 +34,10 @@ from cradle.figures.spacetime import FORCE_LABEL, _at, common_vmin as _vmin, per
 PLOT18_SPAN = 100.0
 PLOT18_BONDS = (16, 35)
 
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): a profile of N beads,
+#: a space-time image, N traces of a window
+MIN_POINTS = {"plot18": 10, "loc1": 20, "fini": 100}
+
 FINI_DELTA_X = 0.02                # displacement of one unit of vertical offset (the paper's scale bar)
 
 
@@ -139,7 +143,7 @@ def draw_loc1(data, options):
     one colour scale per column. ``options['scenes']`` = [packet, pair]; the merging time of
     the pair (column 2) is printed in its titles."""
     names = options["scenes"]
-    fig, axes = figure(3, len(names), width=9.0, height=10.0, squeeze=False)
+    fig, axes = figure(3, len(names), width=9.0, height=11.0, squeeze=False)
     for j, name in enumerate(names):
         ex, ap = data[name]["exact"], data[name]["dps"]
         ax = axes[0, j]
@@ -157,13 +161,13 @@ def draw_loc1(data, options):
         period = 2.0 * np.pi / omega
         merge = loc1_merging_times(data[name]) if "merging_time_exact" in m else None
         for i, (ds, label, key) in enumerate(((ex, "exact (nc)", "exact"), (ap, "approx. (DpS)", "dps")), start=1):
-            title = f"{label}, min force per period $2\\pi/{omega:.4g}$"
+            title = f"{label}\nmin force per period $2\\pi/{omega:.4g}$"
             if merge is not None:
                 outcome = _stored(m, f"outcome_{key}") if f"outcome_{key}" in m else None
                 title += (f"\nmerging: {_periods_text(merge[key], t_end / period, outcome)} "
                           f"(paper: {PAPER_MERGING[key]})")
             img = spacetime(axes[i, j], ds, vmin, title=title, binned=period_minimum(m, key))
-        fig.colorbar(img, ax=axes[1:, j], label=FORCE_LABEL, shrink=0.8)
+        fig.colorbar(img, ax=axes[1:, j], label=FORCE_LABEL, shrink=0.8, location="bottom", aspect=30)
     return fig
 
 

@@ -5,6 +5,9 @@ import numpy as np
 
 from cradle.figures import figure
 
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): iterates of the orbits
+MIN_POINTS = 100
+
 MARKERS = {2: ("o", "period 2"), 3: ("s", "period 3"), 4: ("^", "period 4")}
 
 
@@ -45,7 +48,8 @@ def draw_traj3(data, options):
     box = 1.15 * max(np.nanmax(np.abs(a)), np.nanmax(np.abs(b)))
     ax.set_xlim(-box, box)
     ax.set_ylim(-box, box)
-    ax.set_title(f"orbit of G, $a_0 = 0$, $b_1 = 10^{{-13}}$, {a.size - 1} iterates", fontsize=9)
+    ax.set_title(f"orbit of G, $\\alpha$ = {float(ds.attrs['alpha']):g}, $a_0 = 0$, $b_1 = 10^{{-13}}$, "
+                 f"{a.size - 1} iterates", fontsize=9)
     return fig
 
 
@@ -61,4 +65,6 @@ def draw_traj2(data, options):
         if ds.attrs.get("marks"):
             _marks(ax, ds)
         ax.set_title(f"$\\|U_n\\|_\\infty \\leq {float(ds.attrs['box']):g}$ ({name})", fontsize=9)
+    first = data[options["scenes"][0]]
+    fig.suptitle(f"orbits of the map G (comp1)-(comp2), $\\alpha$ = {float(first.attrs['alpha']):g}", fontsize=10)
     return fig

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 from cradle.figures import figure
 
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): a (q, p) grid, a few runs
+MIN_POINTS = 5
+
 
 def draw(tree):
     """Growth-rate maps lambda tau0 R^(1-alpha) over (q, p) for each alpha, and the maximum over p.
@@ -19,12 +22,13 @@ def draw(tree):
         G = mp["growth"].values[ia]
         # 181 x 361 cells: a raster inside the PDF (70 kB, not 3 MB of vector patches)
         m = A.pcolormesh(q, p, G.T, shading="auto", cmap="magma", rasterized=True)
-        fig.colorbar(m, ax=A, shrink=0.85)
+        fig.colorbar(m, ax=A, shrink=0.85, label=r"growth $\lambda \tau_0 R^{1-\alpha}$")
         A.axvline(ds["q_threshold"].values[ia], color="w", ls="--", lw=0.8)
         A.plot(q, mp["argmax_p"].values[ia], "c-", lw=0.8)
         A.set_xlabel("q")
         A.set_ylabel("p")
-        A.set_title(rf"$\alpha$ = {al:g}: $q_c$ = {ds['q_threshold'].values[ia]:.6f}", fontsize=9)
+        A.set_title(rf"$\alpha$ = {al:g}: $q_c$ = {ds['q_threshold'].values[ia]:.6f} (dashed)" "\n"
+                    "cyan: the most unstable p", fontsize=9)
     B = ax[n]
     for ia, al in enumerate(alphas):
         B.plot(q, mp["max_growth"].values[ia], color=f"C{ia}", label=rf"$\alpha$ = {al:g}")
@@ -33,6 +37,6 @@ def draw(tree):
                ms=6)
     B.set_xlabel("q")
     B.set_ylabel(r"$\max_p \lambda \tau_0 R^{1-\alpha}$")
-    B.set_title("max over p; x: DpS runs, o: theory at their (q, p)", fontsize=8)
+    B.set_title("max over p;\nx: DpS runs, o: theory at their (q, p)", fontsize=8)
     B.legend(fontsize=7)
     return fig

@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import MODEL_STYLE, figure
+from cradle.figures import MODEL_STYLE, figure, legend_outside
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): the sideband spectrum of a scene
+MIN_POINTS = 5
 
 
 def draw(tree):
@@ -36,9 +39,9 @@ def draw(tree):
         q = float(ds["q"].values[i])
         lines = [f"{m}: {ds['growth'].values[i, j]:.4f} vs {ds['growth_theory'].values[i, j]:.4f}"
                  + ("" if ds["exponential"].values[i, j] else " (no exp. phase)") for j, m in enumerate(models)]
-        A.set_title(f"{name}: q = {q / np.pi:.2f}$\\pi$, N = {int(ds['N'].values[i])}", fontsize=8)
-        A.text(0.02, 0.98, "measured vs theory at p*:\n" + "\n".join(lines), transform=A.transAxes, va="top",
-               fontsize=6)
+        # the measured rates in the title: a note inside the panel would cover sideband points
+        A.set_title(f"{name}: q = {q / np.pi:.2f}$\\pi$, N = {int(ds['N'].values[i])}\n"
+                    "measured vs theory at p*: " + "\n".join(lines), fontsize=6.5)
         A.set_xlabel(r"$p/\pi$", fontsize=8)
         A.set_ylabel("growth rate per unit t", fontsize=8)
         top = np.nanmax([np.nanmax(sb["growth_theory"].values[i]), np.nanmax(ds["growth"].values[i])])
@@ -75,8 +78,8 @@ def draw(tree):
     C.axvline(0.5, color="0.5", ls="--", lw=0.8)
     C.set_xlabel(r"$q/\pi$", fontsize=8)
     C.set_ylabel(r"$\lambda \tau_0 R^{1-\alpha}$", fontsize=8)
-    C.set_title(rf"growth-rate diagram ($\alpha$ = {alpha:g}); $q_c = \pi/2$ dashed", fontsize=8)
-    C.legend(fontsize=5.5)
+    C.set_title(rf"growth-rate diagram ($\alpha$ = {alpha:g});" "\n" r"$q_c = \pi/2$ dashed", fontsize=8)
+    legend_outside(C, fontsize=5.5)
     for k in range(S + 2, ax.size):
         ax[k].set_visible(False)
     return fig

@@ -5,7 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import MODEL_STYLE, figure
+from cradle.figures import MODEL_STYLE, figure, legend_outside
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few q of the sweep
+MIN_POINTS = 5
 
 
 def draw(tree):
@@ -54,9 +57,9 @@ def draw(tree):
                          f"{ds['threshold_high'].values[c, j] / np.pi:.3f}] pi")
         A.set_title(f"N = {N}: ratio reaches {ds.attrs['fraction']:g} by t = {ds.attrs['t_end']:g}\n"
                     + "\n".join(lines), fontsize=7)
-        A.legend(fontsize=6, loc="center right")
+        legend_outside(A, fontsize=6)
         B.set_ylabel("crossing time t (line: median)", fontsize=8)
         B.set_ylim(0.0, float(ds.attrs["t_end"]) * 1.02)
         B.set_xlim(A.get_xlim())
-        B.legend(fontsize=6)
+        legend_outside(B, fontsize=6)
     return fig

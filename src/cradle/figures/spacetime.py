@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.ticker import MaxNLocator
 
-from cradle.figures import figure
+from cradle.figures import figure, legend_outside, scene_caption
 
 CMAP = "gray"                     # vmin -> black, vmax = 0 -> white
 FORCE_LABEL = "$V_0'(x_{n+1}-x_n)$"
@@ -32,6 +32,11 @@ ZOOM_PLOT1V5 = (0.0, 30.0)
 # PLOT28_SPAN-long interval ending at the last stored time.
 PLOT28_BEADS = 20
 PLOT28_SPAN = 100.0
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): a profile of N beads,
+#: a space-time image of N beads times its stored times
+MIN_POINTS = {"plot6-7": 1000, "plot2-3": 20, "plot1v5st": 1000, "plot1v5": 20, "plot8-11": 20, "plot9-10": 1000,
+              "plot29-30": 20, "plot26-27": 1000, "plot28": 500}
 
 
 # --------------------------------------------------------------------------- helpers
@@ -153,7 +158,8 @@ def _profile_pair(data, options, width=9.0, height=3.4):
     fig, axes = figure(1, len(options["times"]), width=width, height=height)
     for ax, t in zip(np.atleast_1d(axes), options["times"], strict=True):
         _profiles(ax, data[name], t)
-    np.atleast_1d(axes)[0].legend(fontsize=8, loc="upper right")
+    legend_outside(np.atleast_1d(axes)[-1])
+    fig.suptitle(scene_caption(name, data[name]["exact"]), fontsize=9)
     return fig
 
 
@@ -166,7 +172,7 @@ def _scene(data, options):
 def draw_plot6_7(data, options):
     """Forces, exact (left) and approximate (right): q = pi/5, omega_tw = 1.1."""
     name, sim = _scene(data, options)
-    return spacetime_pair(sim, suptitle=f"{name}: $q = \\pi/5$, $\\omega_{{tw}} = 1.1$")
+    return spacetime_pair(sim, suptitle=scene_caption(name, sim["exact"]))
 
 
 def draw_plot2_3(data, options):
@@ -177,7 +183,7 @@ def draw_plot2_3(data, options):
 def draw_plot1v5st(data, options):
     """Forces, exact (left) and approximate (right): q = pi/5, omega_tw = 1.5."""
     name, sim = _scene(data, options)
-    return spacetime_pair(sim, suptitle=f"{name}: $q = \\pi/5$, $\\omega_{{tw}} = 1.5$")
+    return spacetime_pair(sim, suptitle=scene_caption(name, sim["exact"]))
 
 
 def draw_plot1v5(data, options):
@@ -192,7 +198,8 @@ def draw_plot1v5(data, options):
     fig.colorbar(img, ax=left, label=FORCE_LABEL)
     (t,) = options["times"]
     _profiles(right, sim, t, approx_style=".")
-    right.legend(fontsize=8, loc="upper right")
+    legend_outside(right)
+    fig.suptitle(scene_caption(name, ex), fontsize=9)
     return fig
 
 
@@ -204,7 +211,7 @@ def draw_plot8_11(data, options):
 def draw_plot9_10(data, options):
     """Forces, exact (left) and approximate (right): q = 4 pi/5, modulational instability."""
     name, sim = _scene(data, options)
-    return spacetime_pair(sim, suptitle=f"{name}: $q = 4\\pi/5$, $\\omega_{{tw}} = 1.1$, noise")
+    return spacetime_pair(sim, suptitle=scene_caption(name, sim["exact"]))
 
 
 def draw_plot29_30(data, options):
@@ -215,7 +222,7 @@ def draw_plot29_30(data, options):
 def draw_plot26_27(data, options):
     """Forces, exact (left) and approximate (right): q = pi, static breathers."""
     name, sim = _scene(data, options)
-    return spacetime_pair(sim, suptitle=f"{name}: $q = \\pi$, $\\omega_{{tw}} = 1.1$, noise")
+    return spacetime_pair(sim, suptitle=scene_caption(name, sim["exact"]))
 
 
 def plot28_window(ds, beads=PLOT28_BEADS, span=PLOT28_SPAN):
@@ -245,4 +252,5 @@ def draw_plot28(data, options):
                     title=f"exact, $t \\in [{t_range[0]:g}, {t_range[1]:g}]$, bonds $n = {n_range[0]}..{n_range[1]}$\n"
                           f"({PLOT28_BEADS} bonds of largest force variance on the last {PLOT28_SPAN:g} time units)")
     fig.colorbar(img, ax=ax, label=FORCE_LABEL)
+    fig.suptitle(scene_caption(name, ex), fontsize=9)
     return fig

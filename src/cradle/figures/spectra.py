@@ -21,6 +21,11 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from cradle.figures import scene_caption
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): N wavenumbers or beads
+MIN_POINTS = 20
+
 TIME_TOL = 1e-6          # a requested time must be stored to within this
 MODELS = (("exact", "spectrum_exact", "exact"), ("dps", "spectrum_dps", "approx. (DpS)"))
 
@@ -127,8 +132,7 @@ def draw_fft106(data, options):
         _spectrum_panel(axes[row, 0], sim, "exact", times[row])
         _spectrum_panel(axes[row, 1], sim, "dps", times[row] if row < 3 else times[4])
         _same_ylim(axes[row])
-    fig.suptitle(f"fft106: $q = {_q_label(sim)}$, $N = {sim['exact'].sizes['n']}$ "
-                 "(left: exact, right: approx. DpS)", fontsize=10)
+    fig.suptitle(f"{scene_caption(name, sim['exact'])} (left: exact, right: approx. DpS)", fontsize=9)
     _ratio_note(fig, sim)
     return fig
 
@@ -144,7 +148,10 @@ def draw_fftseuil(data, options):
         _spectrum_panel(axes[row, 0], sim, "exact", t, prefix)
         _spectrum_panel(axes[row, 1], sim, "dps", t, prefix)
         _same_ylim(axes[row])
-    fig.suptitle(f"fftseuil: $t = {t:g}$ (left: exact, right: approx. DpS)", fontsize=10)
+    first = data[names[0]]["exact"].attrs
+    wave = f", $\\omega_{{tw}} = {float(first['omega_tw']):g}$" if "omega_tw" in first else ""
+    fig.suptitle(f"fftseuil: $t = {t:g}$, $N = {data[names[0]]['exact'].sizes['n']}${wave} "
+                 "(left: exact, right: approx. DpS)", fontsize=10)
     _ratio_note(fig, data[names[0]])
     return fig
 
@@ -182,7 +189,7 @@ def draw_fft344(data, options):
     lim = max(abs(v) for a in (x1, x2, xa) for v in a.get_ylim())
     for a in (x1, x2, xa):
         a.set_ylim(-lim, lim)
-    fig.suptitle(f"fft344: $q = {_q_label(sim)}$, $N = {sim['exact'].sizes['n']}$", fontsize=10)
+    fig.suptitle(scene_caption(name, sim['exact']), fontsize=10)
     _ratio_note(fig, sim)
     return fig
 

@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.figures import figure
+from cradle.figures import figure, legend_outside, plain_log_ticks
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few amplitudes a and modes J
+MIN_POINTS = 5
 
 
 def _qlabel(q):
@@ -56,7 +59,7 @@ def draw(tree):
     B.set_xlabel("a")
     B.set_ylabel(r"$|\omega_a - \omega_{DpS}| / (\omega_{DpS} - 1)$")
     B.set_title(r"(b) relative correction, expected slope $\alpha - 1$", fontsize=9)
-    B.legend(fontsize=5.5, ncol=2)
+    legend_outside(B, fontsize=5.5)
     # (c) profile correction against (va)
     C = ax[1, 0]
     xi = prof["xi"].values
@@ -82,5 +85,7 @@ def draw(tree):
     D.set_ylabel(r"$\max_\xi |v_J - v_{ref}|$")
     D.set_title(f"(d) convergence at a = {tree.attrs.get('convergence_a', np.nan):g} "
                 f"(ref. J = {tree.attrs.get('reference_modes', '')})", fontsize=9)
-    D.legend(fontsize=5.5, ncol=2)
+    legend_outside(D, fontsize=5.5)
+    for panel in ax.flat:
+        plain_log_ticks(panel)
     return fig

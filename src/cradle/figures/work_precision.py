@@ -16,6 +16,9 @@ import numpy as np
 
 from cradle.figures import figure
 
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few settings per method
+MIN_POINTS = 3
+
 STYLE = {  # method -> (colour, marker); corrected splittings solid, the rest dashed
     "srkn6c": ("C3", "o"), "srkn4c": ("C1", "s"), "srkn6": ("C0", "o"), "srkn4": ("C9", "s"),
     "strang": ("C2", "^"), "dop853_numba": ("C5", "D"), "dop853": ("C4", "v"), "lsoda": ("C7", "P"),
@@ -37,7 +40,7 @@ def draw(tree):
     """The figure of the work-precision file ``tree``: one row per scene group, in the file's order."""
     data = {name: node.to_dataset() for name, node in tree.children.items()}
     scenes = list(data)
-    fig, axes = figure(len(scenes), 2, width=9.5, height=2.9 * len(scenes) + 0.4, squeeze=False)
+    fig, axes = figure(len(scenes), 2, width=11.0, height=2.9 * len(scenes) + 0.4, squeeze=False)
     for r, name in enumerate(scenes):
         ds = data[name]
         left, right = axes[r]
@@ -59,9 +62,14 @@ def draw(tree):
             if r == len(scenes) - 1:
                 ax.set_xlabel("wall time [s]")
         if r == 0:
+            from matplotlib.patches import Patch
+
             handles, labels = left.get_legend_handles_labels()
             labels = [f"{lab} ({kinds.get(lab, '')})" if kinds.get(lab) else lab for lab in labels]
-            fig.legend(handles, labels, fontsize=7.5, ncol=4, loc="outside lower center")
+            handles.append(Patch(color="0.85"))
+            labels.append("shaded: the two reference\nruns differ (error floor)")
+            # beside the panels: the note of a reduced form goes below them
+            fig.legend(handles, labels, fontsize=7.5, ncol=1, loc="outside right upper")
     if scenes:
         ds = data[scenes[0]]
         fig.suptitle(f"Lattice (nc) integrators, alpha = {float(ds.attrs['alpha']):g}; "

@@ -1,0 +1,334 @@
+"""Every figure of `snakemake all`, rendered from the outputs themselves, is worth printing: no text
+outside the figure or on other text, no legend on plotted points, no placeholder text, no tick label
+with more than 4 significant digits, and every data panel holds at least the minimum of finite points
+its figure module declares (``MIN_POINTS``).
+
+Two sources, both the reduced forms `all` builds:
+
+* in CI (a fresh clone has no results/): the analyses that read no file and compute their reduced form
+  in seconds on one core, computed in-process at their declared reduced size (:data:`IN_PROCESS`), and
+  the paper figures drawn from map and homoclinic entries (:data:`PAPER_IN_PROCESS`). Left out there:
+  the paper figures of scenes (sixteen simulations) and the analyses that read scenes or batches
+  (mi-growth, mi-statistics, paper-checks, theorem1, work-precision) or take tens of seconds (floquet);
+* every figure of `all` (each paper figure of config.yaml and each analysis's ``draw`` of its reduced
+  form), from the results folder ``$CRADLE_RESULTS`` or ./results when it holds them; a figure whose
+  files are missing is skipped, naming the file and the command that builds it.
+"""
+from __future__ import annotations
+
+import importlib
+import os
+import re
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+import pytest
+
+from cradle.analyses.registry import ANALYSES
+from cradle.data.io import open_tree, write_netcdf
+from cradle.figures import FIGURES, drawer, figure, module_of
+from cradle.pipeline import config as cc, layout
+
+ROOT = Path(__file__).resolve().parents[2]
+RESULTS = Path(os.environ.get("CRADLE_RESULTS", ROOT / "results"))
+CONFIG = cc.load(ROOT / "config.yaml")
+
+#: analyses whose reduced form reads no file and computes in seconds on one core: rendered in CI
+IN_PROCESS = ("breathers", "breather-interactions", "dps-validity", "mi-diagram")
+#: paper figures of map and homoclinic entries (each well under a second to compute): rendered in CI
+PAPER_IN_PROCESS = ("traj3", "traj2", "bcsc")
+
+#: text a finished figure never shows
+PLACEHOLDER = re.compile(r"in this form|\btodo\b|placeholder|\bfixme\b|not computed|\btbd\b", re.I)
+#: tolerance (pixels) of the bounding-box tests: glyph boxes include some blank margin
+TOL = 1.0
+
+
+# ------------------------------------------------------------------------------------------------ checks
+
+def _texts(fig):
+    """(what, artist, its axes or None) for every visible non-empty text outside legends, and every
+    legend (one box)."""
+    out = [("figure text", t, None) for t in fig.texts]
+    for key in ("_suptitle", "_supxlabel", "_supylabel"):
+        out.append((key.strip("_"), getattr(fig, key, None), None))
+    for i, ax in enumerate(fig.axes):
+        if not ax.get_visible():
+            continue
+        name = f"axes {i} ({ax.get_title() or ax.get_label() or ''})"
+        for title in (ax.title, ax._left_title, ax._right_title):
+            out.append((f"{name} title", title, ax))
+        if ax.axison:
+            out.append((f"{name} x label", ax.xaxis.label, ax))
+            out.append((f"{name} y label", ax.yaxis.label, ax))
+            for axis, which in ((ax.xaxis, "x"), (ax.yaxis, "y")):
+                out.append((f"{name} {which} offset", axis.get_offset_text(), ax))
+                for tick in axis._update_ticks():  # the ticks drawn: those inside the view
+                    for lab in (tick.label1, tick.label2):
+                        out.append((f"{name} {which} tick", lab, ax))
+        out.extend((f"{name} text", t, ax) for t in ax.texts)
+        if ax.get_legend() is not None:
+            out.append((f"{name} legend", ax.get_legend(), ax))
+    out.extend(("figure legend", leg, None) for leg in fig.legends)
+    seen: set[int] = set()  # the suptitle is also one of fig.texts
+    return [(w, a, ax) for w, a, ax in out if a is not None and a.get_visible() and id(a) not in seen
+            and not seen.add(id(a)) and (not hasattr(a, "get_text") or a.get_text().strip())]
+
+
+def _text_of(artist) -> str:
+    if hasattr(artist, "get_texts"):  # a legend
+        title = artist.get_title().get_text()
+        return " | ".join([title] + [t.get_text() for t in artist.get_texts()])
+    return artist.get_text()
+
+
+def _overlap(a, b) -> bool:
+    return (min(a.x1, b.x1) - max(a.x0, b.x0) > TOL) and (min(a.y1, b.y1) - max(a.y0, b.y0) > TOL)
+
+
+def significant_digits(label: str) -> int:
+    """Significant digits of a tick label's mantissa (``-1.85115x10^0`` -> 6, ``0.0025`` -> 2, ``3000`` -> 1)."""
+    text = label.replace("\\mathdefault", "").replace("$", "").replace("{", "").replace("}", "")
+    text = text.replace("\u2212", "-").replace("\\times", "x").replace("\u00d7", "x")
+    mantissa = re.split(r"x|e(?=[-+]?\d)|\^", text)[0]
+    digits = re.sub(r"[^0-9.]", "", mantissa)
+    if not re.search(r"\d", digits):
+        return 0
+    if "." in digits:
+        return len(digits.replace(".", "").lstrip("0")) or 1
+    return len(digits.lstrip("0").rstrip("0")) or 1
+
+
+def _data_points(ax, along_lines: bool):
+    """Display coordinates of the marks of ``ax``: line vertices and scatter offsets, and with
+    ``along_lines`` points every pixel along drawn line segments (reference lines such as axvline too)."""
+    pts = [np.zeros((0, 2))]
+    for line in ax.get_lines():
+        if not line.get_visible():
+            continue
+        xy = np.asarray(line.get_transform().transform(np.asarray(line.get_xydata(), dtype=float).reshape(-1, 2)))
+        xy = xy[np.isfinite(xy).all(axis=1)]
+        if line.get_marker() not in (None, "None", "", " ") or not along_lines:
+            pts.append(xy)
+        if along_lines and line.get_linestyle() not in ("None", "", " ") and len(xy) > 1:
+            for p, q in zip(xy[:-1], xy[1:], strict=True):
+                n = int(min(np.hypot(*(q - p)), 2000)) + 2
+                pts.append(p + np.linspace(0, 1, n)[:, None] * (q - p))
+    for c in ax.collections:
+        if c.get_visible() and hasattr(c, "get_offsets") and len(c.get_offsets()) and len(c.get_paths()) <= 1 \
+                and type(c).__name__ == "PathCollection":
+            xy = c.get_offset_transform().transform(np.asarray(c.get_offsets(), dtype=float).reshape(-1, 2))
+            pts.append(xy[np.isfinite(xy).all(axis=1)])
+    return np.concatenate(pts)
+
+
+def _covered(box, pts) -> int:
+    return int(((pts[:, 0] > box.x0 + TOL) & (pts[:, 0] < box.x1 - TOL)
+                & (pts[:, 1] > box.y0 + TOL) & (pts[:, 1] < box.y1 - TOL)).sum())
+
+
+def finite_points(ax) -> int:
+    """Finite data points of ``ax``: line vertices, scatter offsets, finite image/mesh cells, bars."""
+    n = 0
+    for line in ax.get_lines():
+        if line.get_transform().contains_branch(ax.transData):
+            xy = np.asarray(line.get_xydata(), dtype=float).reshape(-1, 2)
+            n += int(np.isfinite(xy).all(axis=1).sum())
+    for c in ax.collections:
+        arr = c.get_array() if hasattr(c, "get_array") else None
+        if arr is not None and np.size(arr) > 1 and not hasattr(c, "get_offsets") or type(c).__name__ == "QuadMesh":
+            n += int(np.isfinite(np.ma.filled(np.asarray(arr, dtype=float), np.nan)).sum()) if arr is not None else 0
+        elif hasattr(c, "get_offsets") and len(c.get_offsets()) > 1:
+            xy = np.asarray(c.get_offsets(), dtype=float).reshape(-1, 2)
+            n += int(np.isfinite(xy).all(axis=1).sum())
+        else:
+            for p in c.get_paths():
+                v = np.asarray(p.vertices, dtype=float)
+                n += int(np.isfinite(v).all(axis=1).sum())
+    for im in ax.get_images():
+        n += int(np.isfinite(np.ma.filled(np.asarray(im.get_array(), dtype=float), np.nan)).sum())
+    n += len(ax.patches)
+    return n
+
+
+def problems(fig, min_points: int) -> list[str]:
+    """What keeps ``fig`` from print: each problem one line."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    # the figures are drawn outside pyplot (the user's backend is left alone): render them on an Agg canvas,
+    # as savefig does; the layout engine places everything on a full draw
+    canvas = fig.canvas if hasattr(fig.canvas, "get_renderer") else FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    frame = fig.bbox
+    found = []
+    texts = [(what, a, a.get_window_extent(renderer), owner) for what, a, owner in _texts(fig)]
+    panels = [(i, ax, ax.get_window_extent(renderer)) for i, ax in enumerate(fig.axes) if ax.get_visible()]
+    for what, a, box, owner in texts:
+        text = _text_of(a)
+        if (box.x0 < frame.x0 - TOL or box.y0 < frame.y0 - TOL or box.x1 > frame.x1 + TOL
+                or box.y1 > frame.y1 + TOL):
+            found.append(f"outside the figure: {what} {text!r}")
+        if PLACEHOLDER.search(text):
+            found.append(f"placeholder: {what} {text!r}")
+        if what.endswith("tick") and significant_digits(text) > 4:
+            found.append(f"more than 4 significant digits: {what} {text!r}")
+        for j, ax, panel in panels:  # the plotting area of another panel (a colour bar, ...)
+            if ax is not owner and _overlap(box, panel):
+                found.append(f"on the area of axes {j} ({ax.get_title() or ax.get_label()!r}): {what} {text!r}")
+    for i, (w1, a1, b1, _) in enumerate(texts):
+        for w2, a2, b2, _ in texts[i + 1:]:
+            if _overlap(b1, b2):
+                found.append(f"overlap: {w1} {_text_of(a1)!r} and {w2} {_text_of(a2)!r}")
+    for i, ax in enumerate(fig.axes):
+        leg = ax.get_legend()
+        if leg is not None and leg.get_visible():
+            n = _covered(leg.get_window_extent(renderer), _data_points(ax, along_lines=True))
+            if n:
+                found.append(f"legend covers {n} plotted points: axes {i} ({ax.get_title()!r})")
+        marks = _data_points(ax, along_lines=False)
+        for t in ax.texts:  # a note inside the panel hides what it covers as a legend would
+            n = _covered(t.get_window_extent(renderer), marks) if t.get_visible() and t.get_text() else 0
+            if n:
+                found.append(f"text covers {n} plotted points: axes {i} {t.get_text()!r}")
+        if ax.get_label() == "<colorbar>" or not ax.get_visible():
+            continue
+        if ax.axison and finite_points(ax) < min_points:
+            found.append(f"axes {i} ({ax.get_title()!r}): {finite_points(ax)} finite points < {min_points}")
+    return found
+
+
+def min_points(module: str, label: str) -> int:
+    """The minimum of finite points per data panel declared beside the figure (``MIN_POINTS`` of its
+    module: a number, or label -> number)."""
+    declared = importlib.import_module(f"cradle.figures.{module}").MIN_POINTS
+    return declared[label] if isinstance(declared, dict) else declared
+
+
+def test_the_checks_catch_what_they_look_for():
+    fig, ax = figure(1, 2, width=4, height=3)
+    x = np.linspace(0, 1, 50)
+    ax[0].plot(x, x, "o", label="a long legend entry covering the points")
+    ax[0].legend(loc="center")
+    ax[0].set_yticks([0.5, 0.9], labels=["0.5", "$-1.85115\\times10^{0}$"])
+    ax[0].set_title("a title far too long for its panel, running into the next one and beyond the edge")
+    ax[1].text(0.5, 0.5, "no kicked runs in this form")
+    found = "\n".join(problems(fig, min_points=5))
+    for what in ("outside the figure", "overlap", "legend covers", "placeholder", "significant digits",
+                 "finite points < 5"):
+        assert what in found, what
+    assert significant_digits("$\\mathdefault{-1.85115\\times10^{0}}$") == 6
+    assert significant_digits("\u22120.0025") == 2 and significant_digits("3000") == 1
+    fig, ax = figure()
+    ax.plot(x, x**2, "o-", label="x^2")
+    ax.legend(loc="upper left")
+    ax.set_title("fine")
+    assert problems(fig, min_points=50) == []
+
+
+# ------------------------------------------------------------------------------------------------ sources
+
+def _paper_cases():
+    return [pytest.param(label, id=label) for label in CONFIG["figures"]]
+
+
+def _analysis_cases():
+    return [pytest.param(name, id=name) for name, a in ANALYSES.items() if not a.tables]
+
+
+def _load_paper(label, root):
+    scenes = {}
+    for name in CONFIG["figures"][label]["scenes"]:
+        scenes[name] = next(s for s in ("map", "homoclinic", "scenes") if name in CONFIG.get(s, {}))
+    for name, kind in scenes.items():
+        paths = ([layout.path(kind, root, name=name)] if kind in ("map", "homoclinic")
+                 else layout.scene_paths(name, root, layout.RUN_PARTS).values())
+        for p in paths:
+            if not Path(p).exists():
+                pytest.skip(f"{p} missing: `snakemake -j2 all` builds it")
+    from cradle.pipeline.outputs import load_inputs
+    return load_inputs(scenes, root)
+
+
+def _analysis_note(a) -> str:
+    form = a.forms[0]
+    return f"reduced form: `snakemake -j2 {a.target}_full` builds the full one" if form != "full" else ""
+
+
+def _draw_analysis(name, tree):
+    a = ANALYSES[name]
+    fig = importlib.import_module(f"cradle.figures.{a.module}").draw(tree)
+    note = _analysis_note(a)
+    if note:  # as cradle.figures.draw_analysis places it
+        fig.supxlabel(note, x=0.998, ha="right", fontsize=6, color="0.4")
+    return fig
+
+
+def _check(fig, module, label):
+    found = problems(fig, min_points(module, label))
+    matplotlib.pyplot.close(fig)
+    assert not found, f"{label}:\n  " + "\n  ".join(found)
+
+
+@pytest.fixture(scope="session")
+def in_process(tmp_path_factory):
+    """The reduced forms of :data:`IN_PROCESS` and the map and homoclinic entries of
+    :data:`PAPER_IN_PROCESS`, computed here and written as `all` writes them."""
+    from cradle.scenes import stages
+
+    root = tmp_path_factory.mktemp("results")
+    for name in IN_PROCESS:
+        a = ANALYSES[name]
+        spec = cc.analysis_spec(CONFIG, name, a.forms[0])
+        write_netcdf(a.compute(spec, {}, log=lambda *args: None),
+                     layout.analysis_output(name, a.forms[0], a.forms[0], root))
+    for label in PAPER_IN_PROCESS:
+        for name in CONFIG["figures"][label]["scenes"]:
+            if name in CONFIG.get("map", {}):
+                write_netcdf(stages.map_orbits(cc.map_entry(CONFIG, name), name), layout.path("map", root, name=name))
+            else:
+                write_netcdf(stages.homoclinic_solution(cc.homoclinic(CONFIG, name), name),
+                             layout.path("homoclinic", root, name=name))
+    return root
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", IN_PROCESS)
+def test_analysis_figure_of_its_reduced_form_computed_here(in_process, name):
+    a = ANALYSES[name]
+    tree = open_tree(layout.analysis_output(name, a.forms[0], a.forms[0], in_process))
+    _check(_draw_analysis(name, tree), a.module, name)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("label", PAPER_IN_PROCESS)
+def test_paper_figure_of_entries_computed_here(in_process, label):
+    _check(drawer(label)(_load_paper(label, in_process), CONFIG["figures"][label]), module_of(label), label)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("label", _paper_cases())
+def test_paper_figure_from_the_results(label):
+    data = _load_paper(label, RESULTS)
+    _check(drawer(label)(data, CONFIG["figures"][label]), module_of(label), label)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", _analysis_cases())
+def test_analysis_figure_from_the_results(name):
+    a = ANALYSES[name]
+    path = Path(layout.analysis_output(name, a.forms[0], a.forms[0], RESULTS))
+    if not path.exists():
+        pytest.skip(f"{path} missing: `snakemake -j2 {a.target}` builds it")
+    _check(_draw_analysis(name, open_tree(path)), a.module, name)
+
+
+def test_every_figure_of_all_is_covered():
+    """Each paper figure and each analysis figure has its declared minimum (and so a case above)."""
+    for label in CONFIG["figures"]:
+        assert min_points(module_of(label), label) >= 1, label
+    for a in ANALYSES.values():
+        if not a.tables:
+            assert min_points(a.module, a.name) >= 1, a.name
+    assert set(FIGURES) >= set(CONFIG["figures"])
