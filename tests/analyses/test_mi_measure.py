@@ -175,8 +175,9 @@ def test_config_rejects_a_q_grid_off_the_ring(raw):
         cc.validate(bad)
     bad = copy.deepcopy(raw)
     bad["beyond"]["mi-growth"]["scenes"] = ["fftseuil-5"]
-    with pytest.raises(ValueError, match=r"mi-growth: reads scene 'fftseuil-5'.*did you mean 'fftseuil-5"):
-        cc.analysis_reads(cc.validate(bad), "mi-growth", "full")
+    with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes\[0\] = 'fftseuil-5': unknown scene.*did "
+                                             r"you mean 'fftseuil-5"):
+        cc.validate(bad)
     bad["beyond"]["mi-growth"]["scenes"] = ["loc1-pair"]
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes\[0\] = 'loc1-pair'"):
         cc.validate(bad)

@@ -165,6 +165,7 @@ def test_a_tiny_scene_through_the_protocol(tmp_path):
     tiny_cfg = copy.deepcopy(raw)
     tiny_cfg["scenes"] = {"tw-weak": {**raw["scenes"]["tw-weak"], "N": 20, "t_end": 5.0, "store": {"every": 1.0}}}
     tiny_cfg["figures"] = {}
+    tiny_cfg["beyond"] = {}   # the other analyses read scenes this config leaves out
     tiny_cfg["beyond"]["work-precision"] = {
         "scenes": {"tw-weak": {"t_end": 5.0}}, "repeat_time": 0.0, "reference": {"dt_factor": 0.001},
         "methods": {"srkn6c": {"dt_factor": [0.02, 0.01]}, "lsoda": {"rtol": [1e-6, 1e-8]}}}

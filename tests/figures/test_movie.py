@@ -75,6 +75,23 @@ def test_mp4_and_gif_decode_to_the_frames_asked_for(tmp_path, bc):
     assert not list(tmp_path.glob(".*"))                                # no temporary file left
 
 
+@pytest.mark.parametrize("argv, words", [
+    (["--width", "100000"], "--width 100000: 100000 is greater than the maximum of 3840"),
+    (["--gif", "--gif-fps", "0"], "--gif-fps 0: 0 is less than the minimum of 1"),
+    (["--width", "101"], "--width 101: 101 is not a multiple of 2"),
+    (["--duration", "1e300"], "--duration 1e+300: 1e+300 is greater than the maximum of 600"),
+    (["--t-end", "inf"], "--t-end inf: must be a finite time"),
+])
+def test_cradle_animate_refuses_bad_flags_before_any_work(tmp_path, capsys, argv, words):
+    """A flag outside the bounds of its key of `movies:` is one line naming it, exit 2, before the scene is
+    read (there is none here) or a frame drawn."""
+    from cradle.pipeline.cli import main
+
+    assert main(["animate", "tw", "--results", str(tmp_path), "--config", str(tmp_path / "none.yaml"), *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("cradle: error: ") and words in err and err.count("\n") == 1, err
+
+
 @pytest.mark.slow
 def test_cradle_animate_on_a_run_of_the_cli(tmp_path, capsys):
     """`cradle animate` reads a scene computed by `cradle run` (tiny, t_end = 5) and writes the MP4."""

@@ -323,17 +323,17 @@ def test_an_entry_with_a_schema_error_is_not_checked_further(raw):
         "config error: scenes.tw-weak.store.snapshots = 3: must be a list"]
 
 
-def test_analysis_scene_names_are_checked_when_resolved(raw):
-    """Names of scenes are checked when the analysis is planned (its reads name the files of the scenes, and
-    the rules refuse a scene with no `scenes:` entry), so a config with fewer scenes (a test's) still
-    validates."""
-    from cradle.analyses.protocol import Read
-    from cradle.analyses.registry import ANALYSES
-
+def test_analysis_scene_names_are_checked_at_validation(raw):
+    """A scene an analysis reads that is no `scenes:` entry is refused when the config is validated, at the key
+    that names it, with the nearest name (not when its jobs are planned); what only its target needs (a scene
+    to measure) is said when the target is planned."""
     cfg = copy.deepcopy(raw)
     cfg["beyond"].setdefault("theorem1", {})["scenes"] = ["tw-wek"]
-    spec = cc.analysis_spec(cfg, "theorem1", "full")
-    assert ANALYSES["theorem1"].reads_of(spec) == {"tw-wek/initial": Read.of("initial", scene="tw-wek")}
+    with pytest.raises(cc.ConfigError) as info:
+        cc.validate(cfg)
+    assert str(info.value) == ("config error: beyond.theorem1.scenes[0] = 'tw-wek': unknown scene: no `scenes:` "
+                               "entry of that name; did you mean 'tw-weak'?")
+    cfg = copy.deepcopy(raw)
     cfg["beyond"]["mi-growth"]["scenes"] = []
     with pytest.raises(cc.ConfigError, match=r"beyond\.mi-growth\.scenes is empty"):
         cc.analysis_reads(cfg, "mi-growth", "full")

@@ -94,6 +94,29 @@ def test_cli_extend(runs, tmp_path, capsys):
     assert "must be > the last stored time" in capsys.readouterr().err
 
 
+def test_extend_estimates_and_refuses_before_any_work(runs, tmp_path, capsys):
+    """`cradle extend` prints its estimate (cradle.pipeline.budget) and refuses, in one line and before
+    anything is written, a t_end beyond a scene's longest run, a grid of more times than a scene may store,
+    and a run over the budget of the config."""
+    short, _ = runs
+    path = tmp_path / "exact.nc"
+    io.write_netcdf(short, path)
+    out = tmp_path / "long.nc"
+    for argv, words in ((["--t-end", "1e300"], "t_end=1e+300: must be <= 1e+06"),
+                        (["--t-end", "1e7"], "t_end=10000000.0: must be <= 1e+06"),
+                        (["--t-end", "100", "--every", "1e-9"], "more than 10000000"),
+                        (["--t-end", "1e6", "--every", "0.5"], "exceeds budget.disk_gb = 0.1")):
+        (tmp_path / "config.yaml").write_text("scenes: {s: {N: 2, initial: {kind: travelling, q: pi, a: 0.01}, "
+                                              "t_end: 1, store: {every: 1}}}\nbudget: {disk_gb: 0.1}\n")
+        argv = ["extend", str(path), "--out", str(out), "--config", str(tmp_path / "config.yaml"), *argv]
+        assert cli.main(argv) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("cradle: error: ") and words in err and err.count("\n") == 1, err
+        assert not out.exists()
+    assert cli.main(["extend", str(path), "--t-end", "30", "--out", str(out), "--config", str(tmp_path / "none")]) == 0
+    assert "estimated peak memory" in capsys.readouterr().err
+
+
 def test_big_chain_streamed_peak_memory_below_1GiB(tmp_path):
     """N = 1e4, 100 stored times (t = 2), streamed in a subprocess: peak RSS (getrusage, numba and
     libraries included) < 1 GiB; the file holds 101 rows. (t = 1e3 at this N: benchmarks/extremes.py.)"""

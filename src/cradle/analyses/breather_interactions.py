@@ -62,8 +62,11 @@ class BreatherInteractionsReduced:
     refine: int = param(0, "Bisection levels of theta where the outcome changes.", minimum=0, maximum=4)
     n_seeds: int = param(1, "Noise seeds per case.", minimum=1, maximum=64)
     periods: float = param(100.0, "Run length in breather periods.", exclusiveMinimum=0, maximum=5000)
-    ratios: list[float] = param([1.0], "Amplitude ratios.", minItems=1, maxItems=8, items={"type": "number"})
-    amplitudes: list[float] = param([0.01], "Overall amplitudes.", minItems=1, maxItems=8, items={"type": "number"})
+    # the bounds of the full form's keys they replace
+    ratios: list[float] = param([1.0], "Amplitude ratios.", minItems=1, maxItems=8,
+                                items={"type": "number", "exclusiveMinimum": 0, "maximum": 10})
+    amplitudes: list[float] = param([0.01], "Overall amplitudes.", minItems=1, maxItems=8,
+                                    items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.1})
     chunks: int = param(1, "Jobs of the sweep (reduced: computed in the analysis job itself).", minimum=1,
                         maximum=1)
 

@@ -82,9 +82,8 @@ class MIGrowth:
                           "called exponential.", exclusiveMinimum=0, maximum=1.0)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Every named scene that exists is a travelling wave on a periodic ring. Names of missing scenes
-        are reported when the target is planned (its reads), so that a config with fewer scenes (a test's)
-        still validates."""
+        """Every named scene that exists is a travelling wave on a periodic ring (a name that is no scene is
+        reported with every analysis's reads, cradle.pipeline.config.checks)."""
         for i, name in enumerate(self.scenes):
             sc = context.scenes.get(name)
             if sc is not None and not (isinstance(sc.initial, Travelling) and sc.bc == "periodic"):

@@ -66,8 +66,7 @@ class Theorem1:
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """q in (0, pi], a_max > a_min, a grid fine enough for the modes (2^grid_log2 >= 8 x
         max(modes, 2 x max(convergence_modes))), and every named scene that exists a travelling wave.
-        Names of missing scenes are reported when the target is planned (its reads), so that a config
-        with fewer scenes (a test's) still validates."""
+        A name that is no scene is reported with every analysis's reads (cradle.pipeline.config.checks)."""
         for i, q in enumerate(self.q):
             x = angle_or_none(q)
             if x is not None and not 0.0 < x <= math.pi + 1e-12:

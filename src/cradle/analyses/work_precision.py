@@ -57,7 +57,7 @@ from cradle.data.variables import Var
 from cradle.models import lattice
 from cradle.scenes.spec import LATTICE_ADAPTIVE, SPLITTINGS
 from cradle.specs.declare import REQUIRED, declared, param, plain, schema_doc
-from cradle.specs.values import ConfigError, did_you_mean
+from cradle.specs.values import MAX_T_END, ConfigError, did_you_mean
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -113,7 +113,8 @@ class WorkPrecisionLadder:
 
 @declared(doc="One measured scene.")
 class WorkPrecisionScene:
-    t_end: float = param(REQUIRED, "End of every run; > 0.", exclusiveMinimum=0)
+    t_end: float = param(REQUIRED, "End of every run; in (0, 1e6] (as a scene's t_end).", exclusiveMinimum=0,
+                         maximum=MAX_T_END)
 
 
 @declared(doc="Reference: two runs of a splitting at dt_factor and 2 dt_factor; it holds up to the last comparison "
@@ -121,8 +122,10 @@ class WorkPrecisionScene:
 class WorkPrecisionReference:
     method: str = param("srkn6c", "Splitting used for the reference.", enum=list(SPLITTINGS))
     dt_factor: float = param(0.0002, "Step factor of the finer reference run; > 0.", exclusiveMinimum=0, maximum=1)
+    # at most 1e-2: two references that differ by 1 % of a are no reference, and a larger tolerance would
+    # silently compare every method with a wrong one
     tolerance: float = param(1e-10, "Largest difference between the two reference runs, relative to a, for the "
-                             "reference to hold; > 0.", exclusiveMinimum=0)
+                             "reference to hold; in (0, 1e-2].", exclusiveMinimum=0, maximum=0.01)
 
 
 @declared(doc="The reduced form `snakemake all` builds (results/work-precision/work-precision.nc, "
@@ -131,7 +134,8 @@ class WorkPrecisionReference:
 class WorkPrecisionReduced:
     scenes: list[str] = param(["tw-weak"], "The measured scenes kept (names under work-precision.scenes).",
                               minItems=1, items={"$ref": "#/$defs/name"})
-    t_end: float = param(100.0, "Runs end at the smaller of this and the scene's t_end; > 0.", exclusiveMinimum=0)
+    t_end: float = param(100.0, "Runs end at the smaller of this and the scene's t_end; in (0, 1e6].",
+                         exclusiveMinimum=0, maximum=MAX_T_END)
     methods: list[str] = param(["srkn6c", "srkn4c", "srkn6", "dop853_numba"], "The methods kept (those of them "
                                "that work-precision.methods measures).", minItems=1,
                                items={"type": "string", "enum": [*SPLITTINGS, *LATTICE_ADAPTIVE]})

@@ -99,11 +99,13 @@ class Budget:
     """Limits every job must fit (config key ``budget:``); the defaults fit a 2-core, 24 GB machine
     running two jobs side by side."""
 
-    memory_gb: float = param(8.0, "Peak memory one job may use (GB); two jobs run side by side on two cores.",
-                             exclusiveMinimum=0)
-    disk_gb: float = param(20.0, "Bytes one job may write, and all scenes together (GB).", exclusiveMinimum=0)
-    hours: float = param(12.0, "Wall time one job may take (hours), estimated from its steps and beads.",
-                         exclusiveMinimum=0)
+    # each at most what no machine this runs on exceeds: a larger budget would turn its check off
+    memory_gb: float = param(8.0, "Peak memory one job may use (GB), at most 1e4; two jobs run side by side on two "
+                             "cores.", exclusiveMinimum=0, maximum=1e4)
+    disk_gb: float = param(20.0, "Bytes one job may write, and all scenes together (GB), at most 1e5.",
+                           exclusiveMinimum=0, maximum=1e5)
+    hours: float = param(12.0, "Wall time one job may take (hours), at most 1e4 (a year), estimated from its steps "
+                         "and beads.", exclusiveMinimum=0, maximum=1e4)
 
     @classmethod
     def from_config(cls, cfg: dict) -> Budget:
@@ -148,12 +150,18 @@ def _g(x) -> str:
     return f"{float(x):g}"
 
 
+def _count(n) -> str:
+    """A count as a message writes it: exact up to a million, else three digits (1e+300, not 301 of them)."""
+    return str(int(n)) if n < 1e6 else f"{float(n):.3g}"
+
+
 def stored_count(store: Store, t_end: float) -> int:
     """Upper bound on the number of stored times (0, t_end, the snapshots and the grid), without
     building the time array."""
     n = len(store.snapshots or ()) + 2
     if store.every:
-        n += int(math.floor(t_end / store.every * (1.0 + 1e-12) + 1e-9)) + 1
+        k = t_end / store.every * (1.0 + 1e-12) + 1e-9
+        n += int(math.floor(min(k, 1e18))) + 1   # t_end / every may overflow to inf
     return n
 
 
@@ -186,7 +194,7 @@ def spec_estimate(spec: Scene, name: str = "?") -> Estimate:
     seconds += BASE_SECONDS + COST_PER_STORED_VALUE_S * N * T
     per_time = 8.0 * (STORED_ARRAYS * N + STORED_SCALARS)
     cause = f"N = {N}, t_end = {_g(t_end)}" + (f", store.every = {_g(store.every)}" if store.every else "")
-    cause += f": {T} stored times"
+    cause += f": {_count(T)} stored times"
     if steps:
         cause += f", ~{steps:.3g} steps of {spec.exact.method}"
     memory = BASE_BYTES + 8.0 * (PEAK_ARRAYS * N * T + STATE_ARRAYS * N)
@@ -229,7 +237,7 @@ def map_estimate(cfg: dict, name: str) -> Estimate:
     m = cfg["map"][name]
     orbits = len(m.get("starts") or ()) + int((m.get("line") or {}).get("count", 0))
     points = float(orbits) * (int(m["iterations"]) + 1)
-    return Estimate(f"map.{name}", f"{orbits} orbits x iterations = {m['iterations']}",
+    return Estimate(f"map.{name}", f"{orbits} orbits x iterations = {_count(m['iterations'])}",
                     memory_bytes=BASE_BYTES + 8.0 * 4 * points, disk_bytes=8.0 * 2 * points,
                     seconds=points * 1e-6)
 
@@ -255,15 +263,84 @@ def mi_statistics_estimate(cfg: dict, form: str) -> Estimate:
                     disk_bytes=8.0 * 8 * runs * samples, seconds=BASE_SECONDS + runs * one, steps=runs * steps)
 
 
+def work_precision_estimate(cfg: dict, form: str) -> Estimate:
+    """The largest batch job of one form of ``beyond.work-precision``: for one scene (its N from ``scenes:``),
+    the two reference runs and every setting of every method's ladder to the scene's t_end, each at the
+    measured cost per bead-step of its method (a step factor scales its steps; a tolerance is costed at the
+    default one), the states on the comparison grid held for the two references and the run measured."""
+    from cradle.analyses.protocol import REDUCED, form_spec
+    from cradle.analyses.work_precision import WorkPrecision, ladder
+
+    # the section is schema-valid here (validate() asks for the budget before its physical checks)
+    spec = form_spec(build(WorkPrecision, cfg["beyond"]["work-precision"]), form)
+    scenes = cfg.get("scenes") or {}
+    ref = spec.reference
+    runs = [(ref.method, ref.dt_factor), (ref.method, 2.0 * ref.dt_factor)]
+    for method in spec.methods:
+        key, values = ladder(spec, method)
+        runs += [(method, v if key == "dt_factor" else None) for v in values]
+    worst = None
+    for name, measured in spec.scenes.items():
+        if name not in scenes:
+            continue   # an unknown scene: the checks name it
+        N, t_end = int(scenes[name]["N"]), measured.t_end
+        T = stored_count(build(Store, {"every": spec.compare_every}), t_end)
+        seconds = steps = 0.0
+        for method, dt_factor in runs:
+            exact = build(ExactIntegrator, {"method": method, "dt_factor": dt_factor})
+            one, n = _exact_seconds(N, t_end, exact, T)
+            seconds, steps = seconds + one, steps + n
+        e = Estimate("beyond.work-precision" + (".reduced" if form == REDUCED else ""),
+                     f"scene {name}: N = {N}, t_end = {_g(t_end)}, {len(runs)} runs, {_count(T)} comparison times",
+                     memory_bytes=BASE_BYTES + 8.0 * (3 * 2 * N * T + STATE_ARRAYS * N),
+                     disk_bytes=8.0 * (T + 12 * len(runs)), seconds=BASE_SECONDS + seconds, steps=steps)
+        if worst is None or e.seconds > worst.seconds:
+            worst = e
+    if worst is None:
+        raise KeyError("no scene to measure")   # nothing to estimate (estimates() skips it)
+    return worst
+
+
+def extend_estimate(key: str, N: int, method: str, dt: float, t_from: float, t_end: float, added: int,
+                    kept: int) -> Estimate:
+    """The cost of ``cradle extend`` (:func:`cradle.pipeline.extend.extend`): ``added`` stored times from
+    ``t_from`` to ``t_end`` at the file's step ``dt`` of splitting ``method`` on N beads, streamed block
+    by block, and the ``kept`` stored times of the file copied first (``key``: the file)."""
+    steps = max((t_end - t_from) / dt, float(added))
+    per_time = 8.0 * (3 * N + 2)   # x, v, force, energy and t
+    per_bead_step = COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values()))
+    return Estimate(key, f"N = {N}, t = {_g(t_from)} -> {_g(t_end)}: {_count(added)} stored times added, "
+                         f"~{steps:.3g} steps of {method} (dt = {_g(dt)})",
+                    memory_bytes=BASE_BYTES + STREAMED_BLOCK_BYTES + STREAMED_BYTES_PER_TIME * (added + kept)
+                    + 8.0 * STATE_ARRAYS * N,
+                    disk_bytes=per_time * (added + kept),
+                    seconds=BASE_SECONDS + steps * N * per_bead_step + COST_PER_STORED_VALUE_S * N * added,
+                    steps=steps, streamed=True)
+
+
+def exceeds(e: Estimate, budget: Budget) -> str | None:
+    """The line saying how estimate ``e`` exceeds ``budget`` (memory, then output, then time), or None."""
+    for what, value, limit, key in (
+            ("peak memory", e.memory_bytes, budget.memory_gb * GB, "memory_gb"),
+            ("output", e.disk_bytes, budget.disk_gb * GB, "disk_gb"),
+            ("run time", e.seconds, budget.hours * 3600.0, "hours")):
+        if value > limit:
+            shown = fmt_duration(value) if key == "hours" else fmt_bytes(value)
+            return f"{e.key}: {e.cause}: estimated {what} {shown} exceeds budget.{key} = {_g(getattr(budget, key))}"
+    return None
+
+
 def estimates(cfg: dict) -> list[Estimate]:
     """An :class:`Estimate` for every scene, homoclinic and map entry of a validated config, and for
-    the batch jobs of each form of ``beyond.mi-statistics``."""
+    the largest batch job of each form of ``beyond.mi-statistics`` and ``beyond.work-precision``."""
     out = []
     per_entry = (("scenes", scene_estimate), ("homoclinic", homoclinic_estimate), ("map", map_estimate))
     jobs: list[tuple[str, str, Callable[[dict, str], Estimate]]] = [
         (section, name, fn) for section, fn in per_entry for name in (cfg.get(section) or {})]
     if ((cfg.get("beyond") or {}).get("mi-statistics")):
         jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
+    if ((cfg.get("beyond") or {}).get("work-precision") or {}).get("scenes"):
+        jobs += [("beyond", form, work_precision_estimate) for form in ("reduced", "full")]
     for _section, name, fn in jobs:
         try:
             out.append(fn(cfg, name))
@@ -281,15 +358,9 @@ def over_budget(cfg: dict) -> list[str]:
     for e in estimates(cfg):
         if e.key.startswith("scenes."):
             total += e.disk_bytes
-        for what, value, limit, key in (
-                ("peak memory", e.memory_bytes, budget.memory_gb * GB, "memory_gb"),
-                ("output", e.disk_bytes, budget.disk_gb * GB, "disk_gb"),
-                ("run time", e.seconds, budget.hours * 3600.0, "hours")):
-            if value > limit:
-                shown = fmt_duration(value) if key == "hours" else fmt_bytes(value)
-                lines.append(f"{e.key}: {e.cause}: estimated {what} {shown} exceeds budget.{key} = "
-                             f"{_g(getattr(budget, key))} ({hint})")
-                break
+        line = exceeds(e, budget)
+        if line is not None:
+            lines.append(f"{line} ({hint})")
     if total > budget.disk_gb * GB and not lines:
         lines.append(f"scenes: all scenes together write an estimated {fmt_bytes(total)}, over budget.disk_gb = "
                      f"{_g(budget.disk_gb)} ({hint})")

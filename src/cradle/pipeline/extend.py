@@ -133,8 +133,56 @@ def _infer_every(t) -> float:
     return float(np.round(np.median(d), 9))
 
 
+def estimate(path, t_end: float, every: float | None = None, budget=None):
+    """What extending the exact run in ``path`` to ``t_end`` will cost (:func:`cradle.pipeline.budget.extend_estimate`),
+    from its header alone, before any work: ValueError (one line naming the value) for a t_end beyond a
+    scene's longest run or past the file's last time, a grid of more stored times than a scene may hold, an
+    adaptive integrator, or an estimate over ``budget`` (a :class:`cradle.pipeline.budget.Budget`; default:
+    the declared one)."""
+    from cradle.integrators import SPLITTING_METHODS
+    from cradle.pipeline import budget as costs
+    from cradle.specs.values import MAX_STORED_TIMES, MAX_T_END, grid_size
+
+    path = Path(path)
+    t_end = float(t_end)
+    if not math.isfinite(t_end):
+        raise ValueError(f"t_end={t_end!r}: must be a finite time")
+    if not t_end <= MAX_T_END:
+        raise ValueError(f"t_end={t_end!r}: must be <= {MAX_T_END:g}, a scene's longest run (stored times are told "
+                         f"apart to 1e-9, which float64 resolves only below ~4e6)")
+    if every is not None and not (math.isfinite(float(every)) and float(every) > 0):
+        raise ValueError(f"every={every!r}: must be a finite time > 0")
+    with xr.open_dataset(path) as ds:
+        missing = [k for k in VARS if k not in ds]
+        if missing:
+            raise ValueError(f"{path}: not an exact run of (nc) (no {', '.join(missing)}): cannot extend it")
+        a = ds.attrs
+        method = a.get("integrator")
+        if method not in SPLITTING_METHODS:
+            raise ValueError(f"{path}: integrator={method!r} is adaptive; extending needs a fixed-step splitting "
+                             f"{SPLITTING_METHODS} (rerun the scene to the later t_end instead)")
+        dt = float(a.get("dt_nominal", a["dt"]))
+        t = ds["t"].values
+        N = int(ds.sizes["n"])
+    t_last = float(t[-1])
+    if not t_end > t_last + TIME_TOL:
+        raise ValueError(f"t_end={t_end!r} must be > the last stored time t={t_last!r} of {path}")
+    every = _infer_every(t) if every is None else float(every)
+    n = grid_size(None, every, t_end)   # the grid k * every on [0, t_end] is built whole
+    if n > MAX_STORED_TIMES:
+        raise ValueError(f"every={every!r}: stores ~{n} times on [0, t_end = {t_end!r}], more than "
+                         f"{MAX_STORED_TIMES} (the limit of a scene's store)")
+    added = min(n, int((t_end - t_last) / every) + 2)
+    e = costs.extend_estimate(str(path), N, str(method), dt, t_last, t_end, added, int(t.size))
+    over = costs.exceeds(e, budget if budget is not None else costs.Budget())
+    if over is not None:
+        raise ValueError(f"{over} (a shorter t_end or a coarser every, or a larger budget: in config.yaml's "
+                         f"budget: with --config)")
+    return e
+
+
 def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes=DEFAULT_CHUNK_BYTES,
-           progress=None) -> dict:
+           progress=None, budget=None) -> dict:
     """Continue the exact run stored in ``path`` to ``t_end`` and append (to ``out``, default ``path``).
 
     New output times: the grid k * ``every`` (default: the median spacing of the stored times,
@@ -143,18 +191,16 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
     splitting method the result equals one run to t_end bitwise (same grid). Attributes updated:
     t_end, energy_drift (max over both parts), n_steps, n_force_evals, max_compression, wall_time_s,
     n_onset_corrections; ``extended`` records the history. Raises ValueError naming the value for
-    an adaptive integrator, t_end <= the last stored time, or a file without x/v.
+    an adaptive integrator, t_end <= the last stored time, a file without x/v, or a cost over ``budget``
+    (:func:`estimate`, checked before any work).
     """
     from cradle.integrators import SPLITTING_METHODS
     from cradle.specs.values import store_times
 
     path = Path(path)
     out = path if out is None else Path(out)
-    if not math.isfinite(float(t_end)):
-        raise ValueError(f"t_end={t_end!r}: must be a finite time")
-    if every is not None and not (math.isfinite(float(every)) and float(every) > 0):
-        raise ValueError(f"every={every!r}: must be a finite time > 0")
     verify_file(path)  # every checksum, before anything is written (DamagedOutput: one line)
+    estimate(path, t_end, every, budget)   # every bound and the budget, from the header, before any work
     with xr.open_dataset(path) as ds:
         missing = [k for k in VARS if k not in ds]
         if missing:

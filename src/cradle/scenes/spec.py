@@ -33,6 +33,7 @@ from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, 
 from cradle.specs.values import (
     INTEGER_TOL,
     MAX_STORED_TIMES,
+    MAX_T_END,
     TIME_TOL,
     ConfigError,
     Errors,
@@ -93,8 +94,9 @@ class ExactIntegrator:
                         "contact-onset correction) | srkn4c | srkn6 | srkn4 | strang (plain splittings) | "
                         "dop853_numba (adaptive, compiled) | dop853 | rk45 | lsoda | radau (scipy).",
                         enum=[*SPLITTINGS, *LATTICE_ADAPTIVE])
-    dt_factor: float | None = param(NULL, "Splitting step = dt_factor * 2 pi / omega_max; > 0, or null for the "
-                                    "method's default.", exclusiveMinimum=0)
+    # at most 1: a step longer than the shortest linearised period 2 pi / omega_max resolves no oscillation
+    dt_factor: float | None = param(NULL, "Splitting step = dt_factor * 2 pi / omega_max; in (0, 1], or null for the "
+                                    "method's default.", exclusiveMinimum=0, maximum=1)
     rtol: float = param(1e-10, "Relative tolerance of the adaptive (scipy) methods, in (0, 1e-2].", ref="rtol")
 
 
@@ -306,7 +308,9 @@ class Scene:
                                     ref="maxEnergyDrift")
     initial: Travelling | Breather | Packet | Pair = param(REQUIRED, "Initial condition: its kind (travelling, "
                                                            "breather, packet, pair) and parameters.", ref="initial")
-    t_end: float = param(REQUIRED, "Final time of the run (lattice time t); > 0.", exclusiveMinimum=0)
+    # at most MAX_T_END: stored times are told apart to TIME_TOL, finer than float64 resolves beyond ~4e6
+    t_end: float = param(REQUIRED, "Final time of the run (lattice time t); in (0, 1e6] (stored times are told apart "
+                         "to 1e-9).", exclusiveMinimum=0, maximum=MAX_T_END)
     store: Store = param(REQUIRED, "Times at which the state is stored.")
 
     @cached_property
@@ -350,7 +354,8 @@ class MapLine:
 @declared("mapEntry", doc="Orbits of the map G (comp1)-(comp2).", any_of=[("starts",), ("line",)])
 class MapEntry:
     box: float = param(REQUIRED, "Orbits are dropped after they leave ||U||_inf <= box; > 0.", exclusiveMinimum=0)
-    iterations: int = param(REQUIRED, "How many times G is applied; integer >= 1.", minimum=1)
+    iterations: int = param(REQUIRED, "How many times G is applied; integer in [1, 1e7].", minimum=1,
+                            maximum=10_000_000)
     marks: bool = param(False, "Mark the explicit period-2, -3 and -4 orbits of the traj2 caption in this panel.")
     starts: list[list[float]] = param(None, "Starting points U_0 = (a_0, b_1), one pair [a_0, b_1] per orbit.",
                                       minItems=1, items={"description": "A starting point [a_0, b_1].",

@@ -99,14 +99,22 @@ def schema_doc(cls: Any) -> str:
 SHARED: dict[str, dict[str, Any]] = {
     "name": {"description": "An entry name: letters, digits, '-' and '_' (it becomes part of file names).",
              "type": "string", "pattern": NAME_PATTERN},
-    "alpha": {"description": "Hertz exponent alpha of (vhertz); > 1.", "type": "number", "exclusiveMinimum": 1},
-    "N": {"description": "Number of sites (beads) n = 0..N-1; >= 2.", "type": "integer", "minimum": 2},
+    # at most 10: the paper's exponents are 3/2 (Hertz) to 3; beyond, a^(alpha-1) of (freq) underflows to 0 or
+    # overflows for the amplitudes of the experiments, and a huge alpha makes every power overflow
+    "alpha": {"description": "Hertz exponent alpha of (vhertz); in (1, 10].", "type": "number", "exclusiveMinimum": 1,
+              "maximum": 10},
+    # at most 1e7: the 32 state arrays of a run (cradle.pipeline.budget) alone then take 2.6 GB
+    "N": {"description": "Number of sites (beads) n = 0..N-1; in [2, 1e7].", "type": "integer", "minimum": 2,
+          "maximum": 10_000_000},
     "bc": {"description": "Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one "
                           "neighbour).", "type": "string", "enum": ["periodic", "free"]},
     "rtol": {"description": "Relative tolerance of an adaptive integrator, in (0, 1e-2].", "type": "number",
              "exclusiveMinimum": 0, "maximum": 0.01},
+    # at most 1e-2: a run whose energy moved by more than 1 % of H(0) is no solution of (nc), and a larger bound
+    # would silently turn the check off
     "maxEnergyDrift": {"description": "Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact "
-                                      "run; > 0.", "type": "number", "exclusiveMinimum": 0},
+                                      "run; in (0, 1e-2] (a larger bound would turn the check off).",
+                       "type": "number", "exclusiveMinimum": 0, "maximum": 0.01},
     "angleString": {"description": "A multiple of pi such as 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', or a "
                                    "number written as a string.", "type": "string", "pattern": ANGLE_PATTERN},
     "angle": {"description": "An angle: a number (radians) or a multiple of pi as a string ('pi/5', '4pi/5', "
@@ -135,6 +143,12 @@ BOUND_HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))"}
 
 def _ref(name: str) -> dict:
     return {"$ref": f"#/$defs/{name}"}
+
+
+@functools.cache
+def _hints(cls) -> dict[str, Any]:
+    """The resolved annotations of a declared class (resolving them is most of the cost of :func:`build`)."""
+    return typing.get_type_hints(cls)
 
 
 def _is_declared(tp) -> bool:
@@ -218,7 +232,7 @@ def object_schema(cls, defs: dict, *, defaults: dict | None = None) -> dict:
         return _ref(name)
     if name:
         defs[name] = {}   # reserved (a class may refer to itself through its fields)
-    hints = typing.get_type_hints(cls)
+    hints = _hints(cls)
     props, required = {}, []
     for f in dataclasses.fields(cls):
         default = _default_of(f) if defaults is None else defaults.get(_key(f))
@@ -267,7 +281,7 @@ def build(tp, value):
     if origin is dict and _is_declared(args[1]):
         return {k: build(args[1], v) for k, v in value.items()}
     if _is_declared(tp):
-        hints = typing.get_type_hints(tp)
+        hints = _hints(tp)
         return tp(**{f.name: build(hints[f.name], value[_key(f)])
                      for f in dataclasses.fields(tp) if _key(f) in value})
     return value
@@ -335,7 +349,7 @@ def write(schema: dict, path: Path) -> Path:
 def _nullable(cls) -> frozenset[str]:
     """The fields of a declared class where null is a value of its own: declared with a NULL default, or
     typed ``X | None`` with a default other than None (``direct_omega: null`` = the most unstable one)."""
-    hints = typing.get_type_hints(cls)
+    hints = _hints(cls)
     out = set()
     for f in dataclasses.fields(cls):
         optional = type(None) in typing.get_args(hints[f.name])

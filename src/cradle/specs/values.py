@@ -7,6 +7,7 @@ Every problem is one line naming the key path and the value::
 from __future__ import annotations
 
 import copy
+import functools
 import json
 import math
 import re
@@ -25,6 +26,7 @@ ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5',
 TIME_TOL = 1e-9          # two times closer than this are the same time
 INTEGER_TOL = 1e-9       # q N / (2 pi) must be this close to an integer on a ring
 MAX_STORED_TIMES = 10_000_000  # a guard against typos such as every: 1.0e-7
+MAX_T_END = 1e6          # the longest run: float64 tells times apart to TIME_TOL up to ~4e6
 
 
 class ConfigError(ValueError):
@@ -166,8 +168,13 @@ def grid_size(snapshots, every: float | None, t_end: float) -> int:
     """An upper bound on the number of times :func:`store_times` gives for these ``snapshots`` and ``every``."""
     n = len(snapshots or ()) + 2
     if every:
-        n += int(math.floor(t_end / every * (1.0 + 1e-12) + TIME_TOL)) + 1
+        k = t_end / every * (1.0 + 1e-12) + TIME_TOL
+        n += int(math.floor(min(k, 1e18))) + 1   # t_end / every may overflow to inf
     return n
+
+
+#: the stored-time lists :func:`store_times` remembers are those of at most this many times
+REMEMBERED_TIMES = 100_000
 
 
 def store_times(store: dict, t_end: float) -> list[float]:
@@ -176,13 +183,24 @@ def store_times(store: dict, t_end: float) -> list[float]:
     Times are rounded to 1e-9; times closer than 1e-9 (e.g. a snapshot on the
     grid) are one time. 0 and t_end are always included.
     """
+    snapshots = tuple(float(s) for s in (store.get("snapshots") or ()))
+    every = float(store["every"]) if store.get("every") else None
+    if grid_size(snapshots, every, float(t_end)) <= REMEMBERED_TIMES:
+        # a config is validated again and again (its figures' times, the Snakefile's jobs): remember small grids
+        return list(_remembered_times(snapshots, every, float(t_end)))
+    return _store_times(snapshots, every, float(t_end))
+
+
+@functools.lru_cache(maxsize=64)
+def _remembered_times(snapshots: tuple[float, ...], every: float | None, t_end: float) -> tuple[float, ...]:
+    return tuple(_store_times(snapshots, every, t_end))
+
+
+def _store_times(snapshots: tuple[float, ...], every: float | None, t_end: float) -> list[float]:
     import numpy as np
 
-    t_end = float(t_end)
-    parts = [np.array([0.0, t_end]), np.asarray(store.get("snapshots") or [], dtype=float)]
-    every = store.get("every")
+    parts = [np.array([0.0, t_end]), np.asarray(snapshots, dtype=float)]
     if every:
-        every = float(every)
         n = int(math.floor(t_end / every * (1.0 + 1e-12) + TIME_TOL))
         grid = np.arange(n + 1) * every
         parts.append(grid[grid <= t_end + TIME_TOL])

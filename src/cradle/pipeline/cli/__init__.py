@@ -86,6 +86,8 @@ def parser() -> argparse.ArgumentParser:
     e.add_argument("--out", default=None, help="write here (default: FILE-tT.nc beside FILE.nc)")
     e.add_argument("--in-place", action="store_true", dest="in_place",
                    help="replace FILE.nc (refused for a workflow scene's exact run: change t_end in the config)")
+    e.add_argument("--config", default="config.yaml",
+                   help="config whose budget: the run must fit (default: config.yaml; the declared budget without one)")
     e.set_defaults(func=cmd_extend)
     v = sub.add_parser("verify", help="read every output's data against its checksums; list what to rebuild "
                                       "(exit 1 if any)")

@@ -26,17 +26,46 @@ def settings(config_path) -> dict:
     return asdict(Movies())
 
 
+#: the flags of `cradle animate` that override a key of ``movies:``
+FLAGS = {"fps": "--fps", "duration": "--duration", "width": "--width", "height": "--height", "gif_fps": "--gif-fps"}
+
+
+def checked_flags(args) -> dict:
+    """The keys of ``movies:`` the flags give, each within the bounds its declaration states
+    (:class:`cradle.pipeline.config.movies.Movies`): a bad one is refused in one line naming the flag, before
+    any frame is drawn."""
+    import math
+
+    from cradle.pipeline.config.movies import Movies
+    from cradle.specs.declare import from_plain
+    from cradle.specs.values import ConfigError
+
+    given = {key: getattr(args, key) for key in FLAGS if getattr(args, key) is not None}
+    for key, value in given.items():
+        try:
+            from_plain(Movies, {key: value})
+        except ConfigError as err:
+            reason = str(err).split(": ")[-1]   # the schema's words: "0 is less than the minimum of 1"
+            raise CliError(f"{FLAGS[key]} {value}: {reason} (the bounds of movies.{key}, "
+                           f"docs/config-reference.md)") from None
+    for key in ("t_start", "t_end"):
+        value = getattr(args, key)
+        if value is not None and not math.isfinite(value):
+            raise CliError(f"--{key.replace('_', '-')} {value!r}: must be a finite time")
+    return given
+
+
 def cmd_animate(args) -> int:
     from cradle.figures.movie import MovieSpec, animate
     from cradle.pipeline import layout
     from cradle.pipeline.outputs import open_scene
 
-    given = settings(args.config)
-    pick = {k: (getattr(args, k) if getattr(args, k) is not None else given[k])
-            for k in ("fps", "duration", "width", "height")}
+    flags = checked_flags(args)
+    given = {**settings(args.config), **flags}
+    pick = {k: given[k] for k in ("fps", "duration", "width", "height")}
     try:
         spec = MovieSpec(**pick, t_start=args.t_start, t_end=args.t_end)
-        gspec = MovieSpec(fps=args.gif_fps or given["gif_fps"], duration=given["gif_duration"],
+        gspec = MovieSpec(fps=given["gif_fps"], duration=given["gif_duration"],
                           width=spec.width, height=spec.height, t_start=args.t_start, t_end=args.t_end)
     except ValueError as err:
         raise CliError(str(err)) from None

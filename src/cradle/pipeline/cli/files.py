@@ -82,9 +82,12 @@ def _workflow_scene_of(path: Path) -> str | None:
 
 def cmd_extend(args) -> int:
     import math
+    import sys
 
     from cradle.data.io import DamagedOutput
-    from cradle.pipeline.extend import extend
+    from cradle.pipeline.budget import Budget
+    from cradle.pipeline.cli.common import PROG, load_config
+    from cradle.pipeline.extend import estimate, extend
 
     path = Path(args.file)
     if not path.exists():
@@ -93,6 +96,8 @@ def cmd_extend(args) -> int:
         raise CliError(f"--t-end {args.t_end!r}: must be a finite time")
     if args.every is not None and not (math.isfinite(args.every) and args.every > 0):
         raise CliError(f"--every {args.every!r}: must be a finite time > 0")
+    # the budget of the config (as the workflow's), or the declared one when there is no config file
+    budget = Budget.from_config(load_config(args.config)) if Path(args.config).exists() else Budget()
     if args.in_place and args.out:
         raise CliError("give --out FILE or --in-place, not both")
     out = path if args.in_place else Path(args.out) if args.out else path.with_name(f"{path.stem}-t{args.t_end:g}.nc")
@@ -104,7 +109,9 @@ def cmd_extend(args) -> int:
                            f"the config and run `snakemake {path}` (all four files of the scene, consistently), "
                            f"or drop --in-place to write a new file")
     try:
-        s = extend(path, args.t_end, out=out, every=args.every)
+        cost = estimate(path, args.t_end, every=args.every, budget=budget)   # refused here, before any work
+        print(f"{PROG}: {cost.describe()}", file=sys.stderr)
+        s = extend(path, args.t_end, out=out, every=args.every, budget=budget)
     except DamagedOutput as err:
         raise CliError(str(err)) from None
     except ValueError as err:

@@ -4,18 +4,19 @@ After the schema pass and the default fill (:func:`.validate.validate`), :func:`
 entry whose key path has no schema error as its declared class (:func:`cradle.specs.declare.build`; a
 scene resolved against ``defaults:``, a homoclinic entry with its alpha filled from there) and runs its
 ``check(where, context, out)`` (:mod:`cradle.scenes.spec`), in the order of the file: map,
-homoclinic and scene entries, the sections of ``beyond:`` (one per analysis), figures. An entry with a
-schema error is skipped: its errors are said, and its check could not trust its types. A scene is
-checked only when ``defaults:`` passed too (it is resolved against them).
+homoclinic and scene entries, the sections of ``beyond:`` (one per analysis), figures; then every scene an
+analysis reads, in each of its forms, must be a ``scenes:`` entry (what planning the analysis's jobs would
+otherwise refuse). An entry with a schema error is skipped: its errors are said, and its check could not
+trust its types. A scene is checked only when ``defaults:`` passed too (it is resolved against them).
 """
 from __future__ import annotations
 
 from cradle.scenes.spec import ENTRY_SECTIONS, Checked, Context, HomoclinicEntry, MapEntry, Where, resolved
 from cradle.specs.declare import build
-from cradle.specs.values import Errors
+from cradle.specs.values import ConfigError, Errors, did_you_mean
 
 from .beyond import SPECS
-from .sections import Figure
+from .sections import SECTIONS, Figure
 
 
 def _passed(cfg: dict, section: str, out: Errors) -> dict[str, dict]:
@@ -63,3 +64,53 @@ def check(cfg: dict, out: Errors) -> None:
     _unique(given, out)
     for where, entry in entries:
         entry.check(where, context, out)
+    if isinstance(beyond, dict) and not out.has(["beyond"]):
+        _reads(cfg, context, out)
+
+
+def _found(node, name: str) -> list | None:
+    """The key path, inside an analysis's section, of the first place ``name`` is given (a list item or a
+    mapping's key), or None."""
+    if isinstance(node, dict) and name in node:
+        return [name]
+    if isinstance(node, dict):
+        items: list = list(node.items())
+    elif isinstance(node, list):
+        items = list(enumerate(node))
+    else:
+        return None
+    for key, value in items:
+        if value == name:
+            return [key]
+        below = _found(value, name)
+        if below is not None:
+            return [key, *below]
+    return None
+
+
+def _reads(cfg: dict, context: Context, out: Errors) -> None:
+    """Every scene an analysis reads, in each of its forms, is a ``scenes:`` entry: said here, at the key that
+    names it, rather than as a failure when its jobs are planned (sections with errors are skipped)."""
+    from cradle.analyses.protocol import form_spec
+    from cradle.analyses.registry import ANALYSES
+
+    scenes = context.given["scenes"]
+    for a in ANALYSES.values():
+        where = ["beyond", a.name]
+        if out.within(where):
+            continue
+        # as cradle.pipeline.config.analysis_spec: a section key given as "all" is every entry of that section
+        section = {key: (list(context.given[key]) if key in SECTIONS and value == "all" else value)
+                   for key, value in cfg["beyond"][a.name].items()}
+        spec = build(a.spec, section)
+        for form in a.forms:
+            try:
+                reads = a.reads_of(form_spec(spec, form))
+            except ConfigError:  # what only its target needs (a scene to measure): said when it is planned
+                continue
+            for read in reads.values():
+                name = dict(read.names).get("scene")
+                if name is not None and name not in scenes:
+                    at = _found(cfg["beyond"][a.name], name)
+                    out.add(where + (at or []), f"unknown scene: no `scenes:` entry of that name"
+                                                f"{did_you_mean(name, scenes)}", name)

@@ -33,6 +33,8 @@ from pathlib import Path
 from typing import cast
 
 from jsonschema import Draft202012Validator
+from jsonschema.exceptions import ValidationError
+from jsonschema.protocols import Validator
 
 from cradle.specs import declare as spec
 from cradle.specs.values import ANGLE_HINT, ANGLE_PATTERN, ConfigError, Errors, number, show
@@ -90,6 +92,38 @@ def _root() -> dict:
     return cast(dict, _validator().schema)
 
 
+#: validators of the schema's sub-schemas that pick a branch (if, anyOf), by the node's id: the schema is
+#: built once, and building a validator costs more than most checks it makes
+_BRANCHES: dict[int, Validator] = {}
+
+
+def _branch(node: dict) -> Validator:
+    """The validator of the sub-schema ``node`` of the schema (its $ref resolved in the whole schema)."""
+    v = _BRANCHES.get(id(node))
+    if v is None:
+        v = _BRANCHES[id(node)] = _validator().evolve(schema=node)
+    return v
+
+
+def _is_valid(node: dict, instance) -> bool:
+    """Whether ``instance`` is valid against the sub-schema ``node`` of the schema."""
+    kind = _kind_test(node)
+    if kind is not None:   # the test of a union's branch, the most frequent: answered without jsonschema
+        return isinstance(instance, dict) and isinstance(instance.get("kind"), str) and instance["kind"] == kind
+    return _branch(node).is_valid(instance)
+
+
+def _kind_test(node: dict) -> str | None:
+    """``k`` when ``node`` is the test of a discriminated union's branch (an object whose ``kind`` is ``k``:
+    :func:`cradle.specs.declare.union_schema`), else None."""
+    if set(node) != {"type", "required", "properties"} or node["type"] != "object" or node["required"] != ["kind"]:
+        return None
+    props = node["properties"]
+    if set(props) != {"kind"} or set(props["kind"]) != {"const"} or not isinstance(props["kind"]["const"], str):
+        return None
+    return props["kind"]["const"]
+
+
 def _resolve(node: dict) -> dict:
     """Follow a local "$ref" ("#/$defs/...") of the schema."""
     ref = node["$ref"]
@@ -108,17 +142,16 @@ def _fill(node, instance):
     Integer-valued floats of "integer" keys become ints (N: 50.0 -> 50)."""
     if not isinstance(node, dict):
         return instance
-    v = _validator()
     if "$ref" in node:
         instance = _fill(_resolve(node), instance)
     for sub in node.get("allOf", ()):
         instance = _fill(sub, instance)
     if "if" in node:
-        branch = node.get("then") if v.evolve(schema=node["if"]).is_valid(instance) else node.get("else")
+        branch = node.get("then") if _is_valid(node["if"], instance) else node.get("else")
         instance = _fill(branch, instance)
     for key in ("anyOf", "oneOf"):
         for sub in node.get(key, ()):
-            if v.evolve(schema=sub).is_valid(instance):
+            if _is_valid(sub, instance):
                 instance = _fill(sub, instance)
                 break
     if isinstance(instance, dict):
@@ -175,7 +208,7 @@ def _coerce(node, instance):
     for sub in node.get("allOf", ()):
         instance = _coerce(sub, instance)
     if "if" in node:
-        branch = node.get("then") if _validator().evolve(schema=node["if"]).is_valid(instance) else node.get("else")
+        branch = node.get("then") if _is_valid(node["if"], instance) else node.get("else")
         instance = _coerce(branch, instance)
     if isinstance(instance, dict):
         props = node.get("properties", {})
@@ -194,6 +227,74 @@ def _coerce(node, instance):
     return instance
 
 
+# --------------------------------------------------------------------------- the schema's errors, by part
+
+def _shell(node: dict) -> dict:
+    """An object schema that checks the object itself (its type, required and unknown keys, the names of its
+    entries) but takes any value for each of its keys: those are validated apart."""
+    shell = dict(node)
+    if isinstance(node.get("properties"), dict):
+        shell["properties"] = {key: {} for key in node["properties"]}
+    if isinstance(node.get("additionalProperties"), dict):
+        shell["additionalProperties"] = {}
+    return shell
+
+
+@lru_cache(maxsize=1)
+def _parts() -> tuple[dict, dict[str, tuple[dict, dict, dict | None]]]:
+    """The root's shell, and for each section its shell, the schemas of its keys and that of its entries."""
+    root = _root()
+    sections = {}
+    for section, node in root["properties"].items():
+        node = _resolve(node) if "$ref" in node else node
+        extra = node.get("additionalProperties")
+        sections[section] = (_shell(node), dict(node.get("properties") or {}), extra if isinstance(extra, dict)
+                             else None)
+    return _shell(root), sections
+
+
+#: the schema's errors of the parts of recent configs, by (part, its canonical JSON): a config validated
+#: again with one entry changed (the Snakefile's --config overrides, the config fuzz) revalidates that entry
+_PART_ERRORS: dict[tuple[str, ...], list[ValidationError]] = {}
+
+
+def _part_errors(schema: dict, value, key: tuple[str, ...]) -> list[ValidationError]:
+    """jsonschema's errors of ``value`` against the sub-schema ``schema`` (paths relative to ``value``)."""
+    try:
+        memo = (*key, json.dumps(value, sort_keys=True, allow_nan=True))
+    except (TypeError, ValueError):
+        memo = None
+    if memo is not None and memo in _PART_ERRORS:
+        return _PART_ERRORS[memo]
+    # a copy: the errors keep their instance, which filling in the defaults would change
+    errors = list(_branch(schema).iter_errors(copy.deepcopy(value)))
+    if memo is not None:
+        if len(_PART_ERRORS) >= 4096:
+            _PART_ERRORS.pop(next(iter(_PART_ERRORS)))
+        _PART_ERRORS[memo] = errors
+    return errors
+
+
+def _schema_errors(cfg: dict) -> list[tuple[tuple, ValidationError]]:
+    """(key path of a part, error) for every error of ``cfg`` against the schema: the same errors as the
+    whole schema gives, found part by part (the root, each section, each of its keys or entries)."""
+    root, sections = _parts()
+    out: list[tuple[tuple, ValidationError]] = [((), e) for e in _part_errors(root, cfg, ("",))]
+    for section, (shell, props, entries) in sections.items():
+        if section not in cfg:
+            continue
+        value = cfg[section]
+        out += [((section,), e) for e in _part_errors(shell, value, (section,))]
+        if not isinstance(value, dict):
+            continue
+        for key, item in value.items():
+            sub = props.get(key, entries)
+            if isinstance(sub, dict) and sub:
+                out += [((section, key), e) for e in _part_errors(sub, item, (section, "*" if key not in props
+                                                                                 else key))]
+    return out
+
+
 # --------------------------------------------------------------------------- messages
 
 _TYPE_WORDS = {"integer": "an integer", "number": "a number", "string": "a string", "object": "a mapping",
@@ -209,9 +310,10 @@ def _fmt_bound(x) -> str:
     return repr(x) if isinstance(x, float) and not float(x).is_integer() else str(int(x)) if number(x) else str(x)
 
 
-def _schema_messages(err, out: Errors):
-    """One readable line per jsonschema error (recursing into anyOf/oneOf)."""
-    path = list(err.absolute_path)
+def _schema_messages(err, out: Errors, prefix: tuple = ()):
+    """One readable line per jsonschema error (recursing into anyOf/oneOf); ``prefix``: the key path of the
+    part of the config the error's validator was given (:func:`_schema_errors`)."""
+    path = [*prefix, *err.absolute_path]
     last = str(path[-1]) if path else ""
     kw = err.validator
     val = err.validator_value
@@ -250,11 +352,11 @@ def _schema_messages(err, out: Errors):
             return
         # a branch whose type fits the value explains best what is wrong with it
         for errs in branches.values():
-            if not any(s.validator == "type" and list(s.absolute_path) == path for s in errs):
+            if not any(s.validator == "type" and [*prefix, *s.absolute_path] == path for s in errs):
                 for s in errs:
-                    _schema_messages(s, out)
+                    _schema_messages(s, out, prefix)
                 return
-        types = [s.validator_value for s in subs if s.validator == "type" and list(s.absolute_path) == path]
+        types = [s.validator_value for s in subs if s.validator == "type" and [*prefix, *s.absolute_path] == path]
         flat = []
         for t in types:
             flat += [t] if isinstance(t, str) else list(t)
@@ -318,8 +420,8 @@ def validate(config: dict) -> dict:
     cfg = _coerce(_root(), copy.deepcopy(dict(config)))
     out = Errors()
     sections.check_finite(cfg, out)
-    for err in sorted(_validator().iter_errors(cfg), key=lambda e: [str(p) for p in e.absolute_path]):
-        _schema_messages(err, out)
+    for prefix, err in sorted(_schema_errors(cfg), key=lambda pe: [str(p) for p in (*pe[0], *pe[1].absolute_path)]):
+        _schema_messages(err, out, prefix)
     cfg = _fill(_root(), cfg)
     if not out.lines:  # every job's estimated memory, output and time within budget, before the physical
         from cradle.pipeline import budget  # checks build stored-time arrays (cradle.pipeline.budget)
