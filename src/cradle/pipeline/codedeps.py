@@ -48,8 +48,15 @@ def _package_of(src: Path, path: Path) -> str:
     return ".".join(path.resolve().relative_to(src.resolve()).parts[:-1])
 
 
-@cache
 def _tree(path: Path) -> ast.Module:
+    """The syntax tree of ``path``, parsed once per version of the file (the import scan and the
+    fingerprint share it)."""
+    st = os.stat(path)
+    return _parsed(Path(path), st.st_mtime_ns, st.st_size)
+
+
+@cache
+def _parsed(path: Path, mtime_ns: int, size: int) -> ast.Module:
     return ast.parse(path.read_text(), str(path))
 
 
@@ -68,13 +75,15 @@ def fingerprint(path: str | Path) -> str:
     """sha256 of the code of the Python file at ``path``: its syntax tree without docstrings, positions
     or comments (the parser drops those), so only an edit that changes what runs changes it."""
     st = os.stat(path)
-    return _fingerprint(Path(path), st.st_mtime_ns, st.st_size)
+    key = (Path(path), st.st_mtime_ns, st.st_size)
+    if key not in _FINGERPRINTS:
+        # the shared tree, stripped in place once (stripped twice, a string after a docstring would go
+        # too); the import scan finds the same imports in it
+        _FINGERPRINTS[key] = hashlib.sha256(ast.dump(_without_docstrings(_parsed(*key))).encode()).hexdigest()
+    return _FINGERPRINTS[key]
 
 
-@cache
-def _fingerprint(path: Path, mtime_ns: int, size: int) -> str:
-    tree = _without_docstrings(ast.parse(path.read_text(), str(path)))
-    return hashlib.sha256(ast.dump(tree).encode()).hexdigest()
+_FINGERPRINTS: dict[tuple[Path, int, int], str] = {}
 
 
 def _stamp(path: str, name: str, stamps: Path) -> str:
