@@ -15,6 +15,8 @@ import os
 # 2 cores) more threads only contend; every job inherits this (set OPENBLAS_NUM_THREADS to override)
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
+# every job watches that this Snakemake is still there, and stops when it is killed (cradle.pipeline.orphan)
+os.environ["CRADLE_SNAKEMAKE_PID"] = str(os.getpid())
 
 
 configfile: "config.yaml"
@@ -44,6 +46,20 @@ BEYOND = [
     for a in ANALYSES.values()
     for f in (L.analysis_output(a.name, a.forms[0], a.forms[0]), *L.analysis_drawn(a, a.forms[0], a.forms[0]).values())
 ]
+
+
+#: a temporary file older than this at the start of a run is a killed job's (a job stops within
+#: cradle.pipeline.orphan's grace of losing its Snakemake)
+STALE_TEMPORARY_S = 60
+
+
+onstart:
+    # a killed run's jobs stop by themselves (cradle.pipeline.orphan); what they were writing stays as a hidden
+    # `.NAME.*.tmp` beside its target: removed here, before any job of this run starts (Snakemake's lock: no
+    # other run writes in this folder now), once older than the watch's grace
+    from cradle.data.io import remove_stale_temporaries
+
+    remove_stale_temporaries(L.ROOT, STALE_TEMPORARY_S)
 
 
 rule all:

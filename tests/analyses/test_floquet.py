@@ -119,12 +119,16 @@ def test_floquet_spec_names_the_key():
 
 
 def test_both_forms_round_trip_through_plain_values():
-    """What a rule's params carry (angles as given, the finer numerics as declared) rebuilds the same form;
-    the reduced form takes the reduced keys, convergence included."""
+    """What a rule's params carry (angles in their one form by value, the finer numerics as declared)
+    rebuilds the same form, value for value (``0.4pi`` comes back as ``2pi/5``, the same angle); the
+    reduced form takes the reduced keys, convergence included."""
     spec = Floquet()
     for form in (REDUCED, FULL):
         one = form_spec(spec, form)
-        assert form_spec(from_plain(Floquet, plain(one)), FULL) == one
+        back = form_spec(from_plain(Floquet, plain(one)), FULL)
+        assert plain(back) == plain(one)
+        for key in ("q_min", "q_max", "threshold_q_min", "threshold_q_max"):
+            assert parse_angle(getattr(back, key)) == parse_angle(getattr(one, key)), key
     reduced = form_spec(spec, REDUCED)
     assert (reduced.n_q, reduced.q_profiles, reduced.q_min) == (spec.reduced.n_q, spec.reduced.q_profiles, "0.4pi")
     assert reduced.fine == Numerics(spec.reduced.convergence.hill_modes, spec.reduced.convergence.grid_log2,

@@ -316,3 +316,51 @@ def test_activate_falls_back_to_a_temporary_folder(tmp_path, monkeypatch):
         folder = _fresh_activation(monkeypatch)
     assert folder.parent.parent == tmp_path / "tmp" and folder.parent.name.startswith("cradle-numba-")
     assert (folder / _cache.INFO_FILE).is_file()
+
+
+#: A cached kernel of its own, in a fresh process with the cache folder under test; prints f(20) and
+#: numba's cache hits and misses
+DAMAGE_SCRIPT = r"""
+import json, sys
+from cradle.integrators import _cache
+_cache.activate()
+sys.path.insert(0, sys.argv[1])
+import tinykernel
+value = tinykernel.f(20)
+stats = tinykernel.f.stats
+print(json.dumps({"value": value, "hits": sum(stats.cache_hits.values()),
+                  "misses": sum(stats.cache_misses.values())}))
+"""
+
+
+@pytest.mark.parametrize("damage", ["truncated", "garbage"])
+@pytest.mark.parametrize("kind", ["nbi", "nbc"])
+def test_a_damaged_cache_file_is_quarantined_and_the_kernel_rebuilt(tmp_path, damage, kind):
+    """A truncated or overwritten index (.nbi) or data (.nbc) file: the kernel still runs, compiled
+    again; the file is moved aside as NAME.damaged, with one line in the log; the next process loads the
+    rebuilt entry from the cache."""
+    (tmp_path / "mod").mkdir()
+    (tmp_path / "mod" / "tinykernel.py").write_text(
+        "from numba import njit\n\n\n@njit(cache=True)\ndef f(n):\n    s = 0\n    for i in range(n):\n"
+        "        s += i * i\n    return s\n")
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env.update(CRADLE_KERNEL_CACHE=str(tmp_path / "cache"), PYTHONPATH=str(SRC))
+
+    def run():
+        proc = subprocess.run([sys.executable, "-c", DAMAGE_SCRIPT, str(tmp_path / "mod")], env=env,
+                              capture_output=True, text=True, timeout=300)
+        assert proc.returncode == 0, proc.stderr[-2000:]
+        return json.loads(proc.stdout.splitlines()[-1]), proc.stderr
+
+    first, _ = run()
+    assert first == {"value": 2470, "hits": 0, "misses": 1}
+    (path,) = (tmp_path / "cache").rglob(f"tinykernel.f-*.{kind}")
+    data = path.read_bytes()
+    path.write_bytes(data[: len(data) // 2] if damage == "truncated" else b"\x89garbage" * 8)
+    again, err = run()
+    assert again == {"value": 2470, "hits": 0, "misses": 1}
+    lines = [line for line in err.splitlines() if "compiled-kernel cache" in line]
+    assert len(lines) == 1 and str(path) in lines[0] and "damaged" in lines[0] and "Traceback" not in err
+    assert Path(f"{path}.damaged").exists() and path.exists()   # moved aside, and written again
+    later, err = run()
+    assert later == {"value": 2470, "hits": 1, "misses": 0} and "compiled-kernel cache" not in err

@@ -1,6 +1,6 @@
 """Rule code inputs are the true code dependencies (cradle.pipeline.codedeps).
 
-Two checks. (1) For every job of the full DAG, the src/cradle files among its
+Two checks. (1) For every job of the full DAG, the src/cradle files whose stamps are among its
 inputs are exactly the modules its entry points can import, as found by an
 independent import analysis (the standard library's :mod:`modulefinder`,
 which scans byte code, nested functions included). Since Snakemake reruns a
@@ -8,7 +8,7 @@ job when an input is newer than its outputs, this is "an edit to module M
 plans exactly the jobs that import M" for every M at once. (2) That promise,
 measured: in a scratch copy with every output present and up to date, an edit
 to one module makes a dry run plan exactly the jobs that import it (a few
-modules, one per layer).
+modules, one per layer), and an edit to its comments or docstrings plans nothing.
 """
 from __future__ import annotations
 
@@ -26,7 +26,7 @@ import pytest
 from conftest import run_snakemake
 from cradle import figures
 from cradle.analyses.registry import ANALYSES
-from cradle.pipeline.codedeps import code_files
+from cradle.pipeline.codedeps import STAMPS, code_files, code_stamps, fingerprint
 
 ROOT = Path(__file__).resolve().parents[2]
 SRC = ROOT / "src"
@@ -56,9 +56,21 @@ def _oracle(*entries) -> set[str]:
             if (name == "cradle" or name.startswith("cradle.")) and m.__file__}
 
 
+def _code_inputs(row) -> list[str]:
+    """A job's inputs, the stamp of a source file read as that file (``.snakemake/cradle-code/cradle.a.b.sha256``
+    is ``src/cradle/a/b.py``, ``workflow.scripts.figure.sha256`` is ``workflow/scripts/figure.py``)."""
+    out = []
+    for f in row["input-file(s)"].split(","):
+        if f.startswith(f"{STAMPS.as_posix()}/"):
+            name = f[len(STAMPS.as_posix()) + 1:-len(".sha256")]
+            f = ("src/" if name.startswith("cradle.") else "") + name.replace(".", "/") + ".py"
+        out.append(f)
+    return out
+
+
 def _entries(row) -> tuple[str, ...]:
     """What a job runs: its script (read from its inputs) and, for a figure, the drawing module."""
-    inputs = row["input-file(s)"].split(",")
+    inputs = _code_inputs(row)
     scripts = [f for f in inputs if f.startswith("workflow/scripts/")]
     if scripts:
         entries = tuple(scripts)
@@ -110,7 +122,7 @@ def full_dag(scratch):
 def test_code_inputs_are_exactly_the_imports_of_every_job(full_dag):
     checked = 0
     for row in full_dag:
-        inputs = {f for f in row["input-file(s)"].split(",") if f.startswith("src/")}
+        inputs = {f for f in _code_inputs(row) if f.startswith("src/")}
         entries = _entries(row)
         assert inputs == _oracle(*entries), (row["output_file"], sorted(inputs ^ _oracle(*entries)))
         checked += 1
@@ -131,6 +143,47 @@ def test_codedeps_follows_relative_and_lazy_imports(tmp_path):
                    "cradle/sub/b.py"]
     with pytest.raises(ValueError, match="no module"):
         code_files("cradle.nope", src=tmp_path)
+
+
+def test_a_fingerprint_ignores_comments_and_docstrings_and_sees_code(tmp_path):
+    path = tmp_path / "m.py"
+    code = 'def f(x):\n    return 2 * x\n\n\nclass C:\n    def g(self):\n        return f(1)\n'
+    path.write_text(code)
+    base = fingerprint(path)
+    path.write_text('"""A module."""\n# a comment\n' + code.replace("    return 2", '    """Twice x."""\n    return 2')
+                    .replace("class C:", "class C:  # why\n    \"\"\"A class.\"\"\"\n"))
+    assert fingerprint(path) == base   # comments, docstrings and the lines they move: the same code
+    path.write_text(code.replace("2 * x", "3 * x"))
+    assert fingerprint(path) != base
+    path.write_text(code + "X = 1\n")
+    assert fingerprint(path) != base
+    path.write_text(code.replace("return f(1)", '"""Now a docstring."""'))   # a body that was code
+    assert fingerprint(path) != base
+
+
+def test_a_stamp_is_rewritten_only_when_the_code_changes(tmp_path):
+    pkg = tmp_path / "src" / "cradle"
+    pkg.mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "a.py").write_text("X = 1\n")
+    stamps = tmp_path / "stamps"
+    got = code_stamps("cradle.a", src=tmp_path / "src", stamps=stamps)
+    assert [Path(p).name for p in got] == ["cradle.__init__.sha256", "cradle.a.sha256"]
+    stamp = stamps / "cradle.a.sha256"
+    before = stamp.stat().st_mtime_ns
+    os.utime(stamp, ns=(before - 10**9, before - 10**9))
+    (pkg / "a.py").write_text('"""A docstring."""\nX = 1  # a comment\n')
+    code_stamps("cradle.a", src=tmp_path / "src", stamps=stamps)
+    assert stamp.stat().st_mtime_ns == before - 10**9   # untouched: no job sees a newer input
+    (pkg / "a.py").write_text("X = 2\n")
+    code_stamps("cradle.a", src=tmp_path / "src", stamps=stamps)
+    assert stamp.stat().st_mtime_ns > before - 10**9 and fingerprint(pkg / "a.py") in stamp.read_text()
+
+
+def _no_code_edit(text: str) -> str:
+    """``text`` (a module with a docstring) with its docstring edited and comments added."""
+    assert text.lstrip().startswith(('"""', 'r"""'))
+    return "# a comment\n" + text.replace('"""', '"""An edited docstring. ', 1) + "\n# an edit\n"
 
 
 def _downstream(rows, outputs: set[str]) -> set[str]:
@@ -157,10 +210,14 @@ def test_an_edit_plans_exactly_the_jobs_that_import_it(scratch, full_dag, module
     assert all(r["plan"] == "no update" for r in full_dag)
     path = scratch / module
     text, before = path.read_text(), path.stat()
-    path.write_text(text + "\n# an edit\n")  # Snakemake compares checksums too: a touch is no edit
     later = time.time() + 1000
-    os.utime(path, (later, later))
     try:
+        # a comment and a docstring: the same code, nothing planned
+        path.write_text(_no_code_edit(text))
+        os.utime(path, (later, later))
+        assert all(r["plan"] == "no update" for r in _summary(scratch, *TARGETS))
+        path.write_text(text + "\n_AN_EDIT = 1\n")  # Snakemake compares checksums too: a touch is no edit
+        os.utime(path, (later, later))
         planned = {r["output_file"] for r in _summary(scratch, *TARGETS) if r["plan"] == "update pending"}
     finally:
         path.write_text(text)
@@ -170,3 +227,43 @@ def test_an_edit_plans_exactly_the_jobs_that_import_it(scratch, full_dag, module
     if module.endswith("provenance.py"):  # the writer and reader of every file: everything reruns
         assert planned == {r["output_file"] for r in full_dag}
     assert planned
+
+
+@pytest.mark.slow
+def test_a_comment_reruns_nothing_and_code_reruns_its_importers(tmp_path):
+    """One small target, measured: plot4-5's jobs up to date (``--touch``); a comment and a docstring in
+    models/dps.py (and a comment in the scene's script) plan nothing, a change to its code plans its jobs."""
+    from cradle.pipeline import layout as L
+
+    work = tmp_path / "cradle"
+    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True,
+                           check=True).stdout.split("\0")
+    for f in filter(None, files):
+        if (ROOT / f).is_file() and not f.startswith(("tests/", "docs/", "benchmarks/")):
+            (work / f).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / f, work / f)
+    target = "results/figures/plot4-5.png"
+    outputs = [L.path("kernels"), *L.scene_paths("tw-weak").values(), *L.figure_paths("plot4-5").values()]
+    for out in map(str, outputs):
+        (work / out).parent.mkdir(parents=True, exist_ok=True)
+        (work / out).touch()
+    proc = _snakemake(work, "--touch", "--forceall", "--cores", "1", target)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+
+    def planned() -> str:
+        proc = _snakemake(work, "-n", target)
+        assert proc.returncode == 0, proc.stderr[-3000:]
+        return proc.stdout + proc.stderr
+
+    dps, script = work / "src/cradle/models/dps.py", work / "workflow/scripts/simulate.py"
+    text = dps.read_text()
+    later = time.time() + 1000
+    dps.write_text(_no_code_edit(text))
+    script.write_text(script.read_text() + "# a comment\n")
+    for path in (dps, script):
+        os.utime(path, (later, later))
+    assert "Nothing to be done" in planned()
+    dps.write_text(text + "\n_AN_EDIT = 1\n")
+    os.utime(dps, (later, later))
+    plan = planned()
+    assert "cradle.models.dps.sha256" in plan and "Nothing to be done" not in plan

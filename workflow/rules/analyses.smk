@@ -68,7 +68,7 @@ for _a in ANALYSES.values():
                         }
                     ),
                 output:
-                    L.path("analysis-batch", analysis=_a.name, form=_form, key="{key}"),
+                    update(L.path("analysis-batch", analysis=_a.name, form=_form, key="{key}")),  # restored on failure
                 log:
                     L.path("log", job=f"{_a.name}/{_form}/batch-{{key}}"),
                 benchmark:
@@ -93,7 +93,7 @@ for _a in ANALYSES.values():
             input:
                 unpack(lambda w, a=_a, form=_form: analysis_inputs(a, form)),
             output:
-                L.analysis_output(_a.name, _form, _main),
+                update(L.analysis_output(_a.name, _form, _main)),  # a failed rerun restores the previous file
             log:
                 L.path("log", job=f"{_a.name}/{_form}/{_a.name}"),
             benchmark:

@@ -9,7 +9,7 @@ from snakemake.exceptions import WorkflowError
 from cradle.pipeline import config as cc
 from cradle import figures as _figures
 from cradle.pipeline import layout as L
-from cradle.pipeline.codedeps import code_files
+from cradle.pipeline.codedeps import code_stamps
 from cradle.specs.declare import plain
 from cradle.pipeline.config.movies import Movies
 
@@ -26,10 +26,11 @@ except cc.ConfigError as err:
 
 
 def code_of(*entries):
-    """A rule's code inputs: its script (or module) and every cradle source file it can import,
-    derived from the imports themselves (cradle.pipeline.codedeps), so an edit reruns exactly the
-    jobs whose code reaches it."""
-    return [str(e) for e in entries if str(e).endswith(".py")] + code_files(*entries, src="src")
+    """A rule's code inputs: the stamps of its script (or module) and of every cradle source file it can
+    import, derived from the imports themselves (cradle.pipeline.codedeps); a stamp holds the fingerprint
+    of a module's code and is rewritten only when that changes, so an edit to the code reruns exactly the
+    jobs whose code reaches it, and an edit to a comment or a docstring reruns nothing."""
+    return code_stamps(*entries, src="src")
 
 
 def figure_code(label):

@@ -27,7 +27,8 @@ rule figure:
         "../envs/cradle.yaml"
     params:
         label=lambda w: w.label,
-        options=lambda w: config["figures"][w.label],
+        # sorted plain values: a reordered figure entry reruns nothing
+        options=lambda w: plain(config["figures"][w.label]),
         scenes=lambda w: {name: kind_of(name) for name in config["figures"][w.label]["scenes"]},
     message:
         "Drawing figure {wildcards.label}"

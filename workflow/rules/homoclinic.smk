@@ -5,7 +5,7 @@ rule homoclinic:
     input:
         code=code_of("workflow/scripts/homoclinic.py"),
     output:
-        L.path("homoclinic", name="{name}"),
+        update(L.path("homoclinic", name="{name}")),  # a failed rerun restores the previous file
     log:
         L.path("log", job="homoclinic/{name}"),
     benchmark:  # measured against cradle.pipeline.budget's estimate by benchmarks/estimates.py
@@ -27,7 +27,7 @@ rule map_orbits:
     input:
         code=code_of("workflow/scripts/map_orbits.py"),
     output:
-        L.path("map", name="{name}"),
+        update(L.path("map", name="{name}")),  # a failed rerun restores the previous file
     log:
         L.path("log", job="map/{name}"),
     benchmark:

@@ -23,7 +23,7 @@ rule movie:
     conda:
         "../envs/cradle.yaml"
     params:
-        movies=lambda w: dict(config["movies"]),
+        movies=lambda w: plain(dict(config["movies"])),
     message:
         "Drawing the movie of scene {wildcards.scene}"
     script:

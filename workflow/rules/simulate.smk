@@ -29,7 +29,8 @@ rule simulate:
         homoclinic=initial_inputs,
         kernels=L.path("kernels"),  # compiled once, before (the cache key: unchanged content, no rerun)
     output:
-        **L.scene_paths("{scene}"),
+        # update(): a failed rerun restores the previous four files instead of leaving none (docs/recovery.md)
+        **{part: update(path) for part, path in L.scene_paths("{scene}").items()},
     log:
         L.path("log", job="sim/{scene}"),
     benchmark:

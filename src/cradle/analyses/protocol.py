@@ -21,7 +21,8 @@ An analysis is one module of :mod:`cradle.analyses` that defines ``ANALYSIS = An
   and the files go beside its netCDF file (``results/<name>/<name>.<format>``; the claims table).
 
 A spec field ``scenes``, ``homoclinic`` or ``map`` whose declaration allows the text ``"all"`` is filled by
-the pipeline with the names of every entry of that config section (:func:`cradle.pipeline.config.analysis_spec`).
+the pipeline with the names of every entry of that config section, in name order
+(:func:`cradle.pipeline.config.analysis_spec`).
 
 The registry (:mod:`cradle.analyses.registry`) finds the modules; the config section, its schema, the rules
 and the figure table follow from it. Nothing here knows paths or Snakemake.

@@ -33,6 +33,11 @@ half-deleted folder) and deleting it afterwards. No locks: a folder removed
 under a running process is only a cache miss for it, since numba recreates
 its cache path before every save.
 
+A damaged cache file (a truncated or overwritten ``.nbi`` index or ``.nbc`` data file: numba
+would stop every kernel that reads it with ``UnpicklingError``, ``EOFError`` or "invalid load
+key") is detected where numba reads it (:func:`_guard_loads`): the file is moved aside to
+``NAME.damaged``, one line says so in the log, and the kernel is compiled again as on a cache miss.
+
 :func:`activate` must run before numba decorates a kernel (the locator reads
 the directory when ``njit(cache=True)`` is applied): each kernel module calls
 it after its imports, before its first ``@njit``, so importing
@@ -42,7 +47,9 @@ See docs/compiled-kernels.md.
 from __future__ import annotations
 
 import hashlib
+import logging
 import os
+import pickle
 import re
 import shutil
 import sys
@@ -229,6 +236,64 @@ def prune(root: Path, current: Path, keep: int = KEEP, grace_s: float = GRACE_S,
     return removed
 
 
+#: What unpickling a damaged cache file raises (truncated: UnpicklingError or EOFError; overwritten:
+#: "invalid load key", or garbage that unpickles into the wrong shape)
+_DAMAGE = (pickle.UnpicklingError, EOFError, ValueError, TypeError, IndexError, KeyError, AttributeError,
+           ImportError)
+
+
+def _quarantine(path: str, exc: BaseException) -> None:
+    """Move the damaged cache file ``path`` aside (``path.damaged``) and say so in one line."""
+    target = f"{path}.damaged"
+    try:
+        os.replace(path, target)
+    except OSError:   # another process moved it first, or the folder is read-only: a miss all the same
+        target = "left in place"
+    why = " ".join(str(exc).split()) or type(exc).__name__
+    logging.getLogger("cradle").warning("compiled-kernel cache: %s is damaged (%s: %s): moved to %s; "
+                                        "compiling that kernel again", path, type(exc).__name__, why, target)
+
+
+def _ours(path: str) -> bool:
+    """Whether ``path`` is in this process's cache folder (other numba caches are left to numba)."""
+    folder = _active.get("folder")
+    return folder is not None and Path(path).resolve().is_relative_to(Path(folder).resolve())
+
+
+def _guard_loads() -> None:
+    """Make numba's reads of this cache's index and data files treat a damaged file as a cache miss
+    (:func:`_quarantine`); numba then compiles the kernel and writes a good file in its place."""
+    from numba.core import caching
+
+    cls = cast(Any, caching.IndexDataCacheFile)   # its methods are replaced below
+    if getattr(cls, "_cradle_guarded", False):
+        return
+    load_index, load_data = cls._load_index, cls._load_data
+
+    def _load_index(self):
+        try:
+            return load_index(self)
+        except _DAMAGE as exc:
+            if not _ours(self._index_path):
+                raise
+            _quarantine(self._index_path, exc)
+            return {}
+
+    def _load_data(self, name):
+        try:
+            return load_data(self, name)
+        except _DAMAGE as exc:
+            path = self._data_path(name)
+            if not _ours(path):
+                raise
+            _quarantine(path, exc)
+            raise OSError(f"damaged cache file {path}") from None   # numba's load: a missing file, a miss
+
+    cls._load_index = _load_index
+    cls._load_data = _load_data
+    cls._cradle_guarded = True
+
+
 def activate() -> Path:
     """Point numba's cache at this version's folder (created if needed), prune old folders, and
     return the folder. Later calls only set numba's config again (numba re-reads its environment
@@ -249,6 +314,7 @@ def activate() -> Path:
             _prepare(folder, info)
         prune(root, folder)
         _active.update(root=root, folder=folder, key=key)
+        _guard_loads()
     # numba's config module sets its attributes from the environment at run time, unseen by mypy
     cast(Any, numba_config).CACHE_DIR = str(_active["folder"])
     return _active["folder"]

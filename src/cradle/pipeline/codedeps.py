@@ -12,14 +12,25 @@ the figures drawn with it.
 
 Only the source text is read: nothing is imported, so the Snakefile can plan
 without numpy or matplotlib.
+
+A rule's inputs are not the source files themselves but one stamp file per module
+(:func:`code_stamps`): the :func:`fingerprint` of the module's code, rewritten only
+when that changes. An edit to a comment or a docstring leaves the stamp, and so every
+job, alone; an edit to the code moves it, and the jobs whose code reaches the module
+rerun (Snakemake compares an input's time, then its checksum).
 """
 from __future__ import annotations
 
 import ast
+import hashlib
+import os
 from functools import cache
 from pathlib import Path
 
 PACKAGE = "cradle"
+
+#: where :func:`code_stamps` writes the stamps, relative to the workflow's working directory
+STAMPS = Path(".snakemake") / "cradle-code"
 
 
 def _module_file(src: Path, name: str) -> Path | None:
@@ -37,12 +48,78 @@ def _package_of(src: Path, path: Path) -> str:
     return ".".join(path.resolve().relative_to(src.resolve()).parts[:-1])
 
 
+def _tree(path: Path) -> ast.Module:
+    """The syntax tree of ``path``, parsed once per version of the file (the import scan and the
+    fingerprint share it)."""
+    st = os.stat(path)
+    return _parsed(Path(path), st.st_mtime_ns, st.st_size)
+
+
+@cache
+def _parsed(path: Path, mtime_ns: int, size: int) -> ast.Module:
+    return ast.parse(path.read_text(), str(path))
+
+
+def _without_docstrings(tree: ast.Module) -> ast.Module:
+    """``tree`` with the docstring of the module and of every class and function removed (in place)."""
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+            body = node.body
+            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
+                    and isinstance(body[0].value.value, str):
+                node.body = body[1:] or [ast.Pass()]
+    return tree
+
+
+def fingerprint(path: str | Path) -> str:
+    """sha256 of the code of the Python file at ``path``: its syntax tree without docstrings, positions
+    or comments (the parser drops those), so only an edit that changes what runs changes it."""
+    st = os.stat(path)
+    key = (Path(path), st.st_mtime_ns, st.st_size)
+    if key not in _FINGERPRINTS:
+        # the shared tree, stripped in place once (stripped twice, a string after a docstring would go
+        # too); the import scan finds the same imports in it
+        _FINGERPRINTS[key] = hashlib.sha256(ast.dump(_without_docstrings(_parsed(*key))).encode()).hexdigest()
+    return _FINGERPRINTS[key]
+
+
+_FINGERPRINTS: dict[tuple[Path, int, int], str] = {}
+
+
+def _stamp(path: str, name: str, stamps: Path) -> str:
+    """The stamp ``name`` of one source file, written (atomically) only when its fingerprint changed."""
+    stamp = stamps / f"{name}.sha256"
+    text = f"{fingerprint(path)}  {path}\n"
+    try:
+        if stamp.read_text() == text:
+            return str(stamp)
+    except OSError:
+        pass
+    stamp.parent.mkdir(parents=True, exist_ok=True)
+    tmp = stamp.with_name(f".{stamp.name}.{os.getpid()}.tmp")
+    tmp.write_text(text)
+    os.replace(tmp, stamp)   # another Snakemake (a cluster job) may write the same stamp at once
+    return str(stamp)
+
+
+def code_stamps(*entries: str | Path, src: str | Path = "src", stamps: str | Path = STAMPS) -> list[str]:
+    """A rule's code inputs: the stamp of each script among ``entries`` and of every source file
+    :func:`code_files` finds, under ``stamps`` (``cradle.models.dps.sha256``,
+    ``workflow.scripts.simulate.sha256``), sorted."""
+    def name(path: str, root: Path) -> str:
+        return Path(path).relative_to(root).with_suffix("").as_posix().replace("/", ".")
+
+    scripts = [str(e) for e in entries if str(e).endswith(".py")]
+    return sorted({_stamp(f, name(f, Path()), Path(stamps)) for f in scripts}
+                  | {_stamp(f, name(f, Path(src)), Path(stamps)) for f in code_files(*entries, src=src)})
+
+
 @cache
 def _imports(path: Path, package: str | None) -> tuple[str, ...]:
     """Every module name the file at ``path`` may import (relative ones resolved in ``package``);
     ``from X import y`` gives both X and X.y (y may be a submodule)."""
     found = []
-    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+    for node in ast.walk(_tree(path)):
         if isinstance(node, ast.Import):
             found += [alias.name for alias in node.names]
         elif isinstance(node, ast.ImportFrom):

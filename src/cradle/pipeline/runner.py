@@ -9,6 +9,7 @@
 * a damaged, truncated or missing input stops the job with one line naming the file and its
   rebuild command (:class:`cradle.data.io.DamagedOutput`), not a traceback; so does an output that
   does not fit on its file system (:class:`cradle.data.io.DiskFull`: the path, the bytes needed and free).
+* a job whose parent (Snakemake) is killed stops too (:mod:`cradle.pipeline.orphan`).
 """
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from cradle.data.io import write_netcdf
+from cradle.pipeline.orphan import orphaned, watch_parent
 from cradle.scenes.failure import StageFailure
 
 log = logging.getLogger("cradle")
@@ -46,13 +48,15 @@ _STARTUP_LOGGED = False  # only the first log of a process says how long its sta
 
 def setup_logging(log_path: str | None = None) -> None:
     """Log to ``log_path`` (if given) and to stderr, one line per message; the first call in a
-    process starts with the process start-up time (see :func:`process_age`)."""
+    process starts with the process start-up time (see :func:`process_age`) and the watch on its
+    parent (:func:`cradle.pipeline.orphan.watch_parent`)."""
     handlers: list[logging.Handler] = [logging.StreamHandler(sys.stderr)]
     if log_path:
         Path(log_path).parent.mkdir(parents=True, exist_ok=True)
         handlers.append(logging.FileHandler(log_path, mode="w"))
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(message)s", handlers=handlers, force=True)
     sys.excepthook = _one_line_excepthook
+    watch_parent()
     global _STARTUP_LOGGED
     age = None if _STARTUP_LOGGED else process_age()
     if age is not None:
@@ -76,6 +80,8 @@ def _one_line_excepthook(exc_type, exc, tb):
         log.error("output error: %s", " ".join(str(exc).split()))
     elif issubclass(exc_type, (DamagedOutput, FileNotFoundError)):
         log.error("input error: %s", " ".join(str(exc).split()))
+    elif issubclass(exc_type, KeyboardInterrupt) and orphaned():
+        pass   # stopped for its lost parent: said in one line already
     else:
         sys.__excepthook__(exc_type, exc, tb)
 

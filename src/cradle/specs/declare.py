@@ -24,7 +24,7 @@ import typing
 from pathlib import Path
 from typing import Any
 
-from .values import ANGLE_PATTERN, NAME_PATTERN, ConfigError, key_path, show
+from .values import ANGLE_PATTERN, NAME_PATTERN, ConfigError, canonical_angle, key_path, show
 
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
 
@@ -361,17 +361,50 @@ def _nullable(cls) -> frozenset[str]:
 def plain(value):
     """A spec (or any value holding specs) as plain JSON values: declared instances as mappings of their
     config keys, sorted, tuples as lists. What a rule's ``params:`` carry and a file stores; equal
-    specs give equal plain values whatever the order they were written in. An optional key that is
-    absent (None) is left out."""
+    specs give equal plain values whatever the order they were written in, and however a value was
+    written: a declared number as a float (``100``, ``1e2`` and ``100.0`` alike), an integer as an int,
+    an angle in one form (:func:`cradle.specs.values.canonical_angle`). An optional key that is absent
+    (None) is left out."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         # an optional key left out (None, where null is not a value of its own) stays out
-        nullable = _nullable(type(value))
-        return {k: v for k, v in sorted((_key(f), plain(getattr(value, f.name))) for f in dataclasses.fields(value)
+        cls = type(value)
+        nullable, hints = _nullable(cls), _hints(cls)
+        return {k: v for k, v in sorted((_key(f), _by_value(f, hints[f.name], plain(getattr(value, f.name))))
+                                        for f in dataclasses.fields(value)
                                         if getattr(value, f.name) is not None or f.name in nullable)}
     if isinstance(value, (list, tuple)):
         return [plain(v) for v in value]
     if isinstance(value, dict):
         return {str(k): plain(v) for k, v in sorted(value.items())}
+    return value
+
+
+def _by_value(f: dataclasses.Field, tp, value):
+    """A field's plain value in its one form by value: angles canonical, numbers typed as declared."""
+    items = f.metadata["keywords"].get("items")
+    if f.metadata["ref"] in ("angle", "angleString"):
+        return canonical_angle(value)
+    if items == _ref("angle") and isinstance(value, list):
+        return [canonical_angle(v) for v in value]
+    return _typed(tp, value)
+
+
+def _typed(tp, value):
+    """``value`` with every number of the annotation ``tp`` as its declared type (an int where a number is
+    declared is a float; an integral float where an integer is declared is an int)."""
+    origin, args = typing.get_origin(tp), typing.get_args(tp)
+    if origin in (typing.Union, types.UnionType):
+        numbers = [a for a in args if a in (float, int)]
+        return _typed(numbers[0], value) if len(numbers) == 1 and isinstance(value, (int, float)) else value
+    if origin in (list, tuple) and isinstance(value, list):
+        inner = args[0] if args and (origin is list or (len(args) == 2 and args[1] is Ellipsis)) else None
+        return [_typed(inner, v) for v in value] if inner is not None else value
+    if isinstance(value, bool):
+        return value
+    if tp is float and isinstance(value, int):
+        return float(value)
+    if tp is int and isinstance(value, float) and value.is_integer():
+        return int(value)
     return value
 
 

@@ -7,6 +7,7 @@ Every problem is one line naming the key path and the value::
 from __future__ import annotations
 
 import copy
+import fractions
 import functools
 import json
 import math
@@ -150,6 +151,37 @@ def parse_angle(value) -> float:
         raise ConfigError(f"cannot read {value!r} as an angle: not finite")
     return x
 
+
+
+def canonical_angle(value):
+    """One written form per angle value, what a job's parameters carry (so ``pi/5``, ``1pi/5``, ``1*pi/5``,
+    `` pi / 5`` and ``0.2pi`` rerun nothing): a multiple of pi as ``[-][k]pi[/m]``, a number written as a
+    string as that number. A coefficient and a denominator that are both integers are kept as written
+    (``52pi/100`` stays: it is the paper's text, which the files record); a decimal one becomes the reduced
+    fraction. The form is used only when it gives bit for bit the angle the text gives; a value that is not
+    an angle is returned as it is (the schema reports it)."""
+    if not isinstance(value, str) or not _ANGLE_RE.match(value) or "\n" in value:
+        return value
+    s = re.sub(r"\s+", "", value)
+    sign = "-" if s.startswith("-") else ""
+    s = s.lstrip("+-")
+    if "pi" not in s:
+        return float(s)
+    coef, _, denom = s.partition("pi")
+    coef, denom = coef.rstrip("*") or "1", denom[1:] or "1"
+    if coef.isdigit() and denom.isdigit():
+        k, m = int(coef), int(denom)
+    else:
+        ratio = fractions.Fraction(coef) / fractions.Fraction(denom) if float(denom) else None
+        if ratio is None:
+            return value
+        k, m = ratio.numerator, ratio.denominator
+    text = f"{sign}{k if k != 1 else ''}pi{f'/{m}' if m != 1 else ''}"
+    try:
+        same = parse_angle(text) == parse_angle(value)
+    except ConfigError:
+        same = False
+    return text if same else value
 
 
 def angle_or_none(value):

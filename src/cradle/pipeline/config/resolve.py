@@ -136,7 +136,8 @@ def analysis_spec(config: dict, name: str, form: str):
     if form not in a.forms:
         raise ConfigError(f"config error: beyond.{a.name}: unknown form {form!r} (forms: {', '.join(a.forms)})")
     cfg = _validated(config)
-    section = {key: (list(cfg.get(key) or {}) if key in SECTIONS and value == "all" else value)
+    # `all` in name order: moving a block of config.yaml changes nothing the analysis reads
+    section = {key: (sorted(cfg.get(key) or {}) if key in SECTIONS and value == "all" else value)
                for key, value in cfg["beyond"][a.name].items()}
     return form_spec(from_plain(a.spec, section, where=f"beyond.{a.name}"), form)
 
