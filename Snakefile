@@ -52,14 +52,27 @@ BEYOND = [
 #: cradle.pipeline.orphan's grace of losing its Snakemake)
 STALE_TEMPORARY_S = 60
 
+#: every file under results/ when this run started (cradle.pipeline.restored)
+BEFORE_RUN = {}
+
 
 onstart:
     # a killed run's jobs stop by themselves (cradle.pipeline.orphan); what they were writing stays as a hidden
     # `.NAME.*.tmp` beside its target: removed here, before any job of this run starts (Snakemake's lock: no
     # other run writes in this folder now), once older than the watch's grace
     from cradle.data.io import remove_stale_temporaries
+    from cradle.pipeline.restored import snapshot
 
     remove_stale_temporaries(L.ROOT, STALE_TEMPORARY_S)
+    BEFORE_RUN.update(snapshot(L.ROOT))
+
+
+onerror:
+    # a failed job's update() outputs come back as copies with a new time: set the old one back, so the
+    # next run does not redo the readers of files whose content never changed
+    from cradle.pipeline.restored import restore_times
+
+    restore_times(BEFORE_RUN)
 
 
 rule all:

@@ -180,7 +180,8 @@ def test_snakemake_end_to_end_on_tiny_config(tmp_path):
 @pytest.mark.slow
 def test_a_failed_forced_rerun_restores_the_previous_outputs(tmp_path):
     """Every rule's outputs are update(): `--forcerun simulate` failing at run time (here an energy bound
-    no run meets) leaves the scene's four files as they were, and says so for each."""
+    no run meets) leaves the scene's four files as they were, with their modification times, and says so
+    for each."""
     import hashlib
 
     work = tmp_path / "cradle"
@@ -195,9 +196,12 @@ def test_a_failed_forced_rerun_restores_the_previous_outputs(tmp_path):
     files = sorted((work / "results").glob("**/tw-weak.nc")) + sorted((work / "results/sim/tw-weak").glob("*.nc"))
     assert len(files) == 4
     before = {f: hashlib.sha256(f.read_bytes()).hexdigest() for f in files}
+    times = {f: f.stat().st_mtime_ns for f in files}
 
     (work / "fail.yaml").write_text(yaml.safe_dump({"scenes": {"tw-weak": {"max_energy_drift": 1e-300}}}))
     failed = _snakemake(work, target, "--forcerun", "simulate", "--configfile", "fail.yaml")
     assert failed.returncode != 0
     assert failed.stderr.count("Restored previous version of results/") == 4
     assert {f: hashlib.sha256(f.read_bytes()).hexdigest() for f in files} == before
+    # and with their old times (the Snakefile's onerror, cradle.pipeline.restored): their readers stay up to date
+    assert {f: f.stat().st_mtime_ns for f in files} == times
