@@ -51,12 +51,14 @@ class Expect:
     says: tuple[str, ...] = ()
     within_s: float = 120.0
     note: str = ""   # what else is checked afterwards, in words
+    api: bool = False   # a Python call: refusing is raising, and Python prints the exception's traceback
 
     def text(self) -> str:
-        parts = ["exit 0" if self.exit == 0 else "refused (exit != 0)"]
+        parts = ["exit 0" if self.exit == 0 else "raises" if self.api else "refused (exit != 0)"]
         if self.says:
             parts.append("names " + ", ".join(f"`{s}`" for s in self.says))
-        parts.append("one line, no traceback")
+        if not self.api:
+            parts.append("one line, no traceback")
         if self.within_s < 120:
             parts.append(f"< {self.within_s:g} s")
         if self.note:
@@ -119,6 +121,15 @@ class Probes:
         path.write_text(text)
         return path.name
 
+    def up_to_date(self) -> None:
+        """``snakemake all`` (what earlier probes forced or changed is rebuilt), then a row: the dry run
+        after it has nothing to do -- the baseline of the probes that follow."""
+        code, out, _ = self.snakemake("all")
+        if code:
+            sys.exit(out[-3000:])
+        self.check("baseline: `snakemake -n` after `snakemake all`", Expect(0, (NOTHING,), within_s=30),
+                   self.dry("all"))
+
     # ---- recording against the expectation
     def check(self, probe: str, expect: Expect, run, after=None) -> bool:
         code, out, wall = run
@@ -127,7 +138,7 @@ class Probes:
             problems.append(f"exit {code}")
         low = out.lower()
         problems += [f"does not say `{w}`" for w in expect.says if w.lower() not in low]
-        if "Traceback (most recent call last)" in out:
+        if "Traceback (most recent call last)" in out and not expect.api:
             problems.append("traceback")
         if wall > expect.within_s:
             problems.append(f"took {wall:.0f} s")
@@ -182,16 +193,19 @@ def wrong_file(pr: Probes) -> None:
              pr.snakemake("--forcerun", FIGURE, "--", FIGURE), pr.unchanged(FIGURE))
     pr.check("... the claims table forced to read it", Expect("fail", ("tw-moderate",), note="claims table kept"),
              pr.snakemake("--forcerun", CLAIMS, "--", CLAIMS), pr.unchanged(CLAIMS))
-    pr.check("... `cradle.open_scene('tw-weak')`", Expect("fail", ("tw-moderate",)),
+    pr.check("... `cradle.open_scene('tw-weak')`", Expect("fail", ("WrongOutput", "tw-moderate"), api=True),
              pr.python("import cradle; cradle.open_scene('tw-weak')"))
-    pr.check("... `cradle.open_scene('tw-weak', check=False)`", Expect(0),
-             pr.python("import cradle; print(cradle.open_scene('tw-weak', check=False).attrs['title'])"))
     exact.write_bytes(saved)
 
     # a parameter changed in config.yaml after the build, not rebuilt
     cfg = pr.config_variant("changed", lambda c: c["scenes"]["tw-weak"]["initial"].update(omega_tw=1.02))
     pr.check("config changed (tw-weak omega_tw 1.02), not rebuilt: `cradle verify --config`",
              Expect("fail", ("tw-weak", "snakemake")), pr.cradle("verify", "results", "--config", cfg))
+    pr.check("... `cradle.open_scene('tw-weak', config=...)`", Expect("fail", ("WrongOutput", "omega_tw"), api=True),
+             pr.python(f"import cradle; cradle.open_scene('tw-weak', config='{cfg}')"))
+    pr.check("... `cradle.open_scene('tw-weak', config=..., check=False)`", Expect(0, ("tw-weak",), api=True),
+             pr.python(f"import cradle; ds = cradle.open_scene('tw-weak', config='{cfg}', check=False); "
+                       "print(ds.attrs['title'])"))
 
 
 def edited_values(pr: Probes) -> None:
@@ -271,12 +285,17 @@ def bounded(pr: Probes) -> None:
 def command_line(pr: Probes) -> None:
     pr.group = "the command line"
     for label, args, key in [
-            ("`cradle extend exact.nc --t-end 1e7`", ("--t-end", "1e7"), "estimate"),
-            ("`cradle extend exact.nc --t-end 1e300`", ("--t-end", "1e300"), "t-end"),
+            ("`cradle extend exact.nc --t-end 1e7`", ("--t-end", "1e7"), "t_end"),
+            ("`cradle extend exact.nc --t-end 1e300`", ("--t-end", "1e300"), "t_end"),
             ("`cradle extend exact.nc --every 1e-9 --t-end 700`", ("--every", "1e-9", "--t-end", "700"), "every"),
     ]:
         pr.check(label, Expect("fail", (key,), within_s=20, note="nothing written"), pr.cradle("extend", EXACT, *args),
                  lambda: (not list((pr.repo / "results/sim/tw-weak").glob("exact-t*")), "a file was written"))
+    slow = pr.config_variant("hours", lambda c: c.update(budget={"hours": 0.05}))
+    pr.check("`cradle extend exact.nc --t-end 9e5` with `budget.hours: 0.05`",
+             Expect("fail", ("estimated", "budget"), within_s=20, note="nothing written"),
+             pr.cradle("extend", EXACT, "--t-end", "9e5", "--config", slow),
+             lambda: (not list((pr.repo / "results/sim/tw-weak").glob("exact-t*")), "a file was written"))
     pr.check("`cradle animate tw-weak --width 100000`", Expect("fail", ("width",), within_s=20),
              pr.cradle("animate", "tw-weak", "--width", "100000", "--out", "probe.mp4"))
     pr.check("`cradle animate tw-weak --gif --gif-fps 0`", Expect("fail", ("gif-fps",), within_s=20),
@@ -306,7 +325,8 @@ def damage(pr: Probes) -> None:
     else:
         pr.rows.append((pr.group, "a full disk", "-", "-", "not probed: cannot mount a tmpfs here", "-", "-"))
 
-    # a forced scene job that fails (its folder full): the previous four files stay
+    # a forced scene job that fails (its folder full): the previous four files stay, and nothing reruns for them
+    pr.up_to_date()
     folder = pr.repo / "results/sim/tw-strong"
     four = [EXACT.replace("tw-weak", "tw-strong"), "results/sim/tw-strong/dps.nc", "results/initial/tw-strong.nc",
             "results/metrics/tw-strong.nc"]
@@ -372,13 +392,14 @@ def killed(pr: Probes) -> None:
     pr.check("a stale `.exact.nc.*.tmp` of a dead writer: `cradle verify`",
              Expect(0, (".tmp",), note="named as a note"),
              pr.cradle("verify", "results"))
-    pr.check("... then `snakemake -n plot4-5`", Expect(0, (NOTHING,), note="the temporary file removed"),
-             pr.dry(FIGURE), lambda: (not stale_file.exists(), "still there"))
+    pr.check("... then a run with work (plot4-5 forced)", Expect(0, note="the temporary file removed"),
+             pr.snakemake("--forcerun", FIGURE, "--", FIGURE), lambda: (not stale_file.exists(), "still there"))
     stale_file.unlink(missing_ok=True)
 
 
 def reruns(pr: Probes) -> None:
     pr.group = "nothing reruns for nothing"
+    pr.up_to_date()
     cfg = yaml.safe_load((pr.repo / "config.yaml").read_text())
     variants = [
         ("`defaults.exact` written with its declared values", lambda c: c.setdefault("defaults", {}).update(
@@ -422,9 +443,9 @@ def held_before(pr: Probes) -> None:
         return lambda cfg: cfg["scenes"]["fft106"].update(patch)
 
     for label, edit, key in [
-            ("`N: 1e9` (fft106)", fft106(N=1e9), "memory"),
+            ("`N: 1e9` (fft106)", fft106(N=1e9), "scenes.fft106.N"),
             ("fft106 every 0.01 to t = 99000 (~140 GB)", fft106(t_end=99000.0, store={"every": 0.01}), "disk_gb"),
-            ("`t_end: 1e12`, snapshots only", fft106(t_end=1e12, store={"snapshots": [1.0]}), "hours"),
+            ("`t_end: 1e12`, snapshots only", fft106(t_end=1e12, store={"snapshots": [1.0]}), "scenes.fft106.t_end"),
             ("`alpha: nan`", lambda c: c.setdefault("defaults", {}).update(alpha=float("nan")), "alpha"),
     ]:
         cfg = pr.config_variant(f"big{len(pr.rows)}", edit)
@@ -477,15 +498,21 @@ def run(repo: Path, cache: Path, only) -> list:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--keep", action="store_true", help="keep the scratch clone")
+    ap.add_argument("--reuse", type=Path, help="a scratch folder kept by --keep: reset to this commit, reused")
     ap.add_argument("--only", nargs="*", choices=list(GROUPS), help="run only these groups (the table is not written)")
     args = ap.parse_args(argv)
-    tmp = Path(tempfile.mkdtemp(prefix="cradle-probes-"))
+    tmp = args.reuse or Path(tempfile.mkdtemp(prefix="cradle-probes-"))
     repo, cache = tmp / "repo", tmp / "kernels"
-    subprocess.run(["git", "clone", "-q", str(ROOT), str(repo)], check=True)
+    if args.reuse:   # this commit, its outputs rebuilt where it changed them; the probes' files gone
+        subprocess.run(["git", "fetch", "-q", str(ROOT), "HEAD"], cwd=repo, check=True)
+        subprocess.run(["git", "reset", "-q", "--hard", "FETCH_HEAD"], cwd=repo, check=True)
+        subprocess.run(["git", "clean", "-q", "-f", "-x", "-e", "results", "-e", ".snakemake"], cwd=repo, check=True)
+    else:
+        subprocess.run(["git", "clone", "-q", str(ROOT), str(repo)], check=True)
     try:
         rows = run(repo, cache, args.only)
     finally:
-        if not args.keep:
+        if not (args.keep or args.reuse):
             shutil.rmtree(tmp, ignore_errors=True)
         else:
             print(f"kept {tmp}")
