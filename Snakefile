@@ -15,8 +15,9 @@ import os
 # 2 cores) more threads only contend; every job inherits this (set OPENBLAS_NUM_THREADS to override)
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
-# every job watches that this Snakemake is still there, and stops when it is killed (cradle.pipeline.orphan)
-os.environ["CRADLE_SNAKEMAKE_PID"] = str(os.getpid())
+# every job watches that this Snakemake is still there, and stops when it is killed (cradle.pipeline.orphan);
+# set here for the jobs, never read from the user's environment (so not an `envvars:` requirement)
+os.environ.update(CRADLE_SNAKEMAKE_PID=str(os.getpid()))
 
 
 configfile: "config.yaml"

@@ -168,6 +168,18 @@ def _keep_mtime(path: Path, write) -> None:
     os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns))
 
 
+def _files_of(folder: Path) -> dict:
+    """Each file of ``folder``: its bytes and its (access, modification) times."""
+    return {p.name: (p.read_bytes(), (p.stat().st_atime_ns, p.stat().st_mtime_ns)) for p in folder.iterdir()}
+
+
+def _put_files(folder: Path, files: dict) -> None:
+    """Write back what :func:`_files_of` read, times included (moving files is no change to Snakemake)."""
+    for name, (data, times) in files.items():
+        (folder / name).write_bytes(data)
+        os.utime(folder / name, ns=times)
+
+
 def _mount_small(folder: Path, size_kib: int) -> bool:
     folder.mkdir(parents=True, exist_ok=True)
     return subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size_kib}k", "tmpfs", str(folder)],
@@ -331,11 +343,10 @@ def damage(pr: Probes) -> None:
     four = [EXACT.replace("tw-weak", "tw-strong"), "results/sim/tw-strong/dps.nc", "results/initial/tw-strong.nc",
             "results/metrics/tw-strong.nc"]
     before = {p: _sha(pr.repo / p) for p in four}
-    keep = {p.name: p.read_bytes() for p in folder.iterdir()}
-    need = sum(len(b) for b in keep.values())
+    keep = _files_of(folder)
+    need = sum(len(data) for data, _ in keep.values())
     if _mount_small(folder, need // 1024 + 64):
-        for name, data in keep.items():
-            (folder / name).write_bytes(data)
+        _put_files(folder, keep)   # the same bytes and times on the small file system
         try:
             pr.check("tw-strong forced with its folder full: `snakemake --forcerun simulate`",
                      Expect("fail", ("space",), note="the four files kept"),
@@ -343,10 +354,9 @@ def damage(pr: Probes) -> None:
                      lambda: (all(_sha(pr.repo / p) == before[p] for p in four),
                               "lost or changed: " + ", ".join(p for p in four if _sha(pr.repo / p) != before[p])))
         finally:
-            saved = {p.name: p.read_bytes() for p in folder.iterdir()}
+            saved = _files_of(folder)
             _umount(folder)
-            for name, data in saved.items():
-                (folder / name).write_bytes(data)
+            _put_files(folder, saved)
         pr.check("... then `snakemake -n paper`", Expect(0, (NOTHING,), note="the four files present"),
                  pr.dry("paper"), lambda: (all((pr.repo / p).exists() for p in four), "files missing"))
 

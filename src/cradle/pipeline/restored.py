@@ -20,7 +20,7 @@ Snapshot = dict[str, tuple[int, int, int]]
 def snapshot(root: str | os.PathLike) -> Snapshot:
     """The inode, size and modification time of every file under ``root`` (none if it does not exist)."""
     out: Snapshot = {}
-    for folder, _dirs, files in os.walk(root):
+    for folder, _dirs, files in os.walk(os.fspath(root)):
         for name in files:
             path = os.path.join(folder, name)
             try:
