@@ -21,7 +21,6 @@ import os
 import re
 from pathlib import Path
 
-import matplotlib
 import numpy as np
 import pytest
 
@@ -267,7 +266,6 @@ def _draw_analysis(name, tree):
 
 def _check(fig, module, label):
     found = problems(fig, min_points(module, label))
-    matplotlib.pyplot.close(fig)
     assert not found, f"{label}:\n  " + "\n  ".join(found)
 
 
