@@ -57,11 +57,11 @@ _THETA = {"type": "number", "minimum": 0, "exclusiveMaximum": 6.283185307179586}
               "(results/breather-interactions/full/).")
 class BreatherInteractionsReduced:
     pairs: list[str] = param(["site-site"], "Profile pairs.", minItems=1, maxItems=3, items=_PAIRS)
-    spacings: list[int] = param([2, 6], "Centre spacings.", minItems=1, maxItems=24, items=_SPACING)
+    spacings: list[int] = param([4, 6, 8], "Centre spacings.", minItems=1, maxItems=24, items=_SPACING)
     n_theta: int = param(2, "Number of base phases theta.", minimum=1, maximum=96)
     refine: int = param(0, "Bisection levels of theta where the outcome changes.", minimum=0, maximum=4)
-    n_seeds: int = param(1, "Noise seeds per case.", minimum=1, maximum=64)
-    periods: float = param(100.0, "Run length in breather periods.", exclusiveMinimum=0, maximum=5000)
+    n_seeds: int = param(2, "Noise seeds per case.", minimum=1, maximum=64)
+    periods: float = param(150.0, "Run length in breather periods.", exclusiveMinimum=0, maximum=5000)
     # the bounds of the full form's keys they replace
     ratios: list[float] = param([1.0], "Amplitude ratios.", minItems=1, maxItems=8,
                                 items={"type": "number", "exclusiveMinimum": 0, "maximum": 10})

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.colors import BoundaryNorm, ListedColormap
 
-from cradle.figures import figure
+from cradle.figures import figure, plain_log_ticks
 
 #: as cradle.measurements.interactions.OUTCOMES (a figure module imports no numerical module)
 OUTCOMES = ("merge", "bound", "repel", "transmit", "none")
@@ -69,8 +69,9 @@ def draw(tree):
         D.axhline(1.0, color="0.6", lw=0.6)
         D.set_xlabel("spacing (sites)")
         D.set_ylabel("merging time exact / DpS")
-        D.set_title(f"{pair}: {int(ok.sum())} cases where both merge", fontsize=8)
+        D.set_title(f"{pair}: {int(ok.sum())} case{'' if int(ok.sum()) == 1 else 's'} where both merge", fontsize=8)
         D.legend(fontsize=6)
+        plain_log_ticks(D)
     fig.suptitle(f"breather-interactions: {int(tree.attrs['n_cases'])} cases, outcome the same in both models for "
                  f"{float(tree.attrs['outcome_agreement']):.0%}", fontsize=9)
     return fig
