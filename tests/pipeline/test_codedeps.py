@@ -26,7 +26,7 @@ import pytest
 from conftest import run_snakemake
 from cradle import figures
 from cradle.analyses.registry import ANALYSES
-from cradle.pipeline.codedeps import STAMPS, code_files, code_stamps, fingerprint
+from cradle.pipeline.codedeps import STAMPS, code_files, code_stamps, fingerprint, stamp_all
 
 ROOT = Path(__file__).resolve().parents[2]
 SRC = ROOT / "src"
@@ -178,6 +178,32 @@ def test_a_stamp_is_rewritten_only_when_the_code_changes(tmp_path):
     (pkg / "a.py").write_text("X = 2\n")
     code_stamps("cradle.a", src=tmp_path / "src", stamps=stamps)
     assert stamp.stat().st_mtime_ns > before - 10**9 and fingerprint(pkg / "a.py") in stamp.read_text()
+
+
+
+def test_every_stamp_exists_before_the_dag_is_built(tmp_path):
+    """The Snakefile writes every module's and script's stamp when it is read (stamp_all): the stamps an
+    input function asks for later are the same files, already there when Snakemake takes its inventory
+    (a stamp first written by an input function was reported missing when its folder already existed)."""
+    pkg = tmp_path / "src" / "cradle" / "figures"
+    pkg.mkdir(parents=True)
+    for f in (pkg.parent / "__init__.py", pkg / "__init__.py", pkg / "maps.py"):
+        f.write_text("X = 1\n")
+    scripts = tmp_path / "workflow" / "scripts"
+    scripts.mkdir(parents=True)
+    (scripts / "figure.py").write_text("import cradle.figures.maps\n")
+    stamps = tmp_path / "stamps"
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        assert stamp_all("src", "workflow/scripts", stamps) == 4
+        written = sorted(p.name for p in stamps.iterdir())
+        wanted = sorted(Path(p).name for p in code_stamps("workflow/scripts/figure.py", "cradle.figures.maps",
+                                                            src="src", stamps=stamps))
+    finally:
+        os.chdir(cwd)
+    assert written == wanted == ["cradle.__init__.sha256", "cradle.figures.__init__.sha256",
+                                 "cradle.figures.maps.sha256", "workflow.scripts.figure.sha256"]
 
 
 def _no_code_edit(text: str) -> str:

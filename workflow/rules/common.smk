@@ -9,7 +9,7 @@ from snakemake.exceptions import WorkflowError
 from cradle.pipeline import config as cc
 from cradle import figures as _figures
 from cradle.pipeline import layout as L
-from cradle.pipeline.codedeps import code_stamps
+from cradle.pipeline.codedeps import code_stamps, stamp_all
 from cradle.specs.declare import plain
 from cradle.pipeline.config.movies import Movies
 
@@ -23,6 +23,10 @@ try:
     config.update(cc.validate(config))
 except cc.ConfigError as err:
     raise WorkflowError(str(err)) from None
+
+
+# every stamp written now, before Snakemake's inventory of the files (cradle.pipeline.codedeps.stamp_all)
+stamp_all()
 
 
 def code_of(*entries):

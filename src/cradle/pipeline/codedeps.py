@@ -114,6 +114,22 @@ def code_stamps(*entries: str | Path, src: str | Path = "src", stamps: str | Pat
                   | {_stamp(f, name(f, Path(src)), Path(stamps)) for f in code_files(*entries, src=src)})
 
 
+def stamp_all(src: str | Path = "src", scripts: str | Path = "workflow/scripts", stamps: str | Path = STAMPS) -> int:
+    """Bring the stamp of every module under ``src``/cradle and every script under ``scripts`` up to date;
+    returns how many there are. The Snakefile calls it when it is read, before Snakemake takes its
+    inventory of the files on disk: a stamp first written later, by an input function while the DAG is
+    built, would be missing from that inventory and reported as a missing input."""
+    src, scripts = Path(src), Path(scripts)
+    n = 0
+    for root, prefix in ((src, src), (scripts, Path())):
+        base = root / PACKAGE if root == src else root
+        for path in sorted(base.rglob("*.py")):
+            name = path.relative_to(prefix).with_suffix("").as_posix().replace("/", ".")
+            _stamp(str(path), name, Path(stamps))
+            n += 1
+    return n
+
+
 @cache
 def _imports(path: Path, package: str | None) -> tuple[str, ...]:
     """Every module name the file at ``path`` may import (relative ones resolved in ``package``);
