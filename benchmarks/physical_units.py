@@ -17,10 +17,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from doctable import publish  # noqa: E402
-
 from cradle.models import physical as ph  # noqa: E402
 from cradle.models.dps import amplitude_from_omega  # noqa: E402
+from doctable import publish  # noqa: E402
 
 RADIUS, LENGTH, ANGLE = 0.01, 0.1, 20.0  # 1 cm balls on 10 cm strings, lifted to 20 degrees
 CRADLES = {name: ph.real_cradle(name, RADIUS, length=LENGTH) for name in ("steel", "brass", "glass", "ptfe")}
