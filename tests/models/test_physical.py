@@ -115,6 +115,8 @@ def test_cradle_scale_prints_the_scales(capsys):
     (["--material", "steel", "--radius", "0.01", "--length", "0.1", "--angle", "90"], "release.angle = 90.0"),
     (["--material", "steel", "--radius", "0.01", "--omega0", "1e4", "--angle", "20"], "no pendulum length"),
     (["--material", "steel", "--radius", "0.01"], "--length --omega0 is required"),
+    (["--material", "steel", "--radius", "nan", "--length", "0.1"], "--radius: invalid finite number value: 'nan'"),
+    (["--material", "steel", "--radius", "0.01", "--length", "0.1", "--amplitude", "inf"], "--amplitude: invalid"),
 ])
 def test_cradle_scale_refuses_in_one_line_exit_2(argv, line, capsys):
     assert main(["scale", *argv]) == 2

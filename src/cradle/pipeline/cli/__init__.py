@@ -66,6 +66,19 @@ class _Parser(argparse.ArgumentParser):
         raise CliError(message)
 
 
+def _finite(text: str) -> float:
+    """A command-line number that is finite (argparse's float takes 'nan' and 'inf')."""
+    import math
+
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(text)
+    return value
+
+
+_finite.__name__ = "finite number"  # argparse names the type in its message: "invalid finite number value"
+
+
 def parser() -> argparse.ArgumentParser:
     p = _Parser(prog=PROG, description="Newton's cradle and the discrete p-Schroedinger equation (G. James 2011), "
                                        "rebuilt: list, run and describe scenes outside Snakemake.")
@@ -120,12 +133,13 @@ def parser() -> argparse.ArgumentParser:
     c = sub.add_parser("scale", help="(nc)'s units in SI for a cradle of given spheres and strings; what an amplitude "
                                      "or a release angle means")
     c.add_argument("--material", required=True, help="sphere material: steel, brass, glass or ptfe")
-    c.add_argument("--radius", type=float, required=True, help="sphere radius R (m)")
+    c.add_argument("--radius", type=_finite, required=True, help="sphere radius R (m)")
     o = c.add_mutually_exclusive_group(required=True)
-    o.add_argument("--length", type=float, help="pendulum length L, pivot to the sphere's centre (m)")
-    o.add_argument("--omega0", type=float, help="angular frequency of a stiff on-site oscillator (rad/s)")
-    c.add_argument("--amplitude", type=float, default=None, help="a dimensionless amplitude of (nc), printed in metres")
-    c.add_argument("--angle", type=float, default=None,
+    o.add_argument("--length", type=_finite, help="pendulum length L, pivot to the sphere's centre (m)")
+    o.add_argument("--omega0", type=_finite, help="angular frequency of a stiff on-site oscillator (rad/s)")
+    c.add_argument("--amplitude", type=_finite, default=None,
+                   help="a dimensionless amplitude of (nc), printed in metres")
+    c.add_argument("--angle", type=_finite, default=None,
                    help="a pendulum released from this angle (degrees, in (0, 90)), printed in (nc)'s units")
     c.set_defaults(func=cmd_scale)
     return p

@@ -18,15 +18,15 @@ def scale_lines(args) -> list[str]:
                   else f"stiff oscillator omega_0 = {spec.omega0:g} rad/s")
     out = [f"{mat.name} spheres (E = {mat.E / 1e9:.4g} GPa, nu = {mat.nu:.3g}, rho = {mat.rho:.4g} kg/m^3), "
            f"R = {spec.radius:g} m, {oscillator}",
-           f"  sphere mass m                  {s.m:.4e} kg",
-           f"  Hertz constant k = 4/3 E* sqrt(R*)  {s.k:.4e} N/m^1.5  (E* = {s.E_star:.4e} Pa, R* = {s.R_star:.4g} m)",
-           f"  omega_0                        {s.omega0:.6g} rad/s  (small-angle period {period:.6g} s)",
+           f"  sphere mass m = 4/3 pi R^3 rho       {s.m:.4e} kg",
+           f"  Hertz constant k = 4/3 E* sqrt(R*)   {s.k:.4e} N/m^1.5  (E* = {s.E_star:.4e} Pa, R* = {s.R_star:.4g} m)",
+           f"  omega_0                              {s.omega0:.6g} rad/s  (small-angle period {period:.6g} s)",
            "one unit of (nc) in SI:",
-           f"  time       T = 1/omega_0             {s.T:.4e} s",
-           f"  length     X = (m omega_0^2 / k)^2   {s.X:.4e} m",
-           f"  velocity   X omega_0                 {s.V:.4e} m/s",
-           f"  force      m omega_0^2 X             {s.F:.4e} N",
-           f"  energy     m omega_0^2 X^2           {s.E:.4e} J"]
+           f"  time       T = 1/omega_0               {s.T:.4e} s",
+           f"  length     X = (m omega_0^2 / k)^2     {s.X:.4e} m",
+           f"  velocity   X omega_0                   {s.V:.4e} m/s",
+           f"  force      m omega_0^2 X               {s.F:.4e} N",
+           f"  energy     m omega_0^2 X^2             {s.E:.4e} J"]
     if args.amplitude is not None:
         out.append(f"amplitude {args.amplitude:g} (nc) = {ph.to_si(args.amplitude, 'displacement', s):.4e} m")
     if args.angle is not None:
