@@ -59,6 +59,18 @@ _API: tuple[tuple[str, tuple[tuple[str, str, str], ...]], ...] = (
          "the site, bond or double homoclinic solution of (dpsstn) for any alpha > 1 (bcsc)"),
         ("Homoclinic", "cradle.models.homoclinic", "what solve_homoclinic returns: a_n, residual, convergence"),
     )),
+    ("Physical units (docs/physical-units.md)", (
+        ("real_cradle", "cradle.models.physical",
+         "a cradle in SI: sphere material and radius, pendulum length or on-site omega_0 (validated)"),
+        ("scales", "cradle.models.physical",
+         "(nc)'s units in SI for a cradle: T = 1/omega_0, X = (m omega_0^2/k)^2, velocity, force, energy"),
+        ("to_si", "cradle.models.physical", "a value of (nc) (displacement, time, velocity, energy, force) in SI"),
+        ("from_si", "cradle.models.physical", "an SI value in (nc)'s dimensionless units"),
+        ("release_amplitude", "cradle.models.physical",
+         "the (nc) amplitude L sin(theta)/X of a pendulum released from theta degrees"),
+        ("collision_time", "cradle.models.physical", "Hertz collision time t_c = 2 I delta_max / v of two spheres"),
+        ("lookup_material", "cradle.models.physical", "a named sphere material: E, nu, rho and their sources"),
+    )),
     ("Stored results", (
         ("open_scene", "cradle.pipeline.outputs",
          "a scene's exact and DpS runs and their metrics as one Dataset along model"),

@@ -3,4 +3,5 @@
 the stationary problem (dpsstn) and the map G (comp1)-(comp2) (:mod:`.stationary`), its
 homoclinic solutions (:mod:`.homoclinic`, :mod:`.homoclinic_tails`,
 :mod:`.homoclinic_continuation`), the exact travelling waves of (ad) (:mod:`.waves`) and the
-initial data (ansatzapprox)/(perturb)/(ansatzapproxst2) (:mod:`.initial`)."""
+initial data (ansatzapprox)/(perturb)/(ansatzapproxst2) (:mod:`.initial`), and the map between a real
+cradle and the dimensionless variables of (nc) (:mod:`.physical`)."""

@@ -8,6 +8,8 @@
     cradle extend   FILE.nc --t-end T [--every DT] [--out FILE.nc | --in-place]   # continue an exact run
     cradle verify   [results] [--config config.yaml]       # every output's checksums and identity; what to rebuild
     cradle animate  SCENE [--results results] [--gif] [--fps F --duration S]   # a movie of the stored runs
+    cradle scale    --material steel --radius R (--length L | --omega0 W) [--amplitude A] [--angle DEG]
+                                                           # (nc)'s units in SI for a real cradle
 
 ``cradle run`` computes a scene's initial data, exact and DpS runs and
 metrics with :mod:`cradle.scenes.stages` and
@@ -37,8 +39,12 @@ when there is none, identities are not checked).
 ``cradle animate`` draws a movie from a scene's stored runs only
 (:mod:`cradle.figures.movie`): ``RESULTS/movies/SCENE.mp4`` (and ``.gif``).
 
+``cradle scale`` prints the SI value of one unit of (nc)'s time, length, velocity, force and energy for
+spheres of a named material on pendulum strings (or stiff oscillators), what a dimensionless amplitude is
+in metres and what a release angle is in (nc)'s units (:mod:`cradle.models.physical`, docs/physical-units.md).
+
 This package holds the parser and :func:`main`; the commands are in
-:mod:`.scenes`, :mod:`.run`, :mod:`.files` (describe, extend, verify) and :mod:`.animate`,
+:mod:`.scenes`, :mod:`.run`, :mod:`.files` (describe, extend, verify), :mod:`.animate` and :mod:`.scale`,
 what they share in :mod:`.common`.
 """
 from __future__ import annotations
@@ -51,12 +57,26 @@ from cradle.pipeline.cli.animate import cmd_animate
 from cradle.pipeline.cli.common import PROG, CliError
 from cradle.pipeline.cli.files import cmd_describe, cmd_extend, cmd_verify
 from cradle.pipeline.cli.run import RUN_OUT, cmd_run
+from cradle.pipeline.cli.scale import cmd_scale
 from cradle.pipeline.cli.scenes import cmd_scenes
 
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # one line, exit 2 (argparse would print the usage first)
         raise CliError(message)
+
+
+def _finite(text: str) -> float:
+    """A command-line number that is finite (argparse's float takes 'nan' and 'inf')."""
+    import math
+
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(text)
+    return value
+
+
+_finite.__name__ = "finite number"  # argparse names the type in its message: "invalid finite number value"
 
 
 def parser() -> argparse.ArgumentParser:
@@ -110,6 +130,18 @@ def parser() -> argparse.ArgumentParser:
     a.add_argument("--t-end", type=float, default=None, dest="t_end", help="last time shown (default: the run's end)")
     a.add_argument("--config", default="config.yaml", help="config whose movies: section gives the defaults")
     a.set_defaults(func=cmd_animate)
+    c = sub.add_parser("scale", help="(nc)'s units in SI for a cradle of given spheres and strings; what an amplitude "
+                                     "or a release angle means")
+    c.add_argument("--material", required=True, help="sphere material: steel, brass, glass or ptfe")
+    c.add_argument("--radius", type=_finite, required=True, help="sphere radius R (m)")
+    o = c.add_mutually_exclusive_group(required=True)
+    o.add_argument("--length", type=_finite, help="pendulum length L, pivot to the sphere's centre (m)")
+    o.add_argument("--omega0", type=_finite, help="angular frequency of a stiff on-site oscillator (rad/s)")
+    c.add_argument("--amplitude", type=_finite, default=None,
+                   help="a dimensionless amplitude of (nc), printed in metres")
+    c.add_argument("--angle", type=_finite, default=None,
+                   help="a pendulum released from this angle (degrees, in (0, 90)), printed in (nc)'s units")
+    c.set_defaults(func=cmd_scale)
     return p
 
 

@@ -1,0 +1,125 @@
+"""Physical units (cradle.models.physical): the scales between SI and (nc), the Hertz constants, the pendulum,
+the collision time's integral, and ``cradle scale`` with its one-line refusals."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from cradle.models import physical as ph
+from cradle.pipeline.cli import main
+from cradle.specs.values import ConfigError
+
+DESK = ph.real_cradle("steel", 0.01, length=0.1)
+
+
+@pytest.mark.parametrize("spec", [DESK, ph.real_cradle("ptfe", 0.02, length=0.3),
+                                  ph.real_cradle("brass", 0.005, omega0=2e4)])
+def test_round_trips_are_exact_to_rounding(spec):
+    s = ph.scales(spec)
+    values = np.array([1e-3, 0.01, 0.02118, 1.0, 3e17])
+    for quantity in ph.QUANTITIES:
+        np.testing.assert_allclose(ph.from_si(ph.to_si(values, quantity, s), quantity, s), values, rtol=4e-16)
+        np.testing.assert_allclose(ph.to_si(ph.from_si(values, quantity, s), quantity, s), values, rtol=4e-16)
+
+
+@pytest.mark.parametrize("spec", [DESK, ph.real_cradle("glass", 0.03, length=1.0), ph.real_cradle("steel", 0.01,
+                                                                                                  omega0=1e5)])
+def test_the_scales_satisfy_their_defining_balance(spec):
+    s = ph.scales(spec)
+    # on-site force = contact force at the displacement X; the other scales from T and X
+    assert s.m * s.omega0**2 * s.X == pytest.approx(s.k * s.X**1.5, rel=1e-14)
+    assert s.X == pytest.approx((s.m * s.omega0**2 / s.k) ** 2, rel=1e-14)
+    assert (s.T, s.V, s.F, s.E) == pytest.approx((1 / s.omega0, s.X * s.omega0, s.m * s.omega0**2 * s.X,
+                                                   s.m * s.omega0**2 * s.X**2), rel=1e-14)
+
+
+@pytest.mark.parametrize("name", list(ph.MATERIALS))
+def test_identical_spheres_reduce_to_half_modulus_and_half_radius(name):
+    mat = ph.lookup_material(name)
+    assert ph.reduced_modulus(mat.E, mat.nu, mat.E, mat.nu) == pytest.approx(mat.E / (2 * (1 - mat.nu**2)), rel=1e-15)
+    assert ph.reduced_radius(0.01, 0.01) == pytest.approx(0.005, rel=1e-15)
+    s = ph.scales(ph.real_cradle(name, 0.01, length=0.1))
+    assert s.k == pytest.approx(4 / 3 * mat.E / (2 * (1 - mat.nu**2)) * math.sqrt(0.005), rel=1e-14)
+    assert s.m == pytest.approx(4 / 3 * math.pi * 1e-6 * mat.rho, rel=1e-14)
+
+
+def test_two_different_spheres():
+    steel, ptfe = ph.lookup_material("steel"), ph.lookup_material("ptfe")
+    e = ph.reduced_modulus(steel.E, steel.nu, ptfe.E, ptfe.nu)
+    assert 1 / e == pytest.approx((1 - steel.nu**2) / steel.E + (1 - ptfe.nu**2) / ptfe.E, rel=1e-15)
+    assert ph.reduced_radius(0.01, 0.03) == pytest.approx(0.0075, rel=1e-15)
+
+
+def test_pendulum_omega0_and_standard_gravity():
+    assert ph.STANDARD_GRAVITY == 9.80665
+    assert ph.scales(DESK).omega0 == pytest.approx(math.sqrt(9.80665 / 0.1), rel=1e-15)
+    assert ph.scales(ph.real_cradle("steel", 0.01, length=0.1, g=9.81)).omega0 == pytest.approx(math.sqrt(98.1))
+    assert ph.scales(ph.real_cradle("steel", 0.01, omega0=123.0)).omega0 == 123.0
+    # a release: the horizontal displacement L sin(theta), and the speed at the bottom from energy
+    assert ph.release_amplitude(DESK, 20) * ph.scales(DESK).X == pytest.approx(0.1 * math.sin(math.radians(20)))
+    assert ph.release_speed(DESK, 20) ** 2 == pytest.approx(2 * 9.80665 * 0.1 * (1 - math.cos(math.radians(20))))
+
+
+def test_the_collision_integral_is_landau_lifshitz_1_4716():
+    integral, _ = quad(lambda u: 1 / math.sqrt(1 - u**2.5), 0, 1, limit=200)
+    assert abs(integral - 1.4716) < 1e-4
+    assert ph.COLLISION_INTEGRAL == pytest.approx(integral, rel=1e-9)
+
+
+def test_collision_time_closed_form_and_its_scaling():
+    s = ph.scales(DESK)
+    v = 0.3
+    delta_max = (5 * (s.m / 2) * v**2 / (4 * s.k)) ** 0.4
+    assert ph.collision_time(DESK, v) == pytest.approx(2 * ph.COLLISION_INTEGRAL * delta_max / v, rel=1e-15)
+    # t_c ~ v^(-1/5): ten times faster, 10^(1/5) times shorter
+    assert ph.collision_time(DESK, 3.0) / ph.collision_time(DESK, 0.3) == pytest.approx(10 ** -0.2, rel=1e-12)
+
+
+@pytest.mark.parametrize("kwargs, line", [
+    (dict(material="stel", radius=0.01, length=0.1), "material = 'stel': unknown; did you mean 'steel'?"),
+    (dict(material="steel", radius=-0.01, length=0.1), "cradle.radius = -0.01"),
+    (dict(material="steel", radius=0.01, length=0.0), "cradle.length = 0.0"),
+    (dict(material="steel", radius=0.01), "give the pendulum length or omega0"),
+    (dict(material="steel", radius=0.01, length=0.1, omega0=3.0), "give the pendulum length or omega0"),
+])
+def test_bad_cradles_are_one_line(kwargs, line):
+    with pytest.raises(ConfigError) as err:
+        ph.real_cradle(**kwargs)
+    assert line in str(err.value) and "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("angle", [0, -5, 90, 120])
+def test_a_release_angle_outside_0_90_is_refused(angle):
+    with pytest.raises(ConfigError, match=f"release.angle = {angle}"):
+        ph.release_amplitude(DESK, angle)
+
+
+def test_cradle_scale_prints_the_scales(capsys):
+    assert main(["scale", "--material", "steel", "--radius", "0.01", "--length", "0.1", "--amplitude", "0.01",
+                 "--angle", "20"]) == 0
+    out = capsys.readouterr().out
+    s = ph.scales(DESK)
+    for text in (f"{s.T:.4e} s", f"{s.X:.4e} m", f"{s.V:.4e} m/s", f"{s.F:.4e} N", f"{s.E:.4e} J",
+                 f"amplitude 0.01 (nc) = {0.01 * s.X:.4e} m", f"{ph.release_amplitude(DESK, 20):.4e} in (nc) units"):
+        assert text in out
+    assert main(["scale", "--material", "brass", "--radius", "0.01", "--omega0", "1e4"]) == 0
+    assert "stiff oscillator omega_0 = 10000 rad/s" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, line", [
+    (["--material", "stel", "--radius", "0.01", "--length", "0.1"], "did you mean 'steel'?"),
+    (["--material", "steel", "--radius", "-0.01", "--length", "0.1"], "cradle.radius = -0.01"),
+    (["--material", "steel", "--radius", "0.01", "--length", "0.1", "--angle", "90"], "release.angle = 90.0"),
+    (["--material", "steel", "--radius", "0.01", "--omega0", "1e4", "--angle", "20"], "no pendulum length"),
+    (["--material", "steel", "--radius", "0.01"], "--length --omega0 is required"),
+    (["--material", "steel", "--radius", "nan", "--length", "0.1"], "--radius: invalid finite number value: 'nan'"),
+    (["--material", "steel", "--radius", "0.01", "--length", "0.1", "--amplitude", "inf"], "--amplitude: invalid"),
+])
+def test_cradle_scale_refuses_in_one_line_exit_2(argv, line, capsys):
+    assert main(["scale", *argv]) == 2
+    captured = capsys.readouterr()
+    err = captured.err.strip()
+    assert captured.out == "" and "\n" not in err and err.startswith("cradle: error: ") and line in err
