@@ -80,9 +80,9 @@ def draw(tree):
                  label="exact < 0 (site higher)")
         D.loglog(J, pn["barrier_uncertainty"].values, ":", color="0.5", label="resolution check")
     D.set_ylabel(r"$|E_{bond} - E_{site}|$ at equal J")
-    D.set_title(f"(d) PN barrier at omega_b = {at['pn_omega']:g}: {at['pn_barrier_at_pn_omega']:.3g} "
+    D.set_title(f"(d) PN barrier at omega_b = {at['pn_omega']:g}:\n{at['pn_barrier_at_pn_omega']:.3g} "
                 f"(DpS {at['pn_barrier_dps_at_pn_omega']:.3g})", fontsize=8)
-    D.legend(fontsize=7)
+    legend_outside(D, fontsize=6.5)   # the points sit at rounding level: where they fall depends on the machine
     # (e) tails at pn_omega, in log variables
     E = ax[1, 1]
     tl = tree["tails"]
