@@ -88,17 +88,11 @@ def merging(res, scene, paper_exact="175", paper_dps="350") -> list[Row]:
         total = (float(ds["t"].values[-1]) - float(ds["t"].values[0])) / T
         ours = (f"merge after {mt:.0f} periods" if oc.outcome == "merge"
                 else f"{oc.outcome}, no merging within {total:.0f} periods")
-        verdict = ("not comparable" if not np.isfinite(mt)
-                   else "agrees" if abs(mt - float(paper)) <= MERGE_REL_TOL * float(paper) else "disagrees")
         rows.append(Row("loc1", f"merging time of the two breathers, {model}, in breather periods",
-                        paper if model == "exact" else f"~{paper} (twice the exact)", ours, verdict,
+                        paper if model == "exact" else f"~{paper} (twice the exact)", ours, _time_verdict(mt, paper),
                         "interactions.classify: first period of the final single breather in max_t |x_n| per "
                         "period (count smoothed over 11 periods, lasting >= 20)", tol))
-    ratio = times["dps"] / times["exact"] if np.isfinite(times["exact"]) and times["exact"] > 0 else float("nan")
-    rows.append(Row("loc1", "merging time DpS / exact", "2 ('twice more')", _fmt(ratio, 3),
-                    "not comparable" if not np.isfinite(ratio)
-                    else "agrees" if RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1] else "disagrees",
-                    "ratio of the two merging times above", f"in [{RATIO_RANGE[0]:g}, {RATIO_RANGE[1]:g}]"))
+    rows.append(_ratio_row("merging time DpS / exact", times, "ratio of the two merging times above"))
     # the second definition: the bound pair breathes (its humps approach, overlap and part), so the first
     # period in which they are one hump comes long before the final single breather
     for model, paper in (("exact", paper_exact), ("dps", paper_dps)):
@@ -106,13 +100,24 @@ def merging(res, scene, paper_exact="175", paper_dps="350") -> list[Row]:
         rows.append(Row("loc1", f"merging time as first coalescence of the two breathers, {model}, in breather periods",
                         paper if model == "exact" else f"~{paper} (twice the exact)",
                         f"first coalescence after {fc:.0f} periods" if np.isfinite(fc) else "no coalescence",
-                        "not comparable" if not np.isfinite(fc)
-                        else "agrees" if abs(fc - float(paper)) <= MERGE_REL_TOL * float(paper) else "disagrees",
+                        _time_verdict(fc, paper),
                         "interactions.classify: first period of the first single state in max_t |x_n| per period "
                         "(count smoothed over 11 periods), however long it lasts", tol))
-    ratio = first["dps"] / first["exact"] if np.isfinite(first["exact"]) and first["exact"] > 0 else float("nan")
-    rows.append(Row("loc1", "first coalescence DpS / exact", "2 ('twice more')", _fmt(ratio, 3),
-                    "not comparable" if not np.isfinite(ratio)
-                    else "agrees" if RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1] else "disagrees",
-                    "ratio of the two first coalescences above", f"in [{RATIO_RANGE[0]:g}, {RATIO_RANGE[1]:g}]"))
+    rows.append(_ratio_row("first coalescence DpS / exact", first, "ratio of the two first coalescences above"))
     return rows
+
+
+def _time_verdict(periods: float, paper: str) -> str:
+    """A merging time against the paper's "around" value: within :data:`MERGE_REL_TOL` of it."""
+    if not np.isfinite(periods):
+        return "not comparable"
+    return "agrees" if abs(periods - float(paper)) <= MERGE_REL_TOL * float(paper) else "disagrees"
+
+
+def _ratio_row(quantity: str, times: dict, how: str) -> Row:
+    """The DpS / exact ratio of two merging times against the paper's "twice more" (:data:`RATIO_RANGE`)."""
+    ratio = times["dps"] / times["exact"] if np.isfinite(times["exact"]) and times["exact"] > 0 else float("nan")
+    verdict = ("not comparable" if not np.isfinite(ratio)
+               else "agrees" if RATIO_RANGE[0] <= ratio <= RATIO_RANGE[1] else "disagrees")
+    return Row("loc1", quantity, "2 ('twice more')", _fmt(ratio, 3), verdict, how,
+               f"in [{RATIO_RANGE[0]:g}, {RATIO_RANGE[1]:g}]")
