@@ -121,6 +121,17 @@ def test_failed_step_of_a_chain_writes_no_target_and_keeps_the_finished_steps(tm
     assert "the later step 'exact' failed" in open_dataset(failed_path(outs["initial"])).attrs["failure"]
     assert "exceeds max_energy_drift" in open_dataset(failed_path(outs["exact"])).attrs["failure"]
 
+def _tiny_workflow(tmp_path):
+    """A copy of the workflow (the sources linked) running the TINY config."""
+    work = tmp_path / "cradle"
+    work.mkdir()
+    shutil.copy(ROOT / "Snakefile", work)
+    shutil.copytree(ROOT / "workflow", work / "workflow")
+    (work / "src").symlink_to(ROOT / "src")
+    (work / "config.yaml").write_text(yaml.safe_dump(TINY))
+    return work
+
+
 def _snakemake(workdir, *args):
     return run_snakemake(workdir, "--cores", "2", *args)
 
@@ -132,12 +143,7 @@ def _job_counts(text):
 
 @pytest.mark.slow
 def test_snakemake_end_to_end_on_tiny_config(tmp_path):
-    work = tmp_path / "cradle"
-    work.mkdir()
-    shutil.copy(ROOT / "Snakefile", work)
-    shutil.copytree(ROOT / "workflow", work / "workflow")
-    (work / "src").symlink_to(ROOT / "src")
-    (work / "config.yaml").write_text(yaml.safe_dump(TINY))
+    work = _tiny_workflow(tmp_path)
 
     built = _snakemake(work, "paper")      # the paper's figures and claims table (all adds slow analyses)
     assert built.returncode == 0, built.stderr[-3000:]
@@ -184,12 +190,7 @@ def test_a_failed_forced_rerun_restores_the_previous_outputs(tmp_path):
     for each."""
     import hashlib
 
-    work = tmp_path / "cradle"
-    work.mkdir()
-    shutil.copy(ROOT / "Snakefile", work)
-    shutil.copytree(ROOT / "workflow", work / "workflow")
-    (work / "src").symlink_to(ROOT / "src")
-    (work / "config.yaml").write_text(yaml.safe_dump(TINY))
+    work = _tiny_workflow(tmp_path)
     target = "results/sim/tw-weak/exact.nc"
     built = _snakemake(work, target)
     assert built.returncode == 0, built.stderr[-3000:]
