@@ -16,7 +16,7 @@ import yaml
 from cradle.data.io import open_dataset, open_tree, write_netcdf
 from cradle.data.provenance import identify, params_hash
 from cradle.pipeline import cli, config as cc, layout
-from cradle.pipeline.identity import Expectations, WrongOutput, check_identity, expected_identity, locate
+from cradle.pipeline.identity import Expectations, WrongOutput, locate
 from cradle.pipeline.outputs import load_inputs, open_scene
 from cradle.specs.declare import plain
 
@@ -155,9 +155,9 @@ def test_without_config_or_outside_the_layout_nothing_is_checked(work, tmp_path,
     with pytest.raises(WrongOutput):
         open_scene("tw-weak", root=root, config=work / "elsewhere.yaml")           # given one: checked
     cfg = cc.read_yaml(work / "elsewhere.yaml")
-    assert expected_identity(runs / "sim" / "tw-weak" / "exact.nc", cfg, root) is None
-    assert expected_identity(root / "failed" / "sim" / "tw-weak" / "exact.nc", cfg, root) is None
-    assert expected_identity(root / "sim" / "gone" / "exact.nc", cfg, root) is None   # no such scene
+    assert Expectations(cfg, root).expected(runs / "sim" / "tw-weak" / "exact.nc") is None
+    assert Expectations(cfg, root).expected(root / "failed" / "sim" / "tw-weak" / "exact.nc") is None
+    assert Expectations(cfg, root).expected(root / "sim" / "gone" / "exact.nc") is None   # no such scene
     capsys.readouterr()
     assert cli.main(["verify", str(runs), "--config", str(work / "elsewhere.yaml")]) == 0
     assert "MISMATCH" not in capsys.readouterr().out
@@ -190,16 +190,16 @@ def test_analysis_outputs_and_batches_are_checked(tmp_path):
     batch_path = Path(layout.path("analysis-batch", root, analysis="mi-statistics", form="reduced", key=key))
     batch = identify(open_dataset(_tiny(tmp_path)), "analysis-batch", f"mi-statistics/{key}", params=plain(spec))
     assert batch.attrs["params_sha256"] == params_hash(plain(spec))   # a batch storing no parameters gets them
-    check_identity(batch_path, batch, cfg, root)
+    Expectations(cfg, root).check(batch_path, batch)
     full = cc.analysis_spec(cfg, "mi-statistics", "full")
     with pytest.raises(WrongOutput, match="holds batch 'mi-statistics/N200-exact-0'"):  # a full-form batch
-        check_identity(batch_path, {**batch.attrs, "params_sha256": params_hash(plain(full))}, cfg, root)
+        Expectations(cfg, root).check(batch_path, {**batch.attrs, "params_sha256": params_hash(plain(full))})
     out_path = layout.analysis_output("paper-checks", "full", "full", root)
     ok = identify(open_dataset(_tiny(tmp_path)), "analysis", "paper-checks",
                   params=plain(cc.analysis_spec(cfg, "paper-checks", "full")))
-    check_identity(out_path, ok, cfg, root)
+    Expectations(cfg, root).check(out_path, ok)
     with pytest.raises(WrongOutput, match="holds analysis 'floquet'"):
-        check_identity(out_path, {**ok.attrs, "cradle_name": "floquet"}, cfg, root)
+        Expectations(cfg, root).check(out_path, {**ok.attrs, "cradle_name": "floquet"})
     tree_path = write_netcdf(ok, tmp_path / "tree.nc")
     assert open_tree(tree_path).attrs["cradle_kind"] == "analysis"
 

@@ -4,9 +4,9 @@ Every file of the results layout (:mod:`cradle.pipeline.layout`) says what it is
 (``cradle_kind``, ``cradle_name``, :func:`cradle.data.provenance.identity`; files written before those
 attributes existed state their scene as ``scene`` or their entry as ``name``) and the hash of the plain
 parameters its job was given (``params_sha256``, :func:`cradle.data.provenance.params_hash`). The config
-says what it should be: :func:`expected_identity` inverts the file's path into its kind and name and resolves
+says what it should be: :meth:`Expectations.expected` inverts the file's path into its kind and name and resolves
 that entry's typed spec from the config now (:func:`cradle.pipeline.config.scene`, ``homoclinic``,
-``map_entry``, ``analysis_spec``). :func:`check_identity` compares the two and raises :class:`WrongOutput`,
+``map_entry``, ``analysis_spec``). :meth:`Expectations.check` compares the two and raises :class:`WrongOutput`,
 one line naming the file, what it holds, what was expected and the command that rebuilds it::
 
     results/sim/tw-weak/exact.nc holds scene 'tw-moderate' (params 5e0d1c2a9b71), expected scene 'tw-weak'
@@ -29,8 +29,8 @@ from cradle.data.provenance import canonical_json, params_hash
 from cradle.pipeline import layout
 from cradle.specs.declare import plain
 
-__all__ = ["CONFIG", "Identity", "WrongOutput", "Expectations", "locate", "expected_identity", "stored_identity",
-           "mismatch", "check_identity", "job_expectations", "open_checked"]
+__all__ = ["CONFIG", "Identity", "WrongOutput", "Expectations", "locate", "stored_identity", "job_expectations",
+           "open_checked"]
 
 #: how messages name the config of a Snakemake job (config.yaml, with any --configfile and --config)
 CONFIG = "the workflow's config"
@@ -258,23 +258,6 @@ def stored_identity(attrs, kind: str | None = None) -> Identity:
     digest = attrs.get("params_sha256")
     return Identity(attrs.get("cradle_kind") or None, None if name is None else str(name),
                     None if digest is None else str(digest))
-
-
-def expected_identity(path, config: dict, root: str | Path = layout.ROOT) -> Identity | None:
-    """(kind, name, params hash) the file at ``path`` should have under ``root`` by ``config``; None for a
-    path outside the layout under ``root`` or an entry the config does not have."""
-    return Expectations(config, root).expected(path)
-
-
-def mismatch(path, ds, config: dict, root: str | Path = layout.ROOT, source: str = "config.yaml") -> str | None:
-    """The one line of :func:`check_identity`, or None."""
-    return Expectations(config, root, source).mismatch(path, getattr(ds, "attrs", ds))
-
-
-def check_identity(path, ds, config: dict, root: str | Path = layout.ROOT, source: str = "config.yaml") -> None:
-    """Raise :class:`WrongOutput` (one line) if ``ds``, read from ``path``, is not the file ``config``
-    expects there: another kind or name, or other parameters (see the module docstring)."""
-    Expectations(config, root, source).check(path, ds)
 
 
 def job_expectations(config: dict) -> Expectations:
