@@ -22,7 +22,6 @@ checked further (its errors are said), so a check reads attributes of the types 
 """
 from __future__ import annotations
 
-import copy
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -38,7 +37,9 @@ from cradle.specs.values import (
     ConfigError,
     Errors,
     angle_expr,
+    copied,
     grid_size,
+    merged,
     parse_angle,
     show,
     store_times,
@@ -66,7 +67,7 @@ class Context:
     scenes: Mapping[str, Scene]
     homoclinic: Mapping[str, HomoclinicEntry]
 
-    @property
+    @cached_property
     def names(self) -> dict[str, str]:
         """Every map, homoclinic and scene name -> its section (the first that uses it)."""
         out: dict[str, str] = {}
@@ -399,20 +400,12 @@ class HomoclinicEntry:
             out.add(where + ["separation"], f"must be in [1, N-1] = [1, {self.N - 1}]", self.separation)
 
 
-def _merged(base, override):
-    """Deep merge of two mappings (override wins)."""
-    out = copy.deepcopy(base) if isinstance(base, dict) else {}
-    for k, v in (override or {}).items():
-        out[k] = _merged(out.get(k), v) if isinstance(v, dict) and isinstance(out.get(k), dict) else copy.deepcopy(v)
-    return out
-
-
 def resolved(entry: dict, defaults: dict) -> Scene:
     """A scene entry of a schema-filled config (defaults filled in), resolved against ``defaults:``:
     ``alpha`` and ``max_energy_drift`` from the defaults unless the scene gives them, ``exact`` and
     ``dps`` the scene's keys merged over ``defaults.exact`` / ``defaults.dps``."""
-    entry = copy.deepcopy(entry)
+    entry = copied(entry)
     entry.update(alpha=float(entry.get("alpha", defaults["alpha"])),
-                 exact=_merged(defaults["exact"], entry.get("exact")), dps=_merged(defaults["dps"], entry.get("dps")),
+                 exact=merged(defaults["exact"], entry.get("exact")), dps=merged(defaults["dps"], entry.get("dps")),
                  max_energy_drift=float(entry.get("max_energy_drift", defaults["max_energy_drift"])))
     return build(Scene, entry)

@@ -21,6 +21,7 @@ import functools
 import json
 import types
 import typing
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -266,25 +267,43 @@ def build(tp, value):
     """``value`` (a validated, schema-filled mapping or one of its values) as an instance of the
     annotation ``tp``: declared classes become frozen instances, recursively; a union of declared
     classes (the kinds of initial condition) picks the class whose ``kind`` constant matches."""
+    make = _builder(tp)
+    return value if make is None or value is None else make(value)
+
+
+@functools.cache
+def _builder(tp) -> Callable[[Any], Any] | None:
+    """The function :func:`build` applies for annotation ``tp`` to a value that is not None, or None where it
+    keeps the value as it is: worked out once per annotation, since configs are built on every validation."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
-    if value is None:
-        return None
     if origin in (typing.Union, types.UnionType):
-        kinds = [a for a in args if _is_declared(a)]
-        if kinds and isinstance(value, dict):
-            for cls in kinds:
-                const = next((f.metadata["keywords"].get("const") for f in dataclasses.fields(cls)
-                              if f.name == "kind"), None)
-                if const is None or const == value.get("kind"):
-                    return build(cls, value)
-        return value
+        kinds = [(next((f.metadata["keywords"].get("const") for f in dataclasses.fields(cls) if f.name == "kind"),
+                       None), _class_builder(cls)) for cls in args if _is_declared(cls)]
+        if not kinds:
+            return None
+
+        def pick(value):
+            if isinstance(value, dict):
+                for const, make in kinds:
+                    if const is None or const == value.get("kind"):
+                        return make(value)
+            return value
+        return pick
     if origin is dict and _is_declared(args[1]):
-        return {k: build(args[1], v) for k, v in value.items()}
-    if _is_declared(tp):
-        hints = _hints(tp)
-        return tp(**{f.name: build(hints[f.name], value[_key(f)])
-                     for f in dataclasses.fields(tp) if _key(f) in value})
-    return value
+        entry = _class_builder(args[1])
+        return lambda value: {k: None if v is None else entry(v) for k, v in value.items()}
+    return _class_builder(tp) if _is_declared(tp) else None
+
+
+def _class_builder(cls) -> Callable[[dict], Any]:
+    """The builder of the declared class ``cls``: each key the mapping gives, built as its field's annotation."""
+    hints = _hints(cls)
+    fields = [(f.name, _key(f), _builder(hints[f.name])) for f in dataclasses.fields(cls)]
+
+    def make(value):
+        return cls(**{name: v if sub is None or v is None else sub(v)
+                      for name, key, sub in fields if key in value for v in (value[key],)})
+    return make
 
 
 #: discriminated unions on ``kind`` that fields refer to with ``ref=`` (the kinds of initial condition):

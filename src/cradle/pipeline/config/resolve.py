@@ -10,12 +10,11 @@ repeated calls cost one validation).
 """
 from __future__ import annotations
 
-import copy
 from typing import Any
 
 from cradle.scenes.spec import HomoclinicEntry, MapEntry, Scene, resolved
 from cradle.specs.declare import build
-from cradle.specs.values import ConfigError, angle_expr, did_you_mean, parse_angle, store_times
+from cradle.specs.values import ConfigError, angle_expr, copied, did_you_mean, merged, parse_angle, store_times
 
 
 def _validated(config: dict) -> dict:
@@ -24,21 +23,13 @@ def _validated(config: dict) -> dict:
     return validated(config)
 
 
-def _merged(base, override):
-    """Deep merge of two mappings (override wins)."""
-    out = copy.deepcopy(base) if isinstance(base, dict) else {}
-    for k, v in (override or {}).items():
-        out[k] = _merged(out.get(k), v) if isinstance(v, dict) and isinstance(out.get(k), dict) else copy.deepcopy(v)
-    return out
-
-
 def _entry(cfg, section, name):
     entries = cfg.get(section) or {}
     if name not in entries:
         known = ", ".join(entries) or "none"
         raise ConfigError(f"config error: {section}.{name}: no {section} entry of that name ({section} entries: "
                           f"{known})")
-    return copy.deepcopy(entries[name])
+    return copied(entries[name])
 
 
 def scene_of(cfg: dict, name: str) -> Scene:
@@ -81,8 +72,8 @@ def resolved_scene(config: dict, name: str) -> dict:
     out: dict[str, Any] = {"name": name}
     out.update(scene)
     out["alpha"] = float(scene.get("alpha", d["alpha"]))
-    out["exact"] = _merged(d["exact"], scene.get("exact"))
-    out["dps"] = _merged(d["dps"], scene.get("dps"))
+    out["exact"] = merged(d["exact"], scene.get("exact"))
+    out["dps"] = merged(d["dps"], scene.get("dps"))
     out["max_energy_drift"] = float(scene.get("max_energy_drift", d["max_energy_drift"]))
     ini = out["initial"]
     if ini["kind"] == "travelling":

@@ -10,6 +10,7 @@ order (:mod:`cradle.scenes.spec`).
 """
 from __future__ import annotations
 
+import bisect
 import math
 
 from cradle.pipeline.budget import Budget
@@ -32,6 +33,12 @@ def _known_figures() -> tuple[str, ...]:
 KNOWN_FIGURES = _known_figures()
 
 
+def _holds(times: tuple[float, ...], t: float) -> bool:
+    """Whether the sorted stored ``times`` hold ``t`` (to TIME_TOL)."""
+    i = bisect.bisect_left(times, t - TIME_TOL)
+    return i < len(times) and times[i] <= t + TIME_TOL
+
+
 @declared("figure", doc="What one figure reads.")
 class Figure:
     scenes: list[str] = param(REQUIRED, "Names of the map, homoclinic or scene entries the figure reads.", minItems=1,
@@ -50,17 +57,14 @@ class Figure:
         read = [n for n in self.scenes if n in context.given["scenes"]]
         if not read or self.times is None:
             return
-        stored: list[float] = []
+        stored = []
         for n in read:
             scene = context.scenes.get(n)
             if scene is None or out.has(["scenes", n, "store", "every"]):  # its errors are said
                 return
-            stored += scene.times
-        import numpy as np
-
-        grid = np.asarray(stored)
+            stored.append(scene.times)
         for i, t in enumerate(self.times):
-            if not np.any(np.abs(grid - t) <= TIME_TOL):
+            if not any(_holds(times, t) for times in stored):
                 out.add(where + ["times", i], f"not a stored time of {', '.join(read)} "
                                               f"(add it to a store.snapshots list)", t)
 

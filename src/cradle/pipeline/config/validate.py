@@ -23,21 +23,20 @@ parameters.
 """
 from __future__ import annotations
 
-import copy
 import difflib
 import json
 import re
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
-from typing import cast
+from typing import NamedTuple, cast
 
 from jsonschema import Draft202012Validator
 from jsonschema.exceptions import ValidationError
 from jsonschema.protocols import Validator
 
 from cradle.specs import declare as spec
-from cradle.specs.values import ANGLE_HINT, ANGLE_PATTERN, ConfigError, Errors, number, show
+from cradle.specs.values import ANGLE_HINT, ANGLE_PATTERN, ConfigError, Errors, copied, number, show
 
 from . import checks, sections
 from .sections import SECTIONS
@@ -105,9 +104,15 @@ def _branch(node: dict) -> Validator:
     return v
 
 
+#: the answers of :func:`_kind_test`, by the node's id
+_KIND_TESTS: dict[int, str | None] = {}
+
+
 def _is_valid(node: dict, instance) -> bool:
     """Whether ``instance`` is valid against the sub-schema ``node`` of the schema."""
-    kind = _kind_test(node)
+    kind = _KIND_TESTS.get(id(node), False)
+    if kind is False:
+        kind = _KIND_TESTS[id(node)] = _kind_test(node)
     if kind is not None:   # the test of a union's branch, the most frequent: answered without jsonschema
         return isinstance(instance, dict) and isinstance(instance.get("kind"), str) and instance["kind"] == kind
     return _branch(node).is_valid(instance)
@@ -135,6 +140,60 @@ def _resolve(node: dict) -> dict:
     return target
 
 
+class _Node(NamedTuple):
+    """What :func:`_fill` and :func:`_coerce` read of a schema node, read once (by the node's id, as
+    :data:`_BRANCHES`): both walk the schema along every config, on every validation."""
+    ref: dict | None
+    all_of: tuple
+    test: dict | None
+    then: dict | None
+    otherwise: dict | None
+    groups: tuple   # the branches of anyOf, then those of oneOf (each group given)
+    props: dict
+    defaults: tuple   # (key, default) of the properties that declare one
+    extra: dict | None
+    items: dict | None
+    integer: bool
+    types: tuple | None   # the JSON types a string is read as (:func:`_scalar_from_string`); None: kept a string
+
+
+_NODES: dict[int, _Node] = {}
+#: whether :func:`_fill` leaves every instance of a node as it is (no default, no integer key below it), by id
+_INERT: dict[int, bool] = {}
+
+
+def _node(node: dict) -> _Node:
+    n = _NODES.get(id(node))
+    if n is None:
+        props = node.get("properties", {})
+        extra, items, tp = node.get("additionalProperties"), node.get("items"), node.get("type")
+        types = None if tp is None else (tp,) if isinstance(tp, str) else tuple(tp)
+        n = _NODES[id(node)] = _Node(
+            ref=_resolve(node) if "$ref" in node else None, all_of=tuple(node.get("allOf", ())),
+            test=node.get("if"), then=node.get("then"), otherwise=node.get("else"),
+            groups=tuple(node[k] for k in ("anyOf", "oneOf") if node.get(k)), props=props,
+            defaults=tuple((k, sub["default"]) for k, sub in props.items()
+                           if isinstance(sub, dict) and "default" in sub),
+            extra=extra if isinstance(extra, dict) else None, items=items if isinstance(items, dict) else None,
+            integer=tp == "integer", types=None if types is None or "string" in types else types)
+    return n
+
+
+def _inert(node) -> bool:
+    """Whether :func:`_fill` returns every instance of ``node`` unchanged: no default to fill and no integer
+    key anywhere below it (most leaves), so that it need not be followed."""
+    if not isinstance(node, dict):
+        return True
+    inert = _INERT.get(id(node))
+    if inert is None:
+        _INERT[id(node)] = False   # while it is worked out (a node reached again through a $ref)
+        n = _node(node)
+        below = [n.ref, *n.all_of, n.then, n.otherwise, *(sub for group in n.groups for sub in group),
+                 *n.props.values(), n.extra, n.items]
+        inert = _INERT[id(node)] = not n.defaults and not n.integer and all(_inert(sub) for sub in below)
+    return inert
+
+
 def _fill(node, instance):
     """Fill schema defaults into ``instance`` (mutated and returned), following
     $ref, allOf, if/then/else, anyOf/oneOf (first matching branch), properties,
@@ -142,33 +201,31 @@ def _fill(node, instance):
     Integer-valued floats of "integer" keys become ints (N: 50.0 -> 50)."""
     if not isinstance(node, dict):
         return instance
-    if "$ref" in node:
-        instance = _fill(_resolve(node), instance)
-    for sub in node.get("allOf", ()):
+    n = _node(node)
+    if n.ref is not None:
+        instance = _fill(n.ref, instance)
+    for sub in n.all_of:
         instance = _fill(sub, instance)
-    if "if" in node:
-        branch = node.get("then") if _is_valid(node["if"], instance) else node.get("else")
-        instance = _fill(branch, instance)
-    for key in ("anyOf", "oneOf"):
-        for sub in node.get(key, ()):
+    if n.test is not None:
+        instance = _fill(n.then if _is_valid(n.test, instance) else n.otherwise, instance)
+    for group in n.groups:   # the first branch that matches in each
+        for sub in group:
             if _is_valid(sub, instance):
                 instance = _fill(sub, instance)
                 break
     if isinstance(instance, dict):
-        props = node.get("properties", {})
-        for key, sub in props.items():
-            if key not in instance and isinstance(sub, dict) and "default" in sub:
-                instance[key] = copy.deepcopy(sub["default"])
-        extra = node.get("additionalProperties")
+        props = n.props
+        for key, default in n.defaults:
+            if key not in instance:
+                instance[key] = copied(default)
         for key in list(instance):
-            if key in props:
-                instance[key] = _fill(props[key], instance[key])
-            elif isinstance(extra, dict):
-                instance[key] = _fill(extra, instance[key])
-    elif isinstance(instance, list) and isinstance(node.get("items"), dict):
+            sub = props.get(key, n.extra)
+            if sub is not None and not _inert(sub):
+                instance[key] = _fill(sub, instance[key])
+    elif isinstance(instance, list) and n.items is not None:
         for i, item in enumerate(instance):
-            instance[i] = _fill(node["items"], item)
-    if node.get("type") == "integer" and isinstance(instance, float) and instance.is_integer():
+            instance[i] = _fill(n.items, item)
+    if n.integer and isinstance(instance, float) and instance.is_integer():
         instance = int(instance)
     return instance
 
@@ -203,27 +260,24 @@ def _coerce(node, instance):
     """
     if not isinstance(node, dict):
         return instance
-    if "$ref" in node:
-        instance = _coerce(_resolve(node), instance)
-    for sub in node.get("allOf", ()):
+    n = _node(node)
+    if n.ref is not None:
+        instance = _coerce(n.ref, instance)
+    for sub in n.all_of:
         instance = _coerce(sub, instance)
-    if "if" in node:
-        branch = node.get("then") if _is_valid(node["if"], instance) else node.get("else")
-        instance = _coerce(branch, instance)
+    if n.test is not None:
+        instance = _coerce(n.then if _is_valid(n.test, instance) else n.otherwise, instance)
     if isinstance(instance, dict):
-        props = node.get("properties", {})
-        extra = node.get("additionalProperties")
+        props, extra = n.props, n.extra
         for key in list(instance):
-            sub = props.get(key, extra if isinstance(extra, dict) else None)
+            sub = props.get(key, extra)
             if sub is not None:
                 instance[key] = _coerce(sub, instance[key])
-    elif isinstance(instance, list) and isinstance(node.get("items"), dict):
+    elif isinstance(instance, list) and n.items is not None:
         for i, item in enumerate(instance):
-            instance[i] = _coerce(node["items"], item)
-    elif isinstance(instance, str) and "type" in node:
-        types = [node["type"]] if isinstance(node["type"], str) else list(node["type"])
-        if "string" not in types:
-            instance = _scalar_from_string(instance, types)
+            instance[i] = _coerce(n.items, item)
+    elif isinstance(instance, str) and n.types is not None:
+        instance = _scalar_from_string(instance, n.types)
     return instance
 
 
@@ -267,7 +321,7 @@ def _part_errors(schema: dict, value, key: tuple[str, ...]) -> list[ValidationEr
     if memo is not None and memo in _PART_ERRORS:
         return _PART_ERRORS[memo]
     # a copy: the errors keep their instance, which filling in the defaults would change
-    errors = list(_branch(schema).iter_errors(copy.deepcopy(value)))
+    errors = list(_branch(schema).iter_errors(copied(value)))
     if memo is not None:
         if len(_PART_ERRORS) >= 4096:
             _PART_ERRORS.pop(next(iter(_PART_ERRORS)))
@@ -417,7 +471,7 @@ def validate(config: dict) -> dict:
         # an empty file, or the wrong one: refused here rather than as a traceback while the DAG is built
         raise ConfigError(f"config error: config: no {', '.join(SECTIONS)} entries, nothing to build (keys given: "
                           f"{', '.join(map(str, config)) or 'none'})")
-    cfg = _coerce(_root(), copy.deepcopy(dict(config)))
+    cfg = _coerce(_root(), copied(dict(config)))
     out = Errors()
     sections.check_finite(cfg, out)
     for prefix, err in sorted(_schema_errors(cfg), key=lambda pe: [str(p) for p in (*pe[0], *pe[1].absolute_path)]):
@@ -432,7 +486,7 @@ def validate(config: dict) -> dict:
         raise ConfigError(out.lines)
     # a validated config validates to itself (tested): remember it, so that the resolving calls
     # the Snakefile makes with it, once per job, do not validate it again
-    _remember(_key(cfg), copy.deepcopy(cfg))
+    _remember(_key(cfg), copied(cfg))
     return cfg
 
 
@@ -460,7 +514,7 @@ def assume_validated(config: dict) -> dict:
     """``config``, taken as validated without validating it again: a Snakemake job's copy of the config its
     Snakefile validated (workflow/rules/common.smk), which the job resolves entries from to check its inputs
     (:mod:`cradle.pipeline.identity`); validating it again would cost every job a validation."""
-    _remember(_key(config), copy.deepcopy(config))
+    _remember(_key(config), copied(config))
     return config
 
 
