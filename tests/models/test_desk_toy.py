@@ -7,8 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from cradle.models import desk_toy as dt
-from cradle.models import physical as ph
+from cradle.models import desk_toy as dt, physical as ph
 from cradle.specs.values import ConfigError
 
 STEEL = ph.real_cradle("steel", 0.01, length=0.1)
