@@ -37,7 +37,7 @@ from cradle.models.physical import (
     scales,
 )
 from cradle.specs.declare import declared, from_plain, param, plain
-from cradle.specs.values import ConfigError
+from cradle.specs.values import ConfigError, Errors
 
 #: the largest chain of the desk-toy experiments: a bound for the config (a desk toy has 5 to 10 balls; a
 #: longer chain is a lattice scene)
@@ -55,7 +55,7 @@ class DeskToy:
     cradle: Cradle = param(doc="The spheres and their pendulum strings (cradle.models.physical.Cradle); a "
                                "desk toy needs the pendulum length.")
 
-    def check(self, where: list, context, out) -> None:
+    def check(self, where: list, context, out: Errors) -> None:
         """What the schema cannot say: at least one ball stays in the line, and the balls hang on strings."""
         if self.lifted >= self.n_beads:
             out.add(where + ["lifted"], f"must be < n_beads = {self.n_beads} (one ball at least stays in the line)",
@@ -73,8 +73,6 @@ def desk_toy(n_beads: int, lifted: int, angle_deg: float, cradle: Cradle) -> Des
 
 
 def _refuse_inconsistent(spec: DeskToy) -> None:
-    from cradle.specs.values import Errors
-
     errors = Errors()
     spec.check(["desk_toy"], None, errors)
     errors.raise_any()

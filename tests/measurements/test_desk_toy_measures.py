@@ -111,6 +111,16 @@ def test_a_gap_opened_by_a_hard_sphere_collision_grows_as_e_a_sin(e):
     assert math.isnan(m.cascade_end(t, r.x)[1])   # no compression: hard spheres' contacts take no time
 
 
+@pytest.mark.parametrize("e", [1.0, 0.8, 0.3])
+def test_two_hard_spheres_share_the_energy_as_the_collision_law_says(e):
+    # after the collision at pi/2 the velocities are A ((1-e)/2, (1+e)/2): the far ball's share of what is left
+    # is (1+e)^2 / (2 (1 + e^2)) at every later out-swing of it, k = 1, 3, ... until the next collision
+    t = np.linspace(0.0, 1.2 * math.pi, 121)
+    r = hard_sphere_run(np.array([-3.0, 0.0]), np.zeros(2), t, restitution=e)
+    _, f = m.out_fractions(t, r.x, r.v, 1)
+    assert f[0] == pytest.approx((1 + e) ** 2 / (2 * (1 + e * e)), rel=1e-14)
+
+
 def test_nc_line_breaks_up_and_its_gaps_then_open_harmonically():
     # five beads at a moderate amplitude: after the first cascade every bond is open and each gap is harmonic
     # (all beads share the on-site frequency) until the next contact
