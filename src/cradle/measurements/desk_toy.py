@@ -117,10 +117,11 @@ def line_state(t, x, v, at: float) -> tuple[float, np.ndarray, np.ndarray]:
 
 
 def energy_per_swing(t, x, v, alpha: float = 1.5):
-    """(window starts 2 pi k, E (K, N)): each bead's energy averaged over the stored times of each complete swing
-    period [2 pi k, 2 pi (k+1)) (a uniform grid: the sample mean is the time average)."""
+    """(window starts 2 pi k, E (K, N)): each bead's energy averaged over the stored times of each swing period
+    [2 pi k, 2 pi (k+1)) that ends by the last stored time, k = 0 .. K-1 (times from the release, t = 0; on a
+    uniform grid the sample mean is the time average; a window holding no stored time gives a row of NaN)."""
     t, x, v = _arrays(t, x, v)
-    K = int(np.floor((t[-1] - t[0]) / (2.0 * np.pi) + 1e-9))
+    K = int(np.floor(t[-1] / (2.0 * np.pi) + 1e-9))
     e = bead_energies(x, v, alpha)
     k = np.floor(t / (2.0 * np.pi) + 1e-12).astype(int)
     out = np.full((K, x.shape[1]), np.nan)
