@@ -109,3 +109,17 @@ def test_bad_restitution_is_one_line(bad, match):
 def test_overlapping_balls_are_refused():
     with pytest.raises(ValueError, match="gaps"):
         hard_sphere_run([0.0, -1.0], [0.0, 0.0], [1.0])
+
+
+@pytest.mark.parametrize("e", [1.0, 0.9, 0.5])
+def test_a_cascade_keeps_momentum_and_ends_with_no_touching_pair_approaching(e):
+    # two touching balls at speed 1 strike three at rest, all at x = 0: the cascade is at t = 0 (the state stored
+    # at t = 0 is the one after it), where the on-site force has had no time to act
+    v0 = np.array([1.0, 1.0, 0.0, 0.0, 0.0])
+    r = hard_sphere_run(np.zeros(5), v0, [0.0], restitution=e)
+    v = r.v[0]
+    assert v.sum() == pytest.approx(2.0, rel=1e-14)
+    assert np.all(np.diff(v) >= -1e-14)
+    assert 0.5 * (v0 @ v0) - 0.5 * (v @ v) == pytest.approx(r.dissipated[0], rel=1e-12, abs=1e-15)
+    if e == 1.0:
+        assert v.tolist() == [0.0, 0.0, 0.0, 1.0, 1.0]
