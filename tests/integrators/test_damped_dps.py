@@ -13,16 +13,16 @@ n = np.arange(N)
 A0 = (1.0 + 0.3 * np.cos(2 * np.pi * n / N)) * np.exp(-1j * np.pi / 3 * n)
 
 
-@pytest.mark.parametrize("eta", [0.0, 0.4])
-def test_onsite_damping_is_the_undamped_run_in_a_rescaled_time(eta):
+@pytest.mark.parametrize("eta, method", [(0.0, "dop853"), (0.4, "dop853"), (0.4, "dop853_numba")])
+def test_onsite_damping_is_the_undamped_run_in_a_rescaled_time(eta, method):
     # A(tau) = e^{-gamma tau/2} B(s(tau)), B the run without gamma (dfnls for eta = 0), s of onsite_reduction
     gamma = 0.8
     tau = np.linspace(0.0, 6.0, 13)
-    damped = integrate_dps(A0, tau, alpha=ALPHA, method="dop853", rtol=1e-12,
+    damped = integrate_dps(A0, tau, alpha=ALPHA, method=method, rtol=1e-12,
                            damping=DD.DpsDamping(gamma=gamma, eta=eta))
     decay, s = DD.onsite_reduction(tau, gamma, ALPHA)
     assert s[-1] < 2.0 / ((ALPHA - 1) * gamma)
-    B = integrate_dps(A0, s, alpha=ALPHA, method="dop853", rtol=1e-12,
+    B = integrate_dps(A0, s, alpha=ALPHA, method=method, rtol=1e-12,
                       damping=None if eta == 0.0 else DD.DpsDamping(eta=eta))
     assert np.max(np.abs(damped.A - decay[:, None] * B.A)) < 1e-9 * np.max(np.abs(A0))
     assert np.max(np.abs(damped.A[-1])) < 0.2 * np.max(np.abs(A0))   # the damping acted
@@ -34,7 +34,7 @@ def test_contact_damping_of_a_plane_wave_closed_form():
     eta, q = 0.5, 4 * np.pi / 5
     Nw = 10
     tau = np.linspace(0.0, 5.0, 11)
-    sol = integrate_dps(np.exp(-1j * q * np.arange(Nw)), tau, alpha=ALPHA, method="dop853", rtol=1e-12,
+    sol = integrate_dps(np.exp(-1j * q * np.arange(Nw)), tau, alpha=ALPHA, rtol=1e-12,
                         damping=DD.DpsDamping(eta=eta))
     kap = DD.contact_factor(eta, ALPHA)
     Om = dps.plane_wave_frequency(1.0, q, ALPHA)
@@ -45,7 +45,7 @@ def test_contact_damping_of_a_plane_wave_closed_form():
     assert abs(sol.A[-1, 0]) < 0.5
 
 
-@pytest.mark.parametrize("method", ["dop853", "rk45"])
+@pytest.mark.parametrize("method", ["dop853_numba", "dop853", "rk45"])
 def test_balance_laws_along_a_run(method):
     # the dissipated amounts integrated with the run against the change of l2 and H, and against an independent
     # quadrature of the rates of (dpsdamped) along the output; P = sum A_n decays exactly as e^{-gamma tau/2}

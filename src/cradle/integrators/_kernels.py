@@ -342,13 +342,13 @@ def dps_invariants(y, alpha, periodic):
 
 @njit(cache=True)
 def dps_damped_rhs(y, dy, alpha, par, periodic):
-    """(dpsdamped) on y = (Re A_0, Im A_0, ..., Re A_{N-1}, Im A_{N-1}, Q_l2, Q_H), par = [1/(2 tau0), gamma~,
+    """(dpsdamped) on y = (Re A_0, Im A_0, ..., Re A_{N-1}, Im A_{N-1}, Q_l2, Q_S), par = [1/(2 tau0), gamma~,
     Re kappa, Im kappa] (:mod:`cradle.models.dps_damped`).
 
     dA_n/dtau = kappa (G_n - G_{n-1}) / (2 i tau0) - (gamma~/2) A_n; the two last entries integrate what the
-    damping removes: Q_l2' = -d/dtau sum |A_n|^2 = gamma~ sum |A_n|^2 + (Im kappa / tau0) S and
-    Q_H' = d/dtau H = (1/tau0) [(Im kappa / (2 tau0)) sum |G_n - G_{n-1}|^2 + (gamma~/2) S],
-    S = sum |A_{n+1} - A_n|^(alpha+1) (the balance laws of (dpsdamped)).
+    damping removes from sum |A_n|^2 and from S = sum |A_{n+1} - A_n|^(alpha+1) = -(alpha+1) tau0 H (the
+    balance laws of (dpsdamped)): Q_l2' = gamma~ sum |A_n|^2 + (Im kappa / tau0) S and
+    Q_S' = (alpha+1) [(Im kappa / (2 tau0)) sum |G_n - G_{n-1}|^2 + (gamma~/2) S].
     """
     N = (y.shape[0] - 2) // 2
     inv2tau0 = par[0]
@@ -394,4 +394,4 @@ def dps_damped_rhs(y, dy, alpha, par, periodic):
         gpr = gr
         gpi = gi
     dy[2 * N] = 2.0 * half_gamma * l2 + 2.0 * ki * inv2tau0 * S
-    dy[2 * N + 1] = 2.0 * inv2tau0 * (ki * inv2tau0 * L2 + half_gamma * S)
+    dy[2 * N + 1] = (alpha + 1.0) * (ki * inv2tau0 * L2 + half_gamma * S)

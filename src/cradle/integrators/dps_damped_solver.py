@@ -3,11 +3,12 @@
     2 i tau0 dA_n/dtau = kappa [g(A_{n+1} - A_n) - g(A_n - A_{n-1})] - i tau0 gamma~ A_n          (dpsdamped)
 
 The state is the real view of A extended by the two amounts the damping removes, Q_l2 (of sum |A_n|^2) and
-Q_H (of |H|), integrated with it as quantities of their own
-(:func:`cradle.integrators._kernels.dps_damped_rhs`): l2 + Q_l2 and H - Q_H are then constant, and their
+Q_S (of S = sum |A_{n+1} - A_n|^(alpha+1) = -(alpha+1) tau0 H), integrated with it as quantities of their own
+(:func:`cradle.integrators._kernels.dps_damped_rhs`): l2 + Q_l2 and S + Q_S are then constant, and their
 changes measure the integrator's accuracy, never a difference taken as the dissipation. Called by
 :func:`cradle.integrators.integrate_dps` when its ``damping`` is active; scipy's DOP853 or RK45 stepped
-manually, or DOP853 in numba (kind 3 of :mod:`cradle.integrators._dop853`).
+manually, or DOP853 in numba (kind 3 of :mod:`cradle.integrators._dop853`, the default method "dop853_numba";
+it does not resume across blocks as :func:`cradle.integrators.dps_solver.iter_dps` does).
 """
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ import time
 
 import numpy as np
 
-from cradle.integrators import _kernels as K
+from cradle.integrators import _dop853, _kernels as K
 from cradle.models.dps_damped import DpsDamping, contact_factor
 from cradle.specs.declare import from_plain, plain
 
@@ -41,24 +42,26 @@ class _Balance:
         self.run = run
         self.N = run.N
         self.to_H = -1.0 / ((run.alpha + 1.0) * (0.5 / run.inv2tau0))   # H = -S / ((alpha+1) tau0)
+        self.S0 = run.S0
+        self.S_scale = run.S_scale
         self.H0 = run.S0 * self.to_H
         self.H_scale = abs(self.H0) if self.H0 != 0.0 else 1.0
         self.half_gamma = 0.5 * damping.gamma
 
     def row(self, y, tau):
-        """(l2, H, Q_l2, Q_H, l2 residual, H residual, P residual) of the extended state y at tau."""
+        """(l2, H, Q_l2, Q_H, l2 residual, H residual, P residual) of the extended state y at tau;
+        Q_H = -Q_S / ((alpha+1) tau0) is what H has gained, and |S + Q_S - S0| / S0 = |H - Q_H - H0| / |H0|."""
         run, n = self.run, 2 * self.N
         l2, S, pr, pi = K.dps_invariants(np.ascontiguousarray(y[:n]), run.alpha, run.periodic)
-        H = S * self.to_H
         P_exact = run.P0 * np.exp(-self.half_gamma * tau)
-        return (l2, H, y[n], y[n + 1], abs(l2 + y[n] - run.l20) / run.l2_scale, abs(H - y[n + 1] - self.H0) /
-                self.H_scale, abs(complex(pr, pi) - P_exact) / run.P_scale)
+        return (l2, S * self.to_H, y[n], -y[n + 1] * self.to_H, abs(l2 + y[n] - run.l20) / run.l2_scale,
+                abs(S + y[n + 1] - self.S0) / self.S_scale, abs(complex(pr, pi) - P_exact) / run.P_scale)
 
 
 def integrate_damped(run, damping: DpsDamping, method: str, wall0: float):
     """:func:`cradle.integrators.integrate_dps` of (dpsdamped) for the validated run ``run``
     (:class:`cradle.integrators.dps_solver._DpsRun`) with active ``damping``."""
-    from cradle.integrators.dps_solver import SCIPY_DPS_METHODS, DpsSolution
+    from cradle.integrators.dps_solver import SCIPY_DPS_METHODS
 
     tau_out, T, N = run.tau_out, run.tau_out.size, run.N
     par = parameters(damping, run.alpha, run.inv2tau0)
@@ -72,7 +75,13 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float):
     n_steps = 0
     nfev = 0
     if method == "dop853_numba":
-        raise ValueError("method = 'dop853_numba' has no damped kind yet: give method='dop853' with damping")
+        stats = np.array([run.l20, run.S0, 0.0, 0.0])
+        Y, n_steps, nfev = _dop853.run_dop853(_dop853.DPS_DAMPED, y0, tau_out, rtol, atol, alpha, 0, par, periodic,
+                                              stats, run.progress)
+        for i in range(T):
+            rows[i] = balance.row(Y[i], tau_out[i])
+        max_l2, max_E = float(stats[2]), float(stats[3])
+        return _solution(Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
 
     def fun(t, y):
         dy = np.empty_like(y)
@@ -117,8 +126,14 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float):
         nfev = int(solver.nfev)
     if run.progress is not None:
         run.progress(tau_final, tau_final)
-    A = np.ascontiguousarray(Y[:, :2 * N]).view(np.complex128)
-    return DpsSolution(tau_out, A, rows[:, 4].copy(), rows[:, 5].copy(), rows[:, 6].copy(), float(max_l2),
-                       float(max_E), n_steps, time.perf_counter() - wall0, method, float(rtol), float(atol), nfev,
-                       l2=rows[:, 0].copy(), energy=rows[:, 1].copy(), l2_dissipated=rows[:, 2].copy(),
-                       energy_dissipated=rows[:, 3].copy(), damping=damping)
+    return _solution(Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
+
+
+def _solution(Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0):
+    from cradle.integrators.dps_solver import DpsSolution
+
+    A = np.ascontiguousarray(Y[:, :2 * run.N]).view(np.complex128)
+    return DpsSolution(run.tau_out, A, rows[:, 4].copy(), rows[:, 5].copy(), rows[:, 6].copy(), float(max_l2),
+                       float(max_E), int(n_steps), time.perf_counter() - wall0, method, float(run.rtol),
+                       float(run.atol), int(nfev), l2=rows[:, 0].copy(), energy=rows[:, 1].copy(),
+                       l2_dissipated=rows[:, 2].copy(), energy_dissipated=rows[:, 3].copy(), damping=damping)
