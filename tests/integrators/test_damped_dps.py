@@ -30,7 +30,7 @@ def test_onsite_damping_is_the_undamped_run_in_a_rescaled_time(eta, method):
 
 def test_contact_damping_of_a_plane_wave_closed_form():
     # A_n = R e^{i phi} e^{-iqn}: R' = -Im(kappa) Om R^alpha, phi' = Re(kappa) Om R^(alpha-1), Om tau0 = 2^alpha
-    # |sin(q/2)|^(alpha+1) (ds), so R^(1-alpha) = 1 + (alpha-1) Im(kappa) Om tau and phi = Re/Im kappa log(...)/(alpha-1)
+    # |sin(q/2)|^(alpha+1) (ds), so R^(1-alpha) = 1 + (alpha-1) Im(kappa) Om tau, phi = Re/Im kappa log(...)/(alpha-1)
     eta, q = 0.5, 4 * np.pi / 5
     Nw = 10
     tau = np.linspace(0.0, 5.0, 11)

@@ -27,7 +27,7 @@ def _harmonic_of_damping(A, eps, alpha, damping):
     out = np.zeros(N, dtype=complex)
     for n in range(N):
         for part, fn in ((1.0, np.cos), (-1j, np.sin)):
-            tot = sum(quad(lambda t: force(t)[n] * fn(t), a, b, epsabs=1e-15, epsrel=1e-13, limit=200)[0]
+            tot = sum(quad(lambda t, n=n, fn=fn: force(t)[n] * fn(t), a, b, epsabs=1e-15, epsrel=1e-13, limit=200)[0]
                       for a, b in zip(edges[:-1], edges[1:], strict=True))
             out[n] += part * tot / (2 * np.pi)
     return out

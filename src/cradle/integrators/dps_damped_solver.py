@@ -58,10 +58,11 @@ class _Balance:
                 abs(S + y[n + 1] - self.S0) / self.S_scale, abs(complex(pr, pi) - P_exact) / run.P_scale)
 
 
-def integrate_damped(run, damping: DpsDamping, method: str, wall0: float):
+def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, solution, scipy_class: str | None):
     """:func:`cradle.integrators.integrate_dps` of (dpsdamped) for the validated run ``run``
-    (:class:`cradle.integrators.dps_solver._DpsRun`) with active ``damping``."""
-    from cradle.integrators.dps_solver import SCIPY_DPS_METHODS
+    (:class:`cradle.integrators.dps_solver._DpsRun`) with active ``damping``; ``solution`` is the class
+    :class:`cradle.integrators.DpsSolution` and ``scipy_class`` the name of scipy's solver (None: DOP853 in
+    numba), both given by the caller, which this module does not import."""
 
     tau_out, T, N = run.tau_out, run.tau_out.size, run.N
     par = parameters(damping, run.alpha, run.inv2tau0)
@@ -81,7 +82,7 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float):
         for i in range(T):
             rows[i] = balance.row(Y[i], tau_out[i])
         max_l2, max_E = float(stats[2]), float(stats[3])
-        return _solution(Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
+        return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
 
     def fun(t, y):
         dy = np.empty_like(y)
@@ -100,7 +101,7 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float):
     if idx < T:
         from scipy import integrate
 
-        solver = getattr(integrate, SCIPY_DPS_METHODS[method])(fun, 0.0, y0, tau_final, rtol=rtol, atol=atol)
+        solver = getattr(integrate, str(scipy_class))(fun, 0.0, y0, tau_final, rtol=rtol, atol=atol)
         t_last = time.perf_counter()
         while solver.status == "running":
             msg = solver.step()
@@ -126,14 +127,12 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float):
         nfev = int(solver.nfev)
     if run.progress is not None:
         run.progress(tau_final, tau_final)
-    return _solution(Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
+    return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
 
 
-def _solution(Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0):
-    from cradle.integrators.dps_solver import DpsSolution
-
+def _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0):
     A = np.ascontiguousarray(Y[:, :2 * run.N]).view(np.complex128)
-    return DpsSolution(run.tau_out, A, rows[:, 4].copy(), rows[:, 5].copy(), rows[:, 6].copy(), float(max_l2),
+    return solution(run.tau_out, A, rows[:, 4].copy(), rows[:, 5].copy(), rows[:, 6].copy(), float(max_l2),
                        float(max_E), int(n_steps), time.perf_counter() - wall0, method, float(run.rtol),
                        float(run.atol), int(nfev), l2=rows[:, 0].copy(), energy=rows[:, 1].copy(),
                        l2_dissipated=rows[:, 2].copy(), energy_dissipated=rows[:, 3].copy(), damping=damping)

@@ -133,7 +133,8 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
 
         if dps_damped_solver.validated(damping).active:
             return dps_damped_solver.integrate_damped(_DpsRun(A0, tau_out, alpha, bc, rtol, atol, progress),
-                                                      damping, method, wall0)
+                                                      damping, method, wall0, DpsSolution,
+                                                      SCIPY_DPS_METHODS.get(method))
     run = _DpsRun(A0, tau_out, alpha, bc, rtol, atol, progress)
     tau_out, T, N = run.tau_out, run.tau_out.size, run.N
     if method == "dop853_numba":

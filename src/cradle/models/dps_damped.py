@@ -18,13 +18,13 @@ at order eps^alpha (derivation, assumptions and what is neglected: docs/damped-d
 
 With gamma~ = 0 and eta = 0 this is (dfnls). The squared l2 norm and the Hamiltonian H of (dfnls) obey
 
-    d/dtau sum |A_n|^2 = -gamma~ sum |A_n|^2 - (Im kappa / tau0) S,                       S = sum |A_{n+1} - A_n|^(alpha+1)
-    d/dtau H = (1/tau0) [ (Im kappa / (2 tau0)) sum |L_n|^2 + (gamma~/2) S ] >= 0,         H = -S / ((alpha+1) tau0)
+    d/dtau sum |A_n|^2 = -gamma~ sum |A_n|^2 - (Im kappa / tau0) S <= 0,
+    d/dtau H = (1/tau0) [ (Im kappa / (2 tau0)) sum |L_n|^2 + (gamma~/2) S ] >= 0,
 
-(L_n = g(A_{n+1} - A_n) - g(A_n - A_{n-1})): both |H| and the l2 norm decay. Since g is homogeneous of
-degree alpha, the on-site term reduces exactly: A_n(tau) = e^{-gamma~ tau/2} B_n(s(tau)) with B the
-solution of the same equation without gamma~ and s(tau) = (1 - e^{-(alpha-1) gamma~ tau/2}) / ((alpha-1)
-gamma~/2) (:func:`onsite_reduction`).
+(S = sum |A_{n+1} - A_n|^(alpha+1), H = -S / ((alpha+1) tau0), L_n = g(A_{n+1} - A_n) - g(A_n - A_{n-1})):
+both |H| and the l2 norm decay. Since g is homogeneous of degree alpha, the on-site term reduces exactly:
+A_n(tau) = e^{-gamma~ tau/2} B_n(s(tau)) with B the solution of the same equation without gamma~ and
+s(tau) = (1 - e^{-(alpha-1) gamma~ tau/2}) / ((alpha-1) gamma~/2) (:func:`onsite_reduction`).
 """
 from __future__ import annotations
 
@@ -81,7 +81,8 @@ def contact_factor(eta: float, alpha: float) -> complex:
     u in (-pi/2, pi/2) (u = t + theta - pi), c' = -2 eps r sin(u), and the force
     c^(alpha-1) max(c - eta sin(u) 2 eps r, 0) is clipped for u > u* = arctan(1/eta). Projected on e^{it}:
 
-        kappa W(alpha+1) = J_{alpha+1} + eta k^(alpha+1)/(alpha+1) + i [k^(alpha+1)/(alpha+1) + eta (J_{alpha-1} - J_{alpha+1})]
+        kappa W(alpha+1) = J_{alpha+1} + eta k^(alpha+1)/(alpha+1)
+                           + i [k^(alpha+1)/(alpha+1) + eta (J_{alpha-1} - J_{alpha+1})]
 
     with W(p) = int_{-pi/2}^{pi/2} cos^p = pi c_alpha for p = alpha + 1 (wallis), J_p = int_{-pi/2}^{u*} cos^p,
     k = cos u* = eta / sqrt(1 + eta^2). Without the clipping (u* = pi/2) kappa = 1 + i eta/alpha.
