@@ -63,7 +63,6 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, soluti
     (:class:`cradle.integrators.dps_solver._DpsRun`) with active ``damping``; ``solution`` is the class
     :class:`cradle.integrators.DpsSolution` and ``scipy_class`` the name of scipy's solver (None: DOP853 in
     numba), both given by the caller, which this module does not import."""
-
     tau_out, T, N = run.tau_out, run.tau_out.size, run.N
     par = parameters(damping, run.alpha, run.inv2tau0)
     alpha, periodic, rtol, atol = run.alpha, run.periodic, run.rtol, run.atol
