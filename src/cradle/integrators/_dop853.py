@@ -8,7 +8,9 @@ shortened so that they end exactly on the output times (no dense output),
 and the invariants are monitored after every accepted step. Used by
 ``method="dop853_numba"`` of :func:`cradle.integrators.integrate_lattice`
 (kind 0, (nc)/(meca), y = [x, v]) and :func:`cradle.integrators.integrate_dps`
-(kind 1, (dfnls), y = real view of A).
+(kind 1, (dfnls), y = real view of A; kind 3, the damped (dpsdamped), y = real view of A and the two
+dissipated amounts). ``par`` is a float64 array: [1/(2 tau0)] for kind 1, the ``par`` of
+:func:`cradle.integrators._kernels.dps_damped_rhs` for kind 3.
 """
 from __future__ import annotations
 
@@ -51,15 +53,17 @@ C = np.ascontiguousarray(_c.C[:_NS], dtype=float)
 E3 = np.ascontiguousarray(_c.E3, dtype=float)
 E5 = np.ascontiguousarray(_c.E5, dtype=float)
 
-LATTICE, DPS = 0, 1
+LATTICE, DPS, DPS_DAMPED = 0, 1, 3
 
 
 @njit(cache=True)
 def _rhs(kind, y, dy, f, F, alpha, mode, par, periodic):
     if kind == 0:
         K.lattice_rhs(y, dy, f, F, alpha, mode, periodic)
+    elif kind == 3:
+        K.dps_damped_rhs(y, dy, alpha, par, periodic)
     else:
-        K.dps_rhs(y, dy, alpha, par, periodic)
+        K.dps_rhs(y, dy, alpha, par[0], periodic)
 
 
 @njit(cache=True)
@@ -68,6 +72,7 @@ def _monitor(kind, y, alpha, mode, periodic, stats):
 
     kind 0: stats = [H0, max |H-H0|/|H0|, max compression, H]
     kind 1: stats = [l2_0, S0, max |l2-l2_0|/l2_0, max |S-S0|/S0] (H = -S/((alpha+1) tau0))
+    kind 3: the same with l2 + Q_l2 and S + Q_S (the balance laws: Q the dissipated amounts, y's two last entries)
     """
     if kind == 0:
         n = y.shape[0] // 2
@@ -76,6 +81,13 @@ def _monitor(kind, y, alpha, mode, periodic, stats):
         stats[1] = max(stats[1], abs(H - stats[0]) / sc)
         stats[2] = max(stats[2], cm)
         stats[3] = H
+    elif kind == 3:
+        n = y.shape[0] - 2
+        l2, S, _pr, _pi = K.dps_invariants(y[:n], alpha, periodic)
+        s0 = stats[0] if stats[0] != 0.0 else 1.0
+        s1 = stats[1] if stats[1] != 0.0 else 1.0
+        stats[2] = max(stats[2], abs(l2 + y[n] - stats[0]) / s0)
+        stats[3] = max(stats[3], abs(S + y[n + 1] - stats[1]) / s1)
     else:
         l2, S, _pr, _pi = K.dps_invariants(y, alpha, periodic)
         s0 = stats[0] if stats[0] != 0.0 else 1.0
@@ -242,6 +254,7 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         tgrid, shift = np.concatenate(([t_start], t_out)), 1
     y = y0.copy()
     fy = np.empty(n)
+    par = np.atleast_1d(np.asarray(par, dtype=np.float64))   # a float (kinds 0, 1) or the kernel's array
     nf = n // 2 if kind == 0 else 1
     f, F = np.empty(nf), np.empty(nf)
 
@@ -270,7 +283,7 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         t0 = time.perf_counter()
         n_before = counts[0]
         k, status = dop853_run(kind, y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3, E5,
-                               float(alpha), int(mode), float(par), bool(periodic), Y, shift, stats, counts)
+                               float(alpha), int(mode), par, bool(periodic), Y, shift, stats, counts)
         if status != 0:
             raise RuntimeError(f"dop853_numba: step size underflow at t={state[0]!r}")
         if progress is not None:
