@@ -10,7 +10,6 @@ import yaml
 from cradle.models import physical
 from cradle.pipeline import config as cc
 from cradle.specs.values import ConfigError
-
 from test_config import CONFIG, one_error  # tests/pipeline is on sys.path (rootdir, no __init__.py)
 
 STEEL = {"material": "steel", "radius": 0.01, "length": 0.1}
