@@ -7,8 +7,11 @@ Solving ODEs I, sec. II.5), but the whole loop runs in numba: the steps are
 shortened so that they end exactly on the output times (no dense output),
 and the invariants are monitored after every accepted step. Used by
 ``method="dop853_numba"`` of :func:`cradle.integrators.integrate_lattice`
-(kind 0, (nc)/(meca), y = [x, v]) and :func:`cradle.integrators.integrate_dps`
-(kind 1, (dfnls), y = real view of A).
+(kind 0, (nc)/(meca), y = [x, v]; kind 2, (ncdamped) with its dissipated
+energy, y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
+(kind 1, (dfnls), y = real view of A). ``par`` is a float64 array of the
+kind's parameters: kind 1 reads 1/(2 tau0) = par[0]; kind 2 gamma = par[0],
+eta = par[1] and the scale s = par[2] of D in the state; kind 0 reads none.
 """
 from __future__ import annotations
 
@@ -51,15 +54,27 @@ C = np.ascontiguousarray(_c.C[:_NS], dtype=float)
 E3 = np.ascontiguousarray(_c.E3, dtype=float)
 E5 = np.ascontiguousarray(_c.E5, dtype=float)
 
-LATTICE, DPS = 0, 1
+LATTICE, DPS, LATTICE_DAMPED = 0, 1, 2
+
+
+@njit(cache=True)
+def _work_size(kind, n):
+    """Length of the force work arrays f, F: the number of beads for the lattice kinds."""
+    if kind == 0:
+        return n // 2
+    if kind == 2:
+        return (n - 1) // 2
+    return 1
 
 
 @njit(cache=True)
 def _rhs(kind, y, dy, f, F, alpha, mode, par, periodic):
     if kind == 0:
         K.lattice_rhs(y, dy, f, F, alpha, mode, periodic)
+    elif kind == 2:
+        K.lattice_damped_rhs(y, dy, f, F, alpha, mode, par[0], par[1], par[2], periodic)
     else:
-        K.dps_rhs(y, dy, alpha, par, periodic)
+        K.dps_rhs(y, dy, alpha, par[0], periodic)
 
 
 @njit(cache=True)
@@ -68,8 +83,17 @@ def _monitor(kind, y, alpha, mode, periodic, stats):
 
     kind 0: stats = [H0, max |H-H0|/|H0|, max compression, H]
     kind 1: stats = [l2_0, S0, max |l2-l2_0|/l2_0, max |S-S0|/S0] (H = -S/((alpha+1) tau0))
+    kind 2: stats = [H0, max |H+D-H0|/|H0|, max compression, H, s] (y[-1] = s D): the stored plus
+    dissipated energy H + D is conserved by (ncdamped), its drift is the integrator's error
     """
-    if kind == 0:
+    if kind == 2:
+        n = (y.shape[0] - 1) // 2
+        H, cm = K.lattice_energy(y[:n], y[n:2 * n], alpha, mode, periodic)
+        sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
+        stats[1] = max(stats[1], abs(H + y[2 * n] / stats[4] - stats[0]) / sc)
+        stats[2] = max(stats[2], cm)
+        stats[3] = H
+    elif kind == 0:
         n = y.shape[0] // 2
         H, cm = K.lattice_energy(y[:n], y[n:], alpha, mode, periodic)
         sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
@@ -96,7 +120,7 @@ def dop853_run(kind, y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3,
     step size underflowed.
     """
     n = y.shape[0]
-    nf = n // 2 if kind == 0 else 1
+    nf = _work_size(kind, n)
     f = np.empty(nf)
     F = np.empty(nf)
     Ks = np.empty((13, n))
@@ -233,6 +257,7 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
     """
     n = y0.size
     T = t_out.size
+    par = np.ascontiguousarray(par, dtype=np.float64).reshape(-1)   # one compiled signature for every kind
     Y = np.empty((T, n))
     t_start = 0.0 if state is None else float(state[0])
     if t_out[0] == t_start:
@@ -242,7 +267,7 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         tgrid, shift = np.concatenate(([t_start], t_out)), 1
     y = y0.copy()
     fy = np.empty(n)
-    nf = n // 2 if kind == 0 else 1
+    nf = _work_size(kind, n)
     f, F = np.empty(nf), np.empty(nf)
 
     def fun(z):
@@ -270,7 +295,7 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         t0 = time.perf_counter()
         n_before = counts[0]
         k, status = dop853_run(kind, y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3, E5,
-                               float(alpha), int(mode), float(par), bool(periodic), Y, shift, stats, counts)
+                               float(alpha), int(mode), par, bool(periodic), Y, shift, stats, counts)
         if status != 0:
             raise RuntimeError(f"dop853_numba: step size underflow at t={state[0]!r}")
         if progress is not None:

@@ -49,9 +49,10 @@ import numpy as np
 
 from cradle.integrators import _kernels as K
 from cradle.integrators._validate import check_state, check_times
-from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, run_dop853_numba, run_scipy
+from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, run_dop853_damped, run_dop853_numba, run_scipy
 from cradle.integrators.lattice_splitting import SPLITTING_METHODS, run_splitting
 from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bounds, default_dt
+from cradle.models.damping import Damping
 from cradle.specs.checked import checked
 
 METHODS = SPLITTING_METHODS + ADAPTIVE_METHODS
@@ -99,6 +100,14 @@ class LatticeSolution:
         Corrected methods ("srkn6c", "srkn4c"): bond crossings (contact
         onsets and releases) whose step contribution was replaced by the
         exact integral (:mod:`cradle.integrators._onset`); 0 otherwise.
+    dissipated : ndarray, shape (T,)
+        Energy D(t) = int_0^t P dissipated by the damping terms of (ncdamped) up to ``t``, integrated
+        as a component of the state (:mod:`cradle.models.damping`); zeros without damping.
+    damping : Damping or None
+        The damping integrated (as given; None when none was given).
+
+    With damping, ``energy_drift`` is max over every step of |H(t) + D(t) - H(0)| / |H(0)|: the stored
+    plus dissipated energy is conserved by (ncdamped), so its drift is the integrator's error.
     """
 
     t: np.ndarray
@@ -117,13 +126,19 @@ class LatticeSolution:
     c_assumed: float | None = None
     n_reruns: int = 0
     n_onset_corrections: int = 0
+    dissipated: np.ndarray | None = None
+    damping: Damping | None = None
+
+    def __post_init__(self) -> None:
+        if self.dissipated is None:
+            self.dissipated = np.zeros(len(self.t))
 
 
 @checked(method="latticeMethod")
 def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", dt=None, dt_factor=None,
                       rtol=None, atol=None, potential="hertz", progress=None, t0=0.0,
-                      energy0=None) -> LatticeSolution:
-    """Integrate the lattice (nc) (Hertz V0 of (vhertz)) or (meca) (kappa = 1).
+                      energy0=None, damping=None) -> LatticeSolution:
+    """Integrate the lattice (nc) (Hertz V0 of (vhertz)) or (meca) (kappa = 1), or the damped (ncdamped).
 
     Parameters
     ----------
@@ -173,6 +188,12 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
     energy0 : float, optional
         Splittings only: reference energy for ``energy_drift`` (default
         H(x0, v0)); the energy at t = 0 of the run being continued.
+    damping : Damping, optional
+        The damping terms of (ncdamped) (:class:`cradle.models.damping.Damping`). None or an
+        inactive one (gamma = eta = 0): the conservative (nc), integrated exactly as without the
+        argument. Active: Hertz contacts only, method "dop853_numba" only (see the module
+        docstring), no continuation (t0 = 0, no energy0); the result's ``dissipated`` holds the
+        dissipated energy D and ``energy_drift`` the drift of H + D.
 
     Returns
     -------
@@ -199,6 +220,11 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
                          f"(t0={t0!r}, energy0={energy0!r})")
     if progress is not None and not callable(progress):
         raise ValueError(f"progress must be callable or None, got progress={progress!r}")
+    if damping is not None and not isinstance(damping, Damping):
+        raise ValueError(f"damping must be a cradle.models.damping.Damping or None, got damping={damping!r}")
+    damped = damping is not None and damping.active
+    if damped:
+        _check_damped(method, potential, t0, energy0, damping)
     periodic = bc == "periodic"
     mode = K.mode_flag(potential, alpha)
 
@@ -226,7 +252,7 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
                 n_reruns += 1
         X, V, E, drift, n_steps, nfev, cmax, n_corr = out
         return LatticeSolution(t_out, X, V, E, drift, method, float(dt), None, None, n_steps, nfev, cmax,
-                               time.perf_counter() - wall0, c_assumed, n_reruns, n_corr)
+                               time.perf_counter() - wall0, c_assumed, n_reruns, n_corr, damping=damping)
 
     if dt is not None or dt_factor is not None:
         raise ValueError(f"dt/dt_factor apply to splitting methods only, got dt={dt!r}, dt_factor={dt_factor!r} "
@@ -235,6 +261,11 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
     if atol is None:
         amp = max(float(np.max(np.abs(x0))), float(np.max(np.abs(v0))))
         atol = rtol * amp if amp > 0.0 else rtol
+    if damped:
+        X, V, E, D, drift, n_steps, nfev, cmax = run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic,
+                                                                   damping, progress)
+        return LatticeSolution(t_out, X, V, E, drift, method, None, rtol, atol, n_steps, nfev, cmax,
+                               time.perf_counter() - wall0, dissipated=D, damping=damping)
     if method == "dop853_numba":
         X, V, E, drift, n_steps, nfev, cmax = run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic,
                                                                 progress)
@@ -242,4 +273,17 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
         X, V, E, drift, n_steps, nfev, cmax = run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic,
                                                          progress)
     return LatticeSolution(t_out, X, V, E, drift, method, None, rtol, atol, n_steps, nfev, cmax,
-                           time.perf_counter() - wall0)
+                           time.perf_counter() - wall0, damping=damping)
+
+
+def _check_damped(method, law, t0, energy0, damping) -> None:
+    """Refuse, in one line, what the damped (ncdamped) is not integrated with (``law``: the potential)."""
+    if method != "dop853_numba":
+        raise ValueError(f"method={method!r} with damping={damping!r}: the damped lattice is integrated by "
+                         f"method='dop853_numba' only (velocity-dependent forces: no symplectic splitting)")
+    if law != "hertz":
+        raise ValueError(f"potential={law!r} with damping={damping!r}: damping is declared for Hertz "
+                         f"contacts (potential='hertz') only")
+    if t0 != 0.0 or energy0 is not None:
+        raise ValueError(f"t0={t0!r}/energy0={energy0!r} with damping={damping!r}: a damped run cannot be "
+                         f"continued (it starts at t = 0 with D = 0)")
