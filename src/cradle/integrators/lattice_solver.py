@@ -1,5 +1,5 @@
 """Time integration of Newton's cradle (nc) with the Hertz potential (vhertz),
-or of the smooth lattice (meca) with kappa = 1.
+or of the smooth lattice (meca) with kappa = 1, or of the damped cradle (ncdamped).
 
     d^2 x_n/dt^2 + x_n = V'(x_{n+1} - x_n) - V'(x_n - x_{n-1})        (nc)/(meca)
 
@@ -33,6 +33,21 @@ dt^6. The nominal orders 2/4/6 are recovered on the smooth potential of
 O(h^2.5) to O(h^5) and the observed global order well above 2.5
 (benchmarks/onset_correction.py): at equal error srkn6c is the fastest
 (benchmarks/bench_vs_scipy.py, `snakemake work_precision`).
+
+With damping (``damping=Damping(onsite=gamma, contact=eta)``, the damped lattice (ncdamped) of
+:mod:`cradle.models.damping`): the force depends on the velocities (-gamma v_n, and the contact term
+eta c^(alpha-1) c'), so (ncdamped) is no longer Hamiltonian and the splittings above, built on the
+split (ham) = rotation + kicks of position-only forces, do not apply as such. Damped runs use
+"dop853_numba" only (kind 2 of :mod:`cradle.integrators._dop853`, right-hand side
+:func:`cradle.integrators._kernels.lattice_damped_rhs`, Hertz contacts only), on the state
+y = [x, v, s D]: the dissipated energy D(t) = int_0^t P is integrated as its own component
+(dD/dt = P, never H(0) - H(t)), and the drift of H + D from H(0), monitored after every step, is
+the integrator's error. The contact damping force eta c^(1/2) c' is continuous at contact onset
+but rises like (t - t_on)^(1/2) (the Hertz force like (t - t_on)^(3/2)); DOP853's error control
+shortens the steps that cross an onset, and the observed order in rtol on runs with contacts is
+measured by benchmarks/damped_orders.py (table in docs/damped-orders.md, docs/dissipation.md):
+without contacts (on-site damping alone) DOP853 keeps its order 8; with contacts the error is
+set by the onset steps, as for the conservative (nc).
 
 This module checks the arguments (the scalar ones against the shared declarations,
 ``@checked``; the arrays and the combinations here) and dispatches: the default step is chosen in
@@ -215,16 +230,16 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
     t0 = float(t0)
     if not (np.isfinite(t0) and 0.0 <= t0 <= t_out[0]):
         raise ValueError(f"t0 must be finite, >= 0 and <= t_out[0] = {float(t_out[0])!r}, got t0={t0!r}")
-    if (t0 != 0.0 or energy0 is not None) and method not in SPLITTING_METHODS:
-        raise ValueError(f"t0/energy0 (continuing a run) need a fixed-step splitting method, got method={method!r} "
-                         f"(t0={t0!r}, energy0={energy0!r})")
-    if progress is not None and not callable(progress):
-        raise ValueError(f"progress must be callable or None, got progress={progress!r}")
     if damping is not None and not isinstance(damping, Damping):
         raise ValueError(f"damping must be a cradle.models.damping.Damping or None, got damping={damping!r}")
     damped = damping is not None and damping.active
     if damped:
         _check_damped(method, potential, t0, energy0, damping)
+    if (t0 != 0.0 or energy0 is not None) and method not in SPLITTING_METHODS:
+        raise ValueError(f"t0/energy0 (continuing a run) need a fixed-step splitting method, got method={method!r} "
+                         f"(t0={t0!r}, energy0={energy0!r})")
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress must be callable or None, got progress={progress!r}")
     periodic = bc == "periodic"
     mode = K.mode_flag(potential, alpha)
 
