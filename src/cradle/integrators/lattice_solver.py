@@ -58,7 +58,7 @@ This module checks the arguments (the scalar ones against the shared declaration
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -141,11 +141,11 @@ class LatticeSolution:
     c_assumed: float | None = None
     n_reruns: int = 0
     n_onset_corrections: int = 0
-    dissipated: np.ndarray | None = None
+    dissipated: np.ndarray = field(default_factory=lambda: np.zeros(0))
     damping: Damping | None = None
 
     def __post_init__(self) -> None:
-        if self.dissipated is None:
+        if self.dissipated.size == 0:   # no damping: nothing dissipated at any output time
             self.dissipated = np.zeros(len(self.t))
 
 
