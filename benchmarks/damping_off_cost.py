@@ -5,7 +5,8 @@ The same call (the fft106 travelling wave of benchmarks/bead_step_cost.py, q = 4
 N beads to t_end; srkn6c at its default step and dop853_numba at rtol = 1e-10, no ``damping``
 argument) is timed in fresh subprocesses whose PYTHONPATH is the ``src`` of each checkout, alternating
 main and branch, ``REPEATS`` times each; in each process the best of ``CALLS`` calls after a warm-up
-call (compilation and cache loads not counted). The branch is also timed with ``damping=Damping()`` (every
+call (compilation and cache loads not counted), in CPU time of the process (``time.process_time``:
+the machine is shared, and wall time counts the other jobs' turns). The branch is also timed with ``damping=Damping()`` (every
 term off, given explicitly). Also checks that both checkouts give bitwise the same final state.
 
 Writes docs/damping-off-cost.md. Run from the branch's checkout:
@@ -47,9 +48,9 @@ d = initial.travelling_wave(N, 4 * np.pi / 5, 1.5, omega_tw=1.1)
 integrate_lattice(d.x0, d.v0, np.array([0.0, 1.0]), alpha=1.5, method=method, **kw)   # warm-up
 best = None
 for _ in range(int(sys.argv[6])):
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     sol = integrate_lattice(d.x0, d.v0, np.array([0.0, T]), alpha=1.5, method=method, **kw)
-    wall = time.perf_counter() - t0
+    wall = time.process_time() - t0
     best = wall if best is None else min(best, wall)
 state = np.concatenate([sol.x[-1], sol.v[-1]])
 print(json.dumps({"per_bead_eval_s": best / (sol.n_force_evals * N), "evals": sol.n_force_evals,
@@ -90,7 +91,7 @@ def main() -> None:
         "",
         f"Written by `benchmarks/damping_off_cost.py`: the fft106 travelling wave, N = {N} beads to t = {T:g}, "
         f"{REPEATS} fresh processes per row alternating main ({MAIN_SRC}) and branch, best of {CALLS} calls "
-        "in each; ns per bead and force evaluation (median, min, max over the processes), the median's and "
+        "in each, CPU time; ns per bead and force evaluation (median, min, max over the processes), the median's and "
         "the minimum's difference from main's (the machine is shared: the minimum is the least disturbed), "
         "and whether every process gave bitwise the same final state and "
         "number of force evaluations.",

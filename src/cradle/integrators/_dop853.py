@@ -86,18 +86,18 @@ def _monitor(kind, y, alpha, mode, periodic, stats):
     kind 2: stats = [H0, max |H+D-H0|/|H0|, max compression, H, s] (y[-1] = s D): the stored plus
     dissipated energy H + D is conserved by (ncdamped), its drift is the integrator's error
     """
-    if kind == 2:
-        n = (y.shape[0] - 1) // 2
-        H, cm = K.lattice_energy(y[:n], y[n:2 * n], alpha, mode, periodic)
-        sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
-        stats[1] = max(stats[1], abs(H + y[2 * n] / stats[4] - stats[0]) / sc)
-        stats[2] = max(stats[2], cm)
-        stats[3] = H
-    elif kind == 0:
+    if kind == 0:
         n = y.shape[0] // 2
         H, cm = K.lattice_energy(y[:n], y[n:], alpha, mode, periodic)
         sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
         stats[1] = max(stats[1], abs(H - stats[0]) / sc)
+        stats[2] = max(stats[2], cm)
+        stats[3] = H
+    elif kind == 2:
+        n = (y.shape[0] - 1) // 2
+        H, cm = K.lattice_energy(y[:n], y[n:2 * n], alpha, mode, periodic)
+        sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
+        stats[1] = max(stats[1], abs(H + y[2 * n] / stats[4] - stats[0]) / sc)
         stats[2] = max(stats[2], cm)
         stats[3] = H
     else:
