@@ -6,8 +6,9 @@ N beads to t_end; srkn6c at its default step and dop853_numba at rtol = 1e-10, n
 argument) is timed in fresh subprocesses whose PYTHONPATH is the ``src`` of each checkout, alternating
 main and branch, ``REPEATS`` times each; in each process the best of ``CALLS`` calls after a warm-up
 call (compilation and cache loads not counted), in CPU time of the process (``time.process_time``:
-the machine is shared, and wall time counts the other jobs' turns). The branch is also timed with ``damping=Damping()`` (every
-term off, given explicitly). Also checks that both checkouts give bitwise the same final state.
+the machine is shared, and wall time counts the other jobs' turns). The branch is also timed with
+``damping=Damping()`` (every term off, given explicitly). Also checks that both checkouts give bitwise
+the same final state.
 
 Writes docs/damping-off-cost.md. Run from the branch's checkout:
 
