@@ -45,6 +45,9 @@ VARIABLES: dict[str, Var] = {
     "force": Var(("t", "n"), "contact force V0'(x_{n+1}-x_n) on bond n",
                  attrs=(("comment", "with free ends the last bond is absent and its force is 0"),)),
     "energy": Var(("t",), "lattice Hamiltonian (ham)"),
+    "dissipated": Var(("t",), "energy dissipated since t = 0 by the damping terms of (ncdamped), D(t) = int_0^t P",
+                      attrs=(("comment", "integrated with the run as its own quantity (not H(0) - H(t)); "
+                                         "energy + dissipated is conserved to the integrator's accuracy"),)),
     # DpS (dfnls)
     "A_re": Var(("t", "n"), "real part of the DpS amplitude A_n(tau)"),
     "A_im": Var(("t", "n"), "imaginary part of the DpS amplitude A_n(tau)"),

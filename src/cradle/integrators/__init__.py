@@ -15,7 +15,10 @@ Public API
     the drift of H + D monitored (``LatticeSolution.dissipated``).
 :func:`integrate_dps` -> :class:`DpsSolution`
     (dfnls) with scipy's DOP853 (numba right-hand side) or "dop853_numba";
-    l2 norm, Hamiltonian and P = sum A_n monitored after every step.
+    l2 norm, Hamiltonian and P = sum A_n monitored after every step. With
+    ``damping=DpsDamping(...)``, the damped (dpsdamped) of
+    :mod:`cradle.models.dps_damped` (:mod:`cradle.integrators.dps_damped_solver`),
+    the dissipated amounts integrated with the run.
 
 Helpers: :func:`omega_max`, :func:`compression_bounds`, :func:`default_dt`,
 ``DEFAULT_DT_FACTOR``, ``METHODS``, ``CORRECTED_METHODS``.

@@ -9,9 +9,10 @@ and the invariants are monitored after every accepted step. Used by
 ``method="dop853_numba"`` of :func:`cradle.integrators.integrate_lattice`
 (kind 0, (nc)/(meca), y = [x, v]; kind 2, (ncdamped) with its dissipated
 energy, y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
-(kind 1, (dfnls), y = real view of A). ``par`` is a float64 array of the
-kind's parameters: kind 1 reads 1/(2 tau0) = par[0]; kind 2 gamma = par[0],
-eta = par[1] and the scale s = par[2] of D in the state; kind 0 reads none.
+(kind 1, (dfnls), y = real view of A; kind 3, the damped (dpsdamped), y = real view of A and the two
+dissipated amounts). ``par`` is a float64 array of the kind's parameters: kind 1 reads
+1/(2 tau0) = par[0]; kind 2 gamma = par[0], eta = par[1] and the scale s = par[2] of D in the
+state; kind 3 the ``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`; kind 0 none.
 """
 from __future__ import annotations
 
@@ -54,7 +55,7 @@ C = np.ascontiguousarray(_c.C[:_NS], dtype=float)
 E3 = np.ascontiguousarray(_c.E3, dtype=float)
 E5 = np.ascontiguousarray(_c.E5, dtype=float)
 
-LATTICE, DPS, LATTICE_DAMPED = 0, 1, 2
+LATTICE, DPS, LATTICE_DAMPED, DPS_DAMPED = 0, 1, 2, 3
 
 
 @njit(cache=True)
@@ -73,6 +74,8 @@ def _rhs(kind, y, dy, f, F, alpha, mode, par, periodic):
         K.lattice_rhs(y, dy, f, F, alpha, mode, periodic)
     elif kind == 2:
         K.lattice_damped_rhs(y, dy, f, F, alpha, mode, par[0], par[1], par[2], periodic)
+    elif kind == 3:
+        K.dps_damped_rhs(y, dy, alpha, par, periodic)
     else:
         K.dps_rhs(y, dy, alpha, par[0], periodic)
 
@@ -85,6 +88,8 @@ def _monitor(kind, y, alpha, mode, periodic, stats):
     kind 1: stats = [l2_0, S0, max |l2-l2_0|/l2_0, max |S-S0|/S0] (H = -S/((alpha+1) tau0))
     kind 2: stats = [H0, max |H+D-H0|/|H0|, max compression, H, s] (y[-1] = s D): the stored plus
     dissipated energy H + D is conserved by (ncdamped), its drift is the integrator's error
+    kind 3: the same as kind 1 with l2 + Q_l2 and S + Q_S (the balance laws: Q the dissipated amounts, y's
+    two last entries)
     """
     if kind == 0:
         n = y.shape[0] // 2
@@ -100,6 +105,13 @@ def _monitor(kind, y, alpha, mode, periodic, stats):
         stats[1] = max(stats[1], abs(H + y[2 * n] / stats[4] - stats[0]) / sc)
         stats[2] = max(stats[2], cm)
         stats[3] = H
+    elif kind == 3:
+        n = y.shape[0] - 2
+        l2, S, _pr, _pi = K.dps_invariants(y[:n], alpha, periodic)
+        s0 = stats[0] if stats[0] != 0.0 else 1.0
+        s1 = stats[1] if stats[1] != 0.0 else 1.0
+        stats[2] = max(stats[2], abs(l2 + y[n] - stats[0]) / s0)
+        stats[3] = max(stats[3], abs(S + y[n + 1] - stats[1]) / s1)
     else:
         l2, S, _pr, _pi = K.dps_invariants(y, alpha, periodic)
         s0 = stats[0] if stats[0] != 0.0 else 1.0

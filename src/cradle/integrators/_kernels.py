@@ -384,3 +384,60 @@ def dps_invariants(y, alpha, periodic):
         r = math.hypot(y[2 * m] - y[2 * n], y[2 * m + 1] - y[2 * n + 1])
         S += r * r * _pow_am1(r, alpha)
     return l2, S, pr, pi
+
+
+@njit(cache=True)
+def dps_damped_rhs(y, dy, alpha, par, periodic):
+    """(dpsdamped) on y = (Re A_0, Im A_0, ..., Re A_{N-1}, Im A_{N-1}, Q_l2, Q_S), par = [1/(2 tau0), gamma~,
+    Re kappa, Im kappa] (:mod:`cradle.models.dps_damped`).
+
+    dA_n/dtau = kappa (G_n - G_{n-1}) / (2 i tau0) - (gamma~/2) A_n; the two last entries integrate what the
+    damping removes from sum |A_n|^2 and from S = sum |A_{n+1} - A_n|^(alpha+1) = -(alpha+1) tau0 H (the
+    balance laws of (dpsdamped)): Q_l2' = gamma~ sum |A_n|^2 + (Im kappa / tau0) S and
+    Q_S' = (alpha+1) [(Im kappa / (2 tau0)) sum |G_n - G_{n-1}|^2 + (gamma~/2) S].
+    """
+    N = (y.shape[0] - 2) // 2
+    inv2tau0 = par[0]
+    half_gamma = 0.5 * par[1]
+    kr = par[2]
+    ki = par[3]
+    gr_last = 0.0
+    gi_last = 0.0
+    S = 0.0
+    if periodic:
+        dr = y[0] - y[2 * N - 2]
+        di = y[1] - y[2 * N - 1]
+        r = math.hypot(dr, di)
+        s = _pow_am1(r, alpha)
+        gr_last = dr * s
+        gi_last = di * s
+        S += r * r * s
+    gpr = gr_last
+    gpi = gi_last
+    l2 = 0.0
+    L2 = 0.0
+    for n in range(N):
+        if n < N - 1:
+            dr = y[2 * n + 2] - y[2 * n]
+            di = y[2 * n + 3] - y[2 * n + 1]
+            r = math.hypot(dr, di)
+            s = _pow_am1(r, alpha)
+            gr = dr * s
+            gi = di * s
+            S += r * r * s
+        else:
+            gr = gr_last
+            gi = gi_last
+        wr = gr - gpr
+        wi = gi - gpi
+        # kappa w = (kr wr - ki wi) + i (kr wi + ki wr); -i (a + i b) / (2 tau0) = (b - i a) / (2 tau0)
+        ar = y[2 * n]
+        ai = y[2 * n + 1]
+        dy[2 * n] = (kr * wi + ki * wr) * inv2tau0 - half_gamma * ar
+        dy[2 * n + 1] = -(kr * wr - ki * wi) * inv2tau0 - half_gamma * ai
+        l2 += ar * ar + ai * ai
+        L2 += wr * wr + wi * wi
+        gpr = gr
+        gpi = gi
+    dy[2 * N] = 2.0 * half_gamma * l2 + 2.0 * ki * inv2tau0 * S
+    dy[2 * N + 1] = (alpha + 1.0) * (ki * inv2tau0 * L2 + half_gamma * S)

@@ -10,6 +10,10 @@ scipy's adaptive solvers are stepped manually on the real view of A
 (:func:`cradle.integrators._kernels.dps_rhs`), and the three invariants of
 (dfnls) (squared l2 norm, Hamiltonian H, P = sum A_n) are monitored after
 every accepted step.
+
+With dissipation, (dpsdamped) of :mod:`cradle.models.dps_damped` (``damping=DpsDamping(...)``), the run is
+:mod:`cradle.integrators.dps_damped_solver`'s: the same solvers on the state extended by the two dissipated
+amounts, and the drifts become the residuals of the balance laws.
 """
 from __future__ import annotations
 
@@ -21,6 +25,7 @@ import numpy as np
 from cradle.integrators import _dop853, _kernels as K
 from cradle.integrators._validate import check_state, check_times
 from cradle.models.dps import tau0 as _tau0
+from cradle.models.dps_damped import DpsDamping
 from cradle.specs.checked import checked
 
 #: scipy.integrate classes by name (imported when used)
@@ -47,6 +52,17 @@ class DpsSolution:
         |P(tau) - P(0)| / max_n |A_n(0)|, P = sum A_n (cradle.data.variables).
     max_l2_drift, max_energy_drift : float
         Same relative drifts, max over every accepted step.
+
+    With damping (``damping`` is an active :class:`cradle.models.dps_damped.DpsDamping`) neither I is
+    conserved, and the drifts are the residuals of the balance laws of (dpsdamped), in which the dissipated
+    amounts are integrated as quantities of their own: ``l2_drift`` = |l2(tau) + l2_dissipated(tau) - l2(0)|
+    / l2(0), ``energy_drift`` = |H(tau) - energy_dissipated(tau) - H(0)| / |H(0)| (H < 0 rises to 0),
+    ``P_drift`` = |P(tau) - e^{-gamma~ tau/2} P(0)| / max_n |A_n(0)| (the contact term leaves sum A_n
+    alone, the on-site one damps it exactly); all three measure the integrator's accuracy.
+    l2, energy, l2_dissipated, energy_dissipated : ndarray, shape (T,), or None
+        With damping: sum |A_n|^2, H, and the integrals over [0, tau] of -d(l2)/dtau >= 0 and of dH/dtau >= 0
+        (None without damping).
+    damping : DpsDamping or None
     n_steps : int
         Accepted steps.
     n_rhs_evals : int
@@ -68,11 +84,16 @@ class DpsSolution:
     rtol: float
     atol: float
     n_rhs_evals: int = 0
+    l2: np.ndarray | None = None
+    energy: np.ndarray | None = None
+    l2_dissipated: np.ndarray | None = None
+    energy_dissipated: np.ndarray | None = None
+    damping: DpsDamping | None = None
 
 
 @checked(method="dpsMethod")
 def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", rtol=DEFAULT_RTOL, atol=None,
-                  progress=None) -> DpsSolution:
+                  progress=None, damping: DpsDamping | None = None) -> DpsSolution:
     """Integrate the DpS equation (dfnls) with tau0 = tau0(alpha) of :mod:`cradle.models.dps`.
 
     Parameters
@@ -97,12 +118,23 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
         Absolute tolerance, default rtol * max_n |A0_n| (rtol if A0 = 0).
     progress : callable, optional
         ``progress(tau_reached, tau_final)``, about once per second.
+    damping : DpsDamping, optional
+        gamma~ and eta of (dpsdamped) (:func:`cradle.models.dps_damped.slow_damping` converts a lattice
+        :class:`cradle.models.damping.Damping`); None or inactive: (dfnls), exactly the undamped run.
+        Integrated by :mod:`cradle.integrators.dps_damped_solver`.
 
     Returns
     -------
     DpsSolution
     """
     wall0 = time.perf_counter()
+    if damping is not None:
+        from cradle.integrators import dps_damped_solver
+
+        if dps_damped_solver.validated(damping).active:
+            return dps_damped_solver.integrate_damped(_DpsRun(A0, tau_out, alpha, bc, rtol, atol, progress),
+                                                      damping, method, wall0, DpsSolution,
+                                                      SCIPY_DPS_METHODS.get(method))
     run = _DpsRun(A0, tau_out, alpha, bc, rtol, atol, progress)
     tau_out, T, N = run.tau_out, run.tau_out.size, run.N
     if method == "dop853_numba":

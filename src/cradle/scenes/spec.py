@@ -28,6 +28,8 @@ from dataclasses import dataclass
 from functools import cached_property
 from typing import Protocol
 
+from cradle.models.damping import Damping
+from cradle.models.physical import HERTZ_ALPHA, Cradle
 from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
 from cradle.specs.values import (
     INTEGER_TOL,
@@ -283,10 +285,33 @@ class Pair:
             out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", self.centre)
 
 
-INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair}
-INITIAL_DOC = "Initial condition of a scene: kind travelling, breather, packet or pair."
-KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest) "
-            "or pair (two static breathers at rest).")
+@declared("lifted", doc="A desk toy's release (figure boules): the first `count` beads of a free-ended cradle "
+                       "lifted, strings taut, to `angle` degrees and released at rest, the others at rest and "
+                       "touching; x_n(0) = -L sin(angle) / X for the lifted beads (the scene's `cradle:` gives the "
+                       "pendulum length L and the length scale X). DpS from A_n(0) = x_n(0)/2, eps = 1.")
+class Lifted:
+    kind: str = param(REQUIRED, "lifted", const="lifted")
+    count: int = param(REQUIRED, "How many beads are lifted, from bead 0 on; integer in [1, N-1].", minimum=1,
+                       maximum=10_000_000)
+    angle: float = param(REQUIRED, "Angle of their strings from the vertical (degrees); in (0, 90).",
+                         exclusiveMinimum=0, exclusiveMaximum=90)
+
+    def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
+        """A pendulum cradle to lift (the scene's `cradle:` with a length), free ends, and a bead left at rest."""
+        path = where + ["initial"]
+        if scene.cradle is None or scene.cradle.length is None:
+            out.add(path + ["kind"], "needs the scene's `cradle:` with a pendulum `length` (an angle is a physical "
+                                     "quantity: lifted beads are a desk toy's)", self.kind)
+        if scene.bc != "free":
+            out.add(where + ["bc"], "must be free for lifted beads (a desk toy's chain has two ends)", scene.bc)
+        if not self.count < scene.N:
+            out.add(path + ["count"], f"must be < N = {scene.N} (at least one bead must hang at rest)", self.count)
+
+
+INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair, "lifted": Lifted}
+INITIAL_DOC = "Initial condition of a scene: kind travelling, breather, packet, pair or lifted."
+KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest), "
+            "pair (two static breathers at rest) or lifted (a desk toy's release).")
 register_union("initial", INITIAL_DOC, KIND_DOC, INITIAL_KINDS)
 
 
@@ -307,12 +332,22 @@ class Scene:
     dps: DpsIntegrator = param(None, "Per-scene DpS integrator settings, merged over defaults.dps.")
     max_energy_drift: float = param(None, "Per-scene energy drift bound; default defaults.max_energy_drift.",
                                     ref="maxEnergyDrift")
-    initial: Travelling | Breather | Packet | Pair = param(REQUIRED, "Initial condition: its kind (travelling, "
-                                                           "breather, packet, pair) and parameters.", ref="initial")
+    initial: Travelling | Breather | Packet | Pair | Lifted = param(
+        REQUIRED, "Initial condition: its kind (travelling, breather, packet, pair, lifted) and parameters.",
+        ref="initial")
     # at most MAX_T_END: stored times are told apart to TIME_TOL, finer than float64 resolves beyond ~4e6
     t_end: float = param(REQUIRED, "Final time of the run (lattice time t); in (0, 1e6] (stored times are told apart "
                          "to 1e-9).", exclusiveMinimum=0, maximum=MAX_T_END)
     store: Store = param(REQUIRED, "Times at which the state is stored.")
+    damping: Damping = param(None, "Dissipation (ncdamped): on-site and Kuwabara-Kono contact damping; absent: the "
+                             "conservative (nc).")
+    cradle: Cradle = param(None, "The real cradle the scene models: its spheres and strings give the scales of (nc) "
+                           "(cradle.models.physical); the outputs store them, and `units: si` reads the scene's "
+                           "values in SI.")
+    units: str = param(None, "Units of the scene's times, amplitudes and damping: nc (default: those of (nc)) or si "
+                       "(times in s, amplitudes a and amplitude in m, omega_tw and omega_sw in rad/s, damping.onsite a "
+                       "rate in 1/s, damping.contact the Kuwabara-Kono time A in s; needs `cradle:`).",
+                       enum=["nc", "si"])
 
     @cached_property
     def times(self) -> tuple[float, ...]:
@@ -337,7 +372,30 @@ class Scene:
             if n > MAX_STORED_TIMES:
                 out.add(where + ["store", "every"], f"stores ~{n} times on [0, t_end = {show(t_end)}], more "
                                                     f"than {MAX_STORED_TIMES}", every)
+        self._check_units(where, out)
         self.initial.check(self, where, context, out)
+
+    def _check_units(self, where: Where, out: Errors) -> None:
+        """A cradle with one on-site frequency and Hertz's exponent, SI values only with a cradle, and a run
+        within MAX_T_END once its SI time is in (nc)'s units (:func:`resolved` converts)."""
+        c = self.cradle
+        if c is not None:
+            if (c.length is None) == (c.omega0 is None):
+                out.add(where + ["cradle"], "give the pendulum length or omega0, one of them (given: "
+                                            f"{'both' if c.length is not None else 'neither'})")
+            if self.alpha != HERTZ_ALPHA:
+                out.add(where + ["alpha"], f"must be {HERTZ_ALPHA} for a cradle of spheres (Hertz's exponent)",
+                        self.alpha)
+        if self.damping is not None and self.damping.active and self.exact.method not in DAMPED_METHODS:
+            out.add(where + ["exact", "method"], f"must be one of {', '.join(DAMPED_METHODS)} with damping (a "
+                                                 "splitting is not symplectic for a damped cradle: "
+                                                 "docs/dissipation.md)", self.exact.method)
+        if self.units == "si" and c is None:
+            out.add(where + ["units"], "needs the scene's `cradle:` (its scales convert SI values to (nc)'s)",
+                    self.units)
+        elif self.t_end > MAX_T_END:   # only an SI time can get here: the schema bounds t_end in (nc)'s units
+            out.add(where + ["t_end"], f"is {self.t_end:.6g} in (nc)'s time units (t omega_0), more than "
+                                       f"{MAX_T_END:g}", self.t_end)
 
 
 _POINT = {"type": "number"}
@@ -400,11 +458,47 @@ class HomoclinicEntry:
             out.add(where + ["separation"], f"must be in [1, N-1] = [1, {self.N - 1}]", self.separation)
 
 
+#: the lattice integrators that take the damping terms (:func:`cradle.integrators.integrate_lattice`)
+DAMPED_METHODS = ("dop853_numba",)
+
+
+#: the SI values of a scene (``units: si``) converted to (nc)'s: key path -> (quantity of
+#: :data:`cradle.models.physical.QUANTITIES`, or "rate" for 1/s and "A" for the Kuwabara-Kono time)
+SI_KEYS = {("t_end",): "time", ("store", "every"): "time", ("store", "snapshots"): "time",
+           ("initial", "a"): "displacement", ("initial", "amplitude"): "displacement",
+           ("initial", "omega_tw"): "rate", ("initial", "omega_sw"): "rate",
+           ("damping", "onsite"): "rate", ("damping", "contact"): "A"}
+
+
+def in_nc_units(entry: dict) -> dict:
+    """A scene entry given in SI (``units: si``, with its ``cradle:``) with its values in (nc)'s units
+    (:data:`SI_KEYS`; ``units`` dropped); any other entry as it is. Time t = omega_0 s, length x = u / X, a rate
+    (1/s) over omega_0, the Kuwabara-Kono time A (s) times omega_0 (:mod:`cradle.models.damping`)."""
+    c = entry.get("cradle")
+    if entry.get("units") != "si" or not isinstance(c, dict) or ("length" in c) == ("omega0" in c):
+        return entry   # nothing to convert, or a cradle the checks refuse
+    from cradle.models import physical
+
+    s = physical.scales(build(Cradle, c))
+    factor = {"time": s.omega0, "displacement": 1.0 / s.X, "rate": 1.0 / s.omega0, "A": s.omega0}
+    out = copied(entry)
+    del out["units"]
+    for (section, *key), quantity in SI_KEYS.items():
+        node = out if not key else out.get(section)
+        name = section if not key else key[0]
+        if not isinstance(node, dict) or node.get(name) is None:
+            continue
+        value = node[name]
+        node[name] = [v * factor[quantity] for v in value] if isinstance(value, list) else value * factor[quantity]
+    return out
+
+
 def resolved(entry: dict, defaults: dict) -> Scene:
     """A scene entry of a schema-filled config (defaults filled in), resolved against ``defaults:``:
     ``alpha`` and ``max_energy_drift`` from the defaults unless the scene gives them, ``exact`` and
-    ``dps`` the scene's keys merged over ``defaults.exact`` / ``defaults.dps``."""
-    entry = copied(entry)
+    ``dps`` the scene's keys merged over ``defaults.exact`` / ``defaults.dps``, SI values in (nc)'s units
+    (:func:`in_nc_units`)."""
+    entry = copied(in_nc_units(entry))
     entry.update(alpha=float(entry.get("alpha", defaults["alpha"])),
                  exact=merged(defaults["exact"], entry.get("exact")), dps=merged(defaults["dps"], entry.get("dps")),
                  max_energy_drift=float(entry.get("max_energy_drift", defaults["max_energy_drift"])))

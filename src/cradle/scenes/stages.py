@@ -26,7 +26,7 @@ from cradle.data.io import make_dataset
 from cradle.measurements import breathers, compare, interactions, sidebands
 from cradle.models import dps, initial, lattice
 from cradle.scenes.failure import StageFailure
-from cradle.scenes.spec import Breather, HomoclinicEntry, MapEntry, Packet, Pair, Scene, Travelling
+from cradle.scenes.spec import Breather, HomoclinicEntry, Lifted, MapEntry, Packet, Pair, Scene, Travelling
 from cradle.specs.declare import plain
 
 # ---------------------------------------------------------------- stationary DpS
@@ -112,7 +112,25 @@ def _scene_attrs(spec: Scene, name: str) -> dict:
         attrs.update({"q": ini.wavenumber, "q_expr": ini.q_expr, "phi": ini.phi})
     elif isinstance(ini, Breather):
         attrs.update({"homoclinic": ini.homoclinic})
+    if spec.damping is not None:
+        attrs.update({"damping_onsite": spec.damping.onsite, "damping_contact": spec.damping.contact})
+    if spec.cradle is not None:
+        attrs.update(physical_attrs(spec.cradle))
     return attrs
+
+
+def physical_attrs(cradle) -> dict:
+    """The real cradle a scene models and the SI value of one unit of each of (nc)'s variables
+    (:func:`cradle.models.physical.scales`): a reader converts any stored value to SI with them."""
+    from cradle.models import physical
+
+    s = physical.scales(cradle)
+    out = {"cradle_material": cradle.material, "cradle_radius_m": cradle.radius, "cradle_omega0_rad_s": s.omega0}
+    if cradle.length is not None:
+        out.update({"cradle_length_m": cradle.length, "cradle_g_m_s2": cradle.g})
+    out.update({"scale_time_s": s.T, "scale_length_m": s.X, "scale_velocity_m_s": s.V, "scale_force_N": s.F,
+                "scale_energy_J": s.E, "sphere_mass_kg": s.m, "hertz_k": s.k, "hertz_k_units": "N m-1.5"})
+    return out
 
 
 def initial_data(spec: Scene, name: str = "", homoclinic_ds: xr.Dataset | None = None) -> xr.Dataset:
@@ -136,6 +154,13 @@ def initial_data(spec: Scene, name: str = "", homoclinic_ds: xr.Dataset | None =
     elif isinstance(ini, Pair):  # loc1 (right): two static breathers at rest, profile solved in-process
         data = initial.pair(N, alpha, amplitude=ini.amplitude, separation=ini.separation, profile=ini.profile,
                             sign=ini.sign, centre=ini.centre, bc=bc)
+    elif isinstance(ini, Lifted):  # a desk toy's release: the amplitude of the angle in the scene's cradle
+        from cradle.models import physical
+
+        assert spec.cradle is not None, "checked with the scene (Lifted.check)"
+        data = initial.lifted(N, alpha, amplitude=physical.release_amplitude(spec.cradle, ini.angle),
+                              count=ini.count, bc=bc)
+        data.info["angle_deg"] = ini.angle
     else:
         raise TypeError(f"scene '{name}': not an initial condition of a known kind: {ini!r}")
     fields = {"x0": data.x0, "v0": data.v0, "A0_re": data.A0.real, "A0_im": data.A0.imag}

@@ -204,7 +204,7 @@ def _field_schema(f: dataclasses.Field, tp, defs: dict, with_defaults: bool, def
     node = {"description": meta["doc"]} if meta["doc"] else {}
     if meta["ref"]:
         node.update(_ref(meta["ref"]))
-    elif _is_declared(tp) and not tp.__schema_name__ and default is not None:
+    elif _is_declared(tp) and not tp.__schema_name__ and default is not None and default is not REQUIRED:
         # an inline nested object: its keys get the defaults of this field's default instance
         node.update(object_schema(tp, defs, defaults=_json_default(default)))
         if meta["doc"]:

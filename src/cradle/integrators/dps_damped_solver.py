@@ -1,0 +1,137 @@
+"""Time integration of the damped DpS equation (dpsdamped) of :mod:`cradle.models.dps_damped`.
+
+    2 i tau0 dA_n/dtau = kappa [g(A_{n+1} - A_n) - g(A_n - A_{n-1})] - i tau0 gamma~ A_n          (dpsdamped)
+
+The state is the real view of A extended by the two amounts the damping removes, Q_l2 (of sum |A_n|^2) and
+Q_S (of S = sum |A_{n+1} - A_n|^(alpha+1) = -(alpha+1) tau0 H), integrated with it as quantities of their own
+(:func:`cradle.integrators._kernels.dps_damped_rhs`): l2 + Q_l2 and S + Q_S are then constant, and their
+changes measure the integrator's accuracy, never a difference taken as the dissipation. Called by
+:func:`cradle.integrators.integrate_dps` when its ``damping`` is active; scipy's DOP853 or RK45 stepped
+manually, or DOP853 in numba (kind 3 of :mod:`cradle.integrators._dop853`, the default method "dop853_numba";
+it does not resume across blocks as :func:`cradle.integrators.dps_solver.iter_dps` does).
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from cradle.integrators import _dop853, _kernels as K
+from cradle.models.dps_damped import DpsDamping, contact_factor
+from cradle.specs.declare import from_plain, plain
+
+
+def validated(damping) -> DpsDamping:
+    """``damping`` checked against the declaration of :class:`DpsDamping` (one-line ConfigError otherwise)."""
+    if not isinstance(damping, DpsDamping):
+        raise ValueError(f"damping must be a DpsDamping (cradle.models.dps_damped; slow_damping converts a lattice "
+                         f"Damping), got damping={damping!r}")
+    return from_plain(DpsDamping, plain(damping), "damping")
+
+
+def parameters(damping: DpsDamping, alpha: float, inv2tau0: float) -> np.ndarray:
+    """``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`: [1/(2 tau0), gamma~, Re kappa, Im kappa]."""
+    kap = contact_factor(damping.eta, alpha)
+    return np.array([inv2tau0, damping.gamma, kap.real, kap.imag])
+
+
+class _Balance:
+    """The balance residuals of a damped run, measured from A0 (see :class:`DpsSolution`)."""
+
+    def __init__(self, run, damping: DpsDamping):
+        self.run = run
+        self.N = run.N
+        self.to_H = -1.0 / ((run.alpha + 1.0) * (0.5 / run.inv2tau0))   # H = -S / ((alpha+1) tau0)
+        self.S0 = run.S0
+        self.S_scale = run.S_scale
+        self.H0 = run.S0 * self.to_H
+        self.H_scale = abs(self.H0) if self.H0 != 0.0 else 1.0
+        self.half_gamma = 0.5 * damping.gamma
+
+    def row(self, y, tau):
+        """(l2, H, Q_l2, Q_H, l2 residual, H residual, P residual) of the extended state y at tau;
+        Q_H = -Q_S / ((alpha+1) tau0) is what H has gained, and |S + Q_S - S0| / S0 = |H - Q_H - H0| / |H0|."""
+        run, n = self.run, 2 * self.N
+        l2, S, pr, pi = K.dps_invariants(np.ascontiguousarray(y[:n]), run.alpha, run.periodic)
+        P_exact = run.P0 * np.exp(-self.half_gamma * tau)
+        return (l2, S * self.to_H, y[n], -y[n + 1] * self.to_H, abs(l2 + y[n] - run.l20) / run.l2_scale,
+                abs(S + y[n + 1] - self.S0) / self.S_scale, abs(complex(pr, pi) - P_exact) / run.P_scale)
+
+
+def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, solution, scipy_class: str | None):
+    """:func:`cradle.integrators.integrate_dps` of (dpsdamped) for the validated run ``run``
+    (:class:`cradle.integrators.dps_solver._DpsRun`) with active ``damping``; ``solution`` is the class
+    :class:`cradle.integrators.DpsSolution` and ``scipy_class`` the name of scipy's solver (None: DOP853 in
+    numba), both given by the caller, which this module does not import."""
+    tau_out, T, N = run.tau_out, run.tau_out.size, run.N
+    par = parameters(damping, run.alpha, run.inv2tau0)
+    alpha, periodic, rtol, atol = run.alpha, run.periodic, run.rtol, run.atol
+    y0 = np.concatenate([run.y0, [0.0, 0.0]])
+    balance = _Balance(run, damping)
+    rows = np.empty((T, 7))
+    Y = np.empty((T, 2 * N + 2))
+    max_l2 = 0.0
+    max_E = 0.0
+    n_steps = 0
+    nfev = 0
+    if method == "dop853_numba":
+        stats = np.array([run.l20, run.S0, 0.0, 0.0])
+        Y, n_steps, nfev = _dop853.run_dop853(_dop853.DPS_DAMPED, y0, tau_out, rtol, atol, alpha, 0, par, periodic,
+                                              stats, run.progress)
+        for i in range(T):
+            rows[i] = balance.row(Y[i], tau_out[i])
+        max_l2, max_E = float(stats[2]), float(stats[3])
+        return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
+
+    def fun(t, y):
+        dy = np.empty_like(y)
+        K.dps_damped_rhs(y, dy, alpha, par, periodic)
+        return dy
+
+    def store(i, y):
+        Y[i] = y
+        rows[i] = balance.row(y, tau_out[i])
+
+    idx = 0
+    if tau_out[0] == 0.0:
+        store(0, y0)
+        idx = 1
+    tau_final = float(tau_out[-1])
+    if idx < T:
+        from scipy import integrate
+
+        solver = getattr(integrate, str(scipy_class))(fun, 0.0, y0, tau_final, rtol=rtol, atol=atol)
+        t_last = time.perf_counter()
+        while solver.status == "running":
+            msg = solver.step()
+            if solver.status == "failed":
+                raise RuntimeError(f"{method} failed at tau={solver.t!r}: {msg}")
+            n_steps += 1
+            y = solver.y
+            r = balance.row(y, solver.t)
+            max_l2 = max(max_l2, r[4])
+            max_E = max(max_E, r[5])
+            dense = None
+            while idx < T and tau_out[idx] <= solver.t:
+                if tau_out[idx] == solver.t:
+                    store(idx, y)
+                else:
+                    if dense is None:
+                        dense = solver.dense_output()
+                    store(idx, dense(tau_out[idx]))
+                idx += 1
+            if run.progress is not None and time.perf_counter() - t_last >= 1.0:
+                t_last = time.perf_counter()
+                run.progress(float(solver.t), tau_final)
+        nfev = int(solver.nfev)
+    if run.progress is not None:
+        run.progress(tau_final, tau_final)
+    return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
+
+
+def _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0):
+    A = np.ascontiguousarray(Y[:, :2 * run.N]).view(np.complex128)
+    return solution(run.tau_out, A, rows[:, 4].copy(), rows[:, 5].copy(), rows[:, 6].copy(), float(max_l2),
+                       float(max_E), int(n_steps), time.perf_counter() - wall0, method, float(run.rtol),
+                       float(run.atol), int(nfev), l2=rows[:, 0].copy(), energy=rows[:, 1].copy(),
+                       l2_dissipated=rows[:, 2].copy(), energy_dissipated=rows[:, 3].copy(), damping=damping)
