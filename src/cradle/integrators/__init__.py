@@ -10,7 +10,9 @@ Public API
     equal accuracy, see :mod:`cradle.integrators._onset`), by scipy's
     adaptive solvers ("dop853", "rk45", "lsoda", "radau"; numba right-hand
     side) or by "dop853_numba" (DOP853 entirely in numba, for references);
-    energy monitored after every step.
+    energy monitored after every step. With ``damping=Damping(...)``: the damped (ncdamped) by
+    "dop853_numba" only, with its dissipated energy D integrated as a component of the state and
+    the drift of H + D monitored (``LatticeSolution.dissipated``).
 :func:`integrate_dps` -> :class:`DpsSolution`
     (dfnls) with scipy's DOP853 (numba right-hand side) or "dop853_numba";
     l2 norm, Hamiltonian and P = sum A_n monitored after every step. With

@@ -7,10 +7,12 @@ Solving ODEs I, sec. II.5), but the whole loop runs in numba: the steps are
 shortened so that they end exactly on the output times (no dense output),
 and the invariants are monitored after every accepted step. Used by
 ``method="dop853_numba"`` of :func:`cradle.integrators.integrate_lattice`
-(kind 0, (nc)/(meca), y = [x, v]) and :func:`cradle.integrators.integrate_dps`
+(kind 0, (nc)/(meca), y = [x, v]; kind 2, (ncdamped) with its dissipated
+energy, y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
 (kind 1, (dfnls), y = real view of A; kind 3, the damped (dpsdamped), y = real view of A and the two
-dissipated amounts). ``par`` is a float64 array: [1/(2 tau0)] for kind 1, the ``par`` of
-:func:`cradle.integrators._kernels.dps_damped_rhs` for kind 3.
+dissipated amounts). ``par`` is a float64 array of the kind's parameters: kind 1 reads
+1/(2 tau0) = par[0]; kind 2 gamma = par[0], eta = par[1] and the scale s = par[2] of D in the
+state; kind 3 the ``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`; kind 0 none.
 """
 from __future__ import annotations
 
@@ -53,13 +55,25 @@ C = np.ascontiguousarray(_c.C[:_NS], dtype=float)
 E3 = np.ascontiguousarray(_c.E3, dtype=float)
 E5 = np.ascontiguousarray(_c.E5, dtype=float)
 
-LATTICE, DPS, DPS_DAMPED = 0, 1, 3
+LATTICE, DPS, LATTICE_DAMPED, DPS_DAMPED = 0, 1, 2, 3
+
+
+@njit(cache=True)
+def _work_size(kind, n):
+    """Length of the force work arrays f, F: the number of beads for the lattice kinds."""
+    if kind == 0:
+        return n // 2
+    if kind == 2:
+        return (n - 1) // 2
+    return 1
 
 
 @njit(cache=True)
 def _rhs(kind, y, dy, f, F, alpha, mode, par, periodic):
     if kind == 0:
         K.lattice_rhs(y, dy, f, F, alpha, mode, periodic)
+    elif kind == 2:
+        K.lattice_damped_rhs(y, dy, f, F, alpha, mode, par[0], par[1], par[2], periodic)
     elif kind == 3:
         K.dps_damped_rhs(y, dy, alpha, par, periodic)
     else:
@@ -72,13 +86,23 @@ def _monitor(kind, y, alpha, mode, periodic, stats):
 
     kind 0: stats = [H0, max |H-H0|/|H0|, max compression, H]
     kind 1: stats = [l2_0, S0, max |l2-l2_0|/l2_0, max |S-S0|/S0] (H = -S/((alpha+1) tau0))
-    kind 3: the same with l2 + Q_l2 and S + Q_S (the balance laws: Q the dissipated amounts, y's two last entries)
+    kind 2: stats = [H0, max |H+D-H0|/|H0|, max compression, H, s] (y[-1] = s D): the stored plus
+    dissipated energy H + D is conserved by (ncdamped), its drift is the integrator's error
+    kind 3: the same as kind 1 with l2 + Q_l2 and S + Q_S (the balance laws: Q the dissipated amounts, y's
+    two last entries)
     """
     if kind == 0:
         n = y.shape[0] // 2
         H, cm = K.lattice_energy(y[:n], y[n:], alpha, mode, periodic)
         sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
         stats[1] = max(stats[1], abs(H - stats[0]) / sc)
+        stats[2] = max(stats[2], cm)
+        stats[3] = H
+    elif kind == 2:
+        n = (y.shape[0] - 1) // 2
+        H, cm = K.lattice_energy(y[:n], y[n:2 * n], alpha, mode, periodic)
+        sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
+        stats[1] = max(stats[1], abs(H + y[2 * n] / stats[4] - stats[0]) / sc)
         stats[2] = max(stats[2], cm)
         stats[3] = H
     elif kind == 3:
@@ -108,7 +132,7 @@ def dop853_run(kind, y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3,
     step size underflowed.
     """
     n = y.shape[0]
-    nf = n // 2 if kind == 0 else 1
+    nf = _work_size(kind, n)
     f = np.empty(nf)
     F = np.empty(nf)
     Ks = np.empty((13, n))
@@ -245,6 +269,7 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
     """
     n = y0.size
     T = t_out.size
+    par = np.ascontiguousarray(par, dtype=np.float64).reshape(-1)   # one compiled signature for every kind
     Y = np.empty((T, n))
     t_start = 0.0 if state is None else float(state[0])
     if t_out[0] == t_start:
@@ -254,8 +279,7 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         tgrid, shift = np.concatenate(([t_start], t_out)), 1
     y = y0.copy()
     fy = np.empty(n)
-    par = np.atleast_1d(np.asarray(par, dtype=np.float64))   # a float (kinds 0, 1) or the kernel's array
-    nf = n // 2 if kind == 0 else 1
+    nf = _work_size(kind, n)
     f, F = np.empty(nf), np.empty(nf)
 
     def fun(z):

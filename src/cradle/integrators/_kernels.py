@@ -240,6 +240,52 @@ def lattice_rhs(y, dy, f, F, alpha, mode, periodic):
 
 
 @njit(cache=True)
+def _damped_bond(c, rate, alpha, eta, mode):
+    """(force magnitude max(c^alpha + eta c^(alpha-1) c', 0), elastic part c^alpha) of a compressed bond
+    c > 0 of (ncdamped), c' = ``rate`` (Hertz modes only: mode 0 is the c sqrt(c) fast path)."""
+    if mode == 0:
+        s = math.sqrt(c)
+        el = c * s
+    else:
+        s = c ** (alpha - 1.0)
+        el = c * s
+    return max(el + eta * s * rate, 0.0), el
+
+
+@njit(cache=True)
+def lattice_damped_rhs(y, dy, f, F, alpha, mode, gamma, eta, dscale, periodic):
+    """First-order form of (ncdamped) with its dissipated energy, y = [x, v, s D] (length 2N + 1):
+    dy = [v, -x - gamma v + g_n - g_{n-1}, s P], g_n = -max(c^alpha + eta c^(alpha-1) c', 0) on a
+    compressed bond (c = -(x_{n+1} - x_n) > 0, c' = -(v_{n+1} - v_n)), P the dissipated power of
+    :mod:`cradle.models.damping` (Hertz modes 0 and 1 only), s = ``dscale`` the scale of D in the
+    state (the error control's weight of D). ``f``, ``F``: work arrays of length N."""
+    N = f.shape[0]
+    P = 0.0
+    nb = N if periodic else N - 1
+    for n in range(nb):
+        m = n + 1 if n + 1 < N else 0
+        c = y[n] - y[m]
+        if c > 0.0:
+            rate = y[N + n] - y[N + m]
+            g, el = _damped_bond(c, rate, alpha, eta, mode)
+            f[n] = -g
+            P += (g - el) * rate
+        else:
+            f[n] = 0.0
+    if not periodic:
+        f[N - 1] = 0.0
+    F[0] = f[0] - f[N - 1]
+    for n in range(1, N):
+        F[n] = f[n] - f[n - 1]
+    for n in range(N):
+        vn = y[N + n]
+        dy[n] = vn
+        dy[N + n] = F[n] - y[n] - gamma * vn
+        P += gamma * vn * vn
+    dy[2 * N] = dscale * P
+
+
+@njit(cache=True)
 def lattice_jac(y, J, alpha, mode, periodic):
     """Dense Jacobian of :func:`lattice_rhs` (for the implicit scipy methods).
 

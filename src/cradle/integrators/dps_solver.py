@@ -218,6 +218,7 @@ class _DpsRun:
             raise ValueError(f"progress must be callable or None, got progress={progress!r}")
         self.progress = progress
         self.inv2tau0 = 1.0 / (2.0 * _tau0(self.alpha))
+        self.par = np.array([self.inv2tau0])   # the parameters of kind DPS of the numba stepper
         self.N = A0.size
         self.y0 = np.ascontiguousarray(A0).view(np.float64).copy()
         self.l20, self.S0, pr0, pi0 = K.dps_invariants(self.y0, self.alpha, self.periodic)
@@ -244,7 +245,7 @@ class _DpsRun:
         """The solution at ``tau`` (increasing, after the previous block's last time), DOP853 in numba."""
         n0, f0 = int(self.counts[0]), int(self.counts[1])
         Y, _, _ = _dop853.run_dop853(_dop853.DPS, self.y, tau, self.rtol, self.atol, self.alpha, 0,
-                                      self.inv2tau0, self.periodic, self.stats, self.progress, state=self.state,
+                                      self.par, self.periodic, self.stats, self.progress, state=self.state,
                                       counts=self.counts, t_bound=float(self.tau_out[-1]))
         self.y = Y[-1].copy()
         l2d, Ed, Pd = self.drifts(Y)

@@ -1,5 +1,5 @@
 """Time integration of Newton's cradle (nc) with the Hertz potential (vhertz),
-or of the smooth lattice (meca) with kappa = 1.
+or of the smooth lattice (meca) with kappa = 1, or of the damped cradle (ncdamped).
 
     d^2 x_n/dt^2 + x_n = V'(x_{n+1} - x_n) - V'(x_n - x_{n-1})        (nc)/(meca)
 
@@ -34,6 +34,24 @@ O(h^2.5) to O(h^5) and the observed global order well above 2.5
 (benchmarks/onset_correction.py): at equal error srkn6c is the fastest
 (benchmarks/bench_vs_scipy.py, `snakemake work_precision`).
 
+With damping (``damping=Damping(onsite=gamma, contact=eta)``, the damped lattice (ncdamped) of
+:mod:`cradle.models.damping`): the force depends on the velocities (-gamma v_n, and the contact term
+eta c^(alpha-1) c'), so (ncdamped) is no longer Hamiltonian and the splittings above, built on the
+split (ham) = rotation + kicks of position-only forces, do not apply as such. Damped runs use
+"dop853_numba" only (kind 2 of :mod:`cradle.integrators._dop853`, right-hand side
+:func:`cradle.integrators._kernels.lattice_damped_rhs`, Hertz contacts only), on the state
+y = [x, v, s D]: the dissipated energy D(t) = int_0^t P is integrated as its own component
+(dD/dt = P, never H(0) - H(t)), and the drift of H + D from H(0), monitored after every step, is
+the integrator's error. The contact damping force eta c^(1/2) c' is continuous at contact onset
+but rises like (t - t_on)^(1/2) (the Hertz force like (t - t_on)^(3/2)); DOP853's error control
+shortens the steps that cross an onset, and the observed order in rtol on runs with contacts is
+measured by benchmarks/damped_orders.py (table in docs/damped-orders.md, docs/dissipation.md):
+without contacts (on-site damping alone) DOP853 keeps its order 8; with contacts the error is
+set by the steps that cross an onset or a release, as for the conservative (nc): observed orders
+in the number of steps of 6-8 on two colliding beads and 3.6-4.9 on figure loc1's packet (with
+damping as without), the error falling like rtol^0.6-0.9 instead of rtol. No onset correction is
+built for the damped path.
+
 This module checks the arguments (the scalar ones against the shared declarations,
 ``@checked``; the arrays and the combinations here) and dispatches: the default step is chosen in
 :mod:`cradle.integrators.lattice_step`, the splittings are run by
@@ -43,15 +61,16 @@ This module checks the arguments (the scalar ones against the shared declaration
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from cradle.integrators import _kernels as K
 from cradle.integrators._validate import check_state, check_times
-from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, run_dop853_numba, run_scipy
+from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, run_dop853_damped, run_dop853_numba, run_scipy
 from cradle.integrators.lattice_splitting import SPLITTING_METHODS, run_splitting
 from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bounds, default_dt
+from cradle.models.damping import Damping
 from cradle.specs.checked import checked
 
 METHODS = SPLITTING_METHODS + ADAPTIVE_METHODS
@@ -99,6 +118,14 @@ class LatticeSolution:
         Corrected methods ("srkn6c", "srkn4c"): bond crossings (contact
         onsets and releases) whose step contribution was replaced by the
         exact integral (:mod:`cradle.integrators._onset`); 0 otherwise.
+    dissipated : ndarray, shape (T,)
+        Energy D(t) = int_0^t P dissipated by the damping terms of (ncdamped) up to ``t``, integrated
+        as a component of the state (:mod:`cradle.models.damping`); zeros without damping.
+    damping : Damping or None
+        The damping integrated (as given; None when none was given).
+
+    With damping, ``energy_drift`` is max over every step of |H(t) + D(t) - H(0)| / |H(0)|: the stored
+    plus dissipated energy is conserved by (ncdamped), so its drift is the integrator's error.
     """
 
     t: np.ndarray
@@ -117,13 +144,19 @@ class LatticeSolution:
     c_assumed: float | None = None
     n_reruns: int = 0
     n_onset_corrections: int = 0
+    dissipated: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    damping: Damping | None = None
+
+    def __post_init__(self) -> None:
+        if self.dissipated.size == 0:   # no damping: nothing dissipated at any output time
+            self.dissipated = np.zeros(len(self.t))
 
 
 @checked(method="latticeMethod")
 def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", dt=None, dt_factor=None,
                       rtol=None, atol=None, potential="hertz", progress=None, t0=0.0,
-                      energy0=None) -> LatticeSolution:
-    """Integrate the lattice (nc) (Hertz V0 of (vhertz)) or (meca) (kappa = 1).
+                      energy0=None, damping=None) -> LatticeSolution:
+    """Integrate the lattice (nc) (Hertz V0 of (vhertz)) or (meca) (kappa = 1), or the damped (ncdamped).
 
     Parameters
     ----------
@@ -173,6 +206,12 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
     energy0 : float, optional
         Splittings only: reference energy for ``energy_drift`` (default
         H(x0, v0)); the energy at t = 0 of the run being continued.
+    damping : Damping, optional
+        The damping terms of (ncdamped) (:class:`cradle.models.damping.Damping`). None or an
+        inactive one (gamma = eta = 0): the conservative (nc), integrated exactly as without the
+        argument. Active: Hertz contacts only, method "dop853_numba" only (see the module
+        docstring), no continuation (t0 = 0, no energy0); the result's ``dissipated`` holds the
+        dissipated energy D and ``energy_drift`` the drift of H + D.
 
     Returns
     -------
@@ -194,6 +233,11 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
     t0 = float(t0)
     if not (np.isfinite(t0) and 0.0 <= t0 <= t_out[0]):
         raise ValueError(f"t0 must be finite, >= 0 and <= t_out[0] = {float(t_out[0])!r}, got t0={t0!r}")
+    if damping is not None and not isinstance(damping, Damping):
+        raise ValueError(f"damping must be a cradle.models.damping.Damping or None, got damping={damping!r}")
+    damped = damping is not None and damping.active
+    if damped:
+        _check_damped(method, potential, t0, energy0, damping)
     if (t0 != 0.0 or energy0 is not None) and method not in SPLITTING_METHODS:
         raise ValueError(f"t0/energy0 (continuing a run) need a fixed-step splitting method, got method={method!r} "
                          f"(t0={t0!r}, energy0={energy0!r})")
@@ -226,7 +270,7 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
                 n_reruns += 1
         X, V, E, drift, n_steps, nfev, cmax, n_corr = out
         return LatticeSolution(t_out, X, V, E, drift, method, float(dt), None, None, n_steps, nfev, cmax,
-                               time.perf_counter() - wall0, c_assumed, n_reruns, n_corr)
+                               time.perf_counter() - wall0, c_assumed, n_reruns, n_corr, damping=damping)
 
     if dt is not None or dt_factor is not None:
         raise ValueError(f"dt/dt_factor apply to splitting methods only, got dt={dt!r}, dt_factor={dt_factor!r} "
@@ -235,6 +279,11 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
     if atol is None:
         amp = max(float(np.max(np.abs(x0))), float(np.max(np.abs(v0))))
         atol = rtol * amp if amp > 0.0 else rtol
+    if damped:
+        X, V, E, D, drift, n_steps, nfev, cmax = run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic,
+                                                                   damping, progress)
+        return LatticeSolution(t_out, X, V, E, drift, method, None, rtol, atol, n_steps, nfev, cmax,
+                               time.perf_counter() - wall0, dissipated=D, damping=damping)
     if method == "dop853_numba":
         X, V, E, drift, n_steps, nfev, cmax = run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic,
                                                                 progress)
@@ -242,4 +291,17 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
         X, V, E, drift, n_steps, nfev, cmax = run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic,
                                                          progress)
     return LatticeSolution(t_out, X, V, E, drift, method, None, rtol, atol, n_steps, nfev, cmax,
-                           time.perf_counter() - wall0)
+                           time.perf_counter() - wall0, damping=damping)
+
+
+def _check_damped(method, law, t0, energy0, damping) -> None:
+    """Refuse, in one line, what the damped (ncdamped) is not integrated with (``law``: the potential)."""
+    if method != "dop853_numba":
+        raise ValueError(f"method={method!r} with damping={damping!r}: the damped lattice is integrated by "
+                         f"method='dop853_numba' only (velocity-dependent forces: no symplectic splitting)")
+    if law != "hertz":
+        raise ValueError(f"potential={law!r} with damping={damping!r}: damping is declared for Hertz "
+                         f"contacts (potential='hertz') only")
+    if t0 != 0.0 or energy0 is not None:
+        raise ValueError(f"t0={t0!r}/energy0={energy0!r} with damping={damping!r}: a damped run cannot be "
+                         f"continued (it starts at t = 0 with D = 0)")
