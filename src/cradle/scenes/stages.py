@@ -24,7 +24,7 @@ import xarray as xr
 
 from cradle.data.io import make_dataset
 from cradle.measurements import breathers, compare, interactions, sidebands
-from cradle.models import dps, initial, lattice
+from cradle.models import damping, dps, initial, lattice
 from cradle.scenes.failure import StageFailure
 from cradle.scenes.spec import Breather, HomoclinicEntry, Lifted, MapEntry, Packet, Pair, Scene, Travelling
 from cradle.specs.declare import plain
@@ -231,17 +231,27 @@ def exact_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -
     ex = spec.exact
     x0, v0 = init_ds["x0"].values, init_ds["v0"].values
     # a fixed-step splitting takes dt_factor, an adaptive method rtol (atol scales with the amplitude)
-    accuracy = {"dt_factor": ex.dt_factor} if ex.method in SPLITTING_METHODS else {"rtol": ex.rtol}
+    accuracy: dict[str, Any] = {"dt_factor": ex.dt_factor} if ex.method in SPLITTING_METHODS else {"rtol": ex.rtol}
+    damped = spec.damping is not None and spec.damping.active
+    if damped:   # only then: a conservative scene's call, and so its file, stays as it was
+        accuracy["damping"] = spec.damping
     sol = integrate_lattice(x0, v0, times, alpha=alpha, bc=bc, method=ex.method, progress=progress, **accuracy)
-    force = lattice.bond_forces(sol.x, alpha, bc)
+    # the force on each bond, as the run felt it: with contact damping, g_n of (ncdamped)
+    force = (damping.bond_forces(sol.x, sol.v, alpha, spec.damping.contact, bc) if damped
+             else lattice.bond_forces(sol.x, alpha, bc))
     attrs = exact_attrs(spec, init_ds, sol.method, steps_taken(times, sol.dt)[0] if sol.dt is not None else None,
                         sol.dt, sol.rtol, sol.atol, {"energy_drift": sol.energy_drift, "n_steps": sol.n_steps,
                                                      "n_force_evals": sol.n_force_evals,
                                                      "max_compression": sol.max_compression,
                                                      "wall_time_s": sol.wall_time_s,
                                                      "n_onset_corrections": getattr(sol, "n_onset_corrections", 0)})
-    ds = make_dataset({"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy},
-                      coords={"t": times, "n": np.arange(spec.N)}, attrs=attrs,
+    if damped:
+        attrs["model"] = "damped lattice (ncdamped), V = V0"
+        attrs["energy_drift_comment"] = "max |H + D - H(0)| / |H(0)|, D the dissipated energy"
+    fields = {"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy}
+    if damped:
+        fields["dissipated"] = sol.dissipated
+    ds = make_dataset(fields, coords={"t": times, "n": np.arange(spec.N)}, attrs=attrs,
                       params=plain(spec), title=exact_title(name), identity=("exact", name))
     check_finite(name, "exact", {"x": sol.x, "v": sol.v}, ds)
     if not sol.energy_drift <= spec.max_energy_drift:
@@ -258,10 +268,16 @@ def dps_dataset(spec: Scene, init_ds: xr.Dataset, name: str, times, sol) -> xr.D
     x_app = compare.approximate_displacement(sol.A, times, eps)
     force = lattice.bond_forces(x_app, alpha, bc)
     attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
-    attrs.update({"model": "DpS (dfnls) + ansatz (ansatz)", "integrator": sol.method, "rtol": sol.rtol,
+    damped = getattr(sol, "damping", None) is not None
+    attrs.update({"model": "damped DpS (dpsdamped) + ansatz (ansatz)" if damped else "DpS (dfnls) + ansatz (ansatz)",
+                  "integrator": sol.method, "rtol": sol.rtol,
                   "atol": sol.atol, "tau0": dps.tau0(alpha), "max_l2_drift": sol.max_l2_drift,
                   "max_dps_energy_drift": sol.max_energy_drift, "n_steps": sol.n_steps,
                   "wall_time_s": sol.wall_time_s})
+    if damped:
+        attrs.update({"dps_damping_gamma": sol.damping.gamma, "dps_damping_eta": sol.damping.eta,
+                      "drift_comment": "with damping the drifts are the residuals of the balance laws of "
+                                       "(dpsdamped): docs/damped-dps.md"})
     return make_dataset({"A_re": sol.A.real, "A_im": sol.A.imag, "x": x_app, "force": force,
                          "l2_drift": sol.l2_drift, "dps_energy_drift": sol.energy_drift, "P_drift": sol.P_drift},
                         coords={"t": times, "n": np.arange(spec.N), "tau": sol.tau}, attrs=attrs,
@@ -278,7 +294,13 @@ def dps_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -> 
     eps = float(init_ds.attrs["eps"])
     tau = eps ** (alpha - 1.0) * times
     A0 = init_ds["A0_re"].values + 1j * init_ds["A0_im"].values
-    sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=spec.dps.method, rtol=spec.dps.rtol, progress=progress)
+    extra = {}
+    if spec.damping is not None and spec.damping.active:   # (dpsdamped): docs/damped-dps.md
+        from cradle.models.dps_damped import slow_damping
+
+        extra["damping"] = slow_damping(spec.damping, eps, alpha)
+    sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=spec.dps.method, rtol=spec.dps.rtol, progress=progress,
+                        **extra)
     ds = dps_dataset(spec, init_ds, name, times, sol)
     check_finite(name, "dps", {"A": sol.A}, ds)
     return ds
