@@ -193,25 +193,6 @@ def packet(N: int, alpha: float, *, amplitude: float, width: float, envelope_kin
 
 
 @checked
-def lifted(N: int, alpha: float, *, amplitude: float, count: int, bc: str = "free") -> InitialData:
-    """A desk toy's release (figure boules): beads 0..count-1 displaced to -``amplitude`` (pulled away from the
-    line, to swing into it), the others at rest and touching:
-
-        x_n(0) = -amplitude (n < count),  0 (n >= count),   v_n(0) = 0,   A_n(0) = x_n(0)/2, eps = 1.
-
-    ``amplitude`` is L sin(theta) / X for strings of length L lifted to theta
-    (:func:`cradle.models.physical.release_amplitude`). The lifted beads touch each other too.
-    """
-    if not amplitude > 0:
-        raise ValueError(f"amplitude must be > 0, got amplitude={amplitude!r}")
-    if not 1 <= count < N:
-        raise ValueError(f"count must be in [1, N-1] = [1, {N - 1}], got count={count!r}")
-    x0 = np.where(np.arange(N) < count, -float(amplitude), 0.0)
-    return from_displacements(x0, alpha, bc, {"amplitude": float(amplitude), "lifted": int(count),
-                                              "max_abs_x0": float(amplitude)})
-
-
-@checked
 def pair(N: int, alpha: float, *, amplitude: float, separation: int, profile: str = "bond", sign: int = 1,
          centre: int | None = None, bc: str = "periodic", a_n=None) -> InitialData:
     """Two static breathers at rest (figure loc1, right): the sum of two copies of one

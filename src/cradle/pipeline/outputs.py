@@ -9,6 +9,7 @@ import numpy as np
 import xarray as xr
 
 from cradle.data.io import open_dataset
+from cradle.data.si import in_si
 from cradle.pipeline import layout
 from cradle.pipeline.identity import Expectations
 
@@ -16,7 +17,7 @@ SHARED = ("x", "force")  # variables both models store on the same (t, n) grid
 
 
 def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = True, check: bool = True,
-               config: str | os.PathLike | dict | None = None) -> xr.Dataset:
+               config: str | os.PathLike | dict | None = None, units: str = "nc") -> xr.Dataset:
     """The exact and DpS runs of ``scene`` as one Dataset, read from ``root``/sim/``scene``/{exact,dps}.nc.
 
     ``x`` and ``force`` get a ``model`` dimension (``exact``, ``dps``); the
@@ -34,8 +35,11 @@ def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = 
     from the parameters the config resolves to now; else :class:`~cradle.pipeline.identity.WrongOutput`,
     one line naming the file, what it holds and what was expected. ``config``: a config file or mapping;
     by default the ``config.yaml`` beside ``root`` (in ``root``'s parent folder), and when there is none
-    nothing is checked. ``check=False`` opens whatever is there.
+    nothing is checked. ``check=False`` opens whatever is there. ``units="si"``: a scene of a real cradle
+    (``cradle:``) with its times, displacements, velocities, forces and energies in SI (:func:`cradle.data.si.in_si`).
     """
+    if units not in ("nc", "si"):
+        raise ValueError(f"units = {units!r}: must be nc or si")
     root = Path(root)
     paths = {m: Path(p) for m, p in layout.scene_paths(scene, root, ("exact", "dps")).items()}
     missing = [str(p) for p in paths.values() if not p.exists()]
@@ -70,7 +74,7 @@ def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = 
                 attrs[f"dps_{key}"] = ap[key]
     attrs["title"] = f"exact and DpS runs of scene '{scene}'"
     ds.attrs = attrs
-    return ds
+    return in_si(ds) if units == "si" else ds
 
 
 def _same(a, b) -> bool:

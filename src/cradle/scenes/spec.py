@@ -285,33 +285,10 @@ class Pair:
             out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", self.centre)
 
 
-@declared("lifted", doc="A desk toy's release (figure boules): the first `count` beads of a free-ended cradle "
-                       "lifted, strings taut, to `angle` degrees and released at rest, the others at rest and "
-                       "touching; x_n(0) = -L sin(angle) / X for the lifted beads (the scene's `cradle:` gives the "
-                       "pendulum length L and the length scale X). DpS from A_n(0) = x_n(0)/2, eps = 1.")
-class Lifted:
-    kind: str = param(REQUIRED, "lifted", const="lifted")
-    count: int = param(REQUIRED, "How many beads are lifted, from bead 0 on; integer in [1, N-1].", minimum=1,
-                       maximum=10_000_000)
-    angle: float = param(REQUIRED, "Angle of their strings from the vertical (degrees); in (0, 90).",
-                         exclusiveMinimum=0, exclusiveMaximum=90)
-
-    def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
-        """A pendulum cradle to lift (the scene's `cradle:` with a length), free ends, and a bead left at rest."""
-        path = where + ["initial"]
-        if scene.cradle is None or scene.cradle.length is None:
-            out.add(path + ["kind"], "needs the scene's `cradle:` with a pendulum `length` (an angle is a physical "
-                                     "quantity: lifted beads are a desk toy's)", self.kind)
-        if scene.bc != "free":
-            out.add(where + ["bc"], "must be free for lifted beads (a desk toy's chain has two ends)", scene.bc)
-        if not self.count < scene.N:
-            out.add(path + ["count"], f"must be < N = {scene.N} (at least one bead must hang at rest)", self.count)
-
-
-INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair, "lifted": Lifted}
-INITIAL_DOC = "Initial condition of a scene: kind travelling, breather, packet, pair or lifted."
-KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest), "
-            "pair (two static breathers at rest) or lifted (a desk toy's release).")
+INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair}
+INITIAL_DOC = "Initial condition of a scene: kind travelling, breather, packet or pair."
+KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest) "
+            "or pair (two static breathers at rest).")
 register_union("initial", INITIAL_DOC, KIND_DOC, INITIAL_KINDS)
 
 
@@ -332,9 +309,8 @@ class Scene:
     dps: DpsIntegrator = param(None, "Per-scene DpS integrator settings, merged over defaults.dps.")
     max_energy_drift: float = param(None, "Per-scene energy drift bound; default defaults.max_energy_drift.",
                                     ref="maxEnergyDrift")
-    initial: Travelling | Breather | Packet | Pair | Lifted = param(
-        REQUIRED, "Initial condition: its kind (travelling, breather, packet, pair, lifted) and parameters.",
-        ref="initial")
+    initial: Travelling | Breather | Packet | Pair = param(REQUIRED, "Initial condition: its kind (travelling, "
+                                                           "breather, packet, pair) and parameters.", ref="initial")
     # at most MAX_T_END: stored times are told apart to TIME_TOL, finer than float64 resolves beyond ~4e6
     t_end: float = param(REQUIRED, "Final time of the run (lattice time t); in (0, 1e6] (stored times are told apart "
                          "to 1e-9).", exclusiveMinimum=0, maximum=MAX_T_END)

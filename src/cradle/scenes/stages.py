@@ -26,7 +26,7 @@ from cradle.data.io import make_dataset
 from cradle.measurements import breathers, compare, interactions, sidebands
 from cradle.models import damping, dps, initial, lattice
 from cradle.scenes.failure import StageFailure
-from cradle.scenes.spec import Breather, HomoclinicEntry, Lifted, MapEntry, Packet, Pair, Scene, Travelling
+from cradle.scenes.spec import Breather, HomoclinicEntry, MapEntry, Packet, Pair, Scene, Travelling
 from cradle.specs.declare import plain
 
 # ---------------------------------------------------------------- stationary DpS
@@ -154,13 +154,6 @@ def initial_data(spec: Scene, name: str = "", homoclinic_ds: xr.Dataset | None =
     elif isinstance(ini, Pair):  # loc1 (right): two static breathers at rest, profile solved in-process
         data = initial.pair(N, alpha, amplitude=ini.amplitude, separation=ini.separation, profile=ini.profile,
                             sign=ini.sign, centre=ini.centre, bc=bc)
-    elif isinstance(ini, Lifted):  # a desk toy's release: the amplitude of the angle in the scene's cradle
-        from cradle.models import physical
-
-        assert spec.cradle is not None, "checked with the scene (Lifted.check)"
-        data = initial.lifted(N, alpha, amplitude=physical.release_amplitude(spec.cradle, ini.angle),
-                              count=ini.count, bc=bc)
-        data.info["angle_deg"] = ini.angle
     else:
         raise TypeError(f"scene '{name}': not an initial condition of a known kind: {ini!r}")
     fields = {"x0": data.x0, "v0": data.v0, "A0_re": data.A0.real, "A0_im": data.A0.imag}
