@@ -70,6 +70,13 @@ _API: tuple[tuple[str, tuple[tuple[str, str, str], ...]], ...] = (
          "the (nc) amplitude L sin(theta)/X of a pendulum released from theta degrees"),
         ("collision_time", "cradle.models.physical", "Hertz collision time t_c = 2 I delta_max / v of two spheres"),
         ("lookup_material", "cradle.models.physical", "a named sphere material: E, nu, rho and their sources"),
+        ("in_si", "cradle.data.si", "a stored run of a real cradle (`cradle:`) in SI: s, m, m s-1, N, J"),
+    )),
+    ("Dissipation (docs/dissipation.md, docs/damped-dps.md)", (
+        ("Damping", "cradle.models.damping",
+         "the damping terms of (ncdamped): on-site gamma and Kuwabara-Kono contact eta; integrate_lattice(damping=)"),
+        ("DpsDamping", "cradle.models.dps_damped", "their DpS counterpart (dpsdamped); integrate_dps(damping=)"),
+        ("slow_damping", "cradle.models.dps_damped", "the DpsDamping of a lattice Damping at small parameter eps"),
     )),
     ("Stored results", (
         ("open_scene", "cradle.pipeline.outputs",
