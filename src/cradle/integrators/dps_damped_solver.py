@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from cradle.integrators import _dop853, _kernels as K
+from cradle.integrators._scipy_steps import stepped
 from cradle.models.dps_damped import DpsDamping, contact_factor
 from cradle.specs.declare import from_plain, plain
 
@@ -70,10 +71,6 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, soluti
     balance = _Balance(run, damping)
     rows = np.empty((T, 7))
     Y = np.empty((T, 2 * N + 2))
-    max_l2 = 0.0
-    max_E = 0.0
-    n_steps = 0
-    nfev = 0
     if method == "dop853_numba":
         stats = np.array([run.l20, run.S0, 0.0, 0.0])
         Y, n_steps, nfev = _dop853.run_dop853(_dop853.DPS_DAMPED, y0, tau_out, rtol, atol, alpha, 0, par, periodic,
@@ -92,40 +89,15 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, soluti
         Y[i] = y
         rows[i] = balance.row(y, tau_out[i])
 
-    idx = 0
-    if tau_out[0] == 0.0:
-        store(0, y0)
-        idx = 1
-    tau_final = float(tau_out[-1])
-    if idx < T:
-        from scipy import integrate
+    drifts = [0.0, 0.0]   # the largest l2 and energy residuals over every accepted step
 
-        solver = getattr(integrate, str(scipy_class))(fun, 0.0, y0, tau_final, rtol=rtol, atol=atol)
-        t_last = time.perf_counter()
-        while solver.status == "running":
-            msg = solver.step()
-            if solver.status == "failed":
-                raise RuntimeError(f"{method} failed at tau={solver.t!r}: {msg}")
-            n_steps += 1
-            y = solver.y
-            r = balance.row(y, solver.t)
-            max_l2 = max(max_l2, r[4])
-            max_E = max(max_E, r[5])
-            dense = None
-            while idx < T and tau_out[idx] <= solver.t:
-                if tau_out[idx] == solver.t:
-                    store(idx, y)
-                else:
-                    if dense is None:
-                        dense = solver.dense_output()
-                    store(idx, dense(tau_out[idx]))
-                idx += 1
-            if run.progress is not None and time.perf_counter() - t_last >= 1.0:
-                t_last = time.perf_counter()
-                run.progress(float(solver.t), tau_final)
-        nfev = int(solver.nfev)
-    if run.progress is not None:
-        run.progress(tau_final, tau_final)
+    def on_step(y, tau):
+        r = balance.row(y, tau)
+        drifts[0] = max(drifts[0], r[4])
+        drifts[1] = max(drifts[1], r[5])
+
+    n_steps, nfev = stepped(str(scipy_class), fun, y0, tau_out, rtol, atol, store, on_step, run.progress, method)
+    max_l2, max_E = drifts
     return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
 
 

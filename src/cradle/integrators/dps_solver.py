@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from cradle.integrators import _dop853, _kernels as K
+from cradle.integrators._scipy_steps import stepped
 from cradle.integrators._validate import check_state, check_times
 from cradle.models.dps import tau0 as _tau0
 from cradle.models.dps_damped import DpsDamping
@@ -158,44 +159,16 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
         A[i] = y.view(np.complex128)
         l2d[i], Ed[i], Pd[i] = run.drifts(y[None, :])[:, 0]
 
-    idx = 0
-    if tau_out[0] == 0.0:
-        store(0, y0)
-        idx = 1
-    max_l2 = 0.0
-    max_E = 0.0
-    n_steps = 0
-    nfev = 0
-    tau_final = float(tau_out[-1])
-    if idx < T:
-        from scipy import integrate
+    drifts = [0.0, 0.0]   # the largest l2 and energy drifts over every accepted step
 
-        solver = getattr(integrate, SCIPY_DPS_METHODS[method])(fun, 0.0, y0, tau_final, rtol=rtol, atol=atol)
-        t_last = time.perf_counter()
-        while solver.status == "running":
-            msg = solver.step()
-            if solver.status == "failed":
-                raise RuntimeError(f"{method} failed at tau={solver.t!r}: {msg}")
-            n_steps += 1
-            y = solver.y
-            l2, S, _pr, _pi = K.dps_invariants(y, alpha, periodic)
-            max_l2 = max(max_l2, abs(l2 - l20) / l2_scale)
-            max_E = max(max_E, abs(S - S0) / S_scale)
-            dense = None
-            while idx < T and tau_out[idx] <= solver.t:
-                if tau_out[idx] == solver.t:
-                    store(idx, y)
-                else:
-                    if dense is None:
-                        dense = solver.dense_output()
-                    store(idx, dense(tau_out[idx]))
-                idx += 1
-            if progress is not None and time.perf_counter() - t_last >= 1.0:
-                t_last = time.perf_counter()
-                progress(float(solver.t), tau_final)
-        nfev = int(solver.nfev)
-    if progress is not None:
-        progress(tau_final, tau_final)
+    def on_step(y, tau):
+        l2, S, _pr, _pi = K.dps_invariants(y, alpha, periodic)
+        drifts[0] = max(drifts[0], abs(l2 - l20) / l2_scale)
+        drifts[1] = max(drifts[1], abs(S - S0) / S_scale)
+
+    n_steps, nfev = stepped(SCIPY_DPS_METHODS[method], fun, y0, tau_out, rtol, atol, store, on_step, progress,
+                                method)
+    max_l2, max_E = drifts
     return DpsSolution(tau_out, A, l2d, Ed, Pd, float(max_l2), float(max_E), n_steps,
                        time.perf_counter() - wall0, method, float(rtol), float(atol), nfev)
 

@@ -70,15 +70,21 @@ def onsite_gamma(rate_per_second: float, omega0: float) -> float:
     return rate_per_second / omega0
 
 
-def bond_forces(x, v, alpha: float, eta: float, bc: str = "periodic"):
-    """The bond forces g_n of (ncdamped) (0 on a missing bond): -max(c^alpha + eta c^(alpha-1) c', 0) where
-    the bond is compressed (c = -(x_{n+1} - x_n) > 0), else 0. Arrays with the beads on the last axis."""
+def compressions(x, v, bc: str = "periodic"):
+    """(c_n, c_n'): the compression -(x_{n+1} - x_n) of every bond and its rate (both 0 on a missing bond)."""
     x, v = np.asarray(x, dtype=float), np.asarray(v, dtype=float)
     c = -(np.roll(x, -1, axis=-1) - x)
     rate = -(np.roll(v, -1, axis=-1) - v)
     if bc == "free":
         c[..., -1] = 0.0
         rate[..., -1] = 0.0
+    return c, rate
+
+
+def bond_forces(x, v, alpha: float, eta: float, bc: str = "periodic"):
+    """The bond forces g_n of (ncdamped) (0 on a missing bond): -max(c^alpha + eta c^(alpha-1) c', 0) where
+    the bond is compressed (c = -(x_{n+1} - x_n) > 0), else 0. Arrays with the beads on the last axis."""
+    c, rate = compressions(x, v, bc)
     on = c > 0.0
     cp = np.where(on, c, 0.0)
     push = cp**alpha + eta * cp ** (alpha - 1.0) * rate
@@ -87,16 +93,12 @@ def bond_forces(x, v, alpha: float, eta: float, bc: str = "periodic"):
 
 def dissipated_power(x, v, alpha: float, damping: Damping, bc: str = "periodic"):
     """P of (ncdamped): the rate at which the damping terms remove energy (ham), >= 0 (arrays as above)."""
-    x, v = np.asarray(x, dtype=float), np.asarray(v, dtype=float)
-    c = -(np.roll(x, -1, axis=-1) - x)
-    rate = -(np.roll(v, -1, axis=-1) - v)
-    if bc == "free":
-        c[..., -1] = 0.0
-        rate[..., -1] = 0.0
+    c, rate = compressions(x, v, bc)
     cp = np.maximum(c, 0.0)
     elastic = cp**alpha
     total = -bond_forces(x, v, alpha, damping.contact, bc)
-    return damping.onsite * np.sum(v**2, axis=-1) + np.sum((total - elastic) * rate, axis=-1)
+    return damping.onsite * np.sum(np.asarray(v, dtype=float) ** 2, axis=-1) + np.sum((total - elastic) * rate,
+                                                                                      axis=-1)
 
 
 def acceleration(x, v, alpha: float, damping: Damping, bc: str = "periodic"):

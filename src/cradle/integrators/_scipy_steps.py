@@ -1,0 +1,47 @@
+"""scipy's adaptive solvers stepped by hand, storing at given output times: what the DpS runs with scipy's DOP853 or
+RK45 share (:mod:`cradle.integrators.dps_solver`, :mod:`cradle.integrators.dps_damped_solver`)."""
+from __future__ import annotations
+
+import time
+
+
+def stepped(scipy_class: str, fun, y0, tau_out, rtol, atol, store, on_step, progress, method: str):
+    """Step scipy's ``scipy_class`` solver (DOP853, RK45) manually from tau = 0 to tau_out[-1]: ``store(i, y)`` at
+    every output time (y0 at tau = 0, the step's end where it lands on one, else its dense output),
+    ``on_step(y, tau)`` after every accepted step, ``progress(tau, tau_final)`` about once a second and at the end.
+    Returns (accepted steps, right-hand side evaluations)."""
+    T = tau_out.size
+    idx = 0
+    if tau_out[0] == 0.0:
+        store(0, y0)
+        idx = 1
+    n_steps = nfev = 0
+    tau_final = float(tau_out[-1])
+    if idx < T:
+        from scipy import integrate
+
+        solver = getattr(integrate, scipy_class)(fun, 0.0, y0, tau_final, rtol=rtol, atol=atol)
+        t_last = time.perf_counter()
+        while solver.status == "running":
+            msg = solver.step()
+            if solver.status == "failed":
+                raise RuntimeError(f"{method} failed at tau={solver.t!r}: {msg}")
+            n_steps += 1
+            y = solver.y
+            on_step(y, solver.t)
+            dense = None
+            while idx < T and tau_out[idx] <= solver.t:
+                if tau_out[idx] == solver.t:
+                    store(idx, y)
+                else:
+                    if dense is None:
+                        dense = solver.dense_output()
+                    store(idx, dense(tau_out[idx]))
+                idx += 1
+            if progress is not None and time.perf_counter() - t_last >= 1.0:
+                t_last = time.perf_counter()
+                progress(float(solver.t), tau_final)
+        nfev = int(solver.nfev)
+    if progress is not None:
+        progress(tau_final, tau_final)
+    return n_steps, nfev
