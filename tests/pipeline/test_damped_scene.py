@@ -3,6 +3,7 @@ the damped DpS (dpsdamped), metrics; its files record the dissipated energy and 
 from __future__ import annotations
 
 import copy
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -91,3 +92,28 @@ def test_a_file_of_a_real_cradle_reads_in_si(runs):
     assert np.max(np.abs(E - E[0])) <= 1e-8 * E[0]
     with pytest.raises(ValueError, match="no SI scales"):
         in_si(exact.drop_attrs())
+
+
+def test_open_scene_in_si_and_its_movie_clock(runs, tmp_path):
+    """The stored runs read back with `open_scene(units="si")` in SI, and the movie of the scene runs its clock in
+    seconds as well."""
+    from cradle.data.io import write_netcdf
+    from cradle.figures.movie import MovieSpec, render
+    from cradle.pipeline import layout
+    from cradle.pipeline.outputs import open_scene
+
+    _, _, exact, dps, _ = runs
+    root = tmp_path / "results"
+    for part, ds in (("exact", exact), ("dps", dps)):
+        path = Path(layout.path(part, root, scene="damped"))
+        path.parent.mkdir(parents=True, exist_ok=True)
+        write_netcdf(ds, path)
+    si = open_scene("damped", root, metrics=False, check=False, units="si")
+    assert si["t"].attrs["units"] == "s" and si["x"].attrs["units"] == "m"
+    np.testing.assert_allclose(si["t"].values, exact["t"].values * exact.attrs["scale_time_s"], rtol=1e-15)
+    frames = render(open_scene("damped", root, metrics=False, check=False), MovieSpec(fps=2, duration=1.0,
+                                                                                        width=320, height=180))
+    info = next(frames)
+    assert next(frames).shape == (180, 320, 3) and len(info["times"]) >= 2
+    with pytest.raises(ValueError, match="units = 'SI': must be nc or si"):
+        open_scene("damped", root, metrics=False, check=False, units="SI")

@@ -126,6 +126,8 @@ def render(ds, spec: MovieSpec):
     fig = Figure(figsize=(spec.width / DPI, spec.height / DPI), dpi=DPI)
     canvas = FigureCanvasAgg(fig)
     fig.text(0.5, 0.965, scene_line(ds.attrs), ha="center", va="center", fontsize=11)
+    # a scene of a real cradle (`cradle:`): its clock in seconds as well (cradle.data.si)
+    t_si = float(ds.attrs["scale_time_s"]) if "scale_time_s" in ds.attrs else None
     strobe = f"  ({dt_frame / period:.2g} periods 2π/ω)" if period and dt_frame else ""
     fig.text(0.5, 0.925, f"displacements × {scale:.3g};  one frame = Δt {dt_frame:.3g}{strobe};  grey bars: "
              f"range swept since the previous frame", ha="center", va="center", fontsize=9, color="0.3")
@@ -177,7 +179,8 @@ def render(ds, spec: MovieSpec):
             swept.set_segments(list(np.stack([np.column_stack([left, low]), np.column_stack([right, low])],
                                              axis=1)))
             bonds.set_data(f[model][k:k + 1, :n_bonds])
-        clock.set_text(f"t = {t[i]:10.2f}   frame {k + 1:4d}/{len(idx)}")
+        seconds = f" ({t[i] * t_si:.4g} s)" if t_si else ""
+        clock.set_text(f"t = {t[i]:10.2f}{seconds}   frame {k + 1:4d}/{len(idx)}")
         prev = j
         canvas.restore_region(background)
         for a in moving:
