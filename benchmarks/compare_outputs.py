@@ -53,11 +53,11 @@ RENAMES: list[tuple[str, str]] = [
     (r"interactions/batch/full/(\d+)\.nc", r"breather-interactions/batch/full/\1.nc"),
     (r"validity/(full/)?dps-validity\.nc", r"dps-validity/\1dps-validity.nc"),  # dps-validity on the protocol
     # work-precision on the protocol: one file per scene gathered into one, a group per scene (GROUPS)
-    (r"work-precision/(full/)?[^/]+\.nc", r"work-precision/\1work-precision.nc"),
+    (r"work-precision/(full/)?(?!work-precision\.nc)[^/]+\.nc", r"work-precision/\1work-precision.nc"),
 ]
 #: old files that became a group of a gathered file, OLD_REGEX -> GROUP_TEMPLATE (after --group-map)
 GROUPS: list[tuple[str, str]] = [
-    (r"work-precision/(?:full/)?([^/]+)\.nc", r"/\1"),
+    (r"work-precision/(?:full/)?(?!work-precision\.nc)([^/]+)\.nc", r"/\1"),
 ]
 
 #: units of a wall-clock duration
