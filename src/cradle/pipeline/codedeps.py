@@ -42,12 +42,6 @@ def _module_file(src: Path, name: str) -> Path | None:
     return None
 
 
-def _package_of(src: Path, path: Path) -> str:
-    """Dotted package a source file belongs to (``cradle.figures`` for figures/maps.py)."""
-    # a module's package is its folder; so is an __init__.py's (relative imports resolve the same way)
-    return ".".join(path.resolve().relative_to(src.resolve()).parts[:-1])
-
-
 def _tree(path: Path) -> ast.Module:
     """The syntax tree of ``path``, parsed once per version of the file (the import scan and the
     fingerprint share it)."""
@@ -168,17 +162,20 @@ def code_files(*entries: str | Path, src: str | Path = "src") -> list[str]:
     """
     src = Path(src)
     todo: list[tuple[Path, str | None]] = []
-    seen: set[str] = set()
+    found: dict[str, Path] = {}
+    not_modules: set[str] = set()   # names of functions and constants: looked up once
 
     def visit(name: str) -> None:
         for full in _with_parents(name):
-            if full in seen:
+            if full in found or full in not_modules:
                 continue
             path = _module_file(src, full)
             if path is None:  # a function or constant of the package, not a module
+                not_modules.add(full)
                 continue
-            seen.add(full)
-            todo.append((path, _package_of(src, path)))
+            found[full] = path
+            # a module's package is its folder; so is an __init__.py's (relative imports resolve the same way)
+            todo.append((path, full if path.name == "__init__.py" else full.rpartition(".")[0]))
 
     for entry in entries:
         if isinstance(entry, Path) or str(entry).endswith(".py"):
@@ -192,4 +189,4 @@ def code_files(*entries: str | Path, src: str | Path = "src") -> list[str]:
         path, package = todo.pop()
         for name in _imports(path, package):
             visit(name)
-    return sorted(str(_module_file(src, name)) for name in seen)
+    return sorted(str(path) for path in found.values())
