@@ -60,8 +60,14 @@ _THRESHOLD = {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 1,
               "description": "A threshold of the share f_k, in (0, 1)."}
 
 
-def _steel() -> Cradle:
-    return Cradle(material="steel", radius=0.01, length=0.1)
+#: the cradle of a spec that gives none: steel balls (AISI 52100, cradle.models.physical.MATERIALS) of radius 1 cm on
+#: 10 cm strings
+DEFAULT_CRADLE = Cradle(material="steel", radius=0.01, length=0.1)
+
+
+def cradle_of(spec: DeskToyRuns) -> Cradle:
+    """The spec's cradle, or :data:`DEFAULT_CRADLE` when it gives none."""
+    return spec.cradle if spec.cradle is not None else DEFAULT_CRADLE
 
 
 @declared(doc="The reduced form `snakemake all` builds (results/desk-toy/desk-toy.nc, results/figures/desk-toy.*): "
@@ -76,8 +82,8 @@ class DeskToyRunsReduced:
               "displacements, one-out-one-out shares and holds, the break-up of the line after the first cascade, "
               "energy per bead per swing -> results/desk-toy/desk-toy.nc and results/figures/desk-toy.{pdf,png}.")
 class DeskToyRuns:
-    cradle: Cradle = param(_steel(), "The spheres and their strings (cradle.models.physical.Cradle; a pendulum "
-                           "length is needed). Default: steel balls of radius 1 cm on 10 cm strings.")
+    cradle: Cradle = param(None, "The spheres and their strings (cradle.models.physical.Cradle; a pendulum length "
+                           "is needed). Absent: steel balls of radius 1 cm on 10 cm strings (DEFAULT_CRADLE).")
     angle_deg: float = param(20.0, "Angle of the lifted balls' strings from the vertical (degrees); in (0, 90).",
                              exclusiveMinimum=0, exclusiveMaximum=90)
     lifted: list[int] = param([1, 2, 3], "Lifted counts: the first `lifted` balls are released together (each "
@@ -112,7 +118,7 @@ class DeskToyRuns:
         def mine(key: str) -> bool:  # the reduced form reports only the keys it replaces
             return own is None or key in own
 
-        if self.cradle.length is None and own is None:
+        if self.cradle is not None and self.cradle.length is None and own is None:
             out.add(where + ["cradle"], "a desk toy needs the pendulum length (a stiff oscillator has no angle)")
         if mine("chains") or mine("lifted"):
             short = min(self.chains)
@@ -171,7 +177,7 @@ def desk_toy_runs(spec: DeskToyRuns, n_beads: int, lifted: int) -> dict:
     from cradle.models import desk_toy as dt
     from cradle.models.hard_spheres import hard_sphere_run
 
-    toy = dt.desk_toy(n_beads, lifted, spec.angle_deg, spec.cradle)
+    toy = dt.desk_toy(n_beads, lifted, spec.angle_deg, cradle_of(spec))
     x0, v0, s = dt.desk_toy_initial(toy)
     t = time_grid(spec.swings, spec.samples)
     damping = spec.damping if spec.damping is not None and spec.damping.active else None
@@ -302,7 +308,7 @@ def compute(spec: DeskToyRuns, inputs=None, log=None):
                                                                  strict=True))
             say(f"desk-toy: {label(N, k)}: holds (f >= {spec.thresholds[0]:g}) {holds}; (nc) drift "
                 f"{r['energy_drift']:.2g}, {r['n_steps']} steps")
-    c = spec.cradle
+    c = cradle_of(spec)
     damped = spec.damping is not None and spec.damping.active
     attrs = {
         "desk_toys": ", ".join(names),
