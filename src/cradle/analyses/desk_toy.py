@@ -155,8 +155,8 @@ def _nc(x0, t, rtol: float, damping):
 def cascade_run(x0, rtol: float, damping=None):
     """(t, run) of (nc) over [0, pi] stored every CASCADE_DT over CASCADE_SPAN from the impact at t = pi/2 (and
     100 times elsewhere): resolves the first cascade and ends at the first largest swing t = pi."""
-    t = np.unique(np.concatenate([np.linspace(0.0, np.pi, 101),
-                                  np.pi / 2 + np.linspace(0.0, CASCADE_SPAN, int(round(CASCADE_SPAN / CASCADE_DT)) + 1)]))
+    dense = np.pi / 2 + np.linspace(0.0, CASCADE_SPAN, int(round(CASCADE_SPAN / CASCADE_DT)) + 1)
+    t = np.unique(np.concatenate([np.linspace(0.0, np.pi, 101), dense]))
     return t, _nc(x0, t, rtol, damping)
 
 
@@ -317,7 +317,7 @@ def compute(spec: DeskToyRuns, inputs=None, log=None):
         "angle_deg": spec.angle_deg,
         "nc_integrator": f"dop853_numba, rtol = {spec.rtol:g}, atol = rtol * amplitude, free ends",
         "damping": (f"(ncdamped) onsite gamma = {spec.damping.onsite:g}, contact eta = {spec.damping.contact:g} "
-                    "((nc) units)" if damped else "none"),  # type: ignore[union-attr]
+                    "((nc) units)" if damped else "none"),
         "restitution_status": f"e = {STEEL_RESTITUTION_ASSUMED:g} is an assumed value for steel (docs/desk-toy.md), "
                               "not a measured one",
         "pendulum": "(nc)'s on-site force is the small-angle pendulum: the released balls meet the line at "

@@ -48,7 +48,7 @@ def draw(tree):
         for col in range(len(groups), ncols - 1):
             ax[row, col].set_visible(False)
         share_ax = ax[row, ncols - 1]
-        for col, (name, g) in enumerate(groups):
+        for col, (_name, g) in enumerate(groups):
             A = ax[row, col]
             t = np.asarray(g["t"].values)
             T = 2.0 * np.pi * float(g.attrs["T_s"])
