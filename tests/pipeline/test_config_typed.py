@@ -268,8 +268,8 @@ def test_config_yaml_states_only_what_differs_from_the_defaults(raw):
     declared = cc.validate({"map": {"m": {"box": 1.0, "iterations": 2, "starts": [[0.0, 0.1]]}}})
     assert "defaults" not in raw
     for section, values in raw["beyond"].items():
-        for key, value in values.items():
-            assert declared["beyond"][section][key] != value, f"beyond.{section}.{key} restates its default"
+        for key, value in values.items():   # a key without a declared default (desk-toy's cradle) differs from it
+            assert declared["beyond"][section].get(key) != value, f"beyond.{section}.{key} restates its default"
     for key, value in raw["movies"].items():
         assert declared["movies"][key] != value, f"movies.{key} restates its default"
 
