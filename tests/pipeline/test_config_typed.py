@@ -51,8 +51,8 @@ CONFIG = ROOT / "config.yaml"
 # then plain() by value: floquet's default angles 0.4pi and 0.7pi in their one form, 2pi/5 and 7pi/10, the same
 # floats bit for bit.)
 # then breather-interactions' reduced form enlarged (spacings 4, 6, 8; 2 seeds; 150 periods): 12 cases, not 4.
-# then the new section beyond: desk-toy: (its declared defaults and the cradle stated; without it the hash is the previous one,
-# 807478d2...).
+# then the new section beyond: desk-toy: (its declared defaults and the cradle stated; without it the hash is
+# the previous one, 807478d2...).
 RESOLVED_SHA256 = "4263d38ac75558233a7b37eb1801034ab8aea8415c73a525e27f63f6f47afa0a"
 
 
