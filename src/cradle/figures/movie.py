@@ -96,9 +96,10 @@ def scene_line(attrs) -> str:
     return f"scene '{attrs.get('scene', '?')}':  " + ",  ".join(parts)
 
 
-def render(ds, spec: MovieSpec):
+def render(ds, spec: MovieSpec, panels=PANELS):
     """Yield the frames (height x width x 3 uint8 arrays) of the scene ``ds`` (from :func:`cradle.open_scene`),
-    and as the generator's first item a dict describing the movie (frame times, magnification, ...)."""
+    and as the generator's first item a dict describing the movie (frame times, magnification, ...).
+    ``panels``: (value of ``model``, title) of the two runs drawn, top and bottom."""
     import matplotlib
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.collections import LineCollection
@@ -107,9 +108,9 @@ def render(ds, spec: MovieSpec):
     t = np.asarray(ds["t"].values, dtype=float)
     idx = frame_indices(t, spec)
     lo, hi = int(idx[0]), int(idx[-1])
-    x = {m: np.asarray(ds["x"].sel(model=m).values[lo:hi + 1], dtype=float) for m, _ in PANELS}
-    f = {m: np.asarray(ds["force"].sel(model=m).values[idx], dtype=float) for m, _ in PANELS}
-    n_beads = x["exact"].shape[1]
+    x = {m: np.asarray(ds["x"].sel(model=m).values[lo:hi + 1], dtype=float) for m, _ in panels}
+    f = {m: np.asarray(ds["force"].sel(model=m).values[idx], dtype=float) for m, _ in panels}
+    n_beads = x[panels[0][0]].shape[1]
     periodic = str(ds.attrs.get("bc", "periodic")) == "periodic"
     n_bonds = n_beads if periodic else n_beads - 1
     xmax = max(float(np.max(np.abs(v))) for v in x.values())
@@ -136,7 +137,7 @@ def render(ds, spec: MovieSpec):
     norm = matplotlib.colors.Normalize(vmin=fmin, vmax=0.0)
     n = np.arange(n_beads, dtype=float)
     artists = {}
-    for row, (model, title) in enumerate(PANELS):
+    for row, (model, title) in enumerate(panels):
         ax = fig.add_axes((0.03, 0.52 - 0.44 * row, 0.86, 0.36))
         ax.set_xlim(-0.8, n_beads - 0.2)
         ax.set_ylim(-0.55, 1.08)
@@ -264,18 +265,47 @@ def write_gif(path, frames, fps: int, width: int) -> Path:
 
 
 def animate(ds, out, spec: MovieSpec = MovieSpec(), gif=None, gif_spec: MovieSpec | None = None,
-            gif_width: int = 480) -> dict:
+            gif_width: int = 480, panels=PANELS) -> dict:
     """Write the movie of scene ``ds`` to ``out`` (.mp4) and, if ``gif`` is a path, a small GIF drawn with
-    ``gif_spec`` (default: ``spec`` at 10 frames per second for 8 s); returns what :func:`render` describes."""
-    frames = render(ds, spec)
+    ``gif_spec`` (default: ``spec`` at 10 frames per second for 8 s); returns what :func:`render` describes.
+    ``panels``: the two runs drawn (:func:`render`)."""
+    frames = render(ds, spec, panels)
     info = next(frames)
     write_mp4(out, frames, info["size"], spec.fps)
     info["path"] = Path(out)
     if gif is not None:
         gspec = gif_spec or MovieSpec(fps=10, duration=8.0, width=spec.width, height=spec.height,
                                       t_start=spec.t_start, t_end=spec.t_end)
-        gframes = render(ds, gspec)
+        gframes = render(ds, gspec, panels)
         ginfo = next(gframes)
         write_gif(gif, gframes, gspec.fps, gif_width)
         info["gif"] = {"path": Path(gif), "frames": len(ginfo["indices"])}
     return info
+
+
+def desk_toy_runs(group, hard: int = 1):
+    """A desk toy of the `desk-toy` analysis (a group of its file, :mod:`cradle.analyses.desk_toy`) as
+    :func:`render` reads a scene: ``x`` (m) and the bond forces V0'(x_{n+1} - x_n) of (nc) (in (nc)'s units,
+    from x / X: zero between hard spheres) along ``model`` = "nc" and "hard" (the model index ``hard`` of the
+    file, the first hard-sphere cradle by default), times in seconds; and the panels' titles."""
+    import xarray as xr
+
+    from cradle.models.lattice import bond_forces
+
+    names = [s.strip() for s in str(group.attrs["model_names"]).split(",")]
+    x = np.asarray(group["x"].values, dtype=float)[[0, hard]]
+    force = bond_forces(x / float(group.attrs["X_m"]), 1.5, "free")
+    attrs = {"scene": f"desk-toy {group.name}", "N": int(group.attrs["n_beads"]), "bc": "free",
+             "initial_kind": f"{int(group.attrs['lifted'])} lifted", "amplitude": float(group.attrs["amplitude_m"])}
+    ds = xr.Dataset({"x": (("model", "t", "n"), x), "force": (("model", "t", "n"), force)},
+                    coords={"model": ["nc", "hard"], "t": np.asarray(group["t"].values, dtype=float)}, attrs=attrs)
+    titles = (("nc", f"lattice {names[0]}: displacements in m, time in s"), ("hard", names[hard]))
+    return ds, titles
+
+
+def animate_desk_toy(tree, name: str, out, spec: MovieSpec = MovieSpec(), gif=None, gif_spec: MovieSpec | None = None,
+                     gif_width: int = 480, hard: int = 1) -> dict:
+    """The movie of the desk toy ``name`` (``n5-lifted1``) of a `desk-toy` file ``tree``: (nc) above, the
+    hard-sphere cradle ``hard`` below (:func:`desk_toy_runs`), written as :func:`animate` does."""
+    ds, panels = desk_toy_runs(tree[name], hard)
+    return animate(ds, out, spec, gif=gif, gif_spec=gif_spec, gif_width=gif_width, panels=panels)

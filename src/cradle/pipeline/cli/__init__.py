@@ -8,6 +8,7 @@
     cradle extend   FILE.nc --t-end T [--every DT] [--out FILE.nc | --in-place]   # continue an exact run
     cradle verify   [results] [--config config.yaml]       # every output's checksums and identity; what to rebuild
     cradle animate  SCENE [--results results] [--gif] [--fps F --duration S]   # a movie of the stored runs
+    cradle animate  n5-lifted1 --desk-toy results/desk-toy/desk-toy.nc          # a desk toy of that analysis
     cradle scale    --material steel --radius R (--length L | --omega0 W) [--amplitude A] [--angle DEG]
                                                            # (nc)'s units in SI for a real cradle
 
@@ -129,6 +130,10 @@ def parser() -> argparse.ArgumentParser:
     a.add_argument("--t-start", type=float, default=None, dest="t_start", help="first time shown (default: 0)")
     a.add_argument("--t-end", type=float, default=None, dest="t_end", help="last time shown (default: the run's end)")
     a.add_argument("--config", default="config.yaml", help="config whose movies: section gives the defaults")
+    a.add_argument("--desk-toy", default=None, dest="desk_toy", metavar="FILE.nc",
+                   help="draw the desk toy SCENE (e.g. n5-lifted1) of this desk-toy analysis file instead of a scene")
+    a.add_argument("--hard", type=int, default=1, help="with --desk-toy: the hard-sphere model index drawn below "
+                                                       "(default 1: the first restitution coefficient)")
     a.set_defaults(func=cmd_animate)
     c = sub.add_parser("scale", help="(nc)'s units in SI for a cradle of given spheres and strings; what an amplitude "
                                      "or a release angle means")

@@ -4,6 +4,11 @@ Reads ``RESULTS/sim/SCENE/{exact,dps}.nc`` only (:func:`cradle.open_scene`), wri
 ``RESULTS/movies/SCENE.mp4`` (and ``.gif`` with ``--gif``). Frame rate, duration and size default to the
 ``movies:`` section of the config when the config file exists, else to their declared defaults; a flag
 overrides either.
+
+``cradle animate NAME --desk-toy FILE.nc`` draws instead the desk toy NAME (``n5-lifted1``) of a `desk-toy`
+analysis file (results/desk-toy/[full/]desk-toy.nc): (nc) above, the hard-sphere cradle (e of ``--hard``, the
+file's model index, default 1: the first restitution) below, to ``RESULTS/movies/desk-toy-NAME.mp4``
+(:func:`cradle.figures.movie.animate_desk_toy`).
 """
 from __future__ import annotations
 
@@ -69,8 +74,15 @@ def cmd_animate(args) -> int:
                           width=spec.width, height=spec.height, t_start=args.t_start, t_end=args.t_end)
     except ValueError as err:
         raise CliError(str(err)) from None
-    out = Path(args.out or layout.path("movie", args.results, scene=args.scene, ext="mp4"))
+    desk = getattr(args, "desk_toy", None)
+    stem = f"desk-toy-{args.scene}" if desk else args.scene
+    out = Path(args.out or layout.path("movie", args.results, scene=stem, ext="mp4"))
     gif = out.with_suffix(".gif") if args.gif else None
+    if desk:
+        info = _desk_toy(args, desk, out, spec, gif, gspec, given["gif_width"])
+        print(f"{out}: {len(info['times'])} frames at {spec.fps}/s, {spec.width}x{spec.height}, t = "
+              f"{info['times'][0]:g} .. {info['times'][-1]:g} s, displacements x {info['magnification']:.3g}")
+        return 0
     try:
         ds = open_scene(args.scene, root=args.results, metrics=False)
     except FileNotFoundError as err:
@@ -82,3 +94,23 @@ def cmd_animate(args) -> int:
     if gif is not None:
         print(f"{gif}: {info['gif']['frames']} frames at {gspec.fps}/s, {given['gif_width']} px wide")
     return 0
+
+
+def _desk_toy(args, path, out, spec, gif, gspec, gif_width) -> dict:
+    """The movie of desk toy ``args.scene`` of the `desk-toy` file ``path``; a missing file, group or model is
+    one line."""
+    from cradle.data.io import open_tree
+    from cradle.figures.movie import animate_desk_toy
+
+    try:
+        tree = open_tree(path)
+    except (FileNotFoundError, OSError) as err:
+        raise CliError(f"--desk-toy {path}: {err}") from None
+    names = [s.strip() for s in str(tree.attrs.get("desk_toys", "")).split(",") if s.strip()]
+    if args.scene not in names:
+        raise CliError(f"{args.scene}: not a desk toy of {path} (it holds: {', '.join(names) or 'none'})")
+    n_models = tree[args.scene].sizes["model"]
+    if not 1 <= args.hard < n_models:
+        raise CliError(f"--hard {args.hard}: must be a hard-sphere model index of {path}, in [1, {n_models - 1}]")
+    return animate_desk_toy(tree, args.scene, out, spec, gif=gif, gif_spec=gspec, gif_width=gif_width,
+                            hard=args.hard)

@@ -1,0 +1,89 @@
+"""Figure beyond the paper: the desk-toy experiments (desk-toy), in SI.
+
+Drawn by :func:`draw` from results/desk-toy/[full/]desk-toy.nc (:mod:`cradle.analyses.desk_toy`).
+
+One row per chain length N: one panel per lifted count, the displacement (mm) of every ball against time (s)
+over the first swing periods, the lattice (nc) solid and the ideal hard-sphere cradle (its first restitution
+coefficient, e = 1 by default) dashed, one colour per ball; the last panel of the row, the one-out-one-out share
+f_k of every desk toy of that N and every model against time (s), the thresholds of the measure dotted.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from cradle.figures import figure
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py)
+MIN_POINTS = 3
+
+#: swing periods shown in the displacement panels (the whole run is in the file and in the share panel)
+SHOWN_PERIODS = 2
+
+_MODEL_LINES = ("-", "--", ":", "-.")
+_LIFTED_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "h", "<")
+
+
+def _groups(tree):
+    names = [s.strip() for s in str(tree.attrs["desk_toys"]).split(",") if s.strip()]
+    by_chain: dict[int, list] = {}
+    for name in names:
+        g = tree[name]
+        by_chain.setdefault(int(g.attrs["n_beads"]), []).append((name, g))
+    return by_chain
+
+
+def draw(tree):
+    """The panels above from the groups of the desk-toy file."""
+    from matplotlib import colormaps
+    from matplotlib.lines import Line2D
+
+    by_chain = _groups(tree)
+    ncols = max(len(v) for v in by_chain.values()) + 1
+    nrows = len(by_chain)
+    fig, ax = figure(nrows, ncols, width=3.3 * ncols + 1.2, height=3.1 * nrows + 0.6, squeeze=False)
+    models = [s.strip() for s in str(tree.attrs["model_names"]).split(",")]
+    for row, (N, groups) in enumerate(sorted(by_chain.items())):
+        cmap = colormaps["viridis"]
+        colours = [cmap(i / max(1, N - 1) * 0.9) for i in range(N)]
+        for col in range(len(groups), ncols - 1):
+            ax[row, col].set_visible(False)
+        share_ax = ax[row, ncols - 1]
+        for col, (_name, g) in enumerate(groups):
+            A = ax[row, col]
+            t = np.asarray(g["t"].values)
+            T = 2.0 * np.pi * float(g.attrs["T_s"])
+            show = t <= SHOWN_PERIODS * T + 1e-12
+            x = np.asarray(g["x"].values) * 1e3
+            for m, style in ((0, "-"), (1, "--")):
+                if m >= x.shape[0]:
+                    continue
+                for n in range(N):
+                    A.plot(t[show], x[m][show, n], style, color=colours[n], lw=1.0 if m == 0 else 1.3)
+            lifted = int(g.attrs["lifted"])
+            A.set_title(f"{N} balls, {lifted} lifted to {float(tree.attrs['angle_deg']):g}°", fontsize=9)
+            A.set_xlabel("time (s)")
+            A.set_ylabel("displacement (mm)")
+            share = np.asarray(g["share"].values)
+            ts = np.asarray(g["swing_time"].values)
+            for m in range(share.shape[0]):
+                share_ax.plot(ts, share[m], _MODEL_LINES[m % 4], marker=_LIFTED_MARKERS[col % 10], ms=3,
+                              color=f"C{col}", lw=0.9)
+        ths = np.asarray(groups[0][1]["threshold"].values)
+        for th in ths:
+            share_ax.axhline(th, color="0.6", lw=0.6)
+        share_ax.set_title(f"{N} balls: one-out-one-out share $f_k$ at $t = k\\pi/\\omega_0$", fontsize=9)
+        share_ax.set_xlabel("time (s)")
+        share_ax.set_ylabel("$f_k$")
+        share_ax.set_ylim(-0.02, 1.05)
+        # one legend per row, beside the share panel: models (line styles), lifted counts (markers, share panel),
+        # thresholds, balls (colours, displacement panels: (nc) and the first hard-sphere model only)
+        handles = [Line2D([], [], color="0.2", ls=_MODEL_LINES[m % 4], label=mod) for m, mod in enumerate(models)]
+        handles += [Line2D([], [], color=f"C{c}", marker=_LIFTED_MARKERS[c % 10], ls="none",
+                           label=f"{int(g.attrs['lifted'])} lifted ($f_k$)") for c, (_, g) in enumerate(groups)]
+        handles.append(Line2D([], [], color="0.6", lw=0.6, label="thresholds " + ", ".join(f"{v:g}" for v in ths)))
+        handles += [Line2D([], [], color=colours[n], lw=2, label=f"ball {n}") for n in range(N)]
+        share_ax.legend(handles=handles, fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0,
+                        ncols=1 if len(handles) <= 14 else 2)
+    fig.suptitle(f"Desk toys: {tree.attrs['cradle']}; displacements over the first {SHOWN_PERIODS} swing periods",
+                 fontsize=10)
+    return fig
