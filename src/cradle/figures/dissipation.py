@@ -18,8 +18,18 @@ from cradle.figures import figure, legend_outside
 
 _MARKERS = ("o", "s", "^", "D")
 
+#: the breather's frequency is drawn only over windows where its amplitude is above FLOOR times its initial one
+FLOOR = 0.01
+
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few damping values
 MIN_POINTS = 2
+
+
+def _shades(name: str, n: int) -> list:
+    """n colours of a sequential colormap, from light to dark (its palest end left out)."""
+    from matplotlib import colormaps
+
+    return [colormaps[name](0.4 + 0.6 * k / max(1, n - 1)) for k in range(n)]
 
 
 def _names(tree, key: str) -> list[str]:
@@ -84,29 +94,36 @@ def draw(tree):
     jb = fams.index("breather") if "breather" in fams else 0
     w0 = float(np.asarray(lt["omega0_family"].values)[jb])
     C, D = ax[1, 0], ax[1, 1]
+    a0 = float(tree.attrs["breather_amplitude"])
+    # below a hundredth of its initial amplitude the lattice's breather is lost in what it radiated
+    keep_l, keep_d = al > FLOOR * a0, ad > FLOOR * a0
+    shade = {0: _shades("Blues", int(np.sum(terms == 0))), 1: _shades("Reds", int(np.sum(terms == 1)))}
+    colour = [shade[int(terms[kc])][int(np.sum(terms[:kc] == terms[kc]))] for kc in range(values.size)]
     for jc in np.flatnonzero(terms == 0):
-        c = f"C{jc % 10}"
-        C.semilogy(mid, wl[jc] - 1.0, "o", color=c, ms=4, label=rf"$\gamma$ = {values[jc]:g}: lattice")
-        C.semilogy(mid, wd[jc] - 1.0, "-", color=c, lw=1.0, label="  DpS (dpsdamped)")
-        C.semilogy(mid, wc[jc] - 1.0, "--", color="k", lw=0.7, label="  exact law of (dpsdamped)" if jc == 0 else None)
+        c = colour[jc]
+        C.semilogy(mid[keep_l[jc]], wl[jc, keep_l[jc]] - 1.0, "o", color=c, ms=4, label=rf"$\gamma$ = {values[jc]:g}")
+        C.semilogy(mid[keep_d[jc]], wd[jc, keep_d[jc]] - 1.0, "-", color=c, lw=1.0)
+        C.semilogy(mid[keep_d[jc]], wc[jc, keep_d[jc]] - 1.0, "--", color="k", lw=0.7)
+    C.plot([], [], "ko", ms=4, label="markers: lattice (ncdamped)")
+    C.plot([], [], "k-", lw=1.0, label="solid: DpS (dpsdamped)")
+    C.plot([], [], "k--", lw=0.7, label="dashed: exact law of (dpsdamped)")
     C.set_xlabel("window centre t")
     C.set_ylabel(r"breather frequency $\omega - 1$")
-    C.set_title(rf"(c) on-site damping: $\omega - 1 = (\omega_{{sw}}(0) - 1)\, e^{{-(\alpha-1)\gamma t/2}}$, "
-                f"windows of {w:g}", fontsize=9)
+    C.set_title(f"(c) on-site damping, windows of {w:g} (amplitude > {FLOOR:g} a(0));\n"
+                rf"dashed: $\omega - 1 = (\omega_{{sw}}(0) - 1)\, e^{{-(\alpha-1)\gamma t/2}}$", fontsize=9)
     legend_outside(C, fontsize=6)
-    amax = np.nanmax(al[np.isfinite(wl)])
-    amin = np.nanmin(np.where(np.isfinite(wl) & (wl > 1.0), al, np.nan))
-    a = np.geomspace(amin, amax, 50)
-    a0 = float(tree.attrs["breather_amplitude"])
     for kc in range(values.size):
-        c = f"C{kc % 10}"
         name = (r"$\gamma$" if terms[kc] == 0 else r"$\eta$") + f" = {values[kc]:g}"
-        D.loglog(al[kc], wl[kc] - 1.0, _MARKERS[terms[kc] % 4], color=c, ms=4, label=f"{name}: lattice")
-        D.loglog(ad[kc], wd[kc] - 1.0, "x", color=c, ms=4, label="  DpS")
+        D.loglog(al[kc, keep_l[kc]], wl[kc, keep_l[kc]] - 1.0, _MARKERS[terms[kc] % 4], color=colour[kc], ms=4,
+                 label=name)
+        D.loglog(ad[kc, keep_d[kc]], wd[kc, keep_d[kc]] - 1.0, "x", color=colour[kc], ms=4)
+    a = np.geomspace(FLOOR * a0, a0, 50)
     D.loglog(a, (w0 - 1.0) * (a / a0) ** (alpha - 1.0), "k-", lw=0.8,
              label=r"DpS breather: $(\omega_{sw}(0)-1)(a/a_0)^{\alpha-1}$")
+    D.plot([], [], "ko", ms=4, label="circles (on-site), squares (contact): lattice")
+    D.plot([], [], "kx", ms=4, label="crosses: DpS (dpsdamped)")
     D.set_xlabel("window mean amplitude a of the breather's largest bead")
     D.set_ylabel(r"breather frequency $\omega - 1$")
-    D.set_title("(d) frequency against amplitude, every case (circles: on-site, squares: contact)", fontsize=9)
+    D.set_title(f"(d) frequency against amplitude, every case (amplitude > {FLOOR:g} a(0))", fontsize=9)
     legend_outside(D, fontsize=6, ncol=1)
     return fig
