@@ -120,7 +120,7 @@ def draw(tree):
     a = np.geomspace(FLOOR * a0, a0, 50)
     D.loglog(a, (w0 - 1.0) * (a / a0) ** (alpha - 1.0), "k-", lw=0.8,
              label=r"DpS breather: $(\omega_{sw}(0)-1)(a/a_0)^{\alpha-1}$")
-    D.plot([], [], "ko", ms=4, label="circles (on-site), squares (contact): lattice")
+    D.plot([], [], "ko", ms=4, label="lattice: circles on-site, squares contact")
     D.plot([], [], "kx", ms=4, label="crosses: DpS (dpsdamped)")
     D.set_xlabel("window mean amplitude a of the breather's largest bead")
     D.set_ylabel(r"breather frequency $\omega - 1$")
