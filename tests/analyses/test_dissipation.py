@@ -134,7 +134,7 @@ def test_compute_on_a_tiny_form():
     assert np.all(np.abs(dr["omega_dps"].values[on] - dr["omega_closed"].values[on]) <= bound[:, None])
     assert float(np.nanmax(lt["balance_drift"].values)) < 1e-6
     assert tree["validity"]["abs_error"].shape == (2, 2, 1)
-    assert float(tree["steel"]["eta_steel"].values) > 0
+    assert float(tree["steel"]["eta_steel"].values[0]) > 0
 
 
 def test_check_refuses_a_wave_beyond_the_zone():

@@ -380,14 +380,15 @@ VARIABLES = {
         "validity_energy_drift": Var(("term", "i_eps"), "max |H + D - H(0)| / |H(0)| of the validity lattice run"),
     },
     "/steel": {
-        "eta_steel": Var((), "eta of (ncdamped) of the steel cradle (from the assumed restitution)"),
-        "gamma_steel": Var((), "gamma of (ncdamped) of the steel cradle (Stokes drag of air)"),
-        "A_steel": Var((), "Kuwabara-Kono constant A of the steel cradle", units="s"),
-        "rate_steel": Var((), "on-site damping rate of the steel cradle (Stokes drag per unit mass and speed)",
+        "cradle": Var(("cradle",), "index of the real cradle (one: the spec's steel cradle)"),
+        "eta_steel": Var(("cradle",), "eta of (ncdamped) of the steel cradle (from the assumed restitution)"),
+        "gamma_steel": Var(("cradle",), "gamma of (ncdamped) of the steel cradle (Stokes drag of air)"),
+        "A_steel": Var(("cradle",), "Kuwabara-Kono constant A of the steel cradle", units="s"),
+        "rate_steel": Var(("cradle",), "on-site damping rate of the steel cradle (Stokes drag per unit mass and speed)",
                           units="s-1"),
-        "omega0": Var((), "pendulum angular frequency omega_0 = sqrt(g / L)", units="rad s-1"),
-        "length_scale": Var((), "length X of one unit of displacement of (nc)", units="m"),
-        "restitution_C1": Var((), "1 - e over b at b = 1e-4 for the collision of (ncdamped): C1 of Schwager & "
+        "omega0": Var(("cradle",), "pendulum angular frequency omega_0 = sqrt(g / L)", units="rad s-1"),
+        "length_scale": Var(("cradle",), "length X of one unit of displacement of (nc)", units="m"),
+        "restitution_C1": Var(("cradle",), "1 - e over b at b = 1e-4 for the collision of (ncdamped): C1 of Schwager & "
                               "Poeschel's 1 - e = C1 b + ..."),
         "lifetime_closed_steel": Var(("family", "term", "level"), "closed-form lifetime at the steel cradle's "
                                      "damping (NaN where none)"),
@@ -500,10 +501,10 @@ def compute(spec: Dissipation, inputs=None, log=None):
         "/validity": ({"validity_eps": veps, "abs_error": vabs, "rel_error": vrel, "envelope_error": venv,
                        "law_ratio": vabs / veps[None, :, None] ** ALPHA, "exponent": vexp,
                        "validity_energy_drift": vdrift}, {"i_eps": np.arange(veps.size), "T": Ts}),
-        "/steel": ({"eta_steel": st["eta"], "gamma_steel": st["gamma"], "A_steel": st["A_seconds"],
-                    "rate_steel": st["rate_per_second"], "omega0": st["omega0"], "length_scale": st["X"],
-                    "restitution_C1": st["C1_measured"], "lifetime_closed_steel": steel_life,
-                    "lifetime_closed_steel_si": steel_life / st["omega0"]}, {}),
+        "/steel": ({"eta_steel": [st["eta"]], "gamma_steel": [st["gamma"]], "A_steel": [st["A_seconds"]],
+                    "rate_steel": [st["rate_per_second"]], "omega0": [st["omega0"]], "length_scale": [st["X"]],
+                    "restitution_C1": [st["C1_measured"]], "lifetime_closed_steel": steel_life,
+                    "lifetime_closed_steel_si": steel_life / st["omega0"]}, {"cradle": np.arange(1)}),
     }
     attrs = {
         "family_names": ", ".join(names),

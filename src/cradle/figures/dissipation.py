@@ -74,10 +74,10 @@ def draw(tree):
     st = tree["steel"]
     alpha = float(tree.attrs["alpha"])
     # (a), (b)
-    _lifetimes(ax[0, 0], tree, 0, r"$\gamma$", float(st["gamma_steel"].values))
+    _lifetimes(ax[0, 0], tree, 0, r"$\gamma$", float(st["gamma_steel"].values[0]))
     ax[0, 0].set_title("(a) on-site damping alone: closed form ln 2 / $\\gamma$ (exact for DpS)", fontsize=9)
     legend_outside(ax[0, 0], fontsize=6)
-    _lifetimes(ax[0, 1], tree, 1, r"$\eta$", float(st["eta_steel"].values))
+    _lifetimes(ax[0, 1], tree, 1, r"$\eta$", float(st["eta_steel"].values[0]))
     ax[0, 1].set_title("(b) Kuwabara-Kono damping alone: closed form for the plane waves\n"
                        "(steel: restitution assumed, docs/dissipation.md)", fontsize=9)
     legend_outside(ax[0, 1], fontsize=6)
