@@ -48,11 +48,19 @@ def _lifetimes(ax, tree, term: int, symbol: str, steel: float) -> None:
     steel_life = np.asarray(tree["steel"]["lifetime_closed_steel"].values)[:, term, 0]
     lo = min(values.min(), steel) / 2.0
     grid = np.geomspace(lo, values.max() * 1.5, 60)
+    # a closed form the same for every family (on-site: ln 2 / gamma) is drawn once, in black
+    shared = bool(np.isfinite(closed).all() and np.allclose(closed, closed[:1]))
     for jf, fam in enumerate(fams):
         c = f"C{jf}"
         ax.loglog(values, lat[jf], _MARKERS[jf % 4], color=c, ms=6, label=f"{fam}: lattice (ncdamped)")
         ax.loglog(values, dps[jf], _MARKERS[jf % 4], color=c, ms=9, mfc="none", label=f"{fam}: DpS (dpsdamped)")
-        if np.isfinite(closed[jf]).all() and np.isfinite(steel_life[jf]):
+        if shared:
+            if jf == 0:
+                xs, ys = np.concatenate([[steel], values]), np.concatenate([[steel_life[0]], closed[0]])
+                ax.loglog(xs, ys, "-", color="k", lw=0.8, label="every family: closed form")
+                ax.loglog([steel], [steel_life[0]], "*", color="k", ms=10,
+                          label=f"every family: closed form at the steel cradle ({steel_life[0]:.2g})")
+        elif np.isfinite(closed[jf]).all() and np.isfinite(steel_life[jf]):
             # the closed forms are powers of the damping (on-site: 1/gamma; contact: 1/Im kappa ~ alpha/eta),
             # drawn through the grid's values and the steel cradle's
             xs = np.concatenate([[steel], values])
