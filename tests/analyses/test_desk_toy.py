@@ -115,13 +115,13 @@ def test_config_refuses_a_lifted_count_past_a_chain():
 def test_movie_of_a_desk_toy(tiny, tmp_path):
     """cradle.figures.movie draws a desk toy of the file: (nc) and the hard spheres e = 1, each a stored state."""
     pytest.importorskip("imageio_ffmpeg")
-    from cradle.figures.movie import MovieSpec, animate_desk_toy, desk_toy_runs
+    from cradle.figures.movie import MovieSpec, animate
 
     g = tiny[1][dk.label(4, 1)]
-    ds, panels = desk_toy_runs(g)
+    ds, panels = dk.movie_dataset(g)
     assert np.array_equal(ds["x"].sel(model="hard").values, g["x"].values[1])
     assert np.all(ds["force"].sel(model="nc").values <= 0.0)            # a contact pushes, never pulls
     spec = MovieSpec(fps=5, duration=2.0, width=320, height=180)
-    info = animate_desk_toy(tiny[1], dk.label(4, 1), tmp_path / "toy.mp4", spec)
+    info = animate(ds, tmp_path / "toy.mp4", spec, panels=panels)
     assert (tmp_path / "toy.mp4").stat().st_size > 0 and len(info["indices"]) == 10
     assert np.allclose(info["times"], g["t"].values[info["indices"]])

@@ -95,3 +95,12 @@ def movie_targets():
     except cc.ConfigError as err:
         raise WorkflowError(str(err)) from None
     return [L.path("movie", scene=s, ext=ext) for s in scenes for ext in ("mp4", "gif")]
+
+
+# the movies of the desk toys of the desk-toy analysis's full form (rule desk_toy_movies, movies.smk)
+def desk_toy_movie_targets():
+    from cradle.analyses.desk_toy import label
+
+    spec = analysis_spec(ANALYSES["desk-toy"], FULL)
+    toys = [label(n, k) for n in spec.chains for k in spec.lifted]
+    return [L.path("movie", scene=f"desk-toy-{t}", ext=ext) for t in toys for ext in ("mp4", "gif")]

@@ -37,20 +37,16 @@ rule movies:
 
 
 # The desk toys of the full form of the desk-toy analysis (cradle.analyses.desk_toy) in motion: (nc) above, the
-# hard spheres e = 1 below (cradle.figures.movie.animate_desk_toy) -> results/movies/desk-toy-<toy>.{mp4,gif},
+# hard spheres e = 1 below (cradle.analyses.desk_toy.movie_dataset, drawn by cradle.figures.movie.animate) -> results/movies/desk-toy-<toy>.{mp4,gif},
 # <toy> a group of results/desk-toy/full/desk-toy.nc (n5-lifted1, ...). Not in `all`: `snakemake -j2
 # desk_toy_movies` builds every one (`cradle animate n5-lifted1 --desk-toy FILE.nc` draws one from any form).
-def desk_toy_movie_targets():
-    from cradle.analyses.desk_toy import label
-
-    spec = analysis_spec(ANALYSES["desk-toy"], FULL)
-    toys = [label(n, k) for n in spec.chains for k in spec.lifted]
-    return [L.path("movie", scene=f"desk-toy-{t}", ext=ext) for t in toys for ext in ("mp4", "gif")]
-
-
 rule desk_toy_movie:
     input:
-        code=code_of("workflow/scripts/desk_toy_movie.py", "cradle.figures.movie"),
+        code=code_of(
+            "workflow/scripts/desk_toy_movie.py",
+            "cradle.figures.movie",
+            "cradle.analyses.desk_toy",
+        ),
         data=L.analysis_output("desk-toy", FULL, ANALYSES["desk-toy"].forms[0]),
     output:
         mp4=L.path("movie", scene="desk-toy-{toy}", ext="mp4"),

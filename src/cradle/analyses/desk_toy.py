@@ -35,6 +35,7 @@ import numpy as np
 from cradle.analyses.protocol import REDUCED, Analysis, form_spec, reduced_keys
 from cradle.data.variables import Var
 from cradle.models.damping import Damping
+from cradle.models.lattice import bond_forces
 from cradle.models.physical import Cradle
 from cradle.specs.declare import declared, param, plain, schema_doc
 
@@ -330,6 +331,25 @@ def compute(spec: DeskToyRuns, inputs=None, log=None):
         tree[path].attrs = a
     return tree
 
+def movie_dataset(group, hard: int = 1):
+    """A desk toy of this analysis's file (one of its groups) as :func:`cradle.figures.movie.render` reads a
+    scene, and the panels' titles: ``x`` (m) and the bond forces V0'(x_{n+1} - x_n) of (nc) (in (nc)'s units,
+    from x / X: zero between hard spheres) along ``model`` = "nc" and "hard" (the model index ``hard`` of the
+    file, the first hard-sphere cradle by default), times in seconds."""
+    import xarray as xr
+
+    names = [s.strip() for s in str(group.attrs["model_names"]).split(",")]
+    x = np.asarray(group["x"].values, dtype=float)[[0, hard]]
+    force = bond_forces(x / float(group.attrs["X_m"]), 1.5, "free")
+    attrs = {"scene": f"desk-toy {group.name}", "N": int(group.attrs["n_beads"]), "bc": "free",
+             "initial_kind": f"{int(group.attrs['lifted'])} lifted", "amplitude": float(group.attrs["amplitude_m"])}
+    ds = xr.Dataset({"x": (("model", "t", "n"), x), "force": (("model", "t", "n"), force)},
+                    coords={"model": ["nc", "hard"], "t": np.asarray(group["t"].values, dtype=float)}, attrs=attrs)
+    titles = (("nc", f"lattice {names[0]}: displacements in m, time in s"), ("hard", names[hard]))
+    return ds, titles
+
+
 ANALYSIS = Analysis(
     name="desk-toy", spec=DeskToyRuns, compute=compute, variables=VARIABLES,
     title="The desk-toy experiments: (nc) at a desk toy's amplitude against the hard-sphere cradle, in SI")
+

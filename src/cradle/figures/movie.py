@@ -281,31 +281,3 @@ def animate(ds, out, spec: MovieSpec = MovieSpec(), gif=None, gif_spec: MovieSpe
         write_gif(gif, gframes, gspec.fps, gif_width)
         info["gif"] = {"path": Path(gif), "frames": len(ginfo["indices"])}
     return info
-
-
-def desk_toy_runs(group, hard: int = 1):
-    """A desk toy of the `desk-toy` analysis (a group of its file, :mod:`cradle.analyses.desk_toy`) as
-    :func:`render` reads a scene: ``x`` (m) and the bond forces V0'(x_{n+1} - x_n) of (nc) (in (nc)'s units,
-    from x / X: zero between hard spheres) along ``model`` = "nc" and "hard" (the model index ``hard`` of the
-    file, the first hard-sphere cradle by default), times in seconds; and the panels' titles."""
-    import xarray as xr
-
-    from cradle.models.lattice import bond_forces
-
-    names = [s.strip() for s in str(group.attrs["model_names"]).split(",")]
-    x = np.asarray(group["x"].values, dtype=float)[[0, hard]]
-    force = bond_forces(x / float(group.attrs["X_m"]), 1.5, "free")
-    attrs = {"scene": f"desk-toy {group.name}", "N": int(group.attrs["n_beads"]), "bc": "free",
-             "initial_kind": f"{int(group.attrs['lifted'])} lifted", "amplitude": float(group.attrs["amplitude_m"])}
-    ds = xr.Dataset({"x": (("model", "t", "n"), x), "force": (("model", "t", "n"), force)},
-                    coords={"model": ["nc", "hard"], "t": np.asarray(group["t"].values, dtype=float)}, attrs=attrs)
-    titles = (("nc", f"lattice {names[0]}: displacements in m, time in s"), ("hard", names[hard]))
-    return ds, titles
-
-
-def animate_desk_toy(tree, name: str, out, spec: MovieSpec = MovieSpec(), gif=None, gif_spec: MovieSpec | None = None,
-                     gif_width: int = 480, hard: int = 1) -> dict:
-    """The movie of the desk toy ``name`` (``n5-lifted1``) of a `desk-toy` file ``tree``: (nc) above, the
-    hard-sphere cradle ``hard`` below (:func:`desk_toy_runs`), written as :func:`animate` does."""
-    ds, panels = desk_toy_runs(tree[name], hard)
-    return animate(ds, out, spec, gif=gif, gif_spec=gif_spec, gif_width=gif_width, panels=panels)

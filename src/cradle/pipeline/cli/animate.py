@@ -8,7 +8,7 @@ overrides either.
 ``cradle animate NAME --desk-toy FILE.nc`` draws instead the desk toy NAME (``n5-lifted1``) of a `desk-toy`
 analysis file (results/desk-toy/[full/]desk-toy.nc): (nc) above, the hard-sphere cradle (e of ``--hard``, the
 file's model index, default 1: the first restitution) below, to ``RESULTS/movies/desk-toy-NAME.mp4``
-(:func:`cradle.figures.movie.animate_desk_toy`).
+(:func:`cradle.analyses.desk_toy.movie_dataset`, :func:`cradle.figures.movie.animate`).
 """
 from __future__ import annotations
 
@@ -99,8 +99,9 @@ def cmd_animate(args) -> int:
 def _desk_toy(args, path, out, spec, gif, gspec, gif_width) -> dict:
     """The movie of desk toy ``args.scene`` of the `desk-toy` file ``path``; a missing file, group or model is
     one line."""
+    from cradle.analyses.desk_toy import movie_dataset
     from cradle.data.io import open_tree
-    from cradle.figures.movie import animate_desk_toy
+    from cradle.figures.movie import animate
 
     try:
         tree = open_tree(path)
@@ -112,5 +113,5 @@ def _desk_toy(args, path, out, spec, gif, gspec, gif_width) -> dict:
     n_models = tree[args.scene].sizes["model"]
     if not 1 <= args.hard < n_models:
         raise CliError(f"--hard {args.hard}: must be a hard-sphere model index of {path}, in [1, {n_models - 1}]")
-    return animate_desk_toy(tree, args.scene, out, spec, gif=gif, gif_spec=gspec, gif_width=gif_width,
-                            hard=args.hard)
+    ds, panels = movie_dataset(tree[args.scene], args.hard)
+    return animate(ds, out, spec, gif=gif, gif_spec=gspec, gif_width=gif_width, panels=panels)
