@@ -252,7 +252,7 @@ def initial_step(fun, y0, f0, t_bound, rtol, atol, order=7):
 
 
 def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, progress, state=None,
-               counts=None, t_bound=None, events=None):
+               counts=None, t_bound=None, events=None, event_times=None):
     """Python driver of :func:`dop853_run`: returns (Y (T, n), n_steps, n_rhs_evals).
 
     ``stats`` must hold the initial invariants (see :func:`_monitor`) and is
@@ -267,9 +267,10 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
     run starts at t = 0 with scipy's initial step for [0, ``t_bound``] (default t_out[-1]: the
     first of several calls passes the last time of the whole run).
 
-    ``events`` (kind 2 only; int64, 3 entries, incremented): the steps end at the contact events
+    ``events`` (kind 2 only; int64, 4 entries, incremented): the steps end at the contact events
     (:mod:`cradle.integrators._dop853_onset`); it counts [events located, switches left unlocated,
-    re-steps]. A run with events starts at t = 0 (no ``state``).
+    re-steps, re-steps failing the error test], and ``event_times`` (float64) receives the times of the
+    first located events. A run with events starts at t = 0 (no ``state``).
     """
     n = y0.size
     T = t_out.size
@@ -309,10 +310,10 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
     if events is not None:
         from cradle.integrators import _dop853_onset
 
-        N = (n - 1) // 2
-        side = np.array([_dop853_onset._state(y, N, b, float(par[1])) for b in range(N if periodic else N - 1)],
-                        dtype=np.int8)
+        side = _dop853_onset.states(y, bool(periodic), float(par[1]))
         state = np.array([state[0], state[1], float(_dop853_onset.PLAIN)])
+        if event_times is None:
+            event_times = np.empty(0)
     k = 0
     while k < nint:
         t0 = time.perf_counter()
@@ -320,7 +321,7 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         if events is not None:
             k, status = _dop853_onset.run_events(y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3,
                                                  E5, float(alpha), int(mode), par, bool(periodic), Y, shift, stats,
-                                                 counts, side, events)
+                                                 counts, side, events, event_times)
         else:
             k, status = dop853_run(kind, y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3, E5,
                                    float(alpha), int(mode), par, bool(periodic), Y, shift, stats, counts)

@@ -85,7 +85,7 @@ def _trial(y, fy, h, sub, Ks, ys, ynew, fnew, err5, err3, f, F, alpha, mode, par
     n = y.shape[0]
     w = _speed(sub, 0.0, h)
     for i in range(n):
-        Ks[0, i] = fy[i] if sub == PLAIN else w * fy[i]
+        Ks[0, i] = w * fy[i]    # w = 1 exactly on a plain step
     for s in range(1, _NS):
         for i in range(n):
             ys[i] = y[i]
@@ -110,10 +110,11 @@ def _trial(y, fy, h, sub, Ks, ys, ynew, fnew, err5, err3, f, F, alpha, mode, par
                 ynew[i] += cj * Ks[j, i]
         if j == _NS:
             K.lattice_damped_rhs(ynew, Ks[_NS], f, F, alpha, mode, par[0], par[1], par[2], periodic)
-            w = _speed(sub, 1.0, h)
             for i in range(n):
                 fnew[i] = Ks[_NS, i]
-                if sub != PLAIN:
+            if sub != PLAIN:
+                w = _speed(sub, 1.0, h)
+                for i in range(n):
                     Ks[_NS, i] *= w
         c5 = E5[j]
         c3 = E3[j]
@@ -142,6 +143,17 @@ def _state(y, N, b, eta):
     if eta == 0.0 or c + eta * (y[N + b] - y[N + m]) > 0.0:
         return PUSHING
     return CLIPPED
+
+
+@njit(cache=True)
+def states(y, periodic, eta):
+    """Every bond's contact state (:func:`_state`) in y = [x, v, s D]: the ``side`` a run starts with."""
+    N = (y.shape[0] - 1) // 2
+    nb = N if periodic else N - 1
+    out = np.empty(nb, dtype=np.int8)
+    for b in range(nb):
+        out[b] = _state(y, N, b, eta)
+    return out
 
 
 @njit(cache=True)
@@ -193,12 +205,14 @@ def _hermite_root(s0, d0, s1, d1):
 
 @njit(cache=True)
 def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, alpha, mode, par, periodic, Y,
-               shift, stats, counts, side, ev):
+               shift, stats, counts, side, ev, tev):
     """Advance (ncdamped), y = [x, v, s D], with DOP853 until tgrid[-1] or ``max_steps`` accepted steps,
     steps ending at the contact events (module docstring); resumable like
     :func:`cradle.integrators._dop853.dop853_run`, with ``state`` = [t, h, PLAIN or SQRT_START (the next
     step starts at an onset)] and ``side`` (int8, one per bond) the bonds' activities, both updated in
-    place. ``ev`` += [events located, switches left unlocated, re-steps]. Returns (k, status)."""
+    place. ``ev`` += [events located, switches left unlocated, re-steps, re-steps failing the error test
+    (a shorter step is tried)]; the times of the first located events are written to ``tev`` (as many as
+    it holds). Returns (k, status)."""
     n = y.shape[0]
     N = (n - 1) // 2
     nb = N if periodic else N - 1
@@ -215,6 +229,9 @@ def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, a
     err3 = np.empty(n)
     theta = np.full(nb, 2.0)
     target = np.empty(nb, dtype=np.int8)
+    zend = np.empty(nb, dtype=np.int8)      # the bonds' states at the trial's end
+    cand = np.empty(nb, dtype=np.int64)     # the bonds whose state changed in it
+    ncand = 0
     qtype = np.zeros(nb, dtype=np.bool_)
     nint = tgrid.shape[0] - 1
     t = state[0]
@@ -239,6 +256,7 @@ def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, a
             if clipped:
                 h_try = t_target - t
             h_step = h_try      # the accepted step's length in t
+            restepped = False   # the accepted step is a re-step ending at an event
             sub = pend
             hu = h_try if sub == PLAIN else math.sqrt(h_try)     # the step's length in its variable
             err = _trial(y, fy, hu, sub, Ks, ys, ynew, fnew, err5, err3, f, F, alpha, mode, par, periodic,
@@ -263,12 +281,15 @@ def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, a
             # the switches inside the accepted step: first guesses from the cubic Hermite of s
             th_min = 2.0
             b_min = -1
+            ncand = 0
             for b in range(nb):
-                theta[b] = 2.0
                 z = _state(ynew, N, b, eta)
-                target[b] = z
+                zend[b] = z
                 if z == side[b]:
                     continue
+                cand[ncand] = b
+                ncand += 1
+                theta[b] = 2.0
                 qt, target[b] = _transition(side[b], z, eta)
                 qtype[b] = qt
                 s0, d0 = _switch(y, fy, N, b, eta, qt)
@@ -287,6 +308,8 @@ def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, a
             if th_min > 1.0 - EDGE:
                 group_from = th_min + GROUP
                 onset_end = onset
+                if ev[0] < tev.shape[0]:
+                    tev[ev[0]] = t + h_try
                 ev[0] += 1
                 break
             # refine the event time by Newton on re-steps from the step's start
@@ -317,13 +340,15 @@ def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, a
                 h_ev += delta
             if ok and err_ev < 1.0:
                 h_step = h_ev
+                restepped = True
                 clipped = False
                 group_from = th_min + GROUP
                 onset_end = onset
+                if ev[0] < tev.shape[0]:
+                    tev[ev[0]] = t + h_ev
                 ev[0] += 1
             elif ok:            # the step to the event failed the error test: a shorter step
-                if ev.shape[0] > 3:
-                    ev[3] += 1
+                ev[3] += 1
                 fac = max(0.2, 0.9 * err_ev ** (-1.0 / 8.0))
                 h = h_ev * fac if sub == PLAIN else h_ev * fac * fac
                 rejected = True
@@ -334,8 +359,6 @@ def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, a
                     ynew[i] = ytr[i]
                     fnew[i] = ftr[i]
                 ev[1] += 1
-                if ev.shape[0] > 3:
-                    ev[4] += 1
             break
         if status != 0:
             break
@@ -343,11 +366,15 @@ def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, a
             y[i] = ynew[i]
             fy[i] = fnew[i]
         t = t_target if clipped else t + h_step
+        if restepped:           # the states at the re-step's end
+            for b in range(nb):
+                zend[b] = _state(y, N, b, eta)
         for b in range(nb):
+            side[b] = zend[b]
+        for j in range(ncand):
+            b = cand[j]
             if theta[b] <= group_from:
                 side[b] = target[b]     # switched at the event, whatever the sign at the end rounds to
-            else:
-                side[b] = _state(y, N, b, eta)
         pend = SQRT_START if onset_end else PLAIN
         taken += 1
         # the invariants, as _dop853._monitor does for kind 2
