@@ -192,7 +192,7 @@ def test_events_change_nothing_without_contacts():
     x0, v0 = np.array([1.0, 1.0]), np.array([-0.4, -0.4])
     runs = [run_dop853_damped(x0, v0, t, 1e-12, 1e-12, 1.5, K.HERTZ_15, False, Damping(onsite=0.3), None,
                               onset=onset) for onset in (True, False)]
-    for a, b in zip(*runs):
+    for a, b in zip(*runs, strict=True):
         assert np.asarray(a).tobytes() == np.asarray(b).tobytes()
 
 

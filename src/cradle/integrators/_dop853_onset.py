@@ -2,46 +2,51 @@
 
 Why DOP853 loses its order on (ncdamped)
 ----------------------------------------
-The bond force of (ncdamped), g = max(c^alpha + eta c^(alpha-1) c', 0) H(c) (c the compression), is
-smooth except where a bond's force switches on or off:
+The bond force of (ncdamped), g = max(c^alpha + eta c^(alpha-1) c', 0) H(c) (c the compression, q =
+c + eta c'), and the dissipated power P (whose integral D is a component of the state) are smooth
+except where a bond changes state, OPEN (c <= 0), CLIPPED (c > 0, q <= 0: no force) or PUSHING:
 
-* onset, c crossing 0 upwards: after it g rises like (t - t_on)^(1/2) (eta > 0) or (t - t_on)^(3/2);
-* release without contact damping (eta = 0), c crossing 0 downwards: g falls like (t_off - t)^(3/2);
-* clip and unclip of a compressed bond, q = c + eta c' crossing 0 (with eta > 0 every release is a
-  clip: c' < 0 at c = 0 makes q < 0 first): g = c^(alpha-1) q has a kink there.
+* onset, OPEN -> PUSHING (c crossing 0 upwards; q = eta c' > 0 there): after it g rises like
+  (t - t_on)^(1/2) (eta > 0) or (t - t_on)^(3/2) (eta = 0);
+* Hertz release, PUSHING -> OPEN (eta = 0 only): g falls like (t_off - t)^(3/2);
+* clip and unclip, PUSHING <-> CLIPPED (q crossing 0; with eta > 0 every release is a clip first, c' < 0
+  at c = 0 making q < c): g = c^(alpha-1) q has a kink;
+* release of a clipped bond, CLIPPED -> OPEN: g = 0 on both sides, but P holds the elastic part
+  -c^alpha c' of the clipped bond (the energy (ham) counts its potential while no force acts), which
+  falls like (t_off - t)^(3/2): x and v are smooth there, D is not.
 
-A Runge-Kutta step across one of these points has an error O(h^(beta+1)) (beta = 1/2, 3/2, 1) whatever
-its order, and its embedded error estimate is of that order too, but with a ratio to the true error
-that depends on where the point falls inside the step: the controller's step sizes scatter, and the
-error falls like rtol^0.6-0.9 (docs/damped-orders.md).
+A Runge-Kutta step across such a point has an error O(h^(beta+1)) (beta = 1/2, 3/2 or 1) whatever its
+order; so has its embedded error estimate, with a ratio to the true error that depends on where the
+point falls in the step. Observed: the error falls like rtol^0.6-0.9 (docs/damped-orders.md).
 
 The treatment
 -------------
-A bond is *active* when its force is nonzero: c > 0 and (eta = 0 or q > 0). ``side`` holds every
-bond's activity at the current step's start. After an accepted step whose end has a different
-activity on some bond (a sign change of s = c, or of q for a compressed bond; checked at the step's
-end only, O(N) per step, nothing else changes for a smooth step):
+``side`` holds every bond's state at the current step's start. After an accepted step, the bonds whose
+state at the step's end differs (an O(N) check; a step without one is DOP853's step, bitwise):
 
-1. locate: the switching time of each such bond from the cubic Hermite model of s through the step's
-   end values and rates (c' and c'' from the state and its FSAL derivative: free); the earliest,
-   theta* h, is the event, and every bond switching within ``GROUP`` h of it (the mirror bonds of a
-   symmetric packet) switches with it;
-2. refine: re-step from the step's start to t + theta* h and correct the end time by Newton on the
-   bond's switching function at the re-step's end (s and s' from its state and FSAL derivative), until
-   the correction is below rtol h (at most ``MAX_NEWTON`` re-steps). The re-step lies on the smooth
-   side of the event, so its end values carry a normal step's error: the crossing step's own
-   interpolant (dense output or Hermite) does not, which is why DOP853's 7th-order dense output (3
-   more stages) is not used for the location;
-3. the step that ends at the event is taken instead of the crossing step; bonds switch their ``side``;
-4. square-root time near the singular end of a step: the solution is a smooth function of
-   u = (t - t_on)^(1/2) after an onset (the force is a power of c ~ c'(t_on)(t - t_on)) and of
-   (t_off - t)^(1/2) before a Hertz release, so the step that starts at an onset is taken in
-   u (t = t_on + u^2, dy/du = 2 u f(y), one step of length sqrt(h)), and the re-step that ends at a
-   Hertz release in w (t = t_off - w^2). A clip is only a kink: plain steps on both sides.
+1. locate: each such bond's first switch (:func:`_transition`: s = q for a clip or unclip, else s = c)
+   from the cubic Hermite of s through the step's end values and rates (from the states and their
+   FSAL derivatives: no force evaluation); the earliest, theta* of the step, is the event, and every
+   bond switching within ``GROUP`` of it (the mirror bonds of a symmetric packet) switches with it;
+2. refine: re-step from the step's start to the event and correct its time by Newton on the bond's s
+   at the re-step's end (s and s' from its state and FSAL derivative), until the correction is below
+   rtol^(2/3) h (at most ``MAX_NEWTON`` re-steps): an onset's force rises like (t - t_on)^(1/2) at
+   worst, so an onset misplaced by delta changes the step's impulse by a relative (delta/h)^(3/2),
+   held to rtol. The re-step lies on the smooth side of the event, so its end values carry a smooth
+   step's error, which the crossing step's own interpolants (Hermite or DOP853's 7th-order dense
+   output, 3 more stages) do not: they give the first guess only, and the free Hermite is used;
+3. the step that ends at the event replaces the crossing step (a re-step failing the error test is
+   a rejected step: a shorter one is tried); the switching bonds take their new state;
+4. square-root time at the singular end of a step: the solution is a smooth function of
+   u = (t - t_on)^(1/2) after an onset (g and P are powers of c ~ c'(t_on)(t - t_on)) and of
+   w = (t_off - t)^(1/2) before a release, so the step that starts at an onset is taken in u
+   (t = t_on + u^2, dy/du = 2 u f(y), one step of length h^(1/2); its events are located as above,
+   in u), and the re-step that ends at a release in w (t = t_off - w^2). A clip is only a kink:
+   plain steps on both sides. After the step in u the controller grades the steps away from the onset.
 
-Cost: an event costs its Newton re-steps (12 force evaluations each), steps without an event cost one
-activity check of every bond. Events inside a step taken in u, and double switches inside one step
-(a contact shorter than the step) are not located (counted in ``ev[1]``).
+An event costs the crossing step it replaces and its re-steps (12 force evaluations each). A bond that
+switches twice inside one step (a contact shorter than the step) is not seen; a switch that cannot be
+located (Newton leaving the step) keeps the crossing step, counted in ``ev[1]``.
 """
 from __future__ import annotations
 
@@ -233,6 +238,7 @@ def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, a
     cand = np.empty(nb, dtype=np.int64)     # the bonds whose state changed in it
     ncand = 0
     qtype = np.zeros(nb, dtype=np.bool_)
+    loc_tol = rtol ** (2.0 / 3.0)   # the event time's tolerance, per unit step (module docstring)
     nint = tgrid.shape[0] - 1
     t = state[0]
     h = state[1]
@@ -332,7 +338,7 @@ def run_events(y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, a
                 if not ok:
                     break
                 delta = -s / ds
-                if abs(delta) <= rtol * h_try:
+                if abs(delta) <= loc_tol * h_try:
                     break
                 if not (EDGE * h_try < h_ev + delta < h_try):
                     ok = False
