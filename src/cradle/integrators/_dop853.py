@@ -13,6 +13,9 @@ energy, y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
 dissipated amounts). ``par`` is a float64 array of the kind's parameters: kind 1 reads
 1/(2 tau0) = par[0]; kind 2 gamma = par[0], eta = par[1] and the scale s = par[2] of D in the
 state; kind 3 the ``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`; kind 0 none.
+Kind 2 with ``events`` (the default of a damped lattice run) is stepped by
+:func:`cradle.integrators._dop853_onset.run_events` instead: the same steps, except that they end at
+the contact events.
 """
 from __future__ import annotations
 
