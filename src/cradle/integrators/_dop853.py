@@ -13,6 +13,9 @@ energy, y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
 dissipated amounts). ``par`` is a float64 array of the kind's parameters: kind 1 reads
 1/(2 tau0) = par[0]; kind 2 gamma = par[0], eta = par[1] and the scale s = par[2] of D in the
 state; kind 3 the ``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`; kind 0 none.
+Kind 2 with ``events`` (the default of a damped lattice run) is stepped by
+:func:`cradle.integrators._dop853_onset.run_events` instead: the same steps, except that they end at
+the contact events.
 """
 from __future__ import annotations
 
@@ -252,7 +255,7 @@ def initial_step(fun, y0, f0, t_bound, rtol, atol, order=7):
 
 
 def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, progress, state=None,
-               counts=None, t_bound=None):
+               counts=None, t_bound=None, events=None, event_times=None):
     """Python driver of :func:`dop853_run`: returns (Y (T, n), n_steps, n_rhs_evals).
 
     ``stats`` must hold the initial invariants (see :func:`_monitor`) and is
@@ -266,6 +269,11 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
     rows are bitwise equal (one more rhs evaluation per call, for f(y0)). Without ``state`` the
     run starts at t = 0 with scipy's initial step for [0, ``t_bound``] (default t_out[-1]: the
     first of several calls passes the last time of the whole run).
+
+    ``events`` (kind 2 only; int64, 4 entries, incremented): the steps end at the contact events
+    (:mod:`cradle.integrators._dop853_onset`); it counts [events located, switches left unlocated,
+    re-steps, re-steps failing the error test], and ``event_times`` (float64) receives the times of the
+    first located events. A run with events starts at t = 0 (no ``state``).
     """
     n = y0.size
     T = t_out.size
@@ -302,12 +310,24 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         state[1] = initial_step(fun, y, fy, t_final if t_bound is None else float(t_bound), rtol, atol)
         counts[1] += 1
     budget = np.iinfo(np.int64).max if progress is None else max(1, int(2e6 / n))
+    if events is not None:
+        from cradle.integrators import _dop853_onset
+
+        side = _dop853_onset.states(y, bool(periodic), float(par[1]))
+        state = np.array([state[0], state[1], float(_dop853_onset.PLAIN)])
+        if event_times is None:
+            event_times = np.empty(0)
     k = 0
     while k < nint:
         t0 = time.perf_counter()
         n_before = counts[0]
-        k, status = dop853_run(kind, y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3, E5,
-                               float(alpha), int(mode), par, bool(periodic), Y, shift, stats, counts)
+        if events is not None:
+            k, status = _dop853_onset.run_events(y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3,
+                                                 E5, float(alpha), int(mode), par, bool(periodic), Y, shift, stats,
+                                                 counts, side, events, event_times)
+        else:
+            k, status = dop853_run(kind, y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3, E5,
+                                   float(alpha), int(mode), par, bool(periodic), Y, shift, stats, counts)
         if status != 0:
             raise RuntimeError(f"dop853_numba: step size underflow at t={state[0]!r}")
         if progress is not None:

@@ -103,7 +103,8 @@ def run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic, progress)
     return X, V, E, float(stats[1]), n_steps, nfev, float(stats[2])
 
 
-def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping, progress):
+def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping, progress, onset=True,
+                      events=None, event_times=None):
     """(X, V, E, D, drift, steps, function evaluations, max compression) of DOP853 in numba on (ncdamped)
     from t = 0: y = [x, v, s D], D(0) = 0 the dissipated energy (dD/dt = P, :mod:`cradle.models.damping`);
     drift = max over every step of |H + D - H(0)| / |H(0)|.
@@ -112,14 +113,23 @@ def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping,
     stored energy, not to atol: at a contact onset the contact damping's power rises like sqrt(t - t_on),
     whose quadrature over a step has a relative error independent of the step, so D held to atol while
     it is still below atol would shrink the step to underflow.
+
+    ``onset`` (default): the steps end at the contact onsets, releases and clips
+    (:mod:`cradle.integrators._dop853_onset`); False: plain DOP853 across them. ``events`` (int64, 4
+    entries, with ``onset``) is incremented by [events located, switches left unlocated, re-steps, re-steps
+    failing the error test]; ``event_times`` (float64, with ``onset``) receives the times of the first
+    located events.
     """
     N = x0.size
     H0, c0 = K.lattice_energy(x0, v0, alpha, mode, periodic)
     dscale = atol / (rtol * abs(H0)) if H0 != 0.0 else 1.0
     stats = np.array([H0, 0.0, c0, H0, dscale])
     par = np.array([damping.onsite, damping.contact, dscale], dtype=np.float64)
+    if onset and events is None:
+        events = np.zeros(4, dtype=np.int64)
     Y, n_steps, nfev = _dop853.run_dop853(_dop853.LATTICE_DAMPED, np.concatenate((x0, v0, [0.0])), t_out, rtol,
-                                          atol, alpha, mode, par, periodic, stats, progress)
+                                          atol, alpha, mode, par, periodic, stats, progress,
+                                          events=events if onset else None, event_times=event_times)
     X = np.ascontiguousarray(Y[:, :N])
     V = np.ascontiguousarray(Y[:, N:2 * N])
     D = Y[:, 2 * N] / dscale
