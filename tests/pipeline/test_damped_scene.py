@@ -17,7 +17,7 @@ from test_config import CONFIG  # tests/pipeline is on sys.path (rootdir, no __i
 SCENE = {"N": 16, "bc": "periodic", "cradle": {"material": "steel", "radius": 0.01, "length": 0.1},
          "damping": {"onsite": 0.02, "contact": 0.05},
          "initial": {"kind": "packet", "amplitude": 0.05, "width": 8},
-         "exact": {"method": "dop853_numba", "rtol": 1e-14}, "t_end": 40.0, "store": {"every": 0.5}}
+         "exact": {"method": "dop853_numba", "rtol": 1e-10}, "t_end": 40.0, "store": {"every": 0.5}}
 
 
 @pytest.fixture(scope="module")
@@ -32,7 +32,7 @@ def runs():
 
 
 def test_the_dissipated_energy_closes_the_balance(runs):
-    """H(t) + D(t) = H(0) to the integrator's accuracy (the file's energy_drift; 1e-8 at rtol 1e-14, the issue's
+    """H(t) + D(t) = H(0) to the integrator's accuracy (the file's energy_drift; within 1e-8 at rtol 1e-10, the issue's
     bound: docs/dissipation.md), D nondecreasing from 0, and the damping removing a visible share of the energy."""
     _, _, exact, _, _ = runs
     H, D = exact["energy"].values, exact["dissipated"].values
