@@ -50,7 +50,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.protocol import REDUCED, Analysis, form_spec, reduced_keys
+from cradle.analyses.protocol import Analysis, check_forms
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain, schema_doc
 
@@ -140,9 +140,7 @@ class Dissipation:
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Both forms: the wave fits the ring below the zone edge; the grids have distinct values."""
-        self._check(where, out)
-        if self.reduced is not None:
-            form_spec(self, REDUCED)._check(where + ["reduced"], out, own=reduced_keys(self))
+        check_forms(self, where, out)
 
     def _check(self, where: Where, out: Errors, own: list[str] | None = None) -> None:
         def mine(key: str) -> bool:  # the reduced form reports only the keys it replaces

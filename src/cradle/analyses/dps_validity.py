@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.protocol import REDUCED, Analysis, form_spec, reduced_keys
+from cradle.analyses.protocol import Analysis, check_forms
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain, schema_doc
 from cradle.specs.values import show
@@ -101,9 +101,7 @@ class DpsValidity:
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Both forms: one eps_min per alpha, each below eps_max; the families distinct."""
-        self._check(where, out)
-        if self.reduced is not None:
-            form_spec(self, REDUCED)._check(where + ["reduced"], out, own=reduced_keys(self))
+        check_forms(self, where, out)
 
     def _check(self, where: Where, out: Errors, own: list[str] | None = None) -> None:
         al, em, hi = self.alpha, self.eps_min, self.eps_max

@@ -121,6 +121,14 @@ def form_spec(spec, form: str):
     return dataclasses.replace(spec, **overrides, reduced=None)
 
 
+def check_forms(spec, where, out) -> None:
+    """The check of an analysis's two forms: ``spec._check(where, out)`` on the full form, then on the reduced
+    one (if any) at ``where + ["reduced"]``, reporting only the keys the reduced form gives (:func:`reduced_keys`)."""
+    spec._check(where, out)
+    if getattr(spec, "reduced", None) is not None:
+        form_spec(spec, REDUCED)._check(where + ["reduced"], out, own=reduced_keys(spec))
+
+
 def reduced_keys(spec) -> list[str]:
     """The fields whose values the reduced form of ``spec`` gives in place of the full ones (its overrides
     that are not left out; none for a spec without ``reduced``): its check reports only those."""
