@@ -1,20 +1,20 @@
-"""Cost per bead and force evaluation of the conservative lattice with every damping term off: main
-against this branch, measured in one run.
+"""Cost per bead and force evaluation of the conservative lattice with every damping term off: a checkout
+from before the damping terms ("before") against this one ("now"), measured in one run.
 
 The same call (the fft106 travelling wave of benchmarks/bead_step_cost.py, q = 4 pi / 5, omega_tw = 1.1,
 N beads to t_end; srkn6c at its default step and dop853_numba at rtol = 1e-10, no ``damping``
 argument) is timed in fresh subprocesses whose PYTHONPATH is the ``src`` of each checkout, alternating
-main and branch, ``REPEATS`` times each; in each process the best of ``CALLS`` calls after a warm-up
+before and now, ``REPEATS`` times each; in each process the best of ``CALLS`` calls after a warm-up
 call (compilation and cache loads not counted), in CPU time of the process (``time.process_time``:
-the machine is shared, and wall time counts the other jobs' turns). The branch is also timed with
+the machine is shared, and wall time counts the other jobs' turns). This checkout is also timed with
 ``damping=Damping()`` (every term off, given explicitly). Also checks that both checkouts give bitwise
 the same final state.
 
-Writes docs/damping-off-cost.md. Run from the branch's checkout:
+Writes docs/damping-off-cost.md. Run from this checkout, BEFORE_SRC the src of a checkout of the commit before
+the damping terms (e.g. ``git worktree add /tmp/before 89f9fe2``):
 
-    PYTHONPATH=src python benchmarks/damping_off_cost.py [MAIN_SRC] [N] [T]
+    PYTHONPATH=src python benchmarks/damping_off_cost.py BEFORE_SRC [N] [T]
 
-(MAIN_SRC default /work/main/src).
 """
 from __future__ import annotations
 
@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-MAIN_SRC = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/work/main/src")
+MAIN_SRC = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/tmp/before/src")
 N = int(sys.argv[2]) if len(sys.argv) > 2 else 200
 T = float(sys.argv[3]) if len(sys.argv) > 3 else 50.0
 REPEATS = 7
@@ -71,15 +71,15 @@ def main() -> None:
     branch_src = ROOT / "src"
     lines = []
     for method in METHODS:
-        runs: dict[str, list[dict]] = {"main": [], "branch": [], "branch, damping=Damping()": []}
+        runs: dict[str, list[dict]] = {"before": [], "now": [], "now, damping=Damping()": []}
         for _ in range(REPEATS):   # alternating, so that a slower moment of the machine hits both
-            runs["main"].append(child(MAIN_SRC, method, False))
-            runs["branch"].append(child(branch_src, method, False))
-            runs["branch, damping=Damping()"].append(child(branch_src, method, True))
+            runs["before"].append(child(MAIN_SRC, method, False))
+            runs["now"].append(child(branch_src, method, False))
+            runs["now, damping=Damping()"].append(child(branch_src, method, True))
         hashes = {r["sha256"] for rs in runs.values() for r in rs}
         evals = {r["evals"] for rs in runs.values() for r in rs}
-        ref = np.median([r["per_bead_eval_s"] for r in runs["main"]])
-        ref_min = min(r["per_bead_eval_s"] for r in runs["main"])
+        ref = np.median([r["per_bead_eval_s"] for r in runs["before"]])
+        ref_min = min(r["per_bead_eval_s"] for r in runs["before"])
         for name, rs in runs.items():
             t = np.array([r["per_bead_eval_s"] for r in rs])
             lines.append(f"| {method} | {name} | {np.median(t) * 1e9:.2f} | {t.min() * 1e9:.2f} | "
@@ -88,16 +88,17 @@ def main() -> None:
                          f"{'yes' if len(hashes) == 1 and len(evals) == 1 else 'NO'} |")
             print(lines[-1], flush=True)
     text = "\n".join([
-        "# Cost of the conservative lattice with every damping term off: main against the damping branch",
+        "# Cost of the conservative lattice with every damping term off: before the damping terms and now",
         "",
         f"Written by `benchmarks/damping_off_cost.py`: the fft106 travelling wave, N = {N} beads to t = {T:g}, "
-        f"{REPEATS} fresh processes per row alternating main ({MAIN_SRC}) and branch, best of {CALLS} calls "
+        f"{REPEATS} fresh processes per row alternating before ({MAIN_SRC}: the code before the damping terms) and "
+        f"now (this checkout), best of {CALLS} calls "
         "in each, CPU time; ns per bead and force evaluation (median, min, max over the processes), the median's and "
-        "the minimum's difference from main's (the machine is shared: the minimum is the least disturbed), "
+        "the minimum's difference from before's (the machine is shared: the minimum is the least disturbed), "
         "and whether every process gave bitwise the same final state and "
         "number of force evaluations.",
         "",
-        "| method | code | median ns | min ns | max ns | median vs main | min vs main | bitwise same |",
+        "| method | code | median ns | min ns | max ns | median vs before | min vs before | bitwise same |",
         "|---|---|---|---|---|---|---|---|",
         *lines,
         "",
