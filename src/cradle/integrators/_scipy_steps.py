@@ -1,15 +1,18 @@
-"""scipy's adaptive solvers stepped by hand, storing at given output times: what the DpS runs with scipy's DOP853 or
-RK45 share (:mod:`cradle.integrators.dps_solver`, :mod:`cradle.integrators.dps_damped_solver`)."""
+"""scipy's adaptive solvers stepped by hand, storing at given output times: what the lattice and DpS runs with
+scipy's solvers share (:mod:`cradle.integrators.lattice_adaptive`, :mod:`cradle.integrators.dps_solver`,
+:mod:`cradle.integrators.dps_damped_solver`)."""
 from __future__ import annotations
 
 import time
 
 
-def stepped(scipy_class: str, fun, y0, tau_out, rtol, atol, store, on_step, progress, method: str):
-    """Step scipy's ``scipy_class`` solver (DOP853, RK45) manually from tau = 0 to tau_out[-1]: ``store(i, y)`` at
-    every output time (y0 at tau = 0, the step's end where it lands on one, else its dense output),
-    ``on_step(y, tau)`` after every accepted step, ``progress(tau, tau_final)`` about once a second and at the end.
-    Returns (accepted steps, right-hand side evaluations)."""
+def stepped(scipy_class: str, fun, y0, tau_out, rtol, atol, store, on_step, progress, method: str, clock: str = "tau",
+            **extra):
+    """Step scipy's ``scipy_class`` solver (DOP853, RK45, LSODA, Radau; ``extra``: its other arguments, e.g. ``jac``)
+    manually from 0 to tau_out[-1]: ``store(i, y)`` at every output time (y0 at 0, the step's end where it lands on
+    one, else its dense output), ``on_step(y, tau)`` after every accepted step, ``progress(tau, tau_final)`` about
+    once a second and at the end; ``clock``: the time's name in a failure's message. Returns (accepted steps,
+    right-hand side evaluations)."""
     T = tau_out.size
     idx = 0
     if tau_out[0] == 0.0:
@@ -20,12 +23,12 @@ def stepped(scipy_class: str, fun, y0, tau_out, rtol, atol, store, on_step, prog
     if idx < T:
         from scipy import integrate
 
-        solver = getattr(integrate, scipy_class)(fun, 0.0, y0, tau_final, rtol=rtol, atol=atol)
+        solver = getattr(integrate, scipy_class)(fun, 0.0, y0, tau_final, rtol=rtol, atol=atol, **extra)
         t_last = time.perf_counter()
         while solver.status == "running":
             msg = solver.step()
             if solver.status == "failed":
-                raise RuntimeError(f"{method} failed at tau={solver.t!r}: {msg}")
+                raise RuntimeError(f"{method} failed at {clock}={solver.t!r}: {msg}")
             n_steps += 1
             y = solver.y
             on_step(y, solver.t)

@@ -10,11 +10,10 @@ accepted step. The damped lattice (ncdamped) is integrated by "dop853_numba" onl
 """
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
 from cradle.integrators import _dop853, _kernels as K
+from cradle.integrators._scipy_steps import stepped
 
 #: scipy.integrate.solve_ivp classes, the baselines (looked up when used: scipy.integrate costs 0.5 s to import)
 SCIPY_METHODS = {"dop853": "DOP853", "rk45": "RK45", "lsoda": "LSODA", "radau": "Radau"}
@@ -45,48 +44,22 @@ def run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic, progress
     X = np.empty((T, N))
     V = np.empty((T, N))
     E = np.empty(T)
-    H0, cmax = K.lattice_energy(x0, v0, alpha, mode, periodic)
+    H0, c0 = K.lattice_energy(x0, v0, alpha, mode, periodic)
     scale = abs(H0) if H0 != 0.0 else 1.0
-    drift = 0.0
-    idx = 0
-    if t_out[0] == 0.0:
-        X[0], V[0], E[0] = x0, v0, H0
-        idx = 1
-    t_final = float(t_out[-1])
-    n_steps = 0
-    if idx < T:
-        from scipy import integrate
+    monitored = [0.0, c0]   # the largest relative energy drift and compression over every accepted step
 
-        solver = getattr(integrate, SCIPY_METHODS[method])(fun, 0.0, y0, t_final, rtol=rtol, atol=atol, **extra)
-        t_last = time.perf_counter()
-        while solver.status == "running":
-            msg = solver.step()
-            if solver.status == "failed":
-                raise RuntimeError(f"{method} failed at t={solver.t!r}: {msg}")
-            n_steps += 1
-            y = solver.y
-            H, cm = K.lattice_energy(y[:N], y[N:], alpha, mode, periodic)
-            drift = max(drift, abs(H - H0) / scale)
-            cmax = max(cmax, cm)
-            dense = None
-            while idx < T and t_out[idx] <= solver.t:
-                if t_out[idx] == solver.t:
-                    yk = y
-                else:
-                    if dense is None:
-                        dense = solver.dense_output()
-                    yk = dense(t_out[idx])
-                X[idx], V[idx] = yk[:N], yk[N:]
-                E[idx] = K.lattice_energy(X[idx], V[idx], alpha, mode, periodic)[0]
-                idx += 1
-            if progress is not None and time.perf_counter() - t_last >= 1.0:
-                t_last = time.perf_counter()
-                progress(float(solver.t), t_final)
-        nfev = solver.nfev
-    else:
-        nfev = 0
-    if progress is not None:
-        progress(t_final, t_final)
+    def store(i, y):
+        X[i], V[i] = y[:N], y[N:]
+        E[i] = K.lattice_energy(X[i], V[i], alpha, mode, periodic)[0]
+
+    def on_step(y, t):
+        H, cm = K.lattice_energy(y[:N], y[N:], alpha, mode, periodic)
+        monitored[0] = max(monitored[0], abs(H - H0) / scale)
+        monitored[1] = max(monitored[1], cm)
+
+    n_steps, nfev = stepped(SCIPY_METHODS[method], fun, y0, t_out, rtol, atol, store, on_step, progress, method,
+                            clock="t", **extra)
+    drift, cmax = monitored
     return X, V, E, drift, n_steps, int(nfev), float(cmax)
 
 
