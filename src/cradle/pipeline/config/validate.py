@@ -104,15 +104,9 @@ def _branch(node: dict) -> Validator:
     return v
 
 
-#: the answers of :func:`_kind_test`, by the node's id
-_KIND_TESTS: dict[int, str | None] = {}
-
-
 def _is_valid(node: dict, instance) -> bool:
     """Whether ``instance`` is valid against the sub-schema ``node`` of the schema."""
-    kind = _KIND_TESTS.get(id(node), False)
-    if kind is False:
-        kind = _KIND_TESTS[id(node)] = _kind_test(node)
+    kind = _node(node).kind
     if kind is not None:   # the test of a union's branch, the most frequent: answered without jsonschema
         return isinstance(instance, dict) and isinstance(instance.get("kind"), str) and instance["kind"] == kind
     return _branch(node).is_valid(instance)
@@ -141,8 +135,8 @@ def _resolve(node: dict) -> dict:
 
 
 class _Node(NamedTuple):
-    """What :func:`_fill` and :func:`_coerce` read of a schema node, read once (by the node's id, as
-    :data:`_BRANCHES`): both walk the schema along every config, on every validation."""
+    """What :func:`_fill`, :func:`_coerce` and :func:`_is_valid` read of a schema node, read once (by the node's id, as
+    :data:`_BRANCHES`): the first two walk the schema along every config, on every validation."""
     ref: dict | None
     all_of: tuple
     test: dict | None
@@ -155,6 +149,7 @@ class _Node(NamedTuple):
     items: dict | None
     integer: bool
     types: tuple | None   # the JSON types a string is read as (:func:`_scalar_from_string`); None: kept a string
+    kind: str | None      # the kind a union's branch test asks for (:func:`_kind_test`), else None
 
 
 _NODES: dict[int, _Node] = {}
@@ -175,7 +170,8 @@ def _node(node: dict) -> _Node:
             defaults=tuple((k, sub["default"]) for k, sub in props.items()
                            if isinstance(sub, dict) and "default" in sub),
             extra=extra if isinstance(extra, dict) else None, items=items if isinstance(items, dict) else None,
-            integer=tp == "integer", types=None if types is None or "string" in types else types)
+            integer=tp == "integer", types=None if types is None or "string" in types else types,
+            kind=_kind_test(node))
     return n
 
 
