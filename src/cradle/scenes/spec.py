@@ -29,7 +29,7 @@ from functools import cached_property
 from typing import Protocol
 
 from cradle.models.damping import Damping
-from cradle.models.physical import HERTZ_ALPHA, Cradle
+from cradle.models.physical import HERTZ_ALPHA, Cradle, scales
 from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
 from cradle.specs.values import (
     INTEGER_TOL,
@@ -453,9 +453,7 @@ def in_nc_units(entry: dict) -> dict:
     c = entry.get("cradle")
     if entry.get("units") != "si" or not isinstance(c, dict) or ("length" in c) == ("omega0" in c):
         return entry   # nothing to convert, or a cradle the checks refuse
-    from cradle.models import physical
-
-    s = physical.scales(build(Cradle, c))
+    s = scales(build(Cradle, c))
     factor = {"time": s.omega0, "displacement": 1.0 / s.X, "rate": 1.0 / s.omega0, "A": s.omega0}
     out = copied(entry)
     del out["units"]

@@ -121,15 +121,17 @@ def _scene_attrs(spec: Scene, name: str) -> dict:
 
 def physical_attrs(cradle) -> dict:
     """The real cradle a scene models and the SI value of one unit of each of (nc)'s variables
-    (:func:`cradle.models.physical.scales`): a reader converts any stored value to SI with them."""
+    (:func:`cradle.models.physical.scales`, under the names :data:`cradle.data.si.SCALES` reads them by): a reader
+    converts any stored value to SI with them."""
+    from cradle.data.si import SCALES
     from cradle.models import physical
 
     s = physical.scales(cradle)
     out = {"cradle_material": cradle.material, "cradle_radius_m": cradle.radius, "cradle_omega0_rad_s": s.omega0}
     if cradle.length is not None:
         out.update({"cradle_length_m": cradle.length, "cradle_g_m_s2": cradle.g})
-    out.update({"scale_time_s": s.T, "scale_length_m": s.X, "scale_velocity_m_s": s.V, "scale_force_N": s.F,
-                "scale_energy_J": s.E, "sphere_mass_kg": s.m, "hertz_k": s.k, "hertz_k_units": "N m-1.5"})
+    out.update({attr: getattr(s, physical.QUANTITIES[quantity][0]) for quantity, (attr, _) in SCALES.items()})
+    out.update({"sphere_mass_kg": s.m, "hertz_k": s.k, "hertz_k_units": "N m-1.5"})
     return out
 
 
