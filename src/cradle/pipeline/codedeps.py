@@ -24,6 +24,8 @@ from __future__ import annotations
 import ast
 import hashlib
 import os
+from collections import deque
+from collections.abc import Iterator
 from functools import cache
 from pathlib import Path
 
@@ -35,18 +37,17 @@ STAMPS = Path(".snakemake") / "cradle-code"
 
 def _module_file(src: Path, name: str) -> Path | None:
     """src/cradle/a/b.py or src/cradle/a/b/__init__.py for ``cradle.a.b``; None if neither."""
-    base = src.joinpath(*name.split("."))
-    for path in (base.with_suffix(".py"), base / "__init__.py"):
-        if path.is_file():
-            return path
+    base = os.path.join(src, *name.split("."))   # strings: this runs some 10,000 times per Snakefile read
+    for path in (base + ".py", os.path.join(base, "__init__.py")):
+        if os.path.isfile(path):
+            return Path(path)
     return None
 
 
-def _tree(path: Path) -> ast.Module:
-    """The syntax tree of ``path``, parsed once per version of the file (the import scan and the
-    fingerprint share it)."""
+def _version(path: str | Path) -> tuple[Path, int, int]:
+    """``path`` with the time and size of its current version: what the caches here are keyed by."""
     st = os.stat(path)
-    return _parsed(Path(path), st.st_mtime_ns, st.st_size)
+    return Path(path), st.st_mtime_ns, st.st_size
 
 
 @cache
@@ -54,9 +55,26 @@ def _parsed(path: Path, mtime_ns: int, size: int) -> ast.Module:
     return ast.parse(path.read_text(), str(path))
 
 
+#: the node types that hold statements: a def, a class or an import is a statement, found only in their bodies
+_BLOCKS = (ast.stmt, ast.excepthandler, ast.match_case)
+
+
+def _statements(tree: ast.Module) -> Iterator[ast.AST]:
+    """The module and every statement of ``tree`` (with the except and case clauses that hold some), in the
+    order of :func:`ast.walk`, without visiting the expressions, which hold no statement."""
+    todo = deque([tree])
+    while todo:
+        node = todo.popleft()
+        for field in node._fields:
+            value = getattr(node, field, None)
+            if isinstance(value, list) and value and isinstance(value[0], _BLOCKS):
+                todo.extend(value)
+        yield node
+
+
 def _without_docstrings(tree: ast.Module) -> ast.Module:
     """``tree`` with the docstring of the module and of every class and function removed (in place)."""
-    for node in ast.walk(tree):
+    for node in _statements(tree):
         if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
             body = node.body
             if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
@@ -68,8 +86,7 @@ def _without_docstrings(tree: ast.Module) -> ast.Module:
 def fingerprint(path: str | Path) -> str:
     """sha256 of the code of the Python file at ``path``: its syntax tree without docstrings, positions
     or comments (the parser drops those), so only an edit that changes what runs changes it."""
-    st = os.stat(path)
-    key = (Path(path), st.st_mtime_ns, st.st_size)
+    key = _version(path)
     if key not in _FINGERPRINTS:
         # the shared tree, stripped in place once (stripped twice, a string after a docstring would go
         # too); the import scan finds the same imports in it
@@ -124,12 +141,16 @@ def stamp_all(src: str | Path = "src", scripts: str | Path = "workflow/scripts",
     return n
 
 
-@cache
 def _imports(path: Path, package: str | None) -> tuple[str, ...]:
     """Every module name the file at ``path`` may import (relative ones resolved in ``package``);
     ``from X import y`` gives both X and X.y (y may be a submodule)."""
+    return _imports_of(*_version(path), package)
+
+
+@cache
+def _imports_of(path: Path, mtime_ns: int, size: int, package: str | None) -> tuple[str, ...]:
     found = []
-    for node in ast.walk(_tree(path)):
+    for node in _statements(_parsed(path, mtime_ns, size)):
         if isinstance(node, ast.Import):
             found += [alias.name for alias in node.names]
         elif isinstance(node, ast.ImportFrom):
