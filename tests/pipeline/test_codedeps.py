@@ -18,6 +18,7 @@ import os
 import shutil
 import subprocess
 import time
+from functools import cache
 from modulefinder import ModuleFinder
 from pathlib import Path
 
@@ -44,16 +45,19 @@ def _summary(workdir, *targets) -> list[dict]:
     return list(csv.DictReader(io.StringIO(text), delimiter="\t"))
 
 
-def _oracle(*entries) -> set[str]:
-    """src/cradle files reachable from the entries, by modulefinder (not by codedeps)."""
+@cache
+def _oracle(*entries) -> frozenset[str]:
+    """src/cradle files reachable from the entries, by modulefinder (not by codedeps); once per set of
+    entries (the tests ask for it job by job, and the jobs share some 40 of them), from the sources of
+    this checkout, which no test edits."""
     finder = ModuleFinder(path=[str(SRC)])
     for entry in entries:
         if entry.endswith(".py"):
             finder.run_script(str(ROOT / entry))
         else:
             finder.import_hook(entry)
-    return {str(Path(m.__file__).relative_to(ROOT)) for name, m in finder.modules.items()
-            if (name == "cradle" or name.startswith("cradle.")) and m.__file__}
+    return frozenset(str(Path(m.__file__).relative_to(ROOT)) for name, m in finder.modules.items()
+                     if (name == "cradle" or name.startswith("cradle.")) and m.__file__)
 
 
 def _code_inputs(row) -> list[str]:
