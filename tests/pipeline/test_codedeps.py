@@ -12,6 +12,7 @@ modules, one per layer), and an edit to its comments or docstrings plans nothing
 """
 from __future__ import annotations
 
+import ast
 import csv
 import io
 import os
@@ -208,6 +209,41 @@ def test_every_stamp_exists_before_the_dag_is_built(tmp_path):
         os.chdir(cwd)
     assert written == wanted == ["cradle.__init__.sha256", "cradle.figures.__init__.sha256",
                                  "cradle.figures.maps.sha256", "workflow.scripts.figure.sha256"]
+
+
+def test_a_later_read_reuses_the_index_for_unchanged_files_only(tmp_path, monkeypatch):
+    """stamp_all saves each file's fingerprint and imports beside the stamps; a later read of the Snakefile
+    (another process: nothing in memory) parses only the files written since, even one rewritten to the
+    same size with its modification time set back (its change time moved), and gives the same stamps."""
+    from cradle.pipeline import codedeps
+
+    pkg = tmp_path / "src" / "cradle"
+    pkg.mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "a.py").write_text("from . import b\nX = 1\n")
+    (pkg / "b.py").write_text("Y = 2\n")
+    scripts, stamps = tmp_path / "scripts", tmp_path / "stamps"
+    scripts.mkdir()
+    monkeypatch.setattr(codedeps, "RECENT_NS", -10**18)   # these files were just written: save them anyway
+    monkeypatch.setattr(codedeps, "_KNOWN", {})
+    assert codedeps.stamp_all(tmp_path / "src", scripts, stamps) == 3
+    first = {p.name: p.read_text() for p in stamps.iterdir()}
+    parsed = []
+    real_parse = ast.parse
+    monkeypatch.setattr(ast, "parse", lambda text, name: parsed.append(Path(name).name) or real_parse(text, name))
+    monkeypatch.setattr(codedeps, "_KNOWN", {})   # a new process
+    codedeps.stamp_all(tmp_path / "src", scripts, stamps)
+    assert parsed == [] and {p.name: p.read_text() for p in stamps.iterdir()} == first
+    assert codedeps.code_files("cradle.a", src=tmp_path / "src") == [str(pkg / f) for f in ("__init__.py", "a.py",
+                                                                                            "b.py")]
+    before = (pkg / "a.py").stat()
+    (pkg / "a.py").write_text("from . import b\nX = 3\n")   # the same size, and its time set back
+    os.utime(pkg / "a.py", ns=(before.st_atime_ns, before.st_mtime_ns))
+    monkeypatch.setattr(codedeps, "_KNOWN", {})
+    codedeps.stamp_all(tmp_path / "src", scripts, stamps)
+    assert parsed == ["a.py"]
+    assert (stamps / "cradle.a.sha256").read_text() != first["cradle.a.sha256"]
+    assert fingerprint(pkg / "a.py") in (stamps / "cradle.a.sha256").read_text()
 
 
 def _no_code_edit(text: str) -> str:

@@ -11,7 +11,10 @@ netCDF writer and reader) reruns everything, a change to a figure helper only
 the figures drawn with it.
 
 Only the source text is read: nothing is imported, so the Snakefile can plan
-without numpy or matplotlib.
+without numpy or matplotlib. Each file is parsed once per version: :func:`stamp_all`
+keeps its fingerprint and import statements in ``.snakemake/cradle-code.index.json``,
+keyed by the file's inode, size and times (its change time moves with every write), so a
+later read of the Snakefile parses only what was written since.
 
 A rule's inputs are not the source files themselves but one stamp file per module
 (:func:`code_stamps`): the :func:`fingerprint` of the module's code, rewritten only
@@ -23,10 +26,12 @@ from __future__ import annotations
 
 import ast
 import hashlib
+import json
 import os
+import sys
+import time
 from collections import deque
 from collections.abc import Iterator
-from functools import cache
 from pathlib import Path
 
 PACKAGE = "cradle"
@@ -42,17 +47,6 @@ def _module_file(src: Path, name: str) -> Path | None:
         if os.path.isfile(path):
             return Path(path)
     return None
-
-
-def _version(path: str | Path) -> tuple[Path, int, int]:
-    """``path`` with the time and size of its current version: what the caches here are keyed by."""
-    st = os.stat(path)
-    return Path(path), st.st_mtime_ns, st.st_size
-
-
-@cache
-def _parsed(path: Path, mtime_ns: int, size: int) -> ast.Module:
-    return ast.parse(path.read_text(), str(path))
 
 
 #: the node types that hold statements: a def, a class or an import is a statement, found only in their bodies
@@ -86,15 +80,74 @@ def _without_docstrings(tree: ast.Module) -> ast.Module:
 def fingerprint(path: str | Path) -> str:
     """sha256 of the code of the Python file at ``path``: its syntax tree without docstrings, positions
     or comments (the parser drops those), so only an edit that changes what runs changes it."""
-    key = _version(path)
-    if key not in _FINGERPRINTS:
-        # the shared tree, stripped in place once (stripped twice, a string after a docstring would go
-        # too); the import scan finds the same imports in it
-        _FINGERPRINTS[key] = hashlib.sha256(ast.dump(_without_docstrings(_parsed(*key))).encode()).hexdigest()
-    return _FINGERPRINTS[key]
+    return _facts(path)[0]
 
 
-_FINGERPRINTS: dict[tuple[Path, int, int], str] = {}
+#: an import statement of a file: ("import", 0, None, names) or ("from", level, module, names)
+_Record = tuple[str, int, str | None, tuple[str, ...]]
+
+#: what is known of each file read, by absolute path: the :func:`_identity` of the version read, its
+#: fingerprint and its import statements (loaded from and saved to the index of :func:`stamp_all`)
+_KNOWN: dict[str, tuple[tuple[int, ...], str, tuple[_Record, ...]]] = {}
+
+
+def _identity(st: os.stat_result) -> tuple[int, ...]:
+    """A version of a file: its device, inode, size, modification and change times. Every write changes
+    the change time (which no program can set), so a file with the same identity has the same text."""
+    return st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns
+
+
+def _facts(path: str | Path) -> tuple[str, tuple[_Record, ...]]:
+    """The fingerprint and the import statements of the file at ``path``, parsed once per version."""
+    absolute = os.path.abspath(path)
+    identity = _identity(os.stat(absolute))   # before the text is read: a later write gives a new identity
+    known = _KNOWN.get(absolute)
+    if known is None or known[0] != identity:
+        tree = ast.parse(Path(absolute).read_text(), str(path))
+        records = tuple(("import", 0, None, tuple(a.name for a in node.names)) if isinstance(node, ast.Import)
+                        else ("from", node.level, node.module, tuple(a.name for a in node.names))
+                        for node in _statements(tree) if isinstance(node, (ast.Import, ast.ImportFrom)))
+        code = hashlib.sha256(ast.dump(_without_docstrings(tree)).encode()).hexdigest()
+        known = _KNOWN[absolute] = identity, code, records
+    return known[1], known[2]
+
+
+def _index_file(stamps: Path) -> Path:
+    """Where :func:`stamp_all` keeps what it knows of each file, beside the stamps folder."""
+    return stamps.with_name(f"{stamps.name}.index.json")
+
+
+#: a file changed this recently is not saved to the index: its change time may not yet tell its next
+#: write from this one (file times advance by the kernel's clock tick, some milliseconds)
+RECENT_NS = 2 * 10**9
+
+
+def _load_index(stamps: Path) -> None:
+    """Add the facts saved by earlier runs (of this Python: the fingerprint is the dump of its syntax tree)."""
+    try:
+        saved = json.loads(_index_file(stamps).read_text())
+    except (OSError, ValueError):
+        return
+    if not isinstance(saved, dict) or saved.get("python") != sys.version:
+        return
+    for path, (identity, code, records) in saved.get("files", {}).items():
+        if path not in _KNOWN:
+            _KNOWN[path] = tuple(identity), code, tuple((k, level, module, tuple(names))
+                                                        for k, level, module, names in records)
+
+
+def _save_index(stamps: Path, paths: list[str]) -> None:
+    """Save the facts of ``paths`` (atomically: another Snakemake may save at once; either file is whole)."""
+    now = time.time_ns()
+    files = {p: _KNOWN[p] for p in map(os.path.abspath, paths)
+             if p in _KNOWN and _KNOWN[p][0][4] < now - RECENT_NS}
+    index = _index_file(stamps)
+    tmp = index.with_name(f".{index.name}.{os.getpid()}.tmp")
+    try:
+        tmp.write_text(json.dumps({"python": sys.version, "files": files}))
+        os.replace(tmp, index)
+    except OSError:   # only a cache: the next run parses again
+        tmp.unlink(missing_ok=True)
 
 
 def _stamp(path: str, name: str, stamps: Path) -> str:
@@ -130,40 +183,39 @@ def stamp_all(src: str | Path = "src", scripts: str | Path = "workflow/scripts",
     returns how many there are. The Snakefile calls it when it is read, before Snakemake takes its
     inventory of the files on disk: a stamp first written later, by an input function while the DAG is
     built, would be missing from that inventory and reported as a missing input."""
-    src, scripts = Path(src), Path(scripts)
-    n = 0
+    src, scripts, stamps = Path(src), Path(scripts), Path(stamps)
+    # what earlier runs found in the files whose version is unchanged: parsing every module on every read
+    # of the Snakefile (every cluster job reads it) cost more than the rest of the stamping
+    _load_index(stamps)
+    done = []
     for root, prefix in ((src, src), (scripts, Path())):
         base = root / PACKAGE if root == src else root
         for path in sorted(base.rglob("*.py")):
             name = path.relative_to(prefix).with_suffix("").as_posix().replace("/", ".")
-            _stamp(str(path), name, Path(stamps))
-            n += 1
-    return n
+            _stamp(str(path), name, stamps)
+            done.append(str(path))
+    _save_index(stamps, done)
+    return len(done)
 
 
 def _imports(path: Path, package: str | None) -> tuple[str, ...]:
     """Every module name the file at ``path`` may import (relative ones resolved in ``package``);
     ``from X import y`` gives both X and X.y (y may be a submodule)."""
-    return _imports_of(*_version(path), package)
-
-
-@cache
-def _imports_of(path: Path, mtime_ns: int, size: int, package: str | None) -> tuple[str, ...]:
-    found = []
-    for node in _statements(_parsed(path, mtime_ns, size)):
-        if isinstance(node, ast.Import):
-            found += [alias.name for alias in node.names]
-        elif isinstance(node, ast.ImportFrom):
-            if node.level:
-                if package is None:
-                    continue
-                head = package.split(".")
-                head = head[: len(head) - node.level + 1]
-                base = ".".join(head + ([node.module] if node.module else []))
-            else:
-                base = node.module or ""
-            found.append(base)
-            found += [f"{base}.{alias.name}" for alias in node.names if alias.name != "*"]
+    found: list[str] = []
+    for kind, level, module, names in _facts(path)[1]:
+        if kind == "import":
+            found += names
+            continue
+        if level:
+            if package is None:
+                continue
+            head = package.split(".")
+            head = head[: len(head) - level + 1]
+            base = ".".join(head + ([module] if module else []))
+        else:
+            base = module or ""
+        found.append(base)
+        found += [f"{base}.{name}" for name in names if name != "*"]
     return tuple(n for n in found if n == PACKAGE or n.startswith(PACKAGE + "."))
 
 
