@@ -10,11 +10,31 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 #: the repository root (tests/<layer>/ mirror src/cradle/<layer>/)
 ROOT = Path(__file__).resolve().parents[1]
+
+#: test modules whose tests share an expensive module or session fixture (a copy of the tree where the full DAG has
+#: run, the reduced forms computed in process): each is given whole to one pytest-xdist worker, which builds it once
+ONE_WORKER = ("tests/pipeline/test_codedeps.py", "tests/figures/test_figures_render.py")
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """pytest-xdist's scheduling by scope, a scope being a module of :data:`ONE_WORKER` or else a single test
+    (xdist's own ``xdist_group`` mark does not reach the scheduler under pytest 9: it renames the node id)."""
+    from xdist.scheduler import LoadScopeScheduling
+
+    class OneWorkerModules(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            module = nodeid.split("::", 1)[0]
+            return module if module in ONE_WORKER else nodeid
+
+    return OneWorkerModules(config, log)
 
 
 def run_snakemake(workdir, *args, timeout=300):
