@@ -23,6 +23,25 @@ ROOT = Path(__file__).resolve().parents[1]
 ONE_WORKER = ("tests/pipeline/test_codedeps.py", "tests/figures/test_figures_render.py")
 
 
+#: the longest tests (each 10 s to a minute), started first and longest first, so that the two workers end
+#: together rather than one running the last long test alone
+LONGEST = ("tests/test_habits.py::test_mypy_is_clean",
+           "tests/pipeline/test_pipeline.py::test_snakemake_end_to_end_on_tiny_config",
+           "tests/pipeline/test_config_fuzz.py::test_config_fuzz",
+           "tests/integrators/test_kernel_cache.py::test_edit_of_kernels_reaches_onset_kernels_and_restore_comes_back",
+           "tests/pipeline/test_pipeline.py::test_a_failed_forced_rerun_restores_the_previous_outputs",
+           "tests/pipeline/test_interrupt.py::test_killed_run_leaves_nothing_and_rerun_matches",
+           "tests/analyses/test_floquet.py::test_direct_simulation_grows_at_the_top_floquet_rate",
+           "tests/test_tutorial.py::test_tutorial_runs_on_a_short_scene")
+
+
+def pytest_collection_modifyitems(items):
+    """:data:`LONGEST` first, the rest in their order (the workers hand out the modules of :data:`ONE_WORKER`
+    before single tests)."""
+    rank = {nodeid: i for i, nodeid in enumerate(LONGEST)}
+    items.sort(key=lambda item: rank.get(item.nodeid, len(LONGEST)))
+
+
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config, log):
     """pytest-xdist's scheduling by scope, a scope being a module of :data:`ONE_WORKER` or else a single test
