@@ -14,6 +14,8 @@ the complex amplitude of (ansatz): the DpS A_n(tau) itself, or the lattice's A_n
 * :func:`first_below`: the first time a series falls below a level (linear interpolation between samples);
 * :func:`energy_centre`, :func:`travel`, :func:`retention`: the energy centre of a localised state on a ring
   (circular mean of the site energies), the distance it travelled, the share of energy near a site;
+* :func:`overlap_frequency`: the frequency of a state's norm-weighted phase (a breather's frequency however its
+  energy moves between the beads of its core);
 * :func:`detuning_shift`: the first-order frequency shift sum_n w_n delta_n / sum_n w_n of a standing state with
   weights w_n = |A_n|^2 under on-site detunings delta_n (Hellmann-Feynman for (dfnls) with a detuning term at fixed
   l2 norm);
@@ -128,6 +130,18 @@ def phase_frequency(t, A_site) -> float:
     t = np.asarray(t, dtype=float)
     ph = np.unwrap(np.angle(np.asarray(A_site)))
     return float(np.polyfit(t, ph, 1)[0])
+
+
+def overlap_frequency(t, A) -> float:
+    """Mean frequency of a state's phase, (sum_j arg <A(t_{j+1}), A(t_j)>) / (t_end - t_0), <A, B> = sum_n A_n
+    conj(B_n) over the last axis: for a state A_n(t) = a_n e^{i w t} of fixed shape exactly w, and for a state whose
+    shape changes (energy moving between the beads of a breather's core) the norm-weighted mean phase velocity
+    sum_n |A_n|^2 d arg(A_n)/dt / sum_n |A_n|^2 in the limit of small steps, whose first-order shift under a
+    detuning is :func:`detuning_shift`. Needs the overlap's phase to turn by less than pi between samples."""
+    t = np.asarray(t, dtype=float)
+    A = np.asarray(A)
+    inc = np.angle(np.sum(A[1:] * np.conj(A[:-1]), axis=-1))
+    return float(np.sum(inc) / (t[-1] - t[0]))
 
 
 def detuning_shift(weights, detuning) -> float:
