@@ -24,7 +24,9 @@ Families (4 per disorder realisation), each with a survival measure S (1: as in 
   Definitions reported: the coherence times t_F (F first < 1/2, and < 1/e) and t_P (P first < 1/2), in slow
   periods (NaN: not reached within the run); their distances v_g t (beads, v_g = d omega_tw / dq = Delta
   (alpha+1)/2 cot(q/2) at fixed a, the envelope's group velocity of (freq)); the correlation length xi = N sum_k
-  P_k^2 and the participation ratio at the end (means over the last tenth of the run). S = F at the end.
+  P_k^2 and the participation ratio at the end (means over the last tenth of the run). S = F at the end. Beside
+  them the wave's own sensitivity: 1 - F at the end of a homogeneous run from x_n(0) (1 + 1e-6 z_n) (a lattice
+  wave of large amplitude amplifies any perturbation, disorder or not).
 * ``mi``: fft106's setting, the wave at q = 2 pi mi_mode / N (4 pi/5) perturbed as in (perturb) by Gaussian
   noise of sd ``mi_noise`` (seed: the disorder seed + NOISE_SEED_OFFSET, recorded), smaller than fft106's 0.05 so
   that the sidebands of the homogeneous ring grow over more than a decade; the growth of the dominant sideband pair
@@ -84,6 +86,8 @@ MAX_DT = 0.5
 END_SHARE = 0.1
 #: points of the stored fidelity series per run, on a grid in slow periods
 SERIES_POINTS = 121
+#: relative size of the perturbation of the wave's control run (its own sensitivity, without disorder)
+CONTROL = 1e-6
 LEVELS = (0.5, math.exp(-1.0))
 
 _SIGMA = {"type": "number", "minimum": 0, "maximum": 0.2, "description": "A disorder strength sigma (std of "
@@ -130,7 +134,8 @@ class Disorder:
     mi_mode: int = param(16, "k of the unstable wave's q = 2 pi k / N (16 on N = 40: q = 4 pi/5, fft106).",
                          minimum=1, maximum=128)
     mi_noise: float = param(0.02, "sd of the Gaussian noise of (perturb) on the unstable wave (fft106: 0.05; "
-                            "smaller here: on a ring of 40 beads 0.05 leaves the sidebands less than a decade to grow).",
+                            "smaller here: on a ring of 40 beads 0.05 leaves the sidebands less than a decade to "
+                            "grow).",
                             exclusiveMinimum=0, maximum=0.5)
     kick: float = param(0.4, "Phase gradient of the kicked breather, rad per bead.", exclusiveMinimum=0, maximum=1.5)
     window: float = param(5.0, "Beads from a breather's centre within which its energy counts as retained.",
@@ -390,9 +395,20 @@ def family_batch(spec: Disorder, family: str, shift: float, log=None) -> dict[st
                 if family == "wave":
                     series[m, i, j] = np.interp(s_grid, t / Ts, res[model]["_series"])
             drift[i, j], l2[i, j] = run["drift"], run["l2"]
+    control = np.full(len(MODELS), np.nan)
+    if family == "wave" and ref0 is not None:
+        # the homogeneous wave's own sensitivity: the same run from x_n(0) (1 + CONTROL z_n), z_n ~ N(0, 1) of seed
+        # first_seed; 1 - F at the end tells how much of a lost fidelity the wave's own dynamics would amplify
+        init = initial_data(spec, "wave", shift)
+        z = np.random.default_rng(spec.first_seed).standard_normal(spec.N)
+        init.x0 = init.x0 * (1.0 + CONTROL * z)
+        init.A0 = init.A0 * (1.0 + CONTROL * z)
+        ctl = run_models(spec, init, t, 0.0, spec.first_seed)
+        control[:] = [1.0 - _end(t, md.fidelity(ctl[m][0], ref0[m][0])) for m in MODELS]
     say(f"disorder: {family} Delta = {shift:g}: {time.perf_counter() - t0:.1f} s; survival (lattice, seed mean) "
         + " ".join(f"{s:g}:{np.nanmean(arr['survival'][0, i]):.2f}" for i, s in enumerate(sig)))
-    return {"measures": arr, "series": series, "drift": drift, "l2": l2, "wall": time.perf_counter() - t0,
+    return {"measures": arr, "series": series, "drift": drift, "l2": l2, "control": control,
+            "wall": time.perf_counter() - t0,
             "omega_b": float(b.omega) if b is not None else float("nan")}
 
 
@@ -420,6 +436,9 @@ def _family_vars(family: str, dims: tuple[str, ...]) -> dict[str, Var]:
     if family == "wave":
         out["fidelity"] = Var(dims + ("s",), "fidelity F(t) = |<A, A_hom>| / (|A| |A_hom|) against time in slow "
                               "periods")
+        out["control_infidelity"] = Var(dims[:-2] if "shift" in dims else ("model",),
+                                        "1 - F at the end of the homogeneous run from x_n(0) (1 + 1e-6 z_n): the "
+                                        "wave's own sensitivity, without disorder")
     return out
 
 
@@ -457,7 +476,7 @@ def batch_dataset(spec: Disorder, family: str, shift: float, log=None):
     r = family_batch(spec, family, shift, log)
     data = dict(r["measures"], energy_drift=r["drift"], dps_l2_drift=r["l2"])
     if family == "wave":
-        data["fidelity"] = r["series"]
+        data["fidelity"], data["control_infidelity"] = r["series"], r["control"]
     coords = {"model": np.array(MODELS, dtype=object), "sigma": np.asarray(spec.sigmas, float),
               "seed": np.asarray(seeds_of(spec)), "s": np.linspace(0.0, spec.slow_periods, SERIES_POINTS)}
     return make_dataset(data, coords, attrs={"family": family, "shift": shift, "omega_b": r["omega_b"],

@@ -105,7 +105,7 @@ def draw(tree):
     meas = _values(tree, "static", "frequency_shift")
     pred = _values(tree, "static", "frequency_shift_predicted")
     for m, fill in enumerate(("C0", "none")):
-        for d, shift in enumerate(shifts):
+        for d in range(shifts.size):
             p, y = pred[m, d, sigma > 0].ravel(), meas[m, d, sigma > 0].ravel()
             Fp.plot(p, y, _MARKERS[d % 6], color=f"C{d}", mfc=fill if m else f"C{d}", ms=4)
     Fp.plot([], [], "ko", ms=4, label="lattice")
