@@ -1,0 +1,285 @@
+"""What one case of each sweep costs against the integrations it runs, measured in the same process.
+
+    PYTHONPATH=src python benchmarks/sweep_cases.py [--before OLD_SRC] [--repeats 5] [--out docs/sweep-cases.md]
+    PYTHONPATH=src python benchmarks/sweep_cases.py --only breather-interactions --repeats 3 --no-write
+
+A *case* is the unit a sweep repeats (:data:`SWEEPS`): one call of the analysis's own per-case function with
+the settings of its full form (config.yaml's defaults: the spec classes' defaults), exactly as its batch jobs
+call it. While it runs, ``cradle.integrators.integrate_lattice`` and ``integrate_dps`` are wrapped by a timer
+(looked up where the analyses look them up: the attribute of ``cradle.integrators``, and any module-level name
+of the same name in the sweep's modules), so the same call yields both the whole case's time and the time
+spent inside the integrators. Each case is run once first (kernels compiled or loaded, caches warm), then
+``--repeats`` times; the table shows medians, in CPU time of the process (``time.process_time``: the machine
+is shared, and wall time counts the other processes' turns) and in wall time.
+
+``--before OLD_SRC``: the same measurement also with another checkout's ``src`` (e.g. ``git archive <commit>
+src | tar -x -C /tmp/before``), each source in a fresh subprocess, alternating old and new ``ROUNDS`` times, so
+both are measured in the same hour; the table then has both and the cases' results are checked equal
+(bitwise, NaN equal to NaN).
+
+**Adding a sweep** (the issue-25 analyses ``disorder`` and ``trapping`` once they exist): one entry in
+:data:`SWEEPS`, a function returning ``(label, call)`` pairs where ``call()`` runs one representative case of
+the sweep's full form and returns its results as a dict of numbers (compared between sources); the modules it
+names in ``modules`` get their ``integrate_*`` names wrapped too.
+"""
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import importlib
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+INTEGRATORS = ("integrate_lattice", "integrate_dps")
+ROUNDS = 2
+
+
+# ----------------------------------------------------------------- the sweeps' representative cases
+
+
+def _breather_interactions():
+    """Two 600-period runs of 50 beads (the full form), site-site at spacing 6, three phases: theta = 0
+    (merge), pi/2 and pi (other outcomes: the classification's cost depends on the outcome)."""
+    from cradle.analyses import breather_interactions as B
+
+    spec = B.BreatherInteractions()
+
+    def case(theta):
+        return lambda: B.run_case(spec, "site-site", 6.0, theta, 1.0, spec.amplitude, 0)
+
+    return [(f"site-site, spacing 6, theta = {name}, seed 0", case(th))
+            for name, th in (("0", 0.0), ("pi/2", np.pi / 2), ("pi", np.pi))]
+
+
+def _dps_validity():
+    """One (family, alpha, eps) of the full form: the running sup error of :func:`sup_error` to the largest T,
+    as :func:`cradle.analyses.dps_validity.compute` calls it: the breather at alpha = 2 and the fifth eps of the
+    grid, and the noisy unstable wave at alpha = 1.5 and its smallest eps (with the dt / 2 check run)."""
+    from cradle.analyses import dps_validity as D
+
+    spec = D.DpsValidity()
+    out = []
+    for fam, alpha, ie in (("breather-bond", 2.0, 4), ("mi-4pi5-noise", 1.5, 0)):
+        eps = float(D.eps_grid(spec, list(spec.alpha).index(alpha))[ie])
+        A0, _N, _info = D.family_amplitude(fam, alpha, spec)
+
+        def call(A0=A0, eps=eps, alpha=alpha, check=ie == 0):
+            r = D.sup_error(A0, eps, alpha, spec.T, sample_every=spec.sample_every, dt_factor=spec.dt_factor,
+                            rtol=spec.dps_rtol, chunk=spec.chunk, check=check)
+            return {k: r[k] for k in ("abs_error", "energy_drift", "halving_deviation")}
+
+        out.append((f"{fam}, alpha = {alpha:g}, eps = {eps:.3g}" + (" (+ dt/2 check)" if ie == 0 else ""), call))
+    return out
+
+
+def _mi_statistics():
+    """One run of the full form: N = 200, q = 0.55 pi (the middle of the grid), the first seed, each model."""
+    from cradle.analyses import mi_statistics as M
+
+    spec = M.MIStatistics()
+    N, k = 200, 55
+
+    def case(model):
+        def call():
+            t, r, kp, info = M.run_ratio(model, N, k, spec.seed0, spec)
+            return {"ratio": r, "k_peak": kp, "crossing_time": M.crossing_time(t, r, spec.fraction)}
+        return call
+
+    return [(f"{m}, N = {N}, q = {2 * k / N:g} pi, seed0", case(m)) for m in ("exact", "dps")]
+
+
+#: sweep -> (the function giving its representative cases, modules whose integrate_* names are wrapped)
+SWEEPS: dict[str, tuple[Callable, tuple[str, ...]]] = {
+    "breather-interactions": (_breather_interactions, ("cradle.analyses.pair_runs",)),
+    "dps-validity": (_dps_validity, ("cradle.analyses.dps_validity",)),
+    "mi-statistics": (_mi_statistics, ("cradle.analyses.mi_statistics",)),
+    # "disorder": (_disorder, ("cradle.analyses.disorder",)),   # issue 25: add its case here
+    # "trapping": (_trapping, ("cradle.analyses.trapping",)),
+}
+
+
+# ----------------------------------------------------------------- timing in one process
+
+
+class _Timer:
+    """Wraps the integrators: CPU and wall time spent inside them since the last reset."""
+
+    def __init__(self):
+        self.cpu = self.wall = 0.0
+        self.calls = 0
+
+    def wrap(self, modules):
+        """Time ``integrate_*`` of cradle.integrators and of ``modules`` (each wrapped once)."""
+        import cradle.integrators as ci
+
+        targets = [ci] + [importlib.import_module(m) for m in modules]
+        for mod in targets:
+            for name in INTEGRATORS:
+                fn = getattr(mod, name, None)
+                if fn is not None and not getattr(fn, "_timed", False):
+                    setattr(mod, name, self._wrap(fn))
+
+    def _wrap(self, fn):
+        def timed(*a, **kw):
+            c0, w0 = time.process_time(), time.perf_counter()
+            try:
+                return fn(*a, **kw)
+            finally:
+                self.cpu += time.process_time() - c0
+                self.wall += time.perf_counter() - w0
+                self.calls += 1
+
+        timed._timed = True  # type: ignore[attr-defined]
+        return timed
+
+    def reset(self):
+        self.cpu = self.wall = 0.0
+        self.calls = 0
+
+
+def _plain(v):
+    a = np.asarray(v)
+    return a.tolist() if a.dtype.kind in "fiub" else str(v)
+
+
+def measure(names, repeats: int) -> dict:
+    """{sweep: [{label, case_cpu, int_cpu, case_wall, int_wall, calls, result}]} in this process."""
+    out = {}
+    timer = _Timer()
+    for name in names:
+        cases, modules = SWEEPS[name]
+        timer.wrap(modules)
+        rows = []
+        for label, call in cases():
+            result = call()                                   # warm-up: kernels, caches
+            runs = []
+            for _ in range(repeats):
+                timer.reset()
+                c0, w0 = time.process_time(), time.perf_counter()
+                call()
+                runs.append((time.process_time() - c0, timer.cpu, time.perf_counter() - w0, timer.wall))
+            med = [statistics.median(r[i] for r in runs) for i in range(4)]
+            ratio = statistics.median(r[0] / r[1] for r in runs)
+            rows.append({"label": label, "case_cpu": med[0], "int_cpu": med[1], "case_wall": med[2],
+                         "int_wall": med[3], "ratio": ratio, "calls": timer.calls,
+                         "result": {k: _plain(v) for k, v in result.items()}})
+            print(f"  {name}: {label}: case {med[0]:.3f} s CPU, integrations {med[1]:.3f} s, ratio {ratio:.3f}",
+                  file=sys.stderr, flush=True)
+        out[name] = rows
+    return out
+
+
+# ----------------------------------------------------------------- the report
+
+
+def _same(a, b) -> bool:
+    return np.array_equal(np.asarray(a, dtype=object if isinstance(a, str) else float),
+                          np.asarray(b, dtype=object if isinstance(b, str) else float),
+                          equal_nan=not isinstance(a, str))
+
+
+def table(new: dict, old: dict | None) -> str:
+    head = ["sweep", "case", "integrations [s]", "whole case [s]", "case / integrations"]
+    if old:
+        head[2:2] = ["before: integrations [s]", "before: whole case [s]", "before: ratio"]
+        head.append("results equal")
+    lines = ["| " + " | ".join(head) + " |", "|" + "|".join(["---"] * 2 + ["---:"] * (len(head) - 2)) + "|"]
+    for name, rows in new.items():
+        for i, r in enumerate(rows):
+            cells = [name, r["label"]]
+            if old:
+                o = old[name][i]
+                cells += [f"{o['int_cpu']:.3f}", f"{o['case_cpu']:.3f}", f"{o['ratio']:.2f}"]
+            cells += [f"{r['int_cpu']:.3f}", f"{r['case_cpu']:.3f}", f"**{r['ratio']:.2f}**"]
+            if old:
+                o = old[name][i]
+                eq = all(_same(o["result"][k], v) for k, v in r["result"].items())
+                cells.append("bitwise" if eq else "DIFFERENT")
+            lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def _child(src: str, names, repeats: int) -> dict:
+    env = {**os.environ, "PYTHONPATH": src}
+    cmd = [sys.executable, __file__, "--json", "--repeats", str(repeats)] + [a for n in names for a in ("--only", n)]
+    done = subprocess.run(cmd, env=env, capture_output=True, text=True, check=True)
+    sys.stderr.write(done.stderr)
+    return json.loads(done.stdout)
+
+
+def _merge(runs: list[dict]) -> dict:
+    """Several processes' measurements of the same cases: the median of their medians."""
+    out = {}
+    for name in runs[0]:
+        rows = []
+        for i, r0 in enumerate(runs[0][name]):
+            r = dict(r0)
+            for key in ("case_cpu", "int_cpu", "case_wall", "int_wall", "ratio"):
+                r[key] = statistics.median(run[name][i][key] for run in runs)
+            rows.append(r)
+        out[name] = rows
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--only", action="append", choices=list(SWEEPS), help="a sweep (repeatable; default all)")
+    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--before", help="src folder of the checkout to compare with")
+    ap.add_argument("--out", default=str(ROOT / "docs" / "sweep-cases.md"))
+    ap.add_argument("--json", action="store_true", help="print the measurements as JSON (one process)")
+    ap.add_argument("--no-write", action="store_true")
+    a = ap.parse_args(argv)
+    names = a.only or list(SWEEPS)
+    if a.json:
+        print(json.dumps(measure(names, a.repeats)))
+        return
+    t0 = time.perf_counter()
+    if a.before:
+        new_src = str(ROOT / "src")
+        olds, news = [], []
+        for _ in range(ROUNDS):
+            olds.append(_child(a.before, names, a.repeats))
+            news.append(_child(new_src, names, a.repeats))
+        old, new = _merge(olds), _merge(news)
+    else:
+        old, new = None, measure(names, a.repeats)
+    text = table(new, old)
+    print(text)
+    if a.no_write:
+        return
+    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True).stdout.strip()
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    when = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    stamp = (f"Measured {when} at commit {commit} ({platform.machine()}, {os.cpu_count()} cores, load average "
+             f"{load:.1f} at the end; {time.perf_counter() - t0:.0f} s), `python benchmarks/sweep_cases.py"
+             + (" --before OLD_SRC" if a.before else "") + f" --repeats {a.repeats}`: medians over "
+             f"{a.repeats} repeats after a warm-up call" + (f", in {ROUNDS} processes per source alternating"
+                                                             if a.before else "") + "; CPU time of the process.")
+    Path(a.out).write_text(_document(stamp, text))
+    print(f"wrote {a.out}", file=sys.stderr)
+
+
+def _document(stamp: str, text: str) -> str:
+    path = ROOT / "docs" / "sweep-cases.md"
+    marker = "<!-- sweep-cases table -->"
+    if path.exists() and marker in path.read_text():
+        before, _, rest = path.read_text().partition(marker)
+        after = rest.partition("<!-- end -->")[2]
+        return f"{before}{marker}\n{stamp}\n\n{text}\n<!-- end -->{after}"
+    return f"# Sweep cases: cost against their integrations\n\n{marker}\n{stamp}\n\n{text}\n<!-- end -->\n"
+
+
+if __name__ == "__main__":
+    main()
