@@ -179,6 +179,40 @@ def measure(names, repeats: int) -> dict:
     return out
 
 
+# ----------------------------------------------------------------- outcome fractions on a sample
+
+
+def outcome_sample(n_theta: int = 4) -> dict:
+    """The breather-interactions outcomes of a sample of the full form's cases (every pair and spacing,
+    ``n_theta`` phases, seed 0): {model: [outcome code per case]}."""
+    from cradle.analyses import breather_interactions as B
+
+    spec = B.BreatherInteractions()
+    out: dict[str, list] = {m: [] for m in B.MODELS}
+    for pair, spacing in B.batches(spec):
+        for theta in 2 * np.pi * np.arange(n_theta) / n_theta:
+            r = B.run_case(spec, pair, spacing, float(theta), 1.0, spec.amplitude, 0)
+            for m in B.MODELS:
+                out[m].append(int(r[f"outcome_{m}"]))
+    return out
+
+
+def outcome_table(new: dict, old: dict | None) -> str:
+    from cradle.measurements.interactions import OUTCOMES
+
+    lines = ["| source | model | cases | " + " | ".join(OUTCOMES) + " |", "|---|---|---:|" + "---:|" * len(OUTCOMES)]
+    for who, got in (("before", old), ("now", new)):
+        if got is None:
+            continue
+        for m, codes in got.items():
+            c = np.bincount(codes, minlength=len(OUTCOMES))
+            lines.append(f"| {who} | {m} | {len(codes)} | " + " | ".join(f"{x / len(codes):.3f}" for x in c) + " |")
+    if old is not None:
+        same = sum(a == b for m in new for a, b in zip(new[m], old[m], strict=True))
+        lines.append(f"\nCases whose outcome is the same before and now: {same} of {sum(map(len, new.values()))}.")
+    return "\n".join(lines)
+
+
 # ----------------------------------------------------------------- the report
 
 
@@ -209,9 +243,10 @@ def table(new: dict, old: dict | None) -> str:
     return "\n".join(lines)
 
 
-def _child(src: str, names, repeats: int) -> dict:
+def _child(src: str, names, repeats: int, outcomes: bool = False) -> dict:
     env = {**os.environ, "PYTHONPATH": src}
     cmd = [sys.executable, __file__, "--json", "--repeats", str(repeats)] + [a for n in names for a in ("--only", n)]
+    cmd += ["--outcomes"] if outcomes else []
     done = subprocess.run(cmd, env=env, capture_output=True, text=True, check=True)
     sys.stderr.write(done.stderr)
     return json.loads(done.stdout)
@@ -239,10 +274,16 @@ def main(argv=None):
     ap.add_argument("--out", default=str(ROOT / "docs" / "sweep-cases.md"))
     ap.add_argument("--json", action="store_true", help="print the measurements as JSON (one process)")
     ap.add_argument("--no-write", action="store_true")
+    ap.add_argument("--outcomes", action="store_true", help="breather-interactions: outcome fractions on a sample")
     a = ap.parse_args(argv)
     names = a.only or list(SWEEPS)
     if a.json:
-        print(json.dumps(measure(names, a.repeats)))
+        print(json.dumps(outcome_sample() if a.outcomes else measure(names, a.repeats)))
+        return
+    if a.outcomes:
+        sources = ([a.before] if a.before else []) + [str(ROOT / "src")]
+        got = {src: _child(src, names, 0, outcomes=True) for src in sources}
+        print(outcome_table(got[str(ROOT / "src")], got.get(a.before)))
         return
     t0 = time.perf_counter()
     if a.before:
@@ -261,7 +302,7 @@ def main(argv=None):
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    when = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    when = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     stamp = (f"Measured {when} at commit {commit} ({platform.machine()}, {os.cpu_count()} cores, load average "
              f"{load:.1f} at the end; {time.perf_counter() - t0:.0f} s), `python benchmarks/sweep_cases.py"
              + (" --before OLD_SRC" if a.before else "") + f" --repeats {a.repeats}`: medians over "
