@@ -2,6 +2,8 @@
 
     PYTHONPATH=src python benchmarks/sweep_cases.py [--before OLD_SRC] [--repeats 5] [--out docs/sweep-cases.md]
     PYTHONPATH=src python benchmarks/sweep_cases.py --only breather-interactions --repeats 3 --no-write
+    PYTHONPATH=src python benchmarks/sweep_cases.py --outcomes --before OLD_SRC    # outcome fractions, a sample
+    PYTHONPATH=src python benchmarks/sweep_cases.py --batch --before OLD_SRC       # one whole batch
 
 A *case* is the unit a sweep repeats (:data:`SWEEPS`): one call of the analysis's own per-case function with
 the settings of its full form (config.yaml's defaults: the spec classes' defaults), exactly as its batch jobs
@@ -15,7 +17,10 @@ is shared, and wall time counts the other processes' turns) and in wall time.
 ``--before OLD_SRC``: the same measurement also with another checkout's ``src`` (e.g. ``git archive <commit>
 src | tar -x -C /tmp/before``), each source in a fresh subprocess, alternating old and new ``ROUNDS`` times, so
 both are measured in the same hour; the table then has both and the cases' results are checked equal
-(bitwise, NaN equal to NaN).
+(bitwise, NaN equal to NaN). ``--outcomes``: the breather-interactions outcome fractions of a sample of
+the full form's cases (:func:`outcome_sample`) under each source; ``--batch``: one whole (pair, spacing)
+batch of it under each source (:func:`one_batch`: its time, the full sweep's estimated from it, and every
+case compared). Each writes its own section of the document (``--out``).
 
 **Adding a sweep** (the issue-25 analyses ``disorder`` and ``trapping`` once they exist): one entry in
 :data:`SWEEPS`, a function returning ``(label, call)`` pairs where ``call()`` runs one representative case of
@@ -42,6 +47,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 INTEGRATORS = ("integrate_lattice", "integrate_dps")
 ROUNDS = 2
+FULL_CASES = 4176      # cases of the breather-interactions full form (15 batches, refinement included)
 
 
 # ----------------------------------------------------------------- the sweeps' representative cases
@@ -197,6 +203,36 @@ def outcome_sample(n_theta: int = 4) -> dict:
     return out
 
 
+def one_batch(pair: str = "site-site", spacing: float = 6.0) -> dict:
+    """Every case of one (pair, spacing) batch of the breather-interactions full form, as its batch job runs
+    them (:func:`cradle.analyses.breather_interactions.run_batch`): CPU and wall time and the case rows."""
+    from cradle.analyses import breather_interactions as B
+
+    spec = B.BreatherInteractions()
+    B.run_case(spec, pair, spacing, 0.0, 1.0, spec.amplitude, 0)          # kernels loaded
+    c0, w0 = time.process_time(), time.perf_counter()
+    rows = B.run_batch(spec, pair, spacing)
+    cpu, wall = time.process_time() - c0, time.perf_counter() - w0
+    return {"cpu": cpu, "wall": wall, "n_batches": len(B.batches(spec)),
+            "rows": [{k: _plain(v) for k, v in r.items()} for r in rows]}
+
+
+def batch_table(new: dict, old: dict | None) -> str:
+    lines = ["| source | cases | CPU [s] | wall [s] | CPU per case [s] | full sweep, estimated CPU [min] |",
+             "|---|---:|---:|---:|---:|---:|"]
+    for who, got in (("before", old), ("now", new)):
+        if got is None:
+            continue
+        n = len(got["rows"])
+        lines.append(f"| {who} | {n} | {got['cpu']:.1f} | {got['wall']:.1f} | {got['cpu'] / n:.3f} | "
+                     f"{got['cpu'] / n * FULL_CASES / 60:.1f} |")
+    if old is not None:
+        same = sum(all(_same(a[k], b[k]) for k in a) for a, b in zip(old["rows"], new["rows"], strict=True))
+        lines.append(f"\nCases whose every field (parameters, outcomes, times, velocities, norm transfer) is "
+                     f"bitwise the same before and now: {same} of {len(new['rows'])}.")
+    return "\n".join(lines)
+
+
 def outcome_table(new: dict, old: dict | None) -> str:
     from cradle.measurements.interactions import OUTCOMES
 
@@ -243,10 +279,10 @@ def table(new: dict, old: dict | None) -> str:
     return "\n".join(lines)
 
 
-def _child(src: str, names, repeats: int, outcomes: bool = False) -> dict:
+def _child(src: str, names, repeats: int, extra=()) -> dict:
     env = {**os.environ, "PYTHONPATH": src}
     cmd = [sys.executable, __file__, "--json", "--repeats", str(repeats)] + [a for n in names for a in ("--only", n)]
-    cmd += ["--outcomes"] if outcomes else []
+    cmd += list(extra)
     done = subprocess.run(cmd, env=env, capture_output=True, text=True, check=True)
     sys.stderr.write(done.stderr)
     return json.loads(done.stdout)
@@ -275,27 +311,30 @@ def main(argv=None):
     ap.add_argument("--json", action="store_true", help="print the measurements as JSON (one process)")
     ap.add_argument("--no-write", action="store_true")
     ap.add_argument("--outcomes", action="store_true", help="breather-interactions: outcome fractions on a sample")
+    ap.add_argument("--batch", action="store_true", help="breather-interactions: one whole batch (pair, spacing)")
     a = ap.parse_args(argv)
     names = a.only or list(SWEEPS)
-    if a.json:
-        print(json.dumps(outcome_sample() if a.outcomes else measure(names, a.repeats)))
-        return
-    if a.outcomes:
-        sources = ([a.before] if a.before else []) + [str(ROOT / "src")]
-        got = {src: _child(src, names, 0, outcomes=True) for src in sources}
-        print(outcome_table(got[str(ROOT / "src")], got.get(a.before)))
-        return
     t0 = time.perf_counter()
-    if a.before:
-        new_src = str(ROOT / "src")
-        olds, news = [], []
-        for _ in range(ROUNDS):
-            olds.append(_child(a.before, names, a.repeats))
-            news.append(_child(new_src, names, a.repeats))
-        old, new = _merge(olds), _merge(news)
+    if a.json:
+        print(json.dumps(outcome_sample() if a.outcomes else one_batch() if a.batch else measure(names, a.repeats)))
+        return
+    section = "outcomes" if a.outcomes else "batch" if a.batch else "table"
+    if section != "table":
+        sources = ([a.before] if a.before else []) + [str(ROOT / "src")]
+        got = {src: _child(src, names, 0, extra=[f"--{section}"]) for src in sources}
+        show = outcome_table if a.outcomes else batch_table
+        text = show(got[str(ROOT / "src")], got.get(a.before))
     else:
-        old, new = None, measure(names, a.repeats)
-    text = table(new, old)
+        if a.before:
+            new_src = str(ROOT / "src")
+            olds, news = [], []
+            for _ in range(ROUNDS):
+                olds.append(_child(a.before, names, a.repeats))
+                news.append(_child(new_src, names, a.repeats))
+            old, new = _merge(olds), _merge(news)
+        else:
+            old, new = None, measure(names, a.repeats)
+        text = table(new, old)
     print(text)
     if a.no_write:
         return
@@ -303,23 +342,32 @@ def main(argv=None):
                             text=True).stdout.strip()
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     when = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    args = " ".join("OLD_SRC" if x == a.before else x for x in (argv if argv is not None else sys.argv[1:]))
     stamp = (f"Measured {when} at commit {commit} ({platform.machine()}, {os.cpu_count()} cores, load average "
-             f"{load:.1f} at the end; {time.perf_counter() - t0:.0f} s), `python benchmarks/sweep_cases.py"
-             + (" --before OLD_SRC" if a.before else "") + f" --repeats {a.repeats}`: medians over "
-             f"{a.repeats} repeats after a warm-up call" + (f", in {ROUNDS} processes per source alternating"
-                                                             if a.before else "") + "; CPU time of the process.")
-    Path(a.out).write_text(_document(stamp, text))
-    print(f"wrote {a.out}", file=sys.stderr)
+             f"{load:.1f} at the end; {time.perf_counter() - t0:.0f} s): `python benchmarks/sweep_cases.py {args}`"
+             + (" (OLD_SRC: the src of the commit before)" if a.before else "")
+             + (f"; medians over {a.repeats} repeats after a warm-up call"
+                + (f", in {ROUNDS} processes per source alternating" if a.before else "") + "; CPU time of the process"
+                if section == "table" else "") + ".")
+    _write(a.out, section, stamp, text)
 
 
-def _document(stamp: str, text: str) -> str:
-    path = ROOT / "docs" / "sweep-cases.md"
-    marker = "<!-- sweep-cases table -->"
-    if path.exists() and marker in path.read_text():
-        before, _, rest = path.read_text().partition(marker)
-        after = rest.partition("<!-- end -->")[2]
-        return f"{before}{marker}\n{stamp}\n\n{text}\n<!-- end -->{after}"
-    return f"# Sweep cases: cost against their integrations\n\n{marker}\n{stamp}\n\n{text}\n<!-- end -->\n"
+SECTIONS = {"table": ("<!-- sweep-cases table -->", "<!-- end -->"),
+            "outcomes": ("<!-- sweep-cases outcomes -->", "<!-- end outcomes -->"),
+            "batch": ("<!-- sweep-cases batch -->", "<!-- end batch -->")}
+
+
+def _write(out: str, section: str, stamp: str, text: str) -> None:
+    """Replace one section of the document ``out`` (between its markers), or start the document."""
+    path = Path(out)
+    start, end = SECTIONS[section]
+    doc = path.read_text() if path.exists() else "# Sweep cases: cost against their integrations\n"
+    if start not in doc:
+        doc += f"\n{start}\n{end}\n"
+    before, _, rest = doc.partition(start)
+    after = rest.partition(end)[2]
+    path.write_text(f"{before}{start}\n{stamp}\n\n{text}\n{end}{after}")
+    print(f"wrote {out} ({section})", file=sys.stderr)
 
 
 if __name__ == "__main__":
