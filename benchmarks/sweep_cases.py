@@ -54,17 +54,19 @@ FULL_CASES = 4176      # cases of the breather-interactions full form (15 batche
 
 
 def _breather_interactions():
-    """Two 600-period runs of 50 beads (the full form), site-site at spacing 6, three phases: theta = 0
-    (merge), pi/2 and pi (other outcomes: the classification's cost depends on the outcome)."""
+    """Two 600-period runs of 50 beads (the full form), seed 0, one case of each outcome the classification
+    spends differently on: site-site at spacing 6, theta = 0 (merge in both models) and pi/2 (repel), and
+    at spacing 8, theta = pi (bound: the crossing tracker runs)."""
     from cradle.analyses import breather_interactions as B
 
     spec = B.BreatherInteractions()
 
-    def case(theta):
-        return lambda: B.run_case(spec, "site-site", 6.0, theta, 1.0, spec.amplitude, 0)
+    def case(spacing, theta):
+        return lambda: B.run_case(spec, "site-site", spacing, theta, 1.0, spec.amplitude, 0)
 
-    return [(f"site-site, spacing 6, theta = {name}, seed 0", case(th))
-            for name, th in (("0", 0.0), ("pi/2", np.pi / 2), ("pi", np.pi))]
+    return [(f"site-site, spacing {s:g}, theta = {name}, seed 0 ({what})", case(s, th))
+            for s, name, th, what in ((6.0, "0", 0.0, "merge"), (6.0, "pi/2", np.pi / 2, "repel"),
+                                      (8.0, "pi", np.pi, "bound"))]
 
 
 def _dps_validity():
@@ -345,7 +347,7 @@ def main(argv=None):
     args = " ".join("OLD_SRC" if x == a.before else x for x in (argv if argv is not None else sys.argv[1:]))
     stamp = (f"Measured {when} at commit {commit} ({platform.machine()}, {os.cpu_count()} cores, load average "
              f"{load:.1f} at the end; {time.perf_counter() - t0:.0f} s): `python benchmarks/sweep_cases.py {args}`"
-             + (" (OLD_SRC: the src of the commit before)" if a.before else "")
+             + (f" (OLD_SRC: {a.before})" if a.before else "")
              + (f"; medians over {a.repeats} repeats after a warm-up call"
                 + (f", in {ROUNDS} processes per source alternating" if a.before else "") + "; CPU time of the process"
                 if section == "table" else "") + ".")
