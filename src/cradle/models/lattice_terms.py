@@ -147,3 +147,16 @@ def hamiltonian(x, v, alpha: float, terms: Terms, s: Sites, bc: str = "periodic"
     bonds = _open(s.stiffness * phi, bc)
     onsite = s.mass * s.omega**2 * terms.onsite.W(x, pendulum_scales(terms, s))
     return np.sum(0.5 * s.mass * v**2 + onsite + bonds, axis=-1)
+
+
+def dissipated_power(x, v, alpha: float, terms: Terms, s: Sites, damping: Damping, bc: str = "periodic"):
+    """P of the damped (ncimperfect), >= 0: gamma sum m_n v_n^2 + sum k_n (max(c^alpha + eta c^(alpha-1) c', 0)
+    - c^alpha) c' over the bonds with overlap c = delta_n - (u_{n+1} - u_n) > 0, c' its rate (dH/dt = -P)."""
+    x = np.asarray(x, dtype=float)
+    v = np.asarray(v, dtype=float)
+    delta = static_overlaps(terms.precompression.delta0, s.stiffness, alpha)
+    c = np.maximum(delta - _elongations(positions(x, terms, s), bc), 0.0)
+    rate = -_elongations(v * jacobian(x, terms, s), bc)
+    push = np.maximum(c**alpha + damping.contact * c ** (alpha - 1.0) * rate, 0.0) * (c > 0.0)
+    contacts = _open(s.stiffness * (push - c**alpha) * rate, bc)
+    return damping.onsite * np.sum(s.mass * v**2, axis=-1) + np.sum(contacts, axis=-1)
