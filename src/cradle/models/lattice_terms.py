@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from cradle.models.damping import Damping
-from cradle.models.inhomogeneity import Inhomogeneity, Sites, sites
+from cradle.models.inhomogeneity import Inhomogeneity, Sites, homogeneous, sites
 from cradle.models.onsite import OnSite
 from cradle.models.precompression import Precompression
 from cradle.specs.declare import declared, from_plain, param, plain
@@ -57,6 +57,8 @@ def check(terms: Terms, N: int, bc: str) -> Sites:
     and return its sites: the declared bounds, the draws, and the refusal of a precompressed free chain."""
     if not isinstance(terms, Terms):
         raise ConfigError(f"terms = {terms!r}: must be a cradle.models.lattice_terms.Terms")
+    if terms == NONE:   # the declared defaults: valid, and (nc)'s sites (no schema pass on every call)
+        return homogeneous(N)
     from_plain(Terms, plain(terms), "terms")
     if terms.precompression.delta0 > 0.0 and bc != "periodic":
         raise ConfigError(f"terms.precompression.delta0 = {terms.precompression.delta0!r}: a precompressed chain "
