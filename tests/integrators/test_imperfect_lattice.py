@@ -125,7 +125,7 @@ def test_generalised_energy_is_conserved_on_a_disordered_precompressed_quartic_r
         drifts.append(sol.energy_drift)
     assert sol.max_compression > 0.2   # the contacts are loaded beyond their static overlap
     assert drifts[1] < 1e-8 and drifts[1] < drifts[0] / 10.0
-    assert np.max(np.abs(sol.energy - sol.energy[0])) <= drifts[1] * sol.energy[0]
+    assert np.max(np.abs(sol.energy - sol.energy[0])) <= drifts[1] * sol.energy[0] * (1.0 + 1e-6)   # at outputs
     assert np.array_equal(sol.dissipated, np.zeros(len(t)))
 
 
@@ -138,7 +138,7 @@ def test_damped_imperfect_ring_keeps_h_plus_d():
     H0 = sol.energy[0]
     assert sol.dissipated[-1] > 0.5 * H0   # most of the energy is gone
     assert np.all(np.diff(sol.dissipated) > 0.0)
-    assert np.max(np.abs(sol.energy + sol.dissipated - H0)) <= sol.energy_drift * H0
+    assert np.max(np.abs(sol.energy + sol.dissipated - H0)) <= sol.energy_drift * H0 * (1.0 + 1e-6)   # at outputs
     assert sol.energy_drift < 1e-7
 
 
