@@ -10,9 +10,10 @@ and the invariants are monitored after every accepted step. Used by
 (kind 0, (nc)/(meca), y = [x, v]; kind 2, (ncdamped) with its dissipated
 energy, y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
 (kind 1, (dfnls), y = real view of A; kind 3, the damped (dpsdamped), y = real view of A and the two
-dissipated amounts; kind 5, (dpsimperfect) of cradle.models.dps_sites, y = real view of A). ``par`` is a float64 array of the kind's parameters: kind 1 reads
-1/(2 tau0) = par[0]; kind 2 gamma = par[0], eta = par[1] and the scale s = par[2] of D in the
-state; kind 3 the ``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`; kind 5 that of
+dissipated amounts; kind 5, (dpsimperfect) of cradle.models.dps_sites, y = real view of A). ``par`` is
+a float64 array of the kind's parameters: kind 1 reads 1/(2 tau0) = par[0]; kind 2 gamma = par[0],
+eta = par[1] and the scale s = par[2] of D in the state; kind 3 the ``par`` of
+:func:`cradle.integrators._kernels.dps_damped_rhs`; kind 5 that of
 :func:`cradle.integrators._kernels_dps_sites.pack`; kind 0 none.
 Kind 2 with ``events`` (the default of a damped lattice run) is stepped by
 :func:`cradle.integrators._dop853_onset.run_events` instead: the same steps, except that they end at

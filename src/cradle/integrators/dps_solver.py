@@ -199,7 +199,8 @@ def dps_damped_solver_active(damping: DpsDamping) -> bool:
 
 
 def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -> DpsSolution:
-    """(dpsimperfect) from run.y0: kind 5 of the numba DOP853, or scipy's solvers on the same compiled right-hand side."""
+    """(dpsimperfect) from run.y0: kind 5 of the numba DOP853, or scipy's solvers on the same compiled
+    right-hand side."""
     from cradle.integrators import _kernels_dps_sites as KS
     from cradle.models import dps_sites as S
 
