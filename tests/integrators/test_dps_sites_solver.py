@@ -70,3 +70,38 @@ def test_disordered_precompressed_ring_conserves_its_invariants(method):
     assert sol.energy[-1] == pytest.approx(S.hamiltonian(sol.A[-1], 1.5, sites), rel=1e-11)
     # the run moved: the invariants are not trivially constant
     assert np.max(np.abs(sol.A[-1] - A0)) > 0.1
+
+
+def test_imperfect_lattice_follows_dpsimperfect_at_order_eps_alpha():
+    """The consistency law of (ansatz): sup_{t <= T eps^(1-alpha)} max_n |x_n - x_n^app| = O(eps^alpha) for the
+    imperfect lattice (ncimperfect) (detuned, disordered masses and stiffnesses, precompressed) against
+    (dpsimperfect) with coefficients fixed in slow units; (dfnls) without the imperfections misses them at O(eps)."""
+    from cradle.integrators import integrate_lattice
+    from cradle.measurements.damped_validity import sup_error
+    from cradle.models.inhomogeneity import Inhomogeneity
+    from cradle.models.lattice_terms import Terms
+    from cradle.models.precompression import Precompression
+
+    alpha, N = 1.5, 8
+    n = np.arange(N)
+    A0 = (1.0 + 0.3 * np.cos(2 * np.pi * n / N)) * np.exp(-1j * np.pi / 4 * n) / 1.3
+    rng = np.random.default_rng(4)
+    det, mass, k = 0.3 * rng.normal(size=N), 1.0 + 0.1 * rng.normal(size=N), 1.0 + 0.2 * rng.normal(size=N)
+    errors, plain = [], []
+    for eps in (0.008, 0.002):
+        omega = 1.0 + det * eps ** (alpha - 1)
+        sites = S.dps_sites(mass, omega, k, alpha=alpha, eps=eps, delta0=eps)
+        terms = Terms(inhomogeneity=Inhomogeneity(omega=tuple(omega), mass=tuple(mass), stiffness=tuple(k)),
+                      precompression=Precompression(delta0=eps))
+        x0 = 2 * eps * A0.real
+        v0 = 2 * eps * (1j * A0 + eps ** (alpha - 1) * S.rhs(A0, alpha, sites)).real
+        t = np.linspace(0.0, eps ** (1 - alpha), int(np.ceil(eps ** (1 - alpha) / 0.05)) + 1)
+        lat = integrate_lattice(x0, v0, t, alpha=alpha, method="dop853_numba", rtol=1e-11, terms=terms)
+        tau = eps ** (alpha - 1) * t
+        errors.append(sup_error(t, lat.x, integrate_dps(A0, tau, alpha=alpha, rtol=1e-11, sites=sites).A, eps,
+                                alpha, [1.0])["abs_error"][0])
+        plain.append(sup_error(t, lat.x, integrate_dps(A0, tau, alpha=alpha, rtol=1e-11).A, eps, alpha,
+                               [1.0])["abs_error"][0])
+    power = np.log(errors[0] / errors[1]) / np.log(4.0)
+    assert 1.3 < power < 1.7, (errors, power)
+    assert min(p / e for p, e in zip(plain, errors, strict=True)) > 3.0, (plain, errors)
