@@ -285,10 +285,27 @@ class Pair:
             out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", self.centre)
 
 
-INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair}
+@declared("kick", doc="One bead kicked from rest (James, Kevrekidis & Cuevas 2013): x_n(0) = 0, v_n(0) = velocity "
+                      "at `site`; DpS from A_n(0) = -i velocity/2 there, eps = 1.")
+class Kick:
+    kind: str = param(REQUIRED, "kick", const="kick")
+    velocity: float = param(REQUIRED, "Velocity given to the kicked bead; nonzero, |velocity| <= 1e3.", minimum=-1e3,
+                            maximum=1e3)
+    site: int = param(0, "The kicked bead (0 <= site < N); default 0, the first bead of the chain.", minimum=0)
+
+    def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
+        """A nonzero kick on a bead of the chain (``where``: the scene's key path)."""
+        path = where + ["initial"]
+        if self.velocity == 0:
+            out.add(path + ["velocity"], "must be nonzero (a chain at rest does not move)", self.velocity)
+        if not 0 <= self.site < scene.N:
+            out.add(path + ["site"], f"must be a bead index in [0, N-1] = [0, {scene.N - 1}]", self.site)
+
+
+INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair, "kick": Kick}
 INITIAL_DOC = "Initial condition of a scene: kind travelling, breather, packet or pair."
-KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest) "
-            "or pair (two static breathers at rest).")
+KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest), "
+            "pair (two static breathers at rest) or kick (one bead kicked from rest).")
 register_union("initial", INITIAL_DOC, KIND_DOC, INITIAL_KINDS)
 
 
@@ -309,8 +326,9 @@ class Scene:
     dps: DpsIntegrator = param(None, "Per-scene DpS integrator settings, merged over defaults.dps.")
     max_energy_drift: float = param(None, "Per-scene energy drift bound; default defaults.max_energy_drift.",
                                     ref="maxEnergyDrift")
-    initial: Travelling | Breather | Packet | Pair = param(REQUIRED, "Initial condition: its kind (travelling, "
-                                                           "breather, packet, pair) and parameters.", ref="initial")
+    initial: Travelling | Breather | Packet | Pair | Kick = param(REQUIRED, "Initial condition: its kind "
+                                                                  "(travelling, breather, packet, pair, kick) and "
+                                                                  "parameters.", ref="initial")
     # at most MAX_T_END: stored times are told apart to TIME_TOL, finer than float64 resolves beyond ~4e6
     t_end: float = param(REQUIRED, "Final time of the run (lattice time t); in (0, 1e6] (stored times are told apart "
                          "to 1e-9).", exclusiveMinimum=0, maximum=MAX_T_END)

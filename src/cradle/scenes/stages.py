@@ -26,7 +26,7 @@ from cradle.data.io import make_dataset
 from cradle.measurements import breathers, compare, interactions, sidebands
 from cradle.models import damping, dps, initial, lattice
 from cradle.scenes.failure import StageFailure
-from cradle.scenes.spec import Breather, HomoclinicEntry, MapEntry, Packet, Pair, Scene, Travelling
+from cradle.scenes.spec import Breather, HomoclinicEntry, Kick, MapEntry, Packet, Pair, Scene, Travelling
 from cradle.specs.declare import plain
 
 # ---------------------------------------------------------------- stationary DpS
@@ -156,6 +156,8 @@ def initial_data(spec: Scene, name: str = "", homoclinic_ds: xr.Dataset | None =
     elif isinstance(ini, Pair):  # loc1 (right): two static breathers at rest, profile solved in-process
         data = initial.pair(N, alpha, amplitude=ini.amplitude, separation=ini.separation, profile=ini.profile,
                             sign=ini.sign, centre=ini.centre, bc=bc)
+    elif isinstance(ini, Kick):  # JKC 2013: one bead kicked from rest
+        data = initial.kick(N, alpha, velocity=ini.velocity, site=ini.site, bc=bc)
     else:
         raise TypeError(f"scene '{name}': not an initial condition of a known kind: {ini!r}")
     fields = {"x0": data.x0, "v0": data.v0, "A0_re": data.A0.real, "A0_im": data.A0.imag}
@@ -370,7 +372,10 @@ def metrics(spec: Scene | None, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: 
     """Exact against approximate: E(t) (plot4-5) and the spectra |x_hat_k(t)| on Gamma*; what the
     figures show of the scene (:func:`travelling_metrics`, :func:`localised_metrics`). Everything is
     read from the two runs; ``spec`` is only stored (None: two runs not made from a scene spec)."""
-    a_scale = float(exact_ds.attrs.get("a", np.max(np.abs(exact_ds["x"].isel(t=0).values))))
+    if exact_ds.attrs.get("initial_kind") == "kick":   # starts at x = 0: the kicked bead's amplitude v/omega_0
+        a_scale = abs(float(exact_ds.attrs["velocity"]))
+    else:
+        a_scale = float(exact_ds.attrs.get("a", np.max(np.abs(exact_ds["x"].isel(t=0).values))))
     E = compare.relative_error(exact_ds["x"].values, dps_ds["x"].values, a_scale)
     k, xh_exact = compare.spatial_dft(exact_ds["x"].values)
     _, xh_dps = compare.spatial_dft(dps_ds["x"].values)
