@@ -29,6 +29,7 @@ from functools import cached_property
 from typing import Protocol
 
 from cradle.models.damping import Damping
+from cradle.models.lattice_terms import Terms
 from cradle.models.physical import HERTZ_ALPHA, Cradle, scales
 from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
 from cradle.specs.values import (
@@ -335,12 +336,15 @@ class Scene:
     store: Store = param(REQUIRED, "Times at which the state is stored.")
     damping: Damping = param(None, "Dissipation (ncdamped): on-site and Kuwabara-Kono contact damping; absent: the "
                              "conservative (nc).")
+    terms: Terms = param(None, "The imperfect cradle (ncimperfect): inhomogeneity (site masses, on-site "
+                         "frequencies, contact stiffnesses), precompression and the on-site potential; absent: (nc).")
     cradle: Cradle = param(None, "The real cradle the scene models: its spheres and strings give the scales of (nc) "
                            "(cradle.models.physical); the outputs store them, and `units: si` reads the scene's "
                            "values in SI.")
     units: str = param(None, "Units of the scene's times, amplitudes and damping: nc (default: those of (nc)) or si "
                        "(times in s, amplitudes a and amplitude in m, omega_tw and omega_sw in rad/s, damping.onsite a "
-                       "rate in 1/s, damping.contact the Kuwabara-Kono time A in s; needs `cradle:`).",
+                       "rate in 1/s, damping.contact the Kuwabara-Kono time A in s, a kick's velocity in m/s, "
+                       "terms.precompression.delta0 in m; needs `cradle:`).",
                        enum=["nc", "si"])
 
     @cached_property
@@ -384,12 +388,47 @@ class Scene:
             out.add(where + ["exact", "method"], f"must be one of {', '.join(DAMPED_METHODS)} with damping (a "
                                                  "splitting is not symplectic for a damped cradle: "
                                                  "docs/dissipation.md)", self.exact.method)
+        self._check_terms(where, out)
         if self.units == "si" and c is None:
             out.add(where + ["units"], "needs the scene's `cradle:` (its scales convert SI values to (nc)'s)",
                     self.units)
         elif self.t_end > MAX_T_END:   # only an SI time can get here: the schema bounds t_end in (nc)'s units
             out.add(where + ["t_end"], f"is {self.t_end:.6g} in (nc)'s time units (t omega_0), more than "
                                        f"{MAX_T_END:g}", self.t_end)
+
+    def _check_terms(self, where: Where, out: Errors) -> None:
+        """Active terms of (ncimperfect) need DOP853 in numba, a precompressed chain a ring, explicit site values
+        one per bead, and a draw of positive frequencies and masses (:func:`cradle.models.inhomogeneity.sites`)."""
+        terms = self.terms
+        if terms is None:
+            return
+        path, inh = where + ["terms"], terms.inhomogeneity
+        given = {key: getattr(inh, key) for key in ("omega", "mass", "stiffness") if getattr(inh, key) is not None}
+        for key, values in given.items():
+            if len(values) != self.N:
+                out.add(path + ["inhomogeneity", key], f"must have N = {self.N} values (one per "
+                                                       f"{'bond' if key == 'stiffness' else 'bead'}), got "
+                                                       f"{len(values)}")
+        if not terms.active:
+            return
+        if self.exact.method not in DAMPED_METHODS:
+            out.add(where + ["exact", "method"], f"must be one of {', '.join(DAMPED_METHODS)} with active terms "
+                                                 "(the imperfect cradle (ncimperfect) is integrated by DOP853 in "
+                                                 "numba: docs/imperfect-cradles.md)", self.exact.method)
+        if terms.precompression.delta0 > 0.0 and self.bc != "periodic":
+            out.add(path + ["precompression", "delta0"], f"needs bc = periodic (a precompressed chain with bc = "
+                                                         f"{self.bc} flies apart: walls are not modelled)",
+                    terms.precompression.delta0)
+        if all(len(v) == self.N for v in given.values()):
+            from cradle.models.inhomogeneity import sites
+            from cradle.specs.values import ConfigError
+
+            try:
+                sites(inh, self.N)
+            except ConfigError as e:   # a draw with a non-positive frequency or mass: its key, value and why
+                head, why = str(e).split(": ", 1)
+                key = head.split(" = ", 1)[0].rsplit(".", 1)[-1]
+                out.add(path + ["inhomogeneity", key], why, getattr(inh, key))
 
 
 _POINT = {"type": "number"}
@@ -452,7 +491,8 @@ class HomoclinicEntry:
             out.add(where + ["separation"], f"must be in [1, N-1] = [1, {self.N - 1}]", self.separation)
 
 
-#: the lattice integrators that take the damping terms (:func:`cradle.integrators.integrate_lattice`)
+#: the lattice integrators that take the damping terms and the terms of the imperfect cradle
+#: (:func:`cradle.integrators.integrate_lattice`)
 DAMPED_METHODS = ("dop853_numba",)
 
 
@@ -461,7 +501,9 @@ DAMPED_METHODS = ("dop853_numba",)
 SI_KEYS = {("t_end",): "time", ("store", "every"): "time", ("store", "snapshots"): "time",
            ("initial", "a"): "displacement", ("initial", "amplitude"): "displacement",
            ("initial", "omega_tw"): "rate", ("initial", "omega_sw"): "rate",
-           ("damping", "onsite"): "rate", ("damping", "contact"): "A"}
+           ("initial", "velocity"): "velocity",
+           ("damping", "onsite"): "rate", ("damping", "contact"): "A",
+           ("terms", "precompression", "delta0"): "displacement"}
 
 
 def in_nc_units(entry: dict) -> dict:
@@ -472,12 +514,14 @@ def in_nc_units(entry: dict) -> dict:
     if entry.get("units") != "si" or not isinstance(c, dict) or ("length" in c) == ("omega0" in c):
         return entry   # nothing to convert, or a cradle the checks refuse
     s = scales(build(Cradle, c))
-    factor = {"time": s.omega0, "displacement": 1.0 / s.X, "rate": 1.0 / s.omega0, "A": s.omega0}
+    factor = {"time": s.omega0, "displacement": 1.0 / s.X, "velocity": 1.0 / s.V, "rate": 1.0 / s.omega0,
+              "A": s.omega0}
     out = copied(entry)
     del out["units"]
-    for (section, *key), quantity in SI_KEYS.items():
-        node = out if not key else out.get(section)
-        name = section if not key else key[0]
+    for (*sections, name), quantity in SI_KEYS.items():
+        node = out
+        for section in sections:
+            node = node.get(section) if isinstance(node, dict) else None
         if not isinstance(node, dict) or node.get(name) is None:
             continue
         value = node[name]
