@@ -139,6 +139,17 @@ def scene_sites(spec: Scene):
     return sites(spec.terms.inhomogeneity, spec.N)
 
 
+def dps_sites_of(spec: Scene, s, eps: float):
+    """The coefficients of (dpsimperfect) for a scene with active terms and sites ``s``, at its eps."""
+    from cradle.models.dps_sites import dps_sites
+
+    on = spec.terms.onsite
+    return dps_sites(s.mass, s.omega, s.stiffness, alpha=spec.alpha, eps=eps,
+                     beta=on.beta if on.potential == "quartic" else 0.0,
+                     pendulum_scale=on.scale if on.potential == "pendulum" else 0.0,
+                     delta0=spec.terms.precompression.delta0)
+
+
 def physical_attrs(cradle) -> dict:
     """The real cradle a scene models and the SI value of one unit of each of (nc)'s variables
     (:func:`cradle.models.physical.scales`, under the names :data:`cradle.data.si.SCALES` reads them by): a reader
@@ -303,10 +314,17 @@ def dps_dataset(spec: Scene, init_ds: xr.Dataset, name: str, times, sol) -> xr.D
     alpha, bc = spec.alpha, spec.bc
     eps = float(init_ds.attrs["eps"])
     x_app = compare.approximate_displacement(sol.A, times, eps)
-    force = lattice.bond_forces(x_app, alpha, bc)
+    s = scene_sites(spec)
+    if s is None:
+        force = lattice.bond_forces(x_app, alpha, bc)
+    else:   # the lattice's bond forces k_n F_n of (ncimperfect) along the approximate displacement
+        from cradle.models import lattice_terms
+
+        force = lattice_terms.bond_forces(x_app, alpha, spec.terms, s, bc)
     attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
     damped = getattr(sol, "damping", None) is not None
-    attrs.update({"model": "damped DpS (dpsdamped) + ansatz (ansatz)" if damped else "DpS (dfnls) + ansatz (ansatz)",
+    model = "damped DpS (dpsdamped)" if damped else "DpS (dpsimperfect)" if s is not None else "DpS (dfnls)"
+    attrs.update({"model": model + " + ansatz (ansatz)",
                   "integrator": sol.method, "rtol": sol.rtol,
                   "atol": sol.atol, "tau0": dps.tau0(alpha), "max_l2_drift": sol.max_l2_drift,
                   "max_dps_energy_drift": sol.max_energy_drift, "n_steps": sol.n_steps,
@@ -336,6 +354,9 @@ def dps_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -> 
         from cradle.models.dps_damped import slow_damping
 
         extra["damping"] = slow_damping(spec.damping, eps, alpha)
+    s = scene_sites(spec)
+    if s is not None:   # (dpsimperfect): docs/imperfect-dps.md
+        extra["sites"] = dps_sites_of(spec, s, eps)
     sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=spec.dps.method, rtol=spec.dps.rtol, progress=progress,
                         **extra)
     ds = dps_dataset(spec, init_ds, name, times, sol)
