@@ -27,6 +27,7 @@ _API: tuple[tuple[str, tuple[tuple[str, str, str], ...]], ...] = (
         ("breather", "cradle.models.initial", "breather data (ansatzapproxst2) from a solution a_n of (dpsstn)"),
         ("packet", "cradle.models.initial", "a modulated binary oscillation at rest (loc1, left)"),
         ("pair", "cradle.models.initial", "two static breathers at rest (loc1, right)"),
+        ("kick", "cradle.models.initial", "one bead kicked from rest (James, Kevrekidis & Cuevas 2013)"),
         ("two_breathers", "cradle.models.pairs",
          "two breathers of chosen profiles, centres, amplitudes and phase (breather-interactions)"),
         ("from_displacements", "cradle.models.initial",
