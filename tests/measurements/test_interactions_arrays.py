@@ -28,14 +28,14 @@ def _rows_agree(P, periodic=True, **kw):
         assert np.all(np.isnan(C[k, n[k]:])) and np.all(np.isnan(T[k, n[k]:]))
 
 
-def _synthetic(rng, K=400):
+def _synthetic(rng, K=400, N=N, widest=4.0):
     """Sums of 1 to 5 Gaussian humps of random width and height anywhere on the ring (ragged tops,
     shallow saddles, humps across the seam), plus plateaus, constant, zero and non-finite rows."""
     n = np.arange(N)
     P = np.zeros((K, N))
     for k in range(K):
         for _ in range(rng.integers(1, 6)):
-            c, w, h = rng.uniform(0, N), rng.uniform(0.3, 4.0), rng.uniform(0.05, 1.0)
+            c, w, h = rng.uniform(0, N), rng.uniform(0.3, widest), rng.uniform(0.05, 1.0)
             d = (n - c + N / 2) % N - N / 2
             P[k] += h * np.exp(-0.5 * (d / w) ** 2)
     P[::7] = np.round(P[::7], 1)          # plateaus and equal tops
@@ -52,6 +52,9 @@ def test_humps_of_all_rows_are_humps_row_by_row(periodic):
     _rows_agree(P, periodic)
     _rows_agree(P, periodic, rel=0.05, dip=0.9)        # more candidates, more joins
     _rows_agree(P[:0], periodic)
+    # a large ring with broad humps: half-height windows of more than 128 sites (numpy sums those in
+    # halves, pairwise) and the constant row's window of N - 1 sites
+    _rows_agree(_synthetic(np.random.default_rng(3), K=40, N=400, widest=80.0), periodic)
 
 
 @pytest.fixture(scope="module")
