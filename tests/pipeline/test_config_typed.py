@@ -324,7 +324,7 @@ def test_an_entry_with_a_schema_error_is_not_checked_further(raw):
         "config error: beyond.mi-statistics.q_over_pi.count = 1000000000.0: must be <= 1000",
         "config error: homoclinic.bond.N = 0.3: must be an integer",
         "config error: scenes.fft344.initial.kind = 'travelling-wave': must be one of travelling, breather, packet, "
-        "pair",
+        "pair, kick",
         "config error: scenes.tw-weak.store.snapshots = 3: must be a list"]
 
 

@@ -11,10 +11,10 @@ and the invariants are monitored after every accepted step. Used by
 energy, y = [x, v, s D]; kind 4, the imperfect cradle (ncimperfect), y = [x, v], or with the same
 damping y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
 (kind 1, (dfnls), y = real view of A; kind 3, the damped (dpsdamped), y = real view of A and the two
-dissipated amounts; kind 5, (dpsimperfect) of cradle.models.dps_sites, y = real view of A). ``par`` is a
-float64 array of the kind's parameters: kind 1 reads
-1/(2 tau0) = par[0]; kind 2 gamma = par[0], eta = par[1] and the scale s = par[2] of D in the
-state; kind 3 the ``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`; kind 4 the ``par`` of
+dissipated amounts; kind 5, (dpsimperfect) of cradle.models.dps_sites, y = real view of A). ``par`` is
+a float64 array of the kind's parameters: kind 1 reads 1/(2 tau0) = par[0]; kind 2 gamma = par[0],
+eta = par[1] and the scale s = par[2] of D in the state; kind 3 the ``par`` of
+:func:`cradle.integrators._kernels.dps_damped_rhs`; kind 4 the ``par`` of
 :func:`cradle.integrators._lattice_terms.pack` (site coefficients and damping); kind 5 that of
 :func:`cradle.integrators._kernels_dps_sites.pack`; kind 0 none.
 Kind 2 with ``events`` (the default of a damped lattice run) is stepped by
@@ -108,7 +108,7 @@ def _monitor(kind, y, alpha, mode, par, periodic, stats):
     kind 3: the same as kind 1 with l2 + Q_l2 and S + Q_S (the balance laws: Q the dissipated amounts, y's
     two last entries)
     kind 5: stats = [l2_0, H0, max |l2-l2_0|/l2_0, max |H-H0|/|H0|] with the weighted l2 = sum m_n |A_n|^2 and the H
-    of (dpsimperfect) (``par`` is read from stats[4:]: the monitor has no ``par`` argument)
+    of (dpsimperfect)
     """
     if kind == 0:
         n = y.shape[0] // 2
@@ -133,7 +133,7 @@ def _monitor(kind, y, alpha, mode, par, periodic, stats):
         stats[2] = max(stats[2], cm)
         stats[3] = H
     elif kind == 5:
-        l2, H, _pr, _pi = KS.dps_sites_invariants(y, alpha, stats[4:], periodic)
+        l2, H, _pr, _pi = KS.dps_sites_invariants(y, alpha, par, periodic)
         s0 = stats[0] if stats[0] != 0.0 else 1.0
         s1 = abs(stats[1]) if stats[1] != 0.0 else 1.0
         stats[2] = max(stats[2], abs(l2 - stats[0]) / s0)

@@ -199,7 +199,8 @@ def dps_damped_solver_active(damping: DpsDamping) -> bool:
 
 
 def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -> DpsSolution:
-    """(dpsimperfect) from run.y0: kind 5 of the numba DOP853, or scipy's solvers on the same compiled right-hand side."""
+    """(dpsimperfect) from run.y0: kind 5 of the numba DOP853, or scipy's solvers on the same compiled
+    right-hand side."""
     from cradle.integrators import _kernels_dps_sites as KS
     from cradle.models import dps_sites as S
 
@@ -224,7 +225,7 @@ def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -
         return out
 
     if method == "dop853_numba":
-        stats = np.concatenate([[l20, H0, 0.0, 0.0], par])
+        stats = np.array([l20, H0, 0.0, 0.0])
         Y, n_steps, nfev = _dop853.run_dop853(_dop853.DPS_SITES, run.y0, tau_out, run.rtol, run.atol, alpha, 0, par,
                                               periodic, stats, run.progress)
         max_l2, max_E = float(stats[2]), float(stats[3])

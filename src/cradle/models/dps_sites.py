@@ -70,7 +70,10 @@ class DpsSites:
     def __post_init__(self):
         n = np.asarray(self.detuning).size
         for name in ("detuning", "inv_mass", "weight", "beta", "delta"):
-            v = np.array(np.broadcast_to(np.asarray(getattr(self, name), dtype=float), (n,)))
+            given = np.asarray(getattr(self, name), dtype=float)
+            if given.size not in (1, n):
+                raise ConfigError(f"DpsSites.{name}: {given.size} values for {n} sites (detuning's count)")
+            v = np.array(np.broadcast_to(given.reshape(-1) if given.size == n else given.reshape(()), (n,)))
             if not np.all(np.isfinite(v)):
                 raise ConfigError(f"DpsSites.{name} = {v.tolist()!r}: must be finite")
             if name in ("inv_mass", "weight") and not np.all(v > 0.0):
@@ -111,9 +114,9 @@ def dps_sites(sites_mass, sites_omega, sites_stiffness, *, alpha: float, eps: fl
     m = np.asarray(sites_mass, dtype=float).reshape(-1)
     om = np.asarray(sites_omega, dtype=float).reshape(-1)
     k = np.asarray(sites_stiffness, dtype=float).reshape(-1)
-    for name, v, lo in (("alpha", alpha, 1.0), ("eps", eps, 0.0)):
-        if not (isinstance(v, int | float) and math.isfinite(v) and v > lo):
-            raise ConfigError(f"{name} = {v!r}: must be a finite number > {lo:g}")
+    for name, x, lo in (("alpha", alpha, 1.0), ("eps", eps, 0.0)):
+        if not (isinstance(x, int | float) and math.isfinite(x) and x > lo):
+            raise ConfigError(f"{name} = {x!r}: must be a finite number > {lo:g}")
     for name, v in (("sites_mass", m), ("sites_omega", om), ("sites_stiffness", k)):
         if v.size != m.size or v.size < 1 or not np.all(np.isfinite(v)) or not np.all(v > 0.0):
             raise ConfigError(f"{name} = {v.tolist()!r}: must be {m.size} finite numbers > 0")
@@ -156,9 +159,10 @@ def profile_quadrature(rho: float, alpha: float) -> tuple[float, float]:
         h = s - s_star
         return 4.0 * math.sin((s + s_star) / 2.0) * (0.5 * np.sinc(h / (2.0 * math.pi)))
 
-    opts = {"epsabs": 0.0, "epsrel": 1e-13, "limit": 400}
-    g, _ = quad(lambda s: base(s) ** alpha * math.cos(s), s_star, math.pi, weight="alg", wvar=(alpha, 0.0), **opts)
-    p, _ = quad(lambda s: base(s) ** (alpha + 1.0), s_star, math.pi, weight="alg", wvar=(alpha + 1.0, 0.0), **opts)
+    g, _ = quad(lambda s: base(s) ** alpha * math.cos(s), s_star, math.pi, weight="alg", wvar=(alpha, 0.0),
+                epsabs=0.0, epsrel=1e-13, limit=400)
+    p, _ = quad(lambda s: base(s) ** (alpha + 1.0), s_star, math.pi, weight="alg", wvar=(alpha + 1.0, 0.0),
+                epsabs=0.0, epsrel=1e-13, limit=400)
     return -t0 * g / math.pi, t0 * (p - math.pi * max(rho, 0.0) ** (alpha + 1.0)) / (2.0 * math.pi * (alpha + 1.0))
 
 
