@@ -10,11 +10,11 @@ claims, for the lattice (ncimperfect) with W = x^2/2 + beta x^4/4 and a precompr
 * precompression delta_0 > 0: enhanced dispersion, no travelling breather, or a "nanopteron" with a sizable
   wave train on both sides of the localised excitation.
 
-Here each of the three scenes (``surface``, ``boomeron``, ``nanopteron``, each optional: kicks of config.yaml's ``scenes:``, their
-exact (ncimperfect) and DpS (dpsimperfect) runs) and the same kick in the harmonic, uncompressed chain (the
-reference, run here with the scene's integrators, lattice (nc) and DpS (dfnls)) are measured alike, in four
-``model`` rows: ``exact``, ``dps``, ``reference``, ``reference_dps``. The definitions (the choices are parameters of
-the spec, each measured under several values):
+Here each of the three scenes (``surface``, ``boomeron``, ``nanopteron``, each optional: kicks of config.yaml's
+``scenes:``, their exact (ncimperfect) and DpS (dpsimperfect) runs) and the same kick in the harmonic,
+uncompressed chain (the reference, run here with the scene's integrators, lattice (nc) and DpS (dfnls)) are
+measured alike, in four ``model`` rows: ``exact``, ``dps``, ``reference``, ``reference_dps``. The definitions (the
+choices are parameters of the spec, several values each where a choice matters):
 
 * local energy e_n (:func:`local_energy`): m_n v_n^2/2 + m_n omega_n^2 W(x_n) plus half of the potential k_n Phi_n
   of each bond of bead n (the generalised (ham) of (ncimperfect), so sum_n e_n = H); for a DpS run the same
@@ -40,7 +40,7 @@ import numpy as np
 
 from cradle.analyses.protocol import Analysis, scene_reads
 from cradle.data.variables import Var
-from cradle.specs.declare import NULL, declared, param, plain
+from cradle.specs.declare import NAME_PATTERN, NULL, declared, param, plain
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
@@ -58,11 +58,11 @@ MODELS = ("exact", "dps", "reference", "reference_dps")
 class JkcVariants:
     # no scene by default: a config without these scenes stays valid (config.yaml names its three)
     surface: str | None = param(NULL, "Kick scene with a soft quartic on-site potential (beta < 0), free ends; "
-                                "null: not measured.")
+                                "null: not measured.", pattern=NAME_PATTERN)
     boomeron: str | None = param(NULL, "Kick scene with a hard quartic on-site potential (beta > 0), free ends; "
-                                 "null: not measured.")
+                                 "null: not measured.", pattern=NAME_PATTERN)
     nanopteron: str | None = param(NULL, "Kick scene with a precompression delta0 > 0 (a ring); null: not "
-                                   "measured.")
+                                   "measured.", pattern=NAME_PATTERN)
     smoothing: float = param(20.0, "Window (time units) of the running mean of the energy centre and core "
                              "position before reversals are sought; in (0, 1e3].", exclusiveMinimum=0, maximum=1e3)
     reversal_threshold: float = param(2.0, "A reversal: an extremum of the smoothed position from which it "
@@ -229,12 +229,18 @@ def quantile_sites(e, q: float) -> np.ndarray:
     return np.argmax(c >= q, axis=-1).astype(float)
 
 
+#: zero padding of the spectrum of :func:`dominant_frequency`: its grid is PAD times finer than 2 pi / span
+PAD = 16
+
+
 def dominant_frequency(t, x) -> float:
-    """The angular frequency of the largest peak of |FFT| of x(t) (Hann window) on the uniform grid t."""
+    """The angular frequency of the largest peak of |FFT| of x(t) (Hann window, zero-padded PAD times) on the
+    uniform grid t; the peak of a sine of a span T is located to well within its width ~ 4 pi / T."""
     t = np.asarray(t, dtype=float)
     x = np.asarray(x, dtype=float)
-    spec = np.abs(np.fft.rfft((x - x.mean()) * np.hanning(x.size)))
-    freq = 2.0 * np.pi * np.fft.rfftfreq(x.size, d=float(t[1] - t[0]))
+    n = PAD * x.size
+    spec = np.abs(np.fft.rfft((x - x.mean()) * np.hanning(x.size), n=n))
+    freq = 2.0 * np.pi * np.fft.rfftfreq(n, d=float(t[1] - t[0]))
     return float(freq[int(np.argmax(spec[1:])) + 1])
 
 
@@ -298,7 +304,7 @@ def measure(spec: JkcVariants, t, energies: dict, N: int, bc: str, kick_site: in
     pos, core, left, right = (np.zeros((M, len(hws), T)) for _ in range(4))
     q01, q99 = np.zeros((M, T)), np.zeros((M, T))
     edge_om = np.zeros(M)
-    rev = {"centre": [], "core": []}
+    rev: dict[str, list[np.ndarray]] = {"centre": [], "core": []}
     for i, model in enumerate(MODELS):
         e = energies[model]
         E = e.sum(-1)
