@@ -79,6 +79,16 @@ _API: tuple[tuple[str, tuple[tuple[str, str, str], ...]], ...] = (
         ("DpsDamping", "cradle.models.dps_damped", "their DpS counterpart (dpsdamped); integrate_dps(damping=)"),
         ("slow_damping", "cradle.models.dps_damped", "the DpsDamping of a lattice Damping at small parameter eps"),
     )),
+    ("Imperfect cradles (docs/imperfect-cradles.md)", (
+        ("Terms", "cradle.models.lattice_terms",
+         "the terms of (ncimperfect): inhomogeneity, precompression, on-site potential; integrate_lattice(terms=)"),
+        ("Inhomogeneity", "cradle.models.inhomogeneity",
+         "per-bead masses and on-site frequencies, per-contact stiffnesses: drawn (sigma, seed) or given"),
+        ("Precompression", "cradle.models.precompression", "a uniform static overlap delta0 (> 0, rings) or gaps"),
+        ("OnSite", "cradle.models.onsite", "the on-site potential W: harmonic, quartic (beta), pendulum (scale)"),
+        ("sites", "cradle.models.inhomogeneity", "the site coefficients (m_n, omega_n, k_n) of an Inhomogeneity"),
+        ("contact_stiffness", "cradle.models.inhomogeneity", "Hertz's (4/3) E* sqrt(R*) of two spheres"),
+    )),
     ("Stored results", (
         ("open_scene", "cradle.pipeline.outputs",
          "a scene's exact and DpS runs and their metrics as one Dataset along model"),

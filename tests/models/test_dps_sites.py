@@ -154,3 +154,10 @@ def test_bad_input_is_one_line(kwargs, key):
     with pytest.raises(ConfigError) as err:
         S.dps_sites(args.pop("sites_mass"), args.pop("sites_omega"), args.pop("sites_stiffness"), **args)
     assert str(err.value).startswith(key) and "\n" not in str(err.value)
+
+
+def test_sites_of_the_wrong_count_are_one_line():
+    with pytest.raises(ConfigError, match=r"^DpsSites.weight: 2 values for 3 sites"):
+        S.DpsSites(np.zeros(3), np.ones(3), np.ones(2), 0.0, 0.0)
+    s = S.DpsSites(np.zeros(3), 1.0, np.ones(3), 0.5, 0.0)   # scalars broadcast
+    assert s.beta.tolist() == [0.5, 0.5, 0.5] and not s.compressed

@@ -70,7 +70,10 @@ class DpsSites:
     def __post_init__(self):
         n = np.asarray(self.detuning).size
         for name in ("detuning", "inv_mass", "weight", "beta", "delta"):
-            v = np.array(np.broadcast_to(np.asarray(getattr(self, name), dtype=float), (n,)))
+            given = np.asarray(getattr(self, name), dtype=float)
+            if given.size not in (1, n):
+                raise ConfigError(f"DpsSites.{name}: {given.size} values for {n} sites (detuning's count)")
+            v = np.array(np.broadcast_to(given.reshape(-1) if given.size == n else given.reshape(()), (n,)))
             if not np.all(np.isfinite(v)):
                 raise ConfigError(f"DpsSites.{name} = {v.tolist()!r}: must be finite")
             if name in ("inv_mass", "weight") and not np.all(v > 0.0):

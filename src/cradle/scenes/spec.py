@@ -415,6 +415,10 @@ class Scene:
             out.add(where + ["exact", "method"], f"must be one of {', '.join(DAMPED_METHODS)} with active terms "
                                                  "(the imperfect cradle (ncimperfect) is integrated by DOP853 in "
                                                  "numba: docs/imperfect-cradles.md)", self.exact.method)
+        if self.damping is not None and self.damping.active:
+            out.add(where + ["damping"], "cannot go with active terms in a scene: its DpS run would need the damped "
+                                         "(dpsimperfect), which is not derived (the lattice takes both: "
+                                         "integrate_lattice(..., damping=, terms=))")
         if terms.precompression.delta0 > 0.0 and self.bc != "periodic":
             out.add(path + ["precompression", "delta0"], f"needs bc = periodic (a precompressed chain with bc = "
                                                          f"{self.bc} flies apart: walls are not modelled)",
