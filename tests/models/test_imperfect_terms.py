@@ -185,3 +185,29 @@ def test_bad_input_is_one_line_naming_key_and_value(terms, N, bc, words):
     assert "\n" not in msg, msg
     for w in words:
         assert w in msg, msg
+
+
+def test_spheres_and_strings_give_their_sites():
+    """String lengths l_n detune as omega_n = (l_0/l_n)^(1/2); radii and materials weigh the masses as
+    R^3 rho and stiffen the bonds as Hertz's (4/3) E* R*^(1/2), relative to the first bead (and its twin);
+    in an SI scene the lengths and radii are read in metres against the cradle's own."""
+    from cradle.models.inhomogeneity import Inhomogeneity, contact_stiffness, sites
+    from cradle.models.physical import MATERIALS
+    from cradle.scenes.spec import in_nc_units
+
+    R, names = (1.0, 1.1, 0.9, 1.0), ("steel", "steel", "brass", "glass")
+    s = sites(Inhomogeneity(length=(1.0, 1.21, 0.64, 4.0), radius=R, material=names), 4)
+    np.testing.assert_allclose(s.omega, [1.0, 1 / 1.1, 1 / 0.8, 0.5], rtol=1e-15)
+    rho = np.array([MATERIALS[m].rho for m in names])
+    np.testing.assert_allclose(s.mass, np.array(R) ** 3 * rho / rho[0], rtol=1e-15)
+    E, nu = (np.array([getattr(MATERIALS[m], a) for m in names]) for a in ("E", "nu"))
+    k_ref = 4 / 3 * E[0] / (2 * (1 - nu[0] ** 2)) * np.sqrt(R[0] / 2)
+    for n in range(4):
+        m = (n + 1) % 4
+        assert s.stiffness[n] == pytest.approx(contact_stiffness(R[n], R[m], E[n], nu[n], E[m], nu[m]) / k_ref,
+                                               rel=1e-14)
+    entry = {"units": "si", "cradle": {"material": "steel", "radius": 0.01, "length": 0.1},
+             "terms": {"inhomogeneity": {"length": [0.1, 0.121], "radius": [0.01, 0.011]}}}
+    inh = in_nc_units(entry)["terms"]["inhomogeneity"]
+    np.testing.assert_allclose(inh["length"], [1.0, 1.21], rtol=1e-15)
+    np.testing.assert_allclose(inh["radius"], [1.0, 1.1], rtol=1e-15)

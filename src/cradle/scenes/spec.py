@@ -344,7 +344,8 @@ class Scene:
     units: str = param(None, "Units of the scene's times, amplitudes and damping: nc (default: those of (nc)) or si "
                        "(times in s, amplitudes a and amplitude in m, omega_tw and omega_sw in rad/s, damping.onsite a "
                        "rate in 1/s, damping.contact the Kuwabara-Kono time A in s, a kick's velocity in m/s, "
-                       "terms.precompression.delta0 in m; needs `cradle:`).",
+                       "terms.precompression.delta0 and terms.inhomogeneity.length and radius in m; needs "
+                       "`cradle:`).",
                        enum=["nc", "si"])
 
     @cached_property
@@ -403,12 +404,16 @@ class Scene:
         if terms is None:
             return
         path, inh = where + ["terms"], terms.inhomogeneity
-        given = {key: getattr(inh, key) for key in ("omega", "mass", "stiffness") if getattr(inh, key) is not None}
+        given = {key: getattr(inh, key) for key in ("omega", "mass", "stiffness", "length", "radius", "material")
+                 if getattr(inh, key) is not None}
         for key, values in given.items():
             if len(values) != self.N:
                 out.add(path + ["inhomogeneity", key], f"must have N = {self.N} values (one per "
                                                        f"{'bond' if key == 'stiffness' else 'bead'}), got "
                                                        f"{len(values)}")
+        if inh.omega is not None and inh.length is not None:
+            out.add(path + ["inhomogeneity", "length"], "give omega or length, not both (length sets omega_n = "
+                                                        "(l_0/l_n)^(1/2))")
         if not terms.active:
             return
         if self.exact.method not in DAMPED_METHODS:
@@ -507,7 +512,8 @@ SI_KEYS = {("t_end",): "time", ("store", "every"): "time", ("store", "snapshots"
            ("initial", "omega_tw"): "rate", ("initial", "omega_sw"): "rate",
            ("initial", "velocity"): "velocity",
            ("damping", "onsite"): "rate", ("damping", "contact"): "A",
-           ("terms", "precompression", "delta0"): "displacement"}
+           ("terms", "precompression", "delta0"): "displacement",
+           ("terms", "inhomogeneity", "length"): "string", ("terms", "inhomogeneity", "radius"): "radius"}
 
 
 def in_nc_units(entry: dict) -> dict:
@@ -517,9 +523,11 @@ def in_nc_units(entry: dict) -> dict:
     c = entry.get("cradle")
     if entry.get("units") != "si" or not isinstance(c, dict) or ("length" in c) == ("omega0" in c):
         return entry   # nothing to convert, or a cradle the checks refuse
-    s = scales(build(Cradle, c))
+    cradle = build(Cradle, c)
+    s = scales(cradle)
+    string = cradle.length if cradle.length is not None else cradle.g / s.omega0**2   # l_0 = g / omega_0^2
     factor = {"time": s.omega0, "displacement": 1.0 / s.X, "velocity": 1.0 / s.V, "rate": 1.0 / s.omega0,
-              "A": s.omega0}
+              "A": s.omega0, "string": 1.0 / string, "radius": 1.0 / cradle.radius}
     out = copied(entry)
     del out["units"]
     for (*sections, name), quantity in SI_KEYS.items():
