@@ -55,7 +55,7 @@ CONFIG = ROOT / "config.yaml"
 # stated): the resolved parameters gain their two blocks and nothing else changes.
 # then issue 25 (JKC 2013's variants): the scenes surface-mode, boomeron, nanopteron and the section
 # beyond: jkc-variants: added; without those four keys the resolved parameters hash to the previous b339a4ca...
-RESOLVED_SHA256 = "577dc814b2e1676ed15ad7fd6856b996adb96df64e3a89d23a72c344235cd240"
+RESOLVED_SHA256 = "000911ccfe65d635c6b6f11db4c0629b56210a0b28c7deff80810a02f3974f66"
 
 
 @pytest.fixture(scope="module")
