@@ -8,10 +8,11 @@ Top row: the energy per bead e_n / H(0) (log scale) against the bead and the slo
 each incident at its scan amplitude, homogeneous and at the largest sigma (first seed); the dashed lines bound the
 target (left of it the launch zone, right of it the lead).
 (e) the fraction in static breathers against the amplitude a, main length, each sigma: mean over the seeds, error
-    bars one standard deviation; (f) the same against sigma at the scan amplitudes, each target length; (g) where
-    the energy is at the last measurement time (scan amplitudes, main length): the lead (transmitted), the target,
-    the launch zone (wake and reflected), means over the seeds; (h) damping: the fraction in static breathers
-    (filled) and the energy dissipated D (open) for each damping case, homogeneous and at the damping scan's sigma.
+    bars one standard deviation over the seeds (cut at 0 and 1); (f) the same against sigma at the scan amplitudes,
+    each target length; (g) where the energy is at the last measurement time (scan amplitudes, main length): the
+    lead (transmitted), the target, the launch zone (wake and reflected), means over the seeds; (h) damping: the
+    fraction in static breathers (filled) and the energy dissipated D (open) for each damping case, homogeneous
+    and at the damping scan's sigma.
 """
 from __future__ import annotations
 
@@ -48,6 +49,11 @@ def _spacetime(ax, ex, k: int, fig_images: list) -> None:
                  + ("homogeneous" if sig == 0 else f"sigma = {sig:g} (seed 0)"), fontsize=9)
     ax.set_xlabel("bead n")
     ax.set_ylabel(r"slow time $\tau = a^{\alpha-1} t$")
+
+
+def _bars(mean, std):
+    """Error bars of one standard deviation, cut at 0 and 1 (a fraction of H(0))."""
+    return np.stack([np.minimum(std, mean), np.minimum(std, 1.0 - mean)])
 
 
 def _others(ax, x, values) -> None:
@@ -89,16 +95,17 @@ def draw(tree):
                 continue
             order = np.argsort(amp[m])
             xs, ys, es = amp[m][order], mean[m][order][:, 0, 0, -1], std[m][order][:, 0, 0, -1]
-            E.errorbar(xs, ys, es, fmt=_MARK[i] + _LINE[i], color=shades[s], ms=5, capsize=2, lw=1,
+            E.errorbar(xs, ys, _bars(ys, es), fmt=_MARK[i] + _LINE[i], color=shades[s], ms=5, capsize=2, lw=1,
                        label=f"{_INC[i]}, " + ("homogeneous" if s == 0 else f"sigma = {s:g}"))
             for x, v in zip(xs, mean[m][order], strict=True):
                 _others(E, x, v)
     E.plot([], [], "_", color="0.6", label="grey: every other definition (mean)")
     E.set_xscale("log")
     plain_log_ticks(E)
-    E.set_xlabel("amplitude a (striker velocity; breather max |x(0)|)")
+    E.set_xlabel("amplitude a")
     E.set_ylabel("fraction of H(0) in static breathers")
-    E.set_title(f"(e) against amplitude, target of {L0} beads\n{defn}", fontsize=9)
+    E.set_title(f"(e) against amplitude, target of {L0} beads\n(striker: v_0(0) = a; breather: max |x(0)| = a)",
+                fontsize=9)
     E.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
     legend_outside(E, fontsize=6)
 
@@ -111,13 +118,14 @@ def draw(tree):
                 continue
             order = np.argsort(sigma[m])
             xs = sigma[m][order] + 0.002 * (j - (len(lengths) - 1) / 2)   # side by side at equal sigma
-            F.errorbar(xs, mean[m][order][:, 0, 0, -1], std[m][order][:, 0, 0, -1], fmt=_MARK[i] + _LINE[i],
+            ys = mean[m][order][:, 0, 0, -1]
+            F.errorbar(xs, ys, _bars(ys, std[m][order][:, 0, 0, -1]), fmt=_MARK[i] + _LINE[i],
                        color=f"C{j}", ms=5, capsize=2, lw=1, label=f"{_INC[i]} a = {scan[i]:g}, {n} beads")
             for x, v in zip(xs, mean[m][order], strict=True):
                 _others(F, x, v)
     F.set_xlabel(r"disorder $\sigma$ (std of $\omega_n - 1$)")
     F.set_ylabel("fraction of H(0) in static breathers")
-    F.set_title(f"(f) against sigma and target length, scan amplitudes\n{defn}", fontsize=9)
+    F.set_title("(f) against sigma and target length,\nat the scan amplitudes", fontsize=9)
     F.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
     legend_outside(F, fontsize=6)
 
@@ -136,7 +144,7 @@ def draw(tree):
             G.plot(sigmas, ys, _MARK[i] + _LINE[i], color=col, ms=5, label=f"{_INC[i]}: {name}")
     G.set_xlabel(r"disorder $\sigma$")
     G.set_ylabel(f"energy of the zone at tau = {tm:g}, over H(0)")
-    G.set_title(f"(g) where the energy is, scan amplitudes, {L0} beads (mean over seeds)", fontsize=9)
+    G.set_title(f"(g) where the energy is, scan amplitudes,\n{L0} beads (mean over the seeds)", fontsize=9)
     legend_outside(G, fontsize=6)
 
     H = ax[1, 3]
@@ -158,11 +166,15 @@ def draw(tree):
                 ds.append(float(np.mean(dis[rm])))
             if xs:
                 lab = f"{_INC[i]}, " + ("homogeneous" if s == 0 else f"sigma = {s:g}")
-                H.errorbar(xs, ys, es, fmt=_MARK[i], color=col, ms=6, capsize=2, label=f"{lab}: static breathers")
+                H.errorbar(xs, ys, _bars(np.asarray(ys), np.asarray(es)), fmt=_MARK[i], color=col, ms=6, capsize=2,
+                           label=f"{lab}: static breathers")
                 H.plot(xs, ds, _MARK[i], color=col, mfc="none", ms=8, label=f"{lab}: dissipated D")
-    H.set_xticks(range(len(cases)), names)
+    H.set_xticks(range(len(cases)), names, rotation=25)
     H.set_ylabel(f"fraction of H(0) at tau = {tm:g}")
-    H.set_title(f"(h) damping, scan amplitudes, {L0} beads\n{defn}", fontsize=9)
+    H.set_title(f"(h) damping, scan amplitudes, {L0} beads:\nstatic breathers (filled), dissipated D (open)",
+                fontsize=9)
     H.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
     legend_outside(H, fontsize=6)
+    fig.suptitle(f"Energy of an incident wave left in static breathers. Fractions of H(0), {defn}; error bars: one "
+                 "standard deviation over the seeds; grey marks: the mean under every other definition", fontsize=9)
     return fig
