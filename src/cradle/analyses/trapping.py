@@ -440,6 +440,10 @@ SUMMARY_VARIABLES: dict[str, Var] = {
     "fraction_max": Var(_CHWT, "largest over the seeds"),
     "target_mean": Var(_CHWT, "mean over the seeds of the fraction held by static breathers centred in the target"),
     "target_std": Var(_CHWT, "its standard deviation over the seeds (ddof 1; 0 for one run)"),
+    "target_min": Var(_CHWT, "its smallest value over the seeds"),
+    "target_max": Var(_CHWT, "its largest value over the seeds"),
+    "target_trapping": Var(_CHWT, "fraction of the seeds whose static breathers in the target hold more than half "
+                           "of H(0)"),
     "lead_mean": Var(("case", "time"), "mean over the seeds of the lead's energy at tau_m over H(0) (transmitted)"),
 }
 
@@ -476,6 +480,9 @@ def summary(runs: dict) -> dict:
         out["fraction_max"].append(f.max(axis=0))
         out["target_mean"].append(ft.mean(axis=0))
         out["target_std"].append(ft.std(axis=0, ddof=1) if n > 1 else np.zeros(ft.shape[1:]))
+        out["target_min"].append(ft.min(axis=0))
+        out["target_max"].append(ft.max(axis=0))
+        out["target_trapping"].append(np.mean(ft > 0.5, axis=0))
         out["lead_mean"].append(runs["zone_energy"][rows][:, :, 2].mean(axis=0))
     return {k: np.asarray(v) for k, v in out.items()}
 

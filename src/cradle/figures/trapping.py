@@ -7,12 +7,13 @@ time; the small grey marks are the means under every other definition (threshold
 Top row: the energy per bead e_n / H(0) (log scale) against the bead and the slow time tau = a^(alpha-1) t, for
 each incident at its scan amplitude, homogeneous and at the largest sigma (first seed); the dashed lines bound the
 target (left of it the launch zone, right of it the lead).
-(e) the fraction in static breathers against the amplitude a, main length, each sigma: mean over the seeds, error
-    bars one standard deviation over the seeds (cut at 0 and 1); (f) the same against sigma at the scan amplitudes,
-    each target length; (g) where the energy is at the last measurement time (scan amplitudes, main length): the
-    lead (transmitted), the target, the launch zone (wake and reflected), means over the seeds; (h) damping: the
-    fraction in static breathers (filled) and the energy dissipated D (open) for each damping case, homogeneous
-    and at the damping scan's sigma.
+(e) the fraction in static breathers centred in the target against the amplitude a, main length, each sigma: mean
+    over the seeds, error bars one standard deviation over the seeds (cut at 0 and 1), open markers the static
+    breathers of the whole chain (the target's and slow reflected ones in the launch zone); (f) the same against
+    sigma at the scan amplitudes, each target length; (g) where the energy is at the last measurement time (scan
+    amplitudes, main length): the lead (transmitted), the target, the launch zone (wake and reflected), means over
+    the seeds; (h) damping: the fraction in static breathers of the target (filled) and the energy dissipated D
+    (open) for each damping case, homogeneous and at the damping scan's sigma.
 """
 from __future__ import annotations
 
@@ -36,12 +37,15 @@ def _spacetime(ax, ex, k: int, fig_images: list) -> None:
     e = _v(ex, "site_energy")[k]
     tau = _v(ex, "tau")
     seen = np.flatnonzero(np.nanmax(np.where(np.isfinite(e), e, 0.0), axis=0) > 1e-8)
-    right = int(seen.max()) + 10 if seen.size else e.shape[1]
+    ends = _v(ex, "example_target")[k]
+    # the beads the wave reached, and the whole target (its bounds are drawn)
+    right = max(int(seen.max()) + 10 if seen.size else e.shape[1], int(ends[1]) + 5)
     right = min(right, int(np.sum(np.isfinite(e[0]))))
     img = ax.pcolormesh(np.arange(right), tau, np.log10(np.maximum(e[:, :right], 1e-12)), vmin=-6, vmax=0,
                         shading="auto", cmap="magma", rasterized=True)
     fig_images.append(img)
-    for b in _v(ex, "example_target")[k]:
+    ax.set_xlim(-0.5, right - 0.5)
+    for b in ends:
         ax.axvline(b - 0.5, color="w", ls="--", lw=0.8)
     inc = _INC[int(_v(ex, "example_incident")[k])]
     sig = float(_v(ex, "example_sigma")[k])
@@ -77,7 +81,8 @@ def draw(tree):
 
     inc, amp, length = _v(sm, "case_incident"), _v(sm, "case_amplitude"), _v(sm, "case_length")
     sigma, gamma, eta = _v(sm, "case_sigma"), _v(sm, "case_gamma"), _v(sm, "case_eta")
-    mean, std = _v(sm, "fraction_mean"), _v(sm, "fraction_std")
+    mean, std = _v(sm, "target_mean"), _v(sm, "target_std")
+    whole = _v(sm, "fraction_mean")
     main = (0, 0, -1)
     undamped = (gamma == 0) & (eta == 0)
     L0 = int(tree.attrs["main_length"])
@@ -97,13 +102,15 @@ def draw(tree):
             xs, ys, es = amp[m][order], mean[m][order][:, 0, 0, -1], std[m][order][:, 0, 0, -1]
             E.errorbar(xs, ys, _bars(ys, es), fmt=_MARK[i] + _LINE[i], color=shades[s], ms=5, capsize=2, lw=1,
                        label=f"{_INC[i]}, " + ("homogeneous" if s == 0 else f"sigma = {s:g}"))
+            E.plot(xs, whole[m][order][:, 0, 0, -1], _MARK[i], color=shades[s], mfc="none", ms=9)
             for x, v in zip(xs, mean[m][order], strict=True):
                 _others(E, x, v)
+    E.plot([], [], "o", color="0.3", mfc="none", ms=9, label="open: whole chain (launch zone too)")
     E.plot([], [], "_", color="0.6", label="grey: every other definition (mean)")
     E.set_xscale("log")
     plain_log_ticks(E)
     E.set_xlabel("amplitude a")
-    E.set_ylabel("fraction of H(0) in static breathers")
+    E.set_ylabel("fraction of H(0) in static breathers of the target")
     E.set_title(f"(e) against amplitude, target of {L0} beads\n(striker: v_0(0) = a; breather: max |x(0)| = a)",
                 fontsize=9)
     E.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
@@ -121,10 +128,11 @@ def draw(tree):
             ys = mean[m][order][:, 0, 0, -1]
             F.errorbar(xs, ys, _bars(ys, std[m][order][:, 0, 0, -1]), fmt=_MARK[i] + _LINE[i],
                        color=f"C{j}", ms=5, capsize=2, lw=1, label=f"{_INC[i]} a = {scan[i]:g}, {n} beads")
+            F.plot(xs, whole[m][order][:, 0, 0, -1], _MARK[i], color=f"C{j}", mfc="none", ms=9)
             for x, v in zip(xs, mean[m][order], strict=True):
                 _others(F, x, v)
     F.set_xlabel(r"disorder $\sigma$ (std of $\omega_n - 1$)")
-    F.set_ylabel("fraction of H(0) in static breathers")
+    F.set_ylabel("fraction of H(0) in static breathers of the target")
     F.set_title("(f) against sigma and target length,\nat the scan amplitudes", fontsize=9)
     F.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
     legend_outside(F, fontsize=6)
@@ -176,5 +184,7 @@ def draw(tree):
     H.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
     legend_outside(H, fontsize=6)
     fig.suptitle(f"Energy of an incident wave left in static breathers. Fractions of H(0), {defn}; error bars: one "
-                 "standard deviation over the seeds; grey marks: the mean under every other definition", fontsize=9)
+                 "standard deviation over the seeds; grey marks: the mean under every other definition;\n"
+                 "open markers in (e), (f): static breathers of the whole chain (the target's, and slow reflected "
+                 "ones in the launch zone)", fontsize=9)
     return fig
