@@ -159,3 +159,19 @@ def test_forms_and_checks():
     lines = out.lines
     assert len(lines) == 2 and any("times" in s and "tau_end" in s for s in lines)
     assert any("scan_breather" in s for s in lines)
+
+
+def test_summary_groups_the_seeds_of_each_case():
+    """/summary: one case per (incident, amplitude, length, sigma, gamma, eta), mean / std (ddof 1) / range over
+    its seeds, and the share of seeds above one half."""
+    f = np.array([0.9, 0.0, 0.3, 0.2])[:, None, None, None] * np.ones((4, 1, 2, 1))
+    runs = {"incident": np.array([1, 1, 1, 0]), "amplitude": np.array([0.3, 0.3, 0.3, 1.0]),
+            "length": np.array([50, 50, 50, 50]), "sigma": np.array([0.1, 0.1, 0.0, 0.1]),
+            "gamma": np.zeros(4), "eta": np.zeros(4), "fraction": f, "fraction_target": f,
+            "zone_energy": np.zeros((4, 1, 3))}
+    s = tr.summary(runs)
+    assert s["n_seeds"].tolist() == [2, 1, 1]
+    assert s["target_mean"][0, 0, 0, 0] == pytest.approx(0.45, rel=1e-15)
+    assert s["target_std"][0, 0, 0, 0] == pytest.approx(np.std([0.9, 0.0], ddof=1), rel=1e-15)
+    assert s["target_trapping"][0, 0, 0, 0] == 0.5 and s["target_std"][1].max() == 0.0
+    assert s["fraction_min"][0, 0, 1, 0] == 0.0 and s["fraction_max"][0, 0, 1, 0] == 0.9
