@@ -11,10 +11,12 @@ and the invariants are monitored after every accepted step. Used by
 energy, y = [x, v, s D]; kind 4, the imperfect cradle (ncimperfect), y = [x, v], or with the same
 damping y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
 (kind 1, (dfnls), y = real view of A; kind 3, the damped (dpsdamped), y = real view of A and the two
-dissipated amounts). ``par`` is a float64 array of the kind's parameters: kind 1 reads
-1/(2 tau0) = par[0]; kind 2 gamma = par[0], eta = par[1] and the scale s = par[2] of D in the
-state; kind 3 the ``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`; kind 4 the ``par`` of
-:func:`cradle.integrators._lattice_terms.pack` (site coefficients and damping); kind 0 none.
+dissipated amounts; kind 5, (dpsimperfect) of cradle.models.dps_sites, y = real view of A). ``par`` is
+a float64 array of the kind's parameters: kind 1 reads 1/(2 tau0) = par[0]; kind 2 gamma = par[0],
+eta = par[1] and the scale s = par[2] of D in the state; kind 3 the ``par`` of
+:func:`cradle.integrators._kernels.dps_damped_rhs`; kind 4 the ``par`` of
+:func:`cradle.integrators._lattice_terms.pack` (site coefficients and damping); kind 5 that of
+:func:`cradle.integrators._kernels_dps_sites.pack`; kind 0 none.
 Kind 2 with ``events`` (the default of a damped lattice run) is stepped by
 :func:`cradle.integrators._dop853_onset.run_events` instead: the same steps, except that they end at
 the contact events.
@@ -28,7 +30,7 @@ from types import ModuleType
 import numpy as np
 from numba import njit
 
-from cradle.integrators import _cache, _kernels as K, _lattice_terms as LT
+from cradle.integrators import _cache, _kernels as K, _kernels_dps_sites as KS, _lattice_terms as LT
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -62,6 +64,7 @@ E5 = np.ascontiguousarray(_c.E5, dtype=float)
 
 LATTICE, DPS, LATTICE_DAMPED, DPS_DAMPED = 0, 1, 2, 3
 LATTICE_TERMS = 4
+DPS_SITES = 5   # (dpsimperfect), y = real view of A, par of _kernels_dps_sites.pack
 
 
 @njit(cache=True)
@@ -86,6 +89,8 @@ def _rhs(kind, y, dy, f, F, alpha, mode, par, periodic):
         K.dps_damped_rhs(y, dy, alpha, par, periodic)
     elif kind == 4:
         LT.terms_rhs(y, dy, f, F, alpha, mode, par, periodic)
+    elif kind == 5:
+        KS.dps_sites_rhs(y, dy, alpha, par, periodic)
     else:
         K.dps_rhs(y, dy, alpha, par[0], periodic)
 
@@ -102,6 +107,8 @@ def _monitor(kind, y, alpha, mode, par, periodic, stats):
     (ncimperfect) (:func:`._lattice_terms.terms_energy`, its site coefficients in ``par``)
     kind 3: the same as kind 1 with l2 + Q_l2 and S + Q_S (the balance laws: Q the dissipated amounts, y's
     two last entries)
+    kind 5: stats = [l2_0, H0, max |l2-l2_0|/l2_0, max |H-H0|/|H0|] with the weighted l2 = sum m_n |A_n|^2 and the H
+    of (dpsimperfect)
     """
     if kind == 0:
         n = y.shape[0] // 2
@@ -125,6 +132,12 @@ def _monitor(kind, y, alpha, mode, par, periodic, stats):
         stats[1] = max(stats[1], abs(H + D - stats[0]) / sc)
         stats[2] = max(stats[2], cm)
         stats[3] = H
+    elif kind == 5:
+        l2, H, _pr, _pi = KS.dps_sites_invariants(y, alpha, par, periodic)
+        s0 = stats[0] if stats[0] != 0.0 else 1.0
+        s1 = abs(stats[1]) if stats[1] != 0.0 else 1.0
+        stats[2] = max(stats[2], abs(l2 - stats[0]) / s0)
+        stats[3] = max(stats[3], abs(H - stats[1]) / s1)
     elif kind == 3:
         n = y.shape[0] - 2
         l2, S, _pr, _pi = K.dps_invariants(y[:n], alpha, periodic)

@@ -7,8 +7,9 @@ The site coefficients travel in one float64 array ``par`` (:func:`pack`): a head
 then seven blocks of N entries: m_n, omega_n^2, k_n, delta_n, (delta_n)_+^alpha, s_n (pendulum), 1/m_n.
 
 Precision near rest of a precompressed bond: k (delta^alpha - (delta - d)^alpha), a difference of two nearly
-equal numbers for |d| << delta, is evaluated as -k delta^alpha expm1(alpha log1p(-d/delta)), to full relative
-precision however small d (the linear dispersion is measured at d ~ 1e-4 delta_0).
+equal numbers for |d| << delta, is evaluated as d (delta^2 + delta c + c^2) / (delta^(3/2) + c^(3/2)) for
+alpha = 3/2 (c = delta - d) and as -delta^alpha expm1(alpha log1p(-d/delta)) otherwise, to full relative precision
+however small d (the linear dispersion is measured at d ~ 1e-4 delta_0).
 """
 from __future__ import annotations
 
@@ -84,7 +85,10 @@ def terms_rhs(y, dy, f, F, alpha, mode, par, periodic):
         c = dn - d
         if c > 0.0:
             el, sa = _pow(c, alpha, mode)
-            if dn > 0.0:
+            if dn > 0.0 and mode == 0:
+                # delta^(3/2) - c^(3/2) = (delta^3 - c^3)/(delta^(3/2) + c^(3/2)), delta - c = d: no cancellation
+                diff = d * (dn * dn + dn * c + c * c) / (dpa + el)
+            elif dn > 0.0:
                 diff = -dpa * math.expm1(alpha * math.log1p(-d / dn))   # dpa - el, without cancellation
             else:
                 diff = -el

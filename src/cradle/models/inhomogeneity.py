@@ -26,6 +26,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from cradle.models.physical import MATERIALS
 from cradle.specs.declare import declared, param
 from cradle.specs.values import ConfigError
 
@@ -55,12 +56,27 @@ class Inhomogeneity:
     stiffness: tuple[float, ...] | None = param(None, "Explicit contact stiffnesses k_n of bond n (beads n, n+1; "
                                                 "one per bead, > 0; the last one closes the ring).",
                                                 items=_POSITIVE, minItems=1, maxItems=_MAX_SITES)
+    length: tuple[float, ...] | None = param(None, "String lengths l_n over the reference l_0 (in m with `units: si`; "
+                                             "one per bead, > 0): omega_n = (l_0 / l_n)^(1/2), in place of omega "
+                                             "and sigma.", items=_POSITIVE, minItems=1, maxItems=_MAX_SITES)
+    radius: tuple[float, ...] | None = param(None, "Sphere radii R_n over the reference R_0 (in m with `units: si`; "
+                                             "one per bead, > 0): the masses (R_n/R_0)^3 rho_n/rho_0 unless `mass` "
+                                             "is given, and the stiffnesses of Hertz's law from the radii and "
+                                             "materials unless `stiffness` is given.", items=_POSITIVE, minItems=1,
+                                             maxItems=_MAX_SITES)
+    material: tuple[str, ...] | None = param(None, "Sphere materials (names of cradle.models.physical.MATERIALS, one "
+                                             "per bead), relative to the first bead's: their densities weigh the "
+                                             "masses and their moduli the stiffnesses as `radius` does (radii 1 if "
+                                             "not given).", items={"type": "string", "enum": list(MATERIALS)},
+                                             minItems=1, maxItems=_MAX_SITES)
 
     @property
     def active(self) -> bool:
         """Whether any site differs from the homogeneous chain (False: every coefficient is 1)."""
         return (self.sigma > 0.0 or self.mass_sigma > 0.0
-                or any(v is not None and any(e != 1.0 for e in v) for v in (self.omega, self.mass, self.stiffness)))
+                or any(v is not None and any(e != 1.0 for e in v)
+                       for v in (self.omega, self.mass, self.stiffness, self.length, self.radius))
+                or (self.material is not None and len(set(self.material)) > 1))
 
 
 class Sites(NamedTuple):
@@ -101,9 +117,14 @@ def sites(spec: Inhomogeneity, N: int) -> Sites:
     z_omega = _draw(rng, spec.distribution, N)
     z_mass = _draw(rng, spec.distribution, N)
     drawn = {"omega": 1.0 + spec.sigma * z_omega, "mass": 1.0 + spec.mass_sigma * z_mass}
+    spheres = _spheres(spec, N)
     out = {}
     for key, width in (("omega", "sigma"), ("mass", "mass_sigma")):
         given = _given(spec, key, N)
+        if given is None and key == "omega" and spec.length is not None:
+            given = _given(spec, "length", N) ** -0.5
+        elif given is None and key == "mass" and spheres is not None:
+            given = spheres[0]
         if given is not None:
             out[key] = given
             continue
@@ -114,7 +135,24 @@ def sites(spec: Inhomogeneity, N: int) -> Sites:
                               f"gives {key}[{i}] = {arr[i]:.6g} <= 0 ({spec.distribution} law, N = {N})")
         out[key] = arr
     k = _given(spec, "stiffness", N)
+    if k is None and spheres is not None:
+        k = spheres[1]
     return Sites(mass=out["mass"], omega=out["omega"], stiffness=np.ones(N) if k is None else k)
+
+
+def _spheres(spec: Inhomogeneity, N: int) -> tuple[np.ndarray, np.ndarray] | None:
+    """(masses, stiffnesses) of spheres of the given radii and materials relative to the first bead: m_n =
+    (R_n/R_0)^3 rho_n/rho_0, k_n of :func:`material_stiffness` (bond N-1 closes the ring); None if neither is given."""
+    if spec.radius is None and spec.material is None:
+        return None
+    from cradle.models.physical import lookup_material
+
+    R = np.ones(N) if spec.radius is None else _given(spec, "radius", N)
+    names = spec.material if spec.material is not None else ("steel",) * N
+    if len(names) != N:
+        raise ConfigError(f"inhomogeneity.material = {len(names)} names: must give one per bead, N = {N}")
+    rho = np.array([lookup_material(m).rho for m in names])
+    return (R / R[0]) ** 3 * rho / rho[0], material_stiffness(R, names)
 
 
 def homogeneous(N: int) -> Sites:

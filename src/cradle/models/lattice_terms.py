@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from cradle.models.damping import Damping
-from cradle.models.inhomogeneity import Inhomogeneity, Sites, sites
+from cradle.models.inhomogeneity import Inhomogeneity, Sites, homogeneous, sites
 from cradle.models.onsite import OnSite
 from cradle.models.precompression import Precompression
 from cradle.specs.declare import declared, from_plain, param, plain
@@ -57,6 +57,8 @@ def check(terms: Terms, N: int, bc: str) -> Sites:
     and return its sites: the declared bounds, the draws, and the refusal of a precompressed free chain."""
     if not isinstance(terms, Terms):
         raise ConfigError(f"terms = {terms!r}: must be a cradle.models.lattice_terms.Terms")
+    if terms == NONE:   # the declared defaults: valid, and (nc)'s sites (no schema pass on every call)
+        return homogeneous(N)
     from_plain(Terms, plain(terms), "terms")
     if terms.precompression.delta0 > 0.0 and bc != "periodic":
         raise ConfigError(f"terms.precompression.delta0 = {terms.precompression.delta0!r}: a precompressed chain "
@@ -147,3 +149,16 @@ def hamiltonian(x, v, alpha: float, terms: Terms, s: Sites, bc: str = "periodic"
     bonds = _open(s.stiffness * phi, bc)
     onsite = s.mass * s.omega**2 * terms.onsite.W(x, pendulum_scales(terms, s))
     return np.sum(0.5 * s.mass * v**2 + onsite + bonds, axis=-1)
+
+
+def dissipated_power(x, v, alpha: float, terms: Terms, s: Sites, damping: Damping, bc: str = "periodic"):
+    """P of the damped (ncimperfect), >= 0: gamma sum m_n v_n^2 + sum k_n (max(c^alpha + eta c^(alpha-1) c', 0)
+    - c^alpha) c' over the bonds with overlap c = delta_n - (u_{n+1} - u_n) > 0, c' its rate (dH/dt = -P)."""
+    x = np.asarray(x, dtype=float)
+    v = np.asarray(v, dtype=float)
+    delta = static_overlaps(terms.precompression.delta0, s.stiffness, alpha)
+    c = np.maximum(delta - _elongations(positions(x, terms, s), bc), 0.0)
+    rate = -_elongations(v * jacobian(x, terms, s), bc)
+    push = np.maximum(c**alpha + damping.contact * c ** (alpha - 1.0) * rate, 0.0) * (c > 0.0)
+    contacts = _open(s.stiffness * (push - c**alpha) * rate, bc)
+    return damping.onsite * np.sum(s.mass * v**2, axis=-1) + np.sum(contacts, axis=-1)
