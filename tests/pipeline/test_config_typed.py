@@ -55,7 +55,9 @@ CONFIG = ROOT / "config.yaml"
 # stated): the resolved parameters gain their two blocks and nothing else changes.
 # then issue 25 (JKC 2013's variants): the scenes surface-mode, boomeron, nanopteron and the section
 # beyond: jkc-variants: added; without those four keys the resolved parameters hash to the previous b339a4ca...
-RESOLVED_SHA256 = "577dc814b2e1676ed15ad7fd6856b996adb96df64e3a89d23a72c344235cd240"
+# then issue 25 (trapping): the section beyond: trapping: added (its declared defaults); without it the resolved
+# parameters hash to the previous 000911cc...
+RESOLVED_SHA256 = "87f709a75d33fa06f2463e46edfc75dd8a5e0d4c50cfba5a6350250b05ecdc45"
 
 
 @pytest.fixture(scope="module")
