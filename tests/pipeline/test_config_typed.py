@@ -57,7 +57,7 @@ CONFIG = ROOT / "config.yaml"
 # beyond: jkc-variants: added; without those four keys the resolved parameters hash to the previous b339a4ca...
 # then issue 25 (trapping): the section beyond: trapping: added (its declared defaults); without it the resolved
 # parameters hash to the previous 000911cc...
-RESOLVED_SHA256 = "87f709a75d33fa06f2463e46edfc75dd8a5e0d4c50cfba5a6350250b05ecdc45"
+RESOLVED_SHA256 = "2cdb294ba90677cb6322a060b23a3a47164b3e62d91bc98f2d199014b79ad7ad"
 
 
 @pytest.fixture(scope="module")

@@ -89,7 +89,7 @@ _INC = {"description": "An incident wave.", "type": "string", "enum": list(INCID
 class TrappingReduced:
     striker: list[float] = param([0.3, 1.0], "Striker velocities a.", minItems=1, maxItems=8, items=_V)
     breather: list[float] = param([0.3], "Breather amplitudes a.", minItems=1, maxItems=8, items=_A)
-    back: int = param(20, "Beads behind the breather's profile.", minimum=1, maximum=2000)
+    back: int = param(40, "Beads behind the breather's profile.", minimum=1, maximum=2000)
     length: int = param(20, "Beads of the target (main length).", minimum=4, maximum=400)
     lengths: list[int] = param([], "Other target lengths.", minItems=0, maxItems=4, items=_LEN)
     lead: int = param(100, "Beads of the homogeneous lead.", minimum=10, maximum=2000)
