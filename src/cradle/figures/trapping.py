@@ -110,7 +110,7 @@ def draw(tree):
     E.set_xscale("log")
     plain_log_ticks(E)
     E.set_xlabel("amplitude a")
-    E.set_ylabel("fraction of H(0) in static breathers of the target")
+    E.set_ylabel("static breathers of the target / H(0)")
     E.set_title(f"(e) against amplitude, target of {L0} beads\n(striker: v_0(0) = a; breather: max |x(0)| = a)",
                 fontsize=9)
     E.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
@@ -132,7 +132,7 @@ def draw(tree):
             for x, v in zip(xs, mean[m][order], strict=True):
                 _others(F, x, v)
     F.set_xlabel(r"disorder $\sigma$ (std of $\omega_n - 1$)")
-    F.set_ylabel("fraction of H(0) in static breathers of the target")
+    F.set_ylabel("static breathers of the target / H(0)")
     F.set_title("(f) against sigma and target length,\nat the scan amplitudes", fontsize=9)
     F.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
     legend_outside(F, fontsize=6)
