@@ -53,9 +53,10 @@ CONFIG = ROOT / "config.yaml"
 # then breather-interactions' reduced form enlarged (spacings 4, 6, 8; 2 seeds; 150 periods): 12 cases, not 4.
 # then the sections beyond: desk-toy: and dissipation: added (their declared defaults, the desk toy's cradle
 # stated): the resolved parameters gain their two blocks and nothing else changes.
-# then issue 25 (JKC 2013's variants): the scenes surface-mode, boomeron, nanopteron and the section
-# beyond: jkc-variants: added; without those four keys the resolved parameters hash to the previous b339a4ca...
-RESOLVED_SHA256 = "000911ccfe65d635c6b6f11db4c0629b56210a0b28c7deff80810a02f3974f66"
+# then issue 25: the sections beyond: disorder:, jkc-variants:, trapping: and the scenes surface-mode, boomeron,
+# nanopteron added, and inhomogeneity's length, radius and material (null unless given): the resolved parameters
+# gain those blocks and keys and nothing else changes (checked by removing them at each step).
+RESOLVED_SHA256 = "2cdb294ba90677cb6322a060b23a3a47164b3e62d91bc98f2d199014b79ad7ad"
 
 
 @pytest.fixture(scope="module")

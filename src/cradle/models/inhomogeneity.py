@@ -121,8 +121,9 @@ def sites(spec: Inhomogeneity, N: int) -> Sites:
     out = {}
     for key, width in (("omega", "sigma"), ("mass", "mass_sigma")):
         given = _given(spec, key, N)
-        if given is None and key == "omega" and spec.length is not None:
-            given = _given(spec, "length", N) ** -0.5
+        lengths = _given(spec, "length", N) if key == "omega" else None
+        if given is None and lengths is not None:
+            given = lengths**-0.5
         elif given is None and key == "mass" and spheres is not None:
             given = spheres[0]
         if given is not None:
@@ -147,7 +148,8 @@ def _spheres(spec: Inhomogeneity, N: int) -> tuple[np.ndarray, np.ndarray] | Non
         return None
     from cradle.models.physical import lookup_material
 
-    R = np.ones(N) if spec.radius is None else _given(spec, "radius", N)
+    given = _given(spec, "radius", N)
+    R = np.ones(N) if given is None else given
     names = spec.material if spec.material is not None else ("steel",) * N
     if len(names) != N:
         raise ConfigError(f"inhomogeneity.material = {len(names)} names: must give one per bead, N = {N}")
