@@ -29,6 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
+from doctable import cost_rows
+
 ROOT = Path(__file__).resolve().parents[1]
 BEFORE_SRC = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/tmp/before25/src")
 N = int(sys.argv[2]) if len(sys.argv) > 2 else 200
@@ -106,17 +108,9 @@ def main() -> None:
             runs["now"].append(child(branch_src, method, "kind4" if method == "dop853_numba" else "plain"))
             runs["now, terms=Terms()"].append(child(branch_src, method, "terms"))
         kind4 += [r for r in runs["now"] if "trivial" in r]
-        hashes = {r["sha256"] for rs in runs.values() for r in rs}
-        evals = {r["evals"] for rs in runs.values() for r in rs}
-        ref = np.median([r["per_bead_eval_s"] for r in runs["before"]])
-        ref_min = min(r["per_bead_eval_s"] for r in runs["before"])
-        for name, rs in runs.items():
-            t = np.array([r["per_bead_eval_s"] for r in rs])
-            lines.append(f"| {method} | {name} | {np.median(t) * 1e9:.2f} | {t.min() * 1e9:.2f} | "
-                         f"{t.max() * 1e9:.2f} | {(np.median(t) / ref - 1.0) * 100:+.1f} % | "
-                         f"{(t.min() / ref_min - 1.0) * 100:+.1f} % | "
-                         f"{'yes' if len(hashes) == 1 and len(evals) == 1 else 'NO'} |")
-            print(lines[-1], flush=True)
+        for line in cost_rows(method, runs):
+            lines.append(line)
+            print(line, flush=True)
     k0 = np.array([r["per_bead_eval_s"] for r in kind4])
     rows4 = [f"| kind 0 (now) | {np.median(k0) * 1e9:.2f} | {k0.min() * 1e9:.2f} | 1.00 | {kind4[0]['evals']} | - |"]
     for name in ("trivial", "active"):

@@ -316,31 +316,29 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
                            time.perf_counter() - wall0, damping=damping)
 
 
+def _check_dop853_only(method, law, t0, energy0, what: str) -> None:
+    """Refuse, in one line, what a run with ``what`` (damping, active terms) is not integrated with: a method other
+    than DOP853 in numba, a potential other than Hertz's (``law``), a continued run."""
+    if method != "dop853_numba":
+        raise ValueError(f"method={method!r} with {what}: this lattice is integrated by method='dop853_numba' only "
+                         f"(no symplectic splitting of its forces)")
+    if law != "hertz":
+        raise ValueError(f"potential={law!r} with {what}: declared for Hertz contacts (potential='hertz') only")
+    if t0 != 0.0 or energy0 is not None:
+        raise ValueError(f"t0={t0!r}/energy0={energy0!r} with {what}: such a run cannot be continued (it starts at "
+                         f"t = 0)")
+
+
 def _check_damped(method, law, t0, energy0, damping) -> None:
     """Refuse, in one line, what the damped (ncdamped) is not integrated with (``law``: the potential)."""
-    if method != "dop853_numba":
-        raise ValueError(f"method={method!r} with damping={damping!r}: the damped lattice is integrated by "
-                         f"method='dop853_numba' only (velocity-dependent forces: no symplectic splitting)")
-    if law != "hertz":
-        raise ValueError(f"potential={law!r} with damping={damping!r}: damping is declared for Hertz "
-                         f"contacts (potential='hertz') only")
-    if t0 != 0.0 or energy0 is not None:
-        raise ValueError(f"t0={t0!r}/energy0={energy0!r} with damping={damping!r}: a damped run cannot be "
-                         f"continued (it starts at t = 0 with D = 0)")
+    _check_dop853_only(method, law, t0, energy0, f"damping={damping!r}")
 
 
 def _check_terms(terms, N, bc, method, law, t0, energy0):
     """The sites of active ``terms`` (None for inactive ones, which leave (nc) as it is), refusing in one line
-    what the imperfect cradle is not integrated with (``law``: the potential)."""
+    what the imperfect cradle (ncimperfect) is not integrated with (``law``: the potential)."""
     sites = check_terms(terms, N, bc)
     if not terms.active:
         return None
-    if method != "dop853_numba":
-        raise ValueError(f"method={method!r} with active terms: the imperfect cradle (ncimperfect) is integrated by "
-                         f"method='dop853_numba' only")
-    if law != "hertz":
-        raise ValueError(f"potential={law!r} with active terms: the imperfect cradle has Hertz contacts "
-                         f"(potential='hertz') only")
-    if t0 != 0.0 or energy0 is not None:
-        raise ValueError(f"t0={t0!r}/energy0={energy0!r} with active terms: such a run cannot be continued")
+    _check_dop853_only(method, law, t0, energy0, "active terms (ncimperfect)")
     return sites
