@@ -24,7 +24,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
+from doctable import cost_rows
 
 ROOT = Path(__file__).resolve().parents[1]
 MAIN_SRC = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("/tmp/before/src")
@@ -76,17 +76,9 @@ def main() -> None:
             runs["before"].append(child(MAIN_SRC, method, False))
             runs["now"].append(child(branch_src, method, False))
             runs["now, damping=Damping()"].append(child(branch_src, method, True))
-        hashes = {r["sha256"] for rs in runs.values() for r in rs}
-        evals = {r["evals"] for rs in runs.values() for r in rs}
-        ref = np.median([r["per_bead_eval_s"] for r in runs["before"]])
-        ref_min = min(r["per_bead_eval_s"] for r in runs["before"])
-        for name, rs in runs.items():
-            t = np.array([r["per_bead_eval_s"] for r in rs])
-            lines.append(f"| {method} | {name} | {np.median(t) * 1e9:.2f} | {t.min() * 1e9:.2f} | "
-                         f"{t.max() * 1e9:.2f} | {(np.median(t) / ref - 1.0) * 100:+.1f} % | "
-                         f"{(t.min() / ref_min - 1.0) * 100:+.1f} % | "
-                         f"{'yes' if len(hashes) == 1 and len(evals) == 1 else 'NO'} |")
-            print(lines[-1], flush=True)
+        for line in cost_rows(method, runs):
+            lines.append(line)
+            print(line, flush=True)
     text = "\n".join([
         "# Cost of the conservative lattice with every damping term off: before the damping terms and now",
         "",

@@ -47,3 +47,24 @@ def link_resolves(page: Path, link: str) -> bool:
     target, _, anchor = link.partition("#")
     path = (page.parent / target).resolve() if target else page
     return path.exists() and (not anchor or anchor in anchors(path.read_text()))
+
+
+def cost_rows(method: str, runs: dict[str, list[dict]]) -> list[str]:
+    """Rows of an "every term off" cost table (benchmarks/damping_off_cost.py, terms_off_cost.py): per code
+    variant, ns per bead and force evaluation (median, min, max over the processes), the median's and the minimum's
+    difference from the first variant's, and whether every process gave bitwise the same result and evaluations."""
+    import numpy as np
+
+    hashes = {r["sha256"] for rs in runs.values() for r in rs}
+    evals = {r["evals"] for rs in runs.values() for r in rs}
+    first = next(iter(runs.values()))
+    ref = np.median([r["per_bead_eval_s"] for r in first])
+    ref_min = min(r["per_bead_eval_s"] for r in first)
+    lines = []
+    for name, rs in runs.items():
+        t = np.array([r["per_bead_eval_s"] for r in rs])
+        lines.append(f"| {method} | {name} | {np.median(t) * 1e9:.2f} | {t.min() * 1e9:.2f} | "
+                     f"{t.max() * 1e9:.2f} | {(np.median(t) / ref - 1.0) * 100:+.1f} % | "
+                     f"{(t.min() / ref_min - 1.0) * 100:+.1f} % | "
+                     f"{'yes' if len(hashes) == 1 and len(evals) == 1 else 'NO'} |")
+    return lines

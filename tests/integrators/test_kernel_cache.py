@@ -129,7 +129,8 @@ def test_kernels_of_this_process_are_cached_in_the_keyed_folder():
 
 def test_key_sources_are_the_kernel_modules_and_their_cradle_imports():
     names = [p.name for p in _cache.kernel_sources()]
-    assert names == ["_cache.py", "_dop853.py", "_dop853_onset.py", "_kernels.py", "_onset.py", "_onset_impulse.py"]
+    assert names == ["_cache.py", "_dop853.py", "_dop853_onset.py", "_kernels.py", "_kernels_dps_sites.py",
+                     "_lattice_terms.py", "_onset.py", "_onset_impulse.py"]
     # every module of the package that uses numba is covered
     uses_numba = {p.name for p in _cache.PACKAGE_DIR.rglob("*.py")
                   if re.search(r"^\s*(from|import) numba", p.read_text(), re.M)}

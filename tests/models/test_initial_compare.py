@@ -63,3 +63,18 @@ def test_spatial_dft_on_gamma_star():
     # the definition, term by term, at one k
     j = 17
     assert xh[j] == pytest.approx(np.sum(np.cos(q * n) * np.exp(-1j * n * k[j])), abs=1e-9)
+
+
+def test_a_kicked_end_bead_swings_alone_as_a_free_pendulum():
+    """A free chain's first bead kicked away from the chain (velocity < 0) touches nothing until it swings
+    back to x = 0 at t = pi: x_0(t) = v sin t exactly, the other beads at rest (kick of JKC 2013)."""
+    from cradle.integrators import integrate_lattice
+    from cradle.models.initial import kick
+
+    v = -0.05
+    data = kick(8, 1.5, velocity=v, site=0, bc="free")
+    assert data.x0.tolist() == [0.0] * 8 and data.v0[0] == v and data.A0[0] == -0.5j * v
+    t = np.linspace(0.0, 3.0, 31)
+    sol = integrate_lattice(data.x0, data.v0, t, alpha=1.5, bc="free", method="dop853_numba", rtol=1e-12)
+    np.testing.assert_allclose(sol.x[:, 0], v * np.sin(t), rtol=0, atol=1e-12 * abs(v))
+    assert np.all(sol.x[:, 1:] == 0.0)

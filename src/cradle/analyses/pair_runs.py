@@ -64,7 +64,6 @@ def run_pair(data, t_end: float, alpha: float = 1.5, bc: str = "periodic", model
             x = compare.approximate_displacement(sol.A, times, data.eps)
             rho0, rho1 = norm_density(model, A=sol.A[0]), norm_density(model, A=sol.A[-1])
             wall = sol.wall_time_s
-        force = lattice.bond_forces(x, alpha, bc)
         oc = interactions.classify(times, x, period, periodic=periodic)
         c0 = oc.centre[0] if oc.centre.size else np.nan
         c1 = oc.centre[-1] if oc.centre.size else np.nan
@@ -72,6 +71,6 @@ def run_pair(data, t_end: float, alpha: float = 1.5, bc: str = "periodic", model
                "norm_share_end": largest_share(rho1, c1, N, periodic), "wall_time_s": float(wall),
                "periods": float(times[-1] / period)}
         if keep:
-            res.update({"t": times, "x": x, "force": force})
+            res.update({"t": times, "x": x, "force": lattice.bond_forces(x, alpha, bc)})
         out[model] = res
     return out

@@ -59,6 +59,11 @@ VARIABLES: dict[str, Var] = {
     "v0": Var(("n",), "initial velocity dx_n/dt(0)"),
     "A0_re": Var(("n",), "real part of A_n(0)"),
     "A0_im": Var(("n",), "imaginary part of A_n(0)"),
+    # the site coefficients of the imperfect cradle (ncimperfect)
+    "omega_n": Var(("n",), "on-site angular frequency omega_n of bead n, in units of omega_0 (ncimperfect)"),
+    "mass_n": Var(("n",), "mass m_n of bead n relative to the reference bead (ncimperfect)"),
+    "stiffness_n": Var(("n",), "contact stiffness k_n of bond n (beads n, n+1) relative to the reference pair "
+                               "(ncimperfect)"),
     "rho1": Var(("n",), "noise rho_n^(1) of (perturb)"),
     "rho2": Var(("n",), "noise rho_n^(2) of (perturb)"),
     # stationary DpS (dpsstn) and the map G

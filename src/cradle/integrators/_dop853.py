@@ -8,11 +8,15 @@ shortened so that they end exactly on the output times (no dense output),
 and the invariants are monitored after every accepted step. Used by
 ``method="dop853_numba"`` of :func:`cradle.integrators.integrate_lattice`
 (kind 0, (nc)/(meca), y = [x, v]; kind 2, (ncdamped) with its dissipated
-energy, y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
+energy, y = [x, v, s D]; kind 4, the imperfect cradle (ncimperfect), y = [x, v], or with the same
+damping y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
 (kind 1, (dfnls), y = real view of A; kind 3, the damped (dpsdamped), y = real view of A and the two
-dissipated amounts). ``par`` is a float64 array of the kind's parameters: kind 1 reads
-1/(2 tau0) = par[0]; kind 2 gamma = par[0], eta = par[1] and the scale s = par[2] of D in the
-state; kind 3 the ``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`; kind 0 none.
+dissipated amounts; kind 5, (dpsimperfect) of cradle.models.dps_sites, y = real view of A). ``par`` is
+a float64 array of the kind's parameters: kind 1 reads 1/(2 tau0) = par[0]; kind 2 gamma = par[0],
+eta = par[1] and the scale s = par[2] of D in the state; kind 3 the ``par`` of
+:func:`cradle.integrators._kernels.dps_damped_rhs`; kind 4 the ``par`` of
+:func:`cradle.integrators._lattice_terms.pack` (site coefficients and damping); kind 5 that of
+:func:`cradle.integrators._kernels_dps_sites.pack`; kind 0 none.
 Kind 2 with ``events`` (the default of a damped lattice run) is stepped by
 :func:`cradle.integrators._dop853_onset.run_events` instead: the same steps, except that they end at
 the contact events.
@@ -26,7 +30,7 @@ from types import ModuleType
 import numpy as np
 from numba import njit
 
-from cradle.integrators import _cache, _kernels as K
+from cradle.integrators import _cache, _kernels as K, _kernels_dps_sites as KS, _lattice_terms as LT
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -59,6 +63,8 @@ E3 = np.ascontiguousarray(_c.E3, dtype=float)
 E5 = np.ascontiguousarray(_c.E5, dtype=float)
 
 LATTICE, DPS, LATTICE_DAMPED, DPS_DAMPED = 0, 1, 2, 3
+LATTICE_TERMS = 4
+DPS_SITES = 5   # (dpsimperfect), y = real view of A, par of _kernels_dps_sites.pack
 
 
 @njit(cache=True)
@@ -68,6 +74,8 @@ def _work_size(kind, n):
         return n // 2
     if kind == 2:
         return (n - 1) // 2
+    if kind == 4:   # y = [x, v] or [x, v, s D]
+        return n // 2
     return 1
 
 
@@ -79,20 +87,28 @@ def _rhs(kind, y, dy, f, F, alpha, mode, par, periodic):
         K.lattice_damped_rhs(y, dy, f, F, alpha, mode, par[0], par[1], par[2], periodic)
     elif kind == 3:
         K.dps_damped_rhs(y, dy, alpha, par, periodic)
+    elif kind == 4:
+        LT.terms_rhs(y, dy, f, F, alpha, mode, par, periodic)
+    elif kind == 5:
+        KS.dps_sites_rhs(y, dy, alpha, par, periodic)
     else:
         K.dps_rhs(y, dy, alpha, par[0], periodic)
 
 
 @njit(cache=True)
-def _monitor(kind, y, alpha, mode, periodic, stats):
+def _monitor(kind, y, alpha, mode, par, periodic, stats):
     """Update the invariant drifts in ``stats`` after an accepted step.
 
     kind 0: stats = [H0, max |H-H0|/|H0|, max compression, H]
     kind 1: stats = [l2_0, S0, max |l2-l2_0|/l2_0, max |S-S0|/S0] (H = -S/((alpha+1) tau0))
     kind 2: stats = [H0, max |H+D-H0|/|H0|, max compression, H, s] (y[-1] = s D): the stored plus
     dissipated energy H + D is conserved by (ncdamped), its drift is the integrator's error
+    kind 4: the same as kind 2 (D = 0 on y = [x, v] without damping) with the generalised (ham) of
+    (ncimperfect) (:func:`._lattice_terms.terms_energy`, its site coefficients in ``par``)
     kind 3: the same as kind 1 with l2 + Q_l2 and S + Q_S (the balance laws: Q the dissipated amounts, y's
     two last entries)
+    kind 5: stats = [l2_0, H0, max |l2-l2_0|/l2_0, max |H-H0|/|H0|] with the weighted l2 = sum m_n |A_n|^2 and the H
+    of (dpsimperfect)
     """
     if kind == 0:
         n = y.shape[0] // 2
@@ -108,6 +124,20 @@ def _monitor(kind, y, alpha, mode, periodic, stats):
         stats[1] = max(stats[1], abs(H + y[2 * n] / stats[4] - stats[0]) / sc)
         stats[2] = max(stats[2], cm)
         stats[3] = H
+    elif kind == 4:
+        n = y.shape[0] // 2
+        H, cm = LT.terms_energy(y[:n], y[n:2 * n], alpha, mode, par, periodic)
+        sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
+        D = y[2 * n] / stats[4] if y.shape[0] > 2 * n else 0.0
+        stats[1] = max(stats[1], abs(H + D - stats[0]) / sc)
+        stats[2] = max(stats[2], cm)
+        stats[3] = H
+    elif kind == 5:
+        l2, H, _pr, _pi = KS.dps_sites_invariants(y, alpha, par, periodic)
+        s0 = stats[0] if stats[0] != 0.0 else 1.0
+        s1 = abs(stats[1]) if stats[1] != 0.0 else 1.0
+        stats[2] = max(stats[2], abs(l2 - stats[0]) / s0)
+        stats[3] = max(stats[3], abs(H - stats[1]) / s1)
     elif kind == 3:
         n = y.shape[0] - 2
         l2, S, _pr, _pi = K.dps_invariants(y[:n], alpha, periodic)
@@ -223,7 +253,7 @@ def dop853_run(kind, y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3,
             fy[i] = Ks[_NS, i]
         t = t_target if clipped else t + h_try
         taken += 1
-        _monitor(kind, y, alpha, mode, periodic, stats)
+        _monitor(kind, y, alpha, mode, par, periodic, stats)
         if clipped:
             row = k + 1 - shift
             if row >= 0:

@@ -14,6 +14,11 @@ every accepted step.
 With dissipation, (dpsdamped) of :mod:`cradle.models.dps_damped` (``damping=DpsDamping(...)``), the run is
 :mod:`cradle.integrators.dps_damped_solver`'s: the same solvers on the state extended by the two dissipated
 amounts, and the drifts become the residuals of the balance laws.
+
+With site-dependent coefficients, (dpsimperfect) of :mod:`cradle.models.dps_sites` (``sites=DpsSites(...)``:
+detuning, masses, contact stiffnesses, on-site quartic, precompression), the right-hand side is
+:func:`cradle.integrators._kernels_dps_sites.dps_sites_rhs` (kind 5 of the numba DOP853), and the monitored
+invariants are the weighted l2 norm sum m_n |A_n|^2 and the H of (dpsimperfect).
 """
 from __future__ import annotations
 
@@ -27,6 +32,7 @@ from cradle.integrators._scipy_steps import stepped
 from cradle.integrators._validate import check_state, check_times
 from cradle.models.dps import tau0 as _tau0
 from cradle.models.dps_damped import DpsDamping
+from cradle.models.dps_sites import DpsSites
 from cradle.specs.checked import checked
 
 #: scipy.integrate classes by name (imported when used)
@@ -62,8 +68,11 @@ class DpsSolution:
     alone, the on-site one damps it exactly); all three measure the integrator's accuracy.
     l2, energy, l2_dissipated, energy_dissipated : ndarray, shape (T,), or None
         With damping: sum |A_n|^2, H, and the integrals over [0, tau] of -d(l2)/dtau >= 0 and of dH/dtau >= 0
-        (None without damping).
+        (None without damping). With ``sites``: l2 = sum m_n |A_n|^2 and energy = H of (dpsimperfect), the
+        invariants the drifts are measured on (``P_drift`` is then that of sum m_n A_n, conserved only without
+        detuning and on-site quartic).
     damping : DpsDamping or None
+    sites : DpsSites or None
     n_steps : int
         Accepted steps.
     n_rhs_evals : int
@@ -90,11 +99,12 @@ class DpsSolution:
     l2_dissipated: np.ndarray | None = None
     energy_dissipated: np.ndarray | None = None
     damping: DpsDamping | None = None
+    sites: DpsSites | None = None
 
 
 @checked(method="dpsMethod")
 def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", rtol=DEFAULT_RTOL, atol=None,
-                  progress=None, damping: DpsDamping | None = None) -> DpsSolution:
+                  progress=None, damping: DpsDamping | None = None, sites: DpsSites | None = None) -> DpsSolution:
     """Integrate the DpS equation (dfnls) with tau0 = tau0(alpha) of :mod:`cradle.models.dps`.
 
     Parameters
@@ -123,12 +133,20 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
         gamma~ and eta of (dpsdamped) (:func:`cradle.models.dps_damped.slow_damping` converts a lattice
         :class:`cradle.models.damping.Damping`); None or inactive: (dfnls), exactly the undamped run.
         Integrated by :mod:`cradle.integrators.dps_damped_solver`.
+    sites : DpsSites, optional
+        The site-dependent coefficients of (dpsimperfect) (:func:`cradle.models.dps_sites.dps_sites` builds them
+        from a lattice's masses, frequencies, stiffnesses, on-site term and precompression); None: (dfnls), the
+        run above unchanged. Not with an active ``damping``.
 
     Returns
     -------
     DpsSolution
     """
     wall0 = time.perf_counter()
+    if sites is not None:
+        if damping is not None and dps_damped_solver_active(damping):
+            raise ValueError("integrate_dps: sites and damping together are not implemented (give one of them)")
+        return _integrate_sites(_DpsRun(A0, tau_out, alpha, bc, rtol, atol, progress), sites, method, wall0)
     if damping is not None:
         from cradle.integrators import dps_damped_solver
 
@@ -171,6 +189,70 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
     max_l2, max_E = drifts
     return DpsSolution(tau_out, A, l2d, Ed, Pd, float(max_l2), float(max_E), n_steps,
                        time.perf_counter() - wall0, method, float(rtol), float(atol), nfev)
+
+
+def dps_damped_solver_active(damping: DpsDamping) -> bool:
+    """Is ``damping`` (validated) an active damping of (dpsdamped)?"""
+    from cradle.integrators import dps_damped_solver
+
+    return bool(dps_damped_solver.validated(damping).active)
+
+
+def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -> DpsSolution:
+    """(dpsimperfect) from run.y0: kind 5 of the numba DOP853, or scipy's solvers on the same compiled
+    right-hand side."""
+    from cradle.integrators import _kernels_dps_sites as KS
+    from cradle.models import dps_sites as S
+
+    if not isinstance(sites, DpsSites):
+        raise ValueError(f"sites must be a cradle.models.dps_sites.DpsSites, got {type(sites).__name__}")
+    if sites.N != run.N:
+        raise ValueError(f"sites has {sites.N} sites, A0 has {run.N}")
+    alpha, periodic = run.alpha, run.periodic
+    t0 = _tau0(alpha)
+    par = KS.pack(sites, S.contact_tables(alpha) if sites.compressed else None, t0, S.PSI_MAX)
+    l20, H0, pr0, pi0 = KS.dps_sites_invariants(run.y0, alpha, par, periodic)
+    P0 = complex(pr0, pi0)
+    l2s = l20 if l20 != 0.0 else 1.0
+    Hs = abs(H0) if H0 != 0.0 else 1.0
+    tau_out, T, N = run.tau_out, run.tau_out.size, run.N
+
+    def invariants(Y):
+        out = np.empty((5, Y.shape[0]))
+        for i, y in enumerate(Y):
+            l2, H, pr, pi = KS.dps_sites_invariants(np.ascontiguousarray(y), alpha, par, periodic)
+            out[:, i] = (abs(l2 - l20) / l2s, abs(H - H0) / Hs, abs(complex(pr, pi) - P0) / run.P_scale, l2, H)
+        return out
+
+    if method == "dop853_numba":
+        stats = np.array([l20, H0, 0.0, 0.0])
+        Y, n_steps, nfev = _dop853.run_dop853(_dop853.DPS_SITES, run.y0, tau_out, run.rtol, run.atol, alpha, 0, par,
+                                              periodic, stats, run.progress)
+        max_l2, max_E = float(stats[2]), float(stats[3])
+    else:
+        def fun(t, y):
+            dy = np.empty_like(y)
+            KS.dps_sites_rhs(y, dy, alpha, par, periodic)
+            return dy
+
+        Y = np.empty((T, 2 * N))
+        drifts = [0.0, 0.0]
+
+        def store(i, y):
+            Y[i] = y
+
+        def on_step(y, tau):
+            l2, H, _pr, _pi = KS.dps_sites_invariants(y, alpha, par, periodic)
+            drifts[0] = max(drifts[0], abs(l2 - l20) / l2s)
+            drifts[1] = max(drifts[1], abs(H - H0) / Hs)
+
+        n_steps, nfev = stepped(SCIPY_DPS_METHODS[method], fun, run.y0, tau_out, run.rtol, run.atol, store, on_step,
+                                run.progress, method)
+        max_l2, max_E = drifts
+    inv = invariants(Y)
+    return DpsSolution(tau_out, np.ascontiguousarray(Y).view(np.complex128), inv[0], inv[1], inv[2], float(max_l2),
+                       float(max_E), int(n_steps), time.perf_counter() - wall0, method, float(run.rtol),
+                       float(run.atol), int(nfev), l2=inv[3], energy=inv[4], sites=sites)
 
 
 class _DpsRun:

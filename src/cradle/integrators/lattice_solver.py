@@ -64,12 +64,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from cradle.integrators import _kernels as K
+from cradle.integrators import _kernels as K, lattice_adaptive as LA
 from cradle.integrators._validate import check_state, check_times
 from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, run_dop853_damped, run_dop853_numba, run_scipy
 from cradle.integrators.lattice_splitting import SPLITTING_METHODS, run_splitting
 from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bounds, default_dt
 from cradle.models.damping import Damping
+from cradle.models.lattice_terms import Terms, check as check_terms
 from cradle.specs.checked import checked
 
 METHODS = SPLITTING_METHODS + ADAPTIVE_METHODS
@@ -125,6 +126,11 @@ class LatticeSolution:
 
     With damping, ``energy_drift`` is max over every step of |H(t) + D(t) - H(0)| / |H(0)|: the stored
     plus dissipated energy is conserved by (ncdamped), so its drift is the integrator's error.
+
+    With active ``terms`` (the imperfect cradle (ncimperfect) of :mod:`cradle.models.lattice_terms`), ``energy``
+    is its generalised (ham) and ``energy_drift`` the drift of H + D; ``max_compression`` the largest bond
+    overlap delta_n - (u_{n+1} - u_n); for the pendulum on-site potential ``x`` and ``v`` are the arc variable
+    (the angle of bead n is s_n x_n, its horizontal position sin(s_n x_n)/s_n) and its rate.
     """
 
     t: np.ndarray
@@ -145,6 +151,7 @@ class LatticeSolution:
     n_onset_corrections: int = 0
     dissipated: np.ndarray = field(default_factory=lambda: np.zeros(0))
     damping: Damping | None = None
+    terms: Terms | None = None
 
     def __post_init__(self) -> None:
         if self.dissipated.size == 0:   # no damping: nothing dissipated at any output time
@@ -154,7 +161,7 @@ class LatticeSolution:
 @checked(method="latticeMethod")
 def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", dt=None, dt_factor=None,
                       rtol=None, atol=None, potential="hertz", progress=None, t0=0.0,
-                      energy0=None, damping=None) -> LatticeSolution:
+                      energy0=None, damping=None, terms=None) -> LatticeSolution:
     """Integrate the lattice (nc) (Hertz V0 of (vhertz)) or (meca) (kappa = 1), or the damped (ncdamped).
 
     Parameters
@@ -211,6 +218,13 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
         argument. Active: Hertz contacts only, method "dop853_numba" only (see the module
         docstring), no continuation (t0 = 0, no energy0); the result's ``dissipated`` holds the
         dissipated energy D and ``energy_drift`` the drift of H + D.
+    terms : Terms, optional
+        The terms of the imperfect cradle (ncimperfect) (:class:`cradle.models.lattice_terms.Terms`: site
+        masses, on-site frequencies and contact stiffnesses, precompression, on-site potential). None or an
+        inactive one: (nc), integrated exactly as without the argument. Active: Hertz contacts only, method
+        "dop853_numba" only (kind 4 of :mod:`cradle.integrators._dop853`, damping allowed on top, no
+        contact-event location), no continuation; validated with its sites drawn before any work (one
+        ConfigError line naming key and value). For the pendulum x is the arc variable.
 
     Returns
     -------
@@ -235,7 +249,10 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
     if damping is not None and not isinstance(damping, Damping):
         raise ValueError(f"damping must be a cradle.models.damping.Damping or None, got damping={damping!r}")
     damped = damping is not None and damping.active
-    if damped:
+    sites = None
+    if terms is not None:
+        sites = _check_terms(terms, x0.size, bc, method, potential, t0, energy0)
+    if damped and sites is None:
         _check_damped(method, potential, t0, energy0, damping)
     if (t0 != 0.0 or energy0 is not None) and method not in SPLITTING_METHODS:
         raise ValueError(f"t0/energy0 (continuing a run) need a fixed-step splitting method, got method={method!r} "
@@ -278,6 +295,12 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
     if atol is None:
         amp = max(float(np.max(np.abs(x0))), float(np.max(np.abs(v0))))
         atol = rtol * amp if amp > 0.0 else rtol
+    if sites is not None:
+        run = LA.run_dop853_terms(x0, v0, t_out, rtol, atol, alpha, mode, periodic, terms, sites,
+                                  damping if damped else None, progress)
+        X, V, E, D, drift, n_steps, nfev, cmax = run
+        return LatticeSolution(t_out, X, V, E, drift, method, None, rtol, atol, n_steps, nfev, cmax,
+                               time.perf_counter() - wall0, dissipated=D, damping=damping, terms=terms)
     if damped:
         X, V, E, D, drift, n_steps, nfev, cmax = run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic,
                                                                    damping, progress)
@@ -293,14 +316,29 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
                            time.perf_counter() - wall0, damping=damping)
 
 
+def _check_dop853_only(method, law, t0, energy0, what: str) -> None:
+    """Refuse, in one line, what a run with ``what`` (damping, active terms) is not integrated with: a method other
+    than DOP853 in numba, a potential other than Hertz's (``law``), a continued run."""
+    if method != "dop853_numba":
+        raise ValueError(f"method={method!r} with {what}: this lattice is integrated by method='dop853_numba' only "
+                         f"(no symplectic splitting of its forces)")
+    if law != "hertz":
+        raise ValueError(f"potential={law!r} with {what}: declared for Hertz contacts (potential='hertz') only")
+    if t0 != 0.0 or energy0 is not None:
+        raise ValueError(f"t0={t0!r}/energy0={energy0!r} with {what}: such a run cannot be continued (it starts at "
+                         f"t = 0)")
+
+
 def _check_damped(method, law, t0, energy0, damping) -> None:
     """Refuse, in one line, what the damped (ncdamped) is not integrated with (``law``: the potential)."""
-    if method != "dop853_numba":
-        raise ValueError(f"method={method!r} with damping={damping!r}: the damped lattice is integrated by "
-                         f"method='dop853_numba' only (velocity-dependent forces: no symplectic splitting)")
-    if law != "hertz":
-        raise ValueError(f"potential={law!r} with damping={damping!r}: damping is declared for Hertz "
-                         f"contacts (potential='hertz') only")
-    if t0 != 0.0 or energy0 is not None:
-        raise ValueError(f"t0={t0!r}/energy0={energy0!r} with damping={damping!r}: a damped run cannot be "
-                         f"continued (it starts at t = 0 with D = 0)")
+    _check_dop853_only(method, law, t0, energy0, f"damping={damping!r}")
+
+
+def _check_terms(terms, N, bc, method, law, t0, energy0):
+    """The sites of active ``terms`` (None for inactive ones, which leave (nc) as it is), refusing in one line
+    what the imperfect cradle (ncimperfect) is not integrated with (``law``: the potential)."""
+    sites = check_terms(terms, N, bc)
+    if not terms.active:
+        return None
+    _check_dop853_only(method, law, t0, energy0, "active terms (ncimperfect)")
+    return sites

@@ -118,6 +118,121 @@ def humps(profile, rel: float = REL, dip: float = DIP, periodic: bool = True):
     return centres[keep], tops[keep]
 
 
+def humps_all(P, rel: float = REL, dip: float = DIP, periodic: bool = True):
+    """:func:`humps` of every row of ``P`` (K, N) at once: (centres (K, H), tops (K, H), counts (K,)), row k's
+    humps in its first ``counts[k]`` columns, largest top first, NaN after them (H >= 2).
+
+    The same steps as :func:`humps`, with the loops over rows turned into array operations (the
+    remaining Python loops run over the few candidates of a row, or the few sites of a hump's half
+    width): bitwise the same centres and tops (the weighted sums are numpy's sums of the same
+    contiguous windows, so summed in the same order).
+    """
+    P = np.asarray(P, dtype=float)
+    K, N = P.shape
+    centres, tops = np.full((K, 2), np.nan), np.full((K, 2), np.nan)
+    counts = np.zeros(K, dtype=np.int64)
+    if K == 0 or N == 0:
+        return centres, tops, counts
+    ok = np.all(np.isfinite(P), axis=1)
+    ok[ok] = P[ok].max(axis=1) > 0
+    if not ok.any():
+        return centres, tops, counts
+    if periodic:
+        left, right = np.roll(P, 1, axis=1), np.roll(P, -1, axis=1)
+    else:
+        edge = np.full((K, 1), -np.inf)
+        left, right = np.hstack((edge, P[:, :-1])), np.hstack((P[:, 1:], edge))
+    with np.errstate(invalid="ignore"):
+        cand = (P > left) & (P >= right) & (P >= rel * P.max(axis=1, keepdims=True)) & ok[:, None]
+    flat = ok & ~cand.any(axis=1)               # a constant profile: its first largest site
+    cand[np.flatnonzero(flat), np.argmax(P[flat], axis=1)] = True
+    # the candidates of each row, in increasing site order, padded with the sentinel N (sorts last)
+    n = cand.sum(axis=1)
+    rows, sites = np.nonzero(cand)
+    peaks = np.full((K, int(n.max())), N, dtype=np.int64)
+    peaks[rows, np.arange(rows.size) - np.repeat(np.cumsum(n) - n, n)] = sites
+    # join neighbours separated by a shallow dip, one pair per row and pass: the first pair (in site
+    # order, the wrap-around pair last) whose lowest site between is >= dip x the smaller top
+    active = n > 1
+    while active.any():
+        r = np.flatnonzero(active)
+        pk, nr = peaks[r], n[r]
+        M = pk.shape[1]
+        kk = np.arange(M)[None, :]
+        valid = kk < (nr if periodic else nr - 1)[:, None]
+        jpos = (kk + 1) % nr[:, None]
+        i = np.where(valid, pk, 0)
+        j = np.where(valid, np.take_along_axis(pk, jpos, axis=1), 0)
+        # the sites strictly between i and j going up, on the row written twice (a gap across the seam)
+        start, stop = i + 1, np.where(j > i, j, j + N)
+        base = (np.arange(r.size) * 2 * N)[:, None]
+        doubled = np.hstack((P[r], P[r])).ravel()
+        some = valid & (stop > start)
+        bounds = np.stack(((base + start)[some], (base + stop)[some]), axis=1).ravel()
+        pi, pj = P[r[:, None], i], P[r[:, None], j]
+        smaller = np.minimum(pi, pj)
+        low = smaller.copy()
+        if bounds.size:
+            low[some] = np.minimum.reduceat(doubled, bounds)[::2]
+        joined = valid & (low >= dip * smaller)
+        hit = joined.any(axis=1)
+        active[r[~hit]] = False
+        if not hit.any():
+            break
+        h = np.flatnonzero(hit)
+        k = np.argmax(joined[h], axis=1)
+        drop_i = pi[h, k] < pj[h, k]
+        col = np.where(drop_i, k, jpos[h, k])
+        peaks[r[h], col] = N
+        peaks[r[h]] = np.sort(peaks[r[h]], axis=1)
+        n[r[h]] -= 1
+        active[r[h]] &= n[r[h]] > 1
+    # each peak's centre: the weighted mean position of the sites around it down to half its top
+    rows, pos = np.nonzero(np.arange(peaks.shape[1])[None, :] < n[:, None])
+    i = peaks[rows, pos]
+    top = P[rows, i]
+    half_top = 0.5 * top
+    lo, hi = i.copy(), i.copy()
+    for step, end in ((-1, lo), (1, hi)):
+        going = np.ones(i.size, dtype=bool)
+        while going.any():
+            nxt = end + step
+            inside = nxt > i - N // 2 if step < 0 else nxt < i + N // 2
+            if not periodic:
+                inside &= (nxt >= 0) & (nxt < N)
+            going &= inside & (P[rows, nxt % N] >= half_top)
+            end[going] = nxt[going]
+    width = hi - lo + 1
+    cen = np.empty(i.size)
+    for L in np.unique(width):
+        at = np.flatnonzero(width == L)
+        idx = lo[at, None] + np.arange(L)[None, :]
+        w = P[rows[at, None], idx % N]
+        cen[at] = np.sum(w * idx, axis=1) / np.sum(w, axis=1)
+    if periodic:
+        cen = np.remainder(cen, N)
+    # per row: largest top first (equal tops: the later peak first, as a reversed stable sort)
+    order = np.lexsort((-pos, -top, rows))
+    rows, cen, top = rows[order], cen[order], top[order]
+    rank = np.arange(rows.size) - np.repeat(np.cumsum(n) - n, n)
+    H = max(2, int(n.max()))
+    C, T = np.full((K, H), np.nan), np.full((K, H), np.nan)
+    C[rows, rank], T[rows, rank] = cen, top
+    # two tops whose centres fall within one site of each other are one hump: keep the larger
+    keep = np.zeros((K, H), dtype=bool)
+    for k in range(H):
+        far = k < n
+        for m in range(k):
+            far &= ~keep[:, m] | (ring_distance(C[:, k], C[:, m], N, periodic) >= 1.0)
+        keep[:, k] = far
+    counts = keep.sum(axis=1).astype(np.int64)
+    r, c = np.nonzero(keep)
+    slot = np.arange(r.size) - np.repeat(np.cumsum(counts) - counts, counts)
+    centres, tops = np.full((K, H), np.nan), np.full((K, H), np.nan)
+    centres[r, slot], tops[r, slot] = C[r, c], T[r, c]
+    return centres, tops, counts
+
+
 def ring_distance(a, b, N: int, periodic: bool = True):
     """|a - b|, on a ring of N sites the shorter way round."""
     d = np.abs(np.asarray(a, dtype=float) - np.asarray(b, dtype=float))
@@ -125,10 +240,19 @@ def ring_distance(a, b, N: int, periodic: bool = True):
 
 
 def running_median(x, half: int):
-    """Median of x over the window [k - half, k + half] (cut at the ends); integer input, integer output."""
+    """Median of x over the window [k - half, k + half] (cut at the ends); integer input, integer output.
+
+    The full windows are taken at once (a median of an odd count is its middle value, the same whether
+    taken window by window or along an axis); only the ``2 half`` cut windows at the ends one by one."""
     x = np.asarray(x)
     out = np.empty_like(x)
-    for k in range(x.size):
+    width = 2 * half + 1
+    if x.ndim == 1 and half >= 0 and x.size >= width:
+        out[half:x.size - half] = np.median(np.lib.stride_tricks.sliding_window_view(x, width), axis=1)
+        cut = [*range(half), *range(x.size - half, x.size)]
+    else:
+        cut = list(range(x.size))
+    for k in cut:
         out[k] = np.median(x[max(0, k - half):k + half + 1])
     return out
 
@@ -159,33 +283,41 @@ def _unwrap(c, N, periodic):
 def _crossed(cent, counts, N, periodic) -> bool:
     """Whether two tracked humps come out on the other side of each other: the signed distance of the
     two tracks (second minus first, on the ring the shorter way) before the first overlap and after
-    the last has opposite signs; during an overlap each track coasts at its last velocity."""
+    the last has opposite signs; during an overlap each track coasts at its last velocity.
+
+    ``cent`` (K, >= 2): the centres of each period's humps, largest first (:func:`humps_all`). The
+    tracks are followed in Python floats, element by element the operations of the two-vector form."""
     two = np.flatnonzero(counts >= 2)
     if two.size < 2 or np.all(counts[two[0]:two[-1] + 1] >= 2):
         return False
-    k0, k1 = two[0], two[-1]
-    pos = np.array(cent[k0][:2], dtype=float)
-    vel = np.zeros(2)
+    k0, k1 = int(two[0]), int(two[-1])
+    first, second, many = cent[:, 0].tolist(), cent[:, 1].tolist(), (counts >= 2).tolist()
+
+    def dist(a, b):
+        d = abs(a - b)
+        return min(d, N - d) if periodic else d
+
+    p0, p1 = first[k0], second[k0]
+    v0 = v1 = 0.0
     start_sign = None
     for k in range(k0, k1 + 1):
-        guess = pos + vel
-        if counts[k] >= 2:
-            c = np.asarray(cent[k][:2], dtype=float)
-            keep = ring_distance(c, guess, N, periodic).sum()
-            swap = ring_distance(c[::-1], guess, N, periodic).sum()
-            c = c if keep <= swap else c[::-1]
+        g0, g1 = p0 + v0, p1 + v1
+        if many[k]:
+            c0, c1 = first[k], second[k]
+            if not dist(c0, g0) + dist(c1, g1) <= dist(c1, g0) + dist(c0, g1):
+                c0, c1 = c1, c0
             # unwrap each track next to its guess
             if periodic:
-                c = guess + ((c - guess + N / 2) % N - N / 2)
+                c0 = g0 + ((c0 - g0 + N / 2) % N - N / 2)
+                c1 = g1 + ((c1 - g1 + N / 2) % N - N / 2)
             if k > k0:
-                vel = 0.7 * vel + 0.3 * (c - pos)
-            pos = c
-            d = pos[1] - pos[0]
+                v0, v1 = 0.7 * v0 + 0.3 * (c0 - p0), 0.7 * v1 + 0.3 * (c1 - p1)
+            p0, p1 = c0, c1
             if start_sign is None:
-                start_sign = np.sign(d)
+                start_sign = np.sign(p1 - p0)
         else:
-            pos = guess
-    end = pos[1] - pos[0]
+            p0, p1 = g0, g1
+    end = p1 - p0
     return bool(start_sign is not None and np.sign(end) != start_sign and abs(end) >= 1.0)
 
 
@@ -225,10 +357,9 @@ def classify_peaks(starts, P, *, periodic: bool = True, rel: float = REL, dip: f
     K = len(starts)
     if K == 0:
         return Outcome("none")
-    cent, _tops = zip(*(humps(p, rel, dip, periodic) for p in P), strict=True)
-    counts = np.array([len(c) for c in cent])
-    big = np.array([c[0] if len(c) else np.nan for c in cent])
-    sep = np.array([ring_distance(c[0], c[1], N, periodic) if len(c) >= 2 else 0.0 for c in cent])
+    cent, _tops, counts = humps_all(P, rel, dip, periodic)
+    big = cent[:, 0].copy()
+    sep = np.where(counts >= 2, ring_distance(cent[:, 0], cent[:, 1], N, periodic), 0.0)
     base: dict[str, Any] = {"counts": counts, "separation": sep, "centre": big}
     pair = running_median(np.minimum(counts, 2), smooth)
     if pair[0] < 2 and counts[0] < 2:
@@ -248,8 +379,9 @@ def classify_peaks(starts, P, *, periodic: bool = True, rel: float = REL, dip: f
     # merge: from some period on, no second hump within sep0 + NEAR_MARGIN of the largest (what the
     # merger radiates, or a small breather it emits, travels away and is not one of the pair)
     reach = (sep0 if np.isfinite(sep0) else 0.0) + NEAR_MARGIN
-    near = np.array([1 + int(np.sum(ring_distance(c[1:], c[0], N, periodic) <= reach)) if len(c) else 0
-                     for c in cent])
+    with np.errstate(invalid="ignore"):      # the NaN after a row's humps are not near
+        close = ring_distance(cent[:, 1:], cent[:, :1], N, periodic) <= reach
+    near = np.where(counts > 0, 1 + close.sum(axis=1), 0)
     sm = running_median(np.minimum(near, 2), smooth)
     base["first_coalescence"] = _first_coalescence(near, sm)
     multi = np.flatnonzero(sm != 1)

@@ -193,6 +193,27 @@ def packet(N: int, alpha: float, *, amplitude: float, width: float, envelope_kin
 
 
 @checked
+def kick(N: int, alpha: float, *, velocity: float, site: int = 0, bc: str = "periodic") -> InitialData:
+    """One bead kicked from rest (James, Kevrekidis & Cuevas, Physica D 251 (2013) 39: "small perturbations at
+    the first site of the chain"):
+
+        x_n(0) = 0,   v_n(0) = velocity delta_{n, site},   A_n(0) = -i velocity/2 delta_{n, site}, eps = 1.
+
+    A_n(0) is the leading order of (ansatz) (v_n = 2 eps (-Im A_n) at t = 0); the eps^(alpha-1) Re dA/dtau term
+    of :func:`lattice_state` is left out, so that the lattice starts exactly from the kick.
+    """
+    if not 0 <= site < N:
+        raise ValueError(f"site must be a bead index in [0, N-1] = [0, {N - 1}], got site={site!r}")
+    x0 = np.zeros(N)
+    v0 = np.zeros(N)
+    v0[site] = velocity
+    A0 = np.zeros(N, dtype=complex)
+    A0[site] = -0.5j * velocity
+    info = {"velocity": float(velocity), "kick_site": int(site), "eps": 1.0, "max_abs_v0": float(abs(velocity))}
+    return InitialData(A0=A0, eps=1.0, x0=x0, v0=v0, info=info)
+
+
+@checked
 def pair(N: int, alpha: float, *, amplitude: float, separation: int, profile: str = "bond", sign: int = 1,
          centre: int | None = None, bc: str = "periodic", a_n=None) -> InitialData:
     """Two static breathers at rest (figure loc1, right): the sum of two copies of one

@@ -29,6 +29,7 @@ from functools import cached_property
 from typing import Protocol
 
 from cradle.models.damping import Damping
+from cradle.models.lattice_terms import Terms
 from cradle.models.physical import HERTZ_ALPHA, Cradle, scales
 from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
 from cradle.specs.values import (
@@ -285,10 +286,27 @@ class Pair:
             out.add(path + ["centre"], f"must be a site index in [0, N-1] = [0, {N - 1}]", self.centre)
 
 
-INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair}
+@declared("kick", doc="One bead kicked from rest (James, Kevrekidis & Cuevas 2013): x_n(0) = 0, v_n(0) = velocity "
+                      "at `site`; DpS from A_n(0) = -i velocity/2 there, eps = 1.")
+class Kick:
+    kind: str = param(REQUIRED, "kick", const="kick")
+    velocity: float = param(REQUIRED, "Velocity given to the kicked bead; nonzero, |velocity| <= 1e3.", minimum=-1e3,
+                            maximum=1e3)
+    site: int = param(0, "The kicked bead (0 <= site < N); default 0, the first bead of the chain.", minimum=0)
+
+    def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
+        """A nonzero kick on a bead of the chain (``where``: the scene's key path)."""
+        path = where + ["initial"]
+        if self.velocity == 0:
+            out.add(path + ["velocity"], "must be nonzero (a chain at rest does not move)", self.velocity)
+        if not 0 <= self.site < scene.N:
+            out.add(path + ["site"], f"must be a bead index in [0, N-1] = [0, {scene.N - 1}]", self.site)
+
+
+INITIAL_KINDS = {"travelling": Travelling, "breather": Breather, "packet": Packet, "pair": Pair, "kick": Kick}
 INITIAL_DOC = "Initial condition of a scene: kind travelling, breather, packet or pair."
-KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest) "
-            "or pair (two static breathers at rest).")
+KIND_DOC = ("travelling (ansatzapprox), breather (ansatzapproxst2), packet (a modulated binary oscillation at rest), "
+            "pair (two static breathers at rest) or kick (one bead kicked from rest).")
 register_union("initial", INITIAL_DOC, KIND_DOC, INITIAL_KINDS)
 
 
@@ -309,20 +327,25 @@ class Scene:
     dps: DpsIntegrator = param(None, "Per-scene DpS integrator settings, merged over defaults.dps.")
     max_energy_drift: float = param(None, "Per-scene energy drift bound; default defaults.max_energy_drift.",
                                     ref="maxEnergyDrift")
-    initial: Travelling | Breather | Packet | Pair = param(REQUIRED, "Initial condition: its kind (travelling, "
-                                                           "breather, packet, pair) and parameters.", ref="initial")
+    initial: Travelling | Breather | Packet | Pair | Kick = param(REQUIRED, "Initial condition: its kind "
+                                                                  "(travelling, breather, packet, pair, kick) and "
+                                                                  "parameters.", ref="initial")
     # at most MAX_T_END: stored times are told apart to TIME_TOL, finer than float64 resolves beyond ~4e6
     t_end: float = param(REQUIRED, "Final time of the run (lattice time t); in (0, 1e6] (stored times are told apart "
                          "to 1e-9).", exclusiveMinimum=0, maximum=MAX_T_END)
     store: Store = param(REQUIRED, "Times at which the state is stored.")
     damping: Damping = param(None, "Dissipation (ncdamped): on-site and Kuwabara-Kono contact damping; absent: the "
                              "conservative (nc).")
+    terms: Terms = param(None, "The imperfect cradle (ncimperfect): inhomogeneity (site masses, on-site "
+                         "frequencies, contact stiffnesses), precompression and the on-site potential; absent: (nc).")
     cradle: Cradle = param(None, "The real cradle the scene models: its spheres and strings give the scales of (nc) "
                            "(cradle.models.physical); the outputs store them, and `units: si` reads the scene's "
                            "values in SI.")
     units: str = param(None, "Units of the scene's times, amplitudes and damping: nc (default: those of (nc)) or si "
                        "(times in s, amplitudes a and amplitude in m, omega_tw and omega_sw in rad/s, damping.onsite a "
-                       "rate in 1/s, damping.contact the Kuwabara-Kono time A in s; needs `cradle:`).",
+                       "rate in 1/s, damping.contact the Kuwabara-Kono time A in s, a kick's velocity in m/s, "
+                       "terms.precompression.delta0 and terms.inhomogeneity.length and radius in m; needs "
+                       "`cradle:`).",
                        enum=["nc", "si"])
 
     @cached_property
@@ -366,12 +389,55 @@ class Scene:
             out.add(where + ["exact", "method"], f"must be one of {', '.join(DAMPED_METHODS)} with damping (a "
                                                  "splitting is not symplectic for a damped cradle: "
                                                  "docs/dissipation.md)", self.exact.method)
+        self._check_terms(where, out)
         if self.units == "si" and c is None:
             out.add(where + ["units"], "needs the scene's `cradle:` (its scales convert SI values to (nc)'s)",
                     self.units)
         elif self.t_end > MAX_T_END:   # only an SI time can get here: the schema bounds t_end in (nc)'s units
             out.add(where + ["t_end"], f"is {self.t_end:.6g} in (nc)'s time units (t omega_0), more than "
                                        f"{MAX_T_END:g}", self.t_end)
+
+    def _check_terms(self, where: Where, out: Errors) -> None:
+        """Active terms of (ncimperfect) need DOP853 in numba, a precompressed chain a ring, explicit site values
+        one per bead, and a draw of positive frequencies and masses (:func:`cradle.models.inhomogeneity.sites`)."""
+        terms = self.terms
+        if terms is None:
+            return
+        path, inh = where + ["terms"], terms.inhomogeneity
+        given = {key: getattr(inh, key) for key in ("omega", "mass", "stiffness", "length", "radius", "material")
+                 if getattr(inh, key) is not None}
+        for key, values in given.items():
+            if len(values) != self.N:
+                out.add(path + ["inhomogeneity", key], f"must have N = {self.N} values (one per "
+                                                       f"{'bond' if key == 'stiffness' else 'bead'}), got "
+                                                       f"{len(values)}")
+        if inh.omega is not None and inh.length is not None:
+            out.add(path + ["inhomogeneity", "length"], "give omega or length, not both (length sets omega_n = "
+                                                        "(l_0/l_n)^(1/2))")
+        if not terms.active:
+            return
+        if self.exact.method not in DAMPED_METHODS:
+            out.add(where + ["exact", "method"], f"must be one of {', '.join(DAMPED_METHODS)} with active terms "
+                                                 "(the imperfect cradle (ncimperfect) is integrated by DOP853 in "
+                                                 "numba: docs/imperfect-cradles.md)", self.exact.method)
+        if self.damping is not None and self.damping.active:
+            out.add(where + ["damping"], "cannot go with active terms in a scene: its DpS run would need the damped "
+                                         "(dpsimperfect), which is not derived (the lattice takes both: "
+                                         "integrate_lattice(..., damping=, terms=))")
+        if terms.precompression.delta0 > 0.0 and self.bc != "periodic":
+            out.add(path + ["precompression", "delta0"], f"needs bc = periodic (a precompressed chain with bc = "
+                                                         f"{self.bc} flies apart: walls are not modelled)",
+                    terms.precompression.delta0)
+        if all(len(v) == self.N for v in given.values()):
+            from cradle.models.inhomogeneity import sites
+            from cradle.specs.values import ConfigError
+
+            try:
+                sites(inh, self.N)
+            except ConfigError as e:   # a draw with a non-positive frequency or mass: its key, value and why
+                head, why = str(e).split(": ", 1)
+                key = head.split(" = ", 1)[0].rsplit(".", 1)[-1]
+                out.add(path + ["inhomogeneity", key], why, getattr(inh, key))
 
 
 _POINT = {"type": "number"}
@@ -434,7 +500,8 @@ class HomoclinicEntry:
             out.add(where + ["separation"], f"must be in [1, N-1] = [1, {self.N - 1}]", self.separation)
 
 
-#: the lattice integrators that take the damping terms (:func:`cradle.integrators.integrate_lattice`)
+#: the lattice integrators that take the damping terms and the terms of the imperfect cradle
+#: (:func:`cradle.integrators.integrate_lattice`)
 DAMPED_METHODS = ("dop853_numba",)
 
 
@@ -443,7 +510,10 @@ DAMPED_METHODS = ("dop853_numba",)
 SI_KEYS = {("t_end",): "time", ("store", "every"): "time", ("store", "snapshots"): "time",
            ("initial", "a"): "displacement", ("initial", "amplitude"): "displacement",
            ("initial", "omega_tw"): "rate", ("initial", "omega_sw"): "rate",
-           ("damping", "onsite"): "rate", ("damping", "contact"): "A"}
+           ("initial", "velocity"): "velocity",
+           ("damping", "onsite"): "rate", ("damping", "contact"): "A",
+           ("terms", "precompression", "delta0"): "displacement",
+           ("terms", "inhomogeneity", "length"): "string", ("terms", "inhomogeneity", "radius"): "radius"}
 
 
 def in_nc_units(entry: dict) -> dict:
@@ -453,13 +523,17 @@ def in_nc_units(entry: dict) -> dict:
     c = entry.get("cradle")
     if entry.get("units") != "si" or not isinstance(c, dict) or ("length" in c) == ("omega0" in c):
         return entry   # nothing to convert, or a cradle the checks refuse
-    s = scales(build(Cradle, c))
-    factor = {"time": s.omega0, "displacement": 1.0 / s.X, "rate": 1.0 / s.omega0, "A": s.omega0}
+    cradle = build(Cradle, c)
+    s = scales(cradle)
+    string = cradle.length if cradle.length is not None else cradle.g / s.omega0**2   # l_0 = g / omega_0^2
+    factor = {"time": s.omega0, "displacement": 1.0 / s.X, "velocity": 1.0 / s.V, "rate": 1.0 / s.omega0,
+              "A": s.omega0, "string": 1.0 / string, "radius": 1.0 / cradle.radius}
     out = copied(entry)
     del out["units"]
-    for (section, *key), quantity in SI_KEYS.items():
-        node = out if not key else out.get(section)
-        name = section if not key else key[0]
+    for (*sections, name), quantity in SI_KEYS.items():
+        node = out
+        for section in sections:
+            node = node.get(section) if isinstance(node, dict) else None
         if not isinstance(node, dict) or node.get(name) is None:
             continue
         value = node[name]

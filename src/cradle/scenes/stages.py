@@ -26,7 +26,7 @@ from cradle.data.io import make_dataset
 from cradle.measurements import breathers, compare, interactions, sidebands
 from cradle.models import damping, dps, initial, lattice
 from cradle.scenes.failure import StageFailure
-from cradle.scenes.spec import Breather, HomoclinicEntry, MapEntry, Packet, Pair, Scene, Travelling
+from cradle.scenes.spec import Breather, HomoclinicEntry, Kick, MapEntry, Packet, Pair, Scene, Travelling
 from cradle.specs.declare import plain
 
 # ---------------------------------------------------------------- stationary DpS
@@ -114,9 +114,40 @@ def _scene_attrs(spec: Scene, name: str) -> dict:
         attrs.update({"homoclinic": ini.homoclinic})
     if spec.damping is not None:
         attrs.update({"damping_onsite": spec.damping.onsite, "damping_contact": spec.damping.contact})
+    if spec.terms is not None:
+        attrs.update(terms_attrs(spec.terms))
     if spec.cradle is not None:
         attrs.update(physical_attrs(spec.cradle))
     return attrs
+
+
+def terms_attrs(terms) -> dict:
+    """The terms of the imperfect cradle (ncimperfect) as attributes (the explicit site values, if any, are in the
+    file's parameters and in its ``omega_n``, ``mass_n``, ``stiffness_n``)."""
+    inh, pre, on = terms.inhomogeneity, terms.precompression, terms.onsite
+    return {"disorder_sigma": inh.sigma, "disorder_distribution": inh.distribution, "mass_sigma": inh.mass_sigma,
+            "disorder_seed": inh.seed, "precompression_delta0": pre.delta0, "onsite_potential": on.potential,
+            "onsite_beta": on.beta, "onsite_scale": on.scale}
+
+
+def scene_sites(spec: Scene):
+    """The site coefficients (m_n, omega_n, k_n) of a scene with active terms, else None."""
+    if spec.terms is None or not spec.terms.active:
+        return None
+    from cradle.models.inhomogeneity import sites
+
+    return sites(spec.terms.inhomogeneity, spec.N)
+
+
+def dps_sites_of(spec: Scene, s, eps: float):
+    """The coefficients of (dpsimperfect) for a scene with active terms and sites ``s``, at its eps."""
+    from cradle.models.dps_sites import dps_sites
+
+    on = spec.terms.onsite
+    return dps_sites(s.mass, s.omega, s.stiffness, alpha=spec.alpha, eps=eps,
+                     beta=on.beta if on.potential == "quartic" else 0.0,
+                     pendulum_scale=on.scale if on.potential == "pendulum" else 0.0,
+                     delta0=spec.terms.precompression.delta0)
 
 
 def physical_attrs(cradle) -> dict:
@@ -156,13 +187,22 @@ def initial_data(spec: Scene, name: str = "", homoclinic_ds: xr.Dataset | None =
     elif isinstance(ini, Pair):  # loc1 (right): two static breathers at rest, profile solved in-process
         data = initial.pair(N, alpha, amplitude=ini.amplitude, separation=ini.separation, profile=ini.profile,
                             sign=ini.sign, centre=ini.centre, bc=bc)
+    elif isinstance(ini, Kick):  # JKC 2013: one bead kicked from rest
+        data = initial.kick(N, alpha, velocity=ini.velocity, site=ini.site, bc=bc)
     else:
         raise TypeError(f"scene '{name}': not an initial condition of a known kind: {ini!r}")
     fields = {"x0": data.x0, "v0": data.v0, "A0_re": data.A0.real, "A0_im": data.A0.imag}
     if data.rho1 is not None:
         fields.update({"rho1": data.rho1, "rho2": data.rho2})
     attrs = _scene_attrs(spec, name) | data.info
-    attrs["energy0"] = float(lattice.hamiltonian(data.x0, data.v0, alpha, bc))
+    s = scene_sites(spec)
+    if s is None:
+        attrs["energy0"] = float(lattice.hamiltonian(data.x0, data.v0, alpha, bc))
+    else:   # the generalised (ham) of (ncimperfect), and the sites the runs use
+        from cradle.models import lattice_terms
+
+        attrs["energy0"] = float(lattice_terms.hamiltonian(data.x0, data.v0, alpha, spec.terms, s, bc))
+        fields.update({"omega_n": s.omega, "mass_n": s.mass, "stiffness_n": s.stiffness})
     return make_dataset(fields, coords={"n": np.arange(N)}, attrs=attrs,
                         params=plain(spec), title=f"initial data of scene '{name}'", identity=("initial", name))
 
@@ -230,10 +270,20 @@ def exact_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -
     damped = spec.damping is not None and spec.damping.active
     if damped:   # only then: a conservative scene's call, and so its file, stays as it was
         accuracy["damping"] = spec.damping
+    s = scene_sites(spec)
+    if s is not None:   # likewise: a scene of (nc) calls as before
+        accuracy["terms"] = spec.terms
     sol = integrate_lattice(x0, v0, times, alpha=alpha, bc=bc, method=ex.method, progress=progress, **accuracy)
-    # the force on each bond, as the run felt it: with contact damping, g_n of (ncdamped)
-    force = (damping.bond_forces(sol.x, sol.v, alpha, spec.damping.contact, bc) if damped
-             else lattice.bond_forces(sol.x, alpha, bc))
+    # the force on each bond, as the run felt it: with contact damping, g_n of (ncdamped); with terms, k_n F_n
+    if s is not None:
+        from cradle.models import lattice_terms
+
+        force = lattice_terms.bond_forces(sol.x, alpha, spec.terms, s, bc, v=sol.v,
+                                          eta=spec.damping.contact if damped else 0.0)
+    elif damped:
+        force = damping.bond_forces(sol.x, sol.v, alpha, spec.damping.contact, bc)
+    else:
+        force = lattice.bond_forces(sol.x, alpha, bc)
     attrs = exact_attrs(spec, init_ds, sol.method, steps_taken(times, sol.dt)[0] if sol.dt is not None else None,
                         sol.dt, sol.rtol, sol.atol, {"energy_drift": sol.energy_drift, "n_steps": sol.n_steps,
                                                      "n_force_evals": sol.n_force_evals,
@@ -243,6 +293,9 @@ def exact_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -
     if damped:
         attrs["model"] = "damped lattice (ncdamped), V = V0"
         attrs["energy_drift_comment"] = "max |H + D - H(0)| / |H(0)|, D the dissipated energy"
+    if s is not None:
+        attrs["model"] = ("damped " if damped else "") + "imperfect cradle (ncimperfect)"
+        attrs["energy_comment"] = "the generalised (ham) of (ncimperfect) (cradle.models.lattice_terms.hamiltonian)"
     fields = {"x": sol.x, "v": sol.v, "force": force, "energy": sol.energy}
     if damped:
         fields["dissipated"] = sol.dissipated
@@ -261,10 +314,17 @@ def dps_dataset(spec: Scene, init_ds: xr.Dataset, name: str, times, sol) -> xr.D
     alpha, bc = spec.alpha, spec.bc
     eps = float(init_ds.attrs["eps"])
     x_app = compare.approximate_displacement(sol.A, times, eps)
-    force = lattice.bond_forces(x_app, alpha, bc)
+    s = scene_sites(spec)
+    if s is None:
+        force = lattice.bond_forces(x_app, alpha, bc)
+    else:   # the lattice's bond forces k_n F_n of (ncimperfect) along the approximate displacement
+        from cradle.models import lattice_terms
+
+        force = lattice_terms.bond_forces(x_app, alpha, spec.terms, s, bc)
     attrs = dict(init_ds.attrs)  # make_dataset replaces the inherited CF and provenance attributes
     damped = getattr(sol, "damping", None) is not None
-    attrs.update({"model": "damped DpS (dpsdamped) + ansatz (ansatz)" if damped else "DpS (dfnls) + ansatz (ansatz)",
+    model = "damped DpS (dpsdamped)" if damped else "DpS (dpsimperfect)" if s is not None else "DpS (dfnls)"
+    attrs.update({"model": model + " + ansatz (ansatz)",
                   "integrator": sol.method, "rtol": sol.rtol,
                   "atol": sol.atol, "tau0": dps.tau0(alpha), "max_l2_drift": sol.max_l2_drift,
                   "max_dps_energy_drift": sol.max_energy_drift, "n_steps": sol.n_steps,
@@ -294,6 +354,9 @@ def dps_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -> 
         from cradle.models.dps_damped import slow_damping
 
         extra["damping"] = slow_damping(spec.damping, eps, alpha)
+    s = scene_sites(spec)
+    if s is not None:   # (dpsimperfect): docs/imperfect-dps.md
+        extra["sites"] = dps_sites_of(spec, s, eps)
     sol = integrate_dps(A0, tau, alpha=alpha, bc=bc, method=spec.dps.method, rtol=spec.dps.rtol, progress=progress,
                         **extra)
     ds = dps_dataset(spec, init_ds, name, times, sol)
@@ -370,7 +433,10 @@ def metrics(spec: Scene | None, exact_ds: xr.Dataset, dps_ds: xr.Dataset, name: 
     """Exact against approximate: E(t) (plot4-5) and the spectra |x_hat_k(t)| on Gamma*; what the
     figures show of the scene (:func:`travelling_metrics`, :func:`localised_metrics`). Everything is
     read from the two runs; ``spec`` is only stored (None: two runs not made from a scene spec)."""
-    a_scale = float(exact_ds.attrs.get("a", np.max(np.abs(exact_ds["x"].isel(t=0).values))))
+    if exact_ds.attrs.get("initial_kind") == "kick":   # starts at x = 0: the kicked bead's amplitude v/omega_0
+        a_scale = abs(float(exact_ds.attrs["velocity"]))
+    else:
+        a_scale = float(exact_ds.attrs.get("a", np.max(np.abs(exact_ds["x"].isel(t=0).values))))
     E = compare.relative_error(exact_ds["x"].values, dps_ds["x"].values, a_scale)
     k, xh_exact = compare.spatial_dft(exact_ds["x"].values)
     _, xh_dps = compare.spatial_dft(dps_ds["x"].values)
