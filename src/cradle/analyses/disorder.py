@@ -447,7 +447,7 @@ def _family_vars(family: str, dims: tuple[str, ...]) -> dict[str, Var]:
 VARIABLES: dict[str, dict[str, Var]] = {
     "/": {**_COORDS,
           "omega_b": Var(("shift",), "frequency of the exact bond breather of the kicked and static families"),
-          "mi_theory_rate": Var(("shift",), "max over p of the linear DpS growth rate of the mi wave, per unit t, "
+          "theory_growth_rate": Var(("shift",), "max over p of the linear DpS growth rate of the mi wave, per unit t, "
                                 "over Delta")},
     **{f"/{f}": _family_vars(f, _CELL) for f in FAMILIES},
     "/crossover": {
@@ -560,7 +560,7 @@ def compute(spec: Disorder, inputs: dict | None = None, log=None):
     for shift in shifts:   # the linear DpS rate of the mi wave at omega_tw = 1 + Delta, R = 1, eps = a / 2
         a = dps.amplitude_from_omega(1.0 + shift, q_mi, ALPHA)
         theory.append(float(np.max(mg.theory_rates(q_mi, spec.N, ALPHA, a / 2.0)[1])) / shift)
-    groups["/"] = ({"omega_b": omega_b, "mi_theory_rate": np.asarray(theory)},
+    groups["/"] = ({"omega_b": omega_b, "theory_growth_rate": np.asarray(theory)},
                    {"model": np.array(MODELS, dtype=object), "sigma": np.asarray(spec.sigmas, float),
                     "shift": np.asarray(shifts, float), "seed": np.asarray(seeds_of(spec)),
                     "stat": np.array(md.STATISTICS, dtype=object), "family": np.array(FAMILIES, dtype=object),

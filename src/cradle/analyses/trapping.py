@@ -323,12 +323,12 @@ def batch_keys(spec: Trapping) -> list[str]:
 EXAMPLE_SAMPLES = 200
 
 _RUN = ("run",)
-_HWT = ("run", "threshold", "window", "time")
+_HWT = ("run", "threshold", "window", "tau_m")
 RUN_VARIABLES: dict[str, Var] = {
     "run": Var(_RUN, "index of a run"),
     "threshold": Var(("threshold",), "threshold theta of the detector (fraction of H(0))"),
     "window": Var(("window",), "window W of the detector, in slow time tau = a^(alpha-1) t"),
-    "time": Var(("time",), "measurement time tau_m, in slow time tau = a^(alpha-1) t"),
+    "tau_m": Var(("tau_m",), "measurement time tau_m, in slow time tau = a^(alpha-1) t"),
     "zone": Var(("zone",), "zone of the chain: 0 launch, 1 target, 2 lead"),
     "incident": Var(_RUN, "incident wave: 0 striker, 1 breather"),
     "amplitude": Var(_RUN, "amplitude a: striker velocity, or the breather's largest |x_n(0)|"),
@@ -342,8 +342,8 @@ RUN_VARIABLES: dict[str, Var] = {
     "fraction": Var(_HWT, "energy of the static breathers at tau_m over H(0), whole chain"),
     "fraction_target": Var(_HWT, "energy at tau_m of the static breathers centred in the target, over H(0)"),
     "count": Var(_HWT, "number of static breathers found at tau_m"),
-    "zone_energy": Var(("run", "time", "zone"), "energy of each zone at tau_m over H(0)"),
-    "dissipated": Var(("run", "time"), "energy D dissipated by tau_m over H(0) (damped runs)"),
+    "zone_energy": Var(("run", "tau_m", "zone"), "energy of each zone at tau_m over H(0)"),
+    "dissipated": Var(("run", "tau_m"), "energy D dissipated by tau_m over H(0) (damped runs)"),
     "reach": Var(_RUN, "largest energy of the last `edge` beads over the run, over H(0): 0 when nothing reached "
                  "the far end (so nothing came back)"),
     "reach_back": Var(_RUN, "breather runs: largest energy of the first `edge` beads (behind the launch) over the "
@@ -402,7 +402,7 @@ def run_batch(spec: Trapping, key: str, inputs=None, log=None):
                  "length": cols[:, 1].astype(int), "sigma": cols[:, 2], "seed": cols[:, 3].astype(int),
                  "gamma": cols[:, 4], "eta": cols[:, 5], "scan": np.full(len(rows), SCANS.index(scan))})
     coords = {"run": np.arange(len(rows)), "threshold": np.asarray(spec.thresholds, float),
-              "window": np.asarray(spec.windows, float), "time": np.asarray(spec.times, float),
+              "window": np.asarray(spec.windows, float), "tau_m": np.asarray(spec.times, float),
               "zone": np.arange(len(ZONES))}
     variables = dict(RUN_VARIABLES)
     if examples:
@@ -424,7 +424,7 @@ def run_batch(spec: Trapping, key: str, inputs=None, log=None):
 # ----------------------------------------------------------------- the stored file
 
 _CASE = ("case",)
-_CHWT = ("case", "threshold", "window", "time")
+_CHWT = ("case", "threshold", "window", "tau_m")
 SUMMARY_VARIABLES: dict[str, Var] = {
     "case": Var(_CASE, "index of a case: one incident, amplitude, length, sigma and damping, over its seeds"),
     "case_incident": Var(_CASE, "incident wave: 0 striker, 1 breather"),
@@ -444,10 +444,10 @@ SUMMARY_VARIABLES: dict[str, Var] = {
     "target_max": Var(_CHWT, "its largest value over the seeds"),
     "target_trapping": Var(_CHWT, "fraction of the seeds whose static breathers in the target hold more than half "
                            "of H(0)"),
-    "lead_mean": Var(("case", "time"), "mean over the seeds of the lead's energy at tau_m over H(0) (transmitted)"),
+    "lead_mean": Var(("case", "tau_m"), "mean over the seeds of the lead's energy at tau_m over H(0) (transmitted)"),
 }
 
-_AXES = ("threshold", "window", "time")
+_AXES = ("threshold", "window", "tau_m")
 #: the stored variables: the detector's axes at the root, "/runs" every run, "/summary" per case over the seeds,
 #: "/examples" the space-time examples
 VARIABLES = {"/": {k: RUN_VARIABLES[k] for k in _AXES},
@@ -493,7 +493,7 @@ def compute(spec: Trapping, inputs: dict, log=None):
 
     parts = [inputs[f"batch/{key}"] for key in batch_keys(spec)]
     runs = {k: np.concatenate([np.asarray(p[k].values) for p in parts]) for k in RUN_VARIABLES
-            if k not in ("run", "threshold", "window", "time", "zone")}
+            if k not in ("run", "threshold", "window", "tau_m", "zone")}
     n_runs = len(runs["incident"])
     ex = [p for p in parts if "site_energy" in p]
     width = max((p.sizes["bead"] for p in ex), default=1)
@@ -509,7 +509,7 @@ def compute(spec: Trapping, inputs: dict, log=None):
                 "example_target": (np.concatenate([np.asarray(p["example_target"].values) for p in ex]) if ex
                                    else np.zeros((0, 2), dtype=int))}
     axes = {"threshold": np.asarray(spec.thresholds, float), "window": np.asarray(spec.windows, float),
-            "time": np.asarray(spec.times, float)}
+            "tau_m": np.asarray(spec.times, float)}
     s = summary(runs)
     groups = {"/": ({}, axes),
               "/runs": (runs, {"run": np.arange(n_runs), "zone": np.arange(len(ZONES))}),

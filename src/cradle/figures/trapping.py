@@ -89,7 +89,7 @@ def draw(tree):
     scan = {0: float(tree.attrs["scan_striker"]), 1: float(tree.attrs["scan_breather"])}
     sigmas = np.unique(sigma)
     shades = {s: f"C{j}" for j, s in enumerate(sigmas)}
-    th, wd, tm = (float(tree[c].values[i]) for c, i in zip(("threshold", "window", "time"), main, strict=True))
+    th, wd, tm = (float(tree[c].values[i]) for c, i in zip(("threshold", "window", "tau_m"), main, strict=True))
     defn = rf"main definition: $\theta$ = {th:g}, W = {wd:g}, $\tau_m$ = {tm:g}"
 
     E = ax[1, 0]
