@@ -43,8 +43,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from functools import lru_cache
 from dataclasses import dataclass, fields
+from functools import lru_cache
 
 from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store, resolved
 from cradle.specs.declare import build, declared, param
