@@ -44,7 +44,6 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, fields
-from functools import lru_cache
 
 from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store, resolved
 from cradle.specs.declare import build, declared, param
@@ -255,20 +254,13 @@ def mi_statistics_estimate(cfg: dict, form: str) -> Estimate:
     spec = form_spec(build(MIStatistics, cfg["beyond"]["mi-statistics"]), form)
     N, t_end = max(spec.N), spec.t_end
     runs = math.ceil(spec.q_over_pi.count / spec.chunks) * spec.n_seeds
-    exact = _integrator(spec.exact.method, spec.exact.dt_factor)
+    exact = build(ExactIntegrator, {"method": spec.exact.method, "dt_factor": spec.exact.dt_factor})
     one, steps = _exact_seconds(N, t_end, exact, 2)
     samples = t_end / spec.sample_every + 1
     return Estimate("beyond.mi-statistics" + (".reduced" if form == REDUCED else ""),
                     f"{runs} runs per batch (q values / chunks x n_seeds), N = {N}, t_end = {_g(t_end)}",
                     memory_bytes=BASE_BYTES + 8.0 * (STATE_ARRAYS * N + 2 * N * samples),
                     disk_bytes=8.0 * 8 * runs * samples, seconds=BASE_SECONDS + runs * one, steps=runs * steps)
-
-
-@lru_cache(maxsize=256)
-def _integrator(method: str, dt_factor: float | None) -> ExactIntegrator:
-    """The integrator settings a batch estimate costs (frozen: built once per pair; validation asks for the same
-    few pairs on every call)."""
-    return build(ExactIntegrator, {"method": method, "dt_factor": dt_factor})
 
 
 def work_precision_estimate(cfg: dict, form: str) -> Estimate:
@@ -295,7 +287,7 @@ def work_precision_estimate(cfg: dict, form: str) -> Estimate:
         T = stored_count(build(Store, {"every": spec.compare_every}), t_end)
         seconds = steps = 0.0
         for method, dt_factor in runs:
-            exact = _integrator(method, dt_factor)
+            exact = build(ExactIntegrator, {"method": method, "dt_factor": dt_factor})
             one, n = _exact_seconds(N, t_end, exact, T)
             seconds, steps = seconds + one, steps + n
         e = Estimate("beyond.work-precision" + (".reduced" if form == REDUCED else ""),
