@@ -66,13 +66,25 @@ onstart:
 
     remove_stale_temporaries(L.ROOT, STALE_TEMPORARY_S)
     BEFORE_RUN.update(snapshot(L.ROOT))
+    # a local build forks its jobs from one process that has imported what they import (cradle.pipeline.warm)
+    from cradle.pipeline import warm
+
+    warm.start(workflow)
+
+
+onsuccess:
+    from cradle.pipeline import warm
+
+    warm.stop()
 
 
 onerror:
     # a failed job's update() outputs come back as copies with a new time: set the old one back, so the
     # next run does not redo the readers of files whose content never changed
+    from cradle.pipeline import warm
     from cradle.pipeline.restored import restore_times
 
+    warm.stop()
     restore_times(BEFORE_RUN)
 
 

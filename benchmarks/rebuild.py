@@ -1,6 +1,6 @@
 """Time `snakemake -j2 paper` from a fresh clone, cold then warm, and say where the time goes.
 
-    python benchmarks/rebuild.py [--target paper] [--cores 2] [--out results/benchmarks/rebuild.md]
+    python benchmarks/rebuild.py [--target paper] [--cores 2] [--before REV] [--out results/benchmarks/rebuild.md]
 
 1. ``git clone`` of this repository's HEAD into a temporary folder (uncommitted
    changes are not included: this is what a newcomer gets);
@@ -24,7 +24,11 @@ integrators' own wall time. From these the table splits the job time into:
 * other jobs: homoclinic, map orbits, the claims table;
 
 and compares their sum over 2 cores with the wall time (the rest is Snakemake:
-DAG building, job scheduling and bookkeeping, and cores left idle).
+DAG building, job scheduling and bookkeeping, and cores left idle). The *compute floor* is
+the sum of the jobs' times less their start-up, over the cores: what the build's work needs.
+A job forked from the warm process (:mod:`cradle.pipeline.warm`) counts its start-up from the
+start of its own process (interpreter, Snakemake's preamble, the hand-over, the fork).
+``--before REV`` builds that commit too, in its own folder, alternating with HEAD.
 """
 from __future__ import annotations
 
@@ -62,8 +66,9 @@ def job_times(results: Path) -> dict:
             continue
         kind = log.relative_to(results / "logs").parts[0]
         startup = next((float(m.group(1)) for _, text in lines
-                        if (m := re.match(r"process start-up .*: ([\d.]+) s", text))), 0.0)
-        job = {"kind": kind, "name": log.stem, "startup": startup, "start": lines[0][0] - startup,
+                        if (m := re.match(r"process start-up [^:]*: ([\d.]+) s", text))), 0.0)
+        forked = any("(forked from the warm process)" in text for _, text in lines)
+        job = {"kind": kind, "name": log.stem, "startup": startup, "forked": forked, "start": lines[0][0] - startup,
                "end": lines[-1][0], "total": startup + lines[-1][0] - lines[0][0], "draw": 0.0, "save": 0.0}
         for _, text in lines:
             if m := re.match(r"figure \S+: drawn in ([\d.]+) s, saved in ([\d.]+) s", text):
@@ -102,6 +107,10 @@ def breakdown(results: Path, wall: float, cores: int) -> dict:
     }
     out["sum of job times"] = sum(j["total"] for j in jobs)
     out["Snakemake and idle cores"] = wall - out["sum of job times"] / cores
+    # what the build's computations need on these cores: the jobs' time without their start-up
+    out["compute floor"] = (out["sum of job times"] - out["start-up (all jobs)"]) / cores
+    out["wall / compute floor"] = wall / out["compute floor"]
+    out["jobs forked from the warm process"] = sum(j["forked"] for j in jobs)
     # from the first job's start to the last job's end: how long 0, 1, 2... jobs ran at once
     events = sorted([(j["start"], 1) for j in jobs] + [(j["end"], -1) for j in jobs])
     running, last, spans = 0, events[0][0], {}
@@ -132,11 +141,13 @@ def table(runs: dict, cores: int) -> str:
     head = "| | " + " | ".join(runs) + " |\n|---|" + "---:|" * len(runs) + "\n"
     rows = []
     for key in keys:
-        cells = [f"{r[key]:.0f}" if key == "jobs" else f"{r[key]:.1f} s" for r in runs.values()]
+        cells = [f"{r[key]:.0f}" if key.startswith("jobs") else f"**{r[key]:.2f}**" if key.startswith("wall /")
+                 else f"{r[key]:.1f} s" for r in runs.values()]
         if key.startswith("no job running"):
             rows.append("| *timeline* |" + " |" * len(runs))
-        label = f"**{key}**" if key == "wall" else (f"{key} (wall - sum/{cores})" if key.startswith("Snake")
-                                                   else key)
+        label = (f"**{key}**" if key in ("wall", "wall / compute floor") else
+                 f"{key} (wall - sum/{cores})" if key.startswith("Snake") else
+                 f"{key} ((sum - start-up)/{cores})" if key == "compute floor" else key)
         rows.append(f"| {label} | " + " | ".join(cells) + " |")
     return head + "\n".join(rows) + "\n"
 
@@ -147,21 +158,35 @@ def main(argv=None) -> int:
     ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--out", type=Path, help="also write the table (markdown) here")
     ap.add_argument("--no-docs", action="store_true", help="do not write the table into docs/performance.md")
+    ap.add_argument("--before", metavar="REV", help="also build this commit, alternating with HEAD, for a "
+                    "before/after measured in the same session")
     args = ap.parse_args(argv)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
                             text=True).stdout.strip()
+    revs = {"": "HEAD"}
+    if args.before:
+        before = subprocess.run(["git", "rev-parse", "--short", args.before], cwd=ROOT, capture_output=True,
+                                text=True, check=True).stdout.strip()
+        revs = {f"{before}: ": before, "": "HEAD"}
     with tempfile.TemporaryDirectory(prefix="cradle-rebuild-") as tmp:
-        clone = Path(tmp) / "cradle"
-        subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
+        clones = {}
+        for prefix, rev in revs.items():   # each its own folder and compiled-kernel cache
+            clones[prefix] = Path(tmp) / (f"before-{rev}" if prefix else "now") / "cradle"
+            subprocess.run(["git", "clone", "-q", str(ROOT), str(clones[prefix])], check=True)
+            subprocess.run(["git", "checkout", "-q", rev], cwd=clones[prefix], check=True)
         runs = {}
-        for label in ("cold", "warm"):
-            shutil.rmtree(clone / "results", ignore_errors=True)
-            wall = run(clone, args.target, args.cores)
-            runs[label] = breakdown(clone / "results", wall, args.cores)
-            print(f"{label}: {wall:.1f} s", file=sys.stderr)
-    text = (f"`snakemake -j{args.cores} {args.target}` from a fresh clone of {commit}, "
-            f"{_dt.date.today()}, {platform.machine()} with {os.cpu_count()} cores, "
-            f"Python {platform.python_version()}\n\n" + table(runs, args.cores))
+        for label in ("cold", "warm"):   # before and now alternate: both measured in the same minutes
+            for prefix, clone in clones.items():
+                shutil.rmtree(clone / "results", ignore_errors=True)
+                wall = run(clone, args.target, args.cores)
+                runs[prefix + label] = breakdown(clone / "results", wall, args.cores)
+                print(f"{prefix}{label}: {wall:.1f} s", file=sys.stderr)
+    ended = _dt.datetime.now(_dt.UTC)
+    text = (f"`snakemake -j{args.cores} {args.target}` from a fresh clone of {commit}"
+            + (f" and of {before} (columns `{before}: ...`, the code before; runs alternating)" if args.before else "")
+            + f", {_dt.date.today()}, {platform.machine()} with {os.cpu_count()} cores, "
+            f"Python {platform.python_version()}, load average {os.getloadavg()[0]:.1f} at the end"
+            f" ({ended:%H:%M} UTC)\n\n" + table(runs, args.cores))
     print(text)
     if not args.no_docs:
         publish("performance.md", f"rebuild-{args.target}", text)

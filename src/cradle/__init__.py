@@ -16,7 +16,6 @@ Sub-packages, one layer each, each importing only from the layers before it (doc
 * :mod:`cradle.figures`      - drawing functions, from stored data
 * :mod:`cradle.pipeline`     - config loading, results layout, jobs, budgets, code dependencies, CLI
 """
-from cradle.data.provenance import VERSION as __version__
 
 #: the public API, by theme: (name, "module" or "module:attribute", one-line summary). The module docstring's
 #: table and ``__all__`` are made from it; each name is imported on first use (:func:`__getattr__`)
@@ -122,8 +121,9 @@ __doc__ = f"{__doc__}\n{_table()}"
 def __getattr__(name):
     """A name of the public API (the table above), imported from its module on first use."""
     # the public names on first use: the Snakefile imports cradle.pipeline.config to plan and must not pay for
-    # numpy, xarray or numba
-    where = _WHERE.get(name)
+    # numpy, xarray or numba; and __version__ (importlib.metadata) not in a job's process before it is forked
+    # from the warm one (cradle.pipeline.warm)
+    where = "cradle.data.provenance:VERSION" if name == "__version__" else _WHERE.get(name)
     if where is None:
         raise AttributeError(f"module 'cradle' has no attribute {name!r}")
     import importlib

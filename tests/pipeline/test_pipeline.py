@@ -142,8 +142,9 @@ def _job_counts(text):
 
 
 @pytest.mark.slow
-def test_snakemake_end_to_end_on_tiny_config(tmp_path):
+def test_snakemake_end_to_end_on_tiny_config(tmp_path, monkeypatch):
     work = _tiny_workflow(tmp_path)
+    tiny = (work / "config.yaml").read_text()
 
     built = _snakemake(work, "paper")      # the paper's figures and claims table (all adds slow analyses)
     assert built.returncode == 0, built.stderr[-3000:]
@@ -181,6 +182,25 @@ def test_snakemake_end_to_end_on_tiny_config(tmp_path):
     bad = _snakemake(work, "-n", "paper")
     assert bad.returncode != 0
     assert "scenes.tw-weak.N = 1" in bad.stdout + bad.stderr
+
+    # the jobs that started once the warm process was ready were forked from it (cradle.pipeline.warm); the
+    # scene's job run again in its own process writes the same values, bit for bit
+    starts = [line for log in (work / "results" / "logs").rglob("*.log") for line in log.read_text().splitlines()
+              if "process start-up" in line]
+    assert any(line.endswith("(forked from the warm process)") for line in starts), starts
+    (work / "config.yaml").write_text(tiny)
+    sim = sorted((work / "results" / "sim" / "tw-weak").glob("*.nc"))
+    forked = {path.name: open_dataset(path).load() for path in sim}
+    monkeypatch.setenv("CRADLE_WARM", "0")
+    own = _snakemake(work, "--force", str(sim[0].relative_to(work)))   # the scene's job: all its files
+    assert own.returncode == 0, own.stderr[-3000:]
+    log = (work / "results" / "logs" / "sim" / "tw-weak.log").read_text()
+    assert "(forked from the warm process)" not in log and "(own process)" in log
+    for path in sim:
+        again = open_dataset(path).load()
+        assert set(again.variables) == set(forked[path.name].variables)
+        for name, var in again.variables.items():
+            assert np.array_equal(var.values, forked[path.name][name].values, equal_nan=var.dtype.kind == "f"), name
 
 
 @pytest.mark.slow

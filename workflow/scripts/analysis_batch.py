@@ -1,6 +1,10 @@
 """Snakemake adapter: one batch of an analysis (cradle.analyses.protocol.Batches) -> its netCDF file
 (rules <target>_batch_<form>); the analysis's compute job gathers the batches. Its inputs are checked to be
 the files the workflow's config expects (cradle.pipeline.identity); the batch names itself."""
+from cradle.pipeline.warm import forward
+
+forward(globals())  # in a local build: run in a child of the warm process, imports paid once
+
 import logging
 
 from cradle.analyses.registry import ANALYSES, FULL, form_spec

@@ -1,6 +1,10 @@
 """Snakemake adapter: one analysis (cradle.analyses.registry) -> its netCDF file (rules <target>_compute_<form>).
 Its inputs are named as the analysis reads them, each checked to be the file the workflow's config expects
 (cradle.pipeline.identity); its spec is rebuilt, and checked, from the rule's params; the file names itself."""
+from cradle.pipeline.warm import forward
+
+forward(globals())  # in a local build: run in a child of the warm process, imports paid once
+
 import logging
 
 from cradle.analyses.registry import ANALYSES, FULL, form_spec

@@ -2,6 +2,10 @@
 -> results/figures/<name>.{pdf,png} (or beside the form's file); or write the tables that module makes instead
 (``tables``: the claims table, results/<name>/<name>.{csv,md}). The netCDF file must be the one the workflow's
 config expects (cradle.pipeline.identity)."""
+from cradle.pipeline.warm import forward
+
+forward(globals())  # in a local build: run in a child of the warm process, imports paid once
+
 from pathlib import Path
 
 from cradle.figures import draw_analysis, write_tables

@@ -1,5 +1,9 @@
 """Snakemake adapter: the movie of one desk toy of the desk-toy analysis's full form ->
 results/movies/desk-toy-<toy>.{mp4,gif} (cradle.analyses.desk_toy.movie_dataset, cradle.figures.movie.animate)."""
+from cradle.pipeline.warm import forward
+
+forward(globals())  # in a local build: run in a child of the warm process, imports paid once
+
 import logging
 
 from cradle.analyses.desk_toy import movie_dataset

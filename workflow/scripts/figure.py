@@ -1,5 +1,9 @@
 """Snakemake adapter: draw one paper figure from its netCDF inputs -> results/figures/<label>.{pdf,png}; each
 input must be the file the workflow's config expects (cradle.pipeline.identity)."""
+from cradle.pipeline.warm import forward
+
+forward(globals())  # in a local build: run in a child of the warm process, imports paid once
+
 from pathlib import Path
 
 from cradle.figures import draw

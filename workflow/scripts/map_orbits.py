@@ -1,4 +1,8 @@
 """Snakemake adapter: orbits of the map G (comp1)-(comp2) -> results/map/<name>.nc."""
+from cradle.pipeline.warm import forward
+
+forward(globals())  # in a local build: run in a child of the warm process, imports paid once
+
 from cradle.pipeline.runner import run
 from cradle.scenes import stages
 from cradle.scenes.spec import MapEntry

@@ -1,5 +1,9 @@
 """Snakemake adapter: the movie of one scene from its stored runs -> results/movies/<scene>.{mp4,gif}; the runs
 must be the files the workflow's config expects (cradle.pipeline.identity)."""
+from cradle.pipeline.warm import forward
+
+forward(globals())  # in a local build: run in a child of the warm process, imports paid once
+
 import logging
 from pathlib import Path
 

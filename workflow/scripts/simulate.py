@@ -2,6 +2,10 @@
 comparison -> results/initial/<scene>.nc, results/sim/<scene>/{exact,dps}.nc, results/metrics/<scene>.nc
 (cradle.pipeline.scene_job: in memory, or block by block for a large store). A breather's homoclinic
 solution must be the file the workflow's config expects (cradle.pipeline.identity)."""
+from cradle.pipeline.warm import forward
+
+forward(globals())  # in a local build: run in a child of the warm process, imports paid once
+
 from cradle.pipeline.identity import job_expectations, open_checked
 from cradle.pipeline.runner import one_line_errors
 from cradle.pipeline.scene_job import run_scene

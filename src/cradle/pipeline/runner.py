@@ -22,6 +22,7 @@ from typing import Any
 
 from cradle.data.io import write_netcdf
 from cradle.pipeline.orphan import orphaned, watch_parent
+from cradle.pipeline.warm import DECLINED_VAR, STARTED_VAR
 from cradle.scenes.failure import StageFailure
 
 log = logging.getLogger("cradle")
@@ -31,14 +32,19 @@ def process_age() -> float | None:
     """Seconds since this process started (Linux /proc), or None where that is not available.
 
     Called first thing in a job, it is the job's start-up cost: interpreter,
-    Snakemake's script preamble and the imports (benchmarks/rebuild.py adds them up).
+    Snakemake's script preamble and the imports (benchmarks/rebuild.py adds them up). A job forked
+    from the warm process (:mod:`cradle.pipeline.warm`) counts from the start of its own process,
+    which handed it over.
     """
     try:
-        with open("/proc/self/stat") as f:
-            start_ticks = int(f.read().rsplit(")", 1)[1].split()[19])
+        if STARTED_VAR in os.environ:
+            started = float(os.environ[STARTED_VAR])
+        else:
+            with open("/proc/self/stat") as f:
+                started = int(f.read().rsplit(")", 1)[1].split()[19]) / os.sysconf("SC_CLK_TCK")
         with open("/proc/uptime") as f:
             uptime = float(f.read().split()[0])
-        return uptime - start_ticks / os.sysconf("SC_CLK_TCK")
+        return uptime - started
     except (OSError, ValueError, IndexError):
         return None
 
@@ -60,7 +66,9 @@ def setup_logging(log_path: str | None = None) -> None:
     global _STARTUP_LOGGED
     age = None if _STARTUP_LOGGED else process_age()
     if age is not None:
-        log.info("process start-up (interpreter, imports): %.2f s", age)
+        how = ("forked from the warm process" if STARTED_VAR in os.environ else
+               f"own process: {os.environ[DECLINED_VAR]}" if DECLINED_VAR in os.environ else "own process")
+        log.info("process start-up (interpreter, imports): %.2f s (%s)", age, how)
         _STARTUP_LOGGED = True
 
 
