@@ -106,13 +106,80 @@ def _mi_statistics():
     return [(f"{m}, N = {N}, q = {2 * k / N:g} pi, seed0", case(m)) for m in ("exact", "dps")]
 
 
+def _disorder():
+    """One (sigma, seed) of a (family, Delta) batch of the full form, as :func:`cradle.analyses.disorder.family_batch`
+    runs it (:func:`~cradle.analyses.disorder.run_case`, then the fidelity series put on its grid): every family at
+    the smallest Delta, 0.01 (the longest runs: 600 periods, 7,543 samples, the most measuring per integration),
+    and the wave at the largest, 0.3 (385 samples: the fixed costs weigh most); sigma = 0.03, the first seed. The
+    batch's exact breather and the homogeneous reference pair (sigma = 0, run once per batch or seed) are made
+    before the timing."""
+    from cradle.analyses import disorder as D
+    from cradle.data.variables import MODELS
+
+    spec = D.Disorder()
+    sigma, seed = 0.03, spec.first_seed
+
+    def before_run_case(spec, family, shift, t, sigma, seed, b, ref):   # a source from before run_case: the loop's body
+        init = D.initial_data(spec, family, shift, seed, b)
+        run = D.run_models(spec, init, t, sigma, seed)
+        return run, D.measure_family(spec, family, shift, t, run, ref if sigma > 0 else None, init)
+
+    run_case = getattr(D, "run_case", before_run_case)
+
+    def case(family, shift):
+        t = D.time_grid(spec, shift)
+        b = D.exact_breather(spec, shift) if family in ("kicked", "static") else None
+        run0, res0 = run_case(spec, family, shift, t, 0.0, seed, b, None)
+        ref = dict(run0, measures=res0)
+        s_grid = np.linspace(0.0, spec.slow_periods, D.SERIES_POINTS)
+
+        def call():
+            run, res = run_case(spec, family, shift, t, sigma, seed, b, ref)
+            out = {f"{m}.{k}": v for m in MODELS for k, v in res[m].items() if k in D.MEASURES[family]}
+            if family == "wave":
+                out.update({f"{m}.series": np.interp(s_grid, t / (2.0 * np.pi / shift), res[m]["_series"])
+                            for m in MODELS})
+            return dict(out, drift=run["drift"], l2=run["l2"])
+        return call
+
+    return [(f"{f}, Delta = {d:g}, sigma = {sigma:g}, seed {seed}", case(f, d))
+            for f, d in (("wave", 0.01), ("mi", 0.01), ("kicked", 0.01), ("static", 0.01), ("wave", 0.3))]
+
+
+def _trapping():
+    """One run of the full form, as :func:`cradle.analyses.trapping.run_batch` runs it
+    (:func:`~cradle.analyses.trapping.run_one`): the striker at a = 1 (the scan amplitude) and a = 0.1 (the
+    longest run: 3,795 samples of 260 beads), the breather at a = 0.3 undamped and with the on-site damping,
+    each in the target at sigma = 0.1, the first seed. The site energies e (samples x beads) are compared by
+    their SHA-256."""
+    import hashlib
+
+    from cradle.analyses import trapping as T
+    from cradle.models.damping import Damping
+
+    spec = T.Trapping()
+
+    def case(kind, a, sigma, gamma):
+        def call():
+            damping = Damping(onsite=gamma, contact=0.0) if gamma > 0 else None
+            r = T.run_one(spec, kind, a, spec.length, sigma, spec.seed, damping)
+            out = {k: v for k, v in r.items() if k not in ("t", "e")}
+            return dict(out, e_sha256=hashlib.sha256(np.ascontiguousarray(r["e"]).tobytes()).hexdigest())
+        return call
+
+    return [(f"{k}, a = {a:g}, length {spec.length}, sigma = {s:g}, seed {spec.seed}"
+             + (f", gamma = {g:g}" if g else ""), case(k, a, s, g))
+            for k, a, s, g in (("striker", 1.0, 0.1, 0.0), ("striker", 0.1, 0.1, 0.0), ("breather", 0.3, 0.1, 0.0),
+                               ("breather", 0.3, 0.1, 1e-3))]
+
+
 #: sweep -> (the function giving its representative cases, modules whose integrate_* names are wrapped)
 SWEEPS: dict[str, tuple[Callable, tuple[str, ...]]] = {
     "breather-interactions": (_breather_interactions, ("cradle.analyses.pair_runs",)),
     "dps-validity": (_dps_validity, ("cradle.analyses.dps_validity",)),
     "mi-statistics": (_mi_statistics, ("cradle.analyses.mi_statistics",)),
-    # "disorder": (_disorder, ("cradle.analyses.disorder",)),   # issue 25: add its case here
-    # "trapping": (_trapping, ("cradle.analyses.trapping",)),
+    "disorder": (_disorder, ("cradle.analyses.disorder",)),
+    "trapping": (_trapping, ("cradle.analyses.trapping",)),
 }
 
 
