@@ -14,6 +14,9 @@ spent inside the integrators. Each case is run once first (kernels compiled or l
 ``--repeats`` times; the table shows medians, in CPU time of the process (``time.process_time``: the machine
 is shared, and wall time counts the other processes' turns) and in wall time.
 
+``--only NAME`` (repeatable): those sweeps only; their table has its own section of the document, its marker
+naming them, beside the table of all sweeps.
+
 ``--before OLD_SRC``: the same measurement also with another checkout's ``src`` (e.g. ``git archive <commit>
 src | tar -x -C /tmp/before``), each source in a fresh subprocess, alternating old and new ``ROUNDS`` times, so
 both are measured in the same hour; the table then has both and the cases' results are checked equal
@@ -22,7 +25,7 @@ the full form's cases (:func:`outcome_sample`) under each source; ``--batch``: o
 batch of it under each source (:func:`one_batch`: its time, the full sweep's estimated from it, and every
 case compared). Each writes its own section of the document (``--out``).
 
-**Adding a sweep** (the issue-25 analyses ``disorder`` and ``trapping`` once they exist): one entry in
+**Adding a sweep**: one entry in
 :data:`SWEEPS`, a function returning ``(label, call)`` pairs where ``call()`` runs one representative case of
 the sweep's full form and returns its results as a dict of numbers (compared between sources); the modules it
 names in ``modules`` get their ``integrate_*`` names wrapped too.
@@ -106,13 +109,82 @@ def _mi_statistics():
     return [(f"{m}, N = {N}, q = {2 * k / N:g} pi, seed0", case(m)) for m in ("exact", "dps")]
 
 
+def _disorder():
+    """One (sigma, seed) of a (family, Delta) batch of the full form, as :func:`cradle.analyses.disorder.family_batch`
+    runs it (:func:`~cradle.analyses.disorder.run_case`, then the fidelity series put on its grid): every family at
+    the smallest Delta, 0.01 (the longest runs: 600 periods, 7,543 samples, the most measuring per integration),
+    and the wave at the largest, 0.3 (385 samples: the fixed costs weigh most); sigma = 0.03, the first seed. The
+    batch's exact breather and the homogeneous reference pair (sigma = 0, run once per batch or seed) are made
+    before the timing."""
+    from cradle.analyses import disorder as D
+    from cradle.data.variables import MODELS
+
+    spec = D.Disorder()
+    sigma, seed = 0.03, spec.first_seed
+
+    def before_run_case(spec, family, shift, t, sigma, seed, b, ref):   # a source from before run_case: the loop's body
+        init = D.initial_data(spec, family, shift, seed, b)
+        run = D.run_models(spec, init, t, sigma, seed)
+        return run, D.measure_family(spec, family, shift, t, run, ref if sigma > 0 else None, init)
+
+    run_case = getattr(D, "run_case", before_run_case)
+
+    def case(family, shift):
+        t = D.time_grid(spec, shift)
+        b = D.exact_breather(spec, shift) if family in ("kicked", "static") else None
+        run0, res0 = run_case(spec, family, shift, t, 0.0, seed, b, None)
+        ref = dict(run0, measures=res0)
+        s_grid = np.linspace(0.0, spec.slow_periods, D.SERIES_POINTS)
+
+        def call():
+            run, res = run_case(spec, family, shift, t, sigma, seed, b, ref)
+            out = {f"{m}.{k}": v for m in MODELS for k, v in res[m].items() if k in D.MEASURES[family]}
+            if family == "wave":
+                out.update({f"{m}.series": np.interp(s_grid, t / (2.0 * np.pi / shift), res[m]["_series"])
+                            for m in MODELS})
+            return dict(out, drift=run["drift"], l2=run["l2"])
+        return call
+
+    return [(f"{f}, Delta = {d:g}, sigma = {sigma:g}, seed {seed}", case(f, d))
+            for f, d in (("wave", 0.01), ("mi", 0.01), ("kicked", 0.01), ("static", 0.01), ("wave", 0.3))]
+
+
+def _trapping():
+    """One run of the full form, as :func:`cradle.analyses.trapping.run_batch` runs it
+    (:func:`~cradle.analyses.trapping.run_one`): the striker at a = 1 (the scan amplitude) and a = 0.1 (the
+    longest run: 3,795 samples of 260 beads), the breather at a = 0.3 undamped and with the on-site damping, each
+    in the target at sigma = 0.1, the first seed; and the striker's homogeneous damped run (seed -1: the damped
+    integrator without terms, another path). The site energies e (samples x beads) are compared by their SHA-256."""
+    import hashlib
+
+    from cradle.analyses import trapping as T
+    from cradle.models.damping import Damping
+
+    spec = T.Trapping()
+
+    def case(kind, a, sigma, seed, gamma):
+        def call():
+            damping = Damping(onsite=gamma, contact=0.0) if gamma > 0 else None
+            r = T.run_one(spec, kind, a, spec.length, sigma, seed, damping)
+            out = {k: v for k, v in r.items() if k not in ("t", "e")}
+            return dict(out, e_sha256=hashlib.sha256(np.ascontiguousarray(r["e"]).tobytes()).hexdigest())
+        return call
+
+    first = spec.seed
+    return [(f"{k}, a = {a:g}, length {spec.length}, sigma = {s:g}, seed {sd}" + (f", gamma = {g:g}" if g else ""),
+             case(k, a, s, sd, g))
+            for k, a, s, sd, g in (("striker", 1.0, 0.1, first, 0.0), ("striker", 0.1, 0.1, first, 0.0),
+                                   ("breather", 0.3, 0.1, first, 0.0), ("breather", 0.3, 0.1, first, 1e-3),
+                                   ("striker", 1.0, 0.0, -1, 1e-3))]
+
+
 #: sweep -> (the function giving its representative cases, modules whose integrate_* names are wrapped)
 SWEEPS: dict[str, tuple[Callable, tuple[str, ...]]] = {
     "breather-interactions": (_breather_interactions, ("cradle.analyses.pair_runs",)),
     "dps-validity": (_dps_validity, ("cradle.analyses.dps_validity",)),
     "mi-statistics": (_mi_statistics, ("cradle.analyses.mi_statistics",)),
-    # "disorder": (_disorder, ("cradle.analyses.disorder",)),   # issue 25: add its case here
-    # "trapping": (_trapping, ("cradle.analyses.trapping",)),
+    "disorder": (_disorder, ("cradle.analyses.disorder",)),
+    "trapping": (_trapping, ("cradle.analyses.trapping",)),
 }
 
 
@@ -351,7 +423,7 @@ def main(argv=None):
              + (f"; medians over {a.repeats} repeats after a warm-up call"
                 + (f", in {ROUNDS} processes per source alternating" if a.before else "") + "; CPU time of the process"
                 if section == "table" else "") + ".")
-    _write(a.out, section, stamp, text)
+    _write(a.out, section, stamp, text, a.only if section == "table" else None)
 
 
 SECTIONS = {"table": ("<!-- sweep-cases table -->", "<!-- end -->"),
@@ -359,10 +431,14 @@ SECTIONS = {"table": ("<!-- sweep-cases table -->", "<!-- end -->"),
             "batch": ("<!-- sweep-cases batch -->", "<!-- end batch -->")}
 
 
-def _write(out: str, section: str, stamp: str, text: str) -> None:
-    """Replace one section of the document ``out`` (between its markers), or start the document."""
+def _write(out: str, section: str, stamp: str, text: str, only=None) -> None:
+    """Replace one section of the document ``out`` (between its markers), or start the document. A table of
+    some sweeps only (``--only``) has its own section, its start marker naming them
+    (``<!-- sweep-cases table: disorder, trapping -->``), so that it leaves the table of all sweeps alone."""
     path = Path(out)
     start, end = SECTIONS[section]
+    if only:
+        start = start.replace(" -->", f": {', '.join(only)} -->")
     doc = path.read_text() if path.exists() else "# Sweep cases: cost against their integrations\n"
     if start not in doc:
         doc += f"\n{start}\n{end}\n"

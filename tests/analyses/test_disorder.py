@@ -132,6 +132,24 @@ def test_dps_results_depend_on_sigma_over_delta_only():
     assert not np.allclose(a["series"][0, 1], b["series"][0, 2], atol=1e-7)
 
 
+def test_a_case_is_what_its_batch_stores():
+    """run_case, the case of a batch (the one the sweep benchmark times), gives bitwise the measures and fidelity
+    series family_batch stores at that (sigma, seed), against the homogeneous pair run the same way."""
+    spec = form_spec(from_plain(dis.Disorder, TINY), FULL)
+    shift, (i, sigma), seed = 0.4, list(enumerate(spec.sigmas))[-1], dis.seeds_of(spec)[0]
+    batch = dis.family_batch(spec, "wave", shift)
+    t = dis.time_grid(spec, shift)
+    run0, res0 = dis.run_case(spec, "wave", shift, t, 0.0, seed, None, None)
+    run, res = dis.run_case(spec, "wave", shift, t, sigma, seed, None, dict(run0, measures=res0))
+    s_grid = np.linspace(0.0, spec.slow_periods, dis.SERIES_POINTS)
+    for m, model in enumerate(dis.MODELS):
+        for k in dis.MEASURES["wave"]:
+            assert np.array_equal(batch["measures"][k][m, i, 0], res[model][k], equal_nan=True), (model, k)
+        series = np.interp(s_grid, t / (2.0 * np.pi / shift), res[model]["_series"])
+        assert np.array_equal(batch["series"][m, i, 0], series), model
+    assert (batch["drift"][i, 0], batch["l2"][i, 0]) == (run["drift"], run["l2"])
+
+
 @pytest.mark.parametrize(("key", "value", "why"), [
     ("sigmas", [0.01, 0.1], "must start with 0"),
     ("shifts", [0.1, 0.05], "must be strictly increasing"),

@@ -356,6 +356,15 @@ def measure_family(spec: Disorder, family: str, shift: float, t, run: dict, ref:
     return out
 
 
+def run_case(spec: Disorder, family: str, shift: float, t, sigma: float, seed: int, breather, ref: dict | None):
+    """One case of a batch (:func:`family_batch`): the run pair of ``family`` at (Delta, sigma, seed) on ``t`` from
+    its initial data (``breather`` the batch's exact breather, None for the waves) and its measures against
+    ``ref``, the homogeneous run pair (ignored at sigma = 0): (run, {model: {name: value}})."""
+    init = initial_data(spec, family, shift, seed, breather)
+    run = run_models(spec, init, t, sigma, seed)
+    return run, measure_family(spec, family, shift, t, run, ref if sigma > 0 else None, init)
+
+
 def family_batch(spec: Disorder, family: str, shift: float, log=None) -> dict[str, Any]:
     """Every run of one family at one Delta: arrays (model, sigma, seed) of each measure, the fidelity series
     (model, sigma, seed, s) of the wave, and the drifts."""
@@ -382,9 +391,7 @@ def family_batch(spec: Disorder, family: str, shift: float, log=None) -> dict[st
                 drift[i, j], l2[i, j] = drift[i, 0], l2[i, 0]
                 ref = ref0
                 continue
-            init = initial_data(spec, family, shift, seed, b)
-            run = run_models(spec, init, t, sigma, seed)
-            res = measure_family(spec, family, shift, t, run, ref if sigma > 0 else None, init)
+            run, res = run_case(spec, family, shift, t, sigma, seed, b, ref)
             if sigma == 0.0:
                 ref = dict(run, measures=res)
                 if family != "mi":   # the mi family's noise depends on the seed
