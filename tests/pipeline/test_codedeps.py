@@ -30,7 +30,7 @@ import pytest
 from conftest import run_snakemake
 from cradle import figures
 from cradle.analyses.registry import ANALYSES
-from cradle.pipeline.codedeps import STAMPS, code_files, code_stamps, fingerprint, stamp_all
+from cradle.pipeline.codedeps import STAMPS, code_files, code_stamps, fingerprint, stamp_all, stamped_files
 
 ROOT = Path(__file__).resolve().parents[2]
 SRC = ROOT / "src"
@@ -61,7 +61,7 @@ def _summary(workdir, *targets) -> list[dict]:
         os.environ.update(env)
     assert code == 0, err.getvalue()[-3000:]
     text = out.getvalue()[out.getvalue().index("output_file\t"):]
-    return list(csv.DictReader(io.StringIO(text), delimiter="\t"))
+    return [{**row, "work": str(workdir)} for row in csv.DictReader(io.StringIO(text), delimiter="\t")]
 
 
 @cache
@@ -80,14 +80,11 @@ def _oracle(*entries) -> frozenset[str]:
 
 
 def _code_inputs(row) -> list[str]:
-    """A job's inputs, the stamp of a source file read as that file (``.snakemake/cradle-code/cradle.a.b.sha256``
-    is ``src/cradle/a/b.py``, ``workflow.scripts.figure.sha256`` is ``workflow/scripts/figure.py``)."""
+    """A job's inputs, its code stamp (``.snakemake/cradle-code/jobs/<entries>.sha256``) read as the files it
+    names (``src/cradle/a/b.py``, ``workflow/scripts/figure.py``)."""
     out = []
     for f in row["input-file(s)"].split(","):
-        if f.startswith(f"{STAMPS.as_posix()}/"):
-            name = f[len(STAMPS.as_posix()) + 1:-len(".sha256")]
-            f = ("src/" if name.startswith("cradle.") else "") + name.replace(".", "/") + ".py"
-        out.append(f)
+        out += stamped_files(Path(row["work"]) / f) if f.startswith(f"{STAMPS.as_posix()}/") else [f]
     return out
 
 
@@ -145,6 +142,8 @@ def full_dag(scratch):
 def test_code_inputs_are_exactly_the_imports_of_every_job(full_dag):
     checked = 0
     for row in full_dag:
+        # one code input a job (Snakemake sizes every input of every ready job each time it picks one)
+        assert sum(f.startswith(f"{STAMPS.as_posix()}/") for f in row["input-file(s)"].split(",")) == 1, row
         inputs = {f for f in _code_inputs(row) if f.startswith("src/")}
         entries = _entries(row)
         assert inputs == _oracle(*entries), (row["output_file"], sorted(inputs ^ _oracle(*entries)))
@@ -191,8 +190,9 @@ def test_a_stamp_is_rewritten_only_when_the_code_changes(tmp_path):
     (pkg / "a.py").write_text("X = 1\n")
     stamps = tmp_path / "stamps"
     got = code_stamps("cradle.a", src=tmp_path / "src", stamps=stamps)
-    assert [Path(p).name for p in got] == ["cradle.__init__.sha256", "cradle.a.sha256"]
-    stamp = stamps / "cradle.a.sha256"
+    stamp = stamps / "jobs" / "cradle.a.sha256"
+    assert got == [str(stamp)]
+    assert stamped_files(stamp) == [str(tmp_path / "src" / "cradle" / f) for f in ("__init__.py", "a.py")]
     before = stamp.stat().st_mtime_ns
     os.utime(stamp, ns=(before - 10**9, before - 10**9))
     (pkg / "a.py").write_text('"""A docstring."""\nX = 1  # a comment\n')
@@ -205,9 +205,11 @@ def test_a_stamp_is_rewritten_only_when_the_code_changes(tmp_path):
 
 
 def test_every_stamp_exists_before_the_dag_is_built(tmp_path):
-    """The Snakefile writes every module's and script's stamp when it is read (stamp_all): the stamps an
-    input function asks for later are the same files, already there when Snakemake takes its inventory
-    (a stamp first written by an input function was reported missing when its folder already existed)."""
+    """The Snakefile writes every module's and script's stamp when it is read (stamp_all), and every job's code
+    stamp (the rules' code_of, and those the input functions ask for, asked for first by the rule files): the
+    stamps an input function asks for later are the same files, already there when Snakemake takes its
+    inventory (a stamp first written by an input function was reported missing when its folder already
+    existed; the full DAG of a fresh copy, the ``scratch`` fixture, fails so). Here: the two kinds of stamp."""
     pkg = tmp_path / "src" / "cradle" / "figures"
     pkg.mkdir(parents=True)
     for f in (pkg.parent / "__init__.py", pkg / "__init__.py", pkg / "maps.py"):
@@ -221,12 +223,15 @@ def test_every_stamp_exists_before_the_dag_is_built(tmp_path):
     try:
         assert stamp_all("src", "workflow/scripts", stamps) == 4
         written = sorted(p.name for p in stamps.iterdir())
-        wanted = sorted(Path(p).name for p in code_stamps("workflow/scripts/figure.py", "cradle.figures.maps",
-                                                            src="src", stamps=stamps))
+        job = code_stamps("workflow/scripts/figure.py", "cradle.figures.maps", src="src", stamps=stamps)
+        named = sorted(stamped_files(job[0]))
     finally:
         os.chdir(cwd)
-    assert written == wanted == ["cradle.__init__.sha256", "cradle.figures.__init__.sha256",
-                                 "cradle.figures.maps.sha256", "workflow.scripts.figure.sha256"]
+    assert written == ["cradle.__init__.sha256", "cradle.figures.__init__.sha256", "cradle.figures.maps.sha256",
+                       "workflow.scripts.figure.sha256"]
+    assert job == [str(stamps / "jobs" / "workflow.scripts.figure+cradle.figures.maps.sha256")]
+    assert named == ["src/cradle/__init__.py", "src/cradle/figures/__init__.py", "src/cradle/figures/maps.py",
+                     "workflow/scripts/figure.py"]
 
 
 def test_a_later_read_reuses_the_index_for_unchanged_files_only(tmp_path, monkeypatch):
@@ -350,4 +355,7 @@ def test_a_comment_reruns_nothing_and_code_reruns_its_importers(tmp_path):
     dps.write_text(text + "\n_AN_EDIT = 1\n")
     os.utime(dps, (later, later))
     plan = planned()
-    assert "cradle.models.dps.sha256" in plan and "Nothing to be done" not in plan
+    assert f"Updated input files: {STAMPS.as_posix()}/jobs/workflow.scripts.kernels.sha256" in plan
+    assert "Nothing to be done" not in plan
+    for job in ("kernels", "simulate"):   # the code stamps of both jobs that reach dps.py name its new code
+        assert fingerprint(dps) in (work / STAMPS / "jobs" / f"workflow.scripts.{job}.sha256").read_text()

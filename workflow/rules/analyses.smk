@@ -53,6 +53,9 @@ def drawn_outputs(a, form, main):
 
 
 for _a in ANALYSES.values():
+    # the code stamps the input functions below ask for, written now (code_of)
+    code_of("workflow/scripts/analysis_compute.py", f"cradle.analyses.{_a.module}")
+    code_of("workflow/scripts/analysis_batch.py", f"cradle.analyses.{_a.module}")
     _main = _a.forms[0]
     for _form in _a.forms:
         if _a.batches is not None:

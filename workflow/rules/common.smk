@@ -29,12 +29,20 @@ except cc.ConfigError as err:
 stamp_all()
 
 
+#: entries -> their code stamp, each written once per read of the Snakefile
+_CODE = {}
+
+
 def code_of(*entries):
-    """A rule's code inputs: the stamps of its script (or module) and of every cradle source file it can
-    import, derived from the imports themselves (cradle.pipeline.codedeps); a stamp holds the fingerprint
-    of a module's code and is rewritten only when that changes, so an edit to the code reruns exactly the
-    jobs whose code reaches it, and an edit to a comment or a docstring reruns nothing."""
-    return code_stamps(*entries, src="src")
+    """A rule's code input: the stamp of the code of its script (or module) and of every cradle source file
+    it can import, derived from the imports themselves (cradle.pipeline.codedeps); the stamp holds the
+    fingerprint of each module's code and is rewritten only when one changes, so an edit to the code reruns
+    exactly the jobs whose code reaches it, and an edit to a comment or a docstring reruns nothing. Every
+    stamp is asked for when the Snakefile is read (the rules, and the input functions' stamps below and in
+    analyses.smk), before Snakemake's inventory of the files."""
+    if entries not in _CODE:
+        _CODE[entries] = code_stamps(*entries, src="src")
+    return _CODE[entries]
 
 
 def figure_code(label):

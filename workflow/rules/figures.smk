@@ -1,5 +1,9 @@
 # Stage 4b: one rule instance per paper figure, drawn from netCDF outputs only.
 
+# each figure's code stamp, written now (code_of)
+for _label in config.get("figures", {}):
+    figure_code(_label)
+
 
 rule figure:
     input:

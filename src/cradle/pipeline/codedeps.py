@@ -16,11 +16,14 @@ keeps its fingerprint and import statements in ``.snakemake/cradle-code.index.js
 keyed by the file's inode, size and times (its change time moves with every write), so a
 later read of the Snakefile parses only what was written since.
 
-A rule's inputs are not the source files themselves but one stamp file per module
-(:func:`code_stamps`): the :func:`fingerprint` of the module's code, rewritten only
-when that changes. An edit to a comment or a docstring leaves the stamp, and so every
-job, alone; an edit to the code moves it, and the jobs whose code reaches the module
-rerun (Snakemake compares an input's time, then its checksum).
+A rule's input is not the source files themselves but one stamp file for the code it
+runs (:func:`code_stamps`): the :func:`fingerprint` of each module's code it reaches,
+rewritten only when one of them changes. An edit to a comment or a docstring leaves the
+stamps, and so every job, alone; an edit to the code moves the stamps that name the
+module, and the jobs whose code reaches it rerun (Snakemake compares an input's time,
+then its checksum). Every stamp is written when the Snakefile is read, before Snakemake
+takes its inventory of the files (the rules ask for them then, or the Snakefile does:
+workflow/rules/common.smk).
 """
 from __future__ import annotations
 
@@ -38,6 +41,8 @@ PACKAGE = "cradle"
 
 #: where :func:`code_stamps` writes the stamps, relative to the workflow's working directory
 STAMPS = Path(".snakemake") / "cradle-code"
+#: the folder, under the stamps, of each job's code stamp (:func:`code_stamps`)
+JOBS = "jobs"
 
 
 def _module_file(src: Path, name: str) -> Path | None:
@@ -152,8 +157,11 @@ def _save_index(stamps: Path, paths: list[str]) -> None:
 
 def _stamp(path: str, name: str, stamps: Path) -> str:
     """The stamp ``name`` of one source file, written (atomically) only when its fingerprint changed."""
-    stamp = stamps / f"{name}.sha256"
-    text = f"{fingerprint(path)}  {path}\n"
+    return _write_if_changed(stamps / f"{name}.sha256", f"{fingerprint(path)}  {path}\n")
+
+
+def _write_if_changed(stamp: Path, text: str) -> str:
+    """``text`` at ``stamp``, written (atomically) only when it differs from what is there."""
     try:
         if stamp.read_text() == text:
             return str(stamp)
@@ -167,15 +175,25 @@ def _stamp(path: str, name: str, stamps: Path) -> str:
 
 
 def code_stamps(*entries: str | Path, src: str | Path = "src", stamps: str | Path = STAMPS) -> list[str]:
-    """A rule's code inputs: the stamp of each script among ``entries`` and of every source file
-    :func:`code_files` finds, under ``stamps`` (``cradle.models.dps.sha256``,
-    ``workflow.scripts.simulate.sha256``), sorted."""
-    def name(path: str, root: Path) -> str:
-        return Path(path).relative_to(root).with_suffix("").as_posix().replace("/", ".")
+    """A rule's code input: one stamp for the code its ``entries`` reach, ``stamps/jobs/<entries>.sha256``
+    (``workflow.scripts.figure+cradle.figures.maps.sha256``), a line per file -- each script among
+    ``entries`` and every source file :func:`code_files` finds -- with its :func:`fingerprint`; rewritten
+    only when one of them changes, or the set of files does.
 
+    One file, not one per module: Snakemake looks at every input of every job ready to run each time it
+    picks the next (their sizes, for its greedy scheduler), and eighty code inputs a job made that a large
+    part of a build's time."""
     scripts = [str(e) for e in entries if str(e).endswith(".py")]
-    return sorted({_stamp(f, name(f, Path()), Path(stamps)) for f in scripts}
-                  | {_stamp(f, name(f, Path(src)), Path(stamps)) for f in code_files(*entries, src=src)})
+    files = sorted(set(scripts) | set(code_files(*entries, src=src)))
+    key = "+".join(Path(str(e)).with_suffix("").as_posix().replace("/", ".") if str(e).endswith(".py") else str(e)
+                   for e in entries)
+    text = "".join(f"{fingerprint(f)}  {f}\n" for f in files)
+    return [_write_if_changed(Path(stamps) / JOBS / f"{key}.sha256", text)]
+
+
+def stamped_files(stamp: str | Path) -> list[str]:
+    """The source files a job's code stamp (:func:`code_stamps`) names."""
+    return [line.split("  ", 1)[1] for line in Path(stamp).read_text().splitlines() if "  " in line]
 
 
 def stamp_all(src: str | Path = "src", scripts: str | Path = "workflow/scripts", stamps: str | Path = STAMPS) -> int:
