@@ -3,7 +3,8 @@
     python benchmarks/estimates.py [--results results]
 
 Reads Snakemake's per-job benchmark files (``results/benchmarks/{sim,homoclinic,map}/NAME.tsv``:
-wall seconds and max RSS) of the last build and the estimates of config.yaml's entries, and
+wall seconds and max RSS; for a job forked from the warm process, the peak its log states) of the last
+build and the estimates of config.yaml's entries, and
 writes the table ``estimates`` of docs/performance.md, with the ratio estimate / measured. Run it
 after a build from clean (``snakemake -j2``): a job's wall time includes waiting for the other
 core, so compare builds made the same way.
@@ -12,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import re
 import sys
 import time
 from pathlib import Path
@@ -22,12 +24,20 @@ from doctable import publish  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def measured(path: Path) -> tuple[float, float] | None:
+def measured(path: Path, log: Path | None = None) -> tuple[float, float] | None:
+    """Wall seconds and peak memory (bytes) of a job: Snakemake's benchmark file, whose memory is that of the
+    job's own process; a job forked from the warm process (cradle.pipeline.warm) ran in a child of another
+    process, and its log says its peak (with the imported modules' pages, as a fresh process would have)."""
     if not path.exists():
         return None
     with open(path) as f:
         row = next(csv.DictReader(f, delimiter="\t"))
-    return float(row["s"]), float(row["max_rss"]) * 2**20
+    rss = float(row["max_rss"]) * 2**20
+    if log is not None and log.exists():
+        for line in log.read_text().splitlines():
+            if m := re.search(r"forked job: peak resident memory ([\d.]+) MB", line):
+                rss = float(m.group(1)) * 2**20
+    return float(row["s"]), rss
 
 
 def main(argv=None) -> int:
@@ -41,7 +51,8 @@ def main(argv=None) -> int:
     for e in budget.estimates(cfg):
         section, name = e.key.split(".", 1)
         folder = {"scenes": "sim", "homoclinic": "homoclinic", "map": "map"}.get(section)
-        got = measured(Path(args.results) / "benchmarks" / folder / f"{name}.tsv") if folder else None
+        got = (measured(Path(args.results) / "benchmarks" / folder / f"{name}.tsv",
+                        Path(args.results) / "logs" / folder / f"{name}.log") if folder else None)
         if got is None:
             continue
         s, rss = got

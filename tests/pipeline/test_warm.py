@@ -5,6 +5,7 @@ job whose process is killed has its child stopped."""
 from __future__ import annotations
 
 import os
+import re
 import signal
 import socket
 import subprocess
@@ -159,3 +160,19 @@ def test_the_scripts_imports_are_read_from_the_scripts():
     names = warm.script_imports(str(folder))
     assert "cradle.pipeline.scene_job" in names and "cradle.figures" in names
     assert "cradle.pipeline.warm" not in names
+
+
+def test_a_forked_job_logs_its_own_peak_memory_and_cpu(server, tmp_path):
+    """Snakemake's benchmark of a forked job measures the process that waited: the child logs its own peak
+    (read by benchmarks/estimates.py), at least the pages of the modules it runs with."""
+    log = tmp_path / "job.log"
+    done = _job(tmp_path, f"""
+        import logging
+        logging.basicConfig(filename={str(log)!r}, level=logging.INFO, format="%(message)s")
+        block = bytes(range(256)) * (400 * 2**20 // 256)   # 400 MB written by this job
+    """, server[0])
+    assert done.returncode == 0, done.stderr
+    line = log.read_text().strip().splitlines()[-1]
+    peak, cpu = re.fullmatch(r"forked job: peak resident memory (\d+) MB, CPU ([\d.]+) s \(user \+ system\)",
+                             line).groups()
+    assert int(peak) >= 400 and float(cpu) > 0

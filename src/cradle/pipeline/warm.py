@@ -433,6 +433,7 @@ class Server:
             code = 1
         finally:
             try:
+                _log_usage()
                 atexit._run_exitfuncs()
                 sys.stdout.flush()
                 sys.stderr.flush()
@@ -441,6 +442,25 @@ class Server:
                     signal.signal(-code, signal.SIG_DFL)
                     os.kill(os.getpid(), -code)
                 os._exit(code)
+
+
+def _log_usage() -> None:
+    """Log a forked job's peak memory and CPU time: Snakemake's benchmark of the job measures the job's own
+    process, which only waited (benchmarks/estimates.py reads this line instead)."""
+    import logging
+    import resource
+
+    if not logging.getLogger().handlers:   # the job set up no log
+        return
+    peak = None
+    try:
+        with open("/proc/self/status") as f:
+            peak = next(int(line.split()[1]) / 1024 for line in f if line.startswith("VmHWM:"))
+    except (OSError, StopIteration, ValueError):
+        pass
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    logging.getLogger("cradle").info("forked job: peak resident memory %s MB, CPU %.2f s (user + system)",
+                                     "?" if peak is None else f"{peak:.0f}", usage.ru_utime + usage.ru_stime)
 
 
 def main(argv=None) -> int:
