@@ -332,18 +332,34 @@ def _part_errors(schema: dict, value, key: tuple[str, ...]) -> list[ValidationEr
     return errors
 
 
+#: the keywords of a shell (:func:`_shell`) whose errors say nothing of the values of its keys: the type, the
+#: required, declared and well-named keys (the message of an undeclared key shows its value)
+_KEYS_ONLY = frozenset({"$schema", "$defs", "title", "description", "default", "type", "required", "properties",
+                        "additionalProperties", "propertyNames"})
+
+
+def _shell_errors(shell: dict, value, key: tuple[str, ...]) -> list[ValidationError]:
+    """:func:`_part_errors` of a shell, found for a mapping on its keys alone (the values replaced by None, which
+    the shell takes as any other value) where no error can show a value: the memo then holds one entry per set
+    of keys, not one per config."""
+    if isinstance(value, dict) and _KEYS_ONLY.issuperset(shell) and (
+            shell.get("additionalProperties") is not False or all(k in shell.get("properties", {}) for k in value)):
+        return _part_errors(shell, dict.fromkeys(value), key)
+    return _part_errors(shell, value, key)
+
+
 def _schema_errors(cfg: dict, entry_errors: dict | None = None) -> list[tuple[tuple, ValidationError]]:
     """(key path of a part, error) for every error of ``cfg`` against the schema: the same errors as the
     whole schema gives, found part by part (the root, each section, each of its keys or entries); those of
     an entry taken from ``entry_errors`` (by (section, key): :func:`_by_entry`) where it holds them."""
     entry_errors = entry_errors or {}
     root, sections = _parts()
-    out: list[tuple[tuple, ValidationError]] = [((), e) for e in _part_errors(root, cfg, ("",))]
+    out: list[tuple[tuple, ValidationError]] = [((), e) for e in _shell_errors(root, cfg, ("",))]
     for section, (shell, props, entries) in sections.items():
         if section not in cfg:
             continue
         value = cfg[section]
-        out += [((section,), e) for e in _part_errors(shell, value, (section,))]
+        out += [((section,), e) for e in _shell_errors(shell, value, (section,))]
         if not isinstance(value, dict):
             continue
         for key, item in value.items():
