@@ -304,9 +304,9 @@ def _parts() -> tuple[dict, dict[str, tuple[dict, dict, dict | None]]]:
     return _shell(root), sections
 
 
-#: the schema's errors of the parts of recent configs, by (part, its canonical JSON): a config validated
-#: again with one entry changed (the Snakefile's --config overrides, the config fuzz) revalidates that entry
-_PART_ERRORS: dict[tuple[str, ...], list[ValidationError]] = {}
+#: the schema's errors of the parts of recent configs (the root's and the sections' shells; an entry's are
+#: those of :func:`_entry`), by (part, its pickle: :func:`_memo_key`)
+_PART_ERRORS: dict[tuple, list[ValidationError]] = {}
 
 
 def _memo_key(key: tuple, value) -> tuple | None:
