@@ -24,12 +24,14 @@ ONE_WORKER = ("tests/pipeline/test_codedeps.py", "tests/figures/test_figures_ren
 
 
 #: the longest tests (each 10 s to a minute), started first and longest first, so that the two workers end
-#: together rather than one running the last long test alone
+#: together rather than one running the last long test alone; one of a module of :data:`ONE_WORKER` uses none
+#: of its shared fixtures and is given to either worker
 LONGEST = ("tests/test_habits.py::test_mypy_is_clean",
            "tests/pipeline/test_pipeline.py::test_snakemake_end_to_end_on_tiny_config",
-           "tests/pipeline/test_config_fuzz.py::test_config_fuzz",
            "tests/integrators/test_kernel_cache.py::test_edit_of_kernels_reaches_onset_kernels_and_restore_comes_back",
+           "tests/pipeline/test_codedeps.py::test_a_comment_reruns_nothing_and_code_reruns_its_importers",
            "tests/pipeline/test_pipeline.py::test_a_failed_forced_rerun_restores_the_previous_outputs",
+           "tests/pipeline/test_config_fuzz.py::test_config_fuzz",
            "tests/pipeline/test_interrupt.py::test_killed_run_leaves_nothing_and_rerun_matches",
            "tests/analyses/test_floquet.py::test_direct_simulation_grows_at_the_top_floquet_rate",
            "tests/test_tutorial.py::test_tutorial_runs_on_a_short_scene")
@@ -44,14 +46,16 @@ def pytest_collection_modifyitems(items):
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config, log):
-    """pytest-xdist's scheduling by scope, a scope being a module of :data:`ONE_WORKER` or else a single test
-    (xdist's own ``xdist_group`` mark does not reach the scheduler under pytest 9: it renames the node id)."""
+    """pytest-xdist's scheduling by scope, a scope being a module of :data:`ONE_WORKER` (but its tests of
+    :data:`LONGEST`) or else a single test (xdist's own ``xdist_group`` mark does not reach the scheduler under
+    pytest 9: it renames the node id). xdist hands out the scopes with the most tests first (the modules),
+    then the others in the order of :func:`pytest_collection_modifyitems`."""
     from xdist.scheduler import LoadScopeScheduling
 
     class OneWorkerModules(LoadScopeScheduling):
         def _split_scope(self, nodeid: str) -> str:
             module = nodeid.split("::", 1)[0]
-            return module if module in ONE_WORKER else nodeid
+            return module if module in ONE_WORKER and nodeid not in LONGEST else nodeid
 
     return OneWorkerModules(config, log)
 

@@ -11,12 +11,40 @@ trust its types. A scene is checked only when ``defaults:`` passed too (it is re
 """
 from __future__ import annotations
 
+import pickle
+
 from cradle.scenes.spec import ENTRY_SECTIONS, Checked, Context, HomoclinicEntry, MapEntry, Where, resolved
 from cradle.specs.declare import build
 from cradle.specs.values import ConfigError, Errors, did_you_mean
 
 from .beyond import SPECS
 from .sections import SECTIONS, Figure
+
+#: typed objects built from the entries of recent configs, by (what is built, the pickle of what it is built
+#: from): a config validated again with one entry changed (the Snakefile's --config overrides, the config fuzz)
+#: builds that entry only. The objects are frozen; their cached properties (a scene's stored times) come along
+_BUILT: dict[tuple, object] = {}
+
+
+def _memo(what, make, *values):
+    """``make(*values)``, remembered by ``what`` and the values' pickle (equal only for values of the same types,
+    keys and order, from which building gives the same object)."""
+    try:
+        key = (what, pickle.dumps(values, protocol=pickle.HIGHEST_PROTOCOL))
+    except Exception:  # noqa: BLE001 -- a value pickle refuses is built every time
+        return make(*values)
+    made = _BUILT.get(key)
+    if made is None:
+        made = make(*values)
+        if len(_BUILT) >= 4096:
+            _BUILT.pop(next(iter(_BUILT)))
+        _BUILT[key] = made
+    return made
+
+
+def _built(cls, value):
+    """``build(cls, value)``, remembered (:func:`_memo`)."""
+    return _memo(cls, build, cls, value)
 
 
 def _passed(cfg: dict, section: str, out: Errors) -> dict[str, dict]:
@@ -44,20 +72,20 @@ def check(cfg: dict, out: Errors) -> None:
     holds the schema's problems, which tell the entries to skip, and gets these)."""
     # built first, while ``out`` holds the schema's problems only
     defaults = None if out.within(["defaults"]) else cfg["defaults"]
-    homoclinic = {name: build(HomoclinicEntry, entry if defaults is None else
-                              {**entry, "alpha": float(entry.get("alpha", defaults["alpha"]))})
+    homoclinic = {name: _built(HomoclinicEntry, entry if defaults is None else
+                               {**entry, "alpha": float(entry.get("alpha", defaults["alpha"]))})
                   for name, entry in _passed(cfg, "homoclinic", out).items()}
-    scenes = {} if defaults is None else {name: resolved(entry, defaults)
+    scenes = {} if defaults is None else {name: _memo(resolved, resolved, entry, defaults)
                                           for name, entry in _passed(cfg, "scenes", out).items()}
-    entries: list[tuple[Where, Checked]] = [(["map", name], build(MapEntry, entry))
+    entries: list[tuple[Where, Checked]] = [(["map", name], _built(MapEntry, entry))
                                             for name, entry in _passed(cfg, "map", out).items()]
     entries += [(["homoclinic", name], h) for name, h in homoclinic.items()]
     entries += [(["scenes", name], s) for name, s in scenes.items()]
     beyond = cfg.get("beyond")
     if isinstance(beyond, dict) and not out.has(["beyond"]):
-        entries += [(["beyond", key], build(cls, beyond[key])) for key, cls in SPECS.items()
+        entries += [(["beyond", key], _built(cls, beyond[key])) for key, cls in SPECS.items()
                     if hasattr(cls, "check") and not out.within(["beyond", key])]
-    entries += [(["figures", label], build(Figure, fig)) for label, fig in _passed(cfg, "figures", out).items()]
+    entries += [(["figures", label], _built(Figure, fig)) for label, fig in _passed(cfg, "figures", out).items()]
 
     given = {section: tuple(cfg[section]) if isinstance(cfg.get(section), dict) else () for section in ENTRY_SECTIONS}
     context = Context(given=given, scenes=scenes, homoclinic=homoclinic)
@@ -88,10 +116,28 @@ def _found(node, name: str) -> list | None:
     return None
 
 
+def _scenes_read(name: str, section: dict) -> tuple[str, ...]:
+    """The scenes analysis ``name`` reads in each of its forms, in order, from its section (schema-valid, a key
+    given as "all" expanded); a form that needs what only its target gives (a scene to measure) is said when
+    it is planned, not here."""
+    from cradle.analyses.protocol import form_spec
+    from cradle.analyses.registry import ANALYSES
+
+    a = ANALYSES[name]
+    spec = build(a.spec, section)
+    names = []
+    for form in a.forms:
+        try:
+            reads = a.reads_of(form_spec(spec, form))
+        except ConfigError:
+            continue
+        names += [scene for read in reads.values() if (scene := dict(read.names).get("scene")) is not None]
+    return tuple(names)
+
+
 def _reads(cfg: dict, context: Context, out: Errors) -> None:
     """Every scene an analysis reads, in each of its forms, is a ``scenes:`` entry: said here, at the key that
     names it, rather than as a failure when its jobs are planned (sections with errors are skipped)."""
-    from cradle.analyses.protocol import form_spec
     from cradle.analyses.registry import ANALYSES
 
     scenes = context.given["scenes"]
@@ -102,15 +148,8 @@ def _reads(cfg: dict, context: Context, out: Errors) -> None:
         # as cradle.pipeline.config.analysis_spec: a section key given as "all" is every entry of that section
         section = {key: (list(context.given[key]) if key in SECTIONS and value == "all" else value)
                    for key, value in cfg["beyond"][a.name].items()}
-        spec = build(a.spec, section)
-        for form in a.forms:
-            try:
-                reads = a.reads_of(form_spec(spec, form))
-            except ConfigError:  # what only its target needs (a scene to measure): said when it is planned
-                continue
-            for read in reads.values():
-                name = dict(read.names).get("scene")
-                if name is not None and name not in scenes:
-                    at = _found(cfg["beyond"][a.name], name)
-                    out.add(where + (at or []), f"unknown scene: no `scenes:` entry of that name"
-                                                f"{did_you_mean(name, scenes)}", name)
+        for name in _memo(_scenes_read, _scenes_read, a.name, section):
+            if name not in scenes:
+                at = _found(cfg["beyond"][a.name], name)
+                out.add(where + (at or []), f"unknown scene: no `scenes:` entry of that name"
+                                            f"{did_you_mean(name, scenes)}", name)

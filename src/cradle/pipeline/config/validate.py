@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import difflib
 import json
+import pickle
 import re
 from functools import lru_cache
 from importlib import resources
@@ -303,17 +304,23 @@ def _parts() -> tuple[dict, dict[str, tuple[dict, dict, dict | None]]]:
     return _shell(root), sections
 
 
-#: the schema's errors of the parts of recent configs, by (part, its canonical JSON): a config validated
-#: again with one entry changed (the Snakefile's --config overrides, the config fuzz) revalidates that entry
-_PART_ERRORS: dict[tuple[str, ...], list[ValidationError]] = {}
+#: the schema's errors of the parts of recent configs (the root's and the sections' shells; an entry's are
+#: those of :func:`_entry`), by (part, its pickle: :func:`_memo_key`)
+_PART_ERRORS: dict[tuple, list[ValidationError]] = {}
+
+
+def _memo_key(key: tuple, value) -> tuple | None:
+    """``key`` and the pickle of ``value``, or None if it cannot be pickled: equal only for values of the same
+    types, keys and order (1, 1.0 and True apart), for which every step of the validation gives the same."""
+    try:
+        return (*key, pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
+    except Exception:  # noqa: BLE001 -- any value pickle refuses is validated without the memo
+        return None
 
 
 def _part_errors(schema: dict, value, key: tuple[str, ...]) -> list[ValidationError]:
     """jsonschema's errors of ``value`` against the sub-schema ``schema`` (paths relative to ``value``)."""
-    try:
-        memo = (*key, json.dumps(value, sort_keys=True, allow_nan=True))
-    except (TypeError, ValueError):
-        memo = None
+    memo = _memo_key(key, value)
     if memo is not None and memo in _PART_ERRORS:
         return _PART_ERRORS[memo]
     # a copy: the errors keep their instance, which filling in the defaults would change
@@ -325,24 +332,152 @@ def _part_errors(schema: dict, value, key: tuple[str, ...]) -> list[ValidationEr
     return errors
 
 
-def _schema_errors(cfg: dict) -> list[tuple[tuple, ValidationError]]:
+#: the keywords of a shell (:func:`_shell`) whose errors say nothing of the values of its keys: the type, the
+#: required, declared and well-named keys (the message of an undeclared key shows its value)
+_KEYS_ONLY = frozenset({"$schema", "$defs", "title", "description", "default", "type", "required", "properties",
+                        "additionalProperties", "propertyNames"})
+
+
+def _shell_errors(shell: dict, value, key: tuple[str, ...]) -> list[ValidationError]:
+    """:func:`_part_errors` of a shell, found for a mapping on its keys alone (the values replaced by None, which
+    the shell takes as any other value) where no error can show a value: the memo then holds one entry per set
+    of keys, not one per config."""
+    if isinstance(value, dict) and _KEYS_ONLY.issuperset(shell) and (
+            shell.get("additionalProperties") is not False or all(k in shell.get("properties", {}) for k in value)):
+        return _part_errors(shell, dict.fromkeys(value), key)
+    return _part_errors(shell, value, key)
+
+
+def _schema_errors(cfg: dict, entry_errors: dict | None = None) -> list[tuple[tuple, ValidationError]]:
     """(key path of a part, error) for every error of ``cfg`` against the schema: the same errors as the
-    whole schema gives, found part by part (the root, each section, each of its keys or entries)."""
+    whole schema gives, found part by part (the root, each section, each of its keys or entries); those of
+    an entry taken from ``entry_errors`` (by (section, key): :func:`_by_entry`) where it holds them."""
+    entry_errors = entry_errors or {}
     root, sections = _parts()
-    out: list[tuple[tuple, ValidationError]] = [((), e) for e in _part_errors(root, cfg, ("",))]
+    out: list[tuple[tuple, ValidationError]] = [((), e) for e in _shell_errors(root, cfg, ("",))]
     for section, (shell, props, entries) in sections.items():
         if section not in cfg:
             continue
         value = cfg[section]
-        out += [((section,), e) for e in _part_errors(shell, value, (section,))]
+        out += [((section,), e) for e in _shell_errors(shell, value, (section,))]
         if not isinstance(value, dict):
             continue
         for key, item in value.items():
             sub = props.get(key, entries)
-            if isinstance(sub, dict) and sub:
+            known = entry_errors.get((section, key))
+            if known is not None:
+                out += [((section, key), e) for e in known]
+            elif isinstance(sub, dict) and sub:
                 out += [((section, key), e) for e in _part_errors(sub, item, (section, "*" if key not in props
                                                                                  else key))]
     return out
+
+
+class _Entry(NamedTuple):
+    """What the validation makes of one entry of a section (a key of ``beyond:``, a scene, ...), which depends
+    on that entry alone: memoised by :func:`_entry`, so that a config validated again with one entry changed
+    (the Snakefile's --config overrides, the config fuzz) works on that entry only. Never changed once made."""
+    coerced: object            # the entry with its strings read (:func:`_coerce`)
+    filled: object             # the coerced entry with the schema defaults filled in (:func:`_fill`)
+    infinite: tuple            # (key path below the entry, value) of each float that is not finite, in order
+    errors: list               # jsonschema's errors of the coerced entry against its schema
+
+
+_ENTRIES: dict[tuple, _Entry] = {}
+#: the default of a key (a section, an analysis) filled in, by the id of the key's node: a config that leaves
+#: the key out gets it
+_FILLED_DEFAULTS: dict[int, object] = {}
+
+
+class _Infinite:
+    """Takes the lines of :func:`.sections.check_finite` as (key path, value), in order."""
+
+    def __init__(self) -> None:
+        self.found: list[tuple[list, object]] = []
+
+    def add(self, path, what: str, value) -> None:
+        self.found.append((path, value))
+
+
+def _infinite(value, path: tuple) -> list[tuple[list, object]]:
+    found = _Infinite()
+    sections.check_finite(value, found, path)
+    return found.found
+
+
+def _make_entry(sub, value, where: tuple) -> _Entry:
+    coerced = _coerce(sub, copied(value))
+    errors = list(_branch(sub).iter_errors(coerced)) if isinstance(sub, dict) and sub else []
+    filled = coerced if sub is None or _inert(sub) else _fill(sub, copied(coerced))
+    return _Entry(coerced, filled, tuple((path[len(where):], v) for path, v in _infinite(coerced, where)), errors)
+
+
+def _entry(sub, value, where: tuple) -> _Entry:
+    """The :class:`_Entry` of ``value``, the entry at ``where`` (section, key) whose schema is ``sub`` (None:
+    a key its section does not declare)."""
+    memo = _memo_key((id(sub),), value)   # what it holds does not depend on ``where``
+    if memo is None:
+        return _make_entry(sub, value, where)
+    made = _ENTRIES.get(memo)
+    if made is None:
+        made = _make_entry(sub, value, where)
+        if len(_ENTRIES) >= 4096:
+            _ENTRIES.pop(next(iter(_ENTRIES)))
+        _ENTRIES[memo] = made
+    return made
+
+
+def _plain(node) -> _Node | None:
+    """The :class:`_Node` of ``node`` if :func:`_coerce` and :func:`_fill` treat a mapping given for it key by
+    key (no $ref, allOf, if, anyOf, oneOf, items or integer type: the root and the sections), else None."""
+    if not isinstance(node, dict):
+        return None
+    n = _node(node)
+    plain = n.ref is None and not n.all_of and n.test is None and not n.groups and n.items is None and not n.integer
+    return n if plain else None
+
+
+def _filled_default(node: dict, default):
+    """``_fill(node, copied(default))``, ``default`` being that of ``node`` (made once)."""
+    made = _FILLED_DEFAULTS.get(id(node))
+    if made is None:
+        made = _FILLED_DEFAULTS[id(node)] = _fill(node, copied(default))
+    return made
+
+
+def _by_entry(config: dict) -> tuple[dict, dict, list, dict]:
+    """What ``_coerce``, ``check_finite`` and ``_fill`` make of ``config`` and the schema's errors of its
+    entries, worked out entry by entry (:func:`_entry`): (the coerced config, the filled config, the
+    (key path, value) of each float that is not finite, in the config's order, and {(section, key): the
+    schema's errors of that entry}). Both configs share their entries with the memo: they are only read."""
+    root = _root()
+    n = _plain(root)
+    if n is None:   # not a schema this walks: the whole config at once
+        coerced = _coerce(root, copied(config))
+        return coerced, _fill(root, copied(coerced)), _infinite(coerced, ()), {}
+    coerced, filled, infinite, errors = {}, {}, [], {}
+    for section, value in config.items():
+        node = n.props.get(section, n.extra)
+        s = _plain(node)
+        if node is None or s is None or not isinstance(value, dict):   # an unknown key, a section that is not
+            coerced[section] = c = _coerce(node, copied(value))         # a mapping: as a whole
+            infinite += _infinite(c, (section,))
+            filled[section] = c if node is None or _inert(node) else _fill(node, copied(c))
+            continue
+        coerced[section], filled[section] = {}, {}
+        for key, item in value.items():
+            sub = s.props.get(key, s.extra)
+            e = _entry(sub, item, (section, key))
+            coerced[section][key], filled[section][key] = e.coerced, e.filled
+            infinite += [([section, key, *path], v) for path, v in e.infinite]
+            errors[section, key] = e.errors
+        for key, default in s.defaults:
+            if key not in value:
+                filled[section][key] = _filled_default(s.props[key], default)
+    for section, default in n.defaults:
+        if section not in config:
+            filled[section] = _filled_default(n.props[section], default)
+    return coerced, filled, infinite, errors
 
 
 # --------------------------------------------------------------------------- messages
@@ -467,12 +602,16 @@ def validate(config: dict) -> dict:
         # an empty file, or the wrong one: refused here rather than as a traceback while the DAG is built
         raise ConfigError(f"config error: config: no {', '.join(SECTIONS)} entries, nothing to build (keys given: "
                           f"{', '.join(map(str, config)) or 'none'})")
-    cfg = _coerce(_root(), copied(dict(config)))
+    coerced, filled, infinite, entry_errors = _by_entry(dict(config))
     out = Errors()
-    sections.check_finite(cfg, out)
-    for prefix, err in sorted(_schema_errors(cfg), key=lambda pe: [str(p) for p in (*pe[0], *pe[1].absolute_path)]):
+    for path, value in infinite:   # sections.check_finite's lines, in its order
+        out.add(path, "must be a finite number", value)
+    for prefix, err in sorted(_schema_errors(coerced, entry_errors),
+                              key=lambda pe: [str(p) for p in (*pe[0], *pe[1].absolute_path)]):
         _schema_messages(err, out, prefix)
-    cfg = _fill(_root(), cfg)
+    # ``filled`` shares its entries with the memo of :func:`_entry`: the checks only read it, and what is
+    # returned is a copy
+    cfg = filled
     if not out.lines:  # every job's estimated memory, output and time within budget, before the physical
         from cradle.pipeline import budget  # checks build stored-time arrays (cradle.pipeline.budget)
 
@@ -480,6 +619,7 @@ def validate(config: dict) -> dict:
     checks.check(cfg, out)
     if out.lines:
         raise ConfigError(out.lines)
+    cfg = copied(cfg)
     # a validated config validates to itself (tested): remember it, so that the resolving calls
     # the Snakefile makes with it, once per job, do not validate it again
     _remember(_key(cfg), copied(cfg))
