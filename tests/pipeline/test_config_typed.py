@@ -98,6 +98,14 @@ def test_committed_schema_is_the_generated_one():
     assert committed == json.dumps(cc.generated_schema(), indent=2, ensure_ascii=False) + "\n"
 
 
+def test_the_schema_is_a_valid_json_schema():
+    """The generated schema is valid under JSON Schema 2020-12's meta-schema (checked here once, not by every
+    validation)."""
+    from jsonschema import Draft202012Validator
+
+    Draft202012Validator.check_schema(cc.schema())
+
+
 def test_write_schema_writes_the_generated_text(tmp_path):
     out = cc.write_schema(tmp_path / "s.json")
     assert out.read_text(encoding="utf-8") == cc.schema_path().read_text(encoding="utf-8")

@@ -45,13 +45,19 @@ STAMPS = Path(".snakemake") / "cradle-code"
 JOBS = "jobs"
 
 
+#: (src, module name) -> its file or None, found once per read of the Snakefile (:func:`stamp_all` empties it)
+_FOUND: dict[tuple[str, str], Path | None] = {}
+
+
 def _module_file(src: Path, name: str) -> Path | None:
     """src/cradle/a/b.py or src/cradle/a/b/__init__.py for ``cradle.a.b``; None if neither."""
-    base = os.path.join(src, *name.split("."))   # strings: this runs some 10,000 times per Snakefile read
-    for path in (base + ".py", os.path.join(base, "__init__.py")):
-        if os.path.isfile(path):
-            return Path(path)
-    return None
+    key = (str(src), name)
+    if key in _FOUND:   # asked some 15,000 times per Snakefile read, for a few hundred names
+        return _FOUND[key]
+    base = os.path.join(src, *name.split("."))
+    found = next((Path(p) for p in (base + ".py", os.path.join(base, "__init__.py")) if os.path.isfile(p)), None)
+    _FOUND[key] = found
+    return found
 
 
 #: the node types that hold statements: a def, a class or an import is a statement, found only in their bodies
@@ -202,6 +208,7 @@ def stamp_all(src: str | Path = "src", scripts: str | Path = "workflow/scripts",
     inventory of the files on disk: a stamp first written later, by an input function while the DAG is
     built, would be missing from that inventory and reported as a missing input."""
     src, scripts, stamps = Path(src), Path(scripts), Path(stamps)
+    _FOUND.clear()   # modules may have been added or removed since the last read (a test's tree, a long process)
     # what earlier runs found in the files whose version is unchanged: parsing every module on every read
     # of the Snakefile (every cluster job reads it) cost more than the rest of the stamping
     _load_index(stamps)

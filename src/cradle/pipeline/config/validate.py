@@ -82,9 +82,9 @@ def schema() -> dict:
 
 @lru_cache(maxsize=1)
 def _validator() -> Draft202012Validator:
-    s = schema()
-    Draft202012Validator.check_schema(s)
-    return Draft202012Validator(s)
+    # the schema is generated from the typed specs and checked against JSON Schema's own by a test
+    # (tests/pipeline/test_config_typed.py), not on every read of the Snakefile, where it cost a second
+    return Draft202012Validator(schema())
 
 
 def _root() -> dict:
