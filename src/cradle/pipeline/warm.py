@@ -43,6 +43,9 @@ IMPORT_TIME_PREFIXES = ("NUMBA_", "OMP_", "OPENBLAS_", "MKL_", "GOTO_", "VECLIB_
                         "MPL", "CRADLE_", "LD_")
 #: those of them that differ from job to job by design
 PER_JOB = (ENV_VAR, STARTED_VAR, DECLINED_VAR)
+#: the fewest jobs a build has for a warm process to be started: it costs a few seconds of one core to import
+#: what the jobs import, while the first jobs start in their own processes, and each later job saves about one
+MIN_JOBS = 6
 #: seconds a job waits for the warm process to answer before running in its own process
 CONNECT_TIMEOUT_S = 30.0
 #: seconds a child has, after its job's process is gone and it was interrupted, before it is killed
@@ -123,13 +126,19 @@ _server: dict = {}
 def start(workflow) -> str | None:
     """Start the warm process of a local build (from the Snakefile's ``onstart``); its socket's name goes
     to the jobs in ``$CRADLE_WARM``. None (and no process) for a cluster executor or a job's own Snakemake,
-    off Linux, or with ``CRADLE_WARM=0`` in the environment."""
+    off Linux, for fewer than :data:`MIN_JOBS` jobs, or with ``CRADLE_WARM=0`` in the environment."""
     import subprocess
 
     if os.environ.get(ENV_VAR, "") in OFF[1:]:
         return None
     if not sys.platform.startswith("linux") or not getattr(workflow, "local_exec", False) \
             or getattr(workflow, "remote_exec", False) or getattr(workflow, "subprocess_exec", False):
+        return None
+    try:
+        jobs = sum(1 for _ in workflow.dag.needrun_jobs())
+    except Exception:   # another Snakemake's inside: assume a build worth it
+        jobs = MIN_JOBS
+    if jobs < MIN_JOBS:
         return None
     name = f"cradle-warm-{os.getpid()}-{os.urandom(6).hex()}"
     scripts = os.path.join(workflow.basedir, "workflow", "scripts")
