@@ -93,7 +93,9 @@ def _same_data(a: Path, b: Path) -> list[str]:
             va.set_auto_mask(False)
             vb.set_auto_mask(False)
             xa, xb = np.asarray(va[...]), np.asarray(vb[...])
-            if xa.shape != xb.shape or xa.dtype != xb.dtype or xa.tobytes() != xb.tobytes():
+            # variable-length strings come back as arrays of Python objects, whose bytes are addresses
+            same = xa.tolist() == xb.tolist() if xa.dtype == object else xa.tobytes() == xb.tobytes()
+            if xa.shape != xb.shape or xa.dtype != xb.dtype or not same:
                 out.append(f"{prefix}{name}: data differ")
             if {k: str(va.getncattr(k)) for k in va.ncattrs()} != {k: str(vb.getncattr(k)) for k in vb.ncattrs()}:
                 out.append(f"{prefix}{name}: attributes differ")
