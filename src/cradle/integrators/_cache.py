@@ -294,6 +294,15 @@ def _guard_loads() -> None:
     cls._cradle_guarded = True
 
 
+def warm_target() -> None:
+    """Build numba's compilation target in this process once: the warm process that forks the workflow's
+    jobs (:mod:`cradle.pipeline.warm`) does, so that no job's first compiled call pays for it. A throwaway
+    function, never cached."""
+    import numba
+
+    numba.njit(lambda x: x + 1)(1)
+
+
 def activate() -> Path:
     """Point numba's cache at this version's folder (created if needed), prune old folders, and
     return the folder. Later calls only set numba's config again (numba re-reads its environment

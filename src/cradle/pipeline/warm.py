@@ -258,9 +258,9 @@ class Server:
     def _warm_numba() -> None:
         """numba's first compiled call in a process builds its target context: once, here."""
         try:
-            import numba
+            from cradle.integrators._cache import warm_target
 
-            numba.njit(lambda x: x + 1)(1)
+            warm_target()
         except Exception:   # a job then pays it itself
             pass
 
