@@ -424,8 +424,9 @@ class Server:
             os.chdir(request["cwd"])
             os.environ.clear()
             os.environ.update(request["env"])
-            if request.get("started") is not None:
-                os.environ[STARTED_VAR] = repr(request["started"])
+            # also what tells forward(), run again by the script, that this is the child
+            started = request.get("started")
+            os.environ[STARTED_VAR] = "unknown" if started is None else repr(started)
             sys.argv = list(request["argv"])
             tempfile.tempdir = None
             runpy.run_path(request["script"], run_name="__main__")
