@@ -21,6 +21,8 @@ from cradle.pipeline import warm
 pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="abstract Unix sockets: Linux only")
 
 SRC = Path(__file__).resolve().parents[2] / "src"
+#: the first lines of every workflow script
+FORWARD = "from cradle.pipeline.warm import forward\nforward(globals())\n"
 
 
 def _env(**extra) -> dict:
@@ -56,7 +58,7 @@ def server(tmp_path_factory):
 def _job(tmp_path: Path, body: str, name: str, **env) -> subprocess.CompletedProcess:
     """Run a job script (forward() first, then ``body``) as its own process, handed to the server ``name``."""
     script = tmp_path / "job.py"
-    script.write_text("from cradle.pipeline.warm import forward\nforward(globals())\n" + textwrap.dedent(body))
+    script.write_text(FORWARD + textwrap.dedent(body))
     return subprocess.run([sys.executable, str(script), "arg1"], cwd=tmp_path, capture_output=True, text=True,
                           env=_env(**{warm.ENV_VAR: name}, **env), timeout=60)
 
@@ -128,7 +130,7 @@ def test_a_killed_job_has_its_child_stopped(server, tmp_path):
     as for an orphaned job (cradle.pipeline.orphan)."""
     marker = tmp_path / "child.pid"
     script = tmp_path / "job.py"
-    script.write_text("from cradle.pipeline.warm import forward\nforward(globals())\n" + textwrap.dedent(f"""
+    script.write_text(FORWARD + textwrap.dedent(f"""
         import os, time
         from cradle.pipeline.orphan import watch_parent
         watch_parent()   # as every job does (cradle.pipeline.runner.setup_logging): SIGUSR1 interrupts it

@@ -22,7 +22,7 @@ from typing import Any
 
 from cradle.data.io import write_netcdf
 from cradle.pipeline.orphan import orphaned, watch_parent
-from cradle.pipeline.warm import DECLINED_VAR, STARTED_VAR
+from cradle.pipeline.warm import DECLINED_VAR, STARTED_VAR, process_started
 from cradle.scenes.failure import StageFailure
 
 log = logging.getLogger("cradle")
@@ -37,11 +37,9 @@ def process_age() -> float | None:
     which handed it over.
     """
     try:
-        if STARTED_VAR in os.environ:
-            started = float(os.environ[STARTED_VAR])
-        else:
-            with open("/proc/self/stat") as f:
-                started = int(f.read().rsplit(")", 1)[1].split()[19]) / os.sysconf("SC_CLK_TCK")
+        started = float(os.environ[STARTED_VAR]) if STARTED_VAR in os.environ else process_started()
+        if started is None:
+            return None
         with open("/proc/uptime") as f:
             uptime = float(f.read().split()[0])
         return uptime - started

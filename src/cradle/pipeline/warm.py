@@ -57,10 +57,10 @@ THREAD_VARS = ("OMP_NUM_THREADS", "GOTO_NUM_THREADS", "OPENBLAS_NUM_THREADS", "M
 PREAMBLE = ("pickle", "snakemake.logging", "snakemake.iocontainers", "snakemake.script")
 
 
-def _uptime_of(pid: int | str = "self") -> float | None:
-    """When process ``pid`` started, in seconds of Linux uptime (None where /proc cannot tell)."""
+def process_started() -> float | None:
+    """When this process started, in seconds of Linux uptime (None where /proc cannot tell)."""
     try:
-        with open(f"/proc/{pid}/stat") as f:
+        with open("/proc/self/stat") as f:
             ticks = int(f.read().rsplit(")", 1)[1].split()[19])
         return ticks / os.sysconf("SC_CLK_TCK")
     except (OSError, ValueError, IndexError):
@@ -86,7 +86,7 @@ def forward(script_globals: dict) -> None:
         sock.connect("\0" + name)
         cradle = _cradle_origin()
         request = json.dumps({"script": os.path.abspath(script), "argv": sys.argv, "cwd": os.getcwd(),
-                              "env": dict(os.environ), "started": _uptime_of(), "pid": os.getpid(),
+                              "env": dict(os.environ), "started": process_started(), "pid": os.getpid(),
                               "python": sys.executable, "cradle": cradle}).encode()
         socket.send_fds(sock, [struct.pack("!I", len(request)) + request], [0, 1, 2])
         sock.settimeout(None)
@@ -225,7 +225,8 @@ class Server:
         t0 = time.perf_counter()
         for module in (*PREAMBLE, *script_imports(scripts), *FIRST):
             __import__(module)
-        self.modules = self._loaded()
+        self.modules: dict[str, int] = {}
+        self._record()
         self._warm_numba()
         # the socket exists once the imports are done: a job that starts before runs in its own process
         # instead of waiting (abstract socket: no file to clean up, no path length limit)
@@ -241,18 +242,16 @@ class Server:
     def _say(text: str) -> None:
         print(time.strftime("%H:%M:%S"), text, file=sys.stderr, flush=True)
 
-    @staticmethod
-    def _loaded() -> dict:
-        """The files of the imported cradle modules and their modification times."""
-        out = {}
+    def _record(self) -> None:
+        """Add the files of the cradle modules imported since the last call, with their modification times
+        (:meth:`_declines` compares them before each fork)."""
         for mod in list(sys.modules.values()):
             path = getattr(mod, "__file__", None)
-            if path and getattr(mod, "__name__", "").split(".")[0] == "cradle":
+            if path and path not in self.modules and getattr(mod, "__name__", "").split(".")[0] == "cradle":
                 try:
-                    out[path] = os.stat(path).st_mtime_ns
+                    self.modules[path] = os.stat(path).st_mtime_ns
                 except OSError:
                     pass
-        return out
 
     @staticmethod
     def _warm_numba() -> None:
@@ -287,7 +286,7 @@ class Server:
                     __import__(module)
                 except Exception:
                     pass
-                self.modules.update(self._loaded())
+                self._record()
             if os.getppid() != self.parent and idle:
                 self._say("its Snakemake is gone: exiting")
                 return
