@@ -1,15 +1,17 @@
-"""The workflow through a real Slurm (tests/cluster/slurm-up.sh): every job submitted with sbatch by
-`snakemake --workflow-profile profiles/slurm`, and the data of every netCDF output bitwise equal to a
-local `snakemake -j2` build of the same target.
+"""The workflow through a real Slurm (tests/cluster/slurm-up.sh), both ways: the whole build in one Slurm job
+(`cradle slurm TARGET`) and every rule instance submitted (grouped) by
+`snakemake --workflow-profile profiles/slurm`; the data of every netCDF output bitwise equal to a local
+`snakemake -j2` build of the same target (built first, once).
 
 Run it after tests/cluster/slurm-up.sh (it skips, saying why, when `sbatch`, `sinfo` or `sacct` do not
 answer, or the executor plugin is missing)::
 
     tests/cluster/slurm-up.sh && python -m pytest -m slurm tests/cluster -s; tests/cluster/slurm-down.sh
 
-``CRADLE_SLURM_TARGET`` (default ``paper``) chooses what both builds make. The test writes what it measured
-(wall time of each build, jobs, Slurm jobs, per-job times from sacct) to ``results/slurm-overhead.json`` of
-the Slurm build and prints it.
+``CRADLE_SLURM_TARGET`` (default ``paper``) chooses what the builds make. Each test writes what it measured
+(wall time of its build and of the local one, jobs, Slurm jobs, per-job times from sacct) to
+``results/slurm-overhead.json`` of its build and prints it; benchmarks/slurm.py times the three ways back to
+back, repeated, and writes the table.
 """
 from __future__ import annotations
 
@@ -18,6 +20,7 @@ import os
 import re
 import shutil
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -124,32 +127,74 @@ def _sacct(job_ids) -> list[dict]:
     return [dict(zip(fields.split(","), line.split("|"), strict=False)) for line in proc.stdout.splitlines() if line]
 
 
-def test_workflow_through_slurm_equals_local_build(slurm, tmp_path):
-    on_slurm, local = _workdir(tmp_path / "slurm"), _workdir(tmp_path / "local")
+@pytest.fixture(scope="module")
+def local_build(slurm, tmp_path_factory):
+    """The target built by a local ``snakemake -j2`` (the reference), and its wall time."""
+    local = _workdir(tmp_path_factory.mktemp("builds") / "local")
+    return local, _build(local, "-j2")
+
+
+def _differences(local: Path, other: Path) -> tuple[int, dict]:
+    """How many netCDF files the local build wrote, and what differs in ``other``'s copies of them."""
+    files = sorted(p.relative_to(local / "results") for p in (local / "results").rglob("*.nc"))
+    assert files, "the local build wrote no netCDF file"
+    problems = {}
+    for rel in files:
+        there = other / "results" / rel
+        diff = ["missing"] if not there.exists() else _same_data(local / "results" / rel, there)
+        if diff:
+            problems[str(rel)] = diff
+    return len(files), problems
+
+
+def _rule_jobs(work: Path) -> int | None:
+    steps = re.findall(r"(\d+) of \1 steps \(100%\) done", (work / "snakemake.out").read_text())
+    return int(steps[-1]) if steps else None
+
+
+def _report(work: Path, report: dict) -> None:
+    (work / "results" / "slurm-overhead.json").write_text(json.dumps(report, indent=1))
+    print(json.dumps({k: v for k, v in report.items() if k != "sacct"}))
+
+
+def test_one_allocation_equals_local_build(local_build, tmp_path):
+    """``cradle slurm TARGET``: one Slurm job running the local executor (its jobs forked from the warm process)."""
+    local, wall_local = local_build
+    work = _workdir(tmp_path / "allocation")
+    t0 = time.perf_counter()
+    proc = subprocess.run([sys.executable, "-m", "cradle", "slurm", "--directory", str(work), TARGET],
+                          check=False, capture_output=True, text=True, timeout=3 * 3600)
+    wall = time.perf_counter() - t0
+    (work / "snakemake.out").write_text(proc.stdout + proc.stderr)
+    assert proc.returncode == 0, (proc.stdout + proc.stderr)[-3000:]
+    job_ids = re.findall(r"Slurm job (\d+) submitted", proc.stderr)
+    assert len(job_ids) == 1, proc.stderr[-2000:]
+    jobs = _sacct(job_ids)
+    assert [j["State"] for j in jobs] == ["COMPLETED"], jobs
+    forked = len(re.findall(r"forked job: peak resident memory", "".join(
+        p.read_text(errors="replace") for p in (work / "results" / "logs").rglob("*.log"))))
+    n_files, problems = _differences(local, work)
+    _report(work, {"target": TARGET, "mode": "one allocation (cradle slurm)", "wall_slurm_s": round(wall, 1),
+                   "wall_local_j2_s": round(wall_local, 1), "ratio": round(wall / wall_local, 2),
+                   "slurm_jobs": 1, "rule_jobs": _rule_jobs(work), "forked_jobs": forked,
+                   "netcdf_files_compared": n_files, "sacct": jobs})
+    assert not problems, problems
+
+
+def test_rule_instances_through_slurm_equal_local_build(local_build, tmp_path):
+    """``snakemake --workflow-profile profiles/slurm``: the rule instances submitted (grouped) to Slurm."""
+    local, wall_local = local_build
+    on_slurm = _workdir(tmp_path / "slurm")
     wall_slurm = _build(on_slurm, "--workflow-profile", "profiles/slurm")
-    wall_local = _build(local, "-j2")
     log = (on_slurm / "snakemake.out").read_text()
     job_ids = sorted(set(re.findall(r"submitted with SLURM jobid (\d+)", log)), key=int)
     assert job_ids, "no job was submitted to Slurm"
     jobs = _sacct(job_ids)
     assert len(jobs) == len(job_ids) and all(j["State"] == "COMPLETED" for j in jobs), jobs
-    steps = re.findall(r"(\d+) of \1 steps \(100%\) done", (local / "snakemake.out").read_text())
-    rule_jobs = int(steps[-1]) if steps else None
-
-    files = sorted(p.relative_to(local / "results") for p in (local / "results").rglob("*.nc"))
-    assert files, "the local build wrote no netCDF file"
-    problems = {}
-    for rel in files:
-        other = on_slurm / "results" / rel
-        if not other.exists():
-            problems[str(rel)] = ["missing from the Slurm build"]
-            continue
-        diff = _same_data(local / "results" / rel, other)
-        if diff:
-            problems[str(rel)] = diff
-    report = {"target": TARGET, "wall_slurm_s": round(wall_slurm, 1), "wall_local_j2_s": round(wall_local, 1),
-              "slurm_jobs": len(job_ids), "netcdf_files_compared": len(files), "rule_jobs": rule_jobs,
-              "sacct": jobs}
-    (on_slurm / "results" / "slurm-overhead.json").write_text(json.dumps(report, indent=1))
-    print(json.dumps({k: v for k, v in report.items() if k != "sacct"}))
+    n_files, problems = _differences(local, on_slurm)
+    _report(on_slurm, {"target": TARGET, "mode": "rule instances (profiles/slurm)",
+                       "wall_slurm_s": round(wall_slurm, 1), "wall_local_j2_s": round(wall_local, 1),
+                       "ratio": round(wall_slurm / wall_local, 2),
+                       "slurm_jobs": len(job_ids), "rule_jobs": _rule_jobs(local), "netcdf_files_compared": n_files,
+                       "sacct": jobs})
     assert not problems, problems

@@ -9,6 +9,7 @@
     cradle verify   [results] [--config config.yaml]       # every output's checksums and identity; what to rebuild
     cradle animate  SCENE [--results results] [--gif] [--fps F --duration S]   # a movie of the stored runs
     cradle animate  n5-lifted1 --desk-toy results/desk-toy/desk-toy.nc          # a desk toy of that analysis
+    cradle slurm    [TARGET...] [--cpus N --mem-mb M --time MIN] [-- SNAKEMAKE_ARGS]   # the build in one Slurm job
     cradle scale    --material steel --radius R (--length L | --omega0 W) [--amplitude A] [--angle DEG]
                                                            # (nc)'s units in SI for a real cradle
 
@@ -44,8 +45,13 @@ when there is none, identities are not checked).
 spheres of a named material on pendulum strings (or stiff oscillators), what a dimensionless amplitude is
 in metres and what a release angle is in (nc)'s units (:mod:`cradle.models.physical`, docs/physical-units.md).
 
+``cradle slurm`` submits one Slurm job that runs ``snakemake --cores CPUS TARGET...`` in the workflow's
+folder, its jobs forked from the warm process as in a local build (:mod:`.slurm`; the per-rule way is
+``snakemake --workflow-profile profiles/slurm``).
+
 This package holds the parser and :func:`main`; the commands are in
-:mod:`.scenes`, :mod:`.run`, :mod:`.files` (describe, extend, verify), :mod:`.animate` and :mod:`.scale`,
+:mod:`.scenes`, :mod:`.run`, :mod:`.files` (describe, extend, verify), :mod:`.animate`, :mod:`.scale` and
+:mod:`.slurm`,
 what they share in :mod:`.common`.
 """
 from __future__ import annotations
@@ -60,6 +66,7 @@ from cradle.pipeline.cli.files import cmd_describe, cmd_extend, cmd_verify
 from cradle.pipeline.cli.run import RUN_OUT, cmd_run
 from cradle.pipeline.cli.scale import cmd_scale
 from cradle.pipeline.cli.scenes import cmd_scenes
+from cradle.pipeline.cli.slurm import add_parser as add_slurm_parser, split_snakemake_args
 
 
 class _Parser(argparse.ArgumentParser):
@@ -147,6 +154,7 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--angle", type=_finite, default=None,
                    help="a pendulum released from this angle (degrees, in (0, 90)), printed in (nc)'s units")
     c.set_defaults(func=cmd_scale)
+    add_slurm_parser(sub)
     return p
 
 
@@ -159,7 +167,10 @@ def main(argv=None) -> int:
 
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        args = parser().parse_args(argv)
+        own, snakemake_args = split_snakemake_args(argv) if argv[:1] == ["slurm"] else (argv, [])
+        args = parser().parse_args(own)
+        if snakemake_args:
+            args.snakemake_args = snakemake_args
         if not getattr(args, "func", None):
             parser().print_help()
             return 2

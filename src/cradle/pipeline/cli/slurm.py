@@ -1,0 +1,179 @@
+"""``cradle slurm``: the workflow built inside one Slurm allocation.
+
+The whole DAG of the targets runs as one Slurm job: ``sbatch`` asks for one node's ``--cpus`` and memory, and
+the job runs ``snakemake --cores CPUS TARGET...`` there with Snakemake's local executor, so its rule
+instances fork from the warm process (:mod:`cradle.pipeline.warm`) as on a workstation. The other way,
+``snakemake --workflow-profile profiles/slurm``, submits the rule instances themselves (grouped); inside a
+Slurm job every instance still starts ``srun`` and a Snakemake of its own, and the executor polls ``sacct``:
+the place for a sweep bigger than one node, not for the paper's many short jobs (docs/usage.md, "Cluster").
+
+The command waits for the job and prints its log as it grows (``--no-wait``: submit, print the job's id and
+log, return); it exits 0 when Slurm says COMPLETED, 1 otherwise. Ctrl-C while waiting cancels the job
+(``scancel``), as Snakemake cancels its own Slurm jobs. Nothing is submitted unless the folder holds a Snakefile
+and a valid config: the config's errors are one line here, not in a job's log.
+"""
+from __future__ import annotations
+
+import shlex
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from cradle.pipeline.cli.common import PROG, CliError, load_config
+
+#: where the job's log goes, beside Snakemake's own logs (%j: the job's id)
+LOG_PATTERN = ".snakemake/slurm_logs/cradle-%j.log"
+#: seconds between two looks at the job while waiting
+POLL_S = 1.0
+#: Slurm states of a job that has ended (squeue stops listing it soon after)
+ENDED = {"BOOT_FAIL", "CANCELLED", "COMPLETED", "DEADLINE", "FAILED", "NODE_FAIL", "OUT_OF_MEMORY",
+         "PREEMPTED", "TIMEOUT"}
+
+
+def sbatch_command(targets, *, cpus: int, mem_mb: int, minutes: int, workdir, account=None, partition=None,
+                   snakemake_args=(), python=None) -> list[str]:
+    """The ``sbatch`` command line of one allocation running ``snakemake --cores cpus targets...`` in
+    ``workdir`` with the interpreter ``python`` (default: this one, hence its packages), its log at
+    :data:`LOG_PATTERN` there."""
+    inner = [python or sys.executable, "-m", "snakemake", "--cores", str(cpus), *snakemake_args, *targets]
+    cmd = ["sbatch", "--parsable", f"--job-name=cradle-{'-'.join(targets) or 'all'}"[:64],
+           f"--cpus-per-task={cpus}", "--ntasks=1", "--nodes=1", f"--mem={mem_mb}M", f"--time={minutes}",
+           f"--chdir={Path(workdir).resolve()}", f"--output={LOG_PATTERN}", "--export=ALL"]
+    if account:
+        cmd.append(f"--account={account}")
+    if partition:
+        cmd.append(f"--partition={partition}")
+    return [*cmd, "--wrap", "exec " + shlex.join(inner)]
+
+
+def _run(cmd, timeout=60) -> subprocess.CompletedProcess:
+    return subprocess.run(cmd, check=False, capture_output=True, text=True, timeout=timeout)
+
+
+def submit(cmd) -> str:
+    """Submit ``cmd`` (an ``sbatch --parsable`` line); the job's id."""
+    proc = _run(cmd)
+    if proc.returncode != 0:
+        raise CliError(f"sbatch refused the job: {' '.join(proc.stderr.split()) or 'exit ' + str(proc.returncode)}")
+    return proc.stdout.strip().split(";")[0]
+
+
+def job_state(job_id: str) -> str | None:
+    """The job's state from ``squeue`` (PENDING, RUNNING, ...), or from ``sacct`` once squeue no longer lists
+    it; None while neither knows it (accounting may lag a moment behind the end)."""
+    proc = _run(["squeue", "-h", "-j", job_id, "-o", "%T"])
+    state = proc.stdout.strip() if proc.returncode == 0 else ""
+    if state and state not in ENDED:
+        return state
+    proc = _run(["sacct", "-n", "-X", "-P", "-j", job_id, "-o", "State"])
+    lines = [line.split()[0] for line in proc.stdout.splitlines() if line.strip()]
+    return lines[0] if lines else (state or None)
+
+
+class _Follower:
+    """Prints what is appended to the job's log."""
+
+    def __init__(self, path: Path):
+        self.path, self.offset = path, 0
+
+    def __call__(self) -> None:
+        try:
+            with open(self.path, "rb") as fh:
+                fh.seek(self.offset)
+                data = fh.read()
+        except FileNotFoundError:
+            return
+        if data:
+            self.offset += len(data)
+            sys.stdout.write(data.decode(errors="replace"))
+            sys.stdout.flush()
+
+
+def wait(job_id: str, log: Path, poll_s: float = POLL_S, follow: bool = True) -> str:
+    """Wait until the job has ended, printing its log as it grows; its final state (``sacct``)."""
+    show = _Follower(log) if follow else (lambda: None)
+    unknown_since = None
+    while True:
+        state = job_state(job_id)
+        show()
+        if state in ENDED:
+            time.sleep(min(poll_s, 0.5))    # the last lines a shared file system shows late
+            show()
+            return state
+        if state is None:
+            unknown_since = unknown_since or time.monotonic()
+            if time.monotonic() - unknown_since > 120:
+                raise CliError(f"Slurm job {job_id}: neither squeue nor sacct knows it (log: {log})")
+        time.sleep(poll_s)
+
+
+def cmd_slurm(args) -> int:
+    workdir = Path(args.directory)
+    if not (workdir / "Snakefile").is_file():
+        raise CliError(f"no Snakefile in {str(workdir)!r}: run from the workflow's folder (or give --directory)")
+    for key in ("cpus", "mem_mb", "time"):
+        if getattr(args, key) < 1:
+            raise CliError(f"--{key.replace('_', '-')} = {getattr(args, key)}: must be >= 1")
+    if shutil.which("sbatch") is None and not args.dry_run:
+        raise CliError("no sbatch on PATH: this command submits to Slurm (a local build: snakemake -j2)")
+    load_config(workdir / args.config)          # a wrong config is one line here, before a job waits in the queue
+    extra = list(args.snakemake_args)
+    if args.config != "config.yaml":
+        extra = ["--configfile", args.config, *extra]
+    cmd = sbatch_command(args.targets, cpus=args.cpus, mem_mb=args.mem_mb, minutes=args.time, workdir=workdir,
+                         account=args.account, partition=args.partition, snakemake_args=extra)
+    if args.dry_run:
+        print(shlex.join(cmd))
+        return 0
+    (workdir / Path(LOG_PATTERN).parent).mkdir(parents=True, exist_ok=True)
+    job_id = submit(cmd)
+    log = workdir / LOG_PATTERN.replace("%j", job_id)
+    print(f"{PROG}: Slurm job {job_id} submitted: snakemake --cores {args.cpus} {' '.join(args.targets)} "
+          f"in one allocation; log {log}", file=sys.stderr, flush=True)
+    if args.no_wait:
+        print(job_id)
+        return 0
+    t0 = time.monotonic()
+    try:
+        state = wait(job_id, log, follow=not args.quiet)
+    except KeyboardInterrupt:
+        _run(["scancel", job_id])
+        print(f"{PROG}: interrupted: Slurm job {job_id} cancelled (scancel)", file=sys.stderr)
+        return 130
+    wall = time.monotonic() - t0
+    if state != "COMPLETED":
+        print(f"{PROG}: error: Slurm job {job_id} ended {state} after {wall:.0f} s; log {log}", file=sys.stderr)
+        return 1
+    print(f"{PROG}: Slurm job {job_id} COMPLETED in {wall:.1f} s (submission to the end seen here)",
+          file=sys.stderr)
+    return 0
+
+
+def add_parser(sub) -> None:
+    """The ``slurm`` sub-command's arguments."""
+    s = sub.add_parser("slurm", help="build targets inside one Slurm allocation (snakemake --cores CPUS there, "
+                                     "jobs forked from the warm process); waits and prints the log")
+    s.add_argument("targets", nargs="*", metavar="TARGET",
+                   help="Snakemake targets (default: the Snakefile's first, all)")
+    s.add_argument("--cpus", type=int, default=2, help="CPUs of the allocation, Snakemake's --cores (default: 2)")
+    s.add_argument("--mem-mb", type=int, default=4000, dest="mem_mb",
+                   help="memory of the allocation in MB (default: 4000; the paper's -j2 build peaked at 1.0 GB here)")
+    s.add_argument("--time", type=int, default=120, help="time limit in minutes (default: 120)")
+    s.add_argument("--account", default=None, help="Slurm account (sbatch --account)")
+    s.add_argument("--partition", default=None, help="Slurm partition (sbatch --partition)")
+    s.add_argument("--directory", default=".", help="the workflow's folder, with its Snakefile (default: .)")
+    s.add_argument("--config", default="config.yaml", help="config file, relative to the folder (default: config.yaml)")
+    s.add_argument("--no-wait", action="store_true", dest="no_wait", help="submit, print the job's id, return")
+    s.add_argument("--quiet", action="store_true", help="wait without printing the job's log")
+    s.add_argument("--dry-run", action="store_true", dest="dry_run", help="print the sbatch command, submit nothing")
+    s.set_defaults(func=cmd_slurm, snakemake_args=[])
+
+
+def split_snakemake_args(argv: list[str]) -> tuple[list[str], list[str]]:
+    """``cradle slurm TARGET... -- ARGS``: the command's own arguments and Snakemake's (after ``--``)."""
+    if "--" in argv:
+        i = argv.index("--")
+        return argv[:i], argv[i + 1:]
+    return argv, []

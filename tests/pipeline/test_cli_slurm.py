@@ -1,0 +1,166 @@
+"""``cradle slurm``: the sbatch line it builds, its one-line refusals before any submission, and how it follows a
+job (log printed as it grows, exit status from Slurm's final state, Ctrl-C cancels), against stand-in
+``sbatch``/``squeue``/``sacct``/``scancel`` scripts. The real Slurm: tests/cluster/test_slurm.py."""
+from __future__ import annotations
+
+import os
+import shlex
+import stat
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from cradle.pipeline.cli import main, slurm as cs
+
+ROOT = Path(__file__).resolve().parents[2]
+
+# Stand-ins for Slurm's commands: sbatch runs $FAKE_JOB (not the wrapped Snakemake) in the background with its
+# output in the --output file, records its pid and, at its end, its exit status; squeue says RUNNING while the
+# pid lives; sacct says COMPLETED or FAILED from the status; scancel kills it and records the cancellation.
+FAKES = {
+    "sbatch": r"""#!/bin/sh
+state="$FAKE_SLURM"; id=4242; out=""; wrap=""
+printf '%s\n' "$@" > "$state/argv"
+while [ $# -gt 0 ]; do
+  case "$1" in --output=*) out="${1#--output=}";; --chdir=*) cd "${1#--chdir=}";; --wrap) shift; wrap="$1";; esac
+  shift
+done
+out=$(echo "$out" | sed "s/%j/$id/")
+( sh -c "$FAKE_JOB" > "$out" 2>&1; echo $? > "$state/status" ) < /dev/null > /dev/null 2>&1 &
+echo $! > "$state/pid"
+echo "$id"
+""",
+    "squeue": r"""#!/bin/sh
+kill -0 "$(cat "$FAKE_SLURM/pid")" 2>/dev/null && [ ! -e "$FAKE_SLURM/status" ] && echo RUNNING
+exit 0
+""",
+    "sacct": r"""#!/bin/sh
+[ -e "$FAKE_SLURM/cancelled" ] && { echo CANCELLED; exit 0; }
+[ -e "$FAKE_SLURM/status" ] || exit 0
+[ "$(cat "$FAKE_SLURM/status")" = 0 ] && echo COMPLETED || echo FAILED
+""",
+    "scancel": r"""#!/bin/sh
+kill "$(cat "$FAKE_SLURM/pid")" 2>/dev/null; echo "$1" > "$FAKE_SLURM/cancelled"
+""",
+}
+
+
+@pytest.fixture
+def workflow(tmp_path, monkeypatch):
+    """A folder with the project's Snakefile and config, and the stand-ins first on PATH."""
+    work = tmp_path / "wf"
+    work.mkdir()
+    for name in ("Snakefile", "config.yaml"):
+        (work / name).write_text((ROOT / name).read_text())
+    bin_dir, state = tmp_path / "bin", tmp_path / "state"
+    bin_dir.mkdir()
+    state.mkdir()
+    for name, text in FAKES.items():
+        path = bin_dir / name
+        path.write_text(text)
+        path.chmod(path.stat().st_mode | stat.S_IXUSR)
+    monkeypatch.setenv("PATH", f"{bin_dir}{os.pathsep}{os.environ['PATH']}")
+    monkeypatch.setenv("FAKE_SLURM", str(state))
+    monkeypatch.setattr(cs, "POLL_S", 0.05)
+    return work, state
+
+
+def test_sbatch_line_runs_snakemake_with_the_same_cores_in_one_allocation(tmp_path):
+    cmd = cs.sbatch_command(["paper", "plot4-5"], cpus=3, mem_mb=1234, minutes=7, workdir=tmp_path,
+                            account="ab1", partition="short", snakemake_args=["--keep-going", "--notemp"])
+    assert cmd[0] == "sbatch" and "--parsable" in cmd
+    for option in ("--cpus-per-task=3", "--mem=1234M", "--time=7", "--ntasks=1", "--nodes=1", "--account=ab1",
+                   "--partition=short", f"--chdir={tmp_path.resolve()}", f"--output={cs.LOG_PATTERN}"):
+        assert option in cmd
+    wrap = cmd[cmd.index("--wrap") + 1]
+    assert wrap.startswith("exec ")
+    assert shlex.split(wrap)[1:] == [sys.executable, "-m", "snakemake", "--cores", "3", "--keep-going", "--notemp",
+                                     "paper", "plot4-5"]
+
+
+def test_dry_run_prints_the_line_and_submits_nothing(workflow, capsys):
+    work, state = workflow
+    assert main(["slurm", "--dry-run", "--directory", str(work), "--cpus", "4", "paper", "--", "-n"]) == 0
+    cmd = shlex.split(capsys.readouterr().out.strip())
+    assert cmd[0] == "sbatch" and cmd[-2] == "--wrap"
+    assert shlex.split(cmd[-1])[-5:] == ["snakemake", "--cores", "4", "-n", "paper"]
+    assert not (state / "argv").exists()
+
+
+def test_without_sbatch_it_says_so(workflow, tmp_path, capsys, monkeypatch):
+    work, _ = workflow
+    monkeypatch.setenv("PATH", str(tmp_path / "state"))
+    assert main(["slurm", "--directory", str(work), "paper"]) == 2
+    assert capsys.readouterr().err.strip() == ("cradle: error: no sbatch on PATH: this command submits to Slurm "
+                                               "(a local build: snakemake -j2)")
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--cpus", "0"], "--cpus = 0: must be >= 1"),
+    (["--mem-mb", "-5"], "--mem-mb = -5: must be >= 1"),
+    (["--time", "0"], "--time = 0: must be >= 1"),
+])
+def test_bad_resources_are_one_line_before_submitting(workflow, capsys, argv, message):
+    work, state = workflow
+    assert main(["slurm", "--directory", str(work), *argv, "paper"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"cradle: error: {message}"]
+    assert not (state / "argv").exists()
+
+
+def test_no_snakefile_and_a_wrong_config_are_refused_before_submitting(workflow, tmp_path, capsys):
+    work, state = workflow
+    assert main(["slurm", "--directory", str(tmp_path / "state"), "paper"]) == 2
+    assert "no Snakefile in" in capsys.readouterr().err
+    cfg = yaml.safe_load((work / "config.yaml").read_text())
+    name = next(iter(cfg["scenes"]))
+    cfg["scenes"][name]["N"] = -3
+    (work / "config.yaml").write_text(yaml.safe_dump(cfg, sort_keys=False))
+    assert main(["slurm", "--directory", str(work), "paper"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"scenes.{name}.N" in err[0] and "-3" in err[0], err
+    assert not (state / "argv").exists()
+
+
+def test_a_completed_job_is_followed_and_exits_0(workflow, capsys, monkeypatch):
+    work, state = workflow
+    monkeypatch.setenv("FAKE_JOB", "echo first line; sleep 0.3; echo 'second line'; exit 0")
+    assert main(["slurm", "--directory", str(work), "paper", "--", "--keep-going"]) == 0
+    out, err = capsys.readouterr()
+    assert out == "first line\nsecond line\n"            # the job's log, whole, in order
+    assert "Slurm job 4242 submitted" in err and "Slurm job 4242 COMPLETED" in err
+    assert (work / ".snakemake" / "slurm_logs" / "cradle-4242.log").read_text() == out
+    argv = (state / "argv").read_text().splitlines()
+    assert shlex.split(argv[argv.index("--wrap") + 1])[-2:] == ["--keep-going", "paper"]
+
+
+def test_a_failed_job_exits_1_naming_its_state_and_log(workflow, capsys, monkeypatch):
+    work, _ = workflow
+    monkeypatch.setenv("FAKE_JOB", "echo boom; exit 3")
+    assert main(["slurm", "--directory", str(work), "--quiet", "paper"]) == 1
+    out, err = capsys.readouterr()
+    assert out == ""                                      # --quiet: the log is not printed
+    last = err.strip().splitlines()[-1]
+    assert last.startswith("cradle: error: Slurm job 4242 ended FAILED after") and "cradle-4242.log" in last
+
+
+def test_no_wait_prints_the_job_id(workflow, capsys, monkeypatch):
+    work, state = workflow
+    monkeypatch.setenv("FAKE_JOB", "sleep 0.2")
+    assert main(["slurm", "--directory", str(work), "--no-wait", "paper"]) == 0
+    assert capsys.readouterr().out.strip() == "4242"
+
+
+def test_interrupt_while_waiting_cancels_the_job(workflow, capsys, monkeypatch):
+    work, state = workflow
+    monkeypatch.setenv("FAKE_JOB", "sleep 3")
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cs, "wait", interrupted)
+    assert main(["slurm", "--directory", str(work), "paper"]) == 130
+    assert "Slurm job 4242 cancelled (scancel)" in capsys.readouterr().err
+    assert (state / "cancelled").read_text().strip() == "4242"
