@@ -22,14 +22,21 @@ Families (:data:`FAMILIES`): the travelling waves (ansatzapprox) q = pi/5 and 4 
 ``N_wave`` beads; the bond-centred breather (ansatzapproxst2)/(breatherdps) from the homoclinic
 profile of (dpsstn) on ``N_breather`` beads; the modulationally unstable wave q = 4 pi/5 perturbed as
 in (perturb) with small uniform noise on ``N_noise`` beads (DpS growth rate: (ansatz3)).
+
+The work is split into batches (:data:`ANALYSIS`: one job per alpha, key ``alpha<k>-<alpha>``, as the
+cost T eps^(1-alpha) of the lattice runs differs most between alphas): :func:`batch` runs every family at
+one alpha -> Dataset; :func:`compute` joins the batches of a form and derives the ratios and fits
+(``compute(spec)`` with no batches runs them itself, one after another).
 """
 from __future__ import annotations
 
+import re
+import time
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.protocol import Analysis, check_forms
+from cradle.analyses.protocol import Analysis, Batches, check_forms
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain, schema_doc
 from cradle.specs.values import show
@@ -310,41 +317,141 @@ def eps_grid(spec: DpsValidity, ia: int) -> np.ndarray:
     return np.geomspace(spec.eps_min[ia], spec.eps_max, spec.n_eps)
 
 
-def compute(spec: DpsValidity, inputs=None, log=None):
-    """The `dps-validity` analysis as a tree of groups (see module docstring and :data:`VARIABLES`) for
-    one form of its spec; it reads no file (``inputs`` is empty)."""
-    import time
+# ----------------------------------------------------------------- the batches: one job per alpha
 
-    from cradle.data.io import make_tree
+#: a batch file (one alpha, every family) is flat: the runs' results on the dims of the tree, alpha of length 1
+#: (the fits and ratios are derived from them by :func:`compute`)
+BATCH_VARIABLES = {name: VARIABLES[group][name] for group, names in (
+    ("/errors", ("family", "alpha", "i_eps", "T", "eps", "abs_error")),
+    ("/fits", ("dps_growth_rate",)),
+    ("/checks", ("dt", "energy_drift", "halving_deviation", "n_samples"))) for name in names}
+
+_KEY = re.compile(r"alpha(\d+)-(.+)")
+
+
+def batch_keys(spec: DpsValidity) -> list[str]:
+    """The batches of one form, one per alpha: ``alpha<k>-<alpha>`` (``alpha0-1.1``), k its index in
+    ``spec.alpha`` (unique even if two alphas are equal)."""
+    return [f"alpha{ia}-{float(al):g}" for ia, al in enumerate(spec.alpha)]
+
+
+def batch(spec: DpsValidity, ia: int, log=None):
+    """Every family at alpha number ``ia``: its A_n(0) (:func:`family_amplitude`), its DpS growth rate
+    (:func:`dps_growth`) and one :func:`sup_error` run per eps of :func:`eps_grid` (the smallest also with
+    dt / 2) -> a flat Dataset (:data:`BATCH_VARIABLES`); attributes: the noise seeds, the wall time."""
+    from cradle.data.io import make_dataset
 
     t_start = time.perf_counter()
     say = log or (lambda *a: None)
+    al = float(spec.alpha[ia])
+    fams = list(spec.families)
+    Ts = np.sort(np.asarray(spec.T, dtype=float))
+    eps_all = eps_grid(spec, ia)
+    n_eps = spec.n_eps
+    E = np.full((len(fams), 1, n_eps, Ts.size), np.nan)
+    dts, drifts, nsamp = (np.full((len(fams), 1, n_eps), np.nan) for _ in range(3))
+    halving, growth = np.full((len(fams), 1, Ts.size), np.nan), np.zeros((len(fams), 1))
+    seeds = {}
+    for jf, fam in enumerate(fams):
+        A0, N, info = family_amplitude(fam, al, spec)
+        if "seed" in info:
+            seeds[f"{fam}_alpha{al:g}"] = info["seed"]
+        growth[jf, 0] = dps_growth(fam, al, N)
+        for ie, eps in enumerate(eps_all):
+            r = sup_error(A0, eps, al, Ts, sample_every=spec.sample_every, dt_factor=spec.dt_factor,
+                          rtol=spec.dps_rtol, chunk=spec.chunk, check=ie == 0)
+            E[jf, 0, ie] = r["abs_error"]
+            dts[jf, 0, ie], drifts[jf, 0, ie], nsamp[jf, 0, ie] = r["dt"], r["energy_drift"], r["n_samples"]
+            if ie == 0:
+                halving[jf, 0] = r["halving_deviation"]
+        say(f"dps-validity: {fam} alpha={al:g}: E_rel(T={Ts[-1]:g}) = "
+            + " ".join(f"{e:.3g}" for e in E[jf, 0, :, -1] / (2 * eps_all)))
+    data = {"eps": eps_all[None, :], "abs_error": E, "dps_growth_rate": growth, "dt": dts, "energy_drift": drifts,
+            "halving_deviation": halving, "n_samples": nsamp}
+    coords = {"family": np.arange(len(fams)), "alpha": [al], "i_eps": np.arange(n_eps), "T": Ts}
+    attrs = {"alpha_index": ia, "family_names": ", ".join(fams),
+             "noise_seeds": ", ".join(f"{k}={v}" for k, v in seeds.items()),
+             "wall_time_s": time.perf_counter() - t_start}
+    return make_dataset(data, coords=coords, attrs=attrs, params=plain(spec), variables=BATCH_VARIABLES,
+                        title=f"dps-validity batch: alpha = {al:g} (alpha number {ia}), every family")
+
+
+def run_batch(spec: DpsValidity, key: str, inputs=None, log=None):
+    """The batch ``key`` of :func:`batch_keys` (it reads no file)."""
+    found = _KEY.fullmatch(key)
+    if found is None or key not in batch_keys(spec):
+        raise ValueError(f"dps-validity: no batch {key!r} in this form (batches: {', '.join(batch_keys(spec))})")
+    return batch(spec, int(found.group(1)), log=log)
+
+
+def _batches(spec: DpsValidity, inputs, log) -> list:
+    """The batch of every alpha, in the order of ``spec.alpha``: all from ``inputs`` or, when it holds none,
+    run here one after another."""
+    keys = batch_keys(spec)
+    given = [key for key in keys if f"batch/{key}" in inputs]
+    if not given:
+        return [run_batch(spec, key, log=log) for key in keys]
+    if len(given) < len(keys):
+        raise ValueError(f"dps-validity: no batch {', '.join(k for k in keys if k not in given)} among the inputs "
+                         f"(given: {', '.join(given)})")
+    return [inputs[f"batch/{key}"] for key in keys]
+
+
+# ----------------------------------------------------------------- the whole form
+
+
+def compute(spec: DpsValidity, inputs=None, log=None):
+    """The `dps-validity` analysis as a tree of groups (see module docstring and :data:`VARIABLES`) for
+    one form of its spec, from its batches (``inputs["batch/<key>"]``, one per alpha: :func:`batch_keys`).
+    Without them (``inputs`` empty or None: ``compute(spec)`` from Python) the batches are run here, one
+    after another. The attribute ``wall_time_s`` is the batches' wall times summed plus this aggregation's."""
+    parts = _batches(spec, inputs or {}, log)
+    t_start = time.perf_counter()   # after the batches: their own wall times are added to it
     alphas = [float(a) for a in spec.alpha]
     fams = list(spec.families)
     Ts = np.sort(np.asarray(spec.T, dtype=float))
     n_eps = spec.n_eps
-    shape = (len(fams), len(alphas), n_eps, Ts.size)
-    E = np.full(shape, np.nan)
+    E = np.full((len(fams), len(alphas), n_eps, Ts.size), np.nan)
     eps_all = np.array([eps_grid(spec, ia) for ia in range(len(alphas))])
-    t_end = eps_all[:, :, None] ** (1.0 - np.asarray(alphas)[:, None, None]) * Ts
     dts, drifts, nsamp = (np.full((len(fams), len(alphas), n_eps), np.nan) for _ in range(3))
     halving, growth = np.full((len(fams), len(alphas), Ts.size), np.nan), np.zeros((len(fams), len(alphas)))
-    seeds = {}
-    for jf, fam in enumerate(fams):
-        for ia, al in enumerate(alphas):
-            A0, N, info = family_amplitude(fam, al, spec)
-            if "seed" in info:
-                seeds[f"{fam}_alpha{al:g}"] = info["seed"]
-            growth[jf, ia] = dps_growth(fam, al, N)
-            for ie, eps in enumerate(eps_all[ia]):
-                r = sup_error(A0, eps, al, Ts, sample_every=spec.sample_every, dt_factor=spec.dt_factor,
-                              rtol=spec.dps_rtol, chunk=spec.chunk, check=ie == 0)
-                E[jf, ia, ie] = r["abs_error"]
-                dts[jf, ia, ie], drifts[jf, ia, ie], nsamp[jf, ia, ie] = r["dt"], r["energy_drift"], r["n_samples"]
-                if ie == 0:
-                    halving[jf, ia] = r["halving_deviation"]
-            say(f"dps-validity: {fam} alpha={al:g}: E_rel(T={Ts[-1]:g}) = "
-                + " ".join(f"{e:.3g}" for e in E[jf, ia, :, -1] / (2 * eps_all[ia])))
+    batch_seeds, batch_wall = [], 0.0
+    for ia, (al, b) in enumerate(zip(alphas, parts, strict=True)):
+        # a batch of another spec (other alpha, families, eps or T) would be joined silently
+        if not (int(b.attrs["alpha_index"]) == ia and float(b["alpha"].values[0]) == al
+                and str(b.attrs["family_names"]) == ", ".join(fams) and np.array_equal(b["T"].values, Ts)
+                and np.array_equal(b["eps"].values[0], eps_all[ia])):
+            raise ValueError(f"dps-validity: batch {batch_keys(spec)[ia]} was computed for another spec")
+        E[:, ia] = b["abs_error"].values[:, 0]
+        dts[:, ia], drifts[:, ia], nsamp[:, ia] = (b[nm].values[:, 0] for nm in ("dt", "energy_drift", "n_samples"))
+        halving[:, ia], growth[:, ia] = b["halving_deviation"].values[:, 0], b["dps_growth_rate"].values[:, 0]
+        batch_seeds.append(dict(item.split("=") for item in str(b.attrs["noise_seeds"]).split(", ") if item))
+        batch_wall += float(b.attrs["wall_time_s"])
+    seeds = {}   # family-major, the order of the one-job loop
+    for fam in fams:
+        for al, found in zip(alphas, batch_seeds, strict=True):
+            if f"{fam}_alpha{al:g}" in found:
+                seeds[f"{fam}_alpha{al:g}"] = found[f"{fam}_alpha{al:g}"]
+    runs = {"abs_error": E, "dt": dts, "energy_drift": drifts, "n_samples": nsamp, "halving_deviation": halving,
+            "dps_growth_rate": growth, "noise_seeds": seeds}
+    return tree_of_runs(spec, runs, t_start, wall_before=batch_wall)
+
+
+def tree_of_runs(spec: DpsValidity, runs: dict, t_start: float, wall_before: float = 0.0):
+    """The tree of one form (:data:`VARIABLES`) from its runs: ``runs`` holds on (family, alpha, ...) what
+    :func:`batch` stores (abs_error, dt, energy_drift, n_samples, halving_deviation, dps_growth_rate) and
+    ``noise_seeds`` ({"<family>_alpha<alpha>": seed}); the ratios, fits and attributes are derived here.
+    ``wall_time_s`` is ``wall_before`` plus the time since ``t_start`` (a :func:`time.perf_counter`)."""
+    from cradle.data.io import make_tree
+
+    alphas = [float(a) for a in spec.alpha]
+    fams = list(spec.families)
+    Ts = np.sort(np.asarray(spec.T, dtype=float))
+    n_eps = spec.n_eps
+    eps_all = np.array([eps_grid(spec, ia) for ia in range(len(alphas))])
+    t_end = eps_all[:, :, None] ** (1.0 - np.asarray(alphas)[:, None, None]) * Ts
+    E, dts, drifts, nsamp = runs["abs_error"], runs["dt"], runs["energy_drift"], runs["n_samples"]
+    halving, growth, seeds = runs["halving_deviation"], runs["dps_growth_rate"], runs["noise_seeds"]
     rel = E / (2.0 * eps_all[None, :, :, None])
     law = rel / eps_all[None, :, :, None] ** (np.asarray(alphas)[None, :, None, None] - 1.0)
     departure = law / law[:, :, :1, :]
@@ -401,7 +508,7 @@ def compute(spec: DpsValidity, inputs=None, log=None):
         "max_halving_ratio_before_lost": float(np.nanmax(np.where(
             np.isnan(T_lost[:, :, :1]) | (Ts[None, None, :] < T_lost[:, :, :1]), halving / E[:, :, 0, :], np.nan))),
         "max_energy_drift": float(np.nanmax(drifts)),
-        "wall_time_s": time.perf_counter() - t_start,
+        "wall_time_s": wall_before + time.perf_counter() - t_start,
     }
     return make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
                      title="DpS approximation error: sup_{t <= T eps^(1-alpha)} |x - x_app| against eps, T, family "
@@ -410,4 +517,5 @@ def compute(spec: DpsValidity, inputs=None, log=None):
 
 ANALYSIS = Analysis(
     name="dps-validity", spec=DpsValidity, compute=compute, variables=VARIABLES,
+    batches=Batches(keys=batch_keys, run=run_batch),
     title="DpS approximation error: sup over t <= T eps^(1-alpha) of |x - x_app| against eps, T, family, alpha")
