@@ -122,3 +122,99 @@ def test_config_one_eps_min_per_alpha():
     assert isinstance(spec, dv.DpsValidity) and spec.reduced is None
     assert spec.alpha == [1.5] and spec.n_eps == 3 and spec.T == [1.0, 2.0]
     assert cc.analysis_spec(raw, "dps-validity", "full").n_eps == 9
+
+
+# ----------------------------------------------------------------- the batches (one job per alpha)
+
+
+def _two_alphas():
+    """Two alphas (two batches), a family with noise (its seed per alpha) and one without."""
+    return from_plain(dv.DpsValidity, {"N_wave": 10, "N_breather": 32, "N_noise": 50, "noise_amplitude": 0.01,
+                                       "seed": 20261122, "alpha": [1.5, 2.0], "eps_min": [1e-3, 1e-2],
+                                       "eps_max": 3e-2, "n_eps": 3, "T": [2.0, 1.0], "families":
+                                       ["tw-4pi5", "mi-4pi5-noise"], "sample_every": 0.2, "dt_factor": 0.01,
+                                       "dps_rtol": 1e-11, "chunk": 20000})
+
+
+def _one_job(spec):
+    """The form computed in one job, as dps-validity did before its batches: the loop over families x alphas x
+    eps of :func:`cradle.analyses.dps_validity.compute` then, its results handed to tree_of_runs."""
+    import time
+
+    t_start = time.perf_counter()
+    alphas = [float(a) for a in spec.alpha]
+    fams = list(spec.families)
+    Ts = np.sort(np.asarray(spec.T, dtype=float))
+    n_eps = spec.n_eps
+    E = np.full((len(fams), len(alphas), n_eps, Ts.size), np.nan)
+    eps_all = np.array([dv.eps_grid(spec, ia) for ia in range(len(alphas))])
+    dts, drifts, nsamp = (np.full((len(fams), len(alphas), n_eps), np.nan) for _ in range(3))
+    halving, growth = np.full((len(fams), len(alphas), Ts.size), np.nan), np.zeros((len(fams), len(alphas)))
+    seeds = {}
+    for jf, fam in enumerate(fams):
+        for ia, al in enumerate(alphas):
+            A0, N, info = dv.family_amplitude(fam, al, spec)
+            if "seed" in info:
+                seeds[f"{fam}_alpha{al:g}"] = info["seed"]
+            growth[jf, ia] = dv.dps_growth(fam, al, N)
+            for ie, eps in enumerate(eps_all[ia]):
+                r = dv.sup_error(A0, eps, al, Ts, sample_every=spec.sample_every, dt_factor=spec.dt_factor,
+                                 rtol=spec.dps_rtol, chunk=spec.chunk, check=ie == 0)
+                E[jf, ia, ie] = r["abs_error"]
+                dts[jf, ia, ie], drifts[jf, ia, ie], nsamp[jf, ia, ie] = r["dt"], r["energy_drift"], r["n_samples"]
+                if ie == 0:
+                    halving[jf, ia] = r["halving_deviation"]
+    runs = {"abs_error": E, "dt": dts, "energy_drift": drifts, "n_samples": nsamp, "halving_deviation": halving,
+            "dps_growth_rate": growth, "noise_seeds": seeds}
+    return dv.tree_of_runs(spec, runs, t_start)
+
+
+def _assert_same_tree(new, old):
+    """Same groups, variables, dims, dtypes and bits; same attributes but the measured wall time and the
+    creation time (history)."""
+    assert {n.path for n in new.subtree} == {n.path for n in old.subtree}
+    for node in old.subtree:
+        a, b = new[node.path].to_dataset(inherit=False), node.to_dataset(inherit=False)
+        assert set(a.variables) == set(b.variables), node.path
+        for name in b.variables:
+            x, y = a[name], b[name]
+            assert x.dims == y.dims and x.dtype == y.dtype and x.attrs == y.attrs, (node.path, name)
+            assert np.ascontiguousarray(x.values).tobytes() == np.ascontiguousarray(y.values).tobytes(), \
+                (node.path, name)
+        skip = {"wall_time_s", "history"}
+        assert {k: v for k, v in a.attrs.items() if k not in skip} == \
+            {k: v for k, v in b.attrs.items() if k not in skip}, node.path
+
+
+def test_batched_form_is_bitwise_the_one_job_form(tmp_path):
+    """One batch per alpha, written to netCDF and read back (as the pipeline hands them to compute), run in
+    either order: the tree is bitwise the one the one-job loop gives, on every variable of every group;
+    compute(spec) with no batches runs them itself, to the same bits."""
+    from cradle.data.io import open_dataset, write_netcdf
+
+    spec = _two_alphas()
+    keys = dv.batch_keys(spec)
+    assert keys == ["alpha0-1.5", "alpha1-2"]
+    reference = _one_job(spec)
+    for order in (keys, keys[::-1]):
+        inputs = {f"batch/{key}": open_dataset(write_netcdf(dv.run_batch(spec, key, {}),
+                                                            tmp_path / f"{'-'.join(order)}-{key}.nc"))
+                  for key in order}
+        _assert_same_tree(dv.compute(spec, inputs), reference)
+    _assert_same_tree(dv.compute(spec), reference)
+    b = inputs[f"batch/{keys[1]}"]
+    assert b.attrs["noise_seeds"] == f"mi-4pi5-noise_alpha2={spec.seed + 200}" and b.attrs["wall_time_s"] > 0
+    for name, var in b.variables.items():
+        assert var.dims == dv.BATCH_VARIABLES[name].dims and var.attrs["long_name"] and var.attrs["units"], name
+    with pytest.raises(ValueError, match=r"^dps-validity: no batch alpha1-2 among the inputs \(given: alpha0-1.5\)$"):
+        dv.compute(spec, {f"batch/{keys[0]}": inputs[f"batch/{keys[0]}"]})
+
+
+def test_batch_keys_are_unique_and_an_unknown_key_is_refused():
+    spec = from_plain(dv.DpsValidity, {"alpha": [1.5, 1.5, 3.0], "eps_min": [1e-3, 1e-3, 1e-2]})
+    assert dv.batch_keys(spec) == ["alpha0-1.5", "alpha1-1.5", "alpha2-3"]
+    assert dv.ANALYSIS.batches is not None and dv.ANALYSIS.batches.keys(spec) == dv.batch_keys(spec)
+    for key in ("alpha3-1.5", "alpha1-3", "alpha0-1.50", "N200-exact-0"):
+        with pytest.raises(ValueError, match=rf"^dps-validity: no batch '{key}' in this form \(batches: "
+                                             r"alpha0-1.5, alpha1-1.5, alpha2-3\)$"):
+            dv.run_batch(spec, key, {})
