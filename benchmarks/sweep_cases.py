@@ -74,7 +74,7 @@ def _breather_interactions():
 
 def _dps_validity():
     """One (family, alpha, eps) of the full form: the running sup error of :func:`sup_error` to the largest T,
-    as :func:`cradle.analyses.dps_validity.compute` calls it: the breather at alpha = 2 and the fifth eps of the
+    as :func:`cradle.analyses.dps_validity.batch` calls it: the breather at alpha = 2 and the fifth eps of the
     grid, and the noisy unstable wave at alpha = 1.5 and its smallest eps (with the dt / 2 check run)."""
     from cradle.analyses import dps_validity as D
 
