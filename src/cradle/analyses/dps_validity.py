@@ -23,9 +23,9 @@ Families (:data:`FAMILIES`): the travelling waves (ansatzapprox) q = pi/5 and 4 
 profile of (dpsstn) on ``N_breather`` beads; the modulationally unstable wave q = 4 pi/5 perturbed as
 in (perturb) with small uniform noise on ``N_noise`` beads (DpS growth rate: (ansatz3)).
 
-The work is split into batches (:data:`ANALYSIS`: one job per alpha, key ``alpha<k>-<alpha>``, as the
-cost T eps^(1-alpha) of the lattice runs differs most between alphas): :func:`batch` runs every family at
-one alpha -> Dataset; :func:`compute` joins the batches of a form and derives the ratios and fits
+The work is split into batches (:data:`ANALYSIS`: one job per alpha, key ``alpha<k>-<alpha>``; the lattice
+runs last T eps^(1-alpha), so the largest alphas cost most and run side by side): :func:`batch` runs every
+family at one alpha -> Dataset; :func:`compute` joins the batches of a form and derives the ratios and fits
 (``compute(spec)`` with no batches runs them itself, one after another).
 """
 from __future__ import annotations
