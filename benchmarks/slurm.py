@@ -28,6 +28,7 @@ import time
 from pathlib import Path
 
 from compare_outputs import compare_file, pair_files
+from cradle.pipeline.workdir import copy_workflow
 from doctable import publish
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -39,13 +40,7 @@ WAYS = {
 
 
 def folder(path: Path) -> Path:
-    path.mkdir(parents=True)
-    for name in ("Snakefile", "config.yaml"):
-        shutil.copy(ROOT / name, path)
-    for name in ("workflow", "profiles"):
-        shutil.copytree(ROOT / name, path / name)
-    (path / "src").symlink_to(ROOT / "src")      # the code stamps are read from the workflow's src
-    return path
+    return copy_workflow(ROOT, path)
 
 
 def build(way: str, work: Path, target: str, env: dict) -> dict:

@@ -28,6 +28,7 @@ import numpy as np
 import pytest
 
 from conftest import run_snakemake
+from cradle.pipeline.workdir import copy_workflow
 
 pytestmark = pytest.mark.slurm
 
@@ -63,13 +64,7 @@ def slurm():
 
 
 def _workdir(path: Path) -> Path:
-    path.mkdir(parents=True)
-    for name in ("Snakefile", "config.yaml"):
-        shutil.copy(ROOT / name, path)
-    for name in ("workflow", "profiles"):
-        shutil.copytree(ROOT / name, path / name)
-    (path / "src").symlink_to(ROOT / "src")
-    return path
+    return copy_workflow(ROOT, path)
 
 
 def _build(work: Path, *args) -> float:

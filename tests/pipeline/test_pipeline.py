@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import dataclasses
 import re
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +16,7 @@ from cradle.data.io import open_dataset, write_netcdf
 from cradle.data.variables import VARIABLES
 from cradle.pipeline import config as cc
 from cradle.pipeline.runner import failed_path, run, run_chain
+from cradle.pipeline.workdir import copy_workflow
 from cradle.scenes import stages
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -123,13 +123,7 @@ def test_failed_step_of_a_chain_writes_no_target_and_keeps_the_finished_steps(tm
 
 def _tiny_workflow(tmp_path):
     """A copy of the workflow (the sources linked) running the TINY config."""
-    work = tmp_path / "cradle"
-    work.mkdir()
-    shutil.copy(ROOT / "Snakefile", work)
-    shutil.copytree(ROOT / "workflow", work / "workflow")
-    (work / "src").symlink_to(ROOT / "src")
-    (work / "config.yaml").write_text(yaml.safe_dump(TINY))
-    return work
+    return copy_workflow(ROOT, tmp_path / "cradle", config=yaml.safe_dump(TINY), profiles=False)
 
 
 def _snakemake(workdir, *args):

@@ -2,13 +2,13 @@
 from __future__ import annotations
 
 import re
-import shutil
 from pathlib import Path
 
 import pytest
 import yaml
 
 from conftest import run_snakemake
+from cradle.pipeline.workdir import copy_workflow
 
 ROOT = Path(__file__).resolve().parents[2]
 RULES = ROOT / "workflow" / "rules"
@@ -88,14 +88,7 @@ def test_report_captions_render_for_every_figure():
 
 
 def _workdir(tmp_path):
-    work = tmp_path / "cradle"
-    work.mkdir()
-    shutil.copy(ROOT / "Snakefile", work)
-    shutil.copy(ROOT / "config.yaml", work)
-    shutil.copytree(ROOT / "workflow", work / "workflow")
-    shutil.copytree(ROOT / "profiles", work / "profiles")
-    (work / "src").symlink_to(ROOT / "src")
-    return work
+    return copy_workflow(ROOT, tmp_path / "cradle")
 
 
 def test_default_profile_is_valid_yaml():
