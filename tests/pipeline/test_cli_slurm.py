@@ -85,6 +85,7 @@ def test_dry_run_prints_the_line_and_submits_nothing(workflow, capsys):
     assert main(["slurm", "--dry-run", "--directory", str(work), "--cpus", "4", "paper", "--", "-n"]) == 0
     cmd = shlex.split(capsys.readouterr().out.strip())
     assert cmd[0] == "sbatch" and cmd[-2] == "--wrap"
+    assert f"--mem={4 * cs.MEM_PER_CPU_MB}M" in cmd                # memory scales with the CPUs unless given
     assert shlex.split(cmd[-1])[-5:] == ["snakemake", "--cores", "4", "-n", "paper"]
     assert not (state / "argv").exists()
 

@@ -9,7 +9,7 @@
     cradle verify   [results] [--config config.yaml]       # every output's checksums and identity; what to rebuild
     cradle animate  SCENE [--results results] [--gif] [--fps F --duration S]   # a movie of the stored runs
     cradle animate  n5-lifted1 --desk-toy results/desk-toy/desk-toy.nc          # a desk toy of that analysis
-    cradle slurm    [TARGET...] [--cpus N --mem-mb M --time MIN] [-- SNAKEMAKE_ARGS]   # the build in one Slurm job
+    cradle slurm    [TARGET...] [--cpus N --mem-mb MB --time MIN] [-- SNAKEMAKE_ARGS]   # the build in one Slurm job
     cradle scale    --material steel --radius R (--length L | --omega0 W) [--amplitude A] [--angle DEG]
                                                            # (nc)'s units in SI for a real cradle
 

@@ -25,6 +25,9 @@ from cradle.pipeline.cli.common import PROG, CliError, load_config
 
 #: where the job's log goes, beside Snakemake's own logs (%j: the job's id)
 LOG_PATTERN = ".snakemake/slurm_logs/cradle-%j.log"
+#: memory asked per CPU unless --mem-mb says otherwise: a job of the paper's build peaks near 0.3 GB (max RSS),
+#: the warm process and Snakemake add about as much again; the rule-instance profile asks as much per job
+MEM_PER_CPU_MB = 2000
 #: seconds between two looks at the job while waiting
 POLL_S = 1.0
 #: Slurm states of a job that has ended (squeue stops listing it soon after)
@@ -113,6 +116,8 @@ def cmd_slurm(args) -> int:
     workdir = Path(args.directory)
     if not (workdir / "Snakefile").is_file():
         raise CliError(f"no Snakefile in {str(workdir)!r}: run from the workflow's folder (or give --directory)")
+    if args.mem_mb is None:
+        args.mem_mb = MEM_PER_CPU_MB * max(args.cpus, 1)
     for key in ("cpus", "mem_mb", "time"):
         if getattr(args, key) < 1:
             raise CliError(f"--{key.replace('_', '-')} = {getattr(args, key)}: must be >= 1")
@@ -158,8 +163,9 @@ def add_parser(sub) -> None:
     s.add_argument("targets", nargs="*", metavar="TARGET",
                    help="Snakemake targets (default: the Snakefile's first, all)")
     s.add_argument("--cpus", type=int, default=2, help="CPUs of the allocation, Snakemake's --cores (default: 2)")
-    s.add_argument("--mem-mb", type=int, default=4000, dest="mem_mb",
-                   help="memory of the allocation in MB (default: 4000; the paper's -j2 build peaked at 1.0 GB here)")
+    s.add_argument("--mem-mb", type=int, default=None, dest="mem_mb",
+                   help=f"memory of the allocation in MB (default: {MEM_PER_CPU_MB} per CPU; the paper's -j2 build "
+                        "peaked at 1.0 GB here)")
     s.add_argument("--time", type=int, default=120, help="time limit in minutes (default: 120)")
     s.add_argument("--account", default=None, help="Slurm account (sbatch --account)")
     s.add_argument("--partition", default=None, help="Slurm partition (sbatch --partition)")
