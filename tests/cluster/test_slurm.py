@@ -4,7 +4,7 @@
 `snakemake -j2` build of the same target (built first, once).
 
 Run it after tests/cluster/slurm-up.sh (it skips, saying why, when `sbatch`, `sinfo` or `sacct` do not
-answer, or the executor plugin is missing)::
+answer; the rule-instance test also when the executor plugin is missing)::
 
     tests/cluster/slurm-up.sh && python -m pytest -m slurm tests/cluster -s; tests/cluster/slurm-down.sh
 
@@ -55,8 +55,6 @@ def _answers(*cmd) -> str | None:
 
 @pytest.fixture(scope="module")
 def slurm():
-    pytest.importorskip("snakemake_executor_plugin_slurm",
-                        reason="snakemake-executor-plugin-slurm is not installed: pip install -e '.[slurm]'")
     for cmd in (("sbatch", "--version"), ("sinfo", "-h", "-o", "%T"), ("sacct", "-n", "-X", "-S", "now")):
         why = _answers(*cmd)
         if why:
@@ -178,6 +176,8 @@ def test_one_allocation_equals_local_build(local_build, tmp_path):
 
 def test_rule_instances_through_slurm_equal_local_build(local_build, tmp_path):
     """``snakemake --workflow-profile profiles/slurm``: the rule instances submitted (grouped) to Slurm."""
+    pytest.importorskip("snakemake_executor_plugin_slurm",
+                        reason="snakemake-executor-plugin-slurm is not installed: pip install -e '.[slurm]'")
     local, wall_local = local_build
     on_slurm = _workdir(tmp_path / "slurm")
     wall_slurm = _build(on_slurm, "--workflow-profile", "profiles/slurm")
