@@ -335,6 +335,14 @@ def pair_files(old_root: Path, new_root: Path, file_rules: list[Rule]):
     return pairs, only_old, only_new
 
 
+def compare_folders(old_root: Path, new_root: Path) -> tuple[list[FileReport], list[str], list[str]]:
+    """Every ``*.nc`` under ``old_root`` against the file at the same relative path under ``new_root``, with
+    no rename of files or variables: (a report per pair, old files without a new one, new files without an
+    old one)."""
+    pairs, only_old, only_new = pair_files(old_root, new_root, [])
+    return [compare_file(old_root / o, new_root / n, o, n, [], set()) for o, n in pairs], only_old, only_new
+
+
 def _cell(text: str) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 

@@ -23,7 +23,7 @@ import time
 from datetime import UTC, datetime
 from pathlib import Path
 
-from compare_outputs import compare_file, pair_files
+from compare_outputs import compare_folders
 from doctable import publish
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -63,20 +63,24 @@ def build(clone: Path, target: str, cores: int, records: Path, role: str) -> Non
     print(record(records, "build", role=role, target=target, rc=rc, start=f"{start:%Y-%m-%dT%H:%M:%S}",
                  end=f"{datetime.now(UTC):%H:%M:%S}", wall=f"{wall:.1f}", cores=cores, load_start=f"{load0:.2f}",
                  load_end=f"{os.getloadavg()[0]:.2f}", commit=_commit(clone)))
+    if rc:   # recorded, but a failed build's wall time says nothing: stop here
+        sys.exit(f"snakemake -j{cores} {target} failed in {clone} (log: {clone / f'{target}.log'})")
 
 
 def compare(target: str, before: Path, now: Path, records: Path) -> None:
     """Every netCDF file of the target's folder in both clones' results, bitwise."""
     folder = target.removesuffix("_full").replace("_", "-")
     a, b = before / "results" / folder, now / "results" / folder
-    pairs, only_old, only_new = pair_files(a, b, [])
-    variables = differ = 0
-    for old, new in pairs:
-        rep = compare_file(a / old, b / new, old, new, [], set())
-        variables += rep.compared
-        differ += bool(rep.differences)
-    print(record(records, "compare", target=target, before=_commit(before), now=_commit(now), files=len(pairs),
-                 variables=variables, differ=differ, only_before=len(only_old), only_now=len(only_new)))
+    reports, only_old, only_new = compare_folders(a, b)
+    print(record(records, "compare", target=target, before=_commit(before), now=_commit(now), files=len(reports),
+                 variables=sum(r.compared for r in reports), differ=sum(bool(r.differences) for r in reports),
+                 only_before=len(only_old), only_now=len(only_new)))
+
+
+def _build_cells(build: dict) -> list[str]:
+    """A build's commit and wall time, as two cells of the table."""
+    wall = float(build["wall"])
+    return [build["commit"], f"{wall:.0f} ({wall / 60:.1f} min)"]
 
 
 def table(records: Path) -> str:
@@ -94,12 +98,10 @@ def table(records: Path) -> str:
         equal = (f"{int(cmp[-1]['files']) - int(cmp[-1]['differ'])} of {cmp[-1]['files']} "
                  f"({cmp[-1]['variables']} variables)" if cmp else "not compared")
         if cmp and int(cmp[-1]["only_now"]):
-            equal += f"; {cmp[-1]['only_now']} new files (batches)"
-        rows.append(f"| `{target}` | {before['commit'] if before else '-'} | "
-                    f"{float(before['wall']):.0f} ({float(before['wall']) / 60:.1f} min) | " if before else
-                    f"| `{target}` | - | - | ")
-        rows[-1] += (f"{now['commit']} | {float(now['wall']):.0f} ({float(now['wall']) / 60:.1f} min) | {ratio} | "
-                     f"{loads} | {equal} |")
+            equal += f"; {cmp[-1]['only_now']} files only in now's build"
+        cells = [f"`{target}`", *(_build_cells(before) if before else ["-", "-"]), *_build_cells(now), ratio,
+                 loads, equal]
+        rows.append("| " + " | ".join(cells) + " |")
     days = sorted({r["start"][:10] for r in recs if r["label"] == "build"})
     return (f"`snakemake -j2 TARGET` from fresh clones, {', '.join(days)} ({os.cpu_count()} cores), the builds one "
             f"after another; wall time from the command's start to its exit (records: `benchmarks/full_sweeps.py`)"

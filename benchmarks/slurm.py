@@ -27,7 +27,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from compare_outputs import compare_file, pair_files
+from compare_outputs import compare_folders
 from cradle.pipeline.workdir import copy_workflow
 from doctable import publish
 
@@ -37,10 +37,6 @@ WAYS = {
     "allocation": "`cradle slurm` (one Slurm job, local executor inside)",
     "rule-instances": "`--workflow-profile profiles/slurm` (rule instances as Slurm jobs, grouped)",
 }
-
-
-def folder(path: Path) -> Path:
-    return copy_workflow(ROOT, path)
 
 
 def build(way: str, work: Path, target: str, env: dict) -> dict:
@@ -62,12 +58,8 @@ def build(way: str, work: Path, target: str, env: dict) -> dict:
 
 def differing(reference: Path, other: Path) -> tuple[int, int]:
     """(netCDF files compared, files with any variable not bitwise equal or missing)."""
-    pairs, only_old, _ = pair_files(reference, other, [])
-    bad = len(only_old)
-    for old, new in pairs:
-        if compare_file(reference / old, other / new, old, new, [], set()).differences:
-            bad += 1
-    return len(pairs) + len(only_old), bad
+    reports, only_old, _ = compare_folders(reference, other)
+    return len(reports) + len(only_old), len(only_old) + sum(bool(r.differences) for r in reports)
 
 
 def main(argv=None) -> int:
@@ -75,7 +67,7 @@ def main(argv=None) -> int:
     ap.add_argument("--target", default="paper")
     ap.add_argument("--repeats", type=int, default=2)
     ap.add_argument("--rule-instances", action="store_true", dest="rule_instances",
-                    help="also build through profiles/slurm (several minutes per repeat)")
+                    help="also build through profiles/slurm, in the first repeat (several minutes)")
     ap.add_argument("--no-docs", action="store_true", help="do not write the table into docs/usage.md")
     args = ap.parse_args(argv)
     for cmd in ("sbatch", "squeue", "sacct"):
@@ -89,11 +81,11 @@ def main(argv=None) -> int:
     with tempfile.TemporaryDirectory(prefix="cradle-slurm-bench-") as tmp:
         env = dict(os.environ, CRADLE_KERNEL_CACHE=str(Path(tmp) / "kernel-cache"),
                    PYTHONPATH=f"{ROOT / 'src'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}")
-        build("local", folder(Path(tmp) / "warm-up"), args.target, env)   # kernels compiled once, untimed
+        build("local", copy_workflow(ROOT, Path(tmp) / "warm-up"), args.target, env)   # kernels compiled once, untimed
         reference = None
         for k in range(args.repeats):
             for way in ways if k == 0 else [w for w in ways if w != "rule-instances"]:
-                work = folder(Path(tmp) / f"{way}-{k}")
+                work = copy_workflow(ROOT, Path(tmp) / f"{way}-{k}")
                 run = build(way, work, args.target, env)
                 if reference is None:
                     reference = work / "results"
