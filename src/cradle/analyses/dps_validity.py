@@ -30,7 +30,6 @@ family at one alpha -> Dataset; :func:`compute` joins the batches of a form and 
 """
 from __future__ import annotations
 
-import re
 import time
 from typing import TYPE_CHECKING
 
@@ -326,9 +325,6 @@ BATCH_VARIABLES = {name: VARIABLES[group][name] for group, names in (
     ("/fits", ("dps_growth_rate",)),
     ("/checks", ("dt", "energy_drift", "halving_deviation", "n_samples"))) for name in names}
 
-_KEY = re.compile(r"alpha(\d+)-(.+)")
-
-
 def batch_keys(spec: DpsValidity) -> list[str]:
     """The batches of one form, one per alpha: ``alpha<k>-<alpha>`` (``alpha0-1.1``), k its index in
     ``spec.alpha`` (unique even if two alphas are equal)."""
@@ -378,10 +374,10 @@ def batch(spec: DpsValidity, ia: int, log=None):
 
 def run_batch(spec: DpsValidity, key: str, inputs=None, log=None):
     """The batch ``key`` of :func:`batch_keys` (it reads no file)."""
-    found = _KEY.fullmatch(key)
-    if found is None or key not in batch_keys(spec):
-        raise ValueError(f"dps-validity: no batch {key!r} in this form (batches: {', '.join(batch_keys(spec))})")
-    return batch(spec, int(found.group(1)), log=log)
+    keys = batch_keys(spec)
+    if key not in keys:
+        raise ValueError(f"dps-validity: no batch {key!r} in this form (batches: {', '.join(keys)})")
+    return batch(spec, keys.index(key), log=log)
 
 
 def _batches(spec: DpsValidity, inputs, log) -> list:
