@@ -379,7 +379,7 @@ class _Entry(NamedTuple):
     (the Snakefile's --config overrides, the config fuzz) works on that entry only. Never changed once made."""
     coerced: object            # the entry with its strings read (:func:`_coerce`)
     filled: object             # the coerced entry with the schema defaults filled in (:func:`_fill`)
-    infinite: tuple            # (key path below the entry, value) of each float that is not finite, in order
+    infinite: tuple            # (key path below the entry, message, value) of each float not finite, in order
     errors: list               # jsonschema's errors of the coerced entry against its schema
 
 
@@ -390,16 +390,16 @@ _FILLED_DEFAULTS: dict[int, object] = {}
 
 
 class _Infinite:
-    """Takes the lines of :func:`.sections.check_finite` as (key path, value), in order."""
+    """Takes the lines of :func:`.sections.check_finite` as (key path, message, value), in order."""
 
     def __init__(self) -> None:
-        self.found: list[tuple[list, object]] = []
+        self.found: list[tuple[list, str, object]] = []
 
     def add(self, path, what: str, value) -> None:
-        self.found.append((path, value))
+        self.found.append((path, what, value))
 
 
-def _infinite(value, path: tuple) -> list[tuple[list, object]]:
+def _infinite(value, path: tuple) -> list[tuple[list, str, object]]:
     found = _Infinite()
     sections.check_finite(value, found, path)
     return found.found
@@ -409,7 +409,8 @@ def _make_entry(sub, value, where: tuple) -> _Entry:
     coerced = _coerce(sub, copied(value))
     errors = list(_branch(sub).iter_errors(coerced)) if isinstance(sub, dict) and sub else []
     filled = coerced if sub is None or _inert(sub) else _fill(sub, copied(coerced))
-    return _Entry(coerced, filled, tuple((path[len(where):], v) for path, v in _infinite(coerced, where)), errors)
+    infinite = tuple((path[len(where):], what, v) for path, what, v in _infinite(coerced, where))
+    return _Entry(coerced, filled, infinite, errors)
 
 
 def _entry(sub, value, where: tuple) -> _Entry:
@@ -448,7 +449,7 @@ def _filled_default(node: dict, default):
 def _by_entry(config: dict) -> tuple[dict, dict, list, dict]:
     """What ``_coerce``, ``check_finite`` and ``_fill`` make of ``config`` and the schema's errors of its
     entries, worked out entry by entry (:func:`_entry`): (the coerced config, the filled config, the
-    (key path, value) of each float that is not finite, in the config's order, and {(section, key): the
+    (key path, message, value) of each float that is not finite, in the config's order, and {(section, key): the
     schema's errors of that entry}). Both configs share their entries with the memo: they are only read."""
     root = _root()
     n = _plain(root)
@@ -469,7 +470,7 @@ def _by_entry(config: dict) -> tuple[dict, dict, list, dict]:
             sub = s.props.get(key, s.extra)
             e = _entry(sub, item, (section, key))
             coerced[section][key], filled[section][key] = e.coerced, e.filled
-            infinite += [([section, key, *path], v) for path, v in e.infinite]
+            infinite += [([section, key, *path], what, v) for path, what, v in e.infinite]
             errors[section, key] = e.errors
         for key, default in s.defaults:
             if key not in value:
@@ -604,8 +605,8 @@ def validate(config: dict) -> dict:
                           f"{', '.join(map(str, config)) or 'none'})")
     coerced, filled, infinite, entry_errors = _by_entry(dict(config))
     out = Errors()
-    for path, value in infinite:   # sections.check_finite's lines, in its order
-        out.add(path, "must be a finite number", value)
+    for path, what, value in infinite:   # sections.check_finite's lines, in its order
+        out.add(path, what, value)
     for prefix, err in sorted(_schema_errors(coerced, entry_errors),
                               key=lambda pe: [str(p) for p in (*pe[0], *pe[1].absolute_path)]):
         _schema_messages(err, out, prefix)
