@@ -36,6 +36,11 @@ if TYPE_CHECKING:
 #: a paper figure's drawing function: (data, options) -> Figure (:func:`registry`)
 Drawer = Callable[[dict, dict], "Figure"]
 
+#: an analysis output tree (an :class:`xarray.DataTree`) as the ``draw(tree)`` bodies that chain group and
+#: variable lookups read it (``tree["g"]["v"].values``): xarray types ``DataTree[key]`` as ``DataTree | DataArray``,
+#: so each such lookup would need a check or a cast; Any until typed group accessors replace the chains
+AnalysisTree = Any
+
 PNG_DPI = 150
 
 

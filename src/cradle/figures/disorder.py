@@ -15,9 +15,15 @@ std over seeds.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.figures import figure, legend_outside
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.figure import Figure
 
 FAMILIES = ("wave", "mi", "kicked", "static")
 TITLES = {"wave": "wave: fidelity F at the end", "mi": "mi: break-up time / homogeneous",
@@ -56,7 +62,7 @@ def _collapse(ax, tree, family: str, sigma, shifts, level: float) -> None:
     ax.set_ylabel("survival S")
 
 
-def draw(tree):
+def draw(tree: xr.DataTree) -> Figure:
     """The eight panels above from the groups of the disorder file."""
     from matplotlib.ticker import NullFormatter
 

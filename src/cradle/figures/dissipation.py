@@ -12,9 +12,14 @@ Drawn by :func:`draw` from results/dissipation/[full/]dissipation.nc (:mod:`crad
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside
+from cradle.figures import AnalysisTree, figure, legend_outside
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 _MARKERS = ("o", "s", "^", "D")
 
@@ -76,7 +81,7 @@ def _lifetimes(ax, tree, term: int, symbol: str, steel: float) -> None:
     ax.set_ylabel("time to half the energy (units 1/omega_0)")
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The four panels above from the groups /lifetimes, /drift and /steel of the dissipation file."""
     fig, ax = figure(2, 2, width=12.0, height=8.4)
     st = tree["steel"]

@@ -12,9 +12,14 @@ Drawn by :func:`draw` from results/dps-validity/[full/]dps-validity.nc (:mod:`cr
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside
+from cradle.figures import AnalysisTree, figure, legend_outside
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 _MARKERS = ("o", "s", "^", "D", "v", "P")
 
@@ -32,7 +37,7 @@ def _k_of(Ts, T=1.0) -> int:
     return int(np.argmin(np.abs(np.log(np.asarray(Ts) / T))))
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The four panels above from the groups /errors and /fits of the dps-validity file."""
     fig, ax = figure(2, 2, width=10.0, height=7.6)
     err, fits, checks = tree["errors"], tree["fits"], tree["checks"]

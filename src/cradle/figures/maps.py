@@ -1,9 +1,14 @@
 """Figures traj3 and traj2: orbits of the map G (comp1)-(comp2), alpha = 3/2 (section 2.2)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.figures import figure
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): iterates of the orbits
 MIN_POINTS = 100
@@ -39,7 +44,7 @@ def _marks(ax, ds):
     ax.legend(fontsize=7, loc="upper right")
 
 
-def draw_traj3(data, options):
+def draw_traj3(data: dict, options: dict) -> Figure:
     """One orbit of G from a_0 = 0, b_1 = 1e-13: it follows the pair of symmetric homoclinic loops."""
     ds = data[options["scenes"][0]]
     fig, ax = figure(1, 1, width=5.0, height=4.2)
@@ -53,7 +58,7 @@ def draw_traj3(data, options):
     return fig
 
 
-def draw_traj2(data, options):
+def draw_traj2(data: dict, options: dict) -> Figure:
     """Six panels: ||U||_inf <= 0.1 (top), 1 (middle), 8 and 100 (bottom); left periodic
     orbits and invariant tori, right orbits near stable and unstable manifolds; marks for the
     explicit periodic orbits where the entry has ``marks``."""

@@ -2,9 +2,14 @@
 relation (wleadingorder), from results/theorem1/theorem1.nc."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside, plain_log_ticks
+from cradle.figures import AnalysisTree, figure, legend_outside, plain_log_ticks
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few amplitudes a and modes J
 MIN_POINTS = 5
@@ -23,7 +28,7 @@ def _qlabel(q):
     return f"{q:.3g}"
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """Exact frequencies against (wleadingorder), the relative correction, v_a against (va), convergence.
 
     ``tree``: the groups /waves, /profiles, /convergence, /scenes of the theorem1 file."""

@@ -17,9 +17,14 @@ target (left of it the launch zone, right of it the lead).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside, plain_log_ticks
+from cradle.figures import AnalysisTree, figure, legend_outside, plain_log_ticks
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 _INC = ("striker", "breather")
 _MARK = {0: "o", 1: "s"}
@@ -66,7 +71,7 @@ def _others(ax, x, values) -> None:
     ax.plot(np.full(flat.size, x), flat, "_", color="0.6", ms=5, zorder=1)
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The panels above from the groups /runs, /summary and /examples of the trapping file."""
     fig, ax = figure(2, 4, width=17.0, height=8.6)
     ex, sm = tree["examples"], tree["summary"]
