@@ -29,7 +29,7 @@ _MODEL_LINES = ("-", "--", ":", "-.")
 _LIFTED_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "h", "<")
 
 
-def _groups(tree):
+def _groups(tree: xr.DataTree) -> dict[int, list]:
     names = [s.strip() for s in str(tree.attrs["desk_toys"]).split(",") if s.strip()]
     by_chain: dict[int, list] = {}
     for name in names:

@@ -19,6 +19,7 @@ import numpy as np
 from cradle.figures import AnalysisTree, figure, legend_outside
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 _MARKERS = ("o", "s", "^", "D")
@@ -37,11 +38,11 @@ def _shades(name: str, n: int) -> list:
     return [colormaps[name](0.4 + 0.6 * k / max(1, n - 1)) for k in range(n)]
 
 
-def _names(tree, key: str) -> list[str]:
+def _names(tree: AnalysisTree, key: str) -> list[str]:
     return [s.strip() for s in str(tree.attrs[key]).split(",")]
 
 
-def _lifetimes(ax, tree, term: int, symbol: str, steel: float) -> None:
+def _lifetimes(ax: Axes, tree: AnalysisTree, term: int, symbol: str, steel: float) -> None:
     lt = tree["lifetimes"]
     fams = _names(tree, "family_names")
     terms = np.asarray(lt["term_of_case"].values)

@@ -15,10 +15,12 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from cradle.figures import AnalysisTree, figure, legend_outside
 
 if TYPE_CHECKING:
+    from matplotlib.colors import Colormap
     from matplotlib.figure import Figure
 
 _MARKERS = ("o", "s", "^", "D", "v", "P")
@@ -27,12 +29,12 @@ _MARKERS = ("o", "s", "^", "D", "v", "P")
 MIN_POINTS = 3
 
 
-def _reference_alpha(alphas) -> int:
+def _reference_alpha(alphas: ArrayLike) -> int:
     near = np.abs(np.asarray(alphas) - 1.5)
     return int(np.argmin(near))
 
 
-def _k_of(Ts, T=1.0) -> int:
+def _k_of(Ts: ArrayLike, T: float = 1.0) -> int:
     """Index of the stored slow time closest to T (the theorem's fixed T)."""
     return int(np.argmin(np.abs(np.log(np.asarray(Ts) / T))))
 
@@ -107,7 +109,7 @@ def draw(tree: AnalysisTree) -> Figure:
     return fig
 
 
-def _cmap():
+def _cmap() -> Colormap:
     from matplotlib import colormaps
 
     return colormaps["viridis"]

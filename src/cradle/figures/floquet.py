@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 MIN_POINTS = 2
 
 
-def _frac(q):
+def _frac(q: float) -> str:
     return f"{q / np.pi:.3g}" + r"$\pi$"
 
 

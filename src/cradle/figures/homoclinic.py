@@ -8,13 +8,15 @@ import numpy as np
 from cradle.figures import figure
 
 if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): N sites
 MIN_POINTS = 20
 
 
-def _profile(ax, ds, title):
+def _profile(ax: Axes, ds: xr.Dataset, title: str) -> None:
     n, a = ds["n"].values, ds["a"].values
     ax.plot(n, a, "o-", ms=3, lw=0.8)
     ax.set_xlabel("$n$")

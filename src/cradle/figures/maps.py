@@ -8,6 +8,8 @@ import numpy as np
 from cradle.figures import figure
 
 if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): iterates of the orbits
@@ -16,7 +18,7 @@ MIN_POINTS = 100
 MARKERS = {2: ("o", "period 2"), 3: ("s", "period 3"), 4: ("^", "period 4")}
 
 
-def _orbits(ax, ds, size=0.55):
+def _orbits(ax: Axes, ds: xr.Dataset, size: float = 0.55) -> None:
     """Every stored iterate of every orbit as a dot of ``size`` points (NaN: the orbit left the box).
 
     Markers of a Line2D, rasterised: half the time of a scatter for the ~10^5 dots of traj2."""
@@ -32,7 +34,7 @@ def _orbits(ax, ds, size=0.55):
     ax.set_ylabel("$b_{n+1}$")
 
 
-def _marks(ax, ds):
+def _marks(ax: Axes, ds: xr.Dataset) -> None:
     """The explicit period-2, -3, -4 orbits of the traj2 caption (mark_a, mark_b, mark_period of the map file)."""
     if "mark_a" not in ds:
         raise ValueError(f"map '{ds.attrs.get('name', '?')}' has marks but no stored mark_a/mark_b: rebuild it")

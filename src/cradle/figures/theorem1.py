@@ -15,7 +15,7 @@ if TYPE_CHECKING:
 MIN_POINTS = 5
 
 
-def _qlabel(q):
+def _qlabel(q: float) -> str:
     """q as a label: a fraction of pi where it is one (pi/5, 4pi/5), else 3 digits."""
     frac = q / np.pi
     for den in (1, 2, 3, 4, 5, 6, 8, 10):

@@ -19,6 +19,7 @@ from cradle.figures import figure
 
 if TYPE_CHECKING:
     import xarray as xr
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few settings per method
@@ -31,7 +32,7 @@ STYLE = {  # method -> (colour, marker); corrected splittings solid, the rest da
 }
 
 
-def _curve(ax, ds, i, var):
+def _curve(ax: Axes, ds: xr.Dataset, i: int, var: str) -> None:
     method = str(ds["method"].values[i])
     row = ds.isel(method=i)
     w, y = row["wall_time"].values, row[var].values
