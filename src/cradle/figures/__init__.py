@@ -21,12 +21,30 @@ one neither changes the session's backend nor adds to pyplot's open figures, so 
 """
 from __future__ import annotations
 
+import os
+from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
+    from matplotlib.axis import Axis
+    from matplotlib.figure import Figure
+    from matplotlib.legend import Legend
+
+#: a paper figure's drawing function: (data, options) -> Figure (:func:`registry`)
+Drawer = Callable[[dict, dict], "Figure"]
+
+#: an analysis output tree (an :class:`xarray.DataTree`) as the ``draw(tree)`` bodies that chain group and
+#: variable lookups read it (``tree["g"]["v"].values``): xarray types ``DataTree[key]`` as ``DataTree | DataArray``,
+#: so each such lookup would need a check or a cast; Any until typed group accessors replace the chains
+AnalysisTree = Any
 
 PNG_DPI = 150
 
 
-def save_figure(fig, stem) -> list[Path]:
+def save_figure(fig: Figure, stem: str | os.PathLike) -> list[Path]:
     """Save ``fig`` as ``stem.png`` and ``stem.pdf`` with fixed metadata, atomically.
 
     The layout (constrained_layout: the costly part, every tick label is
@@ -36,8 +54,6 @@ def save_figure(fig, stem) -> list[Path]:
     beside their targets and renamed only once both are complete: a drawing
     that fails part way leaves the previous figure (both files) in place.
     """
-    import os
-
     from cradle.data.temporaries import temporary_beside
 
     stem = Path(stem)
@@ -67,19 +83,19 @@ MODEL_STYLE = {"exact": dict(color="C0", marker="o", label="exact (nc)"),
                "dps": dict(color="C3", marker="x", label="DpS (dfnls)")}
 
 
-def legend_outside(ax, fontsize=7, **kw):
+def legend_outside(ax: Axes, fontsize: float = 7, **kw: Any) -> Legend:
     """The legend of ``ax`` beside its right edge, off the data (the layout keeps room for it)."""
     return ax.legend(fontsize=fontsize, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kw)
 
 
-def plain_log_ticks(ax) -> None:
+def plain_log_ticks(ax: Axes) -> None:
     """Log axes of ``ax`` spanning less than two decades labelled as plain numbers at 1, 2 and 5 times a
     power of ten (matplotlib labels every minor tick there, in scientific notation, on top of each other)."""
     import math
 
     from matplotlib.ticker import FuncFormatter
 
-    def label(value, _pos, axis):
+    def label(value: float, _pos: int | None, axis: Axis) -> str:
         lo, hi = sorted(abs(v) for v in axis.get_view_interval())
         if value <= 0 or lo <= 0 or hi / lo >= 100:
             return ""
@@ -94,7 +110,7 @@ def plain_log_ticks(ax) -> None:
                 axis.set_minor_formatter(FuncFormatter(lambda v, p, a=axis: label(v, p, a)))
 
 
-def scene_caption(name: str, ds) -> str:
+def scene_caption(name: str, ds: xr.Dataset) -> str:
     """One line of the parameters a scene's file stores (``attrs`` of its exact or DpS run): N, q,
     omega_tw, a, noise, so a changed run is told from the paper's at a glance."""
     a = ds.attrs
@@ -111,7 +127,10 @@ def scene_caption(name: str, ds) -> str:
     return ", ".join(parts[:1]) + " " + ", ".join(parts[1:])
 
 
-def figure(nrows=1, ncols=1, width=6.4, height=3.6, **kw):
+# -> (Figure, Any): the axes are one Axes or an array of them, as nrows, ncols and squeeze say (matplotlib
+# types Figure.subplots' result as Any for that reason)
+def figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float = 3.6,
+           **kw: Any) -> tuple[Figure, Any]:
     """A new figure and its axes (``kw``: those of :meth:`~matplotlib.figure.Figure.subplots`) with the project's
     layout defaults, outside pyplot: the session's backend and pyplot's figures are left alone."""
     from matplotlib.figure import Figure
@@ -157,7 +176,7 @@ def labels() -> list[str]:
     return list(FIGURES)
 
 
-def drawer(label: str):
+def drawer(label: str) -> Drawer:
     """The drawing function of paper figure ``label``, importing only its module."""
     import importlib
 
@@ -166,7 +185,7 @@ def drawer(label: str):
     return getattr(importlib.import_module(f"{__name__}.{module}"), func)
 
 
-def registry() -> dict:
+def registry() -> dict[str, Drawer]:
     """label -> drawing function for every paper figure (imports every figure module).
 
     Each function takes (data, options) and returns a Figure; ``data`` maps
@@ -176,7 +195,7 @@ def registry() -> dict:
     return {label: drawer(label) for label in FIGURES}
 
 
-def draw_analysis(module: str, tree, stem, note: str = "") -> list[Path]:
+def draw_analysis(module: str, tree: xr.DataTree, stem: str | os.PathLike, note: str = "") -> list[Path]:
     """Draw the figure of an analysis (``draw`` of ``cradle.figures.<module>``) from its output ``tree`` and
     save it as ``stem``.pdf/.png; ``note`` (e.g. which form of the analysis it shows) goes small in the
     bottom right corner."""
@@ -188,7 +207,7 @@ def draw_analysis(module: str, tree, stem, note: str = "") -> list[Path]:
     return save_figure(fig, stem)
 
 
-def write_tables(module: str, tree, paths: dict) -> list[Path]:
+def write_tables(module: str, tree: xr.DataTree, paths: dict[str, str | os.PathLike]) -> list[Path]:
     """Write the tables of an analysis (``tables`` of ``cradle.figures.<module>``: format -> text) from its
     output ``tree`` to ``paths`` (format -> file), each atomically."""
     import importlib
@@ -199,7 +218,7 @@ def write_tables(module: str, tree, paths: dict) -> list[Path]:
     return [write_text(tables[ext], path) for ext, path in paths.items()]
 
 
-def draw(label: str, data: dict, options: dict, stem) -> list[Path]:
+def draw(label: str, data: dict, options: dict, stem: str | os.PathLike) -> list[Path]:
     """Draw figure ``label`` and save it as ``stem``.pdf/.png (times go to the log)."""
     import logging
     import time

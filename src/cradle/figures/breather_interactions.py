@@ -8,10 +8,15 @@ times of every case where both merge, against the spacing.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.colors import BoundaryNorm, ListedColormap
 
-from cradle.figures import figure, plain_log_ticks
+from cradle.figures import AnalysisTree, figure, plain_log_ticks
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: as cradle.measurements.interactions.OUTCOMES (a figure module imports no numerical module)
 OUTCOMES = ("merge", "bound", "repel", "transmit", "none")
@@ -22,7 +27,7 @@ COLOURS = ("#1b9e77", "#7570b3", "#d95f02", "#e7298a", "#bbbbbb")
 MIN_POINTS = 1
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The figure of the module docstring from the breather-interactions file ``tree`` (/cases, /maps)."""
     maps, cases = tree["maps"], tree["cases"]
     pairs = [str(p) for p in maps["pair"].values]

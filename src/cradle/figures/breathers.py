@@ -10,16 +10,21 @@
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside, plain_log_ticks
+from cradle.figures import AnalysisTree, figure, legend_outside, plain_log_ticks
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few omega_b of each
 #: family, a few kicks
 MIN_POINTS = 2
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The six panels above from the groups /families, /profiles, /pn, /tails, /exchanges, /kick."""
     fig, ax = figure(2, 3, width=13.0, height=7.4)
     at = tree.attrs

@@ -9,9 +9,15 @@ f_k of every desk toy of that N and every model against time (s), the thresholds
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.figures import figure
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py)
 MIN_POINTS = 3
@@ -23,7 +29,7 @@ _MODEL_LINES = ("-", "--", ":", "-.")
 _LIFTED_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "h", "<")
 
 
-def _groups(tree):
+def _groups(tree: xr.DataTree) -> dict[int, list]:
     names = [s.strip() for s in str(tree.attrs["desk_toys"]).split(",") if s.strip()]
     by_chain: dict[int, list] = {}
     for name in names:
@@ -32,7 +38,7 @@ def _groups(tree):
     return by_chain
 
 
-def draw(tree):
+def draw(tree: xr.DataTree) -> Figure:
     """The panels above from the groups of the desk-toy file."""
     from matplotlib import colormaps
     from matplotlib.lines import Line2D

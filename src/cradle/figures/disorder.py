@@ -15,9 +15,17 @@ std over seeds.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside
+from cradle.figures import AnalysisTree, figure, legend_outside
+
+if TYPE_CHECKING:
+
+    import xarray as xr
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 FAMILIES = ("wave", "mi", "kicked", "static")
 TITLES = {"wave": "wave: fidelity F at the end", "mi": "mi: break-up time / homogeneous",
@@ -27,18 +35,19 @@ _MARKERS = ("o", "s", "^", "D", "v", "P")
 MIN_POINTS = 2
 
 
-def _values(tree, path: str, name: str) -> np.ndarray:
+def _values(tree: AnalysisTree, path: str, name: str) -> np.ndarray:
     return np.asarray(tree[path][name].values, dtype=float)
 
 
-def _stats(y, axis=-1):
+def _stats(y: np.ndarray, axis: int = -1) -> tuple[np.ndarray, np.ndarray]:
     with np.errstate(invalid="ignore"):
         mean = np.nanmean(y, axis=axis)
         std = np.nanstd(y, axis=axis, ddof=1) if y.shape[axis] > 1 else np.zeros_like(mean)
     return mean, std
 
 
-def _collapse(ax, tree, family: str, sigma, shifts, level: float) -> None:
+def _collapse(ax: Axes, tree: AnalysisTree, family: str, sigma: np.ndarray, shifts: np.ndarray,
+              level: float) -> None:
     S = _values(tree, family, "survival")           # (model, shift, sigma, seed)
     pos = sigma > 0
     for d, shift in enumerate(shifts):
@@ -56,7 +65,7 @@ def _collapse(ax, tree, family: str, sigma, shifts, level: float) -> None:
     ax.set_ylabel("survival S")
 
 
-def draw(tree):
+def draw(tree: xr.DataTree) -> Figure:
     """The eight panels above from the groups of the disorder file."""
     from matplotlib.ticker import NullFormatter
 

@@ -12,9 +12,15 @@ Drawn by :func:`draw` from results/dissipation/[full/]dissipation.nc (:mod:`crad
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside
+from cradle.figures import AnalysisTree, figure, legend_outside
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 _MARKERS = ("o", "s", "^", "D")
 
@@ -32,11 +38,11 @@ def _shades(name: str, n: int) -> list:
     return [colormaps[name](0.4 + 0.6 * k / max(1, n - 1)) for k in range(n)]
 
 
-def _names(tree, key: str) -> list[str]:
+def _names(tree: AnalysisTree, key: str) -> list[str]:
     return [s.strip() for s in str(tree.attrs[key]).split(",")]
 
 
-def _lifetimes(ax, tree, term: int, symbol: str, steel: float) -> None:
+def _lifetimes(ax: Axes, tree: AnalysisTree, term: int, symbol: str, steel: float) -> None:
     lt = tree["lifetimes"]
     fams = _names(tree, "family_names")
     terms = np.asarray(lt["term_of_case"].values)
@@ -76,7 +82,7 @@ def _lifetimes(ax, tree, term: int, symbol: str, steel: float) -> None:
     ax.set_ylabel("time to half the energy (units 1/omega_0)")
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The four panels above from the groups /lifetimes, /drift and /steel of the dissipation file."""
     fig, ax = figure(2, 2, width=12.0, height=8.4)
     st = tree["steel"]

@@ -12,9 +12,16 @@ Drawn by :func:`draw` from results/dps-validity/[full/]dps-validity.nc (:mod:`cr
 """
 from __future__ import annotations
 
-import numpy as np
+from typing import TYPE_CHECKING
 
-from cradle.figures import figure, legend_outside
+import numpy as np
+from numpy.typing import ArrayLike
+
+from cradle.figures import AnalysisTree, figure, legend_outside
+
+if TYPE_CHECKING:
+    from matplotlib.colors import Colormap
+    from matplotlib.figure import Figure
 
 _MARKERS = ("o", "s", "^", "D", "v", "P")
 
@@ -22,17 +29,17 @@ _MARKERS = ("o", "s", "^", "D", "v", "P")
 MIN_POINTS = 3
 
 
-def _reference_alpha(alphas) -> int:
+def _reference_alpha(alphas: ArrayLike) -> int:
     near = np.abs(np.asarray(alphas) - 1.5)
     return int(np.argmin(near))
 
 
-def _k_of(Ts, T=1.0) -> int:
+def _k_of(Ts: ArrayLike, T: float = 1.0) -> int:
     """Index of the stored slow time closest to T (the theorem's fixed T)."""
     return int(np.argmin(np.abs(np.log(np.asarray(Ts) / T))))
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The four panels above from the groups /errors and /fits of the dps-validity file."""
     fig, ax = figure(2, 2, width=10.0, height=7.6)
     err, fits, checks = tree["errors"], tree["fits"], tree["checks"]
@@ -102,7 +109,7 @@ def draw(tree):
     return fig
 
 
-def _cmap():
+def _cmap() -> Colormap:
     from matplotlib import colormaps
 
     return colormaps["viridis"]

@@ -8,20 +8,25 @@
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside, plain_log_ticks
+from cradle.figures import AnalysisTree, figure, legend_outside, plain_log_ticks
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): the thresholds at two
 #: amplitudes (the reduced form), a coarse (q, p) grid elsewhere
 MIN_POINTS = 2
 
 
-def _frac(q):
+def _frac(q: float) -> str:
     return f"{q / np.pi:.3g}" + r"$\pi$"
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The four panels above from the groups /sweep, /profiles, /thresholds of the floquet file."""
     fig, ax = figure(2, 2, width=10.0, height=7.6)
     ds, sweep, prof, thresholds = tree, tree["sweep"], tree["profiles"], tree["thresholds"]

@@ -1,15 +1,22 @@
 """Figure bcsc: three homoclinic solutions of (dpsstn), mu = 1, N = 50, periodic."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.figures import figure
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): N sites
 MIN_POINTS = 20
 
 
-def _profile(ax, ds, title):
+def _profile(ax: Axes, ds: xr.Dataset, title: str) -> None:
     n, a = ds["n"].values, ds["a"].values
     ax.plot(n, a, "o-", ms=3, lw=0.8)
     ax.set_xlabel("$n$")
@@ -17,7 +24,7 @@ def _profile(ax, ds, title):
     ax.set_title(f"{title} (residual {ds.attrs['residual']:.1e})", fontsize=9)
 
 
-def draw_bcsc(data, options):
+def draw_bcsc(data: dict, options: dict) -> Figure:
     """Top left: site-centred solution; top right: log10|a_n| of it on every site, the
     tails continued far below machine precision (super-exponential decay; the paper
     shows 18 <= n <= 34, shaded); bottom left: bond-centred; bottom

@@ -12,9 +12,16 @@ per scene (surface mode, boomeron, nanopteron):
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside
+from cradle.figures import AnalysisTree, figure, legend_outside
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.image import AxesImage
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py)
 MIN_POINTS = 50
@@ -27,7 +34,7 @@ _LABEL = {"exact": "scene, lattice", "dps": "scene, DpS", "reference": "harmonic
 FLOOR = -4.0
 
 
-def _map(ax, g, model: int, title: str):
+def _map(ax: Axes, g: AnalysisTree, model: int, title: str) -> AxesImage:
     e = np.asarray(g["energy_map"].values)[model]
     t, n = np.asarray(g["t"].values), np.asarray(g["n"].values)
     z = np.log10(np.maximum(e / e.sum(-1, keepdims=True), 10.0**FLOOR))
@@ -39,7 +46,7 @@ def _map(ax, g, model: int, title: str):
     return im
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The panels above, one column per group of the jkc-variants file."""
     roles = [r for r in ("surface", "boomeron", "nanopteron") if r in tree.children]
     fig, ax = figure(4, len(roles), width=5.2 * len(roles), height=15.0, squeeze=False)

@@ -23,10 +23,17 @@ compression per period, merging times) is read from the scene's metrics file
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.figures import figure
 from cradle.figures.spacetime import FORCE_LABEL, _at, common_vmin as _vmin, period_minimum, spacetime
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 # plot18 (bottom left): the paper likens this diagram to the detail plot28 (the central breather of
 # the q = pi instability), a 100-time-unit, 20-bond window. We show the last 100 time units of the
@@ -43,7 +50,8 @@ FINI_DELTA_X = 0.02                # displacement of one unit of vertical offset
 
 # --------------------------------------------------------------------------- drawing helpers
 
-def _profile(ax, ds, t, style="o-", label=None, color="k", ms=3):
+def _profile(ax: Axes, ds: xr.Dataset, t: float, style: str = "o-", label: str | None = None, color: str = "k",
+             ms: float = 3) -> float:
     s = _at(ds, t)
     ax.plot(s["n"].values, s["x"].values, style, color=color, ms=ms, lw=0.9, label=label)
     ax.set_xlabel("$n$")
@@ -51,11 +59,11 @@ def _profile(ax, ds, t, style="o-", label=None, color="k", ms=3):
     return float(s["t"])
 
 
-def _omega(ds):
+def _omega(ds: xr.Dataset) -> float:
     return float(ds.attrs["omega_sw"])
 
 
-def _stored(metrics, name):
+def _stored(metrics: xr.Dataset, name: str) -> xr.DataArray:
     """A measurement of the scene's metrics file (a clear error when the file predates it)."""
     if name not in metrics:
         raise ValueError(f"scene '{metrics.attrs.get('scene', '?')}': no {name} in its metrics file: "
@@ -63,14 +71,14 @@ def _stored(metrics, name):
     return metrics[name]
 
 
-def shift(metrics) -> dict:
+def shift(metrics: xr.Dataset) -> dict[str, float]:
     """The stored frequencies of exact and approximate runs and their half-period shift."""
     return {key: float(_stored(metrics, key)) for key in ("omega_exact", "omega_approx", "half_shift_periods")}
 
 
 # --------------------------------------------------------------------------- plot18
 
-def draw_plot18(data, options):
+def draw_plot18(data: dict, options: dict) -> Figure:
     """plot18. ``options['scenes']`` = [small, large]; ``times`` = [0, t_approx, t_exact, t_large]
     (0, 565.95, 569.4, 293.2 in the paper)."""
     small, large = options["scenes"]
@@ -117,7 +125,7 @@ def draw_plot18(data, options):
 
 # --------------------------------------------------------------------------- loc1
 
-def loc1_merging_times(sim) -> dict:
+def loc1_merging_times(sim: dict[str, xr.Dataset]) -> dict[str, float]:
     """Merging times (breather periods 2 pi / omega_sw) of the exact and approximate runs of a scene,
     as stored in its metrics file."""
     return {m: float(_stored(sim["metrics"], f"merging_time_{m}")) for m in ("exact", "dps")}
@@ -131,14 +139,14 @@ OUTCOME_NAMES = ("merge", "bound", "repel", "transmit", "none")
 PAPER_MERGING = {"exact": "~175", "dps": "~350"}
 
 
-def _periods_text(value, total, outcome=None) -> str:
+def _periods_text(value: float, total: float, outcome: xr.DataArray | int | None = None) -> str:
     if np.isfinite(value):
         return f"after {value:.0f} periods"
     what = f" ({OUTCOME_NAMES[int(outcome)]})" if outcome is not None else ""
     return f"none within {total:.0f} periods{what}"
 
 
-def draw_loc1(data, options):
+def draw_loc1(data: dict, options: dict) -> Figure:
     """loc1: 3 rows x 2 columns. Row 1: x_n(0); rows 2 and 3: exact and approximate forces on
     one colour scale per column. ``options['scenes']`` = [packet, pair]; the merging time of
     the pair (column 2) is printed in its titles."""
@@ -173,7 +181,8 @@ def draw_loc1(data, options):
 
 # --------------------------------------------------------------------------- fini
 
-def _traces(ax, ds, t_range, delta=FINI_DELTA_X, title=""):
+def _traces(ax: Axes, ds: xr.Dataset, t_range: tuple[float, float], delta: float = FINI_DELTA_X,
+            title: str = "") -> None:
     """Bead displacements on t_range, bead n (label n+1 = 1..N) drawn at height n+1 + x_n(t)/delta."""
     s = ds["x"].sel(t=slice(*t_range))
     t = s["t"].values
@@ -194,7 +203,7 @@ def _traces(ax, ds, t_range, delta=FINI_DELTA_X, title=""):
         ax.set_title(title, fontsize=8)
 
 
-def draw_fini(data, options):
+def draw_fini(data: dict, options: dict) -> Figure:
     """fini: rows = the windows [times[0], times[1]] and [times[2], times[3]]; left exact, right approx."""
     (name,) = options["scenes"]
     ex, ap = data[name]["exact"], data[name]["dps"]

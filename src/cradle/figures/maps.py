@@ -1,9 +1,16 @@
 """Figures traj3 and traj2: orbits of the map G (comp1)-(comp2), alpha = 3/2 (section 2.2)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.figures import figure
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): iterates of the orbits
 MIN_POINTS = 100
@@ -11,7 +18,7 @@ MIN_POINTS = 100
 MARKERS = {2: ("o", "period 2"), 3: ("s", "period 3"), 4: ("^", "period 4")}
 
 
-def _orbits(ax, ds, size=0.55):
+def _orbits(ax: Axes, ds: xr.Dataset, size: float = 0.55) -> None:
     """Every stored iterate of every orbit as a dot of ``size`` points (NaN: the orbit left the box).
 
     Markers of a Line2D, rasterised: half the time of a scatter for the ~10^5 dots of traj2."""
@@ -27,7 +34,7 @@ def _orbits(ax, ds, size=0.55):
     ax.set_ylabel("$b_{n+1}$")
 
 
-def _marks(ax, ds):
+def _marks(ax: Axes, ds: xr.Dataset) -> None:
     """The explicit period-2, -3, -4 orbits of the traj2 caption (mark_a, mark_b, mark_period of the map file)."""
     if "mark_a" not in ds:
         raise ValueError(f"map '{ds.attrs.get('name', '?')}' has marks but no stored mark_a/mark_b: rebuild it")
@@ -39,7 +46,7 @@ def _marks(ax, ds):
     ax.legend(fontsize=7, loc="upper right")
 
 
-def draw_traj3(data, options):
+def draw_traj3(data: dict, options: dict) -> Figure:
     """One orbit of G from a_0 = 0, b_1 = 1e-13: it follows the pair of symmetric homoclinic loops."""
     ds = data[options["scenes"][0]]
     fig, ax = figure(1, 1, width=5.0, height=4.2)
@@ -53,7 +60,7 @@ def draw_traj3(data, options):
     return fig
 
 
-def draw_traj2(data, options):
+def draw_traj2(data: dict, options: dict) -> Figure:
     """Six panels: ||U||_inf <= 0.1 (top), 1 (middle), 8 and 100 (bottom); left periodic
     orbits and invariant tori, right orbits near stable and unstable manifolds; marks for the
     explicit periodic orbits where the entry has ``marks``."""

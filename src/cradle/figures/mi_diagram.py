@@ -2,13 +2,18 @@
 results/mi-diagram/mi-diagram.nc."""
 from __future__ import annotations
 
-from cradle.figures import figure
+from typing import TYPE_CHECKING
+
+from cradle.figures import AnalysisTree, figure
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a (q, p) grid, a few runs
 MIN_POINTS = 5
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """Growth-rate maps lambda tau0 R^(1-alpha) over (q, p) for each alpha, and the maximum over p.
 
     ``tree``: the mi-diagram file, thresholds at the root, groups /map and /checks."""

@@ -2,15 +2,20 @@
 DpS (dfnls)) against the linear DpS theory (ansatz3), from results/mi-growth/mi-growth.nc."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import MODEL_STYLE, figure, legend_outside
+from cradle.figures import MODEL_STYLE, AnalysisTree, figure, legend_outside
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): the sideband spectrum of a scene
 MIN_POINTS = 5
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """Per scene: linear DpS rate against p with the measured rates; the fitted series; the growth-rate diagram.
 
     ``tree``: the mi-growth file, one row per scene and model at the root, groups /sidebands, /series

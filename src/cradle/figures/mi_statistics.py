@@ -3,15 +3,20 @@
 (:mod:`cradle.analyses.mi_statistics`)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import MODEL_STYLE, figure, legend_outside
+from cradle.figures import MODEL_STYLE, AnalysisTree, figure, legend_outside
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few q of the sweep
 MIN_POINTS = 5
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """Fraction of unstable seeds and crossing-time distributions against q, per N, both models.
 
     ``tree``: the mi-statistics file, the summary per q at the root and every run in /runs."""

@@ -29,8 +29,15 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+
+    import xarray as xr
 
 MAX_SHIFT = 0.4      # largest drawn displacement, in bead spacings: discs of neighbours never pass each other
 DPI = 100
@@ -52,7 +59,7 @@ class MovieSpec:
     t_start: float | None = None
     t_end: float | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("width", "height"):
             value = getattr(self, name)
             if value < 64 or value % 2:
@@ -61,7 +68,7 @@ class MovieSpec:
             raise ValueError(f"movie fps = {self.fps}, duration = {self.duration}: need fps >= 1 and duration > 0")
 
 
-def frame_indices(t, spec: MovieSpec) -> np.ndarray:
+def frame_indices(t: ArrayLike, spec: MovieSpec) -> np.ndarray:
     """Indices into the stored times ``t`` of the frames: fps * duration of them, evenly spaced in index
     over the window [t_start, t_end] (the stored times are evenly spaced), every stored time if there
     are fewer. A run is subsampled, never interpolated: each frame is a stored state."""
@@ -77,26 +84,27 @@ def frame_indices(t, spec: MovieSpec) -> np.ndarray:
     return np.unique(np.rint(np.linspace(lo, hi, wanted)).astype(np.int64))
 
 
-def _period(attrs) -> float | None:
+def _period(attrs: Mapping[Any, Any]) -> float | None:
     for key in ("omega_sw", "omega_tw"):
         if key in attrs and np.isfinite(float(attrs[key])) and float(attrs[key]) > 0:
             return 2 * np.pi / float(attrs[key])
     return None
 
 
-def _fmt(value) -> str:
+def _fmt(value: object) -> str:
     if isinstance(value, (float, np.floating)):
         return f"{float(value):.4g}"
     return str(value)
 
 
-def scene_line(attrs) -> str:
+def scene_line(attrs: Mapping[Any, Any]) -> str:
     """The scene's name and parameters, as shown on screen."""
     parts = [f"{label} = {_fmt(attrs[key])}" for key, label in SHOWN if key in attrs]
     return f"scene '{attrs.get('scene', '?')}':  " + ",  ".join(parts)
 
 
-def render(ds, spec: MovieSpec, panels=PANELS):
+def render(ds: xr.Dataset, spec: MovieSpec,
+           panels: Sequence[tuple[str, str]] = PANELS) -> Iterator[Any]:
     """Yield the frames (height x width x 3 uint8 arrays) of the scene ``ds`` (from :func:`cradle.open_scene`),
     and as the generator's first item a dict describing the movie (frame times, magnification, ...).
     ``panels``: (value of ``model``, title) of the two runs drawn, top and bottom."""
@@ -189,7 +197,7 @@ def render(ds, spec: MovieSpec, panels=PANELS):
         yield np.asarray(canvas.buffer_rgba())[..., :3].copy()
 
 
-def _atomic(path, write):
+def _atomic(path: str | os.PathLike, write: Callable[[Path], object]) -> Path:
     """Write through ``write(tmp)`` to a temporary file beside ``path``, then rename: no half movie."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -217,13 +225,13 @@ def ffmpeg_exe() -> str:
     return imageio_ffmpeg.get_ffmpeg_exe()
 
 
-def write_mp4(path, frames, size, fps: int) -> Path:
+def write_mp4(path: str | os.PathLike, frames: Iterable[NDArray[np.uint8]], size: tuple[int, int], fps: int) -> Path:
     """H.264 (yuv420p, one encoder thread, bit-exact flags: the same frames give the same file) to ``path``."""
     import subprocess
 
     width, height = size
 
-    def write(tmp):
+    def write(tmp: Path) -> None:
         cmd = [ffmpeg_exe(), "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgb24",
                "-s", f"{width}x{height}", "-r", str(fps), "-i", "-", "-an", "-c:v", "libx264", "-preset", "medium",
                "-crf", "23", "-pix_fmt", "yuv420p", "-threads", "1", "-fflags", "+bitexact", "-flags", "+bitexact",
@@ -242,7 +250,7 @@ def write_mp4(path, frames, size, fps: int) -> Path:
     return _atomic(path, write)
 
 
-def write_gif(path, frames, fps: int, width: int) -> Path:
+def write_gif(path: str | os.PathLike, frames: Iterable[NDArray[np.uint8]], fps: int, width: int) -> Path:
     """An animated GIF (Pillow), each frame resized to ``width`` pixels, looping."""
     from PIL import Image
 
@@ -264,8 +272,9 @@ def write_gif(path, frames, fps: int, width: int) -> Path:
                                                      duration=round(1000 / fps), loop=0))
 
 
-def animate(ds, out, spec: MovieSpec = MovieSpec(), gif=None, gif_spec: MovieSpec | None = None,
-            gif_width: int = 480, panels=PANELS) -> dict:
+def animate(ds: xr.Dataset, out: str | os.PathLike, spec: MovieSpec = MovieSpec(),
+            gif: str | os.PathLike | None = None, gif_spec: MovieSpec | None = None, gif_width: int = 480,
+            panels: Sequence[tuple[str, str]] = PANELS) -> dict:
     """Write the movie of scene ``ds`` to ``out`` (.mp4) and, if ``gif`` is a path, a small GIF drawn with
     ``gif_spec`` (default: ``spec`` at 10 frames per second for 8 s); returns what :func:`render` describes.
     ``panels``: the two runs drawn (:func:`render`)."""

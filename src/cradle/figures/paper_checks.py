@@ -28,13 +28,13 @@ def verdict_cell(row: dict[str, str]) -> str:
     return f"{verdict} ([why]({DOCS_FROM_TABLE}{where}))" if where else f"{verdict} (no explanation yet)"
 
 
-def table_rows(tree) -> list[dict[str, str]]:
+def table_rows(tree: xr.DataTree | xr.Dataset) -> list[dict[str, str]]:
     """The rows of the claims table file (a tree, or its root Dataset), each ``{column: text}``."""
     ds = tree.to_dataset() if isinstance(tree, xr.DataTree) else tree
     return [{str(c): str(ds[c].values[i]) for c in ds.data_vars} for i in range(ds.sizes.get("row", 0))]
 
 
-def to_csv(rows) -> str:
+def to_csv(rows: list[dict[str, str]]) -> str:
     """The rows (``{column: text}``) as CSV, the header first."""
     buf = _io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
@@ -45,9 +45,9 @@ def to_csv(rows) -> str:
     return buf.getvalue()
 
 
-def to_markdown(rows) -> str:
+def to_markdown(rows: list[dict[str, str]]) -> str:
     """The rows (``{column: text}``) as a Markdown page: a title, the verdict counts, the table."""
-    def cell(s):
+    def cell(s: object) -> str:
         return str(s).replace("|", "\\|")
     columns = [c for c in (rows[0] if rows else []) if c != "explained_in"]
     lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
@@ -59,7 +59,7 @@ def to_markdown(rows) -> str:
             + "\n".join(lines) + "\n")
 
 
-def tables(tree) -> dict[str, str]:
+def tables(tree: xr.DataTree | xr.Dataset) -> dict[str, str]:
     """format -> text of the claims table: ``csv`` and ``md``."""
     rows = table_rows(tree)
     return {"csv": to_csv(rows), "md": to_markdown(rows)}

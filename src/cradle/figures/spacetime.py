@@ -13,10 +13,19 @@ vmin = the most negative force of both, vmax = 0 (:func:`common_vmin`).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, TypeVar
+
 import numpy as np
 from matplotlib.ticker import MaxNLocator
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.figures import figure, legend_outside, scene_caption
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.image import AxesImage
 
 CMAP = "gray"                     # vmin -> black, vmax = 0 -> white
 FORCE_LABEL = "$V_0'(x_{n+1}-x_n)$"
@@ -40,12 +49,16 @@ MIN_POINTS = {"plot6-7": 1000, "plot2-3": 20, "plot1v5st": 1000, "plot1v5": 20, 
 
 
 # --------------------------------------------------------------------------- helpers
-def _at(ds, t):
+#: a stored run or one of its variables (dims t, ...)
+_Stored = TypeVar("_Stored", "xr.Dataset", "xr.DataArray")
+
+
+def _at(ds: _Stored, t: float) -> _Stored:
     """The stored state nearest to time t (stored times are exact to 1e-9)."""
     return ds.sel(t=t, method="nearest")
 
 
-def common_vmin(*datasets, t_range=None) -> float:
+def common_vmin(*datasets: xr.Dataset, t_range: tuple[float, float] | None = None) -> float:
     """The most negative force over all datasets (on t_range if given); < 0."""
     lows = []
     for ds in datasets:
@@ -57,14 +70,14 @@ def common_vmin(*datasets, t_range=None) -> float:
     return low if low < 0 else -1e-300     # all beads apart: any negative value draws white
 
 
-def _edges(values):
+def _edges(values: ArrayLike) -> tuple[float, float]:
     """Cell edges of uniformly spaced centres (extent of an imshow)."""
     values = np.asarray(values, dtype=float)
     step = (values[-1] - values[0]) / (len(values) - 1) if len(values) > 1 else 1.0
     return values[0] - step / 2, values[-1] + step / 2
 
 
-def _columns(size, n_range=None):
+def _columns(size: int, n_range: tuple[int, int] | None = None) -> NDArray[np.int_]:
     """Bond indices of n_range = (n0, n1), inclusive, wrapping around if n0 > n1."""
     if n_range is None:
         return np.arange(size)
@@ -72,7 +85,7 @@ def _columns(size, n_range=None):
     return np.arange(n0, n1 + 1) if n0 <= n1 else np.r_[np.arange(n0, size), np.arange(0, n1 + 1)]
 
 
-def period_minimum(metrics, model):
+def period_minimum(metrics: xr.Dataset, model: str) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(bin centres, most negative force of every bond in each breather period) of ``model`` ('exact'
     or 'dps'), from the peak compression stored in the scene's metrics file (``t_window``,
     ``breather_omega``, ``peak_compression_<model>``): one row per breather period, so that a long
@@ -85,8 +98,10 @@ def period_minimum(metrics, model):
     return metrics["t_window"].values + 0.5 * period, -metrics[f"peak_compression_{model}"].values
 
 
-def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", binned=None,
-              interpolation="antialiased"):
+def spacetime(ax: Axes, ds: xr.Dataset, vmin: float, t_range: tuple[float, float] | None = None,
+              n_range: tuple[int, int] | None = None, title: str = "",
+              binned: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+              interpolation: str = "antialiased") -> AxesImage:
     """Draw the forces of ``ds`` (dims t, n) in grey levels on ``ax``; return the AxesImage.
 
     ``t_range`` = (t0, t1) and ``n_range`` = (n0, n1) (inclusive) restrict the
@@ -125,7 +140,7 @@ def spacetime(ax, ds, vmin, t_range=None, n_range=None, title="", binned=None,
     return img
 
 
-def spacetime_pair(sim, width=8.0, height=5.2, suptitle=""):
+def spacetime_pair(sim: dict[str, xr.Dataset], width: float = 8.0, height: float = 5.2, suptitle: str = "") -> Figure:
     """Exact (left) and approximate (right) force diagrams on one colour scale, one colourbar."""
     ex, ap = sim["exact"], sim["dps"]
     vmin = common_vmin(ex, ap)
@@ -139,7 +154,7 @@ def spacetime_pair(sim, width=8.0, height=5.2, suptitle=""):
     return fig
 
 
-def _profiles(ax, sim, t, approx_style="-.", title=""):
+def _profiles(ax: Axes, sim: dict[str, xr.Dataset], t: float, approx_style: str = "-.", title: str = "") -> None:
     """Exact x_n(t) (continuous line) and approximate (dash-dot line, or dots)."""
     ex, ap = _at(sim["exact"], t), _at(sim["dps"], t)
     n = ex["n"].values
@@ -153,7 +168,7 @@ def _profiles(ax, sim, t, approx_style="-.", title=""):
     ax.set_title(f"{title}$t = {float(ex['t']):g}$", fontsize=9)
 
 
-def _profile_pair(data, options, width=9.0, height=3.4):
+def _profile_pair(data: dict, options: dict, width: float = 9.0, height: float = 3.4) -> Figure:
     (name,) = options["scenes"]
     fig, axes = figure(1, len(options["times"]), width=width, height=height)
     for ax, t in zip(np.atleast_1d(axes), options["times"], strict=True):
@@ -163,30 +178,30 @@ def _profile_pair(data, options, width=9.0, height=3.4):
     return fig
 
 
-def _scene(data, options):
+def _scene(data: dict, options: dict) -> tuple[str, dict[str, xr.Dataset]]:
     (name,) = options["scenes"]
     return name, data[name]
 
 
 # --------------------------------------------------------------------------- figures
-def draw_plot6_7(data, options):
+def draw_plot6_7(data: dict, options: dict) -> Figure:
     """Forces, exact (left) and approximate (right): q = pi/5, omega_tw = 1.1."""
     name, sim = _scene(data, options)
     return spacetime_pair(sim, suptitle=scene_caption(name, sim["exact"]))
 
 
-def draw_plot2_3(data, options):
+def draw_plot2_3(data: dict, options: dict) -> Figure:
     """Profiles of the plot6-7 run at t = 64.95 (left) and 570.95 (right)."""
     return _profile_pair(data, options)
 
 
-def draw_plot1v5st(data, options):
+def draw_plot1v5st(data: dict, options: dict) -> Figure:
     """Forces, exact (left) and approximate (right): q = pi/5, omega_tw = 1.5."""
     name, sim = _scene(data, options)
     return spacetime_pair(sim, suptitle=scene_caption(name, sim["exact"]))
 
 
-def draw_plot1v5(data, options):
+def draw_plot1v5(data: dict, options: dict) -> Figure:
     """Left: zoom of the exact diagram of plot1v5st on t in ZOOM_PLOT1V5, all n, on
     plot1v5st's colour scale; right: exact (line) and approximate (dots) at t = 83.7."""
     name, sim = _scene(data, options)
@@ -203,29 +218,30 @@ def draw_plot1v5(data, options):
     return fig
 
 
-def draw_plot8_11(data, options):
+def draw_plot8_11(data: dict, options: dict) -> Figure:
     """Profiles of the q = 4 pi/5 run at t = 0 (left) and 331.2 (right)."""
     return _profile_pair(data, options)
 
 
-def draw_plot9_10(data, options):
+def draw_plot9_10(data: dict, options: dict) -> Figure:
     """Forces, exact (left) and approximate (right): q = 4 pi/5, modulational instability."""
     name, sim = _scene(data, options)
     return spacetime_pair(sim, suptitle=scene_caption(name, sim["exact"]))
 
 
-def draw_plot29_30(data, options):
+def draw_plot29_30(data: dict, options: dict) -> Figure:
     """Profiles of the q = pi run at t = 0 (left) and 223 (right)."""
     return _profile_pair(data, options)
 
 
-def draw_plot26_27(data, options):
+def draw_plot26_27(data: dict, options: dict) -> Figure:
     """Forces, exact (left) and approximate (right): q = pi, static breathers."""
     name, sim = _scene(data, options)
     return spacetime_pair(sim, suptitle=scene_caption(name, sim["exact"]))
 
 
-def plot28_window(ds, beads=PLOT28_BEADS, span=PLOT28_SPAN):
+def plot28_window(ds: xr.Dataset, beads: int = PLOT28_BEADS,
+                  span: float = PLOT28_SPAN) -> tuple[tuple[float, float], tuple[int, int]]:
     """(t0, t1), (n0, n1) of plot28: the last ``span`` time units stored, and the
     ``beads`` consecutive bonds (periodic) of largest summed force variance there."""
     t = ds["t"].values
@@ -238,7 +254,7 @@ def plot28_window(ds, beads=PLOT28_BEADS, span=PLOT28_SPAN):
     return (t0, t1), (n0, (n0 + width - 1) % len(var))
 
 
-def draw_plot28(data, options):
+def draw_plot28(data: dict, options: dict) -> Figure:
     """Detail of the exact diagram of plot26-27 (window from :func:`plot28_window`),
     on its own colour scale: vmin = the most negative force inside the window."""
     name, sim = _scene(data, options)

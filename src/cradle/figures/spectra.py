@@ -18,10 +18,19 @@ Axes are linear, as in the paper.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from matplotlib.figure import Figure
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.figures import scene_caption
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    import xarray as xr
+    from matplotlib.axes import Axes
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): N wavenumbers or beads
 MIN_POINTS = 20
@@ -30,7 +39,7 @@ TIME_TOL = 1e-6          # a requested time must be stored to within this
 MODELS = (("exact", "spectrum_exact", "exact"), ("dps", "spectrum_dps", "approx. (DpS)"))
 
 
-def _at(ds, t: float):
+def _at(ds: xr.Dataset, t: float) -> xr.Dataset:
     """The stored state at time t (a time not stored to within TIME_TOL is an error)."""
     s = ds.sel(t=t, method="nearest")
     if abs(float(s["t"]) - t) > TIME_TOL:
@@ -38,26 +47,26 @@ def _at(ds, t: float):
     return s
 
 
-def _stored(m, name):
+def _stored(m: xr.Dataset, name: str) -> xr.DataArray:
     if name not in m:
         raise ValueError(f"scene '{m.attrs.get('scene', '?')}': no {name} in its metrics file: rebuild the metrics")
     return m[name]
 
 
-def spectrum(sim: dict, model: str, t: float):
+def spectrum(sim: dict, model: str, t: float) -> tuple[np.ndarray, np.ndarray]:
     """(k, |x_hat_k(t)|) of ``model`` ('exact' or 'dps') from the metrics file."""
     var = dict((m, v) for m, v, _ in MODELS)[model]
     m = _at(sim["metrics"], t)
     return m["k"].values, m[var].values
 
 
-def sideband(sim: dict, model: str, t: float):
+def sideband(sim: dict, model: str, t: float) -> tuple[float, float]:
     """(ratio, k of the largest sideband) of ``model``'s spectrum at t, from the metrics file."""
     m = _at(sim["metrics"], t)
     return float(_stored(m, f"sideband_ratio_{model}")), float(_stored(m, f"sideband_k_{model}"))
 
 
-def wrap(k):
+def wrap(k: ArrayLike) -> NDArray[np.float64]:
     """Wavenumbers brought into the band (-pi, pi] (where to draw the carrier lines)."""
     k = np.asarray(k, dtype=float)
     w = np.mod(k + np.pi, 2.0 * np.pi) - np.pi       # in [-pi, pi)
@@ -69,20 +78,20 @@ def carrier(sim: dict) -> float:
     return float(sim["exact"].attrs["q"])
 
 
-def _q_label(sim) -> str:
+def _q_label(sim: dict[str, xr.Dataset]) -> str:
     expr = str(sim["exact"].attrs.get("q_expr", f"{carrier(sim):.4g}"))
     return expr.replace("pi", r"\pi")
 
 
 # --------------------------------------------------------------------------- drawing
 
-def _spectrum_panel(ax, sim, model, t, title_prefix=""):
+def _spectrum_panel(ax: Axes, sim: dict[str, xr.Dataset], model: str, t: float, title_prefix: str = "") -> float:
     k, sp = spectrum(sim, model, t)
     q = carrier(sim)
     ratio, k_peak = sideband(sim, model, t)
     ax.plot(k, sp, "-", color="k" if model == "exact" else "C3", lw=0.8)
     for kq in (-q, q):
-        ax.axvline(wrap(kq), color="0.6", lw=0.5, ls=":", zorder=0)
+        ax.axvline(float(wrap(kq)), color="0.6", lw=0.5, ls=":", zorder=0)
     ax.set_xlim(-np.pi, np.pi)
     ax.set_ylim(bottom=0.0)
     ax.set_xticks(np.pi * np.array([-1, -0.5, 0, 0.5, 1]), [r"$-\pi$", r"$-\pi/2$", "0", r"$\pi/2$", r"$\pi$"])
@@ -94,14 +103,14 @@ def _spectrum_panel(ax, sim, model, t, title_prefix=""):
     return float(ratio)
 
 
-def _same_ylim(axes):
+def _same_ylim(axes: Iterable[Axes]) -> None:
     """One linear y-range [0, top] for the exact and DpS panels of a row."""
     top = max(a.get_ylim()[1] for a in axes)
     for a in axes:
         a.set_ylim(0.0, top)
 
 
-def _ratio_note(fig, sim):
+def _ratio_note(fig: Figure, sim: dict[str, xr.Dataset]) -> None:
     m = sim["metrics"]
     if "sideband_exclude_bins" not in m.attrs:
         raise ValueError(f"scene '{m.attrs.get('scene', '?')}': no sideband_exclude_bins in its metrics file: "
@@ -112,7 +121,7 @@ def _ratio_note(fig, sim):
              ha="center", va="bottom", fontsize=7, color="0.3")
 
 
-def _new(nrows, ncols, width, height):
+def _new(nrows: int, ncols: int, width: float, height: float) -> tuple[Figure, np.ndarray]:
     fig = Figure(figsize=(width, height))   # outside pyplot, as cradle.figures.figure
     axes = fig.subplots(nrows, ncols, squeeze=False,
                         gridspec_kw={"bottom": 0.75 / height, "top": 1.0 - 0.55 / height, "hspace": 0.6,
@@ -120,7 +129,7 @@ def _new(nrows, ncols, width, height):
     return fig, axes
 
 
-def draw_fft106(data, options):
+def draw_fft106(data: dict, options: dict) -> Figure:
     """4 x 2 spectra, q = 4 pi/5: exact (left) at times[0:4], DpS (right) at times[0:3] and times[4]."""
     (name,) = options["scenes"]
     times = [float(t) for t in options["times"]]
@@ -137,7 +146,7 @@ def draw_fft106(data, options):
     return fig
 
 
-def draw_fftseuil(data, options):
+def draw_fftseuil(data: dict, options: dict) -> Figure:
     """3 x 2 spectra at times[0] (913.7): one row per scene (q = 52 pi/100, 51 pi/100, pi/2)."""
     names = list(options["scenes"])
     (t,) = [float(s) for s in options["times"]]
@@ -156,7 +165,7 @@ def draw_fftseuil(data, options):
     return fig
 
 
-def _profile_panel(ax, sim, model, t):
+def _profile_panel(ax: Axes, sim: dict[str, xr.Dataset], model: str, t: float) -> None:
     s = _at(sim[model], t)
     n, x = s["n"].values, s["x"].values
     ax.plot(n, x, "-", color="k" if model == "exact" else "C3", lw=0.7)
@@ -168,7 +177,7 @@ def _profile_panel(ax, sim, model, t):
     ax.set_title(f"{label}, $t = {t:g}$: carrier share of power {share:.2f}", fontsize=8)
 
 
-def draw_fft344(data, options):
+def draw_fft344(data: dict, options: dict) -> Figure:
     """q = 57 pi/100. Upper: spectra at times[0] (exact, DpS); middle: exact x_n at times[1], times[2];
     lower: DpS x_n at times[2]."""
     (name,) = options["scenes"]

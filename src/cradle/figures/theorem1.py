@@ -2,15 +2,20 @@
 relation (wleadingorder), from results/theorem1/theorem1.nc."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside, plain_log_ticks
+from cradle.figures import AnalysisTree, figure, legend_outside, plain_log_ticks
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few amplitudes a and modes J
 MIN_POINTS = 5
 
 
-def _qlabel(q):
+def _qlabel(q: float) -> str:
     """q as a label: a fraction of pi where it is one (pi/5, 4pi/5), else 3 digits."""
     frac = q / np.pi
     for den in (1, 2, 3, 4, 5, 6, 8, 10):
@@ -23,7 +28,7 @@ def _qlabel(q):
     return f"{q:.3g}"
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """Exact frequencies against (wleadingorder), the relative correction, v_a against (va), convergence.
 
     ``tree``: the groups /waves, /profiles, /convergence, /scenes of the theorem1 file."""

@@ -17,9 +17,15 @@ target (left of it the launch zone, right of it the lead).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from cradle.figures import figure, legend_outside, plain_log_ticks
+from cradle.figures import AnalysisTree, figure, legend_outside, plain_log_ticks
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 _INC = ("striker", "breather")
 _MARK = {0: "o", 1: "s"}
@@ -29,11 +35,11 @@ _LINE = {0: "-", 1: "--"}
 MIN_POINTS = 2
 
 
-def _v(group, name) -> np.ndarray:
+def _v(group: AnalysisTree, name: str) -> np.ndarray:
     return np.asarray(group[name].values)
 
 
-def _spacetime(ax, ex, k: int, fig_images: list) -> None:
+def _spacetime(ax: Axes, ex: AnalysisTree, k: int, fig_images: list) -> None:
     e = _v(ex, "site_energy")[k]
     tau = _v(ex, "tau")
     seen = np.flatnonzero(np.nanmax(np.where(np.isfinite(e), e, 0.0), axis=0) > 1e-8)
@@ -55,18 +61,18 @@ def _spacetime(ax, ex, k: int, fig_images: list) -> None:
     ax.set_ylabel(r"slow time $\tau = a^{\alpha-1} t$")
 
 
-def _bars(mean, std):
+def _bars(mean: np.ndarray, std: np.ndarray) -> np.ndarray:
     """Error bars of one standard deviation, cut at 0 and 1 (a fraction of H(0))."""
     return np.stack([np.minimum(std, mean), np.minimum(std, 1.0 - mean)])
 
 
-def _others(ax, x, values) -> None:
+def _others(ax: Axes, x: float, values: np.ndarray) -> None:
     """Grey marks at x of the means under every definition (values: ..., threshold, window, time)."""
     flat = values.reshape(-1)
     ax.plot(np.full(flat.size, x), flat, "_", color="0.6", ms=5, zorder=1)
 
 
-def draw(tree):
+def draw(tree: AnalysisTree) -> Figure:
     """The panels above from the groups /runs, /summary and /examples of the trapping file."""
     fig, ax = figure(2, 4, width=17.0, height=8.6)
     ex, sm = tree["examples"], tree["summary"]

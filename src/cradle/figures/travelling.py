@@ -1,14 +1,19 @@
 """Figures plot4-5 and plotcomplin: travelling waves q = pi/5, omega_tw = 1.01 (section 4.1)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from cradle.figures import figure, legend_outside, scene_caption
 from cradle.figures.spacetime import _at, _profiles
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a profile of N beads
 MIN_POINTS = {"plot4-5": 20, "plotcomplin": 20}
 
 
-def draw_plot4_5(data, options):
+def draw_plot4_5(data: dict, options: dict) -> Figure:
     """Left: exact and approximate profiles at t = 621.95; right: E(t) = ||x^tw - x||_inf / a."""
     (name,) = options["scenes"]
     sim = data[name]
@@ -25,7 +30,7 @@ def draw_plot4_5(data, options):
     return fig
 
 
-def draw_plotcomplin(data, options):
+def draw_plotcomplin(data: dict, options: dict) -> Figure:
     """Left: the plot4-5 experiment with noise (perturb); right: exact, approximate and
     linear wave a cos(q n - t) at t0 = 333.7."""
     noisy, clean = options["scenes"]

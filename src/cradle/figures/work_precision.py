@@ -11,10 +11,16 @@ comparison).
 from __future__ import annotations
 
 import json
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from cradle.figures import figure
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py): a few settings per method
 MIN_POINTS = 3
@@ -26,7 +32,7 @@ STYLE = {  # method -> (colour, marker); corrected splittings solid, the rest da
 }
 
 
-def _curve(ax, ds, i, var):
+def _curve(ax: Axes, ds: xr.Dataset, i: int, var: str) -> None:
     method = str(ds["method"].values[i])
     row = ds.isel(method=i)
     w, y = row["wall_time"].values, row[var].values
@@ -36,7 +42,7 @@ def _curve(ax, ds, i, var):
     ax.loglog(w[ok], y[ok], ls, color=colour, marker=marker, ms=3.5, lw=1.0, label=method)
 
 
-def draw(tree):
+def draw(tree: xr.DataTree) -> Figure:
     """The figure of the work-precision file ``tree``: one row per scene group, in the file's order."""
     data = {name: node.to_dataset() for name, node in tree.children.items()}
     scenes = list(data)

@@ -10,9 +10,10 @@ apart (plot18, fini), the amplitude radiated away from a breather's core
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 
-def peak_compression(t, force, period):
+def peak_compression(t: ArrayLike, force: ArrayLike, period: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Window starts and the peak compression max |f_n| of every bond in each breather period.
 
     ``t`` (T,) increasing stored times, ``force`` (T, N); windows are
@@ -45,7 +46,7 @@ def peak_compression(t, force, period):
     return starts, P
 
 
-def frequency_from_crossings(t, x) -> float:
+def frequency_from_crossings(t: ArrayLike, x: ArrayLike) -> float:
     """Angular frequency of an oscillating signal x(t) from its upward zero crossings
     (linear interpolation between samples, then a least-squares line through
     crossing time against crossing number). NaN with fewer than 3 crossings."""
@@ -59,7 +60,8 @@ def frequency_from_crossings(t, x) -> float:
     return float(2.0 * np.pi / slope)
 
 
-def half_period_shift(t, x_exact, x_approx, omega_sw) -> dict:
+def half_period_shift(t: ArrayLike, x_exact: ArrayLike, x_approx: ArrayLike,
+                      omega_sw: float) -> dict[str, float]:
     """Frequencies of exact and approximate signals (zero crossings) and the number of
     breather periods after which they drift half a period apart, pi / |omega_ex - omega_app|
     in units of 2 pi / omega_sw."""
@@ -70,7 +72,7 @@ def half_period_shift(t, x_exact, x_approx, omega_sw) -> dict:
     return {"omega_exact": w_ex, "omega_approx": w_ap, "half_shift_periods": float(periods)}
 
 
-def dispersive_amplitude(x, core, halfwidth=6, periodic=True) -> float:
+def dispersive_amplitude(x: ArrayLike, core: float, halfwidth: float = 6, periodic: bool = True) -> float:
     """max |x_n| over the sites farther than ``halfwidth`` from ``core`` (a site or a bond midpoint):
     the amplitude of what the breather radiated (plot18, bottom right)."""
     x = np.asarray(x, dtype=float)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
+from numpy.typing import ArrayLike
 
 from cradle.data.io import make_dataset
 from cradle.data.variables import MODEL, MODELS, VARIABLES, Var
@@ -22,7 +23,7 @@ COMPARISON = {
 }
 
 
-def compare_models(t, x, A, *, eps: float, a: float | None = None) -> xr.Dataset:
+def compare_models(t: ArrayLike, x: ArrayLike, A: ArrayLike, *, eps: float, a: float | None = None) -> xr.Dataset:
     """The lattice (nc) against its DpS approximation (dfnls)/(ansatz) as one Dataset.
 
     ``t`` (T,): the times of (nc); ``x`` (T, N): the lattice displacements x_n(t) (``LatticeSolution.x``);

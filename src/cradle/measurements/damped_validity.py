@@ -18,11 +18,13 @@ reference law is E_abs = O(eps^alpha) as for dps-validity.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.measurements.compare import approximate_displacement
 
 
-def sup_error(t, x, A, eps: float, alpha: float, T_marks, v=None) -> dict:
+def sup_error(t: ArrayLike, x: ArrayLike, A: ArrayLike, eps: float, alpha: float, T_marks: ArrayLike,
+              v: ArrayLike | None = None) -> dict[str, NDArray[np.float64]]:
     """The running sup errors of a damped (or undamped) lattice run against its DpS run, read at t = T eps^(1-alpha).
 
     Parameters

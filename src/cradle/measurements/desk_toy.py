@@ -27,11 +27,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models.lattice import V0, bond_elongations
 
 
-def _arrays(t, x, v):
+def _arrays(t: ArrayLike, x: ArrayLike,
+            v: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     t = np.asarray(t, dtype=float)
     x = np.asarray(x, dtype=float)
     v = np.asarray(v, dtype=float)
@@ -40,7 +42,7 @@ def _arrays(t, x, v):
     return t, x, v
 
 
-def bead_energies(x, v, alpha: float = 1.5):
+def bead_energies(x: ArrayLike, v: ArrayLike, alpha: float = 1.5) -> NDArray[np.float64]:
     """Each bead's energy (module docstring), shape of ``x``: beads on the last axis, free ends."""
     x = np.asarray(x, dtype=float)
     v = np.asarray(v, dtype=float)
@@ -51,7 +53,8 @@ def bead_energies(x, v, alpha: float = 1.5):
     return 0.5 * (v**2 + x**2) + half + left
 
 
-def out_fractions(t, x, v, lifted: int, alpha: float = 1.5):
+def out_fractions(t: ArrayLike, x: ArrayLike, v: ArrayLike, lifted: int,
+                  alpha: float = 1.5) -> tuple[NDArray[np.floating], NDArray[np.float64]]:
     """(times k pi, f_k) for k = 1 .. floor(t_end / pi): the share of the energy carried at the stored time
     nearest k pi by the ``lifted`` outermost balls of the right end (k odd) or the left end (k even)."""
     t, x, v = _arrays(t, x, v)
@@ -81,7 +84,8 @@ class PatternHold:
     measured: int
 
 
-def pattern_hold(t, x, v, lifted: int, threshold: float, alpha: float = 1.5) -> PatternHold:
+def pattern_hold(t: ArrayLike, x: ArrayLike, v: ArrayLike, lifted: int, threshold: float,
+                 alpha: float = 1.5) -> PatternHold:
     """The one-out-one-out duration under ``threshold`` (in (0, 1)) from :func:`out_fractions`."""
     if not 0.0 < threshold < 1.0:
         raise ValueError(f"threshold = {threshold!r}: must be in (0, 1) (a share of the energy)")
@@ -92,7 +96,7 @@ def pattern_hold(t, x, v, lifted: int, threshold: float, alpha: float = 1.5) -> 
     return PatternHold(threshold, int(below[0]), float(times[below[0]]), int(f.size))
 
 
-def cascade_end(t, x) -> tuple[float, float, int]:
+def cascade_end(t: ArrayLike, x: ArrayLike) -> tuple[float, float, int]:
     """(t_start, t_end, index of t_end): the first stored time with a compressed bond (x_{n+1} < x_n) and the
     first stored time after it with none. NaN (and -1) where the run has no compression (hard spheres:
     contacts take no time) or it never ends."""
@@ -109,14 +113,15 @@ def cascade_end(t, x) -> tuple[float, float, int]:
     return float(t[hits[0]]), float(t[i]), i
 
 
-def line_state(t, x, v, at: float) -> tuple[float, np.ndarray, np.ndarray]:
+def line_state(t: ArrayLike, x: ArrayLike, v: ArrayLike, at: float) -> tuple[float, np.ndarray, np.ndarray]:
     """(stored time nearest ``at``, gaps x_{n+1} - x_n (N-1,), velocities (N,)) there."""
     t, x, v = _arrays(t, x, v)
     i = int(np.argmin(np.abs(t - at)))
     return float(t[i]), np.diff(x[i]), v[i].copy()
 
 
-def energy_per_swing(t, x, v, alpha: float = 1.5):
+def energy_per_swing(t: ArrayLike, x: ArrayLike, v: ArrayLike,
+                     alpha: float = 1.5) -> tuple[NDArray[np.floating], NDArray[np.float64]]:
     """(window starts 2 pi k, E (K, N)): each bead's energy averaged over the stored times of each swing period
     [2 pi k, 2 pi (k+1)) that ends by the last stored time, k = 0 .. K-1 (times from the release, t = 0; on a
     uniform grid the sample mean is the time average; a window holding no stored time gives a row of NaN)."""

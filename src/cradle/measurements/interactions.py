@@ -42,6 +42,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+import xarray as xr
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.measurements.breathers import peak_compression
 
@@ -55,7 +57,8 @@ REPEL_SITES = 3.0    # breathers 3 sites farther apart than at the start have re
 NEAR_MARGIN = 3.0    # after a merge, a hump farther than the initial distance + 3 sites is not of the pair
 
 
-def humps(profile, rel: float = REL, dip: float = DIP, periodic: bool = True):
+def humps(profile: ArrayLike, rel: float = REL, dip: float = DIP,
+          periodic: bool = True) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Humps of one non-negative profile: (centres (H,), tops (H,)), largest top first.
 
     Candidates are the local maxima (cyclically on a ring; a plateau counts
@@ -77,7 +80,7 @@ def humps(profile, rel: float = REL, dip: float = DIP, periodic: bool = True):
     if not peaks:                       # a constant profile
         peaks = [int(np.argmax(p))]
 
-    def between(i, j):
+    def between(i: int, j: int) -> NDArray[np.int_]:
         """Sites strictly between peaks i and j going up (cyclically)."""
         return np.arange(i + 1, j if j > i else j + N) % N
 
@@ -118,7 +121,8 @@ def humps(profile, rel: float = REL, dip: float = DIP, periodic: bool = True):
     return centres[keep], tops[keep]
 
 
-def humps_all(P, rel: float = REL, dip: float = DIP, periodic: bool = True):
+def humps_all(P: ArrayLike, rel: float = REL, dip: float = DIP,
+              periodic: bool = True) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.int64]]:
     """:func:`humps` of every row of ``P`` (K, N) at once: (centres (K, H), tops (K, H), counts (K,)), row k's
     humps in its first ``counts[k]`` columns, largest top first, NaN after them (H >= 2).
 
@@ -233,13 +237,14 @@ def humps_all(P, rel: float = REL, dip: float = DIP, periodic: bool = True):
     return centres, tops, counts
 
 
-def ring_distance(a, b, N: int, periodic: bool = True):
+def ring_distance(a: ArrayLike, b: ArrayLike, N: int,
+                  periodic: bool = True) -> NDArray[np.float64] | np.float64:
     """|a - b|, on a ring of N sites the shorter way round."""
     d = np.abs(np.asarray(a, dtype=float) - np.asarray(b, dtype=float))
     return np.minimum(d, N - d) if periodic else d
 
 
-def running_median(x, half: int):
+def running_median(x: ArrayLike, half: int) -> np.ndarray:
     """Median of x over the window [k - half, k + half] (cut at the ends); integer input, integer output.
 
     The full windows are taken at once (a median of an odd count is its middle value, the same whether
@@ -275,12 +280,12 @@ class Outcome:
         return OUTCOMES.index(self.outcome)
 
 
-def _unwrap(c, N, periodic):
+def _unwrap(c: ArrayLike, N: int, periodic: bool) -> NDArray[np.float64]:
     c = np.asarray(c, dtype=float)
     return np.unwrap(c, period=N) if periodic and c.size else c
 
 
-def _crossed(cent, counts, N, periodic) -> bool:
+def _crossed(cent: NDArray[np.float64], counts: NDArray[np.int64], N: int, periodic: bool) -> bool:
     """Whether two tracked humps come out on the other side of each other: the signed distance of the
     two tracks (second minus first, on the ring the shorter way) before the first overlap and after
     the last has opposite signs; during an overlap each track coasts at its last velocity.
@@ -293,7 +298,7 @@ def _crossed(cent, counts, N, periodic) -> bool:
     k0, k1 = int(two[0]), int(two[-1])
     first, second, many = cent[:, 0].tolist(), cent[:, 1].tolist(), (counts >= 2).tolist()
 
-    def dist(a, b):
+    def dist(a: float, b: float) -> float:
         d = abs(a - b)
         return min(d, N - d) if periodic else d
 
@@ -321,7 +326,7 @@ def _crossed(cent, counts, N, periodic) -> bool:
     return bool(start_sign is not None and np.sign(end) != start_sign and abs(end) >= 1.0)
 
 
-def _drift(P, big, reach: float, periodic: bool) -> float:
+def _drift(P: NDArray[np.float64], big: NDArray[np.float64], reach: float, periodic: bool) -> float:
     """Velocity (sites per period) of the merged breather: slope of the P-weighted centre of the sites
     within ``reach`` of a fixed point (the median position of the largest hump, unwrapped), so that a
     merged breather showing a ragged or double top does not jump between its two sides."""
@@ -335,8 +340,8 @@ def _drift(P, big, reach: float, periodic: bool) -> float:
     return float(np.polyfit(np.arange(len(centre)), centre, 1)[0])
 
 
-def classify(t, field, period: float, *, periodic: bool = True, rel: float = REL, dip: float = DIP,
-             smooth: int = SMOOTH, min_periods: float = MIN_PERIODS,
+def classify(t: ArrayLike, field: ArrayLike, period: float, *, periodic: bool = True, rel: float = REL,
+             dip: float = DIP, smooth: int = SMOOTH, min_periods: float = MIN_PERIODS,
              repel_sites: float = REPEL_SITES) -> Outcome:
     """Outcome of two interacting breathers from a stored field (T, N) at times ``t``: the displacements
     x_n(t) (a site profile; what :mod:`cradle.analyses.pair_runs` passes) or the bond forces.
@@ -349,7 +354,8 @@ def classify(t, field, period: float, *, periodic: bool = True, rel: float = REL
                           repel_sites=repel_sites)
 
 
-def classify_peaks(starts, P, *, periodic: bool = True, rel: float = REL, dip: float = DIP, smooth: int = SMOOTH,
+def classify_peaks(starts: NDArray[np.float64], P: NDArray[np.float64], *, periodic: bool = True, rel: float = REL,
+                   dip: float = DIP, smooth: int = SMOOTH,
                    min_periods: float = MIN_PERIODS, repel_sites: float = REPEL_SITES) -> Outcome:
     """:func:`classify` from the profiles max_t |field_n| ``P`` (K, N) of the periods starting at ``starts``
     (:func:`cradle.measurements.breathers.peak_compression`; the streamed scene job accumulates them)."""
@@ -402,7 +408,7 @@ def classify_peaks(starts, P, *, periodic: bool = True, rel: float = REL, dip: f
     return Outcome("bound", separation0=sep0, **base)
 
 
-def _first_coalescence(near, sm) -> float:
+def _first_coalescence(near: np.ndarray, sm: np.ndarray) -> float:
     """First period of the first single state: where the smoothed count ``sm`` first reads 1, moved back to
     the first single period of the raw count ``near`` (the median lags by < smooth periods). NaN: never."""
     single = np.flatnonzero(sm == 1)
@@ -414,7 +420,7 @@ def _first_coalescence(near, sm) -> float:
     return float(k)
 
 
-def classify_run(ds, period: float | None = None, **kw) -> Outcome:
+def classify_run(ds: xr.Dataset, period: float | None = None, **kw: Any) -> Outcome:
     """:func:`classify` on a stored run (anything indexable by "t" and "x" with attrs omega_sw and bc): the
     site profile max_t |x_n(t)| per period."""
     if period is None:

@@ -8,14 +8,17 @@ harmonics k = +-2(q - pi), +-(3q - 2pi) (fft106, fftseuil, fft344);
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.measurements.compare import spatial_dft
 
 EXCLUDE_BINS = 3         # half-width (in bins of 2 pi / N) of the windows left out by sideband_ratio
 
 
-def wrap(k):
+def wrap(k: ArrayLike) -> NDArray[np.float64]:
     """Wavenumbers brought into the band (-pi, pi] (Gamma* for N even)."""
     k = np.asarray(k, dtype=float)
     w = np.mod(k + np.pi, 2.0 * np.pi) - np.pi       # in [-pi, pi)
@@ -32,7 +35,7 @@ def harmonics(q: float) -> dict:
             "3q-2pi": tuple(wrap([3.0 * q - 2.0 * np.pi, -(3.0 * q - 2.0 * np.pi)]))}
 
 
-def _bins(k):
+def _bins(k: ArrayLike) -> tuple[NDArray[np.int_], int]:
     """Integer bin index j = k N / (2 pi) of each k on the full grid Gamma* (any order)."""
     k = np.asarray(k, dtype=float)
     N = k.size
@@ -42,7 +45,8 @@ def _bins(k):
     return np.round(j).astype(int) % N, N
 
 
-def sideband_peak(k, spectrum, q: float, exclude_bins: int = EXCLUDE_BINS, exclude_harmonics: bool = True):
+def sideband_peak(k: ArrayLike, spectrum: ArrayLike, q: float, exclude_bins: int = EXCLUDE_BINS,
+                  exclude_harmonics: bool = True) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(ratio, k_peak): :func:`sideband_ratio` and the wavenumber where the sideband maximum sits.
 
     For a ``spectrum`` of shape (..., N), both are arrays of shape (...).
@@ -74,7 +78,8 @@ def sideband_peak(k, spectrum, q: float, exclude_bins: int = EXCLUDE_BINS, exclu
     return ratio, k_peak
 
 
-def sideband_ratio(k, spectrum, q: float, exclude_bins: int = EXCLUDE_BINS, exclude_harmonics: bool = True):
+def sideband_ratio(k: ArrayLike, spectrum: ArrayLike, q: float, exclude_bins: int = EXCLUDE_BINS,
+                   exclude_harmonics: bool = True) -> NDArray[np.float64]:
     """Sideband-to-carrier ratio of a spatial spectrum |x_hat_k| on Gamma*.
 
     ratio = max |x_hat_k| over the k kept / |x_hat_{+-q}|, where the carrier
@@ -111,7 +116,9 @@ def sideband_ratio(k, spectrum, q: float, exclude_bins: int = EXCLUDE_BINS, excl
     return sideband_peak(k, spectrum, q, exclude_bins, exclude_harmonics)[0]
 
 
-def carrier_share(x, q: float):
+# -> Any: an array of shape x.shape[:-1], a numpy scalar for one profile (numpy types this reduction as Any;
+# the union would not fit cradle.scenes.stages.travelling_metrics, which stores it beside arrays)
+def carrier_share(x: ArrayLike, q: float) -> Any:
     """Share of the carrier in the power of a profile: sum over k = +-q of |x_hat_k|^2 / sum_k |x_hat_k|^2.
 
     1 for an unmodulated wave a cos(q n - w t + phi) with q on Gamma*; it falls as the
@@ -125,7 +132,7 @@ def carrier_share(x, q: float):
     return p[..., on].sum(axis=-1) / p.sum(axis=-1)
 
 
-def envelope(x):
+def envelope(x: ArrayLike) -> NDArray[np.float64]:
     """Envelope |x_n + i H[x]_n| of a profile x_n (periodic analytic signal, pure numpy).
 
     Used to measure the large-scale modulation of fft344's profiles: for
@@ -146,18 +153,18 @@ def envelope(x):
 # --------------------------------------------------------------------------- reading
 
 
-def harmonic_height(k, spectrum, q: float, which: str) -> float:
+def harmonic_height(k: ArrayLike, spectrum: ArrayLike, q: float, which: str) -> float:
     """|x_hat| at the harmonic ``which`` ("2(q-pi)" or "3q-2pi", see :func:`harmonics`),
     the larger of its two mirror bins, over the carrier |x_hat_{+-q}|."""
     jk, N = _bins(k)
     spectrum = np.asarray(spectrum, dtype=float)
-    def at(c):
+    def at(c: float) -> NDArray[np.float64] | np.float64:
         return spectrum[..., jk == int(np.round(wrap(c) * N / (2.0 * np.pi))) % N].max(axis=-1)
     carrier = np.maximum(at(q), at(-q))
     return float(np.max([at(c) for c in harmonics(q)[which]]) / carrier)
 
 
-def harmonic_over_band(k, spectrum, q: float, which: str, half: int = 5) -> float:
+def harmonic_over_band(k: ArrayLike, spectrum: ArrayLike, q: float, which: str, half: int = 5) -> float:
     """How far the harmonic ``which`` stands above the local band: |x_hat| at its bin over the median
     |x_hat| of the ``half`` bins on each side (the bin itself left out), the larger of the two mirror
     harmonics. A coherent harmonic of the carrier (fft106, fft344, exact) is a narrow peak: this ratio
@@ -166,7 +173,7 @@ def harmonic_over_band(k, spectrum, q: float, which: str, half: int = 5) -> floa
     jk, N = _bins(k)
     spectrum = np.asarray(spectrum, dtype=float)
 
-    def at(j):
+    def at(j: int) -> NDArray[np.float64] | np.float64:
         return spectrum[..., jk == j % N].max(axis=-1)
 
     best = 0.0

@@ -27,14 +27,17 @@ the static-breather detector and the energy budget of a chain hit by an incident
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models.lattice import V0
 
 
-def site_energies(x, v, alpha: float, omega=None, mass=None, stiffness=None):
+def site_energies(x: ArrayLike, v: ArrayLike, alpha: float, omega: ArrayLike | None = None,
+                  mass: ArrayLike | None = None, stiffness: ArrayLike | None = None) -> NDArray[np.float64]:
     """e_n of the module docstring, shape of ``x`` (beads on the last axis, free ends): ``omega``, ``mass`` (N,)
     and ``stiffness`` (N - 1 bonds, or N with the last ignored) default to 1."""
     x = np.asarray(x, dtype=float)
@@ -66,7 +69,7 @@ class Detected(NamedTuple):
         return float(np.sum(self.energy))
 
 
-def regions(e_bar, level: float, radius: int, contrast: float) -> list[tuple[int, int, int]]:
+def regions(e_bar: ArrayLike, level: float, radius: int, contrast: float) -> list[tuple[int, int, int]]:
     """The candidate regions of steps 2-3 of the detector: (peak, start, stop) for every local maximum p of
     ``e_bar`` above ``level``, strongest first, that is not within ``radius`` of a stronger one; its region
     [p - radius, p + radius] is clipped to the chain and to the regions already taken, and it is kept only when
@@ -94,8 +97,8 @@ def regions(e_bar, level: float, radius: int, contrast: float) -> list[tuple[int
     return out
 
 
-def static_breathers(t, e, t_meas: float, window: float, level: float, *, radius: int, contrast: float,
-                     max_shift: float) -> Detected:
+def static_breathers(t: ArrayLike, e: ArrayLike, t_meas: float, window: float, level: float, *, radius: int,
+                     contrast: float, max_shift: float) -> Detected:
     """The static breathers at ``t_meas`` (module docstring) in the site energies ``e`` (T, N) sampled at ``t``
     (T,), with the absolute energy ``level`` (theta E_ref); the last sample at or before t_meas is the
     measurement time. A window holding fewer than two samples is an error."""
@@ -119,14 +122,14 @@ def static_breathers(t, e, t_meas: float, window: float, level: float, *, radius
                     np.array(cols[3], dtype=float), np.array(cols[4], dtype=float))
 
 
-def zone_energies(e, bounds) -> np.ndarray:
+def zone_energies(e: ArrayLike, bounds: Sequence[int]) -> np.ndarray:
     """sum_n e_n over each zone [bounds[i], bounds[i+1]) of the chain, on the last axis of ``e``: shape
     ``e.shape[:-1] + (len(bounds) - 1,)``."""
     e = np.asarray(e, dtype=float)
     return np.stack([e[..., a:b].sum(axis=-1) for a, b in zip(bounds[:-1], bounds[1:], strict=True)], axis=-1)
 
 
-def reach(e, edge: int, e_ref: float) -> float:
+def reach(e: ArrayLike, edge: int, e_ref: float) -> float:
     """max over the samples of the energy of the last ``edge`` beads, over ``e_ref``: what reached the far end
     (0 up to rounding when nothing did, so that no energy can have come back from it)."""
     return float(np.max(np.asarray(e, dtype=float)[:, -edge:].sum(axis=1)) / e_ref)

@@ -24,11 +24,12 @@ action the DpS barrier is E_bond - E_site = -2 (H_bond - H_site) at equal norm; 
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models import dps
 
 
-def _laplacian(w, bc):
+def _laplacian(w: NDArray[np.float64], bc: str) -> NDArray[np.float64]:
     """Matrix of u -> w_n (u_{n+1} - u_n) - w_{n-1} (u_n - u_{n-1}) (bond weights w; none past a free end)."""
     N = w.size
     L = np.zeros((N, N))
@@ -43,7 +44,8 @@ def _laplacian(w, bc):
     return L
 
 
-def operators(a_n, omega, alpha, bc="periodic"):
+def operators(a_n: ArrayLike, omega: float, alpha: float,
+              bc: str = "periodic") -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(A, B): the symmetric operators of the DpS breather of frequency omega linearised in its rotating frame,
     real and imaginary parts of the perturbation (u' = A v, v' = -B u): lambda^2 are the eigenvalues of -A B."""
     mu = dps.mu_from_omega_sw(omega, alpha)
@@ -58,7 +60,9 @@ def operators(a_n, omega, alpha, bc="periodic"):
     return A, B
 
 
-def stability(a_n, omega, alpha, bc="periodic", odd_basis=None):
+def stability(a_n: ArrayLike, omega: float, alpha: float, bc: str = "periodic",
+              odd_basis: NDArray[np.float64] | None = None
+              ) -> tuple[NDArray[np.complex128], NDArray[np.complex128] | None]:
     """Eigenvalues lambda (per unit t) of the DpS breather of frequency omega from the mu = 1 profile a_n.
 
     Returns (lambda of all modes, lambda of the symmetry-breaking modes (on ``odd_basis``, N x m
@@ -66,7 +70,7 @@ def stability(a_n, omega, alpha, bc="periodic", odd_basis=None):
     """
     A, B = operators(a_n, omega, alpha, bc)
 
-    def lam(A_, B_):
+    def lam(A_: NDArray[np.float64], B_: NDArray[np.float64]) -> NDArray[np.complex128]:
         ev = np.linalg.eigvals(-A_ @ B_).astype(complex)
         r = np.sqrt(ev)
         return np.concatenate([r, -r])
@@ -79,7 +83,7 @@ def stability(a_n, omega, alpha, bc="periodic", odd_basis=None):
     return out, odd
 
 
-def pn_barrier(a_site, a_bond, action, alpha):
+def pn_barrier(a_site: ArrayLike, a_bond: ArrayLike, action: NDArray[np.float64], alpha: float) -> NDArray[np.float64]:
     """DpS Peierls-Nabarro barrier E_bond - E_site at equal action J (module docstring), in lattice energy."""
     S_s, S_b = float(np.sum(np.asarray(a_site) ** 2)), float(np.sum(np.asarray(a_bond) ** 2))
     P = np.asarray(action, float) / (4 * np.pi)
@@ -87,7 +91,7 @@ def pn_barrier(a_site, a_bond, action, alpha):
                                                                                                * dps.tau0(alpha))
 
 
-def omega_of_amplitude(a_n, amplitude, alpha):
+def omega_of_amplitude(a_n: ArrayLike, amplitude: float, alpha: float) -> float:
     """Frequency of the DpS breather (ansatzapproxst2) whose x_n(0) = mu^(1/(alpha-1)) a_n has max |x_n| = amplitude."""
     mu = (amplitude / float(np.max(np.abs(a_n)))) ** (alpha - 1.0)
     return dps.omega_sw_from_mu(mu, alpha)

@@ -37,6 +37,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 #: relative velocities within this many rounding units of the largest speed count as zero
 _ROUNDING = 64.0 * np.finfo(float).eps
@@ -64,13 +65,14 @@ class HardSphereRun:
     restitution: float
 
 
-def rotate(x, v, dt: float):
+def rotate(x: NDArray[np.float64], v: NDArray[np.float64],
+           dt: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The free motion x'' + x = 0 over a time ``dt``: (x cos dt + v sin dt, v cos dt - x sin dt)."""
     c, s = math.cos(dt), math.sin(dt)
     return x * c + v * s, v * c - x * s
 
 
-def closing_times(x, v) -> np.ndarray:
+def closing_times(x: NDArray[np.float64], v: NDArray[np.float64]) -> np.ndarray:
     """The time until each bond's gap closes with the pair approaching (inf: never), from the harmonic gap
     d(t) = d cos t + w sin t (module docstring)."""
     d = np.diff(x)
@@ -84,7 +86,7 @@ def closing_times(x, v) -> np.ndarray:
     return out
 
 
-def _collide(v, n: int, e: float) -> tuple[float, float, float]:
+def _collide(v: NDArray[np.float64], n: int, e: float) -> tuple[float, float, float]:
     """Binary collision of beads n and n+1 (equal masses, restitution e): (approach, separation, energy lost)."""
     w = v[n + 1] - v[n]
     if e == 1.0:
@@ -97,7 +99,7 @@ def _collide(v, n: int, e: float) -> tuple[float, float, float]:
     return -w, v[n + 1] - v[n], before - 0.5 * (v[n] ** 2 + v[n + 1] ** 2)
 
 
-def _snap(x, v, n: int) -> None:
+def _snap(x: NDArray[np.float64], v: NDArray[np.float64], n: int) -> None:
     """Put the incoming ball of bond n (the faster), and every ball moving with it, where the hit ball is."""
     N = x.size
     if abs(v[n]) >= abs(v[n + 1]):
@@ -109,7 +111,8 @@ def _snap(x, v, n: int) -> None:
         k += step
 
 
-def _cascade(x, v, trigger: int, e: float, t: float, log: list, max_sweeps: int) -> float:
+def _cascade(x: NDArray[np.float64], v: NDArray[np.float64], trigger: int, e: float, t: float,
+             log: list[tuple[float, int, float, float]], max_sweeps: int) -> float:
     """The sequential-collision rule at one instant (module docstring); returns the energy it dissipated."""
     order = range(x.size - 1) if abs(v[trigger]) >= abs(v[trigger + 1]) else range(x.size - 2, -1, -1)
     _snap(x, v, trigger)
@@ -128,7 +131,8 @@ def _cascade(x, v, trigger: int, e: float, t: float, log: list, max_sweeps: int)
     raise RuntimeError(f"hard_sphere_run: the collisions at t = {t!r} did not end in {max_sweeps} sweeps")
 
 
-def hard_sphere_run(x0, v0, t_out, *, restitution: float = 1.0, max_collisions: int = 1_000_000) -> HardSphereRun:
+def hard_sphere_run(x0: ArrayLike, v0: ArrayLike, t_out: ArrayLike, *, restitution: float = 1.0,
+                    max_collisions: int = 1_000_000) -> HardSphereRun:
     """The ideal hard-sphere cradle from (x0, v0) at t = 0, stored at the times ``t_out`` (module docstring).
 
     ``x0`` nondecreasing (gaps >= 0: balls never overlap), ``v0`` of the same shape, ``t_out`` increasing,

@@ -20,6 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import root
 
 from cradle.models.dps import differences, p_laplacian
@@ -28,18 +29,18 @@ from cradle.specs.checked import checked
 RESIDUAL_TOL = 1e-10  # max |residual| / max |a_n| accepted as converged
 
 
-def _dg(s, alpha):
+def _dg(s: NDArray[np.float64], alpha: float) -> NDArray[np.float64]:
     return alpha * np.abs(s) ** (alpha - 1.0)
 
 
-def residual(a, alpha: float, bc: str = "periodic", sign: float = 1.0):
+def residual(a: ArrayLike, alpha: float, bc: str = "periodic", sign: float = 1.0) -> NDArray[np.float64]:
     """r_n = g(a_{n+1}-a_n) - g(a_n-a_{n-1}) + sign a_n: zero on solutions of (dpsstn) for
     sign = sign(mu), of (dpsst) for sign = mu."""
     a = np.asarray(a, dtype=float)
     return p_laplacian(a, alpha, bc) + sign * a
 
 
-def jacobian(a, alpha: float, bc: str = "periodic", sign: float = 1.0):
+def jacobian(a: ArrayLike, alpha: float, bc: str = "periodic", sign: float = 1.0) -> NDArray[np.float64]:
     """Analytic Jacobian of :func:`residual` (tridiagonal, with corners if periodic)."""
     a = np.asarray(a, dtype=float)
     N = a.size
@@ -71,7 +72,7 @@ class Homoclinic:
 
 
 def initial_guess(N: int, kind: str, alpha: float = 1.5, amplitude: float = 0.1,
-                  centre: int | None = None, separation: int = 9):
+                  centre: int | None = None, separation: int = 9) -> NDArray[np.float64]:
     """The starting point of the Powell iteration (section 2.2).
 
     * ``site``: a_{N/2} = -amplitude, 0 elsewhere (the paper's site-centred start);
@@ -96,7 +97,7 @@ def initial_guess(N: int, kind: str, alpha: float = 1.5, amplitude: float = 0.1,
     return a
 
 
-def _start(guess, mu: float) -> np.ndarray:
+def _start(guess: ArrayLike, mu: float) -> np.ndarray:
     """``guess`` as a float array after checking mu > 0 and N >= 2 (alpha and bc: ``@checked``)."""
     if not mu > 0:
         raise ValueError(f"mu must be > 0 for nontrivial localised solutions (section 2.2), got mu={mu!r}")
@@ -107,7 +108,7 @@ def _start(guess, mu: float) -> np.ndarray:
 
 
 @checked
-def solve(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: float = 1e-14,
+def solve(guess: ArrayLike, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: float = 1e-14,
           newton_steps: int = 3) -> Homoclinic:
     """Solve (dpsst) -mu a_n = g(a_{n+1}-a_n) - g(a_n-a_{n-1}) from ``guess`` (a mu = 1 guess).
 
@@ -137,7 +138,7 @@ def solve(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: floa
                       message=str(sol.message))
 
 
-def localised(a, ratio: float = 1e-3) -> bool:
+def localised(a: ArrayLike, ratio: float = 1e-3) -> bool:
     """True if |a_n| at the site farthest (on the ring) from the largest |a_n| is below ``ratio`` max|a_n|:
     a homoclinic, not a non-localised solution of (dpsstn) (which hybr finds near alpha = 1)."""
     a = np.asarray(a, dtype=float)
@@ -148,7 +149,7 @@ def localised(a, ratio: float = 1e-3) -> bool:
     return bool(abs(a[(c + a.size // 2) % a.size]) <= ratio * top)
 
 
-def symmetry_error(a, kind: str, centre: int | None = None) -> float:
+def symmetry_error(a: ArrayLike, kind: str, centre: int | None = None) -> float:
     """Departure from the symmetry the solution should have.
 
     ``site``: a_{c-n} = a_{c+n}; ``bond``: a_{c-n} = -a_{c+n+1}.
@@ -162,7 +163,7 @@ def symmetry_error(a, kind: str, centre: int | None = None) -> float:
     return float(np.max(np.abs(a[(c - n) % N] - a[(c + n) % N])))
 
 
-def energy_balance(a, alpha: float, bc: str = "periodic"):
+def energy_balance(a: ArrayLike, alpha: float, bc: str = "periodic") -> tuple[float, float]:
     """(sum a_n^2, sum |a_{n+1}-a_n|^(alpha+1)): equal for mu = 1 solutions of (dpsstn)."""
     a = np.asarray(a)
     return float(np.sum(a**2)), float(np.sum(np.abs(differences(a, bc)) ** (alpha + 1.0)))

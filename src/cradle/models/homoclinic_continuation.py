@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import root
 
 from cradle.models.dps import p_laplacian
@@ -71,7 +72,7 @@ class ScaledHomoclinic:
         return self.log10_scale
 
 
-def _sparse_solve(J, r):
+def _sparse_solve(J: NDArray[np.float64], r: NDArray[np.float64]) -> NDArray[np.float64] | None:
     """J^{-1} r by SuperLU (J is tridiagonal with corners plus one column): single-threaded, unlike a
     dense LAPACK solve, which under a multithreaded BLAS on a loaded machine costs ~30 ms at N = 128
     instead of ~0.2 ms. None if J is singular."""
@@ -90,7 +91,7 @@ def _sparse_solve(J, r):
 
 
 @checked
-def solve_scaled(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: float = 1e-14,
+def solve_scaled(guess: ArrayLike, alpha: float, bc: str = "periodic", mu: float = 1.0, xtol: float = 1e-14,
                  newton_steps: int = 4) -> ScaledHomoclinic:
     """Solve (dpsst) through a unit-amplitude profile: robust for any alpha > 1.
 
@@ -118,16 +119,16 @@ def solve_scaled(guess, alpha: float, bc: str = "periodic", mu: float = 1.0, xto
     nu0 = nu0 if np.isfinite(nu0) and nu0 > 0 else 2.0
     free = np.array([n for n in range(N) if n != c])
 
-    def unpack(z):
+    def unpack(z: NDArray[np.float64]) -> tuple[NDArray[np.float64], float]:
         b = b0.copy()
         b[free] = z[:-1]
         return b, z[-1]
 
-    def F(z):
+    def F(z: NDArray[np.float64]) -> NDArray[np.float64]:
         b, m = unpack(z)
         return residual(b, alpha, bc, sign=np.exp(m))
 
-    def JF(z):
+    def JF(z: NDArray[np.float64]) -> NDArray[np.float64]:
         b, m = unpack(z)
         nu = np.exp(m)
         J = jacobian(b, alpha, bc, sign=nu)

@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.specs.checked import checked
 
@@ -27,7 +28,7 @@ class ScaledProfile(Protocol):
     log10_scale: float
 
 
-def _backward_step(s1, L1, s0, L0, alpha):
+def _backward_step(s1: float, L1: float, s0: float, L0: float, alpha: float) -> tuple[float, float]:
     """One step of (dpsstn) solved for a_{n-1}, all in (sign, log|.|) variables.
 
     (dpsstn) at site n, mu = 1:  g(a_n - a_{n-1}) = g(a_{n+1} - a_n) + a_n, hence
@@ -48,7 +49,8 @@ def _backward_step(s1, L1, s0, L0, alpha):
     return -ss * np.sign(1.0 - rho2), Lh + np.log(abs(1.0 - rho2))
 
 
-def _tail_from(s_far, L_far, s_next, L_next, steps, alpha):
+def _tail_from(s_far: float, L_far: float, s_next: float, L_next: float, steps: int,
+               alpha: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Iterate :func:`_backward_step` ``steps`` times from (a_{M+1}, a_M); returns signs and logs
     of a_{M+1}, a_M, ..., a_{M-steps} (outermost first)."""
     signs, logs = [s_next, s_far], [L_next, L_far]
@@ -59,7 +61,8 @@ def _tail_from(s_far, L_far, s_next, L_next, steps, alpha):
     return np.array(signs), np.array(logs)
 
 
-def log_tail(a_junction: float, alpha: float, length: int, extra: int = 8):
+def log_tail(a_junction: float, alpha: float, length: int,
+             extra: int = 8) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The tail of a homoclinic solution of (dpsstn) from one site outwards, far below
     machine precision, as (sign, ln|a_n|) for ``length`` sites starting at the given one.
 
@@ -74,7 +77,7 @@ def log_tail(a_junction: float, alpha: float, length: int, extra: int = 8):
     return log_tail_log(float(np.sign(a_junction)), float(np.log(abs(a_junction))), alpha, length, extra)
 
 
-def log10_abs(a, alpha: float, floor: float = 1e-9, centre: int | None = None):
+def log10_abs(a: ArrayLike, alpha: float, floor: float = 1e-9, centre: int | None = None) -> NDArray[np.float64]:
     """log10|a_n| of a homoclinic solution on every site, exact far below machine precision.
 
     Sites where |a_n| > floor * max|a| keep their double-precision value;
@@ -100,7 +103,8 @@ def log10_abs(a, alpha: float, floor: float = 1e-9, centre: int | None = None):
     return out
 
 
-def log10_abs_scaled(sol: ScaledProfile, floor: float = 1e-9, centre: int | None = None):
+def log10_abs_scaled(sol: ScaledProfile, floor: float = 1e-9,
+                     centre: int | None = None) -> NDArray[np.float64]:
     """log10 |a_n| of a :class:`~cradle.models.homoclinic_continuation.ScaledHomoclinic` on every site
     (periodic ends), never underflowing.
 
@@ -127,14 +131,15 @@ def log10_abs_scaled(sol: ScaledProfile, floor: float = 1e-9, centre: int | None
 
 
 @checked
-def log_tail_log(sign_j: float, L_j: float, alpha: float, length: int, extra: int = 8):
+def log_tail_log(sign_j: float, L_j: float, alpha: float, length: int,
+                 extra: int = 8) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """:func:`log_tail` with the junction value given as (sign, ln|a_j|), so that it may be far below
     the smallest double (mu = 1 solutions near alpha = 1). The bracket on ln|a_M| is widened until it
     holds the root."""
     depth = length + extra
     s_far = sign_j * (-1.0) ** depth
 
-    def end(L_far):
+    def end(L_far: float) -> float:
         with np.errstate(all="ignore"):
             v = _tail_from(s_far, L_far, -s_far, alpha * L_far, depth, alpha)[1][-1]
         return v if np.isfinite(v) else np.inf   # a start too close to the core blows up: "too big"
@@ -160,7 +165,7 @@ def log_tail_log(sign_j: float, L_j: float, alpha: float, length: int, extra: in
     return sg[::-1][:length], L[::-1][:length]
 
 
-def decay_sites(log10a, decades: float = 16.0, centre: int | None = None) -> int:
+def decay_sites(log10a: ArrayLike, decades: float = 16.0, centre: int | None = None) -> int:
     """Sites from the centre (largest |a_n|) until log10|a_n| is ``decades`` below its maximum, on the
     slower side; the half-width of the core at that level. ``len(log10a)//2 + 1`` if never reached."""
     L = np.asarray(log10a, dtype=float)

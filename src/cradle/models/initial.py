@@ -18,6 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models import dps
 from cradle.specs.checked import checked
@@ -39,7 +40,8 @@ class InitialData:
     info: dict = field(default_factory=dict)  # derived parameters (a, omega_tw, ...)
 
 
-def lattice_state(A0, eps: float, alpha: float, bc: str = "periodic"):
+def lattice_state(A0: ArrayLike, eps: float, alpha: float,
+                  bc: str = "periodic") -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(x_n(0), v_n(0)) of the ansatz (ansatz) for DpS data A0 and small parameter eps."""
     A0 = np.asarray(A0, dtype=complex)
     dA = dps.rhs(A0, alpha, bc)
@@ -48,7 +50,7 @@ def lattice_state(A0, eps: float, alpha: float, bc: str = "periodic"):
     return x0, v0
 
 
-def noise(N: int, kind: str, amplitude: float, seed: int):
+def noise(N: int, kind: str, amplitude: float, seed: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(rho1, rho2) of (perturb): uniform on [-amplitude, amplitude] or Gaussian with sd amplitude.
 
     Drawn from ``numpy.random.default_rng(seed)`` (PCG64): the same seed
@@ -97,7 +99,7 @@ def travelling_wave(N: int, q: float, alpha: float, *, a: float | None = None, o
 
 
 @checked
-def breather(a_n, alpha: float, *, omega_sw: float | None = None, amplitude: float | None = None,
+def breather(a_n: ArrayLike, alpha: float, *, omega_sw: float | None = None, amplitude: float | None = None,
              site: int | None = None, bc: str = "periodic") -> InitialData:
     """Breather data (ansatzapproxst2)/(breatherdps) from a mu = 1 solution ``a_n`` of (dpsstn).
 
@@ -133,7 +135,7 @@ PAIR_PROFILES = ("site", "bond")
 
 
 @checked
-def from_displacements(x0, alpha: float, bc: str = "periodic", info: dict | None = None) -> InitialData:
+def from_displacements(x0: ArrayLike, alpha: float, bc: str = "periodic", info: dict | None = None) -> InitialData:
     """Data with zero velocities whose DpS start is tau = 0 in (breatherdps): A_n(0) = x_n(0)/2, eps = 1.
 
     For a real A_n(0) the DpS right-hand side is purely imaginary, so the
@@ -146,7 +148,7 @@ def from_displacements(x0, alpha: float, bc: str = "periodic", info: dict | None
     return InitialData(A0=A0, eps=1.0, x0=x0_ansatz, v0=v0, info={**(info or {}), "eps": 1.0})
 
 
-def envelope(s, kind: str, width: float):
+def envelope(s: ArrayLike, kind: str, width: float) -> NDArray[np.float64]:
     """A packet envelope of peak 1 at s = 0, (almost) supported on ``width`` sites.
 
     * ``gaussian``: exp(-s^2 / (2 sigma^2)) with sigma = width / 6, so the
@@ -215,7 +217,7 @@ def kick(N: int, alpha: float, *, velocity: float, site: int = 0, bc: str = "per
 
 @checked
 def pair(N: int, alpha: float, *, amplitude: float, separation: int, profile: str = "bond", sign: int = 1,
-         centre: int | None = None, bc: str = "periodic", a_n=None) -> InitialData:
+         centre: int | None = None, bc: str = "periodic", a_n: ArrayLike | None = None) -> InitialData:
     """Two static breathers at rest (figure loc1, right): the sum of two copies of one
     homoclinic profile a_n of (dpsstn), ``separation`` sites apart,
 

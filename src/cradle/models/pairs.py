@@ -19,9 +19,12 @@ A_n(0) is real and v_n(0) = 0: two static breathers at rest, as in loc1.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from cradle.models import dps
 from cradle.models.initial import InitialData, lattice_state
@@ -31,7 +34,7 @@ PROFILES = ("site", "bond")
 
 
 @lru_cache(maxsize=16)
-def _solved(N: int, profile: str, alpha: float, bc: str):
+def _solved(N: int, profile: str, alpha: float, bc: str) -> tuple[NDArray[np.float64], float]:
     from cradle.models import homoclinic
 
     sol = homoclinic.solve(homoclinic.initial_guess(N, profile, alpha, 0.1, centre=N // 2), alpha, bc)
@@ -40,7 +43,8 @@ def _solved(N: int, profile: str, alpha: float, bc: str):
     return sol.a.copy(), float(sol.residual)
 
 
-def envelope_profile(N: int, profile: str, alpha: float = 1.5, bc: str = "periodic"):
+def envelope_profile(N: int, profile: str, alpha: float = 1.5,
+                     bc: str = "periodic") -> tuple[NDArray[np.float64], float, float]:
     """(e_n, centre, residual): the envelope e_n = (-1)^n a_n >= 0 of the solved ``profile`` (site or
     bond) of (dpsstn) on N sites, its centre (a site, or a bond midpoint) and the solver's residual."""
     if profile not in PROFILES:
@@ -52,7 +56,7 @@ def envelope_profile(N: int, profile: str, alpha: float = 1.5, bc: str = "period
     return e, centre, res
 
 
-def _placed(e, centre, target):
+def _placed(e: NDArray[np.float64], centre: float, target: float) -> NDArray[np.float64]:
     """e shifted from ``centre`` to ``target``; the two must differ by an integer."""
     k = target - centre
     if abs(k - round(k)) > 1e-9:
@@ -61,13 +65,14 @@ def _placed(e, centre, target):
 
 
 @checked
-def two_breathers(N: int, alpha: float, *, profiles=("site", "site"), centres=(None, None),
-                  amplitudes=(0.01, 0.01), theta: float = 0.0, bc: str = "periodic") -> InitialData:
+def two_breathers(N: int, alpha: float, *, profiles: Sequence[str] = ("site", "site"),
+                  centres: Sequence[float | None] = (None, None),
+                  amplitudes: Sequence[float] = (0.01, 0.01), theta: float = 0.0, bc: str = "periodic") -> InitialData:
     """Initial data of two breathers (module docstring). ``centres``: where copy k sits (a site for
     a site profile, a half-integer for a bond profile); ``amplitudes``: peak |x| of each copy alone.
     info: the spacing c_2 - c_1, both mu_k and omega_sw_k = 1 + mu_k / (2^alpha tau0)."""
     A0 = np.zeros(N, dtype=complex)
-    info = {"profile_1": profiles[0], "profile_2": profiles[1], "theta": float(theta)}
+    info: dict[str, Any] = {"profile_1": profiles[0], "profile_2": profiles[1], "theta": float(theta)}
     for k, (prof, c, amp) in enumerate(zip(profiles, centres, amplitudes, strict=True), start=1):
         if not amp > 0:
             raise ValueError(f"amplitude {k} must be > 0, got {amp!r}")
@@ -91,7 +96,7 @@ def two_breathers(N: int, alpha: float, *, profiles=("site", "site"), centres=(N
     return InitialData(A0=A0, eps=1.0, x0=x0, v0=v0, info=info)
 
 
-def symmetric_centres(N: int, profiles, spacing: float):
+def symmetric_centres(N: int, profiles: Sequence[str], spacing: float) -> tuple[float, float]:
     """Centres (c_1, c_2) = (m - spacing/2, m + spacing/2) around the chain's middle m, chosen so each
     copy lands where its profile can sit (sites for site, half-integers for bond)."""
     want = [0.0 if p == "site" else 0.5 for p in profiles]

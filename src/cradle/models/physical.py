@@ -27,9 +27,14 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import TYPE_CHECKING, overload
 
 from cradle.specs.declare import declared, from_plain, param
 from cradle.specs.values import ConfigError, did_you_mean
+
+if TYPE_CHECKING:
+    import numpy as np
+    from numpy.typing import NDArray
 
 #: standard acceleration of gravity g_n (m/s^2), exact by definition (3rd CGPM, 1901; BIPM, The International
 #: System of Units, 9th edition, 2019)
@@ -198,12 +203,20 @@ def _scale(quantity: str, s: Scales) -> float:
     return getattr(s, QUANTITIES[quantity][0])
 
 
-def to_si(value, quantity: str, s: Scales):
+@overload
+def to_si(value: float, quantity: str, s: Scales) -> float: ...
+@overload
+def to_si(value: NDArray[np.float64], quantity: str, s: Scales) -> NDArray[np.float64]: ...
+def to_si(value: float | NDArray[np.float64], quantity: str, s: Scales) -> float | NDArray[np.float64]:
     """A value of (nc)'s ``quantity`` (displacement, time, velocity, energy, force) in SI units."""
     return value * _scale(quantity, s)
 
 
-def from_si(value, quantity: str, s: Scales):
+@overload
+def from_si(value: float, quantity: str, s: Scales) -> float: ...
+@overload
+def from_si(value: NDArray[np.float64], quantity: str, s: Scales) -> NDArray[np.float64]: ...
+def from_si(value: float | NDArray[np.float64], quantity: str, s: Scales) -> float | NDArray[np.float64]:
     """An SI value of ``quantity`` in (nc)'s dimensionless units."""
     return value / _scale(quantity, s)
 

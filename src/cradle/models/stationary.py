@@ -23,18 +23,19 @@ of the map (:func:`G`, :func:`G_inverse`, :func:`jacobian`) trusts its caller
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models.dps import p_laplacian
 from cradle.specs.checked import checked
 
 
-def g(s, alpha: float):
+def g(s: ArrayLike, alpha: float) -> NDArray[np.float64]:
     """The nonlinearity ``g(s) = s |s|^(alpha-1) = sign(s) |s|^alpha`` of (dpsstn), (homeo)."""
     s = np.asarray(s, dtype=float)
     return np.sign(s) * np.abs(s) ** alpha
 
 
-def g_inverse(b, alpha: float):
+def g_inverse(b: ArrayLike, alpha: float) -> NDArray[np.float64]:
     """Inverse of :func:`g`: ``b |b|^(1/alpha - 1) = sign(b) |b|^(1/alpha)``, as in (comp1).
 
     Written with ``sign`` so that it is finite (= 0) at ``b = 0``.
@@ -43,14 +44,14 @@ def g_inverse(b, alpha: float):
     return np.sign(b) * np.abs(b) ** (1.0 / alpha)
 
 
-def _split(U):
+def _split(U: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     U = np.asarray(U, dtype=float)
     if U.shape[-1:] != (2,):
         raise ValueError(f"U must have shape (..., 2), got {U.shape}")
     return U[..., 0], U[..., 1]
 
 
-def G(U, alpha: float):
+def G(U: ArrayLike, alpha: float) -> NDArray[np.float64]:
     """One step ``U_n = (a_n, b_{n+1}) -> U_{n+1} = (a_{n+1}, b_{n+2})`` of the map G.
 
     Parameters
@@ -71,7 +72,7 @@ def G(U, alpha: float):
     return np.stack([a1, b - a1], axis=-1)
 
 
-def G_inverse(U, alpha: float):
+def G_inverse(U: ArrayLike, alpha: float) -> NDArray[np.float64]:
     """Inverse map ``G^{-1}``: ``(a_{n+1}, b_{n+2}) -> (a_n, b_{n+1})``.
 
     Solves (comp2) for ``b_{n+1} = b_{n+2} + a_{n+1}``, then (comp1) for
@@ -91,7 +92,7 @@ def G_inverse(U, alpha: float):
     return np.stack([a1 - g_inverse(b, alpha), b], axis=-1)
 
 
-def jacobian(U, alpha: float):
+def jacobian(U: ArrayLike, alpha: float) -> NDArray[np.float64]:
     """Analytic Jacobian matrix DG(U) of (comp1)-(comp2).
 
     With ``phi(b) = sign(b)|b|^(1/alpha)`` and ``phi'(b) = |b|^(1/alpha - 1) / alpha``,
@@ -119,7 +120,7 @@ def jacobian(U, alpha: float):
     return np.stack([row0, row1], axis=-2)
 
 
-def reversor(U):
+def reversor(U: ArrayLike) -> NDArray[np.float64]:
     """The reversing symmetry ``R(a, b) = (a, -a - b)`` of G: ``R G^{-1} = G R``.
 
     R is an involution; it comes from the invariance ``n -> -n`` of (dpsstn):
@@ -130,7 +131,7 @@ def reversor(U):
 
 
 @checked
-def orbits(starts, n_iter: int, alpha: float, box: float | None = None):
+def orbits(starts: ArrayLike, n_iter: int, alpha: float, box: float | None = None) -> NDArray[np.float64]:
     """Orbits of G from several starting points at once.
 
     Parameters
@@ -164,7 +165,7 @@ def orbits(starts, n_iter: int, alpha: float, box: float | None = None):
     return out
 
 
-def orbit(U0, n_iter: int, alpha: float, box: float | None = None):
+def orbit(U0: ArrayLike, n_iter: int, alpha: float, box: float | None = None) -> NDArray[np.float64]:
     """The orbit ``U_0, G(U_0), ..., G^{n_iter}(U_0)`` as an array (n_iter+1, 2).
 
     See :func:`orbits` for ``box``.
@@ -172,7 +173,8 @@ def orbit(U0, n_iter: int, alpha: float, box: float | None = None):
     return orbits(np.asarray(U0, dtype=float).reshape(1, 2), n_iter, alpha, box)[0]
 
 
-def starting_points(starts=None, line=None):
+def starting_points(starts: ArrayLike | None = None,
+                    line: tuple[ArrayLike, ArrayLike, int] | None = None) -> NDArray[np.float64]:
     """Starting points ``(K, 2)`` of the orbits of G: ``starts`` (pairs [a_0, b_1]), then ``line``
     ``(from, to, count)``: ``count`` points equally spaced on the segment from ``from`` to ``to``, both
     ends included. At least one of the two must be given."""
@@ -190,7 +192,7 @@ def starting_points(starts=None, line=None):
 
 
 @checked
-def explicit_periodic_orbits(alpha: float) -> dict:
+def explicit_periodic_orbits(alpha: float) -> dict[str, NDArray[np.float64]]:
     """The explicit period-2, -3 and -4 orbits of G (caption of figure traj2).
 
     * ``"period2"``: ``a_n = 2^((alpha+1)/(1-alpha)) (-1)^n``
@@ -223,7 +225,7 @@ def explicit_periodic_orbits(alpha: float) -> dict:
 
 
 @checked
-def stationary_residual(a, alpha: float, mu: float = 1.0, bc: str = "periodic"):
+def stationary_residual(a: ArrayLike, alpha: float, mu: float = 1.0, bc: str = "periodic") -> NDArray[np.float64]:
     """Residual of the stationary DpS equation (dpsstn).
 
     ``r_n = g(a_{n+1} - a_n) - g(a_n - a_{n-1}) + sign(mu) a_n``, zero on solutions.

@@ -33,19 +33,20 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.specs.checked import checked
 
 DEFAULT_M = 2**16
 
 
-def dV0(d, alpha):
+def dV0(d: NDArray[np.float64], alpha: float) -> NDArray[np.float64]:
     """V0'(d) = -|d|^alpha H(-d): the Hertz contact force of a bond of elongation d (V = V0)."""
     c = np.maximum(-d, 0.0)
     return -(c**alpha)
 
 
-def d2V0(d, alpha):
+def d2V0(d: NDArray[np.float64], alpha: float) -> NDArray[np.float64]:
     """V0''(d) = alpha |d|^(alpha-1) H(-d): the stiffness of a bond of elongation d."""
     c = np.maximum(-d, 0.0)
     return alpha * c ** (alpha - 1.0)
@@ -55,7 +56,7 @@ def grid(M: int) -> np.ndarray:
     return 2.0 * np.pi * np.arange(M) / M
 
 
-def synth(c, M: int, shift: float = 0.0) -> np.ndarray:
+def synth(c: ArrayLike, M: int, shift: float = 0.0) -> np.ndarray:
     """u(xi_m + shift) on the M-point grid for u = sum_{j>=1} c_j sin(j xi) (c[0] is c_1)."""
     c = np.asarray(c, dtype=float)
     J = c.size
@@ -68,14 +69,15 @@ def synth(c, M: int, shift: float = 0.0) -> np.ndarray:
     return np.fft.irfft(X, n=M)
 
 
-def sine_coefficients(f, J: int) -> np.ndarray:
+def sine_coefficients(f: ArrayLike, J: int) -> np.ndarray:
     """(1/pi) int f sin(j xi), j = 1..J, by the trapezoidal rule on the uniform grid of f."""
     f = np.asarray(f, dtype=float)
     M = f.size
     return -2.0 / M * np.fft.rfft(f)[1:J + 1].imag
 
 
-def N_grid(c, q: float, alpha: float, M: int):
+def N_grid(c: ArrayLike, q: float, alpha: float,
+           M: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """N(u) (defn) on the grid, and the bond elongations d+ = u(xi+q)-u(xi), d- = u(xi)-u(xi-q)."""
     u = synth(c, M)
     dp = synth(c, M, q) - u
@@ -113,19 +115,19 @@ class Wave:
         c[0] = self.a
         return c
 
-    def profile(self, xi) -> np.ndarray:
+    def profile(self, xi: ArrayLike) -> np.ndarray:
         xi = np.asarray(xi, dtype=float)
         j = np.arange(1, self.modes + 1)
         return np.sin(np.multiply.outer(xi, j)) @ self.coefficients()
 
 
-def _w(v, eps):
+def _w(v: ArrayLike, eps: float) -> NDArray[np.float64]:
     w = eps * np.asarray(v, dtype=float)
     w[0] = 1.0
     return w
 
 
-def residual(x, a, q, alpha, J, M):
+def residual(x: NDArray[np.float64], a: float, q: float, alpha: float, J: int, M: int) -> NDArray[np.float64]:
     """Residual of the scale-free equations for x = (lambda, v_2..v_J)."""
     eps = a ** (alpha - 1.0)
     lam, v = x[0], np.concatenate([[0.0], x[1:]])
@@ -138,7 +140,7 @@ def residual(x, a, q, alpha, J, M):
     return r
 
 
-def jacobian(x, a, q, alpha, J, M_jac):
+def jacobian(x: NDArray[np.float64], a: float, q: float, alpha: float, J: int, M_jac: int) -> NDArray[np.float64]:
     """Analytic Jacobian of :func:`residual` (dN/dw by V0''), on an M_jac-point grid."""
     eps = a ** (alpha - 1.0)
     lam, v = x[0], np.concatenate([[0.0], x[1:]])
@@ -207,7 +209,7 @@ def solve(a: float, q: float, alpha: float, modes: int = 128, M: int = DEFAULT_M
                 M=int(M))
 
 
-def branch(amplitudes, q: float, alpha: float, modes: int = 128, M: int = DEFAULT_M) -> list[Wave]:
+def branch(amplitudes: ArrayLike, q: float, alpha: float, modes: int = 128, M: int = DEFAULT_M) -> list[Wave]:
     """Solutions along increasing amplitudes, each Newton started from the previous one."""
     out, prev = [], None
     for a in np.sort(np.asarray(amplitudes, dtype=float)):
