@@ -1,0 +1,64 @@
+"""Kuwabara-Kono viscoelastic contact damping: a bond in contact pushes with k_n max(c^alpha + eta c^(alpha-1) c', 0).
+
+Parameters: :class:`cradle.models.damping.Damping` ``contact`` = eta. Force: on a bond with overlap c > 0 and
+rate c', k_n [(delta_n)_+^alpha - max(c^alpha + eta c^(alpha-1) c', 0)] (clipped: a contact never pulls).
+Dissipation: P = sum k_n (max(c^alpha + eta c^(alpha-1) c', 0) - c^alpha) c' (eta k_n c^(alpha-1) c'^2 unclipped,
+-k_n c^alpha c' clipped). DpS counterpart: the complex factor kappa(eta, alpha) = 1 + i eta/alpha + ... on the
+p-Laplacian of (dpsdamped) (:func:`cradle.models.dps_damped.contact_factor`; the site law of
+:class:`cradle.integrators.systems.dps.DpsDamped`).
+
+:func:`damped_bond` is the same force on the paper's touching bond (k = 1, delta = 0), the bond law of the
+damped (nc) kernel :func:`cradle.integrators._kernels.lattice_damped_rhs`.
+"""
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+from numba import njit
+
+from cradle.integrators import _cache
+from cradle.integrators._generic import implements
+from cradle.integrators.terms.slots import damp_bond, rest, stiff
+
+_cache.activate()   # before the first @njit: numba picks the cache folder when decorating
+
+
+class NoContactDamping(NamedTuple):
+    """eta = 0: no arithmetic."""
+
+
+class ContactDamping(NamedTuple):
+    """eta > 0."""
+
+    eta: float
+
+
+@njit(cache=True)
+def damped_bond(c, rate, alpha, eta, mode):
+    """(force magnitude max(c^alpha + eta c^(alpha-1) c', 0), elastic part c^alpha) of a compressed touching bond
+    c > 0 of (ncdamped), c' = ``rate`` (Hertz modes only: mode 0 is the c sqrt(c) fast path)."""
+    if mode == 0:
+        s = math.sqrt(c)
+        el = c * s
+    else:
+        s = c ** (alpha - 1.0)
+        el = c * s
+    return max(el + eta * s * rate, 0.0), el
+
+
+@implements(damp_bond, NoContactDamping)
+@njit(cache=True)
+def _none(damping, sites, contact, n, m, diff, el, sa, y, J, N, P):
+    return stiff(sites, n, diff), P
+
+
+@implements(damp_bond, ContactDamping)
+@njit(cache=True)
+def _damp(damping, sites, contact, n, m, diff, el, sa, y, J, N, P):
+    eta = damping.eta
+    rate = J[n] * y[N + n] - J[m] * y[N + m]   # c' = -(u'_{n+1} - u'_n)
+    push = el + eta * sa * rate
+    if push < 0.0:   # the contact would pull: no force
+        return stiff(sites, n, rest(contact, n)), P - stiff(sites, n, el) * rate
+    return stiff(sites, n, diff - eta * sa * rate), P + stiff(sites, n, eta) * sa * rate * rate

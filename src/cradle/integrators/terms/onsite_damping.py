@@ -1,0 +1,40 @@
+"""Linear on-site damping: a force -gamma m_n v_n on every bead of (ncdamped).
+
+Parameters: :class:`cradle.models.damping.Damping` ``onsite`` = gamma. Force: -gamma v_n per unit mass.
+Dissipation: P = gamma sum m_n v_n^2. DpS counterpart: the decay -(gamma~/2) A_n of (dpsdamped), gamma~ = gamma
+eps^(1-alpha) (:func:`cradle.models.dps_damped.slow_damping`; the site law of
+:class:`cradle.integrators.systems.dps.DpsDamped`).
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+from numba import njit
+
+from cradle.integrators import _cache
+from cradle.integrators._generic import implements
+from cradle.integrators.terms.slots import damp_site, mass_times
+
+_cache.activate()   # before the first @njit: numba picks the cache folder when decorating
+
+
+class NoOnsiteDamping(NamedTuple):
+    """gamma = 0: no arithmetic."""
+
+
+class OnsiteDamping(NamedTuple):
+    """gamma > 0."""
+
+    gamma: float
+
+
+@implements(damp_site, NoOnsiteDamping)
+@njit(cache=True)
+def _none(damping, sites, n, acc, v, P):
+    return acc, P
+
+
+@implements(damp_site, OnsiteDamping)
+@njit(cache=True)
+def _damp(damping, sites, n, acc, v, P):
+    return acc - damping.gamma * v, P + mass_times(sites, n, damping.gamma) * v * v
