@@ -31,11 +31,9 @@ def validated(damping) -> DpsDamping:
     return from_plain(DpsDamping, plain(damping), "damping")
 
 
-def system(damping: DpsDamping, alpha: float, inv2tau0: float, periodic: bool) -> SD.DpsDamped:
-    """The (dpsdamped) of ``damping``: 1/(2 tau0), gamma~/2, Re kappa, Im kappa."""
-    kap = contact_factor(damping.eta, alpha)
-    return SD.DpsDamped(float(alpha), bool(periodic), float(inv2tau0), 0.5 * float(damping.gamma), float(kap.real),
-                        float(kap.imag))
+def system(damping: DpsDamping, alpha: float, inv2tau0: float, periodic: bool) -> SD.DpsSystem:
+    """The (dpsdamped) of ``damping`` in the DpS family (:mod:`cradle.integrators.systems.dps`)."""
+    return SD.damped(alpha, periodic, inv2tau0, damping.gamma, contact_factor(damping.eta, alpha))
 
 
 class _Balance:

@@ -214,7 +214,7 @@ def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -
     alpha, periodic = run.alpha, run.periodic
     t0 = _tau0(alpha)
     par = KS.pack(sites, S.contact_tables(alpha) if sites.compressed else None, t0, S.PSI_MAX)
-    system = SD.dps_sites_system(alpha, periodic, par)
+    system = SD.imperfect(alpha, periodic, sites, par)
     l20, H0, pr0, pi0 = KS.dps_sites_invariants(run.y0, alpha, par, periodic)
     P0 = complex(pr0, pi0)
     l2s = l20 if l20 != 0.0 else 1.0
@@ -276,7 +276,7 @@ class _DpsRun:
             raise ValueError(f"progress must be callable or None, got progress={progress!r}")
         self.progress = progress
         self.inv2tau0 = 1.0 / (2.0 * _tau0(self.alpha))
-        self.system = SD.Dps(float(self.alpha), bool(self.periodic), float(self.inv2tau0))
+        self.system = SD.dfnls(self.alpha, self.periodic, self.inv2tau0)   # (dfnls) in the numba DOP853
         self.N = A0.size
         self.y0 = np.ascontiguousarray(A0).view(np.float64).copy()
         self.l20, self.S0, pr0, pi0 = SD.dps_invariants(self.y0, self.alpha, self.periodic)

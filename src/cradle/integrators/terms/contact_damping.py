@@ -19,7 +19,7 @@ from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._generic import implements
-from cradle.integrators.terms.slots import damp_bond, rest, stiff
+from cradle.integrators.terms.slots import damp_bond, dps_kappa, dps_l2_loss, dps_S_loss, rest, stiff
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -62,3 +62,47 @@ def _damp(damping, sites, contact, n, m, diff, el, sa, y, J, N, P):
     if push < 0.0:   # the contact would pull: no force
         return stiff(sites, n, rest(contact, n)), P - stiff(sites, n, el) * rate
     return stiff(sites, n, diff - eta * sa * rate), P + stiff(sites, n, eta) * sa * rate * rate
+
+
+class SlowContactDamping(NamedTuple):
+    """The DpS counterpart: kappa = kr + i ki (:func:`cradle.models.dps_damped.contact_factor`)."""
+
+    kr: float
+    ki: float
+
+
+@implements(dps_kappa, NoContactDamping)
+@njit(cache=True)
+def _dps_kappa_none(damping, wr, wi):
+    return wr, wi
+
+
+@implements(dps_kappa, SlowContactDamping)
+@njit(cache=True)
+def _dps_kappa(damping, wr, wi):
+    # kappa w = (kr wr - ki wi) + i (kr wi + ki wr)
+    return damping.kr * wr - damping.ki * wi, damping.kr * wi + damping.ki * wr
+
+
+@implements(dps_l2_loss, NoContactDamping)
+@njit(cache=True)
+def _l2_loss_none(damping, l2, S, inv2tau0):
+    return 0.0
+
+
+@implements(dps_l2_loss, SlowContactDamping)
+@njit(cache=True)
+def _l2_loss(damping, l2, S, inv2tau0):
+    return 2.0 * damping.ki * inv2tau0 * S   # (Im kappa / tau0) S
+
+
+@implements(dps_S_loss, NoContactDamping)
+@njit(cache=True)
+def _S_loss_none(damping, L2, S, inv2tau0):
+    return 0.0
+
+
+@implements(dps_S_loss, SlowContactDamping)
+@njit(cache=True)
+def _S_loss(damping, L2, S, inv2tau0):
+    return damping.ki * inv2tau0 * L2        # (Im kappa / (2 tau0)) sum |W_n - W_{n-1}|^2

@@ -3,7 +3,7 @@
 Parameters: the exponent alpha (and the fast path ``mode`` 0 for alpha = 3/2; :func:`cradle.integrators._kernels.mode_flag`).
 Force: F(d) = -c^alpha on a bond with overlap c = -d > 0, 0 apart. Energy: Phi(d) = c^(alpha+1)/(alpha+1).
 DpS counterpart: averaged over the fast phase, the p-Laplacian coupling g(z) = z |z|^(alpha-1) of (dfnls)
-(:func:`dps_coupling`, the bond of :class:`cradle.integrators.systems.dps.Dps`).
+(:class:`PLaplacian`, :func:`g_over_r`).
 
 The paper's (nc) itself is integrated by the tuned kernels of :mod:`cradle.integrators._kernels` (which keep their
 own arithmetic: energy from d f); this unit is the contact law of (ncimperfect) without precompression.
@@ -17,7 +17,7 @@ from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._generic import implements
-from cradle.integrators.terms.slots import elastic, overlap, potential, rest
+from cradle.integrators.terms.slots import dps_coupling, elastic, overlap, potential, rest
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -37,7 +37,7 @@ def hertz(c, alpha, mode):
 
 
 @njit(cache=True)
-def dps_coupling(r, alpha):
+def g_over_r(r, alpha):
     """g(r)/r = r^(alpha-1) for r >= 0 (sqrt fast path for alpha = 3/2; 0 at r = 0): the DpS counterpart."""
     if r <= 0.0:
         return 0.0
@@ -68,3 +68,13 @@ def _rest(contact, n):
 @njit(cache=True)
 def _potential(contact, n, d, c, a1):
     return c ** a1 / a1 if c > 0.0 else 0.0
+
+
+class PLaplacian(NamedTuple):
+    """The DpS counterpart of the touching Hertz contact: W_n = g(A_{n+1} - A_n), the p-Laplacian of (dfnls)."""
+
+
+@implements(dps_coupling, PLaplacian)
+@njit(cache=True)
+def _dps_coupling(coupling, r, n, alpha):
+    return g_over_r(r, alpha)

@@ -15,7 +15,17 @@ from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._generic import implements
-from cradle.integrators.terms.slots import mass_omega2, mass_times, onsite_scale, per_mass, stiff
+from cradle.integrators.terms.slots import (
+    dps_detuning,
+    dps_factor,
+    dps_rotate_detuned,
+    dps_weight,
+    mass_omega2,
+    mass_times,
+    onsite_scale,
+    per_mass,
+    stiff,
+)
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -98,3 +108,70 @@ def _mass_times(sites, n, X):
 @njit(cache=True)
 def _mass_omega2(sites, n, X):
     return (sites.mass[n] * sites.omega2[n]) * X
+
+
+class SlowSites(NamedTuple):
+    """The DpS counterpart (:class:`cradle.models.dps_sites.DpsSites`): 1/m_n, k_n of bond n, detuning delta_n."""
+
+    inv_mass: np.ndarray
+    weight: np.ndarray
+    detuning: np.ndarray
+
+
+def slow_sites(sites) -> SlowSites | Homogeneous:
+    """The unit of a :class:`cradle.models.dps_sites.DpsSites` (:class:`Homogeneous` if every coefficient is 1 and
+    no site is detuned)."""
+    if np.all(sites.inv_mass == 1.0) and np.all(sites.weight == 1.0) and np.all(sites.detuning == 0.0):
+        return Homogeneous()
+    return SlowSites(np.ascontiguousarray(sites.inv_mass), np.ascontiguousarray(sites.weight),
+                     np.ascontiguousarray(sites.detuning))
+
+
+@implements(dps_weight, Homogeneous)
+@njit(cache=True)
+def _dps_weight_1(sites, n, s):
+    return s
+
+
+@implements(dps_factor, Homogeneous)
+@njit(cache=True)
+def _dps_factor_1(sites, n, inv2tau0):
+    return inv2tau0
+
+
+@implements(dps_detuning, Homogeneous)
+@njit(cache=True)
+def _dps_detuning_1(sites, n, X):
+    return X
+
+
+@implements(dps_rotate_detuned, Homogeneous)
+@njit(cache=True)
+def _dps_rotate_1(sites, n, a, b, ar, ai):
+    return a, b
+
+
+@implements(dps_weight, SlowSites)
+@njit(cache=True)
+def _dps_weight(sites, n, s):
+    return sites.weight[n] * s
+
+
+@implements(dps_factor, SlowSites)
+@njit(cache=True)
+def _dps_factor(sites, n, inv2tau0):
+    return sites.inv_mass[n] * inv2tau0
+
+
+@implements(dps_detuning, SlowSites)
+@njit(cache=True)
+def _dps_detuning(sites, n, X):
+    return sites.detuning[n] + X
+
+
+@implements(dps_rotate_detuned, SlowSites)
+@njit(cache=True)
+def _dps_rotate(sites, n, a, b, ar, ai):
+    rot = sites.detuning[n]
+    # i rot (ar + i ai) = -rot ai + i rot ar
+    return a - rot * ai, b + rot * ar

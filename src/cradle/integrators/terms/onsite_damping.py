@@ -13,7 +13,7 @@ from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._generic import implements
-from cradle.integrators.terms.slots import damp_site, mass_times
+from cradle.integrators.terms.slots import damp_site, dps_decay, dps_l2_loss, dps_S_loss, mass_times
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -38,3 +38,45 @@ def _none(damping, sites, n, acc, v, P):
 @njit(cache=True)
 def _damp(damping, sites, n, acc, v, P):
     return acc - damping.gamma * v, P + mass_times(sites, n, damping.gamma) * v * v
+
+
+class SlowOnsiteDamping(NamedTuple):
+    """The DpS counterpart: gamma~/2."""
+
+    half_gamma: float
+
+
+@implements(dps_decay, NoOnsiteDamping)
+@njit(cache=True)
+def _dps_decay_none(damping, a, b, ar, ai):
+    return a, b
+
+
+@implements(dps_decay, SlowOnsiteDamping)
+@njit(cache=True)
+def _dps_decay(damping, a, b, ar, ai):
+    return a - damping.half_gamma * ar, b - damping.half_gamma * ai
+
+
+@implements(dps_l2_loss, NoOnsiteDamping)
+@njit(cache=True)
+def _l2_loss_none(damping, l2, S, inv2tau0):
+    return 0.0
+
+
+@implements(dps_l2_loss, SlowOnsiteDamping)
+@njit(cache=True)
+def _l2_loss(damping, l2, S, inv2tau0):
+    return 2.0 * damping.half_gamma * l2     # gamma~ sum |A_n|^2
+
+
+@implements(dps_S_loss, NoOnsiteDamping)
+@njit(cache=True)
+def _S_loss_none(damping, L2, S, inv2tau0):
+    return 0.0
+
+
+@implements(dps_S_loss, SlowOnsiteDamping)
+@njit(cache=True)
+def _S_loss(damping, L2, S, inv2tau0):
+    return damping.half_gamma * S            # (gamma~/2) S

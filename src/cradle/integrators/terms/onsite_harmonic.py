@@ -12,7 +12,7 @@ from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._generic import implements
-from cradle.integrators.terms.slots import onsite_energy, onsite_force, position
+from cradle.integrators.terms.slots import dps_rotate, dps_rotate_detuned, onsite_energy, onsite_force, position
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -37,3 +37,9 @@ def _force(onsite, x, u):
 @njit(cache=True)
 def _energy(onsite, n, x):
     return 0.5 * x * x
+
+
+@implements(dps_rotate, Harmonic)
+@njit(cache=True)
+def _dps_rotate(onsite, sites, n, a, b, ar, ai):
+    return dps_rotate_detuned(sites, n, a, b, ar, ai)

@@ -9,11 +9,12 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+import numpy as np
 from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._generic import implements
-from cradle.integrators.terms.slots import onsite_energy, onsite_force, position
+from cradle.integrators.terms.slots import dps_detuning, dps_rotate, onsite_energy, onsite_force, position
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -40,3 +41,18 @@ def _force(onsite, x, u):
 @njit(cache=True)
 def _energy(onsite, n, x):
     return 0.5 * x * x + 0.25 * onsite.beta * x ** 4
+
+
+class SlowQuartic(NamedTuple):
+    """The DpS counterpart: beta~_n of every site (:class:`cradle.models.dps_sites.DpsSites` ``beta``; a pendulum's
+    beta_n = -s_n^2/6)."""
+
+    beta: np.ndarray
+
+
+@implements(dps_rotate, SlowQuartic)
+@njit(cache=True)
+def _dps_rotate(onsite, sites, n, a, b, ar, ai):
+    rot = dps_detuning(sites, n, 1.5 * onsite.beta[n] * (ar * ar + ai * ai))
+    # i rot (ar + i ai) = -rot ai + i rot ar
+    return a - rot * ai, b + rot * ar

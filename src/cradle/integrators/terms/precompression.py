@@ -22,7 +22,8 @@ from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._generic import implements
-from cradle.integrators.terms.slots import elastic, overlap, potential, rest
+from cradle.integrators._kernels_dps_sites import _g_over_r
+from cradle.integrators.terms.slots import dps_coupling, elastic, overlap, potential, rest
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -75,3 +76,33 @@ def _potential(contact, n, d, c, a1):
             return dpa * dn / a1 * (math.expm1(a1 * math.log1p(-r)) + a1 * r)
         return dpa * (d - dn / a1)
     return c ** a1 / a1 if c > 0.0 else 0.0
+
+
+class Tabulated(NamedTuple):
+    """The DpS counterpart: g(r; delta~_n)/r from the tables of :mod:`cradle.models.dps_sites` packed in ``par``
+    (:func:`cradle.integrators._kernels_dps_sites.pack`) at the offsets of its blocks."""
+
+    par: np.ndarray
+    oe: int
+    og1: int
+    og2: int
+    oga: int
+    n1: int
+    n2: int
+    ns: int
+
+
+def tabulated(par) -> Tabulated:
+    """The :class:`Tabulated` of a packed ``par``."""
+    from cradle.integrators._kernels_dps_sites import _offsets
+
+    _N, _od, _om, _ow, _ob, oe, og1, og2, oga, _op1, _op2, _oph, n1, n2, ns = _offsets(par)
+    return Tabulated(par, oe, og1, og2, oga, n1, n2, ns)
+
+
+@implements(dps_coupling, Tabulated)
+@njit(cache=True)
+def _dps_coupling(coupling, r, n, alpha):
+    par = coupling.par
+    return _g_over_r(r, par[coupling.oe + n], alpha, par, coupling.og1, coupling.og2, coupling.oga, coupling.n1,
+                     coupling.n2, coupling.ns)

@@ -89,3 +89,57 @@ def damp_site(damping, sites, n, acc, v, P):
 def damp_bond(damping, sites, contact, n, m, diff, el, sa, y, J, N, P):
     """(k_n times the force of bond n (beads n, m) in contact, P with its share): ``diff`` the elastic F_n,
     el = c^alpha, sa = c^(alpha-1), y = [x, v, ...], J the du/dx of the beads."""
+
+
+# --- the DpS counterparts: what each term becomes in the DpS right-hand side family (systems.dps) --------------
+
+
+@generic
+def dps_coupling(coupling, r, n, alpha):
+    """W_n / (A_{n+1} - A_n) of bond n at |A_{n+1} - A_n| = r (before its weight): r^(alpha-1) for touching beads
+    (hertz), g(r; delta~_n)/r with precompression or gaps (precompression)."""
+
+
+@generic
+def dps_weight(sites, n, s):
+    """k_n s (inhomogeneity: the stiffness of bond n)."""
+
+
+@generic
+def dps_factor(sites, n, inv2tau0):
+    """The factor of W_n - W_{n-1} in dA_n/dtau: 1/(2 tau0), over m_n with masses (inhomogeneity)."""
+
+
+@generic
+def dps_kappa(damping, wr, wi):
+    """kappa (wr + i wi): the contact damping's complex factor on the coupling (contact_damping)."""
+
+
+@generic
+def dps_decay(damping, a, b, ar, ai):
+    """(a, b) - (gamma~/2) (Re A_n, Im A_n): the on-site damping (onsite_damping)."""
+
+
+@generic
+def dps_rotate(onsite, sites, n, a, b, ar, ai):
+    """(a, b) + i rot A_n, rot = delta_n + (3/2) beta~_n |A_n|^2: detuning (inhomogeneity) and quartic (onsite)."""
+
+
+@generic
+def dps_detuning(sites, n, X):
+    """delta_n + X, the rotation rate of site n (X the quartic's share)."""
+
+
+@generic
+def dps_rotate_detuned(sites, n, a, b, ar, ai):
+    """(a, b) + i delta_n A_n, the detuning alone (no on-site quartic)."""
+
+
+@generic
+def dps_l2_loss(damping, l2, S, inv2tau0):
+    """This damping's share of Q_l2' (the balance laws of (dpsdamped)); 0.0 when absent."""
+
+
+@generic
+def dps_S_loss(damping, L2, S, inv2tau0):
+    """This damping's share of Q_S' / (alpha + 1); 0.0 when absent."""
