@@ -17,7 +17,9 @@ from typing import Any
 from numba.extending import overload
 
 #: (operation name, NamedTuple class) -> the njit implementation registered for it
-_IMPLEMENTATIONS: dict[tuple[str, type], Any] = {}
+_IMPLEMENTATIONS: dict[tuple[str, Any], Any] = {}
+#: the operation (what kernels call) -> its stub (the signature its implementations share)
+_STUBS: dict[Callable, Callable] = {}
 
 
 def generic(stub: Callable) -> Callable:
@@ -42,9 +44,6 @@ def generic(stub: Callable) -> Callable:
     _STUBS[python_call] = stub
     overload(python_call)(typer)
     return python_call
-
-
-_STUBS: dict[Callable, Callable] = {}
 
 
 def implements(operation: Callable, cls: type) -> Callable:

@@ -17,8 +17,8 @@ import time
 import numpy as np
 
 from cradle.integrators import _dop853
-from cradle.integrators.systems import dps as SD
 from cradle.integrators._scipy_steps import stepped
+from cradle.integrators.systems import dps as SD
 from cradle.models.dps_damped import DpsDamping, contact_factor
 from cradle.specs.declare import from_plain, plain
 
@@ -66,7 +66,7 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, soluti
     numba), both given by the caller, which this module does not import."""
     tau_out, T, N = run.tau_out, run.tau_out.size, run.N
     dsys = system(damping, run.alpha, run.inv2tau0, run.periodic)
-    alpha, periodic, rtol, atol = run.alpha, run.periodic, run.rtol, run.atol
+    rtol, atol = run.rtol, run.atol
     y0 = np.concatenate([run.y0, [0.0, 0.0]])
     balance = _Balance(run, damping)
     rows = np.empty((T, 7))

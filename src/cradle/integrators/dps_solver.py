@@ -28,9 +28,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from cradle.integrators import _dop853
-from cradle.integrators.systems import dps as SD
 from cradle.integrators._scipy_steps import stepped
 from cradle.integrators._validate import check_state, check_times
+from cradle.integrators.systems import dps as SD
 from cradle.models.dps import tau0 as _tau0
 from cradle.models.dps_damped import DpsDamping
 from cradle.models.dps_sites import DpsSites

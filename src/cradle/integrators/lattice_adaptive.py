@@ -11,11 +11,24 @@ cradle (ncimperfect) of :mod:`cradle.models.lattice_terms` (:func:`run_dop853_te
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from cradle.integrators import _dop853, _dop853_events, _kernels as K
-from cradle.integrators.systems import lattice as SL
 from cradle.integrators._scipy_steps import stepped
+from cradle.integrators.systems import imperfect as SI, lattice as SL
+from cradle.integrators.terms import (
+    contact_damping as CD,
+    hertz,
+    inhomogeneity as IH,
+    onsite_damping as OD,
+    onsite_harmonic,
+    onsite_pendulum,
+    onsite_quartic,
+    precompression as PC,
+)
+from cradle.models import lattice_terms as LTm
 
 #: scipy.integrate.solve_ivp classes, the baselines (looked up when used: scipy.integrate costs 0.5 s to import)
 SCIPY_METHODS = {"dop853": "DOP853", "rk45": "RK45", "lsoda": "LSODA", "radau": "Radau"}
@@ -119,14 +132,12 @@ def run_dop853_terms(x0, v0, t_out, rtol, atol, alpha, mode, periodic, terms, si
     :mod:`cradle.integrators.terms`), with ``damping`` (or None) from t = 0: y = [x, v, s D] (y = [x, v] and D = 0
     without damping), E the generalised (ham), D the dissipated energy, drift = max over every step of
     |H + D - H(0)| / |H(0)|; no contact-event location. For the pendulum x is the arc variable."""
-    from cradle.integrators.systems import imperfect as SI
-
     N = x0.size
-    system = SI.build(alpha, mode, periodic, terms, sites)
+    system = imperfect_system(alpha, mode, periodic, terms, sites)
     H0, c0 = SI.imperfect_energy(system, x0, v0)
     dscale = atol / (rtol * abs(H0)) if H0 != 0.0 else 1.0
     if damping is not None:
-        system = SI.build(alpha, mode, periodic, terms, sites, damping, dscale)
+        system = imperfect_system(alpha, mode, periodic, terms, sites, damping, dscale)
     stats = np.array([H0, 0.0, c0, H0, dscale])
     y0 = np.concatenate((x0, v0, [0.0]) if damping is not None else (x0, v0))
     Y, n_steps, nfev = _dop853.run_dop853(system, y0, t_out, rtol, atol, stats, progress)
@@ -135,3 +146,28 @@ def run_dop853_terms(x0, v0, t_out, rtol, atol, alpha, mode, periodic, terms, si
     D = Y[:, 2 * N] / dscale if damping is not None else np.zeros(len(t_out))
     E = np.array([SI.imperfect_energy(system, X[i], V[i])[0] for i in range(len(t_out))])
     return X, V, E, D, float(stats[1]), n_steps, nfev, float(stats[2])
+
+
+def imperfect_system(alpha, mode, periodic, terms, sites, damping=None, dscale=None) -> SI.Imperfect:
+    """The system of the declared ``terms`` (:class:`cradle.models.lattice_terms.Terms`) on ``sites``
+    (:class:`cradle.models.inhomogeneity.Sites`) with ``damping`` (:class:`cradle.models.damping.Damping`, or
+    None: y = [x, v]); ``dscale`` the scale of D in the state (with damping)."""
+    N = sites.mass.size
+    contact: NamedTuple = hertz.Touching()
+    if terms.precompression.active:
+        contact = PC.build(LTm.static_overlaps(terms.precompression.delta0, sites.stiffness, alpha), alpha)
+    site_unit: NamedTuple = IH.build(sites) if terms.inhomogeneity.active else IH.Homogeneous()
+    onsite: NamedTuple = onsite_harmonic.Harmonic()
+    if terms.onsite.active and terms.onsite.potential == "quartic":
+        onsite = onsite_quartic.Quartic(float(terms.onsite.beta))
+    elif terms.onsite.active and terms.onsite.potential == "pendulum":
+        onsite = onsite_pendulum.Pendulum(np.ascontiguousarray(LTm.pendulum_scales(terms, sites), dtype=float))
+    gamma = 0.0 if damping is None else damping.onsite
+    eta = 0.0 if damping is None else damping.contact
+    od: NamedTuple = OD.OnsiteDamping(float(gamma)) if gamma != 0.0 else OD.NoOnsiteDamping()
+    cd: NamedTuple = CD.ContactDamping(float(eta)) if eta != 0.0 else CD.NoContactDamping()
+    dis: NamedTuple = SI.NoDissipation()
+    if damping is not None:
+        dis = SI.Dissipation(1.0 if dscale is None else float(dscale))
+    return SI.Imperfect(float(alpha), int(mode), bool(periodic), contact, site_unit, onsite, od, cd, dis, np.empty(N),
+                        np.empty(N), np.empty(N), np.empty(N))

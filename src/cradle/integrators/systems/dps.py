@@ -29,8 +29,15 @@ from numba import njit
 from cradle.integrators import _cache, _kernels_dps_sites as KS
 from cradle.integrators._dop853 import monitor, rhs
 from cradle.integrators._generic import generic, implements
-from cradle.integrators.terms import contact_damping as CD, hertz, inhomogeneity as IH, onsite_damping as OD
-from cradle.integrators.terms import onsite_harmonic, onsite_quartic, precompression as PC
+from cradle.integrators.terms import (
+    contact_damping as CD,
+    hertz,
+    inhomogeneity as IH,
+    onsite_damping as OD,
+    onsite_harmonic,
+    onsite_quartic,
+    precompression as PC,
+)
 from cradle.integrators.terms.slots import (
     dps_coupling,
     dps_decay,

@@ -5,8 +5,9 @@ its right-hand side and generalised energy (ham), composed of the term units of 
                                         (- gamma m_n v_n and the Kuwabara-Kono term with damping)
 
 on y = [x, v], or y = [x, v, s D] with damping (D the dissipated energy, s its scale in the state). The system
-holds one unit per slot (:class:`Imperfect`); :func:`build` picks them from the declared terms, a term at its
-default being the slot's absent unit. Hertz contacts only (``mode`` 0 or 1).
+holds one unit per slot (:class:`Imperfect`); :func:`cradle.integrators.lattice_adaptive.imperfect_system` picks
+them from the declared terms, a term at its default being the slot's absent unit. Hertz contacts only (``mode`` 0
+or 1).
 """
 from __future__ import annotations
 
@@ -18,8 +19,9 @@ from numba import njit
 from cradle.integrators import _cache
 from cradle.integrators._dop853 import monitor, rhs
 from cradle.integrators._generic import generic, implements
-from cradle.integrators.terms import contact_damping as CD, hertz, inhomogeneity as IH, onsite_damping as OD
-from cradle.integrators.terms import onsite_harmonic, onsite_pendulum, onsite_quartic, precompression as PC
+from cradle.integrators.terms import (
+    hertz,
+)
 from cradle.integrators.terms.slots import (
     damp_bond,
     damp_site,
@@ -68,31 +70,6 @@ class Imperfect(NamedTuple):
     U: np.ndarray
     J: np.ndarray
     Ue: np.ndarray
-
-
-def build(alpha, mode, periodic, terms, sites, damping=None, dscale=None) -> Imperfect:
-    """The system of the declared ``terms`` (:class:`cradle.models.lattice_terms.Terms`) on ``sites``
-    (:class:`cradle.models.inhomogeneity.Sites`) with ``damping`` (:class:`cradle.models.damping.Damping`, or
-    None: y = [x, v]); ``dscale`` the scale of D in the state (with damping)."""
-    from cradle.models import lattice_terms as LTm
-
-    N = sites.mass.size
-    contact: NamedTuple = hertz.Touching()
-    if terms.precompression.active:
-        contact = PC.build(LTm.static_overlaps(terms.precompression.delta0, sites.stiffness, alpha), alpha)
-    site_unit: NamedTuple = IH.build(sites) if terms.inhomogeneity.active else IH.Homogeneous()
-    onsite: NamedTuple = onsite_harmonic.Harmonic()
-    if terms.onsite.active and terms.onsite.potential == "quartic":
-        onsite = onsite_quartic.Quartic(float(terms.onsite.beta))
-    elif terms.onsite.active and terms.onsite.potential == "pendulum":
-        onsite = onsite_pendulum.Pendulum(np.ascontiguousarray(LTm.pendulum_scales(terms, sites), dtype=float))
-    gamma = 0.0 if damping is None else damping.onsite
-    eta = 0.0 if damping is None else damping.contact
-    od: NamedTuple = OD.OnsiteDamping(float(gamma)) if gamma != 0.0 else OD.NoOnsiteDamping()
-    cd: NamedTuple = CD.ContactDamping(float(eta)) if eta != 0.0 else CD.NoContactDamping()
-    dis: NamedTuple = NoDissipation() if damping is None else Dissipation(1.0 if dscale is None else float(dscale))
-    return Imperfect(float(alpha), int(mode), bool(periodic), contact, site_unit, onsite, od, cd, dis, np.empty(N),
-                     np.empty(N), np.empty(N), np.empty(N))
 
 
 @generic

@@ -1,6 +1,7 @@
 """Hertz's contact (vhertz) between touching beads: the contact law of (nc) in the imperfect cradle.
 
-Parameters: the exponent alpha (and the fast path ``mode`` 0 for alpha = 3/2; :func:`cradle.integrators._kernels.mode_flag`).
+Parameters: the exponent alpha (and the fast path ``mode`` 0 for alpha = 3/2,
+:func:`cradle.integrators._kernels.mode_flag`).
 Force: F(d) = -c^alpha on a bond with overlap c = -d > 0, 0 apart. Energy: Phi(d) = c^(alpha+1)/(alpha+1).
 DpS counterpart: averaged over the fast phase, the p-Laplacian coupling g(z) = z |z|^(alpha-1) of (dfnls)
 (:class:`PLaplacian`, :func:`g_over_r`).
