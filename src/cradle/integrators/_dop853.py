@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit
 
 from cradle.integrators import _cache
-from cradle.integrators._generic import generic, implements
+from cradle.integrators._generic import absent, generic, implements
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -130,12 +130,6 @@ def weigh_stage(tv, Ks, s, c, h):
     """Weigh stage s (evaluated at u = c h) by dt/du."""
 
 
-@implements(weigh_stage, PlainTime)
-@njit(cache=True)
-def _weigh_plain(tv, Ks, s, c, h):
-    pass
-
-
 @implements(weigh_stage, SubstitutedTime)
 @njit(cache=True)
 def _weigh_substituted(tv, Ks, s, c, h):
@@ -148,12 +142,6 @@ def _weigh_substituted(tv, Ks, s, c, h):
 @generic
 def end_rates(tv, Ks, fnew, h):
     """fnew = f(ynew) (before the end stage is weighed) and weigh the end stage."""
-
-
-@implements(end_rates, PlainTime)
-@njit(cache=True)
-def _end_plain(tv, Ks, fnew, h):
-    pass    # fnew is the row Ks[_NS] itself (:func:`end_buffer`)
 
 
 @implements(end_rates, SubstitutedTime)
@@ -262,12 +250,6 @@ def _locate_plain(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipp
 @generic
 def commit(events, y, restepped):
     """The accepted step's end: the bonds' states and the next step's variable."""
-
-
-@implements(commit, NoEvents)
-@njit(cache=True)
-def _commit_plain(events, y, restepped):
-    pass
 
 
 @njit(cache=True)
@@ -443,3 +425,8 @@ def run_dop853(system, y0, t_out, rtol, atol, stats, progress, state=None, count
                 budget = max(1, int(taken / elapsed))
             progress(float(state[0]) if k < nint else t_final, t_final)
     return Y, int(counts[0]) - n0, int(counts[1]) - f0
+
+
+absent(weigh_stage, PlainTime)
+absent(end_rates, PlainTime)   # fnew is the row Ks[_NS] itself (end_buffer)
+absent(commit, NoEvents)

@@ -14,6 +14,7 @@ import inspect
 from collections.abc import Callable
 from typing import Any
 
+from numba import njit
 from numba.extending import overload
 
 #: (operation name, NamedTuple class) -> the njit implementation registered for it
@@ -61,3 +62,16 @@ def implements(operation: Callable, cls: type) -> Callable:
         return fn
 
     return register
+
+
+def absent(operation: Callable, cls: type, *returned: str) -> None:
+    """Register for ``cls`` (a slot's absent unit) the implementation of ``operation`` that computes nothing: it
+    returns the arguments named in ``returned`` as they came (one: that value; several: a tuple; none: nothing;
+    a literal such as ``"0.0"`` stands for itself), so a kernel given the absent unit does no arithmetic for it."""
+    stub = _STUBS[operation]
+    params = list(inspect.signature(stub).parameters)
+    body = f"return {', '.join(returned)}" if returned else "pass"
+    namespace: dict[str, Any] = {}
+    exec(f"def {stub.__name__}({', '.join(params)}):\n    {body}\n", namespace)   # noqa: S102 (our own text)
+    # not cache=True: numba caches only functions of source files; the kernels that call it are cached with it
+    _IMPLEMENTATIONS[(f"{stub.__module__}.{stub.__qualname__}", cls)] = njit(namespace[stub.__name__])

@@ -74,6 +74,19 @@ def _offsets(par):
 
 
 @njit(cache=True)
+def _table(rho, psi_max):
+    """Where rho = delta~/r falls: (0, -) no contact (rho <= -2); (1, t) the Chebyshev table in phi (rho < 2);
+    (2, t) the one in psi (rho < 4); (3, y) the 2F1 series in y = 4/rho^2."""
+    if rho <= -2.0:
+        return 0, 0.0
+    if rho < 2.0:
+        return 1, 2.0 * math.acos(0.5 * rho) / math.pi - 1.0
+    if rho < 4.0:
+        return 2, 2.0 * math.acosh(0.5 * rho) / psi_max - 1.0
+    return 3, 4.0 / (rho * rho)
+
+
+@njit(cache=True)
 def _g_over_r(r, d, alpha, par, og1, og2, oga, n1, n2, ns):
     """g(r; d) / r (so that Phi(z) = z g/r), r >= 0."""
     if d == 0.0:
@@ -86,17 +99,14 @@ def _g_over_r(r, d, alpha, par, og1, og2, oga, n1, n2, ns):
         if d > 0.0:
             return par[7] * alpha * d ** (alpha - 1.0)
         return 0.0
-    rho = d / r
-    if rho <= -2.0:
+    where, t = _table(d / r, par[6])
+    if where == 0:
         return 0.0
-    if rho < 2.0:
-        t = 2.0 * math.acos(0.5 * rho) / math.pi - 1.0
+    if where == 1:
         return r ** (alpha - 1.0) * _clenshaw(par, og1, n1, t)
-    if rho < 4.0:
-        t = 2.0 * math.acosh(0.5 * rho) / par[6] - 1.0
+    if where == 2:
         return r ** (alpha - 1.0) * _clenshaw(par, og2, n2, t)
-    y = 4.0 / (rho * rho)
-    return par[7] * alpha * d ** (alpha - 1.0) * _horner(par, oga, ns, y)
+    return par[7] * alpha * d ** (alpha - 1.0) * _horner(par, oga, ns, t)
 
 
 @njit(cache=True)
@@ -106,18 +116,15 @@ def _potential(r, d, alpha, par, op1, op2, oph, n1, n2, ns):
         return r ** (alpha + 1.0) / (alpha + 1.0)
     if r <= 0.0:
         return 0.0
-    rho = d / r
-    if rho <= -2.0:
+    where, t = _table(d / r, par[6])
+    if where == 0:
         return 0.0
-    if rho < 2.0:
-        t = 2.0 * math.acos(0.5 * rho) / math.pi - 1.0
+    if where == 1:
         return (r ** (alpha + 1.0) * _clenshaw(par, op1, n1, t)
                 - par[7] * max(d, 0.0) ** (alpha + 1.0) / (2.0 * (alpha + 1.0)))
-    if rho < 4.0:
-        t = 2.0 * math.acosh(0.5 * rho) / par[6] - 1.0
+    if where == 2:
         return r ** (alpha + 1.0) * _clenshaw(par, op2, n2, t)
-    y = 4.0 / (rho * rho)
-    return 2.0 * par[7] * r * r * d ** (alpha - 1.0) * _horner(par, oph, ns, y) / (alpha + 1.0)
+    return 2.0 * par[7] * r * r * d ** (alpha - 1.0) * _horner(par, oph, ns, t) / (alpha + 1.0)
 
 
 @njit(cache=True)

@@ -22,7 +22,7 @@ import numpy as np
 from numba import njit
 
 from cradle.integrators import _cache
-from cradle.integrators._generic import generic, implements
+from cradle.integrators._generic import absent, generic, implements
 from cradle.integrators._kernels import forces, forces_only, kick_rotate, last_kick
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
@@ -54,28 +54,10 @@ def correct(correction, x, v, F, fend, h, e, pot, cmax, alpha, mode, periodic, c
     """After the closing kick: the corrected (sum (x^2 + v^2), contact energy, largest compression)."""
 
 
-@implements(start_interval, NoCorrection)
-@njit(cache=True)
-def _start_interval(correction, h, bh):
-    pass
-
-
 @implements(start_step, NoCorrection)
 @njit(cache=True)
 def _start_step(correction):
     return correction.f
-
-
-@implements(stage_forces, NoCorrection)
-@njit(cache=True)
-def _stage_forces(correction, fend, i):
-    return fend
-
-
-@implements(correct, NoCorrection)
-@njit(cache=True)
-def _correct(correction, x, v, F, fend, h, e, pot, cmax, alpha, mode, periodic, counts):
-    return e, pot, cmax
 
 
 @njit(cache=True)
@@ -153,3 +135,8 @@ def split_run(correction, x, v, F, tgrid, dt, k, j, max_steps, a, b, alpha, mode
     counts[0] += taken
     counts[1] += nfev
     return k, j
+
+
+absent(start_interval, NoCorrection)
+absent(stage_forces, NoCorrection, "fend")
+absent(correct, NoCorrection, "e", "pot", "cmax")

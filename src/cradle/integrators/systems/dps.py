@@ -28,7 +28,7 @@ from numba import njit
 
 from cradle.integrators import _cache, _kernels_dps_sites as KS
 from cradle.integrators._dop853 import monitor, rhs
-from cradle.integrators._generic import generic, implements
+from cradle.integrators._generic import absent, generic, implements
 from cradle.integrators.terms import (
     contact_damping as CD,
     hertz,
@@ -178,8 +178,9 @@ def dps_rhs(system, y, dy):
 
 
 @implements(sites_of, Conserved)
+@implements(sites_of, Weighted)
 @njit(cache=True)
-def _sites_conserved(invariants, y):
+def _sites(invariants, y):
     return y.shape[0] // 2
 
 
@@ -189,58 +190,16 @@ def _sites_balanced(invariants, y):
     return (y.shape[0] - 2) // 2
 
 
-@implements(sites_of, Weighted)
-@njit(cache=True)
-def _sites_weighted(invariants, y):
-    return y.shape[0] // 2
-
-
-@implements(bond_sum, Conserved)
-@njit(cache=True)
-def _bond_sum_none(invariants, S, r, s):
-    return S
-
-
-@implements(bond_sum, Weighted)
-@njit(cache=True)
-def _bond_sum_weighted(invariants, S, r, s):
-    return S
-
-
 @implements(bond_sum, Balanced)
 @njit(cache=True)
 def _bond_sum(invariants, S, r, s):
     return S + r * r * s
 
 
-@implements(site_sums, Conserved)
-@njit(cache=True)
-def _site_sums_none(invariants, l2, L2, ar, ai, wr, wi):
-    return l2, L2
-
-
-@implements(site_sums, Weighted)
-@njit(cache=True)
-def _site_sums_weighted(invariants, l2, L2, ar, ai, wr, wi):
-    return l2, L2
-
-
 @implements(site_sums, Balanced)
 @njit(cache=True)
 def _site_sums(invariants, l2, L2, ar, ai, wr, wi):
     return l2 + (ar * ar + ai * ai), L2 + (wr * wr + wi * wi)
-
-
-@implements(close, Conserved)
-@njit(cache=True)
-def _close_none(invariants, system, dy, N, S, l2, L2):
-    pass
-
-
-@implements(close, Weighted)
-@njit(cache=True)
-def _close_weighted(invariants, system, dy, N, S, l2, L2):
-    pass
 
 
 @implements(close, Balanced)
@@ -293,14 +252,20 @@ def _monitor(system, y, stats):
     watch(system.invariants, system, y, stats)
 
 
-@implements(watch, Conserved)
 @njit(cache=True)
-def _watch_conserved(invariants, system, y, stats):
-    l2, S, _pr, _pi = dps_invariants(y, system.alpha, system.periodic)
+def _drifts(stats, l2, S):
+    """stats[2:4] = the largest relative changes of l2 and S from stats[0:2]."""
     s0 = stats[0] if stats[0] != 0.0 else 1.0
     s1 = stats[1] if stats[1] != 0.0 else 1.0
     stats[2] = max(stats[2], abs(l2 - stats[0]) / s0)
     stats[3] = max(stats[3], abs(S - stats[1]) / s1)
+
+
+@implements(watch, Conserved)
+@njit(cache=True)
+def _watch_conserved(invariants, system, y, stats):
+    l2, S, _pr, _pi = dps_invariants(y, system.alpha, system.periodic)
+    _drifts(stats, l2, S)
 
 
 @implements(watch, Balanced)
@@ -308,10 +273,7 @@ def _watch_conserved(invariants, system, y, stats):
 def _watch_balanced(invariants, system, y, stats):
     n = y.shape[0] - 2
     l2, S, _pr, _pi = dps_invariants(y[:n], system.alpha, system.periodic)
-    s0 = stats[0] if stats[0] != 0.0 else 1.0
-    s1 = stats[1] if stats[1] != 0.0 else 1.0
-    stats[2] = max(stats[2], abs(l2 + y[n] - stats[0]) / s0)
-    stats[3] = max(stats[3], abs(S + y[n + 1] - stats[1]) / s1)
+    _drifts(stats, l2 + y[n], S + y[n + 1])
 
 
 @implements(watch, Weighted)
@@ -322,3 +284,9 @@ def _watch_weighted(invariants, system, y, stats):
     s1 = abs(stats[1]) if stats[1] != 0.0 else 1.0
     stats[2] = max(stats[2], abs(l2 - stats[0]) / s0)
     stats[3] = max(stats[3], abs(H - stats[1]) / s1)
+
+
+for _invariants in (Conserved, Weighted):   # no balance laws: nothing to add up
+    absent(bond_sum, _invariants, "S")
+    absent(site_sums, _invariants, "l2", "L2")
+    absent(close, _invariants)

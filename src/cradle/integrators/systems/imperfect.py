@@ -18,7 +18,7 @@ from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._dop853 import monitor, rhs
-from cradle.integrators._generic import generic, implements
+from cradle.integrators._generic import absent, generic, implements
 from cradle.integrators.terms import (
     hertz,
 )
@@ -82,22 +82,10 @@ def dissipated(dissipation, y, N, stats):
     """D at the state y (0 without damping)."""
 
 
-@implements(store_power, NoDissipation)
-@njit(cache=True)
-def _store_none(dissipation, dy, N, P):
-    pass
-
-
 @implements(store_power, Dissipation)
 @njit(cache=True)
 def _store(dissipation, dy, N, P):
     dy[2 * N] = dissipation.dscale * P
-
-
-@implements(dissipated, NoDissipation)
-@njit(cache=True)
-def _dissipated_none(dissipation, y, N, stats):
-    return 0.0
 
 
 @implements(dissipated, Dissipation)
@@ -181,3 +169,7 @@ def _monitor(system, y, stats):
     stats[1] = max(stats[1], abs(H + D - stats[0]) / sc)
     stats[2] = max(stats[2], cm)
     stats[3] = H
+
+
+absent(store_power, NoDissipation)
+absent(dissipated, NoDissipation, "0.0")

@@ -18,7 +18,7 @@ from typing import NamedTuple
 from numba import njit
 
 from cradle.integrators import _cache
-from cradle.integrators._generic import implements
+from cradle.integrators._generic import absent, implements
 from cradle.integrators.terms.slots import damp_bond, dps_kappa, dps_l2_loss, dps_S_loss, rest, stiff
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
@@ -71,23 +71,11 @@ class SlowContactDamping(NamedTuple):
     ki: float
 
 
-@implements(dps_kappa, NoContactDamping)
-@njit(cache=True)
-def _dps_kappa_none(damping, wr, wi):
-    return wr, wi
-
-
 @implements(dps_kappa, SlowContactDamping)
 @njit(cache=True)
 def _dps_kappa(damping, wr, wi):
     # kappa w = (kr wr - ki wi) + i (kr wi + ki wr)
     return damping.kr * wr - damping.ki * wi, damping.kr * wi + damping.ki * wr
-
-
-@implements(dps_l2_loss, NoContactDamping)
-@njit(cache=True)
-def _l2_loss_none(damping, l2, S, inv2tau0):
-    return 0.0
 
 
 @implements(dps_l2_loss, SlowContactDamping)
@@ -96,13 +84,12 @@ def _l2_loss(damping, l2, S, inv2tau0):
     return 2.0 * damping.ki * inv2tau0 * S   # (Im kappa / tau0) S
 
 
-@implements(dps_S_loss, NoContactDamping)
-@njit(cache=True)
-def _S_loss_none(damping, L2, S, inv2tau0):
-    return 0.0
-
-
 @implements(dps_S_loss, SlowContactDamping)
 @njit(cache=True)
 def _S_loss(damping, L2, S, inv2tau0):
     return damping.ki * inv2tau0 * L2        # (Im kappa / (2 tau0)) sum |W_n - W_{n-1}|^2
+
+
+absent(dps_kappa, NoContactDamping, "wr", "wi")
+absent(dps_l2_loss, NoContactDamping, "0.0")
+absent(dps_S_loss, NoContactDamping, "0.0")

@@ -14,7 +14,7 @@ import numpy as np
 from numba import njit
 
 from cradle.integrators import _cache
-from cradle.integrators._generic import implements
+from cradle.integrators._generic import absent, implements
 from cradle.integrators.terms.slots import (
     dps_detuning,
     dps_factor,
@@ -48,36 +48,6 @@ def build(sites) -> Inhomogeneous:
     mass = np.ascontiguousarray(sites.mass, dtype=float)
     return Inhomogeneous(mass, 1.0 / mass, np.asarray(sites.omega, dtype=float) ** 2,
                          np.ascontiguousarray(sites.stiffness, dtype=float))
-
-
-@implements(stiff, Homogeneous)
-@njit(cache=True)
-def _stiff_1(sites, n, X):
-    return X
-
-
-@implements(per_mass, Homogeneous)
-@njit(cache=True)
-def _per_mass_1(sites, n, X):
-    return X
-
-
-@implements(onsite_scale, Homogeneous)
-@njit(cache=True)
-def _onsite_scale_1(sites, n, X):
-    return X
-
-
-@implements(mass_times, Homogeneous)
-@njit(cache=True)
-def _mass_times_1(sites, n, X):
-    return X
-
-
-@implements(mass_omega2, Homogeneous)
-@njit(cache=True)
-def _mass_omega2_1(sites, n, X):
-    return X
 
 
 @implements(stiff, Inhomogeneous)
@@ -127,30 +97,6 @@ def slow_sites(sites) -> SlowSites | Homogeneous:
                      np.ascontiguousarray(sites.detuning))
 
 
-@implements(dps_weight, Homogeneous)
-@njit(cache=True)
-def _dps_weight_1(sites, n, s):
-    return s
-
-
-@implements(dps_factor, Homogeneous)
-@njit(cache=True)
-def _dps_factor_1(sites, n, inv2tau0):
-    return inv2tau0
-
-
-@implements(dps_detuning, Homogeneous)
-@njit(cache=True)
-def _dps_detuning_1(sites, n, X):
-    return X
-
-
-@implements(dps_rotate_detuned, Homogeneous)
-@njit(cache=True)
-def _dps_rotate_1(sites, n, a, b, ar, ai):
-    return a, b
-
-
 @implements(dps_weight, SlowSites)
 @njit(cache=True)
 def _dps_weight(sites, n, s):
@@ -175,3 +121,10 @@ def _dps_rotate(sites, n, a, b, ar, ai):
     rot = sites.detuning[n]
     # i rot (ar + i ai) = -rot ai + i rot ar
     return a - rot * ai, b + rot * ar
+
+
+for _operation in (stiff, per_mass, onsite_scale, mass_times, mass_omega2, dps_detuning):
+    absent(_operation, Homogeneous, "X")
+absent(dps_weight, Homogeneous, "s")
+absent(dps_factor, Homogeneous, "inv2tau0")
+absent(dps_rotate_detuned, Homogeneous, "a", "b")

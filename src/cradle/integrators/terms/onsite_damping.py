@@ -12,7 +12,7 @@ from typing import NamedTuple
 from numba import njit
 
 from cradle.integrators import _cache
-from cradle.integrators._generic import implements
+from cradle.integrators._generic import absent, implements
 from cradle.integrators.terms.slots import damp_site, dps_decay, dps_l2_loss, dps_S_loss, mass_times
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
@@ -28,12 +28,6 @@ class OnsiteDamping(NamedTuple):
     gamma: float
 
 
-@implements(damp_site, NoOnsiteDamping)
-@njit(cache=True)
-def _none(damping, sites, n, acc, v, P):
-    return acc, P
-
-
 @implements(damp_site, OnsiteDamping)
 @njit(cache=True)
 def _damp(damping, sites, n, acc, v, P):
@@ -46,22 +40,10 @@ class SlowOnsiteDamping(NamedTuple):
     half_gamma: float
 
 
-@implements(dps_decay, NoOnsiteDamping)
-@njit(cache=True)
-def _dps_decay_none(damping, a, b, ar, ai):
-    return a, b
-
-
 @implements(dps_decay, SlowOnsiteDamping)
 @njit(cache=True)
 def _dps_decay(damping, a, b, ar, ai):
     return a - damping.half_gamma * ar, b - damping.half_gamma * ai
-
-
-@implements(dps_l2_loss, NoOnsiteDamping)
-@njit(cache=True)
-def _l2_loss_none(damping, l2, S, inv2tau0):
-    return 0.0
 
 
 @implements(dps_l2_loss, SlowOnsiteDamping)
@@ -70,13 +52,13 @@ def _l2_loss(damping, l2, S, inv2tau0):
     return 2.0 * damping.half_gamma * l2     # gamma~ sum |A_n|^2
 
 
-@implements(dps_S_loss, NoOnsiteDamping)
-@njit(cache=True)
-def _S_loss_none(damping, L2, S, inv2tau0):
-    return 0.0
-
-
 @implements(dps_S_loss, SlowOnsiteDamping)
 @njit(cache=True)
 def _S_loss(damping, L2, S, inv2tau0):
     return damping.half_gamma * S            # (gamma~/2) S
+
+
+absent(damp_site, NoOnsiteDamping, "acc", "P")
+absent(dps_decay, NoOnsiteDamping, "a", "b")
+absent(dps_l2_loss, NoOnsiteDamping, "0.0")
+absent(dps_S_loss, NoOnsiteDamping, "0.0")
