@@ -4,10 +4,10 @@
 
 The state is the real view of A extended by the two amounts the damping removes, Q_l2 (of sum |A_n|^2) and
 Q_S (of S = sum |A_{n+1} - A_n|^(alpha+1) = -(alpha+1) tau0 H), integrated with it as quantities of their own
-(:func:`cradle.integrators._kernels.dps_damped_rhs`): l2 + Q_l2 and S + Q_S are then constant, and their
+(:func:`cradle.integrators.systems.dps.damped`): l2 + Q_l2 and S + Q_S are then constant, and their
 changes measure the integrator's accuracy, never a difference taken as the dissipation. Called by
 :func:`cradle.integrators.integrate_dps` when its ``damping`` is active; scipy's DOP853 or RK45 stepped
-manually, or DOP853 in numba (kind 3 of :mod:`cradle.integrators._dop853`, the default method "dop853_numba";
+manually, or DOP853 in numba (:mod:`cradle.integrators._dop853`, the default method "dop853_numba";
 it does not resume across blocks as :func:`cradle.integrators.dps_solver.iter_dps` does).
 """
 from __future__ import annotations

@@ -7,7 +7,7 @@ g(A_N - A_{N-1}) = g(A_0 - A_{-1}) = 0). The equation is not of the
 "kinetic + potential" form, so the splittings used for (nc) do not apply;
 scipy's adaptive solvers are stepped manually on the real view of A
 (2N reals, Re/Im interleaved) with a numba-compiled right-hand side
-(:func:`cradle.integrators._kernels.dps_rhs`), and the three invariants of
+(:func:`cradle.integrators.systems.dps.dps_rhs`), and the three invariants of
 (dfnls) (squared l2 norm, Hamiltonian H, P = sum A_n) are monitored after
 every accepted step.
 
@@ -16,8 +16,8 @@ With dissipation, (dpsdamped) of :mod:`cradle.models.dps_damped` (``damping=DpsD
 amounts, and the drifts become the residuals of the balance laws.
 
 With site-dependent coefficients, (dpsimperfect) of :mod:`cradle.models.dps_sites` (``sites=DpsSites(...)``:
-detuning, masses, contact stiffnesses, on-site quartic, precompression), the right-hand side is
-:func:`cradle.integrators._kernels_dps_sites.dps_sites_rhs` (kind 5 of the numba DOP853), and the monitored
+detuning, masses, contact stiffnesses, on-site quartic, precompression), the right-hand side is the same family
+with the DpS counterparts of the terms (:func:`cradle.integrators.systems.dps.imperfect`), and the monitored
 invariants are the weighted l2 norm sum m_n |A_n|^2 and the H of (dpsimperfect).
 """
 from __future__ import annotations
@@ -202,7 +202,7 @@ def dps_damped_solver_active(damping: DpsDamping) -> bool:
 
 
 def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -> DpsSolution:
-    """(dpsimperfect) from run.y0: kind 5 of the numba DOP853, or scipy's solvers on the same compiled
+    """(dpsimperfect) from run.y0: the numba DOP853, or scipy's solvers on the same compiled
     right-hand side."""
     from cradle.integrators import _kernels_dps_sites as KS
     from cradle.models import dps_sites as S

@@ -103,7 +103,7 @@ def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping,
     it is still below atol would shrink the step to underflow.
 
     ``onset`` (default): the steps end at the contact onsets, releases and clips
-    (:mod:`cradle.integrators._dop853_onset`); False: plain DOP853 across them. ``events`` (int64, 4
+    (:mod:`cradle.integrators._dop853_events`); False: plain DOP853 across them. ``events`` (int64, 4
     entries, with ``onset``) is incremented by [events located, switches left unlocated, re-steps, re-steps
     failing the error test]; ``event_times`` (float64, with ``onset``) receives the times of the first
     located events.
