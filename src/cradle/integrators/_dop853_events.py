@@ -44,6 +44,11 @@ state at the step's end differs (an O(N) check; a step without one is DOP853's s
    in u), and the re-step that ends at a release in w (t = t_off - w^2). A clip is only a kink:
    plain steps on both sides. After the step in u the controller grades the steps away from the onset.
 
+In the code: :class:`ContactEvents` is the ``events`` argument of the one DOP853 loop
+(:func:`cradle.integrators._dop853.dop853_run`); its implementations of the loop's operations choose each
+step's variable (``start_step``, ``time_variable``), locate and refine the events after an accepted trial
+(``locate``) and set the bonds' states at the step's end (``commit``).
+
 An event costs the crossing step it replaces and its re-steps (12 force evaluations each). A bond that
 switches twice inside one step (a contact shorter than the step) is not seen; a switch that cannot be
 located (Newton leaving the step) keeps the crossing step, counted in ``ev[1]``.

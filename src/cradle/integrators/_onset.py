@@ -61,6 +61,11 @@ quadrature evaluated on the model. Both, with or without a refinement of
 the model's end values (``n_iter``), were measured in
 benchmarks/onset_correction.py; 2 with no refinement is as accurate and the
 cheapest.
+
+In the code: :class:`OnsetCorrection` is the ``correction`` argument of the one splitting loop
+(:func:`cradle.integrators._splitting.split_run`); its implementations of the loop's operations keep the
+stage forces (``stage_forces``, ``start_step``), set the quadrature weights per output interval
+(``start_interval``) and apply the screen and the replacement after every step (``correct``).
 """
 from __future__ import annotations
 
