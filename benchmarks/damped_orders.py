@@ -1,6 +1,6 @@
 """Observed convergence order of DOP853 ("dop853_numba") on the damped lattice (ncdamped), each damping term,
 with the steps ending at the contact events (``events``: onsets, releases and clips located,
-:mod:`cradle.integrators._dop853_onset`, the default of integrate_lattice) and without (``plain``:
+:mod:`cradle.integrators._dop853_events`, the default of integrate_lattice) and without (``plain``:
 DOP853 steps across them, ``run_dop853_damped(onset=False)``).
 
 For each scene and damping, runs at rtol = 1e-6 ... 1e-12 (atol = rtol times the largest initial |x|,
@@ -168,7 +168,7 @@ def main() -> None:
         "",
         "Written by `benchmarks/damped_orders.py` (method `dop853_numba`, alpha = 3/2; the runs, the "
         "reference and the fits are described in its docstring). `events`: the steps end at the contact "
-        "onsets, releases and clips (cradle.integrators._dop853_onset, the default); `plain`: DOP853 steps "
+        "onsets, releases and clips (cradle.integrators._dop853_events, the default); `plain`: DOP853 steps "
         "across them (the treatment before). p: slope of -log(error) against log(steps) (nominal 8); q: slope "
         f"of log(error) against log(rtol); fits over the runs with error > {FLOOR:g}. Damping `off` is the "
         "conservative (nc) on the same scene, for comparison. The reference: the closed form, or the run "

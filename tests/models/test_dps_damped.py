@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from cradle.integrators import _kernels as K
+from cradle.integrators import dps_damped_solver
+from cradle.integrators.systems import dps as SD
 from cradle.models import damping as D, dps, dps_damped as DD
 
 
@@ -74,10 +75,9 @@ def test_kernel_is_the_reference_and_the_balance_laws_hold_pointwise(bc):
     A = rng.normal(size=9) + 1j * rng.normal(size=9)
     ref = DD.rhs(A, alpha, damping, bc)
     t0 = dps.tau0(alpha)
-    kap = DD.contact_factor(damping.eta, alpha)
     y = np.concatenate([A.view(np.float64), [0.0, 0.0]])
     dy = np.empty_like(y)
-    K.dps_damped_rhs(y, dy, alpha, np.array([0.5 / t0, damping.gamma, kap.real, kap.imag]), bc == "periodic")
+    SD.dps_rhs(dps_damped_solver.system(damping, alpha, 0.5 / t0, bc == "periodic"), y, dy)
     assert np.max(np.abs(dy[:-2].view(np.complex128) - ref)) < 1e-14 * np.max(np.abs(ref))
     # d/dtau sum |A|^2 = 2 Re sum conj(A) A'
     l2_dot = 2 * np.sum((np.conj(A) * ref).real)

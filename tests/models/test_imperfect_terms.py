@@ -1,5 +1,5 @@
 """Tests of the imperfect cradle's terms (ncimperfect): cradle.models.inhomogeneity, precompression, onsite,
-lattice_terms, and the compiled right-hand side of kind 4 (cradle.integrators._lattice_terms).
+lattice_terms, and the compiled right-hand side composed of the term units (cradle.integrators.systems.imperfect).
 
 * the site coefficients: the same bits from the same seed, the draws' laws (zero mean, std sigma: the uniform law
   with the same std), explicit values overriding the draws;
@@ -15,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cradle.integrators import _lattice_terms as LT
-from cradle.integrators.lattice_adaptive import terms_par
+from cradle.integrators.lattice_adaptive import imperfect_system
+from cradle.integrators.systems import imperfect as SI
 from cradle.models import lattice_terms as T, physical
 from cradle.models.damping import Damping
 from cradle.models.inhomogeneity import Inhomogeneity, contact_stiffness, homogeneous, material_stiffness, sites
@@ -145,19 +145,19 @@ def test_compiled_rhs_and_energy_match_the_numpy_formulas(name, alpha, damped):
     s = T.check(terms, N, "periodic")
     damping = Damping(onsite=0.2, contact=3.0) if damped else None
     mode = 0 if alpha == 1.5 else 1
-    par = terms_par(alpha, mode, True, terms, s, damping, dscale=2.0)
+    system = imperfect_system(alpha, mode, True, terms, s, damping, dscale=2.0)
     for seed in range(4):
         x, v = _state(N, seed=seed)
         y = np.concatenate((x, v, [0.0]) if damped else (x, v))
         dy = np.empty_like(y)
-        LT.terms_rhs(y, dy, np.empty(N), np.empty(N), alpha, mode, par, True)
+        SI.imperfect_rhs(system, y, dy)
         a = T.acceleration(x, alpha, terms, s, "periodic", v=v, damping=damping)
         assert np.max(np.abs(dy[N:2 * N] - a)) < 1e-13 * max(1.0, np.max(np.abs(a)))
         assert np.array_equal(dy[:N], v)
         if damped:
             P = T.dissipated_power(x, v, alpha, terms, s, damping)
             assert dy[2 * N] == pytest.approx(2.0 * P, rel=1e-12, abs=1e-15)
-        H, _ = LT.terms_energy(x, v, alpha, mode, par, True)
+        H, _ = SI.imperfect_energy(system, x, v)
         assert H == pytest.approx(T.hamiltonian(x, v, alpha, terms, s), rel=1e-13)
 
 

@@ -124,8 +124,9 @@ def _imported_files(path: Path, text: str) -> set[Path]:
 
 
 def kernel_sources() -> list[Path]:
-    """Every module of cradle.integrators defining numba kernels, and the cradle modules they import."""
-    todo = [p for p in sorted(KERNEL_DIR.glob("*.py")) if p.name != Path(__file__).name and "njit" in p.read_text()]
+    """Every module of cradle.integrators (its sub-packages included) defining numba kernels, and the cradle
+    modules they import."""
+    todo = [p for p in sorted(KERNEL_DIR.rglob("*.py")) if p.name != Path(__file__).name and "njit" in p.read_text()]
     seen: set[Path] = set()
     while todo:
         path = todo.pop()

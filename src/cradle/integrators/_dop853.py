@@ -1,4 +1,4 @@
-"""DOP853 (Dormand-Prince 8(5,3)) with error control, compiled with numba.
+"""DOP853 (Dormand-Prince 8(5,3)) with error control, compiled with numba: the one DOP853 loop.
 
 Same tableau (taken from ``scipy.integrate._ivp.dop853_coefficients``),
 error norm and step-size controller (safety 0.9, factors in [0.2, 10],
@@ -6,31 +6,30 @@ exponent -1/8) as ``scipy.integrate.DOP853`` (Hairer, Norsett & Wanner,
 Solving ODEs I, sec. II.5), but the whole loop runs in numba: the steps are
 shortened so that they end exactly on the output times (no dense output),
 and the invariants are monitored after every accepted step. Used by
-``method="dop853_numba"`` of :func:`cradle.integrators.integrate_lattice`
-(kind 0, (nc)/(meca), y = [x, v]; kind 2, (ncdamped) with its dissipated
-energy, y = [x, v, s D]; kind 4, the imperfect cradle (ncimperfect), y = [x, v], or with the same
-damping y = [x, v, s D]) and :func:`cradle.integrators.integrate_dps`
-(kind 1, (dfnls), y = real view of A; kind 3, the damped (dpsdamped), y = real view of A and the two
-dissipated amounts; kind 5, (dpsimperfect) of cradle.models.dps_sites, y = real view of A). ``par`` is
-a float64 array of the kind's parameters: kind 1 reads 1/(2 tau0) = par[0]; kind 2 gamma = par[0],
-eta = par[1] and the scale s = par[2] of D in the state; kind 3 the ``par`` of
-:func:`cradle.integrators._kernels.dps_damped_rhs`; kind 4 the ``par`` of
-:func:`cradle.integrators._lattice_terms.pack` (site coefficients and damping); kind 5 that of
-:func:`cradle.integrators._kernels_dps_sites.pack`; kind 0 none.
-Kind 2 with ``events`` (the default of a damped lattice run) is stepped by
-:func:`cradle.integrators._dop853_onset.run_events` instead: the same steps, except that they end at
-the contact events.
+``method="dop853_numba"`` of :func:`cradle.integrators.integrate_lattice` and
+:func:`cradle.integrators.integrate_dps`.
+
+What is integrated is a *system*: a ``typing.NamedTuple`` of :mod:`cradle.integrators.systems` (the
+lattice (nc)/(meca), the damped (ncdamped), the imperfect (ncimperfect) with its terms, the DpS (dfnls) and
+its damped and site-dependent forms), whose right-hand side :func:`rhs` and invariants :func:`monitor` are
+generic operations (:mod:`cradle.integrators._generic`): :func:`dop853_run` is compiled once per system
+type, with that system's right-hand side in its stages. The contact events of (ncdamped)
+(:mod:`cradle.integrators._dop853_events`: steps ending where a bond's force switches) are another
+argument of the same loop, ``events``: :class:`NoEvents` (the plain DOP853 step, nothing else compiled in)
+or :class:`cradle.integrators._dop853_events.ContactEvents`.
 """
 from __future__ import annotations
 
 import math
 import time
 from types import ModuleType
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 
-from cradle.integrators import _cache, _kernels as K, _kernels_dps_sites as KS, _lattice_terms as LT
+from cradle.integrators import _cache
+from cradle.integrators._generic import absent, generic, implements
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -62,115 +61,213 @@ C = np.ascontiguousarray(_c.C[:_NS], dtype=float)
 E3 = np.ascontiguousarray(_c.E3, dtype=float)
 E5 = np.ascontiguousarray(_c.E5, dtype=float)
 
-LATTICE, DPS, LATTICE_DAMPED, DPS_DAMPED = 0, 1, 2, 3
-LATTICE_TERMS = 4
-DPS_SITES = 5   # (dpsimperfect), y = real view of A, par of _kernels_dps_sites.pack
+
+@generic
+def rhs(system, y, dy):
+    """dy = f(y), the right-hand side of ``system`` at the state y."""
+
+
+@generic
+def monitor(system, y, stats):
+    """Update the invariants' drifts in ``stats`` after an accepted step (the system's own layout)."""
+
+
+class PlainTime(NamedTuple):
+    """The step variable of a plain DOP853 step: t itself (no weight on the stages)."""
+
+    sub: int
+
+
+class SubstitutedTime(NamedTuple):
+    """The step variable of a step of :mod:`._dop853_events`: t (PLAIN), or u with t = t0 + u^2 (SQRT_START) or
+    t = t0 + h^2 - (h - u)^2 (SQRT_END); the stages carry the weight dt/du."""
+
+    sub: int
+
+
+class NoEvents(NamedTuple):
+    """No event location: every step is DOP853's step."""
+
+    n: int
+
+
+PLAIN, SQRT_START, SQRT_END = 0, 1, 2
 
 
 @njit(cache=True)
-def _work_size(kind, n):
-    """Length of the force work arrays f, F: the number of beads for the lattice kinds."""
-    if kind == 0:
-        return n // 2
-    if kind == 2:
-        return (n - 1) // 2
-    if kind == 4:   # y = [x, v] or [x, v, s D]
-        return n // 2
-    return 1
+def speed(sub, c, h):
+    """dt/du at u = c h of a step of length h in u: t = t0 + u^2 (SQRT_START), t = t0 + h^2 - (h - u)^2
+    (SQRT_END), u itself (PLAIN)."""
+    if sub == SQRT_START:
+        return 2.0 * c * h
+    if sub == SQRT_END:
+        return 2.0 * h * (1.0 - c)
+    return 1.0
+
+
+@generic
+def first_stage(tv, Ks, fy, h):
+    """Ks[0] = the first stage (fy, weighted by the step variable's dt/du)."""
+
+
+@implements(first_stage, PlainTime)
+@njit(cache=True)
+def _first_plain(tv, Ks, fy, h):
+    for i in range(fy.shape[0]):
+        Ks[0, i] = fy[i]
+
+
+@implements(first_stage, SubstitutedTime)
+@njit(cache=True)
+def _first_substituted(tv, Ks, fy, h):
+    w = speed(tv.sub, 0.0, h)
+    for i in range(fy.shape[0]):
+        Ks[0, i] = w * fy[i]    # w = 1 exactly on a plain step
+
+
+@generic
+def weigh_stage(tv, Ks, s, c, h):
+    """Weigh stage s (evaluated at u = c h) by dt/du."""
+
+
+@implements(weigh_stage, SubstitutedTime)
+@njit(cache=True)
+def _weigh_substituted(tv, Ks, s, c, h):
+    if tv.sub != PLAIN:
+        w = speed(tv.sub, c, h)
+        for i in range(Ks.shape[1]):
+            Ks[s, i] *= w
+
+
+@generic
+def end_rates(tv, Ks, fnew, h):
+    """fnew = f(ynew) (before the end stage is weighed) and weigh the end stage."""
+
+
+@implements(end_rates, SubstitutedTime)
+@njit(cache=True)
+def _end_substituted(tv, Ks, fnew, h):
+    for i in range(fnew.shape[0]):
+        fnew[i] = Ks[_NS, i]
+    _weigh_substituted(tv, Ks, _NS, 1.0, h)
 
 
 @njit(cache=True)
-def _rhs(kind, y, dy, f, F, alpha, mode, par, periodic):
-    if kind == 0:
-        K.lattice_rhs(y, dy, f, F, alpha, mode, periodic)
-    elif kind == 2:
-        K.lattice_damped_rhs(y, dy, f, F, alpha, mode, par[0], par[1], par[2], periodic)
-    elif kind == 3:
-        K.dps_damped_rhs(y, dy, alpha, par, periodic)
-    elif kind == 4:
-        LT.terms_rhs(y, dy, f, F, alpha, mode, par, periodic)
-    elif kind == 5:
-        KS.dps_sites_rhs(y, dy, alpha, par, periodic)
-    else:
-        K.dps_rhs(y, dy, alpha, par[0], periodic)
+def trial(system, tv, y, fy, h, Ks, ys, ynew, fnew, err5, err3, rtol, atol, A, B, C, E3, E5):
+    """One DOP853 step of length h in the step variable ``tv`` from (y, fy = f(y)): ynew, fnew = f(ynew);
+    returns the error norm (accept if < 1)."""
+    n = y.shape[0]
+    first_stage(tv, Ks, fy, h)
+    # stage loops ordered j-outer / i-inner so that they vectorise
+    for s in range(1, _NS):
+        for i in range(n):
+            ys[i] = y[i]
+        for j in range(s):
+            cj = h * A[s, j]
+            if cj != 0.0:
+                for i in range(n):
+                    ys[i] += cj * Ks[j, i]
+        rhs(system, ys, Ks[s])
+        weigh_stage(tv, Ks, s, C[s], h)
+    for i in range(n):
+        ynew[i] = y[i]
+        err5[i] = 0.0
+        err3[i] = 0.0
+    for j in range(_NS + 1):
+        if j < _NS and B[j] != 0.0:
+            cj = h * B[j]
+            for i in range(n):
+                ynew[i] += cj * Ks[j, i]
+        if j == _NS:
+            rhs(system, ynew, Ks[_NS])
+            end_rates(tv, Ks, fnew, h)
+        c5 = E5[j]
+        c3 = E3[j]
+        for i in range(n):
+            err5[i] += c5 * Ks[j, i]
+            err3[i] += c3 * Ks[j, i]
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(n):
+        sc = atol + max(abs(y[i]), abs(ynew[i])) * rtol
+        e5 += (err5[i] / sc) ** 2
+        e3 += (err3[i] / sc) ** 2
+    if e5 == 0.0 and e3 == 0.0:
+        return 0.0
+    return h * e5 / math.sqrt((e5 + 0.01 * e3) * n)
+
+
+# --- what the event location adds to a step (NoEvents: nothing) ------------------------------------------------
+
+
+@generic
+def end_buffer(events, Ks):
+    """The array receiving f(ynew) of a trial: the row Ks[_NS] itself for plain steps (no copy)."""
+
+
+@implements(end_buffer, NoEvents)
+@njit(cache=True)
+def _buffer_plain(events, Ks):
+    return Ks[_NS]
+
+
+@generic
+def start_step(events):
+    """The variable (PLAIN, SQRT_START) of the next step, which starts now."""
+
+
+@implements(start_step, NoEvents)
+@njit(cache=True)
+def _start_plain(events):
+    return PLAIN
+
+
+@generic
+def time_variable(events, sub):
+    """The step variable of a trial in ``sub``."""
+
+
+@implements(time_variable, NoEvents)
+@njit(cache=True)
+def _time_plain(events, sub):
+    return PlainTime(PLAIN)
+
+
+@generic
+def locate(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks, ys, err5, err3, rtol, atol, A, B,
+           C, E3, E5):
+    """After an accepted trial: (retry, h, h_step, clipped, restepped, extra rhs evaluations, extra rejections);
+    ``retry``: the step is rejected and a shorter one is tried with the new h."""
+
+
+@implements(locate, NoEvents)
+@njit(cache=True)
+def _locate_plain(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks, ys, err5, err3, rtol, atol,
+                  A, B, C, E3, E5):
+    return False, h, h_try, clipped, False, 0, 0
+
+
+@generic
+def commit(events, y, restepped):
+    """The accepted step's end: the bonds' states and the next step's variable."""
 
 
 @njit(cache=True)
-def _monitor(kind, y, alpha, mode, par, periodic, stats):
-    """Update the invariant drifts in ``stats`` after an accepted step.
+def dop853_run(system, events, y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, Y, shift, stats,
+               counts):
+    """Advance ``system`` with DOP853 until tgrid[-1] or ``max_steps`` accepted steps; resumable.
 
-    kind 0: stats = [H0, max |H-H0|/|H0|, max compression, H]
-    kind 1: stats = [l2_0, S0, max |l2-l2_0|/l2_0, max |S-S0|/S0] (H = -S/((alpha+1) tau0))
-    kind 2: stats = [H0, max |H+D-H0|/|H0|, max compression, H, s] (y[-1] = s D): the stored plus
-    dissipated energy H + D is conserved by (ncdamped), its drift is the integrator's error
-    kind 4: the same as kind 2 (D = 0 on y = [x, v] without damping) with the generalised (ham) of
-    (ncimperfect) (:func:`._lattice_terms.terms_energy`, its site coefficients in ``par``)
-    kind 3: the same as kind 1 with l2 + Q_l2 and S + Q_S (the balance laws: Q the dissipated amounts, y's
-    two last entries)
-    kind 5: stats = [l2_0, H0, max |l2-l2_0|/l2_0, max |H-H0|/|H0|] with the weighted l2 = sum m_n |A_n|^2 and the H
-    of (dpsimperfect)
-    """
-    if kind == 0:
-        n = y.shape[0] // 2
-        H, cm = K.lattice_energy(y[:n], y[n:], alpha, mode, periodic)
-        sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
-        stats[1] = max(stats[1], abs(H - stats[0]) / sc)
-        stats[2] = max(stats[2], cm)
-        stats[3] = H
-    elif kind == 2:
-        n = (y.shape[0] - 1) // 2
-        H, cm = K.lattice_energy(y[:n], y[n:2 * n], alpha, mode, periodic)
-        sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
-        stats[1] = max(stats[1], abs(H + y[2 * n] / stats[4] - stats[0]) / sc)
-        stats[2] = max(stats[2], cm)
-        stats[3] = H
-    elif kind == 4:
-        n = y.shape[0] // 2
-        H, cm = LT.terms_energy(y[:n], y[n:2 * n], alpha, mode, par, periodic)
-        sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
-        D = y[2 * n] / stats[4] if y.shape[0] > 2 * n else 0.0
-        stats[1] = max(stats[1], abs(H + D - stats[0]) / sc)
-        stats[2] = max(stats[2], cm)
-        stats[3] = H
-    elif kind == 5:
-        l2, H, _pr, _pi = KS.dps_sites_invariants(y, alpha, par, periodic)
-        s0 = stats[0] if stats[0] != 0.0 else 1.0
-        s1 = abs(stats[1]) if stats[1] != 0.0 else 1.0
-        stats[2] = max(stats[2], abs(l2 - stats[0]) / s0)
-        stats[3] = max(stats[3], abs(H - stats[1]) / s1)
-    elif kind == 3:
-        n = y.shape[0] - 2
-        l2, S, _pr, _pi = K.dps_invariants(y[:n], alpha, periodic)
-        s0 = stats[0] if stats[0] != 0.0 else 1.0
-        s1 = stats[1] if stats[1] != 0.0 else 1.0
-        stats[2] = max(stats[2], abs(l2 + y[n] - stats[0]) / s0)
-        stats[3] = max(stats[3], abs(S + y[n + 1] - stats[1]) / s1)
-    else:
-        l2, S, _pr, _pi = K.dps_invariants(y, alpha, periodic)
-        s0 = stats[0] if stats[0] != 0.0 else 1.0
-        s1 = stats[1] if stats[1] != 0.0 else 1.0
-        stats[2] = max(stats[2], abs(l2 - stats[0]) / s0)
-        stats[3] = max(stats[3], abs(S - stats[1]) / s1)
-
-
-@njit(cache=True)
-def dop853_run(kind, y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5,
-               alpha, mode, par, periodic, Y, shift, stats, counts):
-    """Advance with DOP853 until tgrid[-1] or ``max_steps`` accepted steps; resumable.
-
-    ``y`` (state) and ``fy`` (= f(y), FSAL) are updated in place; ``state`` =
-    [t, h]; interval k ends at tgrid[k+1], where the state is stored in row
-    k + 1 - shift of Y (skipped if negative). ``counts`` += [accepted steps,
-    rhs evaluations, rejected steps]. Returns (k, status), status -1 if the
+    ``y`` (state) and ``fy`` (= f(y), FSAL) are updated in place; ``state`` = [t, h]; interval k ends at
+    tgrid[k+1], where the state is stored in row k + 1 - shift of Y (skipped if negative). ``events``:
+    :class:`NoEvents`, or the contact events of (ncdamped) (:mod:`._dop853_events`, their counters in it).
+    ``counts`` += [accepted steps, rhs evaluations, rejected steps]. Returns (k, status), status -1 if the
     step size underflowed.
     """
     n = y.shape[0]
-    nf = _work_size(kind, n)
-    f = np.empty(nf)
-    F = np.empty(nf)
     Ks = np.empty((13, n))
     ys = np.empty(n)
     ynew = np.empty(n)
+    fnew = end_buffer(events, Ks)
     err5 = np.empty(n)
     err3 = np.empty(n)
     nint = tgrid.shape[0] - 1
@@ -183,6 +280,7 @@ def dop853_run(kind, y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3,
     while k < nint and taken < max_steps:
         t_target = tgrid[k + 1]
         rejected = False
+        sub0 = start_step(events)
         while True:
             min_step = 10.0 * max(abs(t), 1e-300) * 2.220446049250313e-16
             if h < min_step:
@@ -192,68 +290,43 @@ def dop853_run(kind, y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3,
             clipped = t + h >= t_target
             if clipped:
                 h_try = t_target - t
-            for i in range(n):
-                Ks[0, i] = fy[i]
-            # stage loops ordered j-outer / i-inner so that they vectorise
-            for s in range(1, _NS):
-                for i in range(n):
-                    ys[i] = y[i]
-                for j in range(s):
-                    cj = h_try * A[s, j]
-                    if cj != 0.0:
-                        for i in range(n):
-                            ys[i] += cj * Ks[j, i]
-                _rhs(kind, ys, Ks[s], f, F, alpha, mode, par, periodic)
-            for i in range(n):
-                ynew[i] = y[i]
-                err5[i] = 0.0
-                err3[i] = 0.0
-            for j in range(_NS + 1):
-                if j < _NS and B[j] != 0.0:
-                    cj = h_try * B[j]
-                    for i in range(n):
-                        ynew[i] += cj * Ks[j, i]
-                if j == _NS:
-                    _rhs(kind, ynew, Ks[_NS], f, F, alpha, mode, par, periodic)
-                c5 = E5[j]
-                c3 = E3[j]
-                for i in range(n):
-                    err5[i] += c5 * Ks[j, i]
-                    err3[i] += c3 * Ks[j, i]
+            sub = sub0
+            hu = h_try if sub == PLAIN else math.sqrt(h_try)     # the step's length in its variable
+            err = trial(system, time_variable(events, sub), y, fy, hu, Ks, ys, ynew, fnew, err5, err3, rtol, atol,
+                        A, B, C, E3, E5)
             nfev += _NS
-            e5 = 0.0
-            e3 = 0.0
-            for i in range(n):
-                sc = atol + max(abs(y[i]), abs(ynew[i])) * rtol
-                e5 += (err5[i] / sc) ** 2
-                e3 += (err3[i] / sc) ** 2
-            if e5 == 0.0 and e3 == 0.0:
-                err = 0.0
-            else:
-                err = h_try * e5 / math.sqrt((e5 + 0.01 * e3) * n)
-            if err < 1.0:
-                if err == 0.0:
-                    fac = 10.0
-                else:
-                    fac = min(10.0, 0.9 * err ** (-1.0 / 8.0))
+            if err >= 1.0:
+                fac = max(0.2, 0.9 * err ** (-1.0 / 8.0))
+                h = h_try * fac if sub == PLAIN else h_try * fac * fac
+                rejected = True
+                nrej += 1
+                continue
+            if sub == PLAIN:    # h kept after a step in u: it says little about the step in t
+                fac = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-1.0 / 8.0))
                 if rejected:
                     fac = min(1.0, fac)
                 h_new = h_try * fac
                 if clipped:  # a short step to hit t_target says little about the natural step
                     h_new = max(h_new, h)
                 h = h_new
-                break
-            h = h_try * max(0.2, 0.9 * err ** (-1.0 / 8.0))
-            rejected = True
-            nrej += 1
+            retry, h, h_step, clipped, restepped, more, again = locate(
+                events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks, ys, err5, err3, rtol, atol,
+                A, B, C, E3, E5)
+            nfev += more
+            if retry:
+                rejected = True
+                nrej += again
+                continue
+            break
         if status != 0:
             break
         for i in range(n):
             y[i] = ynew[i]
-            fy[i] = Ks[_NS, i]
-        t = t_target if clipped else t + h_try
+            fy[i] = fnew[i]
+        t = t_target if clipped else t + h_step
+        commit(events, y, restepped)
         taken += 1
-        _monitor(kind, y, alpha, mode, par, periodic, stats)
+        monitor(system, y, stats)
         if clipped:
             row = k + 1 - shift
             if row >= 0:
@@ -284,11 +357,11 @@ def initial_step(fun, y0, f0, t_bound, rtol, atol, order=7):
     return min(100 * h0, h1, t_bound)
 
 
-def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, progress, state=None,
-               counts=None, t_bound=None, events=None, event_times=None):
-    """Python driver of :func:`dop853_run`: returns (Y (T, n), n_steps, n_rhs_evals).
+def run_dop853(system, y0, t_out, rtol, atol, stats, progress, state=None, counts=None, t_bound=None,
+               events=None):
+    """Python driver of :func:`dop853_run` on ``system``: returns (Y (T, n), n_steps, n_rhs_evals).
 
-    ``stats`` must hold the initial invariants (see :func:`_monitor`) and is
+    ``stats`` must hold the initial invariants (the system's :func:`monitor` layout) and is
     updated in place. ``progress(t, t_final)`` is called about once per second.
 
     Continuing a run: ``state`` = [t, h] (float64, updated in place) is where the previous call
@@ -300,14 +373,11 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
     run starts at t = 0 with scipy's initial step for [0, ``t_bound``] (default t_out[-1]: the
     first of several calls passes the last time of the whole run).
 
-    ``events`` (kind 2 only; int64, 4 entries, incremented): the steps end at the contact events
-    (:mod:`cradle.integrators._dop853_onset`); it counts [events located, switches left unlocated,
-    re-steps, re-steps failing the error test], and ``event_times`` (float64) receives the times of the
-    first located events. A run with events starts at t = 0 (no ``state``).
+    ``events``: None, or the contact events of (ncdamped) built for y0
+    (:func:`cradle.integrators._dop853_events.contact_events`); a run with events starts at t = 0.
     """
     n = y0.size
     T = t_out.size
-    par = np.ascontiguousarray(par, dtype=np.float64).reshape(-1)   # one compiled signature for every kind
     Y = np.empty((T, n))
     t_start = 0.0 if state is None else float(state[0])
     if t_out[0] == t_start:
@@ -317,12 +387,10 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         tgrid, shift = np.concatenate(([t_start], t_out)), 1
     y = y0.copy()
     fy = np.empty(n)
-    nf = _work_size(kind, n)
-    f, F = np.empty(nf), np.empty(nf)
 
     def fun(z):
         dz = np.empty_like(z)
-        _rhs(kind, z, dz, f, F, alpha, mode, par, periodic)
+        rhs(system, z, dz)
         return dz
 
     fy[:] = fun(y)
@@ -340,24 +408,14 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
         state[1] = initial_step(fun, y, fy, t_final if t_bound is None else float(t_bound), rtol, atol)
         counts[1] += 1
     budget = np.iinfo(np.int64).max if progress is None else max(1, int(2e6 / n))
-    if events is not None:
-        from cradle.integrators import _dop853_onset
-
-        side = _dop853_onset.states(y, bool(periodic), float(par[1]))
-        state = np.array([state[0], state[1], float(_dop853_onset.PLAIN)])
-        if event_times is None:
-            event_times = np.empty(0)
+    if events is None:
+        events = NoEvents(n)
     k = 0
     while k < nint:
         t0 = time.perf_counter()
         n_before = counts[0]
-        if events is not None:
-            k, status = _dop853_onset.run_events(y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3,
-                                                 E5, float(alpha), int(mode), par, bool(periodic), Y, shift, stats,
-                                                 counts, side, events, event_times)
-        else:
-            k, status = dop853_run(kind, y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3, E5,
-                                   float(alpha), int(mode), par, bool(periodic), Y, shift, stats, counts)
+        k, status = dop853_run(system, events, y, fy, tgrid, k, state, budget, float(rtol), float(atol), A, B, C, E3,
+                               E5, Y, shift, stats, counts)
         if status != 0:
             raise RuntimeError(f"dop853_numba: step size underflow at t={state[0]!r}")
         if progress is not None:
@@ -367,3 +425,8 @@ def run_dop853(kind, y0, t_out, rtol, atol, alpha, mode, par, periodic, stats, p
                 budget = max(1, int(taken / elapsed))
             progress(float(state[0]) if k < nint else t_final, t_final)
     return Y, int(counts[0]) - n0, int(counts[1]) - f0
+
+
+absent(weigh_stage, PlainTime)
+absent(end_rates, PlainTime)   # fnew is the row Ks[_NS] itself (end_buffer)
+absent(commit, NoEvents)

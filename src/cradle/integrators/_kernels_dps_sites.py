@@ -3,7 +3,7 @@
 State y = real view of A (Re A_0, Im A_0, Re A_1, ...). Everything about the chain is in one float64
 array ``par`` (:func:`pack`): a header, then the per-site and per-bond coefficients, then the Chebyshev
 and 2F1 coefficients of the averaged bond force g(r; delta~) and its potential P (models.dps_sites.contact_tables).
-Kind 5 of :mod:`cradle.integrators._dop853`.
+The right-hand side is :class:`cradle.integrators.systems.dps.DpsSites` of the DpS family.
 """
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ HEADER = 8
 
 
 def pack(sites, tables, tau0: float, psi_max: float) -> np.ndarray:
-    """``par`` of kind 5 from a :class:`cradle.models.dps_sites.DpsSites` and its contact tables (None when no
+    """``par`` of (dpsimperfect) from a :class:`cradle.models.dps_sites.DpsSites` and its contact tables (None when no
     bond is compressed)."""
     N = sites.N
     if tables is None:
@@ -74,6 +74,19 @@ def _offsets(par):
 
 
 @njit(cache=True)
+def _table(rho, psi_max):
+    """Where rho = delta~/r falls: (0, -) no contact (rho <= -2); (1, t) the Chebyshev table in phi (rho < 2);
+    (2, t) the one in psi (rho < 4); (3, y) the 2F1 series in y = 4/rho^2."""
+    if rho <= -2.0:
+        return 0, 0.0
+    if rho < 2.0:
+        return 1, 2.0 * math.acos(0.5 * rho) / math.pi - 1.0
+    if rho < 4.0:
+        return 2, 2.0 * math.acosh(0.5 * rho) / psi_max - 1.0
+    return 3, 4.0 / (rho * rho)
+
+
+@njit(cache=True)
 def _g_over_r(r, d, alpha, par, og1, og2, oga, n1, n2, ns):
     """g(r; d) / r (so that Phi(z) = z g/r), r >= 0."""
     if d == 0.0:
@@ -86,17 +99,14 @@ def _g_over_r(r, d, alpha, par, og1, og2, oga, n1, n2, ns):
         if d > 0.0:
             return par[7] * alpha * d ** (alpha - 1.0)
         return 0.0
-    rho = d / r
-    if rho <= -2.0:
+    where, t = _table(d / r, par[6])
+    if where == 0:
         return 0.0
-    if rho < 2.0:
-        t = 2.0 * math.acos(0.5 * rho) / math.pi - 1.0
+    if where == 1:
         return r ** (alpha - 1.0) * _clenshaw(par, og1, n1, t)
-    if rho < 4.0:
-        t = 2.0 * math.acosh(0.5 * rho) / par[6] - 1.0
+    if where == 2:
         return r ** (alpha - 1.0) * _clenshaw(par, og2, n2, t)
-    y = 4.0 / (rho * rho)
-    return par[7] * alpha * d ** (alpha - 1.0) * _horner(par, oga, ns, y)
+    return par[7] * alpha * d ** (alpha - 1.0) * _horner(par, oga, ns, t)
 
 
 @njit(cache=True)
@@ -106,55 +116,15 @@ def _potential(r, d, alpha, par, op1, op2, oph, n1, n2, ns):
         return r ** (alpha + 1.0) / (alpha + 1.0)
     if r <= 0.0:
         return 0.0
-    rho = d / r
-    if rho <= -2.0:
+    where, t = _table(d / r, par[6])
+    if where == 0:
         return 0.0
-    if rho < 2.0:
-        t = 2.0 * math.acos(0.5 * rho) / math.pi - 1.0
+    if where == 1:
         return (r ** (alpha + 1.0) * _clenshaw(par, op1, n1, t)
                 - par[7] * max(d, 0.0) ** (alpha + 1.0) / (2.0 * (alpha + 1.0)))
-    if rho < 4.0:
-        t = 2.0 * math.acosh(0.5 * rho) / par[6] - 1.0
+    if where == 2:
         return r ** (alpha + 1.0) * _clenshaw(par, op2, n2, t)
-    y = 4.0 / (rho * rho)
-    return 2.0 * par[7] * r * r * d ** (alpha - 1.0) * _horner(par, oph, ns, y) / (alpha + 1.0)
-
-
-@njit(cache=True)
-def dps_sites_rhs(y, dy, alpha, par, periodic):
-    """(dpsimperfect): dA_n/dtau = (1/m_n) (W_n - W_{n-1}) / (2 i tau0) + i (delta_n + (3/2) beta~_n |A_n|^2) A_n,
-    W_n = k_n Phi_n(A_{n+1} - A_n) (0 past a free end)."""
-    N, od, om, ow, ob, oe, og1, og2, oga, op1, op2, oph, n1, n2, ns = _offsets(par)
-    inv2tau0 = par[0]
-    wr_last = 0.0
-    wi_last = 0.0
-    if periodic:
-        dr = y[0] - y[2 * N - 2]
-        di = y[1] - y[2 * N - 1]
-        s = par[ow + N - 1] * _g_over_r(math.hypot(dr, di), par[oe + N - 1], alpha, par, og1, og2, oga, n1, n2, ns)
-        wr_last = dr * s
-        wi_last = di * s
-    wpr = wr_last
-    wpi = wi_last
-    for n in range(N):
-        if n < N - 1:
-            dr = y[2 * n + 2] - y[2 * n]
-            di = y[2 * n + 3] - y[2 * n + 1]
-            s = par[ow + n] * _g_over_r(math.hypot(dr, di), par[oe + n], alpha, par, og1, og2, oga, n1, n2, ns)
-            wr = dr * s
-            wi = di * s
-        else:
-            wr = wr_last
-            wi = wi_last
-        c = par[om + n] * inv2tau0
-        ar = y[2 * n]
-        ai = y[2 * n + 1]
-        rot = par[od + n] + 1.5 * par[ob + n] * (ar * ar + ai * ai)
-        # -i (a + i b) c = (b - i a) c ; i rot (ar + i ai) = -rot ai + i rot ar
-        dy[2 * n] = (wi - wpi) * c - rot * ai
-        dy[2 * n + 1] = -(wr - wpr) * c + rot * ar
-        wpr = wr
-        wpi = wi
+    return 2.0 * par[7] * r * r * d ** (alpha - 1.0) * _horner(par, oph, ns, t) / (alpha + 1.0)
 
 
 @njit(cache=True)

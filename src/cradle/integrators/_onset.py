@@ -1,4 +1,4 @@
-"""Contact-onset correction of the splittings ("srkn6c", "srkn4c"): the stepping kernel.
+"""Contact-onset correction of the splittings ("srkn6c", "srkn4c"): what it adds to a step of the splitting loop.
 
 Why the splittings lose their order on (nc)
 -------------------------------------------
@@ -61,17 +61,25 @@ quadrature evaluated on the model. Both, with or without a refinement of
 the model's end values (``n_iter``), were measured in
 benchmarks/onset_correction.py; 2 with no refinement is as accurate and the
 cheapest.
+
+In the code: :class:`OnsetCorrection` is the ``correction`` argument of the one splitting loop
+(:func:`cradle.integrators._splitting.split_run`); its implementations of the loop's operations keep the
+stage forces (``stage_forces``, ``start_step``), set the quadrature weights per output interval
+(``start_interval``) and apply the screen and the replacement after every step (``correct``).
 """
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 
 from cradle.integrators import _cache
-from cradle.integrators._kernels import _bond, forces, forces_only, kick_rotate, last_kick
+from cradle.integrators._generic import implements
+from cradle.integrators._kernels import _bond
 from cradle.integrators._onset_impulse import cubic, extrema, hermite, integrate_pieces
+from cradle.integrators._splitting import correct, stage_forces, start_interval, start_step
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -122,189 +130,182 @@ def _apply(k, dx, dv, x, v, F, fend, d1, w1, alpha, mode, periodic, N):
     return de, dpot
 
 
-@njit(cache=True)
-def split_run_onset(x, v, F, fs, d0, w0, d1, w1, flag, idx, tgrid, dt, k, j, max_steps, a, b, cnode, alpha, mode,
-                    periodic, variant, n_iter, near, X, V, E, shift, stats, counts):
-    """:func:`cradle.integrators._kernels.split_run` with the contact-onset correction.
+class OnsetCorrection(NamedTuple):
+    """The state of the onset correction of a splitting run (the ``correction`` of
+    :func:`cradle.integrators._splitting.split_run`).
 
-    Extra state: ``fs`` (m+1, N) stage bond forces, row m holding the forces
-    at the current positions on entry and exit (FSAL); ``d0``/``w0`` bond
-    elongations and rates at the current state (updated); ``d1``/``w1``
-    (float, N), ``flag`` (uint8, N), ``idx`` (int64, N) work arrays;
-    ``cnode`` (m+1) kick nodes. ``variant``: 0 none (plain splitting), 1
-    "difference", 2 "replace" (module docstring); ``n_iter`` refinements of
-    the end values of the Hermite model; ``near`` the screen's margin. ``counts`` = [steps, force
-    evaluations, corrected crossings, steps with a correction, bonds flagged
-    by the screen] (updated in place). Returns the new ``(k, j)``.
+    ``fs`` (m+1, N): the bond forces of every kick of the current step, row ``ctl[0]`` holding those at the
+    step's start (FSAL); ``d``, ``w`` (2, N): bond elongations and rates at the step's start (row ``ctl[2]``)
+    and end; ``flag``, ``idx``, ``gq``: work arrays; ``cnode`` (m+1) the kick nodes, ``qs``, ``qc`` the
+    weights of the step's quadrature of each bond (set per output interval), ``margin`` = [near h];
+    ``variant``: 0 none (plain splitting), 1 "difference", 2 "replace" (module docstring); ``n_iter``
+    refinements of the end values of the Hermite model; ``near`` the screen's margin. The counters it adds
+    to ``counts[2:5]``: corrected crossings, steps with a correction, bonds flagged by the screen.
     """
+
+    fs: np.ndarray
+    d: np.ndarray
+    w: np.ndarray
+    flag: np.ndarray
+    idx: np.ndarray
+    gq: np.ndarray
+    cnode: np.ndarray
+    qs: np.ndarray
+    qc: np.ndarray
+    ctl: np.ndarray
+    margin: np.ndarray
+    variant: int
+    n_iter: int
+    near: float
+
+
+def onset_correction(x, v, a, variant: int, n_iter: int, near: float) -> OnsetCorrection:
+    """The correction's state for a run from (x, v) with the splitting's rotation coefficients ``a``; its row m
+    of ``fs`` is where the caller puts the forces at x."""
+    N = x.size
+    m = a.size
+    cnode = np.concatenate(([0.0], np.cumsum(a)))
+    cnode[-1] = 1.0
+    d = np.empty((2, N))
+    w = np.empty((2, N))
+    d[0] = np.roll(x, -1) - x
+    w[0] = np.roll(v, -1) - v
+    return OnsetCorrection(np.zeros((m + 1, N)), d, w, np.zeros(N, dtype=np.uint8), np.empty(N, dtype=np.int64),
+                           np.empty((N, 2)), cnode, np.empty(m + 1), np.empty(m + 1),
+                           np.array([m, m, 0], dtype=np.int64), np.zeros(1), int(variant), int(n_iter), float(near))
+
+
+@implements(start_interval, OnsetCorrection)
+@njit(cache=True)
+def _start_interval(correction, h, bh):
+    cnode = correction.cnode
+    for i in range(bh.shape[0]):
+        correction.qs[i] = bh[i] * math.sin((1.0 - cnode[i]) * h)
+        correction.qc[i] = bh[i] * math.cos((1.0 - cnode[i]) * h)
+    correction.margin[0] = correction.near * h
+
+
+@implements(start_step, OnsetCorrection)
+@njit(cache=True)
+def _start_step(correction):
+    m = correction.fs.shape[0] - 1
+    rowf = 0 if correction.ctl[0] == m else m
+    correction.ctl[1] = rowf
+    return correction.fs[rowf]
+
+
+@implements(stage_forces, OnsetCorrection)
+@njit(cache=True)
+def _stage_forces(correction, fend, i):
+    return correction.fs[i]
+
+
+@implements(correct, OnsetCorrection)
+@njit(cache=True)
+def _correct(correction, x, v, F, fend, h, e, pot, cmax, alpha, mode, periodic, counts):
+    """The screen and the correction of one step (module docstring)."""
+    cmax_all = cmax
     N = x.shape[0]
-    m = a.shape[0]
-    nint = tgrid.shape[0] - 1
+    fs = correction.fs
+    m = fs.shape[0] - 1
     nb = N if periodic else N - 1
-    cs = np.empty(m)
-    sn = np.empty(m)
-    bh = np.empty(m + 1)
-    qs = np.empty(m + 1)
-    qc = np.empty(m + 1)
-    gq = np.empty((N, 2))
-    H0 = stats[0]
-    scale = abs(H0) if H0 != 0.0 else 1.0
-    drift = stats[1]
-    cmax_all = stats[2]
-    H = stats[3]
-    inv_ap1 = 1.0 / (alpha + 1.0)
+    row0 = correction.ctl[0]
+    rowf = correction.ctl[1]
+    cur = correction.ctl[2]
+    da = correction.d[cur]
+    wa = correction.w[cur]
+    db = correction.d[1 - cur]
+    wb = correction.w[1 - cur]
+    flag = correction.flag
+    idx = correction.idx
+    gq = correction.gq
+    qs = correction.qs
+    qc = correction.qc
+    cnode = correction.cnode
+    variant = correction.variant
+    margin_h = correction.margin[0]
     hertz = mode == 0 or mode == 1
-    taken = 0
-    nfev = 0
-    ncorr = 0
-    nstep_corr = 0
-    nflag_all = 0
-    row0 = m          # row of fs holding the forces at the start of the step
-    da, wa, db, wb = d0, w0, d1, w1
-    swapped = False
-    while k < nint and taken < max_steps:
-        length = tgrid[k + 1] - tgrid[k]
-        nk = max(1, int(math.ceil(length / dt * (1.0 - 1e-12))))
-        h = length / nk
-        for i in range(m):
-            cs[i] = -2.0 * math.sin(0.5 * a[i] * h) ** 2  # cos(a_i h) - 1, to full relative precision
-            sn[i] = math.sin(a[i] * h)
-        for i in range(m + 1):
-            bh[i] = b[i] * h
-            qs[i] = bh[i] * math.sin((1.0 - cnode[i]) * h)
-            qc[i] = bh[i] * math.cos((1.0 - cnode[i]) * h)
-        margin_h = near * h
-        while j < nk and taken < max_steps:
-            rowf = 0 if row0 == m else m
-            fend = fs[rowf]
-            pot = 0.0
-            for i in range(m):
-                bi = bh[i]
-                ci = cs[i]
-                si = sn[i]
-                kick_rotate(x, v, F, bi, ci, si)
-                if i < m - 1:
-                    forces_only(x, fs[i + 1], F, alpha, mode, periodic)
-                else:
-                    pot, cm = forces(x, fend, F, alpha, mode, periodic)
-                    if cm > cmax_all:
-                        cmax_all = cm
-            bi = bh[m]
-            e = last_kick(x, v, F, bi)
-            nfev += m
-            # end-of-step elongations and rates, and the crossing screen (vectorised)
-            for n in range(N - 1):
-                db[n] = x[n + 1] - x[n]
-                wb[n] = v[n + 1] - v[n]
-            db[N - 1] = x[0] - x[N - 1]
-            wb[N - 1] = v[0] - v[N - 1]
-            nflag = 0
-            if variant != 0:
-                for n in range(N):
-                    p0 = da[n]
-                    p1 = db[n]
-                    mg = margin_h * (abs(wa[n]) + abs(wb[n]))
-                    flag[n] = ((p0 < 0.0) != (p1 < 0.0)) | (abs(p0) < mg) | (abs(p1) < mg)
-                for n in range(nb):
-                    if flag[n]:
-                        idx[nflag] = n
-                        nflag += 1
-            nflag_all += nflag
-            if nflag > 0:
-                # keep the flagged bonds whose model crosses zero (or, Hertz, whose stages saw both
-                # states), with the quadrature actually taken (variant 2) or its value on the model
-                # (variant 1), before any correction moves a bead
-                ncross = 0
-                for ii in range(nflag):
-                    kb = idx[ii]
-                    c0, c1, c2, c3 = hermite(da[kb], wa[kb], db[kb], wb[kb], h)
-                    e1, e2 = extrema(c1, c2, c3)
-                    if hertz:
-                        # only bonds in contact somewhere in the step (model or stages) are replaced
-                        contact = c0 < 0.0 or db[kb] < 0.0
-                        if not contact and e1 <= 1.0:
-                            contact = cubic(c0, c1, c2, c3, e1) < 0.0
-                        if not contact and e2 <= 1.0:
-                            contact = cubic(c0, c1, c2, c3, e2) < 0.0
-                        if not contact:
-                            for i in range(m + 1):
-                                if fs[row0 if i == 0 else (rowf if i == m else i), kb] != 0.0:
-                                    contact = True
-                                    break
-                        if not contact:
-                            continue
-                    gx = 0.0
-                    gv = 0.0
-                    if variant == 2:
-                        for i in range(m + 1):
-                            fv = fs[row0 if i == 0 else (rowf if i == m else i), kb]
-                            gx += qs[i] * fv
-                            gv += qc[i] * fv
-                    else:
-                        for i in range(m + 1):
-                            fv = _bond(cubic(c0, c1, c2, c3, cnode[i]), alpha, mode)[0]
-                            gx += qs[i] * fv
-                            gv += qc[i] * fv
-                    idx[ncross] = kb
-                    gq[ncross, 0] = gx
-                    gq[ncross, 1] = gv
-                    ncross += 1
-                dpot_sum = 0.0
-                for ii in range(ncross):
-                    kb = idx[ii]
-                    gx = gq[ii, 0]
-                    gv = gq[ii, 1]
-                    ax = 0.0
-                    av = 0.0
-                    for _it in range(n_iter + 1):
-                        c0, c1, c2, c3 = hermite(da[kb], wa[kb], db[kb], wb[kb], h)
-                        e1, e2 = extrema(c1, c2, c3)
-                        ix, iv = integrate_pieces(c0, c1, c2, c3, e1, e2, h, alpha, mode)
-                        nx = h * ix - gx
-                        nv = h * iv - gv
-                        de, dp = _apply(kb, nx - ax, nv - av, x, v, F, fend, db, wb, alpha, mode, periodic, N)
-                        e += de
-                        dpot_sum += dp
-                        ax = nx
-                        av = nv
-                    if hertz and -db[kb] > cmax_all:
-                        cmax_all = -db[kb]
-                pot += dpot_sum * inv_ap1
-                ncorr += ncross
-                if ncross > 0:
-                    nstep_corr += 1
-            da, db = db, da
-            wa, wb = wb, wa
-            swapped = not swapped
-            row0 = rowf
-            H = 0.5 * e + pot
-            dr = abs(H - H0) / scale
-            if dr > drift:
-                drift = dr
-            j += 1
-            taken += 1
-        if j >= nk:
-            row = k + 1 - shift
-            if row >= 0:
-                for n in range(N):
-                    X[row, n] = x[n]
-                    V[row, n] = v[n]
-                E[row] = H
-            k += 1
-            j = 0
-    if row0 != m:
+    # end-of-step elongations and rates, and the crossing screen (vectorised)
+    for n in range(N - 1):
+        db[n] = x[n + 1] - x[n]
+        wb[n] = v[n + 1] - v[n]
+    db[N - 1] = x[0] - x[N - 1]
+    wb[N - 1] = v[0] - v[N - 1]
+    nflag = 0
+    if variant != 0:
         for n in range(N):
-            fs[m, n] = fs[row0, n]
-    if swapped:
-        for n in range(N):
-            d0[n] = da[n]
-            w0[n] = wa[n]
-    stats[1] = drift
-    stats[2] = cmax_all
-    stats[3] = H
-    counts[0] += taken
-    counts[1] += nfev
-    counts[2] += ncorr
-    counts[3] += nstep_corr
-    counts[4] += nflag_all
-    return k, j
+            p0 = da[n]
+            p1 = db[n]
+            mg = margin_h * (abs(wa[n]) + abs(wb[n]))
+            flag[n] = ((p0 < 0.0) != (p1 < 0.0)) | (abs(p0) < mg) | (abs(p1) < mg)
+        for n in range(nb):
+            if flag[n]:
+                idx[nflag] = n
+                nflag += 1
+    counts[4] += nflag
+    if nflag > 0:
+        # keep the flagged bonds whose model crosses zero (or, Hertz, whose stages saw both
+        # states), with the quadrature actually taken (variant 2) or its value on the model
+        # (variant 1), before any correction moves a bead
+        ncross = 0
+        for ii in range(nflag):
+            kb = idx[ii]
+            c0, c1, c2, c3 = hermite(da[kb], wa[kb], db[kb], wb[kb], h)
+            e1, e2 = extrema(c1, c2, c3)
+            if hertz:
+                # only bonds in contact somewhere in the step (model or stages) are replaced
+                contact = c0 < 0.0 or db[kb] < 0.0
+                if not contact and e1 <= 1.0:
+                    contact = cubic(c0, c1, c2, c3, e1) < 0.0
+                if not contact and e2 <= 1.0:
+                    contact = cubic(c0, c1, c2, c3, e2) < 0.0
+                if not contact:
+                    for i in range(m + 1):
+                        if fs[row0 if i == 0 else (rowf if i == m else i), kb] != 0.0:
+                            contact = True
+                            break
+                if not contact:
+                    continue
+            gx = 0.0
+            gv = 0.0
+            if variant == 2:
+                for i in range(m + 1):
+                    fv = fs[row0 if i == 0 else (rowf if i == m else i), kb]
+                    gx += qs[i] * fv
+                    gv += qc[i] * fv
+            else:
+                for i in range(m + 1):
+                    fv = _bond(cubic(c0, c1, c2, c3, cnode[i]), alpha, mode)[0]
+                    gx += qs[i] * fv
+                    gv += qc[i] * fv
+            idx[ncross] = kb
+            gq[ncross, 0] = gx
+            gq[ncross, 1] = gv
+            ncross += 1
+        dpot_sum = 0.0
+        for ii in range(ncross):
+            kb = idx[ii]
+            gx = gq[ii, 0]
+            gv = gq[ii, 1]
+            ax = 0.0
+            av = 0.0
+            for _it in range(correction.n_iter + 1):
+                c0, c1, c2, c3 = hermite(da[kb], wa[kb], db[kb], wb[kb], h)
+                e1, e2 = extrema(c1, c2, c3)
+                ix, iv = integrate_pieces(c0, c1, c2, c3, e1, e2, h, alpha, mode)
+                nx = h * ix - gx
+                nv = h * iv - gv
+                de, dp = _apply(kb, nx - ax, nv - av, x, v, F, fend, db, wb, alpha, mode, periodic, N)
+                e += de
+                dpot_sum += dp
+                ax = nx
+                av = nv
+            if hertz and -db[kb] > cmax_all:
+                cmax_all = -db[kb]
+        pot += dpot_sum * (1.0 / (alpha + 1.0))
+        counts[2] += ncross
+        if ncross > 0:
+            counts[3] += 1
+    correction.ctl[2] = 1 - cur
+    correction.ctl[0] = rowf
+    return e, pot, cmax_all

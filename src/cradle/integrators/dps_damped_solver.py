@@ -4,10 +4,10 @@
 
 The state is the real view of A extended by the two amounts the damping removes, Q_l2 (of sum |A_n|^2) and
 Q_S (of S = sum |A_{n+1} - A_n|^(alpha+1) = -(alpha+1) tau0 H), integrated with it as quantities of their own
-(:func:`cradle.integrators._kernels.dps_damped_rhs`): l2 + Q_l2 and S + Q_S are then constant, and their
+(:func:`cradle.integrators.systems.dps.damped`): l2 + Q_l2 and S + Q_S are then constant, and their
 changes measure the integrator's accuracy, never a difference taken as the dissipation. Called by
 :func:`cradle.integrators.integrate_dps` when its ``damping`` is active; scipy's DOP853 or RK45 stepped
-manually, or DOP853 in numba (kind 3 of :mod:`cradle.integrators._dop853`, the default method "dop853_numba";
+manually, or DOP853 in numba (:mod:`cradle.integrators._dop853`, the default method "dop853_numba";
 it does not resume across blocks as :func:`cradle.integrators.dps_solver.iter_dps` does).
 """
 from __future__ import annotations
@@ -16,8 +16,9 @@ import time
 
 import numpy as np
 
-from cradle.integrators import _dop853, _kernels as K
+from cradle.integrators import _dop853
 from cradle.integrators._scipy_steps import stepped
+from cradle.integrators.systems import dps as SD
 from cradle.models.dps_damped import DpsDamping, contact_factor
 from cradle.specs.declare import from_plain, plain
 
@@ -30,10 +31,9 @@ def validated(damping) -> DpsDamping:
     return from_plain(DpsDamping, plain(damping), "damping")
 
 
-def parameters(damping: DpsDamping, alpha: float, inv2tau0: float) -> np.ndarray:
-    """``par`` of :func:`cradle.integrators._kernels.dps_damped_rhs`: [1/(2 tau0), gamma~, Re kappa, Im kappa]."""
-    kap = contact_factor(damping.eta, alpha)
-    return np.array([inv2tau0, damping.gamma, kap.real, kap.imag])
+def system(damping: DpsDamping, alpha: float, inv2tau0: float, periodic: bool) -> SD.DpsSystem:
+    """The (dpsdamped) of ``damping`` in the DpS family (:mod:`cradle.integrators.systems.dps`)."""
+    return SD.damped(alpha, periodic, inv2tau0, damping.gamma, contact_factor(damping.eta, alpha))
 
 
 class _Balance:
@@ -53,7 +53,7 @@ class _Balance:
         """(l2, H, Q_l2, Q_H, l2 residual, H residual, P residual) of the extended state y at tau;
         Q_H = -Q_S / ((alpha+1) tau0) is what H has gained, and |S + Q_S - S0| / S0 = |H - Q_H - H0| / |H0|."""
         run, n = self.run, 2 * self.N
-        l2, S, pr, pi = K.dps_invariants(np.ascontiguousarray(y[:n]), run.alpha, run.periodic)
+        l2, S, pr, pi = SD.dps_invariants(np.ascontiguousarray(y[:n]), run.alpha, run.periodic)
         P_exact = run.P0 * np.exp(-self.half_gamma * tau)
         return (l2, S * self.to_H, y[n], -y[n + 1] * self.to_H, abs(l2 + y[n] - run.l20) / run.l2_scale,
                 abs(S + y[n + 1] - self.S0) / self.S_scale, abs(complex(pr, pi) - P_exact) / run.P_scale)
@@ -65,16 +65,15 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, soluti
     :class:`cradle.integrators.DpsSolution` and ``scipy_class`` the name of scipy's solver (None: DOP853 in
     numba), both given by the caller, which this module does not import."""
     tau_out, T, N = run.tau_out, run.tau_out.size, run.N
-    par = parameters(damping, run.alpha, run.inv2tau0)
-    alpha, periodic, rtol, atol = run.alpha, run.periodic, run.rtol, run.atol
+    dsys = system(damping, run.alpha, run.inv2tau0, run.periodic)
+    rtol, atol = run.rtol, run.atol
     y0 = np.concatenate([run.y0, [0.0, 0.0]])
     balance = _Balance(run, damping)
     rows = np.empty((T, 7))
     Y = np.empty((T, 2 * N + 2))
     if method == "dop853_numba":
         stats = np.array([run.l20, run.S0, 0.0, 0.0])
-        Y, n_steps, nfev = _dop853.run_dop853(_dop853.DPS_DAMPED, y0, tau_out, rtol, atol, alpha, 0, par, periodic,
-                                              stats, run.progress)
+        Y, n_steps, nfev = _dop853.run_dop853(dsys, y0, tau_out, rtol, atol, stats, run.progress)
         for i in range(T):
             rows[i] = balance.row(Y[i], tau_out[i])
         max_l2, max_E = float(stats[2]), float(stats[3])
@@ -82,7 +81,7 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, soluti
 
     def fun(t, y):
         dy = np.empty_like(y)
-        K.dps_damped_rhs(y, dy, alpha, par, periodic)
+        SD.dps_rhs(dsys, y, dy)
         return dy
 
     def store(i, y):

@@ -7,7 +7,7 @@ g(A_N - A_{N-1}) = g(A_0 - A_{-1}) = 0). The equation is not of the
 "kinetic + potential" form, so the splittings used for (nc) do not apply;
 scipy's adaptive solvers are stepped manually on the real view of A
 (2N reals, Re/Im interleaved) with a numba-compiled right-hand side
-(:func:`cradle.integrators._kernels.dps_rhs`), and the three invariants of
+(:func:`cradle.integrators.systems.dps.dps_rhs`), and the three invariants of
 (dfnls) (squared l2 norm, Hamiltonian H, P = sum A_n) are monitored after
 every accepted step.
 
@@ -16,8 +16,8 @@ With dissipation, (dpsdamped) of :mod:`cradle.models.dps_damped` (``damping=DpsD
 amounts, and the drifts become the residuals of the balance laws.
 
 With site-dependent coefficients, (dpsimperfect) of :mod:`cradle.models.dps_sites` (``sites=DpsSites(...)``:
-detuning, masses, contact stiffnesses, on-site quartic, precompression), the right-hand side is
-:func:`cradle.integrators._kernels_dps_sites.dps_sites_rhs` (kind 5 of the numba DOP853), and the monitored
+detuning, masses, contact stiffnesses, on-site quartic, precompression), the right-hand side is the same family
+with the DpS counterparts of the terms (:func:`cradle.integrators.systems.dps.imperfect`), and the monitored
 invariants are the weighted l2 norm sum m_n |A_n|^2 and the H of (dpsimperfect).
 """
 from __future__ import annotations
@@ -27,9 +27,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cradle.integrators import _dop853, _kernels as K
+from cradle.integrators import _dop853
 from cradle.integrators._scipy_steps import stepped
 from cradle.integrators._validate import check_state, check_times
+from cradle.integrators.systems import dps as SD
 from cradle.models.dps import tau0 as _tau0
 from cradle.models.dps_damped import DpsDamping
 from cradle.models.dps_sites import DpsSites
@@ -163,9 +164,11 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
     l2_scale, S_scale = run.l2_scale, run.S_scale
     y0 = run.y0
 
+    system = run.system
+
     def fun(t, y):
         dy = np.empty_like(y)
-        K.dps_rhs(y, dy, alpha, run.inv2tau0, periodic)
+        SD.dps_rhs(system, y, dy)
         return dy
 
     A = np.empty((T, N), dtype=complex)
@@ -180,7 +183,7 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
     drifts = [0.0, 0.0]   # the largest l2 and energy drifts over every accepted step
 
     def on_step(y, tau):
-        l2, S, _pr, _pi = K.dps_invariants(y, alpha, periodic)
+        l2, S, _pr, _pi = SD.dps_invariants(y, alpha, periodic)
         drifts[0] = max(drifts[0], abs(l2 - l20) / l2_scale)
         drifts[1] = max(drifts[1], abs(S - S0) / S_scale)
 
@@ -199,7 +202,7 @@ def dps_damped_solver_active(damping: DpsDamping) -> bool:
 
 
 def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -> DpsSolution:
-    """(dpsimperfect) from run.y0: kind 5 of the numba DOP853, or scipy's solvers on the same compiled
+    """(dpsimperfect) from run.y0: the numba DOP853, or scipy's solvers on the same compiled
     right-hand side."""
     from cradle.integrators import _kernels_dps_sites as KS
     from cradle.models import dps_sites as S
@@ -211,6 +214,7 @@ def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -
     alpha, periodic = run.alpha, run.periodic
     t0 = _tau0(alpha)
     par = KS.pack(sites, S.contact_tables(alpha) if sites.compressed else None, t0, S.PSI_MAX)
+    system = SD.imperfect(alpha, periodic, sites, par)
     l20, H0, pr0, pi0 = KS.dps_sites_invariants(run.y0, alpha, par, periodic)
     P0 = complex(pr0, pi0)
     l2s = l20 if l20 != 0.0 else 1.0
@@ -226,13 +230,12 @@ def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -
 
     if method == "dop853_numba":
         stats = np.array([l20, H0, 0.0, 0.0])
-        Y, n_steps, nfev = _dop853.run_dop853(_dop853.DPS_SITES, run.y0, tau_out, run.rtol, run.atol, alpha, 0, par,
-                                              periodic, stats, run.progress)
+        Y, n_steps, nfev = _dop853.run_dop853(system, run.y0, tau_out, run.rtol, run.atol, stats, run.progress)
         max_l2, max_E = float(stats[2]), float(stats[3])
     else:
         def fun(t, y):
             dy = np.empty_like(y)
-            KS.dps_sites_rhs(y, dy, alpha, par, periodic)
+            SD.dps_rhs(system, y, dy)
             return dy
 
         Y = np.empty((T, 2 * N))
@@ -273,10 +276,10 @@ class _DpsRun:
             raise ValueError(f"progress must be callable or None, got progress={progress!r}")
         self.progress = progress
         self.inv2tau0 = 1.0 / (2.0 * _tau0(self.alpha))
-        self.par = np.array([self.inv2tau0])   # the parameters of kind DPS of the numba stepper
+        self.system = SD.dfnls(self.alpha, self.periodic, self.inv2tau0)   # (dfnls) in the numba DOP853
         self.N = A0.size
         self.y0 = np.ascontiguousarray(A0).view(np.float64).copy()
-        self.l20, self.S0, pr0, pi0 = K.dps_invariants(self.y0, self.alpha, self.periodic)
+        self.l20, self.S0, pr0, pi0 = SD.dps_invariants(self.y0, self.alpha, self.periodic)
         self.P0 = complex(pr0, pi0)
         self.l2_scale = self.l20 if self.l20 != 0.0 else 1.0
         self.S_scale = self.S0 if self.S0 != 0.0 else 1.0
@@ -291,7 +294,7 @@ class _DpsRun:
         """(3, rows): relative drifts of l2 norm, Hamiltonian and P of each row of Y from A0."""
         out = np.empty((3, Y.shape[0]))
         for i, y in enumerate(Y):
-            l2, S, pr, pi = K.dps_invariants(np.ascontiguousarray(y), self.alpha, self.periodic)
+            l2, S, pr, pi = SD.dps_invariants(np.ascontiguousarray(y), self.alpha, self.periodic)
             out[:, i] = (abs(l2 - self.l20) / self.l2_scale, abs(S - self.S0) / self.S_scale,
                          abs(complex(pr, pi) - self.P0) / self.P_scale)
         return out
@@ -299,9 +302,8 @@ class _DpsRun:
     def block(self, tau, wall0) -> DpsSolution:
         """The solution at ``tau`` (increasing, after the previous block's last time), DOP853 in numba."""
         n0, f0 = int(self.counts[0]), int(self.counts[1])
-        Y, _, _ = _dop853.run_dop853(_dop853.DPS, self.y, tau, self.rtol, self.atol, self.alpha, 0,
-                                      self.par, self.periodic, self.stats, self.progress, state=self.state,
-                                      counts=self.counts, t_bound=float(self.tau_out[-1]))
+        Y, _, _ = _dop853.run_dop853(self.system, self.y, tau, self.rtol, self.atol, self.stats, self.progress,
+                                      state=self.state, counts=self.counts, t_bound=float(self.tau_out[-1]))
         self.y = Y[-1].copy()
         l2d, Ed, Pd = self.drifts(Y)
         return DpsSolution(tau, np.ascontiguousarray(Y).view(np.complex128), l2d, Ed, Pd, float(self.stats[2]),

@@ -7,14 +7,28 @@ entirely in numba (:mod:`cradle.integrators._dop853`) with steps ending
 exactly on the output times. The energy (ham) is evaluated after every
 accepted step. The damped lattice (ncdamped) is integrated by "dop853_numba" only
 (:func:`run_dop853_damped`), with its dissipated energy as a component of the state; so is the imperfect
-cradle (ncimperfect) of :mod:`cradle.models.lattice_terms` (:func:`run_dop853_terms`, kind 4).
+cradle (ncimperfect) of :mod:`cradle.models.lattice_terms` (:func:`run_dop853_terms`).
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
-from cradle.integrators import _dop853, _kernels as K, _lattice_terms as LT
+from cradle.integrators import _dop853, _dop853_events, _kernels as K
 from cradle.integrators._scipy_steps import stepped
+from cradle.integrators.systems import imperfect as SI, lattice as SL
+from cradle.integrators.terms import (
+    contact_damping as CD,
+    hertz,
+    inhomogeneity as IH,
+    onsite_damping as OD,
+    onsite_harmonic,
+    onsite_pendulum,
+    onsite_quartic,
+    precompression as PC,
+)
+from cradle.models import lattice_terms as LTm
 
 #: scipy.integrate.solve_ivp classes, the baselines (looked up when used: scipy.integrate costs 0.5 s to import)
 SCIPY_METHODS = {"dop853": "DOP853", "rk45": "RK45", "lsoda": "LSODA", "radau": "Radau"}
@@ -69,8 +83,8 @@ def run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic, progress)
     N = x0.size
     H0, c0 = K.lattice_energy(x0, v0, alpha, mode, periodic)
     stats = np.array([H0, 0.0, c0, H0])
-    Y, n_steps, nfev = _dop853.run_dop853(_dop853.LATTICE, np.concatenate((x0, v0)), t_out, rtol, atol, alpha,
-                                          mode, np.zeros(1), periodic, stats, progress)
+    Y, n_steps, nfev = _dop853.run_dop853(SL.lattice(N, alpha, mode, periodic), np.concatenate((x0, v0)), t_out, rtol,
+                                          atol, stats, progress)
     X = np.ascontiguousarray(Y[:, :N])
     V = np.ascontiguousarray(Y[:, N:])
     E = np.array([K.lattice_energy(X[i], V[i], alpha, mode, periodic)[0] for i in range(len(t_out))])
@@ -89,7 +103,7 @@ def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping,
     it is still below atol would shrink the step to underflow.
 
     ``onset`` (default): the steps end at the contact onsets, releases and clips
-    (:mod:`cradle.integrators._dop853_onset`); False: plain DOP853 across them. ``events`` (int64, 4
+    (:mod:`cradle.integrators._dop853_events`); False: plain DOP853 across them. ``events`` (int64, 4
     entries, with ``onset``) is incremented by [events located, switches left unlocated, re-steps, re-steps
     failing the error test]; ``event_times`` (float64, with ``onset``) receives the times of the first
     located events.
@@ -98,12 +112,13 @@ def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping,
     H0, c0 = K.lattice_energy(x0, v0, alpha, mode, periodic)
     dscale = atol / (rtol * abs(H0)) if H0 != 0.0 else 1.0
     stats = np.array([H0, 0.0, c0, H0, dscale])
-    par = np.array([damping.onsite, damping.contact, dscale], dtype=np.float64)
-    if onset and events is None:
-        events = np.zeros(4, dtype=np.int64)
-    Y, n_steps, nfev = _dop853.run_dop853(_dop853.LATTICE_DAMPED, np.concatenate((x0, v0, [0.0])), t_out, rtol,
-                                          atol, alpha, mode, par, periodic, stats, progress,
-                                          events=events if onset else None, event_times=event_times)
+    system = SL.damped_lattice(N, alpha, mode, periodic, damping.onsite, damping.contact, dscale)
+    y0 = np.concatenate((x0, v0, [0.0]))
+    located = None
+    if onset:
+        located = _dop853_events.contact_events(y0, periodic, damping.contact, rtol,
+                                                np.zeros(4, dtype=np.int64) if events is None else events, event_times)
+    Y, n_steps, nfev = _dop853.run_dop853(system, y0, t_out, rtol, atol, stats, progress, events=located)
     X = np.ascontiguousarray(Y[:, :N])
     V = np.ascontiguousarray(Y[:, N:2 * N])
     D = Y[:, 2 * N] / dscale
@@ -111,38 +126,48 @@ def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping,
     return X, V, E, D, float(stats[1]), n_steps, nfev, float(stats[2])
 
 
-def terms_par(alpha, mode, periodic, terms, sites, damping, dscale=1.0):
-    """The ``par`` of kind 4 (:func:`cradle.integrators._lattice_terms.pack`) for ``terms`` on ``sites``, with
-    ``damping`` (or None)."""
-    from cradle.models import lattice_terms as LTm
-    from cradle.models.onsite import CODES
-
-    onsite = terms.onsite
-    code = CODES[onsite.potential] if onsite.active else LT.HARMONIC
-    delta = LTm.static_overlaps(terms.precompression.delta0, sites.stiffness, alpha)
-    gamma = 0.0 if damping is None else damping.onsite
-    eta = 0.0 if damping is None else damping.contact
-    return LT.pack(sites.mass, sites.omega, sites.stiffness, delta, LTm.pendulum_scales(terms, sites), alpha, code,
-                   onsite.beta, gamma, eta, dscale)
-
-
 def run_dop853_terms(x0, v0, t_out, rtol, atol, alpha, mode, periodic, terms, sites, damping, progress):
     """(X, V, E, D, drift, steps, function evaluations, max overlap) of DOP853 in numba on the imperfect cradle
-    (ncimperfect) (kind 4, :mod:`cradle.integrators._lattice_terms`), with ``damping`` (or None) from t = 0:
-    y = [x, v, s D] (y = [x, v] and D = 0 without damping: the error control of (nc)'s kind 0), E the
-    generalised (ham), D the dissipated energy, drift = max over every step of |H + D - H(0)| / |H(0)|; no
-    contact-event location. For the pendulum x is the arc variable."""
+    (ncimperfect) (:mod:`cradle.integrators.systems.imperfect`, its terms the units of
+    :mod:`cradle.integrators.terms`), with ``damping`` (or None) from t = 0: y = [x, v, s D] (y = [x, v] and D = 0
+    without damping), E the generalised (ham), D the dissipated energy, drift = max over every step of
+    |H + D - H(0)| / |H(0)|; no contact-event location. For the pendulum x is the arc variable."""
     N = x0.size
-    par = terms_par(alpha, mode, periodic, terms, sites, damping)
-    H0, c0 = LT.terms_energy(x0, v0, alpha, mode, par, periodic)
+    system = imperfect_system(alpha, mode, periodic, terms, sites)
+    H0, c0 = SI.imperfect_energy(system, x0, v0)
     dscale = atol / (rtol * abs(H0)) if H0 != 0.0 else 1.0
-    par[2] = dscale
+    if damping is not None:
+        system = imperfect_system(alpha, mode, periodic, terms, sites, damping, dscale)
     stats = np.array([H0, 0.0, c0, H0, dscale])
     y0 = np.concatenate((x0, v0, [0.0]) if damping is not None else (x0, v0))
-    Y, n_steps, nfev = _dop853.run_dop853(_dop853.LATTICE_TERMS, y0, t_out, rtol, atol, alpha, mode, par, periodic,
-                                          stats, progress)
+    Y, n_steps, nfev = _dop853.run_dop853(system, y0, t_out, rtol, atol, stats, progress)
     X = np.ascontiguousarray(Y[:, :N])
     V = np.ascontiguousarray(Y[:, N:2 * N])
     D = Y[:, 2 * N] / dscale if damping is not None else np.zeros(len(t_out))
-    E = np.array([LT.terms_energy(X[i], V[i], alpha, mode, par, periodic)[0] for i in range(len(t_out))])
+    E = np.array([SI.imperfect_energy(system, X[i], V[i])[0] for i in range(len(t_out))])
     return X, V, E, D, float(stats[1]), n_steps, nfev, float(stats[2])
+
+
+def imperfect_system(alpha, mode, periodic, terms, sites, damping=None, dscale=None) -> SI.Imperfect:
+    """The system of the declared ``terms`` (:class:`cradle.models.lattice_terms.Terms`) on ``sites``
+    (:class:`cradle.models.inhomogeneity.Sites`) with ``damping`` (:class:`cradle.models.damping.Damping`, or
+    None: y = [x, v]); ``dscale`` the scale of D in the state (with damping)."""
+    N = sites.mass.size
+    contact: NamedTuple = hertz.Touching()
+    if terms.precompression.active:
+        contact = PC.build(LTm.static_overlaps(terms.precompression.delta0, sites.stiffness, alpha), alpha)
+    site_unit: NamedTuple = IH.build(sites) if terms.inhomogeneity.active else IH.Homogeneous()
+    onsite: NamedTuple = onsite_harmonic.Harmonic()
+    if terms.onsite.active and terms.onsite.potential == "quartic":
+        onsite = onsite_quartic.Quartic(float(terms.onsite.beta))
+    elif terms.onsite.active and terms.onsite.potential == "pendulum":
+        onsite = onsite_pendulum.Pendulum(np.ascontiguousarray(LTm.pendulum_scales(terms, sites), dtype=float))
+    gamma = 0.0 if damping is None else damping.onsite
+    eta = 0.0 if damping is None else damping.contact
+    od: NamedTuple = OD.OnsiteDamping(float(gamma)) if gamma != 0.0 else OD.NoOnsiteDamping()
+    cd: NamedTuple = CD.ContactDamping(float(eta)) if eta != 0.0 else CD.NoContactDamping()
+    dis: NamedTuple = SI.NoDissipation()
+    if damping is not None:
+        dis = SI.Dissipation(1.0 if dscale is None else float(dscale))
+    return SI.Imperfect(float(alpha), int(mode), bool(periodic), contact, site_unit, onsite, od, cd, dis, np.empty(N),
+                        np.empty(N), np.empty(N), np.empty(N))

@@ -11,9 +11,9 @@ Three families of methods:
 
 * symplectic splittings ("strang", "srkn4", "srkn6") of the energy (ham),
   H = sum (v_n^2 + x_n^2)/2 [exact rotation] + sum V(x_{n+1}-x_n) [kicks],
-  fixed step, numba kernel :func:`cradle.integrators._kernels.split_run`;
+  fixed step, the splitting loop :func:`cradle.integrators._splitting.split_run`;
   and the same splittings with the contact-onset correction ("srkn6c",
-  "srkn4c", :mod:`cradle.integrators._onset`): on every step where a bond
+  "srkn4c", the correction of :mod:`cradle.integrators._onset`): on every step where a bond
   is near or crosses contact onset, its quadrature is replaced by the
   exact integral of its force along a cubic model of its elongation;
 * scipy's adaptive solvers ("dop853", "rk45", "lsoda", "radau") stepped
@@ -38,14 +38,14 @@ With damping (``damping=Damping(onsite=gamma, contact=eta)``, the damped lattice
 :mod:`cradle.models.damping`): the force depends on the velocities (-gamma v_n, and the contact term
 eta c^(alpha-1) c'), so (ncdamped) is no longer Hamiltonian and the splittings above, built on the
 split (ham) = rotation + kicks of position-only forces, do not apply as such. Damped runs use
-"dop853_numba" only (kind 2 of :mod:`cradle.integrators._dop853`, right-hand side
-:func:`cradle.integrators._kernels.lattice_damped_rhs`, Hertz contacts only), on the state
+"dop853_numba" only (the system :class:`cradle.integrators.systems.lattice.DampedLattice` of
+:mod:`cradle.integrators._dop853`, Hertz contacts only), on the state
 y = [x, v, s D]: the dissipated energy D(t) = int_0^t P is integrated as its own component
 (dD/dt = P, never H(0) - H(t)), and the drift of H + D from H(0), monitored after every step, is
 the integrator's error. The force and the dissipated power are smooth except where a bond changes
 state (onset, release, clip of the contact damping, opening of a clipped bond): at an onset the
 contact damping force rises like (t - t_on)^(1/2), and a DOP853 step across it errs by O(h^(3/2)).
-The steps therefore end at these events (:mod:`cradle.integrators._dop853_onset`: located by a
+The steps therefore end at these events (:mod:`cradle.integrators._dop853_events`: located by a
 Hermite guess and Newton re-steps, the step after an onset taken in (t - t_on)^(1/2)); a step
 without one is DOP853's step, bitwise. Measured by benchmarks/damped_orders.py (docs/damped-orders.md,
 docs/dissipation.md): on figure loc1's packet the observed order in rtol is ~1 instead of 0.6-0.9,
@@ -222,7 +222,7 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
         The terms of the imperfect cradle (ncimperfect) (:class:`cradle.models.lattice_terms.Terms`: site
         masses, on-site frequencies and contact stiffnesses, precompression, on-site potential). None or an
         inactive one: (nc), integrated exactly as without the argument. Active: Hertz contacts only, method
-        "dop853_numba" only (kind 4 of :mod:`cradle.integrators._dop853`, damping allowed on top, no
+        "dop853_numba" only (:mod:`cradle.integrators.systems.imperfect`, damping allowed on top, no
         contact-event location), no continuation; validated with its sites drawn before any work (one
         ConfigError line naming key and value). For the pendulum x is the arc variable.
 

@@ -1,7 +1,7 @@
 """The fixed-step drivers of the splittings of (ham) on (nc)/(meca), with or without the onset correction.
 
-One call runs the numba kernel of the splitting (:func:`cradle.integrators._kernels.split_run`,
-or :func:`cradle.integrators._onset.split_run_onset` for "srkn6c", "srkn4c") over the output
+One call runs the splitting loop (:func:`cradle.integrators._splitting.split_run`, with the
+correction :class:`cradle.integrators._onset.OnsetCorrection` for "srkn6c", "srkn4c") over the output
 times in chunks, so that progress can be reported about once per second; the state is stored
 exactly at every output time, and a run continued from a stored state takes the same steps.
 """
@@ -12,7 +12,7 @@ import time
 
 import numpy as np
 
-from cradle.integrators import _kernels as K, _onset
+from cradle.integrators import _kernels as K, _onset, _splitting
 from cradle.integrators._coefficients import SPLITTINGS
 
 #: Splittings with the contact-onset correction (:mod:`._onset`) -> the splitting they correct.
@@ -41,19 +41,15 @@ def run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, on
     E = np.empty(T)
     x = x0.copy()
     v = v0.copy()
-    f = np.empty(N)
     F = np.empty(N)
+    correction: _splitting.NoCorrection | _onset.OnsetCorrection
     if corrected:
         variant, n_iter, near = ONSET_OPTIONS if onset is None else onset
-        fs = np.zeros((a.size + 1, N))
-        f = fs[-1]
-        cnode = np.concatenate(([0.0], np.cumsum(a)))
-        cnode[-1] = 1.0
-        d0 = np.roll(x, -1) - x
-        w0 = np.roll(v, -1) - v
-        d1, w1 = np.empty(N), np.empty(N)
-        flag = np.zeros(N, dtype=np.uint8)
-        idx = np.empty(N, dtype=np.int64)
+        correction = _onset.onset_correction(x, v, a, variant, n_iter, near)
+        f = correction.fs[-1]
+    else:
+        correction = _splitting.NoCorrection(np.empty(N))
+        f = correction.f
     pot, c0 = K.forces(x, f, F, alpha, mode, periodic)
     H0 = 0.5 * float(np.dot(x, x) + np.dot(v, v)) + pot
     if shift == 0:
@@ -71,13 +67,8 @@ def run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, on
     while k < nint:
         t0 = time.perf_counter()
         n_before = counts[0]
-        if corrected:
-            k, j = _onset.split_run_onset(x, v, F, fs, d0, w0, d1, w1, flag, idx, tgrid, float(dt), k, j, budget, a, b,
-                                          cnode, alpha, mode, periodic, int(variant), int(n_iter), float(near), X, V, E,
-                                          shift, stats, counts)
-        else:
-            k, j = K.split_run(x, v, f, F, tgrid, float(dt), k, j, budget, a, b, alpha, mode, periodic,
-                               X, V, E, shift, stats, counts)
+        k, j = _splitting.split_run(correction, x, v, F, tgrid, float(dt), k, j, budget, a, b, alpha, mode, periodic,
+                                    X, V, E, shift, stats, counts)
         if progress is not None:
             elapsed = time.perf_counter() - t0
             taken = int(counts[0] - n_before)
