@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from cradle.integrators._generic import generic
 
-# --- the contact law: touching beads (hertz) or precompressed (precompression) --------------------------------
+# --- the contact law: touching beads (vhertz) or precompressed (precompression) --------------------------------
 
 
 @generic
@@ -97,7 +97,7 @@ def damp_bond(damping, sites, contact, n, m, diff, el, sa, y, J, N, P):
 @generic
 def dps_coupling(coupling, r, n, alpha):
     """W_n / (A_{n+1} - A_n) of bond n at |A_{n+1} - A_n| = r (before its weight): r^(alpha-1) for touching beads
-    (hertz), g(r; delta~_n)/r with precompression or gaps (precompression)."""
+    (vhertz), g(r; delta~_n)/r with precompression or gaps (precompression)."""
 
 
 @generic
