@@ -345,21 +345,21 @@ def test_parse_angle_junk(junk):
 
 
 def test_store_times_grid_and_snapshots_merged():
-    assert cc.store_times({"every": 0.25, "snapshots": [0.1, 0.5]}, 1.0) == [0.0, 0.1, 0.25, 0.5, 0.75, 1.0]
+    assert cc.store_times([0.1, 0.5], 0.25, 1.0) == [0.0, 0.1, 0.25, 0.5, 0.75, 1.0]
 
 
 def test_store_times_includes_t_end_off_the_grid():
-    assert cc.store_times({"every": 0.4}, 1.0) == [0.0, 0.4, 0.8, 1.0]
+    assert cc.store_times(None, 0.4, 1.0) == [0.0, 0.4, 0.8, 1.0]
 
 
 def test_store_times_dedup_within_tolerance():
-    t = cc.store_times({"every": 0.1, "snapshots": [0.3 + 4e-10, 0.35, 1.0 - 5e-10]}, 1.0)
+    t = cc.store_times([0.3 + 4e-10, 0.35, 1.0 - 5e-10], 0.1, 1.0)
     assert t == [0.0, 0.1, 0.2, 0.3, 0.35, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0]
 
 
 def test_store_times_snapshots_only():
-    assert cc.store_times({"snapshots": [621.95]}, 621.95) == [0.0, 621.95]
-    assert cc.store_times({"snapshots": [0.0, 5.0]}, 10.0) == [0.0, 5.0, 10.0]
+    assert cc.store_times([621.95], None, 621.95) == [0.0, 621.95]
+    assert cc.store_times([0.0, 5.0], None, 10.0) == [0.0, 5.0, 10.0]
 
 
 def test_validate_is_idempotent_and_remembered():
