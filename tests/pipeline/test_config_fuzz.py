@@ -29,6 +29,7 @@ import yaml
 
 from cradle.analyses.registry import ANALYSES
 from cradle.pipeline import config as cc
+from cradle.pipeline.config.reference import generated_schema
 from cradle.specs.values import copied, key_path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -95,7 +96,7 @@ def leaves(raw: dict, filled: dict, every: bool = False) -> list[tuple]:
     """The leaf paths to fuzz (see the module docstring): one per shape, where config.yaml (or its defaults)
     gives it when some entry does, the first item of a list; with ``every``, all of them."""
     shapes: dict[tuple, tuple] = {}
-    _walk(cc.schema(), cc.schema(), [], [], filled, shapes)
+    _walk(generated_schema(), generated_schema(), [], [], filled, shapes)
     given: list[tuple] = []
     _config_leaves(raw, [], given)
     for path in given:   # a key of config.yaml the schema does not declare is its own shape

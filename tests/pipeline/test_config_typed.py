@@ -22,6 +22,7 @@ from cradle.analyses import (
 )
 from cradle.pipeline import config as cc
 from cradle.pipeline.config import beyond, movies, sections
+from cradle.pipeline.config.reference import generated_schema, schema_path, write_schema
 from cradle.scenes import spec as scenes
 from cradle.specs.declare import from_plain, plain, plain as spec_plain
 
@@ -93,9 +94,9 @@ def _everything_resolved(config) -> dict:
 
 def test_committed_schema_is_the_generated_one():
     """Regenerate with `python -m cradle.pipeline.config --write-schema` after changing a declaration."""
-    committed = cc.schema_path().read_text(encoding="utf-8")
-    assert json.loads(committed) == cc.generated_schema()
-    assert committed == json.dumps(cc.generated_schema(), indent=2, ensure_ascii=False) + "\n"
+    committed = schema_path().read_text(encoding="utf-8")
+    assert json.loads(committed) == generated_schema()
+    assert committed == json.dumps(generated_schema(), indent=2, ensure_ascii=False) + "\n"
 
 
 def test_the_schema_is_a_valid_json_schema():
@@ -103,12 +104,12 @@ def test_the_schema_is_a_valid_json_schema():
     validation)."""
     from jsonschema import Draft202012Validator
 
-    Draft202012Validator.check_schema(cc.schema())
+    Draft202012Validator.check_schema(generated_schema())
 
 
 def test_write_schema_writes_the_generated_text(tmp_path):
-    out = cc.write_schema(tmp_path / "s.json")
-    assert out.read_text(encoding="utf-8") == cc.schema_path().read_text(encoding="utf-8")
+    out = write_schema(tmp_path / "s.json")
+    assert out.read_text(encoding="utf-8") == schema_path().read_text(encoding="utf-8")
 
 
 def test_declarations_are_frozen_and_every_field_described():
@@ -136,7 +137,7 @@ def test_one_default_per_setting_api_schema_and_config_agree(raw):
     filled = cc.validate(raw)["defaults"]   # config.yaml leaves them to the declarations
     assert lattice == scenes.ExactIntegrator().method == filled["exact"]["method"] == "srkn6c"
     assert dps == scenes.DpsIntegrator().method == filled["dps"]["method"] == "dop853_numba"
-    d = cc.schema()["properties"]["defaults"]["properties"]
+    d = generated_schema()["properties"]["defaults"]["properties"]
     assert d["exact"]["properties"]["method"]["default"] == lattice
     assert d["dps"]["properties"]["method"]["default"] == dps
 

@@ -43,8 +43,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
 from dataclasses import dataclass, fields
+from typing import Any
 
 from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store
 from cradle.specs.declare import declared, param

@@ -32,7 +32,7 @@ from typing import Protocol
 from cradle.models.damping import Damping
 from cradle.models.lattice_terms import Terms
 from cradle.models.physical import HERTZ_ALPHA, Cradle, scales
-from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
+from cradle.specs.declare import NULL, REQUIRED, declared, param, register_union
 from cradle.specs.values import (
     INTEGER_TOL,
     MAX_STORED_TIMES,
@@ -41,9 +41,7 @@ from cradle.specs.values import (
     ConfigError,
     Errors,
     angle_expr,
-    copied,
     grid_size,
-    merged,
     parse_angle,
     show,
     store_times,

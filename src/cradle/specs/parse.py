@@ -26,8 +26,8 @@ HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))",
          ("omega_tw", "exclusiveMinimum"): " (a is derived from (freq), omega_tw = 1 + (2/tau0) a^(alpha-1) "
                                            "|sin(q/2)|^(alpha+1))",
          ("omega_sw", "exclusiveMinimum"): " (mu = (omega_sw - 1) 2^alpha tau0 must be > 0)"}
-_BOUNDS = (("minimum", ">=", lambda x, b: x >= b), ("exclusiveMinimum", ">", lambda x, b: x > b),
-           ("maximum", "<=", lambda x, b: x <= b), ("exclusiveMaximum", "<", lambda x, b: x < b))
+_BOUNDS = {"minimum": (">=", lambda x, b: x >= b), "exclusiveMinimum": (">", lambda x, b: x > b),
+           "maximum": ("<=", lambda x, b: x <= b), "exclusiveMaximum": ("<", lambda x, b: x < b)}
 _JSON_TYPES = {"integer": lambda v: number(v) and float(v).is_integer() if isinstance(v, float) else number(v),
                "number": number, "string": lambda v: isinstance(v, str), "boolean": lambda v: isinstance(v, bool),
                "null": lambda v: v is None, "array": lambda v: isinstance(v, (list, tuple)),
@@ -120,16 +120,15 @@ def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
     if kinds and not any(_JSON_TYPES[k](value) for k in kinds):
         found.add(path, f"must be {' or '.join(TYPE_WORDS[k] for k in kinds)}", value)
         return BAD
-    if "integer" in kinds and isinstance(value, float):
-        value = int(value)   # 50.0 is the integer 50
     n, last = len(found.lines), str(path[-1]) if path else ""
     if "enum" in node and not any(value == e and isinstance(value, bool) == isinstance(e, bool) for e in node["enum"]):
         found.add(path, f"must be one of {', '.join(map(str, node['enum']))}", value)
     if "const" in node and value != node["const"]:
         found.add(path, f"must be {node['const']!r}", value)
     if number(value):
-        for key, word, ok in _BOUNDS:
-            if key in node and not ok(value, node[key]):
+        for key in [k for k in node if k in _BOUNDS]:   # in the order declared: the first one said
+            word, ok = _BOUNDS[key]
+            if not ok(value, node[key]):
                 found.add(path, f"must be {word} {bound_text(node[key])}{HINTS.get((last, key), '')}", value)
         step = node.get("multipleOf")
         if step and not float(value / step).is_integer():
@@ -140,7 +139,11 @@ def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
                   "must use letters, digits, '-' and '_' and start with a letter or digit", value)
     if isinstance(value, (list, tuple)):
         value = _items(node, list(value), path, found)
-    return BAD if len(found.lines) > n or value is BAD else value
+    if isinstance(value, dict) and "properties" in node:
+        value = _mapping(node, value, path, found)
+    if len(found.lines) > n or value is BAD:
+        return BAD
+    return int(value) if "integer" in kinds and isinstance(value, float) else value   # 50.0 is the integer 50
 
 
 def _items(node: dict, value: list, path: tuple, found: Found):
@@ -157,6 +160,23 @@ def _items(node: dict, value: list, path: tuple, found: Found):
         value = [leaf(node["items"], v, (*path, i), found) for i, v in enumerate(value)]
         return BAD if any(v is BAD for v in value) else value
     return value
+
+
+def _mapping(node: dict, value: dict, path: tuple, found: Found):
+    """A mapping checked against ``properties`` (and ``required``; no other key when ``additionalProperties`` is
+    false): the per-method ladders of work-precision."""
+    props = node["properties"]
+    for key in node.get("required", ()):
+        if key not in value:
+            found.add((*path, key), "missing (required key)", at=path)
+    out = {}
+    for key, v in value.items():
+        if key in props:
+            out[key] = leaf(props[key], v, (*path, key), found)
+        elif node.get("additionalProperties") is False:
+            found.add((*path, key), f"unknown key (allowed: {', '.join(props)}){did_you_mean(key, props)}", v,
+                      at=path)
+    return BAD if any(v is BAD for v in out.values()) else value
 
 
 def _any_of(node: dict, value, path: tuple, found: Found):
@@ -264,7 +284,8 @@ def _union(classes: list, value, path: tuple, found: Found):
         if "kind" not in value:
             found.add((*path, "kind"), "missing (required key)", at=path)
         else:
-            found.add((*path, "kind"), f"must be one of {', '.join(kinds)}", kind)
+            found.add((*path, "kind"), f"must be one of {', '.join(kinds)}" if isinstance(kind, str) else
+                      "must be a string", kind)
         _finite(value, path, found)
         return BAD
     return build_object(kinds[kind], value, path, found)
@@ -310,7 +331,7 @@ def given_fields(cls, value, path: tuple, found: Found, base=None) -> Any:
             out[f.name] = _overrides(cls, v, (*path, key), found)
         else:
             inner = _base_of(base, f)
-            out[f.name] = parse(f.tp, v, (*path, key), found, inner if inner is not None else f.make())
+            out[f.name] = _field(f, v, (*path, key), found, inner if inner is not None else f.make())
     for f in fields:
         if f.name not in out:
             inner = _base_of(base, f)
@@ -339,8 +360,19 @@ def _overrides(cls, value, path: tuple, found: Found):
             found.add((*path, key), f"unknown key (allowed: {', '.join(known)}){did_you_mean(key, known)}", v,
                       at=path)
             continue
-        out[f.name] = parse(f.tp, v, (*path, key), found, bases.get(f.name, f.make()))
+        out[f.name] = _field(f, v, (*path, key), found, bases.get(f.name, f.make()))
     return BAD if any(v is BAD for v in out.values()) else out
+
+
+def _field(f: Field, value, path: tuple, found: Found, base):
+    """The value of field ``f``: an object (or entries, or a union) as its annotation declares it, a scalar or
+    a list against its keywords."""
+    origin, args = typing.get_origin(f.tp), typing.get_args(f.tp)
+    if origin is dict and "properties" in f.node and leaf(f.node, value, path, found) is BAD:
+        return BAD
+    if declared_class(f.tp) or origin is dict or any(declared_class(a) for a in args):
+        return parse(f.tp, value, path, found, base)
+    return leaf(f.node, value, path, found)
 
 
 def _base_of(base, f: Field):
