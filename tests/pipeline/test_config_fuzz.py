@@ -72,7 +72,9 @@ def _walk(schema: dict, node, path: list, shape: list, inst, out: dict) -> None:
     props, extra = node.get("properties"), node.get("additionalProperties")
     if props:
         for key, sub in props.items():
-            _walk(schema, sub, path + [key], shape + [key], inst.get(key) if isinstance(inst, dict) else None, out)
+            # a key of an analysis's reduced form has the declaration, hence the shape, of its full form's key
+            same = shape if key == "reduced" and len(path) == 2 and path[0] == "beyond" else shape + [key]
+            _walk(schema, sub, path + [key], same, inst.get(key) if isinstance(inst, dict) else None, out)
     elif isinstance(extra, dict):
         for name in (inst if isinstance(inst, dict) else ()):
             _walk(schema, extra, path + [name], shape + ["*"], inst[name], out)

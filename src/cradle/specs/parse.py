@@ -69,13 +69,24 @@ class Found:
         return out
 
 
+_MERGED: dict[int, tuple[dict, dict]] = {}
+
+
 def _shared(node: dict) -> dict:
-    """``node`` with its ``$ref`` to a shared type (:data:`.declare.SHARED`) merged in, its own keywords winning."""
+    """``node`` with its ``$ref`` to a shared type (:data:`.declare.SHARED`) merged in, its own keywords winning
+    (worked out once per node: the declarations' nodes live as long as their classes)."""
     from .declare import SHARED
 
-    while "$ref" in node:
-        node = {**SHARED[node["$ref"].rsplit("/", 1)[-1]], **{k: v for k, v in node.items() if k != "$ref"}}
-    return node
+    if "$ref" not in node:
+        return node
+    hit = _MERGED.get(id(node))
+    if hit is not None and hit[0] is node:
+        return hit[1]
+    out = node
+    while "$ref" in out:
+        out = {**SHARED[out["$ref"].rsplit("/", 1)[-1]], **{k: v for k, v in out.items() if k != "$ref"}}
+    _MERGED[id(node)] = (node, out)
+    return out
 
 
 def _from_string(text: str, kinds) -> Any:
@@ -176,7 +187,7 @@ def _mapping(node: dict, value: dict, path: tuple, found: Found):
         elif node.get("additionalProperties") is False:
             found.add((*path, key), f"unknown key (allowed: {', '.join(props)}){did_you_mean(key, props)}", v,
                       at=path)
-    return BAD if any(v is BAD for v in out.values()) else value
+    return BAD if any(v is BAD for v in out.values()) else {**value, **out}
 
 
 def _any_of(node: dict, value, path: tuple, found: Found):
@@ -291,10 +302,10 @@ def _union(classes: list, value, path: tuple, found: Found):
     return build_object(kinds[kind], value, path, found)
 
 
-def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, base=None):
+def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, base=None, one=None):
     """A mapping of entry names to instances of ``cls``; an entry with problems is left out (they are reported).
     ``labels``: the names allowed (figure labels), else any entry name (letters, digits, '-' and '_');
-    ``base``: what each entry leaves out (:func:`parse`)."""
+    ``base``: what each entry leaves out (:func:`parse`); ``one``: what reads one entry (default :func:`parse`)."""
     from .declare import SHARED
 
     if _not_mapping(value, path, found):
@@ -306,7 +317,7 @@ def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, 
         elif labels is None and not (isinstance(name, str) and re.search(SHARED["name"]["pattern"], name)):
             found.add((*path, name), f"bad name {name!r}: names use letters, digits, '-' and '_' and start with a "
                                      f"letter or digit", at=path, force=True)
-        made = parse(cls, entry, (*path, name), found, base)
+        made = (one or parse)(cls, entry, (*path, name), found, base)
         if made is not BAD:
             out[name] = made
     return out
@@ -328,7 +339,7 @@ def given_fields(cls, value, path: tuple, found: Found, base=None) -> Any:
                       at=path)
             _finite(v, (*path, key), found)
         elif f.name == "reduced" and f.tp is dict:
-            out[f.name] = _overrides(cls, v, (*path, key), found)
+            continue   # read below, over the full form's values
         else:
             inner = _base_of(base, f)
             out[f.name] = _field(f, v, (*path, key), found, inner if inner is not None else f.make())
@@ -338,15 +349,18 @@ def given_fields(cls, value, path: tuple, found: Found, base=None) -> Any:
             if f.required and inner is None:
                 found.add((*path, f.key), "missing (required key)", at=path)
             out[f.name] = inner if inner is not None else f.make()
+    if "reduced" in value and "reduced" in by_key and by_key["reduced"].tp is dict:
+        out["reduced"] = _overrides(cls, value["reduced"], (*path, "reduced"), found, out)
     groups = cls.__schema_any_of__
     if groups and not any(all(k in value for k in g) for g in groups):
         found.add(path, f"needs at least one of {', '.join(k for g in groups for k in g)}", value)
     return out
 
 
-def _overrides(cls, value, path: tuple, found: Found):
+def _overrides(cls, value, path: tuple, found: Found, full: dict):
     """The keys given under ``reduced:`` of an analysis's section (its reduced form), each read as its field
-    declares it: field name -> value, or :data:`BAD`."""
+    declares it, over its declared reduced value or else the full form's (``full``): field name -> value, or
+    :data:`BAD`."""
     from .declare import reduced_defaults
 
     if _not_mapping(value, path, found):
@@ -360,7 +374,7 @@ def _overrides(cls, value, path: tuple, found: Found):
             found.add((*path, key), f"unknown key (allowed: {', '.join(known)}){did_you_mean(key, known)}", v,
                       at=path)
             continue
-        out[f.name] = _field(f, v, (*path, key), found, bases.get(f.name, f.make()))
+        out[f.name] = _field(f, v, (*path, key), found, bases.get(f.name, full.get(f.name)))
     return BAD if any(v is BAD for v in out.values()) else out
 
 
@@ -368,8 +382,10 @@ def _field(f: Field, value, path: tuple, found: Found, base):
     """The value of field ``f``: an object (or entries, or a union) as its annotation declares it, a scalar or
     a list against its keywords."""
     origin, args = typing.get_origin(f.tp), typing.get_args(f.tp)
-    if origin is dict and "properties" in f.node and leaf(f.node, value, path, found) is BAD:
-        return BAD
+    if origin is dict and "properties" in f.node:
+        value = leaf(f.node, value, path, found)
+        if value is BAD:
+            return BAD
     if declared_class(f.tp) or origin is dict or any(declared_class(a) for a in args):
         return parse(f.tp, value, path, found, base)
     return leaf(f.node, value, path, found)

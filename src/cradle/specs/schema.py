@@ -12,7 +12,8 @@ import types
 import typing
 from pathlib import Path
 
-from .declare import REQUIRED, SHARED, UNIONS, _default_of, _hints, _key
+from . import declare
+from .declare import REQUIRED, SHARED, _default_of, _hints, _key, reduced_defaults
 
 SCHEMA_DRAFT = "https://json-schema.org/draft/2020-12/schema"
 
@@ -92,6 +93,9 @@ def object_schema(cls, defs: dict, *, defaults: dict | None = None) -> dict:
     hints = _hints(cls)
     props, required = {}, []
     for f in dataclasses.fields(cls):
+        if f.name == "reduced" and hints[f.name] is dict:
+            props[_key(f)] = _reduced_schema(cls, f, defs)
+            continue
         default = _default_of(f) if defaults is None else defaults.get(_key(f))
         props[_key(f)] = _field_schema(f, hints[f.name], defs, not cls.__schema_partial__, default)
         if f.metadata["required"]:
@@ -109,6 +113,15 @@ def object_schema(cls, defs: dict, *, defaults: dict | None = None) -> dict:
     return out
 
 
+def _reduced_schema(cls, field: dataclasses.Field, defs: dict) -> dict:
+    """The ``reduced:`` key of an analysis: the keys of its class, each with its reduced default if declared."""
+    hints, reduced = _hints(cls), reduced_defaults(cls)
+    props = {_key(f): _field_schema(f, hints[f.name], defs, f.name in reduced, reduced.get(f.name, REQUIRED))
+             for f in dataclasses.fields(cls) if f.name != "reduced"}
+    return {"description": field.metadata["doc"], "type": "object", "additionalProperties": False,
+            "properties": props}
+
+
 def union_schema(doc: str, kind_doc: str, kinds: dict, defs: dict) -> dict:
     """A discriminated union on ``kind``: ``kinds`` maps each kind to its declared class."""
     return {
@@ -123,7 +136,7 @@ def generate(root, *, title: str, extra_defs=None) -> dict:
     """The JSON Schema of the declared class ``root`` (the whole config, or one spec), shared types and
     the registered unions under $defs."""
     defs = {k: dict(v) for k, v in SHARED.items()}
-    for name, (doc, kind_doc, kinds) in UNIONS.items():
+    for name, (doc, kind_doc, kinds) in declare.UNIONS.items():
         defs[name] = union_schema(doc, kind_doc, kinds, defs)
     for name, make in (extra_defs or {}).items():
         defs[name] = make(defs)

@@ -17,11 +17,12 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import pickle
 
 from cradle.scenes.spec import Defaults, HomoclinicEntry, MapEntry, Scene, in_nc_units
 from cradle.specs.declare import plain
-from cradle.specs.parse import BAD, Found, entries, given_fields, parse
-from cradle.specs.values import ConfigError, Errors, show
+from cradle.specs.parse import BAD, Found, entries, fields_of, given_fields, parse
+from cradle.specs.values import ConfigError, Errors, copied, show
 
 from . import checks
 from .beyond import Beyond
@@ -30,8 +31,9 @@ from .sections import KNOWN_FIGURES, SECTIONS, Config, Figure
 #: the sections :func:`read` reads apart from the others: with ``defaults:``, entry by entry
 _OWN = ("defaults", "map", "homoclinic", "scenes", "figures", "beyond")
 
-#: the typed configs of the last few configs, by their canonical JSON (:func:`_key`)
+#: the typed configs of the last few configs, by their canonical JSON (:func:`_key`), with their plain values
 _TYPED: dict[str, Config] = {}
+_PLAIN: dict[int, dict] = {}
 
 
 def _key(config) -> str | None:
@@ -47,6 +49,28 @@ def _remember(key: str | None, made: Config) -> Config:
         if len(_TYPED) >= 8:
             _TYPED.pop(next(iter(_TYPED)))
         _TYPED[key] = made
+    return made
+
+
+#: what :func:`remembered` made of the entries of recent configs, by (class, key path, pickle of value and base)
+_MADE: dict[tuple, tuple] = {}
+
+
+def remembered(cls, value, path: tuple, found: Found, base=None):
+    """:func:`cradle.specs.parse.parse`, remembered: a config validated again with one entry changed (the
+    Snakefile's --config overrides, the config fuzz) reads that entry only. What it makes is frozen."""
+    try:
+        key = (cls, path, pickle.dumps((value, base), protocol=pickle.HIGHEST_PROTOCOL))
+    except Exception:  # noqa: BLE001 -- a value pickle refuses is read every time
+        return parse(cls, value, path, found, base)
+    if key not in _MADE:
+        mine = Found()
+        _MADE[key] = (parse(cls, value, path, mine, base), mine.lines, mine.finite)
+        if len(_MADE) > 4096:
+            _MADE.pop(next(iter(_MADE)))
+    made, lines, finite = _MADE[key]
+    found.lines += lines
+    found.finite += finite
     return made
 
 
@@ -72,25 +96,40 @@ def read(config) -> tuple[dict, Found]:
     found = Found()
     # the sections read below (with what they take from defaults:) left to their defaults here
     parts = given_fields(Config, {key: value for key, value in config.items() if key not in _OWN}, (), found)
-    defaults = parse(Defaults, config["defaults"], ("defaults",), found) if "defaults" in config else Defaults()
+    defaults = remembered(Defaults, config["defaults"], ("defaults",), found) if "defaults" in config \
+        else Defaults()
     base = _base(defaults)
     parts["defaults"] = defaults
     for section, cls in (("map", MapEntry), ("homoclinic", HomoclinicEntry), ("scenes", Scene)):
         if section in config:
             made = entries(cls, config[section], (section,), found, base={"alpha": base.get("alpha")}
-                           if cls is not Scene else base)
+                           if cls is not Scene else base, one=remembered)
             parts[section] = {} if made is BAD else made
     if "scenes" in config:
         parts["scenes"] = {name: in_nc_units(s) for name, s in parts["scenes"].items()}
     if "figures" in config:
-        made = entries(Figure, config["figures"], ("figures",), found, labels=KNOWN_FIGURES)
+        made = entries(Figure, config["figures"], ("figures",), found, labels=KNOWN_FIGURES, one=remembered)
         parts["figures"] = {} if made is BAD else made
-    if "beyond" in config:   # an analysis with problems left out, as an entry
-        made = given_fields(Beyond, config["beyond"], ("beyond",), found)
-        parts["beyond"] = {} if made is BAD else {name: spec for name, spec in made.items() if spec is not BAD}
-    else:
-        parts["beyond"] = {f.name: getattr(parts["beyond"], f.name) for f in dataclasses.fields(Beyond)}
+    parts["beyond"] = {f.name: getattr(parts["beyond"], f.name) for f in dataclasses.fields(Beyond)}
+    if "beyond" in config:   # each analysis as an entry: one with problems left out
+        parts["beyond"] = _analyses(config["beyond"], found, parts["beyond"])
     return parts, found
+
+
+def _analyses(given, found: Found, defaults: dict) -> dict:
+    """Each section of ``beyond:`` read as its analysis's spec class (field name -> spec; one with problems
+    left out)."""
+    if not isinstance(given, dict):
+        return {} if given_fields(Beyond, given, ("beyond",), found) is BAD else defaults
+    fields = {f.key: f for f in fields_of(Beyond)}
+    for key in given:
+        if key not in fields:
+            given_fields(Beyond, {key: given[key]}, ("beyond",), found)   # says so
+    out = dict(defaults)
+    for key, f in fields.items():
+        if key in given:
+            out[f.name] = remembered(f.tp, given[key], ("beyond", key), found, f.make())
+    return {name: spec for name, spec in out.items() if spec is not BAD}
 
 
 def typed(config) -> Config:
@@ -108,7 +147,10 @@ def typed(config) -> Config:
     checks.check(parts, config, out)
     out.raise_any()
     assert made is not None
-    _remember(_key(plain(made, canonical=False)), made)
+    values = _PLAIN.setdefault(id(made), plain(made, canonical=False))
+    if len(_PLAIN) > 8:
+        _PLAIN.pop(next(iter(_PLAIN)))
+    _remember(_key(values), made)
     return _remember(key, made)
 
 
@@ -116,7 +158,9 @@ def validate(config) -> dict:
     """``config`` validated, with every default filled in and every scene resolved (:func:`typed`), as plain
     values in the order of the declarations: what the Snakefile's ``config`` holds. Raises
     :class:`ConfigError` listing every problem found, one line each."""
-    return plain(typed(config), canonical=False)
+    made = typed(config)
+    values = _PLAIN.get(id(made))
+    return copied(values) if values is not None else plain(made, canonical=False)
 
 
 def assume_validated(config: dict) -> dict:
