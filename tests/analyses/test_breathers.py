@@ -187,7 +187,7 @@ def test_config_errors_name_the_key():
     import yaml
 
     from cradle.pipeline import config as cc
-from cradle.pipeline.config.reference import schema_path
+    from cradle.pipeline.config.reference import schema_path
 
     cfg = yaml.safe_load((schema_path().parents[3] / "config.yaml").read_text())
     assert cc.analysis_spec(cfg, "breathers", "reduced").N == 10

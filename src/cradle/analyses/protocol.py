@@ -34,7 +34,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from cradle.specs.declare import reduced_defaults
+from cradle.specs.parse import reduced_defaults
 
 #: the cheaper form ``all`` builds, and the complete one (its own target ``<name>_full``)
 REDUCED, FULL = "reduced", "full"

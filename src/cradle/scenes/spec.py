@@ -27,7 +27,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Protocol
+from typing import Protocol, cast
 
 from cradle.models.damping import Damping
 from cradle.models.lattice_terms import Terms
@@ -526,7 +526,7 @@ def in_nc_units(scene: Scene) -> Scene:
     string = c.length if c.length is not None else c.g / s.omega0**2   # l_0 = g / omega_0^2
     factor = {"time": s.omega0, "displacement": 1.0 / s.X, "velocity": 1.0 / s.V, "rate": 1.0 / s.omega0,
               "A": s.omega0, "string": 1.0 / string, "radius": 1.0 / c.radius}
-    out = dataclasses.replace(scene, units=None)
+    out = dataclasses.replace(scene, units=cast(str, None))   # absent: (nc)'s units
     for keys, quantity in SI_KEYS.items():
         out = _scaled(out, keys, factor[quantity])
     return out

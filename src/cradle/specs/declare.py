@@ -16,7 +16,12 @@ import types
 import typing
 from typing import Any
 
-from .values import ANGLE_PATTERN, NAME_PATTERN, ConfigError, Errors, canonical_angle
+from .parse import BAD, Found, parse, reduced_defaults
+from .shared import BOUND_HINTS, SHARED
+from .values import NAME_PATTERN, ConfigError, Errors, canonical_angle
+
+__all__ = ["BOUND_HINTS", "NAME_PATTERN", "NULL", "REQUIRED", "SHARED", "UNIONS", "build", "declared", "from_plain",
+           "param", "plain", "reduced_defaults", "register_union", "schema_doc"]
 
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
 
@@ -42,7 +47,7 @@ def param(default=REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict
     descriptions of its keys in this place, where they get the defaults of the class. ``key``: the
     config key when it is not a Python name (``from``). ``reduced``: the key's value in the reduced form of
     an analysis (the cheaper one ``snakemake all`` builds), when it differs from the full form's
-    (:func:`reduced_defaults`).
+    (:func:`.parse.reduced_defaults`).
     """
     meta = {"key": key, "doc": doc, "ref": ref, "keywords": keywords, "fill": fill, "required": default is REQUIRED,
             "null_default": default is NULL}
@@ -91,67 +96,12 @@ REDUCED_DOC = ("The reduced form `snakemake all` builds (results/<name>/<name>.n
                "left out takes its declared reduced value, else the full form's.")
 
 
-def reduced_defaults(cls) -> dict[str, Any]:
-    """field name -> its value in the reduced form, for every field of ``cls`` declared with ``reduced=``."""
-    out = {}
-    for f in dataclasses.fields(cls):
-        if "reduced" in f.metadata:
-            value = f.metadata["reduced"]
-            out[f.name] = json.loads(value) if isinstance(value, str) and value[:1] in "[{" else value
-    return out
-
-
 def schema_doc(cls: Any) -> str:
     """The description :func:`declared` gave the class ``cls`` (the type checker does not see the attribute
     the decorator sets)."""
     return cls.__schema_doc__
 
 
-# Shared scalar types ($defs), each bound written here only.
-
-SHARED: dict[str, dict[str, Any]] = {
-    "name": {"description": "An entry name: letters, digits, '-' and '_' (it becomes part of file names).",
-             "type": "string", "pattern": NAME_PATTERN},
-    # at most 10: the paper's exponents are 3/2 (Hertz) to 3; beyond, a^(alpha-1) of (freq) underflows to 0 or
-    # overflows for the amplitudes of the experiments, and a huge alpha makes every power overflow
-    "alpha": {"description": "Hertz exponent alpha of (vhertz); in (1, 10].", "type": "number", "exclusiveMinimum": 1,
-              "maximum": 10},
-    # at most 1e7: the 32 state arrays of a run (cradle.pipeline.budget) alone then take 2.6 GB
-    "N": {"description": "Number of sites (beads) n = 0..N-1; in [2, 1e7].", "type": "integer", "minimum": 2,
-          "maximum": 10_000_000},
-    "bc": {"description": "Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one "
-                          "neighbour).", "type": "string", "enum": ["periodic", "free"]},
-    "rtol": {"description": "Relative tolerance of an adaptive integrator, in (0, 1e-2].", "type": "number",
-             "exclusiveMinimum": 0, "maximum": 0.01},
-    # at most 1e-2: a run whose energy moved by more than 1 % of H(0) is no solution of (nc), and a larger bound
-    # would silently turn the check off
-    "maxEnergyDrift": {"description": "Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact "
-                                      "run; in (0, 1e-2] (a larger bound would turn the check off).",
-                       "type": "number", "exclusiveMinimum": 0, "maximum": 0.01},
-    "angleString": {"description": "A multiple of pi such as 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', or a "
-                                   "number written as a string.", "type": "string", "pattern": ANGLE_PATTERN},
-    "angle": {"description": "An angle: a number (radians) or a multiple of pi as a string ('pi/5', '4pi/5', "
-                             "'-52pi/100', '4*pi/5').", "anyOf": [{"type": "number"}, {"$ref": "#/$defs/angleString"}]},
-    # arguments of public functions (cradle.specs.checked) that no config key refers to yet: a schema
-    # lists only the shared types its keys use, so these are not in config.schema.json
-    "atol": {"description": "Absolute tolerance of an adaptive integrator; > 0.", "type": "number",
-             "exclusiveMinimum": 0},
-    "dt": {"description": "Time step of a fixed-step splitting; > 0.", "type": "number", "exclusiveMinimum": 0},
-    "dt_factor": {"description": "Splitting step as a fraction of the shortest linearised period 2 pi / omega_max; "
-                                 "> 0.", "type": "number", "exclusiveMinimum": 0},
-    "latticeMethod": {"description": "Integrator of the lattice (nc): a splitting (srkn6c, srkn4c with the "
-                                     "contact-onset correction; srkn6, srkn4, strang) or an adaptive method "
-                                     "(dop853_numba; scipy's dop853, rk45, lsoda, radau).", "type": "string",
-                      "enum": ["srkn6c", "srkn4c", "srkn6", "srkn4", "strang", "dop853_numba", "dop853", "rk45",
-                               "lsoda", "radau"]},
-    "dpsMethod": {"description": "Integrator of the DpS equation (dfnls): dop853_numba, or scipy's dop853, rk45.",
-                  "type": "string", "enum": ["dop853_numba", "dop853", "rk45"]},
-    "potential": {"description": "Interaction potential: hertz, V0 of (vhertz), or smooth, |d|^(alpha+1)/(alpha+1) "
-                                 "of (meca) with kappa = 1.", "type": "string", "enum": ["hertz", "smooth"]},
-}
-
-#: words a message adds to a bound of a shared type, by (type, keyword): what the bound is
-BOUND_HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))"}
 
 
 @functools.cache
@@ -257,8 +207,6 @@ def from_plain(cls, mapping, where: str | None = None):
     ``params:``, a file's stored parameters, keyword arguments): every key checked against its declaration
     (:mod:`.parse`), then built. Raises :class:`cradle.specs.values.ConfigError`, one line per problem naming
     ``where`` (default: the class name), the key and the value."""
-    from .parse import BAD, Found, parse
-
     found = Found()
     made = parse(cls, mapping, (where or cls.__name__,), found)
     if found or made is BAD:
@@ -268,8 +216,6 @@ def from_plain(cls, mapping, where: str | None = None):
 
 def build(tp, value):
     """``value`` (plain values already validated) as an instance of the annotation ``tp``."""
-    from .parse import BAD, Found, parse
-
     found = Found()
     made = parse(tp, value, (getattr(tp, "__name__", "value"),), found)
     if found or made is BAD:

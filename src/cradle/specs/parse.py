@@ -10,12 +10,14 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import json
 import math
 import re
 import types
 import typing
 from typing import Any, NamedTuple
 
+from .shared import SHARED
 from .values import ANGLE_HINT, ANGLE_PATTERN, TYPE_WORDS, Errors, bound_text, did_you_mean, number
 
 #: what :func:`parse` returns for a value it refused (its problems are reported)
@@ -73,10 +75,8 @@ _MERGED: dict[int, tuple[dict, dict]] = {}
 
 
 def _shared(node: dict) -> dict:
-    """``node`` with its ``$ref`` to a shared type (:data:`.declare.SHARED`) merged in, its own keywords winning
+    """``node`` with its ``$ref`` to a shared type (:data:`.shared.SHARED`) merged in, its own keywords winning
     (worked out once per node: the declarations' nodes live as long as their classes)."""
-    from .declare import SHARED
-
     if "$ref" not in node:
         return node
     hit = _MERGED.get(id(node))
@@ -193,8 +193,6 @@ def _mapping(node: dict, value: dict, path: tuple, found: Found):
 def _any_of(node: dict, value, path: tuple, found: Found):
     """The first branch of ``anyOf`` that takes ``value``; else the problems of the first branch whose type fits
     it, or one line naming the types (an angle: the forms it may take)."""
-    from .declare import SHARED
-
     tried = []
     for sub in node["anyOf"]:
         mine = Found()
@@ -306,8 +304,6 @@ def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, 
     """A mapping of entry names to instances of ``cls``; an entry with problems is left out (they are reported).
     ``labels``: the names allowed (figure labels), else any entry name (letters, digits, '-' and '_');
     ``base``: what each entry leaves out (:func:`parse`); ``one``: what reads one entry (default :func:`parse`)."""
-    from .declare import SHARED
-
     if _not_mapping(value, path, found):
         return BAD
     out = {}
@@ -357,12 +353,20 @@ def given_fields(cls, value, path: tuple, found: Found, base=None) -> Any:
     return out
 
 
+def reduced_defaults(cls) -> dict[str, Any]:
+    """field name -> its value in the reduced form, for every field of ``cls`` declared with ``reduced=``."""
+    out = {}
+    for f in dataclasses.fields(cls):
+        if "reduced" in f.metadata:
+            value = f.metadata["reduced"]
+            out[f.name] = json.loads(value) if isinstance(value, str) and value[:1] in "[{" else value
+    return out
+
+
 def _overrides(cls, value, path: tuple, found: Found, full: dict):
     """The keys given under ``reduced:`` of an analysis's section (its reduced form), each read as its field
     declares it, over its declared reduced value or else the full form's (``full``): field name -> value, or
     :data:`BAD`."""
-    from .declare import reduced_defaults
-
     if _not_mapping(value, path, found):
         return BAD
     known = {f.key: f for f in fields_of(cls) if f.name != "reduced"}

@@ -13,7 +13,9 @@ import typing
 from pathlib import Path
 
 from . import declare
-from .declare import REQUIRED, SHARED, _default_of, _hints, _key, reduced_defaults
+from .declare import REQUIRED, _default_of, _hints, _key
+from .parse import reduced_defaults
+from .shared import SHARED
 
 SCHEMA_DRAFT = "https://json-schema.org/draft/2020-12/schema"
 

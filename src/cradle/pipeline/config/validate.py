@@ -177,7 +177,7 @@ def entry(config: dict, section: str, name: str):
     """Entry ``name`` of ``section`` (scenes, homoclinic, map) of ``config``, typed and resolved; a config taken
     as validated (:func:`assume_validated`) is read for that entry alone."""
     key = _key(config)
-    made = _TYPED.get(key)
+    made = _TYPED.get(key) if key is not None else None
     if made is None and key in _TRUSTED and name in (config.get(section) or {}):
         found = Found()
         defaults = parse(Defaults, config.get("defaults", {}), ("defaults",), found)
