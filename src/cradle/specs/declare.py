@@ -20,7 +20,7 @@ from .parse import BAD, Found, parse, reduced_defaults
 from .shared import BOUND_HINTS, SHARED
 from .values import NAME_PATTERN, ConfigError, Errors, canonical_angle
 
-__all__ = ["BOUND_HINTS", "NAME_PATTERN", "NULL", "REQUIRED", "SHARED", "UNIONS", "build", "declared", "from_plain",
+__all__ = ["BOUND_HINTS", "NAME_PATTERN", "NULL", "REQUIRED", "SHARED", "UNIONS", "declared", "from_plain",
            "param", "plain", "reduced_defaults", "register_union", "schema_doc"]
 
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
@@ -209,15 +209,6 @@ def from_plain(cls, mapping, where: str | None = None):
     ``where`` (default: the class name), the key and the value."""
     found = Found()
     made = parse(cls, mapping, (where or cls.__name__,), found)
-    if found or made is BAD:
-        raise ConfigError(found.report(Errors()).lines)
-    return made
-
-
-def build(tp, value):
-    """``value`` (plain values already validated) as an instance of the annotation ``tp``."""
-    found = Found()
-    made = parse(tp, value, (getattr(tp, "__name__", "value"),), found)
     if found or made is BAD:
         raise ConfigError(found.report(Errors()).lines)
     return made

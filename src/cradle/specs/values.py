@@ -55,14 +55,6 @@ def copied(value):
     return copy.deepcopy(value)
 
 
-def merged(base, override):
-    """A deep merge of two mappings, ``override`` winning (a copy: neither is changed)."""
-    out = copied(base) if isinstance(base, dict) else {}
-    for k, v in (override or {}).items():
-        out[k] = merged(out.get(k), v) if isinstance(v, dict) and isinstance(out.get(k), dict) else copied(v)
-    return out
-
-
 def key_path(parts) -> str:
     """``["scenes", "tw", "store", "snapshots", 1]`` as ``scenes.tw.store.snapshots[1]``."""
     out = ""
