@@ -82,7 +82,7 @@ def _base(defaults) -> dict:
             "max_energy_drift": defaults.max_energy_drift}
 
 
-def read(config) -> tuple[dict, Found]:
+def read(config: dict) -> tuple[dict, Found]:
     """Every section of ``config`` as its typed value (field name of :class:`.sections.Config` -> value; an
     entry with problems left out), and the problems found."""
     if config is None:
@@ -132,7 +132,7 @@ def _analyses(given, found: Found, defaults: dict) -> dict:
     return {name: spec for name, spec in out.items() if spec is not BAD}
 
 
-def typed(config) -> Config:
+def typed(config: dict) -> Config:
     """The validated config as a frozen :class:`.sections.Config` (every entry typed, scenes resolved)."""
     key = _key(config)
     if key in _TYPED:
@@ -154,7 +154,7 @@ def typed(config) -> Config:
     return _remember(key, made)
 
 
-def validate(config) -> dict:
+def validate(config: dict) -> dict:
     """``config`` validated, with every default filled in and every scene resolved (:func:`typed`), as plain
     values in the order of the declarations: what the Snakefile's ``config`` holds. Raises
     :class:`ConfigError` listing every problem found, one line each."""
