@@ -1,24 +1,17 @@
 """Declarations of the entries a job computes from: scenes, homoclinic and map entries, defaults.
 
-A scene is one lattice (nc) + DpS (dfnls) run from one initial condition. The
-kinds of initial condition (travelling (ansatzapprox), breather
-(ansatzapproxst2), packet, pair) are one class each, chosen by ``kind``.
+A scene is one lattice (nc) + DpS (dfnls) run from one initial condition. The kinds of initial condition
+(travelling (ansatzapprox), breather (ansatzapproxst2), packet, pair, kick) are one class each, chosen by
+``kind``. A *resolved* :class:`Scene` (:func:`cradle.pipeline.config.scene`) has its defaults filled in:
+``alpha`` and ``max_energy_drift`` numbers, ``exact`` and ``dps`` complete integrators, SI values in (nc)'s
+units (:func:`in_nc_units`). What follows from the declared values is a property, not a field
+(:attr:`Scene.times`, :attr:`Travelling.wavenumber`), so ``from_plain(Scene, plain(scene)) == scene``.
 
-A *resolved* :class:`Scene` (:func:`cradle.pipeline.config.scene`) has its
-defaults filled in: ``alpha`` and ``max_energy_drift`` numbers, ``exact`` and
-``dps`` complete integrators. What follows from the declared values is a
-property, not a field (:attr:`Scene.times`, :attr:`Travelling.wavenumber`), so
-``from_plain(Scene, plain(scene)) == scene``. A resolved :class:`HomoclinicEntry`
-or :class:`MapEntry` has its ``alpha`` filled in.
-
-Each class's ``check`` holds the physical checks the schema of config.yaml cannot express, since it
-checks each key alone (a wave that fits the ring, a breather built from an existing homoclinic entry
-with the same N and bc, a figure's times stored by its scenes, an analysis's grids fine enough for its
-modes, ...): the protocol :class:`Checked`. :func:`cradle.pipeline.config.validate.validate` builds
-every entry the schema passed as its typed object and runs ``check(where, context, out)``: ``where``
-the entry's key path, ``out`` the :class:`~cradle.specs.values.Errors` the one-line messages go to,
-``context`` (:class:`Context`) the entries it may refer to. An entry with a schema error is not
-checked further (its errors are said), so a check reads attributes of the types they are declared with.
+Each class's ``check`` holds what no key says alone (a wave that fits the ring, a breather built from an
+existing homoclinic entry with the same N and bc, a figure's times stored by its scenes, ...): the protocol
+:class:`Checked`, run by :mod:`cradle.pipeline.config.checks` on the typed entries that passed the
+validation, with ``where`` the entry's key path, ``out`` the :class:`~cradle.specs.values.Errors` the
+one-line messages go to and ``context`` (:class:`Context`) the entries it may refer to.
 """
 from __future__ import annotations
 
