@@ -48,7 +48,7 @@ def main(argv=None) -> int:
 
     cfg = cc.load(ROOT / "config.yaml")
     rows, ratios = [], {"time": [], "memory": []}
-    for e in budget.estimates(cfg):
+    for e in budget.estimates(cc.typed(cfg)):
         section, name = e.key.split(".", 1)
         folder = {"scenes": "sim", "homoclinic": "homoclinic", "map": "map"}.get(section)
         got = (measured(Path(args.results) / "benchmarks" / folder / f"{name}.tsv",

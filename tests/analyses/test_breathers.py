@@ -187,8 +187,9 @@ def test_config_errors_name_the_key():
     import yaml
 
     from cradle.pipeline import config as cc
+    from cradle.pipeline.config.reference import schema_path
 
-    cfg = yaml.safe_load((cc.schema_path().parents[3] / "config.yaml").read_text())
+    cfg = yaml.safe_load((schema_path().parents[3] / "config.yaml").read_text())
     assert cc.analysis_spec(cfg, "breathers", "reduced").N == 10
     bad = copy.deepcopy(cfg)
     bad["beyond"].setdefault("breathers", {})["pn_omega"] = 1.11

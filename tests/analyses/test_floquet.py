@@ -9,7 +9,7 @@ import pytest
 from cradle.analyses import bloch as B, floquet as F
 from cradle.analyses.floquet_spec import Floquet, Numerics
 from cradle.analyses.registry import FULL, REDUCED, form_spec
-from cradle.specs.declare import from_plain, plain
+from cradle.specs.declare import from_plain, plain, reduced_defaults
 from cradle.specs.values import parse_angle
 from tolerance import bound_of, eigenvalue_bounds
 
@@ -129,7 +129,7 @@ def test_both_forms_round_trip_through_plain_values():
         assert plain(back) == plain(one)
         for key in ("q_min", "q_max", "threshold_q_min", "threshold_q_max"):
             assert parse_angle(getattr(back, key)) == parse_angle(getattr(one, key)), key
-    reduced = form_spec(spec, REDUCED)
-    assert (reduced.n_q, reduced.q_profiles, reduced.q_min) == (spec.reduced.n_q, spec.reduced.q_profiles, "0.4pi")
-    assert reduced.fine == Numerics(spec.reduced.convergence.hill_modes, spec.reduced.convergence.grid_log2,
-                                    spec.reduced.convergence.wave_modes, spec.reduced.wave_grid_log2)
+    reduced, declared = form_spec(spec, REDUCED), reduced_defaults(Floquet)
+    assert (reduced.n_q, reduced.q_profiles, reduced.q_min) == (declared["n_q"], declared["q_profiles"], "0.4pi")
+    conv = declared["convergence"]
+    assert reduced.fine == Numerics(conv.hill_modes, conv.grid_log2, conv.wave_modes, declared["wave_grid_log2"])

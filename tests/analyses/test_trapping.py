@@ -151,11 +151,11 @@ def test_forms_and_checks():
     spec = from_plain(tr.Trapping, {})
     for form in (REDUCED, FULL):
         out = Errors()
-        form_spec(spec, form)._check(["beyond", "trapping"], out)
+        form_spec(spec, form).check(["beyond", "trapping"], None, out)
         assert not out.lines
     bad = dataclasses.replace(spec, times=[700.0], scan_breather=0.5)
     out = Errors()
-    bad._check(["beyond", "trapping"], out)
+    bad.check(["beyond", "trapping"], None, out)
     lines = out.lines
     assert len(lines) == 2 and any("times" in s and "tau_end" in s for s in lines)
     assert any("scan_breather" in s for s in lines)

@@ -9,7 +9,9 @@ import pytest
 import yaml
 
 from cradle.pipeline import config as cc
-from cradle.pipeline.config.validate import _VALIDATED, _validated
+from cradle.pipeline.config.reference import generated_schema
+from cradle.pipeline.config.validate import _TYPED
+from cradle.scenes.spec import ExactIntegrator, Noise
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
@@ -80,45 +82,45 @@ def test_empty_or_sectionless_config_is_refused_in_one_line(empty):
 
 
 def test_resolved_scene(raw):
-    r = cc.resolved_scene(raw, "tw-weak")
-    json.dumps(r)
-    assert r["name"] == "tw-weak" and r["N"] == 50 and r["alpha"] == 1.5
-    assert r["initial"]["q"] == pytest.approx(math.pi / 5) and r["initial"]["q_expr"] == "pi/5"
-    assert r["exact"] == {"method": "srkn6c", "dt_factor": None, "rtol": 1e-10}
-    assert r["dps"] == {"method": "dop853_numba", "rtol": 1e-10} and r["max_energy_drift"] == 1e-6
-    assert r["times"][0] == 0.0 and r["times"][-1] == 621.95 and 333.7 in r["times"]
-    assert len(r["times"]) == 6221  # 0, 0.1, ..., 621.9 and 621.95
-    noisy = cc.resolved_scene(raw, "tw-weak-noise")
-    assert noisy["initial"]["noise"] == {"kind": "uniform", "amplitude": 0.5, "seed": 20110605}
-    assert noisy["times"] == [0.0, 621.95]
+    r = cc.scene(raw, "tw-weak")
+    assert r.N == 50 and r.alpha == 1.5 and r.bc == "periodic"
+    assert r.initial.wavenumber == pytest.approx(math.pi / 5) and r.initial.q_expr == "pi/5"
+    assert r.exact == ExactIntegrator(method="srkn6c", dt_factor=None, rtol=1e-10)
+    assert (r.dps.method, r.dps.rtol, r.max_energy_drift) == ("dop853_numba", 1e-10, 1e-6)
+    assert r.times[0] == 0.0 and r.times[-1] == 621.95 and 333.7 in r.times
+    assert len(r.times) == 6221  # 0, 0.1, ..., 621.9 and 621.95
+    noisy = cc.scene(raw, "tw-weak-noise")
+    assert noisy.initial.noise == Noise(kind="uniform", amplitude=0.5, seed=20110605)
+    assert noisy.times == (0.0, 621.95)
 
 
 def test_resolved_scene_merges_overrides(cfg):
     tw(cfg).update(alpha=2.0, exact={"method": "dop853"}, max_energy_drift=1e-4)
     tw(cfg)["initial"]["q"] = 0.6283185307179586
-    r = cc.resolved_scene(cfg, "tw-weak")
-    assert r["alpha"] == 2.0 and r["max_energy_drift"] == 1e-4
-    assert r["exact"] == {"method": "dop853", "dt_factor": None, "rtol": 1e-10}
-    assert r["initial"]["q_expr"] == "0.6283185307179586"
+    r = cc.scene(cfg, "tw-weak")
+    assert r.alpha == 2.0 and r.max_energy_drift == 1e-4
+    assert r.exact == ExactIntegrator(method="dop853", dt_factor=None, rtol=1e-10)
+    assert r.initial.q_expr == "0.6283185307179586"
 
 
 def test_resolved_homoclinic_and_map(raw):
-    h = cc.resolved_homoclinic(raw, "double")
-    assert h == {"name": "double", "guess": "double", "N": 50, "bc": "periodic", "amplitude": 0.1,
-                 "separation": 9, "mu": 1.0, "alpha": 1.5}
-    m = cc.resolved_map(raw, "traj3")
-    assert m["alpha"] == 1.5 and m["marks"] is False and m["starts"] == [[0.0, 1e-13]]
+    h = cc.homoclinic(raw, "double")
+    assert (h.guess, h.N, h.bc, h.amplitude, h.separation, h.mu, h.alpha) == ("double", 50, "periodic", 0.1, 9, 1.0,
+                                                                               1.5)
+    m = cc.map_entry(raw, "traj3")
+    assert m.alpha == 1.5 and m.marks is False and m.starts == [[0.0, 1e-13]]
 
 
-@pytest.mark.parametrize("fn", [cc.resolved_scene, cc.resolved_homoclinic, cc.resolved_map])
+@pytest.mark.parametrize("fn", [cc.scene, cc.homoclinic, cc.map_entry])
 def test_resolved_unknown_name(raw, fn):
     with pytest.raises(cc.ConfigError, match="nosuch"):
         fn(raw, "nosuch")
 
 
 def test_schema_is_complete():
-    """Every key has a description, every object forbids unknown keys, labels match KNOWN_FIGURES."""
-    s = cc.schema()
+    """Every key of the generated schema has a description, every object forbids unknown keys, labels match
+    KNOWN_FIGURES."""
+    s = generated_schema()
 
     def walk(node, where):
         if isinstance(node, dict):
@@ -345,28 +347,29 @@ def test_parse_angle_junk(junk):
 
 
 def test_store_times_grid_and_snapshots_merged():
-    assert cc.store_times({"every": 0.25, "snapshots": [0.1, 0.5]}, 1.0) == [0.0, 0.1, 0.25, 0.5, 0.75, 1.0]
+    assert cc.store_times([0.1, 0.5], 0.25, 1.0) == [0.0, 0.1, 0.25, 0.5, 0.75, 1.0]
 
 
 def test_store_times_includes_t_end_off_the_grid():
-    assert cc.store_times({"every": 0.4}, 1.0) == [0.0, 0.4, 0.8, 1.0]
+    assert cc.store_times(None, 0.4, 1.0) == [0.0, 0.4, 0.8, 1.0]
 
 
 def test_store_times_dedup_within_tolerance():
-    t = cc.store_times({"every": 0.1, "snapshots": [0.3 + 4e-10, 0.35, 1.0 - 5e-10]}, 1.0)
+    t = cc.store_times([0.3 + 4e-10, 0.35, 1.0 - 5e-10], 0.1, 1.0)
     assert t == [0.0, 0.1, 0.2, 0.3, 0.35, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0]
 
 
 def test_store_times_snapshots_only():
-    assert cc.store_times({"snapshots": [621.95]}, 621.95) == [0.0, 621.95]
-    assert cc.store_times({"snapshots": [0.0, 5.0]}, 10.0) == [0.0, 5.0, 10.0]
+    assert cc.store_times([621.95], None, 621.95) == [0.0, 621.95]
+    assert cc.store_times([0.0, 5.0], None, 10.0) == [0.0, 5.0, 10.0]
 
 
 def test_validate_is_idempotent_and_remembered():
-    """A validated config validates to itself, which is what lets resolved_* skip revalidating it."""
+    """A validated config validates to itself, and its typed config is remembered: the entries a job resolves
+    from it cost no validation."""
     cfg = cc.load(CONFIG)
     assert cc.validate(cfg) == cfg
-    _VALIDATED.clear()
+    _TYPED.clear()
     cfg = cc.load(CONFIG)
-    assert len(_VALIDATED) == 1 and _validated(cfg) == cfg
-    assert len(_VALIDATED) == 1
+    typed = cc.typed(cfg)
+    assert cc.typed(cfg) is typed and cc.scene(cfg, "tw-weak") is typed.scenes["tw-weak"]

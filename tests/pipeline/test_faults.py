@@ -254,7 +254,7 @@ def test_mi_statistics_batch_over_budget_refused():
     lines = str(err.value).splitlines()
     assert len(lines) == 1
     assert lines[0].startswith("config error: beyond.mi-statistics: ") and "budget." in lines[0]
-    e = budget.mi_statistics_estimate(cc.load(ROOT / "config.yaml"), "reduced")
+    e = budget.mi_statistics_estimate(cc.typed(cc.load(ROOT / "config.yaml")), "reduced")
     assert 7.9 / 2 < e.seconds < 7.9 * 2 and e.key == "beyond.mi-statistics.reduced"
 
 
@@ -291,7 +291,7 @@ def test_estimates_of_the_paper_config_fit_and_are_sane():
     (every 0.001 to 543.7: 11 GB peak in memory, 7.5 GB written on main) is estimated within 20 %
     (in memory: with a DpS method that cannot stream); with the defaults it streams, under 1 GB."""
     cfg = cc.load(ROOT / "config.yaml")
-    assert budget.over_budget(cfg) == []
+    assert budget.over_budget(cc.typed(cfg)) == []
     spec = _scene(N=200, t_end=543.7, store=Store(every=0.001), dps=DpsIntegrator(method="dop853"))
     e = budget.spec_estimate(spec, "fft106")
     assert not e.streamed

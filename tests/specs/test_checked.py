@@ -13,7 +13,8 @@ import pytest
 
 from cradle.specs import declare
 from cradle.specs.checked import checked, checker
-from cradle.specs.declare import SHARED, declared, generate, param
+from cradle.specs.declare import SHARED, declared, param
+from cradle.specs.schema import generate
 from cradle.specs.values import ConfigError
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "cradle"

@@ -33,7 +33,7 @@ import numpy as np
 
 from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
-from cradle.specs.declare import declared, param, plain, schema_doc
+from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
@@ -52,25 +52,6 @@ _SPACING = {"type": "integer", "minimum": 1, "maximum": 24}
 _THETA = {"type": "number", "minimum": 0, "exclusiveMaximum": 6.283185307179586}
 
 
-@declared(doc="The reduced form `snakemake all` builds (results/breather-interactions/breather-interactions.nc): "
-              "these keys replace those of the full form, `snakemake -j2 breather_interactions_full` "
-              "(results/breather-interactions/full/).")
-class BreatherInteractionsReduced:
-    pairs: list[str] = param(["site-site"], "Profile pairs.", minItems=1, maxItems=3, items=_PAIRS)
-    spacings: list[int] = param([4, 6, 8], "Centre spacings.", minItems=1, maxItems=24, items=_SPACING)
-    n_theta: int = param(2, "Number of base phases theta.", minimum=1, maximum=96)
-    refine: int = param(0, "Bisection levels of theta where the outcome changes.", minimum=0, maximum=4)
-    n_seeds: int = param(2, "Noise seeds per case.", minimum=1, maximum=64)
-    periods: float = param(150.0, "Run length in breather periods.", exclusiveMinimum=0, maximum=5000)
-    # the bounds of the full form's keys they replace
-    ratios: list[float] = param([1.0], "Amplitude ratios.", minItems=1, maxItems=8,
-                                items={"type": "number", "exclusiveMinimum": 0, "maximum": 10})
-    amplitudes: list[float] = param([0.01], "Overall amplitudes.", minItems=1, maxItems=8,
-                                    items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.1})
-    chunks: int = param(1, "Jobs of the sweep (reduced: computed in the analysis job itself).", minimum=1,
-                        maximum=1)
-
-
 @declared(doc="Collisions of two breathers of the DpS family (omega_sw ~ 1.1) on a ring, exact (nc) against DpS "
               "(dfnls), over profile pair, spacing, relative phase, amplitude ratio, amplitude and noise seeds "
               "-> results/breather-interactions/full/breather-interactions.nc (target breather_interactions_full) "
@@ -82,43 +63,47 @@ class BreatherInteractions:
     amplitude: float = param(0.01, "Peak |x_n(0)| of the first copy alone in the theta sweep (omega_sw ~ 1.1).",
                              exclusiveMinimum=0, maximum=0.1)
     pairs: list[str] = param(["site-site", "bond-bond", "site-bond"], "Profile pairs of the two copies of (dpsstn) "
-                             "solutions.", minItems=1, maxItems=3, items=_PAIRS)
+                             "solutions.", minItems=1, maxItems=3, items=_PAIRS,
+                             reduced=["site-site"])
     spacings: list[int] = param([4, 5, 6, 7, 8], "Centre spacings (site-bond: each + 1/2), the interacting range "
-                                "of docs/loc1-readings.md.", minItems=1, maxItems=24, items=_SPACING)
+                                "of docs/loc1-readings.md.", minItems=1, maxItems=24, items=_SPACING,
+                                reduced=[4, 6, 8])
     n_theta: int = param(24, "Number of base phases theta = 2 pi j / n_theta of the second copy on the carrier.",
-                         minimum=1, maximum=96)
+                         minimum=1, maximum=96,
+                         reduced=2)
     refine: int = param(1, "Bisection levels between neighbouring base thetas whose outcome (exact, modal over seeds) "
-                        "differs.", minimum=0, maximum=4)
-    n_seeds: int = param(8, "Noise seeds per case.", minimum=1, maximum=64)
+                        "differs.", minimum=0, maximum=4,
+                        reduced=0)
+    n_seeds: int = param(8, "Noise seeds per case.", minimum=1, maximum=64,
+                         reduced=2)
     noise: float = param(0.01, "Noise on A_n(0), relative to the amplitude (Gaussian, sd noise * amplitude / 2).",
                          minimum=0, maximum=1)
     seed_base: int = param(20261122, "First entry of the seed sequence (seed_base, seed) of numpy's default_rng.",
                            minimum=0)
     periods: float = param(600.0, "Run length in breather periods 2 pi / omega_sw (the paper: up to 600).",
-                           exclusiveMinimum=0, maximum=5000)
+                           exclusiveMinimum=0, maximum=5000,
+                           reduced=150.0)
     ratios: list[float] = param([0.8, 1.0, 1.25], "Amplitude ratios (second copy / first) of the amplitude sweep, at "
                                 "the base amplitude.", minItems=1, maxItems=8,
-                                items={"type": "number", "exclusiveMinimum": 0, "maximum": 10})
+                                items={"type": "number", "exclusiveMinimum": 0, "maximum": 10},
+                                reduced=[1.0])
     amplitudes: list[float] = param([0.005, 0.01, 0.02], "Overall amplitudes of the amplitude sweep, at ratio 1.",
                                     minItems=1, maxItems=8,
-                                    items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.1})
+                                    items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.1},
+                                    reduced=[0.01])
     amplitude_thetas: list[float] = param([0.0, 3.141592653589793], "Phases (radians) of the amplitude sweep.",
                                           minItems=1, maxItems=8, items=_THETA)
     chunks: int = param(4, "Jobs the full sweep is split into (round robin over (pair, spacing)); 1: the sweep runs "
-                        "in the analysis job itself.", minimum=1, maximum=64)
-    reduced: BreatherInteractionsReduced = param(BreatherInteractionsReduced(),
-                                                 schema_doc(BreatherInteractionsReduced))
+                        "in the analysis job itself.", minimum=1, maximum=64,
+                        reduced=1)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Spacings distinct; the pair must fit the ring."""
-        forms = [(where, self.spacings)]
-        if self.reduced is not None:
-            forms.append((where + ["reduced"], self.reduced.spacings))
-        for at, sp in forms:
-            if len(set(map(str, sp))) != len(sp):
-                out.add(at + ["spacings"], "must be distinct", sp)
-            if any(s + 10 > self.N for s in sp):
-                out.add(at + ["spacings"], f"must leave room for both breathers: spacing + 10 <= N = {self.N}", sp)
+        sp = self.spacings
+        if len(set(map(str, sp))) != len(sp):
+            out.add(where + ["spacings"], "must be distinct", sp)
+        if any(s + 10 > self.N for s in sp):
+            out.add(where + ["spacings"], f"must leave room for both breathers: spacing + 10 <= N = {self.N}", sp)
 
 
 def spacings_of(pair: str, spacings) -> list[float]:

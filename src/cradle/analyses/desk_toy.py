@@ -32,12 +32,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.protocol import Analysis, check_forms
+from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.models.damping import Damping
 from cradle.models.lattice import bond_forces
 from cradle.models.physical import Cradle
-from cradle.specs.declare import declared, param, plain, schema_doc
+from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
@@ -71,13 +71,6 @@ def cradle_of(spec: DeskToyRuns) -> Cradle:
     return spec.cradle if spec.cradle is not None else DEFAULT_CRADLE
 
 
-@declared(doc="The reduced form `snakemake all` builds (results/desk-toy/desk-toy.nc, results/figures/desk-toy.*): "
-              "these keys replace those of the full form, `snakemake desk_toy_full` (results/desk-toy/full/).")
-class DeskToyRunsReduced:
-    chains: list[int] = param([5], "Chain lengths N.", minItems=1, maxItems=6, items=_CHAIN)
-    swings: int = param(6, "Swing periods 2 pi (in (nc)'s time) of each run.", minimum=1, maximum=1000)
-
-
 @declared(doc="The desk-toy experiments (issue 24): N balls, 1, 2 or 3 lifted to an angle and released; the lattice "
               "(nc) at the desk toy's own amplitude against the ideal hard-sphere cradle (restitution e), in SI: "
               "displacements, one-out-one-out shares and holds, the break-up of the line after the first cascade, "
@@ -89,9 +82,11 @@ class DeskToyRuns:
                              exclusiveMinimum=0, exclusiveMaximum=90)
     lifted: list[int] = param([1, 2, 3], "Lifted counts: the first `lifted` balls are released together (each "
                               "< every chain length).", minItems=1, maxItems=10, items=_LIFTED)
-    chains: list[int] = param([5, 10], "Chain lengths N (balls in the line).", minItems=1, maxItems=6, items=_CHAIN)
+    chains: list[int] = param([5, 10], "Chain lengths N (balls in the line).", minItems=1, maxItems=6, items=_CHAIN,
+                              reduced=[5])
     swings: int = param(40, "Swing periods 2 pi (in (nc)'s time t = omega_0 s) of each run: 2 swings out-swings "
-                        "k pi of the one-out-one-out measure.", minimum=1, maximum=1000)
+                        "k pi of the one-out-one-out measure.", minimum=1, maximum=1000,
+                        reduced=6)
     samples: int = param(256, "Stored times per swing period 2 pi.", minimum=16, maximum=4096)
     restitution: list[float] = param(
         [1.0, STEEL_RESTITUTION_ASSUMED],
@@ -107,27 +102,19 @@ class DeskToyRuns:
                              "onsite gamma = rate (1/s) / omega_0, contact eta = Kuwabara-Kono A (s) times "
                              "omega_0); absent: the conservative (nc). The hard-sphere runs lose energy only "
                              "through e.")
-    reduced: DeskToyRunsReduced = param(DeskToyRunsReduced(), schema_doc(DeskToyRunsReduced))
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Both forms: every lifted count below every chain length, a pendulum cradle, no repeated value."""
-        check_forms(self, where, out)
-
-    def _check(self, where: Where, out: Errors, own: list[str] | None = None) -> None:
-        def mine(key: str) -> bool:  # the reduced form reports only the keys it replaces
-            return own is None or key in own
-
-        if self.cradle is not None and self.cradle.length is None and own is None:
+        """Each form: every lifted count below every chain length, a pendulum cradle, no repeated value."""
+        if self.cradle is not None and self.cradle.length is None:
             out.add(where + ["cradle"], "a desk toy needs the pendulum length (a stiff oscillator has no angle)")
-        if mine("chains") or mine("lifted"):
-            short = min(self.chains)
-            for i, k in enumerate(self.lifted):
-                if k >= short:
-                    out.add(where + ["lifted", i], f"must be < every chain length (smallest: {short}): one ball "
-                                                   "at least stays in the line", k)
+        short = min(self.chains)
+        for i, k in enumerate(self.lifted):
+            if k >= short:
+                out.add(where + ["lifted", i], f"must be < every chain length (smallest: {short}): one ball at "
+                                               "least stays in the line", k)
         for key in ("chains", "lifted", "restitution", "thresholds"):
             values = getattr(self, key)
-            if mine(key) and len(set(values)) != len(values):
+            if len(set(values)) != len(values):
                 out.add(where + [key], "lists a value twice", values)
 
 

@@ -64,10 +64,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from cradle.analyses.protocol import Analysis, Batches, check_forms
+from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import MODEL, MODELS, Var
 from cradle.measurements import disorder as md
-from cradle.specs.declare import declared, param, plain, schema_doc
+from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
@@ -97,17 +97,6 @@ _SHIFT = {"type": "number", "exclusiveMinimum": 0, "maximum": 0.5, "description"
           "- 1 of the wave or breather (> 0)."}
 
 
-@declared(doc="The reduced form `snakemake all` builds (results/disorder/disorder.nc, results/figures/disorder.*): "
-              "these keys replace those of the full form, `snakemake disorder_full` (results/disorder/full/).")
-class DisorderReduced:
-    sigmas: list[float] = param([0.0, 0.01, 0.03, 0.1], "Disorder strengths sigma.", minItems=2, maxItems=24,
-                                items=_SIGMA)
-    shifts: list[float] = param([0.1, 0.3], "Frequency shifts Delta.", minItems=1, maxItems=12, items=_SHIFT)
-    seeds: int = param(2, "Disorder draws per sigma.", minimum=1, maximum=64)
-    slow_periods: float = param(6.0, "Run length in slow periods 2 pi / Delta.", minimum=1, maximum=50)
-    split: bool = param(False, "One batch job per family and Delta.")
-
-
 @declared(doc="What survives on-site disorder omega_n = 1 + sigma z_n (issue 25): a travelling wave's coherence "
               "(plot4-5's wave), the modulational instability (fft106's setting), a kicked breather's travel and a "
               "static breather's frequency and retention, lattice (ncimperfect) and DpS (dpsimperfect), over seeds; "
@@ -118,15 +107,19 @@ class Disorder:
                    "grid).", minimum=8, maximum=256)
     sigmas: list[float] = param([0.0, 0.003, 0.01, 0.03, 0.06, 0.1, 0.2], "Disorder strengths sigma (std of "
                                 "omega_n - 1), increasing; 0 is the homogeneous reference.", minItems=2,
-                                maxItems=24, items=_SIGMA)
+                                maxItems=24, items=_SIGMA,
+                                reduced=[0.0, 0.01, 0.03, 0.1])
     distribution: str = param("normal", "Law of z_n (cradle.models.inhomogeneity): normal or uniform.",
                               enum=["normal", "uniform"])
     shifts: list[float] = param([0.01, 0.03, 0.1, 0.3], "Frequency shifts Delta = omega - 1 of the waves and "
-                                "breathers (the amplitude axis), increasing.", minItems=1, maxItems=12, items=_SHIFT)
-    seeds: int = param(8, "Disorder draws per sigma: seeds first_seed, first_seed + 1, ...", minimum=1, maximum=64)
+                                "breathers (the amplitude axis), increasing.", minItems=1, maxItems=12, items=_SHIFT,
+                                reduced=[0.1, 0.3])
+    seeds: int = param(8, "Disorder draws per sigma: seeds first_seed, first_seed + 1, ...", minimum=1, maximum=64,
+                       reduced=2)
     first_seed: int = param(1, "First seed of np.random.default_rng for the draws.", minimum=0, maximum=2**31)
     slow_periods: float = param(6.0, "Run length in slow periods T_s = 2 pi / Delta (the same for every Delta: "
-                                "the DpS runs then differ by sigma / Delta only).", minimum=1, maximum=50)
+                                "the DpS runs then differ by sigma / Delta only).", minimum=1, maximum=50,
+                                reduced=6.0)
     samples: int = param(64, "Stored samples per slow period (more where 2 pi / Delta / samples > 0.5).",
                          minimum=16, maximum=1024)
     wave_mode: int = param(4, "k of the coherent wave's q = 2 pi k / N (4 on N = 40: q = pi/5, plot4-5).",
@@ -144,25 +137,19 @@ class Disorder:
                          exclusiveMaximum=1)
     rtol: float = param(1e-9, "Relative tolerance of every lattice and DpS run (dop853_numba).", minimum=1e-13,
                         maximum=1e-6)
-    split: bool = param(True, "One batch job per family and Delta (the full form on several cores).")
-    reduced: DisorderReduced = param(DisorderReduced(), schema_doc(DisorderReduced))
+    split: bool = param(True, "One batch job per family and Delta (the full form on several cores).",
+                        reduced=False)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Both forms: the modes fit the ring below the zone edge; sigmas and shifts increasing, 0 among sigmas."""
-        check_forms(self, where, out)
-
-    def _check(self, where: Where, out: Errors, own: list[str] | None = None) -> None:
-        def mine(key: str) -> bool:   # the reduced form reports only the keys it replaces
-            return own is None or key in own
-
+        """Each form: the modes fit the ring below the zone edge; sigmas and shifts increasing, 0 among sigmas."""
         for key in ("wave_mode", "mi_mode"):
-            if mine(key) and not 2 * getattr(self, key) < self.N:
+            if not 2 * getattr(self, key) < self.N:
                 out.add(where + [key], f"must be below N / 2 (N = {self.N}; q < pi)", getattr(self, key))
         for key in ("sigmas", "shifts"):
             v = getattr(self, key)
-            if mine(key) and any(b <= a for a, b in zip(v, v[1:], strict=False)):
+            if any(b <= a for a, b in zip(v, v[1:], strict=False)):
                 out.add(where + [key], "must be strictly increasing", v)
-        if mine("sigmas") and self.sigmas[0] != 0.0:
+        if self.sigmas[0] != 0.0:
             out.add(where + ["sigmas"], "must start with 0 (the homogeneous reference of every survival measure)",
                     self.sigmas)
 

@@ -50,9 +50,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.protocol import Analysis, check_forms
+from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
-from cradle.specs.declare import declared, param, plain, schema_doc
+from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
     from cradle.models.initial import InitialData
@@ -80,19 +80,6 @@ _TS = {"description": "A slow time T = eps^(alpha-1) t (> 0).", "type": "number"
 # ----------------------------------------------------------------- the spec (config `beyond: dissipation:`)
 
 
-@declared(doc="The reduced form `snakemake all` builds (results/dissipation/dissipation.nc, "
-              "results/figures/dissipation.*): these keys replace those of the full form, `snakemake "
-              "dissipation_full` (results/dissipation/full/).")
-class DissipationReduced:
-    waves: list[float] = param([1.01], "omega_tw of the travelling waves.", minItems=0, maxItems=4, items=_OMEGA)
-    onsite: list[float] = param([0.01, 0.03, 0.1], "On-site damping values gamma.", minItems=2, maxItems=20,
-                                items=_GAMMA)
-    contact: list[float] = param([0.3, 1.0, 3.0], "Contact damping values eta.", minItems=2, maxItems=20, items=_ETA)
-    t_end: float = param(300.0, "Length of every run (units of (nc)).", minimum=10, maximum=20000)
-    validity_T: list[float] = param([0.5, 1.0], "Slow times T of the validity errors.", minItems=1, maxItems=12,
-                                    items=_TS)
-
-
 @declared(doc="Lifetimes (time to half and to 1/e of the energy) and frequency drift of the small breather of plot18 "
               "and of travelling waves under each damping term of (ncdamped) alone, on a grid of values, in the "
               "damped lattice, the damped DpS (dpsdamped) and the closed forms; the sup error of the damped DpS "
@@ -105,13 +92,17 @@ class Dissipation:
     wave_mode: int = param(5, "k of the travelling waves' wavenumber q = 2 pi k / N (5 on N = 50: q = pi/5, as "
                            "tw-weak).", minimum=1, maximum=200)
     waves: list[float] = param([1.01, 1.1], "omega_tw of the travelling waves (tw-weak: 1.01, a ~ 0.021; "
-                               "tw-moderate: 1.1, a ~ 2.1).", minItems=0, maxItems=4, items=_OMEGA)
+                               "tw-moderate: 1.1, a ~ 2.1).", minItems=0, maxItems=4, items=_OMEGA,
+                               reduced=[1.01])
     onsite: list[float] = param([1e-3, 2e-3, 5e-3, 1e-2, 2e-2, 5e-2, 0.1], "On-site damping values gamma (each "
-                                "run has eta = 0).", minItems=2, maxItems=20, items=_GAMMA)
+                                "run has eta = 0).", minItems=2, maxItems=20, items=_GAMMA,
+                                reduced=[0.01, 0.03, 0.1])
     contact: list[float] = param([0.1, 0.3, 1.0, 3.0, 10.0], "Kuwabara-Kono values eta (each run has gamma = 0).",
-                                 minItems=2, maxItems=20, items=_ETA)
+                                 minItems=2, maxItems=20, items=_ETA,
+                                 reduced=[0.3, 1.0, 3.0])
     t_end: float = param(1500.0, "Length of every run (units of (nc)); a lifetime longer than this is NaN.",
-                         minimum=10, maximum=20000)
+                         minimum=10, maximum=20000,
+                         reduced=300.0)
     sample_every: float = param(0.1, "Spacing of the stored samples (the frequencies are read from zero crossings: "
                                 "tens of samples per period).", exclusiveMinimum=0, maximum=0.5)
     window: float = param(50.0, "Length of the windows of the frequency drift.", minimum=10, maximum=10000)
@@ -120,7 +111,8 @@ class Dissipation:
     validity_eps: list[float] = param([0.01, 0.0025], "eps of (ansatz) of the validity runs (the plane wave of "
                                       "wave_mode, A_n(0) = e^{-iqn}).", minItems=2, maxItems=6, items=_VEPS)
     validity_T: list[float] = param([0.5, 1.0, 2.0], "Slow times T of the validity errors.", minItems=1, maxItems=12,
-                                    items=_TS)
+                                    items=_TS,
+                                    reduced=[0.5, 1.0])
     validity_gamma: float = param(1.0, "gamma~ = gamma eps^(1-alpha) of the on-site validity runs.",
                                   exclusiveMinimum=0, maximum=10)
     validity_eta: float = param(0.1, "eta of the contact validity runs.", exclusiveMinimum=0, maximum=10)
@@ -136,21 +128,14 @@ class Dissipation:
                                  "sea level (15 C); the on-site gamma of the steel cradle is Stokes' drag "
                                  "6 pi mu R v on a ball (a lower bound: the Reynolds number of a swinging ball is "
                                  "10^2-10^3, where the drag is larger).", exclusiveMinimum=0, maximum=1)
-    reduced: DissipationReduced = param(DissipationReduced(), schema_doc(DissipationReduced))
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Both forms: the wave fits the ring below the zone edge; the grids have distinct values."""
-        check_forms(self, where, out)
-
-    def _check(self, where: Where, out: Errors, own: list[str] | None = None) -> None:
-        def mine(key: str) -> bool:  # the reduced form reports only the keys it replaces
-            return own is None or key in own
-
-        if mine("wave_mode") and not 2 * self.wave_mode < self.N:
+        """Each form: the wave fits the ring below the zone edge; the grids have distinct values."""
+        if not 2 * self.wave_mode < self.N:
             out.add(where + ["wave_mode"], f"must be below N / 2 (N = {self.N}; q < pi)", self.wave_mode)
         for key in ("waves", "onsite", "contact", "validity_eps"):
             values = getattr(self, key)
-            if mine(key) and len(set(values)) != len(values):
+            if len(set(values)) != len(values):
                 out.add(where + [key], "lists a value twice", values)
 
 

@@ -35,9 +35,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.protocol import Analysis, Batches, check_forms
+from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
-from cradle.specs.declare import declared, param, plain, schema_doc
+from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import show
 
 if TYPE_CHECKING:
@@ -56,16 +56,6 @@ _TS = {"description": "A slow time T = eps^(alpha-1) t (> 0).", "type": "number"
 _FAMILY = {"description": "A family of well-prepared data.", "type": "string", "enum": list(FAMILIES)}
 
 
-@declared(doc="The reduced form `snakemake all` builds (results/dps-validity/dps-validity.nc, "
-              "results/figures/dps-validity.*): these keys replace those of the full form, `snakemake "
-              "dps_validity_full` (results/dps-validity/full/).")
-class DpsValidityReduced:
-    alpha: list[float] = param([1.5], "Hertz exponents alpha.", minItems=1, maxItems=6, items=_ALPHAS)
-    eps_min: list[float] = param([1e-3], "Smallest eps, one per alpha.", minItems=1, maxItems=6, items=_EPS)
-    n_eps: int = param(3, "Number of eps, log-spaced from eps_min to eps_max.", minimum=3, maximum=41)
-    T: list[float] = param([1.0, 2.0], "Slow times T.", minItems=1, maxItems=12, items=_TS)
-
-
 @declared(doc="How long and how well DpS describes the lattice: sup_{t <= T eps^(1-alpha)} |x - x_app| with x_app "
               "from (ansatz), for well-prepared data (travelling waves q = pi/5, 4 pi/5, a bond-centred breather, "
               "a modulationally unstable wave with small noise) over eps and T, and the fitted power of eps "
@@ -73,17 +63,21 @@ class DpsValidityReduced:
               "results/figures/dps-validity.{pdf,png}.")
 class DpsValidity:
     alpha: list[float] = param([1.1, 1.5, 2.0, 3.0], "Hertz exponents alpha of V0 (each > 1).", minItems=1,
-                               maxItems=6, items=_ALPHAS)
+                               maxItems=6, items=_ALPHAS,
+                               reduced=[1.5])
     eps_min: list[float] = param([1e-5, 1e-5, 1e-4, 1e-2], "Smallest eps of (ansatz), one per alpha (< eps_max): "
                                  "the lattice runs last T eps^(1-alpha) (alpha = 3: T eps^-2, unreachable at "
                                  "eps = 1e-5), so the range shrinks as alpha grows.", minItems=1, maxItems=6,
-                                 items=_EPS)
+                                 items=_EPS,
+                                 reduced=[1e-3])
     eps_max: float = param(0.1, "Largest eps (half the largest initial displacement).", exclusiveMinimum=0,
                            maximum=1.0)
-    n_eps: int = param(9, "Number of eps, log-spaced from eps_min to eps_max.", minimum=3, maximum=41)
+    n_eps: int = param(9, "Number of eps, log-spaced from eps_min to eps_max.", minimum=3, maximum=41,
+                       reduced=3)
     T: list[float] = param([0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0], "Slow times T = tau: the sup "
                            "over t is taken up to t = T eps^(1-alpha) (one run to the largest T gives them all).",
-                           minItems=1, maxItems=12, items=_TS)
+                           minItems=1, maxItems=12, items=_TS,
+                           reduced=[1.0, 2.0])
     families: list[str] = param(list(FAMILIES), "Families of well-prepared data (cradle.analyses.dps_validity."
                                 "FAMILIES).", minItems=1, maxItems=4, items=_FAMILY)
     N_wave: int = param(10, "Ring size of the travelling waves (q N / 2 pi an integer for q = pi/5, 4 pi/5).",
@@ -103,25 +97,16 @@ class DpsValidity:
                             maximum=1e-6)
     chunk: int = param(20000, "Samples per integration chunk (bounds the memory of the long runs).", minimum=100,
                        maximum=1000000)
-    reduced: DpsValidityReduced = param(DpsValidityReduced(), schema_doc(DpsValidityReduced))
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Both forms: one eps_min per alpha, each below eps_max; the families distinct."""
-        check_forms(self, where, out)
-
-    def _check(self, where: Where, out: Errors, own: list[str] | None = None) -> None:
+        """Each form: one eps_min per alpha, each below eps_max; the families distinct."""
         al, em, hi = self.alpha, self.eps_min, self.eps_max
-
-        def mine(key: str) -> bool:  # the reduced form reports only the keys it replaces
-            return own is None or key in own
-
-        if len(al) != len(em) and (mine("eps_min") or mine("alpha")):
+        if len(al) != len(em):
             out.add(where + ["eps_min"], f"needs one value per alpha ({len(al)}: {show(al)})", em)
-        if mine("eps_min"):
-            for i, e in enumerate(em):
-                if not e < hi:
-                    out.add(where + ["eps_min", i], f"must be below eps_max = {show(hi)}", e)
-        if len(set(map(str, self.families))) != len(self.families) and mine("families"):
+        for i, e in enumerate(em):
+            if not e < hi:
+                out.add(where + ["eps_min", i], f"must be below eps_max = {show(hi)}", e)
+        if len(set(map(str, self.families))) != len(self.families):
             out.add(where + ["families"], "lists a family twice", self.families)
 
 

@@ -10,7 +10,6 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from cradle.analyses.protocol import REDUCED, form_spec, reduced_keys
 from cradle.specs.declare import declared, param, schema_doc
 from cradle.specs.values import angle_or_none, show
 
@@ -30,29 +29,6 @@ class FloquetConvergence:
     hill_modes: int = param(32, "Hill modes of the check.", minimum=4, maximum=256)
     grid_log2: int = param(20, "log2 of the K grid of the check.", minimum=8, maximum=22)
     wave_modes: int = param(256, "Sine modes of the wave of the check.", minimum=8, maximum=2048)
-
-
-@declared(doc="The reduced form `snakemake all` builds (results/floquet/floquet.nc, results/figures/floquet.*): "
-              "these keys replace those of the full form, `snakemake floquet_full` (results/floquet/full/).")
-class FloquetReduced:
-    n_q: int = param(9, "Number of q of the sweep.", minimum=3, maximum=1001)
-    n_p: int = param(31, "Number of Bloch wavenumbers p in [0, pi].", minimum=9, maximum=2001)
-    hill_modes: int = param(12, "Hill modes |m| <= hill_modes of the Bloch profile W.", minimum=4, maximum=256)
-    grid_log2: int = param(16, "log2 of the grid of K = V0''(u(xi+q) - u(xi)).", minimum=8, maximum=22)
-    wave_modes: int = param(64, "Sine modes of the exact wave.", minimum=8, maximum=1024)
-    wave_grid_log2: int = param(13, "Grid 2^wave_grid_log2 of the wave solver.", minimum=8, maximum=20)
-    threshold_n_scan: int = param(6, "Scan points before the bisection of the threshold.", minimum=2, maximum=200)
-    threshold_omega_tw: list[float] = param([1.1, 1.03], "omega_tw values of the threshold search; must contain "
-                                            "omega_tw.",
-                                            minItems=1, maxItems=8, items=_OMEGA)
-    q_profiles: list[float | str] = param(["pi/2"], "Wavenumbers q of the stored growth-against-p profiles.",
-                                          minItems=1, maxItems=10, items={"$ref": "#/$defs/angle"})
-    small_q: list[float | str] = param(["3pi/5"], "Wavenumbers of the small-amplitude check.", minItems=1,
-                                       maxItems=8, items={"$ref": "#/$defs/angle"})
-    convergence: FloquetConvergence = param(FloquetConvergence(hill_modes=16, grid_log2=17, wave_modes=96),
-                                            schema_doc(FloquetConvergence))
-    direct_growth_factor: float = param(100.0, "The direct run lasts until the mode grows by this factor (> 1).",
-                                        exclusiveMinimum=1, maximum=100000000.0)
 
 
 @dataclass(frozen=True)
@@ -75,32 +51,43 @@ class Floquet:
                             "travelling-wave scenes); > 1.", exclusiveMinimum=1, maximum=2)
     q_min: float | str = param("0.4pi", "Smallest q of the sweep, in (0, pi).", ref="angle")
     q_max: float | str = param("0.7pi", "Largest q of the sweep, in (q_min, pi).", ref="angle")
-    n_q: int = param(61, "Number of q of the sweep.", minimum=3, maximum=1001)
+    n_q: int = param(61, "Number of q of the sweep.", minimum=3, maximum=1001,
+                     reduced=9)
     n_p: int = param(121, "Number of Bloch wavenumbers p in [0, pi] (maxima are refined between them).", minimum=9,
-                     maximum=2001)
+                     maximum=2001,
+                     reduced=31)
     hill_modes: int = param(16, "Hill's method: Fourier modes |m| <= hill_modes of the Bloch profile W.", minimum=4,
-                            maximum=256)
+                            maximum=256,
+                            reduced=12)
     grid_log2: int = param(18, "The Fourier coefficients of K = V0''(u(xi+q) - u(xi)) come from 2^grid_log2 samples; "
-                           "2^grid_log2 >= 8 (2 hill_modes + 1).", minimum=8, maximum=22)
-    wave_modes: int = param(128, "Sine modes of the exact wave (theorem1.solve).", minimum=8, maximum=1024)
+                           "2^grid_log2 >= 8 (2 hill_modes + 1).", minimum=8, maximum=22,
+                           reduced=16)
+    wave_modes: int = param(128, "Sine modes of the exact wave (theorem1.solve).", minimum=8, maximum=1024,
+                            reduced=64)
     wave_grid_log2: int = param(15, "Grid 2^wave_grid_log2 of the wave solver; >= 8 x wave_modes (also those of "
-                                "`convergence`).", minimum=8, maximum=20)
-    convergence: FloquetConvergence = param(FloquetConvergence(), schema_doc(FloquetConvergence))
+                                "`convergence`).", minimum=8, maximum=20,
+                                reduced=13)
+    convergence: FloquetConvergence = param(FloquetConvergence(), schema_doc(FloquetConvergence),
+                                            reduced=FloquetConvergence(hill_modes=16, grid_log2=17, wave_modes=96))
     q_profiles: list[float | str] = param(["pi/2", "51pi/100", "52pi/100", "55pi/100", "3pi/5"], "Wavenumbers q where "
                                           "the growth rate against p is stored (numbers or 'pi/2'-style strings, in "
-                                          "(0, pi)).", minItems=1, maxItems=10, items=_ANGLES)
+                                          "(0, pi)).", minItems=1, maxItems=10, items=_ANGLES,
+                                          reduced=["pi/2"])
     threshold_omega_tw: list[float] = param([1.1, 1.03, 1.01, 1.003], "omega_tw values (each > 1) at which the "
                                             "lattice threshold is searched; must contain omega_tw.", minItems=1,
-                                            maxItems=8, items=_OMEGA)
+                                            maxItems=8, items=_OMEGA,
+                                            reduced=[1.1, 1.03])
     threshold_q_min: float | str = param("0.4pi", "Lower end of the threshold scan (must be stable), in (0, pi).",
                                          ref="angle")
     threshold_q_max: float | str = param("0.55pi", "Upper end of the threshold scan, in (threshold_q_min, pi).",
                                          ref="angle")
-    threshold_n_scan: int = param(16, "Scan points before the bisection of the threshold.", minimum=2, maximum=200)
+    threshold_n_scan: int = param(16, "Scan points before the bisection of the threshold.", minimum=2, maximum=200,
+                                  reduced=6)
     small_omega_tw: float = param(1.001, "Small amplitude (as omega_tw) where the lattice growth rates are checked "
                                   "against DpS; > 1.", exclusiveMinimum=1, maximum=2)
     small_q: list[float | str] = param(["3pi/5", "4pi/5"], "Wavenumbers (DpS-unstable, in (0, pi)) of the "
-                                       "small-amplitude check.", minItems=1, maxItems=8, items=_ANGLES)
+                                       "small-amplitude check.", minItems=1, maxItems=8, items=_ANGLES,
+                                       reduced=["3pi/5"])
     ring_N: int = param(20, "Ring size of the brute-force monodromy check (2N x 2N variational equations).",
                         minimum=3, maximum=200)
     ring_k: int = param(5, "q = 2 pi ring_k / ring_N of the brute-force check; 0 < ring_k < ring_N.", minimum=1,
@@ -109,18 +96,11 @@ class Floquet:
                           maximum=200)
     direct_k: int = param(5, "q = 2 pi direct_k / direct_N of the direct run (must be unstable).", minimum=1,
                           maximum=199)
-    reduced: FloquetReduced = param(FloquetReduced(), schema_doc(FloquetReduced))
     direct_growth_factor: float = param(1000.0, "The direct run lasts until the mode grows by this factor (> 1).",
-                                        exclusiveMinimum=1, maximum=100000000.0)
+                                        exclusiveMinimum=1, maximum=100000000.0,
+                                        reduced=100.0)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Both forms: the full spec, and the reduced one (its keys in place)."""
-        self._check(where, out)
-        if self.reduced is not None:  # errors of keys the reduced form replaces; the rest are said above
-            at = where + ["reduced"]
-            form_spec(self, REDUCED)._check(at, out.only(at, reduced_keys(self)))
-
-    def _check(self, where: Where, out: Errors) -> None:
         """Angles in (0, pi) with q_min < q_max and threshold_q_min < threshold_q_max, omega_tw among
         threshold_omega_tw, grids fine enough for the Hill and sine modes, 0 < k < N for the ring checks."""
         given = {"q_min": self.q_min, "q_max": self.q_max, "threshold_q_min": self.threshold_q_min,

@@ -200,7 +200,7 @@ def run_scene(spec, init_ds, every: float):
     alpha, bc = spec.alpha, spec.bc
     eps = float(init_ds.attrs["eps"])
     # the grid 0, every, ..., t_end plus the scene's own stored times (to check against its files)
-    t = np.asarray(store_times({"every": every, "snapshots": list(spec.times)}, spec.t_end))
+    t = np.asarray(store_times(list(spec.times), every, spec.t_end))
     ex = spec.exact
     accuracy = ({"dt_factor": ex.dt_factor} if ex.method in SPLITTING_METHODS else {"rtol": ex.rtol})
     x0, v0 = init_ds["x0"].values, init_ds["v0"].values

@@ -49,7 +49,7 @@ from cradle.data.variables import MODEL, MODELS, Var
 from cradle.measurements import compare, sidebands
 from cradle.models import initial
 from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
-from cradle.specs.declare import NULL, declared, param, plain, schema_doc
+from cradle.specs.declare import NULL, declared, param, plain
 from cradle.specs.values import INTEGER_TOL, store_times
 
 if TYPE_CHECKING:
@@ -88,16 +88,6 @@ _N_ITEMS = {"type": "integer", "minimum": 8, "maximum": 4096, "description": "A 
 _Q_DOC = "Grid of carrier wavenumbers q / pi: count values from start to stop."
 _SEEDS_DOC = "Noise realisations per (q, N, model)."
 _CHUNKS_DOC = "Batches (Snakemake jobs) per (N, model); q values dealt round-robin."
-
-
-@declared(doc="The small sweep `snakemake all` builds (results/mi-statistics/mi-statistics.nc, "
-              "results/figures/mi-statistics.{pdf,png}): these keys replace those of the full form, "
-              "`snakemake -j2 mi_statistics_full` (results/mi-statistics/full/).")
-class MIStatisticsReduced:
-    N: list[int] = param([200], _N_DOC, minItems=1, maxItems=6, items=_N_ITEMS)
-    q_over_pi: QGrid = param(QGrid(), _Q_DOC)
-    n_seeds: int = param(4, _SEEDS_DOC, minimum=1, maximum=1000)
-    chunks: int = param(1, _CHUNKS_DOC, minimum=1, maximum=100)
 
 
 def _check_sweep(N: list[int], g: QGrid, chunks: int, where: Where, out: Errors) -> None:
@@ -150,25 +140,25 @@ class MIStatistics:
                        minimum=0, maximum=4611686018427387904)
     exact: MIStatisticsExact = param(MIStatisticsExact(), "Lattice integrator.")
     dps: MIStatisticsDps = param(MIStatisticsDps(), "DpS integrator.")
-    N: list[int] = param([200, 400], _N_DOC, minItems=1, maxItems=6, items=_N_ITEMS)
-    q_over_pi: QGrid = param(QGrid(start=0.45, stop=0.65, count=21), _Q_DOC)
-    n_seeds: int = param(32, _SEEDS_DOC, minimum=1, maximum=1000)
-    chunks: int = param(3, _CHUNKS_DOC, minimum=1, maximum=100)
-    reduced: MIStatisticsReduced = param(MIStatisticsReduced(), schema_doc(MIStatisticsReduced))
+    N: list[int] = param([200, 400], _N_DOC, minItems=1, maxItems=6, items=_N_ITEMS,
+                         reduced=[200])
+    q_over_pi: QGrid = param(QGrid(start=0.45, stop=0.65, count=21), _Q_DOC,
+                             reduced=QGrid())
+    n_seeds: int = param(32, _SEEDS_DOC, minimum=1, maximum=1000,
+                         reduced=4)
+    chunks: int = param(3, _CHUNKS_DOC, minimum=1, maximum=100,
+                        reduced=1)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """The sweep of each form (:func:`_check_sweep`): the full one at the top, ``reduced``."""
+        """The sweep of each form (:func:`_check_sweep`)."""
         _check_sweep(self.N, self.q_over_pi, self.chunks, where, out)
-        red = self.reduced
-        if red is not None:
-            _check_sweep(red.N, red.q_over_pi, red.chunks, where + ["reduced"], out)
 
 
 # ---------------------------------------------------------------- measurement
 
 def sample_times(spec: MIStatistics) -> np.ndarray:
     """0, sample_every, ..., t_end: where the sideband ratio of every run is sampled."""
-    return np.asarray(store_times({"every": spec.sample_every}, spec.t_end))
+    return np.asarray(store_times(None, spec.sample_every, spec.t_end))
 
 
 def crossing_time(t, r, fraction: float) -> float:

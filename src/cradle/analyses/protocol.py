@@ -34,6 +34,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from cradle.specs.parse import reduced_defaults
+
 #: the cheaper form ``all`` builds, and the complete one (its own target ``<name>_full``)
 REDUCED, FULL = "reduced", "full"
 
@@ -107,32 +109,20 @@ class Analysis:
 
 
 def form_spec(spec, form: str):
-    """The spec of one form: the full one without its ``reduced`` overrides, or the reduced one (each
-    override given in place of the full value; an override left out keeps it). A spec whose reduced form
-    keeps a part of the full one rather than replacing keys (work-precision: some scenes, methods and
-    settings) builds it by its method ``reduced_form()``."""
-    if not any(f.name == "reduced" for f in dataclasses.fields(spec)):
+    """The spec of one form: the full one, or the reduced one (the declared reduced values, then the keys
+    given under ``reduced:``, in place of the full ones); neither has overrides left. A spec whose reduced form
+    keeps a part of the full one (work-precision: some scenes and methods) builds it by ``reduced_form()``."""
+    if getattr(spec, "reduced", None) is None:   # no reduced form, or a form already
         return spec
     if form == REDUCED and hasattr(spec, "reduced_form"):
         return spec.reduced_form()
-    overrides = {}
-    if form == REDUCED:
-        overrides = {name: getattr(spec.reduced, name) for name in reduced_keys(spec)}
+    overrides = {**reduced_defaults(type(spec)), **spec.reduced} if form == REDUCED else {}
     return dataclasses.replace(spec, **overrides, reduced=None)
 
 
-def check_forms(spec, where, out) -> None:
-    """The check of an analysis's two forms: ``spec._check(where, out)`` on the full form, then on the reduced
-    one (if any) at ``where + ["reduced"]``, reporting only the keys the reduced form gives (:func:`reduced_keys`)."""
-    spec._check(where, out)
-    if getattr(spec, "reduced", None) is not None:
-        form_spec(spec, REDUCED)._check(where + ["reduced"], out, own=reduced_keys(spec))
-
-
-def reduced_keys(spec) -> list[str]:
-    """The fields whose values the reduced form of ``spec`` gives in place of the full ones (its overrides
-    that are not left out; none for a spec without ``reduced``): its check reports only those."""
-    reduced = getattr(spec, "reduced", None)
-    if reduced is None:
+def own_keys(spec) -> list[str]:
+    """The fields whose values the reduced form of ``spec`` gives in place of the full ones (declared or given
+    under ``reduced:``; none for a spec without a reduced form): its check reports only those."""
+    if not isinstance(getattr(spec, "reduced", None), dict):
         return []
-    return [f.name for f in dataclasses.fields(reduced) if getattr(reduced, f.name) is not None]
+    return list(dict.fromkeys([*reduced_defaults(type(spec)), *(spec.reduced or {})]))

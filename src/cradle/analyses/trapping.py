@@ -50,9 +50,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.protocol import Analysis, Batches, check_forms
+from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
-from cradle.specs.declare import declared, param, plain, schema_doc
+from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
@@ -84,21 +84,6 @@ _INC = {"description": "An incident wave.", "type": "string", "enum": list(INCID
 # ----------------------------------------------------------------- the spec (config `beyond: trapping:`)
 
 
-@declared(doc="The reduced form `snakemake all` builds (results/trapping/trapping.nc, results/figures/trapping.*): "
-              "these keys replace those of the full form, `snakemake trapping_full` (results/trapping/full/).")
-class TrappingReduced:
-    striker: list[float] = param([0.3, 1.0], "Striker velocities a.", minItems=1, maxItems=8, items=_V)
-    breather: list[float] = param([0.3], "Breather amplitudes a.", minItems=1, maxItems=8, items=_A)
-    back: int = param(40, "Beads behind the breather's profile.", minimum=1, maximum=2000)
-    length: int = param(20, "Beads of the target (main length).", minimum=4, maximum=400)
-    lengths: list[int] = param([], "Other target lengths.", minItems=0, maxItems=4, items=_LEN)
-    lead: int = param(100, "Beads of the homogeneous lead.", minimum=10, maximum=2000)
-    sigmas: list[float] = param([0.1], "Disorder strengths sigma.", minItems=0, maxItems=8, items=_SIGMA)
-    seeds: int = param(2, "Seeds per disordered case.", minimum=1, maximum=64)
-    tau_end: float = param(400.0, "Length of every run in slow time tau.", minimum=10, maximum=20000)
-    times: list[float] = param([300.0, 400.0], "Measurement times tau_m.", minItems=1, maxItems=6, items=_TAU)
-
-
 @declared(doc="The fraction of an incident wave's energy (a striker bead, a kicked travelling breather) that a "
               "chain at rest keeps in static breathers, homogeneous and with detuned strings (sigma, seeds), with "
               "and without damping, against amplitude and target length, under every listed detector setting "
@@ -109,9 +94,11 @@ class Trapping:
                                  "(the bond-centred breather of largest |x| = a, kicked along its translation mode).",
                                  minItems=1, maxItems=2, items=_INC)
     striker: list[float] = param([0.1, 0.3, 1.0, 3.0], "Striker velocities a (energy a^2 / 2).", minItems=1,
-                                 maxItems=8, items=_V)
+                                 maxItems=8, items=_V,
+                                 reduced=[0.3, 1.0])
     breather: list[float] = param([0.1, 0.3, 1.0], "Breather amplitudes a = max |x_n(0)|.", minItems=1, maxItems=8,
-                                  items=_A)
+                                  items=_A,
+                                  reduced=[0.3])
     scan_striker: float = param(1.0, "Striker velocity of the length and damping scans (one of `striker`).",
                                 exclusiveMinimum=0, maximum=10)
     scan_breather: float = param(0.3, "Breather amplitude of the length and damping scans (one of `breather`).",
@@ -123,17 +110,23 @@ class Trapping:
     back: int = param(80, f"Beads behind the breather: its launch zone is `back` + {PROFILE} beads, its profile "
                       f"solved on the last {PROFILE} (centred {PROFILE // 2} beads before the target); the `back` "
                       "beads are an absorbing back end made of length (`reach_back` checks it).", minimum=1,
-                      maximum=2000)
+                      maximum=2000,
+                      reduced=40)
     length: int = param(50, "Beads of the target: the main length (amplitude and damping scans).", minimum=4,
-                        maximum=400)
+                        maximum=400,
+                        reduced=20)
     lengths: list[int] = param([25, 100], "Other target lengths (the length scan, at the scan amplitudes).",
-                               minItems=0, maxItems=4, items=_LEN)
+                               minItems=0, maxItems=4, items=_LEN,
+                               reduced=[])
     lead: int = param(200, "Beads of the homogeneous lead after the target: long enough that nothing reaches its "
-                      "end by tau_end (each run records `reach`).", minimum=10, maximum=2000)
+                      "end by tau_end (each run records `reach`).", minimum=10, maximum=2000,
+                      reduced=100)
     edge: int = param(20, "Last beads of the lead whose energy is the `reach` check.", minimum=1, maximum=200)
     sigmas: list[float] = param([0.03, 0.1, 0.2], "Disorder strengths sigma: std of omega_n - 1 in the target "
-                                "(normal law; sigma = 0 is always run).", minItems=0, maxItems=8, items=_SIGMA)
-    seeds: int = param(6, "Seeds per disordered case: seed, seed + 1, ...", minimum=1, maximum=64)
+                                "(normal law; sigma = 0 is always run).", minItems=0, maxItems=8, items=_SIGMA,
+                                reduced=[0.1])
+    seeds: int = param(6, "Seeds per disordered case: seed, seed + 1, ...", minimum=1, maximum=64,
+                       reduced=2)
     seed: int = param(0, "First seed of the draws (numpy default_rng).", minimum=0, maximum=2**31 - 1)
     onsite: list[float] = param([1e-3], "On-site damping values gamma (each alone: eta = 0), (nc) units (the "
                                 "steel cradle of the dissipation analysis: ~1e-5).",
@@ -143,9 +136,11 @@ class Trapping:
                                  items=_ETA)
     damping_sigma: float = param(0.1, "sigma of the disordered damped runs (0: homogeneous only).", minimum=0,
                                  maximum=0.25)
-    tau_end: float = param(600.0, "Length of every run in slow time tau = a^(alpha-1) t.", minimum=10, maximum=20000)
+    tau_end: float = param(600.0, "Length of every run in slow time tau = a^(alpha-1) t.", minimum=10, maximum=20000,
+                           reduced=400.0)
     times: list[float] = param([400.0, 600.0], "Measurement times tau_m (<= tau_end).", minItems=1, maxItems=6,
-                               items=_TAU)
+                               items=_TAU,
+                               reduced=[300.0, 400.0])
     windows: list[float] = param([30.0, 100.0], "Windows W (tau) of the detector: a breather moving at more than "
                                  "max_shift / W beads per unit tau is not static.", minItems=1, maxItems=6,
                                  items=_TAU)
@@ -161,37 +156,30 @@ class Trapping:
                                 exclusiveMinimum=0, maximum=2)
     rtol: float = param(1e-9, "Relative tolerance of the runs (dop853_numba; atol = rtol times the largest initial "
                         "|x| or |v|).", minimum=1e-14, maximum=1e-6)
-    reduced: TrappingReduced = param(TrappingReduced(), schema_doc(TrappingReduced))
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Both forms: measurement times within the run and after their windows, scan amplitudes listed, the
+        """Each form: measurement times within the run and after their windows, scan amplitudes listed, the
         launch zone long enough for the kicked breather, no repeated value."""
-        check_forms(self, where, out)
-
-    def _check(self, where: Where, out: Errors, own: list[str] | None = None) -> None:
-        def mine(*keys: str) -> bool:  # the reduced form reports only the keys it replaces
-            return own is None or any(k in own for k in keys)
-
         for i, tm in enumerate(self.times):
-            if mine("times", "tau_end") and tm > self.tau_end:
+            if tm > self.tau_end:
                 out.add(where + ["times", i], f"must be <= tau_end = {self.tau_end:g}", tm)
-            if mine("times", "windows") and tm < max(self.windows):
+            if tm < max(self.windows):
                 out.add(where + ["times", i], f"must be >= every window (largest: {max(self.windows):g})", tm)
-        if mine("striker", "scan_striker") and "striker" in self.incidents and self.scan_striker not in self.striker:
+        if "striker" in self.incidents and self.scan_striker not in self.striker:
             out.add(where + ["scan_striker"], f"must be one of striker = {self.striker}", self.scan_striker)
-        if mine("breather", "scan_breather") and "breather" in self.incidents \
+        if "breather" in self.incidents \
                 and self.scan_breather not in self.breather:
             out.add(where + ["scan_breather"], f"must be one of breather = {self.breather}", self.scan_breather)
-        if mine("lengths", "length") and self.length in self.lengths:
+        if self.length in self.lengths:
             out.add(where + ["lengths"], f"lists the main length {self.length}", self.lengths)
-        if mine("edge", "lead") and self.edge > self.lead:
+        if self.edge > self.lead:
             out.add(where + ["edge"], f"must be <= lead = {self.lead}", self.edge)
-        if mine("edge", "back") and "breather" in self.incidents and self.edge > self.back:
+        if "breather" in self.incidents and self.edge > self.back:
             out.add(where + ["edge"], f"must be <= back = {self.back} (the beads behind the breather)", self.edge)
         for key in ("incidents", "striker", "breather", "lengths", "sigmas", "onsite", "contact", "times", "windows",
                     "thresholds"):
             values = getattr(self, key)
-            if mine(key) and len(set(values)) != len(values):
+            if len(set(values)) != len(values):
                 out.add(where + [key], "lists a value twice", values)
 
 

@@ -44,9 +44,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, fields
+from typing import Any
 
-from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store, resolved
-from cradle.specs.declare import build, declared, param
+from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store
+from cradle.specs.declare import declared, param
 
 #: float64 arrays of N values written per stored time by a scene's job (exact x, v, force; DpS
 #: A_re, A_im, x, force; metrics spectrum_exact, spectrum_dps)
@@ -108,8 +109,11 @@ class Budget:
                          "and beads.", exclusiveMinimum=0, maximum=1e4)
 
     @classmethod
-    def from_config(cls, cfg: dict) -> Budget:
-        """The budget of a validated config: its ``budget:`` values over the defaults."""
+    def from_config(cls, cfg) -> Budget:
+        """The budget of a validated config (typed, or its plain values): its ``budget:`` values over the
+        defaults."""
+        if isinstance(getattr(cfg, "budget", None), Budget):
+            return cfg.budget
         given = (cfg or {}).get("budget") or {}
         return cls(**{f.name: float(given[f.name]) for f in fields(cls) if given.get(f.name) is not None})
 
@@ -179,10 +183,10 @@ def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int) ->
     return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
 
 
-def scene_estimate(cfg: dict, name: str) -> Estimate:
-    """The cost of scene ``name``'s simulate job (initial data, exact and DpS runs, metrics) in a
-    schema-filled config."""
-    return spec_estimate(resolved(cfg["scenes"][name], cfg["defaults"]), name)
+def scene_estimate(cfg, name: str) -> Estimate:
+    """The cost of scene ``name``'s simulate job (initial data, exact and DpS runs, metrics) in a typed
+    config (:func:`cradle.pipeline.config.typed`)."""
+    return spec_estimate(cfg.scenes[name], name)
 
 
 def spec_estimate(spec: Scene, name: str = "?") -> Estimate:
@@ -224,37 +228,35 @@ def long_run(spec: Scene, name: str = "?") -> Estimate | None:
     return e if e.seconds >= LONG_RUN_S else None
 
 
-def homoclinic_estimate(cfg: dict, name: str) -> Estimate:
+def homoclinic_estimate(cfg, name: str) -> Estimate:
     """Powell's hybrid method holds a dense N x N Jacobian (and its QR factors): a few N^2 floats."""
-    N = int(cfg["homoclinic"][name]["N"])
+    N = cfg.homoclinic[name].N
     return Estimate(f"homoclinic.{name}", f"N = {N}: dense N x N Jacobian",
                     memory_bytes=BASE_BYTES + 8.0 * 4 * N * N, disk_bytes=8.0 * 4 * N,
                     seconds=1e-9 * N**3 * 50)
 
 
-def map_estimate(cfg: dict, name: str) -> Estimate:
+def map_estimate(cfg, name: str) -> Estimate:
     """Orbits x iterations points of the map G, two floats each."""
-    m = cfg["map"][name]
-    orbits = len(m.get("starts") or ()) + int((m.get("line") or {}).get("count", 0))
-    points = float(orbits) * (int(m["iterations"]) + 1)
-    return Estimate(f"map.{name}", f"{orbits} orbits x iterations = {_count(m['iterations'])}",
+    m = cfg.map[name]
+    orbits = len(m.starts or ()) + (m.line.count if m.line is not None else 0)
+    points = float(orbits) * (m.iterations + 1)
+    return Estimate(f"map.{name}", f"{orbits} orbits x iterations = {_count(m.iterations)}",
                     memory_bytes=BASE_BYTES + 8.0 * 4 * points, disk_bytes=8.0 * 2 * points,
                     seconds=points * 1e-6)
 
 
-def mi_statistics_estimate(cfg: dict, form: str) -> Estimate:
+def mi_statistics_estimate(cfg, form: str) -> Estimate:
     """The largest batch job of one form of ``beyond.mi-statistics`` (the full one at the top of the section,
     ``reduced``): ceil(q values / chunks) x seeds runs of the largest N to t_end, at the scenes' measured
     cost per bead-step of the exact method (a DpS batch costs less: 5.4 s against 7.9 s for the reduced
     form's batches), the spectra sampled every ``sample_every`` held per run."""
-    from cradle.analyses.mi_statistics import MIStatistics
     from cradle.analyses.protocol import REDUCED, form_spec
 
-    # the section is schema-valid here (validate() asks for the budget before its physical checks)
-    spec = form_spec(build(MIStatistics, cfg["beyond"]["mi-statistics"]), form)
+    spec = form_spec(cfg.beyond.mi_statistics, form)
     N, t_end = max(spec.N), spec.t_end
     runs = math.ceil(spec.q_over_pi.count / spec.chunks) * spec.n_seeds
-    exact = build(ExactIntegrator, {"method": spec.exact.method, "dt_factor": spec.exact.dt_factor})
+    exact = ExactIntegrator(method=spec.exact.method, dt_factor=spec.exact.dt_factor)
     one, steps = _exact_seconds(N, t_end, exact, 2)
     samples = t_end / spec.sample_every + 1
     return Estimate("beyond.mi-statistics" + (".reduced" if form == REDUCED else ""),
@@ -263,17 +265,16 @@ def mi_statistics_estimate(cfg: dict, form: str) -> Estimate:
                     disk_bytes=8.0 * 8 * runs * samples, seconds=BASE_SECONDS + runs * one, steps=runs * steps)
 
 
-def work_precision_estimate(cfg: dict, form: str) -> Estimate:
+def work_precision_estimate(cfg, form: str) -> Estimate:
     """The largest batch job of one form of ``beyond.work-precision``: for one scene (its N from ``scenes:``),
     the two reference runs and every setting of every method's ladder to the scene's t_end, each at the
     measured cost per bead-step of its method (a step factor scales its steps; a tolerance is costed at the
     default one), the states on the comparison grid held for the two references and the run measured."""
     from cradle.analyses.protocol import REDUCED, form_spec
-    from cradle.analyses.work_precision import WorkPrecision, ladder
+    from cradle.analyses.work_precision import ladder
 
-    # the section is schema-valid here (validate() asks for the budget before its physical checks)
-    spec = form_spec(build(WorkPrecision, cfg["beyond"]["work-precision"]), form)
-    scenes = cfg.get("scenes") or {}
+    spec = form_spec(cfg.beyond.work_precision, form)
+    scenes = cfg.scenes
     ref = spec.reference
     runs = [(ref.method, ref.dt_factor), (ref.method, 2.0 * ref.dt_factor)]
     for method in spec.methods:
@@ -283,11 +284,11 @@ def work_precision_estimate(cfg: dict, form: str) -> Estimate:
     for name, measured in spec.scenes.items():
         if name not in scenes:
             continue   # an unknown scene: the checks name it
-        N, t_end = int(scenes[name]["N"]), measured.t_end
-        T = stored_count(build(Store, {"every": spec.compare_every}), t_end)
+        N, t_end = scenes[name].N, measured.t_end
+        T = stored_count(Store(every=spec.compare_every), t_end)
         seconds = steps = 0.0
         for method, dt_factor in runs:
-            exact = build(ExactIntegrator, {"method": method, "dt_factor": dt_factor})
+            exact = ExactIntegrator(method=method, dt_factor=dt_factor)
             one, n = _exact_seconds(N, t_end, exact, T)
             seconds, steps = seconds + one, steps + n
         e = Estimate("beyond.work-precision" + (".reduced" if form == REDUCED else ""),
@@ -330,16 +331,16 @@ def exceeds(e: Estimate, budget: Budget) -> str | None:
     return None
 
 
-def estimates(cfg: dict) -> list[Estimate]:
-    """An :class:`Estimate` for every scene, homoclinic and map entry of a validated config, and for
-    the largest batch job of each form of ``beyond.mi-statistics`` and ``beyond.work-precision``."""
+def estimates(cfg) -> list[Estimate]:
+    """An :class:`Estimate` for every scene, homoclinic and map entry of a typed config
+    (:func:`cradle.pipeline.config.typed`), and for the largest batch job of each form of
+    ``beyond.mi-statistics`` and ``beyond.work-precision``."""
     out = []
     per_entry = (("scenes", scene_estimate), ("homoclinic", homoclinic_estimate), ("map", map_estimate))
-    jobs: list[tuple[str, str, Callable[[dict, str], Estimate]]] = [
-        (section, name, fn) for section, fn in per_entry for name in (cfg.get(section) or {})]
-    if ((cfg.get("beyond") or {}).get("mi-statistics")):
-        jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
-    if ((cfg.get("beyond") or {}).get("work-precision") or {}).get("scenes"):
+    jobs: list[tuple[str, str, Callable[[Any, str], Estimate]]] = [
+        (section, name, fn) for section, fn in per_entry for name in getattr(cfg, section)]
+    jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
+    if cfg.beyond.work_precision.scenes:
         jobs += [("beyond", form, work_precision_estimate) for form in ("reduced", "full")]
     for _section, name, fn in jobs:
         try:
@@ -349,7 +350,7 @@ def estimates(cfg: dict) -> list[Estimate]:
     return out
 
 
-def over_budget(cfg: dict) -> list[str]:
+def over_budget(cfg) -> list[str]:
     """One line per job (and for all scenes' output together) that exceeds the budget; empty if all fit."""
     budget = Budget.from_config(cfg)
     lines = []
@@ -367,7 +368,7 @@ def over_budget(cfg: dict) -> list[str]:
     return lines
 
 
-def check(cfg: dict) -> None:
+def check(cfg) -> None:
     """Raise :class:`~cradle.pipeline.config.ConfigError` (one line per job over budget) if any job of
     ``cfg`` (schema-valid, defaults filled) exceeds its budget; called by ``validate`` before its
     physical checks (which build the stored-time arrays), so an oversized store is refused first."""

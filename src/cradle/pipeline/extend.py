@@ -219,7 +219,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
         every = _infer_every(t) if every is None else float(every)
         if not every > 0:
             raise ValueError(f"every must be > 0, got every={every!r}")
-        grid = np.asarray(store_times({"every": every}, t_end), dtype=float)
+        grid = np.asarray(store_times(None, every, t_end), dtype=float)
         new = np.concatenate(([t_last], grid[grid > t_last + TIME_TOL]))
         x, v = ds["x"].values[-1], ds["v"].values[-1]
         H0 = float(ds["energy"].values[0])

@@ -1,37 +1,31 @@
 """Declarations of the entries a job computes from: scenes, homoclinic and map entries, defaults.
 
-A scene is one lattice (nc) + DpS (dfnls) run from one initial condition. The
-kinds of initial condition (travelling (ansatzapprox), breather
-(ansatzapproxst2), packet, pair) are one class each, chosen by ``kind``.
+A scene is one lattice (nc) + DpS (dfnls) run from one initial condition. The kinds of initial condition
+(travelling (ansatzapprox), breather (ansatzapproxst2), packet, pair, kick) are one class each, chosen by
+``kind``. A *resolved* :class:`Scene` (:func:`cradle.pipeline.config.scene`) has its defaults filled in:
+``alpha`` and ``max_energy_drift`` numbers, ``exact`` and ``dps`` complete integrators, SI values in (nc)'s
+units (:func:`in_nc_units`). What follows from the declared values is a property, not a field
+(:attr:`Scene.times`, :attr:`Travelling.wavenumber`), so ``from_plain(Scene, plain(scene)) == scene``.
 
-A *resolved* :class:`Scene` (:func:`cradle.pipeline.config.scene`) has its
-defaults filled in: ``alpha`` and ``max_energy_drift`` numbers, ``exact`` and
-``dps`` complete integrators. What follows from the declared values is a
-property, not a field (:attr:`Scene.times`, :attr:`Travelling.wavenumber`), so
-``from_plain(Scene, plain(scene)) == scene``. A resolved :class:`HomoclinicEntry`
-or :class:`MapEntry` has its ``alpha`` filled in.
-
-Each class's ``check`` holds the physical checks the schema of config.yaml cannot express, since it
-checks each key alone (a wave that fits the ring, a breather built from an existing homoclinic entry
-with the same N and bc, a figure's times stored by its scenes, an analysis's grids fine enough for its
-modes, ...): the protocol :class:`Checked`. :func:`cradle.pipeline.config.validate.validate` builds
-every entry the schema passed as its typed object and runs ``check(where, context, out)``: ``where``
-the entry's key path, ``out`` the :class:`~cradle.specs.values.Errors` the one-line messages go to,
-``context`` (:class:`Context`) the entries it may refer to. An entry with a schema error is not
-checked further (its errors are said), so a check reads attributes of the types they are declared with.
+Each class's ``check`` holds what no key says alone (a wave that fits the ring, a breather built from an
+existing homoclinic entry with the same N and bc, a figure's times stored by its scenes, ...): the protocol
+:class:`Checked`, run by :mod:`cradle.pipeline.config.checks` on the typed entries that passed the
+validation, with ``where`` the entry's key path, ``out`` the :class:`~cradle.specs.values.Errors` the
+one-line messages go to and ``context`` (:class:`Context`) the entries it may refer to.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Protocol
+from typing import Protocol, cast
 
 from cradle.models.damping import Damping
 from cradle.models.lattice_terms import Terms
 from cradle.models.physical import HERTZ_ALPHA, Cradle, scales
-from cradle.specs.declare import NULL, REQUIRED, build, declared, param, plain, register_union
+from cradle.specs.declare import NULL, REQUIRED, declared, param, register_union
 from cradle.specs.values import (
     INTEGER_TOL,
     MAX_STORED_TIMES,
@@ -40,9 +34,7 @@ from cradle.specs.values import (
     ConfigError,
     Errors,
     angle_expr,
-    copied,
     grid_size,
-    merged,
     parse_angle,
     show,
     store_times,
@@ -351,7 +343,7 @@ class Scene:
     @cached_property
     def times(self) -> tuple[float, ...]:
         """The stored times: 0, the grid of ``store.every``, the snapshots and t_end (:func:`store_times`)."""
-        return tuple(store_times(plain(self.store), self.t_end))
+        return tuple(store_times(self.store.snapshots, self.store.every, self.t_end))
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Snapshots increasing within [0, t_end], a stored grid of sane size, and the checks of the
@@ -516,38 +508,29 @@ SI_KEYS = {("t_end",): "time", ("store", "every"): "time", ("store", "snapshots"
            ("terms", "inhomogeneity", "length"): "string", ("terms", "inhomogeneity", "radius"): "radius"}
 
 
-def in_nc_units(entry: dict) -> dict:
-    """A scene entry given in SI (``units: si``, with its ``cradle:``) with its values in (nc)'s units
-    (:data:`SI_KEYS`; ``units`` dropped); any other entry as it is. Time t = omega_0 s, length x = u / X, a rate
-    (1/s) over omega_0, the Kuwabara-Kono time A (s) times omega_0 (:mod:`cradle.models.damping`)."""
-    c = entry.get("cradle")
-    if entry.get("units") != "si" or not isinstance(c, dict) or ("length" in c) == ("omega0" in c):
-        return entry   # nothing to convert, or a cradle the checks refuse
-    cradle = build(Cradle, c)
-    s = scales(cradle)
-    string = cradle.length if cradle.length is not None else cradle.g / s.omega0**2   # l_0 = g / omega_0^2
+def in_nc_units(scene: Scene) -> Scene:
+    """A scene given in SI (``units: si``, with its ``cradle:``) with its values in (nc)'s units (:data:`SI_KEYS`;
+    ``units`` dropped); any other scene as it is. Time t = omega_0 s, length x = u / X, a rate (1/s) over
+    omega_0, the Kuwabara-Kono time A (s) times omega_0 (:mod:`cradle.models.damping`)."""
+    c = scene.cradle
+    if scene.units != "si" or c is None or (c.length is None) == (c.omega0 is None):
+        return scene   # nothing to convert, or a cradle the checks refuse
+    s = scales(c)
+    string = c.length if c.length is not None else c.g / s.omega0**2   # l_0 = g / omega_0^2
     factor = {"time": s.omega0, "displacement": 1.0 / s.X, "velocity": 1.0 / s.V, "rate": 1.0 / s.omega0,
-              "A": s.omega0, "string": 1.0 / string, "radius": 1.0 / cradle.radius}
-    out = copied(entry)
-    del out["units"]
-    for (*sections, name), quantity in SI_KEYS.items():
-        node = out
-        for section in sections:
-            node = node.get(section) if isinstance(node, dict) else None
-        if not isinstance(node, dict) or node.get(name) is None:
-            continue
-        value = node[name]
-        node[name] = [v * factor[quantity] for v in value] if isinstance(value, list) else value * factor[quantity]
+              "A": s.omega0, "string": 1.0 / string, "radius": 1.0 / c.radius}
+    out = dataclasses.replace(scene, units=cast(str, None))   # absent: (nc)'s units
+    for keys, quantity in SI_KEYS.items():
+        out = _scaled(out, keys, factor[quantity])
     return out
 
 
-def resolved(entry: dict, defaults: dict) -> Scene:
-    """A scene entry of a schema-filled config (defaults filled in), resolved against ``defaults:``:
-    ``alpha`` and ``max_energy_drift`` from the defaults unless the scene gives them, ``exact`` and
-    ``dps`` the scene's keys merged over ``defaults.exact`` / ``defaults.dps``, SI values in (nc)'s units
-    (:func:`in_nc_units`)."""
-    entry = copied(in_nc_units(entry))
-    entry.update(alpha=float(entry.get("alpha", defaults["alpha"])),
-                 exact=merged(defaults["exact"], entry.get("exact")), dps=merged(defaults["dps"], entry.get("dps")),
-                 max_energy_drift=float(entry.get("max_energy_drift", defaults["max_energy_drift"])))
-    return build(Scene, entry)
+def _scaled(obj, keys: tuple[str, ...], factor: float):
+    """``obj`` with the value at ``keys`` (a number or a list) times ``factor``, where it has one."""
+    value = getattr(obj, keys[0], None) if dataclasses.is_dataclass(obj) else None
+    if value is None or keys[0] not in {f.name for f in dataclasses.fields(obj)}:
+        return obj
+    if len(keys) > 1:
+        return dataclasses.replace(obj, **{keys[0]: _scaled(value, keys[1:], factor)})
+    return dataclasses.replace(obj, **{keys[0]: [v * factor for v in value] if isinstance(value, list)
+                                       else value * factor})

@@ -2,7 +2,7 @@
 
 A spec is validated once, where it is built; below that, code trusts it. A library user who calls a
 public function directly (``integrate_lattice``, the initial-data builders, ...) is refused bad
-numbers in one line by the same declarations as the config (:data:`.declare.SHARED`)::
+numbers in one line by the same declarations as the config (:data:`.shared.SHARED`)::
 
     @checked
     def travelling_wave(N: int, q: float, alpha: float, *, bc: str = "periodic", ...): ...
@@ -32,7 +32,7 @@ import numbers
 import operator
 import typing
 
-from .declare import BOUND_HINTS, SHARED
+from .shared import BOUND_HINTS, SHARED
 from .values import TYPE_WORDS, ConfigError, bound_text, show
 
 _KEYWORDS = {"description", "type", "enum", "minimum", "exclusiveMinimum", "maximum", "exclusiveMaximum"}

@@ -55,14 +55,6 @@ def copied(value):
     return copy.deepcopy(value)
 
 
-def merged(base, override):
-    """A deep merge of two mappings, ``override`` winning (a copy: neither is changed)."""
-    out = copied(base) if isinstance(base, dict) else {}
-    for k, v in (override or {}).items():
-        out[k] = merged(out.get(k), v) if isinstance(v, dict) and isinstance(out.get(k), dict) else copied(v)
-    return out
-
-
 def key_path(parts) -> str:
     """``["scenes", "tw", "store", "snapshots", 1]`` as ``scenes.tw.store.snapshots[1]``."""
     out = ""
@@ -229,14 +221,14 @@ def grid_size(snapshots, every: float | None, t_end: float) -> int:
 REMEMBERED_TIMES = 100_000
 
 
-def store_times(store: dict, t_end: float) -> list[float]:
+def store_times(snapshots, every: float | None, t_end: float) -> list[float]:
     """The sorted times a scene stores: 0, the grid k*every on [0, t_end], t_end and the snapshots.
 
     Times are rounded to 1e-9; times closer than 1e-9 (e.g. a snapshot on the
     grid) are one time. 0 and t_end are always included.
     """
-    snapshots = tuple(float(s) for s in (store.get("snapshots") or ()))
-    every = float(store["every"]) if store.get("every") else None
+    snapshots = tuple(float(s) for s in (snapshots or ()))
+    every = float(every) if every else None
     if grid_size(snapshots, every, float(t_end)) <= REMEMBERED_TIMES:
         # a config is validated again and again (its figures' times, the Snakefile's jobs): remember small grids
         return list(_remembered_times(snapshots, every, float(t_end)))

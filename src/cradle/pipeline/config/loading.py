@@ -18,7 +18,7 @@ from cradle.specs.values import ConfigError
 
 from .resolve import homoclinic, map_entry, scene
 from .sections import SECTIONS
-from .validate import validate, write_schema
+from .validate import validate
 
 
 class StrictLoader(yaml.SafeLoader):
@@ -86,11 +86,12 @@ def main(argv=None) -> int:
     group.add_argument("--map", metavar="NAME")
     args = parser.parse_args(argv)
     if args.write_schema:
+        from .reference import write_schema
+
         print(f"wrote {write_schema()}")
         return 0
     if args.write_reference:
-        from .reference import REFERENCE_FILE, reference
-        from .validate import generated_schema
+        from .reference import REFERENCE_FILE, generated_schema, reference
 
         REFERENCE_FILE.write_text(reference(generated_schema()) + "\n", encoding="utf-8")
         print(f"wrote {REFERENCE_FILE}")

@@ -1,15 +1,38 @@
-"""The documented reference of config.yaml, generated from the declarations (docs/config-reference.md).
+"""The JSON Schema of config.yaml and its markdown reference, generated from the declarations: for editors
+and readers only, never consulted when a config is validated (:mod:`.validate` reads the declarations).
 
 config.yaml states what the paper's scenes need and what differs from the defaults; every key, its type,
-bounds, default and meaning is here, generated from the same declarations as the schema
-(``python -m cradle.pipeline.config --write-reference`` rewrites the file; a test checks it is current).
+bounds, default and meaning is in docs/config-reference.md, generated from the same declarations as the
+schema (``python -m cradle.pipeline.config --write-schema`` and ``--write-reference`` rewrite the files; a
+test checks both are current).
 """
 from __future__ import annotations
 
 import json
+from importlib import resources
 from pathlib import Path
 
+from cradle.specs import schema as spec
+
 REFERENCE_FILE = Path("docs") / "config-reference.md"
+SCHEMA_FILE = "config.schema.json"
+
+
+def generated_schema() -> dict:
+    """The JSON Schema of config.yaml, generated from the declarations (:class:`.sections.Config`)."""
+    from .sections import Config
+
+    return spec.generate(Config, title="cradle configuration")
+
+
+def schema_path() -> Path:
+    """The committed schema file (src/cradle/pipeline/config.schema.json)."""
+    return Path(str(resources.files("cradle.pipeline").joinpath(SCHEMA_FILE)))
+
+
+def write_schema(path=None) -> Path:
+    """Write the generated schema to ``path`` (default: the committed file)."""
+    return spec.write(generated_schema(), Path(path) if path else schema_path())
 
 _BOUNDS = (("minimum", ">= {}"), ("exclusiveMinimum", "> {}"), ("maximum", "<= {}"), ("exclusiveMaximum", "< {}"),
            ("minItems", "at least {} items"), ("maxItems", "at most {} items"))

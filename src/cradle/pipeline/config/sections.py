@@ -11,7 +11,6 @@ order (:mod:`cradle.scenes.spec`).
 from __future__ import annotations
 
 import bisect
-import math
 
 from cradle.pipeline.budget import Budget
 from cradle.scenes.spec import ENTRY_SECTIONS, Context, Defaults, HomoclinicEntry, MapEntry, Scene, Where
@@ -73,8 +72,7 @@ class Figure:
 
 @declared(doc="The experiments of G. James, 'Nonlinear waves in Newton's cradle and the discrete p-Schrodinger "
               "equation': integrator defaults, orbits of the map G, homoclinic solutions of (dpsstn), lattice + DpS "
-              "runs (scenes) and the figures that read them. Checked after this schema by "
-              "cradle.pipeline.config.validate (physical checks).")
+              "runs (scenes) and the figures that read them. Validated by cradle.pipeline.config.validate.")
 class Config:
     defaults: Defaults = param(Defaults(), "Settings every scene, homoclinic and map entry inherits unless it "
                                "overrides them.")
@@ -89,17 +87,3 @@ class Config:
     beyond: Beyond = param(Beyond(), schema_doc(Beyond))
     budget: Budget = param(Budget(), schema_doc(Budget))
     movies: Movies = param(Movies(), schema_doc(Movies))
-
-
-def check_finite(node, out, path=()) -> None:
-    """Every float of the config finite: an inf or nan anywhere is one line, at its key (run before the
-    schema, whose bounds would otherwise word it as out of range)."""
-    path = list(path)
-    if isinstance(node, dict):
-        for k, v in node.items():
-            check_finite(v, out, path + [k])
-    elif isinstance(node, list):
-        for i, v in enumerate(node):
-            check_finite(v, out, path + [i])
-    elif isinstance(node, float) and not math.isfinite(node):
-        out.add(path, "must be a finite number", node)

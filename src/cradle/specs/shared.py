@@ -1,0 +1,53 @@
+"""The shared parameter types: each bound of alpha, N, bc, rtol, ... written once, for the config's keys
+(``param(ref=...)``) and the arguments of public functions (:mod:`.checked`) alike."""
+from __future__ import annotations
+
+from typing import Any
+
+from .values import ANGLE_PATTERN, NAME_PATTERN
+
+# Shared scalar types ($defs), each bound written here only.
+
+SHARED: dict[str, dict[str, Any]] = {
+    "name": {"description": "An entry name: letters, digits, '-' and '_' (it becomes part of file names).",
+             "type": "string", "pattern": NAME_PATTERN},
+    # at most 10: the paper's exponents are 3/2 (Hertz) to 3; beyond, a^(alpha-1) of (freq) underflows to 0 or
+    # overflows for the amplitudes of the experiments, and a huge alpha makes every power overflow
+    "alpha": {"description": "Hertz exponent alpha of (vhertz); in (1, 10].", "type": "number", "exclusiveMinimum": 1,
+              "maximum": 10},
+    # at most 1e7: the 32 state arrays of a run (cradle.pipeline.budget) alone then take 2.6 GB
+    "N": {"description": "Number of sites (beads) n = 0..N-1; in [2, 1e7].", "type": "integer", "minimum": 2,
+          "maximum": 10_000_000},
+    "bc": {"description": "Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one "
+                          "neighbour).", "type": "string", "enum": ["periodic", "free"]},
+    "rtol": {"description": "Relative tolerance of an adaptive integrator, in (0, 1e-2].", "type": "number",
+             "exclusiveMinimum": 0, "maximum": 0.01},
+    # at most 1e-2: a run whose energy moved by more than 1 % of H(0) is no solution of (nc), and a larger bound
+    # would silently turn the check off
+    "maxEnergyDrift": {"description": "Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact "
+                                      "run; in (0, 1e-2] (a larger bound would turn the check off).",
+                       "type": "number", "exclusiveMinimum": 0, "maximum": 0.01},
+    "angleString": {"description": "A multiple of pi such as 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', or a "
+                                   "number written as a string.", "type": "string", "pattern": ANGLE_PATTERN},
+    "angle": {"description": "An angle: a number (radians) or a multiple of pi as a string ('pi/5', '4pi/5', "
+                             "'-52pi/100', '4*pi/5').", "anyOf": [{"type": "number"}, {"$ref": "#/$defs/angleString"}]},
+    # arguments of public functions (cradle.specs.checked) that no config key refers to yet: a schema
+    # lists only the shared types its keys use, so these are not in config.schema.json
+    "atol": {"description": "Absolute tolerance of an adaptive integrator; > 0.", "type": "number",
+             "exclusiveMinimum": 0},
+    "dt": {"description": "Time step of a fixed-step splitting; > 0.", "type": "number", "exclusiveMinimum": 0},
+    "dt_factor": {"description": "Splitting step as a fraction of the shortest linearised period 2 pi / omega_max; "
+                                 "> 0.", "type": "number", "exclusiveMinimum": 0},
+    "latticeMethod": {"description": "Integrator of the lattice (nc): a splitting (srkn6c, srkn4c with the "
+                                     "contact-onset correction; srkn6, srkn4, strang) or an adaptive method "
+                                     "(dop853_numba; scipy's dop853, rk45, lsoda, radau).", "type": "string",
+                      "enum": ["srkn6c", "srkn4c", "srkn6", "srkn4", "strang", "dop853_numba", "dop853", "rk45",
+                               "lsoda", "radau"]},
+    "dpsMethod": {"description": "Integrator of the DpS equation (dfnls): dop853_numba, or scipy's dop853, rk45.",
+                  "type": "string", "enum": ["dop853_numba", "dop853", "rk45"]},
+    "potential": {"description": "Interaction potential: hertz, V0 of (vhertz), or smooth, |d|^(alpha+1)/(alpha+1) "
+                                 "of (meca) with kappa = 1.", "type": "string", "enum": ["hertz", "smooth"]},
+}
+
+#: words a message adds to a bound of a shared type, by (type, keyword): what the bound is
+BOUND_HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))"}
