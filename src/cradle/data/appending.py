@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from cradle.data import checksums
+from cradle.data import checksums, digests
 from cradle.data.io import _attr_value, _umask_mode, disk_full, encoding_of
 from cradle.data.temporaries import temporary_beside
 
@@ -94,6 +94,7 @@ class Appender:
             checksums.stamp(self.nc)  # the values without t are final now
             self.nc.close()
         os.chmod(self.tmp, _umask_mode())
+        digests.record(self.path, self.tmp)  # before the rename, as cradle.data.io.write_netcdf does
         os.replace(self.tmp, self.path)
 
     def abort(self):

@@ -80,18 +80,18 @@ def has_filter(var) -> bool:
     return bool((var.filters() or {}).get("fletcher32"))
 
 
-def _variables(group, prefix=""):
+def variables(group, prefix=""):
     """(path, variable) for every variable of ``group`` and its subgroups."""
     for name, var in group.variables.items():
         yield prefix + name, var
     for gname, sub in group.groups.items():
-        yield from _variables(sub, f"{prefix}{gname}/")
+        yield from variables(sub, f"{prefix}{gname}/")
 
 
 def stamp(nc) -> None:
     """Record :data:`ATTR` on every variable of the open, writable ``nc`` (every group) that has no
     Fletcher-32 filter, and drop it from those that have one (a stale copy)."""
-    for _, var in _variables(nc):
+    for _, var in variables(nc):
         if has_filter(var):
             if ATTR in var.ncattrs():
                 var.delncattr(ATTR)
@@ -107,7 +107,7 @@ def check(var, name: str, block_bytes: int = 64 * 2**20) -> None:
 
 def check_recorded(nc) -> None:
     """:func:`check` every variable of ``nc`` (every group) that carries a recorded checksum."""
-    for name, var in _variables(nc):
+    for name, var in variables(nc):
         check(var, name)
 
 
