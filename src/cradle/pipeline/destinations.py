@@ -17,11 +17,7 @@ from pathlib import Path
 
 from cradle.pipeline import layout
 
-__all__ = ["Refused", "workflow_output", "check", "OWNER_KEY"]
-
-#: the key of a non-netCDF file's record (:func:`cradle.data.digests.record_owner`) naming what wrote it
-OWNER_KEY = "owner"
-
+__all__ = ["Refused", "workflow_output", "holds", "check"]
 
 class Refused(ValueError):
     """A destination the command may not write without ``--overwrite``; one line."""
@@ -32,33 +28,43 @@ def _template_regex(template: str) -> re.Pattern:
     return re.compile(re.sub(r"{(\w+)}", r"(?P<\1>[^/]+)", pattern))
 
 
-_TEMPLATES = [(kind, _template_regex(t)) for kind, t in layout.TEMPLATES.items()]
+#: the layout's files that are not netCDF (figures, movies, logs, ...); its netCDF files are found by
+#: :func:`cradle.pipeline.identity.locate`, which knows the analyses' folders too
+_OTHER = [(kind, _template_regex(t)) for kind, t in layout.TEMPLATES.items() if not t.endswith(".nc")]
 
 
 def workflow_output(path) -> tuple[str, dict] | None:
     """The kind and names (``("exact", {"scene": "tw-moderate"})``) of the workflow output ``path`` is: a path of
-    the layout under the nearest enclosing folder named ``results``; any other file under it is the workflow's too
-    (``("results", {})``: an analysis, a table). None outside a ``results`` folder."""
+    the layout under the nearest enclosing folder named ``results``; None for any other path (a file of its own
+    there, such as an extended run ``exact-t700.nc``, is not the workflow's)."""
+    from cradle.pipeline.identity import locate
+
     full = Path(path).resolve()
-    for root in full.parents:
-        if root.name == layout.ROOT:
-            rel = full.relative_to(root).as_posix()
-            for kind, regex in _TEMPLATES:
-                m = regex.fullmatch(rel)
-                if m is not None:
-                    return kind, m.groupdict()
-            return "results", {}
+    root = next((p for p in full.parents if p.name == layout.ROOT), None)
+    if root is None:
+        return None
+    found = locate(full, root)
+    if found is not None:
+        return found
+    rel = full.relative_to(root).as_posix()
+    for kind, regex in _OTHER:
+        m = regex.fullmatch(rel)
+        if m is not None:
+            return kind, m.groupdict()
     return None
 
 
 def _what(kind: str, names: dict) -> str:
     """How a message calls a workflow output."""
+    from cradle.pipeline.identity import NOUN, Identity
+
     name = names.get("scene") or names.get("name") or names.get("label") or names.get("analysis")
-    return f"the workflow's {kind} output" + (f" of '{name}'" if name else "") if kind != "results" else \
-        "a file of the workflow's results folder"
+    if kind in NOUN:  # the netCDF files: "the exact run of scene 'tw-moderate'", "analysis 'floquet'"
+        return f"{Identity(kind, name, None).describe(True)} in the workflow's results"
+    return f"the workflow's {kind} '{name}'" if name else f"the workflow's {kind}"
 
 
-def _holds(path: Path) -> tuple[str | None, str | None]:
+def holds(path: Path) -> tuple[str | None, str | None]:
     """(cradle_kind, cradle_name) of a netCDF file, or (None, None) when it is not one cradle can read."""
     try:
         import netCDF4
@@ -83,13 +89,15 @@ def check(path, *, command: str, makes: tuple[str, dict] | None = None, identity
         return
     path = Path(path)
     where = workflow_output(path)
-    if where is not None and where != makes:
+    if where is not None and where == makes:  # the command's own product (cradle run SCENE --out results)
+        return
+    if where is not None:
         raise Refused(f"refusing to write {path}: it is {_what(*where)} (its rule writes it; snakemake --force "
                       f"{path} rebuilds it); give --overwrite to replace it anyway")
     if not path.exists():
         return
     if identity is not None:
-        have = _holds(path)
+        have = holds(path)
         if have != identity:
             held = (f"{have[0]} '{have[1]}'" if have[0] else "not a cradle netCDF file")
             raise Refused(f"refusing to write {path}: it exists and holds {held}, not {identity[0]} "

@@ -80,6 +80,18 @@ def _workflow_scene_of(path: Path) -> str | None:
     return None
 
 
+def _may_extend_into(path: Path, out: Path, overwrite: bool) -> None:
+    """Refuse ``--out`` when it is a workflow output or an existing file that is not an exact run of the same
+    scene (:func:`cradle.pipeline.destinations.check`), before any work."""
+    from cradle.pipeline.destinations import Refused, check, holds
+
+    kind, name = holds(path)
+    try:
+        check(out, command="cradle extend", identity=(kind or "exact", name or "?"), overwrite=overwrite)
+    except Refused as err:
+        raise CliError(str(err)) from None
+
+
 def cmd_extend(args) -> int:
     import math
     import sys
@@ -108,6 +120,8 @@ def cmd_extend(args) -> int:
                            f"and the config would stay at the old t_end. Set scenes.{scene}.t_end: {args.t_end:g} in "
                            f"the config and run `snakemake {path}` (all four files of the scene, consistently), "
                            f"or drop --in-place to write a new file")
+    if out.resolve() != path.resolve():
+        _may_extend_into(path, out, getattr(args, "overwrite", False))
     try:
         cost = estimate(path, args.t_end, every=args.every, budget=budget)   # refused here, before any work
         print(f"{PROG}: {cost.describe()}", file=sys.stderr)

@@ -11,7 +11,8 @@ The command waits for the job and prints its log as it grows (``--no-wait``: sub
 log, return); it exits 0 when Slurm says COMPLETED, 1 otherwise. Ctrl-C while waiting cancels the job
 (``scancel``), as Snakemake cancels its own Slurm jobs. No Slurm command may hang it: each is given
 :data:`TIMEOUT_S`; a missing or hung one, an answer of ``sbatch`` that is not a job id or a state that is none
-of Slurm's ends the command in one line, the job cancelled where one may have been submitted. Nothing is submitted unless the folder holds a Snakefile
+of Slurm's ends the command in one line, the job cancelled where one may have been submitted. Nothing is
+submitted unless the folder holds a Snakefile
 and a valid config: the config's errors are one line here, not in a job's log.
 """
 from __future__ import annotations
