@@ -36,6 +36,7 @@ def _describe_variables(heading: str, ds) -> list[str]:
 def cmd_describe(args) -> int:
     import xarray as xr
 
+    from cradle.data.digests import read_record, sidecar
     from cradle.data.io import DamagedOutput, verify_file
     from cradle.data.provenance import KEYS as PROV
 
@@ -61,6 +62,9 @@ def cmd_describe(args) -> int:
                 out.append(f"  {'max|' + name + '|':<{width}} {float(abs(ds[name]).max()):.6g}")
         out.append(f"  {'checksums':<{width}} " + ("verified (every variable)" if not bare else
                    f"verified; no checksum on {', '.join(bare)} (written before checksums: rebuild to protect)"))
+        out.append(f"  {'digest':<{width}} " + (f"values and attributes as written (recorded in {sidecar(path).name})"
+                   if read_record(path) is not None else f"none recorded (no {sidecar(path).name}: written before "
+                   "digests, or copied without it; rebuild to protect it)"))
         out.append(f"  {'identity':<{width}} {identity_line(expectations(args.config), path, attrs)}")
         out += ["", "provenance:"]
         out += [f"  {k:<{width}} {_fmt(attrs[k])}" for k in PROV + ("history", "Conventions") if k in attrs]
@@ -137,6 +141,7 @@ def cmd_extend(args) -> int:
 
 
 def cmd_verify(args) -> int:
+    from cradle.data.digests import read_record, sidecar
     from cradle.data.io import DamagedOutput, rebuild_hint, stale_temporaries, verify_file
 
     root = Path(args.root)
@@ -144,11 +149,13 @@ def cmd_verify(args) -> int:
         raise CliError(f"no such folder or file {str(root)!r}")
     files = [root] if root.is_file() else sorted(p for p in root.rglob("*.nc")
                                                  if not p.name.startswith(".") and "failed" not in p.parts)
-    damaged, bare = [], []
+    damaged, bare, unrecorded = [], [], []
     for p in files:
         try:
             if verify_file(p):
                 bare.append(p)
+            elif read_record(p) is None:
+                unrecorded.append(p)
         except (DamagedOutput, OSError) as err:
             damaged.append(" ".join(str(err).split()))
     expect = expectations(args.config)  # what the config expects of each file: kind, name, parameters
@@ -159,11 +166,15 @@ def cmd_verify(args) -> int:
         print(f"MISMATCH {line}")
     for p in bare:
         print(f"note    {p}: readable, but written before checksums; {rebuild_hint(p)} to protect it")
+    for p in unrecorded:
+        print(f"note    {p}: readable, but no digest recorded (no {sidecar(p).name}: written before digests, or "
+              f"copied without it), so an edit would not show; {rebuild_hint(p)} to protect it")
     stale = [] if root.is_file() else stale_temporaries(root)
     for p in stale:
         print(f"note    stale temporary file {p} (a killed write; delete it)")
-    print(f"{len(files)} files checked: {len(files) - len(damaged) - len(bare)} verified, {len(bare)} without "
-          f"checksums, {len(damaged)} to rebuild" + (f"; {len(stale)} stale temporary files" if stale else ""))
+    print(f"{len(files)} files checked: {len(files) - len(damaged) - len(bare) - len(unrecorded)} verified, "
+          f"{len(bare)} without checksums, " + (f"{len(unrecorded)} without a digest, " if unrecorded else "")
+          + f"{len(damaged)} to rebuild" + (f"; {len(stale)} stale temporary files" if stale else ""))
     if mismatched:
         print(f"{len(mismatched)} files not what {expect.source} expects (another entry's, or older parameters): "
               "rebuild them")
