@@ -78,7 +78,6 @@ def cmd_run(args) -> int:
                layout.path("log", out, job=f"homoclinic/{name}"), f"homoclinic {name}")
         return 0
     spec = cc.scene(cfg, name)
-    print(f"{PROG}: {budget.spec_estimate(spec, name).describe()}", file=sys.stderr)  # within budget (validated)
     outs, homoclinic = {}, None
     if isinstance(spec.initial, Breather):
         hname = spec.initial.homoclinic
@@ -88,6 +87,7 @@ def cmd_run(args) -> int:
     outs.update({part: Path(p) for part, p in layout.scene_paths(name, out).items()})
     _may_write(outs, {**dict.fromkeys(layout.SCENE_PARTS, name), "homoclinic": spec.initial.homoclinic
                       if isinstance(spec.initial, Breather) else ""}, overwrite)
+    print(f"{PROG}: {budget.spec_estimate(spec, name).describe()}", file=sys.stderr)  # within budget (validated)
     log = layout.path("log", out, job=f"sim/{name}")
     try:
         run_scene(spec, name, outs, log, homoclinic=homoclinic)
