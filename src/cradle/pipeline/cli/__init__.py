@@ -165,6 +165,21 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
+def _numbers_attached(argv: list[str]) -> list[str]:
+    """``--radius -1e-300`` as ``--radius=-1e-300``: argparse takes a negative number with an exponent for an
+    option and says only "expected one argument"; attached, the value reaches its check and its one line."""
+    import re
+
+    out: list[str] = []
+    for token in argv:
+        prev = out[-1] if out else ""
+        if re.fullmatch(r"-(\d|\.\d|inf|nan)\S*", token, re.IGNORECASE) and prev.startswith("--") and "=" not in prev:
+            out[-1] = f"{prev}={token}"
+        else:
+            out.append(token)
+    return out
+
+
 def main(argv=None) -> int:
     """Run the command line ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
     import os
@@ -175,7 +190,7 @@ def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
         own, snakemake_args = split_snakemake_args(argv) if argv[:1] == ["slurm"] else (argv, [])
-        args = parser().parse_args(own)
+        args = parser().parse_args(_numbers_attached(own))
         if snakemake_args:
             args.snakemake_args = snakemake_args
         if not getattr(args, "func", None):
