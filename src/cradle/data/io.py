@@ -374,8 +374,9 @@ def _verified(nc, path) -> bool:
 def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     """Open a cradle output fully into memory (the file is closed on return), verified.
 
-    Every variable is read (so HDF5 checks every chunk's Fletcher-32 checksum) and every recorded
-    checksum compared (:mod:`cradle.data.checksums`; the attribute is dropped from what is returned).
+    Every variable is read (so HDF5 checks every chunk's Fletcher-32 checksum), every recorded
+    checksum compared (:mod:`cradle.data.checksums`; the attribute is dropped from what is returned), and
+    values and attributes compared with the digest recorded beside the file (:mod:`cradle.data.digests`).
     A missing file raises FileNotFoundError; a file that is not netCDF, is truncated or fails a
     checksum raises :class:`DamagedOutput` with one line naming the file (and the variable, for a
     recorded checksum) and the command that rebuilds it.

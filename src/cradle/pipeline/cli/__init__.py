@@ -26,6 +26,9 @@ computed first (``OUT/homoclinic/NAME.nc``). A ``map`` or ``homoclinic``
 name computes that entry alone. The config is refused before any work if a
 job is over budget (:mod:`cradle.pipeline.budget`).
 
+``cradle run``, ``cradle extend`` and ``cradle animate`` refuse a destination that is another job's output or an
+existing file they did not make (:mod:`cradle.pipeline.destinations`), unless given ``--overwrite``.
+
 ``cradle extend`` writes a new file by default (``FILE-tT.nc`` beside the
 input); ``--in-place`` replaces the input, and is refused for a scene's
 exact run next to its DpS run (a workflow output): extending it alone would
