@@ -8,9 +8,9 @@ variable's stored values (:func:`cradle.data.checksums.digest`, raw bytes), of e
 variable) and of every dimension, in every group; every reader compares the file with it (:func:`compare`) and
 refuses a difference in one line naming the file, what differs and the rebuild.
 
-The sidecar is written (atomically) before its file is renamed into place and names the digest of the file it
-replaces as ``previous``, so the file as it was before the rename (a write killed between the two renames, or
-a failed Snakemake job's backup put back) is accepted too. A file without a sidecar (written before digests
+The sidecar is written (atomically) before its file is renamed into place and names the digests of the files the
+path held before (``previous``, the last :data:`HISTORY`), so the file as it was before the rename (a write killed
+between the two renames, or a failed Snakemake job's backup put back) is accepted too. A file without a sidecar (written before digests
 existed, or copied without it) is read, and reported by ``cradle verify`` as not fully protected.
 
 Threat model (docs/recovery.md): accidental edits and damage, not someone who rewrites the sidecar too.
@@ -29,6 +29,9 @@ from cradle.data.temporaries import temporary_beside
 
 #: the format of a sidecar; a sidecar of another format is ignored as unknown
 FORMAT = "cradle-digest-1"
+#: how many digests of the files a path held before are accepted (``previous``): a failed Snakemake job puts its
+#: backup back, possibly after several failed reruns
+HISTORY = 4
 
 
 class ContentMismatch(ValueError):
@@ -87,14 +90,17 @@ def read_record(path) -> dict | None:
 
 def record(path, source=None) -> Path:
     """Write the sidecar of ``path`` from the file ``source`` (default ``path``; a writer's finished temporary file),
-    atomically, naming the digest recorded before as ``previous``. Call it before renaming ``source`` to ``path``."""
+    atomically, naming the digests recorded before as ``previous``. Call it before renaming ``source`` to ``path``."""
     import netCDF4
 
     with netCDF4.Dataset(source or path) as nc:
         parts = items(nc)
-    old = read_record(path)
-    text = json.dumps({"format": FORMAT, "file": Path(path).name, "sha256": whole(parts),
-                       "previous": old.get("sha256") if old else None, "items": parts}, sort_keys=True)
+    old = read_record(path) or {}
+    before = old.get("previous")
+    before = [before] if isinstance(before, str) else before if isinstance(before, list) else []
+    previous = [d for d in [old.get("sha256"), *before] if isinstance(d, str)][:HISTORY]
+    text = json.dumps({"format": FORMAT, "file": Path(path).name, "sha256": whole(parts), "previous": previous,
+                       "items": parts}, sort_keys=True)
     target = sidecar(path)
     tmp = temporary_beside(target)
     try:
@@ -136,7 +142,8 @@ def compare(path, parts: dict[str, str], most: int = 3) -> bool:
     rec = read_record(path)
     if rec is None:
         return False
-    if whole(parts) in (rec.get("sha256"), rec.get("previous")):
+    before = rec.get("previous")
+    if whole(parts) == rec.get("sha256") or whole(parts) in (before if isinstance(before, list) else [before]):
         return True
     want = rec.get("items") or {}
     keys = sorted(set(parts) | set(want))
