@@ -10,8 +10,9 @@ refuses a difference in one line naming the file, what differs and the rebuild.
 
 The sidecar is written (atomically) before its file is renamed into place and names the digests of the files the
 path held before (``previous``, the last :data:`HISTORY`), so the file as it was before the rename (a write killed
-between the two renames, or a failed Snakemake job's backup put back) is accepted too. A file without a sidecar (written before digests
-existed, or copied without it) is read, and reported by ``cradle verify`` as not fully protected.
+between the two renames, or a failed Snakemake job's backup put back) is accepted too. A file without a sidecar
+(written before digests existed, or copied without it) is read, and reported by ``cradle verify`` as not fully
+protected.
 
 Threat model (docs/recovery.md): accidental edits and damage, not someone who rewrites the sidecar too.
 """
