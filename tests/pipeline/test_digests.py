@@ -15,7 +15,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from cradle.data import digests
+from cradle.data import digests, io
 from cradle.data.io import DamagedOutput, open_dataset, open_tree, verify_file, write_datatree, write_netcdf
 from cradle.pipeline import cli, config as cc, layout
 from cradle.pipeline.identity import job_expectations, open_checked
@@ -189,3 +189,16 @@ def test_the_digest_leaves_every_stored_value_as_written(tmp_path):
     with netCDF4.Dataset(path) as d:
         assert "digest" not in " ".join(d.ncattrs()) and np.array_equal(d["x"][:], _small()["x"].values)
     assert layout.ROOT == "results"
+
+
+def test_the_values_digested_from_memory_are_those_read_back(tmp_path):
+    """A writer digests its numeric arrays from memory (no read back): the file read raw gives the same digests."""
+    ds = xr.Dataset({"f8": (("t", "n"), np.array([[1.0, np.nan], [-0.0, np.inf]])),
+                     "f4": ("t", np.array([1.5, np.nan], dtype=np.float32)),
+                     "i8": ("t", np.array([-3, 2**40])), "i4": (("t", "n", "k"), np.ones((2, 2, 3), dtype=np.int32)),
+                     "u1": ("n", np.array([0, 255], dtype=np.uint8)), "s": ((), 2.5), "names": ("n", ["a", "bc"])},
+                    coords={"t": np.array([0.0, 0.5]), "n": np.arange(2)}, attrs={"a": 1.0})
+    path = write_netcdf(ds, tmp_path / "f.nc")
+    with netCDF4.Dataset(path) as nc:
+        assert digests.items(nc) == digests.read_record(path)["items"]
+    assert sorted(io.stored_digests(ds, io.encoding_of(ds))) == ["f4", "f8", "i4", "i8", "n", "t", "u1"]

@@ -92,9 +92,10 @@ class Appender:
     def commit(self):
         with self._space():
             checksums.stamp(self.nc)  # the values without t are final now
+            parts = digests.items(self.nc)   # every value read back: the store is not in memory
             self.nc.close()
         os.chmod(self.tmp, _umask_mode())
-        digests.record(self.path, self.tmp)  # before the rename, as cradle.data.io.write_netcdf does
+        digests.record(self.path, parts=parts)  # before the rename, as cradle.data.io.write_netcdf does
         os.replace(self.tmp, self.path)
 
     def abort(self):

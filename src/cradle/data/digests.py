@@ -3,9 +3,9 @@
 HDF5 recomputes a chunk's Fletcher-32 checksum when a value is written, and a global attribute carries no
 checksum at all, so an edit made with netCDF4 (``d["x"][0] *= 3``, ``d.a = 1.0``) leaves a file whose own
 checksums all pass. The writers (:mod:`cradle.data.io`, :mod:`cradle.data.appending`, :mod:`cradle.pipeline.extend`)
-therefore record, in a sidecar ``.NAME.digest`` beside ``NAME`` (:func:`sidecar`), the SHA-256 of every
-variable's stored values (:func:`cradle.data.checksums.digest`, raw bytes), of every attribute (global and per
-variable) and of every dimension, in every group; every reader compares the file with it (:func:`compare`) and
+therefore record, in a sidecar ``.NAME.digest`` beside ``NAME`` (:func:`sidecar`), a digest of every variable's
+stored values (:func:`values_digest`, raw bytes), of every attribute (global and per variable) and of every
+dimension, in every group; every reader compares the file with it (:func:`compare`) and
 refuses a difference in one line naming the file, what differs and the rebuild.
 
 The sidecar is written (atomically) before its file is renamed into place and names the digests of the files the
@@ -24,12 +24,13 @@ import os
 from pathlib import Path
 
 import numpy as np
+import xxhash
 
 from cradle.data import checksums
 from cradle.data.temporaries import temporary_beside
 
 #: the format of a sidecar; a sidecar of another format is ignored as unknown
-FORMAT = "cradle-digest-1"
+FORMAT = "cradle-digest-2"
 #: how many digests of the files a path held before are accepted (``previous``): a failed Snakemake job puts its
 #: backup back, possibly after several failed reruns
 HISTORY = 4
@@ -58,20 +59,33 @@ def _attribute(value) -> str:
     return hashlib.sha256(body).hexdigest()
 
 
-def items(nc, prefix: str = "", block_bytes: int = 64 * 2**20) -> dict[str, str]:
-    """Every thing a reader uses of the open ``netCDF4.Dataset`` ``nc`` (and its groups), each with its SHA-256:
+def values_digest(var, block_bytes: int = 64 * 2**20) -> str:
+    """The digest of a ``netCDF4.Variable``'s stored values: :func:`cradle.data.checksums.digest`'s byte form, hashed
+    with XXH3-128 (a 128-bit hash for telling accidental changes apart, several times faster than SHA-256)."""
+    return checksums.digest(var, block_bytes, new=xxhash.xxh3_128)
+
+
+def array_digest(values: np.ndarray) -> str:
+    """:func:`values_digest` of the numeric array a writer is about to store, from memory (no read back)."""
+    return checksums.array_digest(values, new=xxhash.xxh3_128)
+
+
+def items(nc, prefix: str = "", block_bytes: int = 64 * 2**20, known: dict[str, str] | None = None) -> dict[str, str]:
+    """Every thing a reader uses of the open ``netCDF4.Dataset`` ``nc`` (and its groups), each with its digest:
     ``@name`` a global attribute, ``dim:name`` a dimension's size, ``var`` a variable's values (read raw, so
     HDF5 checks every Fletcher-32 checksum on the way), ``var@name`` a variable's attribute; a group's prefixed
-    by its path (``waves/omega``); values read ``block_bytes`` at a time."""
+    by its path (``waves/omega``); values read ``block_bytes`` at a time, except those whose digest ``known`` gives
+(:func:`array_digest` of what the writer stored, by the same keys)."""
     out = {f"{prefix}@{k}": _attribute(nc.getncattr(k)) for k in nc.ncattrs()}
     for name, dim in nc.dimensions.items():
         out[f"{prefix}dim:{name}"] = hashlib.sha256(f"{len(dim)}|{dim.isunlimited()}".encode()).hexdigest()
     for name, var in nc.variables.items():
         dims = hashlib.sha256(",".join(var.dimensions).encode()).hexdigest()
-        out[f"{prefix}{name}"] = hashlib.sha256(f"{checksums.digest(var, block_bytes)}|{dims}".encode()).hexdigest()
+        stored = (known or {}).get(f"{prefix}{name}") or values_digest(var, block_bytes)
+        out[f"{prefix}{name}"] = hashlib.sha256(f"{stored}|{dims}".encode()).hexdigest()
         out.update({f"{prefix}{name}@{k}": _attribute(var.getncattr(k)) for k in var.ncattrs()})
     for gname, group in nc.groups.items():
-        out.update(items(group, f"{prefix}{gname}/", block_bytes))
+        out.update(items(group, f"{prefix}{gname}/", block_bytes, known))
     return out
 
 
@@ -89,13 +103,16 @@ def read_record(path) -> dict | None:
     return record if isinstance(record, dict) and record.get("format") == FORMAT else None
 
 
-def record(path, source=None) -> Path:
+def record(path, source=None, known: dict[str, str] | None = None, parts: dict[str, str] | None = None) -> Path:
     """Write the sidecar of ``path`` from the file ``source`` (default ``path``; a writer's finished temporary file),
-    atomically, naming the digests recorded before as ``previous``. Call it before renaming ``source`` to ``path``."""
-    import netCDF4
+    atomically, naming the digests recorded before as ``previous``. Call it before renaming ``source`` to ``path``.
+    ``known``: the values' digests the writer computed from memory (:func:`items`); ``parts``: the :func:`items` of
+    the file, computed by a writer that still had it open (then the file is not opened again)."""
+    if parts is None:
+        import netCDF4
 
-    with netCDF4.Dataset(source or path) as nc:
-        parts = items(nc)
+        with netCDF4.Dataset(source or path) as nc:
+            parts = items(nc, known=known)
     old = read_record(path) or {}
     before = old.get("previous")
     before = [before] if isinstance(before, str) else before if isinstance(before, list) else []

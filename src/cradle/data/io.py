@@ -190,14 +190,29 @@ def encoding_of(ds: xr.Dataset) -> dict:
     return encoding
 
 
-def _stamped(tmp) -> None:
+def _stamped(tmp, known: dict[str, str]) -> dict[str, str]:
     """Record the checksum of every variable of the written file ``tmp`` that has no Fletcher-32
     filter (:func:`cradle.data.checksums.stamp`): computed from the stored values, so a checksum
-    attribute copied from a Dataset read earlier is replaced, never kept."""
+    attribute copied from a Dataset read earlier is replaced, never kept. Returns the finished file's
+    :func:`cradle.data.digests.items` (``known``: the values digested from memory, :func:`stored_digests`),
+    computed on the same handle: opening an HDF5 file costs as much as digesting a 10 MB one."""
     import netCDF4
 
     with netCDF4.Dataset(tmp, "a") as nc:
         checksums.stamp(nc)
+        return digests.items(nc, known=known)
+
+
+def stored_digests(ds: xr.Dataset, encoding: dict, prefix: str = "") -> dict[str, str]:
+    """The digests of the values ``ds`` stores with ``encoding`` (:func:`encoding_of`), from memory, for the
+    variables whose stored bytes are their values as they are (integers and floats given an encoding of their
+    own: no fill value, scale or type of xarray's applied); the others are digested from the written file
+    (:func:`cradle.data.digests.record`). Keys as :func:`cradle.data.digests.items` (``group/name``)."""
+    out = {}
+    for name, var in ds.variables.items():
+        if name in encoding and var.dtype.kind in "fiu" and var.ndim > 0:
+            out[f"{prefix}{name}"] = digests.array_digest(np.asarray(var.values))
+    return out
 
 
 def write_netcdf(ds: xr.Dataset | xr.DataTree, path: str | os.PathLike) -> Path:
@@ -207,11 +222,14 @@ def write_netcdf(ds: xr.Dataset | xr.DataTree, path: str | os.PathLike) -> Path:
     if isinstance(ds, xr.DataTree):
         return write_datatree(ds, path)
 
-    def write(tmp):
-        ds.to_netcdf(tmp, encoding=encoding_of(ds), engine="netcdf4")
-        _stamped(tmp)
+    encoding = encoding_of(ds)
+    parts: dict[str, str] = {}
 
-    return _atomic(Path(path), write, needs=int(ds.nbytes), digest=True)
+    def write(tmp):
+        ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
+        parts.update(_stamped(tmp, stored_digests(ds, encoding)))
+
+    return _atomic(Path(path), write, needs=int(ds.nbytes), digest=parts)
 
 
 def write_datatree(tree: xr.DataTree, path: str | os.PathLike) -> Path:
@@ -220,12 +238,18 @@ def write_datatree(tree: xr.DataTree, path: str | os.PathLike) -> Path:
     reads it."""
     encoding = {node.path: encoding_of(node.to_dataset(inherit=False)) for node in tree.subtree}
 
+    parts: dict[str, str] = {}
+
     def write(tmp):
         tree.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
-        _stamped(tmp)
+        known: dict[str, str] = {}
+        for node in tree.subtree:
+            prefix = node.path.strip("/") + "/" if node.path != "/" else ""
+            known.update(stored_digests(node.to_dataset(inherit=False), encoding[node.path], prefix))
+        parts.update(_stamped(tmp, known))
 
     needs = sum(int(node.to_dataset(inherit=False).nbytes) for node in tree.subtree)
-    return _atomic(Path(path), write, needs=needs, digest=True)
+    return _atomic(Path(path), write, needs=needs, digest=parts)
 
 
 def write_text(text: str, path: str | os.PathLike) -> Path:
@@ -279,10 +303,11 @@ def disk_full(path: Path, tmp, needs: int, err: BaseException) -> DiskFull | Non
     return full
 
 
-def _atomic(path: Path, write, needs: int = 0, digest: bool = False) -> Path:
+def _atomic(path: Path, write, needs: int = 0, digest: dict[str, str] | None = None) -> Path:
     """Call ``write(tmp)`` on a temporary file beside ``path`` (named after this process:
-    :func:`cradle.data.temporaries.temporary_beside`), then rename it to ``path``; with ``digest``, the
-    digest of the finished netCDF file is recorded beside ``path`` first (:func:`cradle.data.digests.record`).
+    :func:`cradle.data.temporaries.temporary_beside`), then rename it to ``path``; with ``digest`` (the
+    :func:`cradle.data.digests.items` of the finished netCDF file, which ``write`` fills in), the digest is
+    recorded beside ``path`` first (:func:`cradle.data.digests.record`).
 
     An interrupted or failed write leaves nothing at ``path`` (and no temporary file); a write that
     fails on a full file system raises :class:`DiskFull` (``needs``: about how many bytes the file takes).
@@ -293,8 +318,8 @@ def _atomic(path: Path, write, needs: int = 0, digest: bool = False) -> Path:
         tmp = temporary_beside(path)
         write(tmp)
         os.chmod(tmp, _umask_mode())
-        if digest:  # before the rename: a write killed between the two leaves the old file, its digest 'previous'
-            digests.record(path, tmp)
+        if digest is not None:  # before the rename: a write killed between the two leaves the old file, 'previous'
+            digests.record(path, parts=digest)
         os.replace(tmp, path)
     except BaseException as err:
         full = disk_full(path, tmp, needs, err)
