@@ -53,11 +53,12 @@ def measure(path: Path, scratch: Path) -> dict:
     from cradle.data.io import encoding_of, open_dataset, stored_digests
 
     ds = open_dataset(path)   # also proves the file is intact before it is timed
+    encoding = encoding_of(ds)  # the write's: write_netcdf computes it once for both
     out = scratch / path.name
     times: dict[str, list[float]] = {"write": [], "digest": [], "read": [], "compare": []}
 
     def write():
-        ds.to_netcdf(out, encoding=encoding_of(ds), engine="netcdf4")
+        ds.to_netcdf(out, encoding=encoding, engine="netcdf4")
         with netCDF4.Dataset(out, "a") as nc:
             checksums.stamp(nc)
 
@@ -65,7 +66,7 @@ def measure(path: Path, scratch: Path) -> dict:
         """What write_netcdf adds: the arrays hashed from memory, the rest on the handle the writer opens anyway
         (its opening is the write's), the sidecar."""
         t0 = time.process_time()
-        known = stored_digests(ds, encoding_of(ds))
+        known = stored_digests(ds, encoding)
         spent = time.process_time() - t0
         with netCDF4.Dataset(out, "a") as nc:
             t0 = time.process_time()
