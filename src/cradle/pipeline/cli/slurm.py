@@ -205,7 +205,11 @@ def cmd_slurm(args) -> int:
     if args.dry_run:
         print(shlex.join(cmd))
         return 0
-    (workdir / Path(LOG_PATTERN).parent).mkdir(parents=True, exist_ok=True)
+    logs = workdir / Path(LOG_PATTERN).parent
+    logs.mkdir(parents=True, exist_ok=True)
+    # the logs there before submitting: an older job's of the id this one gets is kept (appended to), not reprinted;
+    # measured now, as the job may write its first lines before sbatch has answered
+    before = {p.name: p.stat().st_size for p in logs.glob("cradle-*.log")}
     try:
         job_id = submit(cmd)
     except CliError as err:  # sbatch hung or answered no id: a job may exist all the same, found by its name
@@ -218,7 +222,7 @@ def cmd_slurm(args) -> int:
     if args.no_wait:
         print(job_id)
         return 0
-    offset = log.stat().st_size if log.exists() else 0   # an older job's log of that id, kept (appended to)
+    offset = before.get(log.name, 0)
     t0 = time.monotonic()
     try:
         state = wait(job_id, log, follow=not args.quiet, offset=offset)
