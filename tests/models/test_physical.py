@@ -123,3 +123,90 @@ def test_cradle_scale_refuses_in_one_line_exit_2(argv, line, capsys):
     captured = capsys.readouterr()
     err = captured.err.strip()
     assert captured.out == "" and "\n" not in err and err.startswith("cradle: error: ") and line in err
+
+
+# ----------------------------------------------------------------------------- any value of any type: one line
+
+BAD = [0, 0.0, 1e-300, -1e-300, 1e300, -1e300, float("nan"), float("inf"), -float("inf"), "0.01", None, True]
+
+
+def _one_line_naming(err: ConfigError, key: str, value) -> str:
+    text = str(err)
+    assert "\n" not in text and f"{key} = " in text and ("nan" if value != value else repr(value)[:6]) in text, text
+    return text
+
+
+@pytest.mark.parametrize("key", ["radius", "length", "omega0", "g"])
+@pytest.mark.parametrize("value", BAD)
+def test_a_cradle_refuses_any_bad_value_in_one_line(key, value):
+    kwargs = {"radius": 0.01, "length": 0.1, "g": ph.STANDARD_GRAVITY}
+    if key == "omega0":
+        kwargs.pop("length")
+    kwargs[key] = value
+    with pytest.raises(ConfigError) as err:
+        ph.real_cradle("steel", **kwargs)
+    if value is None and key in ("length", "omega0"):   # None: not given, and one of them must be
+        assert str(err.value) == "cradle: give the pendulum length or omega0, one of them (given: neither)"
+        return
+    _one_line_naming(err.value, f"cradle.{key}", value)
+
+
+@pytest.mark.parametrize("material", [None, 3, "", "stel", ["steel"]])
+def test_a_cradle_refuses_any_bad_material_in_one_line(material):
+    with pytest.raises(ConfigError) as err:
+        ph.real_cradle(material, 0.01, length=0.1)
+    assert "\n" not in str(err.value) and str(err.value).startswith(f"material = {material!r}: ")
+
+
+@pytest.mark.parametrize("key, value", [(k, v) for k in ("E", "nu", "rho") for v in [*BAD, -1.0]
+                                        if not (k == "nu" and v in (0, 1e-300, -1e-300))])  # nu = 0: cork
+def test_a_material_refuses_any_bad_constant_in_one_line(key, value):
+    good = {"E": 2e11, "nu": 0.3, "rho": 7800.0}
+    with pytest.raises(ConfigError) as err:
+        ph.Material(name="m", **{**good, key: value}, source="test")
+    _one_line_naming(err.value, f"material 'm'.{key}", value)
+
+
+def test_the_materials_the_paper_meets_divide_by_nothing():
+    """E = 0 and nu = 1 divided by zero in reduced_modulus: refused when the material is made."""
+    for key, value in (("E", 0.0), ("nu", 1.0), ("E", -1.0)):
+        with pytest.raises(ConfigError, match=f"material 'm'.{key} = "):
+            ph.Material(name="m", **{"E": 2e11, "nu": 0.3, "rho": 7800.0, key: value}, source="test")
+
+
+def test_every_scale_is_finite_and_nonzero_at_the_corners_of_the_bounds():
+    """The bounds are those that keep (nc)'s scales finite: every corner of the box of materials and cradles."""
+    import itertools
+    import math
+
+    for E, nu, rho, R, w0, (g, L) in itertools.product((1e3, 1e13), (-0.999, 0.5), (1.0, 1e5), (1e-6, 10.0),
+                                                     (None, 1e-3, 1e9), ((1e-3, 1e3), (1e3, 1e-3))):
+        mat = ph.Material(name="corner", E=E, nu=nu, rho=rho, source="test")
+        ph.MATERIALS["corner"] = mat
+        try:
+            # made directly: the material's name is not one of the config's (the bounds are those of real_cradle)
+            spec = ph.Cradle(material="corner", radius=R, omega0=w0) if w0 else \
+                ph.Cradle(material="corner", radius=R, length=L, g=g)
+            s = ph.scales(spec)
+            values = [getattr(s, f) for f in ("m", "k", "T", "X", "V", "F", "E")]
+            if w0 is None:
+                for angle in (1e-3, 89.999):
+                    v = ph.release_speed(spec, angle)
+                    values += [ph.release_amplitude(spec, angle), v, ph.collision_time(spec, v)]
+            assert all(math.isfinite(x) and x > 0 for x in values), (E, nu, rho, R, w0, g, L, values)
+        finally:
+            del ph.MATERIALS["corner"]
+
+
+@pytest.mark.parametrize("flag", ["--radius", "--length", "--angle"])
+@pytest.mark.parametrize("value", ["0", "1e-300", "-1e-300", "1e300", "-1e300", "nan", "inf", "abc"])
+def test_cradle_scale_refuses_any_bad_value_in_one_line(flag, value, capsys):
+    argv = {"--radius": "0.01", "--length": "0.1", "--angle": "20"}
+    argv[flag] = value          # "--angle -1e300" as typed: argparse alone took -1e300 for an option
+    assert main(["scale", "--material", "steel", *[x for kv in argv.items() for x in kv]]) == 2
+    captured = capsys.readouterr()
+    err = captured.err.strip()
+    assert captured.out == "" and "\n" not in err and err.startswith("cradle: error: "), err
+    key = {"--radius": "cradle.radius", "--length": "cradle.length", "--angle": "release.angle"}[flag]
+    assert (f"{flag}: invalid" in err and repr(value) in err) if value in ("nan", "inf", "abc") else \
+        (f"{key} = " in err and ("less than the minimum" in err or "maximum" in err)), err

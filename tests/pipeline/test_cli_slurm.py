@@ -165,3 +165,112 @@ def test_interrupt_while_waiting_cancels_the_job(workflow, capsys, monkeypatch):
     assert main(["slurm", "--directory", str(work), "paper"]) == 130
     assert "Slurm job 4242 cancelled (scancel)" in capsys.readouterr().err
     assert (state / "cancelled").read_text().strip() == "4242"
+
+
+# ----------------------------------------------------------------------------- Slurm that is missing, hangs or lies
+
+def _stand_in(state_bin: Path, name: str, text: str) -> None:
+    path = state_bin / name
+    path.write_text(text)
+    path.chmod(path.stat().st_mode | stat.S_IXUSR)
+
+
+def _last_error(capsys) -> tuple[str, str]:
+    out, err = capsys.readouterr()
+    lines = [line for line in err.strip().splitlines() if line.startswith("cradle: error:")]
+    assert len(lines) == 1 and "Traceback" not in err, err
+    return out, lines[0]
+
+
+def test_no_squeue_on_path_is_refused_before_submitting(workflow, tmp_path, capsys):
+    work, state = workflow
+    (tmp_path / "bin" / "squeue").unlink()
+    assert main(["slurm", "--directory", str(work), "paper"]) == 2
+    _, line = _last_error(capsys)
+    assert line == ("cradle: error: no squeue on PATH: needed to follow the job (nothing submitted; --no-wait "
+                    "submits without following)")
+    assert not (state / "argv").exists()
+
+
+def test_squeue_gone_while_waiting_is_one_line_and_the_job_cancelled(workflow, tmp_path, capsys, monkeypatch):
+    work, state = workflow
+    monkeypatch.setenv("FAKE_JOB", "sleep 5")
+    _stand_in(tmp_path / "bin", "squeue", '#!/bin/sh\nrm -f "$0"\necho RUNNING\n')   # answers once, then is gone
+    assert main(["slurm", "--directory", str(work), "paper"]) == 1
+    _, line = _last_error(capsys)
+    assert line.startswith("cradle: error: Slurm job 4242: no squeue on PATH; job 4242 cancelled (scancel); log ")
+    assert (state / "cancelled").read_text().strip() == "4242"
+
+
+def test_a_hung_sbatch_is_bounded_one_line_and_its_job_cancelled_by_name(workflow, tmp_path, capsys, monkeypatch):
+    work, state = workflow
+    monkeypatch.setattr(cs, "TIMEOUT_S", 0.5)
+    _stand_in(tmp_path / "bin", "sbatch", '#!/bin/sh\necho "$@" > "$FAKE_SLURM/argv"\nexec sleep 30\n')
+    assert main(["slurm", "--directory", str(work), "paper"]) == 2
+    _, line = _last_error(capsys)
+    name = (state / "cancelled").read_text().strip()
+    assert name.startswith("--name=cradle-paper-")
+    assert line == f"cradle: error: sbatch did not answer within 0.5 s; job named {name[7:]} cancelled (scancel)"
+
+
+def test_a_hung_squeue_is_bounded_one_line_and_the_job_cancelled(workflow, tmp_path, capsys, monkeypatch):
+    work, state = workflow
+    monkeypatch.setenv("FAKE_JOB", "sleep 5")
+    monkeypatch.setattr(cs, "TIMEOUT_S", 0.5)
+    _stand_in(tmp_path / "bin", "squeue", "#!/bin/sh\nexec sleep 30\n")
+    assert main(["slurm", "--directory", str(work), "paper"]) == 1
+    _, line = _last_error(capsys)
+    assert line.startswith("cradle: error: Slurm job 4242: squeue did not answer within 0.5 s; job 4242 cancelled")
+    assert (state / "cancelled").read_text().strip() == "4242"
+
+
+@pytest.mark.parametrize("command", ["squeue", "sacct"])
+def test_an_unknown_state_is_one_line_exit_1(workflow, tmp_path, capsys, monkeypatch, command):
+    work, _ = workflow
+    monkeypatch.setenv("FAKE_JOB", "sleep 5")
+    if command == "sacct":   # squeue no longer lists the job, sacct says something Slurm never says
+        _stand_in(tmp_path / "bin", "squeue", "#!/bin/sh\nexit 0\n")
+    _stand_in(tmp_path / "bin", command, "#!/bin/sh\necho WEIRD_STATE\n")
+    assert main(["slurm", "--directory", str(work), "--quiet", "paper"]) == 1
+    _, line = _last_error(capsys)
+    assert line.startswith("cradle: error: Slurm job 4242: state 'WEIRD_STATE' is none of Slurm's job states; "
+                           "not followed further (log: ")
+
+
+@pytest.mark.parametrize("answer", ["", "\\033[31m4242\\033[0m", "../../etc/passwd", "4242/../../x", "12 13"])
+def test_an_sbatch_answer_that_is_not_a_number_is_refused_and_no_log_path_made(workflow, tmp_path, capsys, answer):
+    work, state = workflow
+    _stand_in(tmp_path / "bin", "sbatch", f'#!/bin/sh\necho "$@" > "$FAKE_SLURM/argv"\nprintf "{answer}\\n"\n')
+    assert main(["slurm", "--directory", str(work), "paper"]) == 2
+    _, line = _last_error(capsys)
+    assert line.startswith("cradle: error: sbatch answered ") and ", not a job id (a number); job named cradle-paper-" \
+        in line and "\x1b" not in line
+    assert (state / "cancelled").read_text().startswith("--name=cradle-paper-")
+    logs = work / ".snakemake" / "slurm_logs"
+    assert list(logs.iterdir()) == [] and not (tmp_path / "etc").exists()
+
+
+def test_the_log_path_is_made_of_a_number_only(tmp_path):
+    assert cs.log_path(tmp_path, "4242") == tmp_path / ".snakemake" / "slurm_logs" / "cradle-4242.log"
+    for bad in ("", "../x", "42 ", "4e2", "-1"):
+        with pytest.raises(cs.CliError, match="not a number"):
+            cs.log_path(tmp_path, bad)
+
+
+def test_an_older_log_of_the_same_id_is_kept_and_not_printed_again(workflow, capsys, monkeypatch):
+    work, state = workflow
+    log = work / ".snakemake" / "slurm_logs" / "cradle-4242.log"
+    log.parent.mkdir(parents=True)
+    log.write_text("an earlier cluster's job 4242\n")
+    monkeypatch.setenv("FAKE_JOB", "echo new line; exit 0")
+    _stand_in_append(work)
+    assert main(["slurm", "--directory", str(work), "paper"]) == 0
+    assert capsys.readouterr().out == "new line\n"
+    assert log.read_text() == "an earlier cluster's job 4242\nnew line\n"
+    assert "--open-mode=append" in (state / "argv").read_text().splitlines()
+
+
+def _stand_in_append(work: Path) -> None:
+    """The stand-in sbatch truncates its --output; a real one asked for --open-mode=append appends: do that."""
+    path = Path(os.environ["PATH"].split(os.pathsep)[0]) / "sbatch"
+    path.write_text(FAKES["sbatch"].replace('> "$out" 2>&1', '>> "$out" 2>&1'))

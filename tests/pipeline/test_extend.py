@@ -44,7 +44,7 @@ def test_extend_T_to_2T_is_bitwise_one_run(runs, tmp_path, chunk_bytes):
     assert got.attrs["t_end"] == 40.0 and s["rows_added"] == 40
     assert "t=20.0 -> 40.0" in got.attrs["extended"]
     assert got["x"].attrs["long_name"] == long["x"].attrs["long_name"]
-    assert sorted(os.listdir(tmp_path)) == ["exact.nc"]          # no temporary file left
+    assert sorted(os.listdir(tmp_path)) == [".exact.nc.digest", "exact.nc"]   # its digest, no temporary file left
 
 
 def test_stream_lattice_chunks_match_one_call(runs, tmp_path):

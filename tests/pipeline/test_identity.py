@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 import yaml
 
+from cradle.data import digests
 from cradle.data.io import open_dataset, open_tree, write_netcdf
 from cradle.data.provenance import identify, params_hash
 from cradle.pipeline import cli, config as cc, layout
@@ -75,11 +76,17 @@ def test_files_name_themselves(built):
     assert open_dataset(built / "results" / "map" / "m.nc").attrs["cradle_kind"] == "map"
 
 
+def _copy(source, target) -> None:
+    """A faithful copy: the file and the record of its digest (cradle.data.digests), so only its identity is wrong."""
+    shutil.copy2(source, target)
+    shutil.copy2(digests.sidecar(source), digests.sidecar(target))
+
+
 def test_another_scenes_file_is_refused_naming_both(work, capsys):
     """(a) tw-moderate's exact.nc copied over tw-weak's (checksums valid, mtime kept)."""
     root = work / "results"
     target = Path(layout.path("exact", root, scene="tw-weak"))
-    shutil.copy2(layout.path("exact", root, scene="tw-moderate"), target)
+    _copy(layout.path("exact", root, scene="tw-moderate"), target)
     with pytest.raises(WrongOutput) as err:
         open_scene("tw-weak", root=root)
     text = str(err.value)
@@ -102,7 +109,7 @@ def test_another_scenes_file_is_refused_naming_both(work, capsys):
 def test_a_file_of_another_kind_is_refused(work):
     """tw-weak's dps.nc copied over its exact.nc: same scene, same parameters, not an exact run."""
     root = work / "results"
-    shutil.copy2(layout.path("dps", root, scene="tw-weak"), layout.path("exact", root, scene="tw-weak"))
+    _copy(layout.path("dps", root, scene="tw-weak"), layout.path("exact", root, scene="tw-weak"))
     with pytest.raises(WrongOutput, match="holds the DpS run of scene 'tw-weak'.*expected the exact run"):
         open_scene("tw-weak", root=root)
 
@@ -147,7 +154,7 @@ def test_without_config_or_outside_the_layout_nothing_is_checked(work, tmp_path,
     """No config.yaml beside the results: open_scene checks nothing; files under cradle-runs/ (or failed/)
     have no expectation, so verify says nothing of them even when they are another scene's."""
     root = work / "results"
-    shutil.copy2(layout.path("exact", root, scene="tw-moderate"), layout.path("exact", root, scene="tw-weak"))
+    _copy(layout.path("exact", root, scene="tw-moderate"), layout.path("exact", root, scene="tw-weak"))
     runs = work / "cradle-runs"
     shutil.copytree(root, runs)
     (work / "config.yaml").rename(work / "elsewhere.yaml")

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from cradle.data import checksums
+from cradle.data import checksums, digests
 from cradle.data.io import _attr_value, _umask_mode, disk_full, encoding_of
 from cradle.data.temporaries import temporary_beside
 
@@ -92,8 +92,10 @@ class Appender:
     def commit(self):
         with self._space():
             checksums.stamp(self.nc)  # the values without t are final now
+            parts = digests.items(self.nc)   # every value read back: the store is not in memory
             self.nc.close()
         os.chmod(self.tmp, _umask_mode())
+        digests.record(self.path, parts=parts)  # before the rename, as cradle.data.io.write_netcdf does
         os.replace(self.tmp, self.path)
 
     def abort(self):

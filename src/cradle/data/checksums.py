@@ -37,6 +37,13 @@ def _raw(var, index):
     return np.asarray(var[index])
 
 
+def array_digest(values: np.ndarray, new=hashlib.sha256) -> str:
+    """:func:`digest` of a fixed-size numeric array in memory, the values a file will store: the same bytes."""
+    h = new(f"{np.dtype(values.dtype).newbyteorder('<').str}|{','.join(map(str, values.shape))}\n".encode())
+    _update(h, values)
+    return h.hexdigest()
+
+
 def _update(h, block: np.ndarray) -> None:
     """Add one C-order block of values: fixed-size values as little-endian bytes, strings as UTF-8
     each preceded by its length in bytes (8 bytes, little-endian), so no two lists of strings share
@@ -47,7 +54,7 @@ def _update(h, block: np.ndarray) -> None:
             h.update(len(text).to_bytes(8, "little"))
             h.update(text)
     else:
-        h.update(np.ascontiguousarray(block, dtype=block.dtype.newbyteorder("<")).tobytes())
+        h.update(np.ascontiguousarray(block, dtype=block.dtype.newbyteorder("<")))  # its buffer: no copy
 
 
 def _kind(var) -> str:
@@ -58,13 +65,14 @@ def _kind(var) -> str:
     return np.dtype(dtype).newbyteorder("<").str
 
 
-def digest(var, block_bytes: int = 64 * 2**20) -> str:
-    """The hex SHA-256 of ``var``'s stored values (a ``netCDF4.Variable``), read ``block_bytes`` at a time.
+def digest(var, block_bytes: int = 64 * 2**20, new=hashlib.sha256) -> str:
+    """The hex SHA-256 (or the hash ``new`` makes) of ``var``'s stored values (a ``netCDF4.Variable``), read
+    ``block_bytes`` at a time.
 
     Canonical byte form: the header ``"<dtype>|<shape>\\n"`` (dtype ``str`` for variable-length strings,
     else numpy's little-endian code such as ``<f8``, ``|i1``, ``|S1``; shape as comma-separated sizes,
     empty for a 0-d variable), then the values in C order (see :func:`_update`)."""
-    h = hashlib.sha256(f"{_kind(var)}|{','.join(map(str, var.shape))}\n".encode())
+    h = new(f"{_kind(var)}|{','.join(map(str, var.shape))}\n".encode())
     if var.ndim == 0:
         _update(h, _raw(var, ...))
         return h.hexdigest()
@@ -80,18 +88,18 @@ def has_filter(var) -> bool:
     return bool((var.filters() or {}).get("fletcher32"))
 
 
-def _variables(group, prefix=""):
+def variables(group, prefix=""):
     """(path, variable) for every variable of ``group`` and its subgroups."""
     for name, var in group.variables.items():
         yield prefix + name, var
     for gname, sub in group.groups.items():
-        yield from _variables(sub, f"{prefix}{gname}/")
+        yield from variables(sub, f"{prefix}{gname}/")
 
 
 def stamp(nc) -> None:
     """Record :data:`ATTR` on every variable of the open, writable ``nc`` (every group) that has no
     Fletcher-32 filter, and drop it from those that have one (a stale copy)."""
-    for _, var in _variables(nc):
+    for _, var in variables(nc):
         if has_filter(var):
             if ATTR in var.ncattrs():
                 var.delncattr(ATTR)
@@ -107,7 +115,7 @@ def check(var, name: str, block_bytes: int = 64 * 2**20) -> None:
 
 def check_recorded(nc) -> None:
     """:func:`check` every variable of ``nc`` (every group) that carries a recorded checksum."""
-    for name, var in _variables(nc):
+    for name, var in variables(nc):
         check(var, name)
 
 

@@ -14,7 +14,9 @@ stops its reader with one line naming the file and the command that rebuilds
 it (:class:`DamagedOutput`, docs/recovery.md). A variable that cannot carry the
 filter (0-d, strings, empty) carries a recorded SHA-256 of its values instead
 (:mod:`cradle.data.checksums`), computed from the written file and checked by
-every reader here. A write that fails on a full file system is one line
+every reader here. Every writer also records the digest of the whole file (values and attributes) in a
+sidecar, which every reader compares (:mod:`cradle.data.digests`): an edit that HDF5's own checksums follow
+is refused too. A write that fails on a full file system is one line
 (:class:`DiskFull`); a killed write leaves a temporary file named after its
 process, which :func:`remove_stale_temporaries` deletes once that process is
 gone (:mod:`cradle.data.temporaries`).
@@ -35,7 +37,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from cradle.data import checksums
+from cradle.data import checksums, digests
 from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, VERSION, identity as _identity, provenance
 from cradle.data.temporaries import remove_stale_temporaries, stale_temporaries, temporary_beside
 from cradle.data.variables import declared
@@ -188,14 +190,29 @@ def encoding_of(ds: xr.Dataset) -> dict:
     return encoding
 
 
-def _stamped(tmp) -> None:
+def _stamped(tmp, known: dict[str, str]) -> dict[str, str]:
     """Record the checksum of every variable of the written file ``tmp`` that has no Fletcher-32
     filter (:func:`cradle.data.checksums.stamp`): computed from the stored values, so a checksum
-    attribute copied from a Dataset read earlier is replaced, never kept."""
+    attribute copied from a Dataset read earlier is replaced, never kept. Returns the finished file's
+    :func:`cradle.data.digests.items` (``known``: the values digested from memory, :func:`stored_digests`),
+    computed on the same handle: opening an HDF5 file costs as much as digesting a 10 MB one."""
     import netCDF4
 
     with netCDF4.Dataset(tmp, "a") as nc:
         checksums.stamp(nc)
+        return digests.items(nc, known=known)
+
+
+def stored_digests(ds: xr.Dataset, encoding: dict, prefix: str = "") -> dict[str, str]:
+    """The digests of the values ``ds`` stores with ``encoding`` (:func:`encoding_of`), from memory, for the
+    variables whose stored bytes are their values as they are (integers and floats given an encoding of their
+    own: no fill value, scale or type of xarray's applied); the others are digested from the written file
+    (:func:`cradle.data.digests.record`). Keys as :func:`cradle.data.digests.items` (``group/name``)."""
+    out = {}
+    for name, var in ds.variables.items():
+        if name in encoding and var.dtype.kind in "fiu" and var.ndim > 0:
+            out[f"{prefix}{name}"] = digests.array_digest(np.asarray(var.values))
+    return out
 
 
 def write_netcdf(ds: xr.Dataset | xr.DataTree, path: str | os.PathLike) -> Path:
@@ -205,11 +222,14 @@ def write_netcdf(ds: xr.Dataset | xr.DataTree, path: str | os.PathLike) -> Path:
     if isinstance(ds, xr.DataTree):
         return write_datatree(ds, path)
 
-    def write(tmp):
-        ds.to_netcdf(tmp, encoding=encoding_of(ds), engine="netcdf4")
-        _stamped(tmp)
+    encoding = encoding_of(ds)
+    parts: dict[str, str] = {}
 
-    return _atomic(Path(path), write, needs=int(ds.nbytes))
+    def write(tmp):
+        ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
+        parts.update(_stamped(tmp, stored_digests(ds, encoding)))
+
+    return _atomic(Path(path), write, needs=int(ds.nbytes), digest=parts)
 
 
 def write_datatree(tree: xr.DataTree, path: str | os.PathLike) -> Path:
@@ -218,12 +238,18 @@ def write_datatree(tree: xr.DataTree, path: str | os.PathLike) -> Path:
     reads it."""
     encoding = {node.path: encoding_of(node.to_dataset(inherit=False)) for node in tree.subtree}
 
+    parts: dict[str, str] = {}
+
     def write(tmp):
         tree.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
-        _stamped(tmp)
+        known: dict[str, str] = {}
+        for node in tree.subtree:
+            prefix = node.path.strip("/") + "/" if node.path != "/" else ""
+            known.update(stored_digests(node.to_dataset(inherit=False), encoding[node.path], prefix))
+        parts.update(_stamped(tmp, known))
 
     needs = sum(int(node.to_dataset(inherit=False).nbytes) for node in tree.subtree)
-    return _atomic(Path(path), write, needs=needs)
+    return _atomic(Path(path), write, needs=needs, digest=parts)
 
 
 def write_text(text: str, path: str | os.PathLike) -> Path:
@@ -277,9 +303,11 @@ def disk_full(path: Path, tmp, needs: int, err: BaseException) -> DiskFull | Non
     return full
 
 
-def _atomic(path: Path, write, needs: int = 0) -> Path:
+def _atomic(path: Path, write, needs: int = 0, digest: dict[str, str] | None = None) -> Path:
     """Call ``write(tmp)`` on a temporary file beside ``path`` (named after this process:
-    :func:`cradle.data.temporaries.temporary_beside`), then rename it to ``path``.
+    :func:`cradle.data.temporaries.temporary_beside`), then rename it to ``path``; with ``digest`` (the
+    :func:`cradle.data.digests.items` of the finished netCDF file, which ``write`` fills in), the digest is
+    recorded beside ``path`` first (:func:`cradle.data.digests.record`).
 
     An interrupted or failed write leaves nothing at ``path`` (and no temporary file); a write that
     fails on a full file system raises :class:`DiskFull` (``needs``: about how many bytes the file takes).
@@ -290,6 +318,8 @@ def _atomic(path: Path, write, needs: int = 0) -> Path:
         tmp = temporary_beside(path)
         write(tmp)
         os.chmod(tmp, _umask_mode())
+        if digest is not None:  # before the rename: a write killed between the two leaves the old file, 'previous'
+            digests.record(path, parts=digest)
         os.replace(tmp, path)
     except BaseException as err:
         full = disk_full(path, tmp, needs, err)
@@ -347,7 +377,7 @@ def _checked(path, read):
         return read(path)
     except DamagedOutput:
         raise
-    except checksums.ChecksumMismatch as err:
+    except (checksums.ChecksumMismatch, digests.ContentMismatch) as err:
         raise DamagedOutput(f"{path}: {err}; {rebuild_hint(path)}") from None
     except (OSError, RuntimeError, ValueError, KeyError, IndexError) as err:
         raise DamagedOutput(f"{path}: damaged or truncated, cannot be read ({_why(err)}); "
@@ -358,20 +388,20 @@ def _checked(path, read):
 LAZY_ABOVE_BYTES = 512 * 2**20
 
 
-def _check_recorded(path) -> None:
-    """Compare every recorded checksum of the file (:func:`cradle.data.checksums.check_recorded`): the
-    variables HDF5 cannot checksum are small (0-d, strings), so this reads little."""
-    import netCDF4
-
-    with netCDF4.Dataset(path) as nc:
-        checksums.check_recorded(nc)
+def _verified(nc, path) -> bool:
+    """Check the open ``nc`` (the file at ``path``): every recorded checksum (:mod:`cradle.data.checksums`), then
+    every value read (HDF5 checks each Fletcher-32 checksum) and, with every attribute, compared with the
+    digest recorded beside the file (:func:`cradle.data.digests.compare`). False when no digest is recorded."""
+    checksums.check_recorded(nc)
+    return digests.compare(path, digests.items(nc))
 
 
 def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     """Open a cradle output fully into memory (the file is closed on return), verified.
 
-    Every variable is read (so HDF5 checks every chunk's Fletcher-32 checksum) and every recorded
-    checksum compared (:mod:`cradle.data.checksums`; the attribute is dropped from what is returned).
+    Every variable is read (so HDF5 checks every chunk's Fletcher-32 checksum), every recorded
+    checksum compared (:mod:`cradle.data.checksums`; the attribute is dropped from what is returned), and
+    values and attributes compared with the digest recorded beside the file (:mod:`cradle.data.digests`).
     A missing file raises FileNotFoundError; a file that is not netCDF, is truncated or fails a
     checksum raises :class:`DamagedOutput` with one line naming the file (and the variable, for a
     recorded checksum) and the command that rebuilds it.
@@ -387,7 +417,7 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
         else:  # one handle for both: HDF5 may crash when a file with strings is open twice at once
             store = xr.backends.NetCDF4DataStore.open(p)
             try:
-                checksums.check_recorded(store.ds)
+                _verified(store.ds, p)
                 with xr.open_dataset(store) as lazy:
                     ds = lazy.load()
             finally:
@@ -403,7 +433,10 @@ def open_tree(path: str | os.PathLike) -> xr.DataTree:
     verified: every variable of every group is read, so HDF5 checks every checksum, and every recorded
     checksum is compared. A flat file is a tree with a root group only. Errors as :func:`open_dataset`."""
     def read(p):
-        _check_recorded(p)
+        import netCDF4
+
+        with netCDF4.Dataset(p) as nc:
+            _verified(nc, p)
         tree = xr.open_datatree(p, engine="netcdf4")
         try:
             tree.load()
@@ -418,32 +451,25 @@ def open_tree(path: str | os.PathLike) -> xr.DataTree:
 
 def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[str]:
     """Read every value of a netCDF file, ``block_bytes`` at a time (bounded memory whatever its
-    size), so that HDF5 checks every Fletcher-32 checksum, and compare every recorded checksum
-    (:mod:`cradle.data.checksums`), in every group. Returns the variables stored with neither (written
-    before checksums; an empty variable holds nothing to protect and is not listed); raises
-    FileNotFoundError or :class:`DamagedOutput` (one line)."""
+    size), so that HDF5 checks every Fletcher-32 checksum, compare every recorded checksum
+    (:mod:`cradle.data.checksums`), in every group, and compare values and attributes with the digest
+    recorded beside the file (:mod:`cradle.data.digests`). Returns the variables stored with neither
+    checksum (written before checksums; an empty variable holds nothing to protect and is not listed);
+    raises FileNotFoundError or :class:`DamagedOutput` (one line)."""
     import netCDF4
 
-    def walk(group, prefix, bare):
-        for name, var in group.variables.items():
-            if checksums.ATTR in var.ncattrs():
-                checksums.check(var, prefix + name, block_bytes)
-                continue
-            if var.size and not checksums.has_filter(var):
-                bare.append(prefix + name)
-            if var.ndim == 0:
-                var[...]
-                continue
-            row = int(np.prod(var.shape[1:], dtype=np.int64)) * getattr(var.dtype, "itemsize", 1)
-            step = max(1, block_bytes // max(row, 1))
-            for i in range(0, var.shape[0], step):
-                var[i:i + step]
-        for gname, sub in group.groups.items():  # every netCDF group of a tree (open_tree)
-            walk(sub, f"{prefix}{gname}/", bare)
-        return bare
+    def bare(group, prefix=""):
+        out = [prefix + name for name, var in group.variables.items()
+               if checksums.ATTR not in var.ncattrs() and var.size and not checksums.has_filter(var)]
+        for gname, sub in group.groups.items():
+            out += bare(sub, f"{prefix}{gname}/")
+        return out
 
     def read(p):
         with netCDF4.Dataset(p) as nc:
-            return walk(nc, "", [])
+            for name, var in checksums.variables(nc):
+                checksums.check(var, name, block_bytes)
+            digests.compare(p, digests.items(nc, block_bytes=block_bytes))  # reads every value once
+            return bare(nc)
 
     return _checked(path, read)

@@ -51,16 +51,48 @@ _PSI = 6894.757293168361          # Pa per psi (NIST SP 811, appendix B: 1 lbf/i
 _LB_PER_IN3 = 27679.90471020313   # kg/m^3 per lb/in^3 (NIST SP 811, appendix B)
 
 
+def _validated(cls, values: dict, where: str):
+    """:func:`cradle.specs.declare.from_plain`, a NaN refused first (JSON Schema's bounds let it through): one
+    ConfigError line naming the key, the value and why."""
+    for key, value in values.items():
+        if isinstance(value, float) and math.isnan(value):
+            raise ConfigError(f"config error: {where}.{key} = nan: not a number")
+    return from_plain(cls, values, where)
+
+
+# The bounds below are those of real solids and cradles, wide enough for any of them and narrow enough that
+# every scale of (nc) (:func:`scales`: m, k, T, X, V, F, E, and a release's speed and collision time) is a finite,
+# nonzero double at every corner of the box they make (tests/models/test_physical.py checks the corners):
+# X = (m omega_0^2 / k)^2 grows as R^5 omega_0^4 (rho / E*)^2, so a radius of 1e-300 m underflows it to 0.
+
+
+@declared(doc="The elastic constants of a sphere material, within the range of real solids.")
+class Elastic:
+    E: float = param(doc="Young's modulus E (Pa); in [1e3, 1e13]: from soft gels (kPa) to above diamond "
+                         "(1.2e12).", minimum=1e3, maximum=1e13)
+    nu: float = param(doc="Poisson's ratio nu; in (-1, 0.5]: an isotropic solid with positive bulk and shear "
+                          "moduli (1 - nu^2 > 0).", exclusiveMinimum=-1, maximum=0.5)
+    rho: float = param(doc="Density rho (kg/m^3); in [1, 1e5]: from aerogels to above osmium (22.6e3).",
+                       minimum=1, maximum=1e5)
+
+
 @dataclasses.dataclass(frozen=True)
 class Material:
     """An elastic material of the spheres: Young's modulus E (Pa), Poisson's ratio nu, density rho (kg/m^3),
-    and where each value comes from."""
+    and where each value comes from. The constants are checked against :class:`Elastic` when it is made: a bad
+    one (negative, zero, NaN, a string, ...) is one ConfigError line."""
 
     name: str
     E: float
     nu: float
     rho: float
     source: str
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not isinstance(self.source, str):
+            raise ConfigError(f"config error: material.name = {self.name!r}, source = {self.source!r}: must be "
+                              f"strings (the material's name and where its values come from)")
+        _validated(Elastic, {"E": self.E, "nu": self.nu, "rho": self.rho}, f"material {self.name!r}")
 
 
 def _ptfe() -> Material:
@@ -94,7 +126,9 @@ MATERIALS: dict[str, Material] = {m.name: m for m in (
 
 def lookup_material(name: str) -> Material:
     """The named material of :data:`MATERIALS`; an unknown name is one line with the closest known one."""
-    found = MATERIALS.get(name)
+    found = MATERIALS.get(name) if isinstance(name, str) else None
+    if not isinstance(name, str):
+        raise ConfigError(f"material = {name!r}: must be a name, one of {', '.join(MATERIALS)}")
     if found is None:
         raise ConfigError(f"material = {name!r}: unknown{did_you_mean(name, MATERIALS)} "
                           f"(known: {', '.join(MATERIALS)})")
@@ -106,19 +140,21 @@ def lookup_material(name: str) -> Material:
 class Cradle:
     material: str = param(doc="Material of the spheres: a name of cradle.models.physical.MATERIALS.",
                           enum=list(MATERIALS))
-    radius: float = param(doc="Sphere radius R (m); in (0, 10].", exclusiveMinimum=0, maximum=10)
-    length: float | None = param(None, doc="Pendulum length L, pivot to the sphere's centre (m); in (0, 1e3]. "
-                                           "Give it or omega0.", exclusiveMinimum=0, maximum=1e3)
+    radius: float = param(doc="Sphere radius R (m); in [1e-6, 10] (a micrometre bead to a wrecking ball; the "
+                                  "scales of (nc) stay finite and nonzero).", minimum=1e-6, maximum=10)
+    length: float | None = param(None, doc="Pendulum length L, pivot to the sphere's centre (m); in [1e-3, 1e3]. "
+                                           "Give it or omega0.", minimum=1e-3, maximum=1e3)
     omega0: float | None = param(None, doc="Angular frequency omega_0 of a stiff on-site oscillator (rad/s); in "
-                                           "(0, 1e9]. Give it or length.", exclusiveMinimum=0, maximum=1e9)
-    g: float = param(STANDARD_GRAVITY, doc="Acceleration of gravity g (m/s^2) of a pendulum; in (0, 1e3]; "
-                                           "default the standard g_n.", exclusiveMinimum=0, maximum=1e3)
+                                           "[1e-3, 1e9]. Give it or length.", minimum=1e-3, maximum=1e9)
+    g: float = param(STANDARD_GRAVITY, doc="Acceleration of gravity g (m/s^2) of a pendulum; in [1e-3, 1e3]; "
+                                           "default the standard g_n.", minimum=1e-3, maximum=1e3)
 
 
 @declared(doc="A pendulum's release: the string lifted to an angle theta from the vertical.")
 class Release:
-    angle: float = param(doc="Angle theta of the string from the vertical (degrees); in (0, 90).",
-                         exclusiveMinimum=0, exclusiveMaximum=90)
+    angle: float = param(doc="Angle theta of the string from the vertical (degrees); in [1e-3, 90): below, "
+                             "1 - cos(theta) of the release speed keeps fewer than 6 digits in double precision.",
+                         minimum=1e-3, exclusiveMaximum=90)
 
 
 def real_cradle(material: str, radius: float, *, length: float | None = None, omega0: float | None = None,
@@ -130,7 +166,7 @@ def real_cradle(material: str, radius: float, *, length: float | None = None, om
     if len(given) != 1:
         raise ConfigError(f"cradle: give the pendulum length or omega0, one of them (given: "
                           f"{', '.join(given) or 'neither'})")
-    return from_plain(Cradle, {"material": material, "radius": radius, "g": g, **given}, "cradle")
+    return _validated(Cradle, {"material": material, "radius": radius, "g": g, **given}, "cradle")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -229,7 +265,7 @@ def release_speed(spec: Cradle, angle: float) -> float:
 
 
 def _release_angle(spec: Cradle, angle: float) -> float:
-    from_plain(Release, {"angle": angle}, "release")
+    _validated(Release, {"angle": angle}, "release")
     if spec.length is None:
         raise ConfigError("release: the cradle has no pendulum length (a stiff oscillator has no angle)")
     return math.radians(angle)

@@ -254,8 +254,12 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
 
         for k, val in attrs.items():
             nc.setncattr(k, _attr_value(val))
+    from cradle.data import digests
+
+    digests.record(path if out == path else out, tmp)  # the attributes above changed the file the appender recorded
     if out == path:
         os.replace(tmp, path)
+        digests.discard(tmp)
     allowed = a.get("max_energy_drift_allowed")
     summary = {**s, "energy_drift": attrs["energy_drift"], "t_from": t_last, "t_end": float(new[-1]),
                "rows_added": int(new.size - 1), "path": str(out)}

@@ -272,6 +272,9 @@ def open_checked(path, expect: Expectations, tree: bool = False):
     """A workflow job's input: :func:`cradle.data.io.open_dataset` (``tree``: :func:`~cradle.data.io.open_tree`)
     of ``path``, verified, then refused unless it is what ``expect`` (:func:`job_expectations`) expects there
     (:class:`WrongOutput`)."""
+    line = expect.check_file(path)  # attributes only, first: another entry's whole file says so, not "edited"
+    if line is not None:
+        raise WrongOutput(line)
     ds = open_tree(path) if tree else open_dataset(path)
     expect.check(path, ds)
     return ds

@@ -11,7 +11,7 @@ import xarray as xr
 from cradle.data.io import open_dataset
 from cradle.data.si import in_si
 from cradle.pipeline import layout
-from cradle.pipeline.identity import Expectations
+from cradle.pipeline.identity import Expectations, WrongOutput
 
 SHARED = ("x", "force")  # variables both models store on the same (t, n) grid
 
@@ -100,6 +100,10 @@ def _expectations(root: Path, config) -> Expectations | None:
 
 def _opened(path, expect: Expectations | None) -> xr.Dataset:
     """:func:`open_dataset`, then refused unless it is the file ``expect`` expects (None: not checked)."""
+    if expect is not None:  # attributes only, first: another entry's whole file says so, not "edited"
+        line = expect.check_file(path)
+        if line is not None:
+            raise WrongOutput(line)
     ds = open_dataset(path)
     if expect is not None:
         expect.check(path, ds)

@@ -26,6 +26,9 @@ computed first (``OUT/homoclinic/NAME.nc``). A ``map`` or ``homoclinic``
 name computes that entry alone. The config is refused before any work if a
 job is over budget (:mod:`cradle.pipeline.budget`).
 
+``cradle run``, ``cradle extend`` and ``cradle animate`` refuse a destination that is another job's output or an
+existing file they did not make (:mod:`cradle.pipeline.destinations`), unless given ``--overwrite``.
+
 ``cradle extend`` writes a new file by default (``FILE-tT.nc`` beside the
 input); ``--in-place`` replaces the input, and is refused for a scene's
 exact run next to its DpS run (a workflow output): extending it alone would
@@ -68,6 +71,10 @@ from cradle.pipeline.cli.scale import cmd_scale
 from cradle.pipeline.cli.scenes import cmd_scenes
 from cradle.pipeline.cli.slurm import add_parser as add_slurm_parser, split_snakemake_args
 
+#: the flag of every command that writes: replace a destination that is another job's or that it did not make
+OVERWRITE_HELP = ("write even over a workflow output of another scene or rule, or a file this command did not "
+                  "make (refused otherwise)")
+
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # one line, exit 2 (argparse would print the usage first)
@@ -99,6 +106,7 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("scene", metavar="SCENE", help="a name under scenes: (or homoclinic:, map:) of the config")
     r.add_argument("--out", default=RUN_OUT, help=f"output folder (default: {RUN_OUT}; not the workflow's results)")
     r.add_argument("--config", default="config.yaml", help="config file (default: config.yaml)")
+    r.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
     r.set_defaults(func=cmd_run)
     d = sub.add_parser("describe", help="print a result's parameters, checks and provenance")
     d.add_argument("file", metavar="FILE.nc")
@@ -112,6 +120,7 @@ def parser() -> argparse.ArgumentParser:
     e.add_argument("--every", type=float, default=None,
                    help="storage step of the new times (default: the file's median spacing)")
     e.add_argument("--out", default=None, help="write here (default: FILE-tT.nc beside FILE.nc)")
+    e.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
     e.add_argument("--in-place", action="store_true", dest="in_place",
                    help="replace FILE.nc (refused for a workflow scene's exact run: change t_end in the config)")
     e.add_argument("--config", default="config.yaml",
@@ -129,6 +138,7 @@ def parser() -> argparse.ArgumentParser:
     a.add_argument("--results", default="results", help="the results folder to read (default: results)")
     a.add_argument("--out", default=None, help="the MP4 to write (default: RESULTS/movies/SCENE.mp4)")
     a.add_argument("--gif", action="store_true", help="also write a small GIF beside the MP4")
+    a.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
     a.add_argument("--fps", type=int, default=None, help="frames per second (default: movies.fps of the config)")
     a.add_argument("--duration", type=float, default=None, help="seconds of movie (default: movies.duration)")
     a.add_argument("--width", type=int, default=None, help="frame width in pixels, even")
@@ -158,6 +168,21 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
+def _numbers_attached(argv: list[str]) -> list[str]:
+    """``--radius -1e-300`` as ``--radius=-1e-300``: argparse takes a negative number with an exponent for an
+    option and says only "expected one argument"; attached, the value reaches its check and its one line."""
+    import re
+
+    out: list[str] = []
+    for token in argv:
+        prev = out[-1] if out else ""
+        if re.fullmatch(r"-(\d|\.\d|inf|nan)\S*", token, re.IGNORECASE) and prev.startswith("--") and "=" not in prev:
+            out[-1] = f"{prev}={token}"
+        else:
+            out.append(token)
+    return out
+
+
 def main(argv=None) -> int:
     """Run the command line ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
     import os
@@ -168,7 +193,7 @@ def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
         own, snakemake_args = split_snakemake_args(argv) if argv[:1] == ["slurm"] else (argv, [])
-        args = parser().parse_args(own)
+        args = parser().parse_args(_numbers_attached(own))
         if snakemake_args:
             args.snakemake_args = snakemake_args
         if not getattr(args, "func", None):

@@ -60,6 +60,29 @@ def checked_flags(args) -> dict:
     return given
 
 
+def _may_write(paths, stem: str, owner: str, overwrite: bool) -> None:
+    """Refuse, before any frame is drawn, a movie path that is another workflow output or an existing file this
+    command did not make (:func:`cradle.pipeline.destinations.check`); the movie of this scene is its own."""
+    from cradle.pipeline.destinations import Refused, check
+
+    for path in paths:
+        makes = ("movie", {"scene": stem, "ext": path.suffix[1:]})
+        try:
+            check(path, command="cradle animate", makes=makes, owner=owner, overwrite=overwrite)
+        except Refused as err:
+            raise CliError(str(err)) from None
+
+
+def _recorded(paths, owner: str) -> None:
+    """Record what wrote each movie (:func:`cradle.data.digests.record_owner`): a later `cradle animate` of the
+    same scene may replace it."""
+    from cradle.data.digests import record_owner
+
+    for path in paths:
+        if path is not None:
+            record_owner(path, owner)
+
+
 def cmd_animate(args) -> int:
     from cradle.figures.movie import MovieSpec, animate
     from cradle.pipeline import layout
@@ -78,8 +101,11 @@ def cmd_animate(args) -> int:
     stem = f"desk-toy-{args.scene}" if desk else args.scene
     out = Path(args.out or layout.path("movie", args.results, scene=stem, ext="mp4"))
     gif = out.with_suffix(".gif") if args.gif else None
+    owner = f"cradle animate {stem}"
+    _may_write([out] + ([gif] if gif else []), stem, owner, getattr(args, "overwrite", False))
     if desk:
         info = _desk_toy(args, desk, out, spec, gif, gspec, given["gif_width"])
+        _recorded([out, gif], owner)
         print(f"{out}: {len(info['times'])} frames at {spec.fps}/s, {spec.width}x{spec.height}, t = "
               f"{info['times'][0]:g} .. {info['times'][-1]:g} s, displacements x {info['magnification']:.3g}")
         return 0
@@ -88,6 +114,7 @@ def cmd_animate(args) -> int:
     except FileNotFoundError as err:
         raise CliError(str(err)) from None
     info = animate(ds, out, spec, gif=gif, gif_spec=gspec, gif_width=given["gif_width"])
+    _recorded([out, gif], owner)
     times = info["times"]
     print(f"{out}: {len(times)} frames at {spec.fps}/s, {spec.width}x{spec.height}, t = {times[0]:g} .. "
           f"{times[-1]:g} (a frame every {info['dt_frame']:.4g}), displacements x {info['magnification']:.3g}")

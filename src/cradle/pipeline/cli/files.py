@@ -36,6 +36,7 @@ def _describe_variables(heading: str, ds) -> list[str]:
 def cmd_describe(args) -> int:
     import xarray as xr
 
+    from cradle.data.digests import read_record, sidecar
     from cradle.data.io import DamagedOutput, verify_file
     from cradle.data.provenance import KEYS as PROV
 
@@ -61,6 +62,9 @@ def cmd_describe(args) -> int:
                 out.append(f"  {'max|' + name + '|':<{width}} {float(abs(ds[name]).max()):.6g}")
         out.append(f"  {'checksums':<{width}} " + ("verified (every variable)" if not bare else
                    f"verified; no checksum on {', '.join(bare)} (written before checksums: rebuild to protect)"))
+        out.append(f"  {'digest':<{width}} " + (f"values and attributes as written (recorded in {sidecar(path).name})"
+                   if read_record(path) is not None else f"none recorded (no {sidecar(path).name}: written before "
+                   "digests, or copied without it; rebuild to protect it)"))
         out.append(f"  {'identity':<{width}} {identity_line(expectations(args.config), path, attrs)}")
         out += ["", "provenance:"]
         out += [f"  {k:<{width}} {_fmt(attrs[k])}" for k in PROV + ("history", "Conventions") if k in attrs]
@@ -78,6 +82,18 @@ def _workflow_scene_of(path: Path) -> str | None:
     if path.parent.parent.name == "sim" and (path.parent / "dps.nc").exists():
         return path.parent.name
     return None
+
+
+def _may_extend_into(path: Path, out: Path, overwrite: bool) -> None:
+    """Refuse ``--out`` when it is a workflow output or an existing file that is not an exact run of the same
+    scene (:func:`cradle.pipeline.destinations.check`), before any work."""
+    from cradle.pipeline.destinations import Refused, check, holds
+
+    kind, name = holds(path)
+    try:
+        check(out, command="cradle extend", identity=(kind or "exact", name or "?"), overwrite=overwrite)
+    except Refused as err:
+        raise CliError(str(err)) from None
 
 
 def cmd_extend(args) -> int:
@@ -108,6 +124,8 @@ def cmd_extend(args) -> int:
                            f"and the config would stay at the old t_end. Set scenes.{scene}.t_end: {args.t_end:g} in "
                            f"the config and run `snakemake {path}` (all four files of the scene, consistently), "
                            f"or drop --in-place to write a new file")
+    if out.resolve() != path.resolve():
+        _may_extend_into(path, out, getattr(args, "overwrite", False))
     try:
         cost = estimate(path, args.t_end, every=args.every, budget=budget)   # refused here, before any work
         print(f"{PROG}: {cost.describe()}", file=sys.stderr)
@@ -123,6 +141,7 @@ def cmd_extend(args) -> int:
 
 
 def cmd_verify(args) -> int:
+    from cradle.data.digests import read_record, sidecar
     from cradle.data.io import DamagedOutput, rebuild_hint, stale_temporaries, verify_file
 
     root = Path(args.root)
@@ -130,11 +149,13 @@ def cmd_verify(args) -> int:
         raise CliError(f"no such folder or file {str(root)!r}")
     files = [root] if root.is_file() else sorted(p for p in root.rglob("*.nc")
                                                  if not p.name.startswith(".") and "failed" not in p.parts)
-    damaged, bare = [], []
+    damaged, bare, unrecorded = [], [], []
     for p in files:
         try:
             if verify_file(p):
                 bare.append(p)
+            elif read_record(p) is None:
+                unrecorded.append(p)
         except (DamagedOutput, OSError) as err:
             damaged.append(" ".join(str(err).split()))
     expect = expectations(args.config)  # what the config expects of each file: kind, name, parameters
@@ -145,11 +166,15 @@ def cmd_verify(args) -> int:
         print(f"MISMATCH {line}")
     for p in bare:
         print(f"note    {p}: readable, but written before checksums; {rebuild_hint(p)} to protect it")
+    for p in unrecorded:
+        print(f"note    {p}: readable, but no digest recorded (no {sidecar(p).name}: written before digests, or "
+              f"copied without it), so an edit would not show; {rebuild_hint(p)} to protect it")
     stale = [] if root.is_file() else stale_temporaries(root)
     for p in stale:
         print(f"note    stale temporary file {p} (a killed write; delete it)")
-    print(f"{len(files)} files checked: {len(files) - len(damaged) - len(bare)} verified, {len(bare)} without "
-          f"checksums, {len(damaged)} to rebuild" + (f"; {len(stale)} stale temporary files" if stale else ""))
+    print(f"{len(files)} files checked: {len(files) - len(damaged) - len(bare) - len(unrecorded)} verified, "
+          f"{len(bare)} without checksums, " + (f"{len(unrecorded)} without a digest, " if unrecorded else "")
+          + f"{len(damaged)} to rebuild" + (f"; {len(stale)} stale temporary files" if stale else ""))
     if mismatched:
         print(f"{len(mismatched)} files not what {expect.source} expects (another entry's, or older parameters): "
               "rebuild them")

@@ -17,6 +17,20 @@ from cradle.pipeline.cli.common import PROG, CliError, known_names, load_config,
 RUN_OUT = "cradle-runs"
 
 
+def _may_write(outs: dict, names: dict, overwrite: bool) -> None:
+    """Refuse, before any work, a destination of ``outs`` (kind -> path) that is another job's or holds another
+    entry (:func:`cradle.pipeline.destinations.check`); ``names`` maps each kind to the name it is written for."""
+    from cradle.pipeline.destinations import Refused, check
+
+    for kind, path in outs.items():
+        key = "scene" if kind in layout.SCENE_PARTS else "name"
+        try:
+            check(path, command="cradle run", makes=(kind, {key: names[kind]}), identity=(kind, names[kind]),
+                  overwrite=overwrite)
+        except Refused as err:
+            raise CliError(str(err)) from None
+
+
 def _stage(compute, out, log, label):
     """runner.run (atomic write, log, failed/ on StageFailure) of ``compute``; the stage functions
     record the hash of their parameters themselves (``params_sha256``)."""
@@ -50,6 +64,9 @@ def cmd_run(args) -> int:
     if section is None:
         raise CliError(f"unknown scene {name!r} (known: {known_names(cfg)})")
     _note_workflow_results(out, args.config)
+    overwrite = getattr(args, "overwrite", False)
+    if section in ("map", "homoclinic"):
+        _may_write({section: Path(layout.path(section, out, name=name))}, {section: name}, overwrite)
     if section == "map":
         mspec = cc.map_entry(cfg, name)
         _stage(lambda: stages.map_orbits(mspec, name), Path(layout.path("map", out, name=name)),
@@ -61,7 +78,6 @@ def cmd_run(args) -> int:
                layout.path("log", out, job=f"homoclinic/{name}"), f"homoclinic {name}")
         return 0
     spec = cc.scene(cfg, name)
-    print(f"{PROG}: {budget.spec_estimate(spec, name).describe()}", file=sys.stderr)  # within budget (validated)
     outs, homoclinic = {}, None
     if isinstance(spec.initial, Breather):
         hname = spec.initial.homoclinic
@@ -69,6 +85,9 @@ def cmd_run(args) -> int:
         homoclinic = lambda: stages.homoclinic_solution(hspec, hname)  # noqa: E731
         outs["homoclinic"] = Path(layout.path("homoclinic", out, name=hname))
     outs.update({part: Path(p) for part, p in layout.scene_paths(name, out).items()})
+    _may_write(outs, {**dict.fromkeys(layout.SCENE_PARTS, name), "homoclinic": spec.initial.homoclinic
+                      if isinstance(spec.initial, Breather) else ""}, overwrite)
+    print(f"{PROG}: {budget.spec_estimate(spec, name).describe()}", file=sys.stderr)  # within budget (validated)
     log = layout.path("log", out, job=f"sim/{name}")
     try:
         run_scene(spec, name, outs, log, homoclinic=homoclinic)

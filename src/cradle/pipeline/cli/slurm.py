@@ -9,11 +9,16 @@ the place for a sweep bigger than one node, not for the paper's many short jobs 
 
 The command waits for the job and prints its log as it grows (``--no-wait``: submit, print the job's id and
 log, return); it exits 0 when Slurm says COMPLETED, 1 otherwise. Ctrl-C while waiting cancels the job
-(``scancel``), as Snakemake cancels its own Slurm jobs. Nothing is submitted unless the folder holds a Snakefile
+(``scancel``), as Snakemake cancels its own Slurm jobs. No Slurm command may hang it: each is given
+:data:`TIMEOUT_S`; a missing or hung one, an answer of ``sbatch`` that is not a job id or a state that is none
+of Slurm's ends the command in one line, the job cancelled where one may have been submitted. Nothing is
+submitted unless the folder holds a Snakefile
 and a valid config: the config's errors are one line here, not in a job's log.
 """
 from __future__ import annotations
 
+import re
+import secrets
 import shlex
 import shutil
 import subprocess
@@ -33,17 +38,28 @@ POLL_S = 1.0
 #: Slurm states of a job that has ended (squeue stops listing it soon after)
 ENDED = {"BOOT_FAIL", "CANCELLED", "COMPLETED", "DEADLINE", "FAILED", "NODE_FAIL", "OUT_OF_MEMORY",
          "PREEMPTED", "TIMEOUT"}
+#: every job state Slurm's squeue and sacct print (Slurm 22.05 to 24.11, squeue(1) "JOB STATE CODES"); another
+#: answer is not taken for "still running"
+STATES = ENDED | {"PENDING", "RUNNING", "CONFIGURING", "COMPLETING", "SUSPENDED", "REQUEUED", "REQUEUE_FED",
+                  "REQUEUE_HOLD", "RESIZING", "RESV_DEL_HOLD", "REVOKED", "SIGNALING", "SPECIAL_EXIT", "STAGE_OUT",
+                  "STOPPED"}
+#: seconds a Slurm command may take before it is taken as hung
+TIMEOUT_S = 30.0
+#: what a job id is (sbatch --parsable prints "ID" or "ID;CLUSTER")
+JOB_ID = re.compile(r"[0-9]{1,19}")
 
 
 def sbatch_command(targets, *, cpus: int, mem_mb: int, minutes: int, workdir, account=None, partition=None,
-                   snakemake_args=(), python=None) -> list[str]:
+                   snakemake_args=(), python=None, name=None) -> list[str]:
     """The ``sbatch`` command line of one allocation running ``snakemake --cores cpus targets...`` in
     ``workdir`` with the interpreter ``python`` (default: this one, hence its packages), its log at
-    :data:`LOG_PATTERN` there."""
+    :data:`LOG_PATTERN` there (appended to, so an older log of the same id is not lost), its job name ``name``
+    (default ``cradle-TARGETS``)."""
     inner = [python or sys.executable, "-m", "snakemake", "--cores", str(cpus), *snakemake_args, *targets]
-    cmd = ["sbatch", "--parsable", f"--job-name=cradle-{'-'.join(targets) or 'all'}"[:64],
+    name = name or f"cradle-{'-'.join(targets) or 'all'}"[:64]
+    cmd = ["sbatch", "--parsable", f"--job-name={name}",
            f"--cpus-per-task={cpus}", "--ntasks=1", "--nodes=1", f"--mem={mem_mb}M", f"--time={minutes}",
-           f"--chdir={Path(workdir).resolve()}", f"--output={LOG_PATTERN}", "--export=ALL"]
+           f"--chdir={Path(workdir).resolve()}", f"--output={LOG_PATTERN}", "--open-mode=append", "--export=ALL"]
     if account:
         cmd.append(f"--account={account}")
     if partition:
@@ -51,21 +67,63 @@ def sbatch_command(targets, *, cpus: int, mem_mb: int, minutes: int, workdir, ac
     return [*cmd, "--wrap", "exec " + shlex.join(inner)]
 
 
-def _run(cmd, timeout=60) -> subprocess.CompletedProcess:
-    return subprocess.run(cmd, check=False, capture_output=True, text=True, timeout=timeout)
+def unique_name(targets) -> str:
+    """A job name no other job has (``cradle-TARGETS-XXXXXXXX``): the handle that cancels a job whose ``sbatch``
+    hung or answered no id."""
+    return f"cradle-{'-'.join(targets) or 'all'}"[:55] + f"-{secrets.token_hex(4)}"
+
+
+class SlurmUnavailable(CliError):
+    """A Slurm command missing from PATH or not answering within :data:`TIMEOUT_S`."""
+
+
+def _run(cmd, timeout: float | None = None) -> subprocess.CompletedProcess:
+    """Run one Slurm command, at most ``timeout`` seconds (:data:`TIMEOUT_S`); missing or hung:
+    :class:`SlurmUnavailable`, one line."""
+    timeout = TIMEOUT_S if timeout is None else timeout
+    try:
+        return subprocess.run(cmd, check=False, capture_output=True, text=True, timeout=timeout)
+    except FileNotFoundError:
+        raise SlurmUnavailable(f"no {cmd[0]} on PATH") from None
+    except subprocess.TimeoutExpired:
+        raise SlurmUnavailable(f"{cmd[0]} did not answer within {timeout:g} s") from None
+
+
+def _shown(text: str, most: int = 40) -> str:
+    """What a command printed, safe on one line: escapes and control characters shown, long output cut."""
+    text = text.strip()
+    return ascii(text if len(text) <= most else text[:most] + "...")
 
 
 def submit(cmd) -> str:
-    """Submit ``cmd`` (an ``sbatch --parsable`` line); the job's id."""
+    """Submit ``cmd`` (an ``sbatch --parsable`` line); the job's id, a number. A refusal, an answer that is not
+    a job id, a missing or hung sbatch: :class:`CliError`, one line."""
     proc = _run(cmd)
     if proc.returncode != 0:
         raise CliError(f"sbatch refused the job: {' '.join(proc.stderr.split()) or 'exit ' + str(proc.returncode)}")
-    return proc.stdout.strip().split(";")[0]
+    job_id = proc.stdout.strip().split(";")[0]
+    if not JOB_ID.fullmatch(job_id):
+        raise CliError(f"sbatch answered {_shown(proc.stdout)}, not a job id (a number)")
+    return job_id
+
+
+def cancel(job_id: str | None, name: str | None = None) -> str:
+    """Cancel the job ``job_id`` (or, its id unknown, the job named ``name``); what was done, for a message."""
+    target = ["scancel", job_id] if job_id else ["scancel", f"--name={name}"]
+    what = f"job {job_id}" if job_id else f"job named {name}"
+    try:
+        proc = _run(target)
+    except SlurmUnavailable as err:
+        return f"could not cancel {what}: {err}"
+    if proc.returncode != 0:
+        return f"could not cancel {what}: scancel: {' '.join(proc.stderr.split()) or 'exit ' + str(proc.returncode)}"
+    return f"{what} cancelled (scancel)"
 
 
 def job_state(job_id: str) -> str | None:
     """The job's state from ``squeue`` (PENDING, RUNNING, ...), or from ``sacct`` once squeue no longer lists
-    it; None while neither knows it (accounting may lag a moment behind the end)."""
+    it; None while neither knows it (accounting may lag a moment behind the end). A missing or hung command:
+    :class:`SlurmUnavailable`."""
     proc = _run(["squeue", "-h", "-j", job_id, "-o", "%T"])
     state = proc.stdout.strip() if proc.returncode == 0 else ""
     if state and state not in ENDED:
@@ -75,11 +133,16 @@ def job_state(job_id: str) -> str | None:
     return lines[0] if lines else (state or None)
 
 
-class _Follower:
-    """Prints what is appended to the job's log."""
+class UnknownState(CliError):
+    """A state Slurm's commands gave that is none of :data:`STATES`."""
 
-    def __init__(self, path: Path):
-        self.path, self.offset = path, 0
+
+class _Follower:
+    """Prints what is appended to the job's log (from ``offset``: what an older log of that name held is not
+    printed again)."""
+
+    def __init__(self, path: Path, offset: int = 0):
+        self.path, self.offset = path, offset
 
     def __call__(self) -> None:
         try:
@@ -94,13 +157,17 @@ class _Follower:
             sys.stdout.flush()
 
 
-def wait(job_id: str, log: Path, poll_s: float = POLL_S, follow: bool = True) -> str:
-    """Wait until the job has ended, printing its log as it grows; its final state (``sacct``)."""
-    show = _Follower(log) if follow else (lambda: None)
+def wait(job_id: str, log: Path, poll_s: float = POLL_S, follow: bool = True, offset: int = 0) -> str:
+    """Wait until the job has ended, printing its log as it grows; its final state (``sacct``). A state that is
+    none of Slurm's: :class:`UnknownState`."""
+    show = _Follower(log, offset) if follow else (lambda: None)
     unknown_since = None
     while True:
         state = job_state(job_id)
         show()
+        if state is not None and state not in STATES:
+            raise UnknownState(f"Slurm job {job_id}: state {_shown(state)} is none of Slurm's job states; "
+                               f"not followed further (log: {log})")
         if state in ENDED:
             time.sleep(min(poll_s, 0.5))    # the last lines a shared file system shows late
             show()
@@ -121,32 +188,54 @@ def cmd_slurm(args) -> int:
     for key in ("cpus", "mem_mb", "time"):
         if getattr(args, key) < 1:
             raise CliError(f"--{key.replace('_', '-')} = {getattr(args, key)}: must be >= 1")
-    if shutil.which("sbatch") is None and not args.dry_run:
-        raise CliError("no sbatch on PATH: this command submits to Slurm (a local build: snakemake -j2)")
+    if not args.dry_run:
+        missing = [c for c in ("sbatch", "squeue", "sacct", "scancel") if shutil.which(c) is None]
+        if "sbatch" in missing:
+            raise CliError("no sbatch on PATH: this command submits to Slurm (a local build: snakemake -j2)")
+        if missing and not args.no_wait:  # a job submitted that could not be followed or cancelled
+            raise CliError(f"no {' and no '.join(missing)} on PATH: needed to follow the job (nothing submitted; "
+                           f"--no-wait submits without following)")
     load_config(workdir / args.config)          # a wrong config is one line here, before a job waits in the queue
     extra = list(args.snakemake_args)
     if args.config != "config.yaml":
         extra = ["--configfile", args.config, *extra]
+    name = unique_name(args.targets)
     cmd = sbatch_command(args.targets, cpus=args.cpus, mem_mb=args.mem_mb, minutes=args.time, workdir=workdir,
-                         account=args.account, partition=args.partition, snakemake_args=extra)
+                         account=args.account, partition=args.partition, snakemake_args=extra, name=name)
     if args.dry_run:
         print(shlex.join(cmd))
         return 0
-    (workdir / Path(LOG_PATTERN).parent).mkdir(parents=True, exist_ok=True)
-    job_id = submit(cmd)
-    log = workdir / LOG_PATTERN.replace("%j", job_id)
+    logs = workdir / Path(LOG_PATTERN).parent
+    logs.mkdir(parents=True, exist_ok=True)
+    # the logs there before submitting: an older job's of the id this one gets is kept (appended to), not reprinted;
+    # measured now, as the job may write its first lines before sbatch has answered
+    before = {p.name: p.stat().st_size for p in logs.glob("cradle-*.log")}
+    try:
+        job_id = submit(cmd)
+    except CliError as err:  # sbatch hung or answered no id: a job may exist all the same, found by its name
+        if isinstance(err, SlurmUnavailable) or str(err).startswith("sbatch answered"):
+            raise CliError(f"{err}; {cancel(None, name)}") from None
+        raise
+    log = log_path(workdir, job_id)
     print(f"{PROG}: Slurm job {job_id} submitted: snakemake --cores {args.cpus} {' '.join(args.targets)} "
           f"in one allocation; log {log}", file=sys.stderr, flush=True)
     if args.no_wait:
         print(job_id)
         return 0
+    offset = before.get(log.name, 0)
     t0 = time.monotonic()
     try:
-        state = wait(job_id, log, follow=not args.quiet)
+        state = wait(job_id, log, follow=not args.quiet, offset=offset)
     except KeyboardInterrupt:
-        _run(["scancel", job_id])
+        cancel(job_id)
         print(f"{PROG}: interrupted: Slurm job {job_id} cancelled (scancel)", file=sys.stderr)
         return 130
+    except SlurmUnavailable as err:
+        print(f"{PROG}: error: Slurm job {job_id}: {err}; {cancel(job_id)}; log {log}", file=sys.stderr)
+        return 1
+    except UnknownState as err:
+        print(f"{PROG}: error: {err}", file=sys.stderr)
+        return 1
     wall = time.monotonic() - t0
     if state != "COMPLETED":
         print(f"{PROG}: error: Slurm job {job_id} ended {state} after {wall:.0f} s; log {log}", file=sys.stderr)
@@ -154,6 +243,14 @@ def cmd_slurm(args) -> int:
     print(f"{PROG}: Slurm job {job_id} COMPLETED in {wall:.1f} s (submission to the end seen here)",
           file=sys.stderr)
     return 0
+
+
+def log_path(workdir, job_id: str) -> Path:
+    """The job's log: :data:`LOG_PATTERN` in ``workdir`` with the job's id, which must be a number (no path
+    can be made of it)."""
+    if not JOB_ID.fullmatch(job_id):
+        raise CliError(f"job id {_shown(job_id)}: not a number")
+    return Path(workdir) / LOG_PATTERN.replace("%j", job_id)
 
 
 def add_parser(sub) -> None:

@@ -1,0 +1,128 @@
+"""What the digest beside every output costs (cradle.data.digests): to digest the largest files of a build against
+the time to write them, and what the comparison adds to a reader.
+
+For each of the ``COUNT`` largest netCDF files of a results folder (default ``results``, a finished build), in this
+process, ``REPEATS`` times each, alternating:
+
+* write: what :func:`cradle.data.io.write_netcdf` does without the digest (``to_netcdf`` with the checksummed
+  encoding, then the recorded checksums of the scalars and strings), into a temporary folder;
+* digest: what :func:`cradle.data.io.write_netcdf` adds to the write: :func:`cradle.data.io.stored_digests` (the
+  numeric arrays hashed from memory), :func:`cradle.data.digests.items` on the handle the writer opens anyway to
+  record the checksums of its scalars and strings (the other values read raw and hashed, every attribute), and
+  :func:`cradle.data.digests.record` (the sidecar written);
+* read: :func:`cradle.data.io.open_dataset` of it, the reader's whole work, and in it the comparison with the
+  sidecar (:func:`cradle.data.digests.items` and ``compare``), the reader's added work.
+
+CPU time of this process (``time.process_time``: the machine is shared), the median of the repeats. Writes the
+table between its markers in docs/recovery.md::
+
+    python benchmarks/digest_cost.py [RESULTS]
+"""
+from __future__ import annotations
+
+import datetime as dt
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from doctable import publish
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "results"
+COUNT = int(os.environ.get("COUNT", 3))
+REPEATS = int(os.environ.get("REPEATS", 7))
+TARGET = 0.10   # the digest's cost, at most this fraction of the write's
+
+
+def cpu(fn) -> float:
+    t0 = time.process_time()
+    fn()
+    return time.process_time() - t0
+
+
+def measure(path: Path, scratch: Path) -> dict:
+    """Median CPU seconds of write, digest, read and the reader's comparison for the file ``path``."""
+    import netCDF4
+
+    from cradle.data import checksums, digests
+    from cradle.data.io import encoding_of, open_dataset, stored_digests
+
+    ds = open_dataset(path)   # also proves the file is intact before it is timed
+    encoding = encoding_of(ds)  # the write's: write_netcdf computes it once for both
+    out = scratch / path.name
+    times: dict[str, list[float]] = {"write": [], "digest": [], "read": [], "compare": []}
+
+    def write():
+        ds.to_netcdf(out, encoding=encoding, engine="netcdf4")
+        with netCDF4.Dataset(out, "a") as nc:
+            checksums.stamp(nc)
+
+    def digest() -> float:
+        """What write_netcdf adds: the arrays hashed from memory, the rest on the handle the writer opens anyway
+        (its opening is the write's), the sidecar."""
+        t0 = time.process_time()
+        known = stored_digests(ds, encoding)
+        spent = time.process_time() - t0
+        with netCDF4.Dataset(out, "a") as nc:
+            t0 = time.process_time()
+            parts = digests.items(nc, known=known)
+            spent += time.process_time() - t0
+        return spent + cpu(lambda: digests.record(out, parts=parts))
+
+    def compare():
+        with netCDF4.Dataset(out) as nc:
+            digests.compare(out, digests.items(nc))
+
+    for _ in range(REPEATS):
+        if out.exists():
+            out.unlink()
+        times["write"].append(cpu(write))
+        times["digest"].append(digest())
+        times["read"].append(cpu(lambda: open_dataset(out)))
+        times["compare"].append(cpu(compare))
+    return {k: statistics.median(v) for k, v in times.items()} | {"bytes": path.stat().st_size}
+
+
+def table(rows: dict[Path, dict]) -> str:
+    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True, check=False).stdout.strip() or "?"
+    load = os.getloadavg()[0]
+    stamp = dt.datetime.now(dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    lines = [f"`python benchmarks/digest_cost.py` at commit {commit}, {stamp}, the {len(rows)} largest files of "
+             f"{RESULTS.name}/ (a `snakemake -j2 all` build); CPU time of one process, median of {REPEATS} repeats "
+             f"(load average {load:.1f}: the 2 cores are shared)", "",
+             "| file | size [MB] | write [ms] | digest [ms] | digest / write | read, verified [ms] | "
+             "of which the comparison [ms] |",
+             "|---|---:|---:|---:|---:|---:|---:|"]
+    for path, r in rows.items():
+        lines.append(f"| `{path.relative_to(RESULTS).as_posix()}` | {r['bytes'] / 1e6:.1f} | {r['write'] * 1e3:.0f} | "
+                     f"{r['digest'] * 1e3:.0f} | **{r['digest'] / r['write'] * 100:.1f} %** | {r['read'] * 1e3:.0f} | "
+                     f"{r['compare'] * 1e3:.0f} |")
+    worst = max(r["digest"] / r["write"] for r in rows.values())
+    lines += ["", f"Largest digest / write: {worst * 100:.1f} % (target: under {TARGET * 100:.0f} %)."]
+    return "\n".join(lines)
+
+
+def main() -> int:
+    files = sorted((p for p in RESULTS.rglob("*.nc") if "failed" not in p.parts and not p.name.startswith(".")),
+                   key=lambda p: p.stat().st_size, reverse=True)[:COUNT]
+    if not files:
+        raise SystemExit(f"no netCDF file under {RESULTS}: build first (snakemake -j2 all)")
+    scratch = Path(tempfile.mkdtemp(prefix="digest-cost-"))
+    try:
+        rows = {p: measure(p, scratch) for p in files}
+    finally:
+        shutil.rmtree(scratch)
+    text = table(rows)
+    print(text)
+    publish("recovery.md", "digest-cost", text)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
