@@ -193,7 +193,8 @@ def test_spheres_and_strings_give_their_sites():
     in an SI scene the lengths and radii are read in metres against the cradle's own."""
     from cradle.models.inhomogeneity import Inhomogeneity, contact_stiffness, sites
     from cradle.models.physical import MATERIALS
-    from cradle.scenes.spec import in_nc_units
+    from cradle.scenes.spec import Scene, in_nc_units
+    from cradle.specs.declare import from_plain
 
     R, names = (1.0, 1.1, 0.9, 1.0), ("steel", "steel", "brass", "glass")
     s = sites(Inhomogeneity(length=(1.0, 1.21, 0.64, 4.0), radius=R, material=names), 4)
@@ -206,8 +207,9 @@ def test_spheres_and_strings_give_their_sites():
         m = (n + 1) % 4
         assert s.stiffness[n] == pytest.approx(contact_stiffness(R[n], R[m], E[n], nu[n], E[m], nu[m]) / k_ref,
                                                rel=1e-14)
-    entry = {"units": "si", "cradle": {"material": "steel", "radius": 0.01, "length": 0.1},
+    entry = {"N": 2, "bc": "free", "initial": {"kind": "kick", "velocity": 1e-3, "site": 0}, "t_end": 1.0,
+             "store": {"every": 0.5}, "units": "si", "cradle": {"material": "steel", "radius": 0.01, "length": 0.1},
              "terms": {"inhomogeneity": {"length": [0.1, 0.121], "radius": [0.01, 0.011]}}}
-    inh = in_nc_units(entry)["terms"]["inhomogeneity"]
-    np.testing.assert_allclose(inh["length"], [1.0, 1.21], rtol=1e-15)
-    np.testing.assert_allclose(inh["radius"], [1.0, 1.1], rtol=1e-15)
+    inh = in_nc_units(from_plain(Scene, entry)).terms.inhomogeneity
+    np.testing.assert_allclose(inh.length, [1.0, 1.21], rtol=1e-15)
+    np.testing.assert_allclose(inh.radius, [1.0, 1.1], rtol=1e-15)

@@ -127,7 +127,8 @@ def test_cradle_scale_refuses_in_one_line_exit_2(argv, line, capsys):
 
 # ----------------------------------------------------------------------------- any value of any type: one line
 
-BAD = [0, 0.0, 1e-300, -1e-300, 1e300, -1e300, float("nan"), float("inf"), -float("inf"), "0.01", None, True]
+# a string that reads as a number is that number, as `--config` gives it; "abc" is no number
+BAD = [0, 0.0, 1e-300, -1e-300, 1e300, -1e300, float("nan"), float("inf"), -float("inf"), "abc", None, True]
 
 
 def _one_line_naming(err: ConfigError, key: str, value) -> str:
@@ -209,4 +210,4 @@ def test_cradle_scale_refuses_any_bad_value_in_one_line(flag, value, capsys):
     assert captured.out == "" and "\n" not in err and err.startswith("cradle: error: "), err
     key = {"--radius": "cradle.radius", "--length": "cradle.length", "--angle": "release.angle"}[flag]
     assert (f"{flag}: invalid" in err and repr(value) in err) if value in ("nan", "inf", "abc") else \
-        (f"{key} = " in err and ("less than the minimum" in err or "maximum" in err)), err
+        (f"{key} = " in err and ("must be >" in err or "must be <" in err)), err
