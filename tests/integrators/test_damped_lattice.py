@@ -10,7 +10,7 @@
   Spahn, Hertzsch & Poeschel, Phys. Rev. E 53 (1996) 5382; Schwager & Poeschel, Phys. Rev. E 78 (2008)
   051304 for the force clipped at zero);
 * the contact onsets located by the default treatment (steps end at the contact events,
-  cradle.integrators._dop853_onset) against the closed-form time at which the gap of two free beads
+  cradle.integrators._dop853_events) against the closed-form time at which the gap of two free beads
   closes, and the treatment changing nothing on a run without contacts;
 * the energy balance H + D = H(0) on a damped localised binary oscillation (figure loc1's data);
 * damping off (None or Damping()): bitwise the conservative run.
