@@ -43,7 +43,7 @@ def generic(stub: Callable) -> Callable:
     python_call.__doc__ = stub.__doc__
     python_call.__wrapped__ = stub  # type: ignore[attr-defined]
     _STUBS[python_call] = stub
-    overload(python_call)(typer)
+    overload(python_call, inline="always")(typer)
     return python_call
 
 
