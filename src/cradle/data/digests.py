@@ -119,6 +119,11 @@ def record(path, source=None, known: dict[str, str] | None = None, parts: dict[s
     previous = [d for d in [old.get("sha256"), *before] if isinstance(d, str)][:HISTORY]
     text = json.dumps({"format": FORMAT, "file": Path(path).name, "sha256": whole(parts), "previous": previous,
                        "items": parts}, sort_keys=True)
+    return _write_sidecar(path, text)
+
+
+def _write_sidecar(path, text: str) -> Path:
+    """Write ``text`` as the record beside ``path``, atomically (a temporary renamed into place)."""
     target = sidecar(path)
     tmp = temporary_beside(target)
     try:
@@ -183,17 +188,8 @@ def _file_sha256(path) -> str:
 def record_owner(path, owner: str) -> Path:
     """Record beside a file that is not netCDF (a movie) what wrote it, ``owner``, with the digest of its bytes:
     what lets that command replace it later (:func:`cradle.pipeline.destinations.check`)."""
-    target = sidecar(path)
-    tmp = temporary_beside(target)
-    try:
-        Path(tmp).write_text(json.dumps({"format": FORMAT, "file": Path(path).name, "owner": owner,
-                                         "bytes_sha256": _file_sha256(path)}, sort_keys=True))
-        os.replace(tmp, target)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-    return target
+    return _write_sidecar(path, json.dumps({"format": FORMAT, "file": Path(path).name, "owner": owner,
+                                            "bytes_sha256": _file_sha256(path)}, sort_keys=True))
 
 
 def read_owner(path) -> str | None:
