@@ -1,7 +1,7 @@
 """Are the compiled kernels' numbers bitwise those of a reference checkout? Old code against new code.
 
-    python benchmarks/kernel_bitwise.py [--old-python /work/baseline/.venv/bin/python]
-        [--old-src /work/baseline/src] [--only SUBSTRING]
+    python benchmarks/kernel_bitwise.py --old-python OLD_CHECKOUT/.venv/bin/python --old-src OLD_CHECKOUT/src
+        [--only SUBSTRING]
 
 Every combination of model terms and methods the pipeline integrates (the scenes of config.yaml with
 ``terms:`` and the analyses desk-toy, dissipation, disorder, trapping, jkc-variants, dps-validity,
@@ -197,8 +197,8 @@ def _run(python: str, src: str, only: str, path: str) -> dict:
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--old-python", default="/work/baseline/.venv/bin/python")
-    p.add_argument("--old-src", default="/work/baseline/src")
+    p.add_argument("--old-python", required=True, help="a Python with the reference checkout's dependencies")
+    p.add_argument("--old-src", required=True, help="the src folder of the reference checkout")
     p.add_argument("--new-python", default=sys.executable)
     p.add_argument("--only", default="")
     p.add_argument("--old-results", help="a pickle of the reference's numbers: read if it exists, else written "
