@@ -25,7 +25,6 @@ period 2 pi: :func:`collision_fraction`, which falls as A^(-1/5).
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -39,9 +38,6 @@ from cradle.models.physical import (
 )
 from cradle.specs.declare import declared, from_plain, param, plain
 from cradle.specs.values import ConfigError, Errors
-
-if TYPE_CHECKING:
-    from cradle.scenes.spec import Context, Where
 
 #: the largest chain of the desk-toy experiments: a bound for the config (a desk toy has 5 to 10 balls; a
 #: longer chain is a lattice scene)
@@ -59,7 +55,7 @@ class DeskToy:
     cradle: Cradle = param(doc="The spheres and their pendulum strings (cradle.models.physical.Cradle); a "
                                "desk toy needs the pendulum length.")
 
-    def check(self, where: Where, context: Context | None, out: Errors) -> None:
+    def check(self, where: list[str | int], context: object, out: Errors) -> None:
         """What the schema cannot say: at least one ball stays in the line, and the balls hang on strings."""
         if self.lifted >= self.n_beads:
             out.add(where + ["lifted"], f"must be < n_beads = {self.n_beads} (one ball at least stays in the line)",
