@@ -18,7 +18,18 @@ import typing
 from typing import Any, NamedTuple
 
 from .shared import SHARED
-from .values import ANGLE_HINT, ANGLE_PATTERN, TYPE_WORDS, Errors, bound_text, did_you_mean, number
+from .values import (
+    ANGLE_HINT,
+    ANGLE_PATTERN,
+    DEFAULT_MAX_ITEMS,
+    DEFAULT_MAX_LENGTH,
+    NAME_MAX_LENGTH,
+    TYPE_WORDS,
+    Errors,
+    bound_text,
+    did_you_mean,
+    number,
+)
 
 #: what :func:`parse` returns for a value it refused (its problems are reported)
 BAD: Any = type("Bad", (), {"__repr__": lambda self: "BAD"})()
@@ -117,7 +128,9 @@ def _finite(value, path: tuple, found: Found) -> bool:
 
 def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
     """``value`` checked against the keywords of ``node`` (a JSON-Schema subset: type, enum, const, bounds,
-    multipleOf, pattern, anyOf, items, minItems, maxItems, uniqueItems), or :data:`BAD`. ``coerce``: a string
+    multipleOf, pattern, maxLength, anyOf, items, minItems, maxItems, uniqueItems), or :data:`BAD`; a string or a
+    list whose declaration gives no maximum has :data:`.values.DEFAULT_MAX_LENGTH` or
+    :data:`.values.DEFAULT_MAX_ITEMS`. ``coerce``: a string
     where its key expects no string is read as the number, boolean or null it spells (``--config`` values)."""
     node = _shared(node)
     kinds = node.get("type")
@@ -144,7 +157,9 @@ def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
         step = node.get("multipleOf")
         if step and not float(value / step).is_integer():
             found.add(path, f"{value!r} is not a multiple of {step!r}", value)
-    if isinstance(value, str) and "pattern" in node and not re.search(node["pattern"], value):
+    if isinstance(value, str) and len(value) > node.get("maxLength", DEFAULT_MAX_LENGTH):
+        found.add(path, f"must be at most {node.get('maxLength', DEFAULT_MAX_LENGTH)} characters long", value)
+    elif isinstance(value, str) and "pattern" in node and not re.search(node["pattern"], value):
         angle = last == "q" or node["pattern"] == ANGLE_PATTERN
         found.add(path, f"must be {ANGLE_HINT}" if angle else
                   "must use letters, digits, '-' and '_' and start with a letter or digit", value)
@@ -158,13 +173,14 @@ def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
 
 
 def _items(node: dict, value: list, path: tuple, found: Found):
-    lo, hi = node.get("minItems"), node.get("maxItems")
+    lo, hi = node.get("minItems"), node.get("maxItems", DEFAULT_MAX_ITEMS)
     if lo is not None and lo == hi and len(value) != lo:
         found.add(path, f"must have exactly {lo} items", value)
     elif lo is not None and len(value) < lo:
         found.add(path, "must not be empty" if lo == 1 else f"must have at least {lo} items", value)
-    elif hi is not None and len(value) > hi:
+    elif len(value) > hi:
         found.add(path, f"must have at most {hi} items", value)
+        return BAD   # its items are not read one by one
     if node.get("uniqueItems") and len({repr(v) for v in value}) < len(value):
         found.add(path, "must not repeat a name", value)
     if isinstance(node.get("items"), dict):
@@ -313,6 +329,9 @@ def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, 
         elif labels is None and not (isinstance(name, str) and re.search(SHARED["name"]["pattern"], name)):
             found.add((*path, name), f"bad name {name!r}: names use letters, digits, '-' and '_' and start with a "
                                      f"letter or digit", at=path, force=True)
+        elif labels is None and len(name) > NAME_MAX_LENGTH:
+            found.add((*path, name[:20] + "..."), f"bad name of {len(name)} characters: at most {NAME_MAX_LENGTH} "
+                                                  f"(names are part of file names)", at=path, force=True)
         made = (one or parse)(cls, entry, (*path, name), found, base)
         if made is not BAD:
             out[name] = made

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from .values import ANGLE_PATTERN, NAME_PATTERN
+from .values import ANGLE_PATTERN, NAME_MAX_LENGTH, NAME_PATTERN
 
 # Shared scalar types ($defs), each bound written here only.
 
 SHARED: dict[str, dict[str, Any]] = {
-    "name": {"description": "An entry name: letters, digits, '-' and '_' (it becomes part of file names).",
-             "type": "string", "pattern": NAME_PATTERN},
+    "name": {"description": f"An entry name: letters, digits, '-' and '_', at most {NAME_MAX_LENGTH} characters (it "
+                            f"becomes part of file names).", "type": "string", "pattern": NAME_PATTERN,
+             "maxLength": NAME_MAX_LENGTH},
     # at most 10: the paper's exponents are 3/2 (Hertz) to 3; beyond, a^(alpha-1) of (freq) underflows to 0 or
     # overflows for the amplitudes of the experiments, and a huge alpha makes every power overflow
     "alpha": {"description": "Hertz exponent alpha of (vhertz); in (1, 10].", "type": "number", "exclusiveMinimum": 1,

@@ -20,6 +20,13 @@ ANGLE_PATTERN = (
     r"^\s*[-+]?\s*((" + _NUM + r"\s*\*?\s*)?pi(\s*/\s*" + _NUM + r")?|" + _NUM + r"([eE][-+]?\d+)?)\s*$"
 )
 NAME_PATTERN = "^[A-Za-z0-9][A-Za-z0-9_-]*$"
+#: the longest entry name: it is part of file and folder names (``.NAME.nc.digest``, ``simulate-NAME.log``), which
+#: every file system keeps under 255 bytes, and of paths, which Windows keeps under 260 characters
+NAME_MAX_LENGTH = 64
+#: a list's and a string's maximum where its declaration gives none: a config is written by hand (the YAML
+#: reader allows 50,000 values in all), and each item is validated one by one
+DEFAULT_MAX_ITEMS = 10_000
+DEFAULT_MAX_LENGTH = 1_000
 
 _ANGLE_RE = re.compile(ANGLE_PATTERN)
 ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5'"

@@ -13,6 +13,9 @@ from importlib import resources
 from pathlib import Path
 
 from cradle.specs import schema as spec
+from cradle.specs.values import DEFAULT_MAX_ITEMS, DEFAULT_MAX_LENGTH
+
+from .loading import MAX_VALUES
 
 REFERENCE_FILE = Path("docs") / "config-reference.md"
 SCHEMA_FILE = "config.schema.json"
@@ -35,7 +38,7 @@ def write_schema(path=None) -> Path:
     return spec.write(generated_schema(), Path(path) if path else schema_path())
 
 _BOUNDS = (("minimum", ">= {}"), ("exclusiveMinimum", "> {}"), ("maximum", "<= {}"), ("exclusiveMaximum", "< {}"),
-           ("minItems", "at least {} items"), ("maxItems", "at most {} items"))
+           ("minItems", "at least {} items"), ("maxItems", "at most {} items"), ("maxLength", "at most {} characters"))
 
 
 def _resolve(node: dict, defs: dict) -> dict:
@@ -98,7 +101,9 @@ def reference(schema: dict) -> str:
     out = ["# config.yaml reference", "",
            "Generated from the declarations by `python -m cradle.pipeline.config --write-reference`; do not edit.",
            "Every key of config.yaml, its type, bounds, default (when the key may be left out) and meaning; a key",
-           "left out of config.yaml takes its default. `<name>` stands for an entry's name.", ""]
+           "left out of config.yaml takes its default. `<name>` stands for an entry's name. A list without a",
+           f"maximum here has at most {DEFAULT_MAX_ITEMS} items, a string at most {DEFAULT_MAX_LENGTH} characters; the "
+           f"file holds at most {MAX_VALUES} values", "(an alias counted as the values it stands for).", ""]
     defs = schema.get("$defs", {})
     for key, node in schema["properties"].items():
         out += [f"## `{key}`", "", _cell(_resolve(node, defs).get("description", "")), "",
