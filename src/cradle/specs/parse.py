@@ -38,7 +38,10 @@ BAD: Any = type("Bad", (), {"__repr__": lambda self: "BAD"})()
 HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))",
          ("omega_tw", "exclusiveMinimum"): " (a is derived from (freq), omega_tw = 1 + (2/tau0) a^(alpha-1) "
                                            "|sin(q/2)|^(alpha+1))",
-         ("omega_sw", "exclusiveMinimum"): " (mu = (omega_sw - 1) 2^alpha tau0 must be > 0)"}
+         ("omega_sw", "exclusiveMinimum"): " (mu = (omega_sw - 1) 2^alpha tau0 must be > 0)",
+         **{(key, "minimum"): " (a floor the integrator can honour, about 1e2 machine epsilons or more: below, a "
+                              "step's error estimate is rounding noise and the steps shrink until they underflow)"
+            for key in ("rtol", "dps_rtol", "check_rtol")}}
 _BOUNDS = {"minimum": (">=", lambda x, b: x >= b), "exclusiveMinimum": (">", lambda x, b: x > b),
            "maximum": ("<=", lambda x, b: x <= b), "exclusiveMaximum": ("<", lambda x, b: x < b)}
 _JSON_TYPES = {"integer": lambda v: number(v) and float(v).is_integer() if isinstance(v, float) else number(v),

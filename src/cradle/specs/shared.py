@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .values import ANGLE_PATTERN, NAME_MAX_LENGTH, NAME_PATTERN
+from .values import ANGLE_PATTERN, NAME_MAX_LENGTH, NAME_PATTERN, RTOL_FLOOR
 
 # Shared scalar types ($defs), each bound written here only.
 
@@ -21,8 +21,8 @@ SHARED: dict[str, dict[str, Any]] = {
           "maximum": 10_000_000},
     "bc": {"description": "Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one "
                           "neighbour).", "type": "string", "enum": ["periodic", "free"]},
-    "rtol": {"description": "Relative tolerance of an adaptive integrator, in (0, 1e-2].", "type": "number",
-             "exclusiveMinimum": 0, "maximum": 0.01},
+    "rtol": {"description": f"Relative tolerance of an adaptive integrator, in [{RTOL_FLOOR:g}, 1e-2].",
+             "type": "number", "minimum": RTOL_FLOOR, "maximum": 0.01},
     # at most 1e-2: a run whose energy moved by more than 1 % of H(0) is no solution of (nc), and a larger bound
     # would silently turn the check off
     "maxEnergyDrift": {"description": "Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact "

@@ -31,6 +31,9 @@ DEFAULT_MAX_LENGTH = 1_000
 _ANGLE_RE = re.compile(ANGLE_PATTERN)
 ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5'"
 
+#: the smallest relative tolerance of an adaptive run: about 1e2 machine epsilons (scipy raises a smaller one to
+#: 100 eps), below which a step's error estimate is rounding noise and the steps shrink until they underflow
+RTOL_FLOOR = 1e-14
 TIME_TOL = 1e-9          # two times closer than this are the same time
 INTEGER_TOL = 1e-9       # q N / (2 pi) must be this close to an integer on a ring
 MAX_STORED_TIMES = 10_000_000  # a guard against typos such as every: 1.0e-7
