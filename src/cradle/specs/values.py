@@ -180,15 +180,18 @@ def canonical_angle(value):
     `` pi / 5`` and ``0.2pi`` rerun nothing): a multiple of pi as ``[-][k]pi[/m]``, a number written as a
     string as that number. A coefficient and a denominator that are both integers are kept as written
     (``52pi/100`` stays: it is the paper's text, which the files record); a decimal one becomes the reduced
-    fraction. The form is used only when it gives bit for bit the angle the text gives; a value that is not
-    an angle is returned as it is (the schema reports it)."""
+    fraction; a number that is bit for bit a multiple k pi / m (m <= 1000) is that text, so ``0.6283185307179586``
+    and ``pi/5`` are one parameter. The form is used only when it gives bit for bit the angle the text gives; a
+    value that is not an angle is returned as it is (the schema reports it)."""
+    if number(value) and not isinstance(value, int):
+        return _pi_multiple(float(value))
     if not isinstance(value, str) or not _ANGLE_RE.match(value) or "\n" in value:
         return value
     s = re.sub(r"\s+", "", value)
     sign = "-" if s.startswith("-") else ""
     s = s.lstrip("+-")
     if "pi" not in s:
-        return float(s)
+        return _pi_multiple(float(sign + s))
     coef, _, denom = s.partition("pi")
     coef, denom = coef.rstrip("*") or "1", denom[1:] or "1"
     if coef.isdigit() and denom.isdigit():
@@ -204,6 +207,19 @@ def canonical_angle(value):
     except ConfigError:
         same = False
     return text if same else value
+
+
+def _pi_multiple(x: float):
+    """``x`` as the text ``[-][k]pi[/m]`` (the reduced fraction, m <= 1000) whose angle is ``x`` bit for bit, so
+    that ``0.6283185307179586`` and ``pi/5`` are one parameter; else ``x``."""
+    if not 0.0 < abs(x) < 1e4:   # beyond, k pi / m of a small m is no angle anyone writes
+        return x
+    r = fractions.Fraction(x / math.pi).limit_denominator(1000)
+    if r == 0:
+        return x
+    k, m = abs(r.numerator), r.denominator
+    text = f"{'-' if r < 0 else ''}{k if k != 1 else ''}pi{f'/{m}' if m != 1 else ''}"
+    return text if parse_angle(text) == x else x
 
 
 def angle_or_none(value):
