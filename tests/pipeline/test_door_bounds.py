@@ -146,3 +146,37 @@ def test_an_si_cradle_without_length_or_omega0_is_one_line(tmp_path):
     lines = _refused(tmp_path, _with_scene(cradle__length=None))
     assert lines == ["config error: scenes.si.cradle: give the pendulum length or omega0, one of them (given: "
                      "neither)"]
+
+
+def test_a_long_chain_is_judged_by_the_budget_s_estimate(tmp_path):
+    """N = 1e9 is refused with the memory it would need (no fixed cap); N = 2e7, beyond the old cap of 1e7, runs
+    when the budget allows it."""
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["fft106"]["N"] = 10**9
+    line = _refused(tmp_path, raw)[0]
+    assert line.startswith("config error: scenes.fft106: N = 1000000000, t_end = 543.7: 7 stored times, ~1.27e+04 "
+                           "steps of srkn6c, streamed block by block: estimated peak memory 257 GB exceeds "
+                           "budget.memory_gb = 8")
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["fft106"]["N"] = 2 * 10**7
+    raw["budget"] = {"memory_gb": 200, "disk_gb": 100, "hours": 1000}
+    cc.validate(raw)
+
+
+def test_a_store_is_judged_by_the_budget_even_beside_another_problem(tmp_path):
+    """every = 1e-9 (6e11 stored times) next to a bad key elsewhere: refused with its estimate, never built."""
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["tw-weak"]["store"]["every"] = 1e-9
+    raw["scenes"]["tw-strong"]["N"] = "many"
+    lines = _refused(tmp_path, raw)
+    assert lines == ["config error: scenes.tw-weak: N = 50, t_end = 621.95, store.every = 1e-09: 6.22e+11 stored "
+                     "times, ~6.22e+11 steps of srkn6c, streamed block by block: estimated peak memory 29.9 TB exceeds "
+                     "budget.memory_gb = 8 (raise it under budget: in the config if this machine allows, or change "
+                     "the entry)"]
+
+
+def test_t_end_is_bounded_by_the_resolution_of_float64(tmp_path):
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["fft106"]["t_end"] = 1e12
+    assert _refused(tmp_path, raw) == ["config error: scenes.fft106.t_end = 1000000000000.0: must be <= 4194304 "
+                                       "(float64 tells stored times 1e-9 apart only below 2^22 = 4194304)"]

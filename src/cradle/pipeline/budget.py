@@ -441,11 +441,15 @@ def estimates(cfg) -> list[Estimate]:
     return out
 
 
+#: what a line over the budget suggests
+OVER_HINT = "raise it under budget: in the config if this machine allows, or change the entry"
+
+
 def over_budget(cfg) -> list[str]:
     """One line per job (and for all scenes' output together) that exceeds the budget; empty if all fit."""
     budget = Budget.from_config(cfg)
     lines = []
-    hint = "raise it under budget: in the config if this machine allows, or change the entry"
+    hint = OVER_HINT
     total = 0.0
     for e in estimates(cfg):
         if e.key.startswith("scenes."):
@@ -457,6 +461,27 @@ def over_budget(cfg) -> list[str]:
         lines.append(f"scenes: all scenes together write an estimated {fmt_bytes(total)}, over budget.disk_gb = "
                      f"{_g(budget.disk_gb)} ({hint})")
     return lines
+
+
+def check_scenes(scenes: dict, budget) -> None:
+    """:func:`check` for the scenes alone (name -> resolved :class:`Scene`) against ``budget`` (when it is not a
+    :class:`Budget`, one with every limit at its largest: the bad budget is reported, and only what no budget
+    runs is refused here): a config with problems elsewhere still has its scenes' stores judged before the
+    physical checks build their times."""
+    if not isinstance(budget, Budget):
+        budget = Budget(**{f.name: f.metadata["keywords"]["maximum"] for f in fields(Budget)})
+    lines = []
+    for name, spec in scenes.items():
+        try:
+            line = exceeds(spec_estimate(spec, name), budget)
+        except (TypeError, ValueError, AttributeError, ZeroDivisionError, OverflowError):
+            continue   # a bad value: the physical checks name it
+        if line is not None:
+            lines.append(f"config error: {line} ({OVER_HINT})")
+    if lines:
+        from cradle.specs.values import ConfigError
+
+        raise ConfigError(lines)
 
 
 def check(cfg) -> None:

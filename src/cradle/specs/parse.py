@@ -24,6 +24,7 @@ from .values import (
     DEFAULT_MAX_ITEMS,
     DEFAULT_MAX_LENGTH,
     NAME_MAX_LENGTH,
+    T_END_WHY,
     TYPE_WORDS,
     Errors,
     bound_text,
@@ -41,7 +42,8 @@ HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))",
          ("omega_sw", "exclusiveMinimum"): " (mu = (omega_sw - 1) 2^alpha tau0 must be > 0)",
          **{(key, "minimum"): " (a floor the integrator can honour, about 1e2 machine epsilons or more: below, a "
                               "step's error estimate is rounding noise and the steps shrink until they underflow)"
-            for key in ("rtol", "dps_rtol", "check_rtol")}}
+            for key in ("rtol", "dps_rtol", "check_rtol")},
+         ("t_end", "maximum"): f" ({T_END_WHY})"}
 _BOUNDS = {"minimum": (">=", lambda x, b: x >= b), "exclusiveMinimum": (">", lambda x, b: x > b),
            "maximum": ("<=", lambda x, b: x <= b), "exclusiveMaximum": ("<", lambda x, b: x < b)}
 _JSON_TYPES = {"integer": lambda v: number(v) and float(v).is_integer() if isinstance(v, float) else number(v),

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .values import ANGLE_PATTERN, NAME_MAX_LENGTH, NAME_PATTERN, RTOL_FLOOR
+from .values import ANGLE_PATTERN, MAX_COUNT, NAME_MAX_LENGTH, NAME_PATTERN, RTOL_FLOOR
 
 # Shared scalar types ($defs), each bound written here only.
 
@@ -16,9 +16,10 @@ SHARED: dict[str, dict[str, Any]] = {
     # overflows for the amplitudes of the experiments, and a huge alpha makes every power overflow
     "alpha": {"description": "Hertz exponent alpha of (vhertz); in (1, 10].", "type": "number", "exclusiveMinimum": 1,
               "maximum": 10},
-    # at most 1e7: the 32 state arrays of a run (cradle.pipeline.budget) alone then take 2.6 GB
-    "N": {"description": "Number of sites (beads) n = 0..N-1; in [2, 1e7].", "type": "integer", "minimum": 2,
-          "maximum": 10_000_000},
+    # the budget's estimate of a run (cradle.pipeline.budget: memory, output, time) bounds N; the maximum here is
+    # only the largest integer every double holds
+    "N": {"description": "Number of sites (beads) n = 0..N-1; >= 2, within the budget's estimate of its jobs.",
+          "type": "integer", "minimum": 2, "maximum": MAX_COUNT},
     "bc": {"description": "Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one "
                           "neighbour).", "type": "string", "enum": ["periodic", "free"]},
     "rtol": {"description": f"Relative tolerance of an adaptive integrator, in [{RTOL_FLOOR:g}, 1e-2].",

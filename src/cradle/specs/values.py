@@ -36,8 +36,14 @@ ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5',
 RTOL_FLOOR = 1e-14
 TIME_TOL = 1e-9          # two times closer than this are the same time
 INTEGER_TOL = 1e-9       # q N / (2 pi) must be this close to an integer on a ring
-MAX_STORED_TIMES = 10_000_000  # a guard against typos such as every: 1.0e-7
-MAX_T_END = 1e6          # the longest run: float64 tells times apart to TIME_TOL up to ~4e6
+#: the longest run, a limit of float64: stored times are told apart to TIME_TOL, and below 2^22 (~4.2e6) the
+#: spacing of doubles is at most 2^-31 (4.7e-10), half of it; beyond, two stored times may round to one
+MAX_T_END = float(2**22)
+#: why a time is at most MAX_T_END, as a message says it
+T_END_WHY = "float64 tells stored times 1e-9 apart only below 2^22 = 4194304"
+#: the largest count of beads or iterations: the largest integer up to which every integer is a double; the
+#: budget's estimate (memory, output, time) bounds a run long before it
+MAX_COUNT = 2**53
 
 
 class ConfigError(ValueError):

@@ -140,10 +140,14 @@ def typed(config: dict) -> Config:
     parts, found = read(config)
     out = found.report(Errors())
     made = None if out.lines else Config(**{**parts, "beyond": Beyond(**parts["beyond"])})
-    if made is not None:  # every job's estimated memory, output and time within budget, before the physical
-        from cradle.pipeline import budget  # checks build stored-time arrays (cradle.pipeline.budget)
+    from cradle.pipeline import budget
 
+    # every job's estimated memory, output and time within budget before the physical checks build stored-time
+    # arrays: all jobs when every entry parsed, else the scenes that did (the budget's defaults if it is bad)
+    if made is not None:
         budget.check(made)
+    else:
+        budget.check_scenes(parts.get("scenes") or {}, parts.get("budget"))
     checks.check(parts, config, out)
     out.raise_any()
     assert made is not None
