@@ -16,7 +16,7 @@ import types
 import typing
 from typing import Any
 
-from .parse import BAD, Found, parse, reduced_defaults
+from .parse import BAD, Found, given_fields, parse, reduced_defaults
 from .shared import BOUND_HINTS, SHARED
 from .values import NAME_PATTERN, ConfigError, Errors, canonical_angle
 
@@ -200,6 +200,24 @@ def _typed(tp, value):
     return value
 
 
+
+
+def check_fields(obj, where: str, skip: tuple[str, ...] = ()) -> None:
+    """What a public declared class's ``__post_init__`` calls: an instance built directly (``Cradle(...)``, not
+    by the validation pass) whose fields break their declarations is refused, one ConfigError line per problem
+    naming ``where``, the key and the value; a value given in another form (``1`` for ``1.0``, ``'1'`` for
+    ``1``) is stored as the validation pass reads it. ``skip``: keys the caller checks itself."""
+    cls: Any = type(obj)
+    found = Found()
+    values = {_key(f): plain(getattr(obj, f.name), canonical=False) for f in dataclasses.fields(obj)
+              if getattr(obj, f.name) is not None or f.name in _nullable(cls)}
+    got = given_fields(cls, values, (where,), found)
+    found.lines = [p for p in found.lines if not (len(p.path) > 1 and p.path[1] in skip)]
+    if found or got is BAD:
+        raise ConfigError(found.report(Errors()).lines)
+    for name, value in got.items():
+        if name not in skip:
+            object.__setattr__(obj, name, value)
 
 
 def from_plain(cls, mapping, where: str | None = None):
