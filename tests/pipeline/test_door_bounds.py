@@ -180,3 +180,14 @@ def test_t_end_is_bounded_by_the_resolution_of_float64(tmp_path):
     raw["scenes"]["fft106"]["t_end"] = 1e12
     assert _refused(tmp_path, raw) == ["config error: scenes.fft106.t_end = 1000000000000.0: must be <= 4194304 "
                                        "(float64 tells stored times 1e-9 apart only below 2^22 = 4194304)"]
+
+
+def test_an_si_value_out_of_bounds_in_nc_units_is_said_at_the_scene(tmp_path):
+    """0.1 m of precompression is fine in SI and 1.07e18 in (nc)'s units, beyond its bound there: one line at the
+    scene, in (nc)'s units (the Terms built by the conversion are checked as any)."""
+    raw = _with_scene(bc="periodic", damping=None,
+                      terms={"precompression": {"delta0": 0.1}})
+    raw["scenes"]["si"].pop("damping", None)
+    lines = _refused(tmp_path, raw)
+    assert lines == ["config error: scenes.si: in (nc)'s units, precompression.delta0 = 1.0721759889938697e+18: "
+                     "must be <= 100"]

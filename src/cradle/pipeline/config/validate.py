@@ -106,7 +106,7 @@ def read(config: dict) -> tuple[dict, Found]:
                            if cls is not Scene else base, one=remembered)
             parts[section] = {} if made is BAD else made
     if "scenes" in config:
-        parts["scenes"] = {name: in_nc_units(s) for name, s in parts["scenes"].items()}
+        parts["scenes"] = _in_nc_units(parts["scenes"], found)
     if "figures" in config:
         made = entries(Figure, config["figures"], ("figures",), found, labels=KNOWN_FIGURES, one=remembered)
         parts["figures"] = {} if made is BAD else made
@@ -114,6 +114,19 @@ def read(config: dict) -> tuple[dict, Found]:
     if "beyond" in config:   # each analysis as an entry: one with problems left out
         parts["beyond"] = _analyses(config["beyond"], found, parts["beyond"])
     return parts, found
+
+
+def _in_nc_units(scenes: dict, found: Found) -> dict:
+    """Each scene in (nc)'s units (:func:`in_nc_units`); one whose converted values break their declarations (an
+    SI value that is too large in (nc)'s units) left out, each problem said at the scene."""
+    out = {}
+    for name, scene in scenes.items():
+        try:
+            out[name] = in_nc_units(scene)
+        except ConfigError as err:
+            for line in err.errors:
+                found.add(("scenes", name), f"in (nc)'s units, {line.removeprefix('config error: ')}")
+    return out
 
 
 def _analyses(given, found: Found, defaults: dict) -> dict:
