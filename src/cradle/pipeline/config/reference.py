@@ -15,8 +15,6 @@ from pathlib import Path
 from cradle.specs import schema as spec
 from cradle.specs.values import DEFAULT_MAX_ITEMS, DEFAULT_MAX_LENGTH
 
-from .loading import MAX_VALUES
-
 REFERENCE_FILE = Path("docs") / "config-reference.md"
 SCHEMA_FILE = "config.schema.json"
 
@@ -98,6 +96,8 @@ def _rows(node: dict, path: str, defs: dict, out: list, seen: set) -> None:
 
 def reference(schema: dict) -> str:
     """The markdown reference of a generated config schema."""
+    from .loading import MAX_VALUES   # (loading's command line writes this reference)
+
     out = ["# config.yaml reference", "",
            "Generated from the declarations by `python -m cradle.pipeline.config --write-reference`; do not edit.",
            "Every key of config.yaml, its type, bounds, default (when the key may be left out) and meaning; a key",
