@@ -27,6 +27,13 @@ NAME_MAX_LENGTH = 64
 #: reader allows 50,000 values in all), and each item is validated one by one
 DEFAULT_MAX_ITEMS = 10_000
 DEFAULT_MAX_LENGTH = 1_000
+#: the largest config file read, in bytes: config.yaml is ~25 kB; a file thousands of times larger is no config
+CONFIG_MAX_BYTES = 4 << 20
+#: the most values a config file may hold, each alias counted as the values it stands for: config.yaml holds
+#: ~1,300; beyond, reading and validating would take seconds (a "billion laughs" alias bomb stands for 9^9)
+CONFIG_MAX_VALUES = 50_000
+#: the deepest nesting of mappings and lists: config.yaml nests 6 deep; Python's recursion stops near 1,000
+CONFIG_MAX_DEPTH = 64
 
 _ANGLE_RE = re.compile(ANGLE_PATTERN)
 ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5'"

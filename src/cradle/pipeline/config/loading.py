@@ -14,19 +14,13 @@ from pathlib import Path
 import yaml
 
 from cradle.specs.declare import plain
-from cradle.specs.values import ConfigError
+from cradle.specs.values import CONFIG_MAX_BYTES, CONFIG_MAX_DEPTH, CONFIG_MAX_VALUES, ConfigError
 
 from .resolve import homoclinic, map_entry, scene
 from .sections import SECTIONS
 from .validate import validate
 
-#: the largest config file read, in bytes: config.yaml is ~25 kB; a file thousands of times larger is no config
-MAX_BYTES = 4 << 20
-#: the most values a config may hold, each alias counted as the values it stands for: config.yaml holds ~1,300;
-#: beyond, reading and validating would take seconds (a "billion laughs" alias bomb stands for 9^9)
-MAX_VALUES = 50_000
-#: the deepest nesting of mappings and lists: config.yaml nests 6 deep; Python's recursion stops near 1,000
-MAX_DEPTH = 64
+MAX_BYTES, MAX_VALUES, MAX_DEPTH = CONFIG_MAX_BYTES, CONFIG_MAX_VALUES, CONFIG_MAX_DEPTH
 
 
 def _line(event) -> int:

@@ -13,7 +13,7 @@ from importlib import resources
 from pathlib import Path
 
 from cradle.specs import schema as spec
-from cradle.specs.values import DEFAULT_MAX_ITEMS, DEFAULT_MAX_LENGTH
+from cradle.specs.values import CONFIG_MAX_VALUES, DEFAULT_MAX_ITEMS, DEFAULT_MAX_LENGTH
 
 REFERENCE_FILE = Path("docs") / "config-reference.md"
 SCHEMA_FILE = "config.schema.json"
@@ -96,14 +96,12 @@ def _rows(node: dict, path: str, defs: dict, out: list, seen: set) -> None:
 
 def reference(schema: dict) -> str:
     """The markdown reference of a generated config schema."""
-    from .loading import MAX_VALUES   # (loading's command line writes this reference)
-
     out = ["# config.yaml reference", "",
            "Generated from the declarations by `python -m cradle.pipeline.config --write-reference`; do not edit.",
            "Every key of config.yaml, its type, bounds, default (when the key may be left out) and meaning; a key",
            "left out of config.yaml takes its default. `<name>` stands for an entry's name. A list without a",
            f"maximum here has at most {DEFAULT_MAX_ITEMS} items, a string at most {DEFAULT_MAX_LENGTH} characters; the "
-           f"file holds at most {MAX_VALUES} values", "(an alias counted as the values it stands for).", ""]
+           f"file holds at most {CONFIG_MAX_VALUES} values", "(an alias counted as the values it stands for).", ""]
     defs = schema.get("$defs", {})
     for key, node in schema["properties"].items():
         out += [f"## `{key}`", "", _cell(_resolve(node, defs).get("description", "")), "",
