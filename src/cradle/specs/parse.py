@@ -142,6 +142,13 @@ def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
     kinds = [kinds] if isinstance(kinds, str) else kinds or []
     if coerce and isinstance(value, str) and kinds and "string" not in kinds:
         value = _from_string(value, kinds)
+    if isinstance(value, (list, tuple)) and len(value) > node.get("maxItems", DEFAULT_MAX_ITEMS):
+        # said before its items are walked: a list of a million values is refused at once
+        n = node.get("maxItems", DEFAULT_MAX_ITEMS)
+        found.add(path, f"must have at most {n} items" if "array" in kinds else
+                  f"must be {' or '.join(TYPE_WORDS[k] for k in kinds)}" if kinds else
+                  f"must not be a list of {len(value)} items", value)
+        return BAD
     if not _finite(value, path, found):
         return BAD
     if "anyOf" in node:
@@ -299,7 +306,8 @@ def parse(tp, value, path: tuple, found: Found, base=None):
 def _not_mapping(value, path: tuple, found: Found) -> bool:
     if isinstance(value, dict):
         return False
-    if _finite(value, path, found):
+    long = isinstance(value, (list, tuple)) and len(value) > DEFAULT_MAX_ITEMS   # its items not walked
+    if long or _finite(value, path, found):
         found.add(path, "must be a mapping", value)
     return True
 

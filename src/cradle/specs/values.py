@@ -91,6 +91,8 @@ def show(value) -> str:
     if isinstance(value, float):
         text = repr(value)
     elif isinstance(value, (dict, list)):
+        if len(value) > 16:   # only the start is shown: a list of a million values is not dumped whole
+            value = dict(list(value.items())[:16]) if isinstance(value, dict) else value[:16]
         try:
             text = json.dumps(value, separators=(", ", ": "), default=str)
         except (TypeError, ValueError):

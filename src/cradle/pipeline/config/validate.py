@@ -37,7 +37,10 @@ _PLAIN: dict[int, dict] = {}
 
 
 def _key(config) -> str | None:
-    """The cache key of a config (its canonical JSON), or None if it cannot be serialised."""
+    """The cache key of a config (its canonical JSON), or None if it cannot be serialised or is too large to be
+    worth remembering (a config of a huge list is refused anyway: its JSON would cost more than validating it)."""
+    if len(pickle.dumps(config, protocol=pickle.HIGHEST_PROTOCOL)) > 1 << 20:
+        return None
     try:
         return json.dumps(config, sort_keys=True, default=repr)
     except (TypeError, ValueError):
