@@ -128,7 +128,7 @@ def test_a_reduced_form_is_the_full_one_with_its_overrides(raw):
     from cradle.specs.declare import reduced_defaults
 
     for a in ANALYSES.values():
-        if REDUCED not in a.forms or a.name == "work-precision":   # work-precision keeps a subset
+        if REDUCED not in a.forms:
             continue
         full, reduced = (plain(cc.analysis_spec(raw, a.name, form)) for form in (FULL, REDUCED))
         overrides = {**reduced_defaults(a.spec), **raw["beyond"].get(a.name, {}).get("reduced", {})}

@@ -224,6 +224,7 @@ class Field(NamedTuple):
     node: dict
     required: bool
     make: Any
+    reduced: Any = None
 
 
 def declared_class(tp) -> bool:
@@ -241,7 +242,7 @@ def fields_of(cls) -> tuple[Field, ...]:
         node.update(meta["keywords"])
         make = f.default_factory if f.default_factory is not dataclasses.MISSING else \
             (lambda d=f.default: None if d is dataclasses.MISSING else d)
-        out.append(Field(f.name, meta["key"] or f.name, tp, node, meta["required"], make))
+        out.append(Field(f.name, meta["key"] or f.name, tp, node, meta["required"], make, meta.get("reduced")))
     return tuple(out)
 
 
@@ -356,10 +357,12 @@ def given_fields(cls, value, path: tuple, found: Found, base=None) -> Any:
 def reduced_defaults(cls) -> dict[str, Any]:
     """field name -> its value in the reduced form, for every field of ``cls`` declared with ``reduced=``."""
     out = {}
-    for f in dataclasses.fields(cls):
-        if "reduced" in f.metadata:
-            value = f.metadata["reduced"]
-            out[f.name] = json.loads(value) if isinstance(value, str) and value[:1] in "[{" else value
+    for f in fields_of(cls):
+        if f.reduced is not None:
+            value = json.loads(f.reduced) if isinstance(f.reduced, str) and f.reduced[:1] in "[{" else f.reduced
+            # a mapping of entries becomes its declared objects, as the full form's
+            out[f.name] = _field(f, value, (cls.__name__, "reduced", f.key), Found()) if isinstance(value, dict) \
+                else value
     return out
 
 
@@ -382,7 +385,7 @@ def _overrides(cls, value, path: tuple, found: Found, full: dict):
     return BAD if any(v is BAD for v in out.values()) else out
 
 
-def _field(f: Field, value, path: tuple, found: Found, base):
+def _field(f: Field, value, path: tuple, found: Found, base=None):
     """The value of field ``f``: an object (or entries, or a union) as its annotation declares it, a scalar or
     a list against its keywords."""
     origin, args = typing.get_origin(f.tp), typing.get_args(f.tp)

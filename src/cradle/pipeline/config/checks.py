@@ -30,7 +30,7 @@ def with_all(spec, names: dict):
 def check_forms(spec, where: Where, context: Context, out: Errors) -> None:
     """The check of an analysis's spec in each of its forms: the full one at ``where``, the reduced one (if the
     spec has one) at ``where + ["reduced"]``, reporting only the keys the reduced form gives (:func:`own_keys`)."""
-    if not isinstance(getattr(spec, "reduced", None), dict):   # one form, or one kept by reduced_form()
+    if not isinstance(getattr(spec, "reduced", None), dict):   # one form
         spec.check(where, context, out)
         return
     form_spec(spec, FULL).check(where, context, out)
