@@ -360,10 +360,16 @@ def reduced_defaults(cls) -> dict[str, Any]:
     for f in fields_of(cls):
         if f.reduced is not None:
             value = json.loads(f.reduced) if isinstance(f.reduced, str) and f.reduced[:1] in "[{" else f.reduced
-            # a mapping of entries becomes its declared objects, as the full form's
-            out[f.name] = _field(f, value, (cls.__name__, "reduced", f.key), Found()) if isinstance(value, dict) \
-                else value
+            out[f.name] = _reduced_objects(cls, f.name) if isinstance(value, dict) else value
     return out
+
+
+@functools.cache
+def _reduced_objects(cls: type, name: str) -> Any:
+    """The declared reduced mapping of field ``name`` of ``cls`` read as its declared objects (frozen, so read
+    once), as the full form's are."""
+    f = next(f for f in fields_of(cls) if f.name == name)
+    return _field(f, json.loads(f.reduced), (cls.__name__, "reduced", f.key), Found())
 
 
 def _overrides(cls, value, path: tuple, found: Found, full: dict):
