@@ -34,11 +34,11 @@ from cradle.specs.values import (
     ConfigError,
     Errors,
     angle_expr,
-    grid_size,
     parse_angle,
     show,
-    store_times,
 )
+
+from .times import grid_size, store_times
 
 # ---- what the check of one entry sees of the others
 #: a key path: ``["scenes", "tw-weak", "store", "snapshots", 1]``

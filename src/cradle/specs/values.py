@@ -1,4 +1,4 @@
-"""Values the config layer reads and the errors it reports: angles, stored times, one-line messages.
+"""Values the config layer reads and the errors it reports: angles, bounds of times, one-line messages.
 
 Every problem is one line naming the key path and the value::
 
@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import copy
 import fractions
-import functools
 import json
 import math
 import re
@@ -41,18 +40,6 @@ class ConfigError(ValueError):
             errors = [errors]
         self.errors = list(errors)
         super().__init__("\n".join(self.errors))
-
-
-def copied(value):
-    """A deep copy of a parsed YAML or JSON value (plain mappings, lists and scalars), as ``copy.deepcopy``
-    gives it at a fraction of its cost: configs are copied on every validation."""
-    if type(value) is dict:
-        return {k: copied(v) for k, v in value.items()}
-    if type(value) is list:
-        return [copied(v) for v in value]
-    if value is None or type(value) in (str, int, float, bool):
-        return value
-    return copy.deepcopy(value)
 
 
 def key_path(parts) -> str:
@@ -90,11 +77,6 @@ def bound_text(x) -> str:
 def number(x: object) -> TypeGuard[int | float]:
     """A real number (not a boolean)."""
     return isinstance(x, (int, float)) and not isinstance(x, bool)
-
-
-def finite(x) -> bool:
-    """A finite real number."""
-    return number(x) and math.isfinite(x)
 
 
 class Errors:
@@ -206,56 +188,6 @@ def angle_or_none(value):
 def angle_expr(value) -> str:
     """The text of an angle as given (a number as its repr), kept next to its value in radians."""
     return value if isinstance(value, str) else repr(float(value))
-
-
-def grid_size(snapshots, every: float | None, t_end: float) -> int:
-    """An upper bound on the number of times :func:`store_times` gives for these ``snapshots`` and ``every``."""
-    n = len(snapshots or ()) + 2
-    if every:
-        k = t_end / every * (1.0 + 1e-12) + TIME_TOL
-        n += int(math.floor(min(k, 1e18))) + 1   # t_end / every may overflow to inf
-    return n
-
-
-#: the stored-time lists :func:`store_times` remembers are those of at most this many times
-REMEMBERED_TIMES = 100_000
-
-
-def store_times(snapshots, every: float | None, t_end: float) -> list[float]:
-    """The sorted times a scene stores: 0, the grid k*every on [0, t_end], t_end and the snapshots.
-
-    Times are rounded to 1e-9; times closer than 1e-9 (e.g. a snapshot on the
-    grid) are one time. 0 and t_end are always included.
-    """
-    snapshots = tuple(float(s) for s in (snapshots or ()))
-    every = float(every) if every else None
-    if grid_size(snapshots, every, float(t_end)) <= REMEMBERED_TIMES:
-        # a config is validated again and again (its figures' times, the Snakefile's jobs): remember small grids
-        return list(_remembered_times(snapshots, every, float(t_end)))
-    return _store_times(snapshots, every, float(t_end))
-
-
-@functools.lru_cache(maxsize=64)
-def _remembered_times(snapshots: tuple[float, ...], every: float | None, t_end: float) -> tuple[float, ...]:
-    return tuple(_store_times(snapshots, every, t_end))
-
-
-def _store_times(snapshots: tuple[float, ...], every: float | None, t_end: float) -> list[float]:
-    import numpy as np
-
-    parts = [np.array([0.0, t_end]), np.asarray(snapshots, dtype=float)]
-    if every:
-        n = int(math.floor(t_end / every * (1.0 + 1e-12) + TIME_TOL))
-        grid = np.arange(n + 1) * every
-        parts.append(grid[grid <= t_end + TIME_TOL])
-    t = np.sort(np.concatenate(parts))
-    keep = np.ones(t.size, dtype=bool)
-    keep[1:] = np.diff(t) > TIME_TOL  # a time within TIME_TOL of the previous one is the same time
-    t = np.round(t[keep], 9)
-    t[0] = 0.0
-    if abs(t[-1] - t_end) <= TIME_TOL:
-        t[-1] = round(t_end, 9)
-    return t.tolist()
 
 
 def did_you_mean(name, known) -> str:

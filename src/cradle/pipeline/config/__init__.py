@@ -8,7 +8,8 @@
 - :mod:`.reference`: the JSON Schema and the markdown reference generated from the declarations, for
   editors and readers (``python -m cradle.pipeline.config --write-schema``, ``--write-reference``).
 """
-from cradle.specs.values import ANGLE_PATTERN, TIME_TOL, ConfigError, parse_angle, store_times
+from cradle.scenes.times import store_times
+from cradle.specs.values import ANGLE_PATTERN, TIME_TOL, ConfigError, parse_angle
 
 from .loading import StrictLoader, load, main, read_yaml
 from .resolve import analysis_reads, analysis_spec, homoclinic, map_entry, scene
