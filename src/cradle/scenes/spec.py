@@ -25,7 +25,8 @@ from typing import Protocol, cast
 from cradle.models.damping import Damping
 from cradle.models.lattice_terms import Terms
 from cradle.models.physical import HERTZ_ALPHA, Cradle, scales
-from cradle.specs.declare import NULL, REQUIRED, declared, param, register_union
+from cradle.specs.declare import NULL, REQUIRED, declared, param
+from cradle.specs.schema import register_union
 from cradle.specs.values import (
     INTEGER_TOL,
     MAX_STORED_TIMES,

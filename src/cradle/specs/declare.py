@@ -10,18 +10,20 @@ name), a declared class (a nested object) or a union of declared classes (picked
 from __future__ import annotations
 
 import dataclasses
-import functools
 import json
 import types
 import typing
 from typing import Any
 
-from .parse import BAD, Found, parse, reduced_defaults
-from .shared import BOUND_HINTS, SHARED
+from .parse import BAD, Field, Found, _deref, fields_of, parse, reduced_defaults
+from .shared import SHARED
 from .values import NAME_PATTERN, ConfigError, Errors, canonical_angle
 
-__all__ = ["BOUND_HINTS", "NAME_PATTERN", "NULL", "REQUIRED", "SHARED", "UNIONS", "declared", "from_plain",
-           "param", "plain", "reduced_defaults", "register_union", "schema_doc"]
+__all__ = ["NAME_PATTERN", "NULL", "REQUIRED", "SHARED", "declared", "from_plain", "param", "plain",
+           "reduced_defaults", "schema_doc"]
+
+#: the items of a list of angles, shared types merged in (as :func:`.parse.fields_of` gives them)
+ANGLE = _deref({"$ref": "#/$defs/angle"})
 
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
 
@@ -104,49 +106,6 @@ def schema_doc(cls: Any) -> str:
 
 
 
-@functools.cache
-def _hints(cls) -> dict[str, Any]:
-    """The resolved annotations of a declared class (resolving them is most of the cost of :func:`build`)."""
-    return typing.get_type_hints(cls)
-
-
-def _key(f: dataclasses.Field) -> str:
-    """The config key of a field (its name unless declared with ``key=``)."""
-    return f.metadata.get("key") or f.name
-
-
-#: discriminated unions on ``kind`` that fields refer to with ``ref=`` (the kinds of initial condition):
-#: name -> (description, description of ``kind``, kind -> declared class); :func:`register_union` adds one
-UNIONS: dict[str, tuple[str, str, dict]] = {}
-
-
-def register_union(name: str, doc: str, kind_doc: str, kinds: dict) -> None:
-    """Declare the union ``name`` (a ``$defs`` entry of every generated schema) of the declared ``kinds``."""
-    UNIONS[name] = (doc, kind_doc, dict(kinds))
-
-
-def _default_of(f: dataclasses.Field):
-    """The declared default of a field (a fresh copy of a list or a mapping), or REQUIRED."""
-    if f.default is not dataclasses.MISSING:
-        return f.default
-    if f.default_factory is not dataclasses.MISSING:
-        return f.default_factory()
-    return REQUIRED
-
-
-@functools.cache
-def _nullable(cls) -> frozenset[str]:
-    """The fields of a declared class where null is a value of its own: declared with a NULL default, or
-    typed ``X | None`` with a default other than None (``direct_omega: null`` = the most unstable one)."""
-    hints = _hints(cls)
-    out = set()
-    for f in dataclasses.fields(cls):
-        optional = type(None) in typing.get_args(hints[f.name])
-        if f.metadata.get("null_default") or (optional and _default_of(f) not in (None, REQUIRED)):
-            out.add(f.name)
-    return frozenset(out)
-
-
 def plain(value, canonical: bool = True):
     """A spec (or any value holding specs) as plain JSON values: declared instances as mappings of their
     config keys, sorted, tuples as lists. What a rule's ``params:`` carry and a file stores; equal
@@ -157,11 +116,9 @@ def plain(value, canonical: bool = True):
     entries (a validated config with its defaults filled in)."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         # an optional key left out (None, where null is not a value of its own) stays out
-        cls = type(value)
-        nullable, hints = _nullable(cls), _hints(cls)
-        items = [(_key(f), _by_value(f, hints[f.name], plain(getattr(value, f.name), canonical)) if canonical
-                  else plain(getattr(value, f.name), canonical)) for f in dataclasses.fields(value)
-                 if getattr(value, f.name) is not None or f.name in nullable]
+        items = [(f.key, _by_value(f, plain(getattr(value, f.name), canonical)) if canonical
+                  else plain(getattr(value, f.name), canonical)) for f in fields_of(type(value))
+                 if getattr(value, f.name) is not None or f.nullable]
         return dict(sorted(items) if canonical else items)
     if isinstance(value, (list, tuple)):
         return [plain(v, canonical) for v in value]
@@ -171,14 +128,13 @@ def plain(value, canonical: bool = True):
     return value
 
 
-def _by_value(f: dataclasses.Field, tp, value):
+def _by_value(f: Field, value: Any) -> Any:
     """A field's plain value in its one form by value: angles canonical, numbers typed as declared."""
-    items = f.metadata["keywords"].get("items")
-    if f.metadata["ref"] in ("angle", "angleString"):
+    if f.ref in ("angle", "angleString"):
         return canonical_angle(value)
-    if items == {"$ref": "#/$defs/angle"} and isinstance(value, list):
+    if f.node.get("items") == ANGLE and isinstance(value, list):
         return [canonical_angle(v) for v in value]
-    return _typed(tp, value)
+    return _typed(f.tp, value)
 
 
 def _typed(tp, value):

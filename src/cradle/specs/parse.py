@@ -71,24 +71,6 @@ class Found:
         return out
 
 
-_MERGED: dict[int, tuple[dict, dict]] = {}
-
-
-def _shared(node: dict) -> dict:
-    """``node`` with its ``$ref`` to a shared type (:data:`.shared.SHARED`) merged in, its own keywords winning
-    (worked out once per node: the declarations' nodes live as long as their classes)."""
-    if "$ref" not in node:
-        return node
-    hit = _MERGED.get(id(node))
-    if hit is not None and hit[0] is node:
-        return hit[1]
-    out = node
-    while "$ref" in out:
-        out = {**SHARED[out["$ref"].rsplit("/", 1)[-1]], **{k: v for k, v in out.items() if k != "$ref"}}
-    _MERGED[id(node)] = (node, out)
-    return out
-
-
 def _from_string(text: str, kinds) -> Any:
     """``text`` read as a value of one of the JSON ``kinds`` (none of them string), or the text itself."""
     s = text.strip()
@@ -119,7 +101,6 @@ def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
     """``value`` checked against the keywords of ``node`` (a JSON-Schema subset: type, enum, const, bounds,
     multipleOf, pattern, anyOf, items, minItems, maxItems, uniqueItems), or :data:`BAD`. ``coerce``: a string
     where its key expects no string is read as the number, boolean or null it spells (``--config`` values)."""
-    node = _shared(node)
     kinds = node.get("type")
     kinds = [kinds] if isinstance(kinds, str) else kinds or []
     if coerce and isinstance(value, str) and kinds and "string" not in kinds:
@@ -199,13 +180,13 @@ def _any_of(node: dict, value, path: tuple, found: Found):
         got = leaf(sub, value, path, mine, coerce=False)
         if not mine:
             return got
-        kinds = _shared(sub).get("type")
+        kinds = sub.get("type")
         tried.append(([kinds] if isinstance(kinds, str) else kinds or [], mine))
     for kinds, mine in tried:
         if any(_JSON_TYPES[k](value) for k in kinds):
             found.lines += mine.lines
             return BAD
-    if node["anyOf"] == SHARED["angle"]["anyOf"]:
+    if any(sub.get("pattern") == ANGLE_PATTERN for sub in node["anyOf"]):
         found.add(path, f"must be {ANGLE_HINT}", value)
     else:
         found.add(path, f"must be {' or '.join(dict.fromkeys(TYPE_WORDS[k] for kinds, _ in tried for k in kinds))}",
@@ -216,15 +197,18 @@ def _any_of(node: dict, value, path: tuple, found: Found):
 # ---------------------------------------------------------------- declared classes
 
 class Field(NamedTuple):
-    """What the pass reads of one declared field: its name, config key, annotation, keywords and default
-    (``make()`` gives it: a fresh copy of a list or a mapping)."""
+    """What the pass reads of one declared field: its name, config key, annotation, keywords (shared types
+    merged in) and default (``make()`` gives it: a fresh copy of a list or a mapping), its reduced value, the
+    shared type it refers to, and whether null is a value of its own (not an absent key)."""
     name: str
     key: str
     tp: Any
     node: dict
     required: bool
     make: Any
-    reduced: Any = None
+    reduced: Any
+    ref: str | None
+    nullable: bool
 
 
 def declared_class(tp) -> bool:
@@ -238,12 +222,27 @@ def fields_of(cls) -> tuple[Field, ...]:
     out = []
     for f in dataclasses.fields(cls):
         meta, tp = f.metadata, hints[f.name]
-        node = {"$ref": f"#/$defs/{meta['ref']}"} if meta["ref"] else _annotation_node(tp)
-        node.update(meta["keywords"])
+        node = _deref({"$ref": f"#/$defs/{meta['ref']}"} if meta["ref"] else _annotation_node(tp))
+        node.update(_deref(meta["keywords"]))
         make = f.default_factory if f.default_factory is not dataclasses.MISSING else \
             (lambda d=f.default: None if d is dataclasses.MISSING else d)
-        out.append(Field(f.name, meta["key"] or f.name, tp, node, meta["required"], make, meta.get("reduced")))
+        # null is a value of its own where declared as the default, or where the default is not None
+        nullable = meta["null_default"] or (type(None) in typing.get_args(tp) and make() is not None)
+        out.append(Field(f.name, meta["key"] or f.name, tp, node, meta["required"], make, meta.get("reduced"),
+                         meta["ref"], nullable))
     return tuple(out)
+
+
+def _deref(node: Any) -> Any:
+    """``node`` with every ``$ref`` to a shared type (:data:`.shared.SHARED`) merged in, its own keywords
+    winning (a union, read by its annotation, keeps its ``$ref``)."""
+    if isinstance(node, list):
+        return [_deref(v) for v in node]
+    if not isinstance(node, dict):
+        return node
+    shared = SHARED.get(str(node.get("$ref", "")).rsplit("/", 1)[-1])
+    out = {key: _deref(v) for key, v in node.items() if key != "$ref" or shared is None}
+    return out if shared is None else {**_deref(shared), **out}
 
 
 def _annotation_node(tp) -> dict:

@@ -12,12 +12,39 @@ import types
 import typing
 from pathlib import Path
 
-from . import declare
-from .declare import REQUIRED, _default_of, _hints, _key
+from .declare import REQUIRED
 from .parse import reduced_defaults
 from .shared import SHARED
 
 SCHEMA_DRAFT = "https://json-schema.org/draft/2020-12/schema"
+
+#: discriminated unions on ``kind`` that fields refer to with ``ref=`` (the kinds of initial condition):
+#: name -> (description, description of ``kind``, kind -> declared class); :func:`register_union` adds one
+UNIONS: dict[str, tuple[str, str, dict]] = {}
+
+
+def register_union(name: str, doc: str, kind_doc: str, kinds: dict) -> None:
+    """Declare the union ``name`` (a ``$defs`` entry of every generated schema) of the declared ``kinds``."""
+    UNIONS[name] = (doc, kind_doc, dict(kinds))
+
+
+def _hints(cls) -> dict:
+    """The resolved annotations of a declared class."""
+    return typing.get_type_hints(cls)
+
+
+def _key(f: dataclasses.Field) -> str:
+    """The config key of a field (its name unless declared with ``key=``)."""
+    return f.metadata.get("key") or f.name
+
+
+def _default_of(f: dataclasses.Field):
+    """The declared default of a field (a fresh copy of a list or a mapping), or REQUIRED."""
+    if f.default is not dataclasses.MISSING:
+        return f.default
+    if f.default_factory is not dataclasses.MISSING:
+        return f.default_factory()
+    return REQUIRED
 
 
 def _ref(name: str) -> dict:
@@ -138,7 +165,7 @@ def generate(root, *, title: str, extra_defs=None) -> dict:
     """The JSON Schema of the declared class ``root`` (the whole config, or one spec), shared types and
     the registered unions under $defs."""
     defs = {k: dict(v) for k, v in SHARED.items()}
-    for name, (doc, kind_doc, kinds) in declare.UNIONS.items():
+    for name, (doc, kind_doc, kinds) in UNIONS.items():
         defs[name] = union_schema(doc, kind_doc, kinds, defs)
     for name, make in (extra_defs or {}).items():
         defs[name] = make(defs)
