@@ -1,6 +1,6 @@
 """The config of the pipeline (config.yaml), declared once and typed.
 
-- :mod:`cradle.scenes.spec`, :mod:`.sections`, :mod:`.beyond`, :mod:`.movies`: each section and entry as a
+- :mod:`cradle.scenes.spec`, :mod:`.sections`, :mod:`.movies`: each section and entry as a
   declared frozen dataclass (:mod:`cradle.specs.declare`), the checks across keys as its ``check`` method;
 - :mod:`.validate`: the one validation pass (:mod:`cradle.specs.parse`) and the checks (:mod:`.checks`);
   :mod:`.loading`: reading files (a YAML key given twice refused) and the command line; :mod:`.resolve`: the

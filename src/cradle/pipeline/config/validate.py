@@ -23,8 +23,7 @@ from cradle.specs.parse import BAD, Found, entries, given_fields, parse
 from cradle.specs.values import ConfigError, Errors, show
 
 from . import checks
-from .beyond import Beyond
-from .sections import KNOWN_FIGURES, SECTIONS, Config, Figure
+from .sections import KNOWN_FIGURES, SECTIONS, Beyond, Config, Figure
 
 #: the sections of entries resolved against ``defaults:``
 ENTRIES: dict[str, type] = {"map": MapEntry, "homoclinic": HomoclinicEntry, "scenes": Scene}
