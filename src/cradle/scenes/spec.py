@@ -20,7 +20,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Protocol, cast
+from typing import Any, Protocol, cast
 
 from cradle.models.damping import Damping
 from cradle.models.lattice_terms import Terms
@@ -526,7 +526,7 @@ def in_nc_units(scene: Scene) -> Scene:
     return out
 
 
-def _scaled(obj, keys: tuple[str, ...], factor: float):
+def _scaled(obj: Any, keys: tuple[str, ...], factor: float) -> Any:
     """``obj`` with the value at ``keys`` (a number or a list) times ``factor``, where it has one."""
     value = getattr(obj, keys[0], None) if dataclasses.is_dataclass(obj) else None
     if value is None or keys[0] not in {f.name for f in dataclasses.fields(obj)}:

@@ -13,7 +13,8 @@ import dataclasses
 import json
 import types
 import typing
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 from .parse import BAD, Field, Found, _deref, fields_of, parse, reduced_defaults
 from .shared import SHARED
@@ -21,6 +22,8 @@ from .values import NAME_PATTERN, ConfigError, Errors, canonical_angle
 
 __all__ = ["NAME_PATTERN", "NULL", "REQUIRED", "SHARED", "declared", "from_plain", "param", "plain",
            "reduced_defaults", "schema_doc"]
+
+T = TypeVar("T")
 
 #: the items of a list of angles, shared types merged in (as :func:`.parse.fields_of` gives them)
 ANGLE = _deref({"$ref": "#/$defs/angle"})
@@ -31,15 +34,15 @@ REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
 class _Null:
     """The default of a key whose default is null (filled in as None), unlike an optional key."""
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "NULL"
 
 
 NULL = _Null()
 
 
-def param(default=REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict | None = None, key: str | None = None,
-          reduced=REQUIRED, **keywords):
+def param(default: Any = REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict | None = None,
+          key: str | None = None, reduced: Any = REQUIRED, **keywords: Any) -> Any:
     """A config key: ``default``, its description ``doc``, ``ref`` (a shared type of :data:`SHARED`,
     e.g. "alpha") and JSON-Schema ``keywords`` (minimum, exclusiveMinimum, maximum, enum, items, ...).
 
@@ -66,7 +69,8 @@ def param(default=REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict
 # for a type checker, a declared class is a frozen keyword-only dataclass. `param` is not named a field
 # specifier: it takes its default by position, which the checker would read as no default
 @typing.dataclass_transform(kw_only_default=True, frozen_default=True)
-def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of=None, extra=None):
+def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of: list | None = None,
+             extra: dict | None = None) -> Callable[[T], T]:
     """Class decorator: a frozen dataclass declaring one object of the config.
 
     ``name``: its key under ``$defs`` (None: written inline where it is used); ``doc``: its
@@ -74,7 +78,7 @@ def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of
     defaults in ``$defs``); ``any_of``: alternatives of required keys (e.g. snapshots or every);
     ``extra``: further schema keywords.
     """
-    def wrap(cls):
+    def wrap(cls: Any) -> Any:
         documented = cls.__dict__.get("__doc__") is not None
         if any(isinstance(f, dataclasses.Field) and "reduced" in f.metadata for f in vars(cls).values()):
             # the overrides of the reduced form, each key checked as its field (cradle.specs.parse)
@@ -106,7 +110,7 @@ def schema_doc(cls: Any) -> str:
 
 
 
-def plain(value, canonical: bool = True):
+def plain(value: Any, canonical: bool = True) -> Any:
     """A spec (or any value holding specs) as plain JSON values: declared instances as mappings of their
     config keys, sorted, tuples as lists. What a rule's ``params:`` carry and a file stores; equal
     specs give equal plain values whatever the order they were written in, and however a value was
@@ -137,7 +141,7 @@ def _by_value(f: Field, value: Any) -> Any:
     return _typed(f.tp, value)
 
 
-def _typed(tp, value):
+def _typed(tp: Any, value: Any) -> Any:
     """``value`` with every number of the annotation ``tp`` as its declared type (an int where a number is
     declared is a float; an integral float where an integer is declared is an int)."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
@@ -158,7 +162,7 @@ def _typed(tp, value):
 
 
 
-def from_plain(cls, mapping, where: str | None = None):
+def from_plain(cls: type[T], mapping: Any, where: str | None = None) -> T:
     """A validated instance of the declared class ``cls`` from plain values (:func:`plain`'s output, a rule's
     ``params:``, a file's stored parameters, keyword arguments): every key checked against its declaration
     (:mod:`.parse`), then built. Raises :class:`cradle.specs.values.ConfigError`, one line per problem naming

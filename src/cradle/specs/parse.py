@@ -56,7 +56,7 @@ class Found:
         self.finite: list[Problem] = []
         self.lines: list[Problem] = []
 
-    def add(self, path, what: str, value=..., at=None, force: bool = False) -> None:
+    def add(self, path: Any, what: str, value: Any = ..., at: Any = None, force: bool = False) -> None:
         self.lines.append(Problem(tuple(path if at is None else at), tuple(path), what, value, force))
 
     def __bool__(self) -> bool:
@@ -71,7 +71,7 @@ class Found:
         return out
 
 
-def _from_string(text: str, kinds) -> Any:
+def _from_string(text: str, kinds: list[str]) -> Any:
     """``text`` read as a value of one of the JSON ``kinds`` (none of them string), or the text itself."""
     s = text.strip()
     if "null" in kinds and s in ("null", "Null", "NULL", "~", ""):
@@ -88,7 +88,7 @@ def _from_string(text: str, kinds) -> Any:
     return text
 
 
-def _finite(value, path: tuple, found: Found) -> bool:
+def _finite(value: Any, path: tuple, found: Found) -> bool:
     """Whether every float in ``value`` is finite; each one that is not is a problem at its key."""
     if isinstance(value, float) and not math.isfinite(value):
         found.finite.append(Problem(path, path, "must be a finite number", value))
@@ -97,7 +97,7 @@ def _finite(value, path: tuple, found: Found) -> bool:
     return all([_finite(v, (*path, k), found) for k, v in items])
 
 
-def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
+def leaf(node: dict, value: Any, path: tuple, found: Found, coerce: bool = True) -> Any:
     """``value`` checked against the keywords of ``node`` (a JSON-Schema subset: type, enum, const, bounds,
     multipleOf, pattern, anyOf, items, minItems, maxItems, uniqueItems), or :data:`BAD`. ``coerce``: a string
     where its key expects no string is read as the number, boolean or null it spells (``--config`` values)."""
@@ -138,7 +138,7 @@ def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
     return int(value) if "integer" in kinds and isinstance(value, float) else value   # 50.0 is the integer 50
 
 
-def _items(node: dict, value: list, path: tuple, found: Found):
+def _items(node: dict, value: list, path: tuple, found: Found) -> Any:
     lo, hi = node.get("minItems"), node.get("maxItems")
     if lo is not None and lo == hi and len(value) != lo:
         found.add(path, f"must have exactly {lo} items", value)
@@ -154,7 +154,7 @@ def _items(node: dict, value: list, path: tuple, found: Found):
     return value
 
 
-def _mapping(node: dict, value: dict, path: tuple, found: Found):
+def _mapping(node: dict, value: dict, path: tuple, found: Found) -> Any:
     """A mapping checked against ``properties`` (and ``required``; no other key when ``additionalProperties`` is
     false): the per-method ladders of work-precision."""
     props = node["properties"]
@@ -171,7 +171,7 @@ def _mapping(node: dict, value: dict, path: tuple, found: Found):
     return BAD if any(v is BAD for v in out.values()) else {**value, **out}
 
 
-def _any_of(node: dict, value, path: tuple, found: Found):
+def _any_of(node: dict, value: Any, path: tuple, found: Found) -> Any:
     """The first branch of ``anyOf`` that takes ``value``; else the problems of the first branch whose type fits
     it, or one line naming the types (an angle: the forms it may take)."""
     tried = []
@@ -211,12 +211,12 @@ class Field(NamedTuple):
     nullable: bool
 
 
-def declared_class(tp) -> bool:
+def declared_class(tp: Any) -> bool:
     return isinstance(tp, type) and hasattr(tp, "__schema_doc__")
 
 
 @functools.cache
-def fields_of(cls) -> tuple[Field, ...]:
+def fields_of(cls: type) -> tuple[Field, ...]:
     """The :class:`Field` of each field of the declared class ``cls`` (worked out once per class)."""
     hints = typing.get_type_hints(cls)
     out = []
@@ -245,7 +245,7 @@ def _deref(node: Any) -> Any:
     return out if shared is None else {**_deref(shared), **out}
 
 
-def _annotation_node(tp) -> dict:
+def _annotation_node(tp: Any) -> dict:
     """The JSON type of a scalar or list annotation (``float | None``: number or null); {} for the others."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
     if origin in (typing.Union, types.UnionType):
@@ -260,7 +260,7 @@ def _annotation_node(tp) -> dict:
     return {"type": names[tp]} if tp in names else {}
 
 
-def parse(tp, value, path: tuple, found: Found, base=None):
+def parse(tp: Any, value: Any, path: tuple, found: Found, base: Any = None) -> Any:
     """``value`` as an instance of the annotation ``tp`` (a declared class, a union of them on ``kind``, a
     mapping of entry names to one, or a scalar or list), every problem added to ``found``; :data:`BAD` if any.
     ``base``: for a declared class, the instance (or mapping of field name -> value) whose values its absent
@@ -275,7 +275,7 @@ def parse(tp, value, path: tuple, found: Found, base=None):
     return leaf(_annotation_node(tp), value, path, found)
 
 
-def _not_mapping(value, path: tuple, found: Found) -> bool:
+def _not_mapping(value: Any, path: tuple, found: Found) -> bool:
     if isinstance(value, dict):
         return False
     if _finite(value, path, found):
@@ -283,7 +283,7 @@ def _not_mapping(value, path: tuple, found: Found) -> bool:
     return True
 
 
-def _union(classes: list, value, path: tuple, found: Found):
+def _union(classes: list, value: Any, path: tuple, found: Found) -> Any:
     """One of ``classes``, picked by its ``kind`` constant (the kinds of initial condition)."""
     if _not_mapping(value, path, found):
         return BAD
@@ -300,10 +300,11 @@ def _union(classes: list, value, path: tuple, found: Found):
     return build_object(kinds[kind], value, path, found)
 
 
-def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, base=None, one=None):
+def entries(cls: type, value: Any, path: tuple, found: Found, labels: tuple | None = None,
+            base: Any = None) -> Any:
     """A mapping of entry names to instances of ``cls``; an entry with problems is left out (they are reported).
     ``labels``: the names allowed (figure labels), else any entry name (letters, digits, '-' and '_');
-    ``base``: what each entry leaves out (:func:`parse`); ``one``: what reads one entry (default :func:`parse`)."""
+    ``base``: what each entry leaves out (:func:`parse`)."""
     if _not_mapping(value, path, found):
         return BAD
     out = {}
@@ -313,13 +314,13 @@ def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, 
         elif labels is None and not (isinstance(name, str) and re.search(SHARED["name"]["pattern"], name)):
             found.add((*path, name), f"bad name {name!r}: names use letters, digits, '-' and '_' and start with a "
                                      f"letter or digit", at=path, force=True)
-        made = (one or parse)(cls, entry, (*path, name), found, base)
+        made = parse(cls, entry, (*path, name), found, base)
         if made is not BAD:
             out[name] = made
     return out
 
 
-def given_fields(cls, value, path: tuple, found: Found, base=None) -> Any:
+def given_fields(cls: Any, value: Any, path: tuple, found: Found, base: Any = None) -> Any:
     """field name -> value (or :data:`BAD`) of the declared class ``cls`` read from the mapping ``value``: the
     keys given parsed, the others from ``base`` or their defaults; :data:`BAD` if ``value`` is no mapping."""
     if _not_mapping(value, path, found):
@@ -353,7 +354,7 @@ def given_fields(cls, value, path: tuple, found: Found, base=None) -> Any:
     return out
 
 
-def reduced_defaults(cls) -> dict[str, Any]:
+def reduced_defaults(cls: type) -> dict[str, Any]:
     """field name -> its value in the reduced form, for every field of ``cls`` declared with ``reduced=``."""
     out = {}
     for f in fields_of(cls):
@@ -371,7 +372,7 @@ def _reduced_objects(cls: type, name: str) -> Any:
     return _field(f, json.loads(f.reduced), (cls.__name__, "reduced", f.key), Found())
 
 
-def _overrides(cls, value, path: tuple, found: Found, full: dict):
+def _overrides(cls: type, value: Any, path: tuple, found: Found, full: dict) -> Any:
     """The keys given under ``reduced:`` of an analysis's section (its reduced form), each read as its field
     declares it, over its declared reduced value or else the full form's (``full``): field name -> value, or
     :data:`BAD`."""
@@ -390,7 +391,7 @@ def _overrides(cls, value, path: tuple, found: Found, full: dict):
     return BAD if any(v is BAD for v in out.values()) else out
 
 
-def _field(f: Field, value, path: tuple, found: Found, base=None):
+def _field(f: Field, value: Any, path: tuple, found: Found, base: Any = None) -> Any:
     """The value of field ``f``: an object (or entries, or a union) as its annotation declares it, a scalar or
     a list against its keywords."""
     origin, args = typing.get_origin(f.tp), typing.get_args(f.tp)
@@ -403,14 +404,14 @@ def _field(f: Field, value, path: tuple, found: Found, base=None):
     return leaf(f.node, value, path, found)
 
 
-def _base_of(base, f: Field):
+def _base_of(base: Any, f: Field) -> Any:
     """The value ``base`` (an instance or a mapping by field name) gives field ``f``, or None."""
     if base is None:
         return None
     return base.get(f.name) if isinstance(base, dict) else getattr(base, f.name, None)
 
 
-def build_object(cls, value, path: tuple, found: Found, base=None):
+def build_object(cls: type, value: Any, path: tuple, found: Found, base: Any = None) -> Any:
     """An instance of the declared class ``cls`` from the mapping ``value`` (:func:`given_fields`), or
     :data:`BAD` when a problem lies at ``path`` or below."""
     n = len(found.lines) + len(found.finite)

@@ -11,7 +11,7 @@ import fractions
 import json
 import math
 import re
-from typing import TypeGuard
+from typing import Any, TypeGuard
 
 _NUM = r"(\d+(\.\d*)?|\.\d+)"
 # Angles: a number, or [sign] [coefficient [*]] pi [/ denominator], e.g. pi, pi/5, 4pi/5, -52pi/100, 4*pi/5.
@@ -35,14 +35,14 @@ class ConfigError(ValueError):
     ``str(err)`` is one line per problem; ``err.errors`` is the list of lines.
     """
 
-    def __init__(self, errors):
+    def __init__(self, errors: str | list[str]) -> None:
         if isinstance(errors, str):
             errors = [errors]
         self.errors = list(errors)
         super().__init__("\n".join(self.errors))
 
 
-def key_path(parts) -> str:
+def key_path(parts: Any) -> str:
     """``["scenes", "tw", "store", "snapshots", 1]`` as ``scenes.tw.store.snapshots[1]``."""
     out = ""
     for p in parts:
@@ -50,7 +50,7 @@ def key_path(parts) -> str:
     return out or "config"
 
 
-def show(value) -> str:
+def show(value: Any) -> str:
     """A short, unambiguous rendering of a value (strings quoted)."""
     if isinstance(value, float):
         text = repr(value)
@@ -69,7 +69,7 @@ TYPE_WORDS = {"integer": "an integer", "number": "a number", "string": "a string
               "array": "a list", "boolean": "true or false", "null": "null"}
 
 
-def bound_text(x) -> str:
+def bound_text(x: Any) -> str:
     """A bound as a message writes it: 1 not 1.0, 0.01 as is ("must be > 1", "must be <= 0.01")."""
     return repr(x) if isinstance(x, float) and not float(x).is_integer() else str(int(x)) if number(x) else str(x)
 
@@ -87,7 +87,7 @@ class Errors:
         self.paths: set[str] = set()
         self._keys: tuple[int, frozenset] | None = None   # a view's filter (:meth:`only`)
 
-    def add(self, path, what: str, value=..., *, force: bool = False) -> None:
+    def add(self, path: Any, what: str, value: Any = ..., *, force: bool = False) -> None:
         if self._keys is not None:
             depth, keys = self._keys
             if not (isinstance(path, list) and len(path) > depth and path[depth] in keys):
@@ -101,7 +101,7 @@ class Errors:
         if line not in self.lines:
             self.lines.append(line)
 
-    def has(self, path) -> bool:
+    def has(self, path: Any) -> bool:
         return (path if isinstance(path, str) else key_path(path)) in self.paths
 
     def within(self, path: list) -> bool:
@@ -109,7 +109,7 @@ class Errors:
         p = key_path(path)
         return any(q == p or q.startswith((p + ".", p + "[")) for q in self.paths)
 
-    def only(self, path: list, keys) -> Errors:
+    def only(self, path: list, keys: Any) -> Errors:
         """A view of these problems that takes only those at one of ``keys`` under ``path`` (a reduced form
         reports the keys it replaces; the others are said with the full form)."""
         view = copy.copy(self)   # the same lines and paths
@@ -121,7 +121,7 @@ class Errors:
             raise ConfigError(self.lines)
 
 
-def parse_angle(value) -> float:
+def parse_angle(value: Any) -> float:
     """An angle in radians from a number or a string 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', '0.3'."""
     if number(value):
         x = float(value)
@@ -147,7 +147,7 @@ def parse_angle(value) -> float:
 
 
 
-def canonical_angle(value):
+def canonical_angle(value: Any) -> Any:
     """One written form per angle value, what a job's parameters carry (so ``pi/5``, ``1pi/5``, ``1*pi/5``,
     `` pi / 5`` and ``0.2pi`` rerun nothing): a multiple of pi as ``[-][k]pi[/m]``, a number written as a
     string as that number. A coefficient and a denominator that are both integers are kept as written
@@ -178,19 +178,19 @@ def canonical_angle(value):
     return text if same else value
 
 
-def angle_or_none(value):
+def angle_or_none(value: Any) -> float | None:
     """An angle in radians, or None if it does not read as one (the schema reports it)."""
     try:
         return parse_angle(value)
     except ConfigError:
         return None
 
-def angle_expr(value) -> str:
+def angle_expr(value: Any) -> str:
     """The text of an angle as given (a number as its repr), kept next to its value in radians."""
     return value if isinstance(value, str) else repr(float(value))
 
 
-def did_you_mean(name, known) -> str:
+def did_you_mean(name: Any, known: Any) -> str:
     """'; did you mean 'x'?' for the closest known name, or ''."""
     import difflib
 

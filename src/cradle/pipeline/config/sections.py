@@ -75,7 +75,7 @@ BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysi
               "docs/analyses.md.")
 
 
-def _beyond_class() -> type:
+def _beyond_class() -> Any:
     """The declared class of the ``beyond:`` section: one key per analysis of the registry (its name), declared
     by the analysis's own spec class and checked by that class's ``check`` (:mod:`.checks`)."""
     from cradle.analyses.registry import ANALYSES
@@ -104,6 +104,6 @@ class Config:
                                        "entries each reads and the times its panels show.",
                                        propertyNames={"description": "A known figure label.",
                                                       "enum": list(KNOWN_FIGURES)})
-    beyond: Beyond = param(Beyond(), schema_doc(Beyond))
+    beyond: Beyond = param(Beyond(), schema_doc(Beyond))   # type: ignore[valid-type]  # a class made at import
     budget: Budget = param(Budget(), schema_doc(Budget))
     movies: Movies = param(Movies(), schema_doc(Movies))
