@@ -27,9 +27,9 @@ import numbers
 from collections.abc import Callable
 from typing import Any
 
-from .parse import Found, leaf
+from .parse import leaf
 from .shared import SHARED
-from .values import ConfigError, show
+from .values import ConfigError, Errors, show
 
 #: the keywords of a shared type an argument can be checked against
 _CHECKABLE = {"description", "type", "enum", "minimum", "exclusiveMinimum", "maximum", "exclusiveMaximum"}
@@ -59,11 +59,11 @@ def checker(shared: str) -> Callable[[str, Any], Any]:
                 x = int(value) if kind == "integer" and isinstance(value, numbers.Integral) else float(value)
             except OverflowError:   # an int beyond the largest float
                 raise ConfigError(f"{arg} = {show(value)}: must be a finite number") from None
-        found = Found()
+        found = Errors()
         x = leaf(node, x, (shared,), found, coerce=False)   # the shared type's name: the words of its bounds
         if found:
-            p = (found.finite or found.lines)[0]
-            raise ConfigError(f"{arg} = {show(value if type(value) in (int, float) else p.value)}: {p.what}")
+            _, _, what, shown, _ = (found.finite or found.held)[0]
+            raise ConfigError(f"{arg} = {show(value if type(value) in (int, float) else shown)}: {what}")
         x = float(x) if kind == "number" else x
         if value != 0 and len(accepted) < 1024:
             try:

@@ -16,7 +16,7 @@ import typing
 from collections.abc import Callable
 from typing import Any, TypeVar
 
-from .parse import BAD, Field, Found, _deref, fields_of, parse, reduced_defaults
+from .parse import BAD, Field, _deref, fields_of, parse, reduced_defaults
 from .shared import SHARED
 from .values import NAME_PATTERN, ConfigError, Errors, canonical_angle
 
@@ -167,8 +167,8 @@ def from_plain(cls: type[T], mapping: Any, where: str | None = None) -> T:
     ``params:``, a file's stored parameters, keyword arguments): every key checked against its declaration
     (:mod:`.parse`), then built. Raises :class:`cradle.specs.values.ConfigError`, one line per problem naming
     ``where`` (default: the class name), the key and the value."""
-    found = Found()
+    found = Errors()
     made = parse(cls, mapping, (where or cls.__name__,), found)
     if found or made is BAD:
-        raise ConfigError(found.report(Errors()).lines)
+        raise ConfigError(found.said().lines)
     return made

@@ -38,39 +38,6 @@ _INT_RE = re.compile(r"^[-+]?\d+$")
 _FLOAT_RE = re.compile(r"^[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?$|^[-+]?(inf|nan)$", re.IGNORECASE)
 
 
-class Problem(NamedTuple):
-    """One problem: ``at`` the key path it is sorted by (the object for a key missing or unknown), ``path`` the
-    key path it names, ``what`` the reason, ``value`` the value (``...``: none shown)."""
-    at: tuple
-    path: tuple
-    what: str
-    value: Any = ...
-    force: bool = False
-
-
-class Found:
-    """The problems of one pass: ``finite`` (a number that is not finite, said first, in the order of the file),
-    ``lines`` (the others, sorted by key path when reported)."""
-
-    def __init__(self) -> None:
-        self.finite: list[Problem] = []
-        self.lines: list[Problem] = []
-
-    def add(self, path: Any, what: str, value: Any = ..., at: Any = None, force: bool = False) -> None:
-        self.lines.append(Problem(tuple(path if at is None else at), tuple(path), what, value, force))
-
-    def __bool__(self) -> bool:
-        return bool(self.finite or self.lines)
-
-    def report(self, out: Errors) -> Errors:
-        """Add every problem to ``out``: the non-finite numbers, then the others by key path."""
-        for p in self.finite:
-            out.add(list(p.path), p.what, p.value)
-        for p in sorted(self.lines, key=lambda p: [str(k) for k in p.at]):
-            out.add(list(p.path), p.what, p.value, force=p.force)
-        return out
-
-
 def _from_string(text: str, kinds: list[str]) -> Any:
     """``text`` read as a value of one of the JSON ``kinds`` (none of them string), or the text itself."""
     s = text.strip()
@@ -88,16 +55,16 @@ def _from_string(text: str, kinds: list[str]) -> Any:
     return text
 
 
-def _finite(value: Any, path: tuple, found: Found) -> bool:
+def _finite(value: Any, path: tuple, found: Errors) -> bool:
     """Whether every float in ``value`` is finite; each one that is not is a problem at its key."""
     if isinstance(value, float) and not math.isfinite(value):
-        found.finite.append(Problem(path, path, "must be a finite number", value))
+        found.finite.append((path, path, "must be a finite number", value, False))
         return False
     items = value.items() if isinstance(value, dict) else enumerate(value) if isinstance(value, list) else ()
     return all([_finite(v, (*path, k), found) for k, v in items])
 
 
-def leaf(node: dict, value: Any, path: tuple, found: Found, coerce: bool = True) -> Any:
+def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True) -> Any:
     """``value`` checked against the keywords of ``node`` (a JSON-Schema subset: type, enum, const, bounds,
     multipleOf, pattern, anyOf, items, minItems, maxItems, uniqueItems), or :data:`BAD`. ``coerce``: a string
     where its key expects no string is read as the number, boolean or null it spells (``--config`` values)."""
@@ -110,73 +77,73 @@ def leaf(node: dict, value: Any, path: tuple, found: Found, coerce: bool = True)
     if "anyOf" in node:
         return _any_of(node, value, path, found)
     if kinds and not any(_JSON_TYPES[k](value) for k in kinds):
-        found.add(path, f"must be {' or '.join(TYPE_WORDS[k] for k in kinds)}", value)
+        found.hold(path, f"must be {' or '.join(TYPE_WORDS[k] for k in kinds)}", value)
         return BAD
-    n, last = len(found.lines), str(path[-1]) if path else ""
+    n, last = len(found), str(path[-1]) if path else ""
     if "enum" in node and not any(value == e and isinstance(value, bool) == isinstance(e, bool) for e in node["enum"]):
-        found.add(path, f"must be one of {', '.join(map(str, node['enum']))}", value)
+        found.hold(path, f"must be one of {', '.join(map(str, node['enum']))}", value)
     if "const" in node and value != node["const"]:
-        found.add(path, f"must be {node['const']!r}", value)
+        found.hold(path, f"must be {node['const']!r}", value)
     if number(value):
         for key in [k for k in node if k in _BOUNDS]:   # in the order declared: the first one said
             word, ok = _BOUNDS[key]
             if not ok(value, node[key]):
-                found.add(path, f"must be {word} {bound_text(node[key])}{HINTS.get((last, key), '')}", value)
+                found.hold(path, f"must be {word} {bound_text(node[key])}{HINTS.get((last, key), '')}", value)
         step = node.get("multipleOf")
         if step and not float(value / step).is_integer():
-            found.add(path, f"{value!r} is not a multiple of {step!r}", value)
+            found.hold(path, f"{value!r} is not a multiple of {step!r}", value)
     if isinstance(value, str) and "pattern" in node and not re.search(node["pattern"], value):
         angle = last == "q" or node["pattern"] == ANGLE_PATTERN
-        found.add(path, f"must be {ANGLE_HINT}" if angle else
+        found.hold(path, f"must be {ANGLE_HINT}" if angle else
                   "must use letters, digits, '-' and '_' and start with a letter or digit", value)
     if isinstance(value, (list, tuple)):
         value = _items(node, list(value), path, found)
     if isinstance(value, dict) and "properties" in node:
         value = _mapping(node, value, path, found)
-    if len(found.lines) > n or value is BAD:
+    if len(found) > n or value is BAD:
         return BAD
     return int(value) if "integer" in kinds and isinstance(value, float) else value   # 50.0 is the integer 50
 
 
-def _items(node: dict, value: list, path: tuple, found: Found) -> Any:
+def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
     lo, hi = node.get("minItems"), node.get("maxItems")
     if lo is not None and lo == hi and len(value) != lo:
-        found.add(path, f"must have exactly {lo} items", value)
+        found.hold(path, f"must have exactly {lo} items", value)
     elif lo is not None and len(value) < lo:
-        found.add(path, "must not be empty" if lo == 1 else f"must have at least {lo} items", value)
+        found.hold(path, "must not be empty" if lo == 1 else f"must have at least {lo} items", value)
     elif hi is not None and len(value) > hi:
-        found.add(path, f"must have at most {hi} items", value)
+        found.hold(path, f"must have at most {hi} items", value)
     if node.get("uniqueItems") and len({repr(v) for v in value}) < len(value):
-        found.add(path, "must not repeat a name", value)
+        found.hold(path, "must not repeat a name", value)
     if isinstance(node.get("items"), dict):
         value = [leaf(node["items"], v, (*path, i), found) for i, v in enumerate(value)]
         return BAD if any(v is BAD for v in value) else value
     return value
 
 
-def _mapping(node: dict, value: dict, path: tuple, found: Found) -> Any:
+def _mapping(node: dict, value: dict, path: tuple, found: Errors) -> Any:
     """A mapping checked against ``properties`` (and ``required``; no other key when ``additionalProperties`` is
     false): the per-method ladders of work-precision."""
     props = node["properties"]
     for key in node.get("required", ()):
         if key not in value:
-            found.add((*path, key), "missing (required key)", at=path)
+            found.hold((*path, key), "missing (required key)", at=path)
     out = {}
     for key, v in value.items():
         if key in props:
             out[key] = leaf(props[key], v, (*path, key), found)
         elif node.get("additionalProperties") is False:
-            found.add((*path, key), f"unknown key (allowed: {', '.join(props)}){did_you_mean(key, props)}", v,
+            found.hold((*path, key), f"unknown key (allowed: {', '.join(props)}){did_you_mean(key, props)}", v,
                       at=path)
     return BAD if any(v is BAD for v in out.values()) else {**value, **out}
 
 
-def _any_of(node: dict, value: Any, path: tuple, found: Found) -> Any:
+def _any_of(node: dict, value: Any, path: tuple, found: Errors) -> Any:
     """The first branch of ``anyOf`` that takes ``value``; else the problems of the first branch whose type fits
     it, or one line naming the types (an angle: the forms it may take)."""
     tried = []
     for sub in node["anyOf"]:
-        mine = Found()
+        mine = Errors()
         got = leaf(sub, value, path, mine, coerce=False)
         if not mine:
             return got
@@ -184,12 +151,12 @@ def _any_of(node: dict, value: Any, path: tuple, found: Found) -> Any:
         tried.append(([kinds] if isinstance(kinds, str) else kinds or [], mine))
     for kinds, mine in tried:
         if any(_JSON_TYPES[k](value) for k in kinds):
-            found.lines += mine.lines
+            found.held += mine.held
             return BAD
     if any(sub.get("pattern") == ANGLE_PATTERN for sub in node["anyOf"]):
-        found.add(path, f"must be {ANGLE_HINT}", value)
+        found.hold(path, f"must be {ANGLE_HINT}", value)
     else:
-        found.add(path, f"must be {' or '.join(dict.fromkeys(TYPE_WORDS[k] for kinds, _ in tried for k in kinds))}",
+        found.hold(path, f"must be {' or '.join(dict.fromkeys(TYPE_WORDS[k] for kinds, _ in tried for k in kinds))}",
                   value)
     return BAD
 
@@ -260,7 +227,7 @@ def _annotation_node(tp: Any) -> dict:
     return {"type": names[tp]} if tp in names else {}
 
 
-def parse(tp: Any, value: Any, path: tuple, found: Found, base: Any = None) -> Any:
+def parse(tp: Any, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
     """``value`` as an instance of the annotation ``tp`` (a declared class, a union of them on ``kind``, a
     mapping of entry names to one, or a scalar or list), every problem added to ``found``; :data:`BAD` if any.
     ``base``: for a declared class, the instance (or mapping of field name -> value) whose values its absent
@@ -275,15 +242,15 @@ def parse(tp: Any, value: Any, path: tuple, found: Found, base: Any = None) -> A
     return leaf(_annotation_node(tp), value, path, found)
 
 
-def _not_mapping(value: Any, path: tuple, found: Found) -> bool:
+def _not_mapping(value: Any, path: tuple, found: Errors) -> bool:
     if isinstance(value, dict):
         return False
     if _finite(value, path, found):
-        found.add(path, "must be a mapping", value)
+        found.hold(path, "must be a mapping", value)
     return True
 
 
-def _union(classes: list, value: Any, path: tuple, found: Found) -> Any:
+def _union(classes: list, value: Any, path: tuple, found: Errors) -> Any:
     """One of ``classes``, picked by its ``kind`` constant (the kinds of initial condition)."""
     if _not_mapping(value, path, found):
         return BAD
@@ -291,16 +258,16 @@ def _union(classes: list, value: Any, path: tuple, found: Found) -> Any:
     kind = value.get("kind")
     if "kind" not in value or not isinstance(kind, str) or kind not in kinds:
         if "kind" not in value:
-            found.add((*path, "kind"), "missing (required key)", at=path)
+            found.hold((*path, "kind"), "missing (required key)", at=path)
         else:
-            found.add((*path, "kind"), f"must be one of {', '.join(kinds)}" if isinstance(kind, str) else
+            found.hold((*path, "kind"), f"must be one of {', '.join(kinds)}" if isinstance(kind, str) else
                       "must be a string", kind)
         _finite(value, path, found)
         return BAD
     return build_object(kinds[kind], value, path, found)
 
 
-def entries(cls: type, value: Any, path: tuple, found: Found, labels: tuple | None = None,
+def entries(cls: type, value: Any, path: tuple, found: Errors, labels: tuple | None = None,
             base: Any = None) -> Any:
     """A mapping of entry names to instances of ``cls``; an entry with problems is left out (they are reported).
     ``labels``: the names allowed (figure labels), else any entry name (letters, digits, '-' and '_');
@@ -310,9 +277,9 @@ def entries(cls: type, value: Any, path: tuple, found: Found, labels: tuple | No
     out = {}
     for name, entry in value.items():
         if labels is not None and name not in labels:
-            found.add((*path, name), f"unknown figure label {name!r} (known labels: {', '.join(labels)})", at=path)
+            found.hold((*path, name), f"unknown figure label {name!r} (known labels: {', '.join(labels)})", at=path)
         elif labels is None and not (isinstance(name, str) and re.search(SHARED["name"]["pattern"], name)):
-            found.add((*path, name), f"bad name {name!r}: names use letters, digits, '-' and '_' and start with a "
+            found.hold((*path, name), f"bad name {name!r}: names use letters, digits, '-' and '_' and start with a "
                                      f"letter or digit", at=path, force=True)
         made = parse(cls, entry, (*path, name), found, base)
         if made is not BAD:
@@ -320,7 +287,7 @@ def entries(cls: type, value: Any, path: tuple, found: Found, labels: tuple | No
     return out
 
 
-def given_fields(cls: Any, value: Any, path: tuple, found: Found, base: Any = None) -> Any:
+def given_fields(cls: Any, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
     """field name -> value (or :data:`BAD`) of the declared class ``cls`` read from the mapping ``value``: the
     keys given parsed, the others from ``base`` or their defaults; :data:`BAD` if ``value`` is no mapping."""
     if _not_mapping(value, path, found):
@@ -332,7 +299,7 @@ def given_fields(cls: Any, value: Any, path: tuple, found: Found, base: Any = No
         f = by_key.get(key)
         if f is None:
             allowed = list(by_key)
-            found.add((*path, key), f"unknown key (allowed: {', '.join(allowed)}){did_you_mean(key, allowed)}", v,
+            found.hold((*path, key), f"unknown key (allowed: {', '.join(allowed)}){did_you_mean(key, allowed)}", v,
                       at=path)
             _finite(v, (*path, key), found)
         elif f.name == "reduced" and f.tp is dict:
@@ -344,13 +311,13 @@ def given_fields(cls: Any, value: Any, path: tuple, found: Found, base: Any = No
         if f.name not in out:
             inner = _base_of(base, f)
             if f.required and inner is None:
-                found.add((*path, f.key), "missing (required key)", at=path)
+                found.hold((*path, f.key), "missing (required key)", at=path)
             out[f.name] = inner if inner is not None else f.make()
     if "reduced" in value and "reduced" in by_key and by_key["reduced"].tp is dict:
         out["reduced"] = _overrides(cls, value["reduced"], (*path, "reduced"), found, out)
     groups = cls.__schema_any_of__
     if groups and not any(all(k in value for k in g) for g in groups):
-        found.add(path, f"needs at least one of {', '.join(k for g in groups for k in g)}", value)
+        found.hold(path, f"needs at least one of {', '.join(k for g in groups for k in g)}", value)
     return out
 
 
@@ -369,10 +336,10 @@ def _reduced_objects(cls: type, name: str) -> Any:
     """The declared reduced mapping of field ``name`` of ``cls`` read as its declared objects (frozen, so read
     once), as the full form's are."""
     f = next(f for f in fields_of(cls) if f.name == name)
-    return _field(f, json.loads(f.reduced), (cls.__name__, "reduced", f.key), Found())
+    return _field(f, json.loads(f.reduced), (cls.__name__, "reduced", f.key), Errors())
 
 
-def _overrides(cls: type, value: Any, path: tuple, found: Found, full: dict) -> Any:
+def _overrides(cls: type, value: Any, path: tuple, found: Errors, full: dict) -> Any:
     """The keys given under ``reduced:`` of an analysis's section (its reduced form), each read as its field
     declares it, over its declared reduced value or else the full form's (``full``): field name -> value, or
     :data:`BAD`."""
@@ -384,14 +351,14 @@ def _overrides(cls: type, value: Any, path: tuple, found: Found, full: dict) -> 
     for key, v in value.items():
         f = known.get(key)
         if f is None:
-            found.add((*path, key), f"unknown key (allowed: {', '.join(known)}){did_you_mean(key, known)}", v,
+            found.hold((*path, key), f"unknown key (allowed: {', '.join(known)}){did_you_mean(key, known)}", v,
                       at=path)
             continue
         out[f.name] = _field(f, v, (*path, key), found, bases.get(f.name, full.get(f.name)))
     return BAD if any(v is BAD for v in out.values()) else out
 
 
-def _field(f: Field, value: Any, path: tuple, found: Found, base: Any = None) -> Any:
+def _field(f: Field, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
     """The value of field ``f``: an object (or entries, or a union) as its annotation declares it, a scalar or
     a list against its keywords."""
     origin, args = typing.get_origin(f.tp), typing.get_args(f.tp)
@@ -411,11 +378,11 @@ def _base_of(base: Any, f: Field) -> Any:
     return base.get(f.name) if isinstance(base, dict) else getattr(base, f.name, None)
 
 
-def build_object(cls: type, value: Any, path: tuple, found: Found, base: Any = None) -> Any:
+def build_object(cls: type, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
     """An instance of the declared class ``cls`` from the mapping ``value`` (:func:`given_fields`), or
     :data:`BAD` when a problem lies at ``path`` or below."""
-    n = len(found.lines) + len(found.finite)
+    n = len(found)
     got = given_fields(cls, value, path, found, base)
-    if got is BAD or len(found.lines) + len(found.finite) > n:
+    if got is BAD or len(found) > n:
         return BAD
     return cls(**got)

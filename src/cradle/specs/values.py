@@ -80,12 +80,32 @@ def number(x: object) -> TypeGuard[int | float]:
 
 
 class Errors:
-    """Problems by key path, in order; at most one kind of complaint per path."""
+    """Problems by key path, one line each, in order; at most one kind of complaint per path.
+
+    The validation pass holds its problems (:meth:`hold`: ``at`` the key path they sort by, the object for a key
+    missing or unknown; ``finite`` those of numbers that are not finite, said first in the order of the file)
+    and :meth:`said` turns them into lines; a check adds its lines in its own order (:meth:`add`).
+    """
 
     def __init__(self) -> None:
         self.lines: list[str] = []
         self.paths: set[str] = set()
+        self.held: list[tuple] = []     # (at, path, what, value, force), sorted by ``at`` when said
+        self.finite: list[tuple] = []   # the same, said first
         self._keys: tuple[int, frozenset] | None = None   # a view's filter (:meth:`only`)
+
+    def __len__(self) -> int:
+        return len(self.lines) + len(self.held) + len(self.finite)
+
+    def hold(self, path: Any, what: str, value: Any = ..., at: Any = None, force: bool = False) -> None:
+        self.held.append((tuple(path if at is None else at), tuple(path), what, value, force))
+
+    def said(self) -> Errors:
+        """These problems with every one held said: the non-finite numbers, then the others by key path."""
+        for _, path, what, value, force in [*self.finite, *sorted(self.held, key=lambda p: [str(k) for k in p[0]])]:
+            self.add(list(path), what, value, force=force)
+        self.held, self.finite = [], []
+        return self
 
     def add(self, path: Any, what: str, value: Any = ..., *, force: bool = False) -> None:
         if self._keys is not None:

@@ -19,7 +19,7 @@ from typing import Any
 
 from cradle.scenes.spec import Defaults, HomoclinicEntry, MapEntry, Scene, in_nc_units
 from cradle.specs.declare import plain
-from cradle.specs.parse import BAD, Found, entries, given_fields, parse
+from cradle.specs.parse import BAD, entries, given_fields, parse
 from cradle.specs.values import ConfigError, Errors, show
 
 from . import checks
@@ -49,7 +49,7 @@ def _base(defaults: Any, cls: type) -> dict[str, Any]:
     return {} if defaults is BAD else {key: getattr(defaults, key) for key in keys}
 
 
-def read(config: Any) -> tuple[dict[str, Any], Found]:
+def read(config: Any) -> tuple[dict[str, Any], Errors]:
     """Every section of ``config`` as its typed value (field name of :class:`.sections.Config` -> value; an
     entry with problems left out), and the problems found."""
     if config is None:
@@ -60,7 +60,7 @@ def read(config: Any) -> tuple[dict[str, Any], Found]:
         # an empty file, or the wrong one: refused here rather than as a traceback while the DAG is built
         raise ConfigError(f"config error: config: no {', '.join(SECTIONS)} entries, nothing to build (keys given: "
                           f"{', '.join(map(str, config)) or 'none'})")
-    found = Found()
+    found = Errors()
     # the sections read entry by entry below are left to their defaults here
     apart = ("defaults", *ENTRIES, "figures", "beyond")
     parts = given_fields(Config, {key: value for key, value in config.items() if key not in apart}, (), found)
@@ -86,7 +86,7 @@ def typed(config: Any) -> Config:
     if key is not None and key in _TYPED:
         return _TYPED[key]
     parts, found = read(config)
-    out = found.report(Errors())
+    out = found.said()
     made = None if out.lines else Config(**{**parts, "beyond": Beyond(**parts["beyond"])})
     if made is not None:  # every job's estimated memory, output and time within budget, before the physical
         from cradle.pipeline import budget  # checks build stored-time arrays (cradle.pipeline.budget)
@@ -121,10 +121,10 @@ def entry(config: dict[str, Any], section: str, name: str) -> Any:
     as validated (:func:`assume_validated`) is read for that entry alone."""
     key = _key(config)
     if key in _TRUSTED and key not in _TYPED and name in (config.get(section) or {}):
-        found, cls = Found(), ENTRIES[section]
+        found, cls = Errors(), ENTRIES[section]
         defaults = parse(Defaults, config.get("defaults", {}), ("defaults",), found)
         one = parse(cls, config[section][name], (section, name), found, _base(defaults, cls))
-        found.report(Errors()).raise_any()
+        found.said().raise_any()
         return in_nc_units(one) if cls is Scene else one
     made = getattr(typed(config), section)
     if name not in made:
