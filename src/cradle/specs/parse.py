@@ -15,6 +15,7 @@ import math
 import re
 import types
 import typing
+from collections.abc import Callable
 from typing import Any, NamedTuple
 
 from .shared import SHARED
@@ -268,10 +269,10 @@ def _union(classes: list, value: Any, path: tuple, found: Errors) -> Any:
 
 
 def entries(cls: type, value: Any, path: tuple, found: Errors, labels: tuple | None = None,
-            base: Any = None) -> Any:
+            base: Any = None, one: Callable[..., Any] | None = None) -> Any:
     """A mapping of entry names to instances of ``cls``; an entry with problems is left out (they are reported).
     ``labels``: the names allowed (figure labels), else any entry name (letters, digits, '-' and '_');
-    ``base``: what each entry leaves out (:func:`parse`)."""
+    ``base``: what each entry leaves out (:func:`parse`); ``one``: what reads one entry (default :func:`parse`)."""
     if _not_mapping(value, path, found):
         return BAD
     out = {}
@@ -281,7 +282,7 @@ def entries(cls: type, value: Any, path: tuple, found: Errors, labels: tuple | N
         elif labels is None and not (isinstance(name, str) and re.search(SHARED["name"]["pattern"], name)):
             found.hold((*path, name), f"bad name {name!r}: names use letters, digits, '-' and '_' and start with a "
                                      f"letter or digit", at=path, force=True)
-        made = parse(cls, entry, (*path, name), found, base)
+        made = (one or parse)(cls, entry, (*path, name), found, base)
         if made is not BAD:
             out[name] = made
     return out

@@ -10,16 +10,18 @@ reported before any work starts, one line per problem, naming the key path and t
 resolved against ``defaults:`` (alpha, max_energy_drift, its integrators' keys over those of ``defaults``) and
 its SI values in (nc)'s units, a homoclinic or map entry with its alpha. Then the jobs' budget
 (:mod:`cradle.pipeline.budget`) and the checks no key expresses alone (:mod:`.checks`) run on the entries
-that passed. The typed config of the last few configs is remembered: the Snakefile resolves one entry per job.
+that passed. The typed config of the last few configs is remembered (the Snakefile resolves one entry per job),
+and so is each entry's typed object (a config validated again with one entry changed reads that entry only).
 """
 from __future__ import annotations
 
 import json
+import pickle
 from typing import Any
 
 from cradle.scenes.spec import Defaults, HomoclinicEntry, MapEntry, Scene, in_nc_units
 from cradle.specs.declare import plain
-from cradle.specs.parse import BAD, entries, given_fields, parse
+from cradle.specs.parse import BAD, entries, fields_of, given_fields, parse
 from cradle.specs.values import ConfigError, Errors, show
 
 from . import checks
@@ -32,6 +34,8 @@ ENTRIES: dict[str, type] = {"map": MapEntry, "homoclinic": HomoclinicEntry, "sce
 _TYPED: dict[str | None, Config] = {}
 #: the configs taken as validated (:func:`assume_validated`), by their canonical JSON
 _TRUSTED: set[str | None] = set()
+#: what :func:`remembered` made of the entries of recent configs, by (class, key path, pickle of value and base)
+_MADE: dict[tuple, tuple] = {}
 
 
 def _key(config: Any) -> str | None:
@@ -49,6 +53,25 @@ def _base(defaults: Any, cls: type) -> dict[str, Any]:
     return {} if defaults is BAD else {key: getattr(defaults, key) for key in keys}
 
 
+def remembered(cls: Any, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
+    """:func:`cradle.specs.parse.parse` of one entry (or section), remembered: a config validated again with one
+    entry changed (the Snakefile's --config overrides, the config fuzz) reads that entry only, and its checks
+    see the same frozen objects (a scene's stored times are worked out once)."""
+    try:
+        key = (cls, path, pickle.dumps((value, base), protocol=pickle.HIGHEST_PROTOCOL))
+    except Exception:  # noqa: BLE001 -- a value pickle refuses is read every time
+        return parse(cls, value, path, found, base)
+    if key not in _MADE:
+        mine = Errors()
+        _MADE[key] = (parse(cls, value, path, mine, base), mine.held, mine.finite)
+        if len(_MADE) > 4096:
+            _MADE.pop(next(iter(_MADE)))
+    made, held, finite = _MADE[key]
+    found.held += held
+    found.finite += finite
+    return made
+
+
 def read(config: Any) -> tuple[dict[str, Any], Errors]:
     """Every section of ``config`` as its typed value (field name of :class:`.sections.Config` -> value; an
     entry with problems left out), and the problems found."""
@@ -64,19 +87,24 @@ def read(config: Any) -> tuple[dict[str, Any], Errors]:
     # the sections read entry by entry below are left to their defaults here
     apart = ("defaults", *ENTRIES, "figures", "beyond")
     parts = given_fields(Config, {key: value for key, value in config.items() if key not in apart}, (), found)
-    defaults = parse(Defaults, config["defaults"], ("defaults",), found) if "defaults" in config else Defaults()
+    defaults = remembered(Defaults, config["defaults"], ("defaults",), found) if "defaults" in config \
+        else Defaults()
     parts["defaults"] = defaults
     for section, cls in ENTRIES.items():
         if section in config:
-            made = entries(cls, config[section], (section,), found, base=_base(defaults, cls))
+            made = entries(cls, config[section], (section,), found, base=_base(defaults, cls), one=remembered)
             parts[section] = {} if made is BAD else made
     parts["scenes"] = {name: in_nc_units(s) for name, s in parts["scenes"].items()}
     if "figures" in config:
-        made = entries(Figure, config["figures"], ("figures",), found, labels=KNOWN_FIGURES)
+        made = entries(Figure, config["figures"], ("figures",), found, labels=KNOWN_FIGURES, one=remembered)
         parts["figures"] = {} if made is BAD else made
-    # each analysis as an entry: one with problems left out
-    beyond = given_fields(Beyond, config.get("beyond", {}), ("beyond",), found)
-    parts["beyond"] = {} if beyond is BAD else {name: spec for name, spec in beyond.items() if spec is not BAD}
+    # each analysis as an entry (one with problems left out); given_fields says what else is wrong
+    beyond, known = config.get("beyond", {}), {f.key: f for f in fields_of(Beyond)}
+    mapping = isinstance(beyond, dict)
+    given_fields(Beyond, {k: v for k, v in beyond.items() if k not in known} if mapping else beyond, ("beyond",), found)
+    made = {f.name: remembered(f.tp, beyond[key], ("beyond", key), found, f.make()) if key in beyond else f.make()
+            for key, f in known.items()} if mapping else {}
+    parts["beyond"] = {name: spec for name, spec in made.items() if spec is not BAD}
     return parts, found
 
 
