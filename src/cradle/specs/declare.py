@@ -31,14 +31,8 @@ ANGLE = _deref({"$ref": "#/$defs/angle"})
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
 
 
-class _Null:
-    """The default of a key whose default is null (filled in as None), unlike an optional key."""
-
-    def __repr__(self) -> str:
-        return "NULL"
-
-
-NULL = _Null()
+#: the default of a key whose default is null (filled in as None), unlike an optional key
+NULL: Any = type("Null", (), {"__repr__": lambda self: "NULL"})()
 
 
 def param(default: Any = REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict | None = None,
@@ -108,8 +102,6 @@ def schema_doc(cls: Any) -> str:
     return cls.__schema_doc__
 
 
-
-
 def plain(value: Any, canonical: bool = True) -> Any:
     """A spec (or any value holding specs) as plain JSON values: declared instances as mappings of their
     config keys, sorted, tuples as lists. What a rule's ``params:`` carry and a file stores; equal
@@ -158,8 +150,6 @@ def _typed(tp: Any, value: Any) -> Any:
     if tp is int and isinstance(value, float) and value.is_integer():
         return int(value)
     return value
-
-
 
 
 def from_plain(cls: type[T], mapping: Any, where: str | None = None) -> T:

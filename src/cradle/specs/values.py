@@ -166,7 +166,6 @@ def parse_angle(value: Any) -> float:
     return x
 
 
-
 def canonical_angle(value: Any) -> Any:
     """One written form per angle value, what a job's parameters carry (so ``pi/5``, ``1pi/5``, ``1*pi/5``,
     `` pi / 5`` and ``0.2pi`` rerun nothing): a multiple of pi as ``[-][k]pi[/m]``, a number written as a

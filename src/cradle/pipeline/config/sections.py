@@ -13,6 +13,7 @@ from __future__ import annotations
 import bisect
 from typing import Any
 
+from cradle.figures import FIGURES
 from cradle.pipeline.budget import Budget
 from cradle.scenes.spec import ENTRY_SECTIONS, Context, Defaults, HomoclinicEntry, MapEntry, Scene, Where
 from cradle.specs.declare import REQUIRED, declared, param, schema_doc
@@ -23,13 +24,7 @@ from .movies import Movies
 SECTIONS = ENTRY_SECTIONS  # the name spaces a figure's `scenes:` list reads from
 
 
-def _known_figures() -> tuple[str, ...]:
-    from cradle.figures import FIGURES
-
-    return tuple(FIGURES)
-
-
-KNOWN_FIGURES = _known_figures()
+KNOWN_FIGURES = tuple(FIGURES)
 
 
 def _holds(times: tuple[float, ...], t: float) -> bool:
@@ -66,8 +61,6 @@ class Figure:
             if not any(_holds(times, t) for times in stored):
                 out.add(where + ["times", i], f"not a stored time of {', '.join(read)} "
                                               f"(add it to a store.snapshots list)", t)
-
-
 
 
 BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysis's name (its module "
