@@ -141,26 +141,30 @@ class Errors:
             raise ConfigError(self.lines)
 
 
+def _written(value: Any) -> tuple[str, str, str, str] | None:
+    """An angle written as text, blanks dropped: (sign, coefficient without its '*', "pi" or "", denominator
+    with its '/'), "" where not written (a number: its text as the coefficient); None for any other value."""
+    if not isinstance(value, str) or not _ANGLE_RE.match(value) or "\n" in value:
+        return None
+    s = re.sub(r"\s+", "", value)
+    coef, pi, denom = s.lstrip("+-").partition("pi")
+    return "-" if s.startswith("-") else "", coef.rstrip("*"), pi, denom
+
+
 def parse_angle(value: Any) -> float:
     """An angle in radians from a number or a string 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', '0.3'."""
+    parts = _written(value)
     if number(value):
         x = float(value)
-    elif isinstance(value, str) and _ANGLE_RE.match(value) and "\n" not in value:
-        s = re.sub(r"\s+", "", value)
-        sign = -1.0 if s.startswith("-") else 1.0
-        s = s.lstrip("+-")
-        if "pi" in s:
-            coef, _, denom = s.partition("pi")
-            coef = coef.rstrip("*")
-            c = float(coef) if coef else 1.0
-            d = float(denom[1:]) if denom else 1.0
-            if d == 0.0:
-                raise ConfigError(f"cannot read {value!r} as an angle: division by zero")
-            x = sign * c * math.pi / d
-        else:
-            x = sign * float(s)
-    else:
+    elif parts is None:
         raise ConfigError(f"cannot read {value!r} as an angle: expected {ANGLE_HINT}")
+    else:
+        sign, coef, pi, denom = parts
+        d = float(denom[1:]) if denom else 1.0
+        if d == 0.0:
+            raise ConfigError(f"cannot read {value!r} as an angle: division by zero")
+        x = (float(coef) if coef else 1.0) * math.pi / d if pi else float(coef)
+        x = -x if sign else x
     if not math.isfinite(x):
         raise ConfigError(f"cannot read {value!r} as an angle: not finite")
     return x
@@ -173,22 +177,20 @@ def canonical_angle(value: Any) -> Any:
     (``52pi/100`` stays: it is the paper's text, which the files record); a decimal one becomes the reduced
     fraction. The form is used only when it gives bit for bit the angle the text gives; a value that is not
     an angle is returned as it is (the schema reports it)."""
-    if not isinstance(value, str) or not _ANGLE_RE.match(value) or "\n" in value:
+    parts = _written(value)
+    if parts is None:
         return value
-    s = re.sub(r"\s+", "", value)
-    sign = "-" if s.startswith("-") else ""
-    s = s.lstrip("+-")
-    if "pi" not in s:
-        return float(s)
-    coef, _, denom = s.partition("pi")
-    coef, denom = coef.rstrip("*") or "1", denom[1:] or "1"
+    sign, coef, pi, denom = parts
+    if not pi:
+        return float(sign + coef)
+    coef, denom = coef or "1", denom[1:] or "1"
     if coef.isdigit() and denom.isdigit():
         k, m = int(coef), int(denom)
-    else:
-        ratio = fractions.Fraction(coef) / fractions.Fraction(denom) if float(denom) else None
-        if ratio is None:
-            return value
+    elif float(denom):
+        ratio = fractions.Fraction(coef) / fractions.Fraction(denom)
         k, m = ratio.numerator, ratio.denominator
+    else:
+        return value
     text = f"{sign}{k if k != 1 else ''}pi{f'/{m}' if m != 1 else ''}"
     try:
         same = parse_angle(text) == parse_angle(value)
@@ -203,6 +205,7 @@ def angle_or_none(value: Any) -> float | None:
         return parse_angle(value)
     except ConfigError:
         return None
+
 
 def angle_expr(value: Any) -> str:
     """The text of an angle as given (a number as its repr), kept next to its value in radians."""
