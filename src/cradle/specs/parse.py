@@ -288,34 +288,40 @@ def entries(cls: type, value: Any, path: tuple, found: Errors, labels: tuple | N
     return out
 
 
-def given_fields(cls: Any, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
+def given_fields(cls: Any, value: Any, path: tuple, found: Errors, base: Any = None, full: Any = None) -> Any:
     """field name -> value (or :data:`BAD`) of the declared class ``cls`` read from the mapping ``value``: the
-    keys given parsed, the others from ``base`` or their defaults; :data:`BAD` if ``value`` is no mapping."""
+    keys given parsed, the others from ``base`` or their defaults; :data:`BAD` if ``value`` is no mapping.
+    ``full``: ``value`` holds the keys under ``reduced:`` of an analysis's section (its reduced form), and
+    ``full`` the full form's values: only the keys given, each over its declared reduced value or else the
+    full form's; :data:`BAD` if one is."""
     if _not_mapping(value, path, found):
         return BAD
-    fields = fields_of(cls)
+    overrides = {f.name: f for f in fields_of(cls) if f.name == "reduced" and f.tp is dict}
+    fields = [f for f in fields_of(cls) if full is None or f.name not in overrides]
     by_key = {f.key: f for f in fields}
+    bases = base if full is None else {**full, **reduced_defaults(cls)}
     out: dict[str, Any] = {}
     for key, v in value.items():
         f = by_key.get(key)
         if f is None:
             allowed = list(by_key)
             found.hold((*path, key), f"unknown key (allowed: {', '.join(allowed)}){did_you_mean(key, allowed)}", v,
-                      at=path)
-            _finite(v, (*path, key), found)
-        elif f.name == "reduced" and f.tp is dict:
-            continue   # read below, over the full form's values
-        else:
-            inner = _base_of(base, f)
+                       at=path)
+            if full is None:
+                _finite(v, (*path, key), found)
+        elif f.name not in overrides:   # ``reduced:`` is read below, over the full form's values
+            inner = _base_of(bases, f)
             out[f.name] = _field(f, v, (*path, key), found, inner if inner is not None else f.make())
+    if full is not None:
+        return BAD if any(v is BAD for v in out.values()) else out
     for f in fields:
         if f.name not in out:
             inner = _base_of(base, f)
             if f.required and inner is None:
                 found.hold((*path, f.key), "missing (required key)", at=path)
             out[f.name] = inner if inner is not None else f.make()
-    if "reduced" in value and "reduced" in by_key and by_key["reduced"].tp is dict:
-        out["reduced"] = _overrides(cls, value["reduced"], (*path, "reduced"), found, out)
+    if "reduced" in value and overrides:
+        out["reduced"] = given_fields(cls, value["reduced"], (*path, "reduced"), found, full=out)
     groups = cls.__schema_any_of__
     if groups and not any(all(k in value for k in g) for g in groups):
         found.hold(path, f"needs at least one of {', '.join(k for g in groups for k in g)}", value)
@@ -338,25 +344,6 @@ def _reduced_objects(cls: type, name: str) -> Any:
     once), as the full form's are."""
     f = next(f for f in fields_of(cls) if f.name == name)
     return _field(f, json.loads(f.reduced), (cls.__name__, "reduced", f.key), Errors())
-
-
-def _overrides(cls: type, value: Any, path: tuple, found: Errors, full: dict) -> Any:
-    """The keys given under ``reduced:`` of an analysis's section (its reduced form), each read as its field
-    declares it, over its declared reduced value or else the full form's (``full``): field name -> value, or
-    :data:`BAD`."""
-    if _not_mapping(value, path, found):
-        return BAD
-    known = {f.key: f for f in fields_of(cls) if f.name != "reduced"}
-    bases = reduced_defaults(cls)
-    out = {}
-    for key, v in value.items():
-        f = known.get(key)
-        if f is None:
-            found.hold((*path, key), f"unknown key (allowed: {', '.join(known)}){did_you_mean(key, known)}", v,
-                      at=path)
-            continue
-        out[f.name] = _field(f, v, (*path, key), found, bases.get(f.name, full.get(f.name)))
-    return BAD if any(v is BAD for v in out.values()) else out
 
 
 def _field(f: Field, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
