@@ -167,7 +167,8 @@ def _any_of(node: dict, value: Any, path: tuple, found: Errors) -> Any:
 class Field(NamedTuple):
     """What the pass reads of one declared field: its name, config key, annotation, keywords (shared types
     merged in) and default (``make()`` gives it: a fresh copy of a list or a mapping), its reduced value, the
-    shared type it refers to, and whether null is a value of its own (not an absent key)."""
+    shared type it refers to, whether null is a value of its own (not an absent key) and whether it holds
+    declared objects (an object, entries or a union)."""
     name: str
     key: str
     tp: Any
@@ -177,6 +178,7 @@ class Field(NamedTuple):
     reduced: Any
     ref: str | None
     nullable: bool
+    nested: bool
 
 
 def declared_class(tp: Any) -> bool:
@@ -196,8 +198,9 @@ def fields_of(cls: type) -> tuple[Field, ...]:
             (lambda d=f.default: None if d is dataclasses.MISSING else d)
         # null is a value of its own where declared as the default, or where the default is not None
         nullable = meta["null_default"] or (type(None) in typing.get_args(tp) and make() is not None)
+        nested = declared_class(tp) or typing.get_origin(tp) is dict or any(map(declared_class, typing.get_args(tp)))
         out.append(Field(f.name, meta["key"] or f.name, tp, node, meta["required"], make, meta.get("reduced"),
-                         meta["ref"], nullable))
+                         meta["ref"], nullable, nested))
     return tuple(out)
 
 
@@ -347,16 +350,12 @@ def _reduced_objects(cls: type, name: str) -> Any:
 
 
 def _field(f: Field, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
-    """The value of field ``f``: an object (or entries, or a union) as its annotation declares it, a scalar or
-    a list against its keywords."""
-    origin, args = typing.get_origin(f.tp), typing.get_args(f.tp)
-    if origin is dict and "properties" in f.node:
-        value = leaf(f.node, value, path, found)
-        if value is BAD:
-            return BAD
-    if declared_class(f.tp) or origin is dict or any(declared_class(a) for a in args):
+    """The value of field ``f``: a scalar or a list against its keywords, an object (or entries, or a union) as
+    its annotation declares it (a mapping whose keywords declare its keys, work-precision's ladders: both)."""
+    if f.nested and "properties" not in f.node:
         return parse(f.tp, value, path, found, base)
-    return leaf(f.node, value, path, found)
+    value = leaf(f.node, value, path, found)
+    return parse(f.tp, value, path, found, base) if f.nested and value is not BAD else value
 
 
 def _base_of(base: Any, f: Field) -> Any:
