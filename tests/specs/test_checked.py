@@ -34,6 +34,10 @@ def refusal(shared, value, arg=None) -> str:
 
 # ----------------------------------------------------------------------------- one line per bad value
 
+RTOL_WHY = (" (a floor the integrator can honour, about 1e2 machine epsilons or more: below, a step's error "
+            "estimate is rounding noise and the steps shrink until they underflow)")
+
+
 @pytest.mark.parametrize("shared, value, line", [
     ("alpha", 1.0, "alpha = 1.0: must be > 1 (Hertz exponent of (vhertz))"),
     ("alpha", 1, "alpha = 1: must be > 1 (Hertz exponent of (vhertz))"),
@@ -67,9 +71,9 @@ def refusal(shared, value, arg=None) -> str:
     ("bc", 0, "bc = 0: must be a string"),
     ("bc", None, "bc = None: must be a string"),
     ("bc", True, "bc = True: must be a string"),
-    ("rtol", 0.0, "rtol = 0.0: must be >= 1e-14"),
-    ("rtol", -1e-10, "rtol = -1e-10: must be >= 1e-14"),
-    ("rtol", 1e-300, "rtol = 1e-300: must be >= 1e-14"),
+    ("rtol", 0.0, f"rtol = 0.0: must be >= 1e-14{RTOL_WHY}"),
+    ("rtol", -1e-10, f"rtol = -1e-10: must be >= 1e-14{RTOL_WHY}"),
+    ("rtol", 1e-300, f"rtol = 1e-300: must be >= 1e-14{RTOL_WHY}"),
     ("rtol", 0.1, "rtol = 0.1: must be <= 0.01"),
     ("rtol", 1e300, "rtol = 1e+300: must be <= 0.01"),
     ("rtol", math.nan, "rtol = nan: must be a finite number"),
