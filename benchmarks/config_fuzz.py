@@ -92,7 +92,7 @@ def main(argv: list[str]) -> int:
              "| slowest cases | outcome | CPU [s] |", "|---|---|---:|"]
     lines += [f"| `{case}` | {outcome} | {took:.3f} |" for took, case, outcome in times[:8]]
     if failures:
-        lines += ["", "Failing cases:", ""] + [f"* `{f}`" for f in failures[:40]]
+        lines += ["", "Failing cases:", ""] + [f"* `{f[:230]}{'...' if len(f) > 230 else ''}`" for f in failures[:40]]
     text = "\n".join(lines)
     print(text)
     publish("extremes.md", "config-fuzz", text)
