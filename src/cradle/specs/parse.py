@@ -51,6 +51,8 @@ _JSON_TYPES = {"integer": lambda v: number(v) and float(v).is_integer() if isins
                "number": number, "string": lambda v: isinstance(v, str), "boolean": lambda v: isinstance(v, bool),
                "null": lambda v: v is None, "array": lambda v: isinstance(v, (list, tuple)),
                "object": lambda v: isinstance(v, dict)}
+#: the keywords of a number declaration that :func:`_numbers_at_once` checks for a whole list
+_PLAIN_NUMBER = frozenset({"type", "description", *_BOUNDS})
 _INT_RE = re.compile(r"^[-+]?\d+$")
 _FLOAT_RE = re.compile(r"^[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?$|^[-+]?(inf|nan)$", re.IGNORECASE)
 
@@ -144,10 +146,22 @@ def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
         return BAD   # its items are not read one by one
     if node.get("uniqueItems") and len({repr(v) for v in value}) < len(value):
         found.hold(path, "must not repeat a name", value)
-    if isinstance(node.get("items"), dict):
+    if isinstance(node.get("items"), dict) and not _numbers_at_once(node["items"], value):
         value = [leaf(node["items"], v, (*path, i), found) for i, v in enumerate(value)]
         return BAD if any(v is BAD for v in value) else value
     return value
+
+
+def _numbers_at_once(node: dict, value: list) -> bool:
+    """Whether ``value`` is a list of finite numbers within the bounds of ``node``, a declaration of a number with
+    bounds alone, checked in one pass over the list (a per-bead list of a long chain: the pass item by item costs
+    a call per item). False: read it item by item, which words each problem."""
+    if node.get("type") != "number" or not set(node) <= _PLAIN_NUMBER or not value:
+        return False
+    if not all(type(v) is float or type(v) is int for v in value) or not all(map(math.isfinite, value)):
+        return False   # a boolean is not a number here; type() tells it from an int
+    lo, hi = min(value), max(value)
+    return all(ok(lo if key.endswith("inimum") else hi, node[key]) for key, (_, ok) in _BOUNDS.items() if key in node)
 
 
 def _mapping(node: dict, value: dict, path: tuple, found: Errors) -> Any:
