@@ -94,7 +94,7 @@ def coupling_fourier(w: waves.Wave, M: int = 2**DEFAULT_GRID_LOG2) -> np.ndarray
 class Hill:
     """The pencil of (bloch) for one wave, truncated to |m| <= L; :meth:`eigenvalues` for any p."""
 
-    def __init__(self, w: waves.Wave, L: int = DEFAULT_HILL_MODES, M: int = 2**DEFAULT_GRID_LOG2):
+    def __init__(self, w: waves.Wave, L: int = DEFAULT_HILL_MODES, M: int = 2**DEFAULT_GRID_LOG2) -> None:
         if M < 8 * (2 * L + 1):
             raise ValueError(f"M = {M} grid points too few for L = {L} Hill modes (need M >= 8 (2L + 1))")
         self.w, self.L, self.M = w, int(L), int(M)

@@ -50,7 +50,7 @@ def _site_energy(x, v, alpha):
     return 0.5 * (v**2 + x**2) + 0.5 * (bond + np.roll(bond, 1, axis=-1))
 
 
-def kicked(b, fl, kicks, t_end, window, alpha, n_out=401):
+def kicked(b, fl, kicks, t_end, window, alpha, n_out: int = 401):
     """Velocity, radiation fraction and energy drift of the breather ``b`` kicked along its pinning mode."""
     from cradle.integrators import integrate_lattice
 
@@ -78,7 +78,7 @@ def kicked(b, fl, kicks, t_end, window, alpha, n_out=401):
     return vel, rad, drift
 
 
-def direct_growth(b, growth_factor, rel_size=1e-6, rtol=1e-13):
+def direct_growth(b, growth_factor, rel_size: float = 1e-6, rtol: float = 1e-13):
     """(rate fitted on the run, Floquet rate ln|mu| / T, t, |c_k|) for the breather ``b`` seeded along the
     eigenvector of its largest multiplier mu (core monodromy of :func:`lattice_breathers.monodromy`).
 

@@ -30,7 +30,7 @@ def breather_frequencies(res, cases) -> list[Row]:
     return rows
 
 
-def half_period(res, scene, site, paper="83", t_exact=569.4, t_approx=565.95, grid=0.05) -> list[Row]:
+def half_period(res, scene, site, paper: str = "83", t_exact: float = 569.4, t_approx: float = 565.95, grid: float = 0.05) -> list[Row]:
     """plot18: periods until exact and approximate are half a period apart.
 
     The precision "approximately 83" carries: the paper compares its profiles with a time shift
@@ -73,7 +73,7 @@ def radiation(res, scene, t, core) -> list[Row]:
     return rows
 
 
-def merging(res, scene, paper_exact="175", paper_dps="350") -> list[Row]:
+def merging(res, scene, paper_exact: str = "175", paper_dps: str = "350") -> list[Row]:
     """loc1: the outcome of the pair in both models (interactions.classify on max_t |x_n| per period) and
     the merging times beside the paper's ~175 (exact) and "twice more" (DpS), and their ratio, under both
     definitions: the final single breather, then the first coalescence of the two humps."""

@@ -86,7 +86,7 @@ def reads(spec: PaperChecks) -> dict[str, Read]:
 class Results:
     """The outputs the table reads, by kind and name, from the Datasets :func:`reads` names."""
 
-    def __init__(self, inputs: dict):
+    def __init__(self, inputs: dict) -> None:
         self.inputs = inputs
 
     def initial(self, scene):
@@ -126,14 +126,14 @@ def amplitudes(res: Results, scenes: dict) -> list[Row]:
     return rows
 
 
-def eps_fft106(res: Results, scene="fft106") -> list[Row]:
+def eps_fft106(res: Results, scene: str = "fft106") -> list[Row]:
     eps = float(res.initial(scene).attrs["eps"])
     return [Row("fft106", "eps = a/2 for q = 4pi/5, omega_tw = 1.1", "3.8e-3", _fmt(eps, 4),
                 agrees_printed("3.8e-3", eps), "(freq), eps = a/2 with R = 1 (attribute eps)",
                 printed_tol("3.8e-3"))]
 
 
-def relative_error(res: Results, scene="tw-weak", bound=0.05) -> list[Row]:
+def relative_error(res: Results, scene: str = "tw-weak", bound: float = 0.05) -> list[Row]:
     m = res.metrics(scene)
     E_end, E_max = float(m["E"].values[-1]), float(m["E"].max())
     t_end = float(m["t"].values[-1])
@@ -144,7 +144,7 @@ def relative_error(res: Results, scene="tw-weak", bound=0.05) -> list[Row]:
                 _fmt(E_max), "agrees" if E_max < bound else "disagrees", how, f"the paper's bound < {bound:g}")]
 
 
-def energy_errors(res: Results, scenes, bound=3.5e-4) -> list[Row]:
+def energy_errors(res: Results, scenes, bound: float = 3.5e-4) -> list[Row]:
     rows = []
     for scene in scenes:
         ex = res.sim(scene, "exact")
@@ -237,7 +237,7 @@ def linear_wave_phase(res: Results, scene, t0) -> list[Row]:
                 "phase of the k = q Fourier component; out of phase > pi/2", "out of phase: gap > pi/2")]
 
 
-def super_exponential(res: Results, name="site") -> list[Row]:
+def super_exponential(res: Results, name: str = "site") -> list[Row]:
     ds = res.homoclinic(name)
     a = np.abs(ds["a"].values)
     c = int(np.argmax(a))
@@ -258,7 +258,7 @@ def super_exponential(res: Results, name="site") -> list[Row]:
                 "|law - alpha| < 1e-6")]
 
 
-def periodic_orbits(alpha=1.5) -> list[Row]:
+def periodic_orbits(alpha: float = 1.5) -> list[Row]:
     rows = []
     for name, period in (("period2", 2), ("period3", 3), ("period4", 4)):
         U = stationary.explicit_periodic_orbits(alpha)[name]

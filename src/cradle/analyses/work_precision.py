@@ -256,7 +256,7 @@ def _kwargs(method: str, value: float, a: float) -> dict:
     return {"rtol": value, "atol": value * a}
 
 
-def run_once(x0, v0, t, alpha, bc, method, value, a, repeat_time=0.0):
+def run_once(x0, v0, t, alpha, bc, method, value, a, repeat_time: float = 0.0):
     """One integration (repeated while short, the fastest wall time kept); returns (solution, wall time)."""
     from cradle.integrators import integrate_lattice
 

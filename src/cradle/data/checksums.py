@@ -25,7 +25,7 @@ ATTR = "checksum_sha256"
 class ChecksumMismatch(ValueError):
     """A variable's stored values do not match its recorded checksum (``name``: its path in the file)."""
 
-    def __init__(self, name: str, scalar: bool):
+    def __init__(self, name: str, scalar: bool) -> None:
         self.name = name
         super().__init__(f"{name}: stored value does not match its checksum" if scalar else
                          f"{name}: stored values do not match their checksum")
@@ -88,7 +88,7 @@ def has_filter(var) -> bool:
     return bool((var.filters() or {}).get("fletcher32"))
 
 
-def variables(group, prefix=""):
+def variables(group, prefix: str = ""):
     """(path, variable) for every variable of ``group`` and its subgroups."""
     for name, var in group.variables.items():
         yield prefix + name, var

@@ -225,7 +225,7 @@ def write_netcdf(ds: xr.Dataset | xr.DataTree, path: str | os.PathLike) -> Path:
     encoding = encoding_of(ds)
     parts: dict[str, str] = {}
 
-    def write(tmp):
+    def write(tmp) -> None:
         ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
         parts.update(_stamped(tmp, stored_digests(ds, encoding)))
 
@@ -240,7 +240,7 @@ def write_datatree(tree: xr.DataTree, path: str | os.PathLike) -> Path:
 
     parts: dict[str, str] = {}
 
-    def write(tmp):
+    def write(tmp) -> None:
         tree.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
         known: dict[str, str] = {}
         for node in tree.subtree:
@@ -458,7 +458,7 @@ def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[
     raises FileNotFoundError or :class:`DamagedOutput` (one line)."""
     import netCDF4
 
-    def bare(group, prefix=""):
+    def bare(group, prefix: str = ""):
         out = [prefix + name for name, var in group.variables.items()
                if checksums.ATTR not in var.ncattrs() and var.size and not checksums.has_filter(var)]
         for gname, sub in group.groups.items():

@@ -63,12 +63,12 @@ E5 = np.ascontiguousarray(_c.E5, dtype=float)
 
 
 @generic
-def rhs(system, y, dy):
+def rhs(system, y, dy) -> None:
     """dy = f(y), the right-hand side of ``system`` at the state y."""
 
 
 @generic
-def monitor(system, y, stats):
+def monitor(system, y, stats) -> None:
     """Update the invariants' drifts in ``stats`` after an accepted step (the system's own layout)."""
 
 
@@ -106,33 +106,33 @@ def speed(sub, c, h):
 
 
 @generic
-def first_stage(tv, Ks, fy, h):
+def first_stage(tv, Ks, fy, h) -> None:
     """Ks[0] = the first stage (fy, weighted by the step variable's dt/du)."""
 
 
 @implements(first_stage, PlainTime)
 @njit(cache=True)
-def _first_plain(tv, Ks, fy, h):
+def _first_plain(tv, Ks, fy, h) -> None:
     for i in range(fy.shape[0]):
         Ks[0, i] = fy[i]
 
 
 @implements(first_stage, SubstitutedTime)
 @njit(cache=True)
-def _first_substituted(tv, Ks, fy, h):
+def _first_substituted(tv, Ks, fy, h) -> None:
     w = speed(tv.sub, 0.0, h)
     for i in range(fy.shape[0]):
         Ks[0, i] = w * fy[i]    # w = 1 exactly on a plain step
 
 
 @generic
-def weigh_stage(tv, Ks, s, c, h):
+def weigh_stage(tv, Ks, s, c, h) -> None:
     """Weigh stage s (evaluated at u = c h) by dt/du."""
 
 
 @implements(weigh_stage, SubstitutedTime)
 @njit(cache=True)
-def _weigh_substituted(tv, Ks, s, c, h):
+def _weigh_substituted(tv, Ks, s, c, h) -> None:
     if tv.sub != PLAIN:
         w = speed(tv.sub, c, h)
         for i in range(Ks.shape[1]):
@@ -140,13 +140,13 @@ def _weigh_substituted(tv, Ks, s, c, h):
 
 
 @generic
-def end_rates(tv, Ks, fnew, h):
+def end_rates(tv, Ks, fnew, h) -> None:
     """fnew = f(ynew) (before the end stage is weighed) and weigh the end stage."""
 
 
 @implements(end_rates, SubstitutedTime)
 @njit(cache=True)
-def _end_substituted(tv, Ks, fnew, h):
+def _end_substituted(tv, Ks, fnew, h) -> None:
     for i in range(fnew.shape[0]):
         fnew[i] = Ks[_NS, i]
     _weigh_substituted(tv, Ks, _NS, 1.0, h)
@@ -201,7 +201,7 @@ def trial(system, tv, y, fy, h, Ks, ys, ynew, fnew, err5, err3, rtol, atol, A, B
 
 
 @generic
-def end_buffer(events, Ks):
+def end_buffer(events, Ks) -> None:
     """The array receiving f(ynew) of a trial: the row Ks[_NS] itself for plain steps (no copy)."""
 
 
@@ -212,7 +212,7 @@ def _buffer_plain(events, Ks):
 
 
 @generic
-def start_step(events):
+def start_step(events) -> None:
     """The variable (PLAIN, SQRT_START) of the next step, which starts now."""
 
 
@@ -223,7 +223,7 @@ def _start_plain(events):
 
 
 @generic
-def time_variable(events, sub):
+def time_variable(events, sub) -> None:
     """The step variable of a trial in ``sub``."""
 
 
@@ -235,7 +235,7 @@ def _time_plain(events, sub):
 
 @generic
 def locate(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks, ys, err5, err3, rtol, atol, A, B,
-           C, E3, E5):
+           C, E3, E5) -> None:
     """After an accepted trial: (retry, h, h_step, clipped, restepped, extra rhs evaluations, extra rejections);
     ``retry``: the step is rejected and a shorter one is tried with the new h."""
 
@@ -248,7 +248,7 @@ def _locate_plain(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipp
 
 
 @generic
-def commit(events, y, restepped):
+def commit(events, y, restepped) -> None:
     """The accepted step's end: the bonds' states and the next step's variable."""
 
 
@@ -341,7 +341,7 @@ def dop853_run(system, events, y, fy, tgrid, k, state, max_steps, rtol, atol, A,
     return k, status
 
 
-def initial_step(fun, y0, f0, t_bound, rtol, atol, order=7):
+def initial_step(fun, y0, f0, t_bound, rtol, atol, order: int = 7):
     """Initial step of scipy's ``select_initial_step`` (Hairer et al., sec. II.4)."""
     scale = atol + np.abs(y0) * rtol
     rms = lambda z: float(np.sqrt(np.mean(z * z)))  # noqa: E731

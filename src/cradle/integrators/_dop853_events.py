@@ -326,7 +326,7 @@ def _locate(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks
 
 @implements(commit, ContactEvents)
 @njit(cache=True)
-def _commit(events, y, restepped):
+def _commit(events, y, restepped) -> None:
     side = events.side
     zend = events.zend
     if restepped:           # the states at the re-step's end

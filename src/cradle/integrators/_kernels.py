@@ -91,7 +91,7 @@ def forces(x, f, F, alpha, mode, periodic):
 
 
 @njit(cache=True)
-def forces_only(x, f, F, alpha, mode, periodic):
+def forces_only(x, f, F, alpha, mode, periodic) -> None:
     """Same as :func:`forces` without the energy/compression reductions.
 
     Without the two reductions the loops vectorise (about 3x faster); used for
@@ -123,7 +123,7 @@ def lattice_energy(x, v, alpha, mode, periodic):
 
 
 @njit(cache=True, inline="always")
-def kick_rotate(x, v, F, b, c, s):
+def kick_rotate(x, v, F, b, c, s) -> None:
     """One stage of an RKN splitting: kick v += b F, then the exact harmonic flow of the on-site
     part over the stage, (x, v) rotated with c = cos(a h) - 1, s = sin(a h) (inlined: hot loop)."""
     for n in range(x.shape[0]):
@@ -145,7 +145,7 @@ def last_kick(x, v, F, b):
 
 
 @njit(cache=True)
-def lattice_rhs(y, dy, f, F, alpha, mode, periodic):
+def lattice_rhs(y, dy, f, F, alpha, mode, periodic) -> None:
     """First-order form of (nc)/(meca), y = [x, v]: dy = [v, -x + F(x)]."""
     N = f.shape[0]
     x = y[:N]
@@ -156,7 +156,7 @@ def lattice_rhs(y, dy, f, F, alpha, mode, periodic):
 
 
 @njit(cache=True)
-def lattice_damped_rhs(y, dy, f, F, alpha, mode, gamma, eta, dscale, periodic):
+def lattice_damped_rhs(y, dy, f, F, alpha, mode, gamma, eta, dscale, periodic) -> None:
     """First-order form of (ncdamped) with its dissipated energy, y = [x, v, s D] (length 2N + 1):
     dy = [v, -x - gamma v + g_n - g_{n-1}, s P], g_n = -max(c^alpha + eta c^(alpha-1) c', 0) on a
     compressed bond (c = -(x_{n+1} - x_n) > 0, c' = -(v_{n+1} - v_n)), P the dissipated power of
@@ -189,7 +189,7 @@ def lattice_damped_rhs(y, dy, f, F, alpha, mode, gamma, eta, dscale, periodic):
 
 
 @njit(cache=True)
-def lattice_jac(y, J, alpha, mode, periodic):
+def lattice_jac(y, J, alpha, mode, periodic) -> None:
     """Dense Jacobian of :func:`lattice_rhs` (for the implicit scipy methods).
 
     With k_n = dV'/dd on bond n (Hertz: alpha c^(alpha-1); smooth:

@@ -177,7 +177,7 @@ def onset_correction(x, v, a, variant: int, n_iter: int, near: float) -> OnsetCo
 
 @implements(start_interval, OnsetCorrection)
 @njit(cache=True)
-def _start_interval(correction, h, bh):
+def _start_interval(correction, h, bh) -> None:
     cnode = correction.cnode
     for i in range(bh.shape[0]):
         correction.qs[i] = bh[i] * math.sin((1.0 - cnode[i]) * h)

@@ -35,22 +35,22 @@ class NoCorrection(NamedTuple):
 
 
 @generic
-def start_interval(correction, h, bh):
+def start_interval(correction, h, bh) -> None:
     """Prepare the steps of length h of an output interval (``bh`` = b_i h)."""
 
 
 @generic
-def start_step(correction):
+def start_step(correction) -> None:
     """The array receiving the bond forces at the step's end."""
 
 
 @generic
-def stage_forces(correction, fend, i):
+def stage_forces(correction, fend, i) -> None:
     """The array receiving the bond forces of kick i (0 < i < m)."""
 
 
 @generic
-def correct(correction, x, v, F, fend, h, e, pot, cmax, alpha, mode, periodic, counts):
+def correct(correction, x, v, F, fend, h, e, pot, cmax, alpha, mode, periodic, counts) -> None:
     """After the closing kick: the corrected (sum (x^2 + v^2), contact energy, largest compression)."""
 
 

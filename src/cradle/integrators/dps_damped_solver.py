@@ -39,7 +39,7 @@ def system(damping: DpsDamping, alpha: float, inv2tau0: float, periodic: bool) -
 class _Balance:
     """The balance residuals of a damped run, measured from A0 (see :class:`DpsSolution`)."""
 
-    def __init__(self, run, damping: DpsDamping):
+    def __init__(self, run, damping: DpsDamping) -> None:
         self.run = run
         self.N = run.N
         self.to_H = -1.0 / ((run.alpha + 1.0) * (0.5 / run.inv2tau0))   # H = -S / ((alpha+1) tau0)
@@ -84,13 +84,13 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, soluti
         SD.dps_rhs(dsys, y, dy)
         return dy
 
-    def store(i, y):
+    def store(i, y) -> None:
         Y[i] = y
         rows[i] = balance.row(y, tau_out[i])
 
     drifts = [0.0, 0.0]   # the largest l2 and energy residuals over every accepted step
 
-    def on_step(y, tau):
+    def on_step(y, tau) -> None:
         r = balance.row(y, tau)
         drifts[0] = max(drifts[0], r[4])
         drifts[1] = max(drifts[1], r[5])

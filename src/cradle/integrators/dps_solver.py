@@ -104,7 +104,7 @@ class DpsSolution:
 
 
 @checked(method="dpsMethod")
-def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", rtol=DEFAULT_RTOL, atol=None,
+def integrate_dps(A0, tau_out, *, alpha, bc: str = "periodic", method: str = "dop853_numba", rtol=DEFAULT_RTOL, atol=None,
                   progress=None, damping: DpsDamping | None = None, sites: DpsSites | None = None) -> DpsSolution:
     """Integrate the DpS equation (dfnls) with tau0 = tau0(alpha) of :mod:`cradle.models.dps`.
 
@@ -176,13 +176,13 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
     Ed = np.empty(T)
     Pd = np.empty(T)
 
-    def store(i, y):
+    def store(i, y) -> None:
         A[i] = y.view(np.complex128)
         l2d[i], Ed[i], Pd[i] = run.drifts(y[None, :])[:, 0]
 
     drifts = [0.0, 0.0]   # the largest l2 and energy drifts over every accepted step
 
-    def on_step(y, tau):
+    def on_step(y, tau) -> None:
         l2, S, _pr, _pi = SD.dps_invariants(y, alpha, periodic)
         drifts[0] = max(drifts[0], abs(l2 - l20) / l2_scale)
         drifts[1] = max(drifts[1], abs(S - S0) / S_scale)
@@ -241,10 +241,10 @@ def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -
         Y = np.empty((T, 2 * N))
         drifts = [0.0, 0.0]
 
-        def store(i, y):
+        def store(i, y) -> None:
             Y[i] = y
 
-        def on_step(y, tau):
+        def on_step(y, tau) -> None:
             l2, H, _pr, _pi = KS.dps_sites_invariants(y, alpha, par, periodic)
             drifts[0] = max(drifts[0], abs(l2 - l20) / l2s)
             drifts[1] = max(drifts[1], abs(H - H0) / Hs)
@@ -264,7 +264,7 @@ class _DpsRun:
     be computed in consecutive blocks of output times (:func:`iter_dps`). alpha, bc, rtol and atol
     come checked (``@checked`` on :func:`integrate_dps` and :func:`iter_dps`)."""
 
-    def __init__(self, A0, tau_out, alpha, bc, rtol, atol, progress):
+    def __init__(self, A0, tau_out, alpha, bc, rtol, atol, progress) -> None:
         self.alpha = alpha
         self.periodic = bc == "periodic"
         A0 = check_state(A0, "A0", dtype=complex)
@@ -312,7 +312,7 @@ class _DpsRun:
 
 
 @checked
-def iter_dps(A0, tau_out, rows: int, *, alpha, bc="periodic", rtol=DEFAULT_RTOL, atol=None, progress=None):
+def iter_dps(A0, tau_out, rows: int, *, alpha, bc: str = "periodic", rtol=DEFAULT_RTOL, atol=None, progress=None):
     """Yield the :class:`DpsSolution` of consecutive blocks of ``rows`` output times of one run of
     :func:`integrate_dps` (method "dop853_numba") from A0 at tau = 0.
 

@@ -63,11 +63,11 @@ def run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic, progress
     scale = abs(H0) if H0 != 0.0 else 1.0
     monitored = [0.0, c0]   # the largest relative energy drift and compression over every accepted step
 
-    def store(i, y):
+    def store(i, y) -> None:
         X[i], V[i] = y[:N], y[N:]
         E[i] = K.lattice_energy(X[i], V[i], alpha, mode, periodic)[0]
 
-    def on_step(y, t):
+    def on_step(y, t) -> None:
         H, cm = K.lattice_energy(y[:N], y[N:], alpha, mode, periodic)
         monitored[0] = max(monitored[0], abs(H - H0) / scale)
         monitored[1] = max(monitored[1], cm)
@@ -91,7 +91,7 @@ def run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic, progress)
     return X, V, E, float(stats[1]), n_steps, nfev, float(stats[2])
 
 
-def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping, progress, onset=True,
+def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping, progress, onset: bool = True,
                       events=None, event_times=None):
     """(X, V, E, D, drift, steps, function evaluations, max compression) of DOP853 in numba on (ncdamped)
     from t = 0: y = [x, v, s D], D(0) = 0 the dissipated energy (dD/dt = P, :mod:`cradle.models.damping`);

@@ -69,7 +69,7 @@ def _rhs_factory(N, m, alpha, periodic):
     return rhs
 
 
-def flow(x0, v0, t_end, alpha, bc="periodic", columns=None, rtol=RTOL):
+def flow(x0, v0, t_end, alpha, bc: str = "periodic", columns=None, rtol=RTOL):
     """Integrate (nc) from (x0, v0) to t_end, with the action integral and, if ``columns`` (2N x m) is
     given, the variational equations along those initial perturbations.
 
@@ -138,8 +138,8 @@ def _eigenbasis(S, sign):
 
 
 @checked
-def newton(x_guess, omega, alpha, bc="periodic", kind=None, centre=None, tol=1e-11, max_iter=12,
-           rtol=RTOL, core_rel=1e-14) -> Breather:
+def newton(x_guess, omega, alpha, bc: str = "periodic", kind=None, centre=None, tol: float = 1e-11, max_iter: int = 12,
+           rtol=RTOL, core_rel: float = 1e-14) -> Breather:
     """Solve the periodic-orbit equations of a time-reversible breather by Newton's method from ``x_guess``.
 
     (nc) is invariant under x_n -> -x_{2c-n} (the reflection S about c with x -> -x: the Hertz force of the
@@ -347,7 +347,7 @@ def dps_start(a_n, omega, alpha) -> np.ndarray:
     return mu ** (1.0 / (alpha - 1.0)) * np.asarray(a_n, float)
 
 
-def continue_family(a_n, omegas, alpha, bc="periodic", kind=None, centre=None, tol=1e-11, log=None, min_step=1e-4):
+def continue_family(a_n, omegas, alpha, bc: str = "periodic", kind=None, centre=None, tol: float = 1e-11, log=None, min_step: float = 1e-4):
     """Exact breathers along ``omegas`` (increasing, > 1), the first from the DpS start, each next predicted
     by the DpS scaling of the previous one. A failed Newton solve halves the step (down to ``min_step``);
     the family is reported to end where it still fails. Returns the list of converged Breathers (an

@@ -159,8 +159,8 @@ class LatticeSolution:
 
 
 @checked(method="latticeMethod")
-def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", dt=None, dt_factor=None,
-                      rtol=None, atol=None, potential="hertz", progress=None, t0=0.0,
+def integrate_lattice(x0, v0, t_out, *, alpha, bc: str = "periodic", method: str = "srkn6c", dt=None, dt_factor=None,
+                      rtol=None, atol=None, potential: str = "hertz", progress=None, t0: float = 0.0,
                       energy0=None, damping=None, terms=None) -> LatticeSolution:
     """Integrate the lattice (nc) (Hertz V0 of (vhertz)) or (meca) (kappa = 1), or the damped (ncdamped).
 

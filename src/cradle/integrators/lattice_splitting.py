@@ -25,7 +25,7 @@ SPLITTING_METHODS = tuple(SPLITTINGS) + tuple(CORRECTED_METHODS)
 ONSET_OPTIONS = (2, 0, _onset.NEAR_DEFAULT)
 
 
-def run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, onset=None, t0=0.0, energy0=None):
+def run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, onset=None, t0: float = 0.0, energy0=None):
     """(X, V, E, drift, steps, force evaluations, max compression, onset corrections) of a splitting run
     from (x0, v0) at ``t0`` with step bound ``dt``; ``onset`` overrides :data:`ONSET_OPTIONS`."""
     corrected = method in CORRECTED_METHODS

@@ -101,7 +101,7 @@ def homogeneous(N: int) -> DpsSites:
     return DpsSites(z, np.ones(N), np.ones(N), z, z)
 
 
-def dps_sites(sites_mass, sites_omega, sites_stiffness, *, alpha: float, eps: float, beta=0.0,
+def dps_sites(sites_mass, sites_omega, sites_stiffness, *, alpha: float, eps: float, beta: float = 0.0,
               pendulum_scale: float = 0.0, delta0: float = 0.0) -> DpsSites:
     """The coefficients of (dpsimperfect) for the lattice (ncimperfect) at amplitude eps.
 

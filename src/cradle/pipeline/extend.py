@@ -45,8 +45,8 @@ def _fields(sol, alpha, bc):
     return {"x": sol.x, "v": sol.v, "force": lattice.bond_forces(sol.x, alpha, bc), "energy": sol.energy}
 
 
-def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c", dt=None, t0=None,
-                   energy0=None, attrs=None, title="exact solution of (nc), streamed", params=None,
+def stream_lattice(x0, v0, t_out, path, *, alpha, bc: str = "periodic", method: str = "srkn6c", dt=None, t0=None,
+                   energy0=None, attrs=None, title: str = "exact solution of (nc), streamed", params=None,
                    chunk_bytes=DEFAULT_CHUNK_BYTES, progress=None, prefix=None) -> dict:
     """Integrate (nc) from (x0, v0) at time t0 (default t_out[0]) to t_out[-1], appending every chunk of
     output times to ``path`` (netCDF, unlimited t; temporary name, renamed at the end).

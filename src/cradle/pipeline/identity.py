@@ -111,7 +111,7 @@ class Expectations:
     :func:`cradle.pipeline.config.read_yaml` gives it; validated once, on first use), each entry resolved
     once (a scene's four files, one resolution); ``source`` names the config in messages (``config.yaml``)."""
 
-    def __init__(self, config: dict, root: str | Path = layout.ROOT, source: str = "config.yaml"):
+    def __init__(self, config: dict, root: str | Path = layout.ROOT, source: str = "config.yaml") -> None:
         self.config, self.root, self.source = config, Path(root), source
         self._specs: dict[tuple[str, str, str], tuple[Any, str | None]] = {}  # (section, name, form) -> spec, hash
 

@@ -76,7 +76,7 @@ def one_line_errors() -> None:
     sys.excepthook = _one_line_excepthook
 
 
-def _one_line_excepthook(exc_type, exc, tb):
+def _one_line_excepthook(exc_type, exc, tb) -> None:
     """A job stopped by a missing, damaged or truncated input says so in one line (log and stderr),
     naming the file and the command that rebuilds it, instead of a traceback through the readers; a
     job whose output does not fit on the disk names the path, the bytes it needed and those free."""
@@ -110,7 +110,7 @@ class Progress:
     time the run starts from (a continued run starts after 0).
     """
 
-    def __init__(self, label: str, every: float = 2.0, estimate=None, t0: float = 0.0):
+    def __init__(self, label: str, every: float = 2.0, estimate=None, t0: float = 0.0) -> None:
         self.label, self.every, self.estimate, self.t0 = label, every, estimate, t0
         self.start = self.last = time.perf_counter()
         self.announced = False

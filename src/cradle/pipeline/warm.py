@@ -206,7 +206,7 @@ def cradle_modules() -> list[str]:
 class Server:
     """The warm process: imports, then forks a child per request (single-threaded: it forks)."""
 
-    def __init__(self, name: str, parent: int, scripts: str):
+    def __init__(self, name: str, parent: int, scripts: str) -> None:
         import selectors
 
         # Ctrl-C reaches the whole process group: like Snakemake's jobs, the warm process and its children

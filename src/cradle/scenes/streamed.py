@@ -55,13 +55,13 @@ class _Peaks:
     """Running peak compression max |f_n| per breather period [t_0 + k period, t_0 + (k+1) period)
     (:func:`cradle.measurements.breathers.peak_compression`'s windows, over the whole run)."""
 
-    def __init__(self, times, period, N):
+    def __init__(self, times, period, N) -> None:
         self.t0, self.period = float(times[0]), float(period)
         self.K = int(np.floor((times[-1] - times[0]) / period + 1e-9))
         self.starts = self.t0 + period * np.arange(self.K)
         self.P = np.full((self.K, N), np.nan)
 
-    def add(self, t, force):
+    def add(self, t, force) -> None:
         k = np.floor((np.asarray(t) - self.t0) / self.period + 1e-9).astype(int)
         f = np.abs(force)
         for i in np.unique(k[k < self.K]):
@@ -72,12 +72,12 @@ class _Peaks:
 class _Run:
     """The exact and DpS runs of one attempt, block by block, and the three files they fill."""
 
-    def __init__(self, spec, init_ds, name, outs, rows, dt, c_assumed):
+    def __init__(self, spec, init_ds, name, outs, rows, dt, c_assumed) -> None:
         self.spec, self.init_ds, self.name, self.outs = spec, init_ds, name, outs
         self.rows, self.dt, self.c_assumed = rows, dt, c_assumed
         self.files: dict[str, Appender] = {}
 
-    def abort(self):
+    def abort(self) -> None:
         for f in self.files.values():
             f.abort()
 

@@ -110,27 +110,27 @@ def imperfect(alpha: float, periodic: bool, sites, par: np.ndarray) -> DpsSystem
 
 
 @generic
-def sites_of(invariants, y):
+def sites_of(invariants, y) -> None:
     """The number of sites N of the state y."""
 
 
 @generic
-def bond_sum(invariants, S, r, s):
+def bond_sum(invariants, S, r, s) -> None:
     """S + |A_{n+1} - A_n|^(alpha+1) where the balance laws need S (r = |A_{n+1} - A_n|, s = W_n / r)."""
 
 
 @generic
-def site_sums(invariants, l2, L2, ar, ai, wr, wi):
+def site_sums(invariants, l2, L2, ar, ai, wr, wi) -> None:
     """(l2 + |A_n|^2, L2 + |W_n - W_{n-1}|^2) where the balance laws need them."""
 
 
 @generic
-def close(invariants, system, dy, N, S, l2, L2):
+def close(invariants, system, dy, N, S, l2, L2) -> None:
     """The entries after the sites: the rates of Q_l2 and Q_S of (dpsdamped)."""
 
 
 @njit(cache=True)
-def dps_rhs(system, y, dy):
+def dps_rhs(system, y, dy) -> None:
     """dA_n/dtau of ``system`` (module docstring) on the real view y."""
     inv = system.invariants
     N = sites_of(inv, y)
@@ -204,7 +204,7 @@ def _site_sums(invariants, l2, L2, ar, ai, wr, wi):
 
 @implements(close, Balanced)
 @njit(cache=True)
-def _close(invariants, system, dy, N, S, l2, L2):
+def _close(invariants, system, dy, N, S, l2, L2) -> None:
     inv2tau0 = system.inv2tau0
     od = system.onsite_damping
     cd = system.contact_damping
@@ -214,7 +214,7 @@ def _close(invariants, system, dy, N, S, l2, L2):
 
 @implements(rhs, DpsSystem)
 @njit(cache=True)
-def _rhs(system, y, dy):
+def _rhs(system, y, dy) -> None:
     dps_rhs(system, y, dy)
 
 
@@ -242,18 +242,18 @@ def dps_invariants(y, alpha, periodic):
 
 
 @generic
-def watch(invariants, system, y, stats):
+def watch(invariants, system, y, stats) -> None:
     """Update the drifts in ``stats`` (the layout of the invariants' class) after an accepted step."""
 
 
 @implements(monitor, DpsSystem)
 @njit(cache=True)
-def _monitor(system, y, stats):
+def _monitor(system, y, stats) -> None:
     watch(system.invariants, system, y, stats)
 
 
 @njit(cache=True)
-def _drifts(stats, l2, S):
+def _drifts(stats, l2, S) -> None:
     """stats[2:4] = the largest relative changes of l2 and S from stats[0:2]."""
     s0 = stats[0] if stats[0] != 0.0 else 1.0
     s1 = stats[1] if stats[1] != 0.0 else 1.0
@@ -263,14 +263,14 @@ def _drifts(stats, l2, S):
 
 @implements(watch, Conserved)
 @njit(cache=True)
-def _watch_conserved(invariants, system, y, stats):
+def _watch_conserved(invariants, system, y, stats) -> None:
     l2, S, _pr, _pi = dps_invariants(y, system.alpha, system.periodic)
     _drifts(stats, l2, S)
 
 
 @implements(watch, Balanced)
 @njit(cache=True)
-def _watch_balanced(invariants, system, y, stats):
+def _watch_balanced(invariants, system, y, stats) -> None:
     n = y.shape[0] - 2
     l2, S, _pr, _pi = dps_invariants(y[:n], system.alpha, system.periodic)
     _drifts(stats, l2 + y[n], S + y[n + 1])
@@ -278,7 +278,7 @@ def _watch_balanced(invariants, system, y, stats):
 
 @implements(watch, Weighted)
 @njit(cache=True)
-def _watch_weighted(invariants, system, y, stats):
+def _watch_weighted(invariants, system, y, stats) -> None:
     l2, H, _pr, _pi = KS.dps_sites_invariants(y, system.alpha, invariants.par, system.periodic)
     s0 = stats[0] if stats[0] != 0.0 else 1.0
     s1 = abs(stats[1]) if stats[1] != 0.0 else 1.0

@@ -73,18 +73,18 @@ class Imperfect(NamedTuple):
 
 
 @generic
-def store_power(dissipation, dy, N, P):
+def store_power(dissipation, dy, N, P) -> None:
     """dy[2N] = s P with damping (nothing without)."""
 
 
 @generic
-def dissipated(dissipation, y, N, stats):
+def dissipated(dissipation, y, N, stats) -> None:
     """D at the state y (0 without damping)."""
 
 
 @implements(store_power, Dissipation)
 @njit(cache=True)
-def _store(dissipation, dy, N, P):
+def _store(dissipation, dy, N, P) -> None:
     dy[2 * N] = dissipation.dscale * P
 
 
@@ -95,7 +95,7 @@ def _dissipated(dissipation, y, N, stats):
 
 
 @njit(cache=True)
-def imperfect_rhs(system, y, dy):
+def imperfect_rhs(system, y, dy) -> None:
     """dy = f(y) of (ncimperfect) (module docstring)."""
     f = system.f
     U = system.U
@@ -155,13 +155,13 @@ def imperfect_energy(system, x, v):
 
 @implements(rhs, Imperfect)
 @njit(cache=True)
-def _rhs(system, y, dy):
+def _rhs(system, y, dy) -> None:
     imperfect_rhs(system, y, dy)
 
 
 @implements(monitor, Imperfect)
 @njit(cache=True)
-def _monitor(system, y, stats):
+def _monitor(system, y, stats) -> None:
     n = y.shape[0] // 2
     H, cm = imperfect_energy(system, y[:n], y[n:2 * n])
     sc = abs(stats[0]) if stats[0] != 0.0 else 1.0

@@ -55,20 +55,20 @@ def damped_lattice(N: int, alpha: float, mode: int, periodic: bool, gamma: float
 
 @implements(rhs, Lattice)
 @njit(cache=True)
-def _rhs(system, y, dy):
+def _rhs(system, y, dy) -> None:
     K.lattice_rhs(y, dy, system.f, system.F, system.alpha, system.mode, system.periodic)
 
 
 @implements(rhs, DampedLattice)
 @njit(cache=True)
-def _damped_rhs(system, y, dy):
+def _damped_rhs(system, y, dy) -> None:
     K.lattice_damped_rhs(y, dy, system.f, system.F, system.alpha, system.mode, system.gamma, system.eta,
                          system.dscale, system.periodic)
 
 
 @implements(monitor, Lattice)
 @njit(cache=True)
-def _monitor(system, y, stats):
+def _monitor(system, y, stats) -> None:
     n = y.shape[0] // 2
     H, cm = K.lattice_energy(y[:n], y[n:], system.alpha, system.mode, system.periodic)
     sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
@@ -79,7 +79,7 @@ def _monitor(system, y, stats):
 
 @implements(monitor, DampedLattice)
 @njit(cache=True)
-def _damped_monitor(system, y, stats):
+def _damped_monitor(system, y, stats) -> None:
     n = (y.shape[0] - 1) // 2
     H, cm = K.lattice_energy(y[:n], y[n:2 * n], system.alpha, system.mode, system.periodic)
     sc = abs(stats[0]) if stats[0] != 0.0 else 1.0

@@ -61,7 +61,7 @@ def _elastic(contact, n, d, c, el, alpha, mode):
 
 @implements(rest, Touching)
 @njit(cache=True)
-def _rest(contact, n):
+def _rest(contact, n) -> float:
     return 0.0
 
 

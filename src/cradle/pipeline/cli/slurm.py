@@ -141,7 +141,7 @@ class _Follower:
     """Prints what is appended to the job's log (from ``offset``: what an older log of that name held is not
     printed again)."""
 
-    def __init__(self, path: Path, offset: int = 0):
+    def __init__(self, path: Path, offset: int = 0) -> None:
         self.path, self.offset = path, offset
 
     def __call__(self) -> None:
