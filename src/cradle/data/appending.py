@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -37,7 +38,7 @@ def chunk_rows(N: int, chunk_bytes: int = DEFAULT_CHUNK_BYTES, arrays: int = 3) 
 class Appender:
     """A netCDF file with an unlimited ``t``, written under a temporary name, renamed on :meth:`commit`."""
 
-    def __init__(self, path, first: xr.Dataset) -> None:
+    def __init__(self, path: str | os.PathLike, first: xr.Dataset) -> None:
         import netCDF4
 
         self.path = Path(path)
@@ -57,7 +58,7 @@ class Appender:
         self.on_t = [k for k in list(first.coords) + list(first.data_vars) if "t" in first[k].dims]
 
     @contextlib.contextmanager
-    def _space(self):
+    def _space(self) -> Iterator[None]:
         """A write that fails on a full file system raises :class:`cradle.data.io.DiskFull` (one line)."""
         try:
             yield
@@ -67,7 +68,7 @@ class Appender:
                 raise
             raise full from None
 
-    def append(self, t, fields: dict) -> None:
+    def append(self, t: np.ndarray, fields: dict) -> None:
         """Append the rows of stored times ``t``: ``fields`` maps each variable on t (but t) to its rows."""
         n0, n1 = self.rows, self.rows + len(t)
         with self._space():

@@ -44,10 +44,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, fields
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store
 from cradle.specs.declare import declared, param
+
+if TYPE_CHECKING:
+    from cradle.pipeline.config.sections import Config
 
 #: float64 arrays of N values written per stored time by a scene's job (exact x, v, force; DpS
 #: A_re, A_im, x, force; metrics spectrum_exact, spectrum_dps)
@@ -109,7 +112,7 @@ class Budget:
                          "and beads.", exclusiveMinimum=0, maximum=1e4)
 
     @classmethod
-    def from_config(cls, cfg) -> Budget:
+    def from_config(cls, cfg: Any) -> Budget:  # a typed Config, its plain mapping, or None: told apart by duck typing
         """The budget of a validated config (typed, or its plain values): its ``budget:`` values over the
         defaults."""
         if isinstance(getattr(cfg, "budget", None), Budget):
@@ -150,11 +153,11 @@ def fmt_duration(s: float) -> str:
     return f"{s:.2g} s"
 
 
-def _g(x) -> str:
+def _g(x: float) -> str:
     return f"{float(x):g}"
 
 
-def _count(n) -> str:
+def _count(n: float) -> str:
     """A count as a message writes it: exact up to a million, else three digits (1e+300, not 301 of them)."""
     return str(int(n)) if n < 1e6 else f"{float(n):.3g}"
 
@@ -183,7 +186,7 @@ def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int) ->
     return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
 
 
-def scene_estimate(cfg, name: str) -> Estimate:
+def scene_estimate(cfg: Config, name: str) -> Estimate:
     """The cost of scene ``name``'s simulate job (initial data, exact and DpS runs, metrics) in a typed
     config (:func:`cradle.pipeline.config.typed`)."""
     return spec_estimate(cfg.scenes[name], name)
@@ -228,7 +231,7 @@ def long_run(spec: Scene, name: str = "?") -> Estimate | None:
     return e if e.seconds >= LONG_RUN_S else None
 
 
-def homoclinic_estimate(cfg, name: str) -> Estimate:
+def homoclinic_estimate(cfg: Config, name: str) -> Estimate:
     """Powell's hybrid method holds a dense N x N Jacobian (and its QR factors): a few N^2 floats."""
     N = cfg.homoclinic[name].N
     return Estimate(f"homoclinic.{name}", f"N = {N}: dense N x N Jacobian",
@@ -236,7 +239,7 @@ def homoclinic_estimate(cfg, name: str) -> Estimate:
                     seconds=1e-9 * N**3 * 50)
 
 
-def map_estimate(cfg, name: str) -> Estimate:
+def map_estimate(cfg: Config, name: str) -> Estimate:
     """Orbits x iterations points of the map G, two floats each."""
     m = cfg.map[name]
     orbits = len(m.starts or ()) + (m.line.count if m.line is not None else 0)
@@ -246,7 +249,7 @@ def map_estimate(cfg, name: str) -> Estimate:
                     seconds=points * 1e-6)
 
 
-def mi_statistics_estimate(cfg, form: str) -> Estimate:
+def mi_statistics_estimate(cfg: Config, form: str) -> Estimate:
     """The largest batch job of one form of ``beyond.mi-statistics`` (the full one at the top of the section,
     ``reduced``): ceil(q values / chunks) x seeds runs of the largest N to t_end, at the scenes' measured
     cost per bead-step of the exact method (a DpS batch costs less: 5.4 s against 7.9 s for the reduced
@@ -265,7 +268,7 @@ def mi_statistics_estimate(cfg, form: str) -> Estimate:
                     disk_bytes=8.0 * 8 * runs * samples, seconds=BASE_SECONDS + runs * one, steps=runs * steps)
 
 
-def work_precision_estimate(cfg, form: str) -> Estimate:
+def work_precision_estimate(cfg: Config, form: str) -> Estimate:
     """The largest batch job of one form of ``beyond.work-precision``: for one scene (its N from ``scenes:``),
     the two reference runs and every setting of every method's ladder to the scene's t_end, each at the
     measured cost per bead-step of its method (a step factor scales its steps; a tolerance is costed at the
@@ -331,7 +334,7 @@ def exceeds(e: Estimate, budget: Budget) -> str | None:
     return None
 
 
-def estimates(cfg) -> list[Estimate]:
+def estimates(cfg: Config) -> list[Estimate]:
     """An :class:`Estimate` for every scene, homoclinic and map entry of a typed config
     (:func:`cradle.pipeline.config.typed`), and for the largest batch job of each form of
     ``beyond.mi-statistics`` and ``beyond.work-precision``."""
@@ -350,7 +353,7 @@ def estimates(cfg) -> list[Estimate]:
     return out
 
 
-def over_budget(cfg) -> list[str]:
+def over_budget(cfg: Config) -> list[str]:
     """One line per job (and for all scenes' output together) that exceeds the budget; empty if all fit."""
     budget = Budget.from_config(cfg)
     lines = []
@@ -368,7 +371,7 @@ def over_budget(cfg) -> list[str]:
     return lines
 
 
-def check(cfg) -> None:
+def check(cfg: Config) -> None:
     """Raise :class:`~cradle.pipeline.config.ConfigError` (one line per job over budget) if any job of
     ``cfg`` (schema-valid, defaults filled) exceeds its budget; called by ``validate`` before its
     physical checks (which build the stored-time arrays), so an oversized store is refused first."""
