@@ -20,6 +20,7 @@ expectation and is not checked.
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -172,7 +173,7 @@ class Expectations:
         except ConfigError:
             return []
 
-    def mismatch(self, path: str | Path, attrs: dict) -> str | None:
+    def mismatch(self, path: str | Path, attrs: Mapping[Any, Any]) -> str | None:
         """The one line saying how the file at ``path`` (its global attributes ``attrs``) differs from what
         the config expects there, or None when it is what is expected (or nothing is)."""
         want, entry = self._expected(path)
@@ -197,7 +198,7 @@ class Expectations:
         config = f" --config {self.source}" if self.source.endswith((".yaml", ".yml")) else ""
         return f"rebuild it: cradle run {want.name} --out {self.root}{config} (see docs/recovery.md)"
 
-    def check(self, path: str | Path, ds: xr.Dataset | xr.DataTree) -> None:
+    def check(self, path: str | Path, ds: xr.Dataset | xr.DataTree | Mapping[str, Any]) -> None:
         """Raise :class:`WrongOutput` if ``ds`` (the Dataset or DataTree read from ``path``, or its global
         attributes) is not what the config expects at ``path``."""
         line = self.mismatch(path, getattr(ds, "attrs", ds))
@@ -250,7 +251,7 @@ def _short(digest: str | None) -> str:
     return f"params {digest[:12]}" if digest else "no params recorded"
 
 
-def stored_identity(attrs: dict, kind: str | None = None) -> Identity:
+def stored_identity(attrs: Mapping[Any, Any], kind: str | None = None) -> Identity:
     """What a file's global attributes say it is (``kind``: the kind its path has, which says where a file
     written before ``cradle_name`` existed states its name: ``scene`` or ``name``)."""
     name = attrs.get("cradle_name") or None
