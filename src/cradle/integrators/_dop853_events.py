@@ -56,7 +56,7 @@ located (Newton leaving the step) keeps the crossing step, counted in ``ev[1]``.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -80,6 +80,9 @@ from cradle.integrators._dop853 import (  # noqa: E402
     trial,
 )
 from cradle.integrators._generic import implements  # noqa: E402
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 OPEN, CLIPPED, PUSHING = 0, 1, 2
 #: an event within EDGE h of a step's start or end is left at that end
@@ -201,13 +204,13 @@ def contact_events(y0, periodic: bool, eta: float, rtol: float, ev, tev) -> Cont
 
 @implements(end_buffer, ContactEvents)
 @njit(cache=True)
-def _buffer(events, Ks):
+def _buffer(events: ContactEvents, Ks: Floats) -> Floats:
     return events.fnew
 
 
 @implements(start_step, ContactEvents)
 @njit(cache=True)
-def _start(events):
+def _start(events: ContactEvents) -> int:
     events.ctl[1] = 0.0     # the accepted step ends at an onset: the next one starts in u
     events.ctl[2] = -1.0    # >= 0: bonds with theta <= this switch at the step's end
     return int(events.ctl[0])
@@ -215,14 +218,16 @@ def _start(events):
 
 @implements(time_variable, ContactEvents)
 @njit(cache=True)
-def _time(events, sub):
+def _time(events: ContactEvents, sub: int) -> NamedTuple:
     return SubstitutedTime(sub)
 
 
 @implements(locate, ContactEvents)
 @njit(cache=True)
-def _locate(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks, ys, err5, err3, rtol, atol,
-            A, B, C, E3, E5):
+def _locate(events: ContactEvents, system: NamedTuple, y: Floats, fy: Floats, ynew: Floats, fnew: Floats, t: float,
+            h: float, h_try: float, hu: float, sub: int, clipped: bool, Ks: Floats, ys: Floats, err5: Floats,
+            err3: Floats, rtol: float, atol: float, A: Floats, B: Floats, C: Floats, E3: Floats,
+            E5: Floats) -> tuple[bool, float, float, bool, bool, int, int]:
     n = y.shape[0]
     N = events.N
     eta = events.eta
@@ -326,7 +331,7 @@ def _locate(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks
 
 @implements(commit, ContactEvents)
 @njit(cache=True)
-def _commit(events, y, restepped) -> None:
+def _commit(events: ContactEvents, y: Floats, restepped: bool) -> None:
     side = events.side
     zend = events.zend
     if restepped:           # the states at the re-step's end

@@ -70,7 +70,7 @@ stage forces (``stage_forces``, ``start_step``), set the quadrature weights per 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -80,6 +80,9 @@ from cradle.integrators._generic import implements
 from cradle.integrators._kernels import _bond
 from cradle.integrators._onset_impulse import cubic, extrema, hermite, integrate_pieces
 from cradle.integrators._splitting import correct, stage_forces, start_interval, start_step
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats, Ints
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -177,7 +180,7 @@ def onset_correction(x, v, a, variant: int, n_iter: int, near: float) -> OnsetCo
 
 @implements(start_interval, OnsetCorrection)
 @njit(cache=True)
-def _start_interval(correction, h, bh) -> None:
+def _start_interval(correction: OnsetCorrection, h: float, bh: Floats) -> None:
     cnode = correction.cnode
     for i in range(bh.shape[0]):
         correction.qs[i] = bh[i] * math.sin((1.0 - cnode[i]) * h)
@@ -187,7 +190,7 @@ def _start_interval(correction, h, bh) -> None:
 
 @implements(start_step, OnsetCorrection)
 @njit(cache=True)
-def _start_step(correction):
+def _start_step(correction: OnsetCorrection) -> Floats:
     m = correction.fs.shape[0] - 1
     rowf = 0 if correction.ctl[0] == m else m
     correction.ctl[1] = rowf
@@ -196,13 +199,14 @@ def _start_step(correction):
 
 @implements(stage_forces, OnsetCorrection)
 @njit(cache=True)
-def _stage_forces(correction, fend, i):
+def _stage_forces(correction: OnsetCorrection, fend: Floats, i: int) -> Floats:
     return correction.fs[i]
 
 
 @implements(correct, OnsetCorrection)
 @njit(cache=True)
-def _correct(correction, x, v, F, fend, h, e, pot, cmax, alpha, mode, periodic, counts):
+def _correct(correction: OnsetCorrection, x: Floats, v: Floats, F: Floats, fend: Floats, h: float, e: float, pot: float,
+             cmax: float, alpha: float, mode: int, periodic: bool, counts: Ints) -> tuple[float, float, float]:
     """The screen and the correction of one step (module docstring)."""
     cmax_all = cmax
     N = x.shape[0]

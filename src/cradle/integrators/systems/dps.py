@@ -21,7 +21,7 @@ Q_l2' = gamma~ sum |A_n|^2 + (Im kappa / tau0) S, Q_S' = (alpha+1) [(Im kappa / 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -48,6 +48,9 @@ from cradle.integrators.terms.slots import (
     dps_S_loss,
     dps_weight,
 )
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -110,22 +113,23 @@ def imperfect(alpha: float, periodic: bool, sites, par: np.ndarray) -> DpsSystem
 
 
 @generic
-def sites_of(invariants, y) -> None:
+def sites_of(invariants: NamedTuple, y: Floats) -> int:
     """The number of sites N of the state y."""
 
 
 @generic
-def bond_sum(invariants, S, r, s) -> None:
+def bond_sum(invariants: NamedTuple, S: float, r: float, s: float) -> float:
     """S + |A_{n+1} - A_n|^(alpha+1) where the balance laws need S (r = |A_{n+1} - A_n|, s = W_n / r)."""
 
 
 @generic
-def site_sums(invariants, l2, L2, ar, ai, wr, wi) -> None:
+def site_sums(invariants: NamedTuple, l2: float, L2: float, ar: float, ai: float, wr: float,
+              wi: float) -> tuple[float, float]:
     """(l2 + |A_n|^2, L2 + |W_n - W_{n-1}|^2) where the balance laws need them."""
 
 
 @generic
-def close(invariants, system, dy, N, S, l2, L2) -> None:
+def close(invariants: NamedTuple, system: NamedTuple, dy: Floats, N: int, S: float, l2: float, L2: float) -> None:
     """The entries after the sites: the rates of Q_l2 and Q_S of (dpsdamped)."""
 
 
@@ -180,31 +184,32 @@ def dps_rhs(system, y, dy) -> None:
 @implements(sites_of, Conserved)
 @implements(sites_of, Weighted)
 @njit(cache=True)
-def _sites(invariants, y):
+def _sites(invariants: Conserved | Weighted, y: Floats) -> int:
     return y.shape[0] // 2
 
 
 @implements(sites_of, Balanced)
 @njit(cache=True)
-def _sites_balanced(invariants, y):
+def _sites_balanced(invariants: Balanced, y: Floats) -> int:
     return (y.shape[0] - 2) // 2
 
 
 @implements(bond_sum, Balanced)
 @njit(cache=True)
-def _bond_sum(invariants, S, r, s):
+def _bond_sum(invariants: Balanced, S: float, r: float, s: float) -> float:
     return S + r * r * s
 
 
 @implements(site_sums, Balanced)
 @njit(cache=True)
-def _site_sums(invariants, l2, L2, ar, ai, wr, wi):
+def _site_sums(invariants: Balanced, l2: float, L2: float, ar: float, ai: float, wr: float,
+               wi: float) -> tuple[float, float]:
     return l2 + (ar * ar + ai * ai), L2 + (wr * wr + wi * wi)
 
 
 @implements(close, Balanced)
 @njit(cache=True)
-def _close(invariants, system, dy, N, S, l2, L2) -> None:
+def _close(invariants: Balanced, system: DpsSystem, dy: Floats, N: int, S: float, l2: float, L2: float) -> None:
     inv2tau0 = system.inv2tau0
     od = system.onsite_damping
     cd = system.contact_damping
@@ -214,7 +219,7 @@ def _close(invariants, system, dy, N, S, l2, L2) -> None:
 
 @implements(rhs, DpsSystem)
 @njit(cache=True)
-def _rhs(system, y, dy) -> None:
+def _rhs(system: DpsSystem, y: Floats, dy: Floats) -> None:
     dps_rhs(system, y, dy)
 
 
@@ -242,13 +247,13 @@ def dps_invariants(y, alpha, periodic):
 
 
 @generic
-def watch(invariants, system, y, stats) -> None:
+def watch(invariants: NamedTuple, system: NamedTuple, y: Floats, stats: Floats) -> None:
     """Update the drifts in ``stats`` (the layout of the invariants' class) after an accepted step."""
 
 
 @implements(monitor, DpsSystem)
 @njit(cache=True)
-def _monitor(system, y, stats) -> None:
+def _monitor(system: DpsSystem, y: Floats, stats: Floats) -> None:
     watch(system.invariants, system, y, stats)
 
 
@@ -263,14 +268,14 @@ def _drifts(stats, l2, S) -> None:
 
 @implements(watch, Conserved)
 @njit(cache=True)
-def _watch_conserved(invariants, system, y, stats) -> None:
+def _watch_conserved(invariants: Conserved, system: DpsSystem, y: Floats, stats: Floats) -> None:
     l2, S, _pr, _pi = dps_invariants(y, system.alpha, system.periodic)
     _drifts(stats, l2, S)
 
 
 @implements(watch, Balanced)
 @njit(cache=True)
-def _watch_balanced(invariants, system, y, stats) -> None:
+def _watch_balanced(invariants: Balanced, system: DpsSystem, y: Floats, stats: Floats) -> None:
     n = y.shape[0] - 2
     l2, S, _pr, _pi = dps_invariants(y[:n], system.alpha, system.periodic)
     _drifts(stats, l2 + y[n], S + y[n + 1])
@@ -278,7 +283,7 @@ def _watch_balanced(invariants, system, y, stats) -> None:
 
 @implements(watch, Weighted)
 @njit(cache=True)
-def _watch_weighted(invariants, system, y, stats) -> None:
+def _watch_weighted(invariants: Weighted, system: DpsSystem, y: Floats, stats: Floats) -> None:
     l2, H, _pr, _pi = KS.dps_sites_invariants(y, system.alpha, invariants.par, system.periodic)
     s0 = stats[0] if stats[0] != 0.0 else 1.0
     s1 = abs(stats[1]) if stats[1] != 0.0 else 1.0

@@ -49,25 +49,25 @@ def g_over_r(r, alpha):
 
 @implements(overlap, Touching)
 @njit(cache=True)
-def _overlap(contact, n, d):
+def _overlap(contact: Touching, n: int, d: float) -> float:
     return 0.0 - d   # not -d: the overlap of a bond at rest is +0, as with a zero delta_n
 
 
 @implements(elastic, Touching)
 @njit(cache=True)
-def _elastic(contact, n, d, c, el, alpha, mode):
+def _elastic(contact: Touching, n: int, d: float, c: float, el: float, alpha: float, mode: int) -> float:
     return -el
 
 
 @implements(rest, Touching)
 @njit(cache=True)
-def _rest(contact, n) -> float:
+def _rest(contact: Touching, n: int) -> float:
     return 0.0
 
 
 @implements(potential, Touching)
 @njit(cache=True)
-def _potential(contact, n, d, c, a1):
+def _potential(contact: Touching, n: int, d: float, c: float, a1: float) -> float:
     return c ** a1 / a1 if c > 0.0 else 0.0
 
 
@@ -77,5 +77,5 @@ class PLaplacian(NamedTuple):
 
 @implements(dps_coupling, PLaplacian)
 @njit(cache=True)
-def _dps_coupling(coupling, r, n, alpha):
+def _dps_coupling(coupling: PLaplacian, r: float, n: int, alpha: float) -> float:
     return g_over_r(r, alpha)

@@ -52,31 +52,31 @@ def build(sites) -> Inhomogeneous:
 
 @implements(stiff, Inhomogeneous)
 @njit(cache=True)
-def _stiff(sites, n, X):
+def _stiff(sites: Inhomogeneous, n: int, X: float) -> float:
     return sites.stiffness[n] * X
 
 
 @implements(per_mass, Inhomogeneous)
 @njit(cache=True)
-def _per_mass(sites, n, X):
+def _per_mass(sites: Inhomogeneous, n: int, X: float) -> float:
     return X * sites.inv_mass[n]
 
 
 @implements(onsite_scale, Inhomogeneous)
 @njit(cache=True)
-def _onsite_scale(sites, n, X):
+def _onsite_scale(sites: Inhomogeneous, n: int, X: float) -> float:
     return sites.omega2[n] * X
 
 
 @implements(mass_times, Inhomogeneous)
 @njit(cache=True)
-def _mass_times(sites, n, X):
+def _mass_times(sites: Inhomogeneous, n: int, X: float) -> float:
     return X * sites.mass[n]
 
 
 @implements(mass_omega2, Inhomogeneous)
 @njit(cache=True)
-def _mass_omega2(sites, n, X):
+def _mass_omega2(sites: Inhomogeneous, n: int, X: float) -> float:
     return (sites.mass[n] * sites.omega2[n]) * X
 
 
@@ -99,25 +99,25 @@ def slow_sites(sites) -> SlowSites | Homogeneous:
 
 @implements(dps_weight, SlowSites)
 @njit(cache=True)
-def _dps_weight(sites, n, s):
+def _dps_weight(sites: SlowSites, n: int, s: float) -> float:
     return sites.weight[n] * s
 
 
 @implements(dps_factor, SlowSites)
 @njit(cache=True)
-def _dps_factor(sites, n, inv2tau0):
+def _dps_factor(sites: SlowSites, n: int, inv2tau0: float) -> float:
     return sites.inv_mass[n] * inv2tau0
 
 
 @implements(dps_detuning, SlowSites)
 @njit(cache=True)
-def _dps_detuning(sites, n, X):
+def _dps_detuning(sites: SlowSites, n: int, X: float) -> float:
     return sites.detuning[n] + X
 
 
 @implements(dps_rotate_detuned, SlowSites)
 @njit(cache=True)
-def _dps_rotate(sites, n, a, b, ar, ai):
+def _dps_rotate(sites: SlowSites, n: int, a: float, b: float, ar: float, ai: float) -> tuple[float, float]:
     rot = sites.detuning[n]
     # i rot (ar + i ai) = -rot ai + i rot ar
     return a - rot * ai, b + rot * ar

@@ -42,13 +42,13 @@ def build(delta, alpha: float) -> Precompressed:
 
 @implements(overlap, Precompressed)
 @njit(cache=True)
-def _overlap(contact, n, d):
+def _overlap(contact: Precompressed, n: int, d: float) -> float:
     return contact.delta[n] - d
 
 
 @implements(elastic, Precompressed)
 @njit(cache=True)
-def _elastic(contact, n, d, c, el, alpha, mode):
+def _elastic(contact: Precompressed, n: int, d: float, c: float, el: float, alpha: float, mode: int) -> float:
     dn = contact.delta[n]
     if dn > 0.0 and mode == 0:
         # delta^(3/2) - c^(3/2) = (delta^3 - c^3)/(delta^(3/2) + c^(3/2)), delta - c = d: no cancellation
@@ -60,13 +60,13 @@ def _elastic(contact, n, d, c, el, alpha, mode):
 
 @implements(rest, Precompressed)
 @njit(cache=True)
-def _rest(contact, n):
+def _rest(contact: Precompressed, n: int) -> float:
     return contact.dpa[n]
 
 
 @implements(potential, Precompressed)
 @njit(cache=True)
-def _potential(contact, n, d, c, a1):
+def _potential(contact: Precompressed, n: int, d: float, c: float, a1: float) -> float:
     dn = contact.delta[n]
     if dn > 0.0:
         dpa = contact.dpa[n]
@@ -102,7 +102,7 @@ def tabulated(par) -> Tabulated:
 
 @implements(dps_coupling, Tabulated)
 @njit(cache=True)
-def _dps_coupling(coupling, r, n, alpha):
+def _dps_coupling(coupling: Tabulated, r: float, n: int, alpha: float) -> float:
     par = coupling.par
     return _g_over_r(r, par[coupling.oe + n], alpha, par, coupling.og1, coupling.og2, coupling.oga, coupling.n1,
                      coupling.n2, coupling.ns)
