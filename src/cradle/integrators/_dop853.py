@@ -32,6 +32,9 @@ from cradle.integrators import _cache
 from cradle.integrators._generic import absent, generic, implements
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
+if TYPE_CHECKING:
     from cradle.integrators._types import Floats, Ints
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
@@ -98,7 +101,7 @@ PLAIN, SQRT_START, SQRT_END = 0, 1, 2
 
 
 @njit(cache=True)
-def speed(sub, c, h):
+def speed(sub: int, c: float, h: float) -> float:
     """dt/du at u = c h of a step of length h in u: t = t0 + u^2 (SQRT_START), t = t0 + h^2 - (h - u)^2
     (SQRT_END), u itself (PLAIN)."""
     if sub == SQRT_START:
@@ -156,7 +159,9 @@ def _end_substituted(tv: SubstitutedTime, Ks: Floats, fnew: Floats, h: float) ->
 
 
 @njit(cache=True)
-def trial(system, tv, y, fy, h, Ks, ys, ynew, fnew, err5, err3, rtol, atol, A, B, C, E3, E5):
+def trial(system: NamedTuple, tv: NamedTuple, y: Floats, fy: Floats, h: float, Ks: Floats, ys: Floats, ynew: Floats,
+          fnew: Floats, err5: Floats, err3: Floats, rtol: float, atol: float, A: Floats, B: Floats, C: Floats,
+          E3: Floats, E5: Floats) -> float:
     """One DOP853 step of length h in the step variable ``tv`` from (y, fy = f(y)): ynew, fnew = f(ynew);
     returns the error norm (accept if < 1)."""
     n = y.shape[0]
@@ -237,7 +242,8 @@ def _time_plain(events: NoEvents, sub: int) -> NamedTuple:
 
 
 @generic
-def locate(events: NamedTuple, system: NamedTuple, y: Floats, fy: Floats, ynew: Floats, fnew: Floats, t: float, h: float,
+def locate(events: NamedTuple, system: NamedTuple, y: Floats, fy: Floats, ynew: Floats, fnew: Floats, t: float,
+           h: float,
            h_try: float, hu: float, sub: int, clipped: bool, Ks: Floats, ys: Floats, err5: Floats, err3: Floats,
            rtol: float, atol: float, A: Floats, B: Floats, C: Floats, E3: Floats,
            E5: Floats) -> tuple[bool, float, float, bool, bool, int, int]:
@@ -260,8 +266,9 @@ def commit(events: NamedTuple, y: Floats, restepped: bool) -> None:
 
 
 @njit(cache=True)
-def dop853_run(system, events, y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, Y, shift, stats,
-               counts):
+def dop853_run(system: NamedTuple, events: NamedTuple, y: Floats, fy: Floats, tgrid: Floats, k: int, state: Floats,
+               max_steps: int, rtol: float, atol: float, A: Floats, B: Floats, C: Floats, E3: Floats, E5: Floats,
+               Y: Floats, shift: int, stats: Floats, counts: Ints) -> tuple[int, int]:
     """Advance ``system`` with DOP853 until tgrid[-1] or ``max_steps`` accepted steps; resumable.
 
     ``y`` (state) and ``fy`` (= f(y), FSAL) are updated in place; ``state`` = [t, h]; interval k ends at
@@ -348,7 +355,8 @@ def dop853_run(system, events, y, fy, tgrid, k, state, max_steps, rtol, atol, A,
     return k, status
 
 
-def initial_step(fun, y0, f0, t_bound, rtol, atol, order: int = 7):
+def initial_step(fun: Callable[[Floats], Floats], y0: Floats, f0: Floats, t_bound: float, rtol: float, atol: float,
+                 order: int = 7) -> float:
     """Initial step of scipy's ``select_initial_step`` (Hairer et al., sec. II.4)."""
     scale = atol + np.abs(y0) * rtol
     rms = lambda z: float(np.sqrt(np.mean(z * z)))  # noqa: E731
@@ -364,8 +372,10 @@ def initial_step(fun, y0, f0, t_bound, rtol, atol, order: int = 7):
     return min(100 * h0, h1, t_bound)
 
 
-def run_dop853(system, y0, t_out, rtol, atol, stats, progress, state=None, counts=None, t_bound=None,
-               events=None):
+def run_dop853(system: NamedTuple, y0: Floats, t_out: Floats, rtol: float, atol: float, stats: Floats,
+               progress: Callable[[float, float], None] | None, state: Floats | None = None,
+               counts: Ints | None = None, t_bound: float | None = None,
+               events: NamedTuple | None = None) -> tuple[Floats, int, int]:
     """Python driver of :func:`dop853_run` on ``system``: returns (Y (T, n), n_steps, n_rhs_evals).
 
     ``stats`` must hold the initial invariants (the system's :func:`monitor` layout) and is
@@ -395,7 +405,7 @@ def run_dop853(system, y0, t_out, rtol, atol, stats, progress, state=None, count
     y = y0.copy()
     fy = np.empty(n)
 
-    def fun(z):
+    def fun(z: Floats) -> Floats:
         dz = np.empty_like(z)
         rhs(system, z, dz)
         return dz

@@ -82,6 +82,9 @@ from cradle.integrators._dop853 import (  # noqa: E402
 from cradle.integrators._generic import implements  # noqa: E402
 
 if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+if TYPE_CHECKING:
     from cradle.integrators._types import Floats
 
 OPEN, CLIPPED, PUSHING = 0, 1, 2
@@ -94,7 +97,7 @@ MAX_NEWTON = 4
 
 
 @njit(cache=True)
-def _state(y, N, b, eta):
+def _state(y: Floats, N: int, b: int, eta: float) -> int:
     """Bond b's (beads b, b+1 mod N) contact state in y: OPEN (c <= 0), CLIPPED (c > 0, c + eta c' <= 0:
     no force) or PUSHING."""
     m = b + 1 if b + 1 < N else 0
@@ -107,7 +110,7 @@ def _state(y, N, b, eta):
 
 
 @njit(cache=True)
-def states(y, periodic, eta):
+def states(y: Floats, periodic: bool, eta: float) -> NDArray[np.int8]:
     """Every bond's contact state (:func:`_state`) in y = [x, v, s D]: the ``side`` a run starts with."""
     N = (y.shape[0] - 1) // 2
     nb = N if periodic else N - 1
@@ -118,7 +121,7 @@ def states(y, periodic, eta):
 
 
 @njit(cache=True)
-def _transition(a, z, eta):
+def _transition(a: int, z: int, eta: float) -> tuple[bool, int]:
     """(q-type, next state) of the first switch of a bond going from state a to state z within a step:
     q-type when q = c + eta c' crosses 0 (a clip or unclip), else c crosses 0 (onset or release)."""
     if a == PUSHING:
@@ -133,7 +136,7 @@ def _transition(a, z, eta):
 
 
 @njit(cache=True)
-def _switch(y, dy, N, b, eta, qtype):
+def _switch(y: Floats, dy: Floats, N: int, b: int, eta: float, qtype: bool) -> tuple[float, float]:
     """(s, ds/dt) of bond b's switching function: q = c + eta c' (qtype) or c, from the state y and its
     derivative dy = f(y)."""
     m = b + 1 if b + 1 < N else 0
@@ -145,7 +148,7 @@ def _switch(y, dy, N, b, eta, qtype):
 
 
 @njit(cache=True)
-def _hermite_root(s0, d0, s1, d1):
+def _hermite_root(s0: float, d0: float, s1: float, d1: float) -> float:
     """theta in [0, 1] where the cubic Hermite with values s0, s1 and slopes d0, d1 (per unit theta)
     changes sign (s0 > 0 != s1 > 0), by bisection."""
     lo, hi = 0.0, 1.0
@@ -190,7 +193,7 @@ class ContactEvents(NamedTuple):
     tev: np.ndarray
 
 
-def contact_events(y0, periodic: bool, eta: float, rtol: float, ev, tev) -> ContactEvents:
+def contact_events(y0: Floats, periodic: bool, eta: float, rtol: float, ev: Floats, tev: Floats) -> ContactEvents:
     """The events of a run from y0 = [x, v, s D] (``ev``: int64, 4 counters; ``tev``: float64 or None)."""
     n = y0.size
     N = (n - 1) // 2

@@ -29,13 +29,13 @@ def generic(stub: Callable) -> Callable:
     ``type(obj)``. Called from Python it does the same (for tests and drivers)."""
     name = f"{stub.__module__}.{stub.__qualname__}"
 
-    def typer(*args):
+    def typer(*args: Any) -> Callable | None:
         impl = _IMPLEMENTATIONS.get((name, getattr(args[0], "instance_class", None)))
         return None if impl is None else impl.py_func
 
     typer.__signature__ = inspect.signature(stub)  # type: ignore[attr-defined]
 
-    def python_call(obj, *args):
+    def python_call(obj: Any, *args: Any) -> Any:
         return _IMPLEMENTATIONS[(name, type(obj))](obj, *args)
 
     python_call.__name__ = stub.__name__
@@ -52,7 +52,7 @@ def implements(operation: Callable, cls: type) -> Callable:
     stub = _STUBS[operation]
     name = f"{stub.__module__}.{stub.__qualname__}"
 
-    def register(fn):
+    def register(fn: Any) -> Any:  # a numba dispatcher
         want = list(inspect.signature(stub).parameters)
         got = list(inspect.signature(fn.py_func).parameters)
         if got != want:   # numba matches an implementation to its operation by the arguments' names

@@ -92,7 +92,8 @@ NEAR_DEFAULT = 4.0 / 27.0
 
 
 @njit(cache=True)
-def _set_bond(bb, x, v, fend, d1, w1, alpha, mode, N):
+def _set_bond(bb: int, x: Floats, v: Floats, fend: Floats, d1: Floats, w1: Floats, alpha: float, mode: int,
+              N: int) -> float:
     """Recompute the end-of-step elongation, rate and force of bond bb; return the change of d*f."""
     nxt = bb + 1 if bb + 1 < N else 0
     old = d1[bb] * fend[bb]
@@ -105,7 +106,8 @@ def _set_bond(bb, x, v, fend, d1, w1, alpha, mode, N):
 
 
 @njit(cache=True)
-def _apply(k, dx, dv, x, v, F, fend, d1, w1, alpha, mode, periodic, N):
+def _apply(k: int, dx: float, dv: float, x: Floats, v: Floats, F: Floats, fend: Floats, d1: Floats, w1: Floats,
+           alpha: float, mode: int, periodic: bool, N: int) -> tuple[float, float]:
     """Add (dx, dv) to bead k and subtract it from bead k+1; update the end forces locally.
 
     Returns (change of sum(x^2 + v^2), change of sum_bonds d f).
@@ -162,7 +164,7 @@ class OnsetCorrection(NamedTuple):
     near: float
 
 
-def onset_correction(x, v, a, variant: int, n_iter: int, near: float) -> OnsetCorrection:
+def onset_correction(x: Floats, v: Floats, a: Floats, variant: int, n_iter: int, near: float) -> OnsetCorrection:
     """The correction's state for a run from (x, v) with the splitting's rotation coefficients ``a``; its row m
     of ``fs`` is where the caller puts the forces at x."""
     N = x.size

@@ -66,8 +66,9 @@ def _start_step(correction: NoCorrection) -> Floats:
 
 
 @njit(cache=True)
-def split_run(correction, x, v, F, tgrid, dt, k, j, max_steps, a, b, alpha, mode, periodic, X, V, E, shift, stats,
-              counts):
+def split_run(correction: NamedTuple, x: Floats, v: Floats, F: Floats, tgrid: Floats, dt: float, k: int, j: int,
+              max_steps: int, a: Floats, b: Floats, alpha: float, mode: int, periodic: bool, X: Floats, V: Floats,
+              E: Floats, shift: int, stats: Floats, counts: Ints) -> tuple[int, int]:
     """Advance (nc)/(meca) with a symplectic BAB splitting (module docstring); resumable.
 
     ``F`` must hold F(x) on entry and holds it on exit (FSAL). The interval [tgrid[k], tgrid[k+1]] is
@@ -78,7 +79,7 @@ def split_run(correction, x, v, F, tgrid, dt, k, j, max_steps, a, b, alpha, mode
     place. Energy is evaluated after every step. Returns the new ``(k, j)``.
     """
     N = x.shape[0]
-    m = a.shape[0]
+    m: int = a.shape[0]
     nint = tgrid.shape[0] - 1
     cs = np.empty(m)
     sn = np.empty(m)

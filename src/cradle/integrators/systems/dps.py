@@ -50,6 +50,9 @@ from cradle.integrators.terms.slots import (
 )
 
 if TYPE_CHECKING:
+    from cradle.models.dps_sites import DpsSites
+
+if TYPE_CHECKING:
     from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
@@ -102,7 +105,7 @@ def damped(alpha: float, periodic: bool, inv2tau0: float, gamma: float, kappa: c
                      onsite_harmonic.Harmonic(), cd, od, Balanced())
 
 
-def imperfect(alpha: float, periodic: bool, sites, par: np.ndarray) -> DpsSystem:
+def imperfect(alpha: float, periodic: bool, sites: DpsSites, par: np.ndarray) -> DpsSystem:
     """(dpsimperfect) of a :class:`cradle.models.dps_sites.DpsSites` and its packed ``par``
     (:func:`cradle.integrators._kernels_dps_sites.pack`)."""
     coupling: NamedTuple = PC.tabulated(par) if sites.compressed else hertz.PLaplacian()
@@ -134,7 +137,7 @@ def close(invariants: NamedTuple, system: NamedTuple, dy: Floats, N: int, S: flo
 
 
 @njit(cache=True)
-def dps_rhs(system, y, dy) -> None:
+def dps_rhs(system: DpsSystem, y: Floats, dy: Floats) -> None:
     """dA_n/dtau of ``system`` (module docstring) on the real view y."""
     inv = system.invariants
     N = sites_of(inv, y)
@@ -224,7 +227,7 @@ def _rhs(system: DpsSystem, y: Floats, dy: Floats) -> None:
 
 
 @njit(cache=True)
-def dps_invariants(y, alpha, periodic):
+def dps_invariants(y: Floats, alpha: float, periodic: bool) -> tuple[float, float, float, float]:
     """(l2, S, Re P, Im P): sum |A_n|^2, sum |A_{n+1}-A_n|^(alpha+1), P = sum A_n.
 
     The DpS Hamiltonian is H = -S / ((alpha + 1) tau0).
@@ -258,7 +261,7 @@ def _monitor(system: DpsSystem, y: Floats, stats: Floats) -> None:
 
 
 @njit(cache=True)
-def _drifts(stats, l2, S) -> None:
+def _drifts(stats: Floats, l2: float, S: float) -> None:
     """stats[2:4] = the largest relative changes of l2 and S from stats[0:2]."""
     s0 = stats[0] if stats[0] != 0.0 else 1.0
     s1 = stats[1] if stats[1] != 0.0 else 1.0

@@ -98,7 +98,7 @@ def _dissipated(dissipation: Dissipation, y: Floats, N: int, stats: Floats) -> f
 
 
 @njit(cache=True)
-def imperfect_rhs(system, y, dy) -> None:
+def imperfect_rhs(system: Imperfect, y: Floats, dy: Floats) -> None:
     """dy = f(y) of (ncimperfect) (module docstring)."""
     f = system.f
     U = system.U
@@ -134,7 +134,7 @@ def imperfect_rhs(system, y, dy) -> None:
 
 
 @njit(cache=True)
-def imperfect_energy(system, x, v):
+def imperfect_energy(system: Imperfect, x: Floats, v: Floats) -> tuple[float, float]:
     """The generalised (ham) of (ncimperfect) at one state, and the largest bond overlap c = delta_n - d."""
     N = x.shape[0]
     u = system.Ue

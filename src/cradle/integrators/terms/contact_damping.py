@@ -38,7 +38,7 @@ class ContactDamping(NamedTuple):
 
 
 @njit(cache=True)
-def damped_bond(c, rate, alpha, eta, mode):
+def damped_bond(c: float, rate: float, alpha: float, eta: float, mode: int) -> tuple[float, float]:
     """(force magnitude max(c^alpha + eta c^(alpha-1) c', 0), elastic part c^alpha) of a compressed touching bond
     c > 0 of (ncdamped), c' = ``rate`` (Hertz modes only: mode 0 is the c sqrt(c) fast path)."""
     if mode == 0:

@@ -28,7 +28,7 @@ class Touching(NamedTuple):
 
 
 @njit(cache=True, inline="always")
-def hertz(c, alpha, mode):
+def hertz(c: float, alpha: float, mode: int) -> tuple[float, float]:
     """(c^alpha, c^(alpha-1)) of an overlap c > 0 (mode 0: the alpha = 3/2 fast path)."""
     if mode == 0:
         r = math.sqrt(c)
@@ -38,7 +38,7 @@ def hertz(c, alpha, mode):
 
 
 @njit(cache=True)
-def g_over_r(r, alpha):
+def g_over_r(r: float, alpha: float) -> float:
     """g(r)/r = r^(alpha-1) for r >= 0 (sqrt fast path for alpha = 3/2; 0 at r = 0): the DpS counterpart."""
     if r <= 0.0:
         return 0.0

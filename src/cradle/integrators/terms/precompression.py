@@ -15,7 +15,7 @@ cancellation: d (delta^2 + delta c + c^2) / (delta^(3/2) + c^(3/2)) for alpha = 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -24,6 +24,9 @@ from cradle.integrators import _cache
 from cradle.integrators._generic import implements
 from cradle.integrators._kernels_dps_sites import _g_over_r
 from cradle.integrators.terms.slots import dps_coupling, elastic, overlap, potential, rest
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -35,7 +38,7 @@ class Precompressed(NamedTuple):
     dpa: np.ndarray
 
 
-def build(delta, alpha: float) -> Precompressed:
+def build(delta: Floats, alpha: float) -> Precompressed:
     delta = np.ascontiguousarray(delta, dtype=float)
     return Precompressed(delta, np.maximum(delta, 0.0) ** alpha)
 
@@ -92,7 +95,7 @@ class Tabulated(NamedTuple):
     ns: int
 
 
-def tabulated(par) -> Tabulated:
+def tabulated(par: Floats) -> Tabulated:
     """The :class:`Tabulated` of a packed ``par``."""
     from cradle.integrators._kernels_dps_sites import _offsets
 
