@@ -243,9 +243,8 @@ def _time_plain(events: NoEvents, sub: int) -> NamedTuple:
 
 @generic
 def locate(events: NamedTuple, system: NamedTuple, y: Floats, fy: Floats, ynew: Floats, fnew: Floats, t: float,
-           h: float,
-           h_try: float, hu: float, sub: int, clipped: bool, Ks: Floats, ys: Floats, err5: Floats, err3: Floats,
-           rtol: float, atol: float, A: Floats, B: Floats, C: Floats, E3: Floats,
+           h: float, h_try: float, hu: float, sub: int, clipped: bool, Ks: Floats, ys: Floats, err5: Floats,
+           err3: Floats, rtol: float, atol: float, A: Floats, B: Floats, C: Floats, E3: Floats,
            E5: Floats) -> tuple[bool, float, float, bool, bool, int, int]:
     """After an accepted trial: (retry, h, h_step, clipped, restepped, extra rhs evaluations, extra rejections);
     ``retry``: the step is rejected and a shorter one is tried with the new h."""

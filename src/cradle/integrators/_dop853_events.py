@@ -85,7 +85,7 @@ if TYPE_CHECKING:
     from numpy.typing import NDArray
 
 if TYPE_CHECKING:
-    from cradle.integrators._types import Floats
+    from cradle.integrators._types import Floats, Ints
 
 OPEN, CLIPPED, PUSHING = 0, 1, 2
 #: an event within EDGE h of a step's start or end is left at that end
@@ -193,7 +193,7 @@ class ContactEvents(NamedTuple):
     tev: np.ndarray
 
 
-def contact_events(y0: Floats, periodic: bool, eta: float, rtol: float, ev: Floats, tev: Floats) -> ContactEvents:
+def contact_events(y0: Floats, periodic: bool, eta: float, rtol: float, ev: Ints, tev: Floats | None) -> ContactEvents:
     """The events of a run from y0 = [x, v, s D] (``ev``: int64, 4 counters; ``tev``: float64 or None)."""
     n = y0.size
     N = (n - 1) // 2

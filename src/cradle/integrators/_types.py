@@ -10,3 +10,7 @@ from numpy.typing import NDArray
 Floats: TypeAlias = NDArray[np.float64]
 #: an int64 array: the counters a kernel adds to
 Ints: TypeAlias = NDArray[np.int64]
+#: what an adaptive run of the lattice returns: (X, V, E, energy drift, steps, rhs evaluations, max compression)
+LatticeRun: TypeAlias = tuple[Floats, Floats, Floats, float, int, int, float]
+#: the same with D, the dissipated energy, after E (a damped or an imperfect run)
+DampedRun: TypeAlias = tuple[Floats, Floats, Floats, Floats, float, int, int, float]
