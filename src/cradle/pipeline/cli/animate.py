@@ -147,5 +147,5 @@ def _desk_toy(args: argparse.Namespace, path: Path, out: Path, spec: MovieSpec, 
     n_models = tree[args.scene].sizes["model"]
     if not 1 <= args.hard < n_models:
         raise CliError(f"--hard {args.hard}: must be a hard-sphere model index of {path}, in [1, {n_models - 1}]")
-    ds, panels = movie_dataset(tree[args.scene], args.hard)
+    ds, panels = movie_dataset(tree[args.scene], args.hard)  # type: ignore[arg-type]  # a group: a DataTree
     return animate(ds, out, spec, gif=gif, gif_spec=gspec, gif_width=gif_width, panels=panels)
