@@ -119,10 +119,10 @@ class Hill:
     def eigenvalues(self, p: float, vectors: Literal[False] = False) -> NDArray[np.complex128]: ...
 
     @overload
-    def eigenvalues(self, p: float, vectors: Literal[True]) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]: ...
-
     def eigenvalues(self, p: float,
-                    vectors: bool = False) -> NDArray[np.complex128] | tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+                    vectors: Literal[True]) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]: ...
+
+    def eigenvalues(self, p: float, vectors: bool = False) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
         """All 2 (2L + 1) eigenvalues lambda of the truncated pencil (and the W-parts of the eigenvectors)."""
         n = self.m.size
         A = self.matrix(p)

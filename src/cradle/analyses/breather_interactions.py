@@ -36,17 +36,13 @@ from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
-    from cradle.models.initial import InitialData
-
-if TYPE_CHECKING:
     from collections.abc import Iterable
 
     import xarray as xr
     from numpy.typing import ArrayLike, NDArray
 
     from cradle.analyses.protocol import Log
-
-if TYPE_CHECKING:
+    from cradle.models.initial import InitialData
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 

@@ -37,7 +37,8 @@ def breather_frequencies(res: Results, cases: Iterable[tuple]) -> list[Row]:
     return rows
 
 
-def half_period(res: Results, scene: str, site: int, paper: str = "83", t_exact: float = 569.4, t_approx: float = 565.95, grid: float = 0.05) -> list[Row]:
+def half_period(res: Results, scene: str, site: int, paper: str = "83", t_exact: float = 569.4,
+                t_approx: float = 565.95, grid: float = 0.05) -> list[Row]:
     """plot18: periods until exact and approximate are half a period apart.
 
     The precision "approximately 83" carries: the paper compares its profiles with a time shift

@@ -40,18 +40,13 @@ from cradle.models.physical import Cradle
 from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
-    import xarray as xr
-    from numpy.typing import ArrayLike
-
-if TYPE_CHECKING:
     from collections.abc import Iterable
 
-    from numpy.typing import NDArray
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
 
     from cradle.analyses.protocol import Log
     from cradle.integrators.lattice_solver import LatticeSolution
-
-if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 

@@ -77,8 +77,6 @@ if TYPE_CHECKING:
     from cradle.integrators.lattice_breathers import Breather
     from cradle.models.inhomogeneity import Inhomogeneity, Sites
     from cradle.models.initial import InitialData
-
-if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 

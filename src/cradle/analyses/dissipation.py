@@ -62,8 +62,6 @@ if TYPE_CHECKING:
     from cradle.integrators.dps_solver import DpsSolution
     from cradle.integrators.lattice_solver import LatticeSolution
     from cradle.models.damping import Damping
-
-if TYPE_CHECKING:
     from cradle.models.initial import InitialData
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors

@@ -45,8 +45,6 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
     from cradle.analyses.protocol import Log
-
-if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -162,8 +160,8 @@ def dps_growth(family: str, alpha: float, N: int) -> float:
 # ----------------------------------------------------------------- one run: the running sup error
 
 
-def sup_error(A0: ArrayLike, eps: float, alpha: float, T_marks: ArrayLike, *, sample_every: float, dt_factor: float, rtol: float,
-              chunk: int = 20000, check: bool = False) -> dict:
+def sup_error(A0: ArrayLike, eps: float, alpha: float, T_marks: ArrayLike, *, sample_every: float, dt_factor: float,
+              rtol: float, chunk: int = 20000, check: bool = False) -> dict:
     """Running sup_t max_n |x - x_app| of one run on a ring, read at t = T eps^(1-alpha), T in ``T_marks``.
 
     The lattice (srkn6c with the fixed step dt = dt_factor 2 pi / omega_max of the initial

@@ -50,10 +50,7 @@ if TYPE_CHECKING:
     from cradle.integrators.lattice_solver import LatticeSolution
     from cradle.models.inhomogeneity import Sites
     from cradle.models.lattice_terms import Terms
-    from cradle.scenes.spec import Scene
-
-if TYPE_CHECKING:
-    from cradle.scenes.spec import Context, Where
+    from cradle.scenes.spec import Context, Scene, Where
     from cradle.specs.values import Errors
 
 #: the three roles, each a scene of config.yaml
@@ -302,7 +299,8 @@ def reference_runs(init_ds: xr.Dataset, exact_ds: xr.Dataset,
     return sol, xd, vd
 
 
-def measure(spec: JkcVariants, t: NDArray[np.float64], energies: dict, N: int, bc: str, kick_site: int, xs: dict, scale: float) -> tuple:
+def measure(spec: JkcVariants, t: NDArray[np.float64], energies: dict, N: int, bc: str, kick_site: int, xs: dict,
+            scale: float) -> tuple:
     """Every measure of one scene (see the module docstring) from its four local-energy maps ``energies``
     (model -> (T, N)) and displacements ``xs`` (model -> (T, N)): (data, coords) of its group."""
     T = t.size

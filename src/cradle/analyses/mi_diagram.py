@@ -31,8 +31,6 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
     from cradle.analyses.protocol import Log
-
-if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -152,7 +150,8 @@ def scaled_growth_rate(q: ArrayLike, p: ArrayLike, alpha: float) -> NDArray[np.f
     return growth_rate(q, p, alpha, 1.0) * dps.tau0(alpha)
 
 
-def growth_map(alpha: float, n_q: int, n_p: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+def growth_map(alpha: float, n_q: int,
+               n_p: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """q in [0, pi] (n_q points), p in [-pi, pi] (n_p points), scaled growth rate (n_q, n_p)."""
     q = np.linspace(0.0, np.pi, n_q)
     p = np.linspace(-np.pi, np.pi, n_p)

@@ -59,10 +59,7 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
     from cradle.analyses.protocol import Log
-    from cradle.scenes.spec import Scene
-
-if TYPE_CHECKING:
-    from cradle.scenes.spec import Context, Where
+    from cradle.scenes.spec import Context, Scene, Where
     from cradle.specs.values import Errors
 
 #: the growth-rate diagram of the mi-growth figure: max_p of the scaled linear DpS rate on THEORY_N_Q
@@ -173,7 +170,8 @@ def growth_window(t: NDArray[np.float64], y: NDArray[np.float64], saturation: fl
     return i_a, i_b, saturated, full
 
 
-def measure(t: NDArray[np.float64], S: NDArray[np.float64], exclude_m: Iterable[int] = (), saturation: float = 0.2, decades: float = 1.0, r2_min: float = 0.95) -> dict:
+def measure(t: NDArray[np.float64], S: NDArray[np.float64], exclude_m: Iterable[int] = (), saturation: float = 0.2,
+            decades: float = 1.0, r2_min: float = 0.95) -> dict:
     """The growth measurement of the module docstring on a pair spectrum S (T, M) sampled at t."""
     t = np.asarray(t, dtype=float)
     S = np.array(S, dtype=float)

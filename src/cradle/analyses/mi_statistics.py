@@ -55,15 +55,10 @@ from cradle.specs.values import INTEGER_TOL, store_times
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-if TYPE_CHECKING:
-    from collections.abc import Iterable
-
     import xarray as xr
     from numpy.typing import ArrayLike, NDArray
 
     from cradle.analyses.protocol import Log
-
-if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 

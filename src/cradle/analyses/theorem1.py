@@ -31,8 +31,6 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
     from cradle.analyses.protocol import Log
-
-if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 

@@ -61,8 +61,6 @@ if TYPE_CHECKING:
 
     from cradle.analyses.protocol import Log
     from cradle.models.damping import Damping
-
-if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 

@@ -62,14 +62,11 @@ from cradle.specs.values import MAX_T_END, ConfigError, did_you_mean
 if TYPE_CHECKING:
     from collections.abc import Iterable
 
+    import xarray as xr
     from numpy.typing import ArrayLike, NDArray
 
     from cradle.analyses.protocol import Log
     from cradle.integrators.lattice_solver import LatticeSolution
-
-if TYPE_CHECKING:
-    import xarray as xr
-
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 

@@ -74,7 +74,8 @@ def array_digest(values: np.ndarray) -> str:
     return checksums.array_digest(values, new=xxhash.xxh3_128)
 
 
-def items(nc: netCDF4.Dataset, prefix: str = "", block_bytes: int = 64 * 2**20, known: dict[str, str] | None = None) -> dict[str, str]:
+def items(nc: netCDF4.Dataset, prefix: str = "", block_bytes: int = 64 * 2**20,
+          known: dict[str, str] | None = None) -> dict[str, str]:
     """Every thing a reader uses of the open ``netCDF4.Dataset`` ``nc`` (and its groups), each with its digest:
     ``@name`` a global attribute, ``dim:name`` a dimension's size, ``var`` a variable's values (read raw, so
     HDF5 checks every Fletcher-32 checksum on the way), ``var@name`` a variable's attribute; a group's prefixed
@@ -107,7 +108,8 @@ def read_record(path: str | os.PathLike) -> dict | None:
     return record if isinstance(record, dict) and record.get("format") == FORMAT else None
 
 
-def record(path: str | os.PathLike, source: str | os.PathLike | None = None, known: dict[str, str] | None = None, parts: dict[str, str] | None = None) -> Path:
+def record(path: str | os.PathLike, source: str | os.PathLike | None = None, known: dict[str, str] | None = None,
+           parts: dict[str, str] | None = None) -> Path:
     """Write the sidecar of ``path`` from the file ``source`` (default ``path``; a writer's finished temporary file),
     atomically, naming the digests recorded before as ``previous``. Call it before renaming ``source`` to ``path``.
     ``known``: the values' digests the writer computed from memory (:func:`items`); ``parts``: the :func:`items` of

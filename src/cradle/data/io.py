@@ -103,8 +103,8 @@ def _table(data: dict, coords: dict | None, variables: dict | None) -> xr.Datase
 GLOBAL_KEYS = ("title", "Conventions", "source", "references", "history") + _PROVENANCE_KEYS
 
 
-def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = None, title: str = "",
-                 params: Any = None, variables: dict | None = None, identity: tuple[str, str] | None = None) -> xr.Dataset:
+def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = None, title: str = "", params: Any = None,
+                 variables: dict | None = None, identity: tuple[str, str] | None = None) -> xr.Dataset:
     """A Dataset from ``{name: array}`` with declared dims, long names and units.
 
     ``coords`` maps coordinate names to 1-D arrays (also declared). ``attrs``

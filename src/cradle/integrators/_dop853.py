@@ -34,7 +34,6 @@ from cradle.integrators._generic import absent, generic, implements
 if TYPE_CHECKING:
     from collections.abc import Callable
 
-if TYPE_CHECKING:
     from cradle.integrators._types import Floats, Ints
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating

@@ -84,7 +84,6 @@ from cradle.integrators._generic import implements  # noqa: E402
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-if TYPE_CHECKING:
     from cradle.integrators._types import Floats, Ints
 
 OPEN, CLIPPED, PUSHING = 0, 1, 2

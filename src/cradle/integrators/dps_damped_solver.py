@@ -106,8 +106,8 @@ def integrate_damped(run: _DpsRun, damping: DpsDamping, method: str, wall0: floa
     return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
 
 
-def _solution(solution: type[DpsSolution], Y: Floats, rows: Floats, max_l2: float, max_E: float, n_steps: int, nfev: int,
-              run: _DpsRun, damping: DpsDamping, method: str, wall0: float) -> DpsSolution:
+def _solution(solution: type[DpsSolution], Y: Floats, rows: Floats, max_l2: float, max_E: float, n_steps: int,
+              nfev: int, run: _DpsRun, damping: DpsDamping, method: str, wall0: float) -> DpsSolution:
     A = np.ascontiguousarray(Y[:, :2 * run.N]).view(np.complex128)
     return solution(run.tau_out, A, rows[:, 4].copy(), rows[:, 5].copy(), rows[:, 6].copy(), float(max_l2),
                        float(max_E), int(n_steps), time.perf_counter() - wall0, method, float(run.rtol),

@@ -112,8 +112,8 @@ class DpsSolution:
 
 
 @checked(method="dpsMethod")
-def integrate_dps(A0: ArrayLike, tau_out: ArrayLike, *, alpha: float, bc: str = "periodic", method: str = "dop853_numba",
-                  rtol: float = DEFAULT_RTOL, atol: float | None = None,
+def integrate_dps(A0: ArrayLike, tau_out: ArrayLike, *, alpha: float, bc: str = "periodic",
+                  method: str = "dop853_numba", rtol: float = DEFAULT_RTOL, atol: float | None = None,
                   progress: Callable[[float, float], None] | None = None, damping: DpsDamping | None = None,
                   sites: DpsSites | None = None) -> DpsSolution:
     """Integrate the DpS equation (dfnls) with tau0 = tau0(alpha) of :mod:`cradle.models.dps`.

@@ -161,8 +161,8 @@ def run_dop853_terms(x0: Floats, v0: Floats, t_out: Floats, rtol: float, atol: f
     return X, V, E, D, float(stats[1]), n_steps, nfev, float(stats[2])
 
 
-def imperfect_system(alpha: float, mode: int, periodic: bool, terms: Terms, sites: Sites, damping: Damping | None = None,
-                     dscale: float | None = None) -> SI.Imperfect:
+def imperfect_system(alpha: float, mode: int, periodic: bool, terms: Terms, sites: Sites,
+                     damping: Damping | None = None, dscale: float | None = None) -> SI.Imperfect:
     """The system of the declared ``terms`` (:class:`cradle.models.lattice_terms.Terms`) on ``sites``
     (:class:`cradle.models.inhomogeneity.Sites`) with ``damping`` (:class:`cradle.models.damping.Damping`, or
     None: y = [x, v]); ``dscale`` the scale of D in the state (with damping)."""

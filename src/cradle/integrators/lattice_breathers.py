@@ -41,10 +41,7 @@ from cradle.models.lattice import hamiltonian
 from cradle.specs.checked import checked
 
 if TYPE_CHECKING:
-    from collections.abc import Iterable
-
-if TYPE_CHECKING:
-    from collections.abc import Callable
+    from collections.abc import Callable, Iterable
 
     from numpy.typing import ArrayLike, NDArray
 
@@ -371,8 +368,9 @@ def dps_start(a_n: ArrayLike, omega: float, alpha: float) -> np.ndarray:
     return mu ** (1.0 / (alpha - 1.0)) * np.asarray(a_n, float)
 
 
-def continue_family(a_n: ArrayLike, omegas: Iterable[float], alpha: float, bc: str = "periodic", kind: str | None = None,
-                    centre: int | None = None, tol: float = 1e-11, log: Callable[[str], object] | None = None,
+def continue_family(a_n: ArrayLike, omegas: Iterable[float], alpha: float, bc: str = "periodic",
+                    kind: str | None = None, centre: int | None = None, tol: float = 1e-11,
+                    log: Callable[[str], object] | None = None,
                     min_step: float = 1e-4) -> tuple[list[Breather], float | None]:
     """Exact breathers along ``omegas`` (increasing, > 1), the first from the DpS start, each next predicted
     by the DpS scaling of the previous one. A failed Newton solve halves the step (down to ``min_step``);

@@ -102,8 +102,8 @@ def homogeneous(N: int) -> DpsSites:
     return DpsSites(z, np.ones(N), np.ones(N), z, z)
 
 
-def dps_sites(sites_mass: ArrayLike, sites_omega: ArrayLike, sites_stiffness: ArrayLike, *, alpha: float, eps: float, beta: float = 0.0,
-              pendulum_scale: float = 0.0, delta0: float = 0.0) -> DpsSites:
+def dps_sites(sites_mass: ArrayLike, sites_omega: ArrayLike, sites_stiffness: ArrayLike, *, alpha: float, eps: float,
+              beta: float = 0.0, pendulum_scale: float = 0.0, delta0: float = 0.0) -> DpsSites:
     """The coefficients of (dpsimperfect) for the lattice (ncimperfect) at amplitude eps.
 
     ``sites_mass`` m_n, ``sites_omega`` omega_n, ``sites_stiffness`` k_n (bond n): arrays (N,), > 0 (the

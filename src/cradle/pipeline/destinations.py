@@ -77,8 +77,8 @@ def holds(path: Path) -> tuple[str | None, str | None]:
     return (None if kind is None else str(kind)), (None if name is None else str(name))
 
 
-def check(path: str | Path, *, command: str, makes: tuple[str, dict] | None = None, identity: tuple[str, str] | None = None,
-          owner: str | None = None, overwrite: bool = False) -> None:
+def check(path: str | Path, *, command: str, makes: tuple[str, dict] | None = None,
+          identity: tuple[str, str] | None = None, owner: str | None = None, overwrite: bool = False) -> None:
     """Raise :class:`Refused` unless ``command`` may write ``path``.
 
     ``makes``: the workflow output the command makes there by itself ((kind, names) as :func:`workflow_output`

@@ -237,7 +237,8 @@ def _differences(stored: object, expected: object, source: str, most: int = 3) -
     except (TypeError, ValueError):
         return ""
     want = _flat(json.loads(canonical_json(expected)))
-    def show(values: dict[str, object], key: str) -> str:  # a long list (stored times) shortened: the line stays one line
+    def show(values: dict[str, object],
+             key: str) -> str:  # a long list (stored times) shortened: the line stays one line
         text = str(values.get(key, "(absent)"))
         return text if len(text) <= 40 else f"{text[:37]}..."
 

@@ -92,7 +92,8 @@ def analysis_figures(name: str, form: str, main_form: str, root: str | Path = RO
     return form_figure_paths(name, name, form, main_form, root)
 
 
-def analysis_tables(name: str, form: str, main_form: str, formats: Iterable[str], root: str | Path = ROOT) -> dict[str, str]:
+def analysis_tables(name: str, form: str, main_form: str, formats: Iterable[str],
+                    root: str | Path = ROOT) -> dict[str, str]:
     """ext -> the tables an analysis's drawing step writes in place of a figure (the claims table):
     beside its netCDF file, ``root/<name>/[<form>/]<name>.<ext>``."""
     return {ext: f"{form_folder(name, form, main_form, root)}/{name}.{ext}" for ext in formats}

@@ -17,8 +17,8 @@ import logging
 import os
 import sys
 import time
-from pathlib import Path
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from types import TracebackType
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -175,7 +175,8 @@ def run(compute: Callable[[], Output], out: str | Path, log_path: str | None = N
     return ds
 
 
-def run_chain(steps: Sequence[tuple[str, Callable[[dict], xr.Dataset | xr.DataTree]]], outs: dict, log_path: str | None = None, label: str = "") -> dict:
+def run_chain(steps: Sequence[tuple[str, Callable[[dict], xr.Dataset | xr.DataTree]]], outs: dict,
+              log_path: str | None = None, label: str = "") -> dict:
     """Run dependent stages in one process and write each to ``outs[key]``.
 
     ``steps`` is a list of ``(key, compute)``; ``compute(done)`` gets the

@@ -31,8 +31,8 @@ from collections.abc import Callable
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 import xarray as xr
+from numpy.typing import NDArray
 
 from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
 from cradle.data.io import GLOBAL_KEYS, make_dataset, write_netcdf

@@ -50,10 +50,8 @@ from cradle.integrators.terms.slots import (
 )
 
 if TYPE_CHECKING:
-    from cradle.models.dps_sites import DpsSites
-
-if TYPE_CHECKING:
     from cradle.integrators._types import Floats
+    from cradle.models.dps_sites import DpsSites
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
