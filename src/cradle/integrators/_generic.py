@@ -23,6 +23,12 @@ _IMPLEMENTATIONS: dict[tuple[str, Any], Any] = {}
 _STUBS: dict[Callable, Callable] = {}
 
 
+def _unannotated(sig: inspect.Signature) -> inspect.Signature:
+    """``sig`` without its annotations (which numba would compare)."""
+    return sig.replace(parameters=[p.replace(annotation=inspect.Parameter.empty) for p in sig.parameters.values()],
+                       return_annotation=inspect.Signature.empty)
+
+
 def generic(stub: Callable) -> Callable:
     """Make ``stub`` (a Python function whose first argument is the dispatching NamedTuple) a generic
     operation of the kernels: inside compiled code, ``stub(obj, ...)`` runs the implementation registered for
@@ -33,7 +39,7 @@ def generic(stub: Callable) -> Callable:
         impl = _IMPLEMENTATIONS.get((name, getattr(args[0], "instance_class", None)))
         return None if impl is None else impl.py_func
 
-    typer.__signature__ = inspect.signature(stub)  # type: ignore[attr-defined]
+    typer.__signature__ = _unannotated(inspect.signature(stub))  # type: ignore[attr-defined]
 
     def python_call(obj: Any, *args: Any) -> Any:
         return _IMPLEMENTATIONS[(name, type(obj))](obj, *args)
@@ -58,6 +64,9 @@ def implements(operation: Callable, cls: type) -> Callable:
         if got != want:   # numba matches an implementation to its operation by the arguments' names
             raise TypeError(f"{fn.py_func.__qualname__}{tuple(got)} implements {stub.__qualname__}{tuple(want)}: "
                             f"the arguments must be named alike")
+        # numba compares an implementation's signature with its operation's, annotations included: each
+        # implementation annotates its own unit's class, so both are compared by their names only
+        fn.py_func.__signature__ = _unannotated(inspect.signature(fn.py_func))
         _IMPLEMENTATIONS[(name, cls)] = fn
         return fn
 
