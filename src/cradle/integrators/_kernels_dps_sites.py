@@ -8,7 +8,7 @@ The right-hand side is :class:`cradle.integrators.systems.dps.DpsSites` of the D
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numba import njit
@@ -17,7 +17,6 @@ from cradle.integrators import _cache
 
 if TYPE_CHECKING:
     from cradle.integrators._types import Floats
-    from cradle.models.dps_sites import DpsSites
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -25,7 +24,8 @@ _cache.activate()   # before the first @njit: numba picks the cache folder when 
 HEADER = 8
 
 
-def pack(sites: DpsSites, tables: dict[str, np.ndarray] | None, tau0: float, psi_max: float) -> np.ndarray:
+# Any: a cradle.models DpsSites; a kernel module's cradle imports (annotations' too) are the kernel cache's key
+def pack(sites: Any, tables: dict[str, np.ndarray] | None, tau0: float, psi_max: float) -> np.ndarray:
     """``par`` of (dpsimperfect) from a :class:`cradle.models.dps_sites.DpsSites` and its contact tables (None when no
     bond is compressed)."""
     N = sites.N

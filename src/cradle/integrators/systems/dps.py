@@ -21,7 +21,7 @@ Q_l2' = gamma~ sum |A_n|^2 + (Im kappa / tau0) S, Q_S' = (alpha+1) [(Im kappa / 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -51,7 +51,6 @@ from cradle.integrators.terms.slots import (
 
 if TYPE_CHECKING:
     from cradle.integrators._types import Floats
-    from cradle.models.dps_sites import DpsSites
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -103,7 +102,8 @@ def damped(alpha: float, periodic: bool, inv2tau0: float, gamma: float, kappa: c
                      onsite_harmonic.Harmonic(), cd, od, Balanced())
 
 
-def imperfect(alpha: float, periodic: bool, sites: DpsSites, par: np.ndarray) -> DpsSystem:
+# Any: a cradle.models DpsSites; a kernel module's cradle imports (annotations' too) are the kernel cache's key
+def imperfect(alpha: float, periodic: bool, sites: Any, par: np.ndarray) -> DpsSystem:
     """(dpsimperfect) of a :class:`cradle.models.dps_sites.DpsSites` and its packed ``par``
     (:func:`cradle.integrators._kernels_dps_sites.pack`)."""
     coupling: NamedTuple = PC.tabulated(par) if sites.compressed else hertz.PLaplacian()

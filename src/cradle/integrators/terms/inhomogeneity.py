@@ -8,7 +8,7 @@ detuning delta_n = (omega_n - 1) eps^(1-alpha), the factor 1/m_n on the coupling
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -27,10 +27,6 @@ from cradle.integrators.terms.slots import (
     stiff,
 )
 
-if TYPE_CHECKING:
-    from cradle.models.dps_sites import DpsSites
-    from cradle.models.inhomogeneity import Sites
-
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
 
@@ -47,7 +43,8 @@ class Inhomogeneous(NamedTuple):
     stiffness: np.ndarray
 
 
-def build(sites: Sites) -> Inhomogeneous:
+# Any: a cradle.models Sites; a kernel module's cradle imports (annotations' too) are the kernel cache's key
+def build(sites: Any) -> Inhomogeneous:
     """The unit of a :class:`cradle.models.inhomogeneity.Sites`."""
     mass = np.ascontiguousarray(sites.mass, dtype=float)
     return Inhomogeneous(mass, 1.0 / mass, np.asarray(sites.omega, dtype=float) ** 2,
@@ -92,7 +89,8 @@ class SlowSites(NamedTuple):
     detuning: np.ndarray
 
 
-def slow_sites(sites: DpsSites) -> SlowSites | Homogeneous:
+# Any: a cradle.models DpsSites; a kernel module's cradle imports (annotations' too) are the kernel cache's key
+def slow_sites(sites: Any) -> SlowSites | Homogeneous:
     """The unit of a :class:`cradle.models.dps_sites.DpsSites` (:class:`Homogeneous` if every coefficient is 1 and
     no site is detuned)."""
     if np.all(sites.inv_mass == 1.0) and np.all(sites.weight == 1.0) and np.all(sites.detuning == 0.0):
