@@ -256,7 +256,7 @@ def mi_statistics_estimate(cfg: Config, form: str) -> Estimate:
     form's batches), the spectra sampled every ``sample_every`` held per run."""
     from cradle.analyses.protocol import REDUCED, form_spec
 
-    spec = form_spec(cfg.beyond.mi_statistics, form)
+    spec = form_spec(cfg.beyond.mi_statistics, form)  # type: ignore[attr-defined]  # Beyond: made at import
     N, t_end = max(spec.N), spec.t_end
     runs = math.ceil(spec.q_over_pi.count / spec.chunks) * spec.n_seeds
     exact = ExactIntegrator(method=spec.exact.method, dt_factor=spec.exact.dt_factor)
@@ -276,7 +276,7 @@ def work_precision_estimate(cfg: Config, form: str) -> Estimate:
     from cradle.analyses.protocol import REDUCED, form_spec
     from cradle.analyses.work_precision import ladder
 
-    spec = form_spec(cfg.beyond.work_precision, form)
+    spec = form_spec(cfg.beyond.work_precision, form)  # type: ignore[attr-defined]  # Beyond: made at import
     scenes = cfg.scenes
     ref = spec.reference
     runs = [(ref.method, ref.dt_factor), (ref.method, 2.0 * ref.dt_factor)]
@@ -343,7 +343,7 @@ def estimates(cfg: Config) -> list[Estimate]:
     jobs: list[tuple[str, str, Callable[[Any, str], Estimate]]] = [
         (section, name, fn) for section, fn in per_entry for name in getattr(cfg, section)]
     jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
-    if cfg.beyond.work_precision.scenes:
+    if cfg.beyond.work_precision.scenes:  # type: ignore[attr-defined]  # Beyond: made at import
         jobs += [("beyond", form, work_precision_estimate) for form in ("reduced", "full")]
     for _section, name, fn in jobs:
         try:

@@ -152,7 +152,8 @@ def estimate(path: str | os.PathLike, t_end: float, every: float | None = None,
     the declared one)."""
     from cradle.integrators import SPLITTING_METHODS
     from cradle.pipeline import budget as costs
-    from cradle.specs.values import MAX_STORED_TIMES, MAX_T_END, grid_size
+    from cradle.scenes.times import grid_size
+    from cradle.specs.values import MAX_STORED_TIMES, MAX_T_END
 
     path = Path(path)
     t_end = float(t_end)
@@ -207,7 +208,7 @@ def extend(path: str | os.PathLike, t_end: float, out: str | os.PathLike | None 
     (:func:`estimate`, checked before any work).
     """
     from cradle.integrators import SPLITTING_METHODS
-    from cradle.specs.values import store_times
+    from cradle.scenes.times import store_times
 
     path = Path(path)
     out = path if out is None else Path(out)
