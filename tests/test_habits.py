@@ -1,5 +1,6 @@
-"""The checked habits: ruff, mypy (check_untyped_defs) and snakefmt are clean, each with its committed
-configuration in pyproject.toml, so the README's test command (and .ci/run) runs them besides the tests."""
+"""The checked habits: ruff, mypy (check_untyped_defs, disallow_untyped_defs) and snakefmt are clean, each with
+its committed configuration in pyproject.toml, so the README's test command (and .ci/run) runs them besides the
+tests."""
 import subprocess
 import sys
 
@@ -24,7 +25,8 @@ def test_ruff_is_clean():
 
 
 def test_mypy_is_clean():
-    """[tool.mypy]: src/cradle with check_untyped_defs; incremental, so a rerun reads .mypy_cache/."""
+    """[tool.mypy]: src/cradle with check_untyped_defs and disallow_untyped_defs (every function annotated);
+    incremental, so a rerun reads .mypy_cache/."""
     _clean("mypy")
 
 

@@ -17,6 +17,8 @@ Sub-packages, one layer each, each importing only from the layers before it (doc
 * :mod:`cradle.pipeline`     - config loading, results layout, jobs, budgets, code dependencies, CLI
 """
 
+from typing import Any
+
 #: the public API, by theme: (name, "module" or "module:attribute", one-line summary). The module docstring's
 #: table and ``__all__`` are made from it; each name is imported on first use (:func:`__getattr__`)
 _API: tuple[tuple[str, tuple[tuple[str, str, str], ...]], ...] = (
@@ -118,7 +120,7 @@ def _table() -> str:
 __doc__ = f"{__doc__}\n{_table()}"
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> Any:
     """A name of the public API (the table above), imported from its module on first use."""
     # the public names on first use: the Snakefile imports cradle.pipeline.config to plan and must not pay for
     # numpy, xarray or numba; and __version__ (importlib.metadata) not in a job's process before it is forked
@@ -134,6 +136,6 @@ def __getattr__(name):
     return value
 
 
-def __dir__():
+def __dir__() -> list[str]:
     """The module's names with the whole public API, imported or not yet."""
     return sorted(set(globals()) | set(__all__))

@@ -45,7 +45,10 @@ The stability analysis built on these (growth over (q, p), thresholds, the DpS c
 """
 from __future__ import annotations
 
+from typing import Literal, overload
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models import dps, waves
 
@@ -94,7 +97,7 @@ def coupling_fourier(w: waves.Wave, M: int = 2**DEFAULT_GRID_LOG2) -> np.ndarray
 class Hill:
     """The pencil of (bloch) for one wave, truncated to |m| <= L; :meth:`eigenvalues` for any p."""
 
-    def __init__(self, w: waves.Wave, L: int = DEFAULT_HILL_MODES, M: int = 2**DEFAULT_GRID_LOG2):
+    def __init__(self, w: waves.Wave, L: int = DEFAULT_HILL_MODES, M: int = 2**DEFAULT_GRID_LOG2) -> None:
         if M < 8 * (2 * L + 1):
             raise ValueError(f"M = {M} grid points too few for L = {L} Hill modes (need M >= 8 (2L + 1))")
         self.w, self.L, self.M = w, int(L), int(M)
@@ -112,7 +115,14 @@ class Hill:
         ep = np.exp(1j * p) * self.eq[None, :]
         return self.Kd * (ep - 1.0) - self.Kd * self.phase_minus * (1.0 - np.conj(ep))
 
-    def eigenvalues(self, p: float, vectors: bool = False):
+    @overload
+    def eigenvalues(self, p: float, vectors: Literal[False] = False) -> NDArray[np.complex128]: ...
+
+    @overload
+    def eigenvalues(self, p: float,
+                    vectors: Literal[True]) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]: ...
+
+    def eigenvalues(self, p: float, vectors: bool = False) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
         """All 2 (2L + 1) eigenvalues lambda of the truncated pencil (and the W-parts of the eigenvectors)."""
         n = self.m.size
         A = self.matrix(p)
@@ -138,7 +148,7 @@ class Hill:
         lam = self.eigenvalues(p)
         return lam[np.abs(lam.imag) < 0.5 * self.omega]
 
-    def growth(self, p) -> np.ndarray:
+    def growth(self, p: ArrayLike) -> np.ndarray:
         """g(p) = max Re lambda over the central strip (0 where every Re lambda < NOISE_FLOOR)."""
         out = []
         for pp in np.atleast_1d(np.asarray(p, dtype=float)):
@@ -157,7 +167,7 @@ class Hill:
         g = float(np.max(c.real))
         return g if g > floor else -abs(float(c[0].imag - c[1].imag))
 
-    def max_signed(self, n_p: int = 61, floor: float = NOISE_FLOOR):
+    def max_signed(self, n_p: int = 61, floor: float = NOISE_FLOOR) -> tuple[float, float]:
         """(max over p in (0, pi] of :meth:`signed`, its p): grid, then a bounded refinement (p = 0, the
         trivial double multiplier, and its neighbourhood p < P_EXCLUDE are left out)."""
         from scipy.optimize import minimize_scalar
@@ -178,7 +188,7 @@ class Hill:
         """max |lambda| of the central pair at p = 0 (exactly 0: time translation and its Jordan partner)."""
         return float(np.max(np.abs(self.central(0.0))))
 
-    def max_growth(self, n_p: int = 121):
+    def max_growth(self, n_p: int = 121) -> tuple[float, float]:
         """(max_p g(p), argmax p in [P_EXCLUDE, pi]): grid search (g(-p) = g(p)), then a bounded refinement."""
         from scipy.optimize import minimize_scalar
 
@@ -207,7 +217,7 @@ def ring_wavenumber(w: waves.Wave, N: int) -> int:
     return int(round(k))
 
 
-def ring_state(w: waves.Wave, N: int, t: float = 0.0):
+def ring_state(w: waves.Wave, N: int, t: float = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(x_n(t), v_n(t)) of the exact wave on the ring, n = 0..N-1."""
     ring_wavenumber(w, N)
     xi = w.q * np.arange(N) - w.omega * t
@@ -228,7 +238,7 @@ def ring_monodromy(w: waves.Wave, N: int, rtol: float = 1e-11, atol: float = 1e-
     n = np.arange(N)
     om, q, al = w.omega, w.q, w.alpha
 
-    def rhs(t, Y):
+    def rhs(t: float, Y: NDArray[np.float64]) -> NDArray[np.float64]:
         Y = Y.reshape(2 * N, 2 * N)
         y, v = Y[:N], Y[N:]
         u = np.sin(np.multiply.outer(q * n - om * t, j)) @ c
@@ -251,11 +261,11 @@ def ring_exponents_hill(hill: Hill, N: int) -> np.ndarray:
     return np.concatenate([hill.central(2.0 * np.pi * jj / N) for jj in range(N)])
 
 
-def multipliers(exponents, T: float) -> np.ndarray:
+def multipliers(exponents: ArrayLike, T: float) -> np.ndarray:
     return np.exp(np.asarray(exponents) * T)
 
 
-def match_distance(mu_a, mu_b) -> float:
+def match_distance(mu_a: ArrayLike, mu_b: ArrayLike) -> float:
     """max over mu_a of the distance to the nearest mu_b, and conversely (a Hausdorff distance)."""
     d = np.abs(np.asarray(mu_a)[:, None] - np.asarray(mu_b)[None, :])
     return float(max(d.min(axis=1).max(), d.min(axis=0).max()))
@@ -264,7 +274,7 @@ def match_distance(mu_a, mu_b) -> float:
 # ----------------------------------------------------------------- direct simulation
 
 def direct_growth(w: waves.Wave, N: int, rel_size: float = 1e-9, growth_factor: float = 1e3, method: str = "dop853",
-                  rtol: float = 1e-13):
+                  rtol: float = 1e-13) -> tuple[float, float, float, np.ndarray, np.ndarray]:
     """Growth rate of the top Floquet mode, measured on a nonlinear run of (nc) with integrate_lattice.
 
     The exact wave on the ring plus rel_size * a * (the real part of, normalised) the eigenvector of the

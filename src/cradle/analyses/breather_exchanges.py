@@ -18,10 +18,18 @@ whether the refined verdicts are the same.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.analyses.breathers_spec import Breathers
 from cradle.data.variables import Var
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.integrators.lattice_breathers import Breather, Floquet
 
 VARIABLES = {
     "/exchanges": {
@@ -54,7 +62,7 @@ VARIABLES = {
 REFINE_RING = 1.5
 
 
-def sigma(fl, T) -> float:
+def sigma(fl: Floquet, T: float) -> float:
     """+lambda^2 (real pinning pair) or -nu^2 (pair on the unit circle), per unit t squared."""
     if fl.mu_odd.size == 0:
         return float("nan")
@@ -62,7 +70,8 @@ def sigma(fl, T) -> float:
     return float((z.real / T) ** 2 - (z.imag / T) ** 2)
 
 
-def locate(fam, floquets, name, kind, centre, spec: Breathers, say, steps: int):
+def locate(fam: list[Breather], floquets: dict[tuple[str, float], Floquet], name: str, kind: str, centre: int,
+           spec: Breathers, say: Log, steps: int) -> list[tuple[float, float]]:
     """Zeros of sigma along one family (list of Breathers on the grid), refined by ``steps`` regula falsi steps
     (each breather solved with the spec's newton_tol and rtol). Returns a list of (omega, half-width)."""
     from cradle.integrators import lattice_breathers as lb
@@ -92,12 +101,12 @@ def locate(fam, floquets, name, kind, centre, spec: Breathers, say, steps: int):
     return out
 
 
-def _pinning(fl) -> float:
+def _pinning(fl: Floquet) -> float:
     """|mu - 1| of the symmetry-breaking multiplier nearest +1."""
     return float(np.min(np.abs(fl.mu_odd - 1.0))) if fl.mu_odd.size else float("nan")
 
 
-def _embedded(b, kind, centre, N_new, centre_new):
+def _embedded(b: Breather, kind: str, centre: int, N_new: int, centre_new: int) -> NDArray[np.float64]:
     """The breather's x(0) moved onto a lattice of N_new beads, its centre bead to centre_new, zeros elsewhere
     (the beads beyond the core are below the shooting's core cut)."""
     x = np.zeros(N_new)
@@ -105,7 +114,8 @@ def _embedded(b, kind, centre, N_new, centre_new):
     return x
 
 
-def refine(fam, floquets, name, kind, centre, exchanges, spec: Breathers, say) -> list[dict]:
+def refine(fam: list[Breather], floquets: dict[tuple[str, float], Floquet], name: str, kind: str, centre: int,
+           exchanges: list[tuple[float, float]], spec: Breathers, say: Log) -> list[dict]:
     """Per exchange (omega, half-width) of one family: the verdict, pinning offset |mu - 1| and trivial defect
     of the grid breathers on both sides, and the same re-solved (Newton from the embedded x(0)) and measured
     at ``spec.check_rtol`` on a ring REFINE_RING times larger (free chain: same length)."""
@@ -117,7 +127,7 @@ def refine(fam, floquets, name, kind, centre, exchanges, spec: Breathers, say) -
     c_new = centre + (N_new - N) // 2
     done: dict[float, tuple] = {}
 
-    def refined(b):
+    def refined(b: Breather) -> tuple:
         if b.omega not in done:
             x = _embedded(b, kind, centre, N_new, c_new)
             b2 = lb.newton(x, b.omega, b.alpha, bc, kind, c_new, spec.newton_tol, rtol=spec.check_rtol)

@@ -36,6 +36,13 @@ from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.models.initial import InitialData
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -106,7 +113,7 @@ class BreatherInteractions:
             out.add(where + ["spacings"], f"must leave room for both breathers: spacing + 10 <= N = {self.N}", sp)
 
 
-def spacings_of(pair: str, spacings) -> list[float]:
+def spacings_of(pair: str, spacings: Iterable[int]) -> list[float]:
     """The centre spacings of a profile pair: the integers ``spacings`` (site-site, bond-bond), each
     + 1/2 for site-bond (a site and a bond midpoint are half a site apart)."""
     return [float(s) + (0.5 if pair == "site-bond" else 0.0) for s in spacings]
@@ -123,7 +130,7 @@ def chunk_batches(spec: BreatherInteractions, chunk: int) -> list[tuple[str, flo
 
 
 def initial(spec: BreatherInteractions, pair: str, spacing: float, theta: float, ratio: float, amplitude: float,
-            seed: int):
+            seed: int) -> InitialData:
     """Initial data of one case: the pair (:func:`cradle.models.pairs.two_breathers`) plus the noise."""
     from cradle.models import pairs
     from cradle.models.initial import InitialData, lattice_state
@@ -141,7 +148,8 @@ def initial(spec: BreatherInteractions, pair: str, spacing: float, theta: float,
     return d
 
 
-def run_case(spec: BreatherInteractions, pair, spacing, theta, ratio, amplitude, seed) -> dict:
+def run_case(spec: BreatherInteractions, pair: str, spacing: float, theta: float, ratio: float, amplitude: float,
+             seed: int) -> dict:
     """One case in both models -> {f"{field}_{model}": value}."""
     from cradle.analyses import pair_runs
 
@@ -158,15 +166,15 @@ def run_case(spec: BreatherInteractions, pair, spacing, theta, ratio, amplitude,
     return out
 
 
-def _theta_grid(spec: BreatherInteractions):
+def _theta_grid(spec: BreatherInteractions) -> NDArray[np.float64]:
     return 2 * np.pi * np.arange(spec.n_theta) / spec.n_theta
 
 
-def _modal(codes):
+def _modal(codes: ArrayLike) -> int:
     return int(np.bincount(np.asarray(codes, dtype=int), minlength=5).argmax())
 
 
-def run_batch(spec: BreatherInteractions, pair: str, spacing: float, log=None) -> list[dict]:
+def run_batch(spec: BreatherInteractions, pair: str, spacing: float, log: Log | None = None) -> list[dict]:
     """Every case of one (pair, spacing): the theta grid at ratio 1 and the base amplitude, refined where the
     modal outcome (over seeds, exact model) changes between neighbours; then the ratios (at the base
     amplitude) and the amplitudes (at ratio 1) at ``amplitude_thetas``. Returns one dict per case."""
@@ -174,7 +182,7 @@ def run_batch(spec: BreatherInteractions, pair: str, spacing: float, log=None) -
     seeds = range(spec.n_seeds)
     A, rows = spec.amplitude, []
 
-    def cases(theta, ratio, amp, kind):
+    def cases(theta: float, ratio: float, amp: float, kind: int) -> list[dict]:
         got = []
         for s in seeds:
             r = {"pair": pair, "spacing": spacing, "theta": float(theta), "ratio": float(ratio),
@@ -302,7 +310,7 @@ def maps(cols: dict, spec: BreatherInteractions) -> tuple[dict, dict]:
     return out, {"pair": np.array(pairs), "spacing": np.arange(nsp), "theta": ths}
 
 
-def tree(rows: list[dict], spec: BreatherInteractions, wall: float):
+def tree(rows: list[dict], spec: BreatherInteractions, wall: float) -> xr.DataTree:
     from cradle.data.io import make_tree
 
     cols = case_table(rows)
@@ -316,7 +324,7 @@ def tree(rows: list[dict], spec: BreatherInteractions, wall: float):
                      title="breather-interactions: two DpS-family breathers, exact (nc) against DpS (dfnls)")
 
 
-def batch(spec: BreatherInteractions, chunk: int, log=None) -> list[dict]:
+def batch(spec: BreatherInteractions, chunk: int, log: Log | None = None) -> list[dict]:
     """Every case of job ``chunk``."""
     rows = []
     for pair, spacing in chunk_batches(spec, chunk):
@@ -324,7 +332,7 @@ def batch(spec: BreatherInteractions, chunk: int, log=None) -> list[dict]:
     return rows
 
 
-def batch_dataset(spec: BreatherInteractions, chunk: int, log=None):
+def batch_dataset(spec: BreatherInteractions, chunk: int, log: Log | None = None) -> xr.Dataset:
     """The /cases table of one batch job as a netCDF Dataset."""
     from cradle.data.io import make_dataset
 
@@ -336,7 +344,7 @@ def batch_dataset(spec: BreatherInteractions, chunk: int, log=None):
                         params=plain(spec), variables=_CASE, title=f"breather-interactions batch {chunk}")
 
 
-def _rows_of(ds) -> list[dict]:
+def _rows_of(ds: xr.Dataset) -> list[dict]:
     """The case dicts of one batch file (merge_ratio is recomputed from them)."""
     return [{k: (str(ds[k].values[i]) if ds[k].dtype.kind in "USO" else ds[k].values[i].item())
              for k in _CASE if k in ds and k not in ("merge_ratio", "case")} for i in range(ds.sizes["case"])]
@@ -350,7 +358,7 @@ def batch_keys(spec: BreatherInteractions) -> list[str]:
     return [str(c) for c in range(spec.chunks)] if spec.chunks > 1 else []
 
 
-def run_batch_job(spec: BreatherInteractions, key: str, inputs: dict, log=None):
+def run_batch_job(spec: BreatherInteractions, key: str, inputs: dict, log: Log | None = None) -> xr.Dataset:
     """Batch ``key`` of :func:`batch_keys` (it reads no file)."""
     if key not in batch_keys(spec):
         raise ValueError(f"breather-interactions: no batch {key!r} in this form "
@@ -358,7 +366,7 @@ def run_batch_job(spec: BreatherInteractions, key: str, inputs: dict, log=None):
     return batch_dataset(spec, int(key), log)
 
 
-def compute(spec: BreatherInteractions, inputs: dict, log=None):
+def compute(spec: BreatherInteractions, inputs: dict, log: Log | None = None) -> xr.DataTree:
     """The analysis of one form: its batches gathered (``inputs["batch/<key>"]``), or, without batches,
     the sweep run here. The cases are in one order whatever the split: by pair, spacing, sweep, theta,
     ratio, amplitude and seed."""

@@ -16,12 +16,18 @@
 """
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from cradle.analyses.breathers_spec import Breathers
 from cradle.data.variables import Var
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.integrators.lattice_breathers import Breather, Floquet
 
 VARIABLES = {
     "/kick": {
@@ -38,19 +44,20 @@ VARIABLES = {
 }
 
 
-def _centre(e, N):
+def _centre(e: ArrayLike, N: int) -> NDArray[np.float64]:
     """Circular mean position of the energy density e_n on a ring of N beads."""
     ang = 2 * np.pi * np.arange(N) / N
     return np.angle(np.sum(e * np.exp(1j * ang), axis=-1)) * N / (2 * np.pi)
 
 
-def _site_energy(x, v, alpha):
+def _site_energy(x: NDArray[np.float64], v: NDArray[np.float64], alpha: float) -> NDArray[np.float64]:
     d = np.roll(x, -1, axis=-1) - x
     bond = np.maximum(-d, 0.0) ** (alpha + 1) / (alpha + 1)
     return 0.5 * (v**2 + x**2) + 0.5 * (bond + np.roll(bond, 1, axis=-1))
 
 
-def kicked(b, fl, kicks, t_end, window, alpha, n_out=401):
+def kicked(b: Breather, fl: Floquet, kicks: list[float], t_end: float, window: float, alpha: float,
+           n_out: int = 401) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Velocity, radiation fraction and energy drift of the breather ``b`` kicked along its pinning mode."""
     from cradle.integrators import integrate_lattice
 
@@ -78,7 +85,8 @@ def kicked(b, fl, kicks, t_end, window, alpha, n_out=401):
     return vel, rad, drift
 
 
-def direct_growth(b, growth_factor, rel_size=1e-6, rtol=1e-13):
+def direct_growth(b: Breather, growth_factor: float, rel_size: float = 1e-6,
+                  rtol: float = 1e-13) -> tuple[float, float, np.ndarray, np.ndarray]:
     """(rate fitted on the run, Floquet rate ln|mu| / T, t, |c_k|) for the breather ``b`` seeded along the
     eigenvector of its largest multiplier mu (core monodromy of :func:`lattice_breathers.monodromy`).
 
@@ -111,7 +119,7 @@ def direct_growth(b, growth_factor, rel_size=1e-6, rtol=1e-13):
     return float(np.polyfit(t_out[sel], np.log(proj[sel]), 1)[0]), rate, t_out, proj
 
 
-def compute(families: dict, floquets: dict, spec: Breathers, alpha: float, say, attrs: dict) -> dict:
+def compute(families: dict, floquets: dict, spec: Breathers, alpha: float, say: Log, attrs: dict) -> dict:
     """The /kick and /direct groups of the `breathers` analysis (``spec``: its kick_* and direct_* keys) from
     the ring families ``families`` (name -> list of Breathers) and their Floquet results ``floquets``
     ((name, omega_b) -> Floquet); the scalar results go into ``attrs``."""

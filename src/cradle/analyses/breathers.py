@@ -15,6 +15,8 @@ x_n -> -x_{2c-n}; the bond breather has x(t) = -S x(t), the site breather x(t + 
 from __future__ import annotations
 
 import time
+from types import ModuleType
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,6 +26,12 @@ from cradle.analyses.breathers_spec import Breathers
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.specs.declare import plain
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from numpy.typing import NDArray
+
+    from cradle.analyses.protocol import Log
 
 _F = ("family", "omega")
 VARIABLES = {
@@ -97,20 +105,20 @@ _CHECK_SHAPES: dict[str, tuple[tuple[int, ...], type]] = {
 _CHECK_SHAPES.update({"refined_N": ((), int), "refined_agrees": ((), float)})
 
 
-def _family_names(spec: Breathers):
+def _family_names(spec: Breathers) -> list[tuple[str, int, str, str]]:
     names = [(f"ring {k}", spec.N, "periodic", k) for k in spec.kinds]
     if spec.free_N > 0:
         names += [("free bond", spec.free_N, "free", "bond")]   # fini's; no site symmetry on an even chain
     return names
 
 
-def _centre(N, bc):
+def _centre(N: int, bc: str) -> int:
     """Centre bead c of a family: N // 2 on the ring (as homoclinic.initial_guess), (N - 1) // 2 on a free
     chain (bond (c, c+1) in the middle: the free-bond entry of fini)."""
     return N // 2 if bc == "periodic" else (N - 1) // 2
 
 
-def _profile(N, kind, alpha, bc):
+def _profile(N: int, kind: str, alpha: float, bc: str) -> NDArray[np.float64]:
     from cradle.models import homoclinic
 
     sol = homoclinic.solve(homoclinic.initial_guess(N, kind, alpha, 0.1, centre=_centre(N, bc)), alpha, bc)
@@ -119,7 +127,7 @@ def _profile(N, kind, alpha, bc):
     return sol.a
 
 
-def _nearest_one(mu, T):
+def _nearest_one(mu: NDArray[np.complex128], T: float) -> tuple[float, float]:
     if mu.size == 0:
         return np.nan, np.nan
     z = mu[int(np.argmin(np.abs(mu - 1.0)))]
@@ -127,7 +135,7 @@ def _nearest_one(mu, T):
     return float(abs(ln.real) / T), float(abs(ln.imag) / T)
 
 
-def compute(spec: Breathers, inputs: dict | None = None, log=None):
+def compute(spec: Breathers, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
     """The `breathers` analysis (:data:`VARIABLES`) from the spec of one form (it reads no file: ``inputs`` is
     empty); the kicked breather and the direct growth check by :func:`cradle.analyses.breather_mobility.compute`,
     the stability exchanges by :func:`cradle.analyses.breather_exchanges.locate`."""
@@ -276,7 +284,8 @@ def compute(spec: Breathers, inputs: dict | None = None, log=None):
                            "to the DpS breathers")
 
 
-def _pn(out, fams, omegas, spec: Breathers, al, db):
+def _pn(out: dict, fams: list[tuple], omegas: NDArray[np.float64], spec: Breathers, al: float,
+        db: ModuleType) -> tuple[tuple[dict, dict], float, float, float, float]:
     """E_bond - E_site at the site breather's action J_s, from the bond breather of the same omega_b.
 
     Along a family of periodic orbits dE/dJ = 1/T = omega_b / (2 pi), so the bond breather of action J_s
@@ -292,7 +301,8 @@ def _pn(out, fams, omegas, spec: Breathers, al, db):
             np.nan, np.nan, np.nan, np.nan
     fs, fb = names.index("ring site"), names.index("ring bond")
 
-    def barrier(Es, Js, Eb, Jb):
+    def barrier(Es: NDArray[np.float64], Js: NDArray[np.float64], Eb: NDArray[np.float64],
+                Jb: NDArray[np.float64]) -> NDArray[np.float64]:
         dJ = Js - Jb
         dwdJ = np.gradient(omegas[ok], Jb[ok]) if ok.sum() > 1 else np.zeros(ok.sum())
         return Eb[ok] + dJ[ok] * omegas[ok] / (2 * np.pi) + dJ[ok] ** 2 * dwdJ / (4 * np.pi) - Es[ok]
@@ -312,7 +322,7 @@ def _pn(out, fams, omegas, spec: Breathers, al, db):
             {"action_pn": Js[ok]}), *at
 
 
-def _distance_fit(out, omegas, spec: Breathers):
+def _distance_fit(out: dict, omegas: NDArray[np.float64], spec: Breathers) -> tuple[float, float]:
     """Power law dps_distance ~ C (omega_b - 1)^p over omega_b <= fit_omega_max, all ring families pooled."""
     d = out["dps_distance"]
     x = np.broadcast_to(omegas - 1.0, d.shape)

@@ -2,6 +2,8 @@
 plot18's breather frequencies, half-period shift and radiation, loc1's merging times."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.analyses.claims_table import (
@@ -13,13 +15,18 @@ from cradle.analyses.claims_table import (
 )
 from cradle.measurements import breathers, interactions
 
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    from cradle.analyses.paper_checks import Results
+
 #: "Around 175 ... twice more": a merging time agrees within 15 % of the paper's ("around"); the DpS to exact
 #: ratio agrees within [1.5, 2.5] ("twice more")
 MERGE_REL_TOL = 0.15
 RATIO_RANGE = (1.5, 2.5)
 
 
-def breather_frequencies(res, cases) -> list[Row]:
+def breather_frequencies(res: Results, cases: Iterable[tuple]) -> list[Row]:
     rows = []
     for scene, amplitude_text, paper in cases:
         w = float(res.initial(scene).attrs["omega_sw"])
@@ -30,7 +37,8 @@ def breather_frequencies(res, cases) -> list[Row]:
     return rows
 
 
-def half_period(res, scene, site, paper="83", t_exact=569.4, t_approx=565.95, grid=0.05) -> list[Row]:
+def half_period(res: Results, scene: str, site: int, paper: str = "83", t_exact: float = 569.4,
+                t_approx: float = 565.95, grid: float = 0.05) -> list[Row]:
     """plot18: periods until exact and approximate are half a period apart.
 
     The precision "approximately 83" carries: the paper compares its profiles with a time shift
@@ -57,7 +65,7 @@ def half_period(res, scene, site, paper="83", t_exact=569.4, t_approx=565.95, gr
                 f"implies, t / (2 lag)")]
 
 
-def radiation(res, scene, t, core) -> list[Row]:
+def radiation(res: Results, scene: str, t: float, core: float) -> list[Row]:
     rows = []
     for model, paper in (("exact", "yes"), ("dps", "no")):
         ds = res.sim(scene, model)
@@ -73,7 +81,7 @@ def radiation(res, scene, t, core) -> list[Row]:
     return rows
 
 
-def merging(res, scene, paper_exact="175", paper_dps="350") -> list[Row]:
+def merging(res: Results, scene: str, paper_exact: str = "175", paper_dps: str = "350") -> list[Row]:
     """loc1: the outcome of the pair in both models (interactions.classify on max_t |x_n| per period) and
     the merging times beside the paper's ~175 (exact) and "twice more" (DpS), and their ratio, under both
     definitions: the final single breather, then the first coalescence of the two humps."""

@@ -54,7 +54,7 @@ def agrees_printed(paper: str, ours: float) -> str:
     return "agrees" if abs(ours - float(paper)) <= printed_unit(paper) * (1 + 1e-9) else "disagrees"
 
 
-def _fmt(x, digits=4) -> str:
+def _fmt(x: object, digits: int = 4) -> str:
     if isinstance(x, (bool, np.bool_)):
         return "yes" if x else "no"
     if x is None or (isinstance(x, float) and not np.isfinite(x)):

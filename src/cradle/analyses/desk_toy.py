@@ -41,6 +41,13 @@ from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.integrators.lattice_solver import LatticeSolution
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -132,14 +139,15 @@ def time_grid(swings: int, samples: int) -> np.ndarray:
     return 2.0 * np.pi * np.arange(swings * samples + 1) / samples
 
 
-def _nc(x0, t, rtol: float, damping):
+def _nc(x0: NDArray[np.float64], t: NDArray[np.float64], rtol: float, damping: Damping | None) -> LatticeSolution:
     from cradle.integrators import integrate_lattice
 
     return integrate_lattice(x0, np.zeros_like(x0), t, alpha=1.5, bc="free", method="dop853_numba", rtol=rtol,
                              damping=damping)
 
 
-def cascade_run(x0, rtol: float, damping=None):
+def cascade_run(x0: NDArray[np.float64], rtol: float,
+                damping: Damping | None = None) -> tuple[NDArray[np.float64], LatticeSolution]:
     """(t, run) of (nc) over [0, pi] stored every CASCADE_DT over CASCADE_SPAN from the impact at t = pi/2 (and
     100 times elsewhere): resolves the first cascade and ends at the first largest swing t = pi."""
     dense = np.pi / 2 + np.linspace(0.0, CASCADE_SPAN, int(round(CASCADE_SPAN / CASCADE_DT)) + 1)
@@ -147,7 +155,8 @@ def cascade_run(x0, rtol: float, damping=None):
     return t, _nc(x0, t, rtol, damping)
 
 
-def _measured(t, x, v, lifted: int, thresholds) -> dict:
+def _measured(t: NDArray[np.float64], x: ArrayLike, v: ArrayLike, lifted: int,
+              thresholds: Iterable[float]) -> dict:
     from cradle.measurements import desk_toy as m
 
     _, f = m.out_fractions(t, x, v, lifted)
@@ -236,7 +245,7 @@ def model_names(spec: DeskToyRuns) -> list[str]:
     return ["(nc) damped" if damped else "(nc)"] + [f"hard spheres e = {e:g}" for e in spec.restitution]
 
 
-def _group(spec: DeskToyRuns, r: dict, lifted: int):
+def _group(spec: DeskToyRuns, r: dict, lifted: int) -> tuple[dict, dict, dict]:
     from cradle.models.physical import to_si
 
     s = r["scales"]
@@ -245,7 +254,7 @@ def _group(spec: DeskToyRuns, r: dict, lifted: int):
     K = ms[0]["share"].size
     P = ms[0]["energy_per_swing"].shape[0]
 
-    def stack(key):
+    def stack(key: str) -> NDArray[np.float64]:
         return np.stack([np.asarray(mm[key], dtype=float) for mm in ms])
 
     data = {
@@ -274,7 +283,7 @@ def _group(spec: DeskToyRuns, r: dict, lifted: int):
     return data, coords, attrs
 
 
-def compute(spec: DeskToyRuns, inputs=None, log=None):
+def compute(spec: DeskToyRuns, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
     """The `desk-toy` analysis as a tree: one group per (chain length, lifted count) (:data:`VARIABLES`); it
     reads no file (``inputs`` is empty)."""
     from cradle.data.io import make_tree
@@ -317,7 +326,7 @@ def compute(spec: DeskToyRuns, inputs=None, log=None):
         tree[path].attrs = a
     return tree
 
-def movie_dataset(group, hard: int = 1):
+def movie_dataset(group: xr.DataTree, hard: int = 1) -> tuple[xr.Dataset, tuple[tuple[str, str], ...]]:
     """A desk toy of this analysis's file (one of its groups) as :func:`cradle.figures.movie.render` reads a
     scene, and the panels' titles: ``x`` (m) and the bond forces V0'(x_{n+1} - x_n) of (nc) (in (nc)'s units,
     from x / X: zero between hard spheres) along ``model`` = "nc" and "hard" (the model index ``hard`` of the

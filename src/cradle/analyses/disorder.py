@@ -70,6 +70,13 @@ from cradle.measurements import disorder as md
 from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.integrators.lattice_breathers import Breather
+    from cradle.models.inhomogeneity import Inhomogeneity, Sites
+    from cradle.models.initial import InitialData
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -169,14 +176,14 @@ def time_grid(spec: Disorder, shift: float) -> np.ndarray:
     return Ts / per * np.arange(int(round(spec.slow_periods * per)) + 1)
 
 
-def _sites(spec: Disorder, sigma: float, seed: int):
+def _sites(spec: Disorder, sigma: float, seed: int) -> tuple[Inhomogeneity, Sites]:
     from cradle.models.inhomogeneity import Inhomogeneity, sites
 
     inh = Inhomogeneity(sigma=sigma, distribution=spec.distribution, seed=seed)
     return inh, sites(inh, spec.N)
 
 
-def run_models(spec: Disorder, init, t, sigma: float, seed: int) -> dict[str, Any]:
+def run_models(spec: Disorder, init: InitialData, t: NDArray[np.float64], sigma: float, seed: int) -> dict[str, Any]:
     """Both models from ``init`` (x0, v0, A0, eps) on ``t`` at (sigma, seed): {"exact": (A, x, v), "dps": (A,
     None, None), "omega": omega_n, "drift": lattice energy drift, "l2": DpS l2 drift}; A the (ansatz) amplitude."""
     from cradle.analyses.mi_growth import lattice_amplitude
@@ -202,7 +209,7 @@ def run_models(spec: Disorder, init, t, sigma: float, seed: int) -> dict[str, An
             "omega": omega, "drift": float(lat.energy_drift), "l2": float(ds.max_l2_drift)}
 
 
-def _end(t, y) -> float:
+def _end(t: NDArray[np.float64], y: ArrayLike) -> float:
     """Mean of y over the last END_SHARE of the run."""
     return float(np.mean(np.asarray(y)[t >= t[-1] * (1.0 - END_SHARE) - 1e-12]))
 
@@ -210,7 +217,8 @@ def _end(t, y) -> float:
 # ----------------------------------------------------------------- the families
 
 
-def initial_data(spec: Disorder, family: str, shift: float, seed: int = 0, breather=None):
+def initial_data(spec: Disorder, family: str, shift: float, seed: int = 0,
+                 breather: Breather | None = None) -> InitialData:
     """The InitialData of a family at Delta (the mi family's noise from ``seed``; the breather families from the
     exact breather ``breather``)."""
     from cradle.models import initial
@@ -221,14 +229,14 @@ def initial_data(spec: Disorder, family: str, shift: float, seed: int = 0, breat
     if family == "mi":
         return initial.travelling_wave(spec.N, q, ALPHA, omega_tw=1.0 + shift, noise_kind="gaussian",
                                        noise_amplitude=spec.mi_noise, seed=seed + NOISE_SEED_OFFSET)
-    x_b = np.asarray(breather.x0, dtype=float)
+    x_b = np.asarray(breather.x0, dtype=float)  # type: ignore[union-attr]  # a breather family's
     A0 = 0.5 * x_b.astype(complex)
     if family == "kicked":
         A0 = A0 * np.exp(1j * spec.kick * (np.arange(spec.N) - bond_centre(spec.N)))
         x0, v0 = initial.lattice_state(A0, 1.0, ALPHA)
     else:
         x0, v0 = x_b, np.zeros_like(x_b)
-    return initial.InitialData(A0=A0, eps=1.0, x0=x0, v0=v0, info={"omega_b": breather.omega})
+    return initial.InitialData(A0=A0, eps=1.0, x0=x0, v0=v0, info={"omega_b": breather.omega})  # type: ignore[union-attr]
 
 
 def bond_centre(N: int) -> float:
@@ -236,7 +244,7 @@ def bond_centre(N: int) -> float:
     return N // 2 + 0.5
 
 
-def exact_breather(spec: Disorder, shift: float):
+def exact_breather(spec: Disorder, shift: float) -> Breather:
     """The bond-centred exact breather of (nc) on the ring at omega_b = 1 + Delta (Newton from the DpS breather,
     :func:`cradle.integrators.lattice_breathers.continue_family`)."""
     from cradle.analyses.breathers import _profile
@@ -285,14 +293,15 @@ MEASURES: dict[str, dict[str, str]] = {
 }
 
 
-def _density(model: str, run: dict, omega) -> np.ndarray:
+def _density(model: str, run: dict, omega: NDArray[np.float64]) -> np.ndarray:
     A, x, v = run[model]
     if model == "exact":
         return md.site_energy(x, v, ALPHA, omega)
     return np.abs(A) ** 2
 
 
-def measure_family(spec: Disorder, family: str, shift: float, t, run: dict, ref: dict | None, init) -> dict:
+def measure_family(spec: Disorder, family: str, shift: float, t: NDArray[np.float64], run: dict, ref: dict | None,
+                   init: InitialData) -> dict:
     """The quantities of :data:`MEASURES` of one run pair, per model: {model: {name: value}}; ``ref`` the same
     family's homogeneous run pair (its measures under ``"measures"``, its runs under the models)."""
     Ts = 2.0 * np.pi / shift
@@ -343,7 +352,8 @@ def measure_family(spec: Disorder, family: str, shift: float, t, run: dict, ref:
     return out
 
 
-def run_case(spec: Disorder, family: str, shift: float, t, sigma: float, seed: int, breather, ref: dict | None):
+def run_case(spec: Disorder, family: str, shift: float, t: NDArray[np.float64], sigma: float, seed: int,
+             breather: Breather | None, ref: dict | None) -> tuple[dict[str, Any], dict]:
     """One case of a batch (:func:`family_batch`): the run pair of ``family`` at (Delta, sigma, seed) on ``t`` from
     its initial data (``breather`` the batch's exact breather, None for the waves) and its measures against
     ``ref``, the homogeneous run pair (ignored at sigma = 0): (run, {model: {name: value}})."""
@@ -352,7 +362,7 @@ def run_case(spec: Disorder, family: str, shift: float, t, sigma: float, seed: i
     return run, measure_family(spec, family, shift, t, run, ref if sigma > 0 else None, init)
 
 
-def family_batch(spec: Disorder, family: str, shift: float, log=None) -> dict[str, Any]:
+def family_batch(spec: Disorder, family: str, shift: float, log: Log | None = None) -> dict[str, Any]:
     """Every run of one family at one Delta: arrays (model, sigma, seed) of each measure, the fidelity series
     (model, sigma, seed, s) of the wave, and the drifts."""
     say = log or (lambda *a: None)
@@ -463,7 +473,7 @@ BATCH_VARIABLES: dict[str, dict[str, Var]] = {f: {**_COORDS, **_family_vars(f, (
                                               for f in FAMILIES}
 
 
-def batch_dataset(spec: Disorder, family: str, shift: float, log=None):
+def batch_dataset(spec: Disorder, family: str, shift: float, log: Log | None = None) -> xr.Dataset:
     """One batch (family, Delta) as a Dataset of :data:`BATCH_VARIABLES`."""
     from cradle.data.io import make_dataset
 
@@ -488,7 +498,7 @@ def batch_keys(spec: Disorder) -> list[str]:
     return [f"{f}-{i}" for f in FAMILIES for i in range(len(spec.shifts))] if spec.split else []
 
 
-def run_batch(spec: Disorder, key: str, inputs: dict, log=None):
+def run_batch(spec: Disorder, key: str, inputs: dict, log: Log | None = None) -> xr.Dataset:
     """The batch ``key`` of :func:`batch_keys` (it reads no file)."""
     found = _KEY.fullmatch(key)
     if found is None or key not in batch_keys(spec):
@@ -518,7 +528,7 @@ def crossovers(spec: Disorder, survival: dict[str, np.ndarray]) -> dict[str, np.
             "sigma_star_of_mean": of_mean, "survival_stats": surv}
 
 
-def compute(spec: Disorder, inputs: dict | None = None, log=None):
+def compute(spec: Disorder, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
     """The `disorder` analysis as a tree (:data:`VARIABLES`): the batches gathered (``inputs["batch/<key>"]``)
     or, without batches, every family and Delta run here."""
     from cradle.analyses import mi_growth as mg

@@ -56,6 +56,13 @@ from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR
 
 if TYPE_CHECKING:
+    import xarray as xr
+    from numpy.typing import NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.integrators.dps_solver import DpsSolution
+    from cradle.integrators.lattice_solver import LatticeSolution
+    from cradle.models.damping import Damping
     from cradle.models.initial import InitialData
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
@@ -161,7 +168,7 @@ def families(spec: Dissipation) -> list[tuple[str, InitialData]]:
 # ----------------------------------------------------------------- measurements on one run
 
 
-def lifetime(t, ratio, level: float) -> float:
+def lifetime(t: NDArray[np.float64], ratio: NDArray[np.float64], level: float) -> float:
     """First time the decreasing ``ratio`` (energy over its start) reaches ``level``, interpolated linearly in
     log(ratio) between the two samples around it; NaN if it never does."""
     t, r = np.asarray(t, dtype=float), np.asarray(ratio, dtype=float)
@@ -190,7 +197,9 @@ def closed_lifetime(term: str, value: float, level: float, family: str, info: di
     return float("nan")
 
 
-def drift_windows(t, x_site, v_site, A_site, eps: float, window: float):
+def drift_windows(t: NDArray[np.float64], x_site: NDArray[np.float64], v_site: NDArray[np.float64],
+                  A_site: NDArray[np.complex128], eps: float,
+                  window: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Per window [k window, (k+1) window): (starts, lattice omega, lattice amplitude, DpS omega, DpS amplitude).
 
     The amplitudes are window means of the envelopes: sqrt(x^2 + v^2) of the bead (its amplitude for a frequency
@@ -211,7 +220,8 @@ def drift_windows(t, x_site, v_site, A_site, eps: float, window: float):
     return starts, out
 
 
-def run_pair(init, damping, t, rtol: float):
+def run_pair(init: InitialData, damping: Damping, t: NDArray[np.float64],
+             rtol: float) -> tuple[LatticeSolution, DpsSolution]:
     """The damped lattice and damped DpS runs of one family: (lattice solution, DpS solution)."""
     from cradle.integrators import integrate_dps, integrate_lattice
     from cradle.models.dps_damped import slow_damping
@@ -258,11 +268,11 @@ def restitution_loss(b: float) -> float:
     kappa = k / m_eff, m_eff = m / 2, v the impact speed): e = |y'| when the overlap returns to 0."""
     from scipy.integrate import solve_ivp
 
-    def rhs(_s, z):
+    def rhs(_s: float, z: NDArray[np.float64]) -> list[float]:
         y, w = max(z[0], 0.0), z[1]
         return [w, -max(y ** 1.5 + b * math.sqrt(y) * w, 0.0)]
 
-    def back(_s, z):
+    def back(_s: float, z: NDArray[np.float64]) -> float:
         return z[0]
 
     setattr(back, "terminal", True)  # noqa: B010 (scipy reads these attributes of the event function)
@@ -381,7 +391,7 @@ VARIABLES = {
 }
 
 
-def _power(x, y) -> float:
+def _power(x: NDArray[np.float64], y: NDArray[np.float64]) -> float:
     """Least-squares power p of y ~ x^p over the finite positive points (NaN with fewer than 2)."""
     x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
     ok = np.isfinite(y) & (y > 0)
@@ -390,7 +400,7 @@ def _power(x, y) -> float:
     return float(np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)[0])
 
 
-def compute(spec: Dissipation, inputs=None, log=None):
+def compute(spec: Dissipation, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
     """The `dissipation` analysis as a tree of groups (module docstring, :data:`VARIABLES`); reads no file."""
     import time
 

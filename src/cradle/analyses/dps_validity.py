@@ -41,6 +41,10 @@ from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR, show
 
 if TYPE_CHECKING:
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -113,7 +117,7 @@ class DpsValidity:
 # ----------------------------------------------------------------- the initial data of a family
 
 
-def family_amplitude(family: str, alpha: float, spec: DpsValidity):
+def family_amplitude(family: str, alpha: float, spec: DpsValidity) -> tuple[NDArray[np.complex128], int, dict]:
     """(A_n(0) with max_n |A_n(0)| = 1 (noise aside), N, info) of a family (see module docstring)."""
     from cradle.models import initial
 
@@ -156,8 +160,8 @@ def dps_growth(family: str, alpha: float, N: int) -> float:
 # ----------------------------------------------------------------- one run: the running sup error
 
 
-def sup_error(A0, eps: float, alpha: float, T_marks, *, sample_every: float, dt_factor: float, rtol: float,
-              chunk: int = 20000, check: bool = False) -> dict:
+def sup_error(A0: ArrayLike, eps: float, alpha: float, T_marks: ArrayLike, *, sample_every: float, dt_factor: float,
+              rtol: float, chunk: int = 20000, check: bool = False) -> dict:
     """Running sup_t max_n |x - x_app| of one run on a ring, read at t = T eps^(1-alpha), T in ``T_marks``.
 
     The lattice (srkn6c with the fixed step dt = dt_factor 2 pi / omega_max of the initial
@@ -219,7 +223,7 @@ def sup_error(A0, eps: float, alpha: float, T_marks, *, sample_every: float, dt_
 # ----------------------------------------------------------------- the fits
 
 
-def power_fit(eps, err):
+def power_fit(eps: ArrayLike, err: ArrayLike) -> tuple[float, float, float]:
     """Least squares log E = p log eps + c: (p, standard error of p, c); NaN with < 3 finite points."""
     eps, err = np.asarray(eps, dtype=float), np.asarray(err, dtype=float)
     ok = np.isfinite(err) & (err > 0) & (eps > 0)
@@ -234,7 +238,7 @@ def power_fit(eps, err):
     return p, se, c
 
 
-def local_exponents(eps, err):
+def local_exponents(eps: ArrayLike, err: ArrayLike) -> NDArray[np.float64]:
     """Slopes of log E between neighbouring eps (length n - 1): where they leave alpha, the law fails."""
     return np.diff(np.log(np.asarray(err, dtype=float))) / np.diff(np.log(np.asarray(eps, dtype=float)))
 
@@ -316,7 +320,7 @@ def batch_keys(spec: DpsValidity) -> list[str]:
     return [f"alpha{ia}-{float(al):g}" for ia, al in enumerate(spec.alpha)]
 
 
-def batch(spec: DpsValidity, ia: int, log=None):
+def batch(spec: DpsValidity, ia: int, log: Log | None = None) -> xr.Dataset:
     """Every family at alpha number ``ia``: its A_n(0) (:func:`family_amplitude`), its DpS growth rate
     (:func:`dps_growth`) and one :func:`sup_error` run per eps of :func:`eps_grid` (the smallest also with
     dt / 2) -> a flat Dataset (:data:`BATCH_VARIABLES`); attributes: the noise seeds, the wall time."""
@@ -357,7 +361,7 @@ def batch(spec: DpsValidity, ia: int, log=None):
                         title=f"dps-validity batch: alpha = {al:g} (alpha number {ia}), every family")
 
 
-def run_batch(spec: DpsValidity, key: str, inputs=None, log=None):
+def run_batch(spec: DpsValidity, key: str, inputs: dict | None = None, log: Log | None = None) -> xr.Dataset:
     """The batch ``key`` of :func:`batch_keys` (it reads no file)."""
     keys = batch_keys(spec)
     if key not in keys:
@@ -365,7 +369,7 @@ def run_batch(spec: DpsValidity, key: str, inputs=None, log=None):
     return batch(spec, keys.index(key), log=log)
 
 
-def _batches(spec: DpsValidity, inputs, log) -> list:
+def _batches(spec: DpsValidity, inputs: dict, log: Log | None) -> list[xr.Dataset]:
     """The batch of every alpha, in the order of ``spec.alpha``: all from ``inputs`` or, when it holds none,
     run here one after another."""
     keys = batch_keys(spec)
@@ -381,7 +385,7 @@ def _batches(spec: DpsValidity, inputs, log) -> list:
 # ----------------------------------------------------------------- the whole form
 
 
-def compute(spec: DpsValidity, inputs=None, log=None):
+def compute(spec: DpsValidity, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
     """The `dps-validity` analysis as a tree of groups (see module docstring and :data:`VARIABLES`) for
     one form of its spec, from its batches (``inputs["batch/<key>"]``, one per alpha: :func:`batch_keys`).
     Without them (``inputs`` empty or None: ``compute(spec)`` from Python) the batches are run here, one
@@ -418,7 +422,7 @@ def compute(spec: DpsValidity, inputs=None, log=None):
     return tree_of_runs(spec, runs, t_start, wall_before=batch_wall)
 
 
-def tree_of_runs(spec: DpsValidity, runs: dict, t_start: float, wall_before: float = 0.0):
+def tree_of_runs(spec: DpsValidity, runs: dict, t_start: float, wall_before: float = 0.0) -> xr.DataTree:
     """The tree of one form (:data:`VARIABLES`) from its runs: ``runs`` holds on (family, alpha, ...) what
     :func:`batch` stores (abs_error, dt, energy_drift, n_samples, halving_deviation, dps_growth_rate) and
     ``noise_seeds`` ({"<family>_alpha<alpha>": seed}); the ratios, fits and attributes are derived here.

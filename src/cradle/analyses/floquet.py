@@ -11,6 +11,8 @@ Its spec is :class:`cradle.analyses.floquet_spec.Floquet` (config ``beyond: floq
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.analyses.bloch import (
@@ -30,8 +32,14 @@ from cradle.models import dps
 from cradle.specs.declare import plain
 from cradle.specs.values import angle_expr, parse_angle
 
+if TYPE_CHECKING:
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
 
-def dps_growth(q, p, alpha: float, a: float):
+    from cradle.analyses.protocol import Log
+
+
+def dps_growth(q: ArrayLike, p: ArrayLike, alpha: float, a: float) -> NDArray[np.float64]:
     """The DpS growth rate of sideband p in lattice time: modulational.growth_rate with R = a / 2."""
     from cradle.analyses.mi_diagram import growth_rate
 
@@ -48,13 +56,13 @@ def dps_max_growth(q: float, alpha: float, a: float) -> tuple[float, float]:
 
 # ----------------------------------------------------------------- thresholds
 
-def _hill_at(q, alpha, omega_tw, num: Numerics):
+def _hill_at(q: float, alpha: float, omega_tw: float, num: Numerics) -> Hill:
     w = wave_for(q, alpha, omega_tw=omega_tw, modes=num.wave_modes, grid_log2=num.wave_grid_log2)
     return Hill(w, L=num.hill_modes, M=2 ** num.grid_log2)
 
 
 def threshold(alpha: float, omega_tw: float, q_lo: float, q_hi: float, num: Numerics, n_scan: int = 16,
-              n_p: int = 61, floor: float = NOISE_FLOOR, tol: float = 2e-6):
+              n_p: int = 61, floor: float = NOISE_FLOOR, tol: float = 2e-6) -> tuple[float, float, float, int]:
     """Smallest q in [q_lo, q_hi] where the exact wave (a from (freq) at omega_tw) has an unstable Bloch mode.
 
     Scan n_scan points for the first q with max_p signed > floor (p in (0, pi], refined between grid
@@ -136,7 +144,7 @@ VARIABLES = {
 }
 
 
-def compute(spec: Floquet, inputs: dict | None = None, log=None):
+def compute(spec: Floquet, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
     """The `floquet` analysis as a tree of groups (:data:`VARIABLES`), from the spec of one form (it reads no
     file: ``inputs`` is empty). Every Hill problem and wave uses ``spec.numerics``, the convergence checks
     ``spec.fine``.
@@ -261,7 +269,7 @@ def compute(spec: Floquet, inputs: dict | None = None, log=None):
         f"{ring_rate_h:.8g}, trivial |mu - 1| = {ring_trivial:.2g}; direct run N={Nd} k={kd}: {d_mode:.6g} "
         f"(|delta| fit {d_dist:.6g}) vs Floquet {d_rate:.6g}")
 
-    def at(qv):
+    def at(qv: float) -> float:
         return float(pm[int(np.argmin(np.abs(np.asarray(qsel) - qv)))]) if qsel else float("nan")
 
     groups = {

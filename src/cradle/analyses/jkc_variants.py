@@ -43,7 +43,14 @@ from cradle.data.variables import Var
 from cradle.specs.declare import NAME_PATTERN, NULL, declared, param, plain
 
 if TYPE_CHECKING:
-    from cradle.scenes.spec import Context, Where
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.integrators.lattice_solver import LatticeSolution
+    from cradle.models.inhomogeneity import Sites
+    from cradle.models.lattice_terms import Terms
+    from cradle.scenes.spec import Context, Scene, Where
     from cradle.specs.values import Errors
 
 #: the three roles, each a scene of config.yaml
@@ -105,7 +112,7 @@ class JkcVariants:
                 out.add(where + [role], why, name)
 
 
-def _role_problem(role: str, sc) -> str:
+def _role_problem(role: str, sc: Scene) -> str:
     """Why scene ``sc`` cannot play ``role`` ('' if it can)."""
     if sc.initial.kind != "kick":
         return f"must be a kick scene (initial.kind kick), got {sc.initial.kind}"
@@ -123,7 +130,7 @@ def _role_problem(role: str, sc) -> str:
 
 # ----------------------------------------------------------------- measures
 
-def local_energy(x, v, alpha: float, terms, s, bc: str) -> np.ndarray:
+def local_energy(x: ArrayLike, v: ArrayLike, alpha: float, terms: Terms, s: Sites, bc: str) -> np.ndarray:
     """e_n: m_n v_n^2/2 + m_n omega_n^2 W(x_n) + (k_{n-1} Phi_{n-1} + k_n Phi_n)/2 of (ncimperfect), whose sum
     over n is the generalised (ham) (:func:`cradle.models.lattice_terms.hamiltonian`); beads on the last axis.
     A missing bond of a free chain (bond N-1) carries nothing."""
@@ -143,14 +150,14 @@ def local_energy(x, v, alpha: float, terms, s, bc: str) -> np.ndarray:
     return 0.5 * s.mass * v**2 + onsite + 0.5 * (bond + np.roll(bond, 1, axis=-1))
 
 
-def energy_centre(e) -> np.ndarray:
+def energy_centre(e: NDArray[np.float64]) -> np.ndarray:
     """X(t) = sum_n n e_n / sum_n e_n (bead indices 0..N-1; beads on the last axis)."""
     e = np.asarray(e, dtype=float)
     n = np.arange(e.shape[-1])
     return (e * n).sum(-1) / e.sum(-1)
 
 
-def running_mean(t, y, window: float) -> np.ndarray:
+def running_mean(t: NDArray[np.float64], y: NDArray[np.float64], window: float) -> np.ndarray:
     """The centred running mean of y over ``window`` time units on the uniform grid t (fewer points near the
     ends: the mean of those the window covers)."""
     t = np.asarray(t, dtype=float)
@@ -161,7 +168,7 @@ def running_mean(t, y, window: float) -> np.ndarray:
     return np.convolve(y, kernel, mode="same") / np.convolve(np.ones_like(y), kernel, mode="same")
 
 
-def reversals(y, threshold: float) -> np.ndarray:
+def reversals(y: NDArray[np.float64], threshold: float) -> np.ndarray:
     """Indices of the reversals of the series y: extrema (a maximum when y went up, a minimum when it went down)
     from which y then retreats by at least ``threshold``; the first direction is the first move of
     ``threshold``. Wiggles smaller than ``threshold`` are not reversals."""
@@ -191,7 +198,8 @@ def reversals(y, threshold: float) -> np.ndarray:
     return np.asarray(out, dtype=int)
 
 
-def touches_end(t, low, high, y, j: int, N: int, edge_sites: int, window: float) -> bool:
+def touches_end(t: NDArray[np.float64], low: NDArray[np.float64], high: NDArray[np.float64], y: NDArray[np.float64],
+                j: int, N: int, edge_sites: int, window: float) -> bool:
     """Whether the reversal of y at index j is a bounce: within ``window`` time units of it, the energy extent on
     the side y was moving to (``high``, the 99 % quantile, at a maximum; ``low``, the 1 % quantile, at a minimum)
     comes within ``edge_sites`` of that end of the free chain. Conservative: with energy left at the kicked end,
@@ -203,7 +211,7 @@ def touches_end(t, low, high, y, j: int, N: int, edge_sites: int, window: float)
     return bool(np.min(low[near]) <= edge_sites)
 
 
-def core_and_tails(e, w: int):
+def core_and_tails(e: NDArray[np.float64], w: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """For a half-width w: (position, core, left, right) per row of e (beads on the last axis, no wrap): the
     window of 2w+1 beads with the most energy (clipped at the chain's ends), its centre, its energy and the
     energy below and above it, each as a fraction of the row's total."""
@@ -222,7 +230,7 @@ def core_and_tails(e, w: int):
     return k.astype(float), core, left, right
 
 
-def quantile_sites(e, q: float) -> np.ndarray:
+def quantile_sites(e: NDArray[np.float64], q: float) -> np.ndarray:
     """The first bead at which the cumulative energy reaches the fraction q of the total, per row."""
     e = np.asarray(e, dtype=float)
     c = np.cumsum(e, axis=-1) / e.sum(-1, keepdims=True)
@@ -233,7 +241,7 @@ def quantile_sites(e, q: float) -> np.ndarray:
 PAD = 16
 
 
-def dominant_frequency(t, x) -> float:
+def dominant_frequency(t: NDArray[np.float64], x: NDArray[np.float64]) -> float:
     """The angular frequency of the largest peak of |FFT| of x(t) (Hann window, zero-padded PAD times) on the
     uniform grid t; the peak of a sine of a span T is located to well within its width ~ 4 pi / T."""
     t = np.asarray(t, dtype=float)
@@ -246,7 +254,7 @@ def dominant_frequency(t, x) -> float:
 
 # ----------------------------------------------------------------- the runs
 
-def _terms_and_sites(exact_ds, init_ds):
+def _terms_and_sites(exact_ds: xr.Dataset, init_ds: xr.Dataset) -> tuple[Terms, Sites]:
     """The terms and sites of a scene's exact run, from its stored attributes and site values."""
     from cradle.models.inhomogeneity import Sites
     from cradle.models.lattice_terms import Terms
@@ -266,13 +274,14 @@ def _terms_and_sites(exact_ds, init_ds):
     return terms, s
 
 
-def _dps_state(A, t, eps: float):
+def _dps_state(A: NDArray[np.complex128], t: NDArray[np.float64], eps: float) -> tuple[np.ndarray, np.ndarray]:
     """The ansatz (ansatz) at leading order: x = 2 eps Re(A e^{it}), v = -2 eps Im(A e^{it})."""
     z = 2.0 * eps * np.asarray(A) * np.exp(1j * np.asarray(t, dtype=float))[:, None]
     return z.real, -z.imag
 
 
-def reference_runs(init_ds, exact_ds, dps_ds):
+def reference_runs(init_ds: xr.Dataset, exact_ds: xr.Dataset,
+                   dps_ds: xr.Dataset) -> tuple[LatticeSolution, np.ndarray, np.ndarray]:
     """The same kick in the harmonic, uncompressed chain (nc) and in DpS (dfnls), with the scene's integrators
     (lattice: its method and rtol; DpS: its method and rtol) at the scene's stored times: (x, v, x_dps, v_dps)."""
     from cradle.integrators import integrate_dps, integrate_lattice
@@ -290,7 +299,8 @@ def reference_runs(init_ds, exact_ds, dps_ds):
     return sol, xd, vd
 
 
-def measure(spec: JkcVariants, t, energies: dict, N: int, bc: str, kick_site: int, xs: dict, scale: float) -> tuple:
+def measure(spec: JkcVariants, t: NDArray[np.float64], energies: dict, N: int, bc: str, kick_site: int, xs: dict,
+            scale: float) -> tuple:
     """Every measure of one scene (see the module docstring) from its four local-energy maps ``energies``
     (model -> (T, N)) and displacements ``xs`` (model -> (T, N)): (data, coords) of its group."""
     T = t.size
@@ -347,7 +357,7 @@ def measure(spec: JkcVariants, t, energies: dict, N: int, bc: str, kick_site: in
     return data, coords
 
 
-def compute(spec: JkcVariants, inputs: dict, log=None):
+def compute(spec: JkcVariants, inputs: dict, log: Log | None = None) -> xr.DataTree:
     """The `jkc-variants` analysis: one group per role (see the module docstring and :data:`VARIABLES`)."""
     import time
 

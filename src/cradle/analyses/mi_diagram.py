@@ -27,6 +27,10 @@ from cradle.models import dps
 from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -63,11 +67,11 @@ class MIDiagram:
                     break
 
 
-def _g(z, alpha):
+def _g(z: np.ndarray, alpha: float) -> np.ndarray:
     return z * np.abs(z) ** (alpha - 1.0)
 
 
-def rotating_rhs(b, q: float, R: float, alpha: float):
+def rotating_rhs(b: np.ndarray, q: float, R: float, alpha: float) -> NDArray[np.complex128]:
     """b' in the rotating frame (periodic lattice, N = b.size, q N / 2 pi an integer)."""
     t0 = dps.tau0(alpha)
     Om = dps.plane_wave_frequency(R, q, alpha)
@@ -77,7 +81,7 @@ def rotating_rhs(b, q: float, R: float, alpha: float):
     return (_g(D, alpha) - _g(E, alpha)) / (2j * t0) - 1j * Om * B
 
 
-def stability_matrix(q, p, alpha: float, R: float = 1.0):
+def stability_matrix(q: ArrayLike, p: ArrayLike, alpha: float, R: float = 1.0) -> NDArray[np.complex128]:
     """L(q, p): d/dtau (beta, gamma) = L (beta, gamma); q, p broadcast; shape (..., 2, 2)."""
     q, p = np.broadcast_arrays(np.asarray(q, dtype=float), np.asarray(p, dtype=float))
     t0 = dps.tau0(alpha)
@@ -90,10 +94,10 @@ def stability_matrix(q, p, alpha: float, R: float = 1.0):
         QD = np.where(rho > 0, (alpha - 1.0) / 2.0 * rho ** (alpha - 1.0) * D / np.conj(D), 0.0)
         QE = np.where(rho > 0, (alpha - 1.0) / 2.0 * rho ** (alpha - 1.0) * E / np.conj(E), 0.0)
 
-    def d(k):
+    def d(k: np.ndarray) -> np.ndarray:
         return np.exp(1j * (k - q)) - 1.0
 
-    def e(k):
+    def e(k: np.ndarray) -> np.ndarray:
         return 1.0 - np.exp(-1j * (k - q))
 
     c = 1.0 / (2j * t0)
@@ -105,7 +109,7 @@ def stability_matrix(q, p, alpha: float, R: float = 1.0):
     return L
 
 
-def growth_rate_matrix(q, p, alpha: float, R: float = 1.0):
+def growth_rate_matrix(q: ArrayLike, p: ArrayLike, alpha: float, R: float = 1.0) -> NDArray[np.float64]:
     """max Re eig L(q, p) from the 2x2 matrix (cross-check of :func:`growth_rate`).
 
     mu = tr/2 +- sqrt(((L00 - L11)/2)^2 + L01 L10); the discriminant carries a round-off
@@ -117,7 +121,7 @@ def growth_rate_matrix(q, p, alpha: float, R: float = 1.0):
     return half_tr.real + np.abs(np.sqrt(disc).real)
 
 
-def growth_rate(q, p, alpha: float, R: float = 1.0):
+def growth_rate(q: ArrayLike, p: ArrayLike, alpha: float, R: float = 1.0) -> NDArray[np.float64]:
     """lambda(q, p) = max Re eig L(q, p) in units of 1/tau, in closed form.
 
     With c = cos q, s = |sin(q/2)|, w = 1 - cos p = 2 sin^2(p/2), K = (2 R s)^(alpha-1) / tau0, the
@@ -141,19 +145,20 @@ def growth_rate(q, p, alpha: float, R: float = 1.0):
     return 0.5 * K * np.sqrt(np.maximum(f, 0.0))
 
 
-def scaled_growth_rate(q, p, alpha: float):
+def scaled_growth_rate(q: ArrayLike, p: ArrayLike, alpha: float) -> NDArray[np.float64]:
     """lambda tau0 R^(1-alpha): a function of (q, p) only."""
     return growth_rate(q, p, alpha, 1.0) * dps.tau0(alpha)
 
 
-def growth_map(alpha: float, n_q: int, n_p: int):
+def growth_map(alpha: float, n_q: int,
+               n_p: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """q in [0, pi] (n_q points), p in [-pi, pi] (n_p points), scaled growth rate (n_q, n_p)."""
     q = np.linspace(0.0, np.pi, n_q)
     p = np.linspace(-np.pi, np.pi, n_p)
     return q, p, scaled_growth_rate(q[:, None], p[None, :], alpha)
 
 
-def max_over_p(q, alpha: float, n_p: int = 4001):
+def max_over_p(q: float, alpha: float, n_p: int = 4001) -> tuple[float, float]:
     """(max_p lambda tau0 R^(1-alpha), argmax |p|): grid search on [0, pi], then a bounded refinement."""
     from scipy.optimize import minimize_scalar
 
@@ -170,7 +175,7 @@ def max_over_p(q, alpha: float, n_p: int = 4001):
     return float(lam[i]), float(p[i])
 
 
-def threshold(alpha: float, tol: float = 0.0, n_p: int = 4001):
+def threshold(alpha: float, tol: float = 0.0, n_p: int = 4001) -> tuple[float, float]:
     """Smallest q in (0, pi] with max_p lambda > tol (bisection), and the p maximising lambda just above it.
 
     The closed form of :func:`growth_rate` is exactly 0 on stable bands, so tol = 0 works; the answer
@@ -196,7 +201,7 @@ def threshold(alpha: float, tol: float = 0.0, n_p: int = 4001):
 
 
 def simulated_growth(alpha: float, N: int = 200, k_q: int = 70, m_p: int = 10, R: float = 1.0,
-                     delta: float = 1e-7, growth_factor: float = 1e3, rtol: float = 1e-12):
+                     delta: float = 1e-7, growth_factor: float = 1e3, rtol: float = 1e-12) -> tuple[float, float]:
     """Growth rate of a small perturbation of the plane wave, from a direct DpS run (integrate_dps).
 
     q = 2 pi k_q / N, p = 2 pi m_p / N; A_n(0) = plane wave + delta R e^{i p n} (rotating-frame b_n);
@@ -260,7 +265,7 @@ VARIABLES = {
 }
 
 
-def compute(spec: MIDiagram, inputs: dict, log=None):
+def compute(spec: MIDiagram, inputs: dict, log: Log | None = None) -> xr.DataTree:
     """The `mi-diagram` analysis as a tree of groups (:data:`VARIABLES`); it reads no file.
 
     The map on n_q x n_p points of [0, pi] x [-pi, pi]; each check pair [k_q, m_p] (q = 2 pi k_q / N,

@@ -54,7 +54,13 @@ from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import ConfigError
 
 if TYPE_CHECKING:
-    from cradle.scenes.spec import Context, Where
+    from collections.abc import Iterable
+
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.scenes.spec import Context, Scene, Where
     from cradle.specs.values import Errors
 
 #: the growth-rate diagram of the mi-growth figure: max_p of the scaled linear DpS rate on THEORY_N_Q
@@ -94,13 +100,13 @@ class MIGrowth:
 
 # ---------------------------------------------------------------- spectra
 
-def lattice_amplitude(x, v, t, eps: float):
+def lattice_amplitude(x: ArrayLike, v: ArrayLike, t: NDArray[np.float64], eps: float) -> NDArray[np.complex128]:
     """A_n(t) = (x_n - i v_n) e^{-it} / (2 eps): the (ansatz) amplitude read from a lattice state."""
     t = np.asarray(t, dtype=float)
     return (np.asarray(x) - 1j * np.asarray(v)) * np.exp(-1j * t)[:, None] / (2.0 * eps)
 
 
-def pair_spectrum(A, k_q: int):
+def pair_spectrum(A: NDArray[np.complex128], k_q: int) -> NDArray[np.float64]:
     """S_p(t) for p = 2 pi m / N, m = 0..N//2 (column 0 is NaN): sideband pairs around the carrier -q.
 
     ``A`` has shape (T, N); q = 2 pi k_q / N. For 2m = N the two sidebands are one bin, counted once.
@@ -130,7 +136,7 @@ def harmonic_indices(k_q: int, N: int) -> list[int]:
 
 # ---------------------------------------------------------------- fits
 
-def fit_log_linear(t, y):
+def fit_log_linear(t: NDArray[np.float64], y: NDArray[np.float64]) -> tuple[float, float, float]:
     """Least-squares fit log y = c + rate t: (rate, standard error, r^2)."""
     t = np.asarray(t, dtype=float)
     ly = np.log(np.asarray(y, dtype=float))
@@ -147,7 +153,8 @@ def fit_log_linear(t, y):
     return float(coef[0]), float(se), float(r2)
 
 
-def growth_window(t, y, saturation: float, decades: float, envelope=None):
+def growth_window(t: NDArray[np.float64], y: NDArray[np.float64], saturation: float, decades: float,
+                  envelope: NDArray[np.float64] | None = None) -> tuple[int, int, bool, bool]:
     """(i_a, i_b, saturated, full): the fit window [t[i_a], t[i_b]] of the module docstring.
 
     ``y`` is the series fitted; ``envelope`` (default ``y``) decides where the window ends.
@@ -164,7 +171,8 @@ def growth_window(t, y, saturation: float, decades: float, envelope=None):
     return i_a, i_b, saturated, full
 
 
-def measure(t, S, exclude_m=(), saturation: float = 0.2, decades: float = 1.0, r2_min: float = 0.95) -> dict:
+def measure(t: NDArray[np.float64], S: NDArray[np.float64], exclude_m: Iterable[int] = (), saturation: float = 0.2,
+            decades: float = 1.0, r2_min: float = 0.95) -> dict:
     """The growth measurement of the module docstring on a pair spectrum S (T, M) sampled at t."""
     t = np.asarray(t, dtype=float)
     S = np.array(S, dtype=float)
@@ -193,7 +201,8 @@ def measure(t, S, exclude_m=(), saturation: float = 0.2, decades: float = 1.0, r
 
 # ---------------------------------------------------------------- scene runs
 
-def run_scene(spec, init_ds, every: float):
+def run_scene(spec: Scene, init_ds: xr.Dataset,
+              every: float) -> tuple[NDArray[np.float64], dict[str, np.ndarray], dict[str, np.ndarray], dict]:
     """Rerun scene ``spec`` (a resolved :class:`cradle.scenes.spec.Scene`) from its initial Dataset:
     (t, {model: A (T, N)}, {model: x (T, N)}, info)."""
     from cradle.integrators import SPLITTING_METHODS, integrate_dps, integrate_lattice
@@ -217,7 +226,7 @@ def run_scene(spec, init_ds, every: float):
     return t, A, x, info
 
 
-def sim_check(t, x, sim_ds, a: float, t_max: float) -> float:
+def sim_check(t: NDArray[np.float64], x: NDArray[np.float64], sim_ds: xr.Dataset, a: float, t_max: float) -> float:
     """max |x - x_sim| / a over the times of ``sim_ds`` up to ``t_max`` (NaN when none is common)."""
     ts = sim_ds["t"].values
     worst = float("nan")
@@ -231,7 +240,7 @@ def sim_check(t, x, sim_ds, a: float, t_max: float) -> float:
     return worst
 
 
-def theory_rates(q: float, N: int, alpha: float, eps: float):
+def theory_rates(q: float, N: int, alpha: float, eps: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(p, lambda(q, p) eps^(alpha-1)) for p = 2 pi m / N, m = 0..N//2: the linear DpS rate per unit t (R = 1)."""
     p = 2.0 * np.pi * np.arange(N // 2 + 1) / N
     return p, modulational.growth_rate(q, p, alpha, 1.0) * eps ** (alpha - 1.0)
@@ -285,7 +294,7 @@ VARIABLES = {
 }
 
 
-def compute(spec: MIGrowth, inputs: dict, log=None):
+def compute(spec: MIGrowth, inputs: dict, log: Log | None = None) -> xr.DataTree:
     """The `mi-growth` analysis as a tree of groups (:data:`VARIABLES`), from the initial data and the
     exact and DpS runs of every scene of ``spec.scenes`` (``inputs["<scene>/initial"]``, ...); each scene
     is rerun with the integrators its files were computed with (:func:`cradle.scenes.stored.scene_of`).

@@ -54,6 +54,12 @@ from cradle.specs.declare import NULL, declared, param, plain
 from cradle.specs.values import INTEGER_TOL, RTOL_FLOOR
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -162,7 +168,7 @@ def sample_times(spec: MIStatistics) -> np.ndarray:
     return np.asarray(store_times(None, spec.sample_every, spec.t_end))
 
 
-def crossing_time(t, r, fraction: float) -> float:
+def crossing_time(t: NDArray[np.float64], r: NDArray[np.float64], fraction: float) -> float:
     """First time r(t) >= fraction, interpolated linearly in log r between the two samples around it.
 
     NaN when r stays below ``fraction`` on the whole series; t[0] when it starts above.
@@ -182,7 +188,8 @@ def crossing_time(t, r, fraction: float) -> float:
     return float(t[i - 1] + s * (t[i] - t[i - 1]))
 
 
-def run_ratio(model: str, N: int, k: int, seed: int, spec: MIStatistics):
+def run_ratio(model: str, N: int, k: int, seed: int,
+              spec: MIStatistics) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], dict]:
     """One run: (t, r(t), k_peak(t), info) for carrier q = 2 pi k / N, noise seed ``seed``, with the
     settings of ``spec`` (alpha, omega_tw, noise, t_end, sample_every, exclude_bins, exact, dps)."""
     from cradle.integrators import integrate_dps, integrate_lattice
@@ -217,7 +224,7 @@ def run_ratio(model: str, N: int, k: int, seed: int, spec: MIStatistics):
 
 # ---------------------------------------------------------------- threshold
 
-def wilson_interval(successes, n, z: float = WILSON_Z):
+def wilson_interval(successes: ArrayLike, n: ArrayLike, z: float = WILSON_Z) -> tuple[np.ndarray, np.ndarray]:
     """Wilson score interval (low, high) for a binomial proportion successes / n."""
     s = np.asarray(successes, dtype=float)
     n = np.asarray(n, dtype=float)
@@ -228,7 +235,7 @@ def wilson_interval(successes, n, z: float = WILSON_Z):
     return centre - half, centre + half
 
 
-def threshold(q, unstable) -> dict:
+def threshold(q: NDArray[np.float64], unstable: NDArray[np.bool_]) -> dict:
     """Threshold in q from a boolean array ``unstable`` of shape (n_q, n_seeds) (see the module docstring).
 
     Returns {estimate, low, high, status, n_nonmonotone}: status "ok", "below_grid" (f >= 1/2 at
@@ -343,7 +350,7 @@ VARIABLES = {
 BATCH_VARIABLES = {**VARIABLES["/"], **VARIABLES["/runs"]}
 
 
-def batch(spec: MIStatistics, N: int, model: str, chunk: int, log=None):
+def batch(spec: MIStatistics, N: int, model: str, chunk: int, log: Log | None = None) -> xr.Dataset:
     """Runs of one (N, model, chunk): every q of the chunk times every seed -> a flat Dataset
     (:data:`BATCH_VARIABLES`: the "/runs" table with k_index and a)."""
     from cradle.data.io import make_dataset
@@ -379,7 +386,7 @@ def batch(spec: MIStatistics, N: int, model: str, chunk: int, log=None):
                         title=f"mi-statistics batch: N = {N}, {model}, chunk {chunk}")
 
 
-def aggregate(batches, spec: MIStatistics):
+def aggregate(batches: Sequence[xr.Dataset], spec: MIStatistics) -> xr.DataTree:
     """Join the batches of one variant (any order) and add the thresholds per (N, model): a tree of
     groups (:data:`VARIABLES`), the summary per q at the root and every run in "/runs"."""
     import warnings
@@ -451,7 +458,7 @@ def batch_keys(spec: MIStatistics) -> list[str]:
     return [f"N{N}-{model}-{chunk}" for N in spec.N for model in MODELS for chunk in range(spec.chunks)]
 
 
-def run_batch(spec: MIStatistics, key: str, inputs: dict, log=None):
+def run_batch(spec: MIStatistics, key: str, inputs: dict, log: Log | None = None) -> xr.Dataset:
     """The batch ``key`` of :func:`batch_keys` (it reads no file)."""
     found = _KEY.fullmatch(key)
     if found is None or key not in batch_keys(spec):
@@ -460,7 +467,7 @@ def run_batch(spec: MIStatistics, key: str, inputs: dict, log=None):
     return batch(spec, int(N), model, int(chunk), log=log)
 
 
-def compute(spec: MIStatistics, inputs: dict, log=None):
+def compute(spec: MIStatistics, inputs: dict, log: Log | None = None) -> xr.DataTree:
     """The `mi-statistics` file of one form from its batches (``inputs["batch/<key>"]``)."""
     return aggregate([inputs[f"batch/{key}"] for key in batch_keys(spec)], spec)
 

@@ -9,10 +9,19 @@ peak compression of each period) and only the outcome is kept.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.measurements import compare, interactions
 from cradle.models import lattice
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    from numpy.typing import NDArray
+
+    from cradle.models.initial import InitialData
 
 MODELS = ("exact", "dps")
 EVERY = 0.5          # stored time step of the forces (breather period 2 pi / 1.1 = 5.7)
@@ -20,15 +29,16 @@ DPS_RTOL = 1e-9      # DOP853 tolerance of (dfnls): merging times agree with 1e-
 NEAR = 3             # the largest breather's norm: sites within 3 of its centre
 
 
-def norm_density(model: str, x=None, v=None, A=None):
+def norm_density(model: str, x: NDArray[np.float64] | None = None, v: NDArray[np.float64] | None = None,
+                 A: NDArray[np.complex128] | None = None) -> NDArray[np.float64]:
     """Norm density per site: |A_n|^2 (DpS, conserved sum) or (x_n^2 + v_n^2)/4 for the lattice (the
     same quantity through the ansatz x_n = 2 Re(A_n e^{it}) at leading order)."""
     if model == "dps":
-        return np.abs(A) ** 2
-    return 0.25 * (x ** 2 + v ** 2)
+        return np.abs(A) ** 2  # type: ignore[arg-type]  # the DpS model's A given
+    return 0.25 * (x ** 2 + v ** 2)  # type: ignore[operator]  # the lattice's x, v given
 
 
-def largest_share(rho, centre_site: float, N: int, periodic: bool = True) -> float:
+def largest_share(rho: NDArray[np.float64], centre_site: float, N: int, periodic: bool = True) -> float:
     """Share of sum rho held by the sites within NEAR of ``centre_site``."""
     n = np.arange(N)
     d = np.abs(n - centre_site)
@@ -38,8 +48,9 @@ def largest_share(rho, centre_site: float, N: int, periodic: bool = True) -> flo
     return float(rho[d <= NEAR].sum() / total) if total > 0 else float("nan")
 
 
-def run_pair(data, t_end: float, alpha: float = 1.5, bc: str = "periodic", models=MODELS,
-             every: float = EVERY, method: str = "srkn6c", dps_rtol: float = DPS_RTOL, keep: bool = False):
+def run_pair(data: InitialData, t_end: float, alpha: float = 1.5, bc: str = "periodic", models: Iterable[str] = MODELS,
+             every: float = EVERY, method: str = "srkn6c", dps_rtol: float = DPS_RTOL,
+             keep: bool = False) -> dict[str, dict]:
     """Integrate ``data`` (InitialData) to ``t_end`` in each of ``models``; per model a dict with the
     :class:`~cradle.measurements.interactions.Outcome`, the share of the norm held by the largest
     breather at the start and the end (norm_share_0, norm_share_end) and the wall time; with ``keep``

@@ -19,6 +19,8 @@ documented where they are defined.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cradle.analyses.checks_localised import (
@@ -42,6 +44,14 @@ from cradle.data.variables import Var
 from cradle.measurements import compare, sidebands
 from cradle.models import dps, stationary
 from cradle.specs.declare import declared, param, plain
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable
+
+    import xarray as xr
+    from numpy.typing import NDArray
+
+    from cradle.analyses.protocol import Log
 
 #: the files of a scene the table may read
 SCENE_PARTS = ("initial", "exact", "dps", "metrics")
@@ -86,19 +96,19 @@ def reads(spec: PaperChecks) -> dict[str, Read]:
 class Results:
     """The outputs the table reads, by kind and name, from the Datasets :func:`reads` names."""
 
-    def __init__(self, inputs: dict):
+    def __init__(self, inputs: dict) -> None:
         self.inputs = inputs
 
-    def initial(self, scene):
+    def initial(self, scene: str) -> xr.Dataset:
         return self.inputs[f"{scene}/initial"]
 
-    def sim(self, scene, model):
+    def sim(self, scene: str, model: str) -> xr.Dataset:
         return self.inputs[f"{scene}/{model}"]
 
-    def metrics(self, scene):
+    def metrics(self, scene: str) -> xr.Dataset:
         return self.inputs[f"{scene}/metrics"]
 
-    def homoclinic(self, name):
+    def homoclinic(self, name: str) -> xr.Dataset:
         return self.inputs[f"homoclinic/{name}"]
 
 
@@ -126,14 +136,14 @@ def amplitudes(res: Results, scenes: dict) -> list[Row]:
     return rows
 
 
-def eps_fft106(res: Results, scene="fft106") -> list[Row]:
+def eps_fft106(res: Results, scene: str = "fft106") -> list[Row]:
     eps = float(res.initial(scene).attrs["eps"])
     return [Row("fft106", "eps = a/2 for q = 4pi/5, omega_tw = 1.1", "3.8e-3", _fmt(eps, 4),
                 agrees_printed("3.8e-3", eps), "(freq), eps = a/2 with R = 1 (attribute eps)",
                 printed_tol("3.8e-3"))]
 
 
-def relative_error(res: Results, scene="tw-weak", bound=0.05) -> list[Row]:
+def relative_error(res: Results, scene: str = "tw-weak", bound: float = 0.05) -> list[Row]:
     m = res.metrics(scene)
     E_end, E_max = float(m["E"].values[-1]), float(m["E"].max())
     t_end = float(m["t"].values[-1])
@@ -144,7 +154,7 @@ def relative_error(res: Results, scene="tw-weak", bound=0.05) -> list[Row]:
                 _fmt(E_max), "agrees" if E_max < bound else "disagrees", how, f"the paper's bound < {bound:g}")]
 
 
-def energy_errors(res: Results, scenes, bound=3.5e-4) -> list[Row]:
+def energy_errors(res: Results, scenes: Iterable[str], bound: float = 3.5e-4) -> list[Row]:
     rows = []
     for scene in scenes:
         ex = res.sim(scene, "exact")
@@ -156,14 +166,14 @@ def energy_errors(res: Results, scenes, bound=3.5e-4) -> list[Row]:
     return rows
 
 
-def _ratio(res, scene, model, t):
+def _ratio(res: Results, scene: str, model: str, t: float) -> float:
     m = res.metrics(scene)
     q = float(res.sim(scene, "exact").attrs["q"])
     spec = m[f"spectrum_{model}"].sel(t=t, method="nearest")
     return float(sidebands.sideband_ratio(m["k"].values, spec.values, q))
 
 
-def instability(res: Results, cases) -> list[Row]:
+def instability(res: Results, cases: Iterable[tuple[str, str, float, dict[str, str]]]) -> list[Row]:
     """cases: (label, scene, t, {model: paper yes/no})."""
     rows = []
     for label, scene, t, expected in cases:
@@ -179,7 +189,8 @@ def instability(res: Results, cases) -> list[Row]:
     return rows
 
 
-def harmonics_present(res: Results, label, scene, t, which, expected) -> list[Row]:
+def harmonics_present(res: Results, label: str, scene: str, t: float, which: str,
+                      expected: dict[str, str]) -> list[Row]:
     """Whether the lattice harmonic ``which`` (key of sidebands.harmonics) is present: a coherent peak of
     at least HARMONIC_PRESENT of the carrier standing PEAK_OVER_BAND above the local band level (a bin of
     a broad band of unstable modes is not a harmonic)."""
@@ -202,17 +213,17 @@ def harmonics_present(res: Results, label, scene, t, which, expected) -> list[Ro
     return rows
 
 
-def _phase_at_q(x, q):
+def _phase_at_q(x: NDArray[np.float64], q: float) -> float:
     n = np.arange(x.shape[-1])
     return np.angle(np.sum(x * np.exp(-1j * q * n)))
 
 
-def _phase_gap(x1, x2, q):
+def _phase_gap(x1: NDArray[np.float64], x2: NDArray[np.float64], q: float) -> float:
     d = _phase_at_q(x1, q) - _phase_at_q(x2, q)
     return abs((d + np.pi) % (2 * np.pi) - np.pi)
 
 
-def phase_shifts(res: Results, scene, small_t, out_t) -> list[Row]:
+def phase_shifts(res: Results, scene: str, small_t: float, out_t: float) -> list[Row]:
     ex, ap = res.sim(scene, "exact"), res.sim(scene, "dps")
     q = float(ex.attrs["q"])
     rows = []
@@ -226,7 +237,7 @@ def phase_shifts(res: Results, scene, small_t, out_t) -> list[Row]:
     return rows
 
 
-def linear_wave_phase(res: Results, scene, t0) -> list[Row]:
+def linear_wave_phase(res: Results, scene: str, t0: float) -> list[Row]:
     ex = res.sim(scene, "exact")
     q, a = float(ex.attrs["q"]), float(ex.attrs["a"])
     x = ex["x"].sel(t=t0, method="nearest")
@@ -237,7 +248,7 @@ def linear_wave_phase(res: Results, scene, t0) -> list[Row]:
                 "phase of the k = q Fourier component; out of phase > pi/2", "out of phase: gap > pi/2")]
 
 
-def super_exponential(res: Results, name="site") -> list[Row]:
+def super_exponential(res: Results, name: str = "site") -> list[Row]:
     ds = res.homoclinic(name)
     a = np.abs(ds["a"].values)
     c = int(np.argmax(a))
@@ -258,7 +269,7 @@ def super_exponential(res: Results, name="site") -> list[Row]:
                 "|law - alpha| < 1e-6")]
 
 
-def periodic_orbits(alpha=1.5) -> list[Row]:
+def periodic_orbits(alpha: float = 1.5) -> list[Row]:
     rows = []
     for name, period in (("period2", 2), ("period3", 3), ("period4", 4)):
         U = stationary.explicit_periodic_orbits(alpha)[name]
@@ -278,7 +289,7 @@ FFTSEUIL = "analyses.md#claims-fftseuil"
 HARMONICS = "analyses.md#claims-harmonics"
 LOC1_MERGING = "loc1-readings.md#merging-times"
 
-def _groups(res: Results, scenes):
+def _groups(res: Results, scenes: Iterable[str]) -> list[tuple[tuple[str, ...], Callable[[], list[Row]]]]:
     """(names the group reads, thunk) for every group of rows, in table order."""
     return [
         ((), closed_forms),
@@ -339,7 +350,7 @@ VARIABLES = {"/": {
 }}
 
 
-def compute(spec: PaperChecks, inputs: dict, log=None):
+def compute(spec: PaperChecks, inputs: dict, log: Log | None = None) -> xr.Dataset:
     """The claims table as a Dataset, one row per statement (:data:`COLUMNS`, text), the verdict counts as
     attributes."""
     from cradle.data.io import make_dataset

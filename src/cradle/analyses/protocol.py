@@ -30,7 +30,7 @@ and the figure table follow from it. Nothing here knows paths or Snakemake.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -38,6 +38,9 @@ from cradle.specs.parse import reduced_defaults
 
 #: the cheaper form ``all`` builds, and the complete one (its own target ``<name>_full``)
 REDUCED, FULL = "reduced", "full"
+
+#: where an analysis reports its progress, a line a call (the job's ``log.info``)
+Log = Callable[[str], object]
 
 
 @dataclass(frozen=True)
@@ -53,7 +56,7 @@ class Read:
         return cls(kind, tuple(sorted(names.items())))
 
 
-def scene_reads(scenes, parts=("initial", "exact", "dps")) -> dict[str, Read]:
+def scene_reads(scenes: Iterable[str], parts: Iterable[str] = ("initial", "exact", "dps")) -> dict[str, Read]:
     """The files of the named scenes, as ``<scene>/<part>``."""
     return {f"{name}/{part}": Read.of(part, scene=name) for name in scenes for part in parts}
 
@@ -99,7 +102,7 @@ class Analysis:
         names = {f.name for f in dataclasses.fields(self.spec)}
         return (REDUCED, FULL) if "reduced" in names else (FULL,)
 
-    def reads_of(self, spec) -> dict[str, Read]:
+    def reads_of(self, spec: Any) -> dict[str, Read]:  # a spec of the class ``self.spec``
         """Everything ``compute`` is handed: the files ``reads`` names and every batch."""
         out = dict(self.reads(spec))
         if self.batches is not None:
@@ -108,7 +111,7 @@ class Analysis:
         return out
 
 
-def form_spec(spec, form: str):
+def form_spec(spec: Any, form: str) -> Any:  # a spec of any analysis (a dataclass), and one of its class
     """The spec of one form: the full one, or the reduced one (the declared reduced values, then the keys
     given under ``reduced:``, in place of the full ones); neither has overrides left."""
     if getattr(spec, "reduced", None) is None:   # no reduced form, or a form already
@@ -117,7 +120,7 @@ def form_spec(spec, form: str):
     return dataclasses.replace(spec, **overrides, reduced=None)
 
 
-def own_keys(spec) -> list[str]:
+def own_keys(spec: Any) -> list[str]:
     """The fields whose values the reduced form of ``spec`` gives in place of the full ones (declared or given
     under ``reduced:``; none for a spec without a reduced form): its check reports only those."""
     if not isinstance(getattr(spec, "reduced", None), dict):

@@ -25,6 +25,12 @@ from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import angle_expr, angle_or_none, parse_angle, show
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -141,7 +147,7 @@ VARIABLES = {
 EPS_FIT_MIN = 1e-7
 
 
-def relative_correction(lam, a, q, alpha):
+def relative_correction(lam: ArrayLike, a: ArrayLike, q: ArrayLike, alpha: ArrayLike) -> NDArray[np.float64]:
     """(omega_a - omega_DpS) / (omega_DpS - 1) from lambda without cancellation.
 
     omega_a - 1 = eps lambda / (1 + s), s = sqrt(1 + eps lambda); omega_DpS - 1 = eps lambda0 / 2, so the
@@ -154,24 +160,24 @@ def relative_correction(lam, a, q, alpha):
     return (2.0 * (lam - lam0) - lam0 * eps * lam / s1) / (lam0 * s1)
 
 
-def omega_dps(a, q, alpha):
+def omega_dps(a: ArrayLike, q: float, alpha: float) -> NDArray[np.float64]:
     """(wleadingorder) without the o(): 1 + (2/tau0) a^(alpha-1) |sin(q/2)|^(alpha+1) (= (freq))."""
     return 1.0 + 2.0 / dps.tau0(alpha) * np.asarray(a, dtype=float) ** (alpha - 1.0) * abs(np.sin(q / 2.0)) ** (
         alpha + 1.0)
 
 
-def lambda0(q, alpha):
+def lambda0(q: float, alpha: float) -> float:
     """lambda at a -> 0: omega^2 - 1 ~ a^(alpha-1) lambda0 = 2 (omega_DpS - 1)."""
     return 4.0 / dps.tau0(alpha) * abs(np.sin(q / 2.0)) ** (alpha + 1.0)
 
 
-def N0(xi, q, alpha):
+def N0(xi: ArrayLike, q: float, alpha: float) -> NDArray[np.float64]:
     """N0(sin)(xi) = V0'(sin(xi+q) - sin xi) - V0'(sin xi - sin(xi-q)) (the bracket of (va))."""
     xi = np.asarray(xi, dtype=float)
     return dV0(np.sin(xi + q) - np.sin(xi), alpha) - dV0(np.sin(xi) - np.sin(xi - q), alpha)
 
 
-def _breaks(q):
+def _breaks(q: float) -> list[float]:
     """Where the contacts of N0(sin) open or close in [0, 2 pi] (zeros of the elongations)."""
     # sin(xi+q) - sin(xi) = 2 cos(xi + q/2) sin(q/2) = 0 at xi = pi/2 - q/2 + k pi; likewise for d-.
     pts = [(np.pi / 2 - q / 2 + k * np.pi) % (2 * np.pi) for k in range(2)]
@@ -179,14 +185,14 @@ def _breaks(q):
     return sorted(pts)
 
 
-def va_leading(xi, q, alpha):
+def va_leading(xi: ArrayLike, q: float, alpha: float) -> NDArray[np.float64]:
     """K_h P_h N0(sin) of (va), with the operators (ph) and (kh), by adaptive quadrature."""
     from scipy.integrate import quad  # here: scipy.integrate takes 0.5 s to import, and the Snakefile imports us
 
     f = lambda s: float(N0(s, q, alpha))  # noqa: E731
     br = _breaks(q)
 
-    def integral(g, lo, hi):
+    def integral(g: Callable[[float], float], lo: float, hi: float) -> float:
         pts = [p for p in br if lo < p < hi]
         edges = [lo] + pts + [hi]
         return sum(quad(g, x0, x1, epsabs=1e-13, epsrel=1e-11, limit=400)[0]
@@ -201,7 +207,7 @@ def va_leading(xi, q, alpha):
     xi = np.atleast_1d(np.asarray(xi, dtype=float))
     out = np.empty_like(xi)
     for i, x in enumerate(xi):
-        conv = integral(lambda s, x=x: np.sin(x - s) * Ph(s), 0.0, x) if x > 0 else 0.0
+        conv = integral(lambda s, x=x: np.sin(x - s) * Ph(s), 0.0, x) if x > 0 else 0.0  # type: ignore[misc]
         out[i] = np.sin(x) * kcoef + conv
     return out
 
@@ -218,7 +224,7 @@ def binary_period(A: float, alpha: float) -> float:
 
     k = 2.0**alpha
 
-    def g(th):
+    def g(th: float) -> float:
         c, s = np.cos(th), np.sin(th)
         # (1 - s^(alpha+1)) / c^2 evaluated stably near th = pi/2
         one_minus = -np.expm1((alpha + 1.0) * np.log(s)) if s > 0 else 1.0
@@ -234,7 +240,7 @@ def binary_frequency(A: float, alpha: float) -> float:
     return 2.0 * np.pi / binary_period(A, alpha)
 
 
-def decay_rate(v, j_min: int = 8) -> float:
+def decay_rate(v: np.ndarray, j_min: int = 8) -> float:
     """Algebraic decay exponent s of |v_j| ~ j^-s from the upper envelope of |v_j|, j >= j_min."""
     v = np.abs(np.asarray(v, dtype=float))
     J = v.size
@@ -249,7 +255,7 @@ def decay_rate(v, j_min: int = 8) -> float:
     return float(-slope)
 
 
-def log_slope(x, y) -> float:
+def log_slope(x: NDArray[np.float64], y: NDArray[np.float64]) -> float:
     """Least-squares slope of log|y| against log x."""
     x, y = np.asarray(x, dtype=float), np.abs(np.asarray(y, dtype=float))
     ok = (x > 0) & (y > 0) & np.isfinite(y)
@@ -258,12 +264,12 @@ def log_slope(x, y) -> float:
 
 # ----------------------------------------------------------------- the pipeline stage
 
-def _sample_v(w: Wave, xi) -> np.ndarray:
+def _sample_v(w: Wave, xi: ArrayLike) -> np.ndarray:
     j = np.arange(1, w.modes + 1)
     return np.sin(np.multiply.outer(np.asarray(xi, dtype=float), j)) @ w.v
 
 
-def compute(spec: Theorem1, inputs: dict, log=None):
+def compute(spec: Theorem1, inputs: dict, log: Log | None = None) -> xr.DataTree:
     """The `theorem1` analysis as a tree of groups (see module docstring and :data:`VARIABLES`).
 
     The grid: alpha, q, n_amplitudes amplitudes log-spaced in [a_min, a_max], ``modes`` sine modes

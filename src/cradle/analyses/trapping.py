@@ -56,6 +56,12 @@ from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    import xarray as xr
+
+    from cradle.analyses.protocol import Log
+    from cradle.models.damping import Damping
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -230,7 +236,7 @@ def time_scale(a: float) -> float:
     return a ** (1.0 - ALPHA)
 
 
-def run_one(spec: Trapping, kind: str, a: float, length: int, sigma: float, seed: int, damping) -> dict:
+def run_one(spec: Trapping, kind: str, a: float, length: int, sigma: float, seed: int, damping: Damping | None) -> dict:
     """One run and its measurements (module docstring): ``damping`` a Damping or None."""
     from cradle.integrators import integrate_lattice
     from cradle.measurements import trapping as m
@@ -281,7 +287,7 @@ def _scan_amplitude(spec: Trapping, kind: str) -> float:
     return float(spec.scan_striker if kind == "striker" else spec.scan_breather)
 
 
-def _disorder(spec: Trapping, sigmas) -> list[tuple[float, int]]:
+def _disorder(spec: Trapping, sigmas: Iterable[float]) -> list[tuple[float, int]]:
     """(sigma, seed) pairs: the homogeneous chain once (seed -1), then every sigma at every seed."""
     return [(0.0, -1)] + [(float(s), spec.seed + k) for s in sigmas for k in range(spec.seeds)]
 
@@ -354,7 +360,7 @@ EXAMPLE_VARIABLES: dict[str, Var] = {
 }
 
 
-def run_batch(spec: Trapping, key: str, inputs=None, log=None):
+def run_batch(spec: Trapping, key: str, inputs: dict | None = None, log: Log | None = None) -> xr.Dataset:
     """The batch ``key`` of :func:`batch_keys` (reads no file): a Dataset of its runs (:data:`RUN_VARIABLES`)
     and, for the amplitude scans, the space-time examples."""
     from cradle.data.io import make_dataset
@@ -476,7 +482,7 @@ def summary(runs: dict) -> dict:
     return {k: np.asarray(v) for k, v in out.items()}
 
 
-def compute(spec: Trapping, inputs: dict, log=None):
+def compute(spec: Trapping, inputs: dict, log: Log | None = None) -> xr.DataTree:
     """The `trapping` file of one form from its batches (``inputs["batch/<key>"]``): /runs, /summary, /examples."""
     from cradle.data.io import make_tree
 

@@ -59,8 +59,13 @@ from cradle.specs.declare import REQUIRED, declared, param, plain
 from cradle.specs.values import MAX_T_END, RTOL_FLOOR, ConfigError, did_you_mean
 
 if TYPE_CHECKING:
-    import xarray as xr
+    from collections.abc import Iterable
 
+    import xarray as xr
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.integrators.lattice_solver import LatticeSolution
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -202,7 +207,8 @@ def compare_grid(t_end: float, every: float) -> np.ndarray:
     return np.append(t, t_end)
 
 
-def state_difference(x, v, x_ref, v_ref, a: float) -> np.ndarray:
+def state_difference(x: NDArray[np.float64], v: NDArray[np.float64], x_ref: NDArray[np.float64],
+                     v_ref: NDArray[np.float64], a: float) -> np.ndarray:
     """max_n max(|x_n - x_ref,n|, |v_n - v_ref,n|) / a at every stored time."""
     return np.maximum(np.abs(x - x_ref).max(axis=-1), np.abs(v - v_ref).max(axis=-1)) / a
 
@@ -215,7 +221,7 @@ def valid_until(t: np.ndarray, diff: np.ndarray, tolerance: float) -> float:
     return float(t[max(bad[0] - 1, 0)])
 
 
-def contact_energy(x, alpha: float, bc: str) -> np.ndarray:
+def contact_energy(x: ArrayLike, alpha: float, bc: str) -> np.ndarray:
     """sum_n V0(x_{n+1} - x_n) at every stored time."""
     return lattice.V0(lattice.bond_elongations(x, bc), alpha).sum(axis=-1)
 
@@ -228,7 +234,8 @@ def _kwargs(method: str, value: float, a: float) -> dict:
     return {"rtol": value, "atol": value * a}
 
 
-def run_once(x0, v0, t, alpha, bc, method, value, a, repeat_time=0.0):
+def run_once(x0: ArrayLike, v0: ArrayLike, t: NDArray[np.float64], alpha: float, bc: str, method: str,
+             value: float, a: float, repeat_time: float = 0.0) -> tuple[LatticeSolution, float]:
     """One integration (repeated while short, the fastest wall time kept); returns (solution, wall time)."""
     from cradle.integrators import integrate_lattice
 
@@ -243,10 +250,10 @@ def run_once(x0, v0, t, alpha, bc, method, value, a, repeat_time=0.0):
         spent += wall
         if spent >= repeat_time:
             break
-    return sol, best
+    return sol, best  # type: ignore[return-value]  # MAX_REPEATS >= 1 runs
 
 
-def warm_up(methods, alpha: float, bc: str) -> None:
+def warm_up(methods: Iterable[str], alpha: float, bc: str) -> None:
     """Load (or compile) every method's kernels on a tiny chain, so that timings exclude the JIT."""
     from cradle.integrators import integrate_lattice
 
@@ -256,8 +263,8 @@ def warm_up(methods, alpha: float, bc: str) -> None:
                           **_kwargs(method, 1e-3, 0.1))
 
 
-def measure(spec: WorkPrecision, scene: str, x0, v0, alpha: float, bc: str, a: float | None = None,
-            log=None) -> xr.Dataset:
+def measure(spec: WorkPrecision, scene: str, x0: ArrayLike, v0: ArrayLike, alpha: float, bc: str,
+            a: float | None = None, log: Log | None = None) -> xr.Dataset:
     """The work-precision Dataset of ``scene`` of ``spec`` (see module docstring) from its initial state
     x0, v0 on a chain with exponent ``alpha`` and boundary conditions ``bc``; ``a`` the amplitude errors
     are relative to (default max |x_n(0)|, |v_n(0)|). Methods in the order of ``spec.methods``."""
@@ -339,7 +346,8 @@ def _version(pkg: str) -> str:
         return "unknown"
 
 
-def _dataset(fields: dict, methods, S, t, D, attrs, title) -> xr.Dataset:
+def _dataset(fields: dict, methods: list[str], S: int, t: NDArray[np.float64],
+             D: NDArray[np.float64], attrs: dict, title: str) -> xr.Dataset:
     """A self-describing Dataset (:func:`cradle.data.io.make_dataset`, :data:`SCENE_VARIABLES`) from the
     measured arrays."""
     from cradle.data.io import make_dataset
@@ -350,7 +358,7 @@ def _dataset(fields: dict, methods, S, t, D, attrs, title) -> xr.Dataset:
     return make_dataset(data, coords=coords, attrs=attrs, title=title, variables=SCENE_VARIABLES)
 
 
-def scene_dataset(spec: WorkPrecision, scene: str, initial: xr.Dataset, log=None) -> xr.Dataset:
+def scene_dataset(spec: WorkPrecision, scene: str, initial: xr.Dataset, log: Log | None = None) -> xr.Dataset:
     """:func:`measure` on the initial data of ``scene`` (results/initial/<scene>.nc): its state, and the
     alpha, bc and amplitude a its file states."""
     a = initial.attrs.get("a")
@@ -389,7 +397,7 @@ def scene_reads(spec: WorkPrecision, scene: str) -> dict[str, Read]:
     return {"initial": Read.of("initial", scene=scene)}
 
 
-def measure_scene(spec: WorkPrecision, scene: str, inputs: dict, log=None) -> xr.Dataset:
+def measure_scene(spec: WorkPrecision, scene: str, inputs: dict, log: Log | None = None) -> xr.Dataset:
     """One batch: the Dataset of ``scene`` (:func:`scene_dataset`), its summary in the log."""
     ds = scene_dataset(spec, scene, inputs["initial"], log=log)
     for line in summary(ds):
@@ -397,7 +405,7 @@ def measure_scene(spec: WorkPrecision, scene: str, inputs: dict, log=None) -> xr
     return ds
 
 
-def compute(spec: WorkPrecision, inputs: dict, log=None) -> xr.DataTree:
+def compute(spec: WorkPrecision, inputs: dict, log: Log | None = None) -> xr.DataTree:
     """The `work-precision` file: the batch of every scene (``inputs["batch/<scene>"]``) as its group
     ``/<scene>``, values and attributes as measured; the spec and the scene names on the root."""
     import xarray as xr

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -37,7 +38,7 @@ def chunk_rows(N: int, chunk_bytes: int = DEFAULT_CHUNK_BYTES, arrays: int = 3) 
 class Appender:
     """A netCDF file with an unlimited ``t``, written under a temporary name, renamed on :meth:`commit`."""
 
-    def __init__(self, path, first: xr.Dataset):
+    def __init__(self, path: str | os.PathLike, first: xr.Dataset) -> None:
         import netCDF4
 
         self.path = Path(path)
@@ -57,7 +58,7 @@ class Appender:
         self.on_t = [k for k in list(first.coords) + list(first.data_vars) if "t" in first[k].dims]
 
     @contextlib.contextmanager
-    def _space(self):
+    def _space(self) -> Iterator[None]:
         """A write that fails on a full file system raises :class:`cradle.data.io.DiskFull` (one line)."""
         try:
             yield
@@ -67,7 +68,7 @@ class Appender:
                 raise
             raise full from None
 
-    def append(self, t, fields: dict):
+    def append(self, t: np.ndarray, fields: dict) -> None:
         """Append the rows of stored times ``t``: ``fields`` maps each variable on t (but t) to its rows."""
         n0, n1 = self.rows, self.rows + len(t)
         with self._space():
@@ -76,20 +77,20 @@ class Appender:
                 self.nc.variables[name][n0:n1, ...] = arr
         self.rows = n1
 
-    def append_block(self, ds: xr.Dataset):
+    def append_block(self, ds: xr.Dataset) -> None:
         """Append every variable on t of ``ds`` (a block built as the first one)."""
         self.append(ds["t"].values, {k: ds[k].values for k in self.on_t if k != "t"})
 
-    def set_values(self, values: dict):
+    def set_values(self, values: dict) -> None:
         """Overwrite variables without t (their final values, known at the end of the run)."""
         for name, arr in values.items():
             self.nc.variables[name][...] = np.asarray(arr)
 
-    def set_attrs(self, attrs: dict):
+    def set_attrs(self, attrs: dict) -> None:
         for k, v in attrs.items():
             self.nc.setncattr(k, _attr_value(v))
 
-    def commit(self):
+    def commit(self) -> None:
         with self._space():
             checksums.stamp(self.nc)  # the values without t are final now
             parts = digests.items(self.nc)   # every value read back: the store is not in memory
@@ -98,7 +99,7 @@ class Appender:
         digests.record(self.path, parts=parts)  # before the rename, as cradle.data.io.write_netcdf does
         os.replace(self.tmp, self.path)
 
-    def abort(self):
+    def abort(self) -> None:
         try:
             self.nc.close()
         except Exception:  # noqa: BLE001

@@ -15,8 +15,22 @@ mask, no scaling, no characters joined into strings, so the bytes hashed are the
 from __future__ import annotations
 
 import hashlib
+from collections.abc import Callable, Iterable, Iterator
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import netCDF4
+    import xarray as xr
+
+class Hash(Protocol):
+    """A running hash (``hashlib.sha256()``, ``xxhash.xxh3_128()``)."""
+
+    def update(self, data: Any, /) -> None: ...  # a buffer: bytes, or an array's (no stub spells both)
+
+    def hexdigest(self) -> str: ...
+
 
 #: the variable attribute holding the recorded checksum
 ATTR = "checksum_sha256"
@@ -25,26 +39,26 @@ ATTR = "checksum_sha256"
 class ChecksumMismatch(ValueError):
     """A variable's stored values do not match its recorded checksum (``name``: its path in the file)."""
 
-    def __init__(self, name: str, scalar: bool):
+    def __init__(self, name: str, scalar: bool) -> None:
         self.name = name
         super().__init__(f"{name}: stored value does not match its checksum" if scalar else
                          f"{name}: stored values do not match their checksum")
 
 
-def _raw(var, index):
+def _raw(var: netCDF4.Variable, index: Any) -> np.ndarray:
     var.set_auto_maskandscale(False)
     var.set_auto_chartostring(False)
     return np.asarray(var[index])
 
 
-def array_digest(values: np.ndarray, new=hashlib.sha256) -> str:
+def array_digest(values: np.ndarray, new: Callable[[bytes], Hash] = hashlib.sha256) -> str:
     """:func:`digest` of a fixed-size numeric array in memory, the values a file will store: the same bytes."""
     h = new(f"{np.dtype(values.dtype).newbyteorder('<').str}|{','.join(map(str, values.shape))}\n".encode())
     _update(h, values)
     return h.hexdigest()
 
 
-def _update(h, block: np.ndarray) -> None:
+def _update(h: Hash, block: np.ndarray) -> None:
     """Add one C-order block of values: fixed-size values as little-endian bytes, strings as UTF-8
     each preceded by its length in bytes (8 bytes, little-endian), so no two lists of strings share
     a byte form."""
@@ -57,7 +71,7 @@ def _update(h, block: np.ndarray) -> None:
         h.update(np.ascontiguousarray(block, dtype=block.dtype.newbyteorder("<")))  # its buffer: no copy
 
 
-def _kind(var) -> str:
+def _kind(var: netCDF4.Variable) -> str:
     """The dtype in the header: ``str`` for variable-length strings, else numpy's little-endian code."""
     dtype = var.dtype
     if dtype is str or getattr(dtype, "kind", "") == "O":
@@ -65,7 +79,7 @@ def _kind(var) -> str:
     return np.dtype(dtype).newbyteorder("<").str
 
 
-def digest(var, block_bytes: int = 64 * 2**20, new=hashlib.sha256) -> str:
+def digest(var: netCDF4.Variable, block_bytes: int = 64 * 2**20, new: Callable[[bytes], Hash] = hashlib.sha256) -> str:
     """The hex SHA-256 (or the hash ``new`` makes) of ``var``'s stored values (a ``netCDF4.Variable``), read
     ``block_bytes`` at a time.
 
@@ -83,12 +97,12 @@ def digest(var, block_bytes: int = 64 * 2**20, new=hashlib.sha256) -> str:
     return h.hexdigest()
 
 
-def has_filter(var) -> bool:
+def has_filter(var: netCDF4.Variable) -> bool:
     """True if HDF5 checks ``var`` itself (a Fletcher-32 filter)."""
     return bool((var.filters() or {}).get("fletcher32"))
 
 
-def variables(group, prefix=""):
+def variables(group: netCDF4.Dataset, prefix: str = "") -> Iterator[tuple[str, netCDF4.Variable]]:
     """(path, variable) for every variable of ``group`` and its subgroups."""
     for name, var in group.variables.items():
         yield prefix + name, var
@@ -96,7 +110,7 @@ def variables(group, prefix=""):
         yield from variables(sub, f"{prefix}{gname}/")
 
 
-def stamp(nc) -> None:
+def stamp(nc: netCDF4.Dataset) -> None:
     """Record :data:`ATTR` on every variable of the open, writable ``nc`` (every group) that has no
     Fletcher-32 filter, and drop it from those that have one (a stale copy)."""
     for _, var in variables(nc):
@@ -107,19 +121,19 @@ def stamp(nc) -> None:
             var.setncattr(ATTR, digest(var))
 
 
-def check(var, name: str, block_bytes: int = 64 * 2**20) -> None:
+def check(var: netCDF4.Variable, name: str, block_bytes: int = 64 * 2**20) -> None:
     """Raise :class:`ChecksumMismatch` if ``var`` carries :data:`ATTR` and its values do not match."""
     if ATTR in var.ncattrs() and digest(var, block_bytes) != str(var.getncattr(ATTR)):
         raise ChecksumMismatch(name, var.ndim == 0)
 
 
-def check_recorded(nc) -> None:
+def check_recorded(nc: netCDF4.Dataset) -> None:
     """:func:`check` every variable of ``nc`` (every group) that carries a recorded checksum."""
     for name, var in variables(nc):
         check(var, name)
 
 
-def drop(variables) -> None:
+def drop(variables: Iterable[xr.Variable]) -> None:
     """Remove :data:`ATTR` from the attributes of the xarray ``variables`` read from a verified file: it
     describes the file, so a Dataset edited and written again with plain xarray carries no stale one."""
     for var in variables:

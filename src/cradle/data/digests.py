@@ -22,9 +22,13 @@ import hashlib
 import json
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import xxhash
+
+if TYPE_CHECKING:
+    import netCDF4
 
 from cradle.data import checksums
 from cradle.data.temporaries import temporary_beside
@@ -46,7 +50,7 @@ def sidecar(path: str | os.PathLike) -> Path:
     return path.with_name(f".{path.name}.digest")
 
 
-def _attribute(value) -> str:
+def _attribute(value: Any) -> str:
     """The SHA-256 of one attribute's value: its type, shape and bytes (a string as UTF-8)."""
     if isinstance(value, str):
         body = b"str|" + value.encode("utf-8")
@@ -59,7 +63,7 @@ def _attribute(value) -> str:
     return hashlib.sha256(body).hexdigest()
 
 
-def values_digest(var, block_bytes: int = 64 * 2**20) -> str:
+def values_digest(var: netCDF4.Variable, block_bytes: int = 64 * 2**20) -> str:
     """The digest of a ``netCDF4.Variable``'s stored values: :func:`cradle.data.checksums.digest`'s byte form, hashed
     with XXH3-128 (a 128-bit hash for telling accidental changes apart, several times faster than SHA-256)."""
     return checksums.digest(var, block_bytes, new=xxhash.xxh3_128)
@@ -70,7 +74,8 @@ def array_digest(values: np.ndarray) -> str:
     return checksums.array_digest(values, new=xxhash.xxh3_128)
 
 
-def items(nc, prefix: str = "", block_bytes: int = 64 * 2**20, known: dict[str, str] | None = None) -> dict[str, str]:
+def items(nc: netCDF4.Dataset, prefix: str = "", block_bytes: int = 64 * 2**20,
+          known: dict[str, str] | None = None) -> dict[str, str]:
     """Every thing a reader uses of the open ``netCDF4.Dataset`` ``nc`` (and its groups), each with its digest:
     ``@name`` a global attribute, ``dim:name`` a dimension's size, ``var`` a variable's values (read raw, so
     HDF5 checks every Fletcher-32 checksum on the way), ``var@name`` a variable's attribute; a group's prefixed
@@ -94,7 +99,7 @@ def whole(parts: dict[str, str]) -> str:
     return hashlib.sha256(json.dumps(parts, sort_keys=True).encode()).hexdigest()
 
 
-def read_record(path) -> dict | None:
+def read_record(path: str | os.PathLike) -> dict | None:
     """The sidecar of ``path`` as recorded, or None when there is none (or it is not one of ours)."""
     try:
         record = json.loads(sidecar(path).read_text())
@@ -103,7 +108,8 @@ def read_record(path) -> dict | None:
     return record if isinstance(record, dict) and record.get("format") == FORMAT else None
 
 
-def record(path, source=None, known: dict[str, str] | None = None, parts: dict[str, str] | None = None) -> Path:
+def record(path: str | os.PathLike, source: str | os.PathLike | None = None, known: dict[str, str] | None = None,
+           parts: dict[str, str] | None = None) -> Path:
     """Write the sidecar of ``path`` from the file ``source`` (default ``path``; a writer's finished temporary file),
     atomically, naming the digests recorded before as ``previous``. Call it before renaming ``source`` to ``path``.
     ``known``: the values' digests the writer computed from memory (:func:`items`); ``parts``: the :func:`items` of
@@ -122,7 +128,7 @@ def record(path, source=None, known: dict[str, str] | None = None, parts: dict[s
     return _write_sidecar(path, text)
 
 
-def _write_sidecar(path, text: str) -> Path:
+def _write_sidecar(path: str | os.PathLike, text: str) -> Path:
     """Write ``text`` as the record beside ``path``, atomically (a temporary renamed into place)."""
     target = sidecar(path)
     tmp = temporary_beside(target)
@@ -137,7 +143,7 @@ def _write_sidecar(path, text: str) -> Path:
     return target
 
 
-def discard(path) -> None:
+def discard(path: str | os.PathLike) -> None:
     """Remove the sidecar of ``path`` (a temporary file renamed or deleted), if there is one."""
     try:
         sidecar(path).unlink()
@@ -159,7 +165,7 @@ def _named(key: str) -> str:
     return f"variable {key}{where}"
 
 
-def compare(path, parts: dict[str, str], most: int = 3) -> bool:
+def compare(path: str | os.PathLike, parts: dict[str, str], most: int = 3) -> bool:
     """Compare the :func:`items` ``parts`` of the file at ``path`` with its sidecar: True when they match (or match
     the file it replaced), False when there is no sidecar; else raise :class:`ContentMismatch` naming what differs."""
     rec = read_record(path)
@@ -177,7 +183,7 @@ def compare(path, parts: dict[str, str], most: int = 3) -> bool:
                           f"recorded in {sidecar(path).name})")
 
 
-def _file_sha256(path) -> str:
+def _file_sha256(path: str | os.PathLike) -> str:
     h = hashlib.sha256()
     with open(path, "rb") as fh:
         for block in iter(lambda: fh.read(2**20), b""):
@@ -185,14 +191,14 @@ def _file_sha256(path) -> str:
     return h.hexdigest()
 
 
-def record_owner(path, owner: str) -> Path:
+def record_owner(path: str | os.PathLike, owner: str) -> Path:
     """Record beside a file that is not netCDF (a movie) what wrote it, ``owner``, with the digest of its bytes:
     what lets that command replace it later (:func:`cradle.pipeline.destinations.check`)."""
     return _write_sidecar(path, json.dumps({"format": FORMAT, "file": Path(path).name, "owner": owner,
                                             "bytes_sha256": _file_sha256(path)}, sort_keys=True))
 
 
-def read_owner(path) -> str | None:
+def read_owner(path: str | os.PathLike) -> str | None:
     """What wrote the file at ``path`` by its record (:func:`record_owner`), if the file is still those bytes."""
     rec = read_record(path)
     if rec is None or "owner" not in rec or rec.get("bytes_sha256") != _file_sha256(path):

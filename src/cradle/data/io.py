@@ -32,7 +32,9 @@ from __future__ import annotations
 import datetime as _dt
 import errno
 import os
+from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 import xarray as xr
@@ -40,7 +42,12 @@ import xarray as xr
 from cradle.data import checksums, digests
 from cradle.data.provenance import KEYS as _PROVENANCE_KEYS, VERSION, identity as _identity, provenance
 from cradle.data.temporaries import remove_stale_temporaries, stale_temporaries, temporary_beside
-from cradle.data.variables import declared
+from cradle.data.variables import Var, declared
+
+if TYPE_CHECKING:
+    import netCDF4
+
+_T = TypeVar("_T")
 
 __all__ = ["DamagedOutput", "DiskFull", "make_dataset", "make_tree", "open_dataset", "open_tree",
            "remove_stale_temporaries", "stale_temporaries", "verify_file", "write_datatree", "write_netcdf",
@@ -52,7 +59,7 @@ REFERENCE = (
 )
 
 
-def _attr_value(value):
+def _attr_value(value: Any) -> int | float | str | np.integer | np.floating | np.ndarray:
     """netCDF attributes hold numbers, strings and 1-D arrays; map the rest."""
     if value is None:
         return "none"
@@ -65,7 +72,7 @@ def _attr_value(value):
     return str(value)
 
 
-def _lookup(name: str, variables: dict | None):
+def _lookup(name: str, variables: dict | None) -> Var:
     """The declaration of ``name``: in ``variables`` (an analysis's own) if given, else the global one."""
     if variables is None:
         return declared(name)
@@ -75,7 +82,7 @@ def _lookup(name: str, variables: dict | None):
         raise KeyError(f"variable {name!r} is not declared in the analysis's VARIABLES") from None
 
 
-def _var_attrs(var) -> dict:
+def _var_attrs(var: Var) -> dict:
     return {"long_name": var.long_name, "units": var.units, **dict(var.attrs)}
 
 
@@ -96,8 +103,8 @@ def _table(data: dict, coords: dict | None, variables: dict | None) -> xr.Datase
 GLOBAL_KEYS = ("title", "Conventions", "source", "references", "history") + _PROVENANCE_KEYS
 
 
-def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = None, title: str = "",
-                 params=None, variables: dict | None = None, identity: tuple[str, str] | None = None) -> xr.Dataset:
+def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = None, title: str = "", params: Any = None,
+                 variables: dict | None = None, identity: tuple[str, str] | None = None) -> xr.Dataset:
     """A Dataset from ``{name: array}`` with declared dims, long names and units.
 
     ``coords`` maps coordinate names to 1-D arrays (also declared). ``attrs``
@@ -132,7 +139,7 @@ def make_dataset(data: dict, coords: dict | None = None, attrs: dict | None = No
 
 
 def make_tree(groups: dict, variables: dict, attrs: dict | None = None, title: str = "",
-               params=None, identity: tuple[str, str] | None = None) -> xr.DataTree:
+               params: Any = None, identity: tuple[str, str] | None = None) -> xr.DataTree:
     """A tree of netCDF groups: ``groups`` maps a group path ("/", "/scenes", ...) to its
     ``(data, coords)``, ``variables`` maps the same paths to their declarations (name -> Var).
 
@@ -190,7 +197,7 @@ def encoding_of(ds: xr.Dataset) -> dict:
     return encoding
 
 
-def _stamped(tmp, known: dict[str, str]) -> dict[str, str]:
+def _stamped(tmp: str, known: dict[str, str]) -> dict[str, str]:
     """Record the checksum of every variable of the written file ``tmp`` that has no Fletcher-32
     filter (:func:`cradle.data.checksums.stamp`): computed from the stored values, so a checksum
     attribute copied from a Dataset read earlier is replaced, never kept. Returns the finished file's
@@ -225,7 +232,7 @@ def write_netcdf(ds: xr.Dataset | xr.DataTree, path: str | os.PathLike) -> Path:
     encoding = encoding_of(ds)
     parts: dict[str, str] = {}
 
-    def write(tmp):
+    def write(tmp: str) -> None:
         ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
         parts.update(_stamped(tmp, stored_digests(ds, encoding)))
 
@@ -240,7 +247,7 @@ def write_datatree(tree: xr.DataTree, path: str | os.PathLike) -> Path:
 
     parts: dict[str, str] = {}
 
-    def write(tmp):
+    def write(tmp: str) -> None:
         tree.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
         known: dict[str, str] = {}
         for node in tree.subtree:
@@ -275,7 +282,7 @@ def _size(n: float) -> str:
     return f"{int(n)} B"
 
 
-def disk_full(path: Path, tmp, needs: int, err: BaseException) -> DiskFull | None:
+def disk_full(path: Path, tmp: str | None, needs: int, err: BaseException) -> DiskFull | None:
     """The :class:`DiskFull` error for a write of ``path`` (to ``tmp``, about ``needs`` bytes; 0 when
     unknown, a file written in blocks) that failed with ``err``, if the file system is full: errno
     ENOSPC, or an HDF5/netCDF error while less than the rest of the file plus
@@ -303,7 +310,7 @@ def disk_full(path: Path, tmp, needs: int, err: BaseException) -> DiskFull | Non
     return full
 
 
-def _atomic(path: Path, write, needs: int = 0, digest: dict[str, str] | None = None) -> Path:
+def _atomic(path: Path, write: Callable[[str], object], needs: int = 0, digest: dict[str, str] | None = None) -> Path:
     """Call ``write(tmp)`` on a temporary file beside ``path`` (named after this process:
     :func:`cradle.data.temporaries.temporary_beside`), then rename it to ``path``; with ``digest`` (the
     :func:`cradle.data.digests.items` of the finished netCDF file, which ``write`` fills in), the digest is
@@ -340,7 +347,7 @@ class DamagedOutput(RuntimeError):
 _SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02", b"CDF\x05")
 
 
-def rebuild_hint(path) -> str:
+def rebuild_hint(path: str | os.PathLike) -> str:
     """The command that rebuilds ``path``: Snakemake's for a file under ``results/``, else a rerun."""
     parts = Path(path).parts
     if "results" in parts:
@@ -357,14 +364,14 @@ def _why(err: BaseException) -> str:
     return re.sub(r":? '[^']*'", "", text).strip() or type(err).__name__
 
 
-def _is_netcdf(path) -> bool:
+def _is_netcdf(path: str | os.PathLike) -> bool:
     """True if the file starts with a netCDF classic or HDF5 (netCDF-4) signature."""
     with open(path, "rb") as f:
         head = f.read(8)
     return any(head.startswith(sig) for sig in _SIGNATURES)
 
 
-def _checked(path, read):
+def _checked(path: str | os.PathLike, read: Callable[[Path], _T]) -> _T:
     """``read(path)``, with a missing file as FileNotFoundError and a file that is not netCDF, is
     truncated or fails a checksum as one :class:`DamagedOutput` line naming it and its rebuild."""
     path = Path(path)
@@ -388,7 +395,7 @@ def _checked(path, read):
 LAZY_ABOVE_BYTES = 512 * 2**20
 
 
-def _verified(nc, path) -> bool:
+def _verified(nc: netCDF4.Dataset, path: str | os.PathLike) -> bool:
     """Check the open ``nc`` (the file at ``path``): every recorded checksum (:mod:`cradle.data.checksums`), then
     every value read (HDF5 checks each Fletcher-32 checksum) and, with every attribute, compared with the
     digest recorded beside the file (:func:`cradle.data.digests.compare`). False when no digest is recorded."""
@@ -410,7 +417,7 @@ def open_dataset(path: str | os.PathLike) -> xr.Dataset:
     is verified block by block (:func:`verify_file`) and returned opened lazily: what the reader
     selects is read when used (HDF5 checks those chunks again), so its memory is what it uses.
     """
-    def read(p):
+    def read(p: Path) -> xr.Dataset:
         if Path(p).stat().st_size > LAZY_ABOVE_BYTES:
             verify_file(p)
             ds = xr.open_dataset(p, engine="netcdf4")
@@ -432,7 +439,7 @@ def open_tree(path: str | os.PathLike) -> xr.DataTree:
     """Open a cradle output as a tree of groups, fully into memory (the file is closed on return),
     verified: every variable of every group is read, so HDF5 checks every checksum, and every recorded
     checksum is compared. A flat file is a tree with a root group only. Errors as :func:`open_dataset`."""
-    def read(p):
+    def read(p: Path) -> xr.DataTree:
         import netCDF4
 
         with netCDF4.Dataset(p) as nc:
@@ -458,14 +465,14 @@ def verify_file(path: str | os.PathLike, block_bytes: int = 64 * 2**20) -> list[
     raises FileNotFoundError or :class:`DamagedOutput` (one line)."""
     import netCDF4
 
-    def bare(group, prefix=""):
+    def bare(group: netCDF4.Dataset, prefix: str = "") -> list[str]:
         out = [prefix + name for name, var in group.variables.items()
                if checksums.ATTR not in var.ncattrs() and var.size and not checksums.has_filter(var)]
         for gname, sub in group.groups.items():
             out += bare(sub, f"{prefix}{gname}/")
         return out
 
-    def read(p):
+    def read(p: Path) -> list[str]:
         with netCDF4.Dataset(p) as nc:
             for name, var in checksums.variables(nc):
                 checksums.check(var, name, block_bytes)

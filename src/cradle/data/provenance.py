@@ -37,6 +37,10 @@ import sys
 from functools import cache
 from importlib.metadata import PackageNotFoundError, version as _version
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, TypeVar
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 try:
     VERSION = _version("cradle")
@@ -58,7 +62,7 @@ KEYS = ("cradle_version", "git_commit", "git_dirty", "parameters", "params_sha25
 _COMMAND: str | None = None
 
 
-def _jsonable(value):
+def _jsonable(value: Any) -> Any:
     """numpy scalars and arrays, paths, sets -> plain JSON values (for :func:`canonical_json`)."""
     if hasattr(value, "tolist"):  # numpy scalar or array
         return value.tolist()
@@ -69,7 +73,7 @@ def _jsonable(value):
     raise TypeError(f"cannot hash a parameter of type {type(value).__name__}: {value!r}")
 
 
-def _normalise(value):
+def _normalise(value: Any) -> Any:
     """Keys as strings, inf/nan as text (JSON has neither non-string keys nor non-finite numbers)."""
     if isinstance(value, dict):
         return {str(k): _normalise(v) for k, v in value.items()}
@@ -80,19 +84,19 @@ def _normalise(value):
     return value
 
 
-def canonical_json(params) -> str:
+def canonical_json(params: Any) -> str:
     """The canonical JSON of ``params``: sorted keys, no whitespace, numpy values as plain numbers."""
     plain = json.loads(json.dumps(params, default=_jsonable))
     return json.dumps(_normalise(plain), sort_keys=True, separators=(",", ":"), ensure_ascii=True,
                       allow_nan=False)
 
 
-def params_hash(params) -> str:
+def params_hash(params: Any) -> str:
     """sha256 (hex) of :func:`canonical_json` of ``params`` (a resolved config entry)."""
     return hashlib.sha256(canonical_json(params).encode("ascii")).hexdigest()
 
 
-def _git(args, cwd) -> str | None:
+def _git(args: list[str], cwd: str | Path) -> str | None:
     try:
         out = subprocess.run(["git", *args], cwd=cwd, capture_output=True, text=True, timeout=10)
     except (OSError, subprocess.SubprocessError):
@@ -165,7 +169,7 @@ def command() -> str:
     return " ".join(argv)
 
 
-def provenance(params=None) -> dict:
+def provenance(params: Any = None) -> dict:
     """The provenance attributes (see the module docstring); ``parameters`` and ``params_sha256`` only with
     ``params``."""
     attrs = {"cradle_version": VERSION}
@@ -183,7 +187,11 @@ def identity(kind: str, name: str) -> dict:
     return dict(zip(IDENTITY_KEYS, (kind, name), strict=True))
 
 
-def identify(obj, kind: str, name: str, params=None):
+#: what :func:`identify` names and returns: a Dataset or a DataTree
+_Stamped = TypeVar("_Stamped", "xr.Dataset", "xr.DataTree")
+
+
+def identify(obj: _Stamped, kind: str, name: str, params: Any = None) -> _Stamped:
     """Name ``obj`` (a Dataset, or a DataTree: its root) as ``kind`` ``name`` (:func:`identity`), in place, and
     return it; with ``params``, also record their hash where its writer recorded none (a batch that stores
     measurements only)."""

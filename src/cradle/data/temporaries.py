@@ -55,7 +55,7 @@ def _is_stale(path: Path, match: re.Match, older_than_s: float, now: float) -> b
         return False
 
 
-def stale_temporaries(folder, older_than_s: float = STALE_AFTER_S) -> list[Path]:
+def stale_temporaries(folder: str | os.PathLike, older_than_s: float = STALE_AFTER_S) -> list[Path]:
     """The temporary files of atomic writes under ``folder`` (recursively) left by a writer that is
     gone: its process id on this host is not running, or, without a process id of this host, the file
     has not been modified for ``older_than_s`` seconds."""
@@ -69,7 +69,7 @@ def stale_temporaries(folder, older_than_s: float = STALE_AFTER_S) -> list[Path]
     return sorted(found)
 
 
-def remove_stale_temporaries(folder, older_than_s: float = STALE_AFTER_S) -> list[Path]:
+def remove_stale_temporaries(folder: str | os.PathLike, older_than_s: float = STALE_AFTER_S) -> list[Path]:
     """Delete the :func:`stale_temporaries` under ``folder``; returns the files removed (the workflow
     calls it when it starts, so a killed run leaves no debris)."""
     removed = []

@@ -22,9 +22,9 @@ one neither changes the session's backend nor adds to pyplot's open figures, so 
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Hashable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -36,10 +36,21 @@ if TYPE_CHECKING:
 #: a paper figure's drawing function: (data, options) -> Figure (:func:`registry`)
 Drawer = Callable[[dict, dict], "Figure"]
 
-#: an analysis output tree (an :class:`xarray.DataTree`) as the ``draw(tree)`` bodies that chain group and
-#: variable lookups read it (``tree["g"]["v"].values``): xarray types ``DataTree[key]`` as ``DataTree | DataArray``,
-#: so each such lookup would need a check or a cast; Any until typed group accessors replace the chains
-AnalysisTree = Any
+class AnalysisTree(Protocol):
+    """An analysis output tree (an :class:`xarray.DataTree`) as the ``draw(tree)`` bodies read it: its
+    attributes, children and root Dataset, and lookups chained through groups to variables
+    (``tree["g"]["v"].values``), each Any: xarray types ``DataTree[key]`` as ``DataTree | DataArray``, so
+    typing them would need a check or a cast at every link of the chains."""
+
+    @property
+    def attrs(self) -> dict[Hashable, Any]: ...
+
+    @property
+    def children(self) -> Mapping[str, Any]: ...
+
+    def __getitem__(self, key: str) -> Any: ...
+
+    def to_dataset(self) -> xr.Dataset: ...
 
 PNG_DPI = 150
 

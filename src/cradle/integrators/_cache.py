@@ -271,7 +271,7 @@ def _guard_loads() -> None:
         return
     load_index, load_data = cls._load_index, cls._load_data
 
-    def _load_index(self):
+    def _load_index(self: Any) -> dict:
         try:
             return load_index(self)
         except _DAMAGE as exc:
@@ -280,7 +280,7 @@ def _guard_loads() -> None:
             _quarantine(self._index_path, exc)
             return {}
 
-    def _load_data(self, name):
+    def _load_data(self: Any, name: str) -> Any:
         try:
             return load_data(self, name)
         except _DAMAGE as exc:

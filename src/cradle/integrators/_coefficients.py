@@ -17,7 +17,16 @@ orders 2/4/6 in tests/test_integrators.py).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    from numpy.typing import ArrayLike
+
+    from cradle.integrators._types import Floats
 
 _SRKN6B_A = [0.245298957184271, 0.604872665711080, -0.350171622895351]
 _SRKN6B_B = [0.0829844064174052, 0.396309801498368, -0.0390563049223486, 0.1195241940131508]
@@ -28,12 +37,12 @@ _SRKN11B_B = [0.0414649985182624, 0.198128671918067, -0.0400061921041533,
               0.0752539843015807, -0.0115113874206879, 0.2366699247869311]
 
 
-def _palindrome(half, odd):
+def _palindrome(half: Sequence[float], odd: bool) -> list[float]:
     """Symmetric list from its first half (``odd``: the middle entry is not repeated)."""
     return list(half) + list(half[::-1][1:] if odd else half[::-1])
 
 
-def _make(a, b):
+def _make(a: ArrayLike, b: ArrayLike) -> tuple[Floats, Floats]:
     a = np.array(a, dtype=float)
     b = np.array(b, dtype=float)
     return a, b
@@ -47,6 +56,6 @@ SPLITTINGS = {
 }
 
 
-def splitting(method: str):
+def splitting(method: str) -> tuple[Floats, Floats, int]:
     """(a, b, order) of a splitting method; a and b are float64 arrays."""
     return SPLITTINGS[method]

@@ -23,13 +23,18 @@ from __future__ import annotations
 import math
 import time
 from types import ModuleType
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._generic import absent, generic, implements
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from cradle.integrators._types import Floats, Ints
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -63,12 +68,12 @@ E5 = np.ascontiguousarray(_c.E5, dtype=float)
 
 
 @generic
-def rhs(system, y, dy):
+def rhs(system: NamedTuple, y: Floats, dy: Floats) -> None:
     """dy = f(y), the right-hand side of ``system`` at the state y."""
 
 
 @generic
-def monitor(system, y, stats):
+def monitor(system: NamedTuple, y: Floats, stats: Floats) -> None:
     """Update the invariants' drifts in ``stats`` after an accepted step (the system's own layout)."""
 
 
@@ -95,7 +100,7 @@ PLAIN, SQRT_START, SQRT_END = 0, 1, 2
 
 
 @njit(cache=True)
-def speed(sub, c, h):
+def speed(sub: int, c: float, h: float) -> float:
     """dt/du at u = c h of a step of length h in u: t = t0 + u^2 (SQRT_START), t = t0 + h^2 - (h - u)^2
     (SQRT_END), u itself (PLAIN)."""
     if sub == SQRT_START:
@@ -106,33 +111,33 @@ def speed(sub, c, h):
 
 
 @generic
-def first_stage(tv, Ks, fy, h):
+def first_stage(tv: NamedTuple, Ks: Floats, fy: Floats, h: float) -> None:
     """Ks[0] = the first stage (fy, weighted by the step variable's dt/du)."""
 
 
 @implements(first_stage, PlainTime)
 @njit(cache=True)
-def _first_plain(tv, Ks, fy, h):
+def _first_plain(tv: PlainTime, Ks: Floats, fy: Floats, h: float) -> None:
     for i in range(fy.shape[0]):
         Ks[0, i] = fy[i]
 
 
 @implements(first_stage, SubstitutedTime)
 @njit(cache=True)
-def _first_substituted(tv, Ks, fy, h):
+def _first_substituted(tv: SubstitutedTime, Ks: Floats, fy: Floats, h: float) -> None:
     w = speed(tv.sub, 0.0, h)
     for i in range(fy.shape[0]):
         Ks[0, i] = w * fy[i]    # w = 1 exactly on a plain step
 
 
 @generic
-def weigh_stage(tv, Ks, s, c, h):
+def weigh_stage(tv: NamedTuple, Ks: Floats, s: int, c: float, h: float) -> None:
     """Weigh stage s (evaluated at u = c h) by dt/du."""
 
 
 @implements(weigh_stage, SubstitutedTime)
 @njit(cache=True)
-def _weigh_substituted(tv, Ks, s, c, h):
+def _weigh_substituted(tv: SubstitutedTime, Ks: Floats, s: int, c: float, h: float) -> None:
     if tv.sub != PLAIN:
         w = speed(tv.sub, c, h)
         for i in range(Ks.shape[1]):
@@ -140,20 +145,22 @@ def _weigh_substituted(tv, Ks, s, c, h):
 
 
 @generic
-def end_rates(tv, Ks, fnew, h):
+def end_rates(tv: NamedTuple, Ks: Floats, fnew: Floats, h: float) -> None:
     """fnew = f(ynew) (before the end stage is weighed) and weigh the end stage."""
 
 
 @implements(end_rates, SubstitutedTime)
 @njit(cache=True)
-def _end_substituted(tv, Ks, fnew, h):
+def _end_substituted(tv: SubstitutedTime, Ks: Floats, fnew: Floats, h: float) -> None:
     for i in range(fnew.shape[0]):
         fnew[i] = Ks[_NS, i]
     _weigh_substituted(tv, Ks, _NS, 1.0, h)
 
 
 @njit(cache=True)
-def trial(system, tv, y, fy, h, Ks, ys, ynew, fnew, err5, err3, rtol, atol, A, B, C, E3, E5):
+def trial(system: NamedTuple, tv: NamedTuple, y: Floats, fy: Floats, h: float, Ks: Floats, ys: Floats, ynew: Floats,
+          fnew: Floats, err5: Floats, err3: Floats, rtol: float, atol: float, A: Floats, B: Floats, C: Floats,
+          E3: Floats, E5: Floats) -> float:
     """One DOP853 step of length h in the step variable ``tv`` from (y, fy = f(y)): ynew, fnew = f(ynew);
     returns the error norm (accept if < 1)."""
     n = y.shape[0]
@@ -201,60 +208,65 @@ def trial(system, tv, y, fy, h, Ks, ys, ynew, fnew, err5, err3, rtol, atol, A, B
 
 
 @generic
-def end_buffer(events, Ks):
+def end_buffer(events: NamedTuple, Ks: Floats) -> Floats:
     """The array receiving f(ynew) of a trial: the row Ks[_NS] itself for plain steps (no copy)."""
 
 
 @implements(end_buffer, NoEvents)
 @njit(cache=True)
-def _buffer_plain(events, Ks):
+def _buffer_plain(events: NoEvents, Ks: Floats) -> Floats:
     return Ks[_NS]
 
 
 @generic
-def start_step(events):
+def start_step(events: NamedTuple) -> int:
     """The variable (PLAIN, SQRT_START) of the next step, which starts now."""
 
 
 @implements(start_step, NoEvents)
 @njit(cache=True)
-def _start_plain(events):
+def _start_plain(events: NoEvents) -> int:
     return PLAIN
 
 
 @generic
-def time_variable(events, sub):
+def time_variable(events: NamedTuple, sub: int) -> NamedTuple:
     """The step variable of a trial in ``sub``."""
 
 
 @implements(time_variable, NoEvents)
 @njit(cache=True)
-def _time_plain(events, sub):
+def _time_plain(events: NoEvents, sub: int) -> NamedTuple:
     return PlainTime(PLAIN)
 
 
 @generic
-def locate(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks, ys, err5, err3, rtol, atol, A, B,
-           C, E3, E5):
+def locate(events: NamedTuple, system: NamedTuple, y: Floats, fy: Floats, ynew: Floats, fnew: Floats, t: float,
+           h: float, h_try: float, hu: float, sub: int, clipped: bool, Ks: Floats, ys: Floats, err5: Floats,
+           err3: Floats, rtol: float, atol: float, A: Floats, B: Floats, C: Floats, E3: Floats,
+           E5: Floats) -> tuple[bool, float, float, bool, bool, int, int]:
     """After an accepted trial: (retry, h, h_step, clipped, restepped, extra rhs evaluations, extra rejections);
     ``retry``: the step is rejected and a shorter one is tried with the new h."""
 
 
 @implements(locate, NoEvents)
 @njit(cache=True)
-def _locate_plain(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks, ys, err5, err3, rtol, atol,
-                  A, B, C, E3, E5):
+def _locate_plain(events: NoEvents, system: NamedTuple, y: Floats, fy: Floats, ynew: Floats, fnew: Floats, t: float,
+                  h: float, h_try: float, hu: float, sub: int, clipped: bool, Ks: Floats, ys: Floats, err5: Floats,
+                  err3: Floats, rtol: float, atol: float, A: Floats, B: Floats, C: Floats, E3: Floats,
+                  E5: Floats) -> tuple[bool, float, float, bool, bool, int, int]:
     return False, h, h_try, clipped, False, 0, 0
 
 
 @generic
-def commit(events, y, restepped):
+def commit(events: NamedTuple, y: Floats, restepped: bool) -> None:
     """The accepted step's end: the bonds' states and the next step's variable."""
 
 
 @njit(cache=True)
-def dop853_run(system, events, y, fy, tgrid, k, state, max_steps, rtol, atol, A, B, C, E3, E5, Y, shift, stats,
-               counts):
+def dop853_run(system: NamedTuple, events: NamedTuple, y: Floats, fy: Floats, tgrid: Floats, k: int, state: Floats,
+               max_steps: int, rtol: float, atol: float, A: Floats, B: Floats, C: Floats, E3: Floats, E5: Floats,
+               Y: Floats, shift: int, stats: Floats, counts: Ints) -> tuple[int, int]:
     """Advance ``system`` with DOP853 until tgrid[-1] or ``max_steps`` accepted steps; resumable.
 
     ``y`` (state) and ``fy`` (= f(y), FSAL) are updated in place; ``state`` = [t, h]; interval k ends at
@@ -341,7 +353,8 @@ def dop853_run(system, events, y, fy, tgrid, k, state, max_steps, rtol, atol, A,
     return k, status
 
 
-def initial_step(fun, y0, f0, t_bound, rtol, atol, order=7):
+def initial_step(fun: Callable[[Floats], Floats], y0: Floats, f0: Floats, t_bound: float, rtol: float, atol: float,
+                 order: int = 7) -> float:
     """Initial step of scipy's ``select_initial_step`` (Hairer et al., sec. II.4)."""
     scale = atol + np.abs(y0) * rtol
     rms = lambda z: float(np.sqrt(np.mean(z * z)))  # noqa: E731
@@ -357,8 +370,10 @@ def initial_step(fun, y0, f0, t_bound, rtol, atol, order=7):
     return min(100 * h0, h1, t_bound)
 
 
-def run_dop853(system, y0, t_out, rtol, atol, stats, progress, state=None, counts=None, t_bound=None,
-               events=None):
+def run_dop853(system: NamedTuple, y0: Floats, t_out: Floats, rtol: float, atol: float, stats: Floats,
+               progress: Callable[[float, float], None] | None, state: Floats | None = None,
+               counts: Ints | None = None, t_bound: float | None = None,
+               events: NamedTuple | None = None) -> tuple[Floats, int, int]:
     """Python driver of :func:`dop853_run` on ``system``: returns (Y (T, n), n_steps, n_rhs_evals).
 
     ``stats`` must hold the initial invariants (the system's :func:`monitor` layout) and is
@@ -388,7 +403,7 @@ def run_dop853(system, y0, t_out, rtol, atol, stats, progress, state=None, count
     y = y0.copy()
     fy = np.empty(n)
 
-    def fun(z):
+    def fun(z: Floats) -> Floats:
         dz = np.empty_like(z)
         rhs(system, z, dz)
         return dz

@@ -56,7 +56,7 @@ located (Newton leaving the step) keeps the crossing step, counted in ``ev[1]``.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -81,6 +81,11 @@ from cradle.integrators._dop853 import (  # noqa: E402
 )
 from cradle.integrators._generic import implements  # noqa: E402
 
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from cradle.integrators._types import Floats, Ints
+
 OPEN, CLIPPED, PUSHING = 0, 1, 2
 #: an event within EDGE h of a step's start or end is left at that end
 EDGE = 1e-9
@@ -91,7 +96,7 @@ MAX_NEWTON = 4
 
 
 @njit(cache=True)
-def _state(y, N, b, eta):
+def _state(y: Floats, N: int, b: int, eta: float) -> int:
     """Bond b's (beads b, b+1 mod N) contact state in y: OPEN (c <= 0), CLIPPED (c > 0, c + eta c' <= 0:
     no force) or PUSHING."""
     m = b + 1 if b + 1 < N else 0
@@ -104,7 +109,7 @@ def _state(y, N, b, eta):
 
 
 @njit(cache=True)
-def states(y, periodic, eta):
+def states(y: Floats, periodic: bool, eta: float) -> NDArray[np.int8]:
     """Every bond's contact state (:func:`_state`) in y = [x, v, s D]: the ``side`` a run starts with."""
     N = (y.shape[0] - 1) // 2
     nb = N if periodic else N - 1
@@ -115,7 +120,7 @@ def states(y, periodic, eta):
 
 
 @njit(cache=True)
-def _transition(a, z, eta):
+def _transition(a: int, z: int, eta: float) -> tuple[bool, int]:
     """(q-type, next state) of the first switch of a bond going from state a to state z within a step:
     q-type when q = c + eta c' crosses 0 (a clip or unclip), else c crosses 0 (onset or release)."""
     if a == PUSHING:
@@ -130,7 +135,7 @@ def _transition(a, z, eta):
 
 
 @njit(cache=True)
-def _switch(y, dy, N, b, eta, qtype):
+def _switch(y: Floats, dy: Floats, N: int, b: int, eta: float, qtype: bool) -> tuple[float, float]:
     """(s, ds/dt) of bond b's switching function: q = c + eta c' (qtype) or c, from the state y and its
     derivative dy = f(y)."""
     m = b + 1 if b + 1 < N else 0
@@ -142,7 +147,7 @@ def _switch(y, dy, N, b, eta, qtype):
 
 
 @njit(cache=True)
-def _hermite_root(s0, d0, s1, d1):
+def _hermite_root(s0: float, d0: float, s1: float, d1: float) -> float:
     """theta in [0, 1] where the cubic Hermite with values s0, s1 and slopes d0, d1 (per unit theta)
     changes sign (s0 > 0 != s1 > 0), by bisection."""
     lo, hi = 0.0, 1.0
@@ -187,7 +192,7 @@ class ContactEvents(NamedTuple):
     tev: np.ndarray
 
 
-def contact_events(y0, periodic: bool, eta: float, rtol: float, ev, tev) -> ContactEvents:
+def contact_events(y0: Floats, periodic: bool, eta: float, rtol: float, ev: Ints, tev: Floats | None) -> ContactEvents:
     """The events of a run from y0 = [x, v, s D] (``ev``: int64, 4 counters; ``tev``: float64 or None)."""
     n = y0.size
     N = (n - 1) // 2
@@ -201,13 +206,13 @@ def contact_events(y0, periodic: bool, eta: float, rtol: float, ev, tev) -> Cont
 
 @implements(end_buffer, ContactEvents)
 @njit(cache=True)
-def _buffer(events, Ks):
+def _buffer(events: ContactEvents, Ks: Floats) -> Floats:
     return events.fnew
 
 
 @implements(start_step, ContactEvents)
 @njit(cache=True)
-def _start(events):
+def _start(events: ContactEvents) -> int:
     events.ctl[1] = 0.0     # the accepted step ends at an onset: the next one starts in u
     events.ctl[2] = -1.0    # >= 0: bonds with theta <= this switch at the step's end
     return int(events.ctl[0])
@@ -215,14 +220,16 @@ def _start(events):
 
 @implements(time_variable, ContactEvents)
 @njit(cache=True)
-def _time(events, sub):
+def _time(events: ContactEvents, sub: int) -> NamedTuple:
     return SubstitutedTime(sub)
 
 
 @implements(locate, ContactEvents)
 @njit(cache=True)
-def _locate(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks, ys, err5, err3, rtol, atol,
-            A, B, C, E3, E5):
+def _locate(events: ContactEvents, system: NamedTuple, y: Floats, fy: Floats, ynew: Floats, fnew: Floats, t: float,
+            h: float, h_try: float, hu: float, sub: int, clipped: bool, Ks: Floats, ys: Floats, err5: Floats,
+            err3: Floats, rtol: float, atol: float, A: Floats, B: Floats, C: Floats, E3: Floats,
+            E5: Floats) -> tuple[bool, float, float, bool, bool, int, int]:
     n = y.shape[0]
     N = events.N
     eta = events.eta
@@ -326,7 +333,7 @@ def _locate(events, system, y, fy, ynew, fnew, t, h, h_try, hu, sub, clipped, Ks
 
 @implements(commit, ContactEvents)
 @njit(cache=True)
-def _commit(events, y, restepped):
+def _commit(events: ContactEvents, y: Floats, restepped: bool) -> None:
     side = events.side
     zend = events.zend
     if restepped:           # the states at the re-step's end

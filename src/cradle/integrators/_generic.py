@@ -23,19 +23,25 @@ _IMPLEMENTATIONS: dict[tuple[str, Any], Any] = {}
 _STUBS: dict[Callable, Callable] = {}
 
 
+def _unannotated(sig: inspect.Signature) -> inspect.Signature:
+    """``sig`` without its annotations (which numba would compare)."""
+    return sig.replace(parameters=[p.replace(annotation=inspect.Parameter.empty) for p in sig.parameters.values()],
+                       return_annotation=inspect.Signature.empty)
+
+
 def generic(stub: Callable) -> Callable:
     """Make ``stub`` (a Python function whose first argument is the dispatching NamedTuple) a generic
     operation of the kernels: inside compiled code, ``stub(obj, ...)`` runs the implementation registered for
     ``type(obj)``. Called from Python it does the same (for tests and drivers)."""
     name = f"{stub.__module__}.{stub.__qualname__}"
 
-    def typer(*args):
+    def typer(*args: Any) -> Callable | None:
         impl = _IMPLEMENTATIONS.get((name, getattr(args[0], "instance_class", None)))
         return None if impl is None else impl.py_func
 
-    typer.__signature__ = inspect.signature(stub)  # type: ignore[attr-defined]
+    typer.__signature__ = _unannotated(inspect.signature(stub))  # type: ignore[attr-defined]
 
-    def python_call(obj, *args):
+    def python_call(obj: Any, *args: Any) -> Any:
         return _IMPLEMENTATIONS[(name, type(obj))](obj, *args)
 
     python_call.__name__ = stub.__name__
@@ -52,12 +58,15 @@ def implements(operation: Callable, cls: type) -> Callable:
     stub = _STUBS[operation]
     name = f"{stub.__module__}.{stub.__qualname__}"
 
-    def register(fn):
+    def register(fn: Any) -> Any:  # a numba dispatcher
         want = list(inspect.signature(stub).parameters)
         got = list(inspect.signature(fn.py_func).parameters)
         if got != want:   # numba matches an implementation to its operation by the arguments' names
             raise TypeError(f"{fn.py_func.__qualname__}{tuple(got)} implements {stub.__qualname__}{tuple(want)}: "
                             f"the arguments must be named alike")
+        # numba compares an implementation's signature with its operation's, annotations included: each
+        # implementation annotates its own unit's class, so both are compared by their names only
+        fn.py_func.__signature__ = _unannotated(inspect.signature(fn.py_func))
         _IMPLEMENTATIONS[(name, cls)] = fn
         return fn
 

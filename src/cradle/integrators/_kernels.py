@@ -21,12 +21,16 @@ The "compression" monitored for the stiffness is c = max(-d, 0) for Hertz and
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators.terms.contact_damping import damped_bond
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -42,7 +46,7 @@ def mode_flag(potential: str, alpha: float) -> int:
 
 
 @njit(cache=True)
-def _bond(d, alpha, mode):
+def _bond(d: float, alpha: float, mode: int) -> tuple[float, float]:
     """(f, c): bond force f = V'(d) and the compression c monitored for stiffness."""
     if mode == 0:
         c = max(-d, 0.0)
@@ -59,7 +63,7 @@ def _bond(d, alpha, mode):
 
 
 @njit(cache=True)
-def forces(x, f, F, alpha, mode, periodic):
+def forces(x: Floats, f: Floats, F: Floats, alpha: float, mode: int, periodic: bool) -> tuple[float, float]:
     """Contact forces of (nc)/(meca) at positions x.
 
     Fills ``f[n]`` (force on bond n, 0 on the missing bond N-1 with free ends)
@@ -91,7 +95,7 @@ def forces(x, f, F, alpha, mode, periodic):
 
 
 @njit(cache=True)
-def forces_only(x, f, F, alpha, mode, periodic):
+def forces_only(x: Floats, f: Floats, F: Floats, alpha: float, mode: int, periodic: bool) -> None:
     """Same as :func:`forces` without the energy/compression reductions.
 
     Without the two reductions the loops vectorise (about 3x faster); used for
@@ -110,7 +114,7 @@ def forces_only(x, f, F, alpha, mode, periodic):
 
 
 @njit(cache=True)
-def lattice_energy(x, v, alpha, mode, periodic):
+def lattice_energy(x: Floats, v: Floats, alpha: float, mode: int, periodic: bool) -> tuple[float, float]:
     """Hamiltonian (ham) of one state, and its largest bond compression."""
     N = x.shape[0]
     f = np.empty(N)
@@ -123,7 +127,7 @@ def lattice_energy(x, v, alpha, mode, periodic):
 
 
 @njit(cache=True, inline="always")
-def kick_rotate(x, v, F, b, c, s):
+def kick_rotate(x: Floats, v: Floats, F: Floats, b: float, c: float, s: float) -> None:
     """One stage of an RKN splitting: kick v += b F, then the exact harmonic flow of the on-site
     part over the stage, (x, v) rotated with c = cos(a h) - 1, s = sin(a h) (inlined: hot loop)."""
     for n in range(x.shape[0]):
@@ -134,7 +138,7 @@ def kick_rotate(x, v, F, b, c, s):
 
 
 @njit(cache=True, inline="always")
-def last_kick(x, v, F, b):
+def last_kick(x: Floats, v: Floats, F: Floats, b: float) -> float:
     """The closing kick v += b F of a step; returns sum(v^2 + x^2), twice the harmonic energy."""
     e = 0.0
     for n in range(x.shape[0]):
@@ -145,7 +149,7 @@ def last_kick(x, v, F, b):
 
 
 @njit(cache=True)
-def lattice_rhs(y, dy, f, F, alpha, mode, periodic):
+def lattice_rhs(y: Floats, dy: Floats, f: Floats, F: Floats, alpha: float, mode: int, periodic: bool) -> None:
     """First-order form of (nc)/(meca), y = [x, v]: dy = [v, -x + F(x)]."""
     N = f.shape[0]
     x = y[:N]
@@ -156,7 +160,8 @@ def lattice_rhs(y, dy, f, F, alpha, mode, periodic):
 
 
 @njit(cache=True)
-def lattice_damped_rhs(y, dy, f, F, alpha, mode, gamma, eta, dscale, periodic):
+def lattice_damped_rhs(y: Floats, dy: Floats, f: Floats, F: Floats, alpha: float, mode: int, gamma: float, eta: float,
+                       dscale: float, periodic: bool) -> None:
     """First-order form of (ncdamped) with its dissipated energy, y = [x, v, s D] (length 2N + 1):
     dy = [v, -x - gamma v + g_n - g_{n-1}, s P], g_n = -max(c^alpha + eta c^(alpha-1) c', 0) on a
     compressed bond (c = -(x_{n+1} - x_n) > 0, c' = -(v_{n+1} - v_n)), P the dissipated power of
@@ -189,7 +194,7 @@ def lattice_damped_rhs(y, dy, f, F, alpha, mode, gamma, eta, dscale, periodic):
 
 
 @njit(cache=True)
-def lattice_jac(y, J, alpha, mode, periodic):
+def lattice_jac(y: Floats, J: Floats, alpha: float, mode: int, periodic: bool) -> None:
     """Dense Jacobian of :func:`lattice_rhs` (for the implicit scipy methods).
 
     With k_n = dV'/dd on bond n (Hertz: alpha c^(alpha-1); smooth:

@@ -8,11 +8,15 @@ The right-hand side is :class:`cradle.integrators.systems.dps.DpsSites` of the D
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numba import njit
 
 from cradle.integrators import _cache
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -20,7 +24,8 @@ _cache.activate()   # before the first @njit: numba picks the cache folder when 
 HEADER = 8
 
 
-def pack(sites, tables, tau0: float, psi_max: float) -> np.ndarray:
+# Any: a cradle.models DpsSites; a kernel module's cradle imports (annotations' too) are the kernel cache's key
+def pack(sites: Any, tables: dict[str, np.ndarray] | None, tau0: float, psi_max: float) -> np.ndarray:
     """``par`` of (dpsimperfect) from a :class:`cradle.models.dps_sites.DpsSites` and its contact tables (None when no
     bond is compressed)."""
     N = sites.N
@@ -35,7 +40,7 @@ def pack(sites, tables, tau0: float, psi_max: float) -> np.ndarray:
 
 
 @njit(cache=True)
-def _clenshaw(c, o, n, t):
+def _clenshaw(c: Floats, o: int, n: int, t: float) -> float:
     """sum_k c[o + k] T_k(t), k < n."""
     b1 = 0.0
     b2 = 0.0
@@ -47,7 +52,7 @@ def _clenshaw(c, o, n, t):
 
 
 @njit(cache=True)
-def _horner(c, o, n, y):
+def _horner(c: Floats, o: int, n: int, y: float) -> float:
     s = 0.0
     for k in range(n - 1, -1, -1):
         s = s * y + c[o + k]
@@ -55,7 +60,7 @@ def _horner(c, o, n, y):
 
 
 @njit(cache=True)
-def _offsets(par):
+def _offsets(par: Floats) -> tuple[int, int, int, int, int, int, int, int, int, int, int, int, int, int, int]:
     """Offsets in ``par`` of the coefficient blocks: (N, detuning, inv_mass, weight, beta, delta, G1, G2, Ga, P1, P2,
     Ph, n1, n2, ns)."""
     N = int(par[1])
@@ -74,7 +79,7 @@ def _offsets(par):
 
 
 @njit(cache=True)
-def _table(rho, psi_max):
+def _table(rho: float, psi_max: float) -> tuple[int, float]:
     """Where rho = delta~/r falls: (0, -) no contact (rho <= -2); (1, t) the Chebyshev table in phi (rho < 2);
     (2, t) the one in psi (rho < 4); (3, y) the 2F1 series in y = 4/rho^2."""
     if rho <= -2.0:
@@ -87,7 +92,8 @@ def _table(rho, psi_max):
 
 
 @njit(cache=True)
-def _g_over_r(r, d, alpha, par, og1, og2, oga, n1, n2, ns):
+def _g_over_r(r: float, d: float, alpha: float, par: Floats, og1: int, og2: int, oga: int, n1: int, n2: int,
+              ns: int) -> float:
     """g(r; d) / r (so that Phi(z) = z g/r), r >= 0."""
     if d == 0.0:
         if r <= 0.0:
@@ -110,7 +116,8 @@ def _g_over_r(r, d, alpha, par, og1, og2, oga, n1, n2, ns):
 
 
 @njit(cache=True)
-def _potential(r, d, alpha, par, op1, op2, oph, n1, n2, ns):
+def _potential(r: float, d: float, alpha: float, par: Floats, op1: int, op2: int, oph: int, n1: int, n2: int,
+               ns: int) -> float:
     """P(r; d) = int_0^r g(s; d) ds."""
     if d == 0.0:
         return r ** (alpha + 1.0) / (alpha + 1.0)
@@ -128,7 +135,7 @@ def _potential(r, d, alpha, par, op1, op2, oph, n1, n2, ns):
 
 
 @njit(cache=True)
-def dps_sites_invariants(y, alpha, par, periodic):
+def dps_sites_invariants(y: Floats, alpha: float, par: Floats, periodic: bool) -> tuple[float, float, float, float]:
     """(sum m_n |A_n|^2, H, Re P, Im P) of (dpsimperfect), P = sum m_n A_n."""
     N, od, om, ow, ob, oe, og1, og2, oga, op1, op2, oph, n1, n2, ns = _offsets(par)
     l2 = 0.0

@@ -70,7 +70,7 @@ stage forces (``stage_forces``, ``start_step``), set the quadrature weights per 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -81,6 +81,9 @@ from cradle.integrators._kernels import _bond
 from cradle.integrators._onset_impulse import cubic, extrema, hermite, integrate_pieces
 from cradle.integrators._splitting import correct, stage_forces, start_interval, start_step
 
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats, Ints
+
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
 #: Default ``near`` of the onset screen: a cubic Hermite on [0, h] stays within
@@ -89,7 +92,8 @@ NEAR_DEFAULT = 4.0 / 27.0
 
 
 @njit(cache=True)
-def _set_bond(bb, x, v, fend, d1, w1, alpha, mode, N):
+def _set_bond(bb: int, x: Floats, v: Floats, fend: Floats, d1: Floats, w1: Floats, alpha: float, mode: int,
+              N: int) -> float:
     """Recompute the end-of-step elongation, rate and force of bond bb; return the change of d*f."""
     nxt = bb + 1 if bb + 1 < N else 0
     old = d1[bb] * fend[bb]
@@ -102,7 +106,8 @@ def _set_bond(bb, x, v, fend, d1, w1, alpha, mode, N):
 
 
 @njit(cache=True)
-def _apply(k, dx, dv, x, v, F, fend, d1, w1, alpha, mode, periodic, N):
+def _apply(k: int, dx: float, dv: float, x: Floats, v: Floats, F: Floats, fend: Floats, d1: Floats, w1: Floats,
+           alpha: float, mode: int, periodic: bool, N: int) -> tuple[float, float]:
     """Add (dx, dv) to bead k and subtract it from bead k+1; update the end forces locally.
 
     Returns (change of sum(x^2 + v^2), change of sum_bonds d f).
@@ -159,7 +164,7 @@ class OnsetCorrection(NamedTuple):
     near: float
 
 
-def onset_correction(x, v, a, variant: int, n_iter: int, near: float) -> OnsetCorrection:
+def onset_correction(x: Floats, v: Floats, a: Floats, variant: int, n_iter: int, near: float) -> OnsetCorrection:
     """The correction's state for a run from (x, v) with the splitting's rotation coefficients ``a``; its row m
     of ``fs`` is where the caller puts the forces at x."""
     N = x.size
@@ -177,7 +182,7 @@ def onset_correction(x, v, a, variant: int, n_iter: int, near: float) -> OnsetCo
 
 @implements(start_interval, OnsetCorrection)
 @njit(cache=True)
-def _start_interval(correction, h, bh):
+def _start_interval(correction: OnsetCorrection, h: float, bh: Floats) -> None:
     cnode = correction.cnode
     for i in range(bh.shape[0]):
         correction.qs[i] = bh[i] * math.sin((1.0 - cnode[i]) * h)
@@ -187,7 +192,7 @@ def _start_interval(correction, h, bh):
 
 @implements(start_step, OnsetCorrection)
 @njit(cache=True)
-def _start_step(correction):
+def _start_step(correction: OnsetCorrection) -> Floats:
     m = correction.fs.shape[0] - 1
     rowf = 0 if correction.ctl[0] == m else m
     correction.ctl[1] = rowf
@@ -196,13 +201,14 @@ def _start_step(correction):
 
 @implements(stage_forces, OnsetCorrection)
 @njit(cache=True)
-def _stage_forces(correction, fend, i):
+def _stage_forces(correction: OnsetCorrection, fend: Floats, i: int) -> Floats:
     return correction.fs[i]
 
 
 @implements(correct, OnsetCorrection)
 @njit(cache=True)
-def _correct(correction, x, v, F, fend, h, e, pot, cmax, alpha, mode, periodic, counts):
+def _correct(correction: OnsetCorrection, x: Floats, v: Floats, F: Floats, fend: Floats, h: float, e: float, pot: float,
+             cmax: float, alpha: float, mode: int, periodic: bool, counts: Ints) -> tuple[float, float, float]:
     """The screen and the correction of one step (module docstring)."""
     cmax_all = cmax
     N = x.shape[0]

@@ -19,12 +19,16 @@ across one onset and for a contact that begins and ends within one step
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._kernels import _bond
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -35,7 +39,7 @@ GL_W = np.ascontiguousarray(0.5 * _GW)
 
 
 @njit(cache=True)
-def cubic(c0, c1, c2, c3, s):
+def cubic(c0: float, c1: float, c2: float, c3: float, s: float) -> float:
     """c0 + c1 s + c2 s^2 + c3 s^3 (Horner)."""
     return c0 + s * (c1 + s * (c2 + s * c3))
 
@@ -45,7 +49,7 @@ _COS = np.array([1.0 / math.factorial(2 * k) * (-1) ** k for k in range(9)])    
 
 
 @njit(cache=True)
-def _sincos(x):
+def _sincos(x: float) -> tuple[float, float]:
     """(sin x, cos x): Taylor polynomials of degree 15/16 for |x| <= 1 (error < 3e-15), libm beyond."""
     if abs(x) > 1.0:
         return math.sin(x), math.cos(x)
@@ -60,7 +64,7 @@ def _sincos(x):
 
 
 @njit(cache=True)
-def _root(c0, c1, c2, c3, lo, hi, plo):
+def _root(c0: float, c1: float, c2: float, c3: float, lo: float, hi: float, plo: float) -> float:
     """Root of the cubic in [lo, hi] where it is monotone with a sign change (plo = p(lo))."""
     phi = cubic(c0, c1, c2, c3, hi)
     s = lo - plo * (hi - lo) / (phi - plo) if phi != plo else 0.5 * (lo + hi)
@@ -84,7 +88,8 @@ def _root(c0, c1, c2, c3, lo, hi, plo):
 
 
 @njit(cache=True)
-def _piece(c0, c1, c2, c3, p, q, side, h, alpha, mode):
+def _piece(c0: float, c1: float, c2: float, c3: float, p: float, q: float, side: int, h: float, alpha: float,
+           mode: int) -> tuple[float, float]:
     """int over s in [p, q] of (sin(h(1-s)), cos(h(1-s))) f(d~(s)) ds by 8-point Gauss-Legendre.
 
     ``side`` = -1 if d~(p) = 0, +1 if d~(q) = 0, 0 if neither: near a root
@@ -119,7 +124,7 @@ def _piece(c0, c1, c2, c3, p, q, side, h, alpha, mode):
 
 
 @njit(cache=True)
-def hermite(d0, w0, d1, w1, h):
+def hermite(d0: float, w0: float, d1: float, w1: float, h: float) -> tuple[float, float, float, float]:
     """Coefficients in s = tau/h of the cubic with values d0, d1 and slopes w0, w1 at tau = 0, h."""
     c2 = -3.0 * d0 + 3.0 * d1 - 2.0 * h * w0 - h * w1
     c3 = 2.0 * d0 - 2.0 * d1 + h * w0 + h * w1
@@ -127,7 +132,7 @@ def hermite(d0, w0, d1, w1, h):
 
 
 @njit(cache=True)
-def extrema(c1, c2, c3):
+def extrema(c1: float, c2: float, c3: float) -> tuple[float, float]:
     """The extrema of the cubic in (0, 1), sorted; 2.0 where there is none."""
     qa = 3.0 * c3
     qb = 2.0 * c2
@@ -155,7 +160,7 @@ def extrema(c1, c2, c3):
 
 
 @njit(cache=True)
-def _count_roots(c0, c1, c2, c3, e1, e2):
+def _count_roots(c0: float, c1: float, c2: float, c3: float, e1: float, e2: float) -> int:
     """Number of sign changes of the cubic over its monotone pieces of [0, 1] (= roots in (0, 1))."""
     nroots = 0
     plo = c0
@@ -171,7 +176,8 @@ def _count_roots(c0, c1, c2, c3, e1, e2):
 
 
 @njit(cache=True)
-def integrate_pieces(c0, c1, c2, c3, e1, e2, h, alpha, mode):
+def integrate_pieces(c0: float, c1: float, c2: float, c3: float, e1: float, e2: float, h: float, alpha: float,
+                     mode: int) -> tuple[float, float]:
     """int_0^1 (sin(h(1-s)), cos(h(1-s))) f(d~(s)) ds over the monotone pieces, split at the roots."""
     ix = 0.0
     iv = 0.0
@@ -198,7 +204,7 @@ def integrate_pieces(c0, c1, c2, c3, e1, e2, h, alpha, mode):
 
 
 @njit(cache=True)
-def exact_impulse(d0, w0, d1, w1, h, alpha, mode, out):
+def exact_impulse(d0: float, w0: float, d1: float, w1: float, h: float, alpha: float, mode: int, out: Floats) -> int:
     """I = int_0^h (sin(h - tau), cos(h - tau)) f(d~(tau)) dtau along the cubic Hermite d~.
 
     d~(0) = d0, d~'(0) = w0, d~(h) = d1, d~'(h) = w1; f is the bond force of

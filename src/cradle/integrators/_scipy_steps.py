@@ -4,10 +4,18 @@ scipy's solvers share (:mod:`cradle.integrators.lattice_adaptive`, :mod:`cradle.
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from cradle.integrators._types import Floats
 
 
-def stepped(scipy_class: str, fun, y0, tau_out, rtol, atol, store, on_step, progress, method: str, clock: str = "tau",
-            **extra):
+def stepped(scipy_class: str, fun: Callable[[float, Floats], Floats], y0: Floats, tau_out: Floats, rtol: float,
+            atol: float | Floats, store: Callable[[int, Floats], None], on_step: Callable[[Floats, float], None],
+            progress: Callable[[float, float], None] | None, method: str, clock: str = "tau",
+            **extra: Any) -> tuple[int, int]:
     """Step scipy's ``scipy_class`` solver (DOP853, RK45, LSODA, Radau; ``extra``: its other arguments, e.g. ``jac``)
     manually from 0 to tau_out[-1]: ``store(i, y)`` at every output time (y0 at 0, the step's end where it lands on
     one, else its dense output), ``on_step(y, tau)`` after every accepted step, ``progress(tau, tau_final)`` about

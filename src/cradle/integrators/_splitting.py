@@ -16,7 +16,7 @@ quadrature of the bonds at a contact onset after every step.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -24,6 +24,9 @@ from numba import njit
 from cradle.integrators import _cache
 from cradle.integrators._generic import absent, generic, implements
 from cradle.integrators._kernels import forces, forces_only, kick_rotate, last_kick
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats, Ints
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -35,34 +38,37 @@ class NoCorrection(NamedTuple):
 
 
 @generic
-def start_interval(correction, h, bh):
+def start_interval(correction: NamedTuple, h: float, bh: Floats) -> None:
     """Prepare the steps of length h of an output interval (``bh`` = b_i h)."""
 
 
 @generic
-def start_step(correction):
+def start_step(correction: NamedTuple) -> Floats:
     """The array receiving the bond forces at the step's end."""
 
 
 @generic
-def stage_forces(correction, fend, i):
+def stage_forces(correction: NamedTuple, fend: Floats, i: int) -> Floats:
     """The array receiving the bond forces of kick i (0 < i < m)."""
 
 
 @generic
-def correct(correction, x, v, F, fend, h, e, pot, cmax, alpha, mode, periodic, counts):
+def correct(correction: NamedTuple, x: Floats, v: Floats, F: Floats, fend: Floats, h: float, e: float, pot: float,
+            cmax: float, alpha: float, mode: int, periodic: bool,
+            counts: Ints) -> tuple[float, float, float]:
     """After the closing kick: the corrected (sum (x^2 + v^2), contact energy, largest compression)."""
 
 
 @implements(start_step, NoCorrection)
 @njit(cache=True)
-def _start_step(correction):
+def _start_step(correction: NoCorrection) -> Floats:
     return correction.f
 
 
 @njit(cache=True)
-def split_run(correction, x, v, F, tgrid, dt, k, j, max_steps, a, b, alpha, mode, periodic, X, V, E, shift, stats,
-              counts):
+def split_run(correction: NamedTuple, x: Floats, v: Floats, F: Floats, tgrid: Floats, dt: float, k: int, j: int,
+              max_steps: int, a: Floats, b: Floats, alpha: float, mode: int, periodic: bool, X: Floats, V: Floats,
+              E: Floats, shift: int, stats: Floats, counts: Ints) -> tuple[int, int]:
     """Advance (nc)/(meca) with a symplectic BAB splitting (module docstring); resumable.
 
     ``F`` must hold F(x) on entry and holds it on exit (FSAL). The interval [tgrid[k], tgrid[k+1]] is
@@ -73,7 +79,7 @@ def split_run(correction, x, v, F, tgrid, dt, k, j, max_steps, a, b, alpha, mode
     place. Energy is evaluated after every step. Returns the new ``(k, j)``.
     """
     N = x.shape[0]
-    m = a.shape[0]
+    m: int = a.shape[0]
     nint = tgrid.shape[0] - 1
     cs = np.empty(m)
     sn = np.empty(m)

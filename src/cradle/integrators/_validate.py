@@ -4,9 +4,10 @@ Their scalar arguments are checked against the shared declarations (``cradle.spe
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, DTypeLike
 
 
-def check_times(t, name: str) -> np.ndarray:
+def check_times(t: ArrayLike, name: str) -> np.ndarray:
     """Output times: 1-D, non-empty, finite, >= 0 and strictly increasing."""
     t = np.asarray(t, dtype=float)
     if t.ndim == 0:
@@ -29,7 +30,7 @@ def check_times(t, name: str) -> np.ndarray:
     return t
 
 
-def check_state(arr, name: str, dtype=float) -> np.ndarray:
+def check_state(arr: ArrayLike, name: str, dtype: DTypeLike = float) -> np.ndarray:
     """A finite 1-D state vector with N >= 2 entries."""
     arr = np.array(arr, dtype=dtype, copy=True)
     if arr.ndim != 1:

@@ -13,6 +13,7 @@ it does not resume across blocks as :func:`cradle.integrators.dps_solver.iter_dp
 from __future__ import annotations
 
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,8 +23,12 @@ from cradle.integrators.systems import dps as SD
 from cradle.models.dps_damped import DpsDamping, contact_factor
 from cradle.specs.declare import from_plain, plain
 
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
+    from cradle.integrators.dps_solver import DpsSolution, _DpsRun
 
-def validated(damping) -> DpsDamping:
+
+def validated(damping: DpsDamping) -> DpsDamping:
     """``damping`` checked against the declaration of :class:`DpsDamping` (one-line ConfigError otherwise)."""
     if not isinstance(damping, DpsDamping):
         raise ValueError(f"damping must be a DpsDamping (cradle.models.dps_damped; slow_damping converts a lattice "
@@ -39,7 +44,7 @@ def system(damping: DpsDamping, alpha: float, inv2tau0: float, periodic: bool) -
 class _Balance:
     """The balance residuals of a damped run, measured from A0 (see :class:`DpsSolution`)."""
 
-    def __init__(self, run, damping: DpsDamping):
+    def __init__(self, run: _DpsRun, damping: DpsDamping) -> None:
         self.run = run
         self.N = run.N
         self.to_H = -1.0 / ((run.alpha + 1.0) * (0.5 / run.inv2tau0))   # H = -S / ((alpha+1) tau0)
@@ -49,7 +54,7 @@ class _Balance:
         self.H_scale = abs(self.H0) if self.H0 != 0.0 else 1.0
         self.half_gamma = 0.5 * damping.gamma
 
-    def row(self, y, tau):
+    def row(self, y: Floats, tau: float) -> tuple[float, float, float, float, float, float, float]:
         """(l2, H, Q_l2, Q_H, l2 residual, H residual, P residual) of the extended state y at tau;
         Q_H = -Q_S / ((alpha+1) tau0) is what H has gained, and |S + Q_S - S0| / S0 = |H - Q_H - H0| / |H0|."""
         run, n = self.run, 2 * self.N
@@ -59,7 +64,8 @@ class _Balance:
                 abs(S + y[n + 1] - self.S0) / self.S_scale, abs(complex(pr, pi) - P_exact) / run.P_scale)
 
 
-def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, solution, scipy_class: str | None):
+def integrate_damped(run: _DpsRun, damping: DpsDamping, method: str, wall0: float, solution: type[DpsSolution],
+                     scipy_class: str | None) -> DpsSolution:
     """:func:`cradle.integrators.integrate_dps` of (dpsdamped) for the validated run ``run``
     (:class:`cradle.integrators.dps_solver._DpsRun`) with active ``damping``; ``solution`` is the class
     :class:`cradle.integrators.DpsSolution` and ``scipy_class`` the name of scipy's solver (None: DOP853 in
@@ -79,18 +85,18 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, soluti
         max_l2, max_E = float(stats[2]), float(stats[3])
         return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
 
-    def fun(t, y):
+    def fun(t: float, y: Floats) -> Floats:
         dy = np.empty_like(y)
         SD.dps_rhs(dsys, y, dy)
         return dy
 
-    def store(i, y):
+    def store(i: int, y: Floats) -> None:
         Y[i] = y
         rows[i] = balance.row(y, tau_out[i])
 
     drifts = [0.0, 0.0]   # the largest l2 and energy residuals over every accepted step
 
-    def on_step(y, tau):
+    def on_step(y: Floats, tau: float) -> None:
         r = balance.row(y, tau)
         drifts[0] = max(drifts[0], r[4])
         drifts[1] = max(drifts[1], r[5])
@@ -100,7 +106,8 @@ def integrate_damped(run, damping: DpsDamping, method: str, wall0: float, soluti
     return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
 
 
-def _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0):
+def _solution(solution: type[DpsSolution], Y: Floats, rows: Floats, max_l2: float, max_E: float, n_steps: int,
+              nfev: int, run: _DpsRun, damping: DpsDamping, method: str, wall0: float) -> DpsSolution:
     A = np.ascontiguousarray(Y[:, :2 * run.N]).view(np.complex128)
     return solution(run.tau_out, A, rows[:, 4].copy(), rows[:, 5].copy(), rows[:, 6].copy(), float(max_l2),
                        float(max_E), int(n_steps), time.perf_counter() - wall0, method, float(run.rtol),

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -35,6 +36,13 @@ from cradle.models.dps import tau0 as _tau0
 from cradle.models.dps_damped import DpsDamping
 from cradle.models.dps_sites import DpsSites
 from cradle.specs.checked import checked
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterator
+
+    from numpy.typing import ArrayLike
+
+    from cradle.integrators._types import Floats
 
 #: scipy.integrate classes by name (imported when used)
 SCIPY_DPS_METHODS = {"dop853": "DOP853", "rk45": "RK45"}
@@ -104,8 +112,10 @@ class DpsSolution:
 
 
 @checked(method="dpsMethod")
-def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", rtol=DEFAULT_RTOL, atol=None,
-                  progress=None, damping: DpsDamping | None = None, sites: DpsSites | None = None) -> DpsSolution:
+def integrate_dps(A0: ArrayLike, tau_out: ArrayLike, *, alpha: float, bc: str = "periodic",
+                  method: str = "dop853_numba", rtol: float = DEFAULT_RTOL, atol: float | None = None,
+                  progress: Callable[[float, float], None] | None = None, damping: DpsDamping | None = None,
+                  sites: DpsSites | None = None) -> DpsSolution:
     """Integrate the DpS equation (dfnls) with tau0 = tau0(alpha) of :mod:`cradle.models.dps`.
 
     Parameters
@@ -166,7 +176,7 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
 
     system = run.system
 
-    def fun(t, y):
+    def fun(t: float, y: Floats) -> Floats:
         dy = np.empty_like(y)
         SD.dps_rhs(system, y, dy)
         return dy
@@ -176,13 +186,13 @@ def integrate_dps(A0, tau_out, *, alpha, bc="periodic", method="dop853_numba", r
     Ed = np.empty(T)
     Pd = np.empty(T)
 
-    def store(i, y):
+    def store(i: int, y: Floats) -> None:
         A[i] = y.view(np.complex128)
         l2d[i], Ed[i], Pd[i] = run.drifts(y[None, :])[:, 0]
 
     drifts = [0.0, 0.0]   # the largest l2 and energy drifts over every accepted step
 
-    def on_step(y, tau):
+    def on_step(y: Floats, tau: float) -> None:
         l2, S, _pr, _pi = SD.dps_invariants(y, alpha, periodic)
         drifts[0] = max(drifts[0], abs(l2 - l20) / l2_scale)
         drifts[1] = max(drifts[1], abs(S - S0) / S_scale)
@@ -221,7 +231,7 @@ def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -
     Hs = abs(H0) if H0 != 0.0 else 1.0
     tau_out, T, N = run.tau_out, run.tau_out.size, run.N
 
-    def invariants(Y):
+    def invariants(Y: Floats) -> Floats:
         out = np.empty((5, Y.shape[0]))
         for i, y in enumerate(Y):
             l2, H, pr, pi = KS.dps_sites_invariants(np.ascontiguousarray(y), alpha, par, periodic)
@@ -233,7 +243,7 @@ def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -
         Y, n_steps, nfev = _dop853.run_dop853(system, run.y0, tau_out, run.rtol, run.atol, stats, run.progress)
         max_l2, max_E = float(stats[2]), float(stats[3])
     else:
-        def fun(t, y):
+        def fun(t: float, y: Floats) -> Floats:
             dy = np.empty_like(y)
             SD.dps_rhs(system, y, dy)
             return dy
@@ -241,10 +251,10 @@ def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -
         Y = np.empty((T, 2 * N))
         drifts = [0.0, 0.0]
 
-        def store(i, y):
+        def store(i: int, y: Floats) -> None:
             Y[i] = y
 
-        def on_step(y, tau):
+        def on_step(y: Floats, tau: float) -> None:
             l2, H, _pr, _pi = KS.dps_sites_invariants(y, alpha, par, periodic)
             drifts[0] = max(drifts[0], abs(l2 - l20) / l2s)
             drifts[1] = max(drifts[1], abs(H - H0) / Hs)
@@ -264,7 +274,8 @@ class _DpsRun:
     be computed in consecutive blocks of output times (:func:`iter_dps`). alpha, bc, rtol and atol
     come checked (``@checked`` on :func:`integrate_dps` and :func:`iter_dps`)."""
 
-    def __init__(self, A0, tau_out, alpha, bc, rtol, atol, progress):
+    def __init__(self, A0: ArrayLike, tau_out: ArrayLike, alpha: float, bc: str, rtol: float, atol: float | None,
+                 progress: Callable[[float, float], None] | None) -> None:
         self.alpha = alpha
         self.periodic = bc == "periodic"
         A0 = check_state(A0, "A0", dtype=complex)
@@ -290,7 +301,7 @@ class _DpsRun:
         self.state = np.zeros(2)  # [tau, next step]; step 0: chosen on the first block
         self.counts = np.zeros(3, dtype=np.int64)
 
-    def drifts(self, Y) -> np.ndarray:
+    def drifts(self, Y: Floats) -> np.ndarray:
         """(3, rows): relative drifts of l2 norm, Hamiltonian and P of each row of Y from A0."""
         out = np.empty((3, Y.shape[0]))
         for i, y in enumerate(Y):
@@ -299,7 +310,7 @@ class _DpsRun:
                          abs(complex(pr, pi) - self.P0) / self.P_scale)
         return out
 
-    def block(self, tau, wall0) -> DpsSolution:
+    def block(self, tau: Floats, wall0: float) -> DpsSolution:
         """The solution at ``tau`` (increasing, after the previous block's last time), DOP853 in numba."""
         n0, f0 = int(self.counts[0]), int(self.counts[1])
         Y, _, _ = _dop853.run_dop853(self.system, self.y, tau, self.rtol, self.atol, self.stats, self.progress,
@@ -312,7 +323,9 @@ class _DpsRun:
 
 
 @checked
-def iter_dps(A0, tau_out, rows: int, *, alpha, bc="periodic", rtol=DEFAULT_RTOL, atol=None, progress=None):
+def iter_dps(A0: ArrayLike, tau_out: ArrayLike, rows: int, *, alpha: float, bc: str = "periodic",
+             rtol: float = DEFAULT_RTOL, atol: float | None = None,
+             progress: Callable[[float, float], None] | None = None) -> Iterator[DpsSolution]:
     """Yield the :class:`DpsSolution` of consecutive blocks of ``rows`` output times of one run of
     :func:`integrate_dps` (method "dop853_numba") from A0 at tau = 0.
 

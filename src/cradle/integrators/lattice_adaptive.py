@@ -11,7 +11,7 @@ cradle (ncimperfect) of :mod:`cradle.models.lattice_terms` (:func:`run_dop853_te
 """
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -30,12 +30,21 @@ from cradle.integrators.terms import (
 )
 from cradle.models import lattice_terms as LTm
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from cradle.integrators._types import DampedRun, Floats, Ints, LatticeRun
+    from cradle.models.damping import Damping
+    from cradle.models.inhomogeneity import Sites
+    from cradle.models.lattice_terms import Terms
+
 #: scipy.integrate.solve_ivp classes, the baselines (looked up when used: scipy.integrate costs 0.5 s to import)
 SCIPY_METHODS = {"dop853": "DOP853", "rk45": "RK45", "lsoda": "LSODA", "radau": "Radau"}
 ADAPTIVE_METHODS = tuple(SCIPY_METHODS) + ("dop853_numba",)
 
 
-def run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic, progress):
+def run_scipy(x0: Floats, v0: Floats, t_out: Floats, method: str, rtol: float, atol: float, alpha: float, mode: int,
+              periodic: bool, progress: Callable[[float, float], None] | None) -> LatticeRun:
     """(X, V, E, drift, steps, function evaluations, max compression) of scipy's ``method`` from t = 0."""
     N = x0.size
     T = t_out.size
@@ -43,14 +52,14 @@ def run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic, progress
     f = np.empty(N)
     F = np.empty(N)
 
-    def fun(t, y):
+    def fun(t: float, y: Floats) -> Floats:
         dy = np.empty_like(y)
         K.lattice_rhs(y, dy, f, F, alpha, mode, periodic)
         return dy
 
     extra = {}
     if method in ("radau", "lsoda"):
-        def jac(t, y):
+        def jac(t: float, y: Floats) -> Floats:
             J = np.empty((2 * N, 2 * N))
             K.lattice_jac(y, J, alpha, mode, periodic)
             return J
@@ -63,11 +72,11 @@ def run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic, progress
     scale = abs(H0) if H0 != 0.0 else 1.0
     monitored = [0.0, c0]   # the largest relative energy drift and compression over every accepted step
 
-    def store(i, y):
+    def store(i: int, y: Floats) -> None:
         X[i], V[i] = y[:N], y[N:]
         E[i] = K.lattice_energy(X[i], V[i], alpha, mode, periodic)[0]
 
-    def on_step(y, t):
+    def on_step(y: Floats, t: float) -> None:
         H, cm = K.lattice_energy(y[:N], y[N:], alpha, mode, periodic)
         monitored[0] = max(monitored[0], abs(H - H0) / scale)
         monitored[1] = max(monitored[1], cm)
@@ -78,7 +87,8 @@ def run_scipy(x0, v0, t_out, method, rtol, atol, alpha, mode, periodic, progress
     return X, V, E, drift, n_steps, int(nfev), float(cmax)
 
 
-def run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic, progress):
+def run_dop853_numba(x0: Floats, v0: Floats, t_out: Floats, rtol: float, atol: float, alpha: float, mode: int,
+                     periodic: bool, progress: Callable[[float, float], None] | None) -> LatticeRun:
     """(X, V, E, drift, steps, function evaluations, max compression) of DOP853 in numba from t = 0."""
     N = x0.size
     H0, c0 = K.lattice_energy(x0, v0, alpha, mode, periodic)
@@ -91,8 +101,9 @@ def run_dop853_numba(x0, v0, t_out, rtol, atol, alpha, mode, periodic, progress)
     return X, V, E, float(stats[1]), n_steps, nfev, float(stats[2])
 
 
-def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping, progress, onset=True,
-                      events=None, event_times=None):
+def run_dop853_damped(x0: Floats, v0: Floats, t_out: Floats, rtol: float, atol: float, alpha: float, mode: int,
+                      periodic: bool, damping: Damping, progress: Callable[[float, float], None] | None,
+                      onset: bool = True, events: Ints | None = None, event_times: Floats | None = None) -> DampedRun:
     """(X, V, E, D, drift, steps, function evaluations, max compression) of DOP853 in numba on (ncdamped)
     from t = 0: y = [x, v, s D], D(0) = 0 the dissipated energy (dD/dt = P, :mod:`cradle.models.damping`);
     drift = max over every step of |H + D - H(0)| / |H(0)|.
@@ -126,7 +137,9 @@ def run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic, damping,
     return X, V, E, D, float(stats[1]), n_steps, nfev, float(stats[2])
 
 
-def run_dop853_terms(x0, v0, t_out, rtol, atol, alpha, mode, periodic, terms, sites, damping, progress):
+def run_dop853_terms(x0: Floats, v0: Floats, t_out: Floats, rtol: float, atol: float, alpha: float, mode: int,
+                     periodic: bool, terms: Terms, sites: Sites, damping: Damping | None,
+                     progress: Callable[[float, float], None] | None) -> DampedRun:
     """(X, V, E, D, drift, steps, function evaluations, max overlap) of DOP853 in numba on the imperfect cradle
     (ncimperfect) (:mod:`cradle.integrators.systems.imperfect`, its terms the units of
     :mod:`cradle.integrators.terms`), with ``damping`` (or None) from t = 0: y = [x, v, s D] (y = [x, v] and D = 0
@@ -148,7 +161,8 @@ def run_dop853_terms(x0, v0, t_out, rtol, atol, alpha, mode, periodic, terms, si
     return X, V, E, D, float(stats[1]), n_steps, nfev, float(stats[2])
 
 
-def imperfect_system(alpha, mode, periodic, terms, sites, damping=None, dscale=None) -> SI.Imperfect:
+def imperfect_system(alpha: float, mode: int, periodic: bool, terms: Terms, sites: Sites,
+                     damping: Damping | None = None, dscale: float | None = None) -> SI.Imperfect:
     """The system of the declared ``terms`` (:class:`cradle.models.lattice_terms.Terms`) on ``sites``
     (:class:`cradle.models.inhomogeneity.Sites`) with ``damping`` (:class:`cradle.models.damping.Damping`, or
     None: y = [x, v]); ``dscale`` the scale of D in the state (with damping)."""

@@ -17,10 +17,18 @@ It starts from the last bead the shooting resolves (|x_n| >= start_rel max|x|), 
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
 
-def trajectory(b, M: int = 1024, rtol: float = 1e-13):
+    from cradle.integrators._types import Floats
+    from cradle.integrators.lattice_breathers import Breather
+
+
+def trajectory(b: Breather, M: int = 1024, rtol: float = 1e-13) -> Floats:
     """x_n(t) at t = k T / M, k = 0..M-1, of the breather ``b`` (shape (M, N)), by DOP853 with dense output."""
     from scipy.integrate import solve_ivp
 
@@ -35,7 +43,8 @@ def trajectory(b, M: int = 1024, rtol: float = 1e-13):
     return sol.y[:N].T
 
 
-def log10_tail(b, centre: float, length: int, start_rel: float = 1e-7, M: int = 1024, rtol: float = 1e-13):
+def log10_tail(b: Breather, centre: float, length: int, start_rel: float = 1e-7, M: int = 1024,
+               rtol: float = 1e-13) -> tuple[NDArray[np.int_], Floats, int]:
     """log10 max_t |x_n(t)| on the right of ``centre`` for j = 1..length beads beyond it: from the trajectory
     while |x_n| >= start_rel max|x|, then by the recursion of the module docstring. Returns
     (j, log10 amplitude, index of the first recursed bead)."""
@@ -62,12 +71,12 @@ def log10_tail(b, centre: float, length: int, start_rel: float = 1e-7, M: int = 
         f = np.maximum(s, 0.0) ** b.alpha
         y = np.fft.irfft(np.fft.rfft(f) * mult, M)
         m = float(np.max(np.abs(y)))
-        s, L = y / m, b.alpha * L + np.log(m)
+        s, L = y / m, b.alpha * L + np.log(m)  # type: ignore[operator]  # L set with s
         out[i] = L / np.log(10.0)
     return js, out, first
 
 
-def double_exponential_slope(log10_amp, log10_max, first: int):
+def double_exponential_slope(log10_amp: Floats, log10_max: float, first: int) -> float:
     """Slope of ln(-ln(|x_j| / max|x|)) against j over the recursed beads (DpS: ln alpha)."""
     r = (np.asarray(log10_amp[first:]) - log10_max) * np.log(10.0)
     j = np.arange(first, len(log10_amp)) + 1

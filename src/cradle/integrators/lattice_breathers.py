@@ -33,16 +33,24 @@ x0 -> ((omega_b' - 1)/(omega_b - 1))^(1/(alpha-1)) x0 of the previous exact brea
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, overload
 
 import numpy as np
 
 from cradle.models.lattice import hamiltonian
 from cradle.specs.checked import checked
 
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.integrators._types import Floats
+
 RTOL = 1e-13         # DOP853 relative tolerance of the shooting (period residuals 1e-11 .. 2e-9)
 
 
-def _rhs_factory(N, m, alpha, periodic):
+def _rhs_factory(N: int, m: int, alpha: float, periodic: bool) -> Callable[[float, Floats], Floats]:
     """Right-hand side of (nc) with the action integrand sum v^2 and m columns of the variational equations.
 
     The orbit and the stiffnesses come from the project's compiled kernels (``lattice_rhs``,
@@ -54,7 +62,7 @@ def _rhs_factory(N, m, alpha, periodic):
     mode = K.mode_flag("hertz", alpha)
     f, Fv, dy, J = np.zeros(N), np.zeros(N), np.zeros(2 * N), np.zeros((2 * N, 2 * N))
 
-    def rhs(t, y):
+    def rhs(t: float, y: Floats) -> Floats:
         out = np.empty_like(y)
         K.lattice_rhs(y[:2 * N], dy, f, Fv, alpha, mode, periodic)
         out[:2 * N] = dy
@@ -69,7 +77,18 @@ def _rhs_factory(N, m, alpha, periodic):
     return rhs
 
 
-def flow(x0, v0, t_end, alpha, bc="periodic", columns=None, rtol=RTOL):
+@overload
+def flow(x0: ArrayLike, v0: ArrayLike, t_end: float, alpha: float, bc: str = "periodic", columns: None = None,
+         rtol: float = RTOL) -> tuple[Floats, Floats, float, None]: ...
+
+
+@overload
+def flow(x0: ArrayLike, v0: ArrayLike, t_end: float, alpha: float, bc: str, columns: Floats,
+         rtol: float = RTOL) -> tuple[Floats, Floats, float, Floats]: ...
+
+
+def flow(x0: ArrayLike, v0: ArrayLike, t_end: float, alpha: float, bc: str = "periodic", columns: Floats | None = None,
+         rtol: float = RTOL) -> tuple[Floats, Floats, float, Floats | None]:
     """Integrate (nc) from (x0, v0) to t_end, with the action integral and, if ``columns`` (2N x m) is
     given, the variational equations along those initial perturbations.
 
@@ -80,7 +99,7 @@ def flow(x0, v0, t_end, alpha, bc="periodic", columns=None, rtol=RTOL):
     x0, v0 = np.asarray(x0, float), np.asarray(v0, float)
     N = x0.size
     m = 0 if columns is None else columns.shape[1]
-    y0 = np.concatenate([x0, v0, [0.0]] + ([] if m == 0 else [columns[:N].ravel(), columns[N:].ravel()]))
+    y0 = np.concatenate([x0, v0, [0.0]] + ([] if m == 0 else [columns[:N].ravel(), columns[N:].ravel()]))  # type: ignore[index, arg-type, var-annotated]  # m > 0: columns given
     scale = max(float(np.max(np.abs(x0))), float(np.max(np.abs(v0))), 1e-300)
     atol = np.full(y0.size, rtol * scale)
     atol[2 * N] = rtol * scale**2
@@ -131,15 +150,16 @@ def reflection(N: int, centre: float, bc: str = "periodic") -> np.ndarray:
     return S
 
 
-def _eigenbasis(S, sign):
+def _eigenbasis(S: Floats, sign: float) -> Floats:
     """Orthonormal basis (columns) of {x : S x = sign x} for a reflection S."""
     w, V = np.linalg.eigh(0.5 * (S + S.T))
     return V[:, np.abs(w - sign) < 0.5]
 
 
 @checked
-def newton(x_guess, omega, alpha, bc="periodic", kind=None, centre=None, tol=1e-11, max_iter=12,
-           rtol=RTOL, core_rel=1e-14) -> Breather:
+def newton(x_guess: ArrayLike, omega: float, alpha: float, bc: str = "periodic", kind: str | None = None,
+           centre: int | None = None, tol: float = 1e-11, max_iter: int = 12, rtol: float = RTOL,
+           core_rel: float = 1e-14) -> Breather:
     """Solve the periodic-orbit equations of a time-reversible breather by Newton's method from ``x_guess``.
 
     (nc) is invariant under x_n -> -x_{2c-n} (the reflection S about c with x -> -x: the Hertz force of the
@@ -176,7 +196,7 @@ def newton(x_guess, omega, alpha, bc="periodic", kind=None, centre=None, tol=1e-
     on = np.zeros(N, bool)
     on[core(Breather(omega, x, False, 0, 0.0, alpha, bc), core_rel, S)] = True
 
-    def inside(B):
+    def inside(B: Floats) -> Floats:
         return B[:, np.all(np.abs(B[~on]) < 1e-12, axis=0)]
 
     P = inside(P)
@@ -185,7 +205,7 @@ def newton(x_guess, omega, alpha, bc="periodic", kind=None, centre=None, tol=1e-
     x = P @ (P.T @ x)
     cols = np.vstack([P, np.zeros_like(P)])
 
-    def F(xs, v, Phi=None):
+    def F(xs: Floats, v: Floats, Phi: Floats | None = None) -> tuple[Floats, Floats | None]:
         if kind == "site":
             r = np.concatenate([Bp.T @ xs, Bm.T @ v])
             J = None if Phi is None else np.vstack([Bp.T @ Phi[:N], Bm.T @ Phi[N:]])
@@ -203,7 +223,7 @@ def newton(x_guess, omega, alpha, bc="periodic", kind=None, centre=None, tol=1e-
             return Breather(omega, x, True, it, res, alpha, bc)
         if it == max_iter or not np.isfinite(res):
             break
-        step = P @ np.linalg.solve(J, -r)
+        step = P @ np.linalg.solve(J, -r)  # type: ignore[arg-type]  # J: F given Phi
         lam = 1.0
         while lam > 1e-3:                              # damped step: accept when the residual decreases
             xt = x + lam * step
@@ -215,14 +235,14 @@ def newton(x_guess, omega, alpha, bc="periodic", kind=None, centre=None, tol=1e-
     return Breather(omega, x, False, it, res, alpha, bc)
 
 
-def period_residual(b: Breather, rtol=RTOL) -> tuple[float, float]:
+def period_residual(b: Breather, rtol: float = RTOL) -> tuple[float, float]:
     """(max |z(T) - z(0)| / max|x0|, action J = int_0^T sum v^2 dt) over one full period integrated from z(0)."""
     N = b.x0.size
     x, v, S, _ = flow(b.x0, np.zeros(N), b.T, b.alpha, b.bc, None, rtol)
     return float(max(np.max(np.abs(x - b.x0)), np.max(np.abs(v))) / b.amplitude), S
 
 
-def core(b: Breather, rel: float = 1e-9, S=None) -> np.ndarray:
+def core(b: Breather, rel: float = 1e-9, S: Floats | None = None) -> np.ndarray:
     """Indices of the beads where |x_n(0)| > rel max|x0|, with one neighbour on each side (the breather's
     core), closed under the reflection S if given."""
     N = b.x0.size
@@ -237,7 +257,7 @@ def core(b: Breather, rel: float = 1e-9, S=None) -> np.ndarray:
     return np.array(sorted(idx))
 
 
-def half_period_map(b: Breather, idx, rtol=RTOL) -> np.ndarray:
+def half_period_map(b: Breather, idx: NDArray[np.intp], rtol: float = RTOL) -> np.ndarray:
     """M(T/2) restricted to the beads ``idx`` (their x then their v): the variational equations of (nc)
     along the breather from (x0, 0) over half a period, started on those coordinates only."""
     N, nc = b.x0.size, len(idx)
@@ -248,7 +268,8 @@ def half_period_map(b: Breather, idx, rtol=RTOL) -> np.ndarray:
     return np.concatenate([Phi[idx], Phi[N + idx]])
 
 
-def monodromy(b: Breather, rtol=RTOL, rel: float | None = 1e-9):
+def monodromy(b: Breather, rtol: float = RTOL,
+              rel: float | None = 1e-9) -> tuple[Floats, NDArray[np.complex128], NDArray[np.intp]]:
     """The monodromy matrix M(T) = R M(T/2)^{-1} R M(T/2) (reversibility, R = diag(1, -1)) without symmetry
     reduction, on the core (``rel``, see :func:`floquet`) or on all 2N coordinates (``rel=None``).
     Returns (M, the 2N multipliers, core indices)."""
@@ -275,7 +296,7 @@ class Floquet:
     pin: np.ndarray         # (2 n_core, 2): real and imaginary parts of the odd eigenvector nearest +1 (pinning)
 
 
-def floquet(b: Breather, kind: str, centre: int | None = None, rtol=RTOL, rel: float = 1e-9) -> Floquet:
+def floquet(b: Breather, kind: str, centre: int | None = None, rtol: float = RTOL, rel: float = 1e-9) -> Floquet:
     """Floquet multipliers of a breather of class ``kind`` (site | bond), split by symmetry.
 
     The variational equations are integrated over T/2 on the core only (beads with |x_n| <= rel max|x0|
@@ -327,7 +348,7 @@ def floquet(b: Breather, kind: str, centre: int | None = None, rtol=RTOL, rel: f
     return Floquet(mu, mu_e, mu_o, trivial, rate, vec / np.linalg.norm(vec), idx, bool(j >= keep.sum()), pin)
 
 
-def multiplier_checks(mu) -> dict:
+def multiplier_checks(mu: ArrayLike) -> dict:
     """Symplectic structure of the multipliers: the trivial pair (the two closest to +1), the pairing
     mu <-> 1/mu and mu <-> conj mu (max distance of each multiplier to its partner in the set), the top
     modulus and the growth exponent ln max|mu| (per period)."""
@@ -339,7 +360,7 @@ def multiplier_checks(mu) -> dict:
             "max_modulus": float(np.max(np.abs(mu))), "log_max_modulus": float(np.log(np.max(np.abs(mu))))}
 
 
-def dps_start(a_n, omega, alpha) -> np.ndarray:
+def dps_start(a_n: ArrayLike, omega: float, alpha: float) -> np.ndarray:
     """x_n(0) of the DpS breather (ansatzapproxst2) of frequency omega_b from a mu = 1 profile a_n of (dpsstn)."""
     from cradle.models import dps
 
@@ -347,7 +368,10 @@ def dps_start(a_n, omega, alpha) -> np.ndarray:
     return mu ** (1.0 / (alpha - 1.0)) * np.asarray(a_n, float)
 
 
-def continue_family(a_n, omegas, alpha, bc="periodic", kind=None, centre=None, tol=1e-11, log=None, min_step=1e-4):
+def continue_family(a_n: ArrayLike, omegas: Iterable[float], alpha: float, bc: str = "periodic",
+                    kind: str | None = None, centre: int | None = None, tol: float = 1e-11,
+                    log: Callable[[str], object] | None = None,
+                    min_step: float = 1e-4) -> tuple[list[Breather], float | None]:
     """Exact breathers along ``omegas`` (increasing, > 1), the first from the DpS start, each next predicted
     by the DpS scaling of the previous one. A failed Newton solve halves the step (down to ``min_step``);
     the family is reported to end where it still fails. Returns the list of converged Breathers (an
@@ -384,7 +408,7 @@ def continue_family(a_n, omegas, alpha, bc="periodic", kind=None, centre=None, t
     return out, prev.omega if prev else None
 
 
-def _same_family(b, prev) -> bool:
+def _same_family(b: Breather, prev: Breather) -> bool:
     """The new breather keeps the centre and sign pattern of the previous one (no jump to another branch)."""
     s1, s0 = b.x0 / b.amplitude, prev.x0 / prev.amplitude
     return bool(np.max(np.abs(s1 - s0)) < 0.5)

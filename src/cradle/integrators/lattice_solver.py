@@ -61,6 +61,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -72,6 +73,13 @@ from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bound
 from cradle.models.damping import Damping
 from cradle.models.lattice_terms import Terms, check as check_terms
 from cradle.specs.checked import checked
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from numpy.typing import ArrayLike
+
+    from cradle.models.inhomogeneity import Sites
 
 METHODS = SPLITTING_METHODS + ADAPTIVE_METHODS
 POTENTIALS = ("hertz", "smooth")
@@ -159,9 +167,12 @@ class LatticeSolution:
 
 
 @checked(method="latticeMethod")
-def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", dt=None, dt_factor=None,
-                      rtol=None, atol=None, potential="hertz", progress=None, t0=0.0,
-                      energy0=None, damping=None, terms=None) -> LatticeSolution:
+def integrate_lattice(x0: ArrayLike, v0: ArrayLike, t_out: ArrayLike, *, alpha: float, bc: str = "periodic",
+                      method: str = "srkn6c", dt: float | None = None, dt_factor: float | None = None,
+                      rtol: float | None = None, atol: float | None = None, potential: str = "hertz",
+                      progress: Callable[[float, float], None] | None = None, t0: float = 0.0,
+                      energy0: float | None = None, damping: Damping | None = None,
+                      terms: Terms | None = None) -> LatticeSolution:
     """Integrate the lattice (nc) (Hertz V0 of (vhertz)) or (meca) (kappa = 1), or the damped (ncdamped).
 
     Parameters
@@ -296,14 +307,14 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
         amp = max(float(np.max(np.abs(x0))), float(np.max(np.abs(v0))))
         atol = rtol * amp if amp > 0.0 else rtol
     if sites is not None:
-        run = LA.run_dop853_terms(x0, v0, t_out, rtol, atol, alpha, mode, periodic, terms, sites,
+        run = LA.run_dop853_terms(x0, v0, t_out, rtol, atol, alpha, mode, periodic, terms, sites,  # type: ignore[arg-type]  # sites: terms given
                                   damping if damped else None, progress)
         X, V, E, D, drift, n_steps, nfev, cmax = run
         return LatticeSolution(t_out, X, V, E, drift, method, None, rtol, atol, n_steps, nfev, cmax,
                                time.perf_counter() - wall0, dissipated=D, damping=damping, terms=terms)
     if damped:
         X, V, E, D, drift, n_steps, nfev, cmax = run_dop853_damped(x0, v0, t_out, rtol, atol, alpha, mode, periodic,
-                                                                   damping, progress)
+                                                                   damping, progress)  # type: ignore[arg-type]  # damped
         return LatticeSolution(t_out, X, V, E, drift, method, None, rtol, atol, n_steps, nfev, cmax,
                                time.perf_counter() - wall0, dissipated=D, damping=damping)
     if method == "dop853_numba":
@@ -316,7 +327,7 @@ def integrate_lattice(x0, v0, t_out, *, alpha, bc="periodic", method="srkn6c", d
                            time.perf_counter() - wall0, damping=damping)
 
 
-def _check_dop853_only(method, law, t0, energy0, what: str) -> None:
+def _check_dop853_only(method: str, law: str, t0: float, energy0: float | None, what: str) -> None:
     """Refuse, in one line, what a run with ``what`` (damping, active terms) is not integrated with: a method other
     than DOP853 in numba, a potential other than Hertz's (``law``), a continued run."""
     if method != "dop853_numba":
@@ -329,12 +340,13 @@ def _check_dop853_only(method, law, t0, energy0, what: str) -> None:
                          f"t = 0)")
 
 
-def _check_damped(method, law, t0, energy0, damping) -> None:
+def _check_damped(method: str, law: str, t0: float, energy0: float | None, damping: Damping | None) -> None:
     """Refuse, in one line, what the damped (ncdamped) is not integrated with (``law``: the potential)."""
     _check_dop853_only(method, law, t0, energy0, f"damping={damping!r}")
 
 
-def _check_terms(terms, N, bc, method, law, t0, energy0):
+def _check_terms(terms: Terms, N: int, bc: str, method: str, law: str, t0: float,
+                 energy0: float | None) -> Sites | None:
     """The sites of active ``terms`` (None for inactive ones, which leave (nc) as it is), refusing in one line
     what the imperfect cradle (ncimperfect) is not integrated with (``law``: the potential)."""
     sites = check_terms(terms, N, bc)

@@ -9,11 +9,17 @@ from __future__ import annotations
 
 import math
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from cradle.integrators import _kernels as K, _onset, _splitting
 from cradle.integrators._coefficients import SPLITTINGS
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from cradle.integrators._types import Floats
 
 #: Splittings with the contact-onset correction (:mod:`._onset`) -> the splitting they correct.
 CORRECTED_METHODS = {"srkn6c": "srkn6", "srkn4c": "srkn4"}
@@ -25,7 +31,10 @@ SPLITTING_METHODS = tuple(SPLITTINGS) + tuple(CORRECTED_METHODS)
 ONSET_OPTIONS = (2, 0, _onset.NEAR_DEFAULT)
 
 
-def run_splitting(x0, v0, t_out, dt, method, alpha, mode, periodic, progress, onset=None, t0=0.0, energy0=None):
+def run_splitting(x0: Floats, v0: Floats, t_out: Floats, dt: float, method: str, alpha: float, mode: int,
+                  periodic: bool, progress: Callable[[float, float], None] | None,
+                  onset: tuple[int, int, float] | None = None, t0: float = 0.0,
+                  energy0: float | None = None) -> tuple[Floats, Floats, Floats, float, int, int, float, int]:
     """(X, V, E, drift, steps, force evaluations, max compression, onset corrections) of a splitting run
     from (x0, v0) at ``t0`` with step bound ``dt``; ``onset`` overrides :data:`ONSET_OPTIONS`."""
     corrected = method in CORRECTED_METHODS

@@ -9,10 +9,14 @@ with a larger c when the run meets a larger compression.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from cradle.integrators import _kernels as K
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 #: Default step, as a fraction of the shortest linearised period 2 pi / omega_max(c)
 #: (see :func:`default_dt`). Chosen (benchmarks/tune_dt_factor.py, which prints the drifts
@@ -33,7 +37,8 @@ def omega_max(c: float, alpha: float) -> float:
     return math.sqrt(1.0 + 4.0 * alpha * max(c, 0.0) ** (alpha - 1.0))
 
 
-def compression_bounds(x0, v0, alpha: float, bc: str = "periodic", potential: str = "hertz"):
+def compression_bounds(x0: ArrayLike, v0: ArrayLike, alpha: float, bc: str = "periodic",
+                       potential: str = "hertz") -> tuple[float, float]:
     """Compression c assumed for the default step, and the energy bound on it.
 
     Returns ``(c_assumed, c_energy)``:

@@ -35,6 +35,7 @@ undamped (conservative) path, bitwise and at its speed.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.specs.declare import check_fields, declared, param
 
@@ -73,7 +74,7 @@ def onsite_gamma(rate_per_second: float, omega0: float) -> float:
     return rate_per_second / omega0
 
 
-def compressions(x, v, bc: str = "periodic"):
+def compressions(x: ArrayLike, v: ArrayLike, bc: str = "periodic") -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(c_n, c_n'): the compression -(x_{n+1} - x_n) of every bond and its rate (both 0 on a missing bond)."""
     x, v = np.asarray(x, dtype=float), np.asarray(v, dtype=float)
     c = -(np.roll(x, -1, axis=-1) - x)
@@ -84,7 +85,7 @@ def compressions(x, v, bc: str = "periodic"):
     return c, rate
 
 
-def bond_forces(x, v, alpha: float, eta: float, bc: str = "periodic"):
+def bond_forces(x: ArrayLike, v: ArrayLike, alpha: float, eta: float, bc: str = "periodic") -> NDArray[np.float64]:
     """The bond forces g_n of (ncdamped) (0 on a missing bond): -max(c^alpha + eta c^(alpha-1) c', 0) where
     the bond is compressed (c = -(x_{n+1} - x_n) > 0), else 0. Arrays with the beads on the last axis."""
     c, rate = compressions(x, v, bc)
@@ -94,7 +95,8 @@ def bond_forces(x, v, alpha: float, eta: float, bc: str = "periodic"):
     return np.where(on, -np.maximum(push, 0.0), 0.0)
 
 
-def dissipated_power(x, v, alpha: float, damping: Damping, bc: str = "periodic"):
+def dissipated_power(x: ArrayLike, v: ArrayLike, alpha: float, damping: Damping,
+                     bc: str = "periodic") -> np.float64 | NDArray[np.float64]:
     """P of (ncdamped): the rate at which the damping terms remove energy (ham), >= 0 (arrays as above)."""
     c, rate = compressions(x, v, bc)
     cp = np.maximum(c, 0.0)
@@ -104,7 +106,8 @@ def dissipated_power(x, v, alpha: float, damping: Damping, bc: str = "periodic")
                                                                                       axis=-1)
 
 
-def acceleration(x, v, alpha: float, damping: Damping, bc: str = "periodic"):
+def acceleration(x: ArrayLike, v: ArrayLike, alpha: float, damping: Damping,
+                 bc: str = "periodic") -> NDArray[np.float64]:
     """Right-hand side of (ncdamped): -x_n - gamma v_n + g_n - g_{n-1}."""
     g = bond_forces(x, v, alpha, damping.contact, bc)
     g_left = np.roll(g, 1, axis=-1)

@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.specs.checked import checked
 
@@ -57,12 +58,12 @@ def tau0(alpha: float) -> float:
     return 2.0 ** (1.0 - alpha) / c_alpha(alpha)
 
 
-def _g(z, alpha):
+def _g(z: np.ndarray, alpha: float) -> np.ndarray:
     """g(z) = z |z|^(alpha-1), written so that z = 0 gives 0 for any alpha > 1."""
     return z * np.abs(z) ** (alpha - 1.0)
 
 
-def differences(A, bc: str = "periodic"):
+def differences(A: ArrayLike, bc: str = "periodic") -> np.ndarray:
     """Forward differences A_{n+1} - A_n along the last axis (0 past a free end)."""
     A = np.asarray(A)
     D = np.roll(A, -1, axis=-1) - A
@@ -71,7 +72,7 @@ def differences(A, bc: str = "periodic"):
     return D
 
 
-def p_laplacian(A, alpha: float, bc: str = "periodic"):
+def p_laplacian(A: ArrayLike, alpha: float, bc: str = "periodic") -> np.ndarray:
     """The discrete p-Laplacian g(A_{n+1} - A_n) - g(A_n - A_{n-1}), p = alpha + 1, along the last axis.
 
     The coupling of (dfnls), and of the stationary equations (dpsst)/(dpsstn)
@@ -84,24 +85,24 @@ def p_laplacian(A, alpha: float, bc: str = "periodic"):
     return G - G_left
 
 
-def rhs(A, alpha: float, bc: str = "periodic", tau0_value: float | None = None):
+def rhs(A: ArrayLike, alpha: float, bc: str = "periodic", tau0_value: float | None = None) -> NDArray[np.complex128]:
     """dA_n/dtau of (dfnls): (g(A_{n+1}-A_n) - g(A_n-A_{n-1})) / (2 i tau0)."""
     t0 = tau0(alpha) if tau0_value is None else tau0_value
     return p_laplacian(A, alpha, bc) / (2j * t0)
 
 
-def l2_norm_squared(A):
+def l2_norm_squared(A: ArrayLike) -> np.float64 | NDArray[np.float64]:
     """Squared l2 norm sum_n |A_n|^2, conserved by (dfnls)."""
     return np.sum(np.abs(A) ** 2, axis=-1)
 
 
-def hamiltonian(A, alpha: float, bc: str = "periodic"):
+def hamiltonian(A: ArrayLike, alpha: float, bc: str = "periodic") -> np.float64 | NDArray[np.float64]:
     """DpS Hamiltonian H = -1/((alpha+1) tau0) sum_n |A_{n+1} - A_n|^(alpha+1)."""
     D = differences(A, bc)
     return -np.sum(np.abs(D) ** (alpha + 1.0), axis=-1) / ((alpha + 1.0) * tau0(alpha))
 
 
-def momentum(A):
+def momentum(A: ArrayLike) -> np.complex128 | NDArray[np.complex128]:
     """P = sum_n A_n (complex), conserved by (dfnls)."""
     return np.sum(A, axis=-1)
 
@@ -114,7 +115,7 @@ def plane_wave_frequency(R: float, q: float, alpha: float) -> float:
     return 2.0**alpha * R ** (alpha - 1.0) * abs(np.sin(q / 2.0)) ** (alpha + 1.0) / tau0(alpha)
 
 
-def plane_wave(n, tau, R: float, q: float, phi: float, alpha: float):
+def plane_wave(n: ArrayLike, tau: ArrayLike, R: float, q: float, phi: float, alpha: float) -> NDArray[np.complex128]:
     """A_n(tau) = R exp(i (Omega tau - q n - phi))   (ansatz3) with Omega from (ds).
 
     ``n`` and ``tau`` broadcast (e.g. tau[:, None], n[None, :]).

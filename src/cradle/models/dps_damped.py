@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models import dps
 from cradle.models.damping import Damping
@@ -104,8 +105,8 @@ def contact_factor_unclipped(eta: float, alpha: float) -> complex:
     return complex(1.0, eta / alpha)
 
 
-def rhs(A, alpha: float, damping: DpsDamping, bc: str = "periodic", tau0_value: float | None = None,
-        kappa: complex | None = None):
+def rhs(A: ArrayLike, alpha: float, damping: DpsDamping, bc: str = "periodic", tau0_value: float | None = None,
+        kappa: complex | None = None) -> NDArray[np.complex128]:
     """dA_n/dtau of (dpsdamped): kappa L_n / (2 i tau0) - (gamma~/2) A_n, L the p-Laplacian of (dfnls).
 
     ``kappa`` defaults to :func:`contact_factor` of ``damping.eta`` (pass it when calling in a loop)."""
@@ -114,18 +115,20 @@ def rhs(A, alpha: float, damping: DpsDamping, bc: str = "periodic", tau0_value: 
     return kap * dps.p_laplacian(A, alpha, bc) / (2j * t0) - 0.5 * damping.gamma * np.asarray(A)
 
 
-def bond_sum(A, alpha: float, bc: str = "periodic"):
+def bond_sum(A: ArrayLike, alpha: float, bc: str = "periodic") -> np.float64 | NDArray[np.float64]:
     """S = sum_n |A_{n+1} - A_n|^(alpha+1) (H = -S / ((alpha+1) tau0))."""
     return np.sum(np.abs(dps.differences(A, bc)) ** (alpha + 1.0), axis=-1)
 
 
-def l2_rate(A, alpha: float, damping: DpsDamping, bc: str = "periodic"):
+def l2_rate(A: ArrayLike, alpha: float, damping: DpsDamping,
+            bc: str = "periodic") -> np.float64 | NDArray[np.float64]:
     """d/dtau sum |A_n|^2 along (dpsdamped): -gamma~ sum |A_n|^2 - (Im kappa / tau0) S <= 0."""
     kap = contact_factor(damping.eta, alpha)
     return -damping.gamma * dps.l2_norm_squared(A) - kap.imag / dps.tau0(alpha) * bond_sum(A, alpha, bc)
 
 
-def energy_rate(A, alpha: float, damping: DpsDamping, bc: str = "periodic"):
+def energy_rate(A: ArrayLike, alpha: float, damping: DpsDamping,
+                bc: str = "periodic") -> np.float64 | NDArray[np.float64]:
     """d/dtau H along (dpsdamped), H the Hamiltonian of (dfnls):
     (1/tau0) [(Im kappa / (2 tau0)) sum |L_n|^2 + (gamma~/2) S] >= 0 (H < 0 rises to 0: |H| decays)."""
     kap = contact_factor(damping.eta, alpha)
@@ -134,7 +137,7 @@ def energy_rate(A, alpha: float, damping: DpsDamping, bc: str = "periodic"):
     return (kap.imag / (2.0 * t0) * L2 + 0.5 * damping.gamma * bond_sum(A, alpha, bc)) / t0
 
 
-def onsite_reduction(tau, gamma: float, alpha: float):
+def onsite_reduction(tau: ArrayLike, gamma: float, alpha: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(decay, s): A_n(tau) = decay B_n(s) solves (dpsdamped) with on-site rate gamma~ = ``gamma`` when B solves it
     with gamma~ = 0 (the same eta): decay = e^{-gamma~ tau/2}, s = (1 - e^{-(alpha-1) gamma~ tau/2}) /
     ((alpha-1) gamma~/2), since the p-Laplacian is homogeneous of degree alpha. s < 2 / ((alpha-1) gamma~): the
@@ -145,7 +148,8 @@ def onsite_reduction(tau, gamma: float, alpha: float):
     return np.exp(-0.5 * gamma * tau), s
 
 
-def lattice_state(A0, eps: float, alpha: float, damping: DpsDamping, bc: str = "periodic"):
+def lattice_state(A0: ArrayLike, eps: float, alpha: float, damping: DpsDamping,
+                  bc: str = "periodic") -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(x_n(0), v_n(0)) of (ansatz) for DpS data A0: x = 2 eps Re A0, v = 2 eps (-Im A0 + eps^(alpha-1) Re dA/dtau)
     with dA/dtau of (dpsdamped) (:func:`cradle.models.initial.lattice_state` with the damped right-hand side)."""
     A0 = np.asarray(A0, dtype=complex)

@@ -41,6 +41,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models.dps import tau0 as _tau0
 from cradle.specs.values import ConfigError
@@ -67,7 +68,7 @@ class DpsSites:
     beta: np.ndarray
     delta: np.ndarray
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         n = np.asarray(self.detuning).size
         for name in ("detuning", "inv_mass", "weight", "beta", "delta"):
             given = np.asarray(getattr(self, name), dtype=float)
@@ -101,8 +102,8 @@ def homogeneous(N: int) -> DpsSites:
     return DpsSites(z, np.ones(N), np.ones(N), z, z)
 
 
-def dps_sites(sites_mass, sites_omega, sites_stiffness, *, alpha: float, eps: float, beta=0.0,
-              pendulum_scale: float = 0.0, delta0: float = 0.0) -> DpsSites:
+def dps_sites(sites_mass: ArrayLike, sites_omega: ArrayLike, sites_stiffness: ArrayLike, *, alpha: float, eps: float,
+              beta: float = 0.0, pendulum_scale: float = 0.0, delta0: float = 0.0) -> DpsSites:
     """The coefficients of (dpsimperfect) for the lattice (ncimperfect) at amplitude eps.
 
     ``sites_mass`` m_n, ``sites_omega`` omega_n, ``sites_stiffness`` k_n (bond n): arrays (N,), > 0 (the
@@ -154,7 +155,7 @@ def profile_quadrature(rho: float, alpha: float) -> tuple[float, float]:
                 / (2.0 * (alpha + 1.0)))
     s_star = math.acos(rho / 2.0)
 
-    def base(s):
+    def base(s: float) -> float:
         # rho - 2 cos s = 4 sin((s + s*)/2) sin((s - s*)/2); divided by (s - s*): smooth on [s*, pi]
         h = s - s_star
         return 4.0 * math.sin((s + s_star) / 2.0) * (0.5 * np.sinc(h / (2.0 * math.pi)))
@@ -202,7 +203,7 @@ def contact_tables(alpha: float) -> dict[str, np.ndarray]:
     return out
 
 
-def coupling(r, delta, alpha: float):
+def coupling(r: ArrayLike, delta: ArrayLike, alpha: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(g(r; delta~), P(r; delta~)) of (dpsimperfect), elementwise (r >= 0; delta~ broadcast with r)."""
     from numpy.polynomial import chebyshev as C
 
@@ -244,7 +245,8 @@ def linear_coupling(delta: float, alpha: float) -> float:
 # --- the right-hand side and the invariants (numpy) -------------------------------------------------------------
 
 
-def _bonds(A, sites: DpsSites, alpha: float, bc: str):
+def _bonds(A: ArrayLike, sites: DpsSites, alpha: float,
+           bc: str) -> tuple[NDArray[np.complex128], np.ndarray, NDArray[np.float64]]:
     """(D_n, k_n Phi_n(D_n), k_n P(|D_n|)) along the last axis; zero past a free end."""
     A = np.asarray(A, dtype=complex)
     D = np.roll(A, -1, axis=-1) - A
@@ -257,7 +259,7 @@ def _bonds(A, sites: DpsSites, alpha: float, bc: str):
     return D, sites.weight * phi, sites.weight * P
 
 
-def rhs(A, alpha: float, sites: DpsSites, bc: str = "periodic"):
+def rhs(A: ArrayLike, alpha: float, sites: DpsSites, bc: str = "periodic") -> NDArray[np.complex128]:
     """dA_n/dtau of (dpsimperfect)."""
     A = np.asarray(A, dtype=complex)
     _, kPhi, _ = _bonds(A, sites, alpha, bc)
@@ -269,12 +271,12 @@ def rhs(A, alpha: float, sites: DpsSites, bc: str = "periodic"):
             + 1j * (sites.detuning + 1.5 * sites.beta * np.abs(A) ** 2) * A)
 
 
-def l2_weighted(A, sites: DpsSites):
+def l2_weighted(A: ArrayLike, sites: DpsSites) -> np.float64 | NDArray[np.float64]:
     """sum_n m_n |A_n|^2, conserved by (dpsimperfect)."""
     return np.sum(sites.mass * np.abs(np.asarray(A)) ** 2, axis=-1)
 
 
-def hamiltonian(A, alpha: float, sites: DpsSites, bc: str = "periodic"):
+def hamiltonian(A: ArrayLike, alpha: float, sites: DpsSites, bc: str = "periodic") -> np.float64 | NDArray[np.float64]:
     """H of (dpsimperfect): -(1/tau0) sum k_n P(|D_n|; delta~_n) - sum m_n (delta_n |A_n|^2 + (3/4) beta~_n |A_n|^4)."""
     A = np.asarray(A, dtype=complex)
     _, _, kP = _bonds(A, sites, alpha, bc)

@@ -22,9 +22,11 @@ a normal law or a uniform one of the same standard deviation. Explicit tuples ov
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models.physical import MATERIALS
 from cradle.specs.declare import check_fields, declared, param
@@ -165,7 +167,8 @@ def homogeneous(N: int) -> Sites:
     return Sites(mass=np.ones(N), omega=np.ones(N), stiffness=np.ones(N))
 
 
-def contact_stiffness(R1, R2, E1, nu1, E2, nu2):
+def contact_stiffness(R1: ArrayLike, R2: ArrayLike, E1: ArrayLike, nu1: ArrayLike, E2: ArrayLike,
+                      nu2: ArrayLike) -> NDArray[np.float64]:
     """Hertz constant k = (4/3) E* sqrt(R*) of two spheres (radii R1, R2; Young's moduli E1, E2; Poisson's
     ratios nu1, nu2): 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2, R* = R1 R2 / (R1 + R2) (Johnson, Contact
     Mechanics, 1985, section 4.2; the materials' E and nu with their sources in
@@ -178,7 +181,7 @@ def contact_stiffness(R1, R2, E1, nu1, E2, nu2):
     return 4.0 / 3.0 * E_star * np.sqrt(R1 * R2 / (R1 + R2))
 
 
-def material_stiffness(radii, materials, *, periodic: bool = True) -> np.ndarray:
+def material_stiffness(radii: ArrayLike, materials: Sequence[str], *, periodic: bool = True) -> np.ndarray:
     """Relative contact stiffnesses k_n of a chain of spheres of radii ``radii`` (m) and named ``materials``
     (:data:`cradle.models.physical.MATERIALS`): k_n = k(bead n, bead n+1) / k(bead 0, bead 0's twin), the last
     bond closing the ring (with ``periodic=False`` it is set to 1: unused)."""

@@ -19,23 +19,24 @@ bc one of ``BOUNDARY_CONDITIONS`` (the entry points check them, ``@checked``).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 BOUNDARY_CONDITIONS = ("periodic", "free")
 
 
-def V0(d, alpha: float):
+def V0(d: ArrayLike, alpha: float) -> NDArray[np.float64]:
     """Hertz potential V0(d) = |d|^(1+alpha) H(-d) / (1+alpha)   (vhertz)."""
     c = np.maximum(-np.asarray(d, dtype=float), 0.0)
     return c ** (1.0 + alpha) / (1.0 + alpha)
 
 
-def dV0(d, alpha: float):
+def dV0(d: ArrayLike, alpha: float) -> NDArray[np.float64]:
     """Hertz force V0'(d) = -|d|^alpha H(-d)   (vhertzd)."""
     c = np.maximum(-np.asarray(d, dtype=float), 0.0)
     return -(c**alpha)
 
 
-def bond_elongations(x, bc: str = "periodic"):
+def bond_elongations(x: ArrayLike, bc: str = "periodic") -> NDArray[np.float64]:
     """d_n = x_{n+1} - x_n for n = 0..N-1; with free ends d_{N-1} = 0 (no bond)."""
     x = np.asarray(x, dtype=float)
     d = np.roll(x, -1, axis=-1) - x
@@ -44,12 +45,12 @@ def bond_elongations(x, bc: str = "periodic"):
     return d
 
 
-def bond_forces(x, alpha: float, bc: str = "periodic"):
+def bond_forces(x: ArrayLike, alpha: float, bc: str = "periodic") -> NDArray[np.float64]:
     """Contact forces f_n = V0'(x_{n+1} - x_n) on every bond (0 on a missing bond)."""
     return dV0(bond_elongations(x, bc), alpha)
 
 
-def acceleration(x, alpha: float, bc: str = "periodic"):
+def acceleration(x: ArrayLike, alpha: float, bc: str = "periodic") -> NDArray[np.float64]:
     """Right-hand side of (nc): -x_n + f_n - f_{n-1}."""
     f = bond_forces(x, alpha, bc)
     f_left = np.roll(f, 1, axis=-1)
@@ -58,7 +59,7 @@ def acceleration(x, alpha: float, bc: str = "periodic"):
     return -np.asarray(x, dtype=float) + f - f_left
 
 
-def hamiltonian(x, v, alpha: float, bc: str = "periodic"):
+def hamiltonian(x: ArrayLike, v: ArrayLike, alpha: float, bc: str = "periodic") -> np.float64 | NDArray[np.float64]:
     """Total energy (ham): sum_n v_n^2/2 + x_n^2/2 + V0(x_{n+1} - x_n)."""
     x = np.asarray(x, dtype=float)
     v = np.asarray(v, dtype=float)

@@ -26,6 +26,7 @@ Functions take arrays with the beads on the last axis; they trust their caller (
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.models.damping import Damping
 from cradle.models.inhomogeneity import Inhomogeneity, Sites, homogeneous, sites
@@ -70,7 +71,7 @@ def check(terms: Terms, N: int, bc: str) -> Sites:
     return sites(terms.inhomogeneity, N)
 
 
-def static_overlaps(delta0: float, stiffness, alpha: float) -> np.ndarray:
+def static_overlaps(delta0: float, stiffness: ArrayLike, alpha: float) -> np.ndarray:
     """delta_n = delta_0 k_n^(-1/alpha): the overlaps (or gaps, delta_0 < 0) carrying one static force."""
     return delta0 * np.asarray(stiffness, dtype=float) ** (-1.0 / alpha)
 
@@ -82,19 +83,19 @@ def pendulum_scales(terms: Terms, s: Sites) -> np.ndarray:
     return terms.onsite.scale * s.omega**2
 
 
-def positions(x, terms: Terms, s: Sites):
+def positions(x: ArrayLike, terms: Terms, s: Sites) -> NDArray[np.float64]:
     """Horizontal positions u_n of the beads: sin(s_n x_n)/s_n for the pendulum (x the arc length), else x."""
     return terms.onsite.u(x, pendulum_scales(terms, s)) if terms.onsite.active else np.asarray(x, dtype=float)
 
 
-def _elongations(u, bc: str):
+def _elongations(u: NDArray[np.float64], bc: str) -> NDArray[np.float64]:
     d = np.roll(u, -1, axis=-1) - u
     if bc == "free":
         d[..., -1] = 0.0
     return d
 
 
-def _open(bonds, bc: str):
+def _open(bonds: NDArray[np.float64], bc: str) -> NDArray[np.float64]:
     """Zero on the missing bond N-1 of a free chain."""
     if bc == "free":
         bonds = np.array(bonds, dtype=float, copy=True)
@@ -102,7 +103,8 @@ def _open(bonds, bc: str):
     return bonds
 
 
-def bond_forces(x, alpha: float, terms: Terms, s: Sites, bc: str = "periodic", v=None, eta: float = 0.0):
+def bond_forces(x: ArrayLike, alpha: float, terms: Terms, s: Sites, bc: str = "periodic", v: ArrayLike | None = None,
+                eta: float = 0.0) -> NDArray[np.float64]:
     """k_n times the bond force of bond n (0 on a missing bond): k_n F_n(d_n) (with ``v`` and ``eta``, the
     Kuwabara-Kono damped force, clipped at zero push)."""
     delta = static_overlaps(terms.precompression.delta0, s.stiffness, alpha)
@@ -116,7 +118,7 @@ def bond_forces(x, alpha: float, terms: Terms, s: Sites, bc: str = "periodic", v
     return _open(s.stiffness * (np.maximum(delta, 0.0) ** alpha - push), bc)
 
 
-def jacobian(x, terms: Terms, s: Sites):
+def jacobian(x: ArrayLike, terms: Terms, s: Sites) -> NDArray[np.float64]:
     """J_n = du_n/dx_n: cos(s_n x_n) for the pendulum, else 1."""
     sn = pendulum_scales(terms, s)
     if terms.onsite.potential == "pendulum":
@@ -124,8 +126,8 @@ def jacobian(x, terms: Terms, s: Sites):
     return np.ones_like(np.asarray(x, dtype=float))
 
 
-def acceleration(x, alpha: float, terms: Terms, s: Sites, bc: str = "periodic", v=None,
-                 damping: Damping | None = None):
+def acceleration(x: ArrayLike, alpha: float, terms: Terms, s: Sites, bc: str = "periodic", v: ArrayLike | None = None,
+                 damping: Damping | None = None) -> NDArray[np.float64]:
     """Right-hand side of (ncimperfect) (with ``v`` and ``damping``, of its damped form):
     x_n'' = -omega_n^2 W'(x_n) - gamma v_n + J_n (g_n - g_{n-1}) / m_n."""
     x = np.asarray(x, dtype=float)
@@ -140,7 +142,8 @@ def acceleration(x, alpha: float, terms: Terms, s: Sites, bc: str = "periodic", 
     return a
 
 
-def hamiltonian(x, v, alpha: float, terms: Terms, s: Sites, bc: str = "periodic"):
+def hamiltonian(x: ArrayLike, v: ArrayLike, alpha: float, terms: Terms, s: Sites,
+                bc: str = "periodic") -> np.float64 | NDArray[np.float64]:
     """The generalised energy (ham) of (ncimperfect):
     sum_n m_n v_n^2/2 + m_n omega_n^2 W(x_n) + k_n Phi_n(u_{n+1} - u_n)."""
     x = np.asarray(x, dtype=float)
@@ -154,7 +157,8 @@ def hamiltonian(x, v, alpha: float, terms: Terms, s: Sites, bc: str = "periodic"
     return np.sum(0.5 * s.mass * v**2 + onsite + bonds, axis=-1)
 
 
-def dissipated_power(x, v, alpha: float, terms: Terms, s: Sites, damping: Damping, bc: str = "periodic"):
+def dissipated_power(x: ArrayLike, v: ArrayLike, alpha: float, terms: Terms, s: Sites, damping: Damping,
+                     bc: str = "periodic") -> np.float64 | NDArray[np.float64]:
     """P of the damped (ncimperfect), >= 0: gamma sum m_n v_n^2 + sum k_n (max(c^alpha + eta c^(alpha-1) c', 0)
     - c^alpha) c' over the bonds with overlap c = delta_n - (u_{n+1} - u_n) > 0, c' its rate (dH/dt = -P)."""
     x = np.asarray(x, dtype=float)

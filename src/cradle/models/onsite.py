@@ -13,6 +13,7 @@ The functions take the scale s of one bead (s = scale omega_n^2 for the pendulum
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.specs.declare import check_fields, declared, param
 
@@ -43,7 +44,7 @@ class OnSite:
         return (self.potential == "quartic" and self.beta != 0.0) or (self.potential == "pendulum"
                                                                       and self.scale > 0.0)
 
-    def W(self, x, s=None):
+    def W(self, x: ArrayLike, s: ArrayLike | None = None) -> NDArray[np.float64]:
         """The on-site potential W(x); ``s`` the pendulum's s_n = scale omega_n^2 (default ``scale``)."""
         x = np.asarray(x, dtype=float)
         if self.potential == "quartic":
@@ -54,7 +55,7 @@ class OnSite:
             return 2.0 * (np.sin(0.5 * s * x) / s) ** 2   # (1 - cos(s x))/s^2 without its cancellation
         return 0.5 * x**2
 
-    def dW(self, x, s=None):
+    def dW(self, x: ArrayLike, s: ArrayLike | None = None) -> NDArray[np.float64]:
         """The on-site force per unit mass and omega_n^2, W'(x)."""
         x = np.asarray(x, dtype=float)
         if self.potential == "quartic":
@@ -65,7 +66,7 @@ class OnSite:
             return np.sin(s * x) / s
         return x
 
-    def u(self, x, s=None):
+    def u(self, x: ArrayLike, s: ArrayLike | None = None) -> NDArray[np.float64]:
         """The horizontal position u of a bead at x: sin(s x)/s for the pendulum, else x."""
         x = np.asarray(x, dtype=float)
         s = self.scale if s is None else s

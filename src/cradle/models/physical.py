@@ -27,10 +27,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import TYPE_CHECKING, overload
+from typing import TYPE_CHECKING, TypeVar, overload
 
 from cradle.specs.declare import check_fields, declared, from_plain, param
 from cradle.specs.values import ConfigError, did_you_mean
+
+_T = TypeVar("_T")
 
 if TYPE_CHECKING:
     import numpy as np
@@ -51,7 +53,7 @@ _PSI = 6894.757293168361          # Pa per psi (NIST SP 811, appendix B: 1 lbf/i
 _LB_PER_IN3 = 27679.90471020313   # kg/m^3 per lb/in^3 (NIST SP 811, appendix B)
 
 
-def _validated(cls, values: dict, where: str):
+def _validated(cls: type[_T], values: dict, where: str) -> _T:
     """:func:`cradle.specs.declare.from_plain`, a NaN refused first (JSON Schema's bounds let it through): one
     ConfigError line naming the key, the value and why."""
     for key, value in values.items():
@@ -88,7 +90,7 @@ class Material:
     rho: float
     source: str
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not isinstance(self.source, str):
             raise ConfigError(f"config error: material.name = {self.name!r}, source = {self.source!r}: must be "
                               f"strings (the material's name and where its values come from)")

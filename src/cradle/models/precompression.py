@@ -18,6 +18,7 @@ A precompressed chain with free ends would fly apart (nothing holds the static f
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from cradle.specs.declare import check_fields, declared, param
 
@@ -43,6 +44,6 @@ def coupling(delta0: float, alpha: float) -> float:
     return alpha * delta0 ** (alpha - 1.0) if delta0 > 0.0 else 0.0
 
 
-def dispersion(q, delta0: float, alpha: float):
+def dispersion(q: ArrayLike, delta0: float, alpha: float) -> NDArray[np.float64]:
     """Linear dispersion omega(q) = sqrt(1 + 4 kappa sin^2(q/2)) of the precompressed homogeneous ring."""
     return np.sqrt(1.0 + 4.0 * coupling(delta0, alpha) * np.sin(0.5 * np.asarray(q, dtype=float)) ** 2)

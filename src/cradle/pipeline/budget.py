@@ -44,10 +44,14 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, fields
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store
 from cradle.specs.declare import declared, param
+
+if TYPE_CHECKING:
+    from cradle.models.damping import Damping
+    from cradle.pipeline.config.sections import Config
 
 #: float64 arrays of N values written per stored time by a scene's job (exact x, v, force; DpS
 #: A_re, A_im, x, force; metrics spectrum_exact, spectrum_dps)
@@ -109,7 +113,7 @@ class Budget:
                          "and beads.", exclusiveMinimum=0, maximum=1e4)
 
     @classmethod
-    def from_config(cls, cfg) -> Budget:
+    def from_config(cls, cfg: Any) -> Budget:  # a typed Config, its plain mapping, or None: told apart by duck typing
         """The budget of a validated config (typed, or its plain values): its ``budget:`` values over the
         defaults."""
         if isinstance(getattr(cfg, "budget", None), Budget):
@@ -150,11 +154,11 @@ def fmt_duration(s: float) -> str:
     return f"{s:.2g} s"
 
 
-def _g(x) -> str:
+def _g(x: float) -> str:
     return f"{float(x):g}"
 
 
-def _count(n) -> str:
+def _count(n: float) -> str:
     """A count as a message writes it: exact up to a million, else three digits (1e+300, not 301 of them)."""
     return str(int(n)) if n < 1e6 else f"{float(n):.3g}"
 
@@ -174,7 +178,7 @@ def stored_count(store: Store, t_end: float) -> int:
 DOP853_STABLE = 6.0
 
 
-def damping_rate(damping, amplitude: float, alpha: float = 1.5) -> float:
+def damping_rate(damping: Damping | None, amplitude: float, alpha: float = 1.5) -> float:
     """The fastest decay rate (nc)'s damping imposes on a run of displacement ``amplitude``: gamma of the on-site
     term, and 2 eta c^(alpha - 1) of a bond's relative velocity under the Kuwabara-Kono term at a compression c
     of the amplitude (reduced mass 1/2); 0 without damping."""
@@ -199,7 +203,7 @@ def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int,
     return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
 
 
-def scene_estimate(cfg, name: str) -> Estimate:
+def scene_estimate(cfg: Config, name: str) -> Estimate:
     """The cost of scene ``name``'s simulate job (initial data, exact and DpS runs, metrics) in a typed
     config (:func:`cradle.pipeline.config.typed`)."""
     return spec_estimate(cfg.scenes[name], name)
@@ -229,7 +233,7 @@ def spec_estimate(spec: Scene, name: str = "?") -> Estimate:
                     disk_bytes=per_time * T + 8.0 * 6 * N, seconds=seconds, steps=steps, streamed=streamed)
 
 
-def _amplitude(initial) -> float:
+def _amplitude(initial: object) -> float:  # a scene's initial data, of any kind
     """The displacement a scene's initial data reach, as far as its parameters say (0 when they do not say it
     directly: a breather or wave given by its frequency, a kick)."""
     for key in ("a", "amplitude"):
@@ -239,7 +243,7 @@ def _amplitude(initial) -> float:
     return 0.0
 
 
-def desk_toy_estimate(cfg, form: str) -> Estimate:
+def desk_toy_estimate(cfg: Config, form: str) -> Estimate:
     """The job of one form of ``beyond.desk-toy``: a (nc) run of every chain length and lifted count over
     ``swings`` periods 2 pi at the desk toy's amplitude (its damping resolved: :func:`damping_rate`), stored
     ``samples`` times per period."""
@@ -247,7 +251,7 @@ def desk_toy_estimate(cfg, form: str) -> Estimate:
     from cradle.analyses.protocol import REDUCED, form_spec
     from cradle.models.physical import release_amplitude
 
-    spec = form_spec(cfg.beyond.desk_toy, form)
+    spec = form_spec(cfg.beyond.desk_toy, form)  # type: ignore[attr-defined]  # Beyond: made at import
     N, t_end = max(spec.chains), 2.0 * math.pi * spec.swings
     rate = damping_rate(spec.damping, release_amplitude(spec.cradle or DEFAULT_CRADLE, spec.angle_deg))
     T = spec.swings * spec.samples + 1
@@ -278,7 +282,7 @@ def long_run(spec: Scene, name: str = "?") -> Estimate | None:
     return e if e.seconds >= LONG_RUN_S else None
 
 
-def homoclinic_estimate(cfg, name: str) -> Estimate:
+def homoclinic_estimate(cfg: Config, name: str) -> Estimate:
     """Powell's hybrid method holds a dense N x N Jacobian (and its QR factors): a few N^2 floats."""
     N = cfg.homoclinic[name].N
     return Estimate(f"homoclinic.{name}", f"N = {N}: dense N x N Jacobian",
@@ -286,7 +290,7 @@ def homoclinic_estimate(cfg, name: str) -> Estimate:
                     seconds=1e-9 * N**3 * 50)
 
 
-def map_estimate(cfg, name: str) -> Estimate:
+def map_estimate(cfg: Config, name: str) -> Estimate:
     """Orbits x iterations points of the map G, two floats each."""
     m = cfg.map[name]
     orbits = len(m.starts or ()) + (m.line.count if m.line is not None else 0)
@@ -296,14 +300,14 @@ def map_estimate(cfg, name: str) -> Estimate:
                     seconds=points * 1e-6)
 
 
-def mi_statistics_estimate(cfg, form: str) -> Estimate:
+def mi_statistics_estimate(cfg: Config, form: str) -> Estimate:
     """The largest batch job of one form of ``beyond.mi-statistics`` (the full one at the top of the section,
     ``reduced``): ceil(q values / chunks) x seeds runs of the largest N to t_end, at the scenes' measured
     cost per bead-step of the exact method (a DpS batch costs less: 5.4 s against 7.9 s for the reduced
     form's batches), the spectra sampled every ``sample_every`` held per run."""
     from cradle.analyses.protocol import REDUCED, form_spec
 
-    spec = form_spec(cfg.beyond.mi_statistics, form)
+    spec = form_spec(cfg.beyond.mi_statistics, form)  # type: ignore[attr-defined]  # Beyond: made at import
     N, t_end = max(spec.N), spec.t_end
     runs = math.ceil(spec.q_over_pi.count / spec.chunks) * spec.n_seeds
     exact = ExactIntegrator(method=spec.exact.method, dt_factor=spec.exact.dt_factor)
@@ -315,7 +319,7 @@ def mi_statistics_estimate(cfg, form: str) -> Estimate:
                     disk_bytes=8.0 * 8 * runs * samples, seconds=BASE_SECONDS + runs * one, steps=runs * steps)
 
 
-def work_precision_estimate(cfg, form: str) -> Estimate:
+def work_precision_estimate(cfg: Config, form: str) -> Estimate:
     """The largest batch job of one form of ``beyond.work-precision``: for one scene (its N from ``scenes:``),
     the two reference runs and every setting of every method's ladder to the scene's t_end, each at the
     measured cost per bead-step of its method (a step factor scales its steps; a tolerance is costed at the
@@ -323,7 +327,7 @@ def work_precision_estimate(cfg, form: str) -> Estimate:
     from cradle.analyses.protocol import REDUCED, form_spec
     from cradle.analyses.work_precision import ladder
 
-    spec = form_spec(cfg.beyond.work_precision, form)
+    spec = form_spec(cfg.beyond.work_precision, form)  # type: ignore[attr-defined]  # Beyond: made at import
     scenes = cfg.scenes
     ref = spec.reference
     runs = [(ref.method, ref.dt_factor), (ref.method, 2.0 * ref.dt_factor)]
@@ -365,25 +369,25 @@ def sampled_estimate(key: str, N: int, t_end: float, every: float, runs: int, ar
                     seconds=BASE_SECONDS + runs * (one + COST_PER_STORED_VALUE_S * N * T), steps=runs * steps)
 
 
-def dissipation_estimate(cfg, form: str) -> Estimate:
+def dissipation_estimate(cfg: Config, form: str) -> Estimate:
     """The job of one form of ``beyond.dissipation``: each family (a breather, each wave) under each damping
     value, lattice and DpS runs sampled every ``sample_every`` (x, v, A and the site energies held)."""
     from cradle.analyses.protocol import REDUCED, form_spec
 
-    spec = form_spec(cfg.beyond.dissipation, form)
+    spec = form_spec(cfg.beyond.dissipation, form)  # type: ignore[attr-defined]  # Beyond: made at import
     runs = 2 * (1 + len(spec.waves)) * (len(spec.onsite) + len(spec.contact))
     return sampled_estimate("beyond.dissipation" + (".reduced" if form == REDUCED else ""), spec.N, spec.t_end,
                             spec.sample_every, runs, arrays=6)
 
 
-def trapping_estimate(cfg, form: str) -> Estimate:
+def trapping_estimate(cfg: Config, form: str) -> Estimate:
     """The largest batch job of one form of ``beyond.trapping``: the longest chain (launch zone, longest target,
     lead) run to tau_end in t at the slowest incident's time scale, sampled every ``sample_every`` (x, v and the
     site energies held), as many runs as seeds per disordered case."""
     from cradle.analyses.protocol import REDUCED, form_spec
     from cradle.analyses.trapping import PROFILE, time_scale
 
-    spec = form_spec(cfg.beyond.trapping, form)
+    spec = form_spec(cfg.beyond.trapping, form)  # type: ignore[attr-defined]  # Beyond: made at import
     N = max(spec.launch, spec.back + PROFILE) + max([spec.length, *spec.lengths]) + spec.lead
     t_end = spec.tau_end * max(time_scale(a) for a in [*spec.striker, *spec.breather])
     return sampled_estimate("beyond.trapping" + (".reduced" if form == REDUCED else ""), N, t_end,
@@ -419,7 +423,7 @@ def exceeds(e: Estimate, budget: Budget) -> str | None:
     return None
 
 
-def estimates(cfg) -> list[Estimate]:
+def estimates(cfg: Config) -> list[Estimate]:
     """An :class:`Estimate` for every scene, homoclinic and map entry of a typed config
     (:func:`cradle.pipeline.config.typed`), and for the largest batch job of each form of
     ``beyond.mi-statistics``, ``beyond.work-precision``, ``beyond.dissipation``, ``beyond.trapping`` and
@@ -431,7 +435,7 @@ def estimates(cfg) -> list[Estimate]:
     jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
     jobs += [("beyond", form, fn) for form in ("reduced", "full")
              for fn in (dissipation_estimate, trapping_estimate, desk_toy_estimate)]
-    if cfg.beyond.work_precision.scenes:
+    if cfg.beyond.work_precision.scenes:  # type: ignore[attr-defined]  # Beyond: made at import
         jobs += [("beyond", form, work_precision_estimate) for form in ("reduced", "full")]
     for _section, name, fn in jobs:
         try:
@@ -445,7 +449,7 @@ def estimates(cfg) -> list[Estimate]:
 OVER_HINT = "raise it under budget: in the config if this machine allows, or change the entry"
 
 
-def over_budget(cfg) -> list[str]:
+def over_budget(cfg: Config) -> list[str]:
     """One line per job (and for all scenes' output together) that exceeds the budget; empty if all fit."""
     budget = Budget.from_config(cfg)
     lines = []
@@ -463,7 +467,7 @@ def over_budget(cfg) -> list[str]:
     return lines
 
 
-def check_scenes(scenes: dict, budget) -> None:
+def check_scenes(scenes: dict[str, Scene], budget: Any) -> None:
     """:func:`check` for the scenes alone (name -> resolved :class:`Scene`) against ``budget`` (when it is not a
     :class:`Budget`, one with every limit at its largest: the bad budget is reported, and only what no budget
     runs is refused here): a config with problems elsewhere still has its scenes' stores judged before the
@@ -484,7 +488,7 @@ def check_scenes(scenes: dict, budget) -> None:
         raise ConfigError(lines)
 
 
-def check(cfg) -> None:
+def check(cfg: Config) -> None:
     """Raise :class:`~cradle.pipeline.config.ConfigError` (one line per job over budget) if any job of
     ``cfg`` (schema-valid, defaults filled) exceeds its budget; called by ``validate`` before its
     physical checks (which build the stored-time arrays), so an oversized store is refused first."""

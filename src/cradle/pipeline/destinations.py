@@ -33,7 +33,7 @@ def _template_regex(template: str) -> re.Pattern:
 _OTHER = [(kind, _template_regex(t)) for kind, t in layout.TEMPLATES.items() if not t.endswith(".nc")]
 
 
-def workflow_output(path) -> tuple[str, dict] | None:
+def workflow_output(path: str | Path) -> tuple[str, dict] | None:
     """The kind and names (``("exact", {"scene": "tw-moderate"})``) of the workflow output ``path`` is: a path of
     the layout under the nearest enclosing folder named ``results``; None for any other path (a file of its own
     there, such as an extended run ``exact-t700.nc``, is not the workflow's)."""
@@ -77,8 +77,8 @@ def holds(path: Path) -> tuple[str | None, str | None]:
     return (None if kind is None else str(kind)), (None if name is None else str(name))
 
 
-def check(path, *, command: str, makes: tuple[str, dict] | None = None, identity: tuple[str, str] | None = None,
-          owner: str | None = None, overwrite: bool = False) -> None:
+def check(path: str | Path, *, command: str, makes: tuple[str, dict] | None = None,
+          identity: tuple[str, str] | None = None, owner: str | None = None, overwrite: bool = False) -> None:
     """Raise :class:`Refused` unless ``command`` may write ``path``.
 
     ``makes``: the workflow output the command makes there by itself ((kind, names) as :func:`workflow_output`

@@ -27,8 +27,9 @@ import datetime as _dt
 import math
 import os
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import xarray as xr
@@ -37,17 +38,26 @@ from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
 from cradle.data.io import make_dataset, verify_file
 from cradle.models import lattice
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from cradle.integrators.lattice_solver import LatticeSolution
+    from cradle.pipeline.budget import Budget, Estimate
+
 TIME_TOL = 1e-9
 VARS = ("x", "v", "force", "energy")
 
 
-def _fields(sol, alpha, bc):
+def _fields(sol: LatticeSolution, alpha: float, bc: str) -> dict[str, np.ndarray]:
     return {"x": sol.x, "v": sol.v, "force": lattice.bond_forces(sol.x, alpha, bc), "energy": sol.energy}
 
 
-def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c", dt=None, t0=None,
-                   energy0=None, attrs=None, title="exact solution of (nc), streamed", params=None,
-                   chunk_bytes=DEFAULT_CHUNK_BYTES, progress=None, prefix=None) -> dict:
+def stream_lattice(x0: ArrayLike, v0: ArrayLike, t_out: ArrayLike, path: str | os.PathLike, *, alpha: float,
+                   bc: str = "periodic", method: str = "srkn6c", dt: float | None = None, t0: float | None = None,
+                   energy0: float | None = None, attrs: dict | None = None,
+                   title: str = "exact solution of (nc), streamed", params: Any = None,
+                   chunk_bytes: int = DEFAULT_CHUNK_BYTES, progress: Callable[[float, float], None] | None = None,
+                   prefix: xr.Dataset | None = None) -> dict:
     """Integrate (nc) from (x0, v0) at time t0 (default t_out[0]) to t_out[-1], appending every chunk of
     output times to ``path`` (netCDF, unlimited t; temporary name, renamed at the end).
 
@@ -120,20 +130,21 @@ def stream_lattice(x0, v0, t_out, path, *, alpha, bc="periodic", method="srkn6c"
     return summary
 
 
-def _largest_step(t_out, dt, t0) -> float:
+def _largest_step(t_out: np.ndarray, dt: float, t0: float | None) -> float:
     from cradle.scenes.stages import steps_taken
 
     return steps_taken(t_out, float(dt), None if t0 is None else float(t0))[0]
 
 
-def _infer_every(t) -> float:
+def _infer_every(t: np.ndarray) -> float:
     d = np.diff(np.asarray(t, dtype=float))
     if d.size == 0:
         raise ValueError("cannot infer the storage step from a file with one stored time; give every")
     return float(np.round(np.median(d), 9))
 
 
-def estimate(path, t_end: float, every: float | None = None, budget=None):
+def estimate(path: str | os.PathLike, t_end: float, every: float | None = None,
+             budget: Budget | None = None) -> Estimate:
     """What extending the exact run in ``path`` to ``t_end`` will cost (:func:`cradle.pipeline.budget.extend_estimate`),
     from its header alone, before any work: ValueError (one line naming the value) for a t_end beyond a
     scene's longest run (a limit of float64) or past the file's last time, an adaptive integrator, or an
@@ -178,8 +189,9 @@ def estimate(path, t_end: float, every: float | None = None, budget=None):
     return e
 
 
-def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes=DEFAULT_CHUNK_BYTES,
-           progress=None, budget=None) -> dict:
+def extend(path: str | os.PathLike, t_end: float, out: str | os.PathLike | None = None, every: float | None = None,
+           chunk_bytes: int = DEFAULT_CHUNK_BYTES, progress: Callable[[float, float], None] | None = None,
+           budget: Budget | None = None) -> dict:
     """Continue the exact run stored in ``path`` to ``t_end`` and append (to ``out``, default ``path``).
 
     New output times: the grid k * ``every`` (default: the median spacing of the stored times,

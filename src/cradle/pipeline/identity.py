@@ -20,14 +20,18 @@ expectation and is not checked.
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from cradle.data.io import DamagedOutput, open_dataset, open_tree, rebuild_hint
 from cradle.data.provenance import canonical_json, params_hash
 from cradle.pipeline import layout
 from cradle.specs.declare import plain
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["CONFIG", "Identity", "WrongOutput", "Expectations", "locate", "stored_identity", "job_expectations",
            "open_checked"]
@@ -80,7 +84,7 @@ def _templates() -> list[tuple[str, re.Pattern]]:
 _TEMPLATES = _templates()
 
 
-def locate(path, root: str | Path = layout.ROOT) -> tuple[str, dict] | None:
+def locate(path: str | Path, root: str | Path = layout.ROOT) -> tuple[str, dict] | None:
     """The kind and names (``("exact", {"scene": "tw-weak"})``, ``("analysis", {"analysis": "floquet",
     "form": "full"})``) of the file of the layout under ``root`` that ``path`` is; None if it is none."""
     try:
@@ -111,15 +115,15 @@ class Expectations:
     :func:`cradle.pipeline.config.read_yaml` gives it; validated once, on first use), each entry resolved
     once (a scene's four files, one resolution); ``source`` names the config in messages (``config.yaml``)."""
 
-    def __init__(self, config: dict, root: str | Path = layout.ROOT, source: str = "config.yaml"):
+    def __init__(self, config: dict, root: str | Path = layout.ROOT, source: str = "config.yaml") -> None:
         self.config, self.root, self.source = config, Path(root), source
         self._specs: dict[tuple[str, str, str], tuple[Any, str | None]] = {}  # (section, name, form) -> spec, hash
 
-    def expected(self, path) -> Identity | None:
+    def expected(self, path: str | Path) -> Identity | None:
         """The identity the file at ``path`` should have, or None when the config expects nothing there."""
         return self._expected(path)[0]
 
-    def _expected(self, path) -> tuple[Identity | None, tuple[str, str, str]]:
+    def _expected(self, path: str | Path) -> tuple[Identity | None, tuple[str, str, str]]:
         """:meth:`expected`, and the key of the entry whose spec it resolved (see :meth:`_digest`)."""
         where = locate(path, self.root)
         if where is None:
@@ -145,7 +149,7 @@ class Expectations:
             self._specs[entry] = (spec, None if spec is None else params_hash(plain(spec)))
         return self._specs[entry][1]
 
-    def _spec(self, section: str, name: str, form: str):
+    def _spec(self, section: str, name: str, form: str) -> Any:
         from cradle.pipeline import config as cc
 
         if section == "beyond":
@@ -169,7 +173,7 @@ class Expectations:
         except ConfigError:
             return []
 
-    def mismatch(self, path, attrs) -> str | None:
+    def mismatch(self, path: str | Path, attrs: Mapping[Any, Any]) -> str | None:
         """The one line saying how the file at ``path`` (its global attributes ``attrs``) differs from what
         the config expects there, or None when it is what is expected (or nothing is)."""
         want, entry = self._expected(path)
@@ -187,21 +191,21 @@ class Expectations:
                 f"{want.describe(not same_kind)} ({_short(want.params)} from {self.source}){differs}; "
                 f"{self._rebuild(path, want)}")
 
-    def _rebuild(self, path, want: Identity) -> str:
+    def _rebuild(self, path: str | Path, want: Identity) -> str:
         """Snakemake's command for a file under results/, else ``cradle run`` for a scene's or entry's."""
         if "results" in Path(path).parts or want.kind not in (*SCENE_KINDS, *ENTRY_KINDS):
             return rebuild_hint(path)
         config = f" --config {self.source}" if self.source.endswith((".yaml", ".yml")) else ""
         return f"rebuild it: cradle run {want.name} --out {self.root}{config} (see docs/recovery.md)"
 
-    def check(self, path, ds) -> None:
+    def check(self, path: str | Path, ds: xr.Dataset | xr.DataTree | Mapping[str, Any]) -> None:
         """Raise :class:`WrongOutput` if ``ds`` (the Dataset or DataTree read from ``path``, or its global
         attributes) is not what the config expects at ``path``."""
         line = self.mismatch(path, getattr(ds, "attrs", ds))
         if line is not None:
             raise WrongOutput(line)
 
-    def check_file(self, path) -> str | None:
+    def check_file(self, path: str | Path) -> str | None:
         """:meth:`mismatch` of the file at ``path``, reading its global attributes only (no data); None also
         for a file that cannot be read (its checksums say why: :func:`cradle.data.io.verify_file`)."""
         if self.expected(path) is None:
@@ -216,14 +220,14 @@ class Expectations:
         return self.mismatch(path, attrs)
 
 
-def _flat(value, prefix: str = "") -> dict[str, object]:
+def _flat(value: Any, prefix: str = "") -> dict[str, object]:
     """A nested mapping of plain values as ``{"initial.omega_tw": 1.01, ...}``."""
     if isinstance(value, dict):
         return {k: v for key, sub in value.items() for k, v in _flat(sub, f"{prefix}{key}.").items()}
     return {prefix[:-1]: value}
 
 
-def _differences(stored, expected, source: str, most: int = 3) -> str:
+def _differences(stored: object, expected: object, source: str, most: int = 3) -> str:
     """``: initial.omega_tw 1.02 in the file, 1.01 in config.yaml`` for the first ``most`` keys whose values
     differ between a file's ``parameters`` (canonical JSON) and the spec resolved now; "" if it stores none."""
     import json
@@ -233,7 +237,8 @@ def _differences(stored, expected, source: str, most: int = 3) -> str:
     except (TypeError, ValueError):
         return ""
     want = _flat(json.loads(canonical_json(expected)))
-    def show(values, key) -> str:  # a long list (stored times) shortened: the line stays one line
+    def show(values: dict[str, object],
+             key: str) -> str:  # a long list (stored times) shortened: the line stays one line
         text = str(values.get(key, "(absent)"))
         return text if len(text) <= 40 else f"{text[:37]}..."
 
@@ -247,7 +252,7 @@ def _short(digest: str | None) -> str:
     return f"params {digest[:12]}" if digest else "no params recorded"
 
 
-def stored_identity(attrs, kind: str | None = None) -> Identity:
+def stored_identity(attrs: Mapping[Any, Any], kind: str | None = None) -> Identity:
     """What a file's global attributes say it is (``kind``: the kind its path has, which says where a file
     written before ``cradle_name`` existed states its name: ``scene`` or ``name``)."""
     name = attrs.get("cradle_name") or None
@@ -268,7 +273,7 @@ def job_expectations(config: dict) -> Expectations:
     return Expectations(assume_validated(config), layout.ROOT, source=CONFIG)
 
 
-def open_checked(path, expect: Expectations, tree: bool = False):
+def open_checked(path: str | Path, expect: Expectations, tree: bool = False) -> xr.Dataset | xr.DataTree:
     """A workflow job's input: :func:`cradle.data.io.open_dataset` (``tree``: :func:`~cradle.data.io.open_tree`)
     of ``path``, verified, then refused unless it is what ``expect`` (:func:`job_expectations`) expects there
     (:class:`WrongOutput`)."""

@@ -13,6 +13,12 @@ here; nothing else spells a path. Templates keep Snakemake wildcards
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    from cradle.analyses.protocol import Analysis, Read
 
 ROOT = "results"
 
@@ -45,12 +51,12 @@ RUN_PARTS = ("exact", "dps", "metrics")
 FIGURE_FORMATS = ("pdf", "png")
 
 
-def path(kind: str, root: str | Path = ROOT, **names) -> str:
+def path(kind: str, root: str | Path = ROOT, **names: str) -> str:
     """The path of one output of ``kind`` (a key of :data:`TEMPLATES`) under ``root``."""
     return str(Path(root) / TEMPLATES[kind].format(**names))
 
 
-def scene_paths(scene: str, root: str | Path = ROOT, parts=SCENE_PARTS) -> dict[str, str]:
+def scene_paths(scene: str, root: str | Path = ROOT, parts: Iterable[str] = SCENE_PARTS) -> dict[str, str]:
     """part -> path for the files of one scene (initial, exact, dps, metrics)."""
     return {part: path(part, root, scene=scene) for part in parts}
 
@@ -86,13 +92,14 @@ def analysis_figures(name: str, form: str, main_form: str, root: str | Path = RO
     return form_figure_paths(name, name, form, main_form, root)
 
 
-def analysis_tables(name: str, form: str, main_form: str, formats, root: str | Path = ROOT) -> dict[str, str]:
+def analysis_tables(name: str, form: str, main_form: str, formats: Iterable[str],
+                    root: str | Path = ROOT) -> dict[str, str]:
     """ext -> the tables an analysis's drawing step writes in place of a figure (the claims table):
     beside its netCDF file, ``root/<name>/[<form>/]<name>.<ext>``."""
     return {ext: f"{form_folder(name, form, main_form, root)}/{name}.{ext}" for ext in formats}
 
 
-def analysis_drawn(analysis, form: str, main_form: str, root: str | Path = ROOT) -> dict[str, str]:
+def analysis_drawn(analysis: Analysis, form: str, main_form: str, root: str | Path = ROOT) -> dict[str, str]:
     """ext -> what the drawing step of one form of ``analysis`` (:class:`cradle.analyses.protocol.Analysis`)
     writes: its tables when it declares some, else its figure."""
     if analysis.tables:
@@ -100,7 +107,7 @@ def analysis_drawn(analysis, form: str, main_form: str, root: str | Path = ROOT)
     return analysis_figures(analysis.name, form, main_form, root)
 
 
-def read_path(read, form: str, root: str | Path = ROOT) -> str:
+def read_path(read: Read, form: str, root: str | Path = ROOT) -> str:
     """The file of one :class:`cradle.analyses.protocol.Read` of an analysis built in ``form``."""
     names = dict(read.names)
     if read.kind == "analysis-batch":

@@ -21,6 +21,9 @@ import os
 import signal
 import threading
 import time
+from collections.abc import Callable
+from types import FrameType
+from typing import NoReturn
 
 log = logging.getLogger("cradle")
 
@@ -70,7 +73,7 @@ def _ancestors() -> list[int] | None:
     return out
 
 
-def _has_parent():
+def _has_parent() -> tuple[Callable[[], bool], int]:
     """A test of whether this process still has the parent it is a job of: its Snakemake among its
     ancestors (``$CRADLE_SNAKEMAKE_PID``, where /proc tells), else the same parent as now."""
     try:
@@ -83,11 +86,11 @@ def _has_parent():
     return lambda: os.getppid() == parent, parent
 
 
-def _stop(signum, frame):
+def _stop(signum: int, frame: FrameType | None) -> NoReturn:
     raise KeyboardInterrupt("parent process gone")
 
 
-def _watch(has_parent, interval: float, grace: float) -> None:
+def _watch(has_parent: tuple[Callable[[], bool], int], interval: float, grace: float) -> None:
     alive, parent = has_parent
     while alive():
         time.sleep(interval)

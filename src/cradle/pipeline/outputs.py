@@ -77,14 +77,14 @@ def open_scene(scene: str, root: str | os.PathLike = "results", metrics: bool = 
     return in_si(ds) if units == "si" else ds
 
 
-def _same(a, b) -> bool:
+def _same(a: object, b: object) -> bool:
     try:
         return bool(np.array_equal(np.asarray(a), np.asarray(b)))
     except Exception:  # noqa: BLE001
         return False
 
 
-def _expectations(root: Path, config) -> Expectations | None:
+def _expectations(root: Path, config: dict | str | os.PathLike | None) -> Expectations | None:
     """What ``config`` (a mapping, a file, or None: ``root``'s parent's config.yaml if there is one) expects
     under ``root``; None when there is no config to check against."""
     from cradle.pipeline.config import read_yaml
@@ -98,7 +98,7 @@ def _expectations(root: Path, config) -> Expectations | None:
     return Expectations(read_yaml(config), root, source=str(config))
 
 
-def _opened(path, expect: Expectations | None) -> xr.Dataset:
+def _opened(path: str | Path, expect: Expectations | None) -> xr.Dataset:
     """:func:`open_dataset`, then refused unless it is the file ``expect`` expects (None: not checked)."""
     if expect is not None:  # attributes only, first: another entry's whole file says so, not "edited"
         line = expect.check_file(path)
@@ -110,7 +110,7 @@ def _opened(path, expect: Expectations | None) -> xr.Dataset:
     return ds
 
 
-def load_inputs(scenes: dict, root, config: dict | None = None, source: str = "the config") -> dict:
+def load_inputs(scenes: dict, root: str | Path, config: dict | None = None, source: str = "the config") -> dict:
     """Open the netCDF files of a figure's scenes.
 
     ``scenes`` maps each name to its config section (map, homoclinic,

@@ -17,13 +17,23 @@ import logging
 import os
 import sys
 import time
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any
+from types import TracebackType
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from cradle.data.io import write_netcdf
 from cradle.pipeline.orphan import orphaned, watch_parent
 from cradle.pipeline.warm import DECLINED_VAR, STARTED_VAR, process_started
 from cradle.scenes.failure import StageFailure
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from cradle.pipeline.budget import Estimate
+
+#: what a stage computes: a Dataset, or a DataTree of groups
+Output = TypeVar("Output", "xr.Dataset", "xr.DataTree")
 
 log = logging.getLogger("cradle")
 
@@ -76,7 +86,7 @@ def one_line_errors() -> None:
     sys.excepthook = _one_line_excepthook
 
 
-def _one_line_excepthook(exc_type, exc, tb):
+def _one_line_excepthook(exc_type: type[BaseException], exc: BaseException, tb: TracebackType | None) -> None:
     """A job stopped by a missing, damaged or truncated input says so in one line (log and stderr),
     naming the file and the command that rebuilds it, instead of a traceback through the readers; a
     job whose output does not fit on the disk names the path, the bytes it needed and those free."""
@@ -110,7 +120,7 @@ class Progress:
     time the run starts from (a continued run starts after 0).
     """
 
-    def __init__(self, label: str, every: float = 2.0, estimate=None, t0: float = 0.0):
+    def __init__(self, label: str, every: float = 2.0, estimate: Estimate | None = None, t0: float = 0.0) -> None:
         self.label, self.every, self.estimate, self.t0 = label, every, estimate, t0
         self.start = self.last = time.perf_counter()
         self.announced = False
@@ -137,7 +147,7 @@ def _eta(seconds: float) -> str:
     return f"{seconds:.0f} s"
 
 
-def _keep_failed(ds, out, reason: str) -> str:
+def _keep_failed(ds: xr.Dataset | xr.DataTree, out: str | Path, reason: str) -> str:
     """Write ``ds`` under results/failed/ (not at ``out``) with ``reason`` as its ``failure`` attribute."""
     path = failed_path(out)
     ds.attrs["failure"] = reason
@@ -145,7 +155,7 @@ def _keep_failed(ds, out, reason: str) -> str:
     return str(path)
 
 
-def run(compute, out: str | Path, log_path: str | None = None, label: str = ""):
+def run(compute: Callable[[], Output], out: str | Path, log_path: str | None = None, label: str = "") -> Output:
     """Call ``compute()`` (returning a Dataset, or a DataTree of groups) and write it to ``out``; see
     module docstring."""
     setup_logging(log_path)
@@ -165,7 +175,8 @@ def run(compute, out: str | Path, log_path: str | None = None, label: str = ""):
     return ds
 
 
-def run_chain(steps, outs: dict, log_path: str | None = None, label: str = "") -> dict:
+def run_chain(steps: Sequence[tuple[str, Callable[[dict], xr.Dataset | xr.DataTree]]], outs: dict,
+              log_path: str | None = None, label: str = "") -> dict:
     """Run dependent stages in one process and write each to ``outs[key]``.
 
     ``steps`` is a list of ``(key, compute)``; ``compute(done)`` gets the

@@ -11,17 +11,22 @@ from __future__ import annotations
 
 import logging
 import time
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from cradle.pipeline import budget
 from cradle.pipeline.runner import Progress, run_chain, setup_logging
 from cradle.scenes import stages
 from cradle.scenes.spec import Scene
 
+if TYPE_CHECKING:
+    import xarray as xr
+
 log = logging.getLogger("cradle")
 
 
-def run_scene(spec: Scene, name: str, outs: dict, log_path=None, homoclinic=None) -> None:
+def run_scene(spec: Scene, name: str, outs: dict, log_path: str | None = None,
+              homoclinic: Callable[[], xr.Dataset] | xr.Dataset | None = None) -> None:
     """Compute scene ``name`` (resolved ``spec``, :func:`cradle.pipeline.config.scene`) into ``outs``
     (initial, exact, dps, metrics paths, and homoclinic when ``homoclinic`` is a callable computing it;
     else ``homoclinic`` is its Dataset or None)."""

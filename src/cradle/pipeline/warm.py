@@ -28,6 +28,8 @@ import socket
 import struct
 import sys
 import time
+from collections.abc import Mapping
+from typing import Any
 
 #: the environment variable naming the warm process's socket (set by :func:`start` for the jobs)
 ENV_VAR = "CRADLE_WARM"
@@ -67,7 +69,7 @@ def process_started() -> float | None:
         return None
 
 
-def _import_time_env(env) -> dict:
+def _import_time_env(env: Mapping[str, str]) -> dict:
     return {k: v for k, v in env.items() if k.startswith(IMPORT_TIME_PREFIXES) and k not in PER_JOB}
 
 
@@ -123,7 +125,7 @@ def _cradle_origin() -> str | None:
 _server: dict = {}
 
 
-def start(workflow) -> str | None:
+def start(workflow: Any) -> str | None:  # Snakemake's workflow object
     """Start the warm process of a local build (from the Snakefile's ``onstart``); its socket's name goes
     to the jobs in ``$CRADLE_WARM``. None (and no process) for a cluster executor or a job's own Snakemake,
     off Linux, for fewer than :data:`MIN_JOBS` jobs, or with ``CRADLE_WARM=0`` in the environment."""
@@ -206,7 +208,7 @@ def cradle_modules() -> list[str]:
 class Server:
     """The warm process: imports, then forks a child per request (single-threaded: it forks)."""
 
-    def __init__(self, name: str, parent: int, scripts: str):
+    def __init__(self, name: str, parent: int, scripts: str) -> None:
         import selectors
 
         # Ctrl-C reaches the whole process group: like Snakemake's jobs, the warm process and its children
@@ -350,7 +352,7 @@ class Server:
         return None
 
     @staticmethod
-    def _send(conn, text: str) -> None:
+    def _send(conn: socket.socket, text: str) -> None:
         try:
             conn.sendall(text.encode())
         except OSError:
@@ -394,7 +396,7 @@ class Server:
                 self._send(conn, f"exit {os.waitstatus_to_exitcode(status)}\n")
             conn.close()
 
-    def _run(self, request: dict, fds: list, conn) -> None:
+    def _run(self, request: dict, fds: list, conn: socket.socket) -> None:
         """In the forked child: become the job's process, run its script, exit with its status."""
         import atexit
         import io
@@ -472,7 +474,7 @@ def _log_usage() -> None:
                                      "?" if peak is None else f"{peak:.0f}", usage.ru_utime + usage.ru_stime)
 
 
-def main(argv=None) -> int:
+def main(argv: list[str] | None = None) -> int:
     name, parent, scripts = (argv or sys.argv[1:])[:3]
     Server(name, int(parent), scripts).serve()
     return 0

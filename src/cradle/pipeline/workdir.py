@@ -6,7 +6,7 @@ import shutil
 from pathlib import Path
 
 
-def copy_workflow(root, dest, *, config: str | None = None, profiles: bool = True) -> Path:
+def copy_workflow(root: str | Path, dest: str | Path, *, config: str | None = None, profiles: bool = True) -> Path:
     """Make ``dest`` (it must not exist) a workflow folder of the checkout ``root``: its ``Snakefile`` and
     ``workflow/`` copied, ``profiles/`` too unless ``profiles=False``, ``config.yaml`` copied (or written
     from the text ``config``), and ``src`` linked to the checkout's (the code stamps of the jobs are read

@@ -17,7 +17,8 @@ A run that fails (no convergence, NaN, drift above the bound) raises
 from __future__ import annotations
 
 import time
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import xarray as xr
@@ -28,6 +29,15 @@ from cradle.models import damping, dps, initial, lattice
 from cradle.scenes.failure import StageFailure
 from cradle.scenes.spec import Breather, HomoclinicEntry, Kick, MapEntry, Packet, Pair, Scene, Travelling
 from cradle.specs.declare import plain
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from cradle.integrators.dps_solver import DpsSolution
+    from cradle.models.dps_sites import DpsSites
+    from cradle.models.inhomogeneity import Sites
+    from cradle.models.lattice_terms import Terms
+    from cradle.models.physical import Cradle
 
 # ---------------------------------------------------------------- stationary DpS
 
@@ -121,7 +131,7 @@ def _scene_attrs(spec: Scene, name: str) -> dict:
     return attrs
 
 
-def terms_attrs(terms) -> dict:
+def terms_attrs(terms: Terms) -> dict:
     """The terms of the imperfect cradle (ncimperfect) as attributes (the explicit site values, if any, are in the
     file's parameters and in its ``omega_n``, ``mass_n``, ``stiffness_n``)."""
     inh, pre, on = terms.inhomogeneity, terms.precompression, terms.onsite
@@ -130,7 +140,7 @@ def terms_attrs(terms) -> dict:
             "onsite_beta": on.beta, "onsite_scale": on.scale}
 
 
-def scene_sites(spec: Scene):
+def scene_sites(spec: Scene) -> Sites | None:
     """The site coefficients (m_n, omega_n, k_n) of a scene with active terms, else None."""
     if spec.terms is None or not spec.terms.active:
         return None
@@ -139,7 +149,7 @@ def scene_sites(spec: Scene):
     return sites(spec.terms.inhomogeneity, spec.N)
 
 
-def dps_sites_of(spec: Scene, s, eps: float):
+def dps_sites_of(spec: Scene, s: Sites, eps: float) -> DpsSites:
     """The coefficients of (dpsimperfect) for a scene with active terms and sites ``s``, at its eps."""
     from cradle.models.dps_sites import dps_sites
 
@@ -150,7 +160,7 @@ def dps_sites_of(spec: Scene, s, eps: float):
                      delta0=spec.terms.precompression.delta0)
 
 
-def physical_attrs(cradle) -> dict:
+def physical_attrs(cradle: Cradle) -> dict:
     """The real cradle a scene models and the SI value of one unit of each of (nc)'s variables
     (:func:`cradle.models.physical.scales`, under the names :data:`cradle.data.si.SCALES` reads them by): a reader
     converts any stored value to SI with them."""
@@ -209,7 +219,8 @@ def initial_data(spec: Scene, name: str = "", homoclinic_ds: xr.Dataset | None =
 
 # ---------------------------------------------------------------- integration
 
-def check_finite(name, model, arrays, partial, offset: int = 0):
+def check_finite(name: str, model: str, arrays: dict[str, np.ndarray], partial: xr.Dataset | None,
+                 offset: int = 0) -> None:
     """StageFailure at the first stored time (index ``offset`` + row: a block of a streamed run) where an
     array is not finite."""
     for label, arr in arrays.items():
@@ -220,7 +231,7 @@ def check_finite(name, model, arrays, partial, offset: int = 0):
                                "(blow-up or NaN)", partial)
 
 
-def steps_taken(times, dt: float, t0: float | None = None) -> tuple[float, float]:
+def steps_taken(times: ArrayLike, dt: float, t0: float | None = None) -> tuple[float, float]:
     """(largest, smallest) step a fixed-step splitting takes to reach ``times`` from ``t0`` (default
     times[0]) with nominal step ``dt``: each interval between output times is covered by
     ceil(length/dt) equal steps (:func:`cradle.integrators.integrate_lattice`), so a store finer than
@@ -240,7 +251,8 @@ def exact_title(name: str) -> str:
     return f"exact solution of (nc), scene '{name}'"
 
 
-def exact_attrs(spec: Scene, init_ds: xr.Dataset, method: str, dt_taken, dt_nominal, rtol, atol, stats: dict) -> dict:
+def exact_attrs(spec: Scene, init_ds: xr.Dataset, method: str, dt_taken: float | None, dt_nominal: float | None,
+                rtol: float | None, atol: float | None, stats: dict) -> dict:
     """Global attributes of a scene's exact run: the initial data's, the integrator and its accuracy
     (``dt`` the largest step taken, ``dt_nominal`` its bound, from which the step grid follows and with
     which ``cradle extend`` continues the run; "adaptive" for an adaptive method) and the run's
@@ -257,7 +269,8 @@ def exact_attrs(spec: Scene, init_ds: xr.Dataset, method: str, dt_taken, dt_nomi
     return attrs
 
 
-def exact_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
+def exact_run(spec: Scene, init_ds: xr.Dataset, name: str = "",
+              progress: Callable[[float, float], None] | None = None) -> xr.Dataset:
     """Integrate the lattice (nc) from the scene's initial data; x, v, forces, energy at stored times."""
     from cradle.integrators import SPLITTING_METHODS, integrate_lattice
 
@@ -308,7 +321,7 @@ def exact_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -
     return ds
 
 
-def dps_dataset(spec: Scene, init_ds: xr.Dataset, name: str, times, sol) -> xr.Dataset:
+def dps_dataset(spec: Scene, init_ds: xr.Dataset, name: str, times: np.ndarray, sol: DpsSolution) -> xr.Dataset:
     """The DpS run's Dataset at ``times`` from its solution ``sol`` (:class:`cradle.integrators.DpsSolution`
     at tau = eps^(alpha-1) t): A, the approximate displacement (ansatz), its forces and the drifts."""
     alpha, bc = spec.alpha, spec.bc
@@ -330,7 +343,7 @@ def dps_dataset(spec: Scene, init_ds: xr.Dataset, name: str, times, sol) -> xr.D
                   "max_dps_energy_drift": sol.max_energy_drift, "n_steps": sol.n_steps,
                   "wall_time_s": sol.wall_time_s})
     if damped:
-        attrs.update({"dps_damping_gamma": sol.damping.gamma, "dps_damping_eta": sol.damping.eta,
+        attrs.update({"dps_damping_gamma": sol.damping.gamma, "dps_damping_eta": sol.damping.eta,  # type: ignore[union-attr]  # damped: set
                       "drift_comment": "with damping the drifts are the residuals of the balance laws of "
                                        "(dpsdamped): docs/damped-dps.md"})
     return make_dataset({"A_re": sol.A.real, "A_im": sol.A.imag, "x": x_app, "force": force,
@@ -340,7 +353,8 @@ def dps_dataset(spec: Scene, init_ds: xr.Dataset, name: str, times, sol) -> xr.D
                         identity=("dps", name))
 
 
-def dps_run(spec: Scene, init_ds: xr.Dataset, name: str = "", progress=None) -> xr.Dataset:
+def dps_run(spec: Scene, init_ds: xr.Dataset, name: str = "",
+            progress: Callable[[float, float], None] | None = None) -> xr.Dataset:
     """Integrate the DpS equation (dfnls) and rebuild the approximate solution (ansatz) at stored times."""
     from cradle.integrators import integrate_dps
 
@@ -372,7 +386,7 @@ PACKET_OMEGA = 1.1
 LOCALISED_KINDS = ("breather", "pair", "packet")
 
 
-def travelling_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset, k, spectra: dict) -> dict:
+def travelling_metrics(exact_ds: xr.Dataset, dps_ds: xr.Dataset, k: np.ndarray, spectra: dict) -> dict:
     """Per stored time, for a travelling-wave scene: the sideband ratio and the wavenumber of the largest
     sideband of each spectrum (fft106, fftseuil, fft344), the carrier's share of the power of each
     profile (fft344) and the linear wave a cos(q n - t + phi) (plotcomplin)."""

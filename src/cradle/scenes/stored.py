@@ -2,13 +2,17 @@
 from __future__ import annotations
 
 import json
+from typing import TYPE_CHECKING
 
 from cradle.scenes.spec import Scene
 from cradle.specs.declare import from_plain
 from cradle.specs.values import ConfigError
 
+if TYPE_CHECKING:
+    import xarray as xr
 
-def scene_of(ds) -> Scene:
+
+def scene_of(ds: xr.Dataset) -> Scene:
     """The resolved :class:`Scene` that produced ``ds`` (a scene's initial, exact, dps or metrics Dataset),
     from its ``parameters`` attribute, validated as it is rebuilt."""
     name = ds.attrs.get("scene", "?")

@@ -25,11 +25,14 @@ interrupt leaves none of them. Which job a scene gets is decided by
 """
 from __future__ import annotations
 
+import logging
 import time
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import xarray as xr
+from numpy.typing import NDArray
 
 from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
 from cradle.data.io import GLOBAL_KEYS, make_dataset, write_netcdf
@@ -55,13 +58,13 @@ class _Peaks:
     """Running peak compression max |f_n| per breather period [t_0 + k period, t_0 + (k+1) period)
     (:func:`cradle.measurements.breathers.peak_compression`'s windows, over the whole run)."""
 
-    def __init__(self, times, period, N):
+    def __init__(self, times: np.ndarray, period: float, N: int) -> None:
         self.t0, self.period = float(times[0]), float(period)
         self.K = int(np.floor((times[-1] - times[0]) / period + 1e-9))
-        self.starts = self.t0 + period * np.arange(self.K)
-        self.P = np.full((self.K, N), np.nan)
+        self.starts: np.ndarray = self.t0 + period * np.arange(self.K)
+        self.P: NDArray[np.float64] = np.full((self.K, N), np.nan)
 
-    def add(self, t, force):
+    def add(self, t: np.ndarray, force: np.ndarray) -> None:
         k = np.floor((np.asarray(t) - self.t0) / self.period + 1e-9).astype(int)
         f = np.abs(force)
         for i in np.unique(k[k < self.K]):
@@ -72,18 +75,20 @@ class _Peaks:
 class _Run:
     """The exact and DpS runs of one attempt, block by block, and the three files they fill."""
 
-    def __init__(self, spec, init_ds, name, outs, rows, dt, c_assumed):
+    def __init__(self, spec: Scene, init_ds: xr.Dataset, name: str, outs: dict, rows: int, dt: float,
+                 c_assumed: float | str) -> None:
         self.spec, self.init_ds, self.name, self.outs = spec, init_ds, name, outs
         self.rows, self.dt, self.c_assumed = rows, dt, c_assumed
         self.files: dict[str, Appender] = {}
 
-    def abort(self):
+    def abort(self) -> None:
         for f in self.files.values():
             f.abort()
 
 
 def simulate_streamed(spec: Scene, init_ds: xr.Dataset, name: str, outs: dict, *,
-                      chunk_bytes: int = DEFAULT_CHUNK_BYTES, progress=None, log=None) -> dict:
+                      chunk_bytes: int = DEFAULT_CHUNK_BYTES, progress: Callable[[float, float], None] | None = None,
+                      log: logging.Logger | None = None) -> dict:
     """Write the scene's four files (``outs``: initial, exact, dps, metrics paths) block by block.
 
     ``init_ds``: the scene's initial data (:func:`cradle.scenes.stages.initial_data`). The exact
@@ -108,7 +113,7 @@ def simulate_streamed(spec: Scene, init_ds: xr.Dataset, name: str, outs: dict, *
         try:
             # this attempt's c_assumed and n_reruns, bound
             summary = _attempt(run, progress,
-                               lambda cmax, c_assumed=c_assumed, n_reruns=n_reruns:
+                               lambda cmax, c_assumed=c_assumed, n_reruns=n_reruns:  # type: ignore[misc]
                                not (cmax <= c_assumed * (1.0 + 1e-12) or c_assumed >= c_energy
                                     or n_reruns >= MAX_RERUNS))
         except BaseException:
@@ -134,7 +139,7 @@ def simulate_streamed(spec: Scene, init_ds: xr.Dataset, name: str, outs: dict, *
     return summary
 
 
-def _attempt(run: _Run, progress, exceeded) -> dict:
+def _attempt(run: _Run, progress: Callable[[float, float], None] | None, exceeded: Callable[[float], bool]) -> dict:
     """Integrate both models block by block into ``run.files``; returns the summary, or
     {"restart": cmax} as soon as ``exceeded(cmax)`` says the default step was set too large."""
     from cradle.integrators import integrate_lattice

@@ -21,7 +21,7 @@ Q_l2' = gamma~ sum |A_n|^2 + (Im kappa / tau0) S, Q_S' = (alpha+1) [(Im kappa / 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -48,6 +48,9 @@ from cradle.integrators.terms.slots import (
     dps_S_loss,
     dps_weight,
 )
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -99,7 +102,8 @@ def damped(alpha: float, periodic: bool, inv2tau0: float, gamma: float, kappa: c
                      onsite_harmonic.Harmonic(), cd, od, Balanced())
 
 
-def imperfect(alpha: float, periodic: bool, sites, par: np.ndarray) -> DpsSystem:
+# Any: a cradle.models DpsSites; a kernel module's cradle imports (annotations' too) are the kernel cache's key
+def imperfect(alpha: float, periodic: bool, sites: Any, par: np.ndarray) -> DpsSystem:
     """(dpsimperfect) of a :class:`cradle.models.dps_sites.DpsSites` and its packed ``par``
     (:func:`cradle.integrators._kernels_dps_sites.pack`)."""
     coupling: NamedTuple = PC.tabulated(par) if sites.compressed else hertz.PLaplacian()
@@ -110,27 +114,28 @@ def imperfect(alpha: float, periodic: bool, sites, par: np.ndarray) -> DpsSystem
 
 
 @generic
-def sites_of(invariants, y):
+def sites_of(invariants: NamedTuple, y: Floats) -> int:
     """The number of sites N of the state y."""
 
 
 @generic
-def bond_sum(invariants, S, r, s):
+def bond_sum(invariants: NamedTuple, S: float, r: float, s: float) -> float:
     """S + |A_{n+1} - A_n|^(alpha+1) where the balance laws need S (r = |A_{n+1} - A_n|, s = W_n / r)."""
 
 
 @generic
-def site_sums(invariants, l2, L2, ar, ai, wr, wi):
+def site_sums(invariants: NamedTuple, l2: float, L2: float, ar: float, ai: float, wr: float,
+              wi: float) -> tuple[float, float]:
     """(l2 + |A_n|^2, L2 + |W_n - W_{n-1}|^2) where the balance laws need them."""
 
 
 @generic
-def close(invariants, system, dy, N, S, l2, L2):
+def close(invariants: NamedTuple, system: NamedTuple, dy: Floats, N: int, S: float, l2: float, L2: float) -> None:
     """The entries after the sites: the rates of Q_l2 and Q_S of (dpsdamped)."""
 
 
 @njit(cache=True)
-def dps_rhs(system, y, dy):
+def dps_rhs(system: DpsSystem, y: Floats, dy: Floats) -> None:
     """dA_n/dtau of ``system`` (module docstring) on the real view y."""
     inv = system.invariants
     N = sites_of(inv, y)
@@ -180,31 +185,32 @@ def dps_rhs(system, y, dy):
 @implements(sites_of, Conserved)
 @implements(sites_of, Weighted)
 @njit(cache=True)
-def _sites(invariants, y):
+def _sites(invariants: Conserved | Weighted, y: Floats) -> int:
     return y.shape[0] // 2
 
 
 @implements(sites_of, Balanced)
 @njit(cache=True)
-def _sites_balanced(invariants, y):
+def _sites_balanced(invariants: Balanced, y: Floats) -> int:
     return (y.shape[0] - 2) // 2
 
 
 @implements(bond_sum, Balanced)
 @njit(cache=True)
-def _bond_sum(invariants, S, r, s):
+def _bond_sum(invariants: Balanced, S: float, r: float, s: float) -> float:
     return S + r * r * s
 
 
 @implements(site_sums, Balanced)
 @njit(cache=True)
-def _site_sums(invariants, l2, L2, ar, ai, wr, wi):
+def _site_sums(invariants: Balanced, l2: float, L2: float, ar: float, ai: float, wr: float,
+               wi: float) -> tuple[float, float]:
     return l2 + (ar * ar + ai * ai), L2 + (wr * wr + wi * wi)
 
 
 @implements(close, Balanced)
 @njit(cache=True)
-def _close(invariants, system, dy, N, S, l2, L2):
+def _close(invariants: Balanced, system: DpsSystem, dy: Floats, N: int, S: float, l2: float, L2: float) -> None:
     inv2tau0 = system.inv2tau0
     od = system.onsite_damping
     cd = system.contact_damping
@@ -214,12 +220,12 @@ def _close(invariants, system, dy, N, S, l2, L2):
 
 @implements(rhs, DpsSystem)
 @njit(cache=True)
-def _rhs(system, y, dy):
+def _rhs(system: DpsSystem, y: Floats, dy: Floats) -> None:
     dps_rhs(system, y, dy)
 
 
 @njit(cache=True)
-def dps_invariants(y, alpha, periodic):
+def dps_invariants(y: Floats, alpha: float, periodic: bool) -> tuple[float, float, float, float]:
     """(l2, S, Re P, Im P): sum |A_n|^2, sum |A_{n+1}-A_n|^(alpha+1), P = sum A_n.
 
     The DpS Hamiltonian is H = -S / ((alpha + 1) tau0).
@@ -242,18 +248,18 @@ def dps_invariants(y, alpha, periodic):
 
 
 @generic
-def watch(invariants, system, y, stats):
+def watch(invariants: NamedTuple, system: NamedTuple, y: Floats, stats: Floats) -> None:
     """Update the drifts in ``stats`` (the layout of the invariants' class) after an accepted step."""
 
 
 @implements(monitor, DpsSystem)
 @njit(cache=True)
-def _monitor(system, y, stats):
+def _monitor(system: DpsSystem, y: Floats, stats: Floats) -> None:
     watch(system.invariants, system, y, stats)
 
 
 @njit(cache=True)
-def _drifts(stats, l2, S):
+def _drifts(stats: Floats, l2: float, S: float) -> None:
     """stats[2:4] = the largest relative changes of l2 and S from stats[0:2]."""
     s0 = stats[0] if stats[0] != 0.0 else 1.0
     s1 = stats[1] if stats[1] != 0.0 else 1.0
@@ -263,14 +269,14 @@ def _drifts(stats, l2, S):
 
 @implements(watch, Conserved)
 @njit(cache=True)
-def _watch_conserved(invariants, system, y, stats):
+def _watch_conserved(invariants: Conserved, system: DpsSystem, y: Floats, stats: Floats) -> None:
     l2, S, _pr, _pi = dps_invariants(y, system.alpha, system.periodic)
     _drifts(stats, l2, S)
 
 
 @implements(watch, Balanced)
 @njit(cache=True)
-def _watch_balanced(invariants, system, y, stats):
+def _watch_balanced(invariants: Balanced, system: DpsSystem, y: Floats, stats: Floats) -> None:
     n = y.shape[0] - 2
     l2, S, _pr, _pi = dps_invariants(y[:n], system.alpha, system.periodic)
     _drifts(stats, l2 + y[n], S + y[n + 1])
@@ -278,7 +284,7 @@ def _watch_balanced(invariants, system, y, stats):
 
 @implements(watch, Weighted)
 @njit(cache=True)
-def _watch_weighted(invariants, system, y, stats):
+def _watch_weighted(invariants: Weighted, system: DpsSystem, y: Floats, stats: Floats) -> None:
     l2, H, _pr, _pi = KS.dps_sites_invariants(y, system.alpha, invariants.par, system.periodic)
     s0 = stats[0] if stats[0] != 0.0 else 1.0
     s1 = abs(stats[1]) if stats[1] != 0.0 else 1.0

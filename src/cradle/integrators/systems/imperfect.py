@@ -11,7 +11,7 @@ or 1).
 """
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -38,6 +38,9 @@ from cradle.integrators.terms.slots import (
     rest,
     stiff,
 )
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -73,29 +76,29 @@ class Imperfect(NamedTuple):
 
 
 @generic
-def store_power(dissipation, dy, N, P):
+def store_power(dissipation: NamedTuple, dy: Floats, N: int, P: float) -> None:
     """dy[2N] = s P with damping (nothing without)."""
 
 
 @generic
-def dissipated(dissipation, y, N, stats):
+def dissipated(dissipation: NamedTuple, y: Floats, N: int, stats: Floats) -> float:
     """D at the state y (0 without damping)."""
 
 
 @implements(store_power, Dissipation)
 @njit(cache=True)
-def _store(dissipation, dy, N, P):
+def _store(dissipation: Dissipation, dy: Floats, N: int, P: float) -> None:
     dy[2 * N] = dissipation.dscale * P
 
 
 @implements(dissipated, Dissipation)
 @njit(cache=True)
-def _dissipated(dissipation, y, N, stats):
+def _dissipated(dissipation: Dissipation, y: Floats, N: int, stats: Floats) -> float:
     return y[2 * N] / stats[4]
 
 
 @njit(cache=True)
-def imperfect_rhs(system, y, dy):
+def imperfect_rhs(system: Imperfect, y: Floats, dy: Floats) -> None:
     """dy = f(y) of (ncimperfect) (module docstring)."""
     f = system.f
     U = system.U
@@ -131,7 +134,7 @@ def imperfect_rhs(system, y, dy):
 
 
 @njit(cache=True)
-def imperfect_energy(system, x, v):
+def imperfect_energy(system: Imperfect, x: Floats, v: Floats) -> tuple[float, float]:
     """The generalised (ham) of (ncimperfect) at one state, and the largest bond overlap c = delta_n - d."""
     N = x.shape[0]
     u = system.Ue
@@ -155,13 +158,13 @@ def imperfect_energy(system, x, v):
 
 @implements(rhs, Imperfect)
 @njit(cache=True)
-def _rhs(system, y, dy):
+def _rhs(system: Imperfect, y: Floats, dy: Floats) -> None:
     imperfect_rhs(system, y, dy)
 
 
 @implements(monitor, Imperfect)
 @njit(cache=True)
-def _monitor(system, y, stats):
+def _monitor(system: Imperfect, y: Floats, stats: Floats) -> None:
     n = y.shape[0] // 2
     H, cm = imperfect_energy(system, y[:n], y[n:2 * n])
     sc = abs(stats[0]) if stats[0] != 0.0 else 1.0

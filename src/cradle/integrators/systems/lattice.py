@@ -5,7 +5,7 @@ the state); the right-hand sides and energies are those of :mod:`cradle.integrat
 """
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -13,6 +13,9 @@ from numba import njit
 from cradle.integrators import _cache, _kernels as K
 from cradle.integrators._dop853 import monitor, rhs
 from cradle.integrators._generic import implements
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -55,20 +58,20 @@ def damped_lattice(N: int, alpha: float, mode: int, periodic: bool, gamma: float
 
 @implements(rhs, Lattice)
 @njit(cache=True)
-def _rhs(system, y, dy):
+def _rhs(system: Lattice, y: Floats, dy: Floats) -> None:
     K.lattice_rhs(y, dy, system.f, system.F, system.alpha, system.mode, system.periodic)
 
 
 @implements(rhs, DampedLattice)
 @njit(cache=True)
-def _damped_rhs(system, y, dy):
+def _damped_rhs(system: DampedLattice, y: Floats, dy: Floats) -> None:
     K.lattice_damped_rhs(y, dy, system.f, system.F, system.alpha, system.mode, system.gamma, system.eta,
                          system.dscale, system.periodic)
 
 
 @implements(monitor, Lattice)
 @njit(cache=True)
-def _monitor(system, y, stats):
+def _monitor(system: Lattice, y: Floats, stats: Floats) -> None:
     n = y.shape[0] // 2
     H, cm = K.lattice_energy(y[:n], y[n:], system.alpha, system.mode, system.periodic)
     sc = abs(stats[0]) if stats[0] != 0.0 else 1.0
@@ -79,7 +82,7 @@ def _monitor(system, y, stats):
 
 @implements(monitor, DampedLattice)
 @njit(cache=True)
-def _damped_monitor(system, y, stats):
+def _damped_monitor(system: DampedLattice, y: Floats, stats: Floats) -> None:
     n = (y.shape[0] - 1) // 2
     H, cm = K.lattice_energy(y[:n], y[n:2 * n], system.alpha, system.mode, system.periodic)
     sc = abs(stats[0]) if stats[0] != 0.0 else 1.0

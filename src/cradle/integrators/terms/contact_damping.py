@@ -13,13 +13,16 @@ damped (nc) kernel :func:`cradle.integrators._kernels.lattice_damped_rhs`.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 from numba import njit
 
 from cradle.integrators import _cache
 from cradle.integrators._generic import absent, implements
 from cradle.integrators.terms.slots import damp_bond, dps_kappa, dps_l2_loss, dps_S_loss, rest, stiff
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -35,7 +38,7 @@ class ContactDamping(NamedTuple):
 
 
 @njit(cache=True)
-def damped_bond(c, rate, alpha, eta, mode):
+def damped_bond(c: float, rate: float, alpha: float, eta: float, mode: int) -> tuple[float, float]:
     """(force magnitude max(c^alpha + eta c^(alpha-1) c', 0), elastic part c^alpha) of a compressed touching bond
     c > 0 of (ncdamped), c' = ``rate`` (Hertz modes only: mode 0 is the c sqrt(c) fast path)."""
     if mode == 0:
@@ -49,13 +52,15 @@ def damped_bond(c, rate, alpha, eta, mode):
 
 @implements(damp_bond, NoContactDamping)
 @njit(cache=True)
-def _none(damping, sites, contact, n, m, diff, el, sa, y, J, N, P):
+def _none(damping: NoContactDamping, sites: NamedTuple, contact: NamedTuple, n: int, m: int, diff: float, el: float,
+          sa: float, y: Floats, J: Floats, N: int, P: float) -> tuple[float, float]:
     return stiff(sites, n, diff), P
 
 
 @implements(damp_bond, ContactDamping)
 @njit(cache=True)
-def _damp(damping, sites, contact, n, m, diff, el, sa, y, J, N, P):
+def _damp(damping: ContactDamping, sites: NamedTuple, contact: NamedTuple, n: int, m: int, diff: float, el: float,
+          sa: float, y: Floats, J: Floats, N: int, P: float) -> tuple[float, float]:
     eta = damping.eta
     rate = J[n] * y[N + n] - J[m] * y[N + m]   # c' = -(u'_{n+1} - u'_n)
     push = el + eta * sa * rate
@@ -73,20 +78,20 @@ class SlowContactDamping(NamedTuple):
 
 @implements(dps_kappa, SlowContactDamping)
 @njit(cache=True)
-def _dps_kappa(damping, wr, wi):
+def _dps_kappa(damping: SlowContactDamping, wr: float, wi: float) -> tuple[float, float]:
     # kappa w = (kr wr - ki wi) + i (kr wi + ki wr)
     return damping.kr * wr - damping.ki * wi, damping.kr * wi + damping.ki * wr
 
 
 @implements(dps_l2_loss, SlowContactDamping)
 @njit(cache=True)
-def _l2_loss(damping, l2, S, inv2tau0):
+def _l2_loss(damping: SlowContactDamping, l2: float, S: float, inv2tau0: float) -> float:
     return 2.0 * damping.ki * inv2tau0 * S   # (Im kappa / tau0) S
 
 
 @implements(dps_S_loss, SlowContactDamping)
 @njit(cache=True)
-def _S_loss(damping, L2, S, inv2tau0):
+def _S_loss(damping: SlowContactDamping, L2: float, S: float, inv2tau0: float) -> float:
     return damping.ki * inv2tau0 * L2        # (Im kappa / (2 tau0)) sum |W_n - W_{n-1}|^2
 
 

@@ -28,7 +28,7 @@ class Touching(NamedTuple):
 
 
 @njit(cache=True, inline="always")
-def hertz(c, alpha, mode):
+def hertz(c: float, alpha: float, mode: int) -> tuple[float, float]:
     """(c^alpha, c^(alpha-1)) of an overlap c > 0 (mode 0: the alpha = 3/2 fast path)."""
     if mode == 0:
         r = math.sqrt(c)
@@ -38,7 +38,7 @@ def hertz(c, alpha, mode):
 
 
 @njit(cache=True)
-def g_over_r(r, alpha):
+def g_over_r(r: float, alpha: float) -> float:
     """g(r)/r = r^(alpha-1) for r >= 0 (sqrt fast path for alpha = 3/2; 0 at r = 0): the DpS counterpart."""
     if r <= 0.0:
         return 0.0
@@ -49,25 +49,25 @@ def g_over_r(r, alpha):
 
 @implements(overlap, Touching)
 @njit(cache=True)
-def _overlap(contact, n, d):
+def _overlap(contact: Touching, n: int, d: float) -> float:
     return 0.0 - d   # not -d: the overlap of a bond at rest is +0, as with a zero delta_n
 
 
 @implements(elastic, Touching)
 @njit(cache=True)
-def _elastic(contact, n, d, c, el, alpha, mode):
+def _elastic(contact: Touching, n: int, d: float, c: float, el: float, alpha: float, mode: int) -> float:
     return -el
 
 
 @implements(rest, Touching)
 @njit(cache=True)
-def _rest(contact, n):
+def _rest(contact: Touching, n: int) -> float:
     return 0.0
 
 
 @implements(potential, Touching)
 @njit(cache=True)
-def _potential(contact, n, d, c, a1):
+def _potential(contact: Touching, n: int, d: float, c: float, a1: float) -> float:
     return c ** a1 / a1 if c > 0.0 else 0.0
 
 
@@ -77,5 +77,5 @@ class PLaplacian(NamedTuple):
 
 @implements(dps_coupling, PLaplacian)
 @njit(cache=True)
-def _dps_coupling(coupling, r, n, alpha):
+def _dps_coupling(coupling: PLaplacian, r: float, n: int, alpha: float) -> float:
     return g_over_r(r, alpha)

@@ -8,7 +8,7 @@ detuning delta_n = (omega_n - 1) eps^(1-alpha), the factor 1/m_n on the coupling
 """
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -43,7 +43,8 @@ class Inhomogeneous(NamedTuple):
     stiffness: np.ndarray
 
 
-def build(sites) -> Inhomogeneous:
+# Any: a cradle.models Sites; a kernel module's cradle imports (annotations' too) are the kernel cache's key
+def build(sites: Any) -> Inhomogeneous:
     """The unit of a :class:`cradle.models.inhomogeneity.Sites`."""
     mass = np.ascontiguousarray(sites.mass, dtype=float)
     return Inhomogeneous(mass, 1.0 / mass, np.asarray(sites.omega, dtype=float) ** 2,
@@ -52,31 +53,31 @@ def build(sites) -> Inhomogeneous:
 
 @implements(stiff, Inhomogeneous)
 @njit(cache=True)
-def _stiff(sites, n, X):
+def _stiff(sites: Inhomogeneous, n: int, X: float) -> float:
     return sites.stiffness[n] * X
 
 
 @implements(per_mass, Inhomogeneous)
 @njit(cache=True)
-def _per_mass(sites, n, X):
+def _per_mass(sites: Inhomogeneous, n: int, X: float) -> float:
     return X * sites.inv_mass[n]
 
 
 @implements(onsite_scale, Inhomogeneous)
 @njit(cache=True)
-def _onsite_scale(sites, n, X):
+def _onsite_scale(sites: Inhomogeneous, n: int, X: float) -> float:
     return sites.omega2[n] * X
 
 
 @implements(mass_times, Inhomogeneous)
 @njit(cache=True)
-def _mass_times(sites, n, X):
+def _mass_times(sites: Inhomogeneous, n: int, X: float) -> float:
     return X * sites.mass[n]
 
 
 @implements(mass_omega2, Inhomogeneous)
 @njit(cache=True)
-def _mass_omega2(sites, n, X):
+def _mass_omega2(sites: Inhomogeneous, n: int, X: float) -> float:
     return (sites.mass[n] * sites.omega2[n]) * X
 
 
@@ -88,7 +89,8 @@ class SlowSites(NamedTuple):
     detuning: np.ndarray
 
 
-def slow_sites(sites) -> SlowSites | Homogeneous:
+# Any: a cradle.models DpsSites; a kernel module's cradle imports (annotations' too) are the kernel cache's key
+def slow_sites(sites: Any) -> SlowSites | Homogeneous:
     """The unit of a :class:`cradle.models.dps_sites.DpsSites` (:class:`Homogeneous` if every coefficient is 1 and
     no site is detuned)."""
     if np.all(sites.inv_mass == 1.0) and np.all(sites.weight == 1.0) and np.all(sites.detuning == 0.0):
@@ -99,25 +101,25 @@ def slow_sites(sites) -> SlowSites | Homogeneous:
 
 @implements(dps_weight, SlowSites)
 @njit(cache=True)
-def _dps_weight(sites, n, s):
+def _dps_weight(sites: SlowSites, n: int, s: float) -> float:
     return sites.weight[n] * s
 
 
 @implements(dps_factor, SlowSites)
 @njit(cache=True)
-def _dps_factor(sites, n, inv2tau0):
+def _dps_factor(sites: SlowSites, n: int, inv2tau0: float) -> float:
     return sites.inv_mass[n] * inv2tau0
 
 
 @implements(dps_detuning, SlowSites)
 @njit(cache=True)
-def _dps_detuning(sites, n, X):
+def _dps_detuning(sites: SlowSites, n: int, X: float) -> float:
     return sites.detuning[n] + X
 
 
 @implements(dps_rotate_detuned, SlowSites)
 @njit(cache=True)
-def _dps_rotate(sites, n, a, b, ar, ai):
+def _dps_rotate(sites: SlowSites, n: int, a: float, b: float, ar: float, ai: float) -> tuple[float, float]:
     rot = sites.detuning[n]
     # i rot (ar + i ai) = -rot ai + i rot ar
     return a - rot * ai, b + rot * ar

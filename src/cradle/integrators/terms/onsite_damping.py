@@ -30,7 +30,7 @@ class OnsiteDamping(NamedTuple):
 
 @implements(damp_site, OnsiteDamping)
 @njit(cache=True)
-def _damp(damping, sites, n, acc, v, P):
+def _damp(damping: OnsiteDamping, sites: NamedTuple, n: int, acc: float, v: float, P: float) -> tuple[float, float]:
     return acc - damping.gamma * v, P + mass_times(sites, n, damping.gamma) * v * v
 
 
@@ -42,19 +42,19 @@ class SlowOnsiteDamping(NamedTuple):
 
 @implements(dps_decay, SlowOnsiteDamping)
 @njit(cache=True)
-def _dps_decay(damping, a, b, ar, ai):
+def _dps_decay(damping: SlowOnsiteDamping, a: float, b: float, ar: float, ai: float) -> tuple[float, float]:
     return a - damping.half_gamma * ar, b - damping.half_gamma * ai
 
 
 @implements(dps_l2_loss, SlowOnsiteDamping)
 @njit(cache=True)
-def _l2_loss(damping, l2, S, inv2tau0):
+def _l2_loss(damping: SlowOnsiteDamping, l2: float, S: float, inv2tau0: float) -> float:
     return 2.0 * damping.half_gamma * l2     # gamma~ sum |A_n|^2
 
 
 @implements(dps_S_loss, SlowOnsiteDamping)
 @njit(cache=True)
-def _S_loss(damping, L2, S, inv2tau0):
+def _S_loss(damping: SlowOnsiteDamping, L2: float, S: float, inv2tau0: float) -> float:
     return damping.half_gamma * S            # (gamma~/2) S
 
 

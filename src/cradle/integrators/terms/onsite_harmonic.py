@@ -23,23 +23,24 @@ class Harmonic(NamedTuple):
 
 @implements(position, Harmonic)
 @njit(cache=True)
-def _position(onsite, n, x):
+def _position(onsite: Harmonic, n: int, x: float) -> tuple[float, float]:
     return x, 1.0
 
 
 @implements(onsite_force, Harmonic)
 @njit(cache=True)
-def _force(onsite, x, u):
+def _force(onsite: Harmonic, x: float, u: float) -> float:
     return x
 
 
 @implements(onsite_energy, Harmonic)
 @njit(cache=True)
-def _energy(onsite, n, x):
+def _energy(onsite: Harmonic, n: int, x: float) -> float:
     return 0.5 * x * x
 
 
 @implements(dps_rotate, Harmonic)
 @njit(cache=True)
-def _dps_rotate(onsite, sites, n, a, b, ar, ai):
+def _dps_rotate(onsite: Harmonic, sites: NamedTuple, n: int, a: float, b: float, ar: float,
+                ai: float) -> tuple[float, float]:
     return dps_rotate_detuned(sites, n, a, b, ar, ai)

@@ -29,7 +29,7 @@ class Pendulum(NamedTuple):
 
 @implements(position, Pendulum)
 @njit(cache=True)
-def _position(onsite, n, x):
+def _position(onsite: Pendulum, n: int, x: float) -> tuple[float, float]:
     sn = onsite.s[n]
     sx = sn * x
     return math.sin(sx) / sn, math.cos(sx)
@@ -37,13 +37,13 @@ def _position(onsite, n, x):
 
 @implements(onsite_force, Pendulum)
 @njit(cache=True)
-def _force(onsite, x, u):
+def _force(onsite: Pendulum, x: float, u: float) -> float:
     return u
 
 
 @implements(onsite_energy, Pendulum)
 @njit(cache=True)
-def _energy(onsite, n, x):
+def _energy(onsite: Pendulum, n: int, x: float) -> float:
     sn = onsite.s[n]
     h = math.sin(0.5 * sn * x) / sn
     return 2.0 * h * h

@@ -27,19 +27,19 @@ class Quartic(NamedTuple):
 
 @implements(position, Quartic)
 @njit(cache=True)
-def _position(onsite, n, x):
+def _position(onsite: Quartic, n: int, x: float) -> tuple[float, float]:
     return x, 1.0
 
 
 @implements(onsite_force, Quartic)
 @njit(cache=True)
-def _force(onsite, x, u):
+def _force(onsite: Quartic, x: float, u: float) -> float:
     return x + onsite.beta * x * x * x
 
 
 @implements(onsite_energy, Quartic)
 @njit(cache=True)
-def _energy(onsite, n, x):
+def _energy(onsite: Quartic, n: int, x: float) -> float:
     return 0.5 * x * x + 0.25 * onsite.beta * x ** 4
 
 
@@ -52,7 +52,8 @@ class SlowQuartic(NamedTuple):
 
 @implements(dps_rotate, SlowQuartic)
 @njit(cache=True)
-def _dps_rotate(onsite, sites, n, a, b, ar, ai):
+def _dps_rotate(onsite: SlowQuartic, sites: NamedTuple, n: int, a: float, b: float, ar: float,
+                ai: float) -> tuple[float, float]:
     rot = dps_detuning(sites, n, 1.5 * onsite.beta[n] * (ar * ar + ai * ai))
     # i rot (ar + i ai) = -rot ai + i rot ar
     return a - rot * ai, b + rot * ar

@@ -15,7 +15,7 @@ cancellation: d (delta^2 + delta c + c^2) / (delta^(3/2) + c^(3/2)) for alpha = 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -24,6 +24,9 @@ from cradle.integrators import _cache
 from cradle.integrators._generic import implements
 from cradle.integrators._kernels_dps_sites import _g_over_r
 from cradle.integrators.terms.slots import dps_coupling, elastic, overlap, potential, rest
+
+if TYPE_CHECKING:
+    from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
 
@@ -35,20 +38,20 @@ class Precompressed(NamedTuple):
     dpa: np.ndarray
 
 
-def build(delta, alpha: float) -> Precompressed:
+def build(delta: Floats, alpha: float) -> Precompressed:
     delta = np.ascontiguousarray(delta, dtype=float)
     return Precompressed(delta, np.maximum(delta, 0.0) ** alpha)
 
 
 @implements(overlap, Precompressed)
 @njit(cache=True)
-def _overlap(contact, n, d):
+def _overlap(contact: Precompressed, n: int, d: float) -> float:
     return contact.delta[n] - d
 
 
 @implements(elastic, Precompressed)
 @njit(cache=True)
-def _elastic(contact, n, d, c, el, alpha, mode):
+def _elastic(contact: Precompressed, n: int, d: float, c: float, el: float, alpha: float, mode: int) -> float:
     dn = contact.delta[n]
     if dn > 0.0 and mode == 0:
         # delta^(3/2) - c^(3/2) = (delta^3 - c^3)/(delta^(3/2) + c^(3/2)), delta - c = d: no cancellation
@@ -60,13 +63,13 @@ def _elastic(contact, n, d, c, el, alpha, mode):
 
 @implements(rest, Precompressed)
 @njit(cache=True)
-def _rest(contact, n):
+def _rest(contact: Precompressed, n: int) -> float:
     return contact.dpa[n]
 
 
 @implements(potential, Precompressed)
 @njit(cache=True)
-def _potential(contact, n, d, c, a1):
+def _potential(contact: Precompressed, n: int, d: float, c: float, a1: float) -> float:
     dn = contact.delta[n]
     if dn > 0.0:
         dpa = contact.dpa[n]
@@ -92,7 +95,7 @@ class Tabulated(NamedTuple):
     ns: int
 
 
-def tabulated(par) -> Tabulated:
+def tabulated(par: Floats) -> Tabulated:
     """The :class:`Tabulated` of a packed ``par``."""
     from cradle.integrators._kernels_dps_sites import _offsets
 
@@ -102,7 +105,7 @@ def tabulated(par) -> Tabulated:
 
 @implements(dps_coupling, Tabulated)
 @njit(cache=True)
-def _dps_coupling(coupling, r, n, alpha):
+def _dps_coupling(coupling: Tabulated, r: float, n: int, alpha: float) -> float:
     par = coupling.par
     return _g_over_r(r, par[coupling.oe + n], alpha, par, coupling.og1, coupling.og2, coupling.oga, coupling.n1,
                      coupling.n2, coupling.ns)

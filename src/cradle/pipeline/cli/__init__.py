@@ -61,6 +61,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from typing import NoReturn
 
 from cradle.data.provenance import VERSION as __version__
 from cradle.pipeline.cli.animate import cmd_animate
@@ -77,7 +78,7 @@ OVERWRITE_HELP = ("write even over a workflow output of another scene or rule, o
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # one line, exit 2 (argparse would print the usage first)
+    def error(self, message: str) -> NoReturn:  # one line, exit 2 (argparse would print the usage first)
         raise CliError(message)
 
 
@@ -183,7 +184,7 @@ def _numbers_attached(argv: list[str]) -> list[str]:
     return out
 
 
-def main(argv=None) -> int:
+def main(argv: list[str] | None = None) -> int:
     """Run the command line ``argv`` (default ``sys.argv[1:]``); returns the exit status."""
     import os
 

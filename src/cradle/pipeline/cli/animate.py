@@ -13,11 +13,17 @@ file's model index, default 1: the first restitution) below, to ``RESULTS/movies
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from cradle.pipeline.cli.common import CliError
 
+if TYPE_CHECKING:
+    import argparse
 
-def settings(config_path) -> dict:
+    from cradle.figures.movie import MovieSpec
+
+
+def settings(config_path: str | Path) -> dict:
     """The ``movies:`` settings of the config at ``config_path`` (validated), or the declared defaults."""
     from dataclasses import asdict
 
@@ -35,7 +41,7 @@ def settings(config_path) -> dict:
 FLAGS = {"fps": "--fps", "duration": "--duration", "width": "--width", "height": "--height", "gif_fps": "--gif-fps"}
 
 
-def checked_flags(args) -> dict:
+def checked_flags(args: argparse.Namespace) -> dict:
     """The keys of ``movies:`` the flags give, each within the bounds its declaration states
     (:class:`cradle.pipeline.config.movies.Movies`): a bad one is refused in one line naming the flag, before
     any frame is drawn."""
@@ -60,7 +66,7 @@ def checked_flags(args) -> dict:
     return given
 
 
-def _may_write(paths, stem: str, owner: str, overwrite: bool) -> None:
+def _may_write(paths: list[Path], stem: str, owner: str, overwrite: bool) -> None:
     """Refuse, before any frame is drawn, a movie path that is another workflow output or an existing file this
     command did not make (:func:`cradle.pipeline.destinations.check`); the movie of this scene is its own."""
     from cradle.pipeline.destinations import Refused, check
@@ -73,7 +79,7 @@ def _may_write(paths, stem: str, owner: str, overwrite: bool) -> None:
             raise CliError(str(err)) from None
 
 
-def _recorded(paths, owner: str) -> None:
+def _recorded(paths: list[Path | None], owner: str) -> None:
     """Record what wrote each movie (:func:`cradle.data.digests.record_owner`): a later `cradle animate` of the
     same scene may replace it."""
     from cradle.data.digests import record_owner
@@ -83,7 +89,7 @@ def _recorded(paths, owner: str) -> None:
             record_owner(path, owner)
 
 
-def cmd_animate(args) -> int:
+def cmd_animate(args: argparse.Namespace) -> int:
     from cradle.figures.movie import MovieSpec, animate
     from cradle.pipeline import layout
     from cradle.pipeline.outputs import open_scene
@@ -123,7 +129,8 @@ def cmd_animate(args) -> int:
     return 0
 
 
-def _desk_toy(args, path, out, spec, gif, gspec, gif_width) -> dict:
+def _desk_toy(args: argparse.Namespace, path: Path, out: Path, spec: MovieSpec, gif: Path | None,
+              gspec: MovieSpec | None, gif_width: int) -> dict:
     """The movie of desk toy ``args.scene`` of the `desk-toy` file ``path``; a missing file, group or model is
     one line."""
     from cradle.analyses.desk_toy import movie_dataset
@@ -140,5 +147,5 @@ def _desk_toy(args, path, out, spec, gif, gspec, gif_width) -> dict:
     n_models = tree[args.scene].sizes["model"]
     if not 1 <= args.hard < n_models:
         raise CliError(f"--hard {args.hard}: must be a hard-sphere model index of {path}, in [1, {n_models - 1}]")
-    ds, panels = movie_dataset(tree[args.scene], args.hard)
+    ds, panels = movie_dataset(tree[args.scene], args.hard)  # type: ignore[arg-type]  # a group: a DataTree
     return animate(ds, out, spec, gif=gif, gif_spec=gspec, gif_width=gif_width, panels=panels)

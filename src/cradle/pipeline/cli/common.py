@@ -3,6 +3,10 @@ it expects of the result files (verify, describe)."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from cradle.pipeline.identity import Expectations
 
 PROG = "cradle"
 
@@ -11,7 +15,7 @@ class CliError(Exception):
     """An error reported as one line, exit status 2."""
 
 
-def load_config(path):
+def load_config(path: str | Path) -> dict:
     """The config at ``path``, loaded and validated (:func:`cradle.pipeline.config.load`)."""
     from cradle.pipeline import config as cc
 
@@ -21,7 +25,7 @@ def load_config(path):
     return cc.load(path)
 
 
-def section_of(cfg, name):
+def section_of(cfg: dict, name: str) -> str | None:
     """The section (scenes, homoclinic, map) of the config that defines ``name``, or None."""
     for section in ("scenes", "homoclinic", "map"):
         if name in (cfg.get(section) or {}):
@@ -29,7 +33,7 @@ def section_of(cfg, name):
     return None
 
 
-def known_names(cfg):
+def known_names(cfg: dict) -> str:
     """Every name of those sections, for an error message."""
     names = [n for s in ("scenes", "homoclinic", "map") for n in (cfg.get(s) or {})]
     return ", ".join(names) or "none"
@@ -39,7 +43,7 @@ def known_names(cfg):
 DEFAULT_CONFIG = "config.yaml"
 
 
-def expectations(config_arg):
+def expectations(config_arg: str | None) -> Expectations | None:
     """What the config expects of the files of its layout (:class:`cradle.pipeline.identity.Expectations`),
     the ``results/`` folder beside it; None when ``config_arg`` is None and there is no config.yaml. A
     config that cannot be read or is invalid is one note on stderr: the files' checksums are still checked."""
@@ -59,7 +63,7 @@ def expectations(config_arg):
     return Expectations(cfg, path.parent / "results", source=str(path))
 
 
-def identity_line(expect, path, attrs) -> str:
+def identity_line(expect: Expectations | None, path: str | Path, attrs: dict) -> str:
     """What ``cradle describe`` says of a file's identity (its global attributes ``attrs``): ``MISMATCH ...``
     (the line of :meth:`~cradle.pipeline.identity.Expectations.mismatch`), as expected, or why not checked."""
     if expect is None:

@@ -4,8 +4,14 @@ describe and verify also say which files are not what the config expects (:mod:`
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from cradle.pipeline.cli.common import CliError, expectations, identity_line
+
+if TYPE_CHECKING:
+    import argparse
+
+    import xarray as xr
 
 #: global attributes that are checks of the result (accuracy, convergence, failure)
 CHECKS = ("energy_drift", "max_energy_drift_allowed", "max_l2_drift", "max_dps_energy_drift", "residual",
@@ -13,7 +19,7 @@ CHECKS = ("energy_drift", "max_energy_drift_allowed", "max_l2_drift", "max_dps_e
 CF_KEYS = ("title", "Conventions", "source", "references", "history")
 
 
-def _fmt(value) -> str:
+def _fmt(value: Any) -> str:
     import numpy as np
 
     if isinstance(value, (float, np.floating)):
@@ -23,7 +29,7 @@ def _fmt(value) -> str:
     return str(value)
 
 
-def _describe_variables(heading: str, ds) -> list[str]:
+def _describe_variables(heading: str, ds: xr.Dataset) -> list[str]:
     """One line per variable of ``ds``: name, dims with sizes, long name and units."""
     out = ["", heading]
     for name in list(ds.coords) + list(ds.data_vars):
@@ -33,7 +39,7 @@ def _describe_variables(heading: str, ds) -> list[str]:
     return out
 
 
-def cmd_describe(args) -> int:
+def cmd_describe(args: argparse.Namespace) -> int:
     import xarray as xr
 
     from cradle.data.digests import read_record, sidecar
@@ -96,7 +102,7 @@ def _may_extend_into(path: Path, out: Path, overwrite: bool) -> None:
         raise CliError(str(err)) from None
 
 
-def cmd_extend(args) -> int:
+def cmd_extend(args: argparse.Namespace) -> int:
     import math
     import sys
 
@@ -140,7 +146,7 @@ def cmd_extend(args) -> int:
     return 0
 
 
-def cmd_verify(args) -> int:
+def cmd_verify(args: argparse.Namespace) -> int:
     from cradle.data.digests import read_record, sidecar
     from cradle.data.io import DamagedOutput, rebuild_hint, stale_temporaries, verify_file
 
@@ -176,6 +182,6 @@ def cmd_verify(args) -> int:
           f"{len(bare)} without checksums, " + (f"{len(unrecorded)} without a digest, " if unrecorded else "")
           + f"{len(damaged)} to rebuild" + (f"; {len(stale)} stale temporary files" if stale else ""))
     if mismatched:
-        print(f"{len(mismatched)} files not what {expect.source} expects (another entry's, or older parameters): "
+        print(f"{len(mismatched)} files not what {expect.source} expects (another entry's, or older parameters): "  # type: ignore[union-attr]  # none mismatch without expect
               "rebuild them")
     return 1 if damaged or mismatched else 0

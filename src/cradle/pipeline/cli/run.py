@@ -9,9 +9,16 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from cradle.pipeline import layout
 from cradle.pipeline.cli.common import PROG, CliError, known_names, load_config, section_of
+
+if TYPE_CHECKING:
+    import argparse
+    from collections.abc import Callable
+
+    from cradle.pipeline.runner import Output
 
 #: where ``cradle run`` writes by default: its own folder, not the workflow's results/
 RUN_OUT = "cradle-runs"
@@ -31,7 +38,7 @@ def _may_write(outs: dict, names: dict, overwrite: bool) -> None:
             raise CliError(str(err)) from None
 
 
-def _stage(compute, out, log, label):
+def _stage(compute: Callable[[], Output], out: str | Path, log: str | None, label: str) -> Output:
     """runner.run (atomic write, log, failed/ on StageFailure) of ``compute``; the stage functions
     record the hash of their parameters themselves (``params_sha256``)."""
     from cradle.pipeline.runner import run
@@ -51,7 +58,7 @@ def _note_workflow_results(out: Path, config: Path) -> None:
               "built from the current config", file=sys.stderr)
 
 
-def cmd_run(args) -> int:
+def cmd_run(args: argparse.Namespace) -> int:
     from cradle.pipeline import budget, config as cc
     from cradle.pipeline.scene_job import run_scene
     from cradle.scenes import stages

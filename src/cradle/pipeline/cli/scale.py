@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from cradle.pipeline.cli.common import CliError
 
+if TYPE_CHECKING:
+    import argparse
 
-def scale_lines(args) -> list[str]:
+
+def scale_lines(args: argparse.Namespace) -> list[str]:
     """The lines ``cradle scale`` prints for its parsed arguments; a bad value is a one-line ConfigError."""
     from cradle.models import physical as ph
 
@@ -41,7 +45,7 @@ def scale_lines(args) -> list[str]:
     return out
 
 
-def cmd_scale(args) -> int:
+def cmd_scale(args: argparse.Namespace) -> int:
     from cradle.specs.values import ConfigError
 
     try:

@@ -1,11 +1,16 @@
 """``cradle scenes``: the config's scenes, homoclinic and map entries, figures, what each needs and costs."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from cradle.pipeline.cli.common import load_config, section_of
 from cradle.scenes.spec import Breather, Packet, Pair, Scene, Travelling
 
+if TYPE_CHECKING:
+    import argparse
 
-def _scene_line(name, spec: Scene) -> str:
+
+def _scene_line(name: str, spec: Scene) -> str:
     """One line of ``cradle scenes``: the scene's size, its stored times and its initial condition."""
     ini = spec.initial
     what = ini.kind
@@ -22,7 +27,7 @@ def _scene_line(name, spec: Scene) -> str:
             f"{what}")
 
 
-def _cost_line(name, spec: Scene) -> str:
+def _cost_line(name: str, spec: Scene) -> str:
     """The scene's estimated job cost (cradle.pipeline.budget), under its line of ``cradle scenes``."""
     from cradle.pipeline import budget
 
@@ -31,7 +36,7 @@ def _cost_line(name, spec: Scene) -> str:
             f"writes {budget.fmt_bytes(e.disk_bytes)}, about {budget.fmt_duration(e.seconds)}")
 
 
-def cmd_scenes(args) -> int:
+def cmd_scenes(args: argparse.Namespace) -> int:
     from cradle.pipeline import config as cc
 
     cfg = load_config(args.config)

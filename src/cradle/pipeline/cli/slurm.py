@@ -25,8 +25,13 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from cradle.pipeline.cli.common import PROG, CliError, load_config
+
+if TYPE_CHECKING:
+    import argparse
+    from collections.abc import Sequence
 
 #: where the job's log goes, beside Snakemake's own logs (%j: the job's id)
 LOG_PATTERN = ".snakemake/slurm_logs/cradle-%j.log"
@@ -49,8 +54,9 @@ TIMEOUT_S = 30.0
 JOB_ID = re.compile(r"[0-9]{1,19}")
 
 
-def sbatch_command(targets, *, cpus: int, mem_mb: int, minutes: int, workdir, account=None, partition=None,
-                   snakemake_args=(), python=None, name=None) -> list[str]:
+def sbatch_command(targets: Sequence[str], *, cpus: int, mem_mb: int, minutes: int, workdir: str | Path,
+                   account: str | None = None, partition: str | None = None, snakemake_args: Sequence[str] = (),
+                   python: str | None = None, name: str | None = None) -> list[str]:
     """The ``sbatch`` command line of one allocation running ``snakemake --cores cpus targets...`` in
     ``workdir`` with the interpreter ``python`` (default: this one, hence its packages), its log at
     :data:`LOG_PATTERN` there (appended to, so an older log of the same id is not lost), its job name ``name``
@@ -67,7 +73,7 @@ def sbatch_command(targets, *, cpus: int, mem_mb: int, minutes: int, workdir, ac
     return [*cmd, "--wrap", "exec " + shlex.join(inner)]
 
 
-def unique_name(targets) -> str:
+def unique_name(targets: Sequence[str]) -> str:
     """A job name no other job has (``cradle-TARGETS-XXXXXXXX``): the handle that cancels a job whose ``sbatch``
     hung or answered no id."""
     return f"cradle-{'-'.join(targets) or 'all'}"[:55] + f"-{secrets.token_hex(4)}"
@@ -77,7 +83,7 @@ class SlurmUnavailable(CliError):
     """A Slurm command missing from PATH or not answering within :data:`TIMEOUT_S`."""
 
 
-def _run(cmd, timeout: float | None = None) -> subprocess.CompletedProcess:
+def _run(cmd: list[str], timeout: float | None = None) -> subprocess.CompletedProcess:
     """Run one Slurm command, at most ``timeout`` seconds (:data:`TIMEOUT_S`); missing or hung:
     :class:`SlurmUnavailable`, one line."""
     timeout = TIMEOUT_S if timeout is None else timeout
@@ -95,7 +101,7 @@ def _shown(text: str, most: int = 40) -> str:
     return ascii(text if len(text) <= most else text[:most] + "...")
 
 
-def submit(cmd) -> str:
+def submit(cmd: list[str]) -> str:
     """Submit ``cmd`` (an ``sbatch --parsable`` line); the job's id, a number. A refusal, an answer that is not
     a job id, a missing or hung sbatch: :class:`CliError`, one line."""
     proc = _run(cmd)
@@ -141,7 +147,7 @@ class _Follower:
     """Prints what is appended to the job's log (from ``offset``: what an older log of that name held is not
     printed again)."""
 
-    def __init__(self, path: Path, offset: int = 0):
+    def __init__(self, path: Path, offset: int = 0) -> None:
         self.path, self.offset = path, offset
 
     def __call__(self) -> None:
@@ -179,7 +185,7 @@ def wait(job_id: str, log: Path, poll_s: float = POLL_S, follow: bool = True, of
         time.sleep(poll_s)
 
 
-def cmd_slurm(args) -> int:
+def cmd_slurm(args: argparse.Namespace) -> int:
     workdir = Path(args.directory)
     if not (workdir / "Snakefile").is_file():
         raise CliError(f"no Snakefile in {str(workdir)!r}: run from the workflow's folder (or give --directory)")
@@ -245,7 +251,7 @@ def cmd_slurm(args) -> int:
     return 0
 
 
-def log_path(workdir, job_id: str) -> Path:
+def log_path(workdir: str | Path, job_id: str) -> Path:
     """The job's log: :data:`LOG_PATTERN` in ``workdir`` with the job's id, which must be a number (no path
     can be made of it)."""
     if not JOB_ID.fullmatch(job_id):
@@ -253,7 +259,7 @@ def log_path(workdir, job_id: str) -> Path:
     return Path(workdir) / LOG_PATTERN.replace("%j", job_id)
 
 
-def add_parser(sub) -> None:
+def add_parser(sub: argparse._SubParsersAction) -> None:
     """The ``slurm`` sub-command's arguments."""
     s = sub.add_parser("slurm", help="build targets inside one Slurm allocation (snakemake --cores CPUS there, "
                                      "jobs forked from the warm process); waits and prints the log")
