@@ -21,6 +21,17 @@ from cradle.scenes.spec import Scene
 log = logging.getLogger("cradle")
 
 
+def _initial(spec: Scene, name: str, homoclinic):
+    """The scene's initial data; a warning (one line) when its amplitude is outside DpS's measured range."""
+    from cradle.measurements.dps_range import outside_range
+
+    init = stages.initial_data(spec, name, homoclinic)
+    note = outside_range(name, init["x0"].values, init["v0"].values)
+    if note is not None:
+        log.warning("warning: %s", note)
+    return init
+
+
 def run_scene(spec: Scene, name: str, outs: dict, log_path=None, homoclinic=None) -> None:
     """Compute scene ``name`` (resolved ``spec``, :func:`cradle.pipeline.config.scene`) into ``outs``
     (initial, exact, dps, metrics paths, and homoclinic when ``homoclinic`` is a callable computing it;
@@ -28,7 +39,7 @@ def run_scene(spec: Scene, name: str, outs: dict, log_path=None, homoclinic=None
     estimate = budget.long_run(spec, name)
     steps = [("homoclinic", lambda done: homoclinic())] if callable(homoclinic) else []
     hom = (lambda done: done.get("homoclinic")) if callable(homoclinic) else (lambda done: homoclinic)
-    steps.append(("initial", lambda done: stages.initial_data(spec, name, hom(done))))
+    steps.append(("initial", lambda done: _initial(spec, name, hom(done))))
     if not budget.streams(spec):
         steps += [
             ("exact", lambda done: stages.exact_run(spec, done["initial"], name,
