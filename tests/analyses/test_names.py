@@ -15,8 +15,8 @@ A dimension of :data:`NAMING_DIMS` without any coordinate (its own or its parent
 is nothing to ``sel`` by.
 
 The walk covers the outputs this suite computes on tiny specs (the analyses that read no scene: desk-toy,
-dissipation, dps-validity, trapping from its batches) and, when a results folder is at hand (``$CRADLE_RESULTS``
-or ./results), every analysis file in it.
+dissipation, dps-validity, trapping from its batches; breathers in its reduced form) and, when a results folder
+is at hand (``$CRADLE_RESULTS`` or ./results), every analysis file in it.
 """
 from __future__ import annotations
 
@@ -155,7 +155,19 @@ def _trapping():
     return tree
 
 
-COMPUTED = {"desk-toy": _desk_toy, "dissipation": _dissipation, "dps-validity": _dps_validity,
+def _breathers():
+    """The reduced form `all` builds (config.yaml), the smallest that has families and exchanges."""
+    from cradle.pipeline import config as cc
+
+    a = ANALYSES["breathers"]
+    tree = a.compute(cc.analysis_spec(cc.load(ROOT / "config.yaml"), "breathers", a.forms[0]), {})
+    assert list(tree["family"].values) == [s.strip() for s in str(tree.attrs["family_names"]).split(",")]
+    assert list(tree["exchanges"]["side"].values) == ["below", "above"]
+    assert tree["families"]["energy"].sel(family="ring bond").shape == (tree.sizes["omega"],)
+    return tree
+
+
+COMPUTED = {"breathers": _breathers, "desk-toy": _desk_toy, "dissipation": _dissipation, "dps-validity": _dps_validity,
             "trapping": _trapping}
 
 
