@@ -88,6 +88,9 @@ def test_a_file_of_a_real_cradle_reads_in_si(runs):
     np.testing.assert_array_equal(si["t"].values, exact["t"].values * s.T)
     np.testing.assert_array_equal(si["x"].values, exact["x"].values * s.X)
     assert si["t"].attrs["units"] == "s" and si["x"].attrs["units"] == "m" and si["energy"].attrs["units"] == "J"
+    # a time in seconds is not called dimensionless; the other names are those of (nc), unchanged
+    assert si["t"].attrs["long_name"] == "time t of (nc)" and "dimensionless" in exact["t"].attrs["long_name"]
+    assert si["x"].attrs["long_name"] == exact["x"].attrs["long_name"]
     E = si["energy"].values + si["dissipated"].values
     assert np.max(np.abs(E - E[0])) <= 1e-8 * E[0]
     with pytest.raises(ValueError, match="no SI scales"):

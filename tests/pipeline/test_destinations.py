@@ -110,5 +110,5 @@ def test_workflow_outputs_are_found_by_their_path(tmp_path):
     root = tmp_path / "results"
     assert workflow_output(root / "sim" / "a" / "exact.nc") == ("exact", {"scene": "a"})
     assert workflow_output(root / "figures" / "plot4-5.png") == ("figure", {"label": "plot4-5", "ext": "png"})
-    assert workflow_output(root / "sim" / "a" / "exact-t700.nc") is None      # cradle extend's default, its own
+    assert workflow_output(root / "sim" / "a" / "exact-t700.nc") is None      # an extended run written there by --out
     assert workflow_output(tmp_path / "cradle-runs" / "sim" / "a" / "exact.nc") is None

@@ -94,6 +94,29 @@ def test_cli_extend(runs, tmp_path, capsys):
     assert "must be > the last stored time" in capsys.readouterr().err
 
 
+def test_cli_extend_default_destination(runs, tmp_path, capsys, monkeypatch):
+    """Without --out: a run under a folder named results/ (the workflow's) is continued beside `cradle run`'s
+    outputs, at the same place under cradle-runs/ of the working directory; any other file beside itself.
+    Only --out writes into results/."""
+    from cradle.pipeline.cli.run import RUN_OUT
+
+    short, _ = runs
+    monkeypatch.chdir(tmp_path)
+    wf = tmp_path / "work" / "results" / "sim" / "tw" / "exact.nc"
+    io.write_netcdf(short, wf)
+    alone = tmp_path / "mine" / "exact.nc"
+    io.write_netcdf(short, alone)
+    for src, want in ((wf, tmp_path / RUN_OUT / "sim" / "tw" / "exact-t30.nc"),
+                      (alone, tmp_path / "mine" / "exact-t30.nc")):
+        assert cli.main(["extend", str(src), "--t-end", "30", "--config", str(tmp_path / "none")]) == 0
+        assert capsys.readouterr().out.startswith(f"{os.path.relpath(want) if src is wf else want}: t = 20 -> 30")
+        assert io.open_dataset(want).attrs["t_end"] == 30.0
+    assert sorted(p.name for p in wf.parent.iterdir()) == [".exact.nc.digest", "exact.nc"]   # results/ untouched
+    told = tmp_path / "work" / "results" / "sim" / "tw" / "exact-t25.nc"
+    assert cli.main(["extend", str(wf), "--t-end", "25", "--out", str(told), "--config", str(tmp_path / "none")]) == 0
+    assert io.open_dataset(told).attrs["t_end"] == 25.0
+
+
 def test_extend_estimates_and_refuses_before_any_work(runs, tmp_path, capsys):
     """`cradle extend` prints its estimate (cradle.pipeline.budget) and refuses, in one line and before
     anything is written, a t_end beyond a scene's longest run (a limit of float64), and a run over the budget of

@@ -327,17 +327,23 @@ def test_extend_refuses_non_finite_t_end(outputs, tmp_path, capsys, value):
     assert _one_line(err) and "must be a finite time" in err and "Overflow" not in err, err
 
 
-def test_extend_writes_a_new_file_and_refuses_a_workflow_scene_in_place(outputs, tmp_path, capsys):
+def test_extend_writes_a_new_file_and_refuses_a_workflow_scene_in_place(outputs, tmp_path, capsys, monkeypatch):
+    """Without --out, a run of the workflow's results/ is continued under cradle run's folder (cradle-runs/ of the
+    working directory, as `cradle run`), nothing written into results/; --in-place is refused for it."""
     exact = _copy(outputs["exact"][1], tmp_path)
     _copy(outputs["dps"][1], tmp_path)
-    before = exact.read_bytes()
+    before = sorted(p.name for p in exact.parent.iterdir()), exact.read_bytes()
+    monkeypatch.chdir(tmp_path)
     assert cli.main(["extend", str(exact), "--t-end", "6"]) == 0
-    assert (exact.parent / "exact-t6.nc").exists() and exact.read_bytes() == before
+    made = tmp_path / "cradle-runs" / "sim" / "tw" / "exact-t6.nc"
+    assert str(made.relative_to(tmp_path)) in capsys.readouterr().out
+    assert io.open_dataset(made).attrs["t_end"] == 6.0
+    assert (sorted(p.name for p in exact.parent.iterdir()), exact.read_bytes()) == before
     capsys.readouterr()
     assert cli.main(["extend", str(exact), "--t-end", "6", "--in-place"]) == 2
     err = capsys.readouterr().err
     assert _one_line(err) and "refusing to extend" in err and "scenes.tw.t_end: 6" in err, err
-    assert exact.read_bytes() == before
+    assert exact.read_bytes() == before[1]
     alone = tmp_path / "alone" / "exact.nc"                  # a standalone exact run may be extended in place
     alone.parent.mkdir()
     shutil.copy2(exact, alone)

@@ -37,7 +37,7 @@ VARIABLES = {
         "omega_exchange": Var(("exchange",), "omega_b of the stability exchange"),
         "omega_halfwidth": Var(("exchange",), "half-width of the final bracket of omega_exchange"),
         "family_exchange": Var(("exchange",), "family index of the exchange (names in family_names)"),
-        "side": Var(("side",), "grid breather below (0) or above (1) the exchange in omega_b"),
+        "side": Var(("side",), "grid breather below or above the exchange in omega_b"),
         "omega_side": Var(("exchange", "side"), "omega_b of the grid breather on that side of the exchange"),
         "unstable_side": Var(("exchange", "side"), "stability verdict: 1 if the pinning pair is real (unstable), "
                              "0 if on the unit circle", attrs=(("flag_values", (0.0, 1.0)),

@@ -8,9 +8,9 @@ the variational equations, Newton continuation in omega_b from the DpS start); t
 (:data:`VARIABLES`). Its spec is :class:`cradle.analyses.breathers_spec.Breathers` (config ``beyond:
 breathers:``, a reduced form for ``all``); it reads no file.
 
-Families (``family`` index, names in the root attribute ``family_names``): site- and bond-centred on the
-ring of N beads (plot18) and on the free-end chain of fini. Symmetry classes: (nc) is invariant under
-x_n -> -x_{2c-n}; the bond breather has x(t) = -S x(t), the site breather x(t + T/2) = -S x(t).
+Families (the ``family`` coordinate holds their names, as does the root attribute ``family_names``): site- and
+bond-centred on the ring of N beads (plot18) and on the free-end chain of fini. Symmetry classes: (nc) is
+invariant under x_n -> -x_{2c-n}; the bond breather has x(t) = -S x(t), the site breather x(t + T/2) = -S x(t).
 """
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ if TYPE_CHECKING:
 _F = ("family", "omega")
 VARIABLES = {
     "/": {
-        "family": Var(("family",), "breather family index (names in family_names)"),
+        "family": Var(("family",), "breather family: ring site, ring bond (plot18), free bond (fini)"),
         "omega": Var(("omega",), "breather frequency omega_b of the continuation grid"),
         "N": Var(("family",), "number of beads of the family's lattice"),
     },
@@ -242,7 +242,7 @@ def compute(spec: Breathers, inputs: dict | None = None, log: Log | None = None)
     # Peierls-Nabarro barrier on the ring: E_bond - E_site at the site breather's action
     pn = _pn(out, fams, omegas, spec, al, db)
     groups = {
-        "/": ({"N": np.array([n for _, n, _, _ in fams])}, {"family": np.arange(F), "omega": omegas}),
+        "/": ({"N": np.array([n for _, n, _, _ in fams])}, {"family": [n for n, *_ in fams], "omega": omegas}),
         "/families": (out, {}),
         "/profiles": ({"x0": x0s, "x0_dps": x0d}, {"n": np.arange(Nmax)}),
         "/multipliers": ({"mu_re": mus.real, "mu_im": mus.imag}, {"m": np.arange(2 * Nmax)}),
@@ -252,7 +252,7 @@ def compute(spec: Breathers, inputs: dict | None = None, log: Log | None = None)
                         "family_exchange": [e[0] for e in exchanges],
                         **{k: np.array([r[k] for r in checks], dtype).reshape((len(checks), *shape))
                            for k, (shape, dtype) in _CHECK_SHAPES.items()}},
-                       {"exchange": np.arange(len(exchanges)), "side": np.arange(2)}),
+                       {"exchange": np.arange(len(exchanges)), "side": ["below", "above"]}),
     }
     fit = _distance_fit(out, omegas, spec)
     attrs = {"alpha": al, "family_names": ", ".join(n for n, *_ in fams),

@@ -205,8 +205,8 @@ _M = ("model",)
 #: the variables of one desk toy's group (``/n5-lifted1``): SI values, (nc)'s divided by the scales in the
 #: group's attributes X_m, T_s, V_m_per_s, E_J
 DESK_VARIABLES: dict[str, Var] = {
-    "model": Var(_M, "model index: 0 the lattice (nc), then the hard-sphere cradle at each restitution e",
-                 attrs=(("comment", "names in the group attribute model_names"),)),
+    "model": Var(_M, "model: the lattice (nc), then the hard-sphere cradle at each restitution e",
+                 attrs=(("comment", "the names are also in the group attribute model_names"),)),
     "t": Var(("t",), "time since the release", "s"),
     "n": Var(("n",), "ball index, the lifted balls first (bond n joins balls n and n+1)"),
     "bond": Var(("bond",), "bond index n: balls n and n+1"),
@@ -273,7 +273,7 @@ def _group(spec: DeskToyRuns, r: dict, lifted: int) -> tuple[dict, dict, dict]:
         "gap_at_pi": to_si(stack("gap_at_pi"), "displacement", s),
     }
     N = ms[0]["x"].shape[1]
-    coords = {"model": np.arange(len(ms)), "t": to_si(t, "time", s), "n": np.arange(N), "bond": np.arange(N - 1),
+    coords = {"model": model_names(spec), "t": to_si(t, "time", s), "n": np.arange(N), "bond": np.arange(N - 1),
               "swing": np.arange(1, K + 1), "period": np.arange(P), "threshold": np.asarray(spec.thresholds, float)}
     attrs = {"n_beads": N, "lifted": lifted, "model_names": ", ".join(model_names(spec)),
              "X_m": s.X, "T_s": s.T, "V_m_per_s": s.V, "E_J": s.E, "mass_kg": s.m, "omega0_rad_per_s": s.omega0,

@@ -319,7 +319,8 @@ def steel_cradle(spec: Dissipation) -> dict:
 
 # ----------------------------------------------------------------- the pipeline stage
 
-_FAM = Var(("family",), "index of the family of initial data (names in attribute family_names)")
+_FAM = Var(("family",), "family of initial data (breather, wave-<omega_tw>)")
+_TERM = Var(("term",), "damping term of (ncdamped): onsite (gamma) or contact (eta)")
 _CASE = Var(("case",), "index of a damped case: one term of (ncdamped) at one value (term_of_case, damping)")
 _LEVEL = Var(("level",), "fraction f of the initial energy whose first crossing is the lifetime",
              attrs=(("comment", "f = 1/2 and 1/e"),))
@@ -346,7 +347,7 @@ VARIABLES = {
         "omega0_family": Var(("family",), "frequency of the family: omega_sw (breather) or omega_tw (waves)"),
         "exponent_lattice": Var(("family", "term", "level"), "fitted power p of lifetime ~ damping^p, lattice"),
         "exponent_dps": Var(("family", "term", "level"), "fitted power p of lifetime ~ damping^p, DpS"),
-        "term": Var(("term",), "index of the damping term (0 on-site, 1 contact)"),
+        "term": _TERM,
     },
     "/drift": {
         "window": Var(("window",), "index of a time window of length window_length"),
@@ -363,6 +364,7 @@ VARIABLES = {
     },
     "/validity": {
         "i_eps": Var(("i_eps",), "index of eps of the validity runs"),
+        "term": _TERM,
         "T": Var(("T",), "slow time T = tau up to which the error is taken (dfnls)"),
         "validity_eps": Var(("i_eps",), "eps of (ansatz) of the validity run"),
         "abs_error": Var(("term", "i_eps", "T"), "sup_{t <= T eps^(1-alpha)} max_n |x_n - x_n^app|, damped lattice "
@@ -374,7 +376,8 @@ VARIABLES = {
         "validity_energy_drift": Var(("term", "i_eps"), "max |H + D - H(0)| / |H(0)| of the validity lattice run"),
     },
     "/steel": {
-        "cradle": Var(("cradle",), "index of the real cradle (one: the spec's steel cradle)"),
+        "cradle": Var(("cradle",), "the real cradle (one: the spec's steel cradle)"),
+        "family": _FAM, "term": _TERM, "level": _LEVEL,
         "eta_steel": Var(("cradle",), "eta of (ncdamped) of the steel cradle (from the assumed restitution)"),
         "gamma_steel": Var(("cradle",), "gamma of (ncdamped) of the steel cradle (Stokes drag of air)"),
         "A_steel": Var(("cradle",), "Kuwabara-Kono constant A of the steel cradle", units="s"),
@@ -487,18 +490,18 @@ def compute(spec: Dissipation, inputs: dict | None = None, log: Log | None = Non
                         "omega0_family": np.array([i.info.get("omega_sw", i.info.get("omega_tw"))
                                                    for _, i in fams]),
                         "exponent_lattice": expo_lat, "exponent_dps": expo_dps},
-                       {"family": np.arange(n_f), "case": np.arange(n_c), "level": np.asarray(LEVELS),
-                        "term": np.arange(2)}),
+                       {"family": names, "case": np.arange(n_c), "level": np.asarray(LEVELS), "term": list(TERMS)}),
         "/drift": ({"window_start": starts, "omega_lattice": drift[0], "amplitude_lattice": drift[1],
                     "omega_dps": drift[2], "amplitude_dps": drift[3], "omega_adiabatic": w_adiab,
                     "omega_closed": w_closed}, {"window": np.arange(n_w)}),
         "/validity": ({"validity_eps": veps, "abs_error": vabs, "rel_error": vrel, "envelope_error": venv,
                        "law_ratio": vabs / veps[None, :, None] ** ALPHA, "exponent": vexp,
-                       "validity_energy_drift": vdrift}, {"i_eps": np.arange(veps.size), "T": Ts}),
+                       "validity_energy_drift": vdrift}, {"i_eps": np.arange(veps.size), "T": Ts, "term": list(TERMS)}),
         "/steel": ({"eta_steel": [st["eta"]], "gamma_steel": [st["gamma"]], "A_steel": [st["A_seconds"]],
                     "rate_steel": [st["rate_per_second"]], "omega0": [st["omega0"]], "length_scale": [st["X"]],
                     "restitution_C1": [st["C1_measured"]], "lifetime_closed_steel": steel_life,
-                    "lifetime_closed_steel_si": steel_life / st["omega0"]}, {"cradle": np.arange(1)}),
+                    "lifetime_closed_steel_si": steel_life / st["omega0"]},
+                   {"cradle": ["steel"], "family": names, "term": list(TERMS), "level": np.asarray(LEVELS)}),
     }
     attrs = {
         "family_names": ", ".join(names),

@@ -37,6 +37,7 @@ import numpy as np
 
 from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
+from cradle.measurements.dps_range import EPS_MEASURED
 from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR, show
 
@@ -74,7 +75,7 @@ class DpsValidity:
                                  "eps = 1e-5), so the range shrinks as alpha grows.", minItems=1, maxItems=6,
                                  items=_EPS,
                                  reduced=[1e-3])
-    eps_max: float = param(0.1, "Largest eps (half the largest initial displacement).", exclusiveMinimum=0,
+    eps_max: float = param(EPS_MEASURED, "Largest eps (half the largest initial displacement).", exclusiveMinimum=0,
                            maximum=1.0)
     n_eps: int = param(9, "Number of eps, log-spaced from eps_min to eps_max.", minimum=3, maximum=41,
                        reduced=3)
@@ -245,7 +246,7 @@ def local_exponents(eps: ArrayLike, err: ArrayLike) -> NDArray[np.float64]:
 
 # ----------------------------------------------------------------- the pipeline stage
 
-_FAM = Var(("family",), "index of the family of initial data (names in attribute family_names)")
+_FAM = Var(("family",), "family of initial data (tw-pi5, tw-4pi5, breather-bond, mi-4pi5-noise)")
 _ALPHA = Var(("alpha",), "Hertz exponent alpha of V0 (vhertz)")
 _T = Var(("T",), "slow time T = tau = eps^(alpha-1) t up to which the error is taken (dfnls)")
 _IEPS = Var(("i_eps",), "index of the small parameter eps of (ansatz) in its per-alpha range")
@@ -272,6 +273,7 @@ VARIABLES = {
         "t_end": Var(("alpha", "i_eps", "T"), "lattice time T eps^(1-alpha) of the sup"),
     },
     "/fits": {
+        "family": _FAM,
         "i_pair": Var(("i_pair",), "index of a pair of neighbouring eps (local slopes)"),
         "exponent": Var(_FIT, "fitted power p of eps in abs_error ~ C eps^p, all eps of the range"),
         "exponent_stderr": Var(_FIT, "standard error of the fitted power (least squares in log-log)"),
@@ -285,6 +287,7 @@ VARIABLES = {
                                attrs=(("comment", "R = 1; 0 for stable waves and the breather"),)),
     },
     "/checks": {
+        "family": _FAM,
         "dt": Var(_FA + ("i_eps",), "fixed step of the srkn6c splitting of the lattice run"),
         "energy_drift": Var(_FA + ("i_eps",), "max relative energy drift of the lattice run (ham)"),
         "halving_deviation": Var(_FIT, "sup_{t <= T eps^(1-alpha)} max_n |x(dt) - x(dt/2)| of the lattice run at "
@@ -298,6 +301,7 @@ VARIABLES = {
 
 #: the approximation is called lost where the relative error reaches this (|x - x_app| = a / 2)
 LOST_LEVEL = 0.5
+
 
 
 def eps_grid(spec: DpsValidity, ia: int) -> np.ndarray:
@@ -353,7 +357,7 @@ def batch(spec: DpsValidity, ia: int, log: Log | None = None) -> xr.Dataset:
             + " ".join(f"{e:.3g}" for e in E[jf, 0, :, -1] / (2 * eps_all)))
     data = {"eps": eps_all[None, :], "abs_error": E, "dps_growth_rate": growth, "dt": dts, "energy_drift": drifts,
             "halving_deviation": halving, "n_samples": nsamp}
-    coords = {"family": np.arange(len(fams)), "alpha": [al], "i_eps": np.arange(n_eps), "T": Ts}
+    coords = {"family": list(fams), "alpha": [al], "i_eps": np.arange(n_eps), "T": Ts}
     attrs = {"alpha_index": ia, "family_names": ", ".join(fams),
              "noise_seeds": ", ".join(f"{k}={v}" for k, v in seeds.items()),
              "wall_time_s": time.perf_counter() - t_start}
@@ -456,13 +460,13 @@ def tree_of_runs(spec: DpsValidity, runs: dict, t_start: float, wall_before: flo
     groups = {
         "/errors": ({"eps": eps_all, "abs_error": E, "rel_error": rel, "law_ratio": law,
                      "law_departure": departure, "T_lost": T_lost, "t_end": t_end},
-                    {"family": np.arange(len(fams)), "alpha": alphas, "i_eps": np.arange(n_eps), "T": Ts}),
+                    {"family": list(fams), "alpha": alphas, "i_eps": np.arange(n_eps), "T": Ts}),
         "/fits": ({"exponent": p, "exponent_stderr": se, "prefactor": np.exp(c), "exponent_small": ps,
                    "exponent_small_stderr": pse, "local_exponent": loc, "eps_pair": eps_pair,
                    "expected_exponent": np.asarray(alphas), "dps_growth_rate": growth},
-                  {"i_pair": np.arange(n_eps - 1)}),
+                  {"family": list(fams), "i_pair": np.arange(n_eps - 1)}),
         "/checks": ({"dt": dts, "energy_drift": drifts, "halving_deviation": halving,
-                     "halving_ratio": halving / E[:, :, 0, :], "n_samples": nsamp}, {}),
+                     "halving_ratio": halving / E[:, :, 0, :], "n_samples": nsamp}, {"family": list(fams)}),
     }
     attrs = {
         "family_names": ", ".join(fams),

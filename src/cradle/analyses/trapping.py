@@ -69,6 +69,8 @@ if TYPE_CHECKING:
 ALPHA = 1.5
 INCIDENTS = ("striker", "breather")
 ZONES = ("launch", "target", "lead")
+#: the two ends of the target's half-open bead range, along ``end``
+TARGET_ENDS = ("start", "stop")
 SCANS = ("amplitude", "length", "damping")
 #: beads of the ring on which the breather's profile (the bond homoclinic of (dpsstn)) is solved
 PROFILE = 40
@@ -324,7 +326,7 @@ RUN_VARIABLES: dict[str, Var] = {
     "threshold": Var(("threshold",), "threshold theta of the detector (fraction of H(0))"),
     "window": Var(("window",), "window W of the detector, in slow time tau = a^(alpha-1) t"),
     "tau_m": Var(("tau_m",), "measurement time tau_m, in slow time tau = a^(alpha-1) t"),
-    "zone": Var(("zone",), "zone of the chain: 0 launch, 1 target, 2 lead"),
+    "zone": Var(("zone",), "zone of the chain: launch, target, lead"),
     "incident": Var(_RUN, "incident wave: 0 striker, 1 breather"),
     "amplitude": Var(_RUN, "amplitude a: striker velocity, or the breather's largest |x_n(0)|"),
     "length": Var(_RUN, "beads of the target"),
@@ -351,7 +353,7 @@ EXAMPLE_VARIABLES: dict[str, Var] = {
                    "at the scan amplitude: homogeneous, then the largest sigma, first seed)"),
     "tau": Var(("tau",), "slow time tau = a^(alpha-1) t of the sample"),
     "bead": Var(("bead",), "bead index n"),
-    "end": Var(("end",), "0: first bead of the target, 1: one past its last"),
+    "end": Var(("end",), "end of the target's bead range [start, stop): start its first bead, stop one past its last"),
     "example_incident": Var(("example",), "incident wave of the example: 0 striker, 1 breather"),
     "example_sigma": Var(("example",), "sigma of the example"),
     "example_amplitude": Var(("example",), "amplitude a of the example"),
@@ -398,7 +400,7 @@ def run_batch(spec: Trapping, key: str, inputs: dict | None = None, log: Log | N
                  "gamma": cols[:, 4], "eta": cols[:, 5], "scan": np.full(len(rows), SCANS.index(scan))})
     coords = {"run": np.arange(len(rows)), "threshold": np.asarray(spec.thresholds, float),
               "window": np.asarray(spec.windows, float), "tau_m": np.asarray(spec.times, float),
-              "zone": np.arange(len(ZONES))}
+              "zone": list(ZONES)}
     variables = dict(RUN_VARIABLES)
     if examples:
         width = max(x.shape[1] for x in examples)
@@ -410,7 +412,7 @@ def run_batch(spec: Trapping, key: str, inputs: dict | None = None, log: Log | N
                      "example_target": np.tile([b[1], b[2]], (len(examples), 1)),
                      "example_sigma": np.asarray(ex_sigma), "example_amplitude": np.full(len(examples), a_scan)})
         coords.update({"example": np.arange(len(examples)), "tau": np.linspace(0.0, spec.tau_end, EXAMPLE_SAMPLES),
-                       "bead": np.arange(width), "end": np.arange(2)})
+                       "bead": np.arange(width), "end": list(TARGET_ENDS)})
         variables.update(EXAMPLE_VARIABLES)
     return make_dataset(data, coords=coords, params=plain(spec), variables=variables,
                         attrs={"batch": key, "zones": ", ".join(ZONES)})
@@ -507,11 +509,11 @@ def compute(spec: Trapping, inputs: dict, log: Log | None = None) -> xr.DataTree
             "tau_m": np.asarray(spec.times, float)}
     s = summary(runs)
     groups = {"/": ({}, axes),
-              "/runs": (runs, {"run": np.arange(n_runs), "zone": np.arange(len(ZONES))}),
+              "/runs": (runs, {"run": np.arange(n_runs), "zone": list(ZONES)}),
               "/summary": (s, {"case": np.arange(len(s["n_seeds"]))}),
               "/examples": (examples, {"example": np.arange(energy.shape[0]),
                                        "tau": np.linspace(0.0, spec.tau_end, EXAMPLE_SAMPLES),
-                                       "bead": np.arange(width), "end": np.arange(2)})}
+                                       "bead": np.arange(width), "end": list(TARGET_ENDS)})}
     attrs = {"incidents": ", ".join(INCIDENTS), "zones": ", ".join(ZONES), "scans": ", ".join(SCANS),
              "alpha": ALPHA, "n_runs": n_runs, "max_reach": float(np.max(runs["reach"])),
              "max_reach_back": float(np.nanmax(runs["reach_back"])) if np.isfinite(runs["reach_back"]).any()

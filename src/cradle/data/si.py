@@ -20,6 +20,12 @@ QUANTITIES = {"t": "time", "x": "displacement", "x0": "displacement", "v": "velo
               "force": "force", "energy": "energy", "dissipated": "energy"}
 
 
+def si_long_name(long_name: str) -> str:
+    """The long name of a variable of (nc) once in SI: the same quantity, without the word that says it has no
+    units ("dimensionless time t of (nc)" -> "time t of (nc)"); the units attribute says which."""
+    return " ".join(word for word in str(long_name).split() if word.lower() != "dimensionless")
+
+
 def has_scales(ds: xr.Dataset) -> bool:
     """Whether ``ds`` holds the scales of a real cradle (a scene with ``cradle:``)."""
     return all(attr in ds.attrs for attr, _ in SCALES.values())
@@ -38,7 +44,8 @@ def in_si(ds: xr.Dataset) -> xr.Dataset:
         attr, units = SCALES[quantity]
         var = out[name]
         converted = var * float(ds.attrs[attr])
-        converted.attrs = {**var.attrs, "units": units, "long_name": f"{var.attrs.get('long_name', name)} (SI)"}
+        converted.attrs = {**var.attrs, "units": units, "long_name": si_long_name(var.attrs.get("long_name", name)),
+                           "si_conversion": f"the value of (nc) times the global attribute {attr}"}
         if name in out.coords:
             out = out.assign_coords({name: converted})
         else:

@@ -25,6 +25,17 @@ if TYPE_CHECKING:
 log = logging.getLogger("cradle")
 
 
+def _initial(spec: Scene, name: str, homoclinic: xr.Dataset | None) -> xr.Dataset:
+    """The scene's initial data; a warning (one line) when its amplitude is outside DpS's measured range."""
+    from cradle.measurements.dps_range import outside_range
+
+    init = stages.initial_data(spec, name, homoclinic)
+    note = outside_range(name, init["x0"].values, init["v0"].values)
+    if note is not None:
+        log.warning("warning: %s", note)
+    return init
+
+
 def run_scene(spec: Scene, name: str, outs: dict, log_path: str | None = None,
               homoclinic: Callable[[], xr.Dataset] | xr.Dataset | None = None) -> None:
     """Compute scene ``name`` (resolved ``spec``, :func:`cradle.pipeline.config.scene`) into ``outs``
@@ -33,7 +44,7 @@ def run_scene(spec: Scene, name: str, outs: dict, log_path: str | None = None,
     estimate = budget.long_run(spec, name)
     steps = [("homoclinic", lambda done: homoclinic())] if callable(homoclinic) else []
     hom = (lambda done: done.get("homoclinic")) if callable(homoclinic) else (lambda done: homoclinic)
-    steps.append(("initial", lambda done: stages.initial_data(spec, name, hom(done))))
+    steps.append(("initial", lambda done: _initial(spec, name, hom(done))))
     if not budget.streams(spec):
         steps += [
             ("exact", lambda done: stages.exact_run(spec, done["initial"], name,

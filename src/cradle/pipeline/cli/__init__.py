@@ -29,10 +29,14 @@ job is over budget (:mod:`cradle.pipeline.budget`).
 ``cradle run``, ``cradle extend`` and ``cradle animate`` refuse a destination that is another job's output or an
 existing file they did not make (:mod:`cradle.pipeline.destinations`), unless given ``--overwrite``.
 
-``cradle extend`` writes a new file by default (``FILE-tT.nc`` beside the
-input); ``--in-place`` replaces the input, and is refused for a scene's
-exact run next to its DpS run (a workflow output): extending it alone would
-leave the DpS run, the metrics and the config at the old t_end.
+``cradle extend`` writes a new file by default, ``FILE-tT.nc``, beside
+``cradle run``'s outputs: a file of the workflow's ``results/`` is continued
+under ``cradle-runs/`` (``results/sim/S/exact.nc`` ->
+``cradle-runs/sim/S/exact-tT.nc``), any other file beside itself. It writes
+into the workflow's ``results/`` only when told: ``--out`` there, or
+``--in-place``, which replaces the input and is refused for a scene's exact
+run next to its DpS run (a workflow output): extending it alone would leave
+the DpS run, the metrics and the config at the old t_end.
 
 Every error is one line on stderr, ``cradle: error: ...``, exit status 2,
 no traceback. ``cradle verify`` exits 1 when an output must be rebuilt: damaged (``DAMAGED``), or not the
@@ -120,7 +124,9 @@ def parser() -> argparse.ArgumentParser:
     e.add_argument("--t-end", type=float, required=True, dest="t_end", help="new final time (> the last stored t)")
     e.add_argument("--every", type=float, default=None,
                    help="storage step of the new times (default: the file's median spacing)")
-    e.add_argument("--out", default=None, help="write here (default: FILE-tT.nc beside FILE.nc)")
+    e.add_argument("--out", default=None, help=f"write here (default: FILE-tT.nc, under {RUN_OUT}/ for a file of the "
+                                               f"workflow's results/, e.g. {RUN_OUT}/sim/SCENE/exact-tT.nc; beside "
+                                               "FILE.nc for any other file)")
     e.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
     e.add_argument("--in-place", action="store_true", dest="in_place",
                    help="replace FILE.nc (refused for a workflow scene's exact run: change t_end in the config)")

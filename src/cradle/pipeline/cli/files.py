@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from cradle.pipeline import layout
 from cradle.pipeline.cli.common import CliError, expectations, identity_line
 
 if TYPE_CHECKING:
@@ -102,6 +103,21 @@ def _may_extend_into(path: Path, out: Path, overwrite: bool) -> None:
         raise CliError(str(err)) from None
 
 
+def default_extend_out(path: Path, t_end: float) -> Path:
+    """Where ``cradle extend FILE --t-end T`` writes without ``--out``: ``FILE-tT.nc`` beside ``cradle run``'s
+    outputs. A file of the workflow's ``results/`` is continued into the same place under :data:`RUN_OUT`
+    (``results/sim/S/exact.nc`` -> ``cradle-runs/sim/S/exact-tT.nc``): a file written there outside Snakemake would
+    sit among the files Snakemake owns. Any other file is continued beside itself."""
+    from cradle.pipeline.cli.run import RUN_OUT
+
+    name = f"{path.stem}-t{t_end:g}.nc"
+    full = path.resolve()
+    root = next((p for p in full.parents if p.name == layout.ROOT), None)
+    if root is None:
+        return path.with_name(name)
+    return Path(RUN_OUT) / full.parent.relative_to(root) / name
+
+
 def cmd_extend(args: argparse.Namespace) -> int:
     import math
     import sys
@@ -122,7 +138,7 @@ def cmd_extend(args: argparse.Namespace) -> int:
     budget = Budget.from_config(load_config(args.config)) if Path(args.config).exists() else Budget()
     if args.in_place and args.out:
         raise CliError("give --out FILE or --in-place, not both")
-    out = path if args.in_place else Path(args.out) if args.out else path.with_name(f"{path.stem}-t{args.t_end:g}.nc")
+    out = path if args.in_place else Path(args.out) if args.out else default_extend_out(path, args.t_end)
     if out.resolve() == path.resolve():
         scene = _workflow_scene_of(path)
         if scene is not None:
