@@ -67,8 +67,8 @@ def _texts(fig):
                     for lab in (tick.label1, tick.label2):
                         out.append((f"{name} {which} tick", lab, ax))
         out.extend((f"{name} text", t, ax) for t in ax.texts)
-        if ax.get_legend() is not None:
-            out.append((f"{name} legend", ax.get_legend(), ax))
+        # every legend of the panel: the last one made, and those kept with add_artist
+        out.extend((f"{name} legend", leg, ax) for leg in ax.get_children() if type(leg).__name__ == "Legend")
     out.extend(("figure legend", leg, None) for leg in fig.legends)
     seen: set[int] = set()  # the suptitle is also one of fig.texts
     return [(w, a, ax) for w, a, ax in out if a is not None and a.get_visible() and id(a) not in seen
@@ -259,16 +259,17 @@ def undrawn_legend_entries(fig, renderer) -> list[str]:
             for owner in (ax, None):
                 labelled.setdefault((owner, artist.get_label()), []).append(artist)
             if hasattr(artist, "get_xydata") and _drawn_in_view(artist, renderer):
-                drawn_styles.add(_style(artist)[0] or _style(artist)[1])
+                drawn_styles.update(_style(artist))
             elif type(artist).__name__ == "PathCollection" and _drawn_in_view(artist, renderer):
                 drawn_styles.add("o")
     found = []
-    legends = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None] + list(fig.legends)
+    legends = [leg for ax in fig.axes for leg in ax.get_children() if type(leg).__name__ == "Legend"]
+    legends += list(fig.legends)
     for leg in legends:
         for handle, text in zip(leg.legend_handles, leg.get_texts(), strict=False):
             label = text.get_text()
             # a panel's legend speaks for that panel; a figure legend (or a key panel's) for the whole figure
-            owner = leg.axes if leg in [ax.get_legend() for ax in fig.axes] else None
+            owner = leg.axes if leg not in fig.legends else None
             owners = [a for a in labelled.get((owner, label), []) if not _empty(a)]
             if owner is not None and not owners:
                 owners = [a for a in labelled.get((None, label), []) if not _empty(a)]
@@ -278,9 +279,9 @@ def undrawn_legend_entries(fig, renderer) -> list[str]:
                 continue
             if handle is None:
                 continue
-            marker, line = _style(handle)
-            if (marker or line) and (marker or line) not in drawn_styles and type(handle).__name__ == "Line2D":
-                found.append(f"legend key drawn nowhere ({marker or line}): {label!r}")
+            missing = [style for style in _style(handle) if style and style not in drawn_styles]
+            if missing and type(handle).__name__ == "Line2D":
+                found.append(f"legend key drawn nowhere ({', '.join(missing)}): {label!r}")
     return found
 
 
