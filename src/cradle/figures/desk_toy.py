@@ -86,10 +86,10 @@ def draw(tree: xr.DataTree) -> Figure:
         share_ax.set_ylim(-0.02, 1.05)
         # a key per meaning: the lifted counts (colours and markers) with the thresholds beside the share panel,
         # the balls' colours (displacement panels) under the row, the models (line styles) under the figure
-        lifted = [Line2D([], [], color=f"C{c}", marker=_LIFTED_MARKERS[c % 10], ls="none",
+        keys = [Line2D([], [], color=f"C{c}", marker=_LIFTED_MARKERS[c % 10], ls="none",
                          label=f"{int(g.attrs['lifted'])} lifted") for c, (_, g) in enumerate(groups)]
-        lifted.append(Line2D([], [], color="0.6", lw=0.6, label="thresholds " + ", ".join(f"{v:g}" for v in ths)))
-        share_ax.legend(handles=lifted, fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0,
+        keys.append(Line2D([], [], color="0.6", lw=0.6, label="thresholds " + ", ".join(f"{v:g}" for v in ths)))
+        share_ax.legend(handles=keys, fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0,
                         title="$f_k$ of (colour, marker)", title_fontsize=6)
         balls = [Line2D([], [], color=colours[n], lw=2, label=f"ball {n}") for n in range(N)]
         ax[row, 0].legend(handles=balls, fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.22), borderaxespad=0,

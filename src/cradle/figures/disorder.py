@@ -114,9 +114,8 @@ def draw(tree: xr.DataTree) -> Figure:
                 continue
             off = 1.0 + 0.04 * (2 * f + m - 3.5)            # side by side: the error bars do not hide each other
             # on the log axis a bar reaching 0 or below ends at the axis instead of leaving the panel
-            low = np.minimum(std, mean - floor * 1.02) if bars else None
-            high = np.minimum(std, ceiling / 1.02 - mean) if bars else None
-            E.errorbar(shifts * off, mean, yerr=None if not bars else np.stack([low, high]), fmt=_MARKERS[f],
+            yerr = np.stack([np.minimum(std, mean - floor * 1.02), np.minimum(std, ceiling / 1.02 - mean)])
+            E.errorbar(shifts * off, mean, yerr=yerr if bars else None, fmt=_MARKERS[f],
                        color=f"C{f + 4}", mfc=fill, ms=5, capsize=2, lw=0.8, label=name)
     lo, hi = min(sigma[sigma > 0].min(), shifts.min()) / 2, max(sigma.max(), shifts.max()) * 2
     E.plot([lo, hi], [lo, hi], "-", color="0.5", lw=0.8, label=r"$\sigma = \Delta$")

@@ -1,7 +1,7 @@
 """Figures traj3 and traj2: orbits of the map G (comp1)-(comp2), alpha = 3/2 (section 2.2)."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -74,14 +74,14 @@ def draw_traj2(data: dict, options: dict) -> Figure:
             _marks(ax, ds)
         ax.set_title(f"$\\|U_n\\|_\\infty \\leq {float(ds.attrs['box']):g}$ ({name})", fontsize=9)
     # one key for the marks of every panel, below the panels: inside a panel it would cover orbits
-    keys = {}
+    keys: dict[str, Any] = {}
     for ax in axes.flat:
         for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
             keys.setdefault(label, handle)
     if keys:
         order = [label for _, label in MARKERS.values() if label in keys]
-        fig.legend([keys[k] for k in order], [f"{k} orbit (explicit)" for k in order], loc="outside lower center",
-                   ncols=len(order), fontsize=8, frameon=False)
+        fig.legend(handles=[keys[k] for k in order], labels=[f"{k} orbit (explicit)" for k in order],
+                   loc="outside lower center", ncols=len(order), fontsize=8, frameon=False)
     first = data[options["scenes"][0]]
     fig.suptitle(f"orbits of the map G (comp1)-(comp2), $\\alpha$ = {float(first.attrs['alpha']):g}", fontsize=10)
     return fig
