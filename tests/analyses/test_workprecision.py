@@ -130,7 +130,7 @@ def test_spec_its_forms_and_the_config_checks():
     assert full.scenes["fft106"].t_end == 100.0 and wp.ANALYSIS.batches.keys(full) == ["fft106", "tw-strong", "tw-weak"]
     assert {"srkn6", "srkn4", "strang", "dop853", "lsoda", "dop853_numba", "srkn6c"} <= set(full.methods)
     assert all(len(wp.ladder(full, m)[1]) >= 5 for m in full.methods)
-    # the reduced form: its scenes to its t_end, its methods on the first settings of their ladders
+    # the reduced form (declared): tw-weak to t = 100, four methods on the first settings of their ladders
     red = cc.analysis_spec(raw, "work-precision", "reduced")
     assert red.reduced is None and {n: s.t_end for n, s in red.scenes.items()} == {"tw-weak": 100.0}
     assert list(red.methods) == [m for m in full.methods if m in ("srkn6c", "srkn4c", "srkn6", "dop853_numba")]
@@ -151,9 +151,10 @@ def test_spec_its_forms_and_the_config_checks():
     with pytest.raises(cc.ConfigError, match="euler"):
         cc.validate(bad)
     bad = copy.deepcopy(raw)
-    bad["beyond"].setdefault("work-precision", {})["scenes"] = {}
-    with pytest.raises(cc.ConfigError, match="no scene to measure"):
-        wp.ANALYSIS.batches.keys(cc.analysis_spec(bad, "work-precision", "reduced"))
+    bad["beyond"]["work-precision"] = {"scenes": {}, "reduced": {"scenes": {}}}
+    for form in ("full", "reduced"):
+        with pytest.raises(cc.ConfigError, match="no scene to measure"):
+            wp.ANALYSIS.batches.keys(cc.analysis_spec(bad, "work-precision", form))
 
 
 def test_a_tiny_scene_through_the_protocol(tmp_path):

@@ -3,6 +3,7 @@ caught with a one-line message naming the key path and the value."""
 import copy
 import json
 import math
+import time
 from pathlib import Path
 
 import pytest
@@ -10,7 +11,7 @@ import yaml
 
 from cradle.pipeline import config as cc
 from cradle.pipeline.config.reference import generated_schema
-from cradle.pipeline.config.validate import _TYPED
+from cradle.pipeline.config.validate import _MADE, _TYPED
 from cradle.scenes.spec import ExactIntegrator, Noise
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -373,3 +374,18 @@ def test_validate_is_idempotent_and_remembered():
     cfg = cc.load(CONFIG)
     typed = cc.typed(cfg)
     assert cc.typed(cfg) is typed and cc.scene(cfg, "tw-weak") is typed.scenes["tw-weak"]
+
+
+def test_validating_config_yaml_takes_under_0_2_s_of_cpu(raw):
+    """The whole pass on config.yaml, nothing remembered (the modules imported by a first validation), in the CPU
+    time of this process: the best of three, the machine being shared."""
+    cc.validate(copy.deepcopy(raw))
+    best = math.inf
+    for _ in range(3):
+        _TYPED.clear()
+        _MADE.clear()
+        cfg = copy.deepcopy(raw)
+        t0 = time.process_time()
+        cc.validate(cfg)
+        best = min(best, time.process_time() - t0)
+    assert best < 0.2, f"validating config.yaml took {best:.3f} s of CPU"

@@ -18,6 +18,7 @@ every list item instead (minutes, not part of the 60 s).
 """
 from __future__ import annotations
 
+import copy
 import faulthandler
 import os
 import signal
@@ -30,7 +31,7 @@ import yaml
 from cradle.analyses.registry import ANALYSES
 from cradle.pipeline import config as cc
 from cradle.pipeline.config.reference import generated_schema
-from cradle.specs.values import copied, key_path
+from cradle.specs.values import key_path
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -130,14 +131,14 @@ def _get(node, path):
 def substituted(raw: dict, filled: dict, path: tuple, value) -> dict:
     """``raw`` with ``value`` at ``path``; a parent config.yaml leaves out is taken from the filled config
     (its defaults), so that only the one leaf is bad."""
-    cfg = copied(raw)
+    cfg = copy.deepcopy(raw)
     node, full = cfg, filled
     for part in path[:-1]:
         full = full.get(part, {}) if isinstance(full, dict) else full[part]
         if isinstance(node, dict) and part not in node:
-            node[part] = copied(full)
+            node[part] = copy.deepcopy(full)
         node = node[part]
-    node[path[-1]] = copied(value)
+    node[path[-1]] = copy.deepcopy(value)
     return cfg
 
 

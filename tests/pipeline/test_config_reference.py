@@ -19,7 +19,8 @@ def test_reference_names_every_key_of_config_yaml():
     def keys(node, path):
         if isinstance(node, dict):
             for k, v in node.items():
-                named = path in ("map", "homoclinic", "scenes", "figures") or path.endswith("work-precision.scenes")
+                named = path in ("map", "homoclinic", "scenes", "figures") or \
+                    path.endswith(("work-precision.scenes", "work-precision.reduced.scenes"))
                 where = f"{path}.<name>" if named else (f"{path}.{k}" if path else k)
                 yield where
                 yield from keys(v, where)

@@ -21,7 +21,7 @@ from cradle.analyses import (
 )
 from cradle.analyses.registry import FULL, REDUCED
 from cradle.pipeline import config as cc
-from cradle.pipeline.config import beyond, movies, sections
+from cradle.pipeline.config import movies, sections
 from cradle.pipeline.config.reference import generated_schema, schema_path, write_schema
 from cradle.scenes import spec as scenes
 from cradle.specs.declare import from_plain, plain, plain as spec_plain
@@ -70,7 +70,7 @@ def test_write_schema_writes_the_generated_text(tmp_path):
 
 
 def test_declarations_are_frozen_and_every_field_described():
-    modules = (scenes, sections, beyond, floquet_spec, breathers_spec, mi_statistics, breather_interactions, movies,
+    modules = (scenes, sections, floquet_spec, breathers_spec, mi_statistics, breather_interactions, movies,
                dps_validity, work_precision, paper_checks)
     classes = [c for m in modules for c in vars(m).values()
                if isinstance(c, type) and hasattr(c, "__schema_doc__")]
@@ -128,7 +128,7 @@ def test_a_reduced_form_is_the_full_one_with_its_overrides(raw):
     from cradle.specs.declare import reduced_defaults
 
     for a in ANALYSES.values():
-        if REDUCED not in a.forms or a.name == "work-precision":   # work-precision keeps a subset
+        if REDUCED not in a.forms:
             continue
         full, reduced = (plain(cc.analysis_spec(raw, a.name, form)) for form in (FULL, REDUCED))
         overrides = {**reduced_defaults(a.spec), **raw["beyond"].get(a.name, {}).get("reduced", {})}

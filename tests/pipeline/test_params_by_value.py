@@ -37,7 +37,7 @@ def test_the_paper_s_angles_keep_their_text(text):
 
 
 def test_an_angle_form_is_used_only_when_it_is_the_same_angle_bit_for_bit():
-    for text in ("0.55pi", "0.4pi", "0.7pi", "-0.2pi", ".5pi", "0.3", "3"):
+    for text in ("0.55pi", "0.4pi", "0.7pi", "-0.2pi", ".5pi", "0.3", "3", "-0.3", " - 2.5e-1"):
         assert parse_angle(canonical_angle(text)) == parse_angle(text), text
     assert canonical_angle("0.3") == 0.3 and canonical_angle(0.5) == 0.5
     assert canonical_angle("not an angle") == "not an angle"   # left to the schema to refuse

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cradle.specs import declare
+from cradle.specs import schema
 from cradle.specs.checked import checked, checker
 from cradle.specs.declare import SHARED, declared, param
 from cradle.specs.schema import generate
@@ -276,7 +276,7 @@ def test_specs_imports_nothing_of_cradle_and_no_numpy():
 
 def test_a_schema_lists_only_the_shared_types_its_keys_use(monkeypatch):
     """Types only functions' arguments use (dt, latticeMethod, ...) stay out of config.schema.json."""
-    monkeypatch.setattr(declare, "UNIONS", {})   # the registered unions refer to more shared types
+    monkeypatch.setattr(schema, "UNIONS", {})   # the registered unions refer to more shared types
 
     @declared(doc="A test spec.")
     class One:

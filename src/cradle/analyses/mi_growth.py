@@ -49,8 +49,9 @@ from cradle.data.variables import MODEL, MODELS, Var
 from cradle.measurements import compare
 from cradle.models import dps
 from cradle.scenes.spec import Travelling
+from cradle.scenes.times import store_times
 from cradle.specs.declare import declared, param, plain
-from cradle.specs.values import ConfigError, store_times
+from cradle.specs.values import ConfigError
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where

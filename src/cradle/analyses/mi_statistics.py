@@ -49,8 +49,9 @@ from cradle.data.variables import MODEL, MODELS, Var
 from cradle.measurements import compare, sidebands
 from cradle.models import initial
 from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
+from cradle.scenes.times import store_times
 from cradle.specs.declare import NULL, declared, param, plain
-from cradle.specs.values import INTEGER_TOL, store_times
+from cradle.specs.values import INTEGER_TOL
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where

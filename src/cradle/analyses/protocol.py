@@ -6,10 +6,10 @@ An analysis is one module of :mod:`cradle.analyses` that defines ``ANALYSIS = An
   ``cradle/analyses/mi_growth.py``, Snakemake target ``mi_growth``, results folder ``results/mi-growth/``,
   figure ``results/figures/mi-growth.{pdf,png}`` drawn by ``draw`` of ``cradle/figures/mi_growth.py``;
 * ``spec``: its declared spec class (:func:`cradle.specs.declare.declared`), the full form; a field
-  ``reduced`` (a declared class of optional overrides, or of what a method ``reduced_form()`` keeps)
-  makes the cheaper form ``all`` builds (:func:`form_spec`); what the schema cannot express is its method
+  declared with ``param(..., reduced=...)`` makes the cheaper form ``all`` builds (:func:`form_spec`), whose
+  overrides the config may also give under ``reduced:``; what the schema cannot express is its method
   ``check(where, context, out)`` (:class:`cradle.scenes.spec.Checked`), run on the typed section when
-  the config is validated (a reduced form reports its own keys, :func:`reduced_keys`);
+  the config is validated (a reduced form reports its own keys, :func:`own_keys`);
 * ``reads(spec)``: the files it reads, by name (:class:`Read`: a layout kind and its names), opened and
   verified by the pipeline and handed to ``compute`` under those names;
 * ``batches``: optionally, the jobs its work is split into (:class:`Batches`), each written apart and
@@ -110,12 +110,9 @@ class Analysis:
 
 def form_spec(spec, form: str):
     """The spec of one form: the full one, or the reduced one (the declared reduced values, then the keys
-    given under ``reduced:``, in place of the full ones); neither has overrides left. A spec whose reduced form
-    keeps a part of the full one (work-precision: some scenes and methods) builds it by ``reduced_form()``."""
+    given under ``reduced:``, in place of the full ones); neither has overrides left."""
     if getattr(spec, "reduced", None) is None:   # no reduced form, or a form already
         return spec
-    if form == REDUCED and hasattr(spec, "reduced_form"):
-        return spec.reduced_form()
     overrides = {**reduced_defaults(type(spec)), **spec.reduced} if form == REDUCED else {}
     return dataclasses.replace(spec, **overrides, reduced=None)
 

@@ -42,13 +42,12 @@ a shared machine: the full form is the measurement).
 """
 from __future__ import annotations
 
-import dataclasses
 import datetime as _dt
 import json
 import platform
 import subprocess
 import time
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -56,7 +55,7 @@ from cradle.analyses.protocol import Analysis, Batches, Read
 from cradle.data.variables import Var
 from cradle.models import lattice
 from cradle.scenes.spec import LATTICE_ADAPTIVE, SPLITTINGS
-from cradle.specs.declare import REQUIRED, declared, param, plain, schema_doc
+from cradle.specs.declare import REQUIRED, declared, param, plain
 from cradle.specs.values import MAX_T_END, ConfigError, did_you_mean
 
 if TYPE_CHECKING:
@@ -128,18 +127,11 @@ class WorkPrecisionReference:
                              "reference to hold; in (0, 1e-2].", exclusiveMinimum=0, maximum=0.01)
 
 
-@declared(doc="The reduced form `snakemake all` builds (results/work-precision/work-precision.nc, "
-              "results/figures/work-precision.*); the full one is `snakemake work_precision_full` "
-              "(results/work-precision/full/).")
-class WorkPrecisionReduced:
-    scenes: list[str] = param(["tw-weak"], "The measured scenes kept (names under work-precision.scenes).",
-                              minItems=1, items={"$ref": "#/$defs/name"})
-    t_end: float = param(100.0, "Runs end at the smaller of this and the scene's t_end; in (0, 1e6].",
-                         exclusiveMinimum=0, maximum=MAX_T_END)
-    methods: list[str] = param(["srkn6c", "srkn4c", "srkn6", "dop853_numba"], "The methods kept (those of them "
-                               "that work-precision.methods measures).", minItems=1,
-                               items={"type": "string", "enum": [*SPLITTINGS, *LATTICE_ADAPTIVE]})
-    settings: int = param(4, "The first (coarsest) settings of each ladder kept.", minimum=1, maximum=20)
+#: the reduced form's ladders: four methods, the four coarsest settings of config.yaml's ladders
+REDUCED_METHODS = {"srkn6c": {"dt_factor": [0.128, 0.064, 0.032, 0.016]},
+                   "srkn4c": {"dt_factor": [0.1, 0.04, 0.016, 0.0064]},
+                   "srkn6": {"dt_factor": [0.04, 0.016, 0.0064, 0.00256]},
+                   "dop853_numba": {"rtol": [1.0e-5, 1.0e-7, 1.0e-9, 1.0e-11]}}
 
 
 @declared(doc="Work-precision of the lattice integrators (`snakemake -j2 work_precision`): for each scene, a reference "
@@ -158,43 +150,21 @@ class WorkPrecision:
                                               "dt_factor and 2 dt_factor; it holds up to the last comparison time "
                                               "before their difference (relative to a) exceeds tolerance.")
     methods: dict[str, WorkPrecisionLadder] = param({}, "The methods measured and the ladder of settings of each: "
-                                                    "dt_factor for the splittings, rtol for the adaptive methods.",
+                                                    "dt_factor for the splittings, rtol for the adaptive methods; the "
+                                                    "reduced form runs srkn6c, srkn4c, srkn6 and dop853_numba on "
+                                                    "four settings each.",
                                                     additionalProperties=False,
                                                     properties={m: _ladder(m) for m in (*SPLITTINGS,
-                                                                                        *LATTICE_ADAPTIVE)})
-    reduced: WorkPrecisionReduced = param(WorkPrecisionReduced(), schema_doc(WorkPrecisionReduced))
+                                                                                        *LATTICE_ADAPTIVE)},
+                                                    reduced=REDUCED_METHODS)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """The scenes name `scenes:` entries (their initial data are measured); the reduced form keeps
-        some of those scenes and methods."""
+        """The scenes name `scenes:` entries (their initial data are measured)."""
         scenes = context.given["scenes"]
         for name in self.scenes:
             if name not in scenes:
                 out.add(where + ["scenes", name], f"unknown scene: no `scenes:` entry of that "
                                                   f"name{did_you_mean(name, scenes)}")
-        if not self.scenes:  # nothing measured: the reduced form's defaults name nothing to check
-            return
-        red = self.reduced
-        for i, name in enumerate(red.scenes):
-            if name not in self.scenes:
-                out.add(where + ["reduced", "scenes", i], f"not a work-precision scene"
-                                                          f"{did_you_mean(name, list(self.scenes))}", name)
-        if self.methods and not [m for m in red.methods if m in self.methods]:
-            out.add(where + ["reduced", "methods"], "names no method of work-precision.methods", red.methods)
-
-    def reduced_form(self) -> WorkPrecision:
-        """The reduced form: the scenes of ``reduced.scenes`` measured (those this spec measures), run to
-        the smaller of their t_end and ``reduced.t_end``, the methods of ``reduced.methods`` on the first
-        ``reduced.settings`` settings of their ladders (:func:`cradle.analyses.protocol.form_spec`)."""
-        red = self.reduced
-        if red is None:  # already one form
-            return self
-        scenes = {n: WorkPrecisionScene(t_end=min(self.scenes[n].t_end, red.t_end))
-                  for n in red.scenes if n in self.scenes}
-        methods = {m: WorkPrecisionLadder(**{k: v[:red.settings] for k, v in _ladder_of(lad)})
-                   for m, lad in self.methods.items() if m in red.methods}
-        # a form has no reduced part: None, as protocol.form_spec leaves it (the declared type is the config's)
-        return dataclasses.replace(self, scenes=scenes, methods=methods, reduced=cast(WorkPrecisionReduced, None))
 
 
 def _ladder_of(lad: WorkPrecisionLadder) -> list[tuple[str, list[float]]]:

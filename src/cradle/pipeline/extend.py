@@ -141,7 +141,8 @@ def estimate(path, t_end: float, every: float | None = None, budget=None):
     the declared one)."""
     from cradle.integrators import SPLITTING_METHODS
     from cradle.pipeline import budget as costs
-    from cradle.specs.values import MAX_STORED_TIMES, MAX_T_END, grid_size
+    from cradle.scenes.times import grid_size
+    from cradle.specs.values import MAX_STORED_TIMES, MAX_T_END
 
     path = Path(path)
     t_end = float(t_end)
@@ -195,7 +196,7 @@ def extend(path, t_end: float, out=None, every: float | None = None, chunk_bytes
     (:func:`estimate`, checked before any work).
     """
     from cradle.integrators import SPLITTING_METHODS
-    from cradle.specs.values import store_times
+    from cradle.scenes.times import store_times
 
     path = Path(path)
     out = path if out is None else Path(out)

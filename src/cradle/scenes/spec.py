@@ -20,12 +20,13 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Protocol, cast
+from typing import Any, Protocol, cast
 
 from cradle.models.damping import Damping
 from cradle.models.lattice_terms import Terms
 from cradle.models.physical import HERTZ_ALPHA, Cradle, scales
-from cradle.specs.declare import NULL, REQUIRED, declared, param, register_union
+from cradle.specs.declare import NULL, REQUIRED, declared, param
+from cradle.specs.schema import register_union
 from cradle.specs.values import (
     INTEGER_TOL,
     MAX_STORED_TIMES,
@@ -34,11 +35,11 @@ from cradle.specs.values import (
     ConfigError,
     Errors,
     angle_expr,
-    grid_size,
     parse_angle,
     show,
-    store_times,
 )
+
+from .times import grid_size, store_times
 
 # ---- what the check of one entry sees of the others
 #: a key path: ``["scenes", "tw-weak", "store", "snapshots", 1]``
@@ -525,7 +526,7 @@ def in_nc_units(scene: Scene) -> Scene:
     return out
 
 
-def _scaled(obj, keys: tuple[str, ...], factor: float):
+def _scaled(obj: Any, keys: tuple[str, ...], factor: float) -> Any:
     """``obj`` with the value at ``keys`` (a number or a list) times ``factor``, where it has one."""
     value = getattr(obj, keys[0], None) if dataclasses.is_dataclass(obj) else None
     if value is None or keys[0] not in {f.name for f in dataclasses.fields(obj)}:

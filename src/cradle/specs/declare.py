@@ -10,34 +10,33 @@ name), a declared class (a nested object) or a union of declared classes (picked
 from __future__ import annotations
 
 import dataclasses
-import functools
 import json
 import types
 import typing
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
-from .parse import BAD, Found, parse, reduced_defaults
-from .shared import BOUND_HINTS, SHARED
+from .parse import BAD, Field, _deref, fields_of, parse, reduced_defaults
+from .shared import SHARED
 from .values import NAME_PATTERN, ConfigError, Errors, canonical_angle
 
-__all__ = ["BOUND_HINTS", "NAME_PATTERN", "NULL", "REQUIRED", "SHARED", "UNIONS", "declared", "from_plain",
-           "param", "plain", "reduced_defaults", "register_union", "schema_doc"]
+__all__ = ["NAME_PATTERN", "NULL", "REQUIRED", "SHARED", "declared", "from_plain", "param", "plain",
+           "reduced_defaults", "schema_doc"]
+
+T = TypeVar("T")
+
+#: the items of a list of angles, shared types merged in (as :func:`.parse.fields_of` gives them)
+ANGLE = _deref({"$ref": "#/$defs/angle"})
 
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
 
 
-class _Null:
-    """The default of a key whose default is null (filled in as None), unlike an optional key."""
-
-    def __repr__(self):
-        return "NULL"
+#: the default of a key whose default is null (filled in as None), unlike an optional key
+NULL: Any = type("Null", (), {"__repr__": lambda self: "NULL"})()
 
 
-NULL = _Null()
-
-
-def param(default=REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict | None = None, key: str | None = None,
-          reduced=REQUIRED, **keywords):
+def param(default: Any = REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict | None = None,
+          key: str | None = None, reduced: Any = REQUIRED, **keywords: Any) -> Any:
     """A config key: ``default``, its description ``doc``, ``ref`` (a shared type of :data:`SHARED`,
     e.g. "alpha") and JSON-Schema ``keywords`` (minimum, exclusiveMinimum, maximum, enum, items, ...).
 
@@ -64,7 +63,8 @@ def param(default=REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict
 # for a type checker, a declared class is a frozen keyword-only dataclass. `param` is not named a field
 # specifier: it takes its default by position, which the checker would read as no default
 @typing.dataclass_transform(kw_only_default=True, frozen_default=True)
-def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of=None, extra=None):
+def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of: list | None = None,
+             extra: dict | None = None) -> Callable[[T], T]:
     """Class decorator: a frozen dataclass declaring one object of the config.
 
     ``name``: its key under ``$defs`` (None: written inline where it is used); ``doc``: its
@@ -72,7 +72,7 @@ def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of
     defaults in ``$defs``); ``any_of``: alternatives of required keys (e.g. snapshots or every);
     ``extra``: further schema keywords.
     """
-    def wrap(cls):
+    def wrap(cls: Any) -> Any:
         documented = cls.__dict__.get("__doc__") is not None
         if any(isinstance(f, dataclasses.Field) and "reduced" in f.metadata for f in vars(cls).values()):
             # the overrides of the reduced form, each key checked as its field (cradle.specs.parse)
@@ -102,52 +102,7 @@ def schema_doc(cls: Any) -> str:
     return cls.__schema_doc__
 
 
-
-
-@functools.cache
-def _hints(cls) -> dict[str, Any]:
-    """The resolved annotations of a declared class (resolving them is most of the cost of :func:`build`)."""
-    return typing.get_type_hints(cls)
-
-
-def _key(f: dataclasses.Field) -> str:
-    """The config key of a field (its name unless declared with ``key=``)."""
-    return f.metadata.get("key") or f.name
-
-
-#: discriminated unions on ``kind`` that fields refer to with ``ref=`` (the kinds of initial condition):
-#: name -> (description, description of ``kind``, kind -> declared class); :func:`register_union` adds one
-UNIONS: dict[str, tuple[str, str, dict]] = {}
-
-
-def register_union(name: str, doc: str, kind_doc: str, kinds: dict) -> None:
-    """Declare the union ``name`` (a ``$defs`` entry of every generated schema) of the declared ``kinds``."""
-    UNIONS[name] = (doc, kind_doc, dict(kinds))
-
-
-def _default_of(f: dataclasses.Field):
-    """The declared default of a field (a fresh copy of a list or a mapping), or REQUIRED."""
-    if f.default is not dataclasses.MISSING:
-        return f.default
-    if f.default_factory is not dataclasses.MISSING:
-        return f.default_factory()
-    return REQUIRED
-
-
-@functools.cache
-def _nullable(cls) -> frozenset[str]:
-    """The fields of a declared class where null is a value of its own: declared with a NULL default, or
-    typed ``X | None`` with a default other than None (``direct_omega: null`` = the most unstable one)."""
-    hints = _hints(cls)
-    out = set()
-    for f in dataclasses.fields(cls):
-        optional = type(None) in typing.get_args(hints[f.name])
-        if f.metadata.get("null_default") or (optional and _default_of(f) not in (None, REQUIRED)):
-            out.add(f.name)
-    return frozenset(out)
-
-
-def plain(value, canonical: bool = True):
+def plain(value: Any, canonical: bool = True) -> Any:
     """A spec (or any value holding specs) as plain JSON values: declared instances as mappings of their
     config keys, sorted, tuples as lists. What a rule's ``params:`` carry and a file stores; equal
     specs give equal plain values whatever the order they were written in, and however a value was
@@ -157,11 +112,9 @@ def plain(value, canonical: bool = True):
     entries (a validated config with its defaults filled in)."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         # an optional key left out (None, where null is not a value of its own) stays out
-        cls = type(value)
-        nullable, hints = _nullable(cls), _hints(cls)
-        items = [(_key(f), _by_value(f, hints[f.name], plain(getattr(value, f.name), canonical)) if canonical
-                  else plain(getattr(value, f.name), canonical)) for f in dataclasses.fields(value)
-                 if getattr(value, f.name) is not None or f.name in nullable]
+        items = [(f.key, _by_value(f, plain(getattr(value, f.name), canonical)) if canonical
+                  else plain(getattr(value, f.name), canonical)) for f in fields_of(type(value))
+                 if getattr(value, f.name) is not None or f.nullable]
         return dict(sorted(items) if canonical else items)
     if isinstance(value, (list, tuple)):
         return [plain(v, canonical) for v in value]
@@ -171,17 +124,16 @@ def plain(value, canonical: bool = True):
     return value
 
 
-def _by_value(f: dataclasses.Field, tp, value):
+def _by_value(f: Field, value: Any) -> Any:
     """A field's plain value in its one form by value: angles canonical, numbers typed as declared."""
-    items = f.metadata["keywords"].get("items")
-    if f.metadata["ref"] in ("angle", "angleString"):
+    if f.ref in ("angle", "angleString"):
         return canonical_angle(value)
-    if items == {"$ref": "#/$defs/angle"} and isinstance(value, list):
+    if f.node.get("items") == ANGLE and isinstance(value, list):
         return [canonical_angle(v) for v in value]
-    return _typed(tp, value)
+    return _typed(f.tp, value)
 
 
-def _typed(tp, value):
+def _typed(tp: Any, value: Any) -> Any:
     """``value`` with every number of the annotation ``tp`` as its declared type (an int where a number is
     declared is a float; an integral float where an integer is declared is an int)."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
@@ -200,15 +152,13 @@ def _typed(tp, value):
     return value
 
 
-
-
-def from_plain(cls, mapping, where: str | None = None):
+def from_plain(cls: type[T], mapping: Any, where: str | None = None) -> T:
     """A validated instance of the declared class ``cls`` from plain values (:func:`plain`'s output, a rule's
     ``params:``, a file's stored parameters, keyword arguments): every key checked against its declaration
     (:mod:`.parse`), then built. Raises :class:`cradle.specs.values.ConfigError`, one line per problem naming
     ``where`` (default: the class name), the key and the value."""
-    found = Found()
+    found = Errors()
     made = parse(cls, mapping, (where or cls.__name__,), found)
     if found or made is BAD:
-        raise ConfigError(found.report(Errors()).lines)
+        raise ConfigError(found.said().lines)
     return made

@@ -15,6 +15,7 @@ import math
 import re
 import types
 import typing
+from collections.abc import Callable
 from typing import Any, NamedTuple
 
 from .shared import SHARED
@@ -38,58 +39,7 @@ _INT_RE = re.compile(r"^[-+]?\d+$")
 _FLOAT_RE = re.compile(r"^[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?$|^[-+]?(inf|nan)$", re.IGNORECASE)
 
 
-class Problem(NamedTuple):
-    """One problem: ``at`` the key path it is sorted by (the object for a key missing or unknown), ``path`` the
-    key path it names, ``what`` the reason, ``value`` the value (``...``: none shown)."""
-    at: tuple
-    path: tuple
-    what: str
-    value: Any = ...
-    force: bool = False
-
-
-class Found:
-    """The problems of one pass: ``finite`` (a number that is not finite, said first, in the order of the file),
-    ``lines`` (the others, sorted by key path when reported)."""
-
-    def __init__(self) -> None:
-        self.finite: list[Problem] = []
-        self.lines: list[Problem] = []
-
-    def add(self, path, what: str, value=..., at=None, force: bool = False) -> None:
-        self.lines.append(Problem(tuple(path if at is None else at), tuple(path), what, value, force))
-
-    def __bool__(self) -> bool:
-        return bool(self.finite or self.lines)
-
-    def report(self, out: Errors) -> Errors:
-        """Add every problem to ``out``: the non-finite numbers, then the others by key path."""
-        for p in self.finite:
-            out.add(list(p.path), p.what, p.value)
-        for p in sorted(self.lines, key=lambda p: [str(k) for k in p.at]):
-            out.add(list(p.path), p.what, p.value, force=p.force)
-        return out
-
-
-_MERGED: dict[int, tuple[dict, dict]] = {}
-
-
-def _shared(node: dict) -> dict:
-    """``node`` with its ``$ref`` to a shared type (:data:`.shared.SHARED`) merged in, its own keywords winning
-    (worked out once per node: the declarations' nodes live as long as their classes)."""
-    if "$ref" not in node:
-        return node
-    hit = _MERGED.get(id(node))
-    if hit is not None and hit[0] is node:
-        return hit[1]
-    out = node
-    while "$ref" in out:
-        out = {**SHARED[out["$ref"].rsplit("/", 1)[-1]], **{k: v for k, v in out.items() if k != "$ref"}}
-    _MERGED[id(node)] = (node, out)
-    return out
-
-
-def _from_string(text: str, kinds) -> Any:
+def _from_string(text: str, kinds: list[str]) -> Any:
     """``text`` read as a value of one of the JSON ``kinds`` (none of them string), or the text itself."""
     s = text.strip()
     if "null" in kinds and s in ("null", "Null", "NULL", "~", ""):
@@ -106,20 +56,19 @@ def _from_string(text: str, kinds) -> Any:
     return text
 
 
-def _finite(value, path: tuple, found: Found) -> bool:
+def _finite(value: Any, path: tuple, found: Errors) -> bool:
     """Whether every float in ``value`` is finite; each one that is not is a problem at its key."""
     if isinstance(value, float) and not math.isfinite(value):
-        found.finite.append(Problem(path, path, "must be a finite number", value))
+        found.finite.append((path, path, "must be a finite number", value, False))
         return False
     items = value.items() if isinstance(value, dict) else enumerate(value) if isinstance(value, list) else ()
     return all([_finite(v, (*path, k), found) for k, v in items])
 
 
-def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
+def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True) -> Any:
     """``value`` checked against the keywords of ``node`` (a JSON-Schema subset: type, enum, const, bounds,
     multipleOf, pattern, anyOf, items, minItems, maxItems, uniqueItems), or :data:`BAD`. ``coerce``: a string
     where its key expects no string is read as the number, boolean or null it spells (``--config`` values)."""
-    node = _shared(node)
     kinds = node.get("type")
     kinds = [kinds] if isinstance(kinds, str) else kinds or []
     if coerce and isinstance(value, str) and kinds and "string" not in kinds:
@@ -129,86 +78,86 @@ def leaf(node: dict, value, path: tuple, found: Found, coerce: bool = True):
     if "anyOf" in node:
         return _any_of(node, value, path, found)
     if kinds and not any(_JSON_TYPES[k](value) for k in kinds):
-        found.add(path, f"must be {' or '.join(TYPE_WORDS[k] for k in kinds)}", value)
+        found.hold(path, f"must be {' or '.join(TYPE_WORDS[k] for k in kinds)}", value)
         return BAD
-    n, last = len(found.lines), str(path[-1]) if path else ""
+    n, last = len(found), str(path[-1]) if path else ""
     if "enum" in node and not any(value == e and isinstance(value, bool) == isinstance(e, bool) for e in node["enum"]):
-        found.add(path, f"must be one of {', '.join(map(str, node['enum']))}", value)
+        found.hold(path, f"must be one of {', '.join(map(str, node['enum']))}", value)
     if "const" in node and value != node["const"]:
-        found.add(path, f"must be {node['const']!r}", value)
+        found.hold(path, f"must be {node['const']!r}", value)
     if number(value):
         for key in [k for k in node if k in _BOUNDS]:   # in the order declared: the first one said
             word, ok = _BOUNDS[key]
             if not ok(value, node[key]):
-                found.add(path, f"must be {word} {bound_text(node[key])}{HINTS.get((last, key), '')}", value)
+                found.hold(path, f"must be {word} {bound_text(node[key])}{HINTS.get((last, key), '')}", value)
         step = node.get("multipleOf")
         if step and not float(value / step).is_integer():
-            found.add(path, f"{value!r} is not a multiple of {step!r}", value)
+            found.hold(path, f"{value!r} is not a multiple of {step!r}", value)
     if isinstance(value, str) and "pattern" in node and not re.search(node["pattern"], value):
         angle = last == "q" or node["pattern"] == ANGLE_PATTERN
-        found.add(path, f"must be {ANGLE_HINT}" if angle else
+        found.hold(path, f"must be {ANGLE_HINT}" if angle else
                   "must use letters, digits, '-' and '_' and start with a letter or digit", value)
     if isinstance(value, (list, tuple)):
         value = _items(node, list(value), path, found)
     if isinstance(value, dict) and "properties" in node:
         value = _mapping(node, value, path, found)
-    if len(found.lines) > n or value is BAD:
+    if len(found) > n or value is BAD:
         return BAD
     return int(value) if "integer" in kinds and isinstance(value, float) else value   # 50.0 is the integer 50
 
 
-def _items(node: dict, value: list, path: tuple, found: Found):
+def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
     lo, hi = node.get("minItems"), node.get("maxItems")
     if lo is not None and lo == hi and len(value) != lo:
-        found.add(path, f"must have exactly {lo} items", value)
+        found.hold(path, f"must have exactly {lo} items", value)
     elif lo is not None and len(value) < lo:
-        found.add(path, "must not be empty" if lo == 1 else f"must have at least {lo} items", value)
+        found.hold(path, "must not be empty" if lo == 1 else f"must have at least {lo} items", value)
     elif hi is not None and len(value) > hi:
-        found.add(path, f"must have at most {hi} items", value)
+        found.hold(path, f"must have at most {hi} items", value)
     if node.get("uniqueItems") and len({repr(v) for v in value}) < len(value):
-        found.add(path, "must not repeat a name", value)
+        found.hold(path, "must not repeat a name", value)
     if isinstance(node.get("items"), dict):
         value = [leaf(node["items"], v, (*path, i), found) for i, v in enumerate(value)]
         return BAD if any(v is BAD for v in value) else value
     return value
 
 
-def _mapping(node: dict, value: dict, path: tuple, found: Found):
+def _mapping(node: dict, value: dict, path: tuple, found: Errors) -> Any:
     """A mapping checked against ``properties`` (and ``required``; no other key when ``additionalProperties`` is
     false): the per-method ladders of work-precision."""
     props = node["properties"]
     for key in node.get("required", ()):
         if key not in value:
-            found.add((*path, key), "missing (required key)", at=path)
+            found.hold((*path, key), "missing (required key)", at=path)
     out = {}
     for key, v in value.items():
         if key in props:
             out[key] = leaf(props[key], v, (*path, key), found)
         elif node.get("additionalProperties") is False:
-            found.add((*path, key), f"unknown key (allowed: {', '.join(props)}){did_you_mean(key, props)}", v,
+            found.hold((*path, key), f"unknown key (allowed: {', '.join(props)}){did_you_mean(key, props)}", v,
                       at=path)
     return BAD if any(v is BAD for v in out.values()) else {**value, **out}
 
 
-def _any_of(node: dict, value, path: tuple, found: Found):
+def _any_of(node: dict, value: Any, path: tuple, found: Errors) -> Any:
     """The first branch of ``anyOf`` that takes ``value``; else the problems of the first branch whose type fits
     it, or one line naming the types (an angle: the forms it may take)."""
     tried = []
     for sub in node["anyOf"]:
-        mine = Found()
+        mine = Errors()
         got = leaf(sub, value, path, mine, coerce=False)
         if not mine:
             return got
-        kinds = _shared(sub).get("type")
+        kinds = sub.get("type")
         tried.append(([kinds] if isinstance(kinds, str) else kinds or [], mine))
     for kinds, mine in tried:
         if any(_JSON_TYPES[k](value) for k in kinds):
-            found.lines += mine.lines
+            found.held += mine.held
             return BAD
-    if node["anyOf"] == SHARED["angle"]["anyOf"]:
-        found.add(path, f"must be {ANGLE_HINT}", value)
+    if any(sub.get("pattern") == ANGLE_PATTERN for sub in node["anyOf"]):
+        found.hold(path, f"must be {ANGLE_HINT}", value)
     else:
-        found.add(path, f"must be {' or '.join(dict.fromkeys(TYPE_WORDS[k] for kinds, _ in tried for k in kinds))}",
+        found.hold(path, f"must be {' or '.join(dict.fromkeys(TYPE_WORDS[k] for kinds, _ in tried for k in kinds))}",
                   value)
     return BAD
 
@@ -216,36 +165,58 @@ def _any_of(node: dict, value, path: tuple, found: Found):
 # ---------------------------------------------------------------- declared classes
 
 class Field(NamedTuple):
-    """What the pass reads of one declared field: its name, config key, annotation, keywords and default
-    (``make()`` gives it: a fresh copy of a list or a mapping)."""
+    """What the pass reads of one declared field: its name, config key, annotation, keywords (shared types
+    merged in) and default (``make()`` gives it: a fresh copy of a list or a mapping), its reduced value, the
+    shared type it refers to, whether null is a value of its own (not an absent key) and whether it holds
+    declared objects (an object, entries or a union)."""
     name: str
     key: str
     tp: Any
     node: dict
     required: bool
     make: Any
+    reduced: Any
+    ref: str | None
+    nullable: bool
+    nested: bool
 
 
-def declared_class(tp) -> bool:
+def declared_class(tp: Any) -> bool:
     return isinstance(tp, type) and hasattr(tp, "__schema_doc__")
 
 
 @functools.cache
-def fields_of(cls) -> tuple[Field, ...]:
+def fields_of(cls: type) -> tuple[Field, ...]:
     """The :class:`Field` of each field of the declared class ``cls`` (worked out once per class)."""
     hints = typing.get_type_hints(cls)
     out = []
     for f in dataclasses.fields(cls):
         meta, tp = f.metadata, hints[f.name]
-        node = {"$ref": f"#/$defs/{meta['ref']}"} if meta["ref"] else _annotation_node(tp)
-        node.update(meta["keywords"])
+        node = _deref({"$ref": f"#/$defs/{meta['ref']}"} if meta["ref"] else _annotation_node(tp))
+        node.update(_deref(meta["keywords"]))
         make = f.default_factory if f.default_factory is not dataclasses.MISSING else \
             (lambda d=f.default: None if d is dataclasses.MISSING else d)
-        out.append(Field(f.name, meta["key"] or f.name, tp, node, meta["required"], make))
+        # null is a value of its own where declared as the default, or where the default is not None
+        nullable = meta["null_default"] or (type(None) in typing.get_args(tp) and make() is not None)
+        nested = declared_class(tp) or typing.get_origin(tp) is dict or any(map(declared_class, typing.get_args(tp)))
+        out.append(Field(f.name, meta["key"] or f.name, tp, node, meta["required"], make, meta.get("reduced"),
+                         meta["ref"], nullable, nested))
     return tuple(out)
 
 
-def _annotation_node(tp) -> dict:
+def _deref(node: Any) -> Any:
+    """``node`` with every ``$ref`` to a shared type (:data:`.shared.SHARED`) merged in, its own keywords
+    winning (a union, read by its annotation, keeps its ``$ref``)."""
+    if isinstance(node, list):
+        return [_deref(v) for v in node]
+    if not isinstance(node, dict):
+        return node
+    shared = SHARED.get(str(node.get("$ref", "")).rsplit("/", 1)[-1])
+    out = {key: _deref(v) for key, v in node.items() if key != "$ref" or shared is None}
+    return out if shared is None else {**_deref(shared), **out}
+
+
+def _annotation_node(tp: Any) -> dict:
     """The JSON type of a scalar or list annotation (``float | None``: number or null); {} for the others."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
     if origin in (typing.Union, types.UnionType):
@@ -260,7 +231,7 @@ def _annotation_node(tp) -> dict:
     return {"type": names[tp]} if tp in names else {}
 
 
-def parse(tp, value, path: tuple, found: Found, base=None):
+def parse(tp: Any, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
     """``value`` as an instance of the annotation ``tp`` (a declared class, a union of them on ``kind``, a
     mapping of entry names to one, or a scalar or list), every problem added to ``found``; :data:`BAD` if any.
     ``base``: for a declared class, the instance (or mapping of field name -> value) whose values its absent
@@ -275,15 +246,15 @@ def parse(tp, value, path: tuple, found: Found, base=None):
     return leaf(_annotation_node(tp), value, path, found)
 
 
-def _not_mapping(value, path: tuple, found: Found) -> bool:
+def _not_mapping(value: Any, path: tuple, found: Errors) -> bool:
     if isinstance(value, dict):
         return False
     if _finite(value, path, found):
-        found.add(path, "must be a mapping", value)
+        found.hold(path, "must be a mapping", value)
     return True
 
 
-def _union(classes: list, value, path: tuple, found: Found):
+def _union(classes: list, value: Any, path: tuple, found: Errors) -> Any:
     """One of ``classes``, picked by its ``kind`` constant (the kinds of initial condition)."""
     if _not_mapping(value, path, found):
         return BAD
@@ -291,16 +262,17 @@ def _union(classes: list, value, path: tuple, found: Found):
     kind = value.get("kind")
     if "kind" not in value or not isinstance(kind, str) or kind not in kinds:
         if "kind" not in value:
-            found.add((*path, "kind"), "missing (required key)", at=path)
+            found.hold((*path, "kind"), "missing (required key)", at=path)
         else:
-            found.add((*path, "kind"), f"must be one of {', '.join(kinds)}" if isinstance(kind, str) else
+            found.hold((*path, "kind"), f"must be one of {', '.join(kinds)}" if isinstance(kind, str) else
                       "must be a string", kind)
         _finite(value, path, found)
         return BAD
     return build_object(kinds[kind], value, path, found)
 
 
-def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, base=None, one=None):
+def entries(cls: type, value: Any, path: tuple, found: Errors, labels: tuple | None = None,
+            base: Any = None, one: Callable[..., Any] | None = None) -> Any:
     """A mapping of entry names to instances of ``cls``; an entry with problems is left out (they are reported).
     ``labels``: the names allowed (figure labels), else any entry name (letters, digits, '-' and '_');
     ``base``: what each entry leaves out (:func:`parse`); ``one``: what reads one entry (default :func:`parse`)."""
@@ -309,9 +281,9 @@ def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, 
     out = {}
     for name, entry in value.items():
         if labels is not None and name not in labels:
-            found.add((*path, name), f"unknown figure label {name!r} (known labels: {', '.join(labels)})", at=path)
+            found.hold((*path, name), f"unknown figure label {name!r} (known labels: {', '.join(labels)})", at=path)
         elif labels is None and not (isinstance(name, str) and re.search(SHARED["name"]["pattern"], name)):
-            found.add((*path, name), f"bad name {name!r}: names use letters, digits, '-' and '_' and start with a "
+            found.hold((*path, name), f"bad name {name!r}: names use letters, digits, '-' and '_' and start with a "
                                      f"letter or digit", at=path, force=True)
         made = (one or parse)(cls, entry, (*path, name), found, base)
         if made is not BAD:
@@ -319,94 +291,85 @@ def entries(cls, value, path: tuple, found: Found, labels: tuple | None = None, 
     return out
 
 
-def given_fields(cls, value, path: tuple, found: Found, base=None) -> Any:
+def given_fields(cls: Any, value: Any, path: tuple, found: Errors, base: Any = None, full: Any = None) -> Any:
     """field name -> value (or :data:`BAD`) of the declared class ``cls`` read from the mapping ``value``: the
-    keys given parsed, the others from ``base`` or their defaults; :data:`BAD` if ``value`` is no mapping."""
+    keys given parsed, the others from ``base`` or their defaults; :data:`BAD` if ``value`` is no mapping.
+    ``full``: ``value`` holds the keys under ``reduced:`` of an analysis's section (its reduced form), and
+    ``full`` the full form's values: only the keys given, each over its declared reduced value or else the
+    full form's; :data:`BAD` if one is."""
     if _not_mapping(value, path, found):
         return BAD
-    fields = fields_of(cls)
+    overrides = {f.name: f for f in fields_of(cls) if f.name == "reduced" and f.tp is dict}
+    fields = [f for f in fields_of(cls) if full is None or f.name not in overrides]
     by_key = {f.key: f for f in fields}
+    bases = base if full is None else {**full, **reduced_defaults(cls)}
     out: dict[str, Any] = {}
     for key, v in value.items():
         f = by_key.get(key)
         if f is None:
             allowed = list(by_key)
-            found.add((*path, key), f"unknown key (allowed: {', '.join(allowed)}){did_you_mean(key, allowed)}", v,
-                      at=path)
-            _finite(v, (*path, key), found)
-        elif f.name == "reduced" and f.tp is dict:
-            continue   # read below, over the full form's values
-        else:
-            inner = _base_of(base, f)
+            found.hold((*path, key), f"unknown key (allowed: {', '.join(allowed)}){did_you_mean(key, allowed)}", v,
+                       at=path)
+            if full is None:
+                _finite(v, (*path, key), found)
+        elif f.name not in overrides:   # ``reduced:`` is read below, over the full form's values
+            inner = _base_of(bases, f)
             out[f.name] = _field(f, v, (*path, key), found, inner if inner is not None else f.make())
+    if full is not None:
+        return BAD if any(v is BAD for v in out.values()) else out
     for f in fields:
         if f.name not in out:
             inner = _base_of(base, f)
             if f.required and inner is None:
-                found.add((*path, f.key), "missing (required key)", at=path)
+                found.hold((*path, f.key), "missing (required key)", at=path)
             out[f.name] = inner if inner is not None else f.make()
-    if "reduced" in value and "reduced" in by_key and by_key["reduced"].tp is dict:
-        out["reduced"] = _overrides(cls, value["reduced"], (*path, "reduced"), found, out)
+    if "reduced" in value and overrides:
+        out["reduced"] = given_fields(cls, value["reduced"], (*path, "reduced"), found, full=out)
     groups = cls.__schema_any_of__
     if groups and not any(all(k in value for k in g) for g in groups):
-        found.add(path, f"needs at least one of {', '.join(k for g in groups for k in g)}", value)
+        found.hold(path, f"needs at least one of {', '.join(k for g in groups for k in g)}", value)
     return out
 
 
-def reduced_defaults(cls) -> dict[str, Any]:
+def reduced_defaults(cls: type) -> dict[str, Any]:
     """field name -> its value in the reduced form, for every field of ``cls`` declared with ``reduced=``."""
     out = {}
-    for f in dataclasses.fields(cls):
-        if "reduced" in f.metadata:
-            value = f.metadata["reduced"]
-            out[f.name] = json.loads(value) if isinstance(value, str) and value[:1] in "[{" else value
+    for f in fields_of(cls):
+        if f.reduced is not None:
+            value = json.loads(f.reduced) if isinstance(f.reduced, str) and f.reduced[:1] in "[{" else f.reduced
+            out[f.name] = _reduced_objects(cls, f.name) if isinstance(value, dict) else value
     return out
 
 
-def _overrides(cls, value, path: tuple, found: Found, full: dict):
-    """The keys given under ``reduced:`` of an analysis's section (its reduced form), each read as its field
-    declares it, over its declared reduced value or else the full form's (``full``): field name -> value, or
-    :data:`BAD`."""
-    if _not_mapping(value, path, found):
-        return BAD
-    known = {f.key: f for f in fields_of(cls) if f.name != "reduced"}
-    bases = reduced_defaults(cls)
-    out = {}
-    for key, v in value.items():
-        f = known.get(key)
-        if f is None:
-            found.add((*path, key), f"unknown key (allowed: {', '.join(known)}){did_you_mean(key, known)}", v,
-                      at=path)
-            continue
-        out[f.name] = _field(f, v, (*path, key), found, bases.get(f.name, full.get(f.name)))
-    return BAD if any(v is BAD for v in out.values()) else out
+@functools.cache
+def _reduced_objects(cls: type, name: str) -> Any:
+    """The declared reduced mapping of field ``name`` of ``cls`` read as its declared objects (frozen, so read
+    once), as the full form's are."""
+    f = next(f for f in fields_of(cls) if f.name == name)
+    return _field(f, json.loads(f.reduced), (cls.__name__, "reduced", f.key), Errors())
 
 
-def _field(f: Field, value, path: tuple, found: Found, base):
-    """The value of field ``f``: an object (or entries, or a union) as its annotation declares it, a scalar or
-    a list against its keywords."""
-    origin, args = typing.get_origin(f.tp), typing.get_args(f.tp)
-    if origin is dict and "properties" in f.node:
-        value = leaf(f.node, value, path, found)
-        if value is BAD:
-            return BAD
-    if declared_class(f.tp) or origin is dict or any(declared_class(a) for a in args):
+def _field(f: Field, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
+    """The value of field ``f``: a scalar or a list against its keywords, an object (or entries, or a union) as
+    its annotation declares it (a mapping whose keywords declare its keys, work-precision's ladders: both)."""
+    if f.nested and "properties" not in f.node:
         return parse(f.tp, value, path, found, base)
-    return leaf(f.node, value, path, found)
+    value = leaf(f.node, value, path, found)
+    return parse(f.tp, value, path, found, base) if f.nested and value is not BAD else value
 
 
-def _base_of(base, f: Field):
+def _base_of(base: Any, f: Field) -> Any:
     """The value ``base`` (an instance or a mapping by field name) gives field ``f``, or None."""
     if base is None:
         return None
     return base.get(f.name) if isinstance(base, dict) else getattr(base, f.name, None)
 
 
-def build_object(cls, value, path: tuple, found: Found, base=None):
+def build_object(cls: type, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
     """An instance of the declared class ``cls`` from the mapping ``value`` (:func:`given_fields`), or
     :data:`BAD` when a problem lies at ``path`` or below."""
-    n = len(found.lines) + len(found.finite)
+    n = len(found)
     got = given_fields(cls, value, path, found, base)
-    if got is BAD or len(found.lines) + len(found.finite) > n:
+    if got is BAD or len(found) > n:
         return BAD
     return cls(**got)

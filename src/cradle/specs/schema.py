@@ -11,24 +11,52 @@ import json
 import types
 import typing
 from pathlib import Path
+from typing import Any
 
-from . import declare
-from .declare import REQUIRED, _default_of, _hints, _key
+from .declare import REQUIRED
 from .parse import reduced_defaults
 from .shared import SHARED
 
 SCHEMA_DRAFT = "https://json-schema.org/draft/2020-12/schema"
+
+#: discriminated unions on ``kind`` that fields refer to with ``ref=`` (the kinds of initial condition):
+#: name -> (description, description of ``kind``, kind -> declared class); :func:`register_union` adds one
+UNIONS: dict[str, tuple[str, str, dict]] = {}
+
+
+def register_union(name: str, doc: str, kind_doc: str, kinds: dict) -> None:
+    """Declare the union ``name`` (a ``$defs`` entry of every generated schema) of the declared ``kinds``."""
+    UNIONS[name] = (doc, kind_doc, dict(kinds))
+
+
+def _hints(cls: Any) -> dict:
+    """The resolved annotations of a declared class."""
+    return typing.get_type_hints(cls)
+
+
+def _key(f: dataclasses.Field) -> str:
+    """The config key of a field (its name unless declared with ``key=``)."""
+    return f.metadata.get("key") or f.name
+
+
+def _default_of(f: dataclasses.Field) -> Any:
+    """The declared default of a field (a fresh copy of a list or a mapping), or REQUIRED."""
+    if f.default is not dataclasses.MISSING:
+        return f.default
+    if f.default_factory is not dataclasses.MISSING:
+        return f.default_factory()
+    return REQUIRED
 
 
 def _ref(name: str) -> dict:
     return {"$ref": f"#/$defs/{name}"}
 
 
-def _is_declared(tp) -> bool:
+def _is_declared(tp: Any) -> bool:
     return isinstance(tp, type) and hasattr(tp, "__schema_doc__")
 
 
-def _json_default(value):
+def _json_default(value: Any) -> Any:
     """A declared default as JSON (tuples as lists, declared instances as mappings)."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return {_key(f): _json_default(getattr(value, f.name)) for f in dataclasses.fields(value)}
@@ -39,7 +67,7 @@ def _json_default(value):
     return value
 
 
-def _type_of(tp, defs: dict) -> dict:
+def _type_of(tp: Any, defs: dict) -> dict:
     """The schema of an annotation (without description)."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
     if origin in (typing.Union, types.UnionType):
@@ -58,7 +86,7 @@ def _type_of(tp, defs: dict) -> dict:
     return {"type": names[tp]} if tp in names else {}
 
 
-def _field_schema(f: dataclasses.Field, tp, defs: dict, with_defaults: bool, default) -> dict:
+def _field_schema(f: dataclasses.Field, tp: Any, defs: dict, with_defaults: bool, default: Any) -> dict:
     meta = f.metadata
     node = {"description": meta["doc"]} if meta["doc"] else {}
     if meta["ref"]:
@@ -82,7 +110,7 @@ def _field_schema(f: dataclasses.Field, tp, defs: dict, with_defaults: bool, def
     return node
 
 
-def object_schema(cls, defs: dict, *, defaults: dict | None = None) -> dict:
+def object_schema(cls: Any, defs: dict, *, defaults: dict | None = None) -> dict:
     """The schema of a declared class: a ``$ref`` for a named class (added to ``defs``), else inline.
 
     ``defaults``: the defaults of the keys of an inline class, when they are not the class's own.
@@ -115,7 +143,7 @@ def object_schema(cls, defs: dict, *, defaults: dict | None = None) -> dict:
     return out
 
 
-def _reduced_schema(cls, field: dataclasses.Field, defs: dict) -> dict:
+def _reduced_schema(cls: Any, field: dataclasses.Field, defs: dict) -> dict:
     """The ``reduced:`` key of an analysis: the keys of its class, each with its reduced default if declared."""
     hints, reduced = _hints(cls), reduced_defaults(cls)
     props = {_key(f): _field_schema(f, hints[f.name], defs, f.name in reduced, reduced.get(f.name, REQUIRED))
@@ -134,11 +162,11 @@ def union_schema(doc: str, kind_doc: str, kinds: dict, defs: dict) -> dict:
     }
 
 
-def generate(root, *, title: str, extra_defs=None) -> dict:
+def generate(root: Any, *, title: str, extra_defs: dict | None = None) -> dict:
     """The JSON Schema of the declared class ``root`` (the whole config, or one spec), shared types and
     the registered unions under $defs."""
     defs = {k: dict(v) for k, v in SHARED.items()}
-    for name, (doc, kind_doc, kinds) in declare.UNIONS.items():
+    for name, (doc, kind_doc, kinds) in UNIONS.items():
         defs[name] = union_schema(doc, kind_doc, kinds, defs)
     for name, make in (extra_defs or {}).items():
         defs[name] = make(defs)
@@ -150,7 +178,7 @@ def generate(root, *, title: str, extra_defs=None) -> dict:
     return out
 
 
-def _refs(node) -> set[str]:
+def _refs(node: Any) -> set[str]:
     """The ``$defs`` names a schema node refers to (``#/$defs/<name>``), anywhere inside it."""
     if isinstance(node, dict):
         ref = node.get("$ref")

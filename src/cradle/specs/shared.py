@@ -48,6 +48,3 @@ SHARED: dict[str, dict[str, Any]] = {
     "potential": {"description": "Interaction potential: hertz, V0 of (vhertz), or smooth, |d|^(alpha+1)/(alpha+1) "
                                  "of (meca) with kappa = 1.", "type": "string", "enum": ["hertz", "smooth"]},
 }
-
-#: words a message adds to a bound of a shared type, by (type, keyword): what the bound is
-BOUND_HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))"}

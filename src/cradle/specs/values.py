@@ -1,4 +1,4 @@
-"""Values the config layer reads and the errors it reports: angles, stored times, one-line messages.
+"""Values the config layer reads and the errors it reports: angles, bounds of times, one-line messages.
 
 Every problem is one line naming the key path and the value::
 
@@ -8,11 +8,10 @@ from __future__ import annotations
 
 import copy
 import fractions
-import functools
 import json
 import math
 import re
-from typing import TypeGuard
+from typing import Any, TypeGuard
 
 _NUM = r"(\d+(\.\d*)?|\.\d+)"
 # Angles: a number, or [sign] [coefficient [*]] pi [/ denominator], e.g. pi, pi/5, 4pi/5, -52pi/100, 4*pi/5.
@@ -36,26 +35,14 @@ class ConfigError(ValueError):
     ``str(err)`` is one line per problem; ``err.errors`` is the list of lines.
     """
 
-    def __init__(self, errors):
+    def __init__(self, errors: str | list[str]) -> None:
         if isinstance(errors, str):
             errors = [errors]
         self.errors = list(errors)
         super().__init__("\n".join(self.errors))
 
 
-def copied(value):
-    """A deep copy of a parsed YAML or JSON value (plain mappings, lists and scalars), as ``copy.deepcopy``
-    gives it at a fraction of its cost: configs are copied on every validation."""
-    if type(value) is dict:
-        return {k: copied(v) for k, v in value.items()}
-    if type(value) is list:
-        return [copied(v) for v in value]
-    if value is None or type(value) in (str, int, float, bool):
-        return value
-    return copy.deepcopy(value)
-
-
-def key_path(parts) -> str:
+def key_path(parts: Any) -> str:
     """``["scenes", "tw", "store", "snapshots", 1]`` as ``scenes.tw.store.snapshots[1]``."""
     out = ""
     for p in parts:
@@ -63,7 +50,7 @@ def key_path(parts) -> str:
     return out or "config"
 
 
-def show(value) -> str:
+def show(value: Any) -> str:
     """A short, unambiguous rendering of a value (strings quoted)."""
     if isinstance(value, float):
         text = repr(value)
@@ -82,7 +69,7 @@ TYPE_WORDS = {"integer": "an integer", "number": "a number", "string": "a string
               "array": "a list", "boolean": "true or false", "null": "null"}
 
 
-def bound_text(x) -> str:
+def bound_text(x: Any) -> str:
     """A bound as a message writes it: 1 not 1.0, 0.01 as is ("must be > 1", "must be <= 0.01")."""
     return repr(x) if isinstance(x, float) and not float(x).is_integer() else str(int(x)) if number(x) else str(x)
 
@@ -92,20 +79,35 @@ def number(x: object) -> TypeGuard[int | float]:
     return isinstance(x, (int, float)) and not isinstance(x, bool)
 
 
-def finite(x) -> bool:
-    """A finite real number."""
-    return number(x) and math.isfinite(x)
-
-
 class Errors:
-    """Problems by key path, in order; at most one kind of complaint per path."""
+    """Problems by key path, one line each, in order; at most one kind of complaint per path.
+
+    The validation pass holds its problems (:meth:`hold`: ``at`` the key path they sort by, the object for a key
+    missing or unknown; ``finite`` those of numbers that are not finite, said first in the order of the file)
+    and :meth:`said` turns them into lines; a check adds its lines in its own order (:meth:`add`).
+    """
 
     def __init__(self) -> None:
         self.lines: list[str] = []
         self.paths: set[str] = set()
+        self.held: list[tuple] = []     # (at, path, what, value, force), sorted by ``at`` when said
+        self.finite: list[tuple] = []   # the same, said first
         self._keys: tuple[int, frozenset] | None = None   # a view's filter (:meth:`only`)
 
-    def add(self, path, what: str, value=..., *, force: bool = False) -> None:
+    def __len__(self) -> int:
+        return len(self.lines) + len(self.held) + len(self.finite)
+
+    def hold(self, path: Any, what: str, value: Any = ..., at: Any = None, force: bool = False) -> None:
+        self.held.append((tuple(path if at is None else at), tuple(path), what, value, force))
+
+    def said(self) -> Errors:
+        """These problems with every one held said: the non-finite numbers, then the others by key path."""
+        for _, path, what, value, force in [*self.finite, *sorted(self.held, key=lambda p: [str(k) for k in p[0]])]:
+            self.add(list(path), what, value, force=force)
+        self.held, self.finite = [], []
+        return self
+
+    def add(self, path: Any, what: str, value: Any = ..., *, force: bool = False) -> None:
         if self._keys is not None:
             depth, keys = self._keys
             if not (isinstance(path, list) and len(path) > depth and path[depth] in keys):
@@ -119,7 +121,7 @@ class Errors:
         if line not in self.lines:
             self.lines.append(line)
 
-    def has(self, path) -> bool:
+    def has(self, path: Any) -> bool:
         return (path if isinstance(path, str) else key_path(path)) in self.paths
 
     def within(self, path: list) -> bool:
@@ -127,7 +129,7 @@ class Errors:
         p = key_path(path)
         return any(q == p or q.startswith((p + ".", p + "[")) for q in self.paths)
 
-    def only(self, path: list, keys) -> Errors:
+    def only(self, path: list, keys: Any) -> Errors:
         """A view of these problems that takes only those at one of ``keys`` under ``path`` (a reduced form
         reports the keys it replaces; the others are said with the full form)."""
         view = copy.copy(self)   # the same lines and paths
@@ -139,55 +141,56 @@ class Errors:
             raise ConfigError(self.lines)
 
 
-def parse_angle(value) -> float:
+def _written(value: Any) -> tuple[str, str, str, str] | None:
+    """An angle written as text, blanks dropped: (sign, coefficient without its '*', "pi" or "", denominator
+    with its '/'), "" where not written (a number: its text as the coefficient); None for any other value."""
+    if not isinstance(value, str) or not _ANGLE_RE.match(value) or "\n" in value:
+        return None
+    s = re.sub(r"\s+", "", value)
+    coef, pi, denom = s.lstrip("+-").partition("pi")
+    return "-" if s.startswith("-") else "", coef.rstrip("*"), pi, denom
+
+
+def parse_angle(value: Any) -> float:
     """An angle in radians from a number or a string 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', '0.3'."""
+    parts = _written(value)
     if number(value):
         x = float(value)
-    elif isinstance(value, str) and _ANGLE_RE.match(value) and "\n" not in value:
-        s = re.sub(r"\s+", "", value)
-        sign = -1.0 if s.startswith("-") else 1.0
-        s = s.lstrip("+-")
-        if "pi" in s:
-            coef, _, denom = s.partition("pi")
-            coef = coef.rstrip("*")
-            c = float(coef) if coef else 1.0
-            d = float(denom[1:]) if denom else 1.0
-            if d == 0.0:
-                raise ConfigError(f"cannot read {value!r} as an angle: division by zero")
-            x = sign * c * math.pi / d
-        else:
-            x = sign * float(s)
-    else:
+    elif parts is None:
         raise ConfigError(f"cannot read {value!r} as an angle: expected {ANGLE_HINT}")
+    else:
+        sign, coef, pi, denom = parts
+        d = float(denom[1:]) if denom else 1.0
+        if d == 0.0:
+            raise ConfigError(f"cannot read {value!r} as an angle: division by zero")
+        x = (float(coef) if coef else 1.0) * math.pi / d if pi else float(coef)
+        x = -x if sign else x
     if not math.isfinite(x):
         raise ConfigError(f"cannot read {value!r} as an angle: not finite")
     return x
 
 
-
-def canonical_angle(value):
+def canonical_angle(value: Any) -> Any:
     """One written form per angle value, what a job's parameters carry (so ``pi/5``, ``1pi/5``, ``1*pi/5``,
     `` pi / 5`` and ``0.2pi`` rerun nothing): a multiple of pi as ``[-][k]pi[/m]``, a number written as a
     string as that number. A coefficient and a denominator that are both integers are kept as written
     (``52pi/100`` stays: it is the paper's text, which the files record); a decimal one becomes the reduced
     fraction. The form is used only when it gives bit for bit the angle the text gives; a value that is not
     an angle is returned as it is (the schema reports it)."""
-    if not isinstance(value, str) or not _ANGLE_RE.match(value) or "\n" in value:
+    parts = _written(value)
+    if parts is None:
         return value
-    s = re.sub(r"\s+", "", value)
-    sign = "-" if s.startswith("-") else ""
-    s = s.lstrip("+-")
-    if "pi" not in s:
-        return float(s)
-    coef, _, denom = s.partition("pi")
-    coef, denom = coef.rstrip("*") or "1", denom[1:] or "1"
+    sign, coef, pi, denom = parts
+    if not pi:
+        return float(sign + coef)
+    coef, denom = coef or "1", denom[1:] or "1"
     if coef.isdigit() and denom.isdigit():
         k, m = int(coef), int(denom)
-    else:
-        ratio = fractions.Fraction(coef) / fractions.Fraction(denom) if float(denom) else None
-        if ratio is None:
-            return value
+    elif float(denom):
+        ratio = fractions.Fraction(coef) / fractions.Fraction(denom)
         k, m = ratio.numerator, ratio.denominator
+    else:
+        return value
     text = f"{sign}{k if k != 1 else ''}pi{f'/{m}' if m != 1 else ''}"
     try:
         same = parse_angle(text) == parse_angle(value)
@@ -196,69 +199,20 @@ def canonical_angle(value):
     return text if same else value
 
 
-def angle_or_none(value):
+def angle_or_none(value: Any) -> float | None:
     """An angle in radians, or None if it does not read as one (the schema reports it)."""
     try:
         return parse_angle(value)
     except ConfigError:
         return None
 
-def angle_expr(value) -> str:
+
+def angle_expr(value: Any) -> str:
     """The text of an angle as given (a number as its repr), kept next to its value in radians."""
     return value if isinstance(value, str) else repr(float(value))
 
 
-def grid_size(snapshots, every: float | None, t_end: float) -> int:
-    """An upper bound on the number of times :func:`store_times` gives for these ``snapshots`` and ``every``."""
-    n = len(snapshots or ()) + 2
-    if every:
-        k = t_end / every * (1.0 + 1e-12) + TIME_TOL
-        n += int(math.floor(min(k, 1e18))) + 1   # t_end / every may overflow to inf
-    return n
-
-
-#: the stored-time lists :func:`store_times` remembers are those of at most this many times
-REMEMBERED_TIMES = 100_000
-
-
-def store_times(snapshots, every: float | None, t_end: float) -> list[float]:
-    """The sorted times a scene stores: 0, the grid k*every on [0, t_end], t_end and the snapshots.
-
-    Times are rounded to 1e-9; times closer than 1e-9 (e.g. a snapshot on the
-    grid) are one time. 0 and t_end are always included.
-    """
-    snapshots = tuple(float(s) for s in (snapshots or ()))
-    every = float(every) if every else None
-    if grid_size(snapshots, every, float(t_end)) <= REMEMBERED_TIMES:
-        # a config is validated again and again (its figures' times, the Snakefile's jobs): remember small grids
-        return list(_remembered_times(snapshots, every, float(t_end)))
-    return _store_times(snapshots, every, float(t_end))
-
-
-@functools.lru_cache(maxsize=64)
-def _remembered_times(snapshots: tuple[float, ...], every: float | None, t_end: float) -> tuple[float, ...]:
-    return tuple(_store_times(snapshots, every, t_end))
-
-
-def _store_times(snapshots: tuple[float, ...], every: float | None, t_end: float) -> list[float]:
-    import numpy as np
-
-    parts = [np.array([0.0, t_end]), np.asarray(snapshots, dtype=float)]
-    if every:
-        n = int(math.floor(t_end / every * (1.0 + 1e-12) + TIME_TOL))
-        grid = np.arange(n + 1) * every
-        parts.append(grid[grid <= t_end + TIME_TOL])
-    t = np.sort(np.concatenate(parts))
-    keep = np.ones(t.size, dtype=bool)
-    keep[1:] = np.diff(t) > TIME_TOL  # a time within TIME_TOL of the previous one is the same time
-    t = np.round(t[keep], 9)
-    t[0] = 0.0
-    if abs(t[-1] - t_end) <= TIME_TOL:
-        t[-1] = round(t_end, 9)
-    return t.tolist()
-
-
-def did_you_mean(name, known) -> str:
+def did_you_mean(name: Any, known: Any) -> str:
     """'; did you mean 'x'?' for the closest known name, or ''."""
     import difflib
 

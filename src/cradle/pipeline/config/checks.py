@@ -10,6 +10,7 @@ checked only when ``defaults:`` passed too (it is resolved against them).
 from __future__ import annotations
 
 import dataclasses
+from typing import Any
 
 from cradle.analyses.protocol import FULL, REDUCED, form_spec, own_keys
 from cradle.scenes.spec import ENTRY_SECTIONS, Checked, Context, Where
@@ -19,7 +20,7 @@ from cradle.specs.values import ConfigError, Errors, did_you_mean
 from .sections import SECTIONS
 
 
-def with_all(spec, names: dict):
+def with_all(spec: Any, names: dict) -> Any:
     """``spec`` with each of its keys named after a section of entries (scenes, homoclinic, map) given as
     ``all`` replaced by the names of that section's entries (``names``: section -> names)."""
     every = {f.name: list(names.get(f.name, ())) for f in dataclasses.fields(spec)
@@ -27,10 +28,10 @@ def with_all(spec, names: dict):
     return dataclasses.replace(spec, **every) if every else spec
 
 
-def check_forms(spec, where: Where, context: Context, out: Errors) -> None:
+def check_forms(spec: Any, where: Where, context: Context, out: Errors) -> None:
     """The check of an analysis's spec in each of its forms: the full one at ``where``, the reduced one (if the
     spec has one) at ``where + ["reduced"]``, reporting only the keys the reduced form gives (:func:`own_keys`)."""
-    if not isinstance(getattr(spec, "reduced", None), dict):   # one form, or one kept by reduced_form()
+    if not isinstance(getattr(spec, "reduced", None), dict):   # one form
         spec.check(where, context, out)
         return
     form_spec(spec, FULL).check(where, context, out)
@@ -78,7 +79,7 @@ def check(parts: dict, config: dict, out: Errors) -> None:
             _reads(name, with_all(spec, given), context, out)
 
 
-def _found(node, name: str) -> list | None:
+def _found(node: Any, name: str) -> list | None:
     """The key path, inside an analysis's section, of the first place ``name`` is given (a list item or a
     mapping's key), or None."""
     if isinstance(node, dict) and name in node:
@@ -92,7 +93,7 @@ def _found(node, name: str) -> list | None:
     return None
 
 
-def _reads(name: str, spec, context: Context, out: Errors) -> None:
+def _reads(name: str, spec: Any, context: Context, out: Errors) -> None:
     """Every scene analysis ``name`` reads, in each of its forms, is a ``scenes:`` entry: said here, at the key
     that names it, rather than as a failure when its jobs are planned; a form that needs what only its target
     gives (a scene to measure) is said when it is planned."""

@@ -30,7 +30,7 @@ def schema_path() -> Path:
     return Path(str(resources.files("cradle.pipeline").joinpath(SCHEMA_FILE)))
 
 
-def write_schema(path=None) -> Path:
+def write_schema(path: str | Path | None = None) -> Path:
     """Write the generated schema to ``path`` (default: the committed file)."""
     return spec.write(generated_schema(), Path(path) if path else schema_path())
 
@@ -65,7 +65,7 @@ def _type(node: dict, defs: dict) -> str:
     return " or ".join(kinds)
 
 
-def _cell(text) -> str:
+def _cell(text: object) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 
 

@@ -7,31 +7,34 @@ repeated calls cost one validation).
 """
 from __future__ import annotations
 
+from typing import Any
+
+from cradle.analyses.protocol import Read
 from cradle.scenes.spec import HomoclinicEntry, MapEntry, Scene
-from cradle.specs.values import ConfigError, did_you_mean
+from cradle.specs.values import ConfigError
 
 from .checks import with_all
 from .validate import entry, typed
 
 
-def scene(config: dict, name: str) -> Scene:
+def scene(config: dict[str, Any], name: str) -> Scene:
     """Scene ``name`` of ``config``, validated and resolved: ``alpha`` and ``max_energy_drift`` from
     ``defaults:`` unless it gives them, its ``exact`` and ``dps`` keys over those of ``defaults:``, SI values in
     (nc)'s units."""
     return entry(config, "scenes", name)
 
 
-def homoclinic(config: dict, name: str) -> HomoclinicEntry:
+def homoclinic(config: dict[str, Any], name: str) -> HomoclinicEntry:
     """Homoclinic entry ``name`` of ``config``, validated, its ``alpha`` filled from ``defaults:``."""
     return entry(config, "homoclinic", name)
 
 
-def map_entry(config: dict, name: str) -> MapEntry:
+def map_entry(config: dict[str, Any], name: str) -> MapEntry:
     """Map entry ``name`` of ``config``, validated, its ``alpha`` filled from ``defaults:``."""
     return entry(config, "map", name)
 
 
-def analysis_spec(config: dict, name: str, form: str):
+def analysis_spec(config: dict[str, Any], name: str, form: str) -> Any:
     """The typed spec of analysis ``name`` (:mod:`cradle.analyses.registry`) in one form; a key named after a
     section of entries (scenes, homoclinic, map) given as ``all`` becomes the names of every entry of that
     section, in name order (moving a block of config.yaml changes nothing the analysis reads)."""
@@ -45,16 +48,9 @@ def analysis_spec(config: dict, name: str, form: str):
     return form_spec(with_all(getattr(cfg.beyond, a.module), names), form)
 
 
-def analysis_reads(config: dict, name: str, form: str) -> dict:
+def analysis_reads(config: dict[str, Any], name: str, form: str) -> dict[str, Read]:
     """What analysis ``name`` reads in one form (:meth:`cradle.analyses.protocol.Analysis.reads_of`): name ->
-    :class:`~cradle.analyses.protocol.Read`; every scene it names must be a ``scenes:`` entry."""
+    :class:`~cradle.analyses.protocol.Read` (every scene it names a ``scenes:`` entry: the validation said so)."""
     from cradle.analyses.registry import ANALYSES
 
-    scenes = typed(config).scenes
-    reads = ANALYSES[name].reads_of(analysis_spec(config, name, form))
-    for read in reads.values():
-        scene = dict(read.names).get("scene")
-        if scene is not None and scene not in scenes:
-            raise ConfigError(f"config error: beyond.{name}: reads scene {scene!r}: no `scenes:` entry of that "
-                              f"name{did_you_mean(scene, scenes)}")
-    return reads
+    return ANALYSES[name].reads_of(analysis_spec(config, name, form))

@@ -1,5 +1,5 @@
-"""Declarations of the config's sections: figures, and the whole file (each analysis's section is declared by
-its module, the budget by cradle.pipeline.budget).
+"""Declarations of the config's sections: figures, ``beyond:``, and the whole file (each analysis's section is
+declared by its module, the budget by cradle.pipeline.budget, the movies by :mod:`.movies`).
 
 Each section is a frozen dataclass whose fields carry description, bounds and
 default (:func:`cradle.specs.declare.param`); :class:`Config` is the whole file. The entries a
@@ -11,25 +11,20 @@ order (:mod:`cradle.scenes.spec`).
 from __future__ import annotations
 
 import bisect
+from typing import Any
 
+from cradle.figures import FIGURES
 from cradle.pipeline.budget import Budget
 from cradle.scenes.spec import ENTRY_SECTIONS, Context, Defaults, HomoclinicEntry, MapEntry, Scene, Where
 from cradle.specs.declare import REQUIRED, declared, param, schema_doc
 from cradle.specs.values import TIME_TOL, Errors, did_you_mean
 
-from .beyond import Beyond
 from .movies import Movies
 
 SECTIONS = ENTRY_SECTIONS  # the name spaces a figure's `scenes:` list reads from
 
 
-def _known_figures() -> tuple[str, ...]:
-    from cradle.figures import FIGURES
-
-    return tuple(FIGURES)
-
-
-KNOWN_FIGURES = _known_figures()
+KNOWN_FIGURES = tuple(FIGURES)
 
 
 def _holds(times: tuple[float, ...], t: float) -> bool:
@@ -68,6 +63,24 @@ class Figure:
                                               f"(add it to a store.snapshots list)", t)
 
 
+BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysis's name (its module "
+              "cradle.analyses.<name>, its targets <name> and <name>_full, its folder results/<name>/); see "
+              "docs/analyses.md.")
+
+
+def _beyond_class() -> Any:
+    """The declared class of the ``beyond:`` section: one key per analysis of the registry (its name), declared
+    by the analysis's own spec class and checked by that class's ``check`` (:mod:`.checks`)."""
+    from cradle.analyses.registry import ANALYSES
+
+    namespace: dict[str, Any] = {"__annotations__": {}}
+    for a in ANALYSES.values():
+        namespace["__annotations__"][a.module] = a.spec
+        namespace[a.module] = param(a.spec(), schema_doc(a.spec), key=a.name)
+    return declared(doc=BEYOND_DOC)(type("Beyond", (), namespace))
+
+
+Beyond = _beyond_class()
 
 
 @declared(doc="The experiments of G. James, 'Nonlinear waves in Newton's cradle and the discrete p-Schrodinger "
@@ -84,6 +97,6 @@ class Config:
                                        "entries each reads and the times its panels show.",
                                        propertyNames={"description": "A known figure label.",
                                                       "enum": list(KNOWN_FIGURES)})
-    beyond: Beyond = param(Beyond(), schema_doc(Beyond))
+    beyond: Beyond = param(Beyond(), schema_doc(Beyond))   # type: ignore[valid-type]  # a class made at import
     budget: Budget = param(Budget(), schema_doc(Budget))
     movies: Movies = param(Movies(), schema_doc(Movies))

@@ -10,79 +10,69 @@ reported before any work starts, one line per problem, naming the key path and t
 resolved against ``defaults:`` (alpha, max_energy_drift, its integrators' keys over those of ``defaults``) and
 its SI values in (nc)'s units, a homoclinic or map entry with its alpha. Then the jobs' budget
 (:mod:`cradle.pipeline.budget`) and the checks no key expresses alone (:mod:`.checks`) run on the entries
-that passed. The typed config is remembered for the last few configs: the Snakefile resolves one entry per
-job from it.
+that passed. The typed config of the last few configs is remembered (the Snakefile resolves one entry per job),
+and so is each entry's typed object (a config validated again with one entry changed reads that entry only).
 """
 from __future__ import annotations
 
-import dataclasses
 import json
 import pickle
+from typing import Any
 
 from cradle.scenes.spec import Defaults, HomoclinicEntry, MapEntry, Scene, in_nc_units
 from cradle.specs.declare import plain
-from cradle.specs.parse import BAD, Found, entries, fields_of, given_fields, parse
-from cradle.specs.values import ConfigError, Errors, copied, show
+from cradle.specs.parse import BAD, entries, fields_of, given_fields, parse
+from cradle.specs.values import ConfigError, Errors, show
 
 from . import checks
-from .beyond import Beyond
-from .sections import KNOWN_FIGURES, SECTIONS, Config, Figure
+from .sections import KNOWN_FIGURES, SECTIONS, Beyond, Config, Figure
 
-#: the sections :func:`read` reads apart from the others: with ``defaults:``, entry by entry
-_OWN = ("defaults", "map", "homoclinic", "scenes", "figures", "beyond")
+#: the sections of entries resolved against ``defaults:``
+ENTRIES: dict[str, type] = {"map": MapEntry, "homoclinic": HomoclinicEntry, "scenes": Scene}
 
-#: the typed configs of the last few configs, by their canonical JSON (:func:`_key`), with their plain values
-_TYPED: dict[str, Config] = {}
-_PLAIN: dict[int, dict] = {}
+#: the typed configs of the last few configs, by their canonical JSON (:func:`_key`)
+_TYPED: dict[str | None, Config] = {}
+#: the configs taken as validated (:func:`assume_validated`), by their canonical JSON
+_TRUSTED: set[str | None] = set()
+#: what :func:`remembered` made of the entries of recent configs, by (class, key path, pickle of value and base)
+_MADE: dict[tuple, tuple] = {}
 
 
-def _key(config) -> str | None:
-    """The cache key of a config (its canonical JSON), or None if it cannot be serialised."""
+def _key(config: Any) -> str | None:
+    """The canonical JSON of a config, or None if it cannot be serialised."""
     try:
         return json.dumps(config, sort_keys=True, default=repr)
     except (TypeError, ValueError):
         return None
 
 
-def _remember(key: str | None, made: Config) -> Config:
-    if key is not None:
-        if len(_TYPED) >= 8:
-            _TYPED.pop(next(iter(_TYPED)))
-        _TYPED[key] = made
-    return made
+def _base(defaults: Any, cls: type) -> dict[str, Any]:
+    """What an entry of class ``cls`` leaves out and ``defaults:`` gives: alpha, and for a scene its
+    integrators and its energy drift bound."""
+    keys = ("alpha", "exact", "dps", "max_energy_drift") if cls is Scene else ("alpha",)
+    return {} if defaults is BAD else {key: getattr(defaults, key) for key in keys}
 
 
-#: what :func:`remembered` made of the entries of recent configs, by (class, key path, pickle of value and base)
-_MADE: dict[tuple, tuple] = {}
-
-
-def remembered(cls, value, path: tuple, found: Found, base=None):
-    """:func:`cradle.specs.parse.parse`, remembered: a config validated again with one entry changed (the
-    Snakefile's --config overrides, the config fuzz) reads that entry only. What it makes is frozen."""
+def remembered(cls: Any, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
+    """:func:`cradle.specs.parse.parse` of one entry (or section), remembered: a config validated again with one
+    entry changed (the Snakefile's --config overrides, the config fuzz) reads that entry only, and its checks
+    see the same frozen objects (a scene's stored times are worked out once)."""
     try:
         key = (cls, path, pickle.dumps((value, base), protocol=pickle.HIGHEST_PROTOCOL))
     except Exception:  # noqa: BLE001 -- a value pickle refuses is read every time
         return parse(cls, value, path, found, base)
     if key not in _MADE:
-        mine = Found()
-        _MADE[key] = (parse(cls, value, path, mine, base), mine.lines, mine.finite)
+        mine = Errors()
+        _MADE[key] = (parse(cls, value, path, mine, base), mine.held, mine.finite)
         if len(_MADE) > 4096:
             _MADE.pop(next(iter(_MADE)))
-    made, lines, finite = _MADE[key]
-    found.lines += lines
+    made, held, finite = _MADE[key]
+    found.held += held
     found.finite += finite
     return made
 
 
-def _base(defaults) -> dict:
-    """What an entry leaves out and ``defaults:`` gives: alpha, the integrators, the energy drift bound."""
-    if defaults is BAD:
-        return {}
-    return {"alpha": defaults.alpha, "exact": defaults.exact, "dps": defaults.dps,
-            "max_energy_drift": defaults.max_energy_drift}
-
-
-def read(config: dict) -> tuple[dict, Found]:
+def read(config: Any) -> tuple[dict[str, Any], Errors]:
     """Every section of ``config`` as its typed value (field name of :class:`.sections.Config` -> value; an
     entry with problems left out), and the problems found."""
     if config is None:
@@ -93,52 +83,38 @@ def read(config: dict) -> tuple[dict, Found]:
         # an empty file, or the wrong one: refused here rather than as a traceback while the DAG is built
         raise ConfigError(f"config error: config: no {', '.join(SECTIONS)} entries, nothing to build (keys given: "
                           f"{', '.join(map(str, config)) or 'none'})")
-    found = Found()
-    # the sections read below (with what they take from defaults:) left to their defaults here
-    parts = given_fields(Config, {key: value for key, value in config.items() if key not in _OWN}, (), found)
+    found = Errors()
+    # the sections read entry by entry below are left to their defaults here
+    apart = ("defaults", *ENTRIES, "figures", "beyond")
+    parts = given_fields(Config, {key: value for key, value in config.items() if key not in apart}, (), found)
     defaults = remembered(Defaults, config["defaults"], ("defaults",), found) if "defaults" in config \
         else Defaults()
-    base = _base(defaults)
     parts["defaults"] = defaults
-    for section, cls in (("map", MapEntry), ("homoclinic", HomoclinicEntry), ("scenes", Scene)):
+    for section, cls in ENTRIES.items():
         if section in config:
-            made = entries(cls, config[section], (section,), found, base={"alpha": base.get("alpha")}
-                           if cls is not Scene else base, one=remembered)
+            made = entries(cls, config[section], (section,), found, base=_base(defaults, cls), one=remembered)
             parts[section] = {} if made is BAD else made
-    if "scenes" in config:
-        parts["scenes"] = {name: in_nc_units(s) for name, s in parts["scenes"].items()}
+    parts["scenes"] = {name: in_nc_units(s) for name, s in parts["scenes"].items()}
     if "figures" in config:
         made = entries(Figure, config["figures"], ("figures",), found, labels=KNOWN_FIGURES, one=remembered)
         parts["figures"] = {} if made is BAD else made
-    parts["beyond"] = {f.name: getattr(parts["beyond"], f.name) for f in dataclasses.fields(Beyond)}
-    if "beyond" in config:   # each analysis as an entry: one with problems left out
-        parts["beyond"] = _analyses(config["beyond"], found, parts["beyond"])
+    # each analysis as an entry (one with problems left out); given_fields says what else is wrong
+    beyond, known = config.get("beyond", {}), {f.key: f for f in fields_of(Beyond)}
+    mapping = isinstance(beyond, dict)
+    given_fields(Beyond, {k: v for k, v in beyond.items() if k not in known} if mapping else beyond, ("beyond",), found)
+    made = {f.name: remembered(f.tp, beyond[key], ("beyond", key), found, f.make()) if key in beyond else f.make()
+            for key, f in known.items()} if mapping else {}
+    parts["beyond"] = {name: spec for name, spec in made.items() if spec is not BAD}
     return parts, found
 
 
-def _analyses(given, found: Found, defaults: dict) -> dict:
-    """Each section of ``beyond:`` read as its analysis's spec class (field name -> spec; one with problems
-    left out)."""
-    if not isinstance(given, dict):
-        return {} if given_fields(Beyond, given, ("beyond",), found) is BAD else defaults
-    fields = {f.key: f for f in fields_of(Beyond)}
-    for key in given:
-        if key not in fields:
-            given_fields(Beyond, {key: given[key]}, ("beyond",), found)   # says so
-    out = dict(defaults)
-    for key, f in fields.items():
-        if key in given:
-            out[f.name] = remembered(f.tp, given[key], ("beyond", key), found, f.make())
-    return {name: spec for name, spec in out.items() if spec is not BAD}
-
-
-def typed(config: dict) -> Config:
+def typed(config: Any) -> Config:
     """The validated config as a frozen :class:`.sections.Config` (every entry typed, scenes resolved)."""
     key = _key(config)
-    if key in _TYPED:
+    if key is not None and key in _TYPED:
         return _TYPED[key]
     parts, found = read(config)
-    out = found.report(Errors())
+    out = found.said()
     made = None if out.lines else Config(**{**parts, "beyond": Beyond(**parts["beyond"])})
     if made is not None:  # every job's estimated memory, output and time within budget, before the physical
         from cradle.pipeline import budget  # checks build stored-time arrays (cradle.pipeline.budget)
@@ -147,47 +123,39 @@ def typed(config: dict) -> Config:
     checks.check(parts, config, out)
     out.raise_any()
     assert made is not None
-    values = _PLAIN.setdefault(id(made), plain(made, canonical=False))
-    if len(_PLAIN) > 8:
-        _PLAIN.pop(next(iter(_PLAIN)))
-    _remember(_key(values), made)
-    return _remember(key, made)
+    if key is not None:
+        if len(_TYPED) >= 8:
+            _TYPED.pop(next(iter(_TYPED)))
+        _TYPED[key] = made
+    return made
 
 
-def validate(config: dict) -> dict:
+def validate(config: Any) -> dict[str, Any]:
     """``config`` validated, with every default filled in and every scene resolved (:func:`typed`), as plain
     values in the order of the declarations: what the Snakefile's ``config`` holds. Raises
     :class:`ConfigError` listing every problem found, one line each."""
-    made = typed(config)
-    values = _PLAIN.get(id(made))
-    return copied(values) if values is not None else plain(made, canonical=False)
+    return plain(typed(config), canonical=False)
 
 
-def assume_validated(config: dict) -> dict:
+def assume_validated(config: dict[str, Any]) -> dict[str, Any]:
     """``config``, taken as validated (a Snakemake job's copy of the config its Snakefile validated:
     workflow/rules/common.smk): an entry of it is then read alone (:func:`entry`), not the whole config."""
     _TRUSTED.add(_key(config))
     return config
 
 
-_TRUSTED: set[str | None] = set()
-
-
-def entry(config: dict, section: str, name: str):
+def entry(config: dict[str, Any], section: str, name: str) -> Any:
     """Entry ``name`` of ``section`` (scenes, homoclinic, map) of ``config``, typed and resolved; a config taken
     as validated (:func:`assume_validated`) is read for that entry alone."""
     key = _key(config)
-    made = _TYPED.get(key) if key is not None else None
-    if made is None and key in _TRUSTED and name in (config.get(section) or {}):
-        found = Found()
+    if key in _TRUSTED and key not in _TYPED and name in (config.get(section) or {}):
+        found, cls = Errors(), ENTRIES[section]
         defaults = parse(Defaults, config.get("defaults", {}), ("defaults",), found)
-        cls = {"scenes": Scene, "homoclinic": HomoclinicEntry, "map": MapEntry}[section]
-        base = _base(defaults) if cls is Scene else {"alpha": defaults.alpha}
-        one = parse(cls, config[section][name], (section, name), found, base)
-        found.report(Errors()).raise_any()
+        one = parse(cls, config[section][name], (section, name), found, _base(defaults, cls))
+        found.said().raise_any()
         return in_nc_units(one) if cls is Scene else one
-    entries_ = getattr(made if made is not None else typed(config), section)
-    if name not in entries_:
+    made = getattr(typed(config), section)
+    if name not in made:
         raise ConfigError(f"config error: {section}.{name}: no {section} entry of that name ({section} entries: "
-                          f"{', '.join(entries_) or 'none'})")
-    return entries_[name]
+                          f"{', '.join(made) or 'none'})")
+    return made[name]
