@@ -20,6 +20,18 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 os.environ.update(CRADLE_SNAKEMAKE_PID=str(os.getpid()))
 
 
+# config.yaml read first by cradle's bounded reader: Snakemake's own takes minutes over a huge file and
+# stops with a traceback on one that is not UTF-8 (files given by --configfile it reads before this file)
+if os.path.exists("config.yaml"):
+    from snakemake.exceptions import WorkflowError
+    from cradle.pipeline.config import ConfigError, read_yaml
+
+    try:
+        read_yaml("config.yaml")
+    except ConfigError as err:
+        raise WorkflowError(str(err)) from None
+
+
 configfile: "config.yaml"
 
 

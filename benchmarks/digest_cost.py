@@ -1,7 +1,8 @@
 """What the digest beside every output costs (cradle.data.digests): to digest the largest files of a build against
 the time to write them, and what the comparison adds to a reader.
 
-For each of the ``COUNT`` largest netCDF files of a results folder (default ``results``, a finished build), in this
+For each of the ``COUNT`` largest netCDF files without groups (a file of groups is a tree, which this does not
+write) of a results folder (default ``results``, a finished build), in this
 process, ``REPEATS`` times each, alternating:
 
 * write: what :func:`cradle.data.io.write_netcdf` does without the digest (``to_netcdf`` with the checksummed
@@ -109,8 +110,14 @@ def table(rows: dict[Path, dict]) -> str:
 
 
 def main() -> int:
-    files = sorted((p for p in RESULTS.rglob("*.nc") if "failed" not in p.parts and not p.name.startswith(".")),
-                   key=lambda p: p.stat().st_size, reverse=True)[:COUNT]
+    import netCDF4
+
+    def flat(p: Path) -> bool:   # a file of groups (a tree) is written otherwise: open_dataset reads its root only
+        with netCDF4.Dataset(p) as nc:
+            return not nc.groups
+
+    files = sorted((p for p in RESULTS.rglob("*.nc") if "failed" not in p.parts and not p.name.startswith(".")
+                    and flat(p)), key=lambda p: p.stat().st_size, reverse=True)[:COUNT]
     if not files:
         raise SystemExit(f"no netCDF file under {RESULTS}: build first (snakemake -j2 all)")
     scratch = Path(tempfile.mkdtemp(prefix="digest-cost-"))

@@ -171,16 +171,17 @@ def test_the_onsite_force_is_the_derivative_of_the_potential():
 
 
 @pytest.mark.parametrize(("terms", "N", "bc", "words"), [
-    (Terms(inhomogeneity=Inhomogeneity(mass=(1.0, -1.0, 1.0))), 3, "periodic", ["mass", "-1.0"]),
-    (Terms(inhomogeneity=Inhomogeneity(sigma=0.6, seed=0)), 200, "periodic", ["sigma", "0.6", "omega"]),
-    (Terms(inhomogeneity=Inhomogeneity(mass_sigma=0.9, seed=1)), 200, "periodic", ["mass_sigma", "0.9"]),
-    (Terms(precompression=Precompression(delta0=0.1)), 8, "free", ["delta0", "0.1", "free"]),
-    (Terms(inhomogeneity=Inhomogeneity(omega=(1.0, 1.1))), 3, "periodic", ["omega", "N = 3"]),
-    (Terms(onsite=OnSite(potential="pendulum", scale=-1.0)), 3, "periodic", ["scale", "-1.0"]),
+    (lambda: Terms(inhomogeneity=Inhomogeneity(mass=(1.0, -1.0, 1.0))), 3, "periodic", ["mass", "-1.0"]),
+    (lambda: Terms(inhomogeneity=Inhomogeneity(sigma=0.6, seed=0)), 200, "periodic", ["sigma", "0.6", "omega"]),
+    (lambda: Terms(inhomogeneity=Inhomogeneity(mass_sigma=0.9, seed=1)), 200, "periodic", ["mass_sigma", "0.9"]),
+    (lambda: Terms(precompression=Precompression(delta0=0.1)), 8, "free", ["delta0", "0.1", "free"]),
+    (lambda: Terms(inhomogeneity=Inhomogeneity(omega=(1.0, 1.1))), 3, "periodic", ["omega", "N = 3"]),
+    (lambda: Terms(onsite=OnSite(potential="pendulum", scale=-1.0)), 3, "periodic", ["scale", "-1.0"]),
 ])
 def test_bad_input_is_one_line_naming_key_and_value(terms, N, bc, words):
+    """Refused where it is built (a value its declaration refuses) or where it meets the chain (N, bc)."""
     with pytest.raises(ConfigError) as err:
-        T.check(terms, N, bc)
+        T.check(terms(), N, bc)
     msg = str(err.value)
     assert "\n" not in msg, msg
     for w in words:

@@ -248,8 +248,9 @@ def test_config_fuzz(raw):
     (("beyond", "floquet", "convergence", "grid_log2"), "must be <= 22"),
     (("beyond", "theorem1", "grid_log2"), "must be <= 18"),
     (("beyond", "mi-statistics", "q_over_pi", "count"), "must be <= 1000"),
-    (("beyond", "work-precision", "scenes", "tw-weak", "t_end"), "must be <= 1000000"),
-    (("homoclinic", "site", "N"), "must be <= 10000000"),
+    (("beyond", "work-precision", "scenes", "tw-weak", "t_end"),
+     "must be <= 4194304 (float64 tells stored times 1e-9 apart only below 2^22 = 4194304)"),
+    (("homoclinic", "site", "N"), "must be <= 9007199254740992"),
     (("defaults", "max_energy_drift"), "must be <= 0.01"),
 ])
 def test_a_huge_value_is_refused_by_its_bound_alone(raw, path, words):

@@ -96,15 +96,18 @@ def test_cli_extend(runs, tmp_path, capsys):
 
 def test_extend_estimates_and_refuses_before_any_work(runs, tmp_path, capsys):
     """`cradle extend` prints its estimate (cradle.pipeline.budget) and refuses, in one line and before
-    anything is written, a t_end beyond a scene's longest run, a grid of more times than a scene may store,
-    and a run over the budget of the config."""
+    anything is written, a t_end beyond a scene's longest run (a limit of float64), and a run over the budget of
+    the config (a grid of many stored times among them)."""
     short, _ = runs
     path = tmp_path / "exact.nc"
     io.write_netcdf(short, path)
     out = tmp_path / "long.nc"
-    for argv, words in ((["--t-end", "1e300"], "t_end=1e+300: must be <= 1e+06"),
-                        (["--t-end", "1e7"], "t_end=10000000.0: must be <= 1e+06"),
-                        (["--t-end", "100", "--every", "1e-9"], "more than 10000000"),
+    why = "a scene's longest run (float64 tells stored times 1e-9 apart only below 2^22 = 4194304)"
+    for argv, words in ((["--t-end", "1e300"], f"t_end=1e+300: must be <= 4194304, {why}"),
+                        (["--t-end", "1e7"], f"t_end=10000000.0: must be <= 4194304, {why}"),
+                        (["--t-end", "100", "--every", "1e-9"], "N = 16, t = 20 -> 100: 8e+10 stored times added, "
+                                                                "~8e+10 steps of srkn6c (dt = 0.020814): estimated "
+                                                                "peak memory 3.84 TB exceeds budget.memory_gb = 8"),
                         (["--t-end", "1e6", "--every", "0.5"], "exceeds budget.disk_gb = 0.1")):
         (tmp_path / "config.yaml").write_text("scenes: {s: {N: 2, initial: {kind: travelling, q: pi, a: 0.01}, "
                                               "t_end: 1, store: {every: 1}}}\nbudget: {disk_gb: 0.1}\n")

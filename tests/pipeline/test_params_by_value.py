@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import copy
 import json
+import math
+import shutil
+import subprocess
 
 import pytest
 import yaml
@@ -87,3 +90,52 @@ def test_the_claims_table_reads_all_scenes_in_name_order(raw):
     moved["scenes"] = {n: moved["scenes"][n] for n in names[1:] + names[:1]}
     one, other = (plain(cc.analysis_spec(c, "paper-checks", "full")) for c in (raw, moved))
     assert one == other and one["scenes"] == sorted(raw["scenes"])
+
+
+def test_a_number_equal_to_a_multiple_of_pi_is_that_multiple():
+    """``q: 0.6283185307179586`` is ``q: pi/5`` bit for bit: one parameter; a number that is no such multiple
+    stays a number."""
+    assert canonical_angle(0.6283185307179586) == canonical_angle("0.6283185307179586") == "pi/5"
+    assert canonical_angle(-4 * math.pi / 5) == "-4pi/5" and canonical_angle(math.pi) == "pi"
+    assert canonical_angle(0.6283185307179587) == 0.6283185307179587   # one ulp away: another angle
+    for x in (0.5, 0.0, 1e-300, 1e300, math.inf):
+        assert canonical_angle(x) == x
+
+
+def test_q_as_the_number_of_pi_over_5_gives_the_same_params(raw):
+    cfg = copy.deepcopy(raw)
+    cfg["scenes"]["tw-weak"]["initial"]["q"] = 0.6283185307179586
+    assert _params(cfg) == _params(raw)
+
+
+@pytest.mark.slow
+def test_q_written_as_its_number_reruns_nothing(tmp_path):
+    """plot4-5's jobs up to date (``--touch``) in a copy of the workflow; ``q: 0.6283185307179586`` in place of
+    ``q: pi/5`` plans nothing (the same double), ``q: 2pi/5`` plans tw-weak's job again."""
+    from conftest import run_snakemake
+    from cradle.pipeline import layout as L
+
+    work = tmp_path / "cradle"
+    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True,
+                           check=True).stdout.split("\0")
+    for f in filter(None, files):
+        if (ROOT / f).is_file() and not f.startswith(("tests/", "docs/", "benchmarks/")):
+            (work / f).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / f, work / f)
+    target = "results/figures/plot4-5.png"
+    for out in map(str, [L.path("kernels"), *L.scene_paths("tw-weak").values(), *L.figure_paths("plot4-5").values()]):
+        (work / out).parent.mkdir(parents=True, exist_ok=True)
+        (work / out).touch()
+    proc = run_snakemake(work, "--touch", "--forceall", "--cores", "1", target)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    config = work / "config.yaml"
+    text = config.read_text()
+    line = "initial: {kind: travelling, q: pi/5, omega_tw: 1.01, phi: 0.0}   # a ~ 2.118e-2 from (freq)"
+    assert text.count(line) == 1
+    config.write_text(text.replace(line, line.replace("q: pi/5", "q: 0.6283185307179586")))
+    proc = run_snakemake(work, "-n", target)
+    assert proc.returncode == 0 and "Nothing to be done" in proc.stdout + proc.stderr, proc.stderr[-3000:]
+    config.write_text(text.replace(line, line.replace("q: pi/5", "q: 2pi/5")))
+    proc = run_snakemake(work, "-n", target)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert "simulate" in proc.stdout and "Nothing to be done" not in proc.stdout + proc.stderr

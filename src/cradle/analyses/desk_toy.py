@@ -38,6 +38,7 @@ from cradle.models.damping import Damping
 from cradle.models.lattice import bond_forces
 from cradle.models.physical import Cradle
 from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import RTOL_FLOOR
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
@@ -95,7 +96,7 @@ class DeskToyRuns:
         "its source (Kuwabara & Kono, Jpn. J. Appl. Phys. 26 (1987) 1230 measured such collisions: take the value "
         "from there or from one's own cradle).", minItems=1, maxItems=6, items=_E)
     rtol: float = param(1e-14, "Relative tolerance of the (nc) runs (dop853_numba; atol = rtol times the "
-                        "amplitude).", minimum=1e-15, maximum=1e-6)
+                        "amplitude).", minimum=RTOL_FLOOR, maximum=1e-6)
     thresholds: list[float] = param([0.9, 0.5], "Thresholds of the one-out-one-out measure: the pattern holds "
                                     "while f_k >= threshold.", minItems=1, maxItems=6, items=_THRESHOLD)
     damping: Damping = param(None, "Damping of the (nc) runs, (ncdamped) in (nc)'s units (cradle.models.damping: "

@@ -53,6 +53,7 @@ import numpy as np
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import RTOL_FLOOR
 
 if TYPE_CHECKING:
     from cradle.models.initial import InitialData
@@ -106,7 +107,7 @@ class Dissipation:
     sample_every: float = param(0.1, "Spacing of the stored samples (the frequencies are read from zero crossings: "
                                 "tens of samples per period).", exclusiveMinimum=0, maximum=0.5)
     window: float = param(50.0, "Length of the windows of the frequency drift.", minimum=10, maximum=10000)
-    rtol: float = param(1e-10, "Relative tolerance of the lattice (dop853_numba) and DpS runs.", exclusiveMinimum=0,
+    rtol: float = param(1e-10, "Relative tolerance of the lattice (dop853_numba) and DpS runs.", minimum=RTOL_FLOOR,
                         maximum=1e-6)
     validity_eps: list[float] = param([0.01, 0.0025], "eps of (ansatz) of the validity runs (the plane wave of "
                                       "wave_mode, A_n(0) = e^{-iqn}).", minItems=2, maxItems=6, items=_VEPS)

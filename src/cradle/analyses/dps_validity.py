@@ -38,7 +38,7 @@ import numpy as np
 from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
-from cradle.specs.values import show
+from cradle.specs.values import RTOL_FLOOR, show
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
@@ -93,7 +93,7 @@ class DpsValidity:
                                 maximum=1.0)
     dt_factor: float = param(0.01, "srkn6c step as a fraction of the shortest linearised period (the run at the "
                              "smallest eps is repeated with dt / 2).", exclusiveMinimum=0, maximum=0.05)
-    dps_rtol: float = param(1e-11, "Relative tolerance of the DpS runs (dop853_numba).", exclusiveMinimum=0,
+    dps_rtol: float = param(1e-11, "Relative tolerance of the DpS runs (dop853_numba).", minimum=RTOL_FLOOR,
                             maximum=1e-6)
     chunk: int = param(20000, "Samples per integration chunk (bounds the memory of the long runs).", minimum=100,
                        maximum=1000000)

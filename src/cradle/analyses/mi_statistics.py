@@ -51,7 +51,7 @@ from cradle.models import initial
 from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
 from cradle.scenes.times import store_times
 from cradle.specs.declare import NULL, declared, param, plain
-from cradle.specs.values import INTEGER_TOL
+from cradle.specs.values import INTEGER_TOL, RTOL_FLOOR
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
@@ -74,7 +74,7 @@ class MIStatisticsExact:
 class MIStatisticsDps:
     method: str = param("dop853_numba", "dop853_numba: DOP853 compiled (fastest for these N).", enum=list(DPS_METHODS))
     rtol: float = param(1e-10, "Relative tolerance (atol = rtol max |A_n(0)|), as defaults.dps.rtol.",
-                        exclusiveMinimum=0, maximum=0.001)
+                        minimum=RTOL_FLOOR, maximum=0.001)
 
 
 @declared(doc="Grid of carrier wavenumbers q / pi: count values from start to stop.")

@@ -53,6 +53,7 @@ import numpy as np
 from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import RTOL_FLOOR
 
 if TYPE_CHECKING:
     from cradle.scenes.spec import Context, Where
@@ -155,7 +156,7 @@ class Trapping:
     sample_every: float = param(0.5, "Spacing of the samples the detector reads, in t (the period is 2 pi).",
                                 exclusiveMinimum=0, maximum=2)
     rtol: float = param(1e-9, "Relative tolerance of the runs (dop853_numba; atol = rtol times the largest initial "
-                        "|x| or |v|).", minimum=1e-14, maximum=1e-6)
+                        "|x| or |v|).", minimum=RTOL_FLOOR, maximum=1e-6)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Each form: measurement times within the run and after their windows, scan amplitudes listed, the

@@ -56,7 +56,7 @@ from cradle.data.variables import Var
 from cradle.models import lattice
 from cradle.scenes.spec import LATTICE_ADAPTIVE, SPLITTINGS
 from cradle.specs.declare import REQUIRED, declared, param, plain
-from cradle.specs.values import MAX_T_END, ConfigError, did_you_mean
+from cradle.specs.values import MAX_T_END, RTOL_FLOOR, ConfigError, did_you_mean
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -101,7 +101,9 @@ def _ladder(method: str) -> dict:
     return {"description": f"Ladder of {method}: {what}.", "type": "object", "additionalProperties": False,
             "required": [key], "properties": {key: {
                 "description": f"The settings ({key}), each > 0.", "type": "array", "minItems": 1,
-                "items": {"type": "number", "exclusiveMinimum": 0, "maximum": top}}}}
+                "items": {"type": "number", "maximum": top,
+                                                       **({"minimum": RTOL_FLOOR} if key == "rtol" else
+                                                          {"exclusiveMinimum": 0})}}}}
 
 
 @declared(doc="The ladder of settings of one method: dt_factor for a splitting, rtol for an adaptive method.")

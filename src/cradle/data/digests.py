@@ -54,7 +54,7 @@ def _attribute(value) -> str:
         body = b"bytes|" + value
     else:
         arr = np.asarray(value)
-        arr = arr.astype(arr.dtype.newbyteorder("<")) if arr.dtype.kind in "fiuc" else arr
+        arr = arr.astype(arr.dtype.newbyteorder("<"), copy=False) if arr.dtype.kind in "fiuc" else arr
         body = f"{arr.dtype.str}|{','.join(map(str, arr.shape))}|".encode() + arr.tobytes()
     return hashlib.sha256(body).hexdigest()
 
@@ -76,14 +76,14 @@ def items(nc, prefix: str = "", block_bytes: int = 64 * 2**20, known: dict[str, 
     HDF5 checks every Fletcher-32 checksum on the way), ``var@name`` a variable's attribute; a group's prefixed
     by its path (``waves/omega``); values read ``block_bytes`` at a time, except those whose digest ``known`` gives
 (:func:`array_digest` of what the writer stored, by the same keys)."""
-    out = {f"{prefix}@{k}": _attribute(nc.getncattr(k)) for k in nc.ncattrs()}
+    out = {f"{prefix}@{k}": _attribute(v) for k, v in nc.__dict__.items()}   # all read at once
     for name, dim in nc.dimensions.items():
         out[f"{prefix}dim:{name}"] = hashlib.sha256(f"{len(dim)}|{dim.isunlimited()}".encode()).hexdigest()
     for name, var in nc.variables.items():
         dims = hashlib.sha256(",".join(var.dimensions).encode()).hexdigest()
         stored = (known or {}).get(f"{prefix}{name}") or values_digest(var, block_bytes)
         out[f"{prefix}{name}"] = hashlib.sha256(f"{stored}|{dims}".encode()).hexdigest()
-        out.update({f"{prefix}{name}@{k}": _attribute(var.getncattr(k)) for k in var.ncattrs()})
+        out.update({f"{prefix}{name}@{k}": _attribute(v) for k, v in var.__dict__.items()})
     for gname, group in nc.groups.items():
         out.update(items(group, f"{prefix}{gname}/", block_bytes, known))
     return out

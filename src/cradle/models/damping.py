@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.specs.declare import declared, param
+from cradle.specs.declare import check_fields, declared, param
 
 
 @declared("damping", doc="Dissipation of a lattice (nc) scene, in the units of (nc) (time 1/omega_0): linear "
@@ -48,6 +48,9 @@ class Damping:
     contact: float = param(0.0, "eta: Kuwabara-Kono contact damping, bond force -max(c^alpha + eta c^(alpha-1) "
                            "c', 0) on a compression c > 0 (eta = A omega_0 for the SI constant A in seconds); "
                            ">= 0.", minimum=0)
+
+    def __post_init__(self) -> None:   # built directly: checked as the config's values are
+        check_fields(self, "damping")
 
     @property
     def active(self) -> bool:

@@ -27,7 +27,7 @@ from typing import NamedTuple
 import numpy as np
 
 from cradle.models.physical import MATERIALS
-from cradle.specs.declare import declared, param
+from cradle.specs.declare import check_fields, declared, param
 from cradle.specs.values import ConfigError
 
 DISTRIBUTIONS = ("normal", "uniform")
@@ -69,6 +69,9 @@ class Inhomogeneity:
                                              "masses and their moduli the stiffnesses as `radius` does (radii 1 if "
                                              "not given).", items={"type": "string", "enum": list(MATERIALS)},
                                              minItems=1, maxItems=_MAX_SITES)
+
+    def __post_init__(self) -> None:   # built directly: checked as the config's values are
+        check_fields(self, "inhomogeneity")
 
     @property
     def active(self) -> bool:

@@ -31,7 +31,7 @@ from cradle.models.damping import Damping
 from cradle.models.inhomogeneity import Inhomogeneity, Sites, homogeneous, sites
 from cradle.models.onsite import OnSite
 from cradle.models.precompression import Precompression
-from cradle.specs.declare import declared, from_plain, param, plain
+from cradle.specs.declare import check_fields, declared, from_plain, param, plain
 from cradle.specs.values import ConfigError
 
 
@@ -41,6 +41,9 @@ class Terms:
     inhomogeneity: Inhomogeneity = param(Inhomogeneity(), "Site masses, on-site frequencies, contact stiffnesses.")
     precompression: Precompression = param(Precompression(), "Static overlap delta0 of the contacts.")
     onsite: OnSite = param(OnSite(), "On-site potential W.")
+
+    def __post_init__(self) -> None:   # built directly: checked as the config's values are
+        check_fields(self, "terms")
 
     @property
     def active(self) -> bool:

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.specs.declare import declared, param
+from cradle.specs.declare import check_fields, declared, param
 
 POTENTIALS = ("harmonic", "quartic", "pendulum")
 #: the kernels' code of each potential
@@ -32,6 +32,9 @@ class OnSite:
     scale: float = param(0.0, "Pendulum: X / l_0, the unit length X of (nc) over the reference string length "
                          "(the bead's angle is scale omega_n^2 x); in [0, 100]; pendulum only.", minimum=0,
                          maximum=100)
+
+    def __post_init__(self) -> None:   # built directly: checked as the config's values are
+        check_fields(self, "onsite")
 
     @property
     def active(self) -> bool:

@@ -29,7 +29,7 @@ import dataclasses
 import math
 from typing import TYPE_CHECKING, overload
 
-from cradle.specs.declare import declared, from_plain, param
+from cradle.specs.declare import check_fields, declared, from_plain, param
 from cradle.specs.values import ConfigError, did_you_mean
 
 if TYPE_CHECKING:
@@ -92,7 +92,9 @@ class Material:
         if not isinstance(self.name, str) or not isinstance(self.source, str):
             raise ConfigError(f"config error: material.name = {self.name!r}, source = {self.source!r}: must be "
                               f"strings (the material's name and where its values come from)")
-        _validated(Elastic, {"E": self.E, "nu": self.nu, "rho": self.rho}, f"material {self.name!r}")
+        read = _validated(Elastic, {"E": self.E, "nu": self.nu, "rho": self.rho}, f"material {self.name!r}")
+        for key in ("E", "nu", "rho"):   # as the validation read them ('7800' is 7800.0)
+            object.__setattr__(self, key, getattr(read, key))
 
 
 def _ptfe() -> Material:
@@ -149,12 +151,20 @@ class Cradle:
     g: float = param(STANDARD_GRAVITY, doc="Acceleration of gravity g (m/s^2) of a pendulum; in [1e-3, 1e3]; "
                                            "default the standard g_n.", minimum=1e-3, maximum=1e3)
 
+    def __post_init__(self) -> None:   # built directly: checked as the config's values are
+        # a material registered in MATERIALS after this declaration is as good as a declared one
+        registered = isinstance(self.material, str) and self.material in MATERIALS
+        check_fields(self, "cradle", skip=("material",) if registered else ())
+
 
 @declared(doc="A pendulum's release: the string lifted to an angle theta from the vertical.")
 class Release:
     angle: float = param(doc="Angle theta of the string from the vertical (degrees); in [1e-3, 90): below, "
                              "1 - cos(theta) of the release speed keeps fewer than 6 digits in double precision.",
                          minimum=1e-3, exclusiveMaximum=90)
+
+    def __post_init__(self) -> None:   # built directly: checked as the config's values are
+        check_fields(self, "release")
 
 
 def real_cradle(material: str, radius: float, *, length: float | None = None, omega0: float | None = None,
@@ -216,6 +226,9 @@ def pendulum_omega0(length: float, g: float = STANDARD_GRAVITY) -> float:
 
 def scales(spec: Cradle) -> Scales:
     """The scales of (nc) for the cradle ``spec`` (alpha = 3/2)."""
+    if (spec.length is None) == (spec.omega0 is None):   # a Cradle built directly: real_cradle says so first
+        raise ConfigError(f"cradle: give the pendulum length or omega0, one of them (given: "
+                          f"{'both' if spec.length is not None else 'neither'})")
     mat = MATERIALS[spec.material]
     E_star = reduced_modulus(mat.E, mat.nu, mat.E, mat.nu)
     R_star = reduced_radius(spec.radius, spec.radius)

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cradle.specs.declare import declared, param
+from cradle.specs.declare import check_fields, declared, param
 
 
 @declared("precompression", doc="Uniform static overlap delta0 of the contacts of an imperfect cradle "
@@ -28,6 +28,9 @@ class Precompression:
     delta0: float = param(0.0, "Static overlap delta_0 of a bond of stiffness 1 (units X): > 0 precompressed "
                           "(periodic chains only: a free chain would fly apart), < 0 gaps of -delta_0; in "
                           "[-100, 100].", minimum=-100, maximum=100)
+
+    def __post_init__(self) -> None:   # built directly: checked as the config's values are
+        check_fields(self, "precompression")
 
     @property
     def active(self) -> bool:

@@ -169,17 +169,33 @@ def stored_count(store: Store, t_end: float) -> int:
     return n
 
 
-def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int) -> tuple[float, float]:
+#: how far DOP853's region of absolute stability reaches along the negative real axis (|h lambda| <= ~6): an
+#: explicit step resolves a decay rate lambda only with h <= this / lambda
+DOP853_STABLE = 6.0
+
+
+def damping_rate(damping, amplitude: float, alpha: float = 1.5) -> float:
+    """The fastest decay rate (nc)'s damping imposes on a run of displacement ``amplitude``: gamma of the on-site
+    term, and 2 eta c^(alpha - 1) of a bond's relative velocity under the Kuwabara-Kono term at a compression c
+    of the amplitude (reduced mass 1/2); 0 without damping."""
+    if damping is None or not damping.active:
+        return 0.0
+    return min(damping.onsite + 2.0 * damping.contact * min(abs(amplitude), 1e300) ** (alpha - 1.0), 1e300)
+
+
+def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int,
+                   rate: float = 0.0) -> tuple[float, float]:
     """(wall seconds, steps) of the exact run at the measured steps per unit time of its method,
     scaled by the ratio of step factors when a splitting's ``dt_factor`` is given; every interval
-    between stored times takes at least one step (the steps end on the stored times)."""
+    between stored times takes at least one step (the steps end on the stored times), and a damping
+    ``rate`` (:func:`damping_rate`) takes at least t_end rate / :data:`DOP853_STABLE` steps."""
     method = exact.method
     steps = t_end * STEPS_PER_TIME_UNIT.get(method, max(STEPS_PER_TIME_UNIT.values()))
     if exact.dt_factor:  # only then import the integrators (numba): the Snakefile validates
         from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR
 
         steps *= DEFAULT_DT_FACTOR.get(method, exact.dt_factor) / exact.dt_factor
-    steps = max(steps, float(stored - 1))
+    steps = max(steps, float(stored - 1), min(t_end * rate / DOP853_STABLE, 1e300))
     return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
 
 
@@ -194,13 +210,16 @@ def spec_estimate(spec: Scene, name: str = "?") -> Estimate:
     N, t_end, store and the exact integrator."""
     N, t_end, store = spec.N, spec.t_end, spec.store
     T = stored_count(store, t_end)
-    seconds, steps = _exact_seconds(N, t_end, spec.exact, T)
+    rate = damping_rate(spec.damping, _amplitude(spec.initial), spec.alpha)
+    seconds, steps = _exact_seconds(N, t_end, spec.exact, T, rate)
     seconds += BASE_SECONDS + COST_PER_STORED_VALUE_S * N * T
     per_time = 8.0 * (STORED_ARRAYS * N + STORED_SCALARS)
     cause = f"N = {N}, t_end = {_g(t_end)}" + (f", store.every = {_g(store.every)}" if store.every else "")
     cause += f": {_count(T)} stored times"
     if steps:
         cause += f", ~{steps:.3g} steps of {spec.exact.method}"
+    if rate * t_end > DOP853_STABLE * T:
+        cause += f" (a damping rate {_g(rate)} to resolve)"
     memory = BASE_BYTES + 8.0 * (PEAK_ARRAYS * N * T + STATE_ARRAYS * N)
     streamed = memory > STREAM_ABOVE_BYTES and streamable(spec)
     if streamed:
@@ -208,6 +227,37 @@ def spec_estimate(spec: Scene, name: str = "?") -> Estimate:
         cause += ", streamed block by block"
     return Estimate(f"scenes.{name}", cause, memory_bytes=memory,
                     disk_bytes=per_time * T + 8.0 * 6 * N, seconds=seconds, steps=steps, streamed=streamed)
+
+
+def _amplitude(initial) -> float:
+    """The displacement a scene's initial data reach, as far as its parameters say (0 when they do not say it
+    directly: a breather or wave given by its frequency, a kick)."""
+    for key in ("a", "amplitude"):
+        value = getattr(initial, key, None)
+        if isinstance(value, (int, float)):
+            return float(value)
+    return 0.0
+
+
+def desk_toy_estimate(cfg, form: str) -> Estimate:
+    """The job of one form of ``beyond.desk-toy``: a (nc) run of every chain length and lifted count over
+    ``swings`` periods 2 pi at the desk toy's amplitude (its damping resolved: :func:`damping_rate`), stored
+    ``samples`` times per period."""
+    from cradle.analyses.desk_toy import DEFAULT_CRADLE
+    from cradle.analyses.protocol import REDUCED, form_spec
+    from cradle.models.physical import release_amplitude
+
+    spec = form_spec(cfg.beyond.desk_toy, form)
+    N, t_end = max(spec.chains), 2.0 * math.pi * spec.swings
+    rate = damping_rate(spec.damping, release_amplitude(spec.cradle or DEFAULT_CRADLE, spec.angle_deg))
+    T = spec.swings * spec.samples + 1
+    runs = len(spec.chains) * len(spec.lifted)
+    one, steps = _exact_seconds(N, t_end, ExactIntegrator(method="dop853_numba"), T, rate)
+    return Estimate("beyond.desk-toy" + (".reduced" if form == REDUCED else ""),
+                    f"{runs} runs of N <= {N} over {spec.swings} swings" + (f", damping rate {_g(rate)}: ~{steps:.3g} "
+                                                                            f"steps each" if rate else ""),
+                    memory_bytes=BASE_BYTES + 8.0 * (4 * N * T + STATE_ARRAYS * N), disk_bytes=8.0 * 4 * N * T * runs,
+                    seconds=BASE_SECONDS + runs * one, steps=runs * steps)
 
 
 def streamable(spec: Scene) -> bool:
@@ -302,6 +352,44 @@ def work_precision_estimate(cfg, form: str) -> Estimate:
     return worst
 
 
+def sampled_estimate(key: str, N: int, t_end: float, every: float, runs: int, arrays: int) -> Estimate:
+    """The cost of an analysis's job of ``runs`` dop853_numba runs on N beads to ``t_end``, each sampled every
+    ``every`` (``arrays`` float64 arrays of N values held per sample while a run is measured): the samples go
+    through the same count as a scene's stored times (:func:`stored_count`)."""
+    T = stored_count(Store(every=every), t_end)
+    one, steps = _exact_seconds(N, t_end, ExactIntegrator(method="dop853_numba"), T)
+    return Estimate(key, f"{runs} runs of N = {N}, t_end = {_g(t_end)}, sample_every = {_g(every)}: {_count(T)} "
+                         f"samples each",
+                    memory_bytes=BASE_BYTES + 8.0 * (arrays * N * T + STATE_ARRAYS * N),
+                    disk_bytes=8.0 * 8 * runs * min(T, 1e4),   # the measures written, not the samples
+                    seconds=BASE_SECONDS + runs * (one + COST_PER_STORED_VALUE_S * N * T), steps=runs * steps)
+
+
+def dissipation_estimate(cfg, form: str) -> Estimate:
+    """The job of one form of ``beyond.dissipation``: each family (a breather, each wave) under each damping
+    value, lattice and DpS runs sampled every ``sample_every`` (x, v, A and the site energies held)."""
+    from cradle.analyses.protocol import REDUCED, form_spec
+
+    spec = form_spec(cfg.beyond.dissipation, form)
+    runs = 2 * (1 + len(spec.waves)) * (len(spec.onsite) + len(spec.contact))
+    return sampled_estimate("beyond.dissipation" + (".reduced" if form == REDUCED else ""), spec.N, spec.t_end,
+                            spec.sample_every, runs, arrays=6)
+
+
+def trapping_estimate(cfg, form: str) -> Estimate:
+    """The largest batch job of one form of ``beyond.trapping``: the longest chain (launch zone, longest target,
+    lead) run to tau_end in t at the slowest incident's time scale, sampled every ``sample_every`` (x, v and the
+    site energies held), as many runs as seeds per disordered case."""
+    from cradle.analyses.protocol import REDUCED, form_spec
+    from cradle.analyses.trapping import PROFILE, time_scale
+
+    spec = form_spec(cfg.beyond.trapping, form)
+    N = max(spec.launch, spec.back + PROFILE) + max([spec.length, *spec.lengths]) + spec.lead
+    t_end = spec.tau_end * max(time_scale(a) for a in [*spec.striker, *spec.breather])
+    return sampled_estimate("beyond.trapping" + (".reduced" if form == REDUCED else ""), N, t_end,
+                            spec.sample_every, spec.seeds, arrays=3)
+
+
 def extend_estimate(key: str, N: int, method: str, dt: float, t_from: float, t_end: float, added: int,
                     kept: int) -> Estimate:
     """The cost of ``cradle extend`` (:func:`cradle.pipeline.extend.extend`): ``added`` stored times from
@@ -334,12 +422,15 @@ def exceeds(e: Estimate, budget: Budget) -> str | None:
 def estimates(cfg) -> list[Estimate]:
     """An :class:`Estimate` for every scene, homoclinic and map entry of a typed config
     (:func:`cradle.pipeline.config.typed`), and for the largest batch job of each form of
-    ``beyond.mi-statistics`` and ``beyond.work-precision``."""
+    ``beyond.mi-statistics``, ``beyond.work-precision``, ``beyond.dissipation``, ``beyond.trapping`` and
+    ``beyond.desk-toy``."""
     out = []
     per_entry = (("scenes", scene_estimate), ("homoclinic", homoclinic_estimate), ("map", map_estimate))
     jobs: list[tuple[str, str, Callable[[Any, str], Estimate]]] = [
         (section, name, fn) for section, fn in per_entry for name in getattr(cfg, section)]
     jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
+    jobs += [("beyond", form, fn) for form in ("reduced", "full")
+             for fn in (dissipation_estimate, trapping_estimate, desk_toy_estimate)]
     if cfg.beyond.work_precision.scenes:
         jobs += [("beyond", form, work_precision_estimate) for form in ("reduced", "full")]
     for _section, name, fn in jobs:
@@ -350,11 +441,15 @@ def estimates(cfg) -> list[Estimate]:
     return out
 
 
+#: what a line over the budget suggests
+OVER_HINT = "raise it under budget: in the config if this machine allows, or change the entry"
+
+
 def over_budget(cfg) -> list[str]:
     """One line per job (and for all scenes' output together) that exceeds the budget; empty if all fit."""
     budget = Budget.from_config(cfg)
     lines = []
-    hint = "raise it under budget: in the config if this machine allows, or change the entry"
+    hint = OVER_HINT
     total = 0.0
     for e in estimates(cfg):
         if e.key.startswith("scenes."):
@@ -366,6 +461,27 @@ def over_budget(cfg) -> list[str]:
         lines.append(f"scenes: all scenes together write an estimated {fmt_bytes(total)}, over budget.disk_gb = "
                      f"{_g(budget.disk_gb)} ({hint})")
     return lines
+
+
+def check_scenes(scenes: dict, budget) -> None:
+    """:func:`check` for the scenes alone (name -> resolved :class:`Scene`) against ``budget`` (when it is not a
+    :class:`Budget`, one with every limit at its largest: the bad budget is reported, and only what no budget
+    runs is refused here): a config with problems elsewhere still has its scenes' stores judged before the
+    physical checks build their times."""
+    if not isinstance(budget, Budget):
+        budget = Budget(**{f.name: f.metadata["keywords"]["maximum"] for f in fields(Budget)})
+    lines = []
+    for name, spec in scenes.items():
+        try:
+            line = exceeds(spec_estimate(spec, name), budget)
+        except (TypeError, ValueError, AttributeError, ZeroDivisionError, OverflowError):
+            continue   # a bad value: the physical checks name it
+        if line is not None:
+            lines.append(f"config error: {line} ({OVER_HINT})")
+    if lines:
+        from cradle.specs.values import ConfigError
+
+        raise ConfigError(lines)
 
 
 def check(cfg) -> None:

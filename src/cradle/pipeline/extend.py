@@ -136,21 +136,20 @@ def _infer_every(t) -> float:
 def estimate(path, t_end: float, every: float | None = None, budget=None):
     """What extending the exact run in ``path`` to ``t_end`` will cost (:func:`cradle.pipeline.budget.extend_estimate`),
     from its header alone, before any work: ValueError (one line naming the value) for a t_end beyond a
-    scene's longest run or past the file's last time, a grid of more stored times than a scene may hold, an
-    adaptive integrator, or an estimate over ``budget`` (a :class:`cradle.pipeline.budget.Budget`; default:
-    the declared one)."""
+    scene's longest run (a limit of float64) or past the file's last time, an adaptive integrator, or an
+    estimate (memory, output, time: a grid of many stored times among them) over ``budget`` (a
+    :class:`cradle.pipeline.budget.Budget`; default: the declared one)."""
     from cradle.integrators import SPLITTING_METHODS
     from cradle.pipeline import budget as costs
     from cradle.scenes.times import grid_size
-    from cradle.specs.values import MAX_STORED_TIMES, MAX_T_END
+    from cradle.specs.values import MAX_T_END, T_END_WHY
 
     path = Path(path)
     t_end = float(t_end)
     if not math.isfinite(t_end):
         raise ValueError(f"t_end={t_end!r}: must be a finite time")
     if not t_end <= MAX_T_END:
-        raise ValueError(f"t_end={t_end!r}: must be <= {MAX_T_END:g}, a scene's longest run (stored times are told "
-                         f"apart to 1e-9, which float64 resolves only below ~4e6)")
+        raise ValueError(f"t_end={t_end!r}: must be <= {MAX_T_END:.0f}, a scene's longest run ({T_END_WHY})")
     if every is not None and not (math.isfinite(float(every)) and float(every) > 0):
         raise ValueError(f"every={every!r}: must be a finite time > 0")
     with xr.open_dataset(path) as ds:
@@ -169,10 +168,7 @@ def estimate(path, t_end: float, every: float | None = None, budget=None):
     if not t_end > t_last + TIME_TOL:
         raise ValueError(f"t_end={t_end!r} must be > the last stored time t={t_last!r} of {path}")
     every = _infer_every(t) if every is None else float(every)
-    n = grid_size(None, every, t_end)   # the grid k * every on [0, t_end] is built whole
-    if n > MAX_STORED_TIMES:
-        raise ValueError(f"every={every!r}: stores ~{n} times on [0, t_end = {t_end!r}], more than "
-                         f"{MAX_STORED_TIMES} (the limit of a scene's store)")
+    n = grid_size(None, every, t_end)   # the grid k * every on [0, t_end] is built whole: the estimate holds it
     added = min(n, int((t_end - t_last) / every) + 2)
     e = costs.extend_estimate(str(path), N, str(method), dt, t_last, t_end, added, int(t.size))
     over = costs.exceeds(e, budget if budget is not None else costs.Budget())

@@ -29,8 +29,8 @@ from cradle.specs.declare import NULL, REQUIRED, declared, param
 from cradle.specs.schema import register_union
 from cradle.specs.values import (
     INTEGER_TOL,
-    MAX_STORED_TIMES,
     MAX_T_END,
+    T_END_WHY,
     TIME_TOL,
     ConfigError,
     Errors,
@@ -39,7 +39,7 @@ from cradle.specs.values import (
     show,
 )
 
-from .times import grid_size, store_times
+from .times import store_times
 
 # ---- what the check of one entry sees of the others
 #: a key path: ``["scenes", "tw-weak", "store", "snapshots", 1]``
@@ -94,14 +94,14 @@ class ExactIntegrator:
     # at most 1: a step longer than the shortest linearised period 2 pi / omega_max resolves no oscillation
     dt_factor: float | None = param(NULL, "Splitting step = dt_factor * 2 pi / omega_max; in (0, 1], or null for the "
                                     "method's default.", exclusiveMinimum=0, maximum=1)
-    rtol: float = param(1e-10, "Relative tolerance of the adaptive (scipy) methods, in (0, 1e-2].", ref="rtol")
+    rtol: float = param(1e-10, "Relative tolerance of the adaptive (scipy) methods, in [1e-14, 1e-2].", ref="rtol")
 
 
 @declared("dpsIntegrator", doc="Integrator of the DpS equation (dfnls).", partial=True)
 class DpsIntegrator:
     method: str = param("dop853_numba", "dop853_numba (default: DOP853 with error control, compiled) | dop853 "
                         "(scipy, compiled right-hand side) | rk45.", enum=list(DPS_METHODS))
-    rtol: float = param(1e-10, "Relative tolerance, in (0, 1e-2]; atol = rtol * max |A_n(0)|.", ref="rtol")
+    rtol: float = param(1e-10, "Relative tolerance, in [1e-14, 1e-2]; atol = rtol * max |A_n(0)|.", ref="rtol")
 
 
 @declared(doc="Settings every scene, homoclinic and map entry inherits unless it overrides them.")
@@ -323,9 +323,10 @@ class Scene:
     initial: Travelling | Breather | Packet | Pair | Kick = param(REQUIRED, "Initial condition: its kind "
                                                                   "(travelling, breather, packet, pair, kick) and "
                                                                   "parameters.", ref="initial")
-    # at most MAX_T_END: stored times are told apart to TIME_TOL, finer than float64 resolves beyond ~4e6
-    t_end: float = param(REQUIRED, "Final time of the run (lattice time t); in (0, 1e6] (stored times are told apart "
-                         "to 1e-9).", exclusiveMinimum=0, maximum=MAX_T_END)
+    # at most MAX_T_END: stored times are told apart to TIME_TOL, finer than float64 resolves beyond it
+    t_end: float = param(REQUIRED, "Final time of the run (lattice time t); in (0, 4194304] (float64 tells stored "
+                         "times 1e-9 apart only below 2^22); the budget's estimate bounds it too.", exclusiveMinimum=0,
+                         maximum=MAX_T_END)
     store: Store = param(REQUIRED, "Times at which the state is stored.")
     damping: Damping = param(None, "Dissipation (ncdamped): on-site and Kuwabara-Kono contact damping; absent: the "
                              "conservative (nc).")
@@ -358,12 +359,6 @@ class Scene:
                 out.add(p, f"must be > the previous snapshot {show(prev)} (snapshots must be strictly "
                            f"increasing)", t)
             prev = t
-        every = self.store.every
-        if every is not None:
-            n = grid_size(self.store.snapshots, every, t_end)
-            if n > MAX_STORED_TIMES:
-                out.add(where + ["store", "every"], f"stores ~{n} times on [0, t_end = {show(t_end)}], more "
-                                                    f"than {MAX_STORED_TIMES}", every)
         self._check_units(where, out)
         self.initial.check(self, where, context, out)
 
@@ -375,6 +370,8 @@ class Scene:
             if (c.length is None) == (c.omega0 is None):
                 out.add(where + ["cradle"], "give the pendulum length or omega0, one of them (given: "
                                             f"{'both' if c.length is not None else 'neither'})")
+            elif c.length is not None:
+                self._check_swing(c, where, out)
             if self.alpha != HERTZ_ALPHA:
                 out.add(where + ["alpha"], f"must be {HERTZ_ALPHA} for a cradle of spheres (Hertz's exponent)",
                         self.alpha)
@@ -388,7 +385,17 @@ class Scene:
                     self.units)
         elif self.t_end > MAX_T_END:   # only an SI time can get here: the schema bounds t_end in (nc)'s units
             out.add(where + ["t_end"], f"is {self.t_end:.6g} in (nc)'s time units (t omega_0), more than "
-                                       f"{MAX_T_END:g}", self.t_end)
+                                       f"{MAX_T_END:.0f} ({T_END_WHY})", self.t_end)
+
+    def _check_swing(self, c: Cradle, where: Where, out: Errors) -> None:
+        """A pendulum's initial displacement below its string length (in (nc)'s units here: times X)."""
+        X = scales(c).X
+        for key in ("a", "amplitude"):
+            value = getattr(self.initial, key, None)
+            if isinstance(value, (int, float)) and not abs(value) * X < c.length:   # type: ignore[operator]
+                out.add(where + ["initial", key], f"a displacement of {abs(value) * X:.3g} m: must be below the "
+                                                  f"string length {c.length:g} m (a bead swings within its string)",
+                        float(f"{value * X:.12g}"))
 
     def _check_terms(self, where: Where, out: Errors) -> None:
         """Active terms of (ncimperfect) need DOP853 in numba, a precompressed chain a ring, explicit site values

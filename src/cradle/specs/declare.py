@@ -16,7 +16,7 @@ import typing
 from collections.abc import Callable
 from typing import Any, TypeVar
 
-from .parse import BAD, Field, _deref, fields_of, parse, reduced_defaults
+from .parse import BAD, Field, _deref, fields_of, given_fields, parse, reduced_defaults
 from .shared import SHARED
 from .values import NAME_PATTERN, ConfigError, Errors, canonical_angle
 
@@ -150,6 +150,27 @@ def _typed(tp: Any, value: Any) -> Any:
     if tp is int and isinstance(value, float) and value.is_integer():
         return int(value)
     return value
+
+
+
+
+def check_fields(obj: Any, where: str, skip: tuple[str, ...] = ()) -> None:
+    """What a public declared class's ``__post_init__`` calls: an instance built directly (``Cradle(...)``, not
+    by the validation pass) whose fields break their declarations is refused, one ConfigError line per problem
+    naming ``where``, the key and the value; a value given in another form (``1`` for ``1.0``, ``'1'`` for
+    ``1``) is stored as the validation pass reads it. ``skip``: keys the caller checks itself."""
+    cls: Any = type(obj)
+    found = Errors()
+    values = {f.key: plain(getattr(obj, f.name), canonical=False) for f in fields_of(cls)
+              if getattr(obj, f.name) is not None or f.nullable}
+    got = given_fields(cls, values, (where,), found)
+    kept = [p for p in found.held if not (len(p[1]) > 1 and p[1][1] in skip)]
+    found.held = kept
+    if len(found) or got is BAD:
+        raise ConfigError(found.said().lines)
+    for name, value in got.items():
+        if name not in skip:
+            object.__setattr__(obj, name, value)
 
 
 def from_plain(cls: type[T], mapping: Any, where: str | None = None) -> T:

@@ -19,7 +19,19 @@ from collections.abc import Callable
 from typing import Any, NamedTuple
 
 from .shared import SHARED
-from .values import ANGLE_HINT, ANGLE_PATTERN, TYPE_WORDS, Errors, bound_text, did_you_mean, number
+from .values import (
+    ANGLE_HINT,
+    ANGLE_PATTERN,
+    DEFAULT_MAX_ITEMS,
+    DEFAULT_MAX_LENGTH,
+    NAME_MAX_LENGTH,
+    T_END_WHY,
+    TYPE_WORDS,
+    Errors,
+    bound_text,
+    did_you_mean,
+    number,
+)
 
 #: what :func:`parse` returns for a value it refused (its problems are reported)
 BAD: Any = type("Bad", (), {"__repr__": lambda self: "BAD"})()
@@ -28,7 +40,11 @@ BAD: Any = type("Bad", (), {"__repr__": lambda self: "BAD"})()
 HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))",
          ("omega_tw", "exclusiveMinimum"): " (a is derived from (freq), omega_tw = 1 + (2/tau0) a^(alpha-1) "
                                            "|sin(q/2)|^(alpha+1))",
-         ("omega_sw", "exclusiveMinimum"): " (mu = (omega_sw - 1) 2^alpha tau0 must be > 0)"}
+         ("omega_sw", "exclusiveMinimum"): " (mu = (omega_sw - 1) 2^alpha tau0 must be > 0)",
+         **{(key, "minimum"): " (a floor the integrator can honour, about 1e2 machine epsilons or more: below, a "
+                              "step's error estimate is rounding noise and the steps shrink until they underflow)"
+            for key in ("rtol", "dps_rtol", "check_rtol")},
+         ("t_end", "maximum"): f" ({T_END_WHY})"}
 _BOUNDS = {"minimum": (">=", lambda x, b: x >= b), "exclusiveMinimum": (">", lambda x, b: x > b),
            "maximum": ("<=", lambda x, b: x <= b), "exclusiveMaximum": ("<", lambda x, b: x < b)}
 _JSON_TYPES = {"integer": lambda v: number(v) and float(v).is_integer() if isinstance(v, float) else number(v),
@@ -67,12 +83,21 @@ def _finite(value: Any, path: tuple, found: Errors) -> bool:
 
 def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True) -> Any:
     """``value`` checked against the keywords of ``node`` (a JSON-Schema subset: type, enum, const, bounds,
-    multipleOf, pattern, anyOf, items, minItems, maxItems, uniqueItems), or :data:`BAD`. ``coerce``: a string
+    multipleOf, pattern, maxLength, anyOf, items, minItems, maxItems, uniqueItems), or :data:`BAD`; a string or a
+    list whose declaration gives no maximum has :data:`.values.DEFAULT_MAX_LENGTH` or
+    :data:`.values.DEFAULT_MAX_ITEMS`. ``coerce``: a string
     where its key expects no string is read as the number, boolean or null it spells (``--config`` values)."""
     kinds = node.get("type")
     kinds = [kinds] if isinstance(kinds, str) else kinds or []
     if coerce and isinstance(value, str) and kinds and "string" not in kinds:
         value = _from_string(value, kinds)
+    if isinstance(value, (list, tuple)) and len(value) > node.get("maxItems", DEFAULT_MAX_ITEMS):
+        # said before its items are walked: a list of a million values is refused at once
+        n = node.get("maxItems", DEFAULT_MAX_ITEMS)
+        found.hold(path, f"must have at most {n} items" if "array" in kinds else
+                  f"must be {' or '.join(TYPE_WORDS[k] for k in kinds)}" if kinds else
+                  f"must not be a list of {len(value)} items", value)
+        return BAD
     if not _finite(value, path, found):
         return BAD
     if "anyOf" in node:
@@ -93,7 +118,9 @@ def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True
         step = node.get("multipleOf")
         if step and not float(value / step).is_integer():
             found.hold(path, f"{value!r} is not a multiple of {step!r}", value)
-    if isinstance(value, str) and "pattern" in node and not re.search(node["pattern"], value):
+    if isinstance(value, str) and len(value) > node.get("maxLength", DEFAULT_MAX_LENGTH):
+        found.hold(path, f"must be at most {node.get('maxLength', DEFAULT_MAX_LENGTH)} characters long", value)
+    elif isinstance(value, str) and "pattern" in node and not re.search(node["pattern"], value):
         angle = last == "q" or node["pattern"] == ANGLE_PATTERN
         found.hold(path, f"must be {ANGLE_HINT}" if angle else
                   "must use letters, digits, '-' and '_' and start with a letter or digit", value)
@@ -107,13 +134,14 @@ def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True
 
 
 def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
-    lo, hi = node.get("minItems"), node.get("maxItems")
+    lo, hi = node.get("minItems"), node.get("maxItems", DEFAULT_MAX_ITEMS)
     if lo is not None and lo == hi and len(value) != lo:
         found.hold(path, f"must have exactly {lo} items", value)
     elif lo is not None and len(value) < lo:
         found.hold(path, "must not be empty" if lo == 1 else f"must have at least {lo} items", value)
-    elif hi is not None and len(value) > hi:
+    elif len(value) > hi:
         found.hold(path, f"must have at most {hi} items", value)
+        return BAD   # its items are not read one by one
     if node.get("uniqueItems") and len({repr(v) for v in value}) < len(value):
         found.hold(path, "must not repeat a name", value)
     if isinstance(node.get("items"), dict):
@@ -249,7 +277,8 @@ def parse(tp: Any, value: Any, path: tuple, found: Errors, base: Any = None) -> 
 def _not_mapping(value: Any, path: tuple, found: Errors) -> bool:
     if isinstance(value, dict):
         return False
-    if _finite(value, path, found):
+    long = isinstance(value, (list, tuple)) and len(value) > DEFAULT_MAX_ITEMS   # its items not walked
+    if long or _finite(value, path, found):
         found.hold(path, "must be a mapping", value)
     return True
 
@@ -285,6 +314,9 @@ def entries(cls: type, value: Any, path: tuple, found: Errors, labels: tuple | N
         elif labels is None and not (isinstance(name, str) and re.search(SHARED["name"]["pattern"], name)):
             found.hold((*path, name), f"bad name {name!r}: names use letters, digits, '-' and '_' and start with a "
                                      f"letter or digit", at=path, force=True)
+        elif labels is None and len(name) > NAME_MAX_LENGTH:
+            found.hold((*path, name[:20] + "..."), f"bad name of {len(name)} characters: at most {NAME_MAX_LENGTH} "
+                                                  f"(names are part of file names)", at=path, force=True)
         made = (one or parse)(cls, entry, (*path, name), found, base)
         if made is not BAD:
             out[name] = made

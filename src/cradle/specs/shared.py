@@ -4,24 +4,26 @@ from __future__ import annotations
 
 from typing import Any
 
-from .values import ANGLE_PATTERN, NAME_PATTERN
+from .values import ANGLE_PATTERN, MAX_COUNT, NAME_MAX_LENGTH, NAME_PATTERN, RTOL_FLOOR
 
 # Shared scalar types ($defs), each bound written here only.
 
 SHARED: dict[str, dict[str, Any]] = {
-    "name": {"description": "An entry name: letters, digits, '-' and '_' (it becomes part of file names).",
-             "type": "string", "pattern": NAME_PATTERN},
+    "name": {"description": f"An entry name: letters, digits, '-' and '_', at most {NAME_MAX_LENGTH} characters (it "
+                            f"becomes part of file names).", "type": "string", "pattern": NAME_PATTERN,
+             "maxLength": NAME_MAX_LENGTH},
     # at most 10: the paper's exponents are 3/2 (Hertz) to 3; beyond, a^(alpha-1) of (freq) underflows to 0 or
     # overflows for the amplitudes of the experiments, and a huge alpha makes every power overflow
     "alpha": {"description": "Hertz exponent alpha of (vhertz); in (1, 10].", "type": "number", "exclusiveMinimum": 1,
               "maximum": 10},
-    # at most 1e7: the 32 state arrays of a run (cradle.pipeline.budget) alone then take 2.6 GB
-    "N": {"description": "Number of sites (beads) n = 0..N-1; in [2, 1e7].", "type": "integer", "minimum": 2,
-          "maximum": 10_000_000},
+    # the budget's estimate of a run (cradle.pipeline.budget: memory, output, time) bounds N; the maximum here is
+    # only the largest integer every double holds
+    "N": {"description": "Number of sites (beads) n = 0..N-1; >= 2, within the budget's estimate of its jobs.",
+          "type": "integer", "minimum": 2, "maximum": MAX_COUNT},
     "bc": {"description": "Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one "
                           "neighbour).", "type": "string", "enum": ["periodic", "free"]},
-    "rtol": {"description": "Relative tolerance of an adaptive integrator, in (0, 1e-2].", "type": "number",
-             "exclusiveMinimum": 0, "maximum": 0.01},
+    "rtol": {"description": f"Relative tolerance of an adaptive integrator, in [{RTOL_FLOOR:g}, 1e-2].",
+             "type": "number", "minimum": RTOL_FLOOR, "maximum": 0.01},
     # at most 1e-2: a run whose energy moved by more than 1 % of H(0) is no solution of (nc), and a larger bound
     # would silently turn the check off
     "maxEnergyDrift": {"description": "Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact "

@@ -19,14 +19,37 @@ ANGLE_PATTERN = (
     r"^\s*[-+]?\s*((" + _NUM + r"\s*\*?\s*)?pi(\s*/\s*" + _NUM + r")?|" + _NUM + r"([eE][-+]?\d+)?)\s*$"
 )
 NAME_PATTERN = "^[A-Za-z0-9][A-Za-z0-9_-]*$"
+#: the longest entry name: it is part of file and folder names (``.NAME.nc.digest``, ``simulate-NAME.log``), which
+#: every file system keeps under 255 bytes, and of paths, which Windows keeps under 260 characters
+NAME_MAX_LENGTH = 64
+#: a list's and a string's maximum where its declaration gives none: a config is written by hand (the YAML
+#: reader allows 50,000 values in all), and each item is validated one by one
+DEFAULT_MAX_ITEMS = 10_000
+DEFAULT_MAX_LENGTH = 1_000
+#: the largest config file read, in bytes: config.yaml is ~25 kB; a file thousands of times larger is no config
+CONFIG_MAX_BYTES = 4 << 20
+#: the most values a config file may hold, each alias counted as the values it stands for: config.yaml holds
+#: ~1,300; beyond, reading and validating would take seconds (a "billion laughs" alias bomb stands for 9^9)
+CONFIG_MAX_VALUES = 50_000
+#: the deepest nesting of mappings and lists: config.yaml nests 6 deep; Python's recursion stops near 1,000
+CONFIG_MAX_DEPTH = 64
 
 _ANGLE_RE = re.compile(ANGLE_PATTERN)
 ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5'"
 
+#: the smallest relative tolerance of an adaptive run: about 1e2 machine epsilons (scipy raises a smaller one to
+#: 100 eps), below which a step's error estimate is rounding noise and the steps shrink until they underflow
+RTOL_FLOOR = 1e-14
 TIME_TOL = 1e-9          # two times closer than this are the same time
 INTEGER_TOL = 1e-9       # q N / (2 pi) must be this close to an integer on a ring
-MAX_STORED_TIMES = 10_000_000  # a guard against typos such as every: 1.0e-7
-MAX_T_END = 1e6          # the longest run: float64 tells times apart to TIME_TOL up to ~4e6
+#: the longest run, a limit of float64: stored times are told apart to TIME_TOL, and below 2^22 (~4.2e6) the
+#: spacing of doubles is at most 2^-31 (4.7e-10), half of it; beyond, two stored times may round to one
+MAX_T_END = float(2**22)
+#: why a time is at most MAX_T_END, as a message says it
+T_END_WHY = "float64 tells stored times 1e-9 apart only below 2^22 = 4194304"
+#: the largest count of beads or iterations: the largest integer up to which every integer is a double; the
+#: budget's estimate (memory, output, time) bounds a run long before it
+MAX_COUNT = 2**53
 
 
 class ConfigError(ValueError):
@@ -55,6 +78,8 @@ def show(value: Any) -> str:
     if isinstance(value, float):
         text = repr(value)
     elif isinstance(value, (dict, list)):
+        if len(value) > 16:   # only the start is shown: a list of a million values is not dumped whole
+            value = dict(list(value.items())[:16]) if isinstance(value, dict) else value[:16]
         try:
             text = json.dumps(value, separators=(", ", ": "), default=str)
         except (TypeError, ValueError):
@@ -175,14 +200,17 @@ def canonical_angle(value: Any) -> Any:
     `` pi / 5`` and ``0.2pi`` rerun nothing): a multiple of pi as ``[-][k]pi[/m]``, a number written as a
     string as that number. A coefficient and a denominator that are both integers are kept as written
     (``52pi/100`` stays: it is the paper's text, which the files record); a decimal one becomes the reduced
-    fraction. The form is used only when it gives bit for bit the angle the text gives; a value that is not
-    an angle is returned as it is (the schema reports it)."""
+    fraction; a number that is bit for bit a multiple k pi / m (m <= 1000) is that text, so ``0.6283185307179586``
+    and ``pi/5`` are one parameter. The form is used only when it gives bit for bit the angle the text gives; a
+    value that is not an angle is returned as it is (the schema reports it)."""
+    if number(value) and not isinstance(value, int):
+        return _pi_multiple(float(value))
     parts = _written(value)
     if parts is None:
         return value
     sign, coef, pi, denom = parts
     if not pi:
-        return float(sign + coef)
+        return _pi_multiple(float(sign + coef))
     coef, denom = coef or "1", denom[1:] or "1"
     if coef.isdigit() and denom.isdigit():
         k, m = int(coef), int(denom)
@@ -197,6 +225,19 @@ def canonical_angle(value: Any) -> Any:
     except ConfigError:
         same = False
     return text if same else value
+
+
+def _pi_multiple(x: float) -> Any:
+    """``x`` as the text ``[-][k]pi[/m]`` (the reduced fraction, m <= 1000) whose angle is ``x`` bit for bit, so
+    that ``0.6283185307179586`` and ``pi/5`` are one parameter; else ``x``."""
+    if not 0.0 < abs(x) < 1e4:   # beyond, k pi / m of a small m is no angle anyone writes
+        return x
+    r = fractions.Fraction(x / math.pi).limit_denominator(1000)
+    if r == 0:
+        return x
+    k, m = abs(r.numerator), r.denominator
+    text = f"{'-' if r < 0 else ''}{k if k != 1 else ''}pi{f'/{m}' if m != 1 else ''}"
+    return text if parse_angle(text) == x else x
 
 
 def angle_or_none(value: Any) -> float | None:

@@ -1,4 +1,4 @@
-"""Reading config files (a key given twice refused with its line) and the command line.
+"""Reading config files (bounded in size, UTF-8, a key given twice refused with its line) and the command line.
 
 ``python -m cradle.pipeline.config [config.yaml]`` validates a file; with
 ``--scene``/``--homoclinic``/``--map NAME`` it prints that entry's resolved
@@ -14,41 +14,105 @@ from pathlib import Path
 import yaml
 
 from cradle.specs.declare import plain
-from cradle.specs.values import ConfigError
+from cradle.specs.values import CONFIG_MAX_BYTES, CONFIG_MAX_DEPTH, CONFIG_MAX_VALUES, ConfigError
 
 from .resolve import homoclinic, map_entry, scene
 from .sections import SECTIONS
 from .validate import validate
 
+MAX_BYTES, MAX_VALUES, MAX_DEPTH = CONFIG_MAX_BYTES, CONFIG_MAX_VALUES, CONFIG_MAX_DEPTH
 
-class StrictLoader(yaml.SafeLoader):
-    """PyYAML's safe loader, refusing a key given twice in one mapping (PyYAML keeps the last silently)."""
 
-    def construct_mapping(self, node, deep=False):
+def _line(event) -> int:
+    return event.start_mark.line + 1 if event.start_mark is not None else 0
+
+
+def _bounded(text: str, name: str) -> None:
+    """Refuse ``text`` if its YAML holds more than :data:`MAX_VALUES` values (aliases expanded) or nests deeper
+    than :data:`MAX_DEPTH`, as soon as the parser's events say so (never building the values)."""
+    sizes: dict[str | None, int] = {}   # anchor -> number of values it stands for
+    open_: list[tuple[str | None, int]] = []   # (anchor, count at its start) of each open mapping or list
+    count = 0
+    for event in yaml.parse(text, Loader=_Parser):
+        if isinstance(event, yaml.AliasEvent):
+            count += sizes.get(event.anchor, 1)
+        elif isinstance(event, (yaml.ScalarEvent, yaml.CollectionStartEvent)):
+            count += 1
+            if isinstance(event, yaml.CollectionStartEvent):
+                open_.append((event.anchor, count))
+                if len(open_) > MAX_DEPTH:
+                    raise ConfigError(f"config error: {name}: line {_line(event)}: nested more than "
+                                      f"{MAX_DEPTH} deep (mappings and lists)")
+            elif event.anchor is not None:
+                sizes[event.anchor] = 1
+        elif isinstance(event, yaml.CollectionEndEvent):
+            anchor, start = open_.pop()
+            if anchor is not None:
+                sizes[anchor] = count - start + 1
+        if count > MAX_VALUES:
+            raise ConfigError(f"config error: {name}: line {_line(event)}: more than {MAX_VALUES} "
+                              f"values (aliases counted as the values they stand for); a config holds a few "
+                              f"thousand")
+
+
+_Parser = getattr(yaml, "CSafeLoader", yaml.SafeLoader)   # libyaml's parser when PyYAML has it: ~20x faster
+
+
+class StrictLoader(_Parser):   # type: ignore[valid-type, misc]
+    """PyYAML's safe loader, refusing a key given twice in one mapping (PyYAML keeps the last silently); merge
+    keys (``<<: *base``) are honoured, a key given beside them overriding the merged one."""
+
+    def construct_document(self, node):
+        self._check_keys(node, set())
+        return super().construct_document(node)
+
+    def _check_keys(self, node, done: set) -> None:
+        """Each mapping under ``node`` (each once, however many aliases name it) refused if one of its own keys
+        (merged keys aside) is given twice."""
+        if id(node) in done:
+            return
+        done.add(id(node))
         if isinstance(node, yaml.MappingNode):
-            self.flatten_mapping(node)
-            seen: dict[object, int] = {}   # key -> line of its first occurrence
-            for key_node, _ in node.value:
-                key = self.construct_object(key_node, deep=True)
+            seen: dict[object, yaml.Mark] = {}   # key -> where it was first given
+            for key_node, value_node in node.value:
+                self._check_keys(value_node, done)
+                if key_node.tag == "tag:yaml.org,2002:merge" or not isinstance(key_node, yaml.ScalarNode):
+                    continue
+                key = self.construct_object(key_node)
                 try:
-                    first = seen.setdefault(key, key_node.start_mark.line + 1)
+                    first = seen.setdefault(key, key_node.start_mark)
                 except TypeError:   # an unhashable key: construct_mapping reports it
                     continue
-                if first != key_node.start_mark.line + 1:
-                    raise ConfigError(f"config error: {self.name}: line {key_node.start_mark.line + 1}: key {key!r} "
-                                      f"given twice in one mapping (first on line {first}); YAML would silently "
-                                      f"keep the last")
-        return super().construct_mapping(node, deep=deep)
+                if first is not key_node.start_mark:
+                    at = key_node.start_mark
+                    where = f"the same line, column {first.column + 1}" if first.line == at.line else \
+                        f"line {first.line + 1}"
+                    raise ConfigError(f"config error: {self.name}: line {at.line + 1}: key {key!r} given twice in "
+                                      f"one mapping (first on {where}); YAML would silently keep the last")
+        elif isinstance(node, yaml.SequenceNode):
+            for item in node.value:
+                self._check_keys(item, done)
 
 
 def read_yaml(path) -> dict:
-    """The mapping of a YAML config file, read with :class:`StrictLoader` (ConfigError on any problem)."""
+    """The mapping of a YAML config file, read with :class:`StrictLoader` (ConfigError on any problem: not
+    UTF-8, larger than :data:`MAX_BYTES`, too many values or too deep (:func:`_bounded`), a key given twice)."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        with path.open("rb") as f:
+            data = f.read(MAX_BYTES + 1)
     except OSError as err:
         raise ConfigError(f"config error: cannot read {str(path)!r}: {err.strerror}") from None
+    if len(data) > MAX_BYTES:
+        raise ConfigError(f"config error: {path}: larger than {MAX_BYTES} bytes; a config is a few tens of kB")
     try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        line = data[:err.start].count(b"\n") + 1
+        raise ConfigError(f"config error: {path}: line {line}: byte {data[err.start]:#04x} is not UTF-8 text "
+                          f"({err.reason}); save the file as UTF-8") from None
+    try:
+        _bounded(text, str(path))
         loader = StrictLoader(text)
         loader.name = str(path)
         try:

@@ -13,6 +13,7 @@ from importlib import resources
 from pathlib import Path
 
 from cradle.specs import schema as spec
+from cradle.specs.values import CONFIG_MAX_VALUES, DEFAULT_MAX_ITEMS, DEFAULT_MAX_LENGTH
 
 REFERENCE_FILE = Path("docs") / "config-reference.md"
 SCHEMA_FILE = "config.schema.json"
@@ -35,7 +36,7 @@ def write_schema(path: str | Path | None = None) -> Path:
     return spec.write(generated_schema(), Path(path) if path else schema_path())
 
 _BOUNDS = (("minimum", ">= {}"), ("exclusiveMinimum", "> {}"), ("maximum", "<= {}"), ("exclusiveMaximum", "< {}"),
-           ("minItems", "at least {} items"), ("maxItems", "at most {} items"))
+           ("minItems", "at least {} items"), ("maxItems", "at most {} items"), ("maxLength", "at most {} characters"))
 
 
 def _resolve(node: dict, defs: dict) -> dict:
@@ -98,7 +99,9 @@ def reference(schema: dict) -> str:
     out = ["# config.yaml reference", "",
            "Generated from the declarations by `python -m cradle.pipeline.config --write-reference`; do not edit.",
            "Every key of config.yaml, its type, bounds, default (when the key may be left out) and meaning; a key",
-           "left out of config.yaml takes its default. `<name>` stands for an entry's name.", ""]
+           "left out of config.yaml takes its default. `<name>` stands for an entry's name. A list without a",
+           f"maximum here has at most {DEFAULT_MAX_ITEMS} items, a string at most {DEFAULT_MAX_LENGTH} characters; the "
+           f"file holds at most {CONFIG_MAX_VALUES} values", "(an alias counted as the values it stands for).", ""]
     defs = schema.get("$defs", {})
     for key, node in schema["properties"].items():
         out += [f"## `{key}`", "", _cell(_resolve(node, defs).get("description", "")), "",

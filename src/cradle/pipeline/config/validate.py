@@ -39,7 +39,10 @@ _MADE: dict[tuple, tuple] = {}
 
 
 def _key(config: Any) -> str | None:
-    """The canonical JSON of a config, or None if it cannot be serialised."""
+    """The canonical JSON of a config, or None if it cannot be serialised or is too large to be worth remembering
+    (a config of a huge list is refused anyway: its JSON would cost more than validating it)."""
+    if len(pickle.dumps(config, protocol=pickle.HIGHEST_PROTOCOL)) > 1 << 20:
+        return None
     try:
         return json.dumps(config, sort_keys=True, default=repr)
     except (TypeError, ValueError):
@@ -94,7 +97,7 @@ def read(config: Any) -> tuple[dict[str, Any], Errors]:
         if section in config:
             made = entries(cls, config[section], (section,), found, base=_base(defaults, cls), one=remembered)
             parts[section] = {} if made is BAD else made
-    parts["scenes"] = {name: in_nc_units(s) for name, s in parts["scenes"].items()}
+    parts["scenes"] = _in_nc_units(parts["scenes"], found)
     if "figures" in config:
         made = entries(Figure, config["figures"], ("figures",), found, labels=KNOWN_FIGURES, one=remembered)
         parts["figures"] = {} if made is BAD else made
@@ -108,6 +111,19 @@ def read(config: Any) -> tuple[dict[str, Any], Errors]:
     return parts, found
 
 
+def _in_nc_units(scenes: dict, found: Errors) -> dict:
+    """Each scene in (nc)'s units (:func:`in_nc_units`); one whose converted values break their declarations (an
+    SI value that is too large in (nc)'s units) left out, each problem said at the scene."""
+    out = {}
+    for name, scene in scenes.items():
+        try:
+            out[name] = in_nc_units(scene)
+        except ConfigError as err:
+            for line in err.errors:
+                found.hold(("scenes", name), f"in (nc)'s units, {line.removeprefix('config error: ')}")
+    return out
+
+
 def typed(config: Any) -> Config:
     """The validated config as a frozen :class:`.sections.Config` (every entry typed, scenes resolved)."""
     key = _key(config)
@@ -116,10 +132,14 @@ def typed(config: Any) -> Config:
     parts, found = read(config)
     out = found.said()
     made = None if out.lines else Config(**{**parts, "beyond": Beyond(**parts["beyond"])})
-    if made is not None:  # every job's estimated memory, output and time within budget, before the physical
-        from cradle.pipeline import budget  # checks build stored-time arrays (cradle.pipeline.budget)
+    from cradle.pipeline import budget
 
+    # every job's estimated memory, output and time within budget before the physical checks build stored-time
+    # arrays: all jobs when every entry parsed, else the scenes that did (the largest budget if its own is bad)
+    if made is not None:
         budget.check(made)
+    else:
+        budget.check_scenes(parts.get("scenes") or {}, parts.get("budget"))
     checks.check(parts, config, out)
     out.raise_any()
     assert made is not None

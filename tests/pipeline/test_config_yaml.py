@@ -1,0 +1,129 @@
+"""Reading config.yaml safely and fast (cradle.pipeline.config.loading): a key given twice refused wherever it
+stands, merge keys honoured, alias bombs, huge lists and deep nesting refused in well under a second of CPU,
+a file that is not UTF-8 one line; strings and lists without a declared maximum have a default one."""
+from __future__ import annotations
+
+import time
+
+import pytest
+
+from conftest import ROOT
+from cradle.pipeline import config as cc
+from cradle.pipeline.config.loading import MAX_BYTES, MAX_DEPTH, MAX_VALUES
+from cradle.specs.values import DEFAULT_MAX_ITEMS, DEFAULT_MAX_LENGTH, NAME_MAX_LENGTH
+
+CONFIG = (ROOT / "config.yaml").read_text()
+SCENE = "scenes:\n  tw-weak:"
+
+
+def _refused(tmp_path, text: str | bytes, name: str = "c.yaml") -> str:
+    """The one line read_yaml refuses ``text`` with, checked to take under a second of CPU."""
+    p = tmp_path / name
+    p.write_bytes(text if isinstance(text, bytes) else text.encode())
+    t0 = time.process_time()
+    with pytest.raises(cc.ConfigError) as err:
+        cc.read_yaml(p)
+    assert time.process_time() - t0 < 1.0
+    line = str(err.value)
+    assert "\n" not in line and line.startswith(f"config error: {p}")
+    return line
+
+
+def test_two_equal_keys_on_one_line_are_refused(tmp_path):
+    line = _refused(tmp_path, "map:\n  a: {box: 0.1, box: 0.2, iterations: 3}\n")
+    assert "line 2: key 'box' given twice in one mapping (first on the same line, column 7)" in line
+
+
+def test_equal_keys_are_compared_by_value_not_by_text(tmp_path):
+    """``0x10`` and ``16`` are the same integer key; YAML would keep the last."""
+    line = _refused(tmp_path, "a:\n  16: 1\n  0x10: 2\n")
+    assert "line 3: key 16 given twice in one mapping (first on line 2)" in line
+
+
+def test_a_merge_key_with_an_override_is_valid(tmp_path):
+    p = tmp_path / "c.yaml"
+    p.write_text("base: &b {t_end: 10, N: 5}\nx:\n  <<: *b\n  t_end: 20\n")
+    assert cc.read_yaml(p)["x"] == {"t_end": 20, "N": 5}
+
+
+def test_a_key_twice_beside_a_merge_key_is_refused(tmp_path):
+    line = _refused(tmp_path, "base: &b {t_end: 10}\nx:\n  <<: *b\n  t_end: 20\n  t_end: 30\n")
+    assert "line 5: key 't_end' given twice" in line
+
+
+def test_a_merge_of_scenes_in_config_yaml_gives_the_same_scene(tmp_path):
+    """config.yaml with tw-weak's keys merged from an anchor and t_end overridden: tw-weak as before."""
+    text = CONFIG.replace(SCENE, "x-base: &twbase {t_end: 1.0}\n" + SCENE + "\n    <<: *twbase", 1)
+    p = tmp_path / "c.yaml"
+    p.write_text(text)
+    raw = cc.read_yaml(p)
+    raw.pop("x-base")
+    assert raw == cc.read_yaml(ROOT / "config.yaml")
+
+
+def test_a_billion_laughs_is_refused_at_once(tmp_path):
+    rows = ["a: &a [lol, lol, lol, lol, lol, lol, lol, lol, lol]"]
+    for prev, name in zip("abcdefgh", "bcdefghi", strict=True):
+        rows.append(f"{name}: &{name} [{', '.join([f'*{prev}'] * 9)}]")
+    line = _refused(tmp_path, "\n".join(rows) + "\n")
+    assert f"line 5: more than {MAX_VALUES} values (aliases counted as the values they stand for)" in line
+
+
+LAST = CONFIG.count("\n") + 2   # the line after config.yaml's last line and an empty one
+MANY = f"line {LAST}: more than {MAX_VALUES} values"
+
+
+@pytest.mark.parametrize("n, sep, why", [(MAX_VALUES + 1, ", ", MANY), (1_000_000, ",", MANY),
+                                        (1_000_000, ", ", f"larger than {MAX_BYTES} bytes")])
+def test_a_huge_list_is_refused_at_once(tmp_path, n, sep, why):
+    line = _refused(tmp_path, CONFIG + f"\nhuge: [{sep.join(['1.5'] * n)}]\n")
+    assert why in line
+
+
+def test_deep_nesting_is_refused(tmp_path):
+    text = "".join(f"{'  ' * i}k{i}:\n" for i in range(MAX_DEPTH + 5)) + "  " * (MAX_DEPTH + 5) + "v: 1\n"
+    assert f"nested more than {MAX_DEPTH} deep" in _refused(tmp_path, text)
+
+
+def test_a_file_that_is_not_utf8_is_one_line(tmp_path):
+    line = _refused(tmp_path, CONFIG.encode() + b"\nx: \"caf\xe9\"\n")
+    assert line.endswith(f": line {LAST}: byte 0xe9 is not UTF-8 text (invalid continuation byte); save the file as "
+                         f"UTF-8")
+
+
+def test_config_yaml_is_far_below_the_bounds():
+    """The bounds leave room: config.yaml reads in milliseconds, well under each of them."""
+    t0 = time.process_time()
+    cc.read_yaml(ROOT / "config.yaml")
+    assert time.process_time() - t0 < 0.2
+
+
+def test_a_list_without_a_declared_maximum_has_the_default_one():
+    raw = cc.read_yaml(ROOT / "config.yaml")
+    raw["map"]["traj3"]["starts"] = [[0.0, 0.1]] * (DEFAULT_MAX_ITEMS + 1)
+    with pytest.raises(cc.ConfigError) as err:
+        cc.validate(raw)
+    assert str(err.value).startswith("config error: map.traj3.starts = [[0.0, 0.1], ")
+    assert str(err.value).endswith(f": must have at most {DEFAULT_MAX_ITEMS} items")
+
+
+def test_a_string_without_a_declared_maximum_has_the_default_one():
+    raw = cc.read_yaml(ROOT / "config.yaml")
+    raw["scenes"]["tw-weak"]["initial"]["q"] = "pi/5" + " " * DEFAULT_MAX_LENGTH
+    with pytest.raises(cc.ConfigError) as err:
+        cc.validate(raw)
+    assert str(err.value).endswith(f": must be at most {DEFAULT_MAX_LENGTH} characters long")
+    assert str(err.value).startswith("config error: scenes.tw-weak.initial.q = 'pi/5 ")
+
+
+def test_a_long_scene_name_is_refused_before_any_file_is_named(tmp_path):
+    raw = cc.read_yaml(ROOT / "config.yaml")
+    name = "s" * 300
+    raw["scenes"][name] = raw["scenes"]["tw-weak"]
+    with pytest.raises(cc.ConfigError) as err:
+        cc.validate(raw)
+    assert str(err.value) == (f"config error: scenes.{'s' * 20}...: bad name of 300 characters: at most "
+                              f"{NAME_MAX_LENGTH} (names are part of file names)")
+    raw["scenes"].pop(name)
+    raw["scenes"]["s" * NAME_MAX_LENGTH] = raw["scenes"]["tw-weak"]
+    assert "s" * NAME_MAX_LENGTH in cc.validate(raw)["scenes"]

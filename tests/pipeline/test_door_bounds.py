@@ -1,0 +1,193 @@
+"""Values that passed validation and then failed or hung in the job, each refused at the door in one line naming
+the key and the value, with a bound from the model (a tolerance the integrator can honour, a swing within its
+string, the scales of a real cradle) or from the budget (the samples and steps the job would take), before
+anything is written."""
+from __future__ import annotations
+
+import copy
+
+import pytest
+import yaml
+
+from conftest import ROOT
+from cradle.pipeline import config as cc
+from cradle.specs.values import RTOL_FLOOR
+
+RAW = cc.read_yaml(ROOT / "config.yaml")
+#: a scene of a real cradle in SI (docs/physical-units.md): 1 cm steel balls on 10 cm strings, a 1 nm packet
+SI = {"N": 16, "bc": "free", "cradle": {"material": "steel", "radius": 0.01, "length": 0.1}, "units": "si",
+      "initial": {"kind": "packet", "amplitude": 1.0e-9, "width": 6},
+      "exact": {"method": "dop853_numba", "rtol": 1e-12}, "t_end": 0.5, "store": {"every": 0.01}}
+
+
+def _set(raw: dict, path: str, value) -> dict:
+    """``raw`` with ``value`` at the dotted ``path`` (mappings made on the way)."""
+    keys = path.split(".")
+    node = raw
+    for k in keys[:-1]:
+        if not isinstance(node.get(k), dict):
+            node[k] = {}
+        node = node[k]
+    node[keys[-1]] = value
+    return raw
+
+
+def _refused(tmp_path, raw: dict) -> list[str]:
+    """The lines ``python -m cradle.pipeline.config`` refuses ``raw`` with (exit 1, each line one problem), and
+    nothing written beside the config."""
+    p = tmp_path / "config.yaml"
+    p.write_text(yaml.safe_dump(raw, sort_keys=False))
+    with pytest.raises(cc.ConfigError) as err:
+        cc.load(p)
+    assert cc.main([str(p)]) == 1
+    assert sorted(f.name for f in tmp_path.iterdir()) == ["config.yaml"]
+    return err.value.errors
+
+
+def _with_scene(**changes) -> dict:
+    raw = copy.deepcopy(RAW)
+    scene = copy.deepcopy(SI)
+    for path, value in changes.items():
+        _set(scene, path.replace("__", "."), value)
+    raw["scenes"]["si"] = scene
+    return raw
+
+
+def test_the_si_scene_of_the_docs_is_valid():
+    raw = _with_scene()
+    assert "si" in cc.validate(raw)["scenes"]
+
+
+@pytest.mark.parametrize("section", ["dissipation", "trapping"])
+def test_a_sampling_step_goes_through_the_size_estimate(tmp_path, section):
+    raw = copy.deepcopy(RAW)
+    raw["beyond"][section] = {"sample_every": 1e-300}
+    lines = _refused(tmp_path, raw)
+    assert len(lines) == 2   # the reduced and the full form
+    for line, form in zip(lines, [".reduced", ""], strict=True):
+        assert line.startswith(f"config error: beyond.{section}{form}: ")
+        assert "sample_every = 1e-300: 1e+18 samples each: estimated peak memory" in line
+        assert "exceeds budget.memory_gb = 8" in line
+
+
+def test_a_sampling_step_that_fits_the_budget_runs():
+    raw = copy.deepcopy(RAW)
+    raw["beyond"]["trapping"] = {"sample_every": 0.05}
+    cc.validate(raw)
+
+
+@pytest.mark.parametrize("path", ["beyond.dissipation.rtol", "beyond.trapping.rtol", "beyond.disorder.rtol",
+                                  "beyond.desk-toy.rtol", "beyond.dps-validity.dps_rtol",
+                                  "beyond.mi-statistics.dps.rtol", "scenes.tw-weak.exact.rtol",
+                                  "scenes.tw-weak.dps.rtol", "defaults.dps.rtol"])
+def test_every_tolerance_has_a_floor_the_integrator_can_honour(tmp_path, path):
+    raw = _set(copy.deepcopy(RAW), path, 1e-300)
+    lines = _refused(tmp_path, raw)
+    floor = 1e-13 if path == "beyond.disorder.rtol" else RTOL_FLOOR   # disorder's own floor is higher
+    assert lines == [f"config error: {path} = 1e-300: must be >= {floor:g} (a floor the integrator can honour, "
+                     f"about 1e2 machine epsilons or more: below, a step's error estimate is rounding noise and the "
+                     f"steps shrink until they underflow)"]
+    cc.validate(_set(copy.deepcopy(RAW), path, floor))
+
+
+def test_a_ladder_of_tolerances_has_the_floor_too(tmp_path):
+    raw = copy.deepcopy(RAW)
+    raw["beyond"]["work-precision"]["methods"]["dop853"] = {"rtol": [1e-5, 1e-300]}
+    assert _refused(tmp_path, raw) == [f"config error: beyond.work-precision.methods.dop853.rtol[1] = 1e-300: must "
+                                       f"be >= {RTOL_FLOOR:g}"]
+
+
+def test_the_desk_toy_s_cradle_has_the_scales_of_a_real_one(tmp_path):
+    raw = copy.deepcopy(RAW)
+    raw["beyond"]["desk-toy"]["cradle"]["radius"] = 1e-300
+    assert _refused(tmp_path, raw) == ["config error: beyond.desk-toy.cradle.radius = 1e-300: must be >= 1e-06"]
+
+
+@pytest.mark.parametrize("term", ["onsite", "contact"])
+def test_damping_the_integrator_cannot_resolve_in_the_budget_is_refused(tmp_path, term):
+    raw = copy.deepcopy(RAW)
+    raw["beyond"]["desk-toy"]["damping"] = {term: 1e300}
+    lines = _refused(tmp_path, raw)
+    assert lines[0].startswith("config error: beyond.desk-toy.reduced: 3 runs of N <= 5 over 6 swings, damping rate "
+                               "1e+300: ~1e+300 steps each: estimated run time ")
+    assert lines[0].endswith("exceeds budget.hours = 12 (raise it under budget: in the config if this machine "
+                             "allows, or change the entry)")
+
+
+def test_the_damped_desk_toy_of_a_steel_cradle_is_valid():
+    raw = copy.deepcopy(RAW)
+    raw["beyond"]["desk-toy"]["damping"] = {"onsite": 1e-5, "contact": 1e-5}
+    cc.validate(raw)
+
+
+def test_a_scene_s_damping_goes_through_its_step_estimate(tmp_path):
+    lines = _refused(tmp_path, _with_scene(damping={"onsite": 1e300}))
+    assert lines == [lines[0]] and lines[0].startswith("config error: scenes.si: N = 16, t_end = 4.95143")
+    assert "(a damping rate 1.00981e+299 to resolve): estimated run time" in lines[0]
+
+
+def test_an_si_amplitude_beyond_the_string_is_refused(tmp_path):
+    lines = _refused(tmp_path, _with_scene(initial__amplitude=1.0))
+    assert lines == ["config error: scenes.si.initial.amplitude = 1.0: a displacement of 1 m: must be below the "
+                     "string length 0.1 m (a bead swings within its string)"]
+    cc.validate(_with_scene(initial__amplitude=0.05))
+
+
+@pytest.mark.parametrize("key, value, why", [("radius", 1e-9, "must be >= 1e-06"),
+                                             ("radius", 1e-300, "must be >= 1e-06"),
+                                             ("length", 1e-300, "must be >= 0.001"),
+                                             ("g", 1e-300, "must be >= 0.001")])
+def test_an_si_cradle_has_finite_scales(tmp_path, key, value, why):
+    lines = _refused(tmp_path, _with_scene(**{f"cradle__{key}": value}))
+    assert lines == [f"config error: scenes.si.cradle.{key} = {value!r}: {why}"]
+
+
+def test_an_si_cradle_without_length_or_omega0_is_one_line(tmp_path):
+    lines = _refused(tmp_path, _with_scene(cradle__length=None))
+    assert lines == ["config error: scenes.si.cradle: give the pendulum length or omega0, one of them (given: "
+                     "neither)"]
+
+
+def test_a_long_chain_is_judged_by_the_budget_s_estimate(tmp_path):
+    """N = 1e9 is refused with the memory it would need (no fixed cap); N = 2e7, beyond the old cap of 1e7, runs
+    when the budget allows it."""
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["fft106"]["N"] = 10**9
+    line = _refused(tmp_path, raw)[0]
+    assert line.startswith("config error: scenes.fft106: N = 1000000000, t_end = 543.7: 7 stored times, ~1.27e+04 "
+                           "steps of srkn6c, streamed block by block: estimated peak memory 257 GB exceeds "
+                           "budget.memory_gb = 8")
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["fft106"]["N"] = 2 * 10**7
+    raw["budget"] = {"memory_gb": 200, "disk_gb": 100, "hours": 1000}
+    cc.validate(raw)
+
+
+def test_a_store_is_judged_by_the_budget_even_beside_another_problem(tmp_path):
+    """every = 1e-9 (6e11 stored times) next to a bad key elsewhere: refused with its estimate, never built."""
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["tw-weak"]["store"]["every"] = 1e-9
+    raw["scenes"]["tw-strong"]["N"] = "many"
+    lines = _refused(tmp_path, raw)
+    assert lines == ["config error: scenes.tw-weak: N = 50, t_end = 621.95, store.every = 1e-09: 6.22e+11 stored "
+                     "times, ~6.22e+11 steps of srkn6c, streamed block by block: estimated peak memory 29.9 TB exceeds "
+                     "budget.memory_gb = 8 (raise it under budget: in the config if this machine allows, or change "
+                     "the entry)"]
+
+
+def test_t_end_is_bounded_by_the_resolution_of_float64(tmp_path):
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["fft106"]["t_end"] = 1e12
+    assert _refused(tmp_path, raw) == ["config error: scenes.fft106.t_end = 1000000000000.0: must be <= 4194304 "
+                                       "(float64 tells stored times 1e-9 apart only below 2^22 = 4194304)"]
+
+
+def test_an_si_value_out_of_bounds_in_nc_units_is_said_at_the_scene(tmp_path):
+    """0.1 m of precompression is fine in SI and 1.07e18 in (nc)'s units, beyond its bound there: one line at the
+    scene, in (nc)'s units (the Terms built by the conversion are checked as any)."""
+    raw = _with_scene(bc="periodic", damping=None,
+                      terms={"precompression": {"delta0": 0.1}})
+    raw["scenes"]["si"].pop("damping", None)
+    lines = _refused(tmp_path, raw)
+    assert lines == ["config error: scenes.si: in (nc)'s units, precompression.delta0 = 1.0721759889938697e+18: "
+                     "must be <= 100"]
