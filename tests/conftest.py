@@ -37,11 +37,41 @@ LONGEST = ("tests/test_habits.py::test_mypy_is_clean",
            "tests/test_tutorial.py::test_tutorial_runs_on_a_short_scene")
 
 
+#: a test that takes longer than this (seconds, its call alone) is named with its time as it ends, so that a
+#: person watching the dots sees what the suite is waiting for
+NAMED_ABOVE_S = 10.0
+
+
 def pytest_collection_modifyitems(items):
-    """:data:`LONGEST` first, the rest in their order (the workers hand out the modules of :data:`ONE_WORKER`
-    before single tests)."""
+    """The quick tests first (a screenful of dots in the first minutes), then :data:`LONGEST` (longest first,
+    so that the two workers end together), then the other tests marked ``slow``; within each, the collection
+    order (the workers hand out the modules of :data:`ONE_WORKER` before single tests)."""
     rank = {nodeid: i for i, nodeid in enumerate(LONGEST)}
-    items.sort(key=lambda item: rank.get(item.nodeid, len(LONGEST)))
+
+    def key(item):
+        if item.nodeid in rank:
+            return (1, rank[item.nodeid])
+        return (2, 0) if item.get_closest_marker("slow") else (0, 0)
+
+    items.sort(key=key)
+
+
+def pytest_configure(config):
+    global _CONFIG
+    _CONFIG = config
+
+
+_CONFIG = None
+
+
+def pytest_runtest_logreport(report):
+    """Name each test longer than :data:`NAMED_ABOVE_S` on its own line as it ends (under pytest-xdist too:
+    the reports reach the controlling process)."""
+    if report.when != "call" or report.duration < NAMED_ABOVE_S or _CONFIG is None:
+        return
+    reporter = _CONFIG.pluginmanager.get_plugin("terminalreporter")
+    if reporter is not None and not getattr(_CONFIG, "workerinput", None):
+        reporter.write_line(f"  {report.duration:5.0f} s  {report.outcome:7s} {report.nodeid}")
 
 
 @pytest.hookimpl(optionalhook=True)

@@ -27,7 +27,8 @@ CONFIG = yaml.safe_load((ROOT / "config.yaml").read_text())
 
 #: where the project writes labels: the code, the workflow, config.yaml and the docs
 SCANNED = sorted({*ROOT.glob("src/**/*.py"), *ROOT.glob("workflow/**/*.smk"), *ROOT.glob("workflow/**/*.py"),
-                  ROOT / "Snakefile", ROOT / "config.yaml", *ROOT.glob("docs/*.md"), ROOT / "docs" / "tutorial.py",
+                  ROOT / "Snakefile", ROOT / "config.yaml", *ROOT.glob("docs/*.md"), *ROOT.glob("docs/*/*.md"),
+                  ROOT / "docs" / "tutorial.py",
                   ROOT / "README.md"})
 
 #: an equation label as the project writes it: a lowercase name in parentheses, not the argument of a call

@@ -67,8 +67,8 @@ def _texts(fig):
                     for lab in (tick.label1, tick.label2):
                         out.append((f"{name} {which} tick", lab, ax))
         out.extend((f"{name} text", t, ax) for t in ax.texts)
-        if ax.get_legend() is not None:
-            out.append((f"{name} legend", ax.get_legend(), ax))
+        # every legend of the panel: the last one made, and those kept with add_artist
+        out.extend((f"{name} legend", leg, ax) for leg in ax.get_children() if type(leg).__name__ == "Legend")
     out.extend(("figure legend", leg, None) for leg in fig.legends)
     seen: set[int] = set()  # the suptitle is also one of fig.texts
     return [(w, a, ax) for w, a, ax in out if a is not None and a.get_visible() and id(a) not in seen
@@ -151,6 +151,140 @@ def finite_points(ax) -> int:
     return n
 
 
+def _marker_radius(artist, renderer) -> float:
+    """Half a marker's size in pixels (0 for an artist without markers)."""
+    if hasattr(artist, "get_markersize") and artist.get_marker() not in (None, "None", "", " ", ","):
+        return renderer.points_to_pixels(artist.get_markersize()) / 2
+    if type(artist).__name__ == "PathCollection" and len(artist.get_sizes()):
+        return renderer.points_to_pixels(float(np.sqrt(np.max(artist.get_sizes())))) / 2
+    return 0.0
+
+
+def _marks_of(artist):
+    """Display coordinates of the points ``artist`` marks (a line's vertices, a scatter's offsets), finite ones."""
+    if hasattr(artist, "get_xydata"):
+        xy = np.asarray(artist.get_xydata(), dtype=float).reshape(-1, 2)
+        xy = artist.get_transform().transform(xy) if len(xy) else xy
+    elif hasattr(artist, "get_offsets") and len(artist.get_offsets()):
+        xy = artist.get_offset_transform().transform(np.asarray(artist.get_offsets(), dtype=float).reshape(-1, 2))
+    else:
+        return np.zeros((0, 2))
+    return xy[np.isfinite(xy).all(axis=1)]
+
+
+def clipped_marks(ax, renderer) -> list[str]:
+    """Markers of ``ax`` that its frame cuts: centred outside the panel, or closer to an edge than their own
+    radius (half a marker drawn); and error bars that leave the panel (a bar to 0 on a log axis)."""
+    from matplotlib.container import ErrorbarContainer
+
+    box, found = ax.get_window_extent(renderer), []
+    for artist in [*ax.get_lines(), *ax.collections]:
+        r = _marker_radius(artist, renderer)
+        if not artist.get_visible() or not artist.get_clip_on() or r == 0:
+            continue
+        xy = _marks_of(artist)
+        inside = ((xy[:, 0] > box.x0 + r - TOL) & (xy[:, 0] < box.x1 - r + TOL)
+                  & (xy[:, 1] > box.y0 + r - TOL) & (xy[:, 1] < box.y1 - r + TOL))
+        if len(xy) and not inside.all():
+            found.append(f"{int((~inside).sum())} markers cut by the frame: axes {ax.get_title()!r} "
+                         f"({artist.get_label()!r})")
+    for container in ax.containers:
+        if not isinstance(container, ErrorbarContainer):
+            continue
+        for bars in container.lines[2]:
+            segments = [np.asarray(s, dtype=float).reshape(-1, 2) for s in bars.get_segments()]
+            if not segments or not sum(len(s) for s in segments):
+                continue
+            xy = bars.get_transform().transform(np.concatenate(segments))
+            out = (~np.isfinite(xy).all(axis=1) | (xy[:, 0] < box.x0 - TOL) | (xy[:, 0] > box.x1 + TOL)
+                   | (xy[:, 1] < box.y0 - TOL) | (xy[:, 1] > box.y1 + TOL))
+            if out.any():
+                found.append(f"{int(out.sum())} error-bar ends off the panel: axes {ax.get_title()!r} "
+                             f"({container.get_label()!r})")
+    return found
+
+
+def _drawn_in_view(artist, renderer) -> bool:
+    """Whether ``artist`` (a line, a collection, a patch or a container of them) shows a finite point inside its
+    panel."""
+    parts = [c for c in artist if c is not None] if isinstance(artist, tuple | list) else [artist]
+    if hasattr(artist, "get_children") and type(artist).__name__.endswith("Container"):
+        parts = [c for c in artist.get_children() if c is not None]
+    for part in parts:
+        ax = getattr(part, "axes", None)
+        if ax is None or not part.get_visible():
+            continue
+        box = ax.get_window_extent(renderer)
+        if hasattr(part, "get_xydata") and part.get_linestyle() not in ("None", "", " ") \
+                and len(part.get_xydata()) > 1:   # a line crossing the panel with its vertices outside
+            path = part.get_transform().transform_path(part.get_path())
+            if path.intersects_bbox(box, filled=False):
+                return True
+        if hasattr(part, "get_xydata") or hasattr(part, "get_offsets"):
+            xy = _marks_of(part)
+            if len(xy) and ((xy[:, 0] >= box.x0 - TOL) & (xy[:, 0] <= box.x1 + TOL)
+                            & (xy[:, 1] >= box.y0 - TOL) & (xy[:, 1] <= box.y1 + TOL)).any():
+                return True
+            if len(xy) or hasattr(part, "get_xydata"):
+                continue
+        extent = part.get_window_extent(renderer)
+        if extent.width > 0 and extent.height > 0 and extent.overlaps(box):
+            return True
+    return False
+
+
+def _style(artist) -> tuple:
+    """(marker, linestyle) of a legend handle or line ('' where it draws none)."""
+    marker = artist.get_marker() if hasattr(artist, "get_marker") else ""
+    marker = "" if marker in (None, "None", " ", "") else str(marker)
+    line = artist.get_linestyle() if hasattr(artist, "get_linestyle") else ""
+    return marker, "" if line in (None, "None", " ", "") else str(line)
+
+
+def _empty(artist) -> bool:
+    """A proxy made for a legend: a line or scatter without a single point."""
+    if hasattr(artist, "get_xydata"):
+        return not len(artist.get_xydata())
+    return type(artist).__name__ == "PathCollection" and not len(artist.get_offsets())
+
+
+def undrawn_legend_entries(fig, renderer) -> list[str]:
+    """Legend entries (of a panel or of the figure) that nothing drawn stands behind: the artists carrying the
+    label show no point in their panel; an entry whose handle carries no data (a key: colour or style alone) needs a
+    drawn line or marker of its marker (or, without one, its line style)."""
+    labelled: dict[tuple, list] = {}   # (axes or None for the whole figure, label) -> artists
+    drawn_styles = set()
+    for ax in fig.axes:
+        for artist in [*ax.get_lines(), *ax.collections, *ax.patches, *ax.containers]:
+            for owner in (ax, None):
+                labelled.setdefault((owner, artist.get_label()), []).append(artist)
+            if hasattr(artist, "get_xydata") and _drawn_in_view(artist, renderer):
+                drawn_styles.update(_style(artist))
+            elif type(artist).__name__ == "PathCollection" and _drawn_in_view(artist, renderer):
+                drawn_styles.add("o")
+    found = []
+    legends = [leg for ax in fig.axes for leg in ax.get_children() if type(leg).__name__ == "Legend"]
+    legends += list(fig.legends)
+    for leg in legends:
+        for handle, text in zip(leg.legend_handles, leg.get_texts(), strict=False):
+            label = text.get_text()
+            # a panel's legend speaks for that panel; a figure legend (or a key panel's) for the whole figure
+            owner = leg.axes if leg not in fig.legends else None
+            owners = [a for a in labelled.get((owner, label), []) if not _empty(a)]
+            if owner is not None and not owners:
+                owners = [a for a in labelled.get((None, label), []) if not _empty(a)]
+            if owners:
+                if not any(_drawn_in_view(a, renderer) for a in owners):
+                    found.append(f"legend entry with nothing drawn: {label!r}")
+                continue
+            if handle is None:
+                continue
+            missing = [style for style in _style(handle) if style and style not in drawn_styles]
+            if missing and type(handle).__name__ == "Line2D":
+                found.append(f"legend key drawn nowhere ({', '.join(missing)}): {label!r}")
+    return found
+
+
 def problems(fig, min_points: int) -> list[str]:
     """What keeps ``fig`` from print: each problem one line."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -180,6 +314,14 @@ def problems(fig, min_points: int) -> list[str]:
         for w2, a2, b2, _ in texts[i + 1:]:
             if _overlap(b1, b2):
                 found.append(f"overlap: {w1} {_text_of(a1)!r} and {w2} {_text_of(a2)!r}")
+    for i, ax in enumerate(fig.axes):
+        if ax.get_visible():
+            tight = ax.get_tightbbox(renderer)
+            if tight is not None and (tight.x0 < frame.x0 - TOL or tight.y0 < frame.y0 - TOL
+                                      or tight.x1 > frame.x1 + TOL or tight.y1 > frame.y1 + TOL):
+                found.append(f"outside the figure: axes {i} ({ax.get_title()!r}) or what it draws")
+            found.extend(clipped_marks(ax, renderer))
+    found.extend(undrawn_legend_entries(fig, renderer))
     for i, ax in enumerate(fig.axes):
         leg = ax.get_legend()
         if leg is not None and leg.get_visible():

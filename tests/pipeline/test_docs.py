@@ -45,12 +45,16 @@ def test_readme_links_resolve():
 
 
 def test_every_link_in_the_docs_resolves_to_its_anchor():
-    """Links between the pages and to their paragraphs (docs/*.md, README.md): the file exists and so does the
-    anchor (a heading's slug or an <a id>)."""
+    """Links between the pages and to their paragraphs (README.md, docs/*.md and the pages of docs/analyses/): the
+    file exists and so does the anchor (a heading's slug or an <a id>); an image a page shows exists."""
     doctable = _doctable()
     assert {"what-was-found", "claims-harmonics"} <= doctable.anchors((ROOT / "docs" / "analyses.md").read_text())
     bad, n = [], 0
-    for page in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]:
+    for page in [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")), *sorted((ROOT / "docs").glob("*/*.md"))]:
+        for image in re.findall(r"!\[[^]]*\]\(([^)\s]+)\)", page.read_text()):
+            n += 1
+            if not (page.parent / image).exists():
+                bad.append((page.name, image))
         for link in re.findall(r"\]\(([^)\s]+)\)", page.read_text()):
             if "://" in link or not (link.startswith("#") or ".md" in link):
                 continue

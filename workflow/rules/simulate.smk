@@ -18,7 +18,7 @@ rule kernels:
     conda:
         "../envs/cradle.yaml"
     message:
-        "Compiling the kernels of (nc) and (dfnls) (or loading them from the cache)"
+        "Compiling the kernels of (nc) and (dfnls), or loading them from the cache (one line per kernel below)"
     script:
         "../scripts/kernels.py"
 

@@ -10,6 +10,6 @@ from cradle.pipeline.runner import log, setup_logging
 
 sm = snakemake  # injected by Snakemake
 setup_logging(sm.log[0])
-key = compile_kernels()
+key = compile_kernels(progress=log.info)
 log.info("kernels compiled or loaded: cache key %s", key)
 write_text(key + "\n", sm.output[0])

@@ -48,6 +48,7 @@ def draw(tree: xr.DataTree) -> Figure:
     nrows = len(by_chain)
     fig, ax = figure(nrows, ncols, width=3.3 * ncols + 1.2, height=3.1 * nrows + 0.6, squeeze=False)
     models = [s.strip() for s in str(tree.attrs["model_names"]).split(",")]
+    letters = iter("abcdefghijklmnopqrstuvwxyz")
     for row, (N, groups) in enumerate(sorted(by_chain.items())):
         cmap = colormaps["viridis"]
         colours = [cmap(i / max(1, N - 1) * 0.9) for i in range(N)]
@@ -66,7 +67,8 @@ def draw(tree: xr.DataTree) -> Figure:
                 for n in range(N):
                     A.plot(t[show], x[m][show, n], style, color=colours[n], lw=1.0 if m == 0 else 1.3)
             lifted = int(g.attrs["lifted"])
-            A.set_title(f"{N} balls, {lifted} lifted to {float(tree.attrs['angle_deg']):g}°", fontsize=9)
+            A.set_title(f"({next(letters)}) {N} balls, {lifted} lifted to {float(tree.attrs['angle_deg']):g}°",
+                        fontsize=9)
             A.set_xlabel("time (s)")
             A.set_ylabel("displacement (mm)")
             share = np.asarray(g["share"].values)
@@ -77,19 +79,26 @@ def draw(tree: xr.DataTree) -> Figure:
         ths = np.asarray(groups[0][1]["threshold"].values)
         for th in ths:
             share_ax.axhline(th, color="0.6", lw=0.6)
-        share_ax.set_title(f"{N} balls: one-out-one-out share $f_k$ at $t = k\\pi/\\omega_0$", fontsize=9)
+        share_ax.set_title(f"({next(letters)}) {N} balls: one-out-one-out share $f_k$ at $t = k\\pi/\\omega_0$",
+                           fontsize=9)
         share_ax.set_xlabel("time (s)")
         share_ax.set_ylabel("$f_k$")
         share_ax.set_ylim(-0.02, 1.05)
-        # one legend per row, beside the share panel: models (line styles), lifted counts (markers, share panel),
-        # thresholds, balls (colours, displacement panels: (nc) and the first hard-sphere model only)
-        handles = [Line2D([], [], color="0.2", ls=_MODEL_LINES[m % 4], label=mod) for m, mod in enumerate(models)]
-        handles += [Line2D([], [], color=f"C{c}", marker=_LIFTED_MARKERS[c % 10], ls="none",
-                           label=f"{int(g.attrs['lifted'])} lifted ($f_k$)") for c, (_, g) in enumerate(groups)]
-        handles.append(Line2D([], [], color="0.6", lw=0.6, label="thresholds " + ", ".join(f"{v:g}" for v in ths)))
-        handles += [Line2D([], [], color=colours[n], lw=2, label=f"ball {n}") for n in range(N)]
-        share_ax.legend(handles=handles, fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0,
-                        ncols=1 if len(handles) <= 14 else 2)
+        # a key per meaning: the lifted counts (colours and markers) with the thresholds beside the share panel,
+        # the balls' colours (displacement panels) under the row, the models (line styles) under the figure
+        keys = [Line2D([], [], color=f"C{c}", marker=_LIFTED_MARKERS[c % 10], ls="none",
+                         label=f"{int(g.attrs['lifted'])} lifted") for c, (_, g) in enumerate(groups)]
+        keys.append(Line2D([], [], color="0.6", lw=0.6, label="thresholds " + ", ".join(f"{v:g}" for v in ths)))
+        share_ax.legend(handles=keys, fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0,
+                        title="$f_k$ of (colour, marker)", title_fontsize=6)
+        balls = [Line2D([], [], color=colours[n], lw=2, label=f"ball {n}") for n in range(N)]
+        ax[row, 0].legend(handles=balls, fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.22), borderaxespad=0,
+                          ncols=min(N, 10), title=f"{N} balls: displacement panels (colour), "
+                          f"{models[0]} solid, {models[1] if len(models) > 1 else ''} dashed", title_fontsize=6,
+                          alignment="left")
+    styles = [Line2D([], [], color="0.2", ls=_MODEL_LINES[m % 4], label=mod) for m, mod in enumerate(models)]
+    fig.legend(handles=styles, fontsize=7, loc="outside lower center", ncols=len(styles), frameon=False,
+               title="model (line style, every panel)", title_fontsize=7)
     fig.suptitle(f"Desk toys: {tree.attrs['cradle']}; displacements over the first {SHOWN_PERIODS} swing periods",
                  fontsize=10)
     return fig

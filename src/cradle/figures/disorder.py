@@ -33,6 +33,8 @@ TITLES = {"wave": "wave: fidelity F at the end", "mi": "mi: break-up time / homo
 _MARKERS = ("o", "s", "^", "D", "v", "P")
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py)
 MIN_POINTS = 2
+#: error bars of one standard deviation are drawn over at least this many seeds
+MIN_SEEDS_FOR_BARS = 4
 
 
 def _values(tree: AnalysisTree, path: str, name: str) -> np.ndarray:
@@ -47,7 +49,7 @@ def _stats(y: np.ndarray, axis: int = -1) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _collapse(ax: Axes, tree: AnalysisTree, family: str, sigma: np.ndarray, shifts: np.ndarray,
-              level: float) -> None:
+              level: float, bands: bool) -> None:
     S = _values(tree, family, "survival")           # (model, shift, sigma, seed)
     pos = sigma > 0
     for d, shift in enumerate(shifts):
@@ -57,7 +59,8 @@ def _collapse(ax: Axes, tree: AnalysisTree, family: str, sigma: np.ndarray, shif
             mean, std = _stats(S[m, d][pos])
             ax.plot(x, mean, ls, marker=_MARKERS[d % 6], color=c, mfc=fill, ms=4, lw=1.0)
             top = mean + std if family in ("mi", "kicked") else np.minimum(mean + std, 1.0)   # F, retention <= 1
-            ax.fill_between(x, mean - std, top, color=c, alpha=0.12 if m == 0 else 0.06, lw=0)
+            if bands:
+                ax.fill_between(x, mean - std, top, color=c, alpha=0.12 if m == 0 else 0.06, lw=0)
     ax.axhline(level, color="k", ls=":", lw=0.8)
     ax.axvline(1.0, color="0.5", lw=0.8)
     ax.set_xscale("log")
@@ -74,9 +77,11 @@ def draw(tree: xr.DataTree) -> Figure:
     shifts = np.asarray(tree["shift"].values, dtype=float)
     level = float(tree.attrs["level"])
     n_seeds = int(tree["seed"].size)
+    # a standard deviation over fewer seeds than MIN_SEEDS_FOR_BARS says nothing: no bands, no bars
+    bars = n_seeds >= MIN_SEEDS_FOR_BARS
     for k, fam in enumerate(FAMILIES):
         A = ax[0, k]
-        _collapse(A, tree, fam, sigma, shifts, level)
+        _collapse(A, tree, fam, sigma, shifts, level, bars)
         A.set_title(f"({'abcd'[k]}) {TITLES[fam]}", fontsize=9)
     ax[0, 1].set_yscale("log")
     # legend of the collapse panels: colours are Delta, line styles the models
@@ -87,7 +92,10 @@ def draw(tree: xr.DataTree) -> Figure:
     L.plot([], [], "k--", marker="o", mfc="none", ms=4, label="DpS (dpsimperfect)")
     L.plot([], [], "k:", label=f"crossover level {level:g}")
     L.plot([], [], "-", color="0.5", label=r"$\sigma = \Delta$ (prediction)")
-    L.plot([], [], "s", color="0.85", ms=8, label=f"band: +- 1 std over {n_seeds} seeds")
+    if bars:
+        L.plot([], [], "s", color="0.85", ms=8, label=f"band: +- 1 std over {n_seeds} seeds")
+    else:
+        L.plot([], [], " ", label=f"mean of {n_seeds} seeds (no band:\ntoo few for a spread)")
     legend_outside(L, fontsize=7)
     # (e) phase diagram
     E = ax[1, 0]
@@ -95,12 +103,20 @@ def draw(tree: xr.DataTree) -> Figure:
     # a point where at least half the seeds cross inside the grid (else the mean of the few that do would stand
     # for all)
     st = np.where(st[..., 5:6] >= n_seeds / 2.0, st, np.nan)
+    floor, ceiling = sigma[sigma > 0].min() / 2, sigma.max() * 2
+    absent = []
     for f, fam in enumerate(FAMILIES):
         for m, fill in enumerate((f"C{f + 4}", "none")):
+            name = f"{fam}, {'lattice' if m == 0 else 'DpS'}"
+            mean, std = st[f, m, :, 0], st[f, m, :, 1]
+            if not np.isfinite(mean).any():
+                absent.append(name)
+                continue
             off = 1.0 + 0.04 * (2 * f + m - 3.5)            # side by side: the error bars do not hide each other
-            E.errorbar(shifts * off, st[f, m, :, 0], yerr=st[f, m, :, 1], fmt=_MARKERS[f], color=f"C{f + 4}",
-                       mfc=fill, ms=5, capsize=2, lw=0.8,
-                       label=f"{fam}, {'lattice' if m == 0 else 'DpS'}")
+            # on the log axis a bar reaching 0 or below ends at the axis instead of leaving the panel
+            yerr = np.stack([np.minimum(std, mean - floor * 1.02), np.minimum(std, ceiling / 1.02 - mean)])
+            E.errorbar(shifts * off, mean, yerr=yerr if bars else None, fmt=_MARKERS[f],
+                       color=f"C{f + 4}", mfc=fill, ms=5, capsize=2, lw=0.8, label=name)
     lo, hi = min(sigma[sigma > 0].min(), shifts.min()) / 2, max(sigma.max(), shifts.max()) * 2
     E.plot([lo, hi], [lo, hi], "-", color="0.5", lw=0.8, label=r"$\sigma = \Delta$")
     E.set_xscale("log")
@@ -113,12 +129,10 @@ def draw(tree: xr.DataTree) -> Figure:
     E.axhspan(sigma[sigma > 0].min() / 2, sigma[sigma > 0].min(), color="0.92", lw=0)
     E.set_xlabel(r"frequency shift $\Delta = \omega - 1$")
     E.set_ylabel(r"crossover $\sigma^*$ (S < level)")
-    E.set_title("(e) phase diagram: sigma*, mean +- std where\n>= half the seeds cross inside the grid (grey: "
-                "outside)", fontsize=9)
-    none = [fam for f, fam in enumerate(FAMILIES) if not np.isfinite(st[f, :, :, 0]).any()]
-    if none:
-        E.text(0.97, 0.03, "no point: " + ", ".join(none), transform=E.transAxes, ha="right", va="bottom",
-               fontsize=7)
+    spread = f"mean +- std, {n_seeds} seeds" if bars else f"mean of {n_seeds} seeds"
+    E.set_title(f"(e) sigma* ({spread}) where >= half\nthe seeds cross inside the grid (grey: outside)",
+                fontsize=9)
+    legend_outside(E, fontsize=6, title=("no point:\n" + "\n".join(absent)) if absent else None, title_fontsize=6)
     # (f) frequency shift
     Fp = ax[1, 1]
     meas = _values(tree, "static", "frequency_shift")
@@ -158,8 +172,9 @@ def draw(tree: xr.DataTree) -> Figure:
     for dd, shift in enumerate(shifts):
         for m, fill in enumerate((f"C{dd}", "none")):
             mean, std = _stats(tb[m, dd][pos])
-            H.errorbar(sigma[pos] / shift, mean, yerr=std, fmt=_MARKERS[dd % 6] + ("-" if m == 0 else "--"),
-                       color=f"C{dd}", mfc=fill, ms=4, lw=0.8, capsize=2)
+            H.errorbar(sigma[pos] / shift, mean, yerr=std if bars else None,
+                       fmt=_MARKERS[dd % 6] + ("-" if m == 0 else "--"), color=f"C{dd}",
+                       mfc=fill, ms=4, lw=0.8, capsize=2)
         h0 = tb[0, dd][sigma == 0]
         if np.isfinite(h0).any():
             H.axhline(float(np.nanmean(h0)), color=f"C{dd}", lw=0.6, ls="-.")
@@ -168,6 +183,6 @@ def draw(tree: xr.DataTree) -> Figure:
     H.set_yscale("log")
     H.set_xlabel(r"$\sigma / \Delta$")
     H.set_ylabel(r"break-up time $t_b$ (slow periods)")
-    H.set_title("(h) mi wave: break-up time (dash-dot: homogeneous lattice)", fontsize=9)
-    legend_outside(E, fontsize=6)
+    H.set_title(f"(h) mi wave: break-up time, mean {'+- std ' if bars else ''}over {n_seeds} seeds\n"
+                "(dash-dot: homogeneous lattice)", fontsize=9)
     return fig

@@ -79,7 +79,11 @@ def draw(tree: AnalysisTree) -> Figure:
     D.semilogx(omt - 1.0, thr / np.pi, "o-", color="C0", label="lattice threshold")
     D.axhline(0.5, color="C3", ls="--", lw=0.8, label=r"DpS: $\pi/2$")
     for x, y, pp in zip(omt - 1.0, thr / np.pi, thresholds["p_threshold"].values / np.pi, strict=True):
-        D.annotate(f"p={pp:.2f}$\\pi$", (x, y), xytext=(4, -10), textcoords="offset points", fontsize=6.5)
+        D.annotate(f"p={pp:.2f}$\\pi$", (x, y), xytext=(0, 7), textcoords="offset points", fontsize=6.5,
+                   ha="center")
+    # a factor 3 of room on either side in log: the points and their labels stay inside the frame
+    D.set_xlim((omt - 1.0).min() / 3, (omt - 1.0).max() * 3)
+    D.set_ylim(min(thr.min() / np.pi, 0.5) - 0.005, 0.5 + 0.005)
     D.set_xlabel(r"$\omega_{tw} - 1$ (amplitude from (freq))")
     D.set_ylabel(r"$q_c/\pi$")
     D.set_title(r"(d) lattice threshold $\to \pi/2$ as the amplitude $\to 0$", fontsize=9)

@@ -40,7 +40,11 @@ def draw_bcsc(data: dict, options: dict) -> Figure:
     ax.set_xlabel("$n$")
     ax.set_ylabel("$\\log_{10}|a_n|$")
     ax.set_yscale("symlog", linthresh=10)
-    ax.set_ylim(top=1.0)
+    # above the largest point by more than a marker: the centre's log10|a_n| is near 0
+    finite = log10a[np.isfinite(log10a)]
+    # a margin beyond the extreme points (symlog: a tenth of the span below), so that no marker is cut
+    ax.set_ylim(float(finite.min()) * 1.1 - 1.0, max(1.0, float(finite.max()) + 1.5))
+    ax.set_xlim(float(n.min()) - 1.5, float(n.max()) + 1.5)
     ax.set_title("site-centred, $\\log_{10}|a_n|$; shaded: the paper's $18 \\leq n \\leq 34$;\n"
                  "dashed: machine precision; tails: (dpsstn) in log variables", fontsize=8)
     _profile(axes[1, 0], bond, "bond-centred")

@@ -54,13 +54,18 @@ def draw(tree: AnalysisTree) -> Figure:
     im = None
     for j, role in enumerate(roles):
         g = tree[role]
+
+        def letter(row: int, j: int = j) -> str:
+            """The panel's letter, running down each column and on through the columns: once per figure."""
+            return f"({'abcdefghijklmnopqrstuvwxyz'[j * 4 + row]})"
+
         models = [str(m) for m in g["model"].values]
         scene = a.get(f"{role}_scene", role)
         what = (rf"$\beta$ = {float(a[f'{role}_beta']):g}" if float(a.get(f"{role}_beta", 0.0)) != 0.0
                 else rf"$\delta_0$ = {float(a[f'{role}_delta0']):g}")
         head = f"{_TITLES[role]} ('{scene}': {what}, kick v = {float(a[f'{role}_velocity']):g}, {a[f'{role}_bc']})"
-        im = _map(ax[0, j], g, models.index("exact"), f"(a) {head}\nlattice (ncimperfect)")
-        _map(ax[1, j], g, models.index("reference"), "(b) the same kick, harmonic uncompressed lattice (nc)")
+        im = _map(ax[0, j], g, models.index("exact"), f"{letter(0)} {head}\nlattice (ncimperfect)")
+        _map(ax[1, j], g, models.index("reference"), f"{letter(1)} the same kick, harmonic uncompressed lattice (nc)")
         t = np.asarray(g["t"].values)
         C = ax[2, j]
         Xs = np.asarray(g["X_smooth"].values)
@@ -76,7 +81,7 @@ def draw(tree: AnalysisTree) -> Figure:
         C.plot(rt[ok & (sp == 0)], rs[ok & (sp == 0)], "ko", mfc="none", ms=6, label="reversal (lattice): bounce")
         C.set_xlabel("t")
         C.set_ylabel("energy centre X (smoothed), bead")
-        C.set_title("(c) energy centre X = sum n e_n / sum e_n", fontsize=9)
+        C.set_title(f"{letter(2)} energy centre X = sum n e_n / sum e_n", fontsize=9)
         D = ax[3, j]
         if role == "surface":
             f = np.asarray(g["boundary_fraction"].values)
@@ -88,7 +93,7 @@ def draw(tree: AnalysisTree) -> Figure:
                     D.plot(t, f[i, k], "-" if k == 0 else "--", color=c, lw=1.0,
                            label=f"{_LABEL[name]}: first {int(m)} beads")
             D.set_ylabel("energy fraction near the boundary")
-            D.set_title("(d) energy on the first m beads", fontsize=9)
+            D.set_title(f"{letter(3)} energy on the first m beads", fontsize=9)
         elif role == "boomeron":
             p = np.asarray(g["core_smooth"].values)
             for i, name in enumerate(models):
@@ -96,7 +101,7 @@ def draw(tree: AnalysisTree) -> Figure:
                 D.plot(t, p[i], ls, color=c, lw=1.0, label=_LABEL[name])
             w = int(np.asarray(g["halfwidth"].values)[0])
             D.set_ylabel("core position (smoothed), bead")
-            D.set_title(f"(d) centre of the {2 * w + 1}-bead window holding the most energy", fontsize=9)
+            D.set_title(f"{letter(3)} centre of the {2 * w + 1}-bead window holding the most energy", fontsize=9)
         else:
             w = int(np.asarray(g["halfwidth"].values)[0])
             for i, name in enumerate(models):
@@ -107,7 +112,7 @@ def draw(tree: AnalysisTree) -> Figure:
                     D.plot(t, np.asarray(g[key].values)[i, 0], ls, color=c, lw=1.0,
                            label=f"{_LABEL[name]}: {key.replace('_', ' ')}")
             D.set_ylabel("energy fraction")
-            D.set_title(f"(d) core ({2 * w + 1} beads) and the tails on either side", fontsize=9)
+            D.set_title(f"{letter(3)} core ({2 * w + 1} beads) and the tails on either side", fontsize=9)
         D.set_xlabel("t")
         legend_outside(C, fontsize=6) if j == len(roles) - 1 else None
         D.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.22), ncol=2, borderaxespad=0.0)

@@ -183,22 +183,23 @@ def draw_loc1(data: dict, options: dict) -> Figure:
 
 def _traces(ax: Axes, ds: xr.Dataset, t_range: tuple[float, float], delta: float = FINI_DELTA_X,
             title: str = "") -> None:
-    """Bead displacements on t_range, bead n (label n+1 = 1..N) drawn at height n+1 + x_n(t)/delta."""
+    """Bead displacements on t_range, bead n (0..N-1, the index of the files and of every other figure) drawn at
+    height n + x_n(t)/delta."""
     s = ds["x"].sel(t=slice(*t_range))
     t = s["t"].values
     N = s.sizes["n"]
     for n in range(N):
-        ax.plot(t, (n + 1) + s.values[:, n] / delta, "-", color="k", lw=0.7)
+        ax.plot(t, n + s.values[:, n] / delta, "-", color="k", lw=0.7)
     ax.set_xlim(*t_range)
-    ax.set_ylim(0.3, N + 0.9)
-    ax.set_yticks(np.arange(1, N + 1))
+    ax.set_ylim(-0.7, N - 0.1)
+    ax.set_yticks(np.arange(N))
     ax.set_xlabel("$t$")
     ax.set_ylabel("bead $n$")
     # scale bar: one unit of offset is delta in displacement, at the top of the vertical axis
     xb = t_range[0] + 0.015 * (t_range[1] - t_range[0])
-    ax.annotate("", xy=(xb, N + 0.85), xytext=(xb, N - 0.15),
+    ax.annotate("", xy=(xb, N - 0.15), xytext=(xb, N - 1.15),
                 arrowprops={"arrowstyle": "<->", "lw": 0.8, "shrinkA": 0, "shrinkB": 0})
-    ax.text(xb, N + 0.35, f"  $\\delta x = {delta:g}$", fontsize=7, va="center")
+    ax.text(xb, N - 0.65, f"  $\\delta x = {delta:g}$", fontsize=7, va="center")
     if title:
         ax.set_title(title, fontsize=8)
 

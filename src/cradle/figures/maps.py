@@ -1,7 +1,7 @@
 """Figures traj3 and traj2: orbits of the map G (comp1)-(comp2), alpha = 3/2 (section 2.2)."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -39,11 +39,12 @@ def _marks(ax: Axes, ds: xr.Dataset) -> None:
     if "mark_a" not in ds:
         raise ValueError(f"map '{ds.attrs.get('name', '?')}' has marks but no stored mark_a/mark_b: rebuild it")
     a, b, period = ds["mark_a"].values, ds["mark_b"].values, ds["mark_period"].values
+    box = float(ds.attrs["box"])
     for p, (marker, label) in MARKERS.items():
-        sel = period == p
+        # only the points of the panel: a mark outside the box would be cut by the frame or not drawn at all
+        sel = (period == p) & (np.abs(a) < 0.97 * box) & (np.abs(b) < 0.97 * box)
         if sel.any():
             ax.plot(a[sel], b[sel], marker, ms=5, mfc="none", mec="k", mew=0.9, ls="none", label=label)
-    ax.legend(fontsize=7, loc="upper right")
 
 
 def draw_traj3(data: dict, options: dict) -> Figure:
@@ -72,6 +73,15 @@ def draw_traj2(data: dict, options: dict) -> Figure:
         if ds.attrs.get("marks"):
             _marks(ax, ds)
         ax.set_title(f"$\\|U_n\\|_\\infty \\leq {float(ds.attrs['box']):g}$ ({name})", fontsize=9)
+    # one key for the marks of every panel, below the panels: inside a panel it would cover orbits
+    keys: dict[str, Any] = {}
+    for ax in axes.flat:
+        for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
+            keys.setdefault(label, handle)
+    if keys:
+        order = [label for _, label in MARKERS.values() if label in keys]
+        fig.legend(handles=[keys[k] for k in order], labels=[f"{k} orbit (explicit)" for k in order],
+                   loc="outside lower center", ncols=len(order), fontsize=8, frameon=False)
     first = data[options["scenes"][0]]
     fig.suptitle(f"orbits of the map G (comp1)-(comp2), $\\alpha$ = {float(first.attrs['alpha']):g}", fontsize=10)
     return fig

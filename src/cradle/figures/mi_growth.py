@@ -49,8 +49,11 @@ def draw(tree: AnalysisTree) -> Figure:
                     "measured vs theory at p*: " + "\n".join(lines), fontsize=6.5)
         A.set_xlabel(r"$p/\pi$", fontsize=8)
         A.set_ylabel("growth rate per unit t", fontsize=8)
-        top = np.nanmax([np.nanmax(sb["growth_theory"].values[i]), np.nanmax(ds["growth"].values[i])])
+        # every point of the panel inside its frame: the sidebands' measured rates can exceed the fitted ones
+        top = np.nanmax([np.nanmax(sb["growth_theory"].values[i]), np.nanmax(ds["growth"].values[i]),
+                         np.nanmax(sb["growth"].values[i])])
         A.set_ylim(-0.6 * top if top > 0 else -0.01, 1.5 * top if top > 0 else 0.01)
+        A.set_xlim(-0.04, 1.04)
         if i == 0:
             A.legend(fontsize=6, loc="lower right")
     # the fitted series

@@ -211,6 +211,8 @@ def draw_plot1v5(data: dict, options: dict) -> Figure:
     img = spacetime(left, ex, vmin, t_range=ZOOM_PLOT1V5,
                     title=f"exact, zoom $t \\in [{ZOOM_PLOT1V5[0]:g}, {ZOOM_PLOT1V5[1]:g}]$, all $n$")
     fig.colorbar(img, ax=left, label=FORCE_LABEL)
+    # room between the colour bar's label and the profile's axis label, which the layout would set side by side
+    fig.set_layout_engine("constrained", wspace=0.08)
     (t,) = options["times"]
     _profiles(right, sim, t, approx_style=".")
     legend_outside(right)

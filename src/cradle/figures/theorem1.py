@@ -54,15 +54,25 @@ def draw(tree: AnalysisTree) -> Figure:
     # (b) relative correction
     B = ax[0, 1]
     styles = ["-", "--", ":", "-."]
+    sign_changes = False
     for ja, al in enumerate(alphas):
         for iq, q in enumerate(qs):
-            r = np.abs(ds["rel_correction"].values[ja, iq])
+            signed = ds["rel_correction"].values[ja, iq]
+            r = np.abs(signed)
             eps = a ** (al - 1.0)
             ok = eps >= 1e-7
             B.loglog(a[ok], r[ok], styles[ja % 4], color=colors[iq], lw=1.0,
                      label=rf"$\alpha$={al:g}, q={_qlabel(q)}, slope {ds['correction_slope'].values[ja, iq]:.3f}")
+            # where the correction changes sign |.| dips towards 0 between two amplitudes: marked, not a kink
+            flip = np.flatnonzero(ok[:-1] & ok[1:] & (np.sign(signed[:-1]) * np.sign(signed[1:]) < 0))
+            if flip.size:
+                B.plot(np.sqrt(a[flip] * a[flip + 1]), np.sqrt(r[flip] * r[flip + 1]), "x", color=colors[iq],
+                       ms=6, mew=1.2)
+                sign_changes = True
     B.set_xlabel("a")
     B.set_ylabel(r"$|\omega_a - \omega_{DpS}| / (\omega_{DpS} - 1)$")
+    if sign_changes:
+        B.plot([], [], "x", color="0.3", ms=6, mew=1.2, label="x: the correction changes sign\n(|.| dips to 0 there)")
     B.set_title(r"(b) relative correction, expected slope $\alpha - 1$", fontsize=9)
     legend_outside(B, fontsize=5.5)
     # (c) profile correction against (va)
@@ -75,8 +85,11 @@ def draw(tree: AnalysisTree) -> Figure:
         C.plot(xi, prof["v_large"].values[ia, iq], ":", color=colors[iq], lw=1.0)
     C.set_xlabel(r"$\xi$")
     C.set_ylabel(r"$v_a(\xi)$")
-    C.set_title(rf"(c) $v_a$ at a = {a[0]:.0e} (dashed), {a[-1]:g} (dotted); $K_h P_h N_0$ (thick)", fontsize=9)
-    C.legend(fontsize=7)
+    C.plot([], [], "-", color="0.3", lw=2.2, alpha=0.4, label="leading order (va)")
+    C.plot([], [], "--", color="0.3", lw=1.0, label=f"exact, a = {a[0]:.0e}")
+    C.plot([], [], ":", color="0.3", lw=1.0, label=f"exact, a = {a[-1]:g}")
+    C.set_title("(c) profile correction $v_a(\\xi)$ of (ansatzu),\nexact and its leading order (va)", fontsize=9)
+    legend_outside(C, fontsize=7)
     # (d) convergence in the number of modes
     D = ax[1, 1]
     modes = conv["modes"].values

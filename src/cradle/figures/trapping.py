@@ -2,14 +2,16 @@
 
 Drawn by :func:`draw` from results/trapping/[full/]trapping.nc (:mod:`cradle.analyses.trapping`). Fractions are of
 the energy put in, H(0); "main definition": the first threshold and window of the file at its last measurement
-time; the small grey marks are the means under every other definition (thresholds x windows x times).
+time; the small grey marks are the means under every other definition (thresholds x windows x times). Each
+panel's key is under it, as wide as the panel.
 
 Top row: the energy per bead e_n / H(0) (log scale) against the bead and the slow time tau = a^(alpha-1) t, for
 each incident at its scan amplitude, homogeneous and at the largest sigma (first seed); the dashed lines bound the
 target (left of it the launch zone, right of it the lead).
 (e) the fraction in static breathers centred in the target against the amplitude a, main length, each sigma: mean
-    over the seeds, error bars one standard deviation over the seeds (cut at 0 and 1), open markers the static
-    breathers of the whole chain (the target's and slow reflected ones in the launch zone); (f) the same against
+    over the seeds, error bars one standard deviation over the seeds (cut at 0 and 1; drawn over 4 seeds or more),
+    open markers to the right the static breathers of the whole chain (the target's and slow reflected ones in the
+    launch zone), grey marks to the left the means under the other definitions; (f) the same against
     sigma at the scan amplitudes, each target length; (g) where the energy is at the last measurement time (scan
     amplitudes, main length): the lead (transmitted), the target, the launch zone (wake and reflected), means over
     the seeds; (h) damping: the fraction in static breathers of the target (filled) and the energy dissipated D
@@ -20,8 +22,9 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
+from matplotlib.ticker import NullLocator
 
-from cradle.figures import AnalysisTree, figure, legend_outside, plain_log_ticks
+from cradle.figures import AnalysisTree, figure
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -61,9 +64,29 @@ def _spacetime(ax: Axes, ex: AnalysisTree, k: int, fig_images: list) -> None:
     ax.set_ylabel(r"slow time $\tau = a^{\alpha-1} t$")
 
 
-def _bars(mean: np.ndarray, std: np.ndarray) -> np.ndarray:
-    """Error bars of one standard deviation, cut at 0 and 1 (a fraction of H(0))."""
+#: error bars of one standard deviation are drawn over at least this many seeds (over fewer they say nothing)
+MIN_SEEDS_FOR_BARS = 4
+
+
+def _bars(mean: np.ndarray, std: np.ndarray, n_seeds: int) -> np.ndarray | None:
+    """Error bars of one standard deviation, cut at 0 and 1 (a fraction of H(0)); None over too few seeds."""
+    if n_seeds < MIN_SEEDS_FOR_BARS:
+        return None
     return np.stack([np.minimum(std, mean), np.minimum(std, 1.0 - mean)])
+
+
+def _key_below(ax: Axes, ncols: int = 1) -> None:
+    """The legend of ``ax`` under its axis labels, as wide as the panel: beside it, it would halve the panel."""
+    ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=ncols, borderaxespad=0.0)
+
+
+def _log_frame(ax: Axes, xs: np.ndarray) -> None:
+    """A log x axis ticked at the values ``xs`` drawn, with room for a marker on either side."""
+    xs = np.unique(xs[np.isfinite(xs) & (xs > 0)])
+    ax.set_xscale("log")
+    ax.set_xlim(xs.min() / 1.6, xs.max() * 1.6)
+    ax.set_xticks(xs, [f"{v:g}" for v in xs])
+    ax.xaxis.set_minor_locator(NullLocator())
 
 
 def _others(ax: Axes, x: float, values: np.ndarray) -> None:
@@ -74,7 +97,7 @@ def _others(ax: Axes, x: float, values: np.ndarray) -> None:
 
 def draw(tree: AnalysisTree) -> Figure:
     """The panels above from the groups /runs, /summary and /examples of the trapping file."""
-    fig, ax = figure(2, 4, width=17.0, height=8.6)
+    fig, ax = figure(2, 4, width=17.0, height=10.0)
     ex, sm = tree["examples"], tree["summary"]
     images: list = []
     for k in range(min(4, ex.sizes.get("example", 0))):
@@ -97,6 +120,10 @@ def draw(tree: AnalysisTree) -> Figure:
     shades = {s: f"C{j}" for j, s in enumerate(sigmas)}
     th, wd, tm = (float(tree[c].values[i]) for c, i in zip(("threshold", "window", "tau_m"), main, strict=True))
     defn = rf"main definition: $\theta$ = {th:g}, W = {wd:g}, $\tau_m$ = {tm:g}"
+    disordered = _v(tree["runs"], "sigma") > 0   # a homogeneous chain is one run whatever its seed
+    n_seeds = int(np.unique(_v(tree["runs"], "seed")[disordered]).size) if disordered.any() else 1
+    spread = (f"error bars: one standard deviation over {n_seeds} seeds" if n_seeds >= MIN_SEEDS_FOR_BARS
+              else f"means over {n_seeds} seeds (no error bars: too few seeds for a spread)")
 
     E = ax[1, 0]
     for i in (0, 1):
@@ -106,21 +133,21 @@ def draw(tree: AnalysisTree) -> Figure:
                 continue
             order = np.argsort(amp[m])
             xs, ys, es = amp[m][order], mean[m][order][:, 0, 0, -1], std[m][order][:, 0, 0, -1]
-            E.errorbar(xs, ys, _bars(ys, es), fmt=_MARK[i] + _LINE[i], color=shades[s], ms=5, capsize=2, lw=1,
-                       label=f"{_INC[i]}, " + ("homogeneous" if s == 0 else f"sigma = {s:g}"))
-            E.plot(xs, whole[m][order][:, 0, 0, -1], _MARK[i], color=shades[s], mfc="none", ms=9)
+            E.errorbar(xs, ys, _bars(ys, es, n_seeds), fmt=_MARK[i] + _LINE[i], color=shades[s], ms=5, capsize=2,
+                       lw=1, label=f"{_INC[i]}, " + ("homogeneous" if s == 0 else f"sigma = {s:g}"))
+            # beside the target's marker, not around it
+            E.plot(xs * 1.12, whole[m][order][:, 0, 0, -1], _MARK[i], color=shades[s], mfc="none", ms=5)
             for x, v in zip(xs, mean[m][order], strict=True):
-                _others(E, x, v)
-    E.plot([], [], "o", color="0.3", mfc="none", ms=9, label="open: whole chain (launch zone too)")
-    E.plot([], [], "_", color="0.6", label="grey: every other definition (mean)")
-    E.set_xscale("log")
-    plain_log_ticks(E)
+                _others(E, x / 1.12, v)
+    E.plot([], [], "o", color="0.3", mfc="none", ms=5, label="open, right: whole chain (launch zone too)")
+    E.plot([], [], "_", color="0.6", label="grey, left: every other definition (mean)")
+    _log_frame(E, amp[undamped & (length == L0)])
     E.set_xlabel("amplitude a")
     E.set_ylabel("static breathers of the target / H(0)")
     E.set_title(f"(e) against amplitude, target of {L0} beads\n(striker: v_0(0) = a; breather: max |x(0)| = a)",
                 fontsize=9)
-    E.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
-    legend_outside(E, fontsize=6)
+    E.set_ylim(-0.05, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
+    _key_below(E)
 
     F = ax[1, 1]
     lengths = np.unique(length)
@@ -130,18 +157,21 @@ def draw(tree: AnalysisTree) -> Figure:
             if not m.any():
                 continue
             order = np.argsort(sigma[m])
-            xs = sigma[m][order] + 0.002 * (j - (len(lengths) - 1) / 2)   # side by side at equal sigma
+            step = 0.01 * max(float(np.ptp(sigma)), 0.1)
+            xs = sigma[m][order] + step * (j - (len(lengths) - 1) / 2)   # side by side at equal sigma
             ys = mean[m][order][:, 0, 0, -1]
-            F.errorbar(xs, ys, _bars(ys, std[m][order][:, 0, 0, -1]), fmt=_MARK[i] + _LINE[i],
+            F.errorbar(xs, ys, _bars(ys, std[m][order][:, 0, 0, -1], n_seeds), fmt=_MARK[i] + _LINE[i],
                        color=f"C{j}", ms=5, capsize=2, lw=1, label=f"{_INC[i]} a = {scan[i]:g}, {n} beads")
-            F.plot(xs, whole[m][order][:, 0, 0, -1], _MARK[i], color=f"C{j}", mfc="none", ms=9)
-            for x, v in zip(xs, mean[m][order], strict=True):
+            F.plot(xs + 1.5 * step, whole[m][order][:, 0, 0, -1], _MARK[i], color=f"C{j}", mfc="none", ms=5)
+            for x, v in zip(xs - 1.5 * step, mean[m][order], strict=True):
                 _others(F, x, v)
     F.set_xlabel(r"disorder $\sigma$ (std of $\omega_n - 1$)")
     F.set_ylabel("static breathers of the target / H(0)")
     F.set_title("(f) against sigma and target length,\nat the scan amplitudes", fontsize=9)
-    F.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
-    legend_outside(F, fontsize=6)
+    F.set_ylim(-0.05, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
+    F.set_xlim(float(sigma.min()) - 0.1 * max(float(np.ptp(sigma)), 0.1),
+               float(sigma.max()) + 0.1 * max(float(np.ptp(sigma)), 0.1))
+    _key_below(F)
 
     G = ax[1, 2]
     runs = tree["runs"]
@@ -159,7 +189,10 @@ def draw(tree: AnalysisTree) -> Figure:
     G.set_xlabel(r"disorder $\sigma$")
     G.set_ylabel(f"energy of the zone at tau = {tm:g}, over H(0)")
     G.set_title(f"(g) where the energy is, scan amplitudes,\n{L0} beads (mean over the seeds)", fontsize=9)
-    legend_outside(G, fontsize=6)
+    G.set_ylim(-0.05, 1.05)
+    G.set_xlim(float(sigmas.min()) - 0.1 * max(float(np.ptp(sigmas)), 0.1),
+               float(sigmas.max()) + 0.1 * max(float(np.ptp(sigmas)), 0.1))
+    _key_below(G, ncols=2)
 
     H = ax[1, 3]
     cases = sorted({(float(g), float(e)) for g, e in zip(gamma, eta, strict=True)})
@@ -180,17 +213,18 @@ def draw(tree: AnalysisTree) -> Figure:
                 ds.append(float(np.mean(dis[rm])))
             if xs:
                 lab = f"{_INC[i]}, " + ("homogeneous" if s == 0 else f"sigma = {s:g}")
-                H.errorbar(xs, ys, _bars(np.asarray(ys), np.asarray(es)), fmt=_MARK[i], color=col, ms=6, capsize=2,
-                           label=f"{lab}: static breathers")
+                H.errorbar(xs, ys, _bars(np.asarray(ys), np.asarray(es), n_seeds), fmt=_MARK[i], color=col, ms=6,
+                           capsize=2, label=f"{lab}: static breathers")
                 H.plot(xs, ds, _MARK[i], color=col, mfc="none", ms=8, label=f"{lab}: dissipated D")
     H.set_xticks(range(len(cases)), names, rotation=25)
     H.set_ylabel(f"fraction of H(0) at tau = {tm:g}")
     H.set_title(f"(h) damping, scan amplitudes, {L0} beads:\nstatic breathers (filled), dissipated D (open)",
                 fontsize=9)
-    H.set_ylim(-0.03, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
-    legend_outside(H, fontsize=6)
-    fig.suptitle(f"Energy of an incident wave left in static breathers. Fractions of H(0), {defn}; error bars: one "
-                 "standard deviation over the seeds; grey marks: the mean under every other definition;\n"
+    H.set_ylim(-0.05, 1.05)   # fractions of H(0); a seed spread is not drawn below 0
+    H.set_xlim(-0.6, len(cases) - 0.4)
+    H.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncols=1, borderaxespad=0.0)
+    fig.suptitle(f"Energy of an incident wave left in static breathers. Fractions of H(0), {defn}; {spread};\n"
+                 "grey marks: the mean under every other definition; "
                  "open markers in (e), (f): static breathers of the whole chain (the target's, and slow reflected "
                  "ones in the launch zone)", fontsize=9)
     return fig

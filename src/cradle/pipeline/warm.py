@@ -94,8 +94,8 @@ def forward(script_globals: dict) -> None:
         sock.settimeout(None)
         reader = sock.makefile("r")
         answer = reader.readline().split(" ", 1)
-    except OSError as e:   # no warm process (not ready yet, or gone): this process runs the job
-        os.environ[DECLINED_VAR] = f"warm process not reached ({e.__class__.__name__})"
+    except OSError:   # no warm process (still starting, or gone): routine, this process runs the job
+        os.environ[DECLINED_VAR] = "the warm process was not up yet"
         return
     if answer[0] != "forked":
         os.environ[DECLINED_VAR] = answer[-1].strip() or "no answer"
