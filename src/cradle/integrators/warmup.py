@@ -24,11 +24,11 @@ def compile_kernels(progress: Callable[[str], object] | None = None) -> str:
     n = np.arange(8)
     x0, v0, a0 = 0.1 * np.cos(np.pi / 4 * n), 0.1 * np.sin(np.pi / 4 * n), 0.1 * np.exp(1j * np.pi / 4 * n)
 
-    def lattice():
+    def lattice() -> None:
         for bc in ("periodic", "free"):
             integrate_lattice(x0, v0, [0.0, 0.5], alpha=1.5, bc=bc)
 
-    def dps():
+    def dps() -> None:
         for bc in ("periodic", "free"):
             integrate_dps(a0, [0.0, 0.5], alpha=1.5, bc=bc)
 
