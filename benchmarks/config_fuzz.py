@@ -34,7 +34,7 @@ sys.path[:0] = [str(ROOT / "tests"), str(ROOT / "tests" / "pipeline")]
 from cradle.pipeline import config as cc  # noqa: E402
 from cradle.specs.values import key_path  # noqa: E402
 from doctable import publish  # noqa: E402
-from test_config_fuzz import _alarm, _get, leaves, run_case  # noqa: E402
+from test_config_fuzz import _alarm, cases, leaves, run_case  # noqa: E402
 
 #: the values each leaf is given
 VALUES = {"zero": 0, "tiny": 1e-300, "-tiny": -1e-300, "huge": 1e300, "-huge": -1e300, "nan": math.nan,
@@ -65,19 +65,15 @@ def main(argv: list[str]) -> int:
     counts: dict[str, int] = {}
     failures, times = [], []
     start = time.process_time()
-    for path in paths:
-        mapping = isinstance(_get(filled, path), dict)
-        for label, value in VALUES.items():
-            if mapping and label not in NOT_MAPPINGS:
-                continue
-            t0 = time.process_time()
-            outcome, problem = run_case(raw, filled, path, value)
-            took = time.process_time() - t0
-            case = f"{key_path(list(path))} = {label}"
-            counts[outcome] = counts.get(outcome, 0) + 1
-            times.append((took, case, outcome))
-            if problem is not None or took > LIMIT_S:
-                failures.append(f"{case}: {outcome}, {took:.2f} s: {problem}")
+    for path, label, value in cases(filled, paths, VALUES, NOT_MAPPINGS):
+        t0 = time.process_time()
+        outcome, problem = run_case(raw, filled, path, value)
+        took = time.process_time() - t0
+        case = f"{key_path(list(path))} = {label}"
+        counts[outcome] = counts.get(outcome, 0) + 1
+        times.append((took, case, outcome))
+        if problem is not None or took > LIMIT_S:
+            failures.append(f"{case}: {outcome}, {took:.2f} s: {problem}")
     cpu = time.process_time() - start
     times.sort(reverse=True)
     commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,

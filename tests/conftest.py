@@ -90,6 +90,17 @@ def pytest_xdist_make_scheduler(config, log):
     return OneWorkerModules(config, log)
 
 
+def copy_workflow(work, skip=()):
+    """The repository's tracked files copied into ``work`` (a scratch workflow), but those under the folders
+    ``skip`` (e.g. ``("tests/", "docs/")``)."""
+    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True,
+                           check=True).stdout.split("\0")
+    for f in filter(None, files):
+        if (ROOT / f).is_file() and not f.startswith(tuple(skip)):
+            (work / f).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / f, work / f)
+
+
 def run_snakemake(workdir, *args, timeout=300):
     """``snakemake ARGS`` in ``workdir`` (the venv's snakemake), captured; warnings silenced."""
     exe = shutil.which("snakemake") or shutil.which("snakemake", path=str(Path(sys.executable).parent))

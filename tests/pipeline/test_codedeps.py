@@ -17,8 +17,6 @@ import contextlib
 import csv
 import io
 import os
-import shutil
-import subprocess
 import time
 import warnings
 from functools import cache
@@ -27,7 +25,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import run_snakemake
+from conftest import copy_workflow, run_snakemake
 from cradle import figures
 from cradle.analyses.registry import ANALYSES
 from cradle.pipeline.codedeps import STAMPS, code_files, code_stamps, fingerprint, stamp_all, stamped_files
@@ -119,12 +117,7 @@ def scratch(tmp_path_factory):
     """A copy of the tracked tree where every job of the full DAG has run (``--touch``: outputs
     present, newer than the code, and the inputs of each job recorded)."""
     work = tmp_path_factory.mktemp("codedeps") / "cradle"
-    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True,
-                           check=True).stdout.split("\0")
-    for f in filter(None, files):
-        if (ROOT / f).is_file():
-            (work / f).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(ROOT / f, work / f)
+    copy_workflow(work)
     for row in _summary(work, *TARGETS):
         if row["rule"] not in TARGETS:
             (work / row["output_file"]).parent.mkdir(parents=True, exist_ok=True)
@@ -325,12 +318,7 @@ def test_a_comment_reruns_nothing_and_code_reruns_its_importers(tmp_path):
     from cradle.pipeline import layout as L
 
     work = tmp_path / "cradle"
-    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True,
-                           check=True).stdout.split("\0")
-    for f in filter(None, files):
-        if (ROOT / f).is_file() and not f.startswith(("tests/", "docs/", "benchmarks/")):
-            (work / f).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(ROOT / f, work / f)
+    copy_workflow(work, skip=("tests/", "docs/", "benchmarks/"))
     target = "results/figures/plot4-5.png"
     outputs = [L.path("kernels"), *L.scene_paths("tw-weak").values(), *L.figure_paths("plot4-5").values()]
     for out in map(str, outputs):

@@ -146,6 +146,16 @@ class Hang(Exception):
     pass
 
 
+def cases(filled: dict, paths: list[tuple], values: dict, not_mappings: tuple[str, ...]):
+    """Every (path, label, value) of a fuzz: each leaf given each of ``values``; a mapping (a section, an entry,
+    an object) only those of ``not_mappings`` (any number is the same wrong type there)."""
+    for path in paths:
+        mapping = isinstance(_get(filled, path), dict)
+        for label, value in values.items():
+            if not mapping or label in not_mappings:
+                yield path, label, value
+
+
 def _alarm(signum, frame):
     raise Hang(f"no answer within {CASE_SECONDS} s")
 
@@ -212,21 +222,17 @@ def test_config_fuzz(raw):
     failures, slowest = [], (0.0, "")
     start, cpu = time.perf_counter(), time.process_time()
     try:
-        for path in paths:
-            mapping = isinstance(_get(filled, path), dict)
-            for label, value in VALUES.items():
-                if mapping and label not in NOT_MAPPINGS:
-                    continue
-                t0 = time.perf_counter()
-                outcome, problem = run_case(raw, filled, path, value)
-                took = time.perf_counter() - t0
-                faulthandler.dump_traceback_later(CASE_SECONDS + 5, repeat=True, exit=True)
-                case = f"{key_path(list(path))} = {label}"
-                counts[outcome] = counts.get(outcome, 0) + 1
-                by_value[label, outcome] = by_value.get((label, outcome), 0) + 1
-                slowest = max(slowest, (took, case))
-                if problem is not None:
-                    failures.append(f"{case}: {outcome}: {problem}")
+        for path, label, value in cases(filled, paths, VALUES, NOT_MAPPINGS):
+            t0 = time.perf_counter()
+            outcome, problem = run_case(raw, filled, path, value)
+            took = time.perf_counter() - t0
+            faulthandler.dump_traceback_later(CASE_SECONDS + 5, repeat=True, exit=True)
+            case = f"{key_path(list(path))} = {label}"
+            counts[outcome] = counts.get(outcome, 0) + 1
+            by_value[label, outcome] = by_value.get((label, outcome), 0) + 1
+            slowest = max(slowest, (took, case))
+            if problem is not None:
+                failures.append(f"{case}: {outcome}: {problem}")
     finally:
         faulthandler.cancel_dump_traceback_later()
         signal.signal(signal.SIGALRM, previous)

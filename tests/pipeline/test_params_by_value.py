@@ -5,13 +5,11 @@ from __future__ import annotations
 import copy
 import json
 import math
-import shutil
-import subprocess
 
 import pytest
 import yaml
 
-from conftest import ROOT
+from conftest import ROOT, copy_workflow
 from cradle.pipeline import config as cc
 from cradle.specs.declare import plain
 from cradle.specs.values import canonical_angle, parse_angle
@@ -116,12 +114,7 @@ def test_q_written_as_its_number_reruns_nothing(tmp_path):
     from cradle.pipeline import layout as L
 
     work = tmp_path / "cradle"
-    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, text=True,
-                           check=True).stdout.split("\0")
-    for f in filter(None, files):
-        if (ROOT / f).is_file() and not f.startswith(("tests/", "docs/", "benchmarks/")):
-            (work / f).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(ROOT / f, work / f)
+    copy_workflow(work, skip=("tests/", "docs/", "benchmarks/"))
     target = "results/figures/plot4-5.png"
     for out in map(str, [L.path("kernels"), *L.scene_paths("tw-weak").values(), *L.figure_paths("plot4-5").values()]):
         (work / out).parent.mkdir(parents=True, exist_ok=True)
