@@ -8,8 +8,10 @@ hashes); ``--write-schema`` regenerates config.schema.json.
 from __future__ import annotations
 
 import json
+import os
 import sys
 from pathlib import Path
+from typing import Any
 
 import yaml
 
@@ -23,7 +25,7 @@ from .validate import validate
 MAX_BYTES, MAX_VALUES, MAX_DEPTH = CONFIG_MAX_BYTES, CONFIG_MAX_VALUES, CONFIG_MAX_DEPTH
 
 
-def _line(event) -> int:
+def _line(event: yaml.Event) -> int:
     return event.start_mark.line + 1 if event.start_mark is not None else 0
 
 
@@ -62,11 +64,11 @@ class StrictLoader(_Parser):   # type: ignore[valid-type, misc]
     """PyYAML's safe loader, refusing a key given twice in one mapping (PyYAML keeps the last silently); merge
     keys (``<<: *base``) are honoured, a key given beside them overriding the merged one."""
 
-    def construct_document(self, node):
+    def construct_document(self, node: yaml.Node) -> Any:
         self._check_keys(node, set())
         return super().construct_document(node)
 
-    def _check_keys(self, node, done: set) -> None:
+    def _check_keys(self, node: yaml.Node, done: set) -> None:
         """Each mapping under ``node`` (each once, however many aliases name it) refused if one of its own keys
         (merged keys aside) is given twice."""
         if id(node) in done:
@@ -94,7 +96,7 @@ class StrictLoader(_Parser):   # type: ignore[valid-type, misc]
                 self._check_keys(item, done)
 
 
-def read_yaml(path) -> dict:
+def read_yaml(path: str | os.PathLike) -> dict:
     """The mapping of a YAML config file, read with :class:`StrictLoader` (ConfigError on any problem: not
     UTF-8, larger than :data:`MAX_BYTES`, too many values or too deep (:func:`_bounded`), a key given twice)."""
     path = Path(path)
@@ -123,12 +125,12 @@ def read_yaml(path) -> dict:
         raise ConfigError(f"config error: {path}: not valid YAML: {' '.join(str(err).split())}") from None
 
 
-def load(path) -> dict:
+def load(path: str | Path) -> dict:
     """Read a YAML config file (duplicate keys refused) and :func:`validate` it."""
     return validate(read_yaml(path))
 
 
-def main(argv=None) -> int:
+def main(argv: list[str] | None = None) -> int:
     """``python -m cradle.pipeline.config [config.yaml] [--scene|--homoclinic|--map NAME] [--write-schema]``.
 
     Validates the config (exit status 1 and one line per problem on stderr if
