@@ -117,6 +117,8 @@ def plain(value: Any, canonical: bool = True) -> Any:
                  if getattr(value, f.name) is not None or f.nullable]
         return dict(sorted(items) if canonical else items)
     if isinstance(value, (list, tuple)):
+        if all(type(v) is float or type(v) is int or type(v) is str for v in value):
+            return list(value)   # a per-bead list of numbers: nothing below to make plain
         return [plain(v, canonical) for v in value]
     if isinstance(value, dict):
         items = [(str(k), plain(v, canonical)) for k, v in value.items()]

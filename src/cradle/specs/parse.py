@@ -79,8 +79,15 @@ def _finite(value: Any, path: tuple, found: Errors) -> bool:
     if isinstance(value, float) and not math.isfinite(value):
         found.finite.append((path, path, "must be a finite number", value, False))
         return False
+    if isinstance(value, list) and _all_numbers(value) and all(map(math.isfinite, value)):
+        return True   # a long list of numbers in one pass, not a call per item
     items = value.items() if isinstance(value, dict) else enumerate(value) if isinstance(value, list) else ()
     return all([_finite(v, (*path, k), found) for k, v in items])
+
+
+def _all_numbers(value: list | tuple) -> bool:
+    """Whether every item is an int or a float (not a boolean: ``type`` tells it from an int)."""
+    return all(type(v) is float or type(v) is int for v in value)
 
 
 def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True) -> Any:
@@ -158,8 +165,8 @@ def _numbers_at_once(node: dict, value: list) -> bool:
     a call per item). False: read it item by item, which words each problem."""
     if node.get("type") != "number" or not set(node) <= _PLAIN_NUMBER or not value:
         return False
-    if not all(type(v) is float or type(v) is int for v in value) or not all(map(math.isfinite, value)):
-        return False   # a boolean is not a number here; type() tells it from an int
+    if not _all_numbers(value) or not all(map(math.isfinite, value)):
+        return False
     lo, hi = min(value), max(value)
     return all(ok(lo if key.endswith("inimum") else hi, node[key]) for key, (_, ok) in _BOUNDS.items() if key in node)
 
