@@ -33,12 +33,17 @@ KEYS = {"material": ["name", "E", "nu", "rho", "source"],
         "real_cradle": ["material", "radius", "length", "omega0", "g"]}
 
 
+def _shown(value) -> str:
+    """A value as a test id: the same in every process (xdist's workers must collect the same ids)."""
+    return "object()" if type(value) is object else repr(value)
+
+
 def _cases():
     for name, (make, kwargs) in BUILDS.items():
         keys = KEYS.get(name) or [f.name for f in dataclasses.fields(make)]
         for key in keys:
             for value in VALUES:
-                yield pytest.param(make, {**kwargs, key: value}, key, id=f"{name}.{key}={value!r}")
+                yield pytest.param(make, {**kwargs, key: value}, key, id=f"{name}.{key}={_shown(value)}")
 
 
 @pytest.mark.parametrize("make, kwargs, key", list(_cases()))
