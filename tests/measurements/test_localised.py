@@ -300,7 +300,7 @@ def test_draw_fini_on_synthetic_data():
     axes = fig.axes
     assert len(axes) == 4
     assert all(len(ax.get_lines()) == 10 for ax in axes)             # one trace per bead
-    y = axes[0].get_lines()[4].get_ydata()
+    y = axes[0].get_lines()[5].get_ydata()   # beads numbered from 0, as everywhere
     assert np.mean(y) == pytest.approx(5.0, abs=0.5)                  # bead n = 5 drawn around 5
     assert axes[0].get_xlim() == (0.0, 10.0) and axes[2].get_xlim() == (50.0, 60.0)
     plt.close(fig)
