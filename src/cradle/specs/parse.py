@@ -51,8 +51,10 @@ _JSON_TYPES = {"integer": lambda v: number(v) and float(v).is_integer() if isins
                "number": number, "string": lambda v: isinstance(v, str), "boolean": lambda v: isinstance(v, bool),
                "null": lambda v: v is None, "array": lambda v: isinstance(v, (list, tuple)),
                "object": lambda v: isinstance(v, dict)}
-#: the keywords of a number declaration that :func:`_numbers_at_once` checks for a whole list
+#: the keywords of a number declaration that :func:`_at_once` checks for a whole list
 _PLAIN_NUMBER = frozenset({"type", "description", *_BOUNDS})
+#: the problems of a list's items said before the rest of the list is left unread
+MAX_ITEM_PROBLEMS = 10
 _INT_RE = re.compile(r"^[-+]?\d+$")
 _FLOAT_RE = re.compile(r"^[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?$|^[-+]?(inf|nan)$", re.IGNORECASE)
 
@@ -153,16 +155,24 @@ def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
         return BAD   # its items are not read one by one
     if node.get("uniqueItems") and len({repr(v) for v in value}) < len(value):
         found.hold(path, "must not repeat a name", value)
-    if isinstance(node.get("items"), dict) and not _numbers_at_once(node["items"], value):
-        value = [leaf(node["items"], v, (*path, i), found) for i, v in enumerate(value)]
-        return BAD if any(v is BAD for v in value) else value
+    if isinstance(node.get("items"), dict) and not _at_once(node["items"], value):
+        out, before = [], len(found)
+        for i, v in enumerate(value):
+            out.append(leaf(node["items"], v, (*path, i), found))
+            if len(found) - before >= MAX_ITEM_PROBLEMS:   # a long list of wrong items: its first ones said
+                return BAD
+        return BAD if any(v is BAD for v in out) else out
     return value
 
 
-def _numbers_at_once(node: dict, value: list) -> bool:
-    """Whether ``value`` is a list of finite numbers within the bounds of ``node``, a declaration of a number with
-    bounds alone, checked in one pass over the list (a per-bead list of a long chain: the pass item by item costs
-    a call per item). False: read it item by item, which words each problem."""
+def _at_once(node: dict, value: list) -> bool:
+    """Whether ``value`` is a list of finite numbers within the bounds of ``node`` (a declaration of a number with
+    bounds alone) or of names from its enum (a string with an enum alone), checked in one pass over the list (a
+    per-bead list of a long chain: the pass item by item costs a call per item). False: read it item by item,
+    which words each problem."""
+    if node.get("type") == "string" and set(node) <= {"type", "enum", "description"} and "enum" in node:
+        names = frozenset(node["enum"])
+        return all(type(v) is str and v in names for v in value)
     if node.get("type") != "number" or not set(node) <= _PLAIN_NUMBER or not value:
         return False
     if not _all_numbers(value) or not all(map(math.isfinite, value)):
