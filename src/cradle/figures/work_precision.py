@@ -14,6 +14,7 @@ import json
 from typing import TYPE_CHECKING
 
 import numpy as np
+from matplotlib.ticker import NullFormatter
 
 from cradle.figures import figure
 
@@ -65,6 +66,8 @@ def draw(tree: xr.DataTree) -> Figure:
         right.set_ylabel("max |H - H(0)| / H(0)")
         for ax in (left, right):
             ax.grid(True, which="major", lw=0.3, alpha=0.6)
+            # wall times span little more than a decade: labelled minor ticks would run into each other
+            ax.xaxis.set_minor_formatter(NullFormatter())
             if r == len(scenes) - 1:
                 ax.set_xlabel("wall time [s]")
         if r == 0:
