@@ -13,7 +13,7 @@ it does not resume across blocks as :func:`cradle.integrators.dps_solver.iter_dp
 from __future__ import annotations
 
 import time
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -25,7 +25,11 @@ from cradle.specs.declare import from_plain, plain
 
 if TYPE_CHECKING:
     from cradle.integrators._types import Floats
-    from cradle.integrators.dps_solver import DpsSolution, _DpsRun
+
+#: cradle.integrators.dps_solver's classes, which imports this module: named here, not imported (a circle)
+DpsSolution = Any
+_DpsRun = Any
+
 
 
 def validated(damping: DpsDamping) -> DpsDamping:

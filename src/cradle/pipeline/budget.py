@@ -51,7 +51,10 @@ from cradle.specs.declare import declared, param
 
 if TYPE_CHECKING:
     from cradle.models.damping import Damping
-    from cradle.pipeline.config.sections import Config
+
+#: cradle.pipeline.config.sections.Config, which imports this module: named here, not imported (a circle)
+Config = Any
+
 
 #: float64 arrays of N values written per stored time by a scene's job (exact x, v, force; DpS
 #: A_re, A_im, x, force; metrics spectrum_exact, spectrum_dps)
@@ -251,7 +254,7 @@ def desk_toy_estimate(cfg: Config, form: str) -> Estimate:
     from cradle.analyses.protocol import REDUCED, form_spec
     from cradle.models.physical import release_amplitude
 
-    spec = form_spec(cfg.beyond.desk_toy, form)  # type: ignore[attr-defined]  # Beyond: made at import
+    spec = form_spec(cfg.beyond.desk_toy, form)
     N, t_end = max(spec.chains), 2.0 * math.pi * spec.swings
     rate = damping_rate(spec.damping, release_amplitude(spec.cradle or DEFAULT_CRADLE, spec.angle_deg))
     T = spec.swings * spec.samples + 1
@@ -307,7 +310,7 @@ def mi_statistics_estimate(cfg: Config, form: str) -> Estimate:
     form's batches), the spectra sampled every ``sample_every`` held per run."""
     from cradle.analyses.protocol import REDUCED, form_spec
 
-    spec = form_spec(cfg.beyond.mi_statistics, form)  # type: ignore[attr-defined]  # Beyond: made at import
+    spec = form_spec(cfg.beyond.mi_statistics, form)
     N, t_end = max(spec.N), spec.t_end
     runs = math.ceil(spec.q_over_pi.count / spec.chunks) * spec.n_seeds
     exact = ExactIntegrator(method=spec.exact.method, dt_factor=spec.exact.dt_factor)
@@ -327,7 +330,7 @@ def work_precision_estimate(cfg: Config, form: str) -> Estimate:
     from cradle.analyses.protocol import REDUCED, form_spec
     from cradle.analyses.work_precision import ladder
 
-    spec = form_spec(cfg.beyond.work_precision, form)  # type: ignore[attr-defined]  # Beyond: made at import
+    spec = form_spec(cfg.beyond.work_precision, form)
     scenes = cfg.scenes
     ref = spec.reference
     runs = [(ref.method, ref.dt_factor), (ref.method, 2.0 * ref.dt_factor)]
@@ -374,7 +377,7 @@ def dissipation_estimate(cfg: Config, form: str) -> Estimate:
     value, lattice and DpS runs sampled every ``sample_every`` (x, v, A and the site energies held)."""
     from cradle.analyses.protocol import REDUCED, form_spec
 
-    spec = form_spec(cfg.beyond.dissipation, form)  # type: ignore[attr-defined]  # Beyond: made at import
+    spec = form_spec(cfg.beyond.dissipation, form)
     runs = 2 * (1 + len(spec.waves)) * (len(spec.onsite) + len(spec.contact))
     return sampled_estimate("beyond.dissipation" + (".reduced" if form == REDUCED else ""), spec.N, spec.t_end,
                             spec.sample_every, runs, arrays=6)
@@ -387,7 +390,7 @@ def trapping_estimate(cfg: Config, form: str) -> Estimate:
     from cradle.analyses.protocol import REDUCED, form_spec
     from cradle.analyses.trapping import PROFILE, time_scale
 
-    spec = form_spec(cfg.beyond.trapping, form)  # type: ignore[attr-defined]  # Beyond: made at import
+    spec = form_spec(cfg.beyond.trapping, form)
     N = max(spec.launch, spec.back + PROFILE) + max([spec.length, *spec.lengths]) + spec.lead
     t_end = spec.tau_end * max(time_scale(a) for a in [*spec.striker, *spec.breather])
     return sampled_estimate("beyond.trapping" + (".reduced" if form == REDUCED else ""), N, t_end,
@@ -435,7 +438,7 @@ def estimates(cfg: Config) -> list[Estimate]:
     jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
     jobs += [("beyond", form, fn) for form in ("reduced", "full")
              for fn in (dissipation_estimate, trapping_estimate, desk_toy_estimate)]
-    if cfg.beyond.work_precision.scenes:  # type: ignore[attr-defined]  # Beyond: made at import
+    if cfg.beyond.work_precision.scenes:
         jobs += [("beyond", form, work_precision_estimate) for form in ("reduced", "full")]
     for _section, name, fn in jobs:
         try:
