@@ -145,14 +145,12 @@ def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True
 
 
 def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
+    # a list longer than its maximum never gets here: leaf refuses it before its items are walked
     lo, hi = node.get("minItems"), node.get("maxItems", DEFAULT_MAX_ITEMS)
     if lo is not None and lo == hi and len(value) != lo:
         found.hold(path, f"must have exactly {lo} items", value)
     elif lo is not None and len(value) < lo:
         found.hold(path, "must not be empty" if lo == 1 else f"must have at least {lo} items", value)
-    elif len(value) > hi:
-        found.hold(path, f"must have at most {hi} items", value)
-        return BAD   # its items are not read one by one
     if node.get("uniqueItems") and len({repr(v) for v in value}) < len(value):
         found.hold(path, "must not repeat a name", value)
     if isinstance(node.get("items"), dict) and not _at_once(node["items"], value):
@@ -175,7 +173,7 @@ def _at_once(node: dict, value: list) -> bool:
         return all(type(v) is str and v in names for v in value)
     if node.get("type") != "number" or not set(node) <= _PLAIN_NUMBER or not value:
         return False
-    if not _all_numbers(value) or not all(map(math.isfinite, value)):
+    if not _all_numbers(value):   # finite already: leaf checked it before the items
         return False
     lo, hi = min(value), max(value)
     return all(ok(lo if key.endswith("inimum") else hi, node[key]) for key, (_, ok) in _BOUNDS.items() if key in node)
