@@ -34,6 +34,8 @@ def refusal(shared, value, arg=None) -> str:
 
 # ----------------------------------------------------------------------------- one line per bad value
 
+DT_FACTOR_WHY = (" (the step dt_factor 2 pi / omega_max is then about 1e2 spacings of doubles at the longest t_end "
+                 "or more: below, t + dt is rounding noise)")
 RTOL_WHY = (" (a floor the integrator can honour, about 1e2 machine epsilons or more: below, a step's error "
             "estimate is rounding noise and the steps shrink until they underflow)")
 
@@ -86,7 +88,8 @@ RTOL_WHY = (" (a floor the integrator can honour, about 1e2 machine epsilons or 
     ("dt", -0.1, "dt = -0.1: must be > 0"),
     ("dt", math.nan, "dt = nan: must be a finite number"),
     ("dt", "0.1", "dt = '0.1': must be a number"),
-    ("dt_factor", 0, "dt_factor = 0: must be > 0"),
+    ("dt_factor", 0, f"dt_factor = 0: must be >= 1e-08{DT_FACTOR_WHY}"),
+    ("dt_factor", 1e-300, f"dt_factor = 1e-300: must be >= 1e-08{DT_FACTOR_WHY}"),
     ("latticeMethod", "euler", "latticeMethod = 'euler': must be one of srkn6c, srkn4c, srkn6, srkn4, strang, "
                                "dop853_numba, dop853, rk45, lsoda, radau"),
     ("dpsMethod", "srkn6", "dpsMethod = 'srkn6': must be one of dop853_numba, dop853, rk45"),

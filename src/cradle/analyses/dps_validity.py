@@ -39,7 +39,7 @@ from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
 from cradle.measurements.dps_range import EPS_MEASURED
 from cradle.specs.declare import declared, param, plain
-from cradle.specs.values import RTOL_FLOOR, show
+from cradle.specs.values import DT_FACTOR_FLOOR, RTOL_FLOOR, show
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -97,20 +97,23 @@ class DpsValidity:
     sample_every: float = param(0.2, "Lattice-time spacing of the samples of the sup over t.", exclusiveMinimum=0,
                                 maximum=1.0)
     dt_factor: float = param(0.01, "srkn6c step as a fraction of the shortest linearised period (the run at the "
-                             "smallest eps is repeated with dt / 2).", exclusiveMinimum=0, maximum=0.05)
+                             "smallest eps is repeated with dt / 2).", minimum=DT_FACTOR_FLOOR, maximum=0.05)
     dps_rtol: float = param(1e-11, "Relative tolerance of the DpS runs (dop853_numba).", minimum=RTOL_FLOOR,
                             maximum=1e-6)
     chunk: int = param(20000, "Samples per integration chunk (bounds the memory of the long runs).", minimum=100,
                        maximum=1000000)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Each form: one eps_min per alpha, each below eps_max; the families distinct."""
+        """Each form: one eps_min per alpha, each below eps_max (none of them: said at eps_max); the families
+        distinct."""
         al, em, hi = self.alpha, self.eps_min, self.eps_max
         if len(al) != len(em):
             out.add(where + ["eps_min"], f"needs one value per alpha ({len(al)}: {show(al)})", em)
-        for i, e in enumerate(em):
-            if not e < hi:
-                out.add(where + ["eps_min", i], f"must be below eps_max = {show(hi)}", e)
+        above = [i for i, e in enumerate(em) if not e < hi]
+        if above and len(above) == len(em):   # no eps_min below it: eps_max is the value to change
+            out.add(where + ["eps_max"], f"must be above every eps_min (eps_min = {show(em)})", hi)
+        for i in above if len(above) < len(em) else ():
+            out.add(where + ["eps_min", i], f"must be below eps_max = {show(hi)}", em[i])
         if len(set(map(str, self.families))) != len(self.families):
             out.add(where + ["families"], "lists a family twice", self.families)
 

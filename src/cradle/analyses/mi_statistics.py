@@ -51,7 +51,7 @@ from cradle.models import initial
 from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
 from cradle.scenes.times import store_times
 from cradle.specs.declare import NULL, declared, param, plain
-from cradle.specs.values import INTEGER_TOL, RTOL_FLOOR
+from cradle.specs.values import DT_FACTOR_FLOOR, INTEGER_TOL, RTOL_FLOOR
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -73,7 +73,7 @@ class MIStatisticsExact:
     method: str = param("srkn6c", "A splitting of cradle.integrators (srkn6c is the fastest at the default "
                         "accuracy).", enum=list(SPLITTINGS))
     dt_factor: float | None = param(NULL, "Step as a fraction of the shortest linear period; null = the method's "
-                                    "default.", exclusiveMinimum=0, maximum=0.5)
+                                    "default.", minimum=DT_FACTOR_FLOOR, maximum=0.5)
 
 
 @declared(doc="DpS integrator.")

@@ -56,7 +56,7 @@ from cradle.data.variables import Var
 from cradle.models import lattice
 from cradle.scenes.spec import LATTICE_ADAPTIVE, SPLITTINGS
 from cradle.specs.declare import REQUIRED, declared, param, plain
-from cradle.specs.values import MAX_T_END, RTOL_FLOOR, ConfigError, did_you_mean
+from cradle.specs.values import DT_FACTOR_FLOOR, MAX_T_END, RTOL_FLOOR, ConfigError, did_you_mean
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -103,12 +103,11 @@ def _ladder(method: str) -> dict:
     """The schema of one method's ladder of settings in work-precision.methods."""
     key, top, what = (("dt_factor", 1, "splitting step = dt_factor * 2 pi / omega_max") if method in SPLITTINGS
                       else ("rtol", 0.01, "relative tolerances (atol = rtol * a)"))
+    floor = RTOL_FLOOR if key == "rtol" else DT_FACTOR_FLOOR
     return {"description": f"Ladder of {method}: {what}.", "type": "object", "additionalProperties": False,
             "required": [key], "properties": {key: {
-                "description": f"The settings ({key}), each > 0.", "type": "array", "minItems": 1,
-                "items": {"type": "number", "maximum": top,
-                                                       **({"minimum": RTOL_FLOOR} if key == "rtol" else
-                                                          {"exclusiveMinimum": 0})}}}}
+                "description": f"The settings ({key}), each >= {floor:g}.", "type": "array", "minItems": 1,
+                "items": {"type": "number", "maximum": top, "minimum": floor}}}}
 
 
 @declared(doc="The ladder of settings of one method: dt_factor for a splitting, rtol for an adaptive method.")
@@ -127,7 +126,8 @@ class WorkPrecisionScene:
               "time before their difference (relative to a) exceeds tolerance.")
 class WorkPrecisionReference:
     method: str = param("srkn6c", "Splitting used for the reference.", enum=list(SPLITTINGS))
-    dt_factor: float = param(0.0002, "Step factor of the finer reference run; > 0.", exclusiveMinimum=0, maximum=1)
+    dt_factor: float = param(0.0002, f"Step factor of the finer reference run; >= {DT_FACTOR_FLOOR:g}.",
+                             minimum=DT_FACTOR_FLOOR, maximum=1)
     # at most 1e-2: two references that differ by 1 % of a are no reference, and a larger tolerance would
     # silently compare every method with a wrong one
     tolerance: float = param(1e-10, "Largest difference between the two reference runs, relative to a, for the "

@@ -414,16 +414,38 @@ def extend_estimate(key: str, N: int, method: str, dt: float, t_from: float, t_e
                     steps=steps, streamed=True)
 
 
-def exceeds(e: Estimate, budget: Budget) -> str | None:
-    """The line saying how estimate ``e`` exceeds ``budget`` (memory, then output, then time), or None."""
-    for what, value, limit, key in (
-            ("peak memory", e.memory_bytes, budget.memory_gb * GB, "memory_gb"),
-            ("output", e.disk_bytes, budget.disk_gb * GB, "disk_gb"),
-            ("run time", e.seconds, budget.hours * 3600.0, "hours")):
-        if value > limit:
-            shown = fmt_duration(value) if key == "hours" else fmt_bytes(value)
-            return f"{e.key}: {e.cause}: estimated {what} {shown} exceeds budget.{key} = {_g(getattr(budget, key))}"
+#: each limit of a :class:`Budget`: (what it bounds, its key, the estimate's amount, the limit in that unit)
+_LIMITS: tuple[tuple[str, str, Callable[[Estimate], float], Callable[[Budget], float]], ...] = (
+    ("peak memory", "memory_gb", lambda e: e.memory_bytes, lambda b: b.memory_gb * GB),
+    ("output", "disk_gb", lambda e: e.disk_bytes, lambda b: b.disk_gb * GB),
+    ("run time", "hours", lambda e: e.seconds, lambda b: b.hours * 3600.0))
+
+
+def _shown(key: str, amount: float) -> str:
+    return fmt_duration(amount) if key == "hours" else fmt_bytes(amount)
+
+
+def exceeds(e: Estimate, budget: Budget, skip: frozenset[str] = frozenset()) -> str | None:
+    """The line saying how estimate ``e`` exceeds ``budget`` (memory, then output, then time; a limit named in
+    ``skip`` left out), or None."""
+    for what, key, amount, limit in _LIMITS:
+        if key not in skip and amount(e) > limit(budget):
+            return (f"{e.key}: {e.cause}: estimated {what} {_shown(key, amount(e))} exceeds budget.{key} = "
+                    f"{_g(getattr(budget, key))}")
     return None
+
+
+def below_every_job(jobs: list[Estimate], budget: Budget) -> dict[str, str]:
+    """Budget key -> its line, for each limit of ``budget`` that every one of ``jobs`` exceeds: the budget is the
+    value to change (a config's jobs include every analysis at its defaults, so one oversized entry never makes
+    this so)."""
+    out = {}
+    for what, key, amount, limit in _LIMITS:
+        if jobs and all(amount(e) > limit(budget) for e in jobs):
+            least = min(jobs, key=amount)
+            out[key] = (f"budget.{key} = {_g(getattr(budget, key))}: below the estimated {what} of every job (the "
+                        f"least, {least.key}: {_shown(key, amount(least))}); raise it to what this machine allows")
+    return out
 
 
 def estimates(cfg: Config) -> list[Estimate]:
@@ -453,15 +475,18 @@ OVER_HINT = "raise it under budget: in the config if this machine allows, or cha
 
 
 def over_budget(cfg: Config) -> list[str]:
-    """One line per job (and for all scenes' output together) that exceeds the budget; empty if all fit."""
+    """One line per job (and for all scenes' output together) that exceeds the budget, or one line at a limit that
+    every job exceeds (:func:`below_every_job`); empty if all fit."""
     budget = Budget.from_config(cfg)
-    lines = []
+    jobs = estimates(cfg)
+    below = below_every_job(jobs, budget)
+    lines = list(below.values())
     hint = OVER_HINT
     total = 0.0
-    for e in estimates(cfg):
+    for e in jobs:
         if e.key.startswith("scenes."):
             total += e.disk_bytes
-        line = exceeds(e, budget)
+        line = exceeds(e, budget, frozenset(below))
         if line is not None:
             lines.append(f"{line} ({hint})")
     if total > budget.disk_gb * GB and not lines:

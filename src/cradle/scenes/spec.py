@@ -28,6 +28,7 @@ from cradle.models.physical import HERTZ_ALPHA, Cradle, scales
 from cradle.specs.declare import NULL, REQUIRED, declared, param
 from cradle.specs.schema import register_union
 from cradle.specs.values import (
+    DT_FACTOR_FLOOR,
     INTEGER_TOL,
     MAX_T_END,
     T_END_WHY,
@@ -92,8 +93,8 @@ class ExactIntegrator:
                         "dop853_numba (adaptive, compiled) | dop853 | rk45 | lsoda | radau (scipy).",
                         enum=[*SPLITTINGS, *LATTICE_ADAPTIVE])
     # at most 1: a step longer than the shortest linearised period 2 pi / omega_max resolves no oscillation
-    dt_factor: float | None = param(NULL, "Splitting step = dt_factor * 2 pi / omega_max; in (0, 1], or null for the "
-                                    "method's default.", exclusiveMinimum=0, maximum=1)
+    dt_factor: float | None = param(NULL, f"Splitting step = dt_factor * 2 pi / omega_max; in [{DT_FACTOR_FLOOR:g}, "
+                                    "1], or null for the method's default.", minimum=DT_FACTOR_FLOOR, maximum=1)
     rtol: float = param(1e-10, "Relative tolerance of the adaptive (scipy) methods, in [1e-14, 1e-2].", ref="rtol")
 
 

@@ -16,7 +16,7 @@ import typing
 from collections.abc import Callable
 from typing import Any, TypeVar
 
-from .parse import BAD, Field, _deref, fields_of, given_fields, parse, reduced_defaults
+from .parse import BAD, BUILDING, Field, _deref, fields_of, given_fields, parse, reduced_defaults
 from .shared import SHARED
 from .values import NAME_PATTERN, ConfigError, Errors, canonical_angle
 
@@ -29,6 +29,8 @@ T = TypeVar("T")
 ANGLE = _deref({"$ref": "#/$defs/angle"})
 
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
+#: the items of a list that :func:`plain` returns as they are (a per-bead list of numbers or names)
+_ATOM_TYPES = frozenset({float, int, str})
 
 
 #: the default of a key whose default is null (filled in as None), unlike an optional key
@@ -117,7 +119,7 @@ def plain(value: Any, canonical: bool = True) -> Any:
                  if getattr(value, f.name) is not None or f.nullable]
         return dict(sorted(items) if canonical else items)
     if isinstance(value, (list, tuple)):
-        if all(type(v) is float or type(v) is int or type(v) is str for v in value):
+        if _ATOM_TYPES.issuperset(map(type, value)):   # one pass in C
             return list(value)   # a per-bead list of numbers: nothing below to make plain
         return [plain(v, canonical) for v in value]
     if isinstance(value, dict):
@@ -162,6 +164,8 @@ def check_fields(obj: Any, where: str, skip: tuple[str, ...] = ()) -> None:
     naming ``where``, the key and the value; a value given in another form (``1`` for ``1.0``, ``'1'`` for
     ``1``) is stored as the validation pass reads it. ``skip``: keys the caller checks itself."""
     cls: Any = type(obj)
+    if BUILDING.get() is cls:   # made by the validation pass of values it has just read
+        return
     found = Errors()
     values = {f.key: plain(getattr(obj, f.name), canonical=False) for f in fields_of(cls)
               if getattr(obj, f.name) is not None or f.nullable}

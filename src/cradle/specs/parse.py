@@ -8,6 +8,7 @@ its key expects), within its bounds, enum and pattern; absent keys take their de
 """
 from __future__ import annotations
 
+import contextvars
 import dataclasses
 import functools
 import json
@@ -44,6 +45,8 @@ HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))",
          **{(key, "minimum"): " (a floor the integrator can honour, about 1e2 machine epsilons or more: below, a "
                               "step's error estimate is rounding noise and the steps shrink until they underflow)"
             for key in ("rtol", "dps_rtol", "check_rtol")},
+         ("dt_factor", "minimum"): " (the step dt_factor 2 pi / omega_max is then about 1e2 spacings of doubles at "
+                                   "the longest t_end or more: below, t + dt is rounding noise)",
          ("t_end", "maximum"): f" ({T_END_WHY})"}
 _BOUNDS = {"minimum": (">=", lambda x, b: x >= b), "exclusiveMinimum": (">", lambda x, b: x > b),
            "maximum": ("<=", lambda x, b: x <= b), "exclusiveMaximum": ("<", lambda x, b: x < b)}
@@ -53,6 +56,11 @@ _JSON_TYPES = {"integer": lambda v: number(v) and float(v).is_integer() if isins
                "object": lambda v: isinstance(v, dict)}
 #: the keywords of a number declaration that :func:`_at_once` checks for a whole list
 _PLAIN_NUMBER = frozenset({"type", "description", *_BOUNDS})
+#: the declared class :func:`build_object` is making of values it has just read: that class's own check of its
+#: fields (:func:`.declare.check_fields`, for an instance built directly) would read them all again
+BUILDING: contextvars.ContextVar[type | None] = contextvars.ContextVar("building", default=None)
+#: the types of a number in a list (a boolean is not one: its type is bool, not int)
+_NUMBER_TYPES = frozenset({int, float})
 #: the problems of a list's items said before the rest of the list is left unread
 MAX_ITEM_PROBLEMS = 10
 _INT_RE = re.compile(r"^[-+]?\d+$")
@@ -89,7 +97,7 @@ def _finite(value: Any, path: tuple, found: Errors) -> bool:
 
 def _all_numbers(value: list | tuple) -> bool:
     """Whether every item is an int or a float (not a boolean: ``type`` tells it from an int)."""
-    return all(type(v) is float or type(v) is int for v in value)
+    return _NUMBER_TYPES.issuperset(map(type, value))   # in C, stopping at the first other type
 
 
 def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True) -> Any:
@@ -151,7 +159,7 @@ def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
         found.hold(path, f"must have exactly {lo} items", value)
     elif lo is not None and len(value) < lo:
         found.hold(path, "must not be empty" if lo == 1 else f"must have at least {lo} items", value)
-    if node.get("uniqueItems") and len({repr(v) for v in value}) < len(value):
+    if node.get("uniqueItems") and len({_same(v) for v in value}) < len(value):
         found.hold(path, "must not repeat a name", value)
     if isinstance(node.get("items"), dict) and not _at_once(node["items"], value):
         out, before = [], len(found)
@@ -161,6 +169,12 @@ def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
                 return BAD
         return BAD if any(v is BAD for v in out) else out
     return value
+
+
+def _same(item: Any) -> Any:
+    """What tells a repeated item of a list: a number or a string by type and value; anything else is a wrong item
+    (said by ``items``) and only itself (no repr of a nested list of a million values)."""
+    return (type(item), item) if isinstance(item, (str, int, float)) or item is None else id(item)
 
 
 def _at_once(node: dict, value: list) -> bool:
@@ -433,4 +447,8 @@ def build_object(cls: type, value: Any, path: tuple, found: Errors, base: Any = 
     got = given_fields(cls, value, path, found, base)
     if got is BAD or len(found) > n:
         return BAD
-    return cls(**got)
+    token = BUILDING.set(cls)
+    try:
+        return cls(**got)
+    finally:
+        BUILDING.reset(token)

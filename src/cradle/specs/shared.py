@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .values import ANGLE_PATTERN, MAX_COUNT, NAME_MAX_LENGTH, NAME_PATTERN, RTOL_FLOOR
+from .values import ANGLE_PATTERN, DT_FACTOR_FLOOR, MAX_COUNT, NAME_MAX_LENGTH, NAME_PATTERN, RTOL_FLOOR
 
 # Shared scalar types ($defs), each bound written here only.
 
@@ -39,7 +39,7 @@ SHARED: dict[str, dict[str, Any]] = {
              "exclusiveMinimum": 0},
     "dt": {"description": "Time step of a fixed-step splitting; > 0.", "type": "number", "exclusiveMinimum": 0},
     "dt_factor": {"description": "Splitting step as a fraction of the shortest linearised period 2 pi / omega_max; "
-                                 "> 0.", "type": "number", "exclusiveMinimum": 0},
+                                 f">= {DT_FACTOR_FLOOR:g}.", "type": "number", "minimum": DT_FACTOR_FLOOR},
     "latticeMethod": {"description": "Integrator of the lattice (nc): a splitting (srkn6c, srkn4c with the "
                                      "contact-onset correction; srkn6, srkn4, strang) or an adaptive method "
                                      "(dop853_numba; scipy's dop853, rk45, lsoda, radau).", "type": "string",

@@ -40,6 +40,10 @@ ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5',
 #: the smallest relative tolerance of an adaptive run: about 1e2 machine epsilons (scipy raises a smaller one to
 #: 100 eps), below which a step's error estimate is rounding noise and the steps shrink until they underflow
 RTOL_FLOOR = 1e-14
+#: the smallest step factor of a splitting: its step dt_factor 2 pi / omega_max (omega_max >= 1) is then at least
+#: about 1e2 spacings of doubles at the end of the longest run (MAX_T_END); a shorter step adds rounding noise to t
+#: and the run makes no progress the budget could estimate
+DT_FACTOR_FLOOR = 1e-8
 TIME_TOL = 1e-9          # two times closer than this are the same time
 INTEGER_TOL = 1e-9       # q N / (2 pi) must be this close to an integer on a ring
 #: the longest run, a limit of float64: stored times are told apart to TIME_TOL, and below 2^22 (~4.2e6) the
