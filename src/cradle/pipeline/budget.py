@@ -13,7 +13,8 @@ How the numbers are obtained:
 
 * **stored bytes**: a scene's simulate job writes, per stored time, ``x, v, force`` (exact),
   ``A_re, A_im, x, force`` (DpS) and the two spectra (metrics): :data:`STORED_ARRAYS` float64
-  arrays of N values, plus a few scalars per time (energy, drifts, E, t, tau);
+  arrays of N values, plus a few scalars per time (energy, drifts, E, t, tau), plus
+  :data:`FILE_BYTES` per file (headers and attributes; a homoclinic or map entry's job writes one, a scene's four);
 * **peak memory**: the four Datasets of the job are held until all are written (all-or-nothing,
   :func:`cradle.pipeline.runner.run_chain`), plus the transient arrays of the metrics stage
   (complex FFT of x and its selection): :data:`PEAK_ARRAYS` arrays of N x T float64, plus
@@ -25,11 +26,11 @@ How the numbers are obtained:
   travelling wave; a stronger compression takes smaller steps, up to omega_max(c) / omega_max of
   that wave more) and at least one step per stored time, plus a cost per stored value
   (:data:`COST_PER_STORED_VALUE_S`: DpS run, ansatz, metrics, writing) and the job's start-up
-  (:data:`BASE_SECONDS`). The DpS run's own steps (an ODE on N sites over the slow time
-  eps^(alpha-1) t) are cheaper than the exact run's and are not counted apart. The per-step
-  constants were measured on this machine by ``benchmarks/bead_step_cost.py`` (fft106 initial
-  data, N = 200, t = 100, best of three after a warm-up), the others from single jobs as each
-  constant says; rerun them on another machine and update them here.
+  (:data:`BASE_SECONDS`, which every job pays, a homoclinic or map entry's too). The DpS run's own
+  steps (an ODE on N sites over the slow time eps^(alpha-1) t) are cheaper than the exact run's and
+  are not counted apart. The per-step constants were measured on this machine by
+  ``benchmarks/bead_step_cost.py`` (fft106 initial data, N = 200, t = 100, best of three after a
+  warm-up), the others from single jobs as each constant says; rerun them on another machine and update them here.
 
 A large store is streamed, not refused: when a scene's in-memory peak would exceed
 :data:`STREAM_ABOVE_BYTES` (and its methods can be continued block by block: a fixed-step
@@ -94,6 +95,12 @@ STREAMED_BLOCK_BYTES = 0.5e9
 #: bytes held per stored time by a streamed job (the stored and slow times, the E(t) maxima, the
 #: breather's site signal of both models)
 STREAMED_BYTES_PER_TIME = 48
+#: bytes of a netCDF file beyond its values (HDF5 headers and chunk indexes, the attributes: parameters,
+#: provenance, checksums): 22 to 51 kB, 34 kB on average, over the files of `cradle run tw-weak` (initial, exact,
+#: dps, metrics) and `cradle run site` (homoclinic) in this build
+FILE_BYTES = 35e3
+#: netCDF files a scene's job writes (initial data, exact and DpS runs, metrics)
+SCENE_FILES = 4
 #: runs estimated to take longer than this print their estimate and an ETA while they run
 LONG_RUN_S = 60.0
 
@@ -233,7 +240,8 @@ def spec_estimate(spec: Scene, name: str = "?") -> Estimate:
         memory = BASE_BYTES + STREAMED_BLOCK_BYTES + STREAMED_BYTES_PER_TIME * T + 8.0 * STATE_ARRAYS * N
         cause += ", streamed block by block"
     return Estimate(f"scenes.{name}", cause, memory_bytes=memory,
-                    disk_bytes=per_time * T + 8.0 * 6 * N, seconds=seconds, steps=steps, streamed=streamed)
+                    disk_bytes=per_time * T + 8.0 * 6 * N + SCENE_FILES * FILE_BYTES, seconds=seconds, steps=steps,
+                    streamed=streamed)
 
 
 def _amplitude(initial: object) -> float:  # a scene's initial data, of any kind
@@ -286,21 +294,21 @@ def long_run(spec: Scene, name: str = "?") -> Estimate | None:
 
 
 def homoclinic_estimate(cfg: Config, name: str) -> Estimate:
-    """Powell's hybrid method holds a dense N x N Jacobian (and its QR factors): a few N^2 floats."""
+    """Powell's hybrid method holds a dense N x N Jacobian (and its QR factors): a few N^2 floats; one file."""
     N = cfg.homoclinic[name].N
     return Estimate(f"homoclinic.{name}", f"N = {N}: dense N x N Jacobian",
-                    memory_bytes=BASE_BYTES + 8.0 * 4 * N * N, disk_bytes=8.0 * 4 * N,
-                    seconds=1e-9 * N**3 * 50)
+                    memory_bytes=BASE_BYTES + 8.0 * 4 * N * N, disk_bytes=8.0 * 4 * N + FILE_BYTES,
+                    seconds=BASE_SECONDS + 1e-9 * N**3 * 50)
 
 
 def map_estimate(cfg: Config, name: str) -> Estimate:
-    """Orbits x iterations points of the map G, two floats each."""
+    """Orbits x iterations points of the map G, two floats each; one file."""
     m = cfg.map[name]
     orbits = len(m.starts or ()) + (m.line.count if m.line is not None else 0)
     points = float(orbits) * (m.iterations + 1)
     return Estimate(f"map.{name}", f"{orbits} orbits x iterations = {_count(m.iterations)}",
-                    memory_bytes=BASE_BYTES + 8.0 * 4 * points, disk_bytes=8.0 * 2 * points,
-                    seconds=points * 1e-6)
+                    memory_bytes=BASE_BYTES + 8.0 * 4 * points, disk_bytes=8.0 * 2 * points + FILE_BYTES,
+                    seconds=BASE_SECONDS + points * 1e-6)
 
 
 def mi_statistics_estimate(cfg: Config, form: str) -> Estimate:
@@ -409,7 +417,7 @@ def extend_estimate(key: str, N: int, method: str, dt: float, t_from: float, t_e
                          f"~{steps:.3g} steps of {method} (dt = {_g(dt)})",
                     memory_bytes=BASE_BYTES + STREAMED_BLOCK_BYTES + STREAMED_BYTES_PER_TIME * (added + kept)
                     + 8.0 * STATE_ARRAYS * N,
-                    disk_bytes=per_time * (added + kept),
+                    disk_bytes=per_time * (added + kept) + FILE_BYTES,
                     seconds=BASE_SECONDS + steps * N * per_bead_step + COST_PER_STORED_VALUE_S * N * added,
                     steps=steps, streamed=True)
 

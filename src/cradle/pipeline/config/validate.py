@@ -36,12 +36,15 @@ _TYPED: dict[str | None, Config] = {}
 _TRUSTED: set[str | None] = set()
 #: what :func:`remembered` made of the entries of recent configs, by (class, key path, pickle of value and base)
 _MADE: dict[tuple, tuple] = {}
+#: the largest pickle of an entry :func:`remembered` keeps: config.yaml's entries pickle to a few kB; a list of a
+#: million values (kept with its problems, held by the cache) would fill memory and slow every garbage collection
+_REMEMBER_BYTES = 1 << 20
 
 
 def _key(config: Any) -> str | None:
     """The canonical JSON of a config, or None if it cannot be serialised or is too large to be worth remembering
     (a config of a huge list is refused anyway: its JSON would cost more than validating it)."""
-    if len(pickle.dumps(config, protocol=pickle.HIGHEST_PROTOCOL)) > 1 << 20:
+    if len(pickle.dumps(config, protocol=pickle.HIGHEST_PROTOCOL)) > _REMEMBER_BYTES:
         return None
     try:
         return json.dumps(config, sort_keys=True, default=repr)
@@ -63,6 +66,8 @@ def remembered(cls: Any, value: Any, path: tuple, found: Errors, base: Any = Non
     try:
         key = (cls, path, pickle.dumps((value, base), protocol=pickle.HIGHEST_PROTOCOL))
     except Exception:  # noqa: BLE001 -- a value pickle refuses is read every time
+        return parse(cls, value, path, found, base)
+    if len(key[2]) > _REMEMBER_BYTES:   # a huge entry (a list of a million values) is read, not kept
         return parse(cls, value, path, found, base)
     if key not in _MADE:
         mine = Errors()
