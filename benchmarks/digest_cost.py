@@ -5,12 +5,13 @@ For each of the ``COUNT`` largest netCDF files without groups (a file of groups 
 write) of a results folder (default ``results``, a finished build), in this
 process, ``REPEATS`` times each, alternating:
 
-* write: what :func:`cradle.data.io.write_netcdf` does without the digest (``to_netcdf`` with the checksummed
-  encoding, then the recorded checksums of the scalars and strings), into a temporary folder;
-* digest: what :func:`cradle.data.io.write_netcdf` adds to the write: :func:`cradle.data.io.stored_digests` (the
-  numeric arrays hashed from memory), :func:`cradle.data.digests.items` on the handle the writer opens anyway to
-  record the checksums of its scalars and strings (the other values read raw and hashed, every attribute), and
-  :func:`cradle.data.digests.record` (the sidecar written);
+* write: :func:`cradle.data.io.write_netcdf` of it, what every job calls (a temporary file beside the target,
+  ``to_netcdf`` with the checksummed encoding, the recorded checksums of the scalars and strings, the rename),
+  into a temporary folder, less its digest:
+* digest: the time spent in that same call in what the digest adds to the write, each timed where the writer calls
+  it: :func:`cradle.data.io.stored_digests` (the numeric arrays hashed from memory), :func:`cradle.data.digests.items`
+  on the handle the writer opens anyway to record the checksums of its scalars and strings (the other values read
+  raw and hashed, every attribute), and :func:`cradle.data.digests.record` (the sidecar written);
 * read: :func:`cradle.data.io.open_dataset` of it, the reader's whole work, and in it the comparison with the
   sidecar (:func:`cradle.data.digests.items` and ``compare``), the reader's added work.
 
@@ -21,6 +22,7 @@ table between its markers in docs/recovery.md::
 """
 from __future__ import annotations
 
+import contextlib
 import datetime as dt
 import os
 import shutil
@@ -46,44 +48,53 @@ def cpu(fn) -> float:
     return time.process_time() - t0
 
 
+@contextlib.contextmanager
+def digest_timed(spent: list[float]):
+    """Within it, the CPU seconds :func:`cradle.data.io.write_netcdf` spends in the digest's three steps are added
+    to ``spent[0]`` (each step wrapped where the writer looks it up: ``io.stored_digests``, ``digests.items``,
+    ``digests.record``)."""
+    from cradle.data import digests, io
+
+    def timed(fn):
+        def inner(*args, **kwargs):
+            t0 = time.process_time()
+            try:
+                return fn(*args, **kwargs)
+            finally:
+                spent[0] += time.process_time() - t0
+        return inner
+
+    saved = io.stored_digests, digests.items, digests.record
+    io.stored_digests, digests.items, digests.record = map(timed, saved)
+    try:
+        yield
+    finally:
+        io.stored_digests, digests.items, digests.record = saved
+
+
 def measure(path: Path, scratch: Path) -> dict:
     """Median CPU seconds of write, digest, read and the reader's comparison for the file ``path``."""
     import netCDF4
 
-    from cradle.data import checksums, digests
-    from cradle.data.io import encoding_of, open_dataset, stored_digests
+    from cradle.data import digests
+    from cradle.data.io import open_dataset, write_netcdf
 
     ds = open_dataset(path)   # also proves the file is intact before it is timed
-    encoding = encoding_of(ds)  # the write's: write_netcdf computes it once for both
     out = scratch / path.name
     times: dict[str, list[float]] = {"write": [], "digest": [], "read": [], "compare": []}
-
-    def write():
-        ds.to_netcdf(out, encoding=encoding, engine="netcdf4")
-        with netCDF4.Dataset(out, "a") as nc:
-            checksums.stamp(nc)
-
-    def digest() -> float:
-        """What write_netcdf adds: the arrays hashed from memory, the rest on the handle the writer opens anyway
-        (its opening is the write's), the sidecar."""
-        t0 = time.process_time()
-        known = stored_digests(ds, encoding)
-        spent = time.process_time() - t0
-        with netCDF4.Dataset(out, "a") as nc:
-            t0 = time.process_time()
-            parts = digests.items(nc, known=known)
-            spent += time.process_time() - t0
-        return spent + cpu(lambda: digests.record(out, parts=parts))
 
     def compare():
         with netCDF4.Dataset(out) as nc:
             digests.compare(out, digests.items(nc))
 
     for _ in range(REPEATS):
-        if out.exists():
-            out.unlink()
-        times["write"].append(cpu(write))
-        times["digest"].append(digest())
+        for old in (out, digests.sidecar(out)):   # each write a first one (no earlier record read)
+            old.unlink(missing_ok=True)
+        spent = [0.0]
+        with digest_timed(spent):
+            whole = cpu(lambda: write_netcdf(ds, out))
+        times["write"].append(whole - spent[0])
+        times["digest"].append(spent[0])
         times["read"].append(cpu(lambda: open_dataset(out)))
         times["compare"].append(cpu(compare))
     return {k: statistics.median(v) for k, v in times.items()} | {"bytes": path.stat().st_size}

@@ -274,3 +274,29 @@ def _stand_in_append(work: Path) -> None:
     """The stand-in sbatch truncates its --output; a real one asked for --open-mode=append appends: do that."""
     path = Path(os.environ["PATH"].split(os.pathsep)[0]) / "sbatch"
     path.write_text(FAKES["sbatch"].replace('> "$out" 2>&1', '>> "$out" 2>&1'))
+
+
+@pytest.mark.parametrize("args, files", [
+    (["--configfile", "a.yaml", "-n"], ["a.yaml"]),
+    (["--configfiles", "a.yaml", "b.yaml", "--forceall"], ["a.yaml", "b.yaml"]),
+    (["--configfile=a.yaml", "b"], ["a.yaml"]),
+    (["-n", "--config", "x=1"], []),
+])
+def test_the_configfiles_given_to_snakemake_are_found(args, files):
+    assert cs.configfiles(args) == files
+
+
+@pytest.mark.parametrize("text, words", [
+    ("budget: {memory_gb: 8, memory_gb: 9}\n", "line 1: key 'memory_gb' given twice in one mapping"),
+    (b"budget:\n  memory_gb: 8\nx: \"caf\xe9\"\n", "line 3: byte 0xe9 is not UTF-8 text"),
+    ("defaults:\n  alpha: 0.5\n", "config.yaml with --configfile extra.yaml: defaults.alpha = 0.5: must be > 1"),
+])
+def test_a_configfile_for_snakemake_is_read_by_the_bounded_reader_before_submitting(workflow, capsys, text, words):
+    """A file given to Snakemake with --configfile goes through cradle's reader (and the config it makes through
+    the validation) before sbatch: one line, nothing submitted."""
+    work, state = workflow
+    (work / "extra.yaml").write_bytes(text if isinstance(text, bytes) else text.encode())
+    assert main(["slurm", "--directory", str(work), "paper", "--", "--configfile", "extra.yaml"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and words in err[0], err
+    assert not (state / "argv").exists()

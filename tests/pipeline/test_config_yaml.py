@@ -7,9 +7,10 @@ import time
 
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, run_snakemake
 from cradle.pipeline import config as cc
 from cradle.pipeline.config.loading import MAX_BYTES, MAX_DEPTH, MAX_VALUES
+from cradle.pipeline.workdir import copy_workflow
 from cradle.specs.values import DEFAULT_MAX_ITEMS, DEFAULT_MAX_LENGTH, NAME_MAX_LENGTH
 
 CONFIG = (ROOT / "config.yaml").read_text()
@@ -127,3 +128,38 @@ def test_a_long_scene_name_is_refused_before_any_file_is_named(tmp_path):
     raw["scenes"].pop(name)
     raw["scenes"]["s" * NAME_MAX_LENGTH] = raw["scenes"]["tw-weak"]
     assert "s" * NAME_MAX_LENGTH in cc.validate(raw)["scenes"]
+
+
+BOMB = "\n".join(["a: &a [lol, lol, lol, lol, lol, lol, lol, lol, lol]"] + [
+    f"{name}: &{name} [{', '.join([f'*{prev}'] * 9)}]" for prev, name in zip("abcdefgh", "bcdefghi", strict=True)])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("text, words", [
+    ("budget: {memory_gb: 8, memory_gb: 9}\n", "line 1: key 'memory_gb' given twice in one mapping"),
+    (BOMB + "\n", f"line 5: more than {MAX_VALUES} values"),
+])
+def test_a_configfile_given_to_snakemake_goes_through_the_bounded_reader_before_any_job(tmp_path, text, words):
+    """Snakemake reads a --configfile itself before the Snakefile runs (its loader keeps the last of two equal
+    keys and builds an alias bomb as shared references); workflow/rules/common.smk then reads every one of
+    workflow.configfiles with cradle's reader, before validation and before any job: one line naming the file."""
+    work = copy_workflow(ROOT, tmp_path / "wf")
+    (work / "extra.yaml").write_text(text)
+    proc = run_snakemake(work, "-n", "--configfile", "extra.yaml", timeout=120)
+    out = proc.stdout + proc.stderr
+    said = [line for line in out.splitlines() if line.startswith("config error:")]
+    assert proc.returncode != 0 and len(said) == 1, out[-2000:]
+    assert said[0].startswith(f"config error: {work / 'extra.yaml'}: {words}"), said
+    assert not (work / "results").exists()
+
+
+@pytest.mark.slow
+def test_a_configfile_that_is_not_utf8_is_refused_by_snakemakes_own_loader_first(tmp_path):
+    """The one case cradle's reader never sees (docs/recovery.md): Snakemake's loader stops on a --configfile that is
+    not UTF-8 with its own UnicodeDecodeError, before the Snakefile runs; nothing is built. A change of Snakemake
+    that reads it otherwise shows here."""
+    work = copy_workflow(ROOT, tmp_path / "wf")
+    (work / "extra.yaml").write_bytes(b"budget:\n  memory_gb: 8\nx: \"caf\xe9\"\n")
+    proc = run_snakemake(work, "-n", "--configfile", "extra.yaml", timeout=120)
+    assert proc.returncode != 0 and "UnicodeDecodeError" in proc.stdout + proc.stderr
+    assert not (work / "results").exists()

@@ -203,6 +203,7 @@ def cmd_slurm(args: argparse.Namespace) -> int:
                            f"--no-wait submits without following)")
     load_config(workdir / args.config)          # a wrong config is one line here, before a job waits in the queue
     extra = list(args.snakemake_args)
+    _check_configfiles(workdir, args.config, configfiles(extra))
     if args.config != "config.yaml":
         extra = ["--configfile", args.config, *extra]
     name = unique_name(args.targets)
@@ -278,6 +279,57 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--quiet", action="store_true", help="wait without printing the job's log")
     s.add_argument("--dry-run", action="store_true", dest="dry_run", help="print the sbatch command, submit nothing")
     s.set_defaults(func=cmd_slurm, snakemake_args=[])
+
+
+def configfiles(snakemake_args: Sequence[str]) -> list[str]:
+    """The files given to Snakemake by ``--configfile``/``--configfiles`` (each followed by one or more files, or
+    ``--configfile=FILE``) among ``snakemake_args``."""
+    out, taking = [], False
+    for arg in snakemake_args:
+        name, eq, value = arg.partition("=")
+        if name in ("--configfile", "--configfiles"):
+            out += [value] if eq else []
+            taking = not eq
+        elif taking and not arg.startswith("-"):
+            out.append(arg)
+        else:
+            taking = False
+    return out
+
+
+def _check_configfiles(workdir: Path, config: str, files: list[str]) -> None:
+    """Each file Snakemake will be given with ``--configfile`` read by cradle's bounded reader (duplicate keys,
+    size, aliases, nesting, encoding: :func:`cradle.pipeline.config.read_yaml`), and the config they make over
+    ``config`` validated: one line here, before a job waits in the queue (Snakemake itself reads them with its
+    own loader before the Snakefile can)."""
+    from cradle.pipeline import config as cc
+
+    if not files:
+        return
+    merged = cc.read_yaml(workdir / config)
+    for name in files:
+        path = workdir / name
+        if not path.is_file():
+            raise CliError(f"no config file {str(path)!r} (given to Snakemake with --configfile)")
+        try:
+            _update(merged, cc.read_yaml(path))
+        except cc.ConfigError as err:   # its line names the file
+            raise CliError(str(err).removeprefix("config error: ")) from None
+    try:
+        cc.validate(merged)
+    except cc.ConfigError as err:
+        said = "; ".join(line.removeprefix("config error: ") for line in err.errors)
+        raise CliError(f"{config} with --configfile {' '.join(files)}: {said}") from None
+
+
+def _update(base: dict, given: object) -> None:
+    """``base`` updated by the mapping ``given`` as Snakemake merges a --configfile: a mapping into a mapping
+    key by key, anything else replacing."""
+    for key, value in (given.items() if isinstance(given, dict) else ()):
+        if isinstance(value, dict) and isinstance(base.get(key), dict):
+            _update(base[key], value)
+        else:
+            base[key] = value
 
 
 def split_snakemake_args(argv: list[str]) -> tuple[list[str], list[str]]:
