@@ -11,7 +11,7 @@ import yaml
 
 from conftest import ROOT
 from cradle.pipeline import config as cc
-from cradle.specs.values import RTOL_FLOOR
+from cradle.specs.values import DT_FACTOR_FLOOR, RTOL_FLOOR, SEED_MAX
 
 RAW = cc.read_yaml(ROOT / "config.yaml")
 #: a scene of a real cradle in SI (docs/physical-units.md): 1 cm steel balls on 10 cm strings, a 1 nm packet
@@ -191,3 +191,62 @@ def test_an_si_value_out_of_bounds_in_nc_units_is_said_at_the_scene(tmp_path):
     lines = _refused(tmp_path, raw)
     assert lines == ["config error: scenes.si: in (nc)'s units, precompression.delta0 = 1.0721759889938697e+18: "
                      "must be <= 100"]
+
+
+DT_FACTOR_WHY = (" (the step dt_factor 2 pi / omega_max is then about 1e2 spacings of doubles at the longest t_end "
+                 "or more: below, t + dt is rounding noise)")
+
+
+@pytest.mark.parametrize("path", ["defaults.exact.dt_factor", "scenes.tw-weak.exact.dt_factor",
+                                  "beyond.mi-statistics.exact.dt_factor", "beyond.dps-validity.dt_factor",
+                                  "beyond.work-precision.reference.dt_factor"])
+def test_a_step_factor_has_a_floor_said_at_its_key(tmp_path, path):
+    """1e-300 was refused by the budget at every scene that inherits it, naming the scenes and not the key."""
+    raw = _set(copy.deepcopy(RAW), path, 1e-300)
+    assert _refused(tmp_path, raw) == [f"config error: {path} = 1e-300: must be >= {DT_FACTOR_FLOOR:g}"
+                                       f"{DT_FACTOR_WHY}"]
+    cc.validate(_set(copy.deepcopy(RAW), path, 0.01))
+
+
+def test_a_ladder_of_step_factors_has_the_floor_too(tmp_path):
+    raw = copy.deepcopy(RAW)
+    raw["beyond"]["work-precision"]["methods"]["srkn4"] = {"dt_factor": [0.01, 1e-300]}
+    assert _refused(tmp_path, raw) == [f"config error: beyond.work-precision.methods.srkn4.dt_factor[1] = 1e-300: "
+                                       f"must be >= {DT_FACTOR_FLOOR:g}"]
+
+
+@pytest.mark.parametrize("key, what", [("memory_gb", "peak memory"), ("disk_gb", "output"), ("hours", "run time")])
+def test_a_budget_below_every_job_is_said_at_its_key(tmp_path, key, what):
+    """A limit no job fits is the budget's fault: one line at its key naming the least job, not a line per job."""
+    raw = _set(copy.deepcopy(RAW), f"budget.{key}", 1e-300)
+    lines = _refused(tmp_path, raw)
+    assert len(lines) == 1 and lines[0].startswith(f"config error: budget.{key} = 1e-300: below the estimated {what} "
+                                                   f"of every job (the least, "), lines
+    assert lines[0].endswith("); raise it to what this machine allows")
+
+
+def test_a_budget_one_entry_exceeds_is_still_said_at_the_entry(tmp_path):
+    """Every config has the analyses' jobs at their defaults: one oversized scene never makes the budget the fault."""
+    raw = _set(copy.deepcopy(RAW), "scenes.tw-weak.N", 10**9)
+    lines = _refused(tmp_path, raw)
+    assert lines and lines[0].startswith("config error: scenes.tw-weak: N = 1000000000, "), lines
+    assert not any(line.startswith("config error: budget.") for line in lines)
+
+
+def test_an_eps_max_below_every_eps_min_is_said_at_eps_max(tmp_path):
+    raw = _set(copy.deepcopy(RAW), "beyond.dps-validity.eps_max", 1e-300)
+    lines = _refused(tmp_path, raw)
+    assert lines[0] == ("config error: beyond.dps-validity.eps_max = 1e-300: must be above every eps_min (eps_min = "
+                        "[1e-05, 1e-05, 0.0001, 0.01])"), lines
+    raw = _set(copy.deepcopy(RAW), "beyond.dps-validity.eps_min", [1e-5, 0.5, 1e-4, 1e-2])
+    assert _refused(tmp_path, raw) == ["config error: beyond.dps-validity.eps_min[1] = 0.5: must be below eps_max = "
+                                       "0.1"]
+
+
+@pytest.mark.parametrize("path", ["scenes.tw-weak-noise.initial.noise.seed", "beyond.dps-validity.seed",
+                                  "beyond.breather-interactions.seed_base", "beyond.mi-statistics.seed0"])
+def test_a_seed_fits_the_int64_attribute_that_records_it(tmp_path, path):
+    """A seed of 1e300 was accepted and the job failed writing it as a netCDF attribute (the config fuzz's run for
+    real found it)."""
+    raw = _set(copy.deepcopy(RAW), path, 1e300)
+    assert _refused(tmp_path, raw) == [f"config error: {path} = 1e+300: must be <= {SEED_MAX}"]

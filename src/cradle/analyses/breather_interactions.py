@@ -34,6 +34,7 @@ import numpy as np
 from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import SEED_MAX
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -85,8 +86,8 @@ class BreatherInteractions:
                          reduced=2)
     noise: float = param(0.01, "Noise on A_n(0), relative to the amplitude (Gaussian, sd noise * amplitude / 2).",
                          minimum=0, maximum=1)
-    seed_base: int = param(20261122, "First entry of the seed sequence (seed_base, seed) of numpy's default_rng.",
-                           minimum=0)
+    seed_base: int = param(20261122, "First entry of the seed sequence (seed_base, seed) of numpy's default_rng; in "
+                           "[0, 2^62].", minimum=0, maximum=SEED_MAX)
     periods: float = param(600.0, "Run length in breather periods 2 pi / omega_sw (the paper: up to 600).",
                            exclusiveMinimum=0, maximum=5000,
                            reduced=150.0)

@@ -39,7 +39,7 @@ from cradle.analyses.protocol import Analysis, Batches
 from cradle.data.variables import Var
 from cradle.measurements.dps_range import EPS_MEASURED
 from cradle.specs.declare import declared, param, plain
-from cradle.specs.values import DT_FACTOR_FLOOR, RTOL_FLOOR, show
+from cradle.specs.values import DT_FACTOR_FLOOR, RTOL_FLOOR, SEED_MAX, show
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -93,7 +93,7 @@ class DpsValidity:
     noise_amplitude: float = param(0.01, "Amplitude of the uniform noise rho of (perturb) of mi-4pi5-noise.",
                                    exclusiveMinimum=0, maximum=0.5)
     seed: int = param(20261122, "Seed of the noise (numpy default_rng); alpha number k uses seed + round(100 "
-                      "alpha).", minimum=0)
+                      "alpha); in [0, 2^62].", minimum=0, maximum=SEED_MAX)
     sample_every: float = param(0.2, "Lattice-time spacing of the samples of the sup over t.", exclusiveMinimum=0,
                                 maximum=1.0)
     dt_factor: float = param(0.01, "srkn6c step as a fraction of the shortest linearised period (the run at the "

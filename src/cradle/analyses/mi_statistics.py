@@ -51,7 +51,7 @@ from cradle.models import initial
 from cradle.scenes.spec import DPS_METHODS, SPLITTINGS
 from cradle.scenes.times import store_times
 from cradle.specs.declare import NULL, declared, param, plain
-from cradle.specs.values import DT_FACTOR_FLOOR, INTEGER_TOL, RTOL_FLOOR
+from cradle.specs.values import DT_FACTOR_FLOOR, INTEGER_TOL, RTOL_FLOOR, SEED_MAX
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -144,7 +144,7 @@ class MIStatistics:
     exclude_bins: int = param(0, "Bins left out on each side of +-q and of the lattice harmonics +-2(q-pi), "
                               "+-(3q-2pi) in the sideband ratio (0: only those bins).", minimum=0, maximum=10)
     seed0: int = param(20111000, "Seeds are seed0, seed0+1, ..., seed0+n_seeds-1, the same at every q and N.",
-                       minimum=0, maximum=4611686018427387904)
+                       minimum=0, maximum=SEED_MAX)
     exact: MIStatisticsExact = param(MIStatisticsExact(), "Lattice integrator.")
     dps: MIStatisticsDps = param(MIStatisticsDps(), "DpS integrator.")
     N: list[int] = param([200, 400], _N_DOC, minItems=1, maxItems=6, items=_N_ITEMS,

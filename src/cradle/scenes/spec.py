@@ -31,6 +31,7 @@ from cradle.specs.values import (
     DT_FACTOR_FLOOR,
     INTEGER_TOL,
     MAX_T_END,
+    SEED_MAX,
     T_END_WHY,
     TIME_TOL,
     ConfigError,
@@ -129,7 +130,7 @@ class Noise:
     amplitude: float = param(REQUIRED, "Half-width (uniform) or standard deviation (gaussian) of the noise; >= 0.",
                              minimum=0)
     seed: int = param(REQUIRED, "Seed of numpy.random.default_rng (PCG64); recorded so the run is reproducible; "
-                      "integer >= 0.", minimum=0)
+                      "integer in [0, 2^62].", minimum=0, maximum=SEED_MAX)
 
 
 @declared("travelling", doc="Approximate travelling wave (ansatzapprox) x_n(0) = a cos(q n + phi), optionally "
