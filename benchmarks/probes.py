@@ -1,6 +1,6 @@
 """The probes of a user trying to break the pipeline, rerun against their expected outcomes.
 
-    python benchmarks/probes.py [--keep] [--only GROUP ...]
+    python benchmarks/probes.py [--keep] [--reuse FOLDER [--rev REV]] [--only GROUP ...]
 
 In a scratch clone of this repository (the committed state, this Python, its own compiled-kernel cache),
 builds ``all`` (the paper and the reduced analyses), then runs each probe the way a user would
@@ -509,12 +509,16 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--keep", action="store_true", help="keep the scratch clone")
     ap.add_argument("--reuse", type=Path, help="a scratch folder kept by --keep: reset to this commit, reused")
+    ap.add_argument("--rev", default="HEAD", help="with --reuse: the commit of this checkout to reset it to (the one "
+                                                 "its results were built at: nothing rebuilt)")
     ap.add_argument("--only", nargs="*", choices=list(GROUPS), help="run only these groups (the table is not written)")
     args = ap.parse_args(argv)
     tmp = args.reuse or Path(tempfile.mkdtemp(prefix="cradle-probes-"))
     repo, cache = tmp / "repo", tmp / "kernels"
     if args.reuse:   # this commit, its outputs rebuilt where it changed them; the probes' files gone
-        subprocess.run(["git", "fetch", "-q", str(ROOT), "HEAD"], cwd=repo, check=True)
+        rev = subprocess.run(["git", "rev-parse", args.rev], cwd=ROOT, capture_output=True, text=True,
+                             check=True).stdout.strip()
+        subprocess.run(["git", "fetch", "-q", str(ROOT), rev], cwd=repo, check=True)
         subprocess.run(["git", "reset", "-q", "--hard", "FETCH_HEAD"], cwd=repo, check=True)
         subprocess.run(["git", "clean", "-q", "-f", "-x", "-e", "results", "-e", ".snakemake"], cwd=repo, check=True)
     else:
@@ -530,7 +534,8 @@ def main(argv=None) -> int:
     print(f"{held} of {len(rows)} probes hold")
     if args.only:
         return 0 if held == len(rows) else 1
-    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout
+    # the commit the scratch clone ran (this checkout may have moved on meanwhile)
+    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=repo, capture_output=True, text=True).stdout
     text = (f"Rerun by `python benchmarks/probes.py` ({time.strftime('%Y-%m-%d')}, commit {head.strip()}): "
             f"**{held} of {len(rows)} hold**.\n\n"
             "| group | probe | expected | exit | what the user is told (last line) | wall | holds |\n"

@@ -11,7 +11,7 @@ import yaml
 
 from conftest import ROOT
 from cradle.pipeline import config as cc
-from cradle.specs.values import DT_FACTOR_FLOOR, RTOL_FLOOR, SEED_MAX
+from cradle.specs.values import DRIFT_FLOOR, DT_FACTOR_FLOOR, RTOL_FLOOR, SEED_MAX
 
 RAW = cc.read_yaml(ROOT / "config.yaml")
 #: a scene of a real cradle in SI (docs/physical-units.md): 1 cm steel balls on 10 cm strings, a 1 nm packet
@@ -268,3 +268,13 @@ def test_a_scene_s_dps_run_goes_through_its_pace(tmp_path):
     # the paper's scenes: DpS's steps are a few thousand at most, never what sets a job's time
     for name, scene in cc.typed(RAW).scenes.items():
         assert budget.DPS_STEPS_PER_PERIOD * budget.dps_periods(scene) < 1e4, name
+
+
+@pytest.mark.parametrize("path", ["defaults.max_energy_drift", "scenes.tw-weak.max_energy_drift"])
+def test_an_energy_drift_bound_has_a_floor_a_run_can_meet(tmp_path, path):
+    """1e-300 was accepted and every run then failed its energy check (the config fuzz's run for real found it)."""
+    raw = _set(copy.deepcopy(RAW), path, 1e-300)
+    assert _refused(tmp_path, raw) == [f"config error: {path} = 1e-300: must be >= {DRIFT_FLOOR:g} (H is computed in "
+                                       f"double precision: a relative drift below about 1e2 machine epsilons is its "
+                                       f"rounding alone, so a smaller bound fails every run)"]
+    cc.validate(_set(copy.deepcopy(RAW), path, DRIFT_FLOOR))

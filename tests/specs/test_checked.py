@@ -81,7 +81,7 @@ RTOL_WHY = (" (a floor the integrator can honour, about 1e2 machine epsilons or 
     ("rtol", math.nan, "rtol = nan: must be a finite number"),
     ("rtol", "1e-10", "rtol = '1e-10': must be a number"),
     ("rtol", True, "rtol = True: must be a number"),
-    ("maxEnergyDrift", 0, "maxEnergyDrift = 0: must be > 0"),
+    ("maxEnergyDrift", 0, "maxEnergyDrift = 0: must be >= 1e-14"),
     ("atol", -1.0, "atol = -1.0: must be > 0"),
     ("atol", math.inf, "atol = inf: must be a finite number"),
     ("dt", 0.0, "dt = 0.0: must be > 0"),

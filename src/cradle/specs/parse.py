@@ -45,6 +45,9 @@ HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))",
          **{(key, "minimum"): " (a floor the integrator can honour, about 1e2 machine epsilons or more: below, a "
                               "step's error estimate is rounding noise and the steps shrink until they underflow)"
             for key in ("rtol", "dps_rtol", "check_rtol")},
+         ("max_energy_drift", "minimum"): " (H is computed in double precision: a relative drift below about 1e2 "
+                                          "machine epsilons is its rounding alone, so a smaller bound fails every "
+                                          "run)",
          ("dt_factor", "minimum"): " (the step dt_factor 2 pi / omega_max is then about 1e2 spacings of doubles at "
                                    "the longest t_end or more: below, t + dt is rounding noise)",
          ("t_end", "maximum"): f" ({T_END_WHY})"}

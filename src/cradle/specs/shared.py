@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .values import ANGLE_PATTERN, DT_FACTOR_FLOOR, MAX_COUNT, NAME_MAX_LENGTH, NAME_PATTERN, RTOL_FLOOR
+from .values import ANGLE_PATTERN, DRIFT_FLOOR, DT_FACTOR_FLOOR, MAX_COUNT, NAME_MAX_LENGTH, NAME_PATTERN, RTOL_FLOOR
 
 # Shared scalar types ($defs), each bound written here only.
 
@@ -27,8 +27,9 @@ SHARED: dict[str, dict[str, Any]] = {
     # at most 1e-2: a run whose energy moved by more than 1 % of H(0) is no solution of (nc), and a larger bound
     # would silently turn the check off
     "maxEnergyDrift": {"description": "Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact "
-                                      "run; in (0, 1e-2] (a larger bound would turn the check off).",
-                       "type": "number", "exclusiveMinimum": 0, "maximum": 0.01},
+                                      f"run; in [{DRIFT_FLOOR:g}, 1e-2] (a larger bound would turn the check off, a "
+                                      "smaller one is below the rounding of H).",
+                       "type": "number", "minimum": DRIFT_FLOOR, "maximum": 0.01},
     "angleString": {"description": "A multiple of pi such as 'pi', 'pi/5', '4pi/5', '-52pi/100', '4*pi/5', or a "
                                    "number written as a string.", "type": "string", "pattern": ANGLE_PATTERN},
     "angle": {"description": "An angle: a number (radians) or a multiple of pi as a string ('pi/5', '4pi/5', "

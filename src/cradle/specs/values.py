@@ -40,6 +40,9 @@ ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5',
 #: the smallest relative tolerance of an adaptive run: about 1e2 machine epsilons (scipy raises a smaller one to
 #: 100 eps), below which a step's error estimate is rounding noise and the steps shrink until they underflow
 RTOL_FLOOR = 1e-14
+#: the smallest bound of an exact run's relative energy drift: H is a sum of N terms in double precision, so a
+#: drift below about 1e2 machine epsilons is its rounding alone; a smaller bound fails every run
+DRIFT_FLOOR = 1e-14
 #: the largest seed: runs record their seed as a netCDF attribute (an int64) and analyses add small offsets to it
 #: (seed + k); numpy's default_rng takes any integer >= 0, a netCDF attribute no larger than 2^63 - 1
 SEED_MAX = 2**62
