@@ -278,3 +278,16 @@ def test_an_energy_drift_bound_has_a_floor_a_run_can_meet(tmp_path, path):
                                        f"double precision: a relative drift below about 1e2 machine epsilons is its "
                                        f"rounding alone, so a smaller bound fails every run)"]
     cc.validate(_set(copy.deepcopy(RAW), path, DRIFT_FLOOR))
+
+
+@pytest.mark.parametrize("mu, line", [
+    (1e-300, "must be >= 4e-150 at alpha = 1.5: the solution's amplitude (mu/nu)^(1/(alpha-1)) with nu > 4 "
+             "underflows double precision beyond"),
+    (1e300, "must be <= 4e+150 at alpha = 1.5: the solution's amplitude (mu/nu)^(1/(alpha-1)) with nu > 4 "
+            "overflows double precision beyond"),
+])
+def test_a_homoclinic_mu_whose_solution_is_no_double_is_refused(tmp_path, mu, line):
+    """mu = 1e-300 was accepted and the job failed: max|a_n| = 10^-601 (the config fuzz's run for real found it)."""
+    raw = _set(copy.deepcopy(RAW), "homoclinic.site.mu", mu)
+    assert _refused(tmp_path, raw) == [f"config error: homoclinic.site.mu = {mu:g}: {line}"]
+    cc.validate(_set(copy.deepcopy(RAW), "homoclinic.site.mu", 1e-100))

@@ -495,7 +495,19 @@ class HomoclinicEntry:
     centre: int = param(None, "Site the guess is centred on (0 <= centre < N); default N // 2.", minimum=0)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """The centre a site of the chain, the two humps of a double guess distinct."""
+        """The centre a site of the chain, the two humps of a double guess distinct, and a mu whose solution is a
+        double: max |a_n| = (mu / nu)^(1/(alpha-1)) with nu > 4 (the band edge of the linearised staggered problem,
+        docs/extremes.md) lies within 10^(+-300) (the solver's limit) for mu within 4 10^(+-300 (alpha - 1))."""
+        alpha = self.alpha if isinstance(self.alpha, (int, float)) else 1.5
+        decades = 300.0 * (alpha - 1.0)   # of mu, for 300 of the amplitude
+        excess = math.log10(self.mu / 4.0) if self.mu > 0 else -math.inf
+        if abs(excess) > decades:
+            word, bound = (">=", -decades) if excess < 0 else ("<=", decades)
+            exponent = math.log10(4.0) + bound
+            limit = f"{10.0 ** (exponent - math.floor(exponent)):.3g}e{math.floor(exponent):+d}"
+            out.add(where + ["mu"], f"must be {word} {limit} at alpha = {show(alpha)}: the solution's amplitude "
+                                    f"(mu/nu)^(1/(alpha-1)) with nu > 4 {'under' if excess < 0 else 'over'}flows "
+                                    f"double precision beyond", self.mu)
         if self.centre is not None and not 0 <= self.centre < self.N:
             out.add(where + ["centre"], f"must be a site index in [0, N-1] = [0, {self.N - 1}]", self.centre)
         if self.guess == "double" and not 1 <= self.separation < self.N:
