@@ -291,3 +291,11 @@ def test_a_homoclinic_mu_whose_solution_is_no_double_is_refused(tmp_path, mu, li
     raw = _set(copy.deepcopy(RAW), "homoclinic.site.mu", mu)
     assert _refused(tmp_path, raw) == [f"config error: homoclinic.site.mu = {mu:g}: {line}"]
     cc.validate(_set(copy.deepcopy(RAW), "homoclinic.site.mu", 1e-100))
+
+
+def test_a_noise_larger_than_its_wave_is_refused(tmp_path):
+    """A relative noise of 1e300 was accepted and the job's initial velocities overflowed to nan (the config fuzz's
+    run for real found it)."""
+    raw = _set(copy.deepcopy(RAW), "scenes.tw-weak-noise.initial.noise.amplitude", 1e300)
+    assert _refused(tmp_path, raw) == ["config error: scenes.tw-weak-noise.initial.noise.amplitude = 1e+300: must be "
+                                       "<= 1"]

@@ -127,8 +127,10 @@ class Defaults:
 class Noise:
     kind: str = param("uniform", "Law of rho1_n, rho2_n: uniform on [-amplitude, amplitude] or gaussian with "
                       "standard deviation amplitude.", enum=["uniform", "gaussian"])
-    amplitude: float = param(REQUIRED, "Half-width (uniform) or standard deviation (gaussian) of the noise; >= 0.",
-                             minimum=0)
+    # at most 1: rho is relative to the wave's amplitude, and a noise larger than the wave leaves no perturbed wave
+    # of (perturb) (1e300 was accepted and the job's initial velocities overflowed to nan)
+    amplitude: float = param(REQUIRED, "Half-width (uniform) or standard deviation (gaussian) of the noise, relative "
+                             "to the wave's amplitude; in [0, 1].", minimum=0, maximum=1)
     seed: int = param(REQUIRED, "Seed of numpy.random.default_rng (PCG64); recorded so the run is reproducible; "
                       "integer in [0, 2^62].", minimum=0, maximum=SEED_MAX)
 
