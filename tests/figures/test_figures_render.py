@@ -472,3 +472,20 @@ def test_every_figure_of_all_is_covered():
         if not a.tables:
             assert min_points(a.module, a.name) >= 1, a.name
     assert set(FIGURES) >= set(CONFIG["figures"])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("frame", ["before", "during", "after"])
+def test_desk_toy_movie_frames_at_an_impact(frame):
+    """The frames of the desk-toy movie (cradle.figures.desk_toy_movie) that docs/analyses/desk-toy.md shows,
+    for the desk toy of `all`'s config (5 balls, 1 lifted) over one swing, pass the checks above."""
+    from cradle.analyses.desk_toy_movie import SlowMotion, movie_run
+    from cradle.figures.desk_toy_movie import STILL_LEAD, MovieFigure, impact_frames
+
+    spec = cc.analysis_spec(CONFIG, "desk-toy", ANALYSES["desk-toy"].forms[0])
+    movies = CONFIG["movies"]
+    ds = movie_run(spec, 5, 1, SlowMotion(**{**movies["desk_toy"], "swings": 1}), movies["fps"])
+    mf = MovieFigure(ds, movies["width"], movies["height"])
+    mf.show(impact_frames(ds, lead=STILL_LEAD)[frame])
+    found = problems(mf.fig, min_points=1)
+    assert not found, f"desk-toy movie, {frame}:\n  " + "\n  ".join(found)
