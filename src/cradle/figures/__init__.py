@@ -121,9 +121,27 @@ def plain_log_ticks(ax: Axes) -> None:
                 axis.set_minor_formatter(FuncFormatter(lambda v, p, a=axis: label(v, p, a)))
 
 
+def dps_range_note(name: str, ds: xr.Dataset) -> str:
+    """The line a figure comparing DpS with the lattice carries when scene ``name``'s amplitude is above the largest
+    at which DpS was measured to approximate the lattice (:mod:`cradle.measurements.dps_range`), else ``""``: the
+    amplitude max_n sqrt(x_n^2 + v_n^2) of its run ``ds`` (exact or DpS) at t = 0 (``x`` alone when ``v`` is not
+    stored); ``""`` too when the run's first stored time is not 0."""
+    from cradle.measurements.dps_range import EPS_MEASURED, amplitude_of, measured_amplitude
+
+    if "x" not in ds or float(ds["t"].values[0]) != 0.0:
+        return ""
+    x0 = ds["x"].values[0]
+    a, top = amplitude_of(x0, ds["v"].values[0] if "v" in ds else 0.0 * x0), measured_amplitude()
+    if not a > top:
+        return ""
+    return (f"{name} is outside DpS's measured range: amplitude {a:.3g} > {top:g} = 2 $\\varepsilon_{{max}}$ of "
+            f"dps-validity ({EPS_MEASURED:g})")
+
+
 def scene_caption(name: str, ds: xr.Dataset) -> str:
     """One line of the parameters a scene's file stores (``attrs`` of its exact or DpS run): N, q,
-    omega_tw, a, noise, so a changed run is told from the paper's at a glance."""
+    omega_tw, a, noise, so a changed run is told from the paper's at a glance; a second line when the scene's
+    amplitude is outside DpS's measured range (:func:`dps_range_note`)."""
     a = ds.attrs
     parts = [f"{name}:", f"$N = {int(a.get('N', ds.sizes.get('n', 0)))}$"]
     if "q_expr" in a:
@@ -135,7 +153,9 @@ def scene_caption(name: str, ds: xr.Dataset) -> str:
         parts.append(f"$a = {float(a['a']):.4g}$")
     if str(a.get("noise", "none")) != "none":
         parts.append(f"{a['noise']} noise {float(a.get('noise_amplitude', float('nan'))):g}")
-    return ", ".join(parts[:1]) + " " + ", ".join(parts[1:])
+    caption = ", ".join(parts[:1]) + " " + ", ".join(parts[1:])
+    note = dps_range_note(name, ds)
+    return f"{caption}\n{note}" if note else caption
 
 
 # -> (Figure, Any): the axes are one Axes or an array of them, as nrows, ncols and squeeze say (matplotlib
