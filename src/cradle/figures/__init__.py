@@ -121,21 +121,29 @@ def plain_log_ticks(ax: Axes) -> None:
                 axis.set_minor_formatter(FuncFormatter(lambda v, p, a=axis: label(v, p, a)))
 
 
+def outside_dps_range(a: float) -> str:
+    """``"outside DpS's measured range: amplitude ..."`` when the amplitude ``a`` is above the largest at which DpS
+    was measured to approximate the lattice (:mod:`cradle.measurements.dps_range`), else ``""``."""
+    from cradle.measurements.dps_range import EPS_MEASURED, measured_amplitude
+
+    top = measured_amplitude()
+    if not a > top:
+        return ""
+    return (f"outside DpS's measured range: amplitude {a:.3g} > {top:g} = 2 $\\varepsilon_{{max}}$ of dps-validity "
+            f"({EPS_MEASURED:g})")
+
+
 def dps_range_note(name: str, ds: xr.Dataset) -> str:
-    """The line a figure comparing DpS with the lattice carries when scene ``name``'s amplitude is above the largest
-    at which DpS was measured to approximate the lattice (:mod:`cradle.measurements.dps_range`), else ``""``: the
-    amplitude max_n sqrt(x_n^2 + v_n^2) of its run ``ds`` (exact or DpS) at t = 0 (``x`` alone when ``v`` is not
-    stored); ``""`` too when the run's first stored time is not 0."""
-    from cradle.measurements.dps_range import EPS_MEASURED, amplitude_of, measured_amplitude
+    """The line a figure comparing DpS with the lattice carries when scene ``name`` is outside DpS's measured range
+    (:func:`outside_dps_range`), else ``""``: the amplitude max_n sqrt(x_n^2 + v_n^2) of its run ``ds`` (exact or
+    DpS) at t = 0 (``x`` alone when ``v`` is not stored); ``""`` too when the run's first stored time is not 0."""
+    from cradle.measurements.dps_range import amplitude_of
 
     if "x" not in ds or float(ds["t"].values[0]) != 0.0:
         return ""
     x0 = ds["x"].values[0]
-    a, top = amplitude_of(x0, ds["v"].values[0] if "v" in ds else 0.0 * x0), measured_amplitude()
-    if not a > top:
-        return ""
-    return (f"{name} is outside DpS's measured range: amplitude {a:.3g} > {top:g} = 2 $\\varepsilon_{{max}}$ of "
-            f"dps-validity ({EPS_MEASURED:g})")
+    note = outside_dps_range(amplitude_of(x0, ds["v"].values[0] if "v" in ds else 0.0 * x0))
+    return f"{name} is {note}" if note else ""
 
 
 def scene_caption(name: str, ds: xr.Dataset) -> str:
