@@ -11,7 +11,7 @@ import pytest
 
 from cradle.analyses.desk_toy import DEFAULT_CRADLE, DeskToyRuns
 from cradle.analyses.desk_toy_movie import SlowMotion, movie_run
-from cradle.figures.desk_toy_movie import FORCE_LABEL, ball_centres, impact_frames, render
+from cradle.figures.desk_toy_movie import FORCE_LABEL, ball_centres, impact_frames, playback_speed, render
 from cradle.models import physical as ph
 from cradle.specs.declare import from_plain
 
@@ -103,3 +103,7 @@ def test_impact_frames_pick_before_the_largest_force_and_after(two_balls):
     t = ds["t"].values
     lead = impact_frames(ds, lead=0.01)
     assert t[lead["during"]] - t[lead["before"]] >= 0.01 and t[lead["after"]] - t[lead["during"]] >= 0.01
+
+
+def test_playback_speed_is_the_frame_spacing_times_the_frame_rate():
+    assert playback_speed([0.0, 0.1, 0.3], fps=10) == pytest.approx([1.0, 1.0, 2.0])

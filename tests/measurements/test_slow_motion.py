@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cradle.measurements.slow_motion import frame_indices, impact_windows, playback_speed, ramp_offsets
+from cradle.measurements.slow_motion import frame_indices, impact_windows, ramp_offsets
 
 
 def test_windows_widen_each_contact_and_instant_by_the_margin_and_merge_overlaps():
@@ -52,7 +52,3 @@ def test_frames_take_every_state_in_a_window_and_grow_geometrically_outside():
     assert gaps[inside] == pytest.approx(h) and np.all(gaps[far] > 0.5 * sparse)
     with pytest.raises(ValueError, match="uniform grid"):
         frame_indices(np.array([0.0, 1.0, 3.0]), windows, sparse, ramp)
-
-
-def test_playback_speed_is_the_frame_spacing_times_the_frame_rate():
-    assert playback_speed([0.0, 0.1, 0.3], fps=10) == pytest.approx([1.0, 1.0, 2.0])

@@ -121,28 +121,36 @@ def plain_log_ticks(ax: Axes) -> None:
                 axis.set_minor_formatter(FuncFormatter(lambda v, p, a=axis: label(v, p, a)))
 
 
-def outside_dps_range(a: float) -> str:
-    """``"outside DpS's measured range: amplitude ..."`` when the amplitude ``a`` is above the largest at which DpS
-    was measured to approximate the lattice (:mod:`cradle.measurements.dps_range`), else ``""``."""
-    from cradle.measurements.dps_range import EPS_MEASURED, measured_amplitude
+def dps_range_top() -> float:
+    """The largest amplitude at which DpS was measured to approximate the lattice: 2 eps_max of dps-validity
+    (:data:`cradle.specs.values.DPS_EPS_MEASURED`; :func:`cradle.measurements.dps_range.measured_amplitude`)."""
+    from cradle.specs.values import DPS_EPS_MEASURED
 
-    top = measured_amplitude()
+    return 2.0 * DPS_EPS_MEASURED
+
+
+def outside_dps_range(a: float) -> str:
+    """``"outside DpS's measured range: amplitude ..."`` when the amplitude ``a`` is above :func:`dps_range_top`,
+    else ``""``."""
+    top = dps_range_top()
     if not a > top:
         return ""
     return (f"outside DpS's measured range: amplitude {a:.3g} > {top:g} = 2 $\\varepsilon_{{max}}$ of dps-validity "
-            f"({EPS_MEASURED:g})")
+            f"({top / 2.0:g})")
 
 
 def dps_range_note(name: str, ds: xr.Dataset) -> str:
     """The line a figure comparing DpS with the lattice carries when scene ``name`` is outside DpS's measured range
-    (:func:`outside_dps_range`), else ``""``: the amplitude max_n sqrt(x_n^2 + v_n^2) of its run ``ds`` (exact or
-    DpS) at t = 0 (``x`` alone when ``v`` is not stored); ``""`` too when the run's first stored time is not 0."""
-    from cradle.measurements.dps_range import amplitude_of
+    (:func:`outside_dps_range`), else ``""``: the amplitude of its run ``ds`` (exact or DpS) at t = 0 as
+    :func:`cradle.measurements.dps_range.amplitude_of` counts it, max_n sqrt(x_n^2 + v_n^2) (``x`` alone when
+    ``v`` is not stored); ``""`` too when the run's first stored time is not 0."""
+    import numpy as np
 
     if "x" not in ds or float(ds["t"].values[0]) != 0.0:
         return ""
-    x0 = ds["x"].values[0]
-    note = outside_dps_range(amplitude_of(x0, ds["v"].values[0] if "v" in ds else 0.0 * x0))
+    x0 = np.asarray(ds["x"].values[0], dtype=float)
+    v0 = np.asarray(ds["v"].values[0], dtype=float) if "v" in ds else np.zeros_like(x0)
+    note = outside_dps_range(float(np.max(np.hypot(x0, v0))))
     return f"{name} is {note}" if note else ""
 
 

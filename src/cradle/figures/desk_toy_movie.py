@@ -10,7 +10,7 @@ at the same instant:
 * under (nc), the Hertz contact force of each bond in N, a bar at the contact point of the balls at rest;
   under the hard spheres, a mark on each bond that collided since the previous frame (a collision of hard
   spheres lasts no time: it has an impulse, no finite force);
-* the clock in seconds and the playback speed (:func:`cradle.measurements.slow_motion.playback_speed`): about
+* the clock in seconds and the playback speed (:func:`playback_speed`): about
   1/4000 of real time within an impact, 1/``slowdown`` between impacts.
 
 :func:`render` yields the frames, :func:`impact_frames` picks three frames around the first impact (before
@@ -47,6 +47,16 @@ def ball_centres(x: ArrayLike, radius: float, length: float) -> tuple[NDArray[np
     x = np.asarray(x, dtype=float)
     n = np.arange(x.shape[-1])
     return (2.0 * radius * n + x) * MM, -np.sqrt(np.maximum(length**2 - x**2, 0.0)) * MM
+
+
+def playback_speed(t_frames: ArrayLike, fps: float) -> NDArray[np.float64]:
+    """Seconds of the run per second of movie at each frame, (t_k - t_(k-1)) fps (the first frame takes the
+    second's): below 1 is slow motion."""
+    t_frames = np.asarray(t_frames, dtype=float)
+    if t_frames.size < 2:
+        return np.ones_like(t_frames)
+    dt = np.diff(t_frames)
+    return np.concatenate([dt[:1], dt]) * fps
 
 
 def _speed_text(speed: float) -> str:
@@ -101,8 +111,6 @@ class MovieFigure:
         from matplotlib.collections import LineCollection
         from matplotlib.figure import Figure
         from matplotlib.patches import Circle
-
-        from cradle.measurements.slow_motion import playback_speed
 
         a = ds.attrs
         R, L = float(a["radius_m"]), float(a["length_m"])

@@ -17,8 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.figures import AnalysisTree, figure, legend_outside
-from cradle.measurements.dps_range import measured_amplitude
+from cradle.figures import AnalysisTree, dps_range_top, figure, legend_outside
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -84,7 +83,7 @@ def draw(tree: AnalysisTree) -> Figure:
         C.set_xlabel("t")
         C.set_ylabel("energy centre X (smoothed), bead")
         # a bead kicked from rest: the amplitude (ansatz) counts is its velocity (cradle.measurements.dps_range)
-        kick, top = abs(float(a[f"{role}_velocity"])), measured_amplitude()
+        kick, top = abs(float(a[f"{role}_velocity"])), dps_range_top()
         C.set_title(f"{letter(2)} energy centre X = sum n e_n / sum e_n" + (
             f"\nkick {kick:g} > {top:g}: outside DpS's measured range (dps-validity)" if kick > top else ""),
             fontsize=9)

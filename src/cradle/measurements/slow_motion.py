@@ -11,9 +11,9 @@ a subset of its states:
   ``ramp`` per frame, h, h ramp, h ramp^2, ..., until it reaches ``sparse``; between the ramps of two windows
   the frames are evenly spaced, at most ``sparse`` apart (:func:`frame_indices`).
 
-Played at a fixed frame rate, the movie slows down smoothly into each impact and speeds up out of it; the
-speed of frame k, in seconds of the run per second of movie, is (t_k - t_(k-1)) times the frame rate
-(:func:`playback_speed`).
+Played at a fixed frame rate, the movie slows down smoothly into each impact and speeds up out of it (the speed
+of frame k, in seconds of the run per second of movie, is (t_k - t_(k-1)) times the frame rate:
+:func:`cradle.figures.desk_toy_movie.playback_speed`).
 """
 from __future__ import annotations
 
@@ -97,13 +97,3 @@ def frame_indices(t: ArrayLike, windows: ArrayLike, sparse: float, ramp: float) 
         if b > a:
             picks.append(index(np.linspace(a, b, math.ceil((b - a) / sparse) + 1)))
     return np.unique(np.clip(np.concatenate(picks), 0, t.size - 1))
-
-
-def playback_speed(t_frames: ArrayLike, fps: float) -> NDArray[np.float64]:
-    """Seconds of the run per second of movie at each frame, (t_k - t_(k-1)) fps (the first frame takes the
-    second's): below 1 is slow motion."""
-    t_frames = np.asarray(t_frames, dtype=float)
-    if t_frames.size < 2:
-        return np.ones_like(t_frames)
-    dt = np.diff(t_frames)
-    return np.concatenate([dt[:1], dt]) * fps
