@@ -138,3 +138,6 @@ def test_cradle_animate_draws_a_desk_toy_of_a_file_from_its_spec(tiny, tmp_path,
     assert "largest contact force" in out and " N)" in out
     assert main([*args[:1], "n9-lifted1", *args[2:]]) == 2
     assert "n9-lifted1: not a desk toy of" in capsys.readouterr().err
+    assert main([*args, "--t-end", "1", "--duration", "3"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("cradle: error: --duration, --t-end: not with --desk-toy") and err.count("\n") == 1

@@ -10,7 +10,7 @@ analysis file (results/desk-toy/[full/]desk-toy.nc), to scale and each impact in
 from the file's spec, dense around the impacts (:func:`cradle.analyses.desk_toy_movie.movie_run`, settings
 ``movies.desk_toy``), (nc) beside the hard-sphere cradle (e of ``--hard``, the file's model index, default 1:
 the first restitution), to ``RESULTS/movies/desk-toy-NAME.mp4`` (:func:`cradle.figures.desk_toy_movie.animate`;
-``--duration`` does not apply: the movie lasts as long as its frames).
+``--duration``, ``--t-start`` and ``--t-end`` are refused with it: the movie's frames are its run's).
 """
 from __future__ import annotations
 
@@ -105,6 +105,13 @@ def cmd_animate(args: argparse.Namespace) -> int:
     except ValueError as err:
         raise CliError(str(err)) from None
     desk = getattr(args, "desk_toy", None)
+    if desk:
+        given_flags = [flag for flag, on in (("--duration", "duration" in flags),
+                                             ("--t-start", args.t_start is not None),
+                                             ("--t-end", args.t_end is not None)) if on]
+        if given_flags:
+            raise CliError(f"{', '.join(given_flags)}: not with --desk-toy (its frames are those of its own run, "
+                           "dense at each impact: the settings movies.desk_toy, docs/config-reference.md)")
     stem = f"desk-toy-{args.scene}" if desk else args.scene
     out = Path(args.out or layout.path("movie", args.results, scene=stem, ext="mp4"))
     gif = out.with_suffix(".gif") if args.gif else None
