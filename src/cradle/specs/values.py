@@ -40,6 +40,10 @@ ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5',
 #: the smallest relative tolerance of an adaptive run: about 1e2 machine epsilons (scipy raises a smaller one to
 #: 100 eps), below which a step's error estimate is rounding noise and the steps shrink until they underflow
 RTOL_FLOOR = 1e-14
+#: the largest eps of (ansatz) at which the analysis dps-validity measures DpS against the lattice (its spec's
+#: eps_max): DpS's measured range is amplitudes up to 2 eps (cradle.measurements.dps_range); here, in the lowest
+#: layer, so that the figures marking a scene outside it read the same value
+DPS_EPS_MEASURED = 0.1
 TIME_TOL = 1e-9          # two times closer than this are the same time
 INTEGER_TOL = 1e-9       # q N / (2 pi) must be this close to an integer on a ring
 #: the longest run, a limit of float64: stored times are told apart to TIME_TOL, and below 2^22 (~4.2e6) the
