@@ -58,6 +58,9 @@ _CHAIN = {"type": "integer", "minimum": 3, "maximum": 200, "description": "Balls
 #: the line's velocity is stored for the figure at every STORE_EVERY-th sample
 STORE_EVERY = 4
 
+#: the velocity amplitudes (m/s) at which the speed law is tabulated in SI: a slow push to a hard knock
+LAW_VELOCITIES = np.geomspace(1e-3, 10.0, 41)
+
 
 @declared(doc="The solitary wave of the Hertz chain (issue 38): exact by Petviashvili's iteration of (sw), its "
               "speed against amplitude, residual, doubly exponential tail, against Nesterenko's long-wave wave; "
@@ -139,7 +142,7 @@ def launch(w: Wave, t_end: float, rtol: float, N: int | None = None) -> dict:
     v0 = _at_sites(w, w.velocity, (n - n0).astype(float))
     X, V, _, drift, steps, _, _ = run_dop853_hertz_chain(x0, v0, np.array([0.0, t_end]), rtol,
                                                          rtol * float(np.max(x0)), 1.5, False)
-    shift = n - n0 - w.c * t_end
+    shift = (n - n0 - w.c * t_end).astype(np.float64)
     c_end = X[-1, :-1] - X[-1, 1:]
     return {"strain_error": float(np.max(np.abs(c_end - _at_sites(w, w.strain, shift[:-1]))) / w.strain_max),
             "velocity_error": float(np.max(np.abs(V[-1] - _at_sites(w, w.velocity, shift))) / w.velocity_max),
@@ -212,7 +215,8 @@ def impact_runs(spec: SolitaryWaveRuns, N: int, w: Wave) -> dict:
 _C = ("c",)
 _B = ("bead",)
 #: the stored variables, per group: "/wave" the exact wave at c = 1 and Nesterenko's at its amplitude (the chain's
-#: units: sites, unit masses and Hertz constant: dimensionless); "/speeds" the family against c; "/tail" the
+#: units: sites, unit masses and Hertz constant: dimensionless); "/speeds" the family against c; "/law" its speed
+#: against v_m in the cradle, SI; "/tail" the
 #: continued tail; "/nesterenko" the comparison table (string coordinate); "/impact/n<N>" the desk toy's first
 #: impact of N balls, in SI
 VARIABLES = {
@@ -233,8 +237,12 @@ VARIABLES = {
         "increment": Var(_C, "last relative increment of Petviashvili's iteration"),
         "iterations": Var(_C, "iterations of Petviashvili's iteration"),
         "speed_nesterenko": Var(_C, "Nesterenko's speed (16/25)^(1/5) v_m^(1/5) at the same v_m"),
-        "velocity_max_si": Var(_C, "v_m in the cradle (velocity unit X omega_0)", "m/s"),
-        "speed_si": Var(_C, "the wave's speed in the cradle, c D omega_0 (D the diameter)", "m/s"),
+    },
+    "/law": {
+        "v_m": Var(("v_m",), "particle-velocity amplitude of the solitary wave in the cradle", "m/s"),
+        "speed_exact": Var(("v_m",), "speed of the exact solitary wave in the cradle: c D omega_0 at v_m / (X "
+                           "omega_0) in the chain's units", "m/s"),
+        "speed_nesterenko": Var(("v_m",), "Nesterenko's speed in the cradle at the same v_m", "m/s"),
     },
     "/tail": {
         "xi_tail": Var(("xi_tail",), "xi on the continued right tail (sites)"),
@@ -326,8 +334,10 @@ def compute(spec: SolitaryWaveRuns, inputs: dict | None = None, log: Log | None 
         "/speeds": ({"strain_max": [x.strain_max for x in ws], "velocity_max": vm,
                      "force_max": [x.force_max for x in ws], "residual": [S.residual(x) for x in ws],
                      "increment": [x.increment for x in ws], "iterations": [x.iterations for x in ws],
-                     "speed_nesterenko": S.nesterenko_speed_v(vm), "velocity_max_si": vm * s.V,
-                     "speed_si": np.asarray(spec.speeds) * D / s.T}, {"c": list(spec.speeds)}),
+                     "speed_nesterenko": S.nesterenko_speed_v(vm)}, {"c": list(spec.speeds)}),
+        "/law": ({"speed_exact": np.asarray(S.speed_for_velocity(w, LAW_VELOCITIES / s.V)) * D / s.T,
+                  "speed_nesterenko": np.asarray(S.nesterenko_speed_v(LAW_VELOCITIES / s.V)) * D / s.T},
+                 {"v_m": LAW_VELOCITIES}),
         "/tail": ({"log_strain": r["tail_log_strain"], "slope": meas, "slope_predicted": pred},
                   {"xi_tail": r["tail_xi"]}),
         "/nesterenko": ({"exact": [v[0] for v in table.values()], "nesterenko": [v[1] for v in table.values()]},
@@ -349,10 +359,13 @@ def compute(spec: SolitaryWaveRuns, inputs: dict | None = None, log: Log | None 
         "cradle": f"{cr.material} balls of radius {cr.radius:g} m on strings of {cr.length:g} m (g = {cr.g:g} m/s^2)",
         "angle_deg": spec.angle_deg,
         "speed_exponent": r["exponent"], "speed_exponent_expected": 0.2,
+        "speed_constant_si": w.c / w.velocity_max**0.2 * D / s.T / s.V**0.2,
+        "speed_constant_si_units": "m^(4/5) s^(-4/5): speed = speed_constant_si v_m^(1/5), v_m in m/s",
         "residual_max": float(max(S.residual(x) for x in ws)),
         "launch_strain_error": r["launch"]["strain_error"], "launch_velocity_error": r["launch"]["velocity_error"],
         "launch_time": spec.launch_time, "launch_energy_drift": r["launch"]["energy_drift"],
-        "nesterenko_total_width_sites": S.NESTERENKO_WIDTH, "tail_start": S.tail_start(w), "tail_slope_far": float(meas[far][-1]), "tail_slope_expected": math.log(1.5),
+        "nesterenko_total_width_sites": S.NESTERENKO_WIDTH, "tail_start": S.tail_start(w),
+        "tail_slope_far": float(meas[far][-1]), "tail_slope_expected": math.log(1.5),
         "solver": f"Petviashvili's iteration of R = c^-2 Lambda * R^(3/2), gamma = 3, periodic box of "
                   f"{spec.length:g} sites, {spec.points} points per site; tail marched in real space on log R",
         "hertz_chain": "the lattice system of (ncimperfect) with touching homogeneous beads and the on-site slot's "

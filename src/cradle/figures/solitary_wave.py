@@ -3,36 +3,35 @@
 Drawn by :func:`draw` from results/solitary-wave/[full/]solitary-wave.nc (:mod:`cradle.analyses.solitary_wave`).
 
 (a) the exact wave's strain R / R_m and velocity v / v_m against xi (sites), Nesterenko's cos^4 at the same R_m;
-(b) its tail: log10(-log R) against xi from xi = 2, the Fourier solution and its continuation, and the line of slope
-log10(3/2) of a doubly exponential decay; (c) speed against velocity amplitude, log-log, the exact waves, the
-line c = c_1 (v_m / v_1)^(1/5) through c = 1 and Nesterenko's (16/25)^(1/5) v_m^(1/5), with the cradle's SI axes;
-(d) each ball's velocity against time after the impact, in the desk toy and the longest line; (e) the local pulse
-speed (m/s) on each ball against the exact wave's speed at the ball's peak velocity (the first and last inner balls feel the impact and the
-free end); (f) the pulse's width (cm)
-against the exact wave's velocity FWHM.
+(b) its tail: log10(-log R) against xi from xi = 2, the Fourier solution and its continuation, and the line of
+slope log10(3/2) of a doubly exponential decay; (c) speed against velocity amplitude in the cradle (SI), log-log:
+the exact law c_1 (v_m / v_1)^(1/5), Nesterenko's (16/25)^(1/5) v_m^(1/5), and the pulse measured on each inner
+ball of each chain (its peak velocity and local speed); (d) each ball's velocity against time after the impact, in
+the desk toy and the longest line; (e) the local pulse speed (m/s) on each ball against the exact wave's speed at
+the ball's peak velocity (the first and last inner balls feel the impact and the free end); (f) the pulse's width
+(cm) against the exact wave's velocity FWHM.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from cradle.figures import figure
+from cradle.figures import AnalysisTree, figure
 
 if TYPE_CHECKING:
-    import xarray as xr
     from matplotlib.figure import Figure
 
 #: finite points each data panel holds at least (tests/figures/test_figures_render.py)
 MIN_POINTS = 3
 
 
-def _impacts(tree: xr.DataTree) -> list[tuple[str, xr.DataTree]]:
+def _impacts(tree: AnalysisTree) -> list[tuple[str, Any]]:
     names = [s.strip() for s in str(tree.attrs["impacts"]).split(",") if s.strip()]
     return [(name, tree[f"impact/{name}"]) for name in names]
 
 
-def draw(tree: xr.DataTree) -> Figure:
+def draw(tree: AnalysisTree) -> Figure:
     """The six panels above."""
     fig, ax = figure(2, 3, width=13.5, height=7.6)
     wave = tree["wave"]
@@ -70,24 +69,19 @@ def draw(tree: xr.DataTree) -> Figure:
     b.legend(fontsize=7, loc="upper left")
 
     c = ax[0, 2]
-    sp = tree["speeds"]
-    cs = np.asarray(sp["c"].values)
-    vm = np.asarray(sp["velocity_max"].values)
-    c.loglog(vm, cs, "C0o", ms=5, label="exact waves (each solved alone)")
-    i1 = int(np.argmin(np.abs(cs - 1.0)))
-    grid = np.geomspace(vm.min() / 2, vm.max() * 2, 50)
-    c.loglog(grid, cs[i1] * (grid / vm[i1]) ** 0.2, "C0-", lw=0.8,
-             label=f"$c \\propto v_m^{{1/5}}$ (fitted exponent {float(tree.attrs['speed_exponent']):.10f})")
-    c.loglog(grid, (16.0 / 25.0) ** 0.2 * grid**0.2, "k--", lw=1.0, label="Nesterenko $(16/25)^{1/5} v_m^{1/5}$")
-    c.set_xlabel("velocity amplitude $v_m$ (chain units)")
-    c.set_ylabel("speed $c$ (sites per unit time)")
-    c.set_title("(c) speed against amplitude", fontsize=9)
-    c.legend(fontsize=7, loc="upper left")
-
+    law = tree["law"]
+    vl = np.asarray(law["v_m"].values)
+    c.loglog(vl, np.asarray(law["speed_exact"].values), "C0-", lw=1.4,
+             label=f"exact: $\\propto v_m^{{1/5}}$ (fitted {float(tree.attrs['speed_exponent']):.10f})")
+    c.loglog(vl, np.asarray(law["speed_nesterenko"].values), "k--", lw=1.0,
+             label="Nesterenko $(16/25)^{1/5} v_m^{1/5}$")
+    c.set_xlabel("velocity amplitude $v_m$ (m/s)")
+    c.set_ylabel("speed (m/s)")
+    c.set_title("(c) speed against amplitude in the cradle", fontsize=9)
     impacts = _impacts(tree)
     d, e, f = ax[1, 0], ax[1, 1], ax[1, 2]
     styles = ("-", "--", ":", "-.")
-    for k, (name, g) in enumerate(impacts):
+    for k, (_name, g) in enumerate(impacts):
         t = np.asarray(g["t_stored"].values) * 1e6
         V = np.asarray(g["v"].values)
         N = V.shape[1]
@@ -102,9 +96,11 @@ def draw(tree: xr.DataTree) -> Figure:
                color="0.3", lw=0.6, label=f"{N} balls: exact wave at the ball's $v_{{peak}}$")
         f.plot(bead[inner], np.asarray(g["width"].values)[inner] * 100, styles[k % 4], marker="o", ms=3,
                color=f"C{k}", label=f"{N} balls")
+        c.loglog(np.asarray(g["v_peak"].values)[inner], np.asarray(g["speed"].values)[inner], "o", ms=3,
+                 mfc="none", color=f"C{k}", label=f"{N} balls: pulse on each inner ball")
     D = float(impacts[0][1].attrs["diameter_m"])
-    vel_fwhm = float(np.asarray(tree["nesterenko"]["exact"].values)[
-        list(tree["nesterenko"]["quantity"].values).index("velocity FWHM (sites)")])
+    quantities = [str(q) for q in np.asarray(tree["nesterenko"]["quantity"].values)]
+    vel_fwhm = float(np.asarray(tree["nesterenko"]["exact"].values)[quantities.index("velocity FWHM (sites)")])
     f.axhline(vel_fwhm * D * 100, color="k", ls=":", lw=1.0, label="exact wave: velocity FWHM")
     name, g = impacts[0]
     d.set_title(f"(d) ball velocities after the impact at {float(g.attrs['impact_speed_m_per_s']):.3f} m/s "
@@ -115,6 +111,11 @@ def draw(tree: xr.DataTree) -> Figure:
 
     keys = [Line2D([], [], color="0.2", ls=styles[k % 4], label=f"{nm}") for k, (nm, _) in enumerate(impacts)]
     d.legend(handles=keys, fontsize=7, loc="upper right", title="chain (colour: ball)", title_fontsize=7)
+    from matplotlib.ticker import MaxNLocator
+
+    for axis in (e, f):
+        axis.xaxis.set_major_locator(MaxNLocator(integer=True))
+    c.legend(fontsize=7, loc="upper left")
     e.set_title("(e) local pulse speed on each ball", fontsize=9)
     e.set_xlabel("ball n")
     e.set_ylabel("speed (m/s)")

@@ -96,8 +96,8 @@ class SolitaryWave:
 def _grid(length: float, points: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     n = int(round(length * points))
     h = 1.0 / points
-    xi = (np.arange(n) - n // 2) * h
-    k = 2.0 * np.pi * np.fft.rfftfreq(n, d=h)
+    xi = ((np.arange(n) - n // 2) * h).astype(np.float64)
+    k = (2.0 * np.pi * np.fft.rfftfreq(n, d=h)).astype(np.float64)
     return xi, k
 
 
