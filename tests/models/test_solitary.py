@@ -103,3 +103,19 @@ def test_nesterenko_closed_forms():
     xi = np.linspace(-3.0, 3.0, 6001)
     prof = S.nesterenko_profile(xi, 1.0)
     assert np.count_nonzero(prof > 0.0) * 1e-3 == pytest.approx(S.NESTERENKO_WIDTH, abs=2e-3)
+
+
+def test_nesterenko_profile_solves_his_long_wave_equation():
+    """The travelling form of Nesterenko's equation (module docstring of cradle.models.solitary), integrated twice:
+    c^2 R = R^(3/2) + (1/10) R^(1/4) (R^(5/4))'', solved by R_m cos^4(sqrt(2/5) xi) at c = (2/sqrt(5)) R_m^(1/4);
+    checked by central differences inside the support (error h^2)."""
+    Rm = 1.7
+    c = float(S.nesterenko_speed(Rm))
+    h = 1e-3
+    xi = np.arange(-2.3, 2.3, h)
+    R = S.nesterenko_profile(xi, Rm)
+    q = R**1.25
+    d2 = (q[2:] - 2.0 * q[1:-1] + q[:-2]) / h**2
+    lhs = c**2 * R[1:-1]
+    rhs = R[1:-1] ** 1.5 + 0.1 * R[1:-1] ** 0.25 * d2
+    assert np.max(np.abs(lhs - rhs)) / np.max(lhs) < 1e-5

@@ -372,7 +372,8 @@ def compute(spec: SolitaryWaveRuns, inputs: dict | None = None, log: Log | None 
                        "absent unit (integrators/terms/onsite_none.py): W = 0, no on-site force",
         "nesterenko_source": "V. F. Nesterenko, J. Appl. Mech. Tech. Phys. 24 (1983) 733; Dynamics of Heterogeneous "
                              "Materials (Springer, 2001), section 1.3",
-        "tail_source": "A. English and R. L. Pego, Proc. Amer. Math. Soc. 133 (2005) 1763",
+        "tail_source": "J. M. English and R. L. Pego, Proc. Amer. Math. Soc. 133 (2005); K. Ahnert and A. Pikovsky, "
+                       "Phys. Rev. E 79 (2009) 026209",
         "wall_time_s": _time.perf_counter() - t0,
     }
     tree = make_tree(groups, variables, attrs=attrs, params=plain(spec),

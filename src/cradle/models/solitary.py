@@ -10,15 +10,17 @@ A travelling wave c_n(t) = R(n - c t) (speed c in sites per unit time) solves th
     c^2 R''(xi) = f(R(xi+1)) - 2 f(R(xi)) + f(R(xi-1)),                                         (sw)
 
 equivalently, integrated twice against the tent Lambda(s) = max(1 - |s|, 0) (whose Fourier transform is
-sinc^2(k/2)), R = c^-2 Lambda * f(R). English & Pego (Proc. AMS 133 (2005) 1763) proved that it has a
-solitary solution, positive, even and unique, whose tails decay doubly exponentially: R(xi + 1) ~ R(xi)^(3/2)
-far out, so -log R grows like (3/2)^|xi| (log(-log R) has slope log(3/2)).
+sinc^2(k/2)), R = c^-2 Lambda * f(R). English & Pego (Proc. Amer. Math. Soc. 133 (2005)) proved that the
+Hertz chain has a solitary wave whose tails decay doubly exponentially; Ahnert & Pikovsky (Phys. Rev. E 79
+(2009) 026209) found it "superexponentially localized" and computed it numerically for any exponent. Far out
+R(xi + 1) ~ R(xi)^(3/2), so -log R grows like (3/2)^|xi| (log(-log R) has slope log(3/2)); the next terms are
+those of :func:`cradle.analyses.solitary_wave.tail_slopes`.
 
-:func:`solve` finds it by Petviashvili's iteration on the Fourier form (the standard method for such fixed
-points; Ahnert & Pikovsky, Phys. Rev. E 79 (2009) 026209, compute the Hertz chain's solitary waves by an
-iteration of the same integral form): R_new = S^gamma c^-2 Lambda * f(R), with the stabilising factor
-S = <R, R> / <R, c^-2 Lambda * f(R)> (S = 1 at the fixed point) and gamma = p/(p-1) = 3 for f homogeneous
-of degree p = 3/2. The shifts xi +- 1 are exact on a grid of an integer number of points per site, and the
+:func:`solve` finds it by Petviashvili's iteration (V. I. Petviashvili, 1976; for L u = N(u) with N
+homogeneous of degree p, as in Alvarez & Duran, "Petviashvili type methods for traveling wave computations:
+I. Analysis of convergence", arXiv:1311.2546) on the Fourier form: R_new = S^gamma c^-2 Lambda * f(R), with the
+stabilising factor S = <R, R> / <R, c^-2 Lambda * f(R)> (S = 1 at the fixed point) and gamma = p/(p-1) = 3
+for f homogeneous of degree p = 3/2. The shifts xi +- 1 are exact on a grid of an integer number of points per site, and the
 periodic box of ``length`` sites is wide enough that the wave is below the rounding at its edge.
 
 The wave's particle velocity follows from x_n(t) = X(n - c t), c^2 X'' = f(R(xi-1)) - f(R(xi)) and beads
