@@ -20,8 +20,8 @@ those of :func:`cradle.analyses.solitary_wave.tail_slopes`.
 homogeneous of degree p, as in Alvarez & Duran, "Petviashvili type methods for traveling wave computations:
 I. Analysis of convergence", arXiv:1311.2546) on the Fourier form: R_new = S^gamma c^-2 Lambda * f(R), with the
 stabilising factor S = <R, R> / <R, c^-2 Lambda * f(R)> (S = 1 at the fixed point) and gamma = p/(p-1) = 3
-for f homogeneous of degree p = 3/2. The shifts xi +- 1 are exact on a grid of an integer number of points per site, and the
-periodic box of ``length`` sites is wide enough that the wave is below the rounding at its edge.
+for f homogeneous of degree p = 3/2. The shifts xi +- 1 are exact on a grid of an integer number of points per
+site, and the periodic box of ``length`` sites is wide enough that the wave is below the rounding at its edge.
 
 The wave's particle velocity follows from x_n(t) = X(n - c t), c^2 X'' = f(R(xi-1)) - f(R(xi)) and beads
 at rest ahead of the wave: v(xi) = c^-1 int_{xi-1}^{xi} f(R(s)) ds (:func:`velocity`).
