@@ -257,7 +257,8 @@ VARIABLES = {
         "exact": Var(("quantity",), "value for the exact solitary wave of (sw)"),
         "nesterenko": Var(("quantity",), "value of Nesterenko's long-wave solitary wave"),
     },
-    "/impact/{chain}": {
+    "/impact": {},
+    "/impact/{scene}": {
         "bead": Var(_B, "ball index, the released ball 0"),
         "t": Var(("t",), "time since the impact", "s"),
         "t_stored": Var(("t_stored",), "time since the impact of the stored velocities", "s"),
@@ -342,6 +343,7 @@ def compute(spec: SolitaryWaveRuns, inputs: dict | None = None, log: Log | None 
                   {"xi_tail": r["tail_xi"]}),
         "/nesterenko": ({"exact": [v[0] for v in table.values()], "nesterenko": [v[1] for v in table.values()]},
                         {"quantity": np.array(list(table), dtype=object)}),
+        "/impact": ({}, {}),
     }
     variables = {k: v for k, v in VARIABLES.items() if "{" not in k}
     group_attrs = {}
@@ -349,7 +351,7 @@ def compute(spec: SolitaryWaveRuns, inputs: dict | None = None, log: Log | None 
         ir = impact_runs(spec, N, w)
         data, coords, attrs = _impact_group(ir, w, D)
         path = f"/impact/n{N}"
-        groups[path], variables[path], group_attrs[path] = (data, coords), VARIABLES["/impact/{chain}"], attrs
+        groups[path], variables[path], group_attrs[path] = (data, coords), VARIABLES["/impact/{scene}"], attrs
         say(f"solitary-wave: impact n{N}: settled speed {attrs['settled_speed_m_per_s']:.6g} m/s against "
             f"{attrs['settled_speed_exact_m_per_s']:.6g} m/s (exact wave at its v_peak); (nc) - Hertz "
             f"{attrs['max_nc_difference']:.2g}")

@@ -110,7 +110,7 @@ def draw(tree: AnalysisTree) -> Figure:
     from matplotlib.lines import Line2D
 
     keys = [Line2D([], [], color="0.2", ls=styles[k % 4], label=f"{nm}") for k, (nm, _) in enumerate(impacts)]
-    d.legend(handles=keys, fontsize=7, loc="upper right", title="chain (colour: ball)", title_fontsize=7)
+    d.legend(handles=keys, fontsize=7, loc="upper center", title="chain (colour: ball)", title_fontsize=7)
     from matplotlib.ticker import MaxNLocator
 
     for axis in (e, f):
@@ -119,11 +119,11 @@ def draw(tree: AnalysisTree) -> Figure:
     e.set_title("(e) local pulse speed on each ball", fontsize=9)
     e.set_xlabel("ball n")
     e.set_ylabel("speed (m/s)")
-    e.legend(fontsize=7, loc="lower right")
+    e.legend(fontsize=7, loc="lower center")
     f.set_title("(f) pulse width on each ball", fontsize=9)
     f.set_xlabel("ball n")
     f.set_ylabel("FWHM of $v_n(t)$ × speed (cm)")
-    f.legend(fontsize=7, loc="lower right")
+    f.legend(fontsize=7, loc="lower center")
     fig.suptitle(f"The solitary wave of the Hertz chain and the first impact of a desk toy: {tree.attrs['cradle']}, "
                  f"released from {float(tree.attrs['angle_deg']):g}°", fontsize=10)
     return fig
