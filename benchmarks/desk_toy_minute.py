@@ -64,7 +64,7 @@ def table(duration: float, repeats: int) -> str:
             per_minute = cpu / (f * duration) * 60
             rows.append(f"| N = 5 | {f * duration:g} | {e:g} | {steps} | {cpu:.3f} | {per_minute:.3f} |")
     head = (f"One lifted ball, (ncdamped) by dop853_numba at rtol = 1e-10, Stokes drag; CPU time of the integration "
-            f"(median of {repeats}), after the kernel is compiled or loaded ({compile_s:.1f} s of CPU in this process). "
+            f"(median of {repeats}), after the kernel is compiled or loaded ({compile_s:.1f} s of CPU here). "
             f"Target: a minute of the 5-ball cradle in under a minute of CPU.")
     columns = "| cradle | real time (s) | e at 0.3 m/s | steps | CPU (s) | CPU per real minute (s) |"
     return "\n".join([head, "", columns, "|---|---|---|---|---|---|", *rows])
