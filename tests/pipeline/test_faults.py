@@ -168,6 +168,21 @@ def test_not_netcdf_is_one_readable_line(tmp_path, capsys):
     assert _one_line(err) and "not a netCDF file" in err and len(err) < 300, err
 
 
+@pytest.mark.parametrize("what", ["text", "empty", "folder"])
+def test_extend_of_what_is_no_netcdf_file_is_one_line_and_writes_nothing(tmp_path, capsys, what):
+    """``cradle extend`` of a text file, an empty file or a folder: one line naming it (not the reader's)."""
+    path = tmp_path / "exact.nc"
+    if what == "folder":
+        path.mkdir()
+    else:
+        path.write_text("" if what == "empty" else "this is a text file, not netCDF\n")
+    before = sorted(tmp_path.rglob("*"))
+    assert cli.main(["extend", str(path), "--t-end", "10"]) == 2
+    err = capsys.readouterr().err
+    assert _one_line(err) and str(path) in err and ("not a netCDF file" in err) and len(err) < 300, err
+    assert sorted(tmp_path.rglob("*")) == before
+
+
 def test_write_failing_part_way_keeps_the_previous_output(outputs, tmp_path, monkeypatch):
     """to_netcdf raises after writing half a file: the previous output is untouched, no temporary left."""
     ds, good = outputs["exact"]

@@ -391,6 +391,15 @@ def _checked(path: str | os.PathLike, read: Callable[[Path], _T]) -> _T:
                             f"{rebuild_hint(path)}") from None
 
 
+def check_is_netcdf(path: str | os.PathLike) -> Path:
+    """``path`` as a Path if it names a netCDF file (by its signature; its values are not read): else
+    FileNotFoundError or one :class:`DamagedOutput` line naming it (a folder, another kind of file)."""
+    path = Path(path)
+    if path.is_dir():
+        raise DamagedOutput(f"{path}: a folder, not a netCDF file")
+    return _checked(path, lambda p: p)
+
+
 #: files larger than this are verified block by block and opened lazily by :func:`open_dataset`
 LAZY_ABOVE_BYTES = 512 * 2**20
 

@@ -35,7 +35,7 @@ import numpy as np
 import xarray as xr
 
 from cradle.data.appending import DEFAULT_CHUNK_BYTES, Appender, chunk_rows
-from cradle.data.io import make_dataset, verify_file
+from cradle.data.io import check_is_netcdf, make_dataset, verify_file
 from cradle.models import lattice
 
 if TYPE_CHECKING:
@@ -163,7 +163,7 @@ def estimate(path: str | os.PathLike, t_end: float, every: float | None = None,
         raise ValueError(f"t_end={t_end!r}: must be <= {MAX_T_END:.0f}, a scene's longest run ({T_END_WHY})")
     if every is not None and not (math.isfinite(float(every)) and float(every) > 0):
         raise ValueError(f"every={every!r}: must be a finite time > 0")
-    with xr.open_dataset(path) as ds:
+    with xr.open_dataset(check_is_netcdf(path)) as ds:   # another kind of file: one line, not xarray's
         missing = [k for k in VARS if k not in ds]
         if missing:
             raise ValueError(f"{path}: not an exact run of (nc) (no {', '.join(missing)}): cannot extend it")

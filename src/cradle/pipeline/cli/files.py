@@ -130,6 +130,8 @@ def cmd_extend(args: argparse.Namespace) -> int:
     path = Path(args.file)
     if not path.exists():
         raise CliError(f"no such file {str(path)!r}")
+    if path.is_dir():
+        raise CliError(f"{path}: a folder, not a netCDF file (give an exact run, results/sim/SCENE/exact.nc)")
     if not math.isfinite(args.t_end):
         raise CliError(f"--t-end {args.t_end!r}: must be a finite time")
     if args.every is not None and not (math.isfinite(args.every) and args.every > 0):
