@@ -4,8 +4,8 @@
 
 1 cm steel balls on 10 cm strings released from 20 degrees, one ball lifted (cradle.analyses.desk_toy_minute):
 (ncdamped) with Kuwabara-Kono contacts (e = 0.9 and 0.98 at 0.3 m/s, the analysis's assumed bracket) and the lower
-(Stokes) drag rate, integrated by dop853_numba at rtol = 1e-10, stored 16 times per swing period. CPU time
-(time.process_time) of the integration alone, after the kernel is compiled (or loaded from its cache): the
+(Stokes) drag rate, integrated by dop853_numba at the analysis's rtol (1e-12), stored 16 times per swing period.
+CPU time (time.process_time) of the integration alone, after the kernel is compiled (or loaded from its cache): the
 median of ``--repeats`` runs. Rows: the 5-ball cradle over ``--duration`` seconds (the minute), its scaling in the
 number of balls N (3 to 20) and in the length of the run (a quarter, half, one and two durations). A timing:
 run it on a quiet machine (nothing else building).
@@ -63,7 +63,8 @@ def table(duration: float, repeats: int) -> str:
             cpu, steps = cpu_of(5, f * duration, e, repeats)
             per_minute = cpu / (f * duration) * 60
             rows.append(f"| N = 5 | {f * duration:g} | {e:g} | {steps} | {cpu:.3f} | {per_minute:.3f} |")
-    head = (f"One lifted ball, (ncdamped) by dop853_numba at rtol = 1e-10, Stokes drag; CPU time of the integration "
+    rtol = form_spec(from_plain(dm.DeskToyMinute, {}), FULL).rtol
+    head = (f"One lifted ball, (ncdamped) by dop853_numba at rtol = {rtol:g}, Stokes drag; CPU time of the integration "
             f"(median of {repeats}), after the kernel is compiled or loaded ({compile_s:.1f} s of CPU here). "
             f"Target: a minute of the 5-ball cradle in under a minute of CPU.")
     columns = "| cradle | real time (s) | e at 0.3 m/s | steps | CPU (s) | CPU per real minute (s) |"

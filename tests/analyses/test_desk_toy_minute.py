@@ -57,7 +57,7 @@ def test_reduced_form_is_5_balls_over_4_seconds(reduced):
                        rtol=1e-15)
     assert g.sizes["swing"] == int(4.0 / (math.pi * s.T))
     names = [str(c) for c in g["case"].values]
-    assert len(names) == 2 * 2 + 2 and all(isinstance(n, str) for n in names)
+    assert len(names) == 2 * 2 + 2 * 2 and all(isinstance(n, str) for n in names)   # (ncdamped), hard e, e(v)
     for var in g.to_dataset(inherit=False).data_vars.values():
         assert "long_name" in var.attrs and "units" in var.attrs
     # the released ball starts L sin(theta) from the line: its swing amplitude before any impact, in metres
@@ -207,3 +207,60 @@ def test_config_refuses_a_lifted_count_past_the_longest_chain():
         cc.analysis_spec(bad, "desk-toy-minute", "full")
     assert cc.analysis_spec(raw, "desk-toy-minute", "reduced").chains == [5]
     assert cc.analysis_spec(raw, "desk-toy-minute", "full").chains == [3, 5, 7, 10]
+
+
+def test_restitution_law_is_the_two_ball_collision_of_the_contact():
+    """e(u) of the hard spheres is (ncdamped)'s two-ball restitution: exact at the tabulated b (to rounding of the
+    log-log interpolation), rising as the approach speed falls (1 - e ~ u^(1/5)), and equal to the contact's e at the
+    reference speed within the interpolation between those nodes: linear in log-log with a step h = ln(10)/8, an
+    error of h^2/8 times the curvature of log(1 - e) against log b, under 1e-3 of 1 - e where 1 - e ~ 0.1."""
+    from cradle.analyses.dissipation import restitution_loss
+
+    spec = _spec()
+    s = scales(dm.DEFAULT_CRADLE)
+    e, A = dm.contacts(spec)[0]
+    law = dm.restitution_law(A, s)
+    scale = A * (s.k / (s.m / 2.0)) ** 0.4 * s.V**0.2
+    for b in dm._B_TABLE[40:60:5]:
+        u = (b / scale) ** 5.0
+        assert law(u) == pytest.approx(1.0 - restitution_loss(float(b)), rel=1e-12)
+    speeds = np.logspace(-6, 0, 13) * spec.restitution_speed / s.V
+    values = [law(u) for u in speeds]
+    assert all(a > b for a, b in zip(values, values[1:], strict=False))
+    assert law(spec.restitution_speed / s.V) == pytest.approx(e, abs=1e-4)
+
+
+def test_two_hard_spheres_with_a_restitution_law():
+    """N = 2, one lifted, e(u): the relative amplitude after collision k is a_k = e(a_(k-1)) a_(k-1) (the pair meets
+    at the relative speed a_(k-1)), so S = 1 / (1 + (a_k / A)^2) between collisions k and k+1."""
+    A = 1.5
+
+    def law(u: float) -> float:
+        return 1.0 - 0.1 * u ** 0.2
+
+    t = dm.time_grid(12 * math.pi, 16)
+    hs = hard_sphere_run(np.array([-A, 0.0]), np.zeros(2), t, restitution=law)
+    S = mm.com_share(hs.x, hs.v)
+    a = [A]
+    for _ in range(12):
+        a.append(law(a[-1]) * a[-1])
+    phase = (t - math.pi / 2) / math.pi
+    k = np.maximum(np.floor(phase + 1.0).astype(int), 0)
+    away = np.abs(phase - np.round(phase)) > 1e-6
+    expect = 1.0 / (1.0 + (np.array(a)[k] / A) ** 2)
+    assert np.allclose(S[away], expect[away], rtol=1e-12, atol=1e-14)
+    assert np.allclose(hs.separation / hs.approach, [law(u) for u in hs.approach], rtol=1e-12)
+
+
+def test_trend_row_of_the_cradle_itself_is_its_own_run():
+    """The trends' first row is the spec's own cradle, 5 balls, 1 lifted, the first contact and Stokes' drag: the
+    run of case 0 of n5-lifted1, to the bit; a longer string swings slower (omega_0 = sqrt(g/L)) and its e at the
+    reference speed is the same A's on the same balls."""
+    spec = _spec(FULL, chains=[5], lifted=[1], duration=4.0, trend_lengths=[0.2], trend_radii=[])
+    tree = dm.compute(spec, {})
+    tr, g = tree["trends"], tree["n5-lifted1"]
+    assert [str(n) for n in tr["trend"].values] == ["L=0.1 m, R=0.01 m", "L=0.2 m, R=0.01 m"]
+    for key in ("inphase_time_phase", "inphase_time_share"):
+        assert np.array_equal(tr[key].values[0], g[key].values[0], equal_nan=True)
+    assert tr["drag_rate"].values[0] == g["drag_rate"].values[0]
+    assert tr["restitution"].values[1] == pytest.approx(tr["restitution"].values[0], rel=1e-12)

@@ -21,9 +21,11 @@ speed, an upper bound), every run made under each; ``drag_rates`` gives others.
 For each chain length N, lifted count and (contact, drag) pair: the run of (ncdamped) (its energy H and the
 dissipated energy D, integrated as its own quantity: H + D = H(0) to the integrator's tolerance), and the same run
 at rtol / 10 (the convergence check: the in-phase times and the energy at the end); for each contact, the
-hard-sphere cradle (:mod:`cradle.models.hard_spheres`) with the constant e the contact has at
-``restitution_speed`` (the Kuwabara-Kono e rises as the impact speed falls, 1 - e ~ v^(1/5): a constant e
-overstates the losses of the slow late impacts), without drag. Measured on each (:mod:`cradle.measurements.
+hard-sphere cradle (:mod:`cradle.models.hard_spheres`), without drag, twice: with the constant e the contact has at
+``restitution_speed``, and with the contact's own law e(u) of the approach speed (:func:`restitution_law`: the
+Kuwabara-Kono e rises as the impact speed falls, 1 - e ~ u^(1/5), so a constant e overstates the losses of the
+slow late impacts). Against the second, what differs is the collisions' duration and the many-ball contacts of
+(ncdamped) alone. Measured on each (:mod:`cradle.measurements.
 desk_toy_minute` and :mod:`cradle.measurements.desk_toy`): the phase coherence R(t) and the centre-of-mass share
 S(t) with the time each settles above each of its thresholds, the balls out and each ball's amplitude at every
 out-swing k pi / omega_0, and the one-out-one-out share f_k with how long it holds.
@@ -33,6 +35,7 @@ each group (``X_m``, ``T_s``, ``E_J``), so a reader gets (nc)'s values back by d
 """
 from __future__ import annotations
 
+import functools
 import time as _time
 from typing import TYPE_CHECKING
 
@@ -46,6 +49,8 @@ from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     import xarray as xr
     from numpy.typing import NDArray
 
@@ -72,6 +77,8 @@ _E = {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 1,
 _A = {"type": "number", "exclusiveMinimum": 0, "maximum": 1e-3,
       "description": "Kuwabara-Kono constant A (s) of the force k (delta^(3/2) + A delta^(1/2) delta')."}
 _RATE = {"type": "number", "minimum": 0, "maximum": 10, "description": "A linear drag rate (1/s)."}
+_LENGTH = {"type": "number", "minimum": 0.01, "maximum": 10, "description": "A string length L (m)."}
+_RADIUS = {"type": "number", "minimum": 1e-3, "maximum": 0.1, "description": "A ball radius R (m)."}
 _UNIT = {"type": "number", "exclusiveMinimum": 0, "exclusiveMaximum": 1, "description": "A threshold in (0, 1)."}
 
 
@@ -112,7 +119,7 @@ class DeskToyMinute:
                                "level.", exclusiveMinimum=0, maximum=100)
     air_viscosity: float = param(AIR_VISCOSITY, "Dynamic viscosity of air (Pa s): ISO 2533:1975 Standard "
                                  "Atmosphere, sea level (15 C).", exclusiveMinimum=0, maximum=1)
-    rtol: float = param(1e-10, "Relative tolerance of the runs (dop853_numba; atol = rtol times the amplitude); "
+    rtol: float = param(1e-12, "Relative tolerance of the runs (dop853_numba; atol = rtol times the amplitude); "
                         "the convergence run takes rtol / 10.", minimum=RTOL_FLOOR * CONVERGENCE_FACTOR,
                         maximum=1e-6)
     phase_thresholds: list[float] = param([0.99, 0.999], "Thresholds of the phase coherence R: in phase once R "
@@ -121,6 +128,11 @@ class DeskToyMinute:
                                           "stays above.", minItems=1, maxItems=4, items=_UNIT)
     pattern_thresholds: list[float] = param([0.9, 0.5], "Thresholds of the one-out-one-out share f_k "
                                             "(cradle.measurements.desk_toy).", minItems=1, maxItems=4, items=_UNIT)
+    trend_lengths: list[float] = param([0.05, 0.2], "String lengths L (m) of the trend runs (5 balls, 1 lifted, the "
+                                       "first contact's A, Stokes drag), beside the cradle's own.", minItems=0,
+                                       maxItems=6, items=_LENGTH, reduced=[])
+    trend_radii: list[float] = param([0.005, 0.02], "Ball radii R (m) of the trend runs, beside the cradle's own.",
+                                     minItems=0, maxItems=6, items=_RADIUS, reduced=[])
     out_fraction: float = param(0.5, "A ball is out at an out-swing when its amplitude is at least this share of "
                                 "the largest.", exclusiveMinimum=0, maximum=1)
 
@@ -134,7 +146,7 @@ class DeskToyMinute:
                 out.add(where + ["lifted", i], f"must be < the longest chain ({longest}): one ball at least stays "
                                                "in the line (a chain of N <= lifted runs without it)", k)
         for key in ("chains", "lifted", "restitution", "kk_constant", "drag_rates", "phase_thresholds",
-                    "share_thresholds", "pattern_thresholds"):
+                    "share_thresholds", "pattern_thresholds", "trend_lengths", "trend_radii"):
             values = getattr(self, key)
             if values is not None and len(set(values)) != len(values):
                 out.add(where + [key], "lists a value twice", values)
@@ -164,6 +176,35 @@ def kk_of(restitution: float, speed: float, s: Scales) -> float:
     from cradle.analyses.dissipation import kk_constant
 
     return kk_constant(restitution) / (_kappa(s) ** 0.4 * speed**0.2)
+
+
+#: the scaled Kuwabara-Kono constants b of the tabulated two-ball restitution loss (:func:`restitution_law`)
+_B_TABLE = np.logspace(-8.0, 0.0, 65)
+
+
+@functools.cache
+def _loss_table() -> NDArray[np.float64]:
+    from cradle.analyses.dissipation import restitution_loss
+
+    return np.array([restitution_loss(float(b)) for b in _B_TABLE])
+
+
+def restitution_law(A_seconds: float, s: Scales) -> Callable[[float], float]:
+    """e(u) of the two-ball collision of (ncdamped) for the Kuwabara-Kono A (s), u the approach speed in (nc)'s
+    units: 1 - e = f(b), b = A kappa^(2/5) (u V)^(1/5), f tabulated by :func:`cradle.analyses.dissipation.
+    restitution_loss` on 8 points a decade of b in [1e-8, 1] and interpolated in log-log (f(b) = C1 b + O(b^2)
+    below: linear there)."""
+    log_b, log_f = np.log(_B_TABLE), np.log(_loss_table())
+    scale = A_seconds * _kappa(s) ** 0.4 * s.V**0.2
+    slope = float(_loss_table()[0] / _B_TABLE[0])
+
+    def law(u: float) -> float:
+        b = scale * u**0.2
+        if b <= _B_TABLE[0]:
+            return 1.0 - slope * b
+        return 1.0 - float(np.exp(np.interp(np.log(b), log_b, log_f)))
+
+    return law
 
 
 def contacts(spec: DeskToyMinute) -> list[tuple[float, float]]:
@@ -264,11 +305,12 @@ def desk_toy_minute(spec: DeskToyMinute, n_beads: int, lifted: int) -> dict:
             case.update({"tight_inphase_phase": m2["inphase_phase"], "tight_inphase_share": m2["inphase_share"],
                          "tight_energy_end": float(tight.energy[-1])})
             cases.append(case)
-    for e, A in contacts(spec):
+    for (e, A), law in [(c, w) for c in contacts(spec) for w in (c[0], restitution_law(c[1], s))]:
         c0 = _time.process_time()
-        hs = hard_sphere_run(x0, v0, t, restitution=e)
+        hs = hard_sphere_run(x0, v0, t, restitution=law)
         cpu = _time.process_time() - c0
-        case = {"name": f"hard e={e:g}", "restitution": e, "kk_A": A, "drag": 0.0, "energy": hs.energy,
+        name = f"hard e={e:g}" if isinstance(law, float) else f"hard e(v) of A={A:.3g}s"
+        case = {"name": name, "restitution": e, "kk_A": A, "drag": 0.0, "energy": hs.energy,
                 "dissipated": hs.dissipated, "steps": int(hs.collision_t.size), "cpu": cpu,
                 "balance": float(np.max(np.abs(hs.energy + hs.dissipated - hs.energy[0])) / hs.energy[0]),
                 "tight_inphase_phase": [np.nan] * len(spec.phase_thresholds),
@@ -278,6 +320,47 @@ def desk_toy_minute(spec: DeskToyMinute, n_beads: int, lifted: int) -> dict:
     return {"t": t, "cases": cases, "scales": s, "amplitude": float(-x0[0])}
 
 
+def trend_cradles(spec: DeskToyMinute) -> list[tuple[str, Cradle]]:
+    """(name, cradle) of the trend runs: the spec's cradle, then each of trend_lengths and trend_radii in its place."""
+    import dataclasses
+
+    c = cradle_of(spec)
+    out = [(f"L={c.length:g} m, R={c.radius:g} m", c)]
+    out += [(f"L={L:g} m, R={c.radius:g} m", dataclasses.replace(c, length=float(L))) for L in spec.trend_lengths]
+    out += [(f"L={c.length:g} m, R={R:g} m", dataclasses.replace(c, radius=float(R))) for R in spec.trend_radii]
+    return out
+
+
+def trends(spec: DeskToyMinute) -> dict:
+    """Lee & Hong's trends against the string length and the ball radius: the 5-ball cradle, one lifted, the first
+    contact's Kuwabara-Kono A (a material constant: the same for every size) and Stokes' drag of each cradle (or the
+    first of drag_rates), over ``duration``; its in-phase times, e at the reference speed and final energy share."""
+    from cradle.measurements import desk_toy_minute as mm
+    from cradle.models import desk_toy as dt
+    from cradle.models.air_drag import stokes_rate
+    from cradle.models.physical import scales, to_si
+
+    A = contacts(spec)[0][1]
+    rows: dict[str, list] = {k: [] for k in ("name", "length", "radius", "restitution", "drag", "phase", "share",
+                                             "energy_share")}
+    for name, c in trend_cradles(spec):
+        s = scales(c)
+        rate = float(spec.drag_rates[0]) if spec.drag_rates is not None else stokes_rate(c, spec.air_viscosity)
+        x0, _, _ = dt.desk_toy_initial(dt.desk_toy(5, 1, spec.angle_deg, c))
+        t = time_grid(spec.duration / s.T, spec.samples)
+        run = minute_run(x0, t, damping_of(A, rate, s), spec.rtol)
+        R, S = mm.phase_coherence(run.x, run.v), mm.com_share(run.x, run.v)
+        rows["name"].append(name)
+        rows["length"].append(c.length)
+        rows["radius"].append(c.radius)
+        rows["restitution"].append(restitution_of(A, spec.restitution_speed, s))
+        rows["drag"].append(rate)
+        rows["phase"].append([to_si(mm.settle_time(t, R, th), "time", s) for th in spec.phase_thresholds])
+        rows["share"].append([to_si(mm.settle_time(t, S, th), "time", s) for th in spec.share_thresholds])
+        rows["energy_share"].append(float(run.energy[-1] / run.energy[0]))
+    return rows
+
+
 # ----------------------------------------------------------------- the stored file
 
 _C = ("case",)
@@ -285,7 +368,7 @@ _C = ("case",)
 #: attributes X_m, T_s, E_J
 MINUTE_VARIABLES: dict[str, Var] = {
     "case": Var(_C, "case: (ncdamped) at one contact constant and one drag rate, or the hard-sphere cradle at one "
-                "restitution"),
+                "constant restitution or with the contact's law e(approach speed)"),
     "t": Var(("t",), "time since the release", "s"),
     "n": Var(("n",), "ball index, the lifted balls first"),
     "swing": Var(("swing",), "out-swing k = 1, 2, ...: the largest swings of the ideal cradle at t = k pi / omega_0"),
@@ -293,7 +376,8 @@ MINUTE_VARIABLES: dict[str, Var] = {
     "share_threshold": Var(("share_threshold",), "threshold of the centre-of-mass share S"),
     "pattern_threshold": Var(("pattern_threshold",), "threshold of the one-out-one-out share f_k"),
     "restitution": Var(_C, "restitution coefficient e of two balls at the reference impact speed",
-                       attrs=(("comment", "(ncdamped): of its Kuwabara-Kono A; hard spheres: their constant e"),)),
+                       attrs=(("comment", "(ncdamped) and hard spheres e(v): of the Kuwabara-Kono A; hard spheres "
+                                          "e: their constant e"),)),
     "kk_A": Var(_C, "Kuwabara-Kono constant A of the contact force k (delta^(3/2) + A delta^(1/2) delta')", "s"),
     "drag_rate": Var(_C, "linear on-site damping rate standing for the drag of air (0: none)", "1/s"),
     "energy": Var(_C + ("t",), "energy of the cradle: on-site (small-angle pendulum) plus Hertz contact energy "
@@ -324,8 +408,26 @@ MINUTE_VARIABLES: dict[str, Var] = {
     "cpu_time": Var(_C, "CPU time of the run (after compilation; the convergence run not included)", "s"),
 }
 
-#: the stored variables of the `desk-toy-minute` file: one group per desk toy; the root holds the spec
-VARIABLES = {"/": {}, "/{scene}": MINUTE_VARIABLES}
+_T = ("trend",)
+#: the variables of the group ``/trends`` (Lee & Hong's trends against the string length and the ball radius)
+TREND_VARIABLES: dict[str, Var] = {
+    "trend": Var(_T, "cradle of a trend run: its string length L and ball radius R (5 balls, 1 lifted)"),
+    "phase_threshold": MINUTE_VARIABLES["phase_threshold"],
+    "share_threshold": MINUTE_VARIABLES["share_threshold"],
+    "length": Var(_T, "string length L, pivot to the ball's centre", "m"),
+    "radius": Var(_T, "ball radius R", "m"),
+    "restitution": Var(_T, "restitution e of two balls at the reference impact speed, for the first contact's "
+                       "Kuwabara-Kono A (the same A for every size)"),
+    "drag_rate": Var(_T, "linear on-site damping rate (Stokes' drag of the cradle's balls, or the first given)",
+                     "1/s"),
+    "inphase_time_phase": MINUTE_VARIABLES["inphase_time_phase"],
+    "inphase_time_share": MINUTE_VARIABLES["inphase_time_share"],
+    "energy_share_end": Var(_T, "energy at the end of the run over the initial energy"),
+}
+
+#: the stored variables of the `desk-toy-minute` file: one group per desk toy, and the trends (full form); the root
+#: holds the spec
+VARIABLES = {"/": {}, "/trends": TREND_VARIABLES, "/{scene}": MINUTE_VARIABLES}
 
 
 def _group(spec: DeskToyMinute, r: dict, lifted: int) -> tuple[dict, dict, dict]:
@@ -390,6 +492,18 @@ def compute(spec: DeskToyMinute, inputs: dict | None = None, log: Log | None = N
             say(f"desk-toy-minute: {label(N, k)}: in phase (S >= {spec.share_thresholds[0]:g}) after "
                 + ", ".join(f"{c}: {v:.3g} s" for c, v in zip(coords["case"], first, strict=True))
                 + f"; CPU {float(np.sum(data['cpu_time'])):.2f} s")
+    if spec.trend_lengths or spec.trend_radii:
+        tr = trends(spec)
+        groups["/trends"] = ({
+            "length": np.asarray(tr["length"], float), "radius": np.asarray(tr["radius"], float),
+            "restitution": np.asarray(tr["restitution"], float), "drag_rate": np.asarray(tr["drag"], float),
+            "inphase_time_phase": np.asarray(tr["phase"], float), "inphase_time_share": np.asarray(tr["share"], float),
+            "energy_share_end": np.asarray(tr["energy_share"], float)},
+            {"trend": [str(n) for n in tr["name"]], "phase_threshold": np.asarray(spec.phase_thresholds, float),
+             "share_threshold": np.asarray(spec.share_thresholds, float)})
+        variables["/trends"] = TREND_VARIABLES
+        say("desk-toy-minute: trends: in phase (S >= " + f"{spec.share_thresholds[0]:g}) after "
+            + ", ".join(f"{n}: {v[0]:.3g} s" for n, v in zip(tr["name"], tr["share"], strict=True)))
     c = cradle_of(spec)
     e_A = contacts(spec)
     attrs = {

@@ -3,14 +3,16 @@
 Drawn by :func:`draw` from results/desk-toy-minute/[full/]desk-toy-minute.nc (:mod:`cradle.analyses.desk_toy_minute`).
 
 The main desk toy is the 5-ball cradle with one ball lifted (else the first of the file). (a) its energy over its
-initial energy against time, every case (colour: the restitution e; line style: the drag rate, dotted the hard
-spheres), the grey line at lifted / N the share of the centre-of-mass swing mode, which the contacts cannot
-dissipate; (b) its centre-of-mass share S (solid) and phase coherence R (thin), the first case of each model;
-(c) each ball's swing amplitude (mm) at every out-swing, the first (ncdamped) case; (d) the balls out at every
-out-swing, every lifted count of the main chain (first (ncdamped) case, and the hard spheres of its e dotted);
-(e) the one-out-one-out share f_k of the same runs, the pattern thresholds grey; (f) the time to in-phase motion
-(S above its first threshold) against the number of balls, every lifted count (marker) and restitution (colour),
-(ncdamped) at the lower drag filled, the hard spheres open; drawn when some run got there.
+initial energy against time, every case (colour: the restitution e; line style: the drag rate, or the hard
+spheres: dotted with a constant e, dash-dotted with the contact's own e(v)), the grey line at lifted / N the share
+of the centre-of-mass swing mode, which the contacts cannot dissipate; (b) its centre-of-mass share S (thick) and
+phase coherence R (thin), the first (ncdamped) case and the hard spheres of constant e; (c) each ball's swing
+amplitude (mm) at every out-swing against the logarithm of time, the first (ncdamped) case; (d) the balls out at
+every out-swing, every lifted count of the main chain (first (ncdamped) case solid, the hard spheres of its constant
+e dotted); (e) the one-out-one-out share f_k of the same runs, the pattern thresholds grey; (f) the time to in-phase
+motion (S above its first threshold) against the number of balls, every lifted count (marker) and restitution
+(colour), (ncdamped) at the lower drag filled, the hard spheres with the contacts' law e(v) open; drawn when some
+run got there.
 """
 from __future__ import annotations
 
@@ -30,6 +32,8 @@ MIN_POINTS = 3
 
 _DRAG_STYLES = ("-", "--", "-.", (0, (5, 1, 1, 1)))
 _MARKERS = ("o", "s", "^", "D", "v", "P")
+#: the line style of the hard spheres with the contact's restitution law e(v)
+_LAW_STYLE = (0, (4, 1, 1, 1, 1, 1))
 
 
 def _groups(tree: xr.DataTree) -> list:
@@ -52,11 +56,13 @@ def _styles(g: xr.DataTree) -> list[tuple[str, object, str]]:
     out: list[tuple[str, object, str]] = []
     for name, e, r in zip(names, es_all, rates_all, strict=True):
         colour = f"C{es.index(float(e))}"
-        if name.startswith("hard"):
-            out.append((colour, ":", f"hard spheres, e = {float(e):g}"))
+        if name.startswith("hard e(v)"):
+            out.append((colour, _LAW_STYLE, f"hard, e(v) of the same A (e = {float(e):g})"))
+        elif name.startswith("hard"):
+            out.append((colour, ":", f"hard, constant e = {float(e):g}"))
         else:
             i = rates.index(float(r))
-            out.append((colour, _DRAG_STYLES[i % 4], f"(ncdamped), e = {float(e):g}, drag {float(r):.3g}/s"))
+            out.append((colour, _DRAG_STYLES[i % 4], f"(ncdamped) e = {float(e):g}, drag {float(r):.3g}/s"))
     return out
 
 
@@ -69,6 +75,7 @@ def draw(tree: xr.DataTree) -> Figure:
     """The panels above from the groups of the desk-toy-minute file."""
     from matplotlib import colormaps
     from matplotlib.lines import Line2D
+    from matplotlib.ticker import NullFormatter
 
     groups = _groups(tree)
     main = _main(groups)
@@ -107,7 +114,11 @@ def draw(tree: xr.DataTree) -> Figure:
     for n in range(N):
         C.plot(ts, amp[:, n], ".-", ms=2.5, lw=0.7, color=cmap(n / max(1, N - 1) * 0.9))
     C.set_title(f"(c) swing amplitude of each ball at every out-swing (mm);\n{styles[c][2]}", fontsize=9)
-    C.set_xlabel("time (s)")
+    C.set_xscale("log")   # the break-up of the first swings and the settling beside each other
+    ticks = [v for v in (0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0) if ts[0] <= v <= ts[-1]]
+    C.set_xticks(ticks, [f"{v:g}" for v in ticks])
+    C.xaxis.set_minor_formatter(NullFormatter())   # the minor labels of a short span run into each other
+    C.set_xlabel("time (s, logarithmic)")
     C.set_ylabel("amplitude (mm)")
     C.legend(handles=[Line2D([], [], color=cmap(n / max(1, N - 1) * 0.9), lw=2, label=f"ball {n}")
                       for n in range(N)], fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0),
@@ -146,9 +157,10 @@ def draw(tree: xr.DataTree) -> Figure:
     G = ax[1, 2]
     _inphase_panel(G, groups, tree)
     handles = [Line2D([], [], color=colour, ls=ls, lw=1.2, label=label) for colour, ls, label in styles]
-    fig.legend(handles=handles, fontsize=7, loc="outside lower center", ncols=min(3, len(handles)), frameon=False,
-               title="case (colour: restitution e at the reference speed; line style: drag rate; dotted: hard "
-                     "spheres), panels (a), (b)", title_fontsize=7)
+    fig.legend(handles=handles, fontsize=7, loc="outside lower center", ncols=min(2, len(handles)), frameon=False,
+               title="case, panel (a) (colour: e at the reference speed; line style: the drag, or the hard "
+                     "spheres' e); (b): the first (ncdamped) case and the hard spheres of constant e",
+               title_fontsize=7)
     fig.suptitle(f"A desk toy watched for {float(tree.attrs['duration_s']):g} s: {tree.attrs['cradle']}, released "
                  f"from {float(tree.attrs['angle_deg']):g}°", fontsize=10)
     return fig
@@ -165,7 +177,7 @@ def _inphase_panel(G: Axes, groups: list, tree: xr.DataTree) -> None:
         low = min(float(r) for r, n in zip(np.asarray(g["drag_rate"].values), names, strict=True) if n.startswith("nc"))
         for c, name in enumerate(names):
             hard = name.startswith("hard")
-            if not hard and float(np.asarray(g["drag_rate"].values)[c]) != low:
+            if name.startswith("hard e=") or not hard and float(np.asarray(g["drag_rate"].values)[c]) != low:
                 continue
             ti = float(np.asarray(g["inphase_time_share"].values)[c, 0])
             points.append((N, ti, k, es.index(float(np.asarray(g["restitution"].values)[c])), hard))
@@ -187,6 +199,6 @@ def _inphase_panel(G: Axes, groups: list, tree: xr.DataTree) -> None:
     G.legend(handles=[Line2D([], [], color="0.3", marker=_MARKERS[i % 6], ls="none", label=f"{k} lifted")
                       for i, k in enumerate(lifts)]
              + [Line2D([], [], color="0.3", marker="o", ls="none", label="(ncdamped), lower drag"),
-                Line2D([], [], color="0.3", marker="o", mfc="none", ls="none", label="hard spheres")],
+                Line2D([], [], color="0.3", marker="o", mfc="none", ls="none", label="hard spheres, e(v)")],
              fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0,
              title="marker; colour: e as (a)", title_fontsize=6)
