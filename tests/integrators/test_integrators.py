@@ -6,6 +6,7 @@ the binary oscillation x_n = (-1)^n a(t) of (inteq), the two-bead chain
 """
 from __future__ import annotations
 
+import time
 from itertools import pairwise
 
 import numpy as np
@@ -469,6 +470,12 @@ def test_dps_plane_wave():
     (dict(alpha=1.5, rtol=1e-8), "rtol=1e-08"),
     (dict(alpha=1.5, method="dop853", dt=0.1), "dt=0.1"),
     (dict(alpha=1.5, method="dop853", rtol=0.0), "rtol = 0.0"),
+    (dict(alpha=1.5, x0=[10**400, 0.0, 0.0, 0.0]), "x0 must be an array of finite numbers"),
+    (dict(alpha=1.5, t_out=[0.0, 10**400]), "t_out must be an array of finite numbers"),
+    (dict(alpha=1.5, x0=["a", 0.0, 0.0, 0.0]), "x0 must be an array of finite numbers"),
+    # (2 max|x|)^(alpha+1) beyond float64: H(0) and the step would be inf (a ZeroDivisionError in the kernel before)
+    (dict(alpha=1.5, x0=[1e300, 0.0, 0.0, 0.0]), "x0, v0 must be smaller: values up to 1e.300"),
+    (dict(alpha=10.0, v0=[1e29, 0.0, 0.0, 0.0]), "x0, v0 must be smaller"),
 ])
 def test_bad_lattice_inputs(kwargs, match):
     args = dict(x0=np.zeros(4), v0=np.zeros(4), t_out=[0.0, 1.0])
@@ -491,3 +498,30 @@ def test_bad_dps_inputs():
         integrate_dps(A0, [0.0, 1.0, 1.0], alpha=1.5)
     with pytest.raises(ValueError, match=r"A0\[2\]"):
         integrate_dps(np.array([1, 1, np.nan, 1], dtype=complex), [0.0, 1.0], alpha=1.5)
+
+
+@pytest.mark.parametrize("amplitude, tau_end", [(1e200, 1.0), (1.0, 1e300)])
+def test_dps_run_of_hours_is_refused_before_any_step(amplitude, tau_end):
+    """DpS's scaling A -> lambda A, tau -> lambda^(1-alpha) tau: at A = 1e200 a unit of tau spans ~1e99 periods
+    (the run hung before); refused in one line naming the periods, at once."""
+    A0 = np.array([amplitude, 0.0, 0.0, 0.0], dtype=complex)
+    t0 = time.process_time()
+    with pytest.raises(ValueError, match=r"^A0, tau_out: tau_out\[-1\] = .* periods of the fastest DpS oscillation"):
+        integrate_dps(A0, [0.0, tau_end], alpha=1.5)
+    assert time.process_time() - t0 < 1.0
+
+
+def test_dps_pace_matches_the_plane_wave_frequency():
+    """The pace :func:`check_dps_pace` bounds is the fastest plane wave's: (ds), tau0 Omega = 2^alpha R^(alpha-1)
+    |sin(q/2)|^(alpha+1), at q = pi is (2/tau0) (2R)^(alpha-1); the bound falls between 0.999 and 1.001 times
+    MAX_DPS_PERIODS of its periods, and one period brings the wave back."""
+    from cradle.integrators._validate import MAX_DPS_PERIODS, check_dps_pace
+
+    alpha, R = 1.5, 0.5
+    period = 2 * np.pi / D.plane_wave_frequency(R, np.pi, alpha)
+    A0 = D.plane_wave(np.arange(4), 0.0, R, np.pi, 0.0, alpha)
+    check_dps_pace(A0, np.array([0.0, 0.999 * MAX_DPS_PERIODS * period]), alpha, D.tau0(alpha))
+    with pytest.raises(ValueError, match="periods"):
+        check_dps_pace(A0, np.array([0.0, 1.001 * MAX_DPS_PERIODS * period]), alpha, D.tau0(alpha))
+    s = integrate_dps(A0, np.linspace(0.0, period, 2), alpha=alpha, rtol=1e-12)
+    np.testing.assert_allclose(s.A[-1], A0, atol=1e-9)   # one period of (freq) brings the wave back

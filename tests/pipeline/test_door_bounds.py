@@ -191,3 +191,21 @@ def test_an_si_value_out_of_bounds_in_nc_units_is_said_at_the_scene(tmp_path):
     lines = _refused(tmp_path, raw)
     assert lines == ["config error: scenes.si: in (nc)'s units, precompression.delta0 = 1.0721759889938697e+18: "
                      "must be <= 100"]
+
+
+def test_a_scene_s_dps_run_goes_through_its_pace(tmp_path):
+    """A packet of 5 mm in a cradle of 1 cm balls is 5e16 in (nc)'s units, where DpS turns (2 a)^(1/2) ~ 3e8 times
+    faster than at a = 1/2 (DpS's scaling): the job passed validation and then stepped DpS for hours (an ETA of
+    11 h). Its estimate now counts DpS's steps; under a budget of one hour it is refused in one line."""
+    from cradle.pipeline import budget
+
+    raw = _with_scene(initial__amplitude=0.005, exact={"method": "srkn6c"}, t_end=1.0, store={"every": 0.1})
+    raw["budget"] = {"hours": 1.0}
+    lines = _refused(tmp_path, raw)
+    assert lines == [lines[0]] and lines[0].startswith("config error: scenes.si: N = 16, t_end = 9.90285")
+    assert "steps of DpS (dop853_numba; its pace grows as amplitude^(alpha-1))" in lines[0]
+    assert lines[0].endswith("exceeds budget.hours = 1 (raise it under budget: in the config if this machine allows, "
+                             "or change the entry)")
+    # the paper's scenes: DpS's steps are a few thousand at most, never what sets a job's time
+    for name, scene in cc.typed(RAW).scenes.items():
+        assert budget.DPS_STEPS_PER_PERIOD * budget.dps_periods(scene) < 1e4, name

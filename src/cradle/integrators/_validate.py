@@ -9,7 +9,7 @@ from numpy.typing import ArrayLike, DTypeLike
 
 def check_times(t: ArrayLike, name: str) -> np.ndarray:
     """Output times: 1-D, non-empty, finite, >= 0 and strictly increasing."""
-    t = np.asarray(t, dtype=float)
+    t = _as_array(t, name, float)
     if t.ndim == 0:
         t = t.reshape(1)
     if t.ndim != 1 or t.size == 0:
@@ -32,7 +32,7 @@ def check_times(t: ArrayLike, name: str) -> np.ndarray:
 
 def check_state(arr: ArrayLike, name: str, dtype: DTypeLike = float) -> np.ndarray:
     """A finite 1-D state vector with N >= 2 entries."""
-    arr = np.array(arr, dtype=dtype, copy=True)
+    arr = _as_array(arr, name, dtype)
     if arr.ndim != 1:
         raise ValueError(f"{name} must be 1-D (one value per bead), got shape {arr.shape}")
     if arr.size < 2:
@@ -42,3 +42,40 @@ def check_state(arr: ArrayLike, name: str, dtype: DTypeLike = float) -> np.ndarr
         raise ValueError(f"{name} must be finite, got {name}[{i}]={arr[i].item()!r}")
     return arr
 
+
+
+def _as_array(values: ArrayLike, name: str, dtype: DTypeLike) -> np.ndarray:
+    """``values`` as a new array of ``dtype``, or a ValueError naming ``name`` (an int beyond float64, text)."""
+    try:
+        return np.array(values, dtype=dtype, copy=True)
+    except (OverflowError, TypeError, ValueError) as err:
+        raise ValueError(f"{name} must be an array of finite numbers ({err})") from None
+
+
+def check_energy_scale(x0: np.ndarray, v0: np.ndarray, alpha: float) -> None:
+    """x0, v0 whose energy (ham) float64 holds: N max(|x_n|, |v_n|, |x_{n+1} - x_n|)^max(2, alpha + 1) finite (a
+    larger state makes H(0), the step size and the drift inf or nan, and the run fails far from its cause)."""
+    scale = 2.0 * max(float(np.max(np.abs(x0))), float(np.max(np.abs(v0))), 1.0)
+    with np.errstate(over="ignore"):
+        ok = bool(np.isfinite(x0.size * np.float64(scale) ** max(2.0, alpha + 1.0)))
+    if not ok:
+        raise ValueError(f"x0, v0 must be smaller: values up to {scale / 2:.3g} give an energy (ham) beyond float64 "
+                         f"(N (2 max|x|)^(alpha+1) overflows at alpha = {alpha:g})")
+
+
+#: the most periods of DpS's fastest oscillation a run may span: an explicit integrator takes several steps per
+#: period, so beyond this a run of a few sites takes hours (a paper's run spans thousands)
+MAX_DPS_PERIODS = 1e9
+
+
+def check_dps_pace(A0: np.ndarray, tau_out: np.ndarray, alpha: float, tau0: float) -> None:
+    """A run of (dfnls) that spans at most :data:`MAX_DPS_PERIODS` periods of its fastest oscillation, of frequency
+    about (2 max|A_n|)^(alpha - 1) 2 / tau0 (the p-Laplacian of differences up to 2 max|A_n|): DpS's scaling
+    A -> lambda A, tau -> lambda^(1 - alpha) tau makes a large amplitude run fast, and its steps shrink with it."""
+    amp = float(np.max(np.abs(A0)))
+    with np.errstate(over="ignore"):
+        periods = float(tau_out[-1]) * np.float64(2.0 * amp) ** (alpha - 1.0) * 2.0 / tau0 / (2.0 * np.pi)
+    if not periods <= MAX_DPS_PERIODS:
+        raise ValueError(f"A0, tau_out: tau_out[-1] = {float(tau_out[-1]):.6g} spans {periods:.3g} periods of the "
+                         f"fastest DpS oscillation at max|A_n(0)| = {amp:.3g}, more than {MAX_DPS_PERIODS:.0e} (hours "
+                         f"of steps; DpS runs lambda^(alpha-1) times faster at lambda times the amplitude)")

@@ -30,7 +30,7 @@ import numpy as np
 
 from cradle.integrators import _dop853
 from cradle.integrators._scipy_steps import stepped
-from cradle.integrators._validate import check_state, check_times
+from cradle.integrators._validate import check_dps_pace, check_state, check_times
 from cradle.integrators.systems import dps as SD
 from cradle.models.dps import tau0 as _tau0
 from cradle.models.dps_damped import DpsDamping
@@ -286,6 +286,7 @@ class _DpsRun:
         if progress is not None and not callable(progress):
             raise ValueError(f"progress must be callable or None, got progress={progress!r}")
         self.progress = progress
+        check_dps_pace(A0, self.tau_out, alpha, _tau0(alpha))
         self.inv2tau0 = 1.0 / (2.0 * _tau0(self.alpha))
         self.system = SD.dfnls(self.alpha, self.periodic, self.inv2tau0)   # (dfnls) in the numba DOP853
         self.N = A0.size

@@ -66,7 +66,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from cradle.integrators import _kernels as K, lattice_adaptive as LA
-from cradle.integrators._validate import check_state, check_times
+from cradle.integrators._validate import check_energy_scale, check_state, check_times
 from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, run_dop853_damped, run_dop853_numba, run_scipy
 from cradle.integrators.lattice_splitting import SPLITTING_METHODS, run_splitting
 from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bounds, default_dt
@@ -253,6 +253,7 @@ def integrate_lattice(x0: ArrayLike, v0: ArrayLike, t_out: ArrayLike, *, alpha: 
     v0 = check_state(v0, "v0")
     if v0.shape != x0.shape:
         raise ValueError(f"x0 and v0 must have the same shape, got x0 {x0.shape} and v0 {v0.shape}")
+    check_energy_scale(x0, v0, alpha)
     t_out = check_times(t_out, "t_out")
     t0 = float(t0)
     if not (np.isfinite(t0) and 0.0 <= t0 <= t_out[0]):
