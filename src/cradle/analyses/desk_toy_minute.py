@@ -164,6 +164,7 @@ def _kappa(s: Scales) -> float:
     return s.k / (s.m / 2.0)
 
 
+@functools.cache   # a root of an ODE's solution: found once per value
 def restitution_of(A_seconds: float, speed: float, s: Scales) -> float:
     """e of the two-ball collision of (ncdamped) at impact speed ``speed`` (m/s) for the Kuwabara-Kono A (s)."""
     from cradle.analyses.dissipation import restitution_loss
@@ -171,6 +172,7 @@ def restitution_of(A_seconds: float, speed: float, s: Scales) -> float:
     return 1.0 - restitution_loss(A_seconds * _kappa(s) ** 0.4 * speed**0.2)
 
 
+@functools.cache   # a root of an ODE's solution: found once per value
 def kk_of(restitution: float, speed: float, s: Scales) -> float:
     """The Kuwabara-Kono A (s) whose two-ball collision has restitution e at impact speed ``speed`` (m/s)."""
     from cradle.analyses.dissipation import kk_constant
