@@ -37,7 +37,8 @@ RESULTS = Path(os.environ.get("CRADLE_RESULTS", ROOT / "results"))
 CONFIG = cc.load(ROOT / "config.yaml")
 
 #: analyses whose reduced form reads no file and computes in seconds on one core: rendered in CI
-IN_PROCESS = ("breathers", "breather-interactions", "desk-toy", "dissipation", "dps-validity", "mi-diagram")
+IN_PROCESS = ("breathers", "breather-interactions", "desk-toy", "desk-toy-minute", "dissipation", "dps-validity",
+              "mi-diagram")
 #: paper figures of map and homoclinic entries (each well under a second to compute): rendered in CI
 PAPER_IN_PROCESS = ("traj3", "traj2", "bcsc")
 
