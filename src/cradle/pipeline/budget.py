@@ -42,19 +42,33 @@ in-memory peak as before.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, fields
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from cradle.models.lattice import omega_max
-from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store
+from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, HomoclinicEntry, MapEntry, Scene, Store
 from cradle.specs.declare import declared, param
 
 if TYPE_CHECKING:
     from cradle.models.damping import Damping
 
-#: cradle.pipeline.config.sections.Config, which imports this module: named here, not imported (a circle)
-Config = Any
+
+
+class Config(Protocol):
+    """What the estimates read of a typed config (:class:`cradle.pipeline.config.sections.Config`, whose module
+    imports this one): its entries, the sections of ``beyond:`` (by module name) and its budget."""
+
+    @property
+    def scenes(self) -> Mapping[str, Scene]: ...
+    @property
+    def homoclinic(self) -> Mapping[str, HomoclinicEntry]: ...
+    @property
+    def map(self) -> Mapping[str, MapEntry]: ...
+    @property
+    def beyond(self) -> Any: ...   # a class made at import, one attribute per analysis
+    @property
+    def budget(self) -> Budget: ...
 
 
 #: float64 arrays of N values written per stored time by a scene's job (exact x, v, force; DpS
