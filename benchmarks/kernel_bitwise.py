@@ -197,17 +197,19 @@ def _run(python: str, src: str, only: str, path: str) -> dict:
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--old-python", required=True, help="a Python with the reference checkout's dependencies")
-    p.add_argument("--old-src", required=True, help="the src folder of the reference checkout")
+    p.add_argument("--old-python", help="a Python with the reference checkout's dependencies (required)")
+    p.add_argument("--old-src", help="the src folder of the reference checkout (required)")
     p.add_argument("--new-python", default=sys.executable)
     p.add_argument("--only", default="")
     p.add_argument("--old-results", help="a pickle of the reference's numbers: read if it exists, else written "
                                          "(the reference checkout does not change between runs)")
     p.add_argument("--emit", help=argparse.SUPPRESS)
     args = p.parse_args(argv)
-    if args.emit:
+    if args.emit:   # the child process of _run: the reference's arguments are not its own
         _emit(args.emit, args.only)
         return 0
+    if not (args.old_python and args.old_src):
+        p.error("--old-python and --old-src are required")
     with tempfile.TemporaryDirectory() as tmp:
         if args.old_results and os.path.exists(args.old_results):
             with open(args.old_results, "rb") as fh:

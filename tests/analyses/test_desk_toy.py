@@ -112,16 +112,32 @@ def test_config_refuses_a_lifted_count_past_a_chain():
     assert cc.analysis_spec(raw, "desk-toy", "full").chains == [5, 10]
 
 
-def test_movie_of_a_desk_toy(tiny, tmp_path):
-    """cradle.figures.movie draws a desk toy of the file: (nc) and the hard spheres e = 1, each a stored state."""
-    pytest.importorskip("imageio_ffmpeg")
-    from cradle.figures.movie import MovieSpec, animate
+@pytest.mark.slow
+def test_cradle_animate_draws_a_desk_toy_of_a_file_from_its_spec(tiny, tmp_path, capsys):
+    """`cradle animate n4-lifted1 --desk-toy FILE.nc`: the movie's own run of the file's spec (its cradle, angle,
+    tolerance) with the `movies.desk_toy` settings of the config, one frame per stored state; a name the file
+    does not hold is one line."""
+    imageio_ffmpeg = pytest.importorskip("imageio_ffmpeg")
+    from cradle.data.io import write_netcdf
+    from cradle.pipeline.cli import main
 
-    g = tiny[1][dk.label(4, 1)]
-    ds, panels = dk.movie_dataset(g)
-    assert np.array_equal(ds["x"].sel(model="hard").values, g["x"].values[1])
-    assert np.all(ds["force"].sel(model="nc").values <= 0.0)            # a contact pushes, never pulls
-    spec = MovieSpec(fps=5, duration=2.0, width=320, height=180)
-    info = animate(ds, tmp_path / "toy.mp4", spec, panels=panels)
-    assert (tmp_path / "toy.mp4").stat().st_size > 0 and len(info["indices"]) == 10
-    assert np.allclose(info["times"], g["t"].values[info["indices"]])
+    path = tmp_path / "desk-toy.nc"
+    write_netcdf(tiny[1], path)
+    cfg = tmp_path / "c.yaml"
+    scene = {"N": 4, "bc": "free", "initial": {"kind": "kick", "site": 0, "velocity": 1.0}, "t_end": 1.0,
+             "store": {"every": 0.5}}
+    cfg.write_text(yaml.safe_dump({"defaults": {"alpha": 1.5}, "scenes": {"s": scene}, "movies": {
+        "width": 256, "height": 144, "fps": 10, "desk_toy": {"swings": 1, "per_contact": 2, "margin": 0.0,
+                                                              "ramp": 10.0, "slowdown": 0.1}}}))
+    args = ["animate", "n4-lifted1", "--desk-toy", str(path), "--results", str(tmp_path / "r"), "--config", str(cfg)]
+    assert main(args) == 0
+    out = capsys.readouterr().out
+    frames = int(out.split(": ")[1].split()[0])
+    reader = imageio_ffmpeg.read_frames(str(tmp_path / "r" / "movies" / "desk-toy-n4-lifted1.mp4"))
+    assert next(reader)["size"] == (256, 144) and len(list(reader)) == frames
+    assert "largest contact force" in out and " N)" in out
+    assert main([*args[:1], "n9-lifted1", *args[2:]]) == 2
+    assert "n9-lifted1: not a desk toy of" in capsys.readouterr().err
+    assert main([*args, "--t-end", "1", "--duration", "3"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("cradle: error: --duration, --t-end: not with --desk-toy") and err.count("\n") == 1

@@ -99,3 +99,47 @@ def test_module_lookup_by_source_agrees_with_the_imported_registry():
             "print(sorted(m for m in sys.modules if m.startswith('cradle.figures.')))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.split() == ["['cradle.figures.homoclinic']"]
+
+
+def _run(x0, v0, t0=0.0):
+    import xarray as xr
+
+    t = np.array([t0, t0 + 1.0])
+    x, v = np.array([x0, x0]), np.array([v0, v0])
+    return xr.Dataset({"x": (("t", "n"), x), "v": (("t", "n"), v)}, coords={"t": t}, attrs={"N": len(x0)})
+
+
+def test_a_scene_outside_dps_s_measured_range_is_marked_in_its_caption():
+    """The amplitude max_n sqrt(x_n^2 + v_n^2) at t = 0 against 2 eps_max of dps-validity (0.2): above it the
+    caption carries a second line that says so, at or below it the caption is the one line it was; the figures
+    and the run's warning (cradle.measurements.dps_range.outside_range) tell the same states outside."""
+    from cradle.figures import dps_range_note, scene_caption
+    from cradle.measurements.dps_range import measured_amplitude
+
+    top = measured_amplitude()
+    inside = _run([0.6 * top, 0.0, 0.0], [0.0, 0.8 * top, 0.0])        # amplitude exactly top: inside
+    outside = _run([0.6 * top, 0.0, 0.0], [0.0, 0.0, 1.01 * top])
+    assert dps_range_note("s", inside) == "" and "\n" not in scene_caption("s", inside)
+    note = dps_range_note("s", outside)
+    assert f"amplitude {1.01 * top:.3g} > {top:g}" in note and "outside DpS's measured range" in note
+    assert scene_caption("s", outside).split("\n")[1] == note
+    assert dps_range_note("s", _run([0.0, 0.0, 0.0], [0.0, 0.0, 2.0], t0=5.0)) == ""   # no state at t = 0
+    from cradle.measurements.dps_range import outside_range
+
+    for ds in (inside, outside):
+        x0, v0 = ds["x"].values[0], ds["v"].values[0]
+        assert (outside_range("s", x0, v0) is None) == (dps_range_note("s", ds) == "")
+
+
+def test_a_comparison_figure_marks_a_scene_outside_dps_s_range(sim, monkeypatch):
+    """The scene's amplitude a against the measured range: a range above a leaves the title as it was, one below
+    a (the module's eps_max lowered) marks it."""
+    from cradle.measurements.dps_range import amplitude_of
+    from cradle.specs import values
+
+    ex = sim["small"]["exact"]
+    a = amplitude_of(ex["x"].values[0], ex["v"].values[0])
+    for eps_max, marked in ((a, False), (0.4 * a, True)):     # the range's top 2 eps_max: 2a (inside), 0.8a
+        monkeypatch.setattr(values, "DPS_EPS_MEASURED", eps_max)
+        fig = drawer("plot2-3")(sim, {"scenes": ["small"], "times": TIMES[1:3]})
+        assert ("outside DpS's measured range" in fig.get_suptitle()) == marked

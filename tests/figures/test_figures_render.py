@@ -13,6 +13,9 @@ Two sources, both the reduced forms `all` builds:
 * every figure of `all` (each paper figure of config.yaml and each analysis's ``draw`` of its reduced
   form), from the results folder ``$CRADLE_RESULTS`` or ./results when it holds them; a figure whose
   files are missing is skipped, naming the file and the command that builds it.
+
+The three frames of the desk-toy movie that docs/analyses/desk-toy.md shows (before, during and after the first
+impact) are checked the same way, from the movie's own run computed here.
 """
 from __future__ import annotations
 
@@ -34,7 +37,8 @@ RESULTS = Path(os.environ.get("CRADLE_RESULTS", ROOT / "results"))
 CONFIG = cc.load(ROOT / "config.yaml")
 
 #: analyses whose reduced form reads no file and computes in seconds on one core: rendered in CI
-IN_PROCESS = ("breathers", "breather-interactions", "desk-toy", "dissipation", "dps-validity", "mi-diagram")
+IN_PROCESS = ("breathers", "breather-interactions", "desk-toy", "desk-toy-minute", "dissipation", "dps-validity",
+              "mi-diagram")
 #: paper figures of map and homoclinic entries (each well under a second to compute): rendered in CI
 PAPER_IN_PROCESS = ("traj3", "traj2", "bcsc")
 
@@ -472,3 +476,27 @@ def test_every_figure_of_all_is_covered():
         if not a.tables:
             assert min_points(a.module, a.name) >= 1, a.name
     assert set(FIGURES) >= set(CONFIG["figures"])
+
+
+@pytest.fixture(scope="module")
+def desk_toy_movie_run():
+    """The desk-toy movie's run of the desk toy of `all`'s config (5 balls, 1 lifted) over one swing."""
+    from cradle.analyses.desk_toy_movie import SlowMotion, movie_run
+
+    spec = cc.analysis_spec(CONFIG, "desk-toy", ANALYSES["desk-toy"].forms[0])
+    movies = CONFIG["movies"]
+    return movie_run(spec, 5, 1, SlowMotion(**{**movies["desk_toy"], "swings": 1}), movies["fps"])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("frame", ["before", "during", "after"])
+def test_desk_toy_movie_frames_at_an_impact(desk_toy_movie_run, frame):
+    """The frames of the desk-toy movie (cradle.figures.desk_toy_movie) that docs/analyses/desk-toy.md shows pass
+    the checks above."""
+    from cradle.figures.desk_toy_movie import STILL_LEAD, MovieFigure, impact_frames
+
+    ds, movies = desk_toy_movie_run, CONFIG["movies"]
+    mf = MovieFigure(ds, movies["width"], movies["height"])
+    mf.show(impact_frames(ds, lead=STILL_LEAD)[frame])
+    found = problems(mf.fig, min_points=1)
+    assert not found, f"desk-toy movie, {frame}:\n  " + "\n  ".join(found)

@@ -71,8 +71,8 @@ def test_a_scene_without_the_new_keys_resolves_as_before(raw):
      ("scenes.desk.exact.method = 'srkn6c'", "dop853_numba with damping")),
     (lambda s: s.update(alpha=2.0), ("scenes.desk.alpha = 2", "must be 1.5")),
     (lambda s: s["cradle"].update(omega0=10.0), ("scenes.desk.cradle", "one of them (given: both)")),
-    # (in (nc) units a long run: refused by its budget first, which states it in those units)
-    (lambda s: s.update(t_end=1e6), ("scenes.desk", "t_end = 9.90285e+06")),
+    # (a time in SI beyond the longest run once in (nc)'s units: said before the budget's estimate)
+    (lambda s: s.update(t_end=1e6), ("scenes.desk.t_end: is 9.90285e+06 in (nc)'s time units", "4194304")),
     (lambda s: s.update(units="metric"), ("scenes.desk.units = 'metric'", "must be one of nc, si")),
 ])
 def test_bad_physical_input_is_one_line(raw, change, parts):

@@ -299,3 +299,23 @@ def test_a_noise_larger_than_its_wave_is_refused(tmp_path):
     raw = _set(copy.deepcopy(RAW), "scenes.tw-weak-noise.initial.noise.amplitude", 1e300)
     assert _refused(tmp_path, raw) == ["config error: scenes.tw-weak-noise.initial.noise.amplitude = 1e+300: must be "
                                        "<= 1"]
+
+
+def test_a_splitting_s_steps_at_a_large_amplitude_are_estimated_from_its_step():
+    """The same 5 mm packet with srkn6c: the splitting's default step dt = 0.01 2 pi / omega_max(c) shrinks as
+    c^(-1/4) at a compression c; the estimate took the steps of a small wave (231 for the run below, which takes
+    millions). Now within 25 % of the run's own count (the run's assumed compression is 2 c0 + A0, the estimate's
+    2 a)."""
+    import numpy as np
+
+    from cradle.integrators import integrate_lattice
+    from cradle.pipeline import budget
+    from cradle.scenes import stages
+
+    raw = _with_scene(initial__amplitude=0.005, exact={"method": "srkn6c"}, t_end=0.01, store={"every": 0.005})
+    scene = cc.typed(raw).scenes["si"]
+    estimated = budget.spec_estimate(scene, "si").steps
+    ini = stages.initial_data(scene)
+    run = integrate_lattice(ini["x0"].values, ini["v0"].values, np.asarray(scene.times), alpha=scene.alpha,
+                            bc=scene.bc)
+    assert 0.75 < estimated / run.n_steps < 1.25, (estimated, run.n_steps)

@@ -36,21 +36,24 @@ rule movies:
         movie_targets(),
 
 
-# The desk toys of the full form of the desk-toy analysis (cradle.analyses.desk_toy) in motion: (nc) above, the
-# hard spheres e = 1 below (cradle.analyses.desk_toy.movie_dataset, drawn by cradle.figures.movie.animate) -> results/movies/desk-toy-<toy>.{mp4,gif},
-# <toy> a group of results/desk-toy/full/desk-toy.nc (n5-lifted1, ...). Not in `all`: `snakemake -j2
-# desk_toy_movies` builds every one (`cradle animate n5-lifted1 --desk-toy FILE.nc` draws one from any form).
+# The desk toys of the full form of the desk-toy analysis (cradle.analyses.desk_toy) in motion, drawn to scale in mm
+# with each impact in slow motion: a run of the movie's own, stored densely around the impacts
+# (cradle.analyses.desk_toy_movie, settings `movies.desk_toy`), drawn by cradle.figures.desk_toy_movie: (nc) beside
+# the hard spheres of the first restitution -> results/movies/desk-toy-<toy>.{mp4,gif} and three frames of the
+# first impact, results/movies/stills/desk-toy-<toy>-{before,during,after}.png; <toy> a desk toy of the full form
+# (n5-lifted1, ...). Not in `all`: `snakemake -j2 desk_toy_movies` builds every one (`cradle animate n5-lifted1
+# --desk-toy FILE.nc` draws one of any desk-toy file's spec).
 rule desk_toy_movie:
     input:
         code=code_of(
             "workflow/scripts/desk_toy_movie.py",
-            "cradle.figures.movie",
-            "cradle.analyses.desk_toy",
+            "cradle.figures.desk_toy_movie",
+            "cradle.analyses.desk_toy_movie",
         ),
-        data=L.analysis_output("desk-toy", FULL, ANALYSES["desk-toy"].forms[0]),
     output:
         mp4=L.path("movie", scene="desk-toy-{toy}", ext="mp4"),
         gif=L.path("movie", scene="desk-toy-{toy}", ext="gif"),
+        stills=[L.path("movie-still", scene="desk-toy-{toy}", frame=f) for f in ("before", "during", "after")],
     log:
         L.path("log", job="movies/desk-toy-{toy}"),
     benchmark:
@@ -61,6 +64,7 @@ rule desk_toy_movie:
         "../envs/cradle.yaml"
     params:
         movies=lambda w: plain(dict(config["movies"])),
+        spec=lambda w: plain(analysis_spec(ANALYSES["desk-toy"], FULL)),
     message:
         "Drawing the movie of desk toy {wildcards.toy}"
     script:

@@ -2,12 +2,13 @@
 plot18's breather frequencies, half-period shift and radiation, loc1's merging times."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from cradle.analyses.claims_table import (
     HARMONIC_PRESENT,
+    Results,
     Row,
     _fmt,
     agrees_printed,
@@ -17,11 +18,6 @@ from cradle.measurements import breathers, interactions
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
-
-#: cradle.analyses.paper_checks.Results, which imports this module: named here, not imported (a circle)
-Results = Any
-
-
 
 #: "Around 175 ... twice more": a merging time agrees within 15 % of the paper's ("around"); the DpS to exact
 #: ratio agrees within [1.5, 2.5] ("twice more")

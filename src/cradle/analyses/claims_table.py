@@ -4,8 +4,12 @@ CSV and Markdown)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 #: A harmonic is "present" in a spectrum when its height is at least this
 #: fraction of the carrier (and, for a harmonic, a coherent peak: checks.PEAK_OVER_BAND)
@@ -60,3 +64,22 @@ def _fmt(x: object, digits: int = 4) -> str:
     if x is None or (isinstance(x, float) and not np.isfinite(x)):
         return "none"
     return f"{x:.{digits}g}"
+
+
+class Results:
+    """The outputs the table reads, by kind and name, from the Datasets :func:`reads` names."""
+
+    def __init__(self, inputs: dict) -> None:
+        self.inputs = inputs
+
+    def initial(self, scene: str) -> xr.Dataset:
+        return self.inputs[f"{scene}/initial"]
+
+    def sim(self, scene: str, model: str) -> xr.Dataset:
+        return self.inputs[f"{scene}/{model}"]
+
+    def metrics(self, scene: str) -> xr.Dataset:
+        return self.inputs[f"{scene}/metrics"]
+
+    def homoclinic(self, name: str) -> xr.Dataset:
+        return self.inputs[f"homoclinic/{name}"]

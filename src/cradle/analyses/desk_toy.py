@@ -35,7 +35,6 @@ import numpy as np
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.models.damping import Damping
-from cradle.models.lattice import bond_forces
 from cradle.models.physical import Cradle
 from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR
@@ -134,12 +133,24 @@ def label(n_beads: int, lifted: int) -> str:
     return f"n{n_beads}-lifted{lifted}"
 
 
+def parse_label(name: str) -> tuple[int, int]:
+    """(n_beads, lifted) of the group name ``n5-lifted1`` (:func:`label`); another name is a ValueError."""
+    import re
+
+    m = re.fullmatch(r"n([0-9]+)-lifted([0-9]+)", name)
+    if m is None:
+        raise ValueError(f"{name!r}: not a desk toy's name (n<balls>-lifted<count>, e.g. n5-lifted1)")
+    return int(m.group(1)), int(m.group(2))
+
+
 def time_grid(swings: int, samples: int) -> np.ndarray:
     """t_j = 2 pi j / samples, j = 0 .. swings samples: the stored times in (nc)'s units."""
     return 2.0 * np.pi * np.arange(swings * samples + 1) / samples
 
 
-def _nc(x0: NDArray[np.float64], t: NDArray[np.float64], rtol: float, damping: Damping | None) -> LatticeSolution:
+def nc_run(x0: NDArray[np.float64], t: NDArray[np.float64], rtol: float, damping: Damping | None) -> LatticeSolution:
+    """(nc) with free ends from (x0, 0) stored at ``t``: dop853_numba at ``rtol`` (atol its default, rtol times
+    the amplitude), damped by ``damping`` ((ncdamped)) when given."""
     from cradle.integrators import integrate_lattice
 
     return integrate_lattice(x0, np.zeros_like(x0), t, alpha=1.5, bc="free", method="dop853_numba", rtol=rtol,
@@ -152,7 +163,7 @@ def cascade_run(x0: NDArray[np.float64], rtol: float,
     100 times elsewhere): resolves the first cascade and ends at the first largest swing t = pi."""
     dense = np.pi / 2 + np.linspace(0.0, CASCADE_SPAN, int(round(CASCADE_SPAN / CASCADE_DT)) + 1)
     t = np.unique(np.concatenate([np.linspace(0.0, np.pi, 101), dense]))
-    return t, _nc(x0, t, rtol, damping)
+    return t, nc_run(x0, t, rtol, damping)
 
 
 def _measured(t: NDArray[np.float64], x: ArrayLike, v: ArrayLike, lifted: int,
@@ -177,7 +188,7 @@ def desk_toy_runs(spec: DeskToyRuns, n_beads: int, lifted: int) -> dict:
     x0, v0, s = dt.desk_toy_initial(toy)
     t = time_grid(spec.swings, spec.samples)
     damping = spec.damping if spec.damping is not None and spec.damping.active else None
-    run = _nc(x0, t, spec.rtol, damping)
+    run = nc_run(x0, t, spec.rtol, damping)
     tc, crun = cascade_run(x0, spec.rtol, damping)
     _, c_end, ic = m.cascade_end(tc, crun.x)
     _, gaps, _ = m.line_state(tc, crun.x, crun.v, np.pi)
@@ -325,24 +336,6 @@ def compute(spec: DeskToyRuns, inputs: dict | None = None, log: Log | None = Non
     for path, a in group_attrs.items():
         tree[path].attrs = a
     return tree
-
-def movie_dataset(group: xr.DataTree, hard: int = 1) -> tuple[xr.Dataset, tuple[tuple[str, str], ...]]:
-    """A desk toy of this analysis's file (one of its groups) as :func:`cradle.figures.movie.render` reads a
-    scene, and the panels' titles: ``x`` (m) and the bond forces V0'(x_{n+1} - x_n) of (nc) (in (nc)'s units,
-    from x / X: zero between hard spheres) along ``model`` = "nc" and "hard" (the model index ``hard`` of the
-    file, the first hard-sphere cradle by default), times in seconds."""
-    import xarray as xr
-
-    names = [s.strip() for s in str(group.attrs["model_names"]).split(",")]
-    x = np.asarray(group["x"].values, dtype=float)[[0, hard]]
-    force = bond_forces(x / float(group.attrs["X_m"]), 1.5, "free")
-    attrs = {"scene": f"desk-toy {group.name}", "N": int(group.attrs["n_beads"]), "bc": "free",
-             "initial_kind": f"{int(group.attrs['lifted'])} lifted", "amplitude": float(group.attrs["amplitude_m"])}
-    ds = xr.Dataset({"x": (("model", "t", "n"), x), "force": (("model", "t", "n"), force)},
-                    coords={"model": ["nc", "hard"], "t": np.asarray(group["t"].values, dtype=float)}, attrs=attrs)
-    titles = (("nc", f"lattice {names[0]}: displacements in m, time in s"), ("hard", names[hard]))
-    return ds, titles
-
 
 ANALYSIS = Analysis(
     name="desk-toy", spec=DeskToyRuns, compute=compute, variables=VARIABLES,

@@ -32,6 +32,7 @@ from cradle.analyses.checks_localised import (
 from cradle.analyses.claims_table import (
     COLUMNS,
     HARMONIC_PRESENT,
+    Results,
     Row,
     _fmt,
     agrees_printed,
@@ -91,25 +92,6 @@ def reads(spec: PaperChecks) -> dict[str, Read]:
     every homoclinic solution (``homoclinic/<name>``)."""
     return {**scene_reads(spec.scenes, SCENE_PARTS),
             **{f"homoclinic/{name}": Read.of("homoclinic", name=name) for name in spec.homoclinic}}
-
-
-class Results:
-    """The outputs the table reads, by kind and name, from the Datasets :func:`reads` names."""
-
-    def __init__(self, inputs: dict) -> None:
-        self.inputs = inputs
-
-    def initial(self, scene: str) -> xr.Dataset:
-        return self.inputs[f"{scene}/initial"]
-
-    def sim(self, scene: str, model: str) -> xr.Dataset:
-        return self.inputs[f"{scene}/{model}"]
-
-    def metrics(self, scene: str) -> xr.Dataset:
-        return self.inputs[f"{scene}/metrics"]
-
-    def homoclinic(self, name: str) -> xr.Dataset:
-        return self.inputs[f"homoclinic/{name}"]
 
 
 # ------------------------------------------------------------------ the rows

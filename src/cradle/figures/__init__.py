@@ -121,9 +121,43 @@ def plain_log_ticks(ax: Axes) -> None:
                 axis.set_minor_formatter(FuncFormatter(lambda v, p, a=axis: label(v, p, a)))
 
 
+def dps_range_top() -> float:
+    """The largest amplitude at which DpS was measured to approximate the lattice: 2 eps_max of dps-validity
+    (:data:`cradle.specs.values.DPS_EPS_MEASURED`; :func:`cradle.measurements.dps_range.measured_amplitude`)."""
+    from cradle.specs.values import DPS_EPS_MEASURED
+
+    return 2.0 * DPS_EPS_MEASURED
+
+
+def outside_dps_range(a: float) -> str:
+    """``"outside DpS's measured range: amplitude ..."`` when the amplitude ``a`` is above :func:`dps_range_top`,
+    else ``""``."""
+    top = dps_range_top()
+    if not a > top:
+        return ""
+    return (f"outside DpS's measured range: amplitude {a:.3g} > {top:g} = 2 $\\varepsilon_{{max}}$ of dps-validity "
+            f"({top / 2.0:g})")
+
+
+def dps_range_note(name: str, ds: xr.Dataset) -> str:
+    """The line a figure comparing DpS with the lattice carries when scene ``name`` is outside DpS's measured range
+    (:func:`outside_dps_range`), else ``""``: the amplitude of its run ``ds`` (exact or DpS) at t = 0 as
+    :func:`cradle.measurements.dps_range.amplitude_of` counts it, max_n sqrt(x_n^2 + v_n^2) (``x`` alone when
+    ``v`` is not stored); ``""`` too when the run's first stored time is not 0."""
+    import numpy as np
+
+    if "x" not in ds or float(ds["t"].values[0]) != 0.0:
+        return ""
+    x0 = np.asarray(ds["x"].values[0], dtype=float)
+    v0 = np.asarray(ds["v"].values[0], dtype=float) if "v" in ds else np.zeros_like(x0)
+    note = outside_dps_range(float(np.max(np.hypot(x0, v0))))
+    return f"{name} is {note}" if note else ""
+
+
 def scene_caption(name: str, ds: xr.Dataset) -> str:
     """One line of the parameters a scene's file stores (``attrs`` of its exact or DpS run): N, q,
-    omega_tw, a, noise, so a changed run is told from the paper's at a glance."""
+    omega_tw, a, noise, so a changed run is told from the paper's at a glance; a second line when the scene's
+    amplitude is outside DpS's measured range (:func:`dps_range_note`)."""
     a = ds.attrs
     parts = [f"{name}:", f"$N = {int(a.get('N', ds.sizes.get('n', 0)))}$"]
     if "q_expr" in a:
@@ -135,7 +169,9 @@ def scene_caption(name: str, ds: xr.Dataset) -> str:
         parts.append(f"$a = {float(a['a']):.4g}$")
     if str(a.get("noise", "none")) != "none":
         parts.append(f"{a['noise']} noise {float(a.get('noise_amplitude', float('nan'))):g}")
-    return ", ".join(parts[:1]) + " " + ", ".join(parts[1:])
+    caption = ", ".join(parts[:1]) + " " + ", ".join(parts[1:])
+    note = dps_range_note(name, ds)
+    return f"{caption}\n{note}" if note else caption
 
 
 # -> (Figure, Any): the axes are one Axes or an array of them, as nrows, ncols and squeeze say (matplotlib

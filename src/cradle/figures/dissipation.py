@@ -3,8 +3,9 @@
 Drawn by :func:`draw` from results/dissipation/[full/]dissipation.nc (:mod:`cradle.analyses.dissipation`).
 
 (a) the time to half the energy against the on-site gamma, log-log, every family: lattice (ncdamped) (filled),
-    DpS (dpsdamped) (open), the closed form ln 2 / gamma (lines, drawn down to the steel cradle's gamma, the
-    vertical dash-dotted line, where its value is a star); (b) the same against the Kuwabara-Kono eta, the
+    DpS (dpsdamped) (open), each family's markers smaller than the previous one's (they coincide on-site), the
+    closed form ln 2 / gamma (lines, drawn down to the steel cradle's gamma, the vertical dash-dotted line, where
+    its value is a star); (b) the same against the Kuwabara-Kono eta, the
     closed form of the plane waves (lines, one per wave; none for the breather); (c) the breather's frequency
     omega - 1 over time windows, on-site cases: lattice (markers), DpS (solid), the exact law of (dpsdamped)
     (dashed); (d) omega - 1 against the window's amplitude, every case, with the DpS breather law
@@ -58,8 +59,12 @@ def _lifetimes(ax: Axes, tree: AnalysisTree, term: int, symbol: str, steel: floa
     shared = bool(np.isfinite(closed).all() and np.allclose(closed, closed[:1]))
     for jf, fam in enumerate(fams):
         c = f"C{jf}"
-        ax.loglog(values, lat[jf], _MARKERS[jf % 4], color=c, ms=6, label=f"{fam}: lattice (ncdamped)")
-        ax.loglog(values, dps[jf], _MARKERS[jf % 4], color=c, ms=9, mfc="none", label=f"{fam}: DpS (dpsdamped)")
+        # where the families' lifetimes coincide (on-site damping: ln 2 / gamma for every one) each family's
+        # markers are smaller than the one's before, drawn over it: every marker stays in sight
+        size = 5.0 + 3.0 * (len(fams) - 1 - jf)
+        ax.loglog(values, lat[jf], _MARKERS[jf % 4], color=c, ms=size, label=f"{fam}: lattice (ncdamped)")
+        ax.loglog(values, dps[jf], _MARKERS[jf % 4], color=c, ms=size + 4.0, mfc="none", mew=1.2,
+                  label=f"{fam}: DpS (dpsdamped)")
         if shared:
             if jf == 0:
                 xs, ys = np.concatenate([[steel], values]), np.concatenate([[steel_life[0]], closed[0]])

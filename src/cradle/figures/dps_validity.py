@@ -4,7 +4,7 @@ Drawn by :func:`draw` from results/dps-validity/[full/]dps-validity.nc (:mod:`cr
 
 (a) the relative sup-norm error against eps at T = 1, every family, at the reference alpha (1.5 when
     computed), with the law eps^(alpha-1) dotted; (b) the relative error against T for the noisy
-    unstable wave, one curve per eps: parallel (spaced by eps^(alpha-1)) while the law holds, bent
+    unstable wave, one curve per eps (the colour bar): parallel (spaced by eps^(alpha-1)) while the law holds, bent
     to the O(1) ceiling where the instability has amplified the mismatch (dashed: the level called
     lost); (c) the power of eps fitted over the smaller half of each range against T, every family
     and alpha, with its standard error, the consistency order alpha as horizontal lines; (d) the
@@ -41,6 +41,9 @@ def _k_of(Ts: ArrayLike, T: float = 1.0) -> int:
 
 def draw(tree: AnalysisTree) -> Figure:
     """The four panels above from the groups /errors and /fits of the dps-validity file."""
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import LogNorm
+
     fig, ax = figure(2, 2, width=10.0, height=7.6)
     err, fits, checks = tree["errors"], tree["fits"], tree["checks"]
     fams = [s.strip() for s in str(tree.attrs["family_names"]).split(",")]
@@ -56,8 +59,10 @@ def draw(tree: AnalysisTree) -> Figure:
     # (a)
     A = ax[0, 0]
     for jf, fam in enumerate(fams):
-        A.loglog(eps[ia], rel[jf, ia, :, k1], "-" + _MARKERS[jf % 6], ms=4,
-                 label=f"{fam}: p = {p[jf, ia, k1]:.3f} $\\pm$ {se[jf, ia, k1]:.3f}")
+        # each family drawn thinner than the one before: two that coincide (a wave and the same wave with a
+        # little noise) both stay in sight
+        A.loglog(eps[ia], rel[jf, ia, :, k1], "-" + _MARKERS[jf % 6], ms=max(7.0 - 1.5 * jf, 2.5),
+                 lw=max(2.6 - 0.6 * jf, 0.8), label=f"{fam}: p = {p[jf, ia, k1]:.3f} $\\pm$ {se[jf, ia, k1]:.3f}")
     ref = rel[0, ia, 0, k1] * (eps[ia] / eps[ia, 0]) ** (al - 1.0)
     A.loglog(eps[ia], ref, ":", color="0.3", label=r"$\propto \varepsilon^{\alpha-1}$")
     A.set_xlabel(r"$\varepsilon$")
@@ -69,16 +74,20 @@ def draw(tree: AnalysisTree) -> Figure:
     B = ax[0, 1]
     jf = fams.index("mi-4pi5-noise") if "mi-4pi5-noise" in fams else 0
     cmap = _cmap()
+    # one curve per eps, coloured by log eps (the eps are log-spaced): the colour bar names every curve
+    norm = LogNorm(vmin=float(eps[ia].min()), vmax=float(eps[ia].max()))
     for ie in range(eps.shape[1]):
-        B.semilogy(Ts, rel[jf, ia, ie], "-o", ms=3, color=cmap(ie / max(1, eps.shape[1] - 1)),
-                   label=rf"$\varepsilon$ = {eps[ia, ie]:.1e}" if ie in (0, eps.shape[1] - 1) else None)
-    B.axhline(lost, color="0.3", lw=0.7, ls="--")
+        B.semilogy(Ts, rel[jf, ia, ie], "-o", ms=3, color=cmap(norm(eps[ia, ie])))
+    B.axhline(lost, color="0.3", lw=0.7, ls="--", label="relative error 1/2 (lost)")
+    bar = B.figure.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=B, pad=0.02)
+    bar.set_label(r"$\varepsilon$ (one curve each)", fontsize=8)
+    bar.set_ticks(eps[ia], labels=[f"{e:.0e}" for e in eps[ia]])
+    bar.ax.tick_params(labelsize=7)
     g = float(fits["dps_growth_rate"].values[jf, ia])
     B.set_xlabel(r"slow time T = $\varepsilon^{\alpha-1} t$")
     B.set_ylabel("relative sup-norm error")
     B.set_title(rf"(b) {fams[jf]}, $\alpha$ = {al:g}, DpS growth {g:.3g}/$\tau$:" "\n"
-                r"curves parallel while E $\sim \varepsilon^\alpha$;" "\n"
-                r"dashed: relative error 1/2 (lost)", fontsize=8)
+                r"curves parallel while E $\sim \varepsilon^\alpha$", fontsize=8)
     B.legend(fontsize=7, loc="lower right")
     # (c)
     C = ax[1, 0]

@@ -6,7 +6,8 @@ per scene (surface mode, boomeron, nanopteron):
 (a) space-time map of the local energy log10(e_n / H) of the lattice run (ncimperfect);
 (b) the same kick in the harmonic, uncompressed lattice (nc), the reference;
 (c) the smoothed energy centre X(t), lattice and DpS, scene and reference; reversals marked (filled:
-    spontaneous, open: bounces at a free end), the lattice scene's only;
+    spontaneous, open: bounces at a free end), the lattice scene's only; the title says when the kick is outside
+    DpS's measured range;
 (d) what the scene is about: the energy fraction on the first m beads (surface mode); the core position
     (boomeron); the core and its left and right tails (nanopteron), scene against reference.
 """
@@ -16,7 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.figures import AnalysisTree, figure, legend_outside
+from cradle.figures import AnalysisTree, dps_range_top, figure, legend_outside
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -81,7 +82,11 @@ def draw(tree: AnalysisTree) -> Figure:
         C.plot(rt[ok & (sp == 0)], rs[ok & (sp == 0)], "ko", mfc="none", ms=6, label="reversal (lattice): bounce")
         C.set_xlabel("t")
         C.set_ylabel("energy centre X (smoothed), bead")
-        C.set_title(f"{letter(2)} energy centre X = sum n e_n / sum e_n", fontsize=9)
+        # a bead kicked from rest: the amplitude (ansatz) counts is its velocity (cradle.measurements.dps_range)
+        kick, top = abs(float(a[f"{role}_velocity"])), dps_range_top()
+        C.set_title(f"{letter(2)} energy centre X = sum n e_n / sum e_n" + (
+            f"\nkick {kick:g} > {top:g}: outside DpS's measured range (dps-validity)" if kick > top else ""),
+            fontsize=9)
         D = ax[3, j]
         if role == "surface":
             f = np.asarray(g["boundary_fraction"].values)

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.figures import figure
+from cradle.figures import dps_range_note, figure
 from cradle.figures.spacetime import FORCE_LABEL, _at, common_vmin as _vmin, period_minimum, spacetime
 
 if TYPE_CHECKING:
@@ -78,6 +78,14 @@ def shift(metrics: xr.Dataset) -> dict[str, float]:
 
 # --------------------------------------------------------------------------- plot18
 
+def _dps_range(fig: Figure, runs: list[tuple[str, xr.Dataset]], title: str = "") -> None:
+    """The figure's title: ``title`` (none when empty) and a line for each scene of ``runs`` (name, exact run)
+    whose amplitude is outside DpS's measured range (:func:`cradle.figures.dps_range_note`)."""
+    lines = ([title] if title else []) + [n for n in (dps_range_note(name, ds) for name, ds in runs) if n]
+    if lines:
+        fig.suptitle("\n".join(lines), fontsize=9)
+
+
 def draw_plot18(data: dict, options: dict) -> Figure:
     """plot18. ``options['scenes']`` = [small, large]; ``times`` = [0, t_approx, t_exact, t_large]
     (0, 565.95, 569.4, 293.2 in the paper)."""
@@ -120,6 +128,7 @@ def draw_plot18(data: dict, options: dict) -> Figure:
     radiated = float(_at(_stored(data[large]["metrics"], "radiated_exact"), t_large))
     ax.set_title(f"exact, $t$ = {tl:g}, $|x_{{{kl}}}(0)|$ = {abs(xl0[kl]):.3g}, $\\omega_{{sw}}$ = "
                  f"{_omega(exl):.4f}\nmax $|x_n|$ beyond 6 sites of the core: {radiated:.2e}", fontsize=8)
+    _dps_range(fig, [(small, ex)])   # the large breather is drawn without DpS
     return fig
 
 
@@ -176,6 +185,7 @@ def draw_loc1(data: dict, options: dict) -> Figure:
                           f"(paper: {PAPER_MERGING[key]})")
             img = spacetime(axes[i, j], ds, vmin, title=title, binned=period_minimum(m, key))
         fig.colorbar(img, ax=axes[1:, j], label=FORCE_LABEL, shrink=0.8, location="bottom", aspect=30)
+    _dps_range(fig, [(name, data[name]["exact"]) for name in names])
     return fig
 
 
@@ -219,8 +229,8 @@ def draw_fini(data: dict, options: dict) -> Figure:
         for j, (ds, label) in enumerate(((ex, "exact (nc), free ends"), (ap, "approx. (DpS)"))):
             _traces(axes[i, j], ds, win, title=f"{label}, $t \\in [{win[0]:g}, {win[1]:g}]$ "
                                                f"({p0:.1f}-{p1:.1f} periods)")
-    fig.suptitle(f"N = {ex.sizes['n']}, free ends, $\\omega_{{sw}}$ = {w:.4f}, max $|x_n(0)|$ = "
-                 f"{np.max(np.abs(ex['x'].values[0])):.3g}; $\\omega$ exact {sh['omega_exact']:.4f}, approx. "
-                 f"{sh['omega_approx']:.4f}: half-period shift after {sh['half_shift_periods']:.0f} periods",
-                 fontsize=9)
+    _dps_range(fig, [(name, ex)],
+               f"N = {ex.sizes['n']}, free ends, $\\omega_{{sw}}$ = {w:.4f}, max $|x_n(0)|$ = "
+               f"{np.max(np.abs(ex['x'].values[0])):.3g}; $\\omega$ exact {sh['omega_exact']:.4f}, approx. "
+               f"{sh['omega_approx']:.4f}: half-period shift after {sh['half_shift_periods']:.0f} periods")
     return fig

@@ -13,7 +13,8 @@ it does not resume across blocks as :func:`cradle.integrators.dps_solver.iter_dp
 from __future__ import annotations
 
 import time
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Protocol, TypeVar
 
 import numpy as np
 
@@ -26,10 +27,29 @@ from cradle.specs.declare import from_plain, plain
 if TYPE_CHECKING:
     from cradle.integrators._types import Floats
 
-#: cradle.integrators.dps_solver's classes, which imports this module: named here, not imported (a circle)
-DpsSolution = Any
-_DpsRun = Any
+#: the solution class the caller gives (cradle.integrators.dps_solver.DpsSolution, which imports this module)
+DpsSolution = TypeVar("DpsSolution")
 
+
+class _DpsRun(Protocol):
+    """What a damped run reads of the validated run (:class:`cradle.integrators.dps_solver._DpsRun`, whose module
+    imports this one): its inputs, the invariants of A0 the drifts are measured from and their scales."""
+
+    N: int
+    alpha: float
+    periodic: bool
+    rtol: float
+    atol: float
+    tau_out: Floats
+    y0: Floats
+    inv2tau0: float
+    l20: float
+    S0: float
+    P0: complex
+    l2_scale: float
+    S_scale: float
+    P_scale: float
+    progress: Callable[[float, float], None] | None
 
 
 def validated(damping: DpsDamping) -> DpsDamping:
@@ -68,7 +88,7 @@ class _Balance:
                 abs(S + y[n + 1] - self.S0) / self.S_scale, abs(complex(pr, pi) - P_exact) / run.P_scale)
 
 
-def integrate_damped(run: _DpsRun, damping: DpsDamping, method: str, wall0: float, solution: type[DpsSolution],
+def integrate_damped(run: _DpsRun, damping: DpsDamping, method: str, wall0: float, solution: Callable[..., DpsSolution],
                      scipy_class: str | None) -> DpsSolution:
     """:func:`cradle.integrators.integrate_dps` of (dpsdamped) for the validated run ``run``
     (:class:`cradle.integrators.dps_solver._DpsRun`) with active ``damping``; ``solution`` is the class
@@ -110,7 +130,7 @@ def integrate_damped(run: _DpsRun, damping: DpsDamping, method: str, wall0: floa
     return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
 
 
-def _solution(solution: type[DpsSolution], Y: Floats, rows: Floats, max_l2: float, max_E: float, n_steps: int,
+def _solution(solution: Callable[..., DpsSolution], Y: Floats, rows: Floats, max_l2: float, max_E: float, n_steps: int,
               nfev: int, run: _DpsRun, damping: DpsDamping, method: str, wall0: float) -> DpsSolution:
     A = np.ascontiguousarray(Y[:, :2 * run.N]).view(np.complex128)
     return solution(run.tau_out, A, rows[:, 4].copy(), rows[:, 5].copy(), rows[:, 6].copy(), float(max_l2),

@@ -24,6 +24,7 @@ from cradle.integrators.terms import (
     inhomogeneity as IH,
     onsite_damping as OD,
     onsite_harmonic,
+    onsite_none,
     onsite_pendulum,
     onsite_quartic,
     precompression as PC,
@@ -159,6 +160,25 @@ def run_dop853_terms(x0: Floats, v0: Floats, t_out: Floats, rtol: float, atol: f
     D = Y[:, 2 * N] / dscale if damping is not None else np.zeros(len(t_out))
     E = np.array([SI.imperfect_energy(system, X[i], V[i])[0] for i in range(len(t_out))])
     return X, V, E, D, float(stats[1]), n_steps, nfev, float(stats[2])
+
+
+def run_dop853_hertz_chain(x0: Floats, v0: Floats, t_out: Floats, rtol: float, atol: float, alpha: float,
+                           periodic: bool, progress: Callable[[float, float], None] | None = None) -> LatticeRun:
+    """(X, V, E, drift, steps, function evaluations, max compression) of DOP853 in numba on the Hertz chain
+    without on-site potential, x_n'' = V0'(x_{n+1} - x_n) - V0'(x_n - x_{n-1}) with V0 of (vhertz): the system of
+    (ncimperfect) with touching homogeneous beads and the on-site slot's absent unit
+    (:class:`cradle.integrators.terms.onsite_none.NoOnsite`), no damping; E its energy (kinetic plus Hertz)."""
+    N = x0.size
+    system = SI.Imperfect(float(alpha), int(K.mode_flag("hertz", alpha)), bool(periodic), hertz.Touching(),
+                          IH.Homogeneous(), onsite_none.NoOnsite(), OD.NoOnsiteDamping(), CD.NoContactDamping(),
+                          SI.NoDissipation(), np.empty(N), np.empty(N), np.empty(N), np.empty(N))
+    H0, c0 = SI.imperfect_energy(system, x0, v0)
+    stats = np.array([H0, 0.0, c0, H0, 1.0])
+    Y, n_steps, nfev = _dop853.run_dop853(system, np.concatenate((x0, v0)), t_out, rtol, atol, stats, progress)
+    X = np.ascontiguousarray(Y[:, :N])
+    V = np.ascontiguousarray(Y[:, N:])
+    E = np.array([SI.imperfect_energy(system, X[i], V[i])[0] for i in range(len(t_out))])
+    return X, V, E, float(stats[1]), n_steps, nfev, float(stats[2])
 
 
 def imperfect_system(alpha: float, mode: int, periodic: bool, terms: Terms, sites: Sites,

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from cradle.integrators import _kernels as K
+from cradle.models.lattice import omega_max
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -25,16 +26,6 @@ if TYPE_CHECKING:
 #: onsets) are the hardest. The uncorrected splittings need small steps because of the Hertz
 #: non-smoothness at contact onset; the onset correction allows far larger steps at a smaller drift.
 DEFAULT_DT_FACTOR = {"strang": 0.00003, "srkn4": 0.00025, "srkn6": 0.0005, "srkn4c": 0.004, "srkn6c": 0.01}
-
-
-def omega_max(c: float, alpha: float) -> float:
-    """Highest linearised frequency sqrt(1 + 4 alpha c^(alpha-1)) at bond compression c.
-
-    Linearising (nc) about a state where every bond is compressed by c gives
-    the bond stiffness k = V0''(-c) = alpha c^(alpha-1) and the dispersion
-    omega(q)^2 = 1 + 4 k sin^2(q/2), maximal at q = pi.
-    """
-    return math.sqrt(1.0 + 4.0 * alpha * max(c, 0.0) ** (alpha - 1.0))
 
 
 def compression_bounds(x0: ArrayLike, v0: ArrayLike, alpha: float, bc: str = "periodic",

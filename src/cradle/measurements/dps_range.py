@@ -11,8 +11,10 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from cradle.specs.values import DPS_EPS_MEASURED
+
 #: the largest eps of (ansatz) at which dps-validity measures DpS against the lattice (its spec's eps_max)
-EPS_MEASURED = 0.1
+EPS_MEASURED = DPS_EPS_MEASURED
 
 
 def measured_amplitude() -> float:

@@ -7,7 +7,8 @@ frequency, so every gap is itself harmonic, d_n(t) = d_n cos t + w_n sin t with 
 next contact of bond n is found in closed form: after pi - atan2(d_n, w_n) (in (0, pi]) when the gap is open,
 now when it is closed and the pair approaches, never when the pair touches and moves together.
 
-A collision is instantaneous, between two equal masses, with the restitution coefficient e (0 < e <= 1):
+A collision is instantaneous, between two equal masses, with the restitution coefficient e (0 < e <= 1), a
+constant or a law e(u) of the approach speed u = -w > 0 (a viscoelastic contact's restitution depends on it):
 the relative velocity w becomes -e w, the momentum is kept; each ball gets v_n += (1+e) w / 2,
 v_{n+1} -= (1+e) w / 2 (with e = 1 the two velocities are swapped, which is exact in floating point). The energy
 lost is (1 - e^2) mu w^2 / 2 with mu = 1/2 the reduced mass.
@@ -34,6 +35,7 @@ dissipated by the collisions is summed as its own quantity (H + D = H(0) to roun
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -51,7 +53,7 @@ class HardSphereRun:
     instant); ``energy`` (T,) H; ``dissipated`` (T,) the energy the collisions took up to each time;
     the collisions in time order: ``collision_t``, ``collision_bond`` (bond n: beads n, n+1),
     ``approach`` (-w > 0 before), ``separation`` (w after, = e times the approach speed), arrays of one
-    entry per collision; ``restitution`` e."""
+    entry per collision; ``restitution`` e (a constant, or the law e(u) of the approach speed u)."""
 
     t: np.ndarray
     x: np.ndarray
@@ -62,7 +64,7 @@ class HardSphereRun:
     collision_bond: np.ndarray
     approach: np.ndarray
     separation: np.ndarray
-    restitution: float
+    restitution: float | Callable[[float], float]
 
 
 def rotate(x: NDArray[np.float64], v: NDArray[np.float64],
@@ -86,9 +88,11 @@ def closing_times(x: NDArray[np.float64], v: NDArray[np.float64]) -> np.ndarray:
     return out
 
 
-def _collide(v: NDArray[np.float64], n: int, e: float) -> tuple[float, float, float]:
-    """Binary collision of beads n and n+1 (equal masses, restitution e): (approach, separation, energy lost)."""
+def _collide(v: NDArray[np.float64], n: int, law: float | Callable[[float], float]) -> tuple[float, float, float]:
+    """Binary collision of beads n and n+1 (equal masses, restitution e, or e(u) of the approach speed u):
+    (approach, separation, energy lost)."""
     w = v[n + 1] - v[n]
+    e = law if isinstance(law, float) else _law_value(law, -w)
     if e == 1.0:
         v[n], v[n + 1] = v[n + 1], v[n]
         return -w, -w, 0.0
@@ -111,7 +115,15 @@ def _snap(x: NDArray[np.float64], v: NDArray[np.float64], n: int) -> None:
         k += step
 
 
-def _cascade(x: NDArray[np.float64], v: NDArray[np.float64], trigger: int, e: float, t: float,
+def _law_value(law: Callable[[float], float], u: float) -> float:
+    e = float(law(u))
+    if not 0.0 < e <= 1.0:
+        raise ValueError(f"restitution law: e({u!r}) = {e!r}: must be in (0, 1] (a restitution coefficient)")
+    return e
+
+
+def _cascade(x: NDArray[np.float64], v: NDArray[np.float64], trigger: int, e: float | Callable[[float], float],
+             t: float,
              log: list[tuple[float, int, float, float]], max_sweeps: int) -> float:
     """The sequential-collision rule at one instant (module docstring); returns the energy it dissipated."""
     order = range(x.size - 1) if abs(v[trigger]) >= abs(v[trigger + 1]) else range(x.size - 2, -1, -1)
@@ -131,12 +143,14 @@ def _cascade(x: NDArray[np.float64], v: NDArray[np.float64], trigger: int, e: fl
     raise RuntimeError(f"hard_sphere_run: the collisions at t = {t!r} did not end in {max_sweeps} sweeps")
 
 
-def hard_sphere_run(x0: ArrayLike, v0: ArrayLike, t_out: ArrayLike, *, restitution: float = 1.0,
+def hard_sphere_run(x0: ArrayLike, v0: ArrayLike, t_out: ArrayLike, *,
+                    restitution: float | Callable[[float], float] = 1.0,
                     max_collisions: int = 1_000_000) -> HardSphereRun:
     """The ideal hard-sphere cradle from (x0, v0) at t = 0, stored at the times ``t_out`` (module docstring).
 
     ``x0`` nondecreasing (gaps >= 0: balls never overlap), ``v0`` of the same shape, ``t_out`` increasing,
-    >= 0; ``restitution`` e in (0, 1]. At most ``max_collisions`` collisions (a RuntimeError beyond)."""
+    >= 0; ``restitution`` e in (0, 1], or a function e(u) of the approach speed u > 0 (in (nc)'s units) with
+    values in (0, 1] (checked at each collision). At most ``max_collisions`` collisions (a RuntimeError beyond)."""
     x = np.array(x0, dtype=float)
     v = np.array(v0, dtype=float)
     t_out = np.asarray(t_out, dtype=float)
@@ -147,9 +161,13 @@ def hard_sphere_run(x0: ArrayLike, v0: ArrayLike, t_out: ArrayLike, *, restituti
     if t_out.ndim != 1 or t_out.size == 0 or t_out[0] < 0.0 or np.any(np.diff(t_out) <= 0.0) or \
             not np.all(np.isfinite(t_out)):
         raise ValueError("t_out must be a nonempty, finite, strictly increasing array of times >= 0")
-    if not 0.0 < restitution <= 1.0:
-        raise ValueError(f"restitution = {restitution!r}: must be in (0, 1] (a restitution coefficient)")
-    e = float(restitution)
+    e: float | Callable[[float], float]
+    if callable(restitution):
+        e = restitution
+    else:
+        if not 0.0 < restitution <= 1.0:
+            raise ValueError(f"restitution = {restitution!r}: must be in (0, 1] (a restitution coefficient)")
+        e = float(restitution)
     T, N = t_out.size, x.size
     X, V = np.empty((T, N)), np.empty((T, N))
     D = np.empty(T)

@@ -18,10 +18,22 @@ bc one of ``BOUNDARY_CONDITIONS`` (the entry points check them, ``@checked``).
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 BOUNDARY_CONDITIONS = ("periodic", "free")
+
+
+def omega_max(c: float, alpha: float) -> float:
+    """Highest linearised frequency sqrt(1 + 4 alpha c^(alpha-1)) at bond compression c.
+
+    Linearising (nc) about a state where every bond is compressed by c gives
+    the bond stiffness k = V0''(-c) = alpha c^(alpha-1) and the dispersion
+    omega(q)^2 = 1 + 4 k sin^2(q/2), maximal at q = pi.
+    """
+    return math.sqrt(1.0 + 4.0 * alpha * max(c, 0.0) ** (alpha - 1.0))
 
 
 def V0(d: ArrayLike, alpha: float) -> NDArray[np.float64]:

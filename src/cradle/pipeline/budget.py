@@ -44,18 +44,33 @@ in-memory peak as before.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, fields
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
-from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, Scene, Store
+from cradle.models.lattice import omega_max
+from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, HomoclinicEntry, MapEntry, Scene, Store
 from cradle.specs.declare import declared, param
 
 if TYPE_CHECKING:
     from cradle.models.damping import Damping
 
-#: cradle.pipeline.config.sections.Config, which imports this module: named here, not imported (a circle)
-Config = Any
+
+
+class Config(Protocol):
+    """What the estimates read of a typed config (:class:`cradle.pipeline.config.sections.Config`, whose module
+    imports this one): its entries, the sections of ``beyond:`` (by module name) and its budget."""
+
+    @property
+    def scenes(self) -> Mapping[str, Scene]: ...
+    @property
+    def homoclinic(self) -> Mapping[str, HomoclinicEntry]: ...
+    @property
+    def map(self) -> Mapping[str, MapEntry]: ...
+    @property
+    def beyond(self) -> Any: ...   # a class made at import, one attribute per analysis
+    @property
+    def budget(self) -> Budget: ...
 
 
 #: float64 arrays of N values written per stored time by a scene's job (exact x, v, force; DpS
@@ -198,18 +213,30 @@ def damping_rate(damping: Damping | None, amplitude: float, alpha: float = 1.5) 
     return min(damping.onsite + 2.0 * damping.contact * min(abs(amplitude), 1e300) ** (alpha - 1.0), 1e300)
 
 
+#: the linearised frequency omega_max (cradle.models.lattice) above which a splitting's default step, not the
+#: measured STEPS_PER_TIME_UNIT (a wave of omega_max ~ 1.5), sets an estimate's steps
+STIFF_OMEGA = 10.0
+
+
 def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int,
-                   rate: float = 0.0) -> tuple[float, float]:
+                   rate: float = 0.0, amplitude: float = 0.0, alpha: float = 1.5) -> tuple[float, float]:
     """(wall seconds, steps) of the exact run at the measured steps per unit time of its method,
     scaled by the ratio of step factors when a splitting's ``dt_factor`` is given; every interval
-    between stored times takes at least one step (the steps end on the stored times), and a damping
-    ``rate`` (:func:`damping_rate`) takes at least t_end rate / :data:`DOP853_STABLE` steps."""
+    between stored times takes at least one step (the steps end on the stored times), a damping
+    ``rate`` (:func:`damping_rate`) takes at least t_end rate / :data:`DOP853_STABLE` steps, and a splitting
+    at least t_end / dt steps of its default step dt = dt_factor 2 pi / omega_max(c) at a compression c = 2
+    ``amplitude`` (:func:`cradle.integrators.lattice_step.default_dt`; a large amplitude takes small steps)."""
     method = exact.method
     steps = t_end * STEPS_PER_TIME_UNIT.get(method, max(STEPS_PER_TIME_UNIT.values()))
-    if exact.dt_factor:  # only then import the integrators (numba): the Snakefile validates
-        from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR
+    c = min(2.0 * abs(amplitude), 1e300)
+    stiff = method in SPLITTINGS and omega_max(c, alpha) > STIFF_OMEGA
+    if exact.dt_factor or stiff:  # only then import the integrators (numba): the Snakefile validates
+        from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, default_dt
 
-        steps *= DEFAULT_DT_FACTOR.get(method, exact.dt_factor) / exact.dt_factor
+        if exact.dt_factor:
+            steps *= DEFAULT_DT_FACTOR.get(method, exact.dt_factor) / exact.dt_factor
+        if stiff:
+            steps = max(steps, t_end / default_dt(c, alpha, method, exact.dt_factor))
     steps = max(steps, float(stored - 1), min(t_end * rate / DOP853_STABLE, 1e300))
     return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
 
@@ -247,7 +274,7 @@ def spec_estimate(spec: Scene, name: str = "?") -> Estimate:
     N, t_end, store = spec.N, spec.t_end, spec.store
     T = stored_count(store, t_end)
     rate = damping_rate(spec.damping, _amplitude(spec.initial), spec.alpha)
-    seconds, steps = _exact_seconds(N, t_end, spec.exact, T, rate)
+    seconds, steps = _exact_seconds(N, t_end, spec.exact, T, rate, _amplitude(spec.initial), spec.alpha)
     seconds += BASE_SECONDS + COST_PER_STORED_VALUE_S * N * T
     dps_steps = DPS_STEPS_PER_PERIOD * dps_periods(spec)
     seconds += dps_steps * N * COST_PER_BEAD_STEP_S.get(spec.dps.method, max(COST_PER_BEAD_STEP_S.values()))

@@ -35,6 +35,7 @@ TEMPLATES = {
     # stage 4
     "figure": "figures/{label}.{ext}",
     "movie": "movies/{scene}.{ext}",       # cradle.figures.movie: a scene's runs in motion (mp4, gif)
+    "movie-still": "movies/stills/{scene}-{frame}.png",   # cradle.figures.desk_toy_movie: frames at an impact
     # an analysis of cradle.analyses.registry: its batches (its output and figure follow analysis_output)
     "analysis-batch": "{analysis}/batch/{form}/{key}.nc",
     # bookkeeping

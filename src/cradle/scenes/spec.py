@@ -367,8 +367,19 @@ class Scene:
         self.initial.check(self, where, context, out)
 
     def _check_units(self, where: Where, out: Errors) -> None:
-        """A cradle with one on-site frequency and Hertz's exponent, SI values only with a cradle, and a run
-        within MAX_T_END once its SI time is in (nc)'s units (:func:`resolved` converts)."""
+        """Damping and active terms only with the integrator that takes them (the cradle's own checks:
+        :meth:`check_cradle`)."""
+        if self.damping is not None and self.damping.active and self.exact.method not in DAMPED_METHODS:
+            out.add(where + ["exact", "method"], f"must be one of {', '.join(DAMPED_METHODS)} with damping (a "
+                                                 "splitting is not symplectic for a damped cradle: "
+                                                 "docs/dissipation.md)", self.exact.method)
+        self._check_terms(where, out)
+
+    def check_cradle(self, where: Where, out: Errors) -> None:
+        """A cradle with one on-site frequency and Hertz's exponent, a pendulum's initial displacement below its
+        string, SI values only with a cradle, and a run within MAX_T_END once its SI time is in (nc)'s units
+        (:func:`in_nc_units` converts). Run when the scene is read (:mod:`cradle.pipeline.config.validate`),
+        before the budget's estimate, which such a scene would make meaningless."""
         c = self.cradle
         if c is not None:
             if (c.length is None) == (c.omega0 is None):
@@ -379,17 +390,12 @@ class Scene:
             if self.alpha != HERTZ_ALPHA:
                 out.add(where + ["alpha"], f"must be {HERTZ_ALPHA} for a cradle of spheres (Hertz's exponent)",
                         self.alpha)
-        if self.damping is not None and self.damping.active and self.exact.method not in DAMPED_METHODS:
-            out.add(where + ["exact", "method"], f"must be one of {', '.join(DAMPED_METHODS)} with damping (a "
-                                                 "splitting is not symplectic for a damped cradle: "
-                                                 "docs/dissipation.md)", self.exact.method)
-        self._check_terms(where, out)
         if self.units == "si" and c is None:
             out.add(where + ["units"], "needs the scene's `cradle:` (its scales convert SI values to (nc)'s)",
                     self.units)
         elif self.t_end > MAX_T_END:   # only an SI time can get here: the schema bounds t_end in (nc)'s units
             out.add(where + ["t_end"], f"is {self.t_end:.6g} in (nc)'s time units (t omega_0), more than "
-                                       f"{MAX_T_END:.0f} ({T_END_WHY})", self.t_end)
+                                       f"{MAX_T_END:.0f} ({T_END_WHY})")   # the value given is in SI
 
     def _check_swing(self, c: Cradle, where: Where, out: Errors) -> None:
         """A pendulum's initial displacement below its string length (in (nc)'s units here: times X)."""

@@ -50,6 +50,10 @@ SEED_MAX = 2**62
 #: about 1e2 spacings of doubles at the end of the longest run (MAX_T_END); a shorter step adds rounding noise to t
 #: and the run makes no progress the budget could estimate
 DT_FACTOR_FLOOR = 1e-8
+#: the largest eps of (ansatz) at which the analysis dps-validity measures DpS against the lattice (its spec's
+#: eps_max): DpS's measured range is amplitudes up to 2 eps (cradle.measurements.dps_range); here, in the lowest
+#: layer, so that the figures marking a scene outside it read the same value
+DPS_EPS_MEASURED = 0.1
 TIME_TOL = 1e-9          # two times closer than this are the same time
 INTEGER_TOL = 1e-9       # q N / (2 pi) must be this close to an integer on a ring
 #: the longest run, a limit of float64: stored times are told apart to TIME_TOL, and below 2^22 (~4.2e6) the

@@ -156,7 +156,7 @@ def parser() -> argparse.ArgumentParser:
     a.add_argument("--config", default="config.yaml", help="config whose movies: section gives the defaults")
     a.add_argument("--desk-toy", default=None, dest="desk_toy", metavar="FILE.nc",
                    help="draw the desk toy SCENE (e.g. n5-lifted1) of this desk-toy analysis file instead of a scene")
-    a.add_argument("--hard", type=int, default=1, help="with --desk-toy: the hard-sphere model index drawn below "
+    a.add_argument("--hard", type=int, default=1, help="with --desk-toy: the hard-sphere model index drawn beside "
                                                        "(default 1: the first restitution coefficient)")
     a.set_defaults(func=cmd_animate)
     c = sub.add_parser("scale", help="(nc)'s units in SI for a cradle of given spheres and strings; what an amplitude "

@@ -6,9 +6,11 @@ Reads ``RESULTS/sim/SCENE/{exact,dps}.nc`` only (:func:`cradle.open_scene`), wri
 overrides either.
 
 ``cradle animate NAME --desk-toy FILE.nc`` draws instead the desk toy NAME (``n5-lifted1``) of a `desk-toy`
-analysis file (results/desk-toy/[full/]desk-toy.nc): (nc) above, the hard-sphere cradle (e of ``--hard``, the
-file's model index, default 1: the first restitution) below, to ``RESULTS/movies/desk-toy-NAME.mp4``
-(:func:`cradle.analyses.desk_toy.movie_dataset`, :func:`cradle.figures.movie.animate`).
+analysis file (results/desk-toy/[full/]desk-toy.nc), to scale and each impact in slow motion: a run of its own
+from the file's spec, dense around the impacts (:func:`cradle.analyses.desk_toy_movie.movie_run`, settings
+``movies.desk_toy``), (nc) beside the hard-sphere cradle (e of ``--hard``, the file's model index, default 1:
+the first restitution), to ``RESULTS/movies/desk-toy-NAME.mp4`` (:func:`cradle.figures.desk_toy_movie.animate`;
+``--duration``, ``--t-start`` and ``--t-end`` are refused with it: the movie's frames are its run's).
 """
 from __future__ import annotations
 
@@ -20,7 +22,6 @@ from cradle.pipeline.cli.common import CliError
 if TYPE_CHECKING:
     import argparse
 
-    from cradle.figures.movie import MovieSpec
 
 
 def settings(config_path: str | Path) -> dict:
@@ -104,16 +105,24 @@ def cmd_animate(args: argparse.Namespace) -> int:
     except ValueError as err:
         raise CliError(str(err)) from None
     desk = getattr(args, "desk_toy", None)
+    if desk:
+        given_flags = [flag for flag, on in (("--duration", "duration" in flags),
+                                             ("--t-start", args.t_start is not None),
+                                             ("--t-end", args.t_end is not None)) if on]
+        if given_flags:
+            raise CliError(f"{', '.join(given_flags)}: not with --desk-toy (its frames are those of its own run, "
+                           "dense at each impact: the settings movies.desk_toy, docs/config-reference.md)")
     stem = f"desk-toy-{args.scene}" if desk else args.scene
     out = Path(args.out or layout.path("movie", args.results, scene=stem, ext="mp4"))
     gif = out.with_suffix(".gif") if args.gif else None
     owner = f"cradle animate {stem}"
     _may_write([out] + ([gif] if gif else []), stem, owner, getattr(args, "overwrite", False))
     if desk:
-        info = _desk_toy(args, desk, out, spec, gif, gspec, given["gif_width"])
+        info = _desk_toy(args, desk, out, given, gif)
         _recorded([out, gif], owner)
         print(f"{out}: {len(info['times'])} frames at {spec.fps}/s, {spec.width}x{spec.height}, t = "
-              f"{info['times'][0]:g} .. {info['times'][-1]:g} s, displacements x {info['magnification']:.3g}")
+              f"{info['times'][0]:g} .. {info['times'][-1]:g} s, drawn to scale, impacts in slow motion "
+              f"(largest contact force {info['force_max']:.3g} N)")
         return 0
     try:
         ds = open_scene(args.scene, root=args.results, metrics=False)
@@ -129,13 +138,16 @@ def cmd_animate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _desk_toy(args: argparse.Namespace, path: Path, out: Path, spec: MovieSpec, gif: Path | None,
-              gspec: MovieSpec | None, gif_width: int) -> dict:
-    """The movie of desk toy ``args.scene`` of the `desk-toy` file ``path``; a missing file, group or model is
-    one line."""
-    from cradle.analyses.desk_toy import movie_dataset
+def _desk_toy(args: argparse.Namespace, path: Path, out: Path, given: dict, gif: Path | None) -> dict:
+    """The movie of desk toy ``args.scene`` of the `desk-toy` file ``path`` (its spec, a run of the movie's own);
+    a missing file, group or model is one line."""
+    import json
+
+    from cradle.analyses.desk_toy import DeskToyRuns, parse_label
+    from cradle.analyses.desk_toy_movie import SlowMotion, movie_run
     from cradle.data.io import open_tree
-    from cradle.figures.movie import animate
+    from cradle.figures.desk_toy_movie import animate
+    from cradle.specs.declare import from_plain
 
     try:
         tree = open_tree(path)
@@ -147,5 +159,9 @@ def _desk_toy(args: argparse.Namespace, path: Path, out: Path, spec: MovieSpec, 
     n_models = tree[args.scene].sizes["model"]
     if not 1 <= args.hard < n_models:
         raise CliError(f"--hard {args.hard}: must be a hard-sphere model index of {path}, in [1, {n_models - 1}]")
-    ds, panels = movie_dataset(tree[args.scene], args.hard)  # type: ignore[arg-type]  # a group: a DataTree
-    return animate(ds, out, spec, gif=gif, gif_spec=gspec, gif_width=gif_width, panels=panels)
+    spec = from_plain(DeskToyRuns, json.loads(str(tree.attrs["parameters"])), where=f"{path}: parameters")
+    n_beads, lifted = parse_label(args.scene)
+    motion = from_plain(SlowMotion, dict(given["desk_toy"]), where="movies.desk_toy")
+    ds = movie_run(spec, n_beads, lifted, motion, int(given["fps"]), hard=args.hard - 1)
+    return animate(ds, out, int(given["width"]), int(given["height"]), gif=gif, gif_fps=int(given["gif_fps"]),
+                   gif_duration=float(given["gif_duration"]), gif_width=int(given["gif_width"]))

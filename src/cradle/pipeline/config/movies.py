@@ -5,7 +5,8 @@ no computed number: they are not part of any scene's resolved parameters.
 """
 from __future__ import annotations
 
-from cradle.specs.declare import declared, param
+from cradle.analyses.desk_toy_movie import SlowMotion
+from cradle.specs.declare import declared, param, schema_doc
 from cradle.specs.values import ConfigError, did_you_mean
 
 _NAMES = {"$ref": "#/$defs/name"}
@@ -28,6 +29,7 @@ class Movies:
                                 exclusiveMinimum=0, maximum=60)
     gif_width: int = param(480, "Width of the GIF in pixels (its frames are the MP4's, scaled down).", minimum=64,
                            maximum=1280)
+    desk_toy: SlowMotion = param(SlowMotion(), schema_doc(SlowMotion))
 
     @staticmethod
     def resolve(cfg: dict) -> dict:

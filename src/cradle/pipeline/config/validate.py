@@ -118,7 +118,8 @@ def read(config: Any) -> tuple[dict[str, Any], Errors]:
 
 def _in_nc_units(scenes: dict, found: Errors) -> dict:
     """Each scene in (nc)'s units (:func:`in_nc_units`); one whose converted values break their declarations (an
-    SI value that is too large in (nc)'s units) left out, each problem said at the scene."""
+    SI value that is too large in (nc)'s units) or whose cradle is impossible (a swing beyond its string, another
+    exponent than Hertz's: :meth:`~cradle.scenes.spec.Scene.check_cradle`) left out, each problem said at it."""
     out = {}
     for name, scene in scenes.items():
         try:
@@ -126,6 +127,13 @@ def _in_nc_units(scenes: dict, found: Errors) -> dict:
         except ConfigError as err:
             for line in err.errors:
                 found.hold(("scenes", name), f"in (nc)'s units, {line.removeprefix('config error: ')}")
+            continue
+        mine = Errors()
+        out[name].check_cradle(["scenes", name], mine)
+        if mine.lines:   # said here, and the scene left out: its estimate would be meaningless
+            found.lines += mine.lines
+            found.paths |= mine.paths
+            del out[name]
     return out
 
 
