@@ -106,6 +106,27 @@ def test_another_scenes_file_is_refused_naming_both(work, capsys):
     assert open_scene("tw-weak", root=root, check=False).attrs["exact_scene"] == "tw-moderate"
 
 
+def test_another_scenes_file_beside_this_paths_digest_is_described_by_its_identity(work, capsys):
+    """tw-moderate's exact.nc copied over tw-weak's without its digest (the probe's copy: tw-weak's sidecar stays):
+    describe says whose file it is and goes on, rather than refusing it as edited against the sidecar of the file
+    the path held; an edit of tw-weak's own file is still refused by the digest."""
+    root = work / "results"
+    target = Path(layout.path("exact", root, scene="tw-weak"))
+    saved = target.read_bytes()
+    shutil.copy2(layout.path("exact", root, scene="tw-moderate"), target)
+    capsys.readouterr()
+    assert cli.main(["describe", str(target), "--config", str(work / "config.yaml")]) == 0
+    described = capsys.readouterr().out
+    assert "holds scene 'tw-moderate'" in described and "not compared: another entry's file" in described
+    target.write_bytes(saved)
+    import netCDF4
+
+    with netCDF4.Dataset(target, "a") as nc:
+        nc.setncattr("a", 1.0)
+    assert cli.main(["describe", str(target), "--config", str(work / "config.yaml")]) == 2
+    assert "edited since it was written: global attribute a changed" in capsys.readouterr().err
+
+
 def test_a_file_of_another_kind_is_refused(work):
     """tw-weak's dps.nc copied over its exact.nc: same scene, same parameters, not an exact run."""
     root = work / "results"

@@ -50,8 +50,13 @@ def cmd_describe(args: argparse.Namespace) -> int:
     path = Path(args.file)
     if not path.exists():
         raise CliError(f"no such file {str(path)!r}")
+    expect = expectations(args.config)
+    # identity first: another entry's file copied here is said as such, not compared with the sidecar of the file
+    # this path held (docs/recovery.md)
+    other = expect.check_file(path) if expect is not None else None
     try:
-        bare = verify_file(path)  # every checksum, in bounded memory: a damaged file is not described as fine
+        # every checksum, in bounded memory: a damaged file is not described as fine
+        bare = verify_file(path, digest=other is None)
         ds = xr.open_dataset(path)
     except DamagedOutput as err:
         raise CliError(str(err)) from None
@@ -69,10 +74,13 @@ def cmd_describe(args: argparse.Namespace) -> int:
                 out.append(f"  {'max|' + name + '|':<{width}} {float(abs(ds[name]).max()):.6g}")
         out.append(f"  {'checksums':<{width}} " + ("verified (every variable)" if not bare else
                    f"verified; no checksum on {', '.join(bare)} (written before checksums: rebuild to protect)"))
-        out.append(f"  {'digest':<{width}} " + (f"values and attributes as written (recorded in {sidecar(path).name})"
-                   if read_record(path) is not None else f"none recorded (no {sidecar(path).name}: written before "
-                   "digests, or copied without it; rebuild to protect it)"))
-        out.append(f"  {'identity':<{width}} {identity_line(expectations(args.config), path, attrs)}")
+        out.append(f"  {'digest':<{width}} " + (
+            f"not compared: another entry's file (identity below), {sidecar(path).name} is that of the file this "
+            f"path held" if other is not None else
+            f"values and attributes as written (recorded in {sidecar(path).name})" if read_record(path) is not None
+            else f"none recorded (no {sidecar(path).name}: written before digests, or copied without it; rebuild to "
+                 "protect it)"))
+        out.append(f"  {'identity':<{width}} {identity_line(expect, path, attrs)}")
         out += ["", "provenance:"]
         out += [f"  {k:<{width}} {_fmt(attrs[k])}" for k in PROV + ("history", "Conventions") if k in attrs]
         out += _describe_variables("variables:", ds)
