@@ -18,6 +18,7 @@ from cradle.pipeline import config as cc
 from cradle.pipeline.runner import failed_path, run, run_chain
 from cradle.pipeline.workdir import copy_workflow
 from cradle.scenes import stages
+from cradle.specs.values import DRIFT_FLOOR
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -213,7 +214,8 @@ def test_a_failed_forced_rerun_restores_the_previous_outputs(tmp_path):
     before = {f: hashlib.sha256(f.read_bytes()).hexdigest() for f in files}
     times = {f: f.stat().st_mtime_ns for f in files}
 
-    (work / "fail.yaml").write_text(yaml.safe_dump({"scenes": {"tw-weak": {"max_energy_drift": 1e-300}}}))
+    # the floor of the bound (validation refuses a smaller one): this run's drift is some 1e-12
+    (work / "fail.yaml").write_text(yaml.safe_dump({"scenes": {"tw-weak": {"max_energy_drift": DRIFT_FLOOR}}}))
     failed = _snakemake(work, target, "--forcerun", "simulate", "--configfile", "fail.yaml")
     assert failed.returncode != 0
     assert failed.stderr.count("Restored previous version of results/") == 4
