@@ -67,8 +67,7 @@ def draw(tree: xr.DataTree) -> Figure:
                 for n in range(N):
                     A.plot(t[show], x[m][show, n], style, color=colours[n], lw=1.0 if m == 0 else 1.3)
             lifted = int(g.attrs["lifted"])
-            A.set_title(f"({next(letters)}) {N} balls, {lifted} lifted to {float(tree.attrs['angle_deg']):g}°",
-                        fontsize=9)
+            A.set_title(f"({next(letters)}) {N} balls, {lifted} lifted", fontsize=9)
             A.set_xlabel("time (s)")
             A.set_ylabel("displacement (mm)")
             share = np.asarray(g["share"].values)
@@ -79,7 +78,7 @@ def draw(tree: xr.DataTree) -> Figure:
         ths = np.asarray(groups[0][1]["threshold"].values)
         for th in ths:
             share_ax.axhline(th, color="0.6", lw=0.6)
-        share_ax.set_title(f"({next(letters)}) {N} balls: one-out-one-out share $f_k$ at $t = k\\pi/\\omega_0$",
+        share_ax.set_title(f"({next(letters)}) {N} balls: one-out-one-out\nshare $f_k$ at $t = k\\pi/\\omega_0$",
                            fontsize=9)
         share_ax.set_xlabel("time (s)")
         share_ax.set_ylabel("$f_k$")
@@ -93,12 +92,12 @@ def draw(tree: xr.DataTree) -> Figure:
                         title="$f_k$ of (colour, marker)", title_fontsize=6)
         balls = [Line2D([], [], color=colours[n], lw=2, label=f"ball {n}") for n in range(N)]
         ax[row, 0].legend(handles=balls, fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.22), borderaxespad=0,
-                          ncols=min(N, 10), title=f"{N} balls: displacement panels (colour), "
+                          ncols=min(N, 5), title=f"{N} balls: displacement panels (colour), "
                           f"{models[0]} solid, {models[1] if len(models) > 1 else ''} dashed", title_fontsize=6,
                           alignment="left")
     styles = [Line2D([], [], color="0.2", ls=_MODEL_LINES[m % 4], label=mod) for m, mod in enumerate(models)]
     fig.legend(handles=styles, fontsize=7, loc="outside lower center", ncols=len(styles), frameon=False,
                title="model (line style, every panel)", title_fontsize=7)
-    fig.suptitle(f"Desk toys: {tree.attrs['cradle']}; displacements over the first {SHOWN_PERIODS} swing periods",
-                 fontsize=10)
+    fig.suptitle(f"Desk toys: {tree.attrs['cradle']}, lifted to {float(tree.attrs['angle_deg']):g}°; displacements "
+                 f"over the first {SHOWN_PERIODS} swing periods", fontsize=10)
     return fig
