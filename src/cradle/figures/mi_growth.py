@@ -54,8 +54,8 @@ def draw(tree: AnalysisTree) -> Figure:
                          np.nanmax(sb["growth"].values[i])])
         A.set_ylim(-0.6 * top if top > 0 else -0.01, 1.5 * top if top > 0 else 0.01)
         A.set_xlim(-0.04, 1.04)
-        if i == 0:
-            A.legend(fontsize=6, loc="lower right")
+        if i == 0:   # above the sidebands beyond the band, which lie near 0 (the headroom of set_ylim)
+            A.legend(fontsize=6, loc="upper right")
     # the fitted series
     B = ax[S]
     t = series["t"].values
@@ -71,7 +71,7 @@ def draw(tree: AnalysisTree) -> Figure:
     B.set_xlabel("t", fontsize=8)
     B.set_ylabel(r"$S_{p^*}(t)$ (thick: fit window)", fontsize=8)
     B.set_title("sideband pair / carrier: exact solid, DpS dashed", fontsize=8)
-    B.legend(fontsize=5.5)
+    B.legend(fontsize=5.5, loc="upper left", ncols=2)   # two columns: short, above the curves' early growth
     # the growth-rate diagram: max_p lambda tau0 R^(1-alpha) against q, measured points rescaled
     C = ax[S + 1]
     C.plot(theory["q"].values / np.pi, theory["max_growth"].values, "k-", lw=1.2,
