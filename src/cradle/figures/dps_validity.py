@@ -67,7 +67,7 @@ def draw(tree: AnalysisTree) -> Figure:
     A.loglog(eps[ia], ref, ":", color="0.3", label=r"$\propto \varepsilon^{\alpha-1}$")
     A.set_xlabel(r"$\varepsilon$")
     A.set_ylabel(r"sup$_t$ max$_n |x_n - x_n^{app}|$ / $2\varepsilon$")
-    A.set_title(rf"(a) $\alpha$ = {al:g}, $t \leq T \varepsilon^{{1-\alpha}}$, T = {Ts[k1]:g} "
+    A.set_title(rf"(a) $\alpha$ = {al:g}, $t \leq T \varepsilon^{{1-\alpha}}$, T = {Ts[k1]:g}" "\n"
                 "(p: fitted power of the absolute error)", fontsize=9)
     legend_outside(A)
     # (b)
@@ -102,7 +102,7 @@ def draw(tree: AnalysisTree) -> Figure:
     C.set_ylabel(r"fitted power p of $\varepsilon$, smaller half of the range")
     C.set_title(r"(c) p against T; dotted: $\alpha$ = " + ", ".join(f"{a:g}" for a in alphas)
                 + " (colours)", fontsize=9)
-    C.legend(fontsize=7, loc="best")
+    legend_outside(C)   # the markers fill the panel at every p and T: no corner is free
     # (d)
     D = ax[1, 1]
     jf = fams.index("tw-pi5") if "tw-pi5" in fams else 0
@@ -114,7 +114,7 @@ def draw(tree: AnalysisTree) -> Figure:
     ratio = float(np.nanmax(checks["halving_ratio"].values[jf, :, k1]))
     D.set_title(f"(d) {fams[jf]}, T = {Ts[k1]:g}, every alpha;\nlattice dt-halving error "
                 f"/ E $\\leq$ {ratio:.1g}", fontsize=8)
-    D.legend(fontsize=7, loc="lower right")
+    legend_outside(D)   # the largest alpha's curve rises through the lower right corner
     return fig
 
 
