@@ -96,8 +96,11 @@ def draw(tree: AnalysisTree) -> Figure:
                color="0.3", lw=0.6, label=f"{N} balls: exact wave at the ball's $v_{{peak}}$")
         f.plot(bead[inner], np.asarray(g["width"].values)[inner] * 100, styles[k % 4], marker="o", ms=3,
                color=f"C{k}", label=f"{N} balls")
-        c.loglog(np.asarray(g["v_peak"].values)[inner], np.asarray(g["speed"].values)[inner], "o", ms=3,
-                 mfc="none", color=f"C{k}", label=f"{N} balls: pulse on each inner ball")
+        # each chain's circles smaller than the previous one's, drawn above them: a short chain's pulses sit where
+        # the first balls of a longer one do, and stay in sight
+        c.loglog(np.asarray(g["v_peak"].values)[inner], np.asarray(g["speed"].values)[inner], "o",
+                 ms=max(6.0 - 2.5 * k, 2.5), mfc="none", color=f"C{k}", zorder=3 + k,
+                 label=f"{N} balls: pulse on each inner ball")
     D = float(impacts[0][1].attrs["diameter_m"])
     quantities = [str(q) for q in np.asarray(tree["nesterenko"]["quantity"].values)]
     vel_fwhm = float(np.asarray(tree["nesterenko"]["exact"].values)[quantities.index("velocity FWHM (sites)")])
