@@ -520,8 +520,8 @@ def test_dps_pace_matches_the_plane_wave_frequency():
     alpha, R = 1.5, 0.5
     period = 2 * np.pi / D.plane_wave_frequency(R, np.pi, alpha)
     A0 = D.plane_wave(np.arange(4), 0.0, R, np.pi, 0.0, alpha)
-    check_dps_pace(A0, np.array([0.0, 0.999 * MAX_DPS_PERIODS * period]), alpha, D.tau0(alpha))
+    check_dps_pace(A0, np.array([0.0, 0.999 * MAX_DPS_PERIODS * period]), alpha)
     with pytest.raises(ValueError, match="periods"):
-        check_dps_pace(A0, np.array([0.0, 1.001 * MAX_DPS_PERIODS * period]), alpha, D.tau0(alpha))
+        check_dps_pace(A0, np.array([0.0, 1.001 * MAX_DPS_PERIODS * period]), alpha)
     s = integrate_dps(A0, np.linspace(0.0, period, 2), alpha=alpha, rtol=1e-12)
     np.testing.assert_allclose(s.A[-1], A0, atol=1e-9)   # one period of (freq) brings the wave back

@@ -319,3 +319,16 @@ def test_a_splitting_s_steps_at_a_large_amplitude_are_estimated_from_its_step():
     run = integrate_lattice(ini["x0"].values, ini["v0"].values, np.asarray(scene.times), alpha=scene.alpha,
                             bc=scene.bc)
     assert 0.75 < estimated / run.n_steps < 1.25, (estimated, run.n_steps)
+
+
+def test_a_stiffness_beyond_float64_is_refused_by_its_estimate(tmp_path):
+    """alpha = 10 and a = 1e40: (2a)^(alpha-1) overflows a double. The estimate raised OverflowError, the budget
+    skipped the scene and it was accepted; now its steps are infinite and the budget refuses it in one line."""
+    raw = copy.deepcopy(RAW)
+    scene = raw["scenes"]["tw-weak"]
+    scene["alpha"] = 10.0
+    scene["initial"].pop("omega_tw", None)
+    scene["initial"]["a"] = 1e40
+    lines = _refused(tmp_path, raw)
+    assert lines == [lines[0]] and lines[0].startswith("config error: scenes.tw-weak: N = 50")
+    assert "estimated run time inf years exceeds budget.hours = 12" in lines[0]

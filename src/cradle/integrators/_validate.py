@@ -68,13 +68,15 @@ def check_energy_scale(x0: np.ndarray, v0: np.ndarray, alpha: float) -> None:
 MAX_DPS_PERIODS = 1e9
 
 
-def check_dps_pace(A0: np.ndarray, tau_out: np.ndarray, alpha: float, tau0: float) -> None:
+def check_dps_pace(A0: np.ndarray, tau_out: np.ndarray, alpha: float) -> None:
     """A run of (dfnls) that spans at most :data:`MAX_DPS_PERIODS` periods of its fastest oscillation, of frequency
     about (2 max|A_n|)^(alpha - 1) 2 / tau0 (the p-Laplacian of differences up to 2 max|A_n|): DpS's scaling
     A -> lambda A, tau -> lambda^(1 - alpha) tau makes a large amplitude run fast, and its steps shrink with it."""
+    from cradle.models.dps import plane_wave_frequency
+
     amp = float(np.max(np.abs(A0)))
-    with np.errstate(over="ignore"):
-        periods = float(tau_out[-1]) * np.float64(2.0 * amp) ** (alpha - 1.0) * 2.0 / tau0 / (2.0 * np.pi)
+    with np.errstate(over="ignore"):   # the fastest plane wave of (ds), q = pi, at |A| = max|A_n(0)|
+        periods = float(tau_out[-1]) * plane_wave_frequency(np.float64(amp), np.pi, alpha) / (2.0 * np.pi)
     if not periods <= MAX_DPS_PERIODS:
         raise ValueError(f"A0, tau_out: tau_out[-1] = {float(tau_out[-1]):.6g} spans {periods:.3g} periods of the "
                          f"fastest DpS oscillation at max|A_n(0)| = {amp:.3g}, more than {MAX_DPS_PERIODS:.0e} (hours "

@@ -286,7 +286,7 @@ class _DpsRun:
         if progress is not None and not callable(progress):
             raise ValueError(f"progress must be callable or None, got progress={progress!r}")
         self.progress = progress
-        check_dps_pace(A0, self.tau_out, alpha, _tau0(alpha))
+        check_dps_pace(A0, self.tau_out, alpha)
         self.inv2tau0 = 1.0 / (2.0 * _tau0(self.alpha))
         self.system = SD.dfnls(self.alpha, self.periodic, self.inv2tau0)   # (dfnls) in the numba DOP853
         self.N = A0.size

@@ -33,7 +33,10 @@ def omega_max(c: float, alpha: float) -> float:
     the bond stiffness k = V0''(-c) = alpha c^(alpha-1) and the dispersion
     omega(q)^2 = 1 + 4 k sin^2(q/2), maximal at q = pi.
     """
-    return math.sqrt(1.0 + 4.0 * alpha * max(c, 0.0) ** (alpha - 1.0))
+    try:
+        return math.sqrt(1.0 + 4.0 * alpha * max(c, 0.0) ** (alpha - 1.0))
+    except OverflowError:   # a compression whose stiffness float64 cannot hold: no finite step resolves it
+        return math.inf
 
 
 def V0(d: ArrayLike, alpha: float) -> NDArray[np.float64]:

@@ -236,7 +236,8 @@ def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int,
         if exact.dt_factor:
             steps *= DEFAULT_DT_FACTOR.get(method, exact.dt_factor) / exact.dt_factor
         if stiff:
-            steps = max(steps, t_end / default_dt(c, alpha, method, exact.dt_factor))
+            dt = default_dt(c, alpha, method, exact.dt_factor)
+            steps = max(steps, t_end / dt if dt > 0.0 else math.inf)
     steps = max(steps, float(stored - 1), min(t_end * rate / DOP853_STABLE, 1e300))
     return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
 
@@ -255,7 +256,10 @@ def dps_periods(spec: Scene) -> float:
 
     ini, alpha = spec.initial, spec.alpha
     a = abs(_amplitude(ini)) or abs(getattr(ini, "velocity", 0.0) or 0.0)   # a kick: a displacement of its size
-    rate = 2.0 / dps.tau0(alpha) * min(2.0 * a, 1e300) ** (alpha - 1.0) if a else 0.0
+    try:   # the fastest plane wave of (ds), q = pi, at |A| = a
+        rate = dps.plane_wave_frequency(a, math.pi, alpha) if a else 0.0
+    except OverflowError:
+        rate = math.inf
     omega = getattr(ini, "omega_tw", None) or getattr(ini, "omega_sw", None)
     if omega is not None:   # a wave or breather given by its frequency: its shift omega - 1 is the DpS one
         rate = max(rate, 2.0 ** (alpha + 1.0) * (omega - 1.0))
