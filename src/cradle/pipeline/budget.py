@@ -210,7 +210,10 @@ def damping_rate(damping: Damping | None, amplitude: float, alpha: float = 1.5) 
     of the amplitude (reduced mass 1/2); 0 without damping."""
     if damping is None or not damping.active:
         return 0.0
-    return min(damping.onsite + 2.0 * damping.contact * min(abs(amplitude), 1e300) ** (alpha - 1.0), 1e300)
+    try:
+        return min(damping.onsite + 2.0 * damping.contact * min(abs(amplitude), 1e300) ** (alpha - 1.0), 1e300)
+    except OverflowError:   # c^(alpha-1) beyond float64 (a large alpha): the fastest rate the estimate says
+        return 1e300
 
 
 #: the linearised frequency omega_max (cradle.models.lattice) above which a splitting's default step, not the
