@@ -332,3 +332,35 @@ def test_a_stiffness_beyond_float64_is_refused_by_its_estimate(tmp_path):
     lines = _refused(tmp_path, raw)
     assert lines == [lines[0]] and lines[0].startswith("config error: scenes.tw-weak: N = 50")
     assert "estimated run time inf years exceeds budget.hours = 12" in lines[0]
+
+
+@pytest.mark.parametrize("failing, key", [("spec_estimate", "scenes.tw-weak"),
+                                          ("dissipation_estimate", "beyond.dissipation")])
+def test_a_job_whose_estimate_fails_is_refused_not_run_unbudgeted(tmp_path, monkeypatch, failing, key):
+    """An estimate that raises (a value no estimate foresaw) was skipped as 'a bad value the checks name', and a job
+    the checks passed ran without a budget; now it is refused in one line naming its key and the error."""
+    from cradle.pipeline import budget
+
+    real = getattr(budget, failing)
+
+    def overflows(*args, **kwargs):
+        if failing == "spec_estimate" and args[1:2] != ("tw-weak",) or failing != "spec_estimate" and args[1] != "full":
+            return real(*args, **kwargs)
+        raise OverflowError("math range error")
+
+    monkeypatch.setattr(budget, failing, overflows)
+    assert _refused(tmp_path, copy.deepcopy(RAW)) == [
+        f"config error: {key}: its cost cannot be estimated (OverflowError: math range error): refused rather than "
+        f"run without a budget; change the entry's values"]
+
+
+def test_a_failing_estimate_gives_way_to_the_check_that_names_the_value(tmp_path, monkeypatch):
+    """When the physical checks name a value of the entry, their line is said, not the estimate's."""
+    from cradle.pipeline import budget
+
+    monkeypatch.setattr(budget, "spec_estimate", lambda spec, name="?": 1 / 0)
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["tw-weak"]["initial"]["q"] = "pi/5"
+    raw["scenes"]["tw-weak"]["store"] = {"every": 1.0, "snapshots": [1e9]}
+    lines = _refused(tmp_path, raw)
+    assert not any("cannot be estimated" in line and "scenes.tw-weak:" in line for line in lines), lines

@@ -423,7 +423,7 @@ def work_precision_estimate(cfg: Config, form: str) -> Estimate:
         if worst is None or e.seconds > worst.seconds:
             worst = e
     if worst is None:
-        raise KeyError("no scene to measure")   # nothing to estimate (estimates() skips it)
+        raise NothingToEstimate("no scene to measure")   # every scene unknown: the checks name them
     return worst
 
 
@@ -516,37 +516,66 @@ def below_every_job(jobs: list[Estimate], budget: Budget) -> dict[str, str]:
     return out
 
 
+class NothingToEstimate(LookupError):
+    """A job with nothing to estimate (an analysis whose every scene is unknown, which the checks name)."""
+
+
+#: what a job whose estimate fails is told: it is refused, not run unbudgeted
+UNESTIMATED_HINT = "refused rather than run without a budget; change the entry's values"
+
+
 def estimates(cfg: Config) -> list[Estimate]:
+    """An :class:`Estimate` for every job of a typed config that can be estimated (:func:`estimated`)."""
+    return estimated(cfg)[0]
+
+
+def _failed(key: str, err: BaseException) -> str:
+    """The line of a job whose estimate raised ``err``: its key, the error and why it is refused."""
+    why = " ".join(str(err).split()) or "no message"
+    return f"{key}: its cost cannot be estimated ({type(err).__name__}: {why}): {UNESTIMATED_HINT}"
+
+
+def estimated(cfg: Config) -> tuple[list[Estimate], dict[str, str]]:
     """An :class:`Estimate` for every scene, homoclinic and map entry of a typed config
     (:func:`cradle.pipeline.config.typed`), and for the largest batch job of each form of
     ``beyond.mi-statistics``, ``beyond.work-precision``, ``beyond.dissipation``, ``beyond.trapping`` and
-    ``beyond.desk-toy``."""
-    out = []
+    ``beyond.desk-toy``; and, key -> line (:func:`_failed`), each job whose estimate failed: such a job is refused
+    (:func:`cradle.pipeline.config.typed` says the line unless the checks found a problem in the entry), never run
+    unbudgeted."""
+    out, failed = [], {}
     per_entry = (("scenes", scene_estimate), ("homoclinic", homoclinic_estimate), ("map", map_estimate))
+    # (the key a failure is said at, the name the estimate takes, the estimate)
     jobs: list[tuple[str, str, Callable[[Any, str], Estimate]]] = [
-        (section, name, fn) for section, fn in per_entry for name in getattr(cfg, section)]
-    jobs += [("beyond", form, mi_statistics_estimate) for form in ("reduced", "full")]
-    jobs += [("beyond", form, fn) for form in ("reduced", "full")
-             for fn in (dissipation_estimate, trapping_estimate, desk_toy_estimate)]
+        (f"{section}.{name}", name, fn) for section, fn in per_entry for name in getattr(cfg, section)]
+    def beyond(analysis: str, form: str, fn: Callable[[Any, str], Estimate]) -> tuple:
+        return f"beyond.{analysis}" + (".reduced" if form == "reduced" else ""), form, fn
+
+    jobs += [beyond("mi-statistics", form, mi_statistics_estimate) for form in ("reduced", "full")]
+    jobs += [beyond(analysis, form, fn) for form in ("reduced", "full")
+             for analysis, fn in (("dissipation", dissipation_estimate), ("trapping", trapping_estimate),
+                                  ("desk-toy", desk_toy_estimate))]
     if cfg.beyond.work_precision.scenes:
-        jobs += [("beyond", form, work_precision_estimate) for form in ("reduced", "full")]
-    for _section, name, fn in jobs:
+        jobs += [beyond("work-precision", form, work_precision_estimate) for form in ("reduced", "full")]
+    for key, name, fn in jobs:
         try:
             out.append(fn(cfg, name))
-        except (TypeError, ValueError, KeyError, AttributeError, ZeroDivisionError, OverflowError):
-            continue  # a bad value: the physical checks name it
-    return out
+        except NothingToEstimate:
+            continue
+        except (TypeError, ValueError, KeyError, AttributeError, ArithmeticError) as err:
+            failed[key] = _failed(key, err)
+    return out, failed
 
 
 #: what a line over the budget suggests
 OVER_HINT = "raise it under budget: in the config if this machine allows, or change the entry"
 
 
-def over_budget(cfg: Config) -> list[str]:
+def over_budget(cfg: Config, jobs: list[Estimate] | None = None) -> list[str]:
     """One line per job (and for all scenes' output together) that exceeds the budget, or one line at a limit that
-    every job exceeds (:func:`below_every_job`); empty if all fit."""
+    every job exceeds (:func:`below_every_job`); empty if all fit. ``jobs``: the :func:`estimates` of ``cfg``, if
+    known."""
     budget = Budget.from_config(cfg)
-    jobs = estimates(cfg)
+    jobs = estimates(cfg) if jobs is None else jobs
     below = below_every_job(jobs, budget)
     lines = list(below.values())
     hint = OVER_HINT
@@ -563,33 +592,39 @@ def over_budget(cfg: Config) -> list[str]:
     return lines
 
 
-def check_scenes(scenes: dict[str, Scene], budget: Any) -> None:
+def check_scenes(scenes: dict[str, Scene], budget: Any) -> dict[str, str]:
     """:func:`check` for the scenes alone (name -> resolved :class:`Scene`) against ``budget`` (when it is not a
     :class:`Budget`, one with every limit at its largest: the bad budget is reported, and only what no budget
     runs is refused here): a config with problems elsewhere still has its scenes' stores judged before the
-    physical checks build their times."""
+    physical checks build their times. Returns, key -> line, the scenes whose estimate failed (as :func:`check`)."""
     if not isinstance(budget, Budget):
         budget = Budget(**{f.name: f.metadata["keywords"]["maximum"] for f in fields(Budget)})
-    lines = []
+    lines, failed = [], {}
     for name, spec in scenes.items():
         try:
             line = exceeds(spec_estimate(spec, name), budget)
-        except (TypeError, ValueError, AttributeError, ZeroDivisionError, OverflowError):
-            continue   # a bad value: the physical checks name it
+        except (TypeError, ValueError, AttributeError, ArithmeticError) as err:
+            failed[f"scenes.{name}"] = _failed(f"scenes.{name}", err)
+            continue
         if line is not None:
             lines.append(f"config error: {line} ({OVER_HINT})")
     if lines:
         from cradle.specs.values import ConfigError
 
         raise ConfigError(lines)
+    return failed
 
 
-def check(cfg: Config) -> None:
+def check(cfg: Config) -> dict[str, str]:
     """Raise :class:`~cradle.pipeline.config.ConfigError` (one line per job over budget) if any job of
     ``cfg`` (schema-valid, defaults filled) exceeds its budget; called by ``validate`` before its
-    physical checks (which build the stored-time arrays), so an oversized store is refused first."""
-    lines = over_budget(cfg)
+    physical checks (which build the stored-time arrays), so an oversized store is refused first. Returns,
+    key -> line, the jobs whose estimate failed (:func:`estimated`): ``validate`` refuses each after the physical
+    checks, which may name the value at fault more precisely."""
+    jobs, failed = estimated(cfg)
+    lines = over_budget(cfg, jobs)
     if lines:
         from cradle.specs.values import ConfigError
 
         raise ConfigError([f"config error: {line}" for line in lines])
+    return failed

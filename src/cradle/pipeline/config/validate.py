@@ -150,10 +150,13 @@ def typed(config: Any) -> Config:
     # every job's estimated memory, output and time within budget before the physical checks build stored-time
     # arrays: all jobs when every entry parsed, else the scenes that did (the largest budget if its own is bad)
     if made is not None:
-        budget.check(made)
+        unestimated = budget.check(made)
     else:
-        budget.check_scenes(parts.get("scenes") or {}, parts.get("budget"))
+        unestimated = budget.check_scenes(parts.get("scenes") or {}, parts.get("budget"))
     checks.check(parts, config, out)
+    for key, line in unestimated.items():   # refused, never run unbudgeted; said unless the checks named a value
+        if not out.within(key.split(".")[:2]):
+            out.add(key, line.removeprefix(f"{key}: "))
     out.raise_any()
     assert made is not None
     if key is not None:
