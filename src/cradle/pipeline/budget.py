@@ -540,8 +540,7 @@ def estimated(cfg: Config) -> tuple[list[Estimate], dict[str, str]]:
     (:func:`cradle.pipeline.config.typed`), and for the largest batch job of each form of
     ``beyond.mi-statistics``, ``beyond.work-precision``, ``beyond.dissipation``, ``beyond.trapping`` and
     ``beyond.desk-toy``; and, key -> line (:func:`_failed`), each job whose estimate failed: such a job is refused
-    (:func:`cradle.pipeline.config.typed` says the line unless the checks found a problem in the entry), never run
-    unbudgeted."""
+    (:func:`cradle.pipeline.config.typed` says the line when nothing else is wrong), never run unbudgeted."""
     out, failed = [], {}
     per_entry = (("scenes", scene_estimate), ("homoclinic", homoclinic_estimate), ("map", map_estimate))
     # (the key a failure is said at, the name the estimate takes, the estimate)
