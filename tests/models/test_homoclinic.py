@@ -112,3 +112,30 @@ def test_tails_below_machine_precision_follow_dpsstn(alpha, start):
     assert max(_relative_residuals(signs, L / np.log(10), alpha)) < 1e-9
     ratios = L[-4:] / L[-5:-1]
     assert np.allclose(ratios, alpha, rtol=1e-9)
+
+
+@pytest.mark.parametrize("N, kind, bc, centre", [(200, "bond", "periodic", 3), (150, "bond", "free", 20),
+                                                  (150, "double", "periodic", 70), (40, "site", "periodic", None)])
+def test_zero_at_says_where_the_job_s_profile_is_0(N, kind, bc, centre):
+    """A long chain's profile solved on a window around its core is 0 exactly where the whole chain's is (its
+    tails underflow a few sites out; a ring's core across site 0, a core near a free end)."""
+    from cradle.models.homoclinic_continuation import solve_kind, zero_at
+
+    a = solve_kind(N, kind, 1.5, bc, centre=centre).a
+    said = [zero_at(k, N, kind, 1.5, bc, centre=centre) for k in range(N)]
+    assert said == [bool(v == 0) for v in a]
+    assert 0 < sum(v != 0 for v in a) < N   # both kinds of site are there
+
+
+def test_zero_at_cannot_say_for_tails_wider_than_its_window():
+    from cradle.models.homoclinic_continuation import zero_at
+
+    assert zero_at(0, 120, "site", 1.1) is None   # alpha = 1.1: the tails fill the window
+
+
+def test_guess_off_chain_names_the_seeds_a_free_chain_lacks():
+    from cradle.models.homoclinic import guess_off_chain
+
+    assert guess_off_chain(10, "bond", "free", 8) is None and guess_off_chain(10, "bond", "periodic", 9) is None
+    assert "the centre must be <= N-2 = 8" in str(guess_off_chain(10, "bond", "free", 9))
+    assert "humps at -1 and 8" in str(guess_off_chain(20, "double", "free", 3, 9))

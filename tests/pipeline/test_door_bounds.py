@@ -368,3 +368,45 @@ def test_a_failing_estimate_gives_way_to_the_check_that_names_the_value(tmp_path
     lines = _refused(tmp_path, raw)
     assert lines == [lines[0]], lines
     assert lines[0].startswith("config error: scenes.tw-weak.max_energy_drift = 1e-300: ")
+
+
+def test_a_breather_measured_where_its_homoclinic_profile_is_0_is_refused(tmp_path):
+    """The bond profile of N = 50 underflows to 0 beyond ~15 sites from its core: an amplitude at bead 0 gave
+    ValueError in the initial-data job (mu = (amplitude / a_0)^(alpha-1) with a_0 = 0)."""
+    from cradle.models import homoclinic_continuation
+
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["breather-small"]["initial"]["site"] = 0
+    bond = raw["homoclinic"]["bond"]
+    assert homoclinic_continuation.solve_kind(bond["N"], bond["guess"], 1.5, bond["bc"]).a[0] == 0   # the job's
+    assert _refused(tmp_path, raw) == [
+        "config error: scenes.breather-small.initial.site = 0: the profile of homoclinic.bond is 0 there (its tails "
+        "underflow double precision a few sites from its core): the amplitude must be given at a bead where a_n != 0"]
+
+
+def test_a_breather_measured_on_its_core_stays_valid():
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["breather-small"]["initial"]["site"] = 24   # two beads from the bond (25, 26): a_24 != 0
+    assert cc.validate(raw)["scenes"]["breather-small"]["initial"]["site"] == 24
+
+
+@pytest.mark.parametrize("N, centre", [(10, 9), (2, None)])
+def test_a_bond_guess_on_the_free_end_of_a_chain_is_refused(tmp_path, N, centre):
+    """A bond-centred guess seeds the bond (c, c+1); on the last bead of a chain with free ends that bond is
+    not there and the seed wrapped to bead 0 (the job solved from a_{N-1} = 0.1, a_0 = -0.1); N = 2's default
+    centre N // 2 is that bead too."""
+    from cradle.models.homoclinic import initial_guess
+
+    assert initial_guess(N, "bond", centre=centre)[0] != 0   # the wrap the door now refuses
+    raw = copy.deepcopy(RAW)
+    raw["homoclinic"]["free-bond"]["N"] = N
+    if centre is None:
+        del raw["homoclinic"]["free-bond"]["centre"]
+    else:
+        raw["homoclinic"]["free-bond"]["centre"] = centre
+    raw["scenes"]["fini"]["N"] = N
+    raw["scenes"]["fini"]["initial"]["site"] = 0
+    lines = _refused(tmp_path, raw)
+    assert lines[0] == (f"config error: homoclinic.free-bond.centre = {N - 1}: a bond-centred guess seeds the bond "
+                        f"({N - 1}, {N}), which a chain of N = {N} with free ends does not have: the centre must be "
+                        f"<= N-2 = {N - 2}"), lines

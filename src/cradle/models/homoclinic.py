@@ -97,6 +97,26 @@ def initial_guess(N: int, kind: str, alpha: float = 1.5, amplitude: float = 0.1,
     return a
 
 
+def guess_off_chain(N: int, kind: str, bc: str, centre: int | None = None, separation: int = 9) -> str | None:
+    """Why :func:`initial_guess` would put a seed off a chain of N sites with free ends (``bc="free"``), or None.
+
+    On a ring every site is a neighbour of another; with free ends the guess's sites must be beads of the chain,
+    or the seed wraps to the other end (a bond-centred guess on the last bead is a_{N-1} and a_0): ``bond`` seeds
+    the bond (c, c + 1), so c <= N - 2; ``double`` puts its humps on c - floor(s/2) and c + s - floor(s/2)."""
+    if bc != "free":
+        return None
+    c = N // 2 if centre is None else centre
+    if kind == "bond" and not c <= N - 2:
+        return (f"a bond-centred guess seeds the bond ({c}, {c + 1}), which a chain of N = {N} with free ends does "
+                f"not have: the centre must be <= N-2 = {N - 2}")
+    if kind == "double":
+        left, right = c - separation // 2, c + separation - separation // 2
+        if not (0 <= left and right <= N - 1):
+            return (f"the double guess's humps at {left} and {right} (centre {c}, separation {separation}) must be "
+                    f"beads of a chain of N = {N} with free ends, in [0, {N - 1}]")
+    return None
+
+
 def _start(guess: ArrayLike, mu: float) -> np.ndarray:
     """``guess`` as a float array after checking mu > 0 and N >= 2 (alpha and bc: ``@checked``)."""
     if not mu > 0:

@@ -263,3 +263,33 @@ def solve_kind(N: int, kind: str, alpha: float, bc: str = "periodic", mu: float 
     res = float(np.max(np.abs(residual(a, alpha, bc, sign=mu))))
     return Homoclinic(a=a, residual=res, converged=bool(sc.converged), n_iterations=sc.n_iterations,
                       message=sc.message, method="continued", log10_amplitude=sc.log10_scale)
+
+
+#: sites of the chain on which :func:`zero_at` solves a long chain's profile (its tails leave double precision
+#: within ~15 sites of its centre at alpha = 3/2): a solve of this size takes milliseconds
+WINDOW = 64
+
+
+def zero_at(site: int, N: int, kind: str, alpha: float, bc: str = "periodic", mu: float = 1.0,
+            amplitude: float = 0.1, centre: int | None = None, separation: int = 9) -> bool | None:
+    """Whether the profile :func:`solve_kind` gives for these arguments is 0 (in double precision) at ``site``:
+    beyond its core |a_n| falls super-exponentially and underflows to 0 within a few sites. A chain of at most
+    :data:`WINDOW` sites (plus the separation of a double guess) is solved as the homoclinic job solves it; a longer
+    one on a window of that many sites around its core (a ring, or the free end it is near), whose profile is the
+    chain's wherever the window's own ends are 0. None when this cannot say: the window's profile reaches its ends
+    (alpha near 1: wide tails) or the solve fails (the homoclinic job reports that)."""
+    c = N // 2 if centre is None else centre
+    size = WINDOW + (separation if kind == "double" else 0)
+    try:
+        if N <= size:
+            return bool(solve_kind(N, kind, alpha, bc, mu, amplitude, centre, separation).a[site] == 0)
+        start, wbc = c - size // 2, "periodic"     # the window's first site on the chain
+        if bc == "free" and not size // 2 <= c <= N - 1 - size // 2:
+            start, wbc = (0 if c < size // 2 else N - size), "free"
+        a = solve_kind(size, kind, alpha, wbc, mu, amplitude, c - start, separation).a
+    except (ValueError, ArithmeticError, np.linalg.LinAlgError):
+        return None
+    if wbc == "periodic" and (a[0] != 0 or a[-1] != 0) or wbc == "free" and a[-1 if start == 0 else 0] != 0:
+        return None
+    k = (site - start) % N if bc == "periodic" else site - start
+    return not 0 <= k < size or bool(a[k] == 0)

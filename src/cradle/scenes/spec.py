@@ -235,6 +235,14 @@ class Breather:
         if scene.alpha != h.alpha:
             out.add(where + ["alpha"], f"must equal the alpha of homoclinic.{name} ({h.alpha!r}): the breather "
                                        f"is built from that solution", scene.alpha)
+        elif self.amplitude is not None and self.site is not None and 0 <= self.site < scene.N == h.N \
+                and scene.bc == h.bc and h.well_placed():
+            from cradle.models.homoclinic_continuation import zero_at
+
+            if zero_at(self.site, h.N, h.guess, h.alpha, h.bc, h.mu, h.amplitude, h.centre, h.separation):
+                out.add(path + ["site"], f"the profile of homoclinic.{name} is 0 there (its tails underflow double "
+                                         f"precision a few sites from its core): the amplitude must be given at a "
+                                         f"bead where a_n != 0", self.site)
 
 
 @declared("packet", doc="Modulated binary oscillation at rest (figure loc1, left): x_n(0) = amplitude (-1)^n "
@@ -520,6 +528,21 @@ class HomoclinicEntry:
             out.add(where + ["centre"], f"must be a site index in [0, N-1] = [0, {self.N - 1}]", self.centre)
         if self.guess == "double" and not 1 <= self.separation < self.N:
             out.add(where + ["separation"], f"must be in [1, N-1] = [1, {self.N - 1}]", self.separation)
+        if self.well_placed() or out.has(where + ["centre"]) or out.has(where + ["separation"]):
+            return
+        from cradle.models.homoclinic import guess_off_chain
+
+        out.add(where + ["centre"], str(guess_off_chain(self.N, self.guess, self.bc, self.centre, self.separation)),
+                self.N // 2 if self.centre is None else self.centre)
+
+    def well_placed(self) -> bool:
+        """Whether the guess's seeds are beads of the chain: the centre a site, the humps of a double guess
+        distinct, neither off a chain with free ends (:func:`cradle.models.homoclinic.guess_off_chain`)."""
+        from cradle.models.homoclinic import guess_off_chain
+
+        return (self.centre is None or 0 <= self.centre < self.N) and (
+            self.guess != "double" or 1 <= self.separation < self.N) and (
+            guess_off_chain(self.N, self.guess, self.bc, self.centre, self.separation) is None)
 
 
 #: the lattice integrators that take the damping terms and the terms of the imperfect cradle
