@@ -453,7 +453,7 @@ def held_before(pr: Probes) -> None:
         return lambda cfg: cfg["scenes"]["fft106"].update(patch)
 
     for label, edit, key in [
-            ("`N: 1e9` (fft106)", fft106(N=1e9), "scenes.fft106.N"),
+            ("`N: 1e9` (fft106)", fft106(N=1e9), "scenes.fft106: N = 1000000000"),   # the budget's line
             ("fft106 every 0.01 to t = 99000 (~140 GB)", fft106(t_end=99000.0, store={"every": 0.01}), "disk_gb"),
             ("`t_end: 1e12`, snapshots only", fft106(t_end=1e12, store={"snapshots": [1.0]}), "scenes.fft106.t_end"),
             ("`alpha: nan`", lambda c: c.setdefault("defaults", {}).update(alpha=float("nan")), "alpha"),
