@@ -1,5 +1,7 @@
 """Test-session settings.
 
+Every writer checks its digest against the file read back (cradle.data.io.SELF_CHECK_ENV).
+
 One BLAS thread: the dense solves here are small (N <= a few hundred), and on a
 2-core machine a multithreaded OpenBLAS makes them ~100x slower once the other
 core is busy. Set before numpy is first imported.
@@ -14,6 +16,9 @@ import pytest
 
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
+# every file a test writes (in process or in a Snakemake job) digested both as its writer hands it over and as a
+# reader reads it back, the two compared (cradle.data.io.SELF_CHECK_ENV)
+os.environ["CRADLE_DIGEST_SELF_CHECK"] = "1"
 
 #: the repository root (tests/<layer>/ mirror src/cradle/<layer>/)
 ROOT = Path(__file__).resolve().parents[1]

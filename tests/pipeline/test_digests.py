@@ -202,3 +202,72 @@ def test_the_values_digested_from_memory_are_those_read_back(tmp_path):
     with netCDF4.Dataset(path) as nc:
         assert digests.items(nc) == digests.read_record(path)["items"]
     assert sorted(io.stored_digests(ds, io.encoding_of(ds))) == ["f4", "f8", "i4", "i8", "n", "t", "u1"]
+
+
+#: an attribute of every kind a writer may hand over: those whose read-back form is known are digested as handed,
+#: the others (bytes, a string with NUL, a list of strings, a name xarray or netCDF4 rewrites) read back
+EVERY_KIND = {"empty": "", "ascii": "abc", "unicode": "é∂", "nul": "a\x00b", "blanks": "ab  ", "int": 1, "neg": -1,
+              "big": 2**62, "float": 1.5, "nan": float("nan"), "inf": -float("inf"), "f4": np.float32(1.5),
+              "i4": np.int32(3), "i1": np.int8(3), "u1": np.uint8(3), "u8": np.uint64(2**63),
+              "array": np.array([1.0, 2.0]), "one": np.array([1.0]), "none": np.array([], float), "list": [1.0, 2.0],
+              "ints": [1, 2], "mixed": [1, 2.5], "single": (1.0,), "strings": ["a", "b"], "string": ["a"],
+              "i2": np.array([1, 2], dtype=np.int16), "bytes": b"bytes", "i8one": np.array([5]), "long": "x" * 10**5,
+              "coordinates": "t", "scale_factor": 1.0, "_Custom": 2.0, digests.checksums.ATTR: "stale"}
+
+
+def _every_kind() -> xr.Dataset:
+    attrs = {k: v for k, v in EVERY_KIND.items() if k != "coordinates"}
+    return xr.Dataset({"x": (("t", "n"), np.arange(6.0).reshape(3, 2), dict(attrs)),
+                       "k": ("n", np.array([1, 2], dtype=np.int32), dict(attrs)),
+                       "when": ("t", np.array(["2026-01-01", "2026-01-02", "2026-01-03"], dtype="datetime64[ns]")),
+                       "flag": ("t", np.array([True, False, True])), "s": ((), 2.5, {"units": "1"}),
+                       "names": ("n", ["a", "bc"], {"long_name": "names"})},
+                      coords={"t": np.array([0.0, 0.5, 1.0]), "n": np.arange(2), "label": ("n", [10.0, 20.0])},
+                      attrs=attrs)
+
+
+def test_attributes_digested_as_handed_over_are_those_every_reader_reads_back(tmp_path, monkeypatch):
+    """A writer digests the attributes it hands to netCDF4 where their read-back form is known and reads the others
+    back: the record equals the file's digest read cold, for attributes of every kind, on numeric, time, boolean,
+    string and 0-d variables, a coordinate xarray lists in `coordinates`, in a flat file and in a tree's groups."""
+    monkeypatch.delenv(io.SELF_CHECK_ENV)   # the comparison is made here
+    ds = _every_kind()
+    handed, names = io.stored_attributes(ds)
+    assert names == {"": list(ds.attrs)}
+    assert {"@ascii", "@one", "x@array", "k@u8", "@mixed", "x@coordinates"} <= set(handed)   # not read back
+    assert not {"@nul", "@strings", "@bytes", "x@scale_factor", "x@_Custom", "when@units", "names@long_name",
+                f"x@{digests.checksums.ATTR}"} & set(handed)
+    path = write_netcdf(ds, tmp_path / "f.nc")
+    tree = write_datatree(xr.DataTree.from_dict({"/": xr.Dataset(attrs=ds.attrs), "/g": ds.drop_vars("label")}),
+                          tmp_path / "tree.nc")
+    for p in (path, tree):
+        with netCDF4.Dataset(p) as nc:
+            assert digests.items(nc) == digests.read_record(p)["items"]
+        verify_file(p)
+
+
+def test_a_writer_whose_digest_is_not_the_file_s_is_caught_by_the_self_check(tmp_path, monkeypatch):
+    """The suite runs with the self-check on (tests/conftest.py): a digest of an attribute made wrong is an error
+    at the write, and nothing is written."""
+    assert os.environ.get(io.SELF_CHECK_ENV) == "1"
+    real = digests.stored_attribute
+    monkeypatch.setattr(digests, "stored_attribute", lambda k, v: "0" * 64 if k == "a" else real(k, v))
+    with pytest.raises(io.DigestDisagrees, match="differs from the file's at @a$"):
+        write_netcdf(_small(), tmp_path / "f.nc")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("value", [1.5, np.float64(-0.0), float("nan"), 7, np.int64(-3), 2**63 - 1, -2**63])
+def test_an_attribute_s_shortcut_digest_is_the_general_one(value):
+    """A float or int64 attribute is digested without making an array: the same bytes as the array's."""
+    assert digests._attribute(value) == digests._attribute(np.asarray(value))
+
+
+def test_a_record_s_text_is_json_s_own(tmp_path):
+    """The record is written without serialising its items twice: the text json.dumps gives, sorted."""
+    import json
+
+    parts = {"@a": "1" * 64, "x": "2" * 64, 'q"uote\\': "é"}
+    text = digests._record_text("f.nc", parts, ["3" * 64])
+    assert text == json.dumps({"format": digests.FORMAT, "file": "f.nc", "sha256": digests.whole(parts),
+                               "previous": ["3" * 64], "items": parts}, sort_keys=True)

@@ -21,6 +21,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import struct
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -31,7 +32,7 @@ if TYPE_CHECKING:
     import netCDF4
 
 from cradle.data import checksums
-from cradle.data.temporaries import temporary_beside
+from cradle.data.temporaries import open_beside
 
 #: the format of a sidecar; a sidecar of another format is ignored as unknown
 FORMAT = "cradle-digest-2"
@@ -54,6 +55,10 @@ def _attribute(value: Any) -> str:
     """The SHA-256 of one attribute's value: its type, shape and bytes (a string as UTF-8)."""
     if isinstance(value, str):
         body = b"str|" + value.encode("utf-8")
+    elif type(value) in (float, np.float64):   # what the general case below gives, without making an array
+        body = b"<f8||" + struct.pack("<d", value)
+    elif type(value) in (int, np.int64) and -2**63 <= value < 2**63:
+        body = b"<i8||" + struct.pack("<q", value)
     elif isinstance(value, bytes):
         body = b"bytes|" + value
     else:
@@ -61,6 +66,45 @@ def _attribute(value: Any) -> str:
         arr = arr.astype(arr.dtype.newbyteorder("<"), copy=False) if arr.dtype.kind in "fiuc" else arr
         body = f"{arr.dtype.str}|{','.join(map(str, arr.shape))}|".encode() + arr.tobytes()
     return hashlib.sha256(body).hexdigest()
+
+
+#: attributes never digested from what the writer hands over, always read back from the file: those xarray or
+#: netCDF4 set or rewrite themselves as they encode a variable (a fill value, packing, a time's calendar, a
+#: boolean's dtype) and the checksum :func:`cradle.data.checksums.stamp` records on the written file
+READ_BACK = frozenset({"scale_factor", "add_offset", "missing_value", "valid_range", "valid_min",
+                       "valid_max", "calendar", "dtype", checksums.ATTR})
+
+
+_SCALARS = (float, int, np.float64, np.int64, np.float32, np.int32)
+
+
+def stored_attribute(name: str, value: Any) -> str | None:
+    """:func:`_attribute` of what netCDF4 reads back of the attribute ``name = value`` a writer hands it, for the
+    values whose round trip is known (docs/recovery.md, "Cost"); None for any other, which is read back instead.
+
+    A string without NUL (netCDF stores text up to its first NUL) reads back as itself; a number (an int, a
+    float, a numpy integer or float) as the numpy scalar of its type; a 1-D list or array of numbers as the array
+    of its numpy type, except that one element reads back as that element. Which attributes of which variables a
+    writer may give this way: :func:`cradle.data.io.stored_attributes`."""
+    if name[:1] == "_" or name in READ_BACK:
+        return None
+    kind = type(value)
+    if kind is str:
+        return None if "\x00" in value else hashlib.sha256(b"str|" + value.encode("utf-8")).hexdigest()
+    if kind in _SCALARS:   # read back as the numpy scalar of its type (bool is not int's type)
+        return _attribute(value)
+    if isinstance(value, str):
+        return None if "\x00" in value else _attribute(value)
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating, list,
+                                                                      tuple, np.ndarray)):
+        return None
+    if isinstance(value, (list, tuple)) and not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                    for v in value):
+        return None
+    arr = np.asarray(value)
+    if arr.ndim > 1 or arr.dtype.kind not in "iuf" or arr.dtype.itemsize < 4 and arr.dtype.kind == "f":
+        return None
+    return _attribute(arr[0] if arr.shape == (1,) else arr)
 
 
 def values_digest(var: netCDF4.Variable, block_bytes: int = 64 * 2**20) -> str:
@@ -75,22 +119,33 @@ def array_digest(values: np.ndarray) -> str:
 
 
 def items(nc: netCDF4.Dataset, prefix: str = "", block_bytes: int = 64 * 2**20,
-          known: dict[str, str] | None = None) -> dict[str, str]:
+          known: dict[str, str] | None = None, handed: dict[str, str] | None = None,
+          names: dict[str, list[str]] | None = None) -> dict[str, str]:
     """Every thing a reader uses of the open ``netCDF4.Dataset`` ``nc`` (and its groups), each with its digest:
     ``@name`` a global attribute, ``dim:name`` a dimension's size, ``var`` a variable's values (read raw, so
     HDF5 checks every Fletcher-32 checksum on the way), ``var@name`` a variable's attribute; a group's prefixed
     by its path (``waves/omega``); values read ``block_bytes`` at a time, except those whose digest ``known`` gives
-(:func:`array_digest` of what the writer stored, by the same keys)."""
-    out = {f"{prefix}@{k}": _attribute(v) for k, v in nc.__dict__.items()}   # all read at once
+    (:func:`array_digest` of what the writer stored, by the same keys), attributes read except those whose digest
+    ``handed`` gives (:func:`stored_attribute` of what the writer handed to netCDF4, by the same keys). Which
+    attributes there are: the file's own lists, except the global attributes of a group whose ``names`` (by its
+    prefix) gives them (the writer's, all it handed over: listing a new file's global attributes makes HDF5 read
+    them all)."""
+    known, handed, names = known or {}, handed or {}, names or {}
+    out = {}
+    for k in names.get(prefix, None) or nc.ncattrs():
+        key = f"{prefix}@{k}"
+        out[key] = handed.get(key) or _attribute(nc.getncattr(k))
     for name, dim in nc.dimensions.items():
         out[f"{prefix}dim:{name}"] = hashlib.sha256(f"{len(dim)}|{dim.isunlimited()}".encode()).hexdigest()
     for name, var in nc.variables.items():
         dims = hashlib.sha256(",".join(var.dimensions).encode()).hexdigest()
-        stored = (known or {}).get(f"{prefix}{name}") or values_digest(var, block_bytes)
+        stored = known.get(f"{prefix}{name}") or values_digest(var, block_bytes)
         out[f"{prefix}{name}"] = hashlib.sha256(f"{stored}|{dims}".encode()).hexdigest()
-        out.update({f"{prefix}{name}@{k}": _attribute(v) for k, v in var.__dict__.items()})
+        for k in var.ncattrs():
+            key = f"{prefix}{name}@{k}"
+            out[key] = handed.get(key) or _attribute(var.getncattr(k))
     for gname, group in nc.groups.items():
-        out.update(items(group, f"{prefix}{gname}/", block_bytes, known))
+        out.update(items(group, f"{prefix}{gname}/", block_bytes, known, handed, names))
     return out
 
 
@@ -99,10 +154,20 @@ def whole(parts: dict[str, str]) -> str:
     return hashlib.sha256(json.dumps(parts, sort_keys=True).encode()).hexdigest()
 
 
+def _record_text(name: str, parts: dict[str, str], previous: list[str]) -> str:
+    """``json.dumps`` of the record (``sort_keys``: file, format, items, previous, sha256), its items serialised
+    once for both the text and :func:`whole`."""
+    listed = json.dumps(parts, sort_keys=True)
+    sha = hashlib.sha256(listed.encode()).hexdigest()
+    return (f'{{"file": {json.dumps(name)}, "format": {json.dumps(FORMAT)}, "items": {listed}, '
+            f'"previous": {json.dumps(previous)}, "sha256": {json.dumps(sha)}}}')
+
+
 def read_record(path: str | os.PathLike) -> dict | None:
     """The sidecar of ``path`` as recorded, or None when there is none (or it is not one of ours)."""
     try:
-        record = json.loads(sidecar(path).read_text())
+        with open(sidecar(path), "rb") as fh:
+            record = json.loads(fh.read())
     except (OSError, ValueError):
         return None
     return record if isinstance(record, dict) and record.get("format") == FORMAT else None
@@ -123,18 +188,17 @@ def record(path: str | os.PathLike, source: str | os.PathLike | None = None, kno
     before = old.get("previous")
     before = [before] if isinstance(before, str) else before if isinstance(before, list) else []
     previous = [d for d in [old.get("sha256"), *before] if isinstance(d, str)][:HISTORY]
-    text = json.dumps({"format": FORMAT, "file": Path(path).name, "sha256": whole(parts), "previous": previous,
-                       "items": parts}, sort_keys=True)
-    return _write_sidecar(path, text)
+    return _write_sidecar(path, _record_text(Path(path).name, parts, previous))
 
 
 def _write_sidecar(path: str | os.PathLike, text: str) -> Path:
-    """Write ``text`` as the record beside ``path``, atomically (a temporary renamed into place)."""
+    """Write ``text`` as the record beside ``path``, atomically: a temporary beside it
+    (:func:`cradle.data.temporaries.open_beside`, mode 0644) renamed into place."""
     target = sidecar(path)
-    tmp = temporary_beside(target)
+    fd, tmp = open_beside(target, 0o644)
     try:
-        Path(tmp).write_text(text)
-        os.chmod(tmp, 0o644)
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(text.encode())
         os.replace(tmp, target)
     except BaseException:
         if os.path.exists(tmp):

@@ -197,17 +197,54 @@ def encoding_of(ds: xr.Dataset) -> dict:
     return encoding
 
 
-def _stamped(tmp: str, known: dict[str, str]) -> dict[str, str]:
+#: set (to anything but 0 or empty) in the environment, every writer also digests the finished file as a reader
+#: does and raises :class:`DigestDisagrees` if the two differ: the test suite sets it (tests/conftest.py), so every
+#: file any test writes shows that what the writer digests from memory is what every reader reads back
+SELF_CHECK_ENV = "CRADLE_DIGEST_SELF_CHECK"
+
+
+class DigestDisagrees(AssertionError):
+    """A writer's digest of what it handed over differs from the digest of the file read back (a bug)."""
+
+
+def _stamped(tmp: str, known: dict[str, str], handed: tuple[dict[str, str], dict[str, list[str]]]) -> dict[str, str]:
     """Record the checksum of every variable of the written file ``tmp`` that has no Fletcher-32
     filter (:func:`cradle.data.checksums.stamp`): computed from the stored values, so a checksum
     attribute copied from a Dataset read earlier is replaced, never kept. Returns the finished file's
-    :func:`cradle.data.digests.items` (``known``: the values digested from memory, :func:`stored_digests`),
-    computed on the same handle: opening an HDF5 file costs as much as digesting a 10 MB one."""
+    :func:`cradle.data.digests.items` (``known``: the values digested from memory, :func:`stored_digests`;
+    ``handed``: the attributes digested as handed over and the global ones' names, :func:`stored_attributes`),
+    computed on the same handle:
+    opening an HDF5 file costs as much as digesting a 10 MB one."""
     import netCDF4
 
     with netCDF4.Dataset(tmp, "a") as nc:
         checksums.stamp(nc)
-        return digests.items(nc, known=known)
+        parts = digests.items(nc, known=known, handed=handed[0], names=handed[1])
+        if os.environ.get(SELF_CHECK_ENV, "0") not in ("", "0"):
+            read = digests.items(nc)
+            if read != parts:
+                differ = sorted(k for k in set(read) | set(parts) if read.get(k) != parts.get(k))
+                raise DigestDisagrees(f"{tmp}: the writer's digest differs from the file's at {', '.join(differ)}")
+        return parts
+
+
+def stored_attributes(ds: xr.Dataset, prefix: str = "") -> tuple[dict[str, str], dict[str, list[str]]]:
+    """What ``ds`` hands to netCDF4 as attributes: xarray's own encoding of its coordinates
+    (``xarray.conventions.encode_dataset_coordinates``, the first step of ``to_netcdf``, which adds the
+    ``coordinates`` lists), then (1) the digests (:func:`cradle.data.digests.stored_attribute`) of the global
+    attributes and of those of every integer or float variable (xarray's later encoding rewrites others' attributes:
+    a time's units, a boolean's dtype, a string's fill value), keyed as :func:`cradle.data.digests.items`
+    (``@name``, ``var@name``, a group's prefixed), and (2) the names of the global attributes, by ``prefix``.
+    Every other value, and which attributes each variable holds, is read from the file."""
+    from xarray import conventions
+
+    variables, attrs = conventions.encode_dataset_coordinates(ds)
+    digest = digests.stored_attribute
+    out = {f"{prefix}@{key}": digest(key, value) for key, value in attrs.items()}
+    for name, var in variables.items():
+        if var.dtype.kind in "fiu":
+            out.update({f"{prefix}{name}@{key}": digest(key, value) for key, value in var.attrs.items()})
+    return {k: d for k, d in out.items() if d is not None}, {prefix: [str(k) for k in attrs]}
 
 
 def stored_digests(ds: xr.Dataset, encoding: dict, prefix: str = "") -> dict[str, str]:
@@ -234,7 +271,7 @@ def write_netcdf(ds: xr.Dataset | xr.DataTree, path: str | os.PathLike) -> Path:
 
     def write(tmp: str) -> None:
         ds.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
-        parts.update(_stamped(tmp, stored_digests(ds, encoding)))
+        parts.update(_stamped(tmp, stored_digests(ds, encoding), stored_attributes(ds)))
 
     return _atomic(Path(path), write, needs=int(ds.nbytes), digest=parts)
 
@@ -250,10 +287,15 @@ def write_datatree(tree: xr.DataTree, path: str | os.PathLike) -> Path:
     def write(tmp: str) -> None:
         tree.to_netcdf(tmp, encoding=encoding, engine="netcdf4")
         known: dict[str, str] = {}
+        handed: tuple[dict[str, str], dict[str, list[str]]] = ({}, {})
         for node in tree.subtree:
             prefix = node.path.strip("/") + "/" if node.path != "/" else ""
-            known.update(stored_digests(node.to_dataset(inherit=False), encoding[node.path], prefix))
-        parts.update(_stamped(tmp, known))
+            own = node.to_dataset(inherit=False)
+            known.update(stored_digests(own, encoding[node.path], prefix))
+            attrs, names = stored_attributes(own, prefix)
+            handed[0].update(attrs)
+            handed[1].update(names)
+        parts.update(_stamped(tmp, known, handed))
 
     needs = sum(int(node.to_dataset(inherit=False).nbytes) for node in tree.subtree)
     return _atomic(Path(path), write, needs=needs, digest=parts)

@@ -29,11 +29,35 @@ def _host() -> str:
     return re.sub(r"[^A-Za-z0-9-]", "-", socket.gethostname().split(".")[0])
 
 
+_HOST = _host()
+
+
 def temporary_beside(path: Path, suffix: str = ".tmp") -> str:
     """Create an empty temporary file beside ``path`` named after it and this process (see module)."""
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.pid-{os.getpid()}@{_host()}.", suffix=suffix, dir=path.parent)
     os.close(fd)
     return tmp
+
+
+def open_beside(path: Path, mode: int, suffix: str = ".tmp") -> tuple[int, str]:
+    """:func:`temporary_beside`'s file (the same name, its random part from ``os.urandom``), created and left open
+    for writing: (its file descriptor, its path), with permissions ``mode`` whatever the umask (a small file written
+    at once: one open, no second one by name)."""
+    head = os.path.join(path.parent, f".{path.name}.pid-{os.getpid()}@{_HOST}.")
+    for _ in range(100):
+        tmp = f"{head}{os.urandom(6).hex()}{suffix}"
+        try:
+            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), mode)
+        except FileExistsError:
+            continue
+        try:
+            os.fchmod(fd, mode)
+        except BaseException:
+            os.close(fd)
+            os.remove(tmp)
+            raise
+        return fd, tmp
+    raise FileExistsError(f"no free temporary name beside {path}")
 
 
 def _alive(pid: int) -> bool:
