@@ -81,7 +81,8 @@ RTOL_WHY = (" (a floor the integrator can honour, about 1e2 machine epsilons or 
     ("rtol", "1e-10", "rtol = '1e-10': must be a number"),
     ("rtol", True, "rtol = True: must be a number"),
     ("maxEnergyDrift", 0, "maxEnergyDrift = 0: must be >= 1e-14"),
-    ("atol", -1.0, "atol = -1.0: must be > 0"),
+    ("atol", -1.0, "atol = -1.0: must be >= 1e-150 (the error norm squares state / atol, which overflows float64 "
+                   "below it)"),
     ("atol", math.inf, "atol = inf: must be a finite number"),
     ("dt", 0.0, "dt = 0.0: must be > 0"),
     ("dt", -0.1, "dt = -0.1: must be > 0"),

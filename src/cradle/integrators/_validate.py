@@ -7,8 +7,9 @@ import numpy as np
 from numpy.typing import ArrayLike, DTypeLike
 
 
-def check_times(t: ArrayLike, name: str) -> np.ndarray:
-    """Output times: 1-D, non-empty, finite, >= 0 and strictly increasing."""
+def check_times(t: ArrayLike, name: str, most: float | None = None) -> np.ndarray:
+    """Output times: 1-D, non-empty, finite, >= 0, strictly increasing and, with ``most``, at most that (the
+    lattice's: :data:`cradle.specs.values.MAX_T_END`)."""
     t = _as_array(t, name, float)
     if t.ndim == 0:
         t = t.reshape(1)
@@ -19,6 +20,10 @@ def check_times(t: ArrayLike, name: str) -> np.ndarray:
         raise ValueError(f"{name} must be finite, got {name} containing {bad!r}")
     if t[0] < 0.0:
         raise ValueError(f"{name} must be >= 0 (integration starts at 0), got {name}[0]={float(t[0])!r}")
+    if most is not None and t[-1] > most:
+        from cradle.specs.values import T_END_WHY
+
+        raise ValueError(f"{name} must end by {most:.7g} ({T_END_WHY}), got {name}[-1]={float(t[-1])!r}")
     if t.size > 1:
         dif = np.diff(t)
         if np.any(dif <= 0.0):
@@ -31,7 +36,10 @@ def check_times(t: ArrayLike, name: str) -> np.ndarray:
 
 
 def check_state(arr: ArrayLike, name: str, dtype: DTypeLike = float) -> np.ndarray:
-    """A finite 1-D state vector with N >= 2 entries."""
+    """A finite 1-D state vector with N >= 2 entries (real, for a real ``dtype``: an imaginary part is not dropped
+    silently)."""
+    if np.dtype(dtype).kind == "f" and np.iscomplexobj(arr) and np.any(np.imag(arr) != 0):
+        raise ValueError(f"{name} must be real (a position or velocity per bead), got complex values")
     arr = _as_array(arr, name, dtype)
     if arr.ndim != 1:
         raise ValueError(f"{name} must be 1-D (one value per bead), got shape {arr.shape}")
@@ -61,6 +69,19 @@ def check_energy_scale(x0: np.ndarray, v0: np.ndarray, alpha: float) -> None:
     if not ok:
         raise ValueError(f"x0, v0 must be smaller: values up to {scale / 2:.3g} give an energy (ham) beyond float64 "
                          f"(N (2 max|x|)^(alpha+1) overflows at alpha = {alpha:g})")
+
+
+def check_steps(t_start: float, t_out: np.ndarray, dt: float) -> None:
+    """A fixed-step run from ``t_start`` through ``t_out`` with step bound ``dt`` whose steps float64 counts: at most
+    :data:`cradle.specs.values.MAX_COUNT` = 2^53 (beyond, the step times t_k + j len / n_k round, and a count past
+    int64 wrapped to one step per interval: dt = 1e-300 ran as a step as long as the interval)."""
+    from cradle.specs.values import MAX_COUNT
+
+    with np.errstate(over="ignore"):
+        steps = float(np.sum(np.diff(np.concatenate(([t_start], t_out))) / np.float64(dt)))
+    if not steps <= MAX_COUNT:
+        raise ValueError(f"dt = {dt!r}: the run to t = {float(t_out[-1]):.6g} would take {steps:.3g} steps, more "
+                         f"than 2^53 = {MAX_COUNT:.3g} (float64 counts steps exactly only below; take a larger step)")
 
 
 #: the most periods of DpS's fastest oscillation a run may span: an explicit integrator takes several steps per

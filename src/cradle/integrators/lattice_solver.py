@@ -73,6 +73,7 @@ from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bound
 from cradle.models.damping import Damping
 from cradle.models.lattice_terms import Terms, check as check_terms
 from cradle.specs.checked import checked
+from cradle.specs.values import MAX_T_END
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -254,7 +255,7 @@ def integrate_lattice(x0: ArrayLike, v0: ArrayLike, t_out: ArrayLike, *, alpha: 
     if v0.shape != x0.shape:
         raise ValueError(f"x0 and v0 must have the same shape, got x0 {x0.shape} and v0 {v0.shape}")
     check_energy_scale(x0, v0, alpha)
-    t_out = check_times(t_out, "t_out")
+    t_out = check_times(t_out, "t_out", most=MAX_T_END)
     t0 = float(t0)
     if not (np.isfinite(t0) and 0.0 <= t0 <= t_out[0]):
         raise ValueError(f"t0 must be finite, >= 0 and <= t_out[0] = {float(t_out[0])!r}, got t0={t0!r}")

@@ -15,6 +15,7 @@ import numpy as np
 
 from cradle.integrators import _kernels as K, _onset, _splitting
 from cradle.integrators._coefficients import SPLITTINGS
+from cradle.integrators._validate import check_steps
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -37,6 +38,7 @@ def run_splitting(x0: Floats, v0: Floats, t_out: Floats, dt: float, method: str,
                   energy0: float | None = None) -> tuple[Floats, Floats, Floats, float, int, int, float, int]:
     """(X, V, E, drift, steps, force evaluations, max compression, onset corrections) of a splitting run
     from (x0, v0) at ``t0`` with step bound ``dt``; ``onset`` overrides :data:`ONSET_OPTIONS`."""
+    check_steps(t0, t_out, dt)
     corrected = method in CORRECTED_METHODS
     a, b, _order = SPLITTINGS[CORRECTED_METHODS.get(method, method)]
     N = x0.size

@@ -45,6 +45,7 @@ HINTS = {("alpha", "exclusiveMinimum"): " (Hertz exponent of (vhertz))",
          **{(key, "minimum"): " (a floor the integrator can honour, about 1e2 machine epsilons or more: below, a "
                               "step's error estimate is rounding noise and the steps shrink until they underflow)"
             for key in ("rtol", "dps_rtol", "check_rtol")},
+         ("atol", "minimum"): " (the error norm squares state / atol, which overflows float64 below it)",
          ("max_energy_drift", "minimum"): " (H is computed in double precision: a relative drift below about 1e2 "
                                           "machine epsilons is its rounding alone, so a smaller bound fails every "
                                           "run)",

@@ -4,7 +4,16 @@ from __future__ import annotations
 
 from typing import Any
 
-from .values import ANGLE_PATTERN, DRIFT_FLOOR, DT_FACTOR_FLOOR, MAX_COUNT, NAME_MAX_LENGTH, NAME_PATTERN, RTOL_FLOOR
+from .values import (
+    ANGLE_PATTERN,
+    ATOL_FLOOR,
+    DRIFT_FLOOR,
+    DT_FACTOR_FLOOR,
+    MAX_COUNT,
+    NAME_MAX_LENGTH,
+    NAME_PATTERN,
+    RTOL_FLOOR,
+)
 
 # Shared scalar types ($defs), each bound written here only.
 
@@ -36,8 +45,8 @@ SHARED: dict[str, dict[str, Any]] = {
                              "'-52pi/100', '4*pi/5').", "anyOf": [{"type": "number"}, {"$ref": "#/$defs/angleString"}]},
     # arguments of public functions (cradle.specs.checked) that no config key refers to yet: a schema
     # lists only the shared types its keys use, so these are not in config.schema.json
-    "atol": {"description": "Absolute tolerance of an adaptive integrator; > 0.", "type": "number",
-             "exclusiveMinimum": 0},
+    "atol": {"description": f"Absolute tolerance of an adaptive integrator; >= {ATOL_FLOOR:g}.", "type": "number",
+             "minimum": ATOL_FLOOR},
     "dt": {"description": "Time step of a fixed-step splitting; > 0.", "type": "number", "exclusiveMinimum": 0},
     "dt_factor": {"description": "Splitting step as a fraction of the shortest linearised period 2 pi / omega_max; "
                                  f">= {DT_FACTOR_FLOOR:g}.", "type": "number", "minimum": DT_FACTOR_FLOOR},

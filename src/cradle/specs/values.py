@@ -40,6 +40,10 @@ ANGLE_HINT = "a number (radians) or a multiple of pi like 'pi', 'pi/5', '4pi/5',
 #: the smallest relative tolerance of an adaptive run: about 1e2 machine epsilons (scipy raises a smaller one to
 #: 100 eps), below which a step's error estimate is rounding noise and the steps shrink until they underflow
 RTOL_FLOOR = 1e-14
+#: the smallest absolute tolerance: the error norm sums squares of (error / tolerance) and of (state / tolerance),
+#: which overflow float64 (~1.8e308) for a state of order 1 once the tolerance is below its square root's inverse
+#: (atol = 1e-300 raised ZeroDivisionError in DOP853's first step); below ~1e-150 a tolerance is relative alone
+ATOL_FLOOR = 1e-150
 #: the smallest bound of an exact run's relative energy drift: H is a sum of N terms in double precision, so a
 #: drift below about 1e2 machine epsilons is its rounding alone; a smaller bound fails every run
 DRIFT_FLOOR = 1e-14
