@@ -209,30 +209,30 @@ def test_a_public_function_refuses_before_any_work(monkeypatch):
 
 
 @pytest.mark.parametrize("where, name, arguments", [
-    ("cradle.integrators", "integrate_lattice", {"alpha", "bc", "method", "dt", "dt_factor", "rtol", "atol",
-                                                 "potential"}),
-    ("cradle.integrators", "integrate_dps", {"alpha", "bc", "method", "rtol", "atol"}),
-    ("cradle.integrators.dps_solver", "iter_dps", {"alpha", "bc", "rtol", "atol"}),
-    ("cradle.models.initial", "travelling_wave", {"N", "alpha", "bc"}),
-    ("cradle.models.initial", "breather", {"alpha", "bc"}),
+    ("cradle.integrators", "integrate_lattice", {"alpha", "atol", "bc", "dt", "dt_factor", "method", "potential",
+                                                 "rtol"}),
+    ("cradle.integrators", "integrate_dps", {"alpha", "atol", "bc", "method", "rtol"}),
+    ("cradle.integrators.dps_solver", "iter_dps", {"alpha", "atol", "bc", "rtol"}),
+    ("cradle.models.initial", "travelling_wave", {"N", "a", "alpha", "bc", "q"}),
+    ("cradle.models.initial", "breather", {"alpha", "amplitude", "bc"}),
     ("cradle.models.initial", "from_displacements", {"alpha", "bc"}),
-    ("cradle.models.initial", "packet", {"N", "alpha", "bc"}),
-    ("cradle.models.initial", "pair", {"N", "alpha", "bc"}),
+    ("cradle.models.initial", "packet", {"N", "alpha", "amplitude", "bc", "width"}),
+    ("cradle.models.initial", "pair", {"N", "alpha", "amplitude", "bc", "separation"}),
     ("cradle.models.pairs", "two_breathers", {"N", "alpha", "bc"}),
     ("cradle.models.dps", "c_alpha", {"alpha"}),
     ("cradle.models.dps", "c_alpha_wallis", {"alpha"}),
     ("cradle.models.dps", "tau0", {"alpha"}),
-    ("cradle.models.dps", "amplitude_from_omega", {"alpha"}),
+    ("cradle.models.dps", "amplitude_from_omega", {"alpha", "q"}),
     ("cradle.models.homoclinic", "solve", {"alpha", "bc"}),
     ("cradle.models.homoclinic_continuation", "solve_scaled", {"alpha", "bc"}),
-    ("cradle.models.homoclinic_continuation", "continued", {"alpha", "N", "bc"}),
+    ("cradle.models.homoclinic_continuation", "continued", {"N", "alpha", "bc", "separation"}),
     ("cradle.models.homoclinic_continuation", "solve_sized", {"alpha"}),
-    ("cradle.models.homoclinic_continuation", "solve_kind", {"N", "alpha", "bc"}),
+    ("cradle.models.homoclinic_continuation", "solve_kind", {"N", "alpha", "amplitude", "bc", "separation"}),
     ("cradle.models.homoclinic_tails", "log_tail_log", {"alpha"}),
-    ("cradle.models.stationary", "orbits", {"alpha"}),
+    ("cradle.models.stationary", "orbits", {"alpha", "n_iter"}),
     ("cradle.models.stationary", "explicit_periodic_orbits", {"alpha"}),
     ("cradle.models.stationary", "stationary_residual", {"alpha", "bc"}),
-    ("cradle.models.waves", "solve", {"alpha"}),
+    ("cradle.models.waves", "solve", {"alpha", "q"}),
     ("cradle.integrators.lattice_breathers", "newton", {"alpha", "bc", "rtol"}),
 ])
 def test_the_public_entry_points_are_checked(where, name, arguments):
@@ -240,8 +240,9 @@ def test_the_public_entry_points_are_checked(where, name, arguments):
 
     func = getattr(importlib.import_module(where), name)
     assert set(func.checked_arguments) == arguments
+    valid = {"N": 20, "q": 0.6, "amplitude": 0.1, "width": 5.0, "separation": 3, "n_iter": 3}
     with pytest.raises(ConfigError, match=r"^alpha = 0.5: must be > 1 \(Hertz exponent of \(vhertz\)\)$"):
-        func(**{p: {"alpha": 0.5, "N": 20}.get(p) for p in _required(func)})
+        func(**{p: {"alpha": 0.5, **valid}.get(p) for p in _required(func)})
 
 
 def _required(func):

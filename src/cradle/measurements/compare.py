@@ -12,7 +12,10 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from cradle.specs.checked import checked
 
+
+@checked
 def approximate_displacement(A: ArrayLike, t: ArrayLike, eps: float) -> NDArray[np.float64]:
     """x_n^app(t) = eps (A_n e^{it} + c.c.) = 2 eps Re(A_n e^{it})   (ansatz).
 
@@ -23,11 +26,13 @@ def approximate_displacement(A: ArrayLike, t: ArrayLike, eps: float) -> NDArray[
     return 2.0 * eps * np.real(A * np.exp(1j * t)[..., None])
 
 
+@checked(a="amplitude")
 def relative_error(x: ArrayLike, x_app: ArrayLike, a: float) -> NDArray[np.float64]:
     """E(t) = a^{-1} max_n |x_n^app(t) - x_n(t)|   (figure plot4-5)."""
     return np.max(np.abs(np.asarray(x_app) - np.asarray(x)), axis=-1) / a
 
 
+@checked
 def gamma_star(N: int) -> NDArray[np.float64]:
     """Gamma* = (2 pi / N) {-N/2 + 1, ..., N/2} (N even), the paper's discretised band.
 

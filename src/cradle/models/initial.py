@@ -40,6 +40,7 @@ class InitialData:
     info: dict = field(default_factory=dict)  # derived parameters (a, omega_tw, ...)
 
 
+@checked
 def lattice_state(A0: ArrayLike, eps: float, alpha: float,
                   bc: str = "periodic") -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(x_n(0), v_n(0)) of the ansatz (ansatz) for DpS data A0 and small parameter eps."""
@@ -64,7 +65,7 @@ def noise(N: int, kind: str, amplitude: float, seed: int) -> tuple[NDArray[np.fl
     raise ValueError(f"noise kind must be 'uniform' or 'gaussian', got {kind!r}")
 
 
-@checked
+@checked(a="amplitude")
 def travelling_wave(N: int, q: float, alpha: float, *, a: float | None = None, omega_tw: float | None = None,
                     phi: float = 0.0, bc: str = "periodic", noise_kind: str = "none",
                     noise_amplitude: float = 0.0, seed: int | None = None) -> InitialData:
@@ -148,6 +149,7 @@ def from_displacements(x0: ArrayLike, alpha: float, bc: str = "periodic", info: 
     return InitialData(A0=A0, eps=1.0, x0=x0_ansatz, v0=v0, info={**(info or {}), "eps": 1.0})
 
 
+@checked
 def envelope(s: ArrayLike, kind: str, width: float) -> NDArray[np.float64]:
     """A packet envelope of peak 1 at s = 0, (almost) supported on ``width`` sites.
 
@@ -159,8 +161,6 @@ def envelope(s: ArrayLike, kind: str, width: float) -> NDArray[np.float64]:
       a half-integer and ``width`` even).
     """
     s = np.asarray(s, dtype=float)
-    if not width > 0:
-        raise ValueError(f"width must be > 0, got width={width!r}")
     if kind == "gaussian":
         sigma = width / 6.0
         return np.exp(-0.5 * (s / sigma) ** 2)
@@ -181,8 +181,6 @@ def packet(N: int, alpha: float, *, amplitude: float, width: float, envelope_kin
     (N - 1)/2, the bond in the middle of the chain, so an even number of
     sites sits symmetrically under the envelope.
     """
-    if not amplitude > 0:
-        raise ValueError(f"amplitude must be > 0, got amplitude={amplitude!r}")
     c = (N - 1) / 2.0 if centre is None else float(centre)
     n = np.arange(N)
     s = n - c
@@ -234,8 +232,6 @@ def pair(N: int, alpha: float, *, amplitude: float, separation: int, profile: st
     """
     from cradle.models import homoclinic
 
-    if not amplitude > 0:
-        raise ValueError(f"amplitude must be > 0, got amplitude={amplitude!r}")
     if profile not in PAIR_PROFILES:
         raise ValueError(f"unknown pair profile {profile!r} (known: {', '.join(PAIR_PROFILES)})")
     if sign not in (1, -1):

@@ -29,6 +29,7 @@ import dataclasses
 import math
 from typing import TYPE_CHECKING, TypeVar, overload
 
+from cradle.specs.checked import checked
 from cradle.specs.declare import check_fields, declared, from_plain, param
 from cradle.specs.values import ConfigError, did_you_mean
 
@@ -292,6 +293,7 @@ def release_amplitude(spec: Cradle, angle: float) -> float:
     return spec.length * math.sin(theta) / scales(spec).X  # type: ignore[operator]
 
 
+@checked(v="speed")
 def collision_time(spec: Cradle, v: float) -> float:
     """Hertz collision time (s) of two of the cradle's spheres meeting at relative speed ``v`` (m/s), without the
     on-site force: t_c = 2 I delta_max / v, delta_max = (5 mu v^2 / (4 k))^(2/5), mu = m/2, I =

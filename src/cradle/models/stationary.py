@@ -130,7 +130,7 @@ def reversor(U: ArrayLike) -> NDArray[np.float64]:
     return np.stack([a, -a - b], axis=-1)
 
 
-@checked
+@checked(n_iter="iterations")
 def orbits(starts: ArrayLike, n_iter: int, alpha: float, box: float | None = None) -> NDArray[np.float64]:
     """Orbits of G from several starting points at once.
 

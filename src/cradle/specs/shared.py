@@ -59,4 +59,18 @@ SHARED: dict[str, dict[str, Any]] = {
                   "type": "string", "enum": ["dop853_numba", "dop853", "rk45"]},
     "potential": {"description": "Interaction potential: hertz, V0 of (vhertz), or smooth, |d|^(alpha+1)/(alpha+1) "
                                  "of (meca) with kappa = 1.", "type": "string", "enum": ["hertz", "smooth"]},
+    # the arguments of the initial-data builders and the comparison of the models (each read as its config key
+    # reads it where one exists)
+    "amplitude": {"description": "An amplitude (a displacement in (nc)'s units); > 0.", "type": "number",
+                  "exclusiveMinimum": 0},
+    "width": {"description": "Number of sites an envelope covers; > 0.", "type": "number", "exclusiveMinimum": 0},
+    "velocity": {"description": "A bead's velocity in (nc)'s units.", "type": "number"},
+    "separation": {"description": "Distance in sites between two centres; integer >= 1.", "type": "integer",
+                   "minimum": 1},
+    "eps": {"description": "Amplitude parameter eps of the ansatz (ansatzapprox); > 0.", "type": "number",
+            "exclusiveMinimum": 0},
+    "q": {"description": "Wavenumber q (radians per site).", "type": "number"},
+    "speed": {"description": "A relative speed of two spheres (m/s); > 0.", "type": "number", "exclusiveMinimum": 0},
+    "iterations": {"description": "Iterations of the map G; integer >= 0.", "type": "integer", "minimum": 0,
+                   "maximum": MAX_COUNT},
 }
