@@ -410,3 +410,15 @@ def test_a_bond_guess_on_the_free_end_of_a_chain_is_refused(tmp_path, N, centre)
     assert lines[0] == (f"config error: homoclinic.free-bond.centre = {N - 1}: a bond-centred guess seeds the bond "
                         f"({N - 1}, {N}), which a chain of N = {N} with free ends does not have: the centre must be "
                         f"<= N-2 = {N - 2}"), lines
+
+
+def test_a_homoclinic_whose_solve_fails_from_its_guess_is_refused(tmp_path):
+    """The bond guess on beads 0 and 1 of the 10-bead free chain does not converge (found by config_fuzz --real:
+    the homoclinic job failed); a chain this short is solved at the door as its job solves it."""
+    raw = copy.deepcopy(RAW)
+    raw["homoclinic"]["free-bond"]["centre"] = 0
+    lines = _refused(tmp_path, raw)
+    assert lines == [lines[0]] and lines[0].startswith(
+        "config error: homoclinic.free-bond: its job's solve fails from this guess (bond homoclinic: continuation in "
+        "alpha from 1.5 to alpha=1.5 failed on N=10"), lines
+    assert lines[0].endswith("; change the guess, its centre or N")

@@ -293,3 +293,19 @@ def zero_at(site: int, N: int, kind: str, alpha: float, bc: str = "periodic", mu
         return None
     k = (site - start) % N if bc == "periodic" else site - start
     return not 0 <= k < size or bool(a[k] == 0)
+
+
+def solve_fails(N: int, kind: str, alpha: float, bc: str = "periodic", mu: float = 1.0, amplitude: float = 0.1,
+                centre: int | None = None, separation: int = 9) -> str | None:
+    """Why :func:`solve_kind` fails for these arguments (it raises, or its answer did not converge or is not
+    finite: what the homoclinic job refuses), for a chain of at most :data:`WINDOW` sites, where the solve takes
+    milliseconds; None when it succeeds, or for a longer chain (not tried)."""
+    if N > WINDOW:
+        return None
+    try:
+        sol = solve_kind(N, kind, alpha, bc, mu, amplitude, centre, separation)
+    except (ValueError, ArithmeticError, np.linalg.LinAlgError) as err:
+        return " ".join(str(err).split())
+    if not sol.converged or not np.all(np.isfinite(sol.a)):
+        return f"Powell hybrid did not converge (residual {sol.residual:.3e})"
+    return None

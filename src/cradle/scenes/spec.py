@@ -528,7 +528,16 @@ class HomoclinicEntry:
             out.add(where + ["centre"], f"must be a site index in [0, N-1] = [0, {self.N - 1}]", self.centre)
         if self.guess == "double" and not 1 <= self.separation < self.N:
             out.add(where + ["separation"], f"must be in [1, N-1] = [1, {self.N - 1}]", self.separation)
-        if self.well_placed() or out.has(where + ["centre"]) or out.has(where + ["separation"]):
+        if self.well_placed():
+            if not out.within(where):   # a short chain solved as its job solves it
+                from cradle.models.homoclinic_continuation import solve_fails
+
+                why = solve_fails(self.N, self.guess, alpha, self.bc, self.mu, self.amplitude, self.centre,
+                                  self.separation)
+                if why is not None:
+                    out.add(where, f"its job's solve fails from this guess ({why}); change the guess, its centre or N")
+            return
+        if out.has(where + ["centre"]) or out.has(where + ["separation"]):
             return
         from cradle.models.homoclinic import guess_off_chain
 
