@@ -422,3 +422,16 @@ def test_a_homoclinic_whose_solve_fails_from_its_guess_is_refused(tmp_path):
         "config error: homoclinic.free-bond: its job's solve fails from this guess (bond homoclinic: continuation in "
         "alpha from 1.5 to alpha=1.5 failed on N=10"), lines
     assert lines[0].endswith("; change the guess, its centre or N")
+
+
+@pytest.mark.parametrize("width", [1e-300, 0.9])
+def test_a_packet_too_narrow_to_reach_a_bead_is_refused(tmp_path, width):
+    """loc1-packet's cos^2 envelope centred on a bond is 0 at every bead below width 1: the packet was x = 0 and its
+    job failed at the comparison (found by config_fuzz --real, width = 1e-300)."""
+    raw = copy.deepcopy(RAW)
+    raw["scenes"]["loc1-packet"]["initial"]["width"] = width
+    assert _refused(tmp_path, raw) == [
+        f"config error: scenes.loc1-packet.initial.width = {width!r}: too narrow: the envelope is 0 at every bead "
+        f"(the packet would be x = 0; a Gaussian's sigma is width/6)"]
+    raw["scenes"]["loc1-packet"]["initial"]["width"] = 1.1
+    assert cc.validate(raw)["scenes"]["loc1-packet"]["initial"]["width"] == 1.1

@@ -169,6 +169,15 @@ def envelope(s: ArrayLike, kind: str, width: float) -> NDArray[np.float64]:
     raise ValueError(f"unknown envelope {kind!r} (known: {', '.join(ENVELOPES)})")
 
 
+def envelope_peak(N: int, kind: str, width: float, centre: float | None = None) -> float:
+    """The largest value :func:`envelope` takes at a bead of a packet (:func:`packet`) of N beads centred on
+    ``centre`` (default (N - 1)/2): at the beads either side of the centre, which a narrow envelope may miss
+    entirely (a Gaussian of width 1e-300 centred on a bond is 0 at every bead, and so is the packet)."""
+    c = (N - 1) / 2.0 if centre is None else float(centre)
+    near = np.array([c - np.floor(c), np.ceil(c) - c])
+    return float(np.max(envelope(near, kind, width)))
+
+
 @checked
 def packet(N: int, alpha: float, *, amplitude: float, width: float, envelope_kind: str = "gaussian",
            centre: float | None = None, bc: str = "periodic") -> InitialData:

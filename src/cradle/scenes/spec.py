@@ -265,6 +265,12 @@ class Packet:
             out.add(path + ["width"], f"must be <= N = {N} (the envelope must fit the chain)", self.width)
         if self.centre is not None and not 0 <= self.centre <= N - 1:
             out.add(path + ["centre"], f"must be in [0, N-1] = [0, {N - 1}]", self.centre)
+        elif not out.within(path):
+            from cradle.models.initial import envelope_peak
+
+            if not envelope_peak(N, self.envelope, self.width, self.centre) * self.amplitude > 0:
+                out.add(path + ["width"], "too narrow: the envelope is 0 at every bead (the packet would be x = 0; "
+                                          "a Gaussian's sigma is width/6)", self.width)
 
 
 @declared("pair", doc="Two static breathers at rest (figure loc1, right): two copies of a homoclinic profile of "
