@@ -49,7 +49,7 @@ def test_scaling_keeps_the_rhs_homogeneous():
 
 
 def test_tail_amplitude_of_a_localised_state_and_a_background():
-    """A state zero on the far half ring has no tail; adding eps everywhere gives a tail eps / max."""
+    """A state zero on the far quarter ring has no tail; adding eps everywhere gives a tail eps / max."""
     N = 16
     A = np.zeros(N, complex)
     A[7:10] = [0.5, 1.0, 0.5]

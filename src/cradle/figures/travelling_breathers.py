@@ -4,7 +4,7 @@ Drawn by :func:`draw` from results/travelling-breathers/[full/]travelling-breath
 (:mod:`cradle.analyses.travelling_breathers`).
 
 (a) |A_n(0)| (log scale) of the slowest, a middle and the fastest member, and the static site breather at the
-same norm; (b) the tail (max |A_n| on the far half ring / max |A_n|) against c, on the ring of N sites and of
+same norm; (b) the tail (max |A_n| on the far quarter ring / max |A_n|) against c, on the ring of N sites and of
 check_N sites; (c) H against c at fixed norm (dH/dc > 0: H rises with c where it does); (d) the growth rate
 ln max|mu| / T of the non-trivial multipliers modulo shift against c (the stability threshold dashed; unstable
 members filled), on the two rings and at check_rtol; (e) the multipliers modulo shift of the most unstable member

@@ -98,12 +98,13 @@ def centre(A: ArrayLike) -> float:
 
 
 def tail_amplitude(A: ArrayLike) -> float:
-    """max |A_n| over the half ring farthest from the TB's centre, relative to max |A_n|: its oscillatory tail
-    (the core of a DpS breather decays doubly exponentially, so on the far half ring only the tail is left)."""
+    """max |A_n| over the quarter ring farthest from the TB's centre (ring distance >= 3N/8), relative to
+    max |A_n|: its oscillatory tail (the core of a DpS breather decays doubly exponentially, so that far from the
+    centre only the tail is left; on a small ring the core's own decay still shows there)."""
     A = np.asarray(A)
     N = A.size
     d = np.abs((np.arange(N) - centre(A) + N / 2) % N - N / 2)   # ring distance to the centre
-    far = d >= N / 4
+    far = d >= 3 * N / 8
     return float(np.max(np.abs(A[far])) / np.max(np.abs(A)))
 
 
