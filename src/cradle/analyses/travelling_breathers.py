@@ -209,9 +209,10 @@ def verdict_changes(c: NDArray[np.float64], unstable: NDArray[np.bool_]) -> list
 
 _C = ("c",)
 VARIABLES = {
-    "/": {},
-    "/family": {
+    "/": {
         "c": Var(_C, "velocity c = 1/T of the travelling breather (sites per unit tau at the family's norm)"),
+    },
+    "/family": {
         "period": Var(_C, "period T of (tb): one site per T"),
         "theta": Var(_C, "phase theta of (tb), in (-pi, pi]"),
         "energy": Var(_C, "DpS Hamiltonian H = -sum |A_{n+1} - A_n|^(alpha+1) / ((alpha+1) tau0)"),
@@ -320,7 +321,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
         say(f"travelling-breathers: c = {b.c:.4g}: theta = {b.theta:.10g}, H = {b.energy:.10g}, tail {t:.3g}, "
             f"residual {b.residual:.2g}, trivial defect {v[0]:.2g}, growth {v[1]:.3g}")
     groups: dict = {
-        "/": ({}, {}),
+        "/": ({}, {"c": c}),
         "/family": ({"period": 1.0 / c, "theta": [math.remainder(b.theta, 2 * math.pi) for b in fam], "energy": H,
                      "dH_dc": dH, "tail": tail, "residual": [b.residual for b in fam],
                      "iterations": [b.iterations for b in fam], "trivial_defect": [v[0] for v in ver],
@@ -329,13 +330,13 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
                      "unstable_rtol": [-1 if v[2] is None else int(v[2]) for v in ver_r],
                      "growth_rate_N": growth_N, "unstable_N": unstable_N, "tail_N": tail_N,
                      "static_distance_site": [d["site"] for d in dist],
-                     "static_distance_bond": [d["bond"] for d in dist]}, {"c": c}),
+                     "static_distance_bond": [d["bond"] for d in dist]}, {}),
         "/profiles": ({"A_re": np.array([b.A.real for b in fam]), "A_im": np.array([b.A.imag for b in fam]),
                        "static_site": profiles["site"][0], "static_bond": profiles["bond"][0]},
-                      {"c": c, "n": np.arange(spec.N)}),
+                      {"n": np.arange(spec.N)}),
         "/multipliers": ({"mu_re": np.array([b.multipliers.real for b in fam]),
                           "mu_im": np.array([b.multipliers.imag for b in fam])},
-                         {"c": c, "m": np.arange(2 * spec.N)}),
+                         {"m": np.arange(2 * spec.N)}),
         "/direct": ({"residual": direct["residual"]}, {"k": direct["k"]}),
         "/claims": ({col: np.array([getattr(r, col) for r in rows], dtype=object) for col in COLUMNS},
                     {"row": np.arange(len(rows))}),
