@@ -79,11 +79,14 @@ def test_trivial_multipliers_and_symplectic_pairs(tiny):
 
 
 def test_slow_end_approaches_the_static_breathers(tiny):
-    """The distance to the nearer static breather shrinks as c decreases (the c -> 0 end is the static one)."""
+    """The distance to the nearer static breather shrinks as c decreases, as c^2: |A_n| is even in c (the
+    reflection n -> -n with complex conjugation maps a TB of c to one of -c), so the c = 0 end is the static
+    breather and the first correction is O(c^2)."""
     _, tree = tiny
     fam = tree["family"]
     d = np.minimum(fam["static_distance_site"].values, fam["static_distance_bond"].values)
     assert np.all(np.diff(d) > 0)
+    assert abs(float(tree.attrs["static_distance_power"]) - 2.0) < 0.25
 
 
 def test_static_profiles_are_those_of_the_breathers_analysis():

@@ -56,6 +56,10 @@ _SPEED = {"type": "number", "exclusiveMinimum": 0, "maximum": 2,
 TRIVIAL = 4
 #: the scaling check starts Newton this fraction of the way from the member towards its neighbour
 SCALING_NUDGE = 1e-3
+#: a multiplier is real when |Im mu| <= REAL |mu| (a real pair's imaginary parts are rounding)
+REAL = 1e-8
+#: a tail dips at a grid point when it is below this fraction of both neighbours' tails
+DIP = 0.3
 #: where the docs page explains the claims rows
 EXPLAINED = "analyses/travelling-breathers.md#claims"
 
@@ -136,14 +140,19 @@ def family(spec: TravellingBreathers, N: int, rtol: float,
     return down[::-1] + up, first.c
 
 
-def verdict(b: TravellingBreather, threshold: float) -> tuple[float, float, bool]:
-    """(trivial defect, growth rate, unstable): the four multipliers nearest 1 are the trivial ones; their
-    largest |mu - 1| is the defect, ln max|mu| / T over the others the growth rate."""
+def verdict(b: TravellingBreather, threshold: float) -> tuple[float, float, bool, bool]:
+    """(trivial defect, growth rate, unstable, real): the four multipliers nearest 1 are the trivial ones; their
+    largest |mu - 1| is the defect, ln max|mu| / T over the others the growth rate; ``real`` when the unstable
+    multiplier is real and > 1 (a pair left +1 along the real axis, the kind the dH/dc criterion is about)
+    rather than an oscillatory quartet."""
     mu = b.multipliers
     order = np.argsort(np.abs(mu - 1.0))
     defect = float(np.abs(mu[order[TRIVIAL - 1]] - 1.0))
-    rate = float(np.log(np.max(np.abs(mu[order[TRIVIAL:]]))) / b.T)
-    return defect, rate, bool(rate > threshold)
+    rest = mu[order[TRIVIAL:]]
+    top = rest[int(np.argmax(np.abs(rest)))]
+    rate = float(np.log(np.abs(top)) / b.T)
+    unstable = rate > threshold
+    return defect, rate, bool(unstable), bool(unstable and top.real > 0 and abs(top.imag) <= REAL * abs(top))
 
 
 def static_distance(b: TravellingBreather, profiles: dict, samples: int, rtol: float) -> dict[str, float]:
@@ -170,7 +179,7 @@ def direct_run(b: TravellingBreather, periods: int, rtol: float) -> dict:
 
     k = np.arange(periods + 1)
     run = integrate_dps(b.A, k * b.T, alpha=b.alpha, rtol=rtol)
-    res = np.array([np.max(np.abs(run.A[j] - np.exp(1j * j * b.theta) * M.shift(b.A, j))) for j in k])
+    res = np.array([np.max(np.abs(run.A[j] - np.exp(1j * j * b.theta) * M.shift(b.A, int(j)))) for j in k])
     return {"k": k, "residual": res / np.max(np.abs(b.A)), "norm_drift": float(run.max_l2_drift),
             "energy_drift": float(run.max_energy_drift)}
 
@@ -223,6 +232,7 @@ VARIABLES = {
         "trivial_defect": Var(_C, "largest |mu - 1| of the four trivial multipliers modulo shift (exactly 0)"),
         "growth_rate": Var(_C, "ln max |mu| / T over the non-trivial multipliers modulo shift (per unit tau)"),
         "unstable": Var(_C, "1 if growth_rate > stability_threshold"),
+        "real_mode": Var(_C, "1 if unstable through a real multiplier > 1 (the dH/dc kind), not a complex quartet"),
         "unstable_rtol": Var(_C, "the verdict re-solved at check_rtol"),
         "growth_rate_rtol": Var(_C, "growth_rate re-solved at check_rtol"),
         "unstable_N": Var(_C, "the verdict on the ring of check_N sites (-1: member not reached there)"),
@@ -252,24 +262,32 @@ VARIABLES = {
 }
 
 
-def claims(c: NDArray[np.float64], tail: NDArray[np.float64], dH_changes: list[float],
-           v_changes: list[float], spacing: float) -> list[Row]:
+def tail_dips(c: NDArray[np.float64], tail: NDArray[np.float64]) -> list[int]:
+    """Indices of the inner grid points where the tail is below :data:`DIP` of both neighbours'."""
+    return [i for i in range(1, len(c) - 1) if tail[i] < DIP * min(tail[i - 1], tail[i + 1])]
+
+
+def claims(c: NDArray[np.float64], tail: NDArray[np.float64], tail_N: NDArray[np.float64], dH_changes: list[float],
+           real_changes: list[float], v_changes: list[float], spacing: float) -> list[Row]:
     """The cited papers' statements against the family (qualitative rows)."""
-    inner = [i for i in range(1, len(c) - 1) if tail[i] < 0.3 * min(tail[i - 1], tail[i + 1])]
-    dips = ", ".join(f"c = {c[i]:.3g} ({tail[i]:.2g})" for i in inner) or "none on the grid"
+    dips, dips_N = tail_dips(c, tail), tail_dips(c, tail_N)
+    both = sorted(set(dips) & set(dips_N))
+    text = ", ".join(f"c = {c[i]:.3g}" for i in both) or "none"
     rows = [Row("James 2018 (abstract)", "TB tails for p = 5/2: small, non-vanishing, oscillatory",
                 "generally non-vanishing", f"tail {np.min(tail):.2g} .. {np.max(tail):.2g} of the peak over c = "
                 f"{c[0]:.3g} .. {c[-1]:.3g}", "agrees" if np.min(tail) > 0 else "disagrees",
                 "max |A_n| on the far quarter ring / max |A_n|, each member"),
             Row("James 2018 (abstract)", "near-localised TBs at particular parameters", "exist",
-                f"tail dips below 0.3 of both neighbours at {dips}",
-                "agrees" if inner else "not comparable", "local minima of the tail along the c grid")]
-    near = all(any(abs(v - d) <= spacing for d in dH_changes) for v in v_changes)
+                f"tail dips (below {DIP:g} of both neighbours) on both rings at: {text}; on one ring only at "
+                f"{len(set(dips) ^ set(dips_N))} grid points", "agrees" if both else "not comparable",
+                "local minima of the tail along the c grid, on the ring of N and of check_N sites")]
+    near = (all(any(abs(v - d) <= spacing for v in v_changes) for d in dH_changes)
+            and all(any(abs(v - d) <= spacing for d in dH_changes) for v in real_changes))
     rows.append(Row("Xu et al. 2017 (arXiv 1701.04882)", "a stability change where dH/dc changes sign "
-                    "(sufficient, not necessary)",
-                    "stability changes at sign changes of dH/dc",
-                    f"dH/dc changes sign at {', '.join(f'{x:.3g}' for x in dH_changes) or 'none'}; verdict changes "
-                    f"at {', '.join(f'{x:.3g}' for x in v_changes) or 'none'}",
+                    "(sufficient, not necessary)", "stability changes at sign changes of dH/dc",
+                    f"dH/dc changes sign at {', '.join(f'{x:.3g}' for x in dH_changes) or 'none'}; a real "
+                    f"multiplier crosses +1 at {', '.join(f'{x:.3g}' for x in real_changes) or 'none'}; any verdict "
+                    f"changes at {', '.join(f'{x:.3g}' for x in v_changes) or 'none'}",
                     "agrees" if near else "disagrees", "H and the multipliers modulo shift along the fixed-norm family",
                     tolerance=f"one grid spacing ({spacing:.3g})"))
     for r in rows:
@@ -298,25 +316,32 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
     ver_r = []
     for b in fam:
         r = DT.newton(b.A, b.T, b.theta, spec.alpha, spec.norm, b.A, spec.newton_tol, rtol=spec.check_rtol)
-        ver_r.append(verdict(r, spec.stability_threshold) if r.converged else (np.nan, np.nan, None))
+        ver_r.append(verdict(r, spec.stability_threshold) if r.converged else (np.nan, np.nan, None, None))
     famN, _ = family(spec, spec.check_N, spec.rtol, say)
     byc = {round(b.c, 12): b for b in famN}
-    growth_N, unstable_N, tail_N = [], [], []
+    growth_N: list[float] = []
+    unstable_N: list[int] = []
+    tail_N: list[float] = []
     for x in c:
         bN = byc.get(round(float(x), 12))
-        if bN is None:
-            growth_N.append(np.nan), unstable_N.append(-1), tail_N.append(np.nan)
+        if bN is None:      # not reached on the other ring: no verdict
+            growth_N.append(np.nan)
+            unstable_N.append(-1)
+            tail_N.append(np.nan)
             continue
-        _, g, u = verdict(bN, spec.stability_threshold)
-        growth_N.append(g), unstable_N.append(int(u)), tail_N.append(M.tail_amplitude(bN.A))
+        _, g, u, _ = verdict(bN, spec.stability_threshold)
+        growth_N.append(g)
+        unstable_N.append(int(u))
+        tail_N.append(M.tail_amplitude(bN.A))
     profiles = static_profiles(spec.N, spec.alpha, spec.norm)
     dist = [static_distance(b, profiles, spec.static_samples, spec.rtol) for b in fam]
     i_direct = int(np.argmin(np.abs(c - spec.direct_speed)))
     direct = direct_run(fam[i_direct], spec.direct_periods, spec.rtol)
     other = fam[i_direct + 1] if i_direct + 1 < len(fam) else fam[i_direct - 1]
     scal = scaling_check(fam[i_direct], other, spec.scale, spec)
-    dH_changes, v_changes = sign_changes(c, dH), verdict_changes(c, unstable)
-    rows = claims(c, tail, dH_changes, v_changes, float(np.max(np.diff(c))))
+    real = np.array([v[3] for v in ver])
+    dH_changes, v_changes, real_changes = sign_changes(c, dH), verdict_changes(c, unstable), verdict_changes(c, real)
+    rows = claims(c, tail, np.asarray(tail_N), dH_changes, real_changes, v_changes, float(np.max(np.diff(c))))
     for b, v, t in zip(fam, ver, tail, strict=True):
         say(f"travelling-breathers: c = {b.c:.4g}: theta = {b.theta:.10g}, H = {b.energy:.10g}, tail {t:.3g}, "
             f"residual {b.residual:.2g}, trivial defect {v[0]:.2g}, growth {v[1]:.3g}")
@@ -326,6 +351,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
                      "dH_dc": dH, "tail": tail, "residual": [b.residual for b in fam],
                      "iterations": [b.iterations for b in fam], "trivial_defect": [v[0] for v in ver],
                      "growth_rate": [v[1] for v in ver], "unstable": unstable.astype(int),
+                     "real_mode": real.astype(int),
                      "growth_rate_rtol": [v[1] for v in ver_r],
                      "unstable_rtol": [-1 if v[2] is None else int(v[2]) for v in ver_r],
                      "growth_rate_N": growth_N, "unstable_N": unstable_N, "tail_N": tail_N,
@@ -341,6 +367,8 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
         "/claims": ({col: np.array([getattr(r, col) for r in rows], dtype=object) for col in COLUMNS},
                     {"row": np.arange(len(rows))}),
     }
+    near = np.minimum([d["site"] for d in dist], [d["bond"] for d in dist])
+    power = float(np.polyfit(np.log(c), np.log(near), 1)[0])
     agree_r = [v[2] == w[2] for v, w in zip(ver, ver_r, strict=True)]
     agree_N = [u == int(v[2]) for u, v in zip(unstable_N, ver, strict=True) if u >= 0]
     attrs = {
@@ -352,10 +380,12 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
         "n_unstable": int(unstable.sum()),
         "dH_dc_sign_changes": ", ".join(f"{x:.6g}" for x in dH_changes) or "none",
         "verdict_changes": ", ".join(f"{x:.6g}" for x in v_changes) or "none",
+        "real_multiplier_changes": ", ".join(f"{x:.6g}" for x in real_changes) or "none",
         "verdicts_agree_rtol": f"{sum(agree_r)} of {len(agree_r)}",
         "verdicts_agree_N": f"{sum(agree_N)} of {len(agree_N)}",
         "direct_speed": float(c[i_direct]), "direct_norm_drift": direct["norm_drift"],
         "direct_energy_drift": direct["energy_drift"], "direct_max_residual": float(np.max(direct["residual"])),
+        "static_distance_power": power,
         "scaling_lambda": spec.scale, "scaling_profile_error": scal["profile_error"],
         "scaling_theta_error": scal["theta_error"], "scaling_converged": int(scal["converged"]),
         "method": "Gauss-Newton on the shooting map modulo shift R = e^{-i theta} S^{-1} Phi_T(A) - A at fixed T and "

@@ -50,7 +50,7 @@ def draw(tree: AnalysisTree) -> Figure:
     a.set_xlabel("site n")
     a.set_ylabel("$|A_n(0)|$")
     a.set_title(f"(a) profiles at norm {float(params['norm']):g} (ring of {N})", fontsize=9)
-    a.legend(fontsize=7, loc="upper right")
+    a.legend(fontsize=7, loc="upper left")
 
     b = ax[0, 1]
     b.semilogy(c, fam["tail"].values, "C0o-", ms=4, label=f"ring of {N}")
@@ -78,9 +78,9 @@ def draw(tree: AnalysisTree) -> Figure:
     e.semilogy(c, np.maximum(np.asarray(fam["growth_rate_rtol"].values, float), floor), "k+", ms=6,
                label=f"rtol {float(params['check_rtol']):g}")
     e.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
-    e.set_ylim(floor / 2, None)
+    e.set_ylim(floor / 2, 300.0 * max(float(np.nanmax(g)), float(np.nanmax(fam["growth_rate_N"].values)), thr))
     e.set_xlabel("velocity c")
-    e.set_ylabel("growth rate ln max$|\\mu|$ / T (floored)")
+    e.set_ylabel(f"growth rate ln max$|\\mu|$ / T (floor {floor:g})")
     e.set_title("(d) multipliers modulo shift: growth rate", fontsize=9)
     e.legend(fontsize=6.5, loc="upper left", ncol=2)
 
@@ -103,8 +103,9 @@ def draw(tree: AnalysisTree) -> Figure:
     h.loglog(c, fam["static_distance_site"].values, "C0o-", ms=4, label="to the site breather")
     h.loglog(c, fam["static_distance_bond"].values, "C1s--", ms=4, label="to the bond breather")
     h.set_xlabel("velocity c")
-    h.set_ylabel("min over one period of max$_n$ ||A_n| - $\\phi_n$| / max $\\phi$")
-    h.set_title("(f) distance to the static breathers", fontsize=9)
+    h.set_ylabel("distance to the static profile (relative)")
+    h.set_title(f"(f) min over a period of max$_n$ $||A_n| - \\phi_n|$ / max $\\phi$; "
+                f"$\\propto c^{{{float(params['static_distance_power']):.2f}}}$", fontsize=9)
     h.legend(fontsize=7, loc="lower right")
     return fig
 

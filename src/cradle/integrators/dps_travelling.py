@@ -79,7 +79,8 @@ def _basis(N: int) -> NDArray[np.complex128]:
     return np.concatenate([E, 1j * E], axis=1)
 
 
-def monodromy(A: ArrayLike, T: float, theta: float, alpha: float, rtol: float = RTOL) -> tuple[Floats, NDArray[np.complex128]]:
+def monodromy(A: ArrayLike, T: float, theta: float, alpha: float,
+              rtol: float = RTOL) -> tuple[Floats, NDArray[np.complex128]]:
     """(M, Phi_T(A)): the 2N x 2N real matrix of e^{-i theta} S^{-1} DPhi_T(A) (the monodromy modulo shift) and the
     state one period later."""
     A = np.asarray(A, complex)
@@ -129,7 +130,7 @@ def _weighted_lstsq(J: Floats, F: Floats, rows: int) -> Floats:
     w = np.ones(J.shape[0])
     for k in range(rows, J.shape[0]):
         w[k] = 1.0 / max(float(np.linalg.norm(J[k])), 1e-300)
-    return np.linalg.lstsq(w[:, None] * J, w * F, rcond=None)[0]
+    return np.asarray(np.linalg.lstsq(w[:, None] * J, w * F, rcond=None)[0], dtype=np.float64)
 
 
 def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm: float,
@@ -150,7 +151,7 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
         Mm, B = monodromy(A, T, theta, alpha, rtol)
         R = M.residual(A, B, theta)
         res = float(np.max(np.abs(R)) / np.max(np.abs(A)))
-        mu = np.linalg.eigvals(Mm)
+        mu = np.linalg.eigvals(Mm).astype(complex)
         if log:
             log(f"travelling breathers: T = {T:.12g}, iteration {it}: theta = {theta:.12g}, residual {res:.3g}")
         J = np.zeros((2 * N + 3, 2 * N + 1))
@@ -206,8 +207,9 @@ def continue_family(first: TravellingBreather, cs: ArrayLike, tol: float = 1e-11
                     min_step: float = 1e-4, log: Callable[[str], object] | None = None
                     ) -> tuple[list[TravellingBreather], float | None]:
     """TBs at the velocities ``cs`` (in order, from ``first``'s c) at ``first``'s norm: each predicted along the
-    family's tangent at the previous member (:meth:`TravellingBreather.predict`) and corrected by :func:`newton` with the previous member as the phase reference. A failed step is halved
-    down to ``min_step`` (relative to c); returns the members reached at the grid's c and the last c reached."""
+    family's tangent at the previous member (:meth:`TravellingBreather.predict`) and corrected by :func:`newton`
+    with the previous member as the phase reference. A failed step is halved down to ``min_step`` (relative to
+    c); returns the members reached at the grid's c and the last c reached."""
     say = log or (lambda *a: None)
     out: list[TravellingBreather] = []
     path = [first]

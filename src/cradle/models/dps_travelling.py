@@ -79,13 +79,15 @@ def relative_residual(A: ArrayLike, B: ArrayLike, theta: float) -> float:
 
 
 def scaled(A: ArrayLike, T: float, lam: float, alpha: float) -> tuple[NDArray[np.complex128], float]:
-    """DpS's scaling: the TB (lambda A, lambda^(1-alpha) T) of the same theta (B(tau) = lambda A(lambda^(alpha-1) tau))."""
-    return lam * np.asarray(A, complex), T * lam ** (1.0 - alpha)
+    """DpS's scaling: the TB (lambda A, lambda^(1-alpha) T) of the same theta,
+    B(tau) = lambda A(lambda^(alpha-1) tau)."""
+    out = np.asarray(A, dtype=np.complex128) * lam
+    return out, float(T * lam ** (1.0 - alpha))
 
 
 def phase_of(A: ArrayLike, B: ArrayLike) -> float:
     """theta best fitting B = e^{i theta} S A in least squares: arg sum_n conj(A_{n-1}) B_n."""
-    return float(np.angle(np.vdot(shift(A, 1), B)))
+    return float(np.angle(np.sum(np.conj(shift(A, 1)) * np.asarray(B))))
 
 
 def centre(A: ArrayLike) -> float:
