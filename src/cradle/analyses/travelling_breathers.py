@@ -76,7 +76,7 @@ class TravellingBreathers:
                         exclusiveMinimum=0, maximum=1e6)
     kick: float = param(0.15, "Phase gradient kappa of the pushed static breather A_n = phi_n e^{i kappa (n - n_0)} "
                         "whose motion gives the first guess.", exclusiveMinimum=0, maximum=1.5)
-    speeds: list[float] = param([0.04, 0.05, 0.06, 0.08, 0.1, 0.12, 0.14, 0.16, 0.18, 0.2, 0.22, 0.24],
+    speeds: list[float] = param([0.05, 0.06, 0.08, 0.1, 0.12, 0.14, 0.16, 0.18, 0.2, 0.22, 0.24],
                                 "Velocities c of the stored members (increasing); the family is continued from the "
                                 "first guess's c down to the slowest and up to the fastest.", minItems=3,
                                 maxItems=60, items=_SPEED, reduced=[0.06, 0.08, 0.1, 0.12])
@@ -86,7 +86,7 @@ class TravellingBreathers:
                         minimum=RTOL_FLOOR, maximum=1e-8)
     check_rtol: float = param(1e-12, "The tolerance of the verdict check (every member re-solved).",
                               minimum=RTOL_FLOOR, maximum=1e-8)
-    check_N: int = param(32, "Sites of the ring of the verdict check (the family recomputed).", minimum=8,
+    check_N: int = param(30, "Sites of the ring of the verdict check (the family recomputed).", minimum=8,
                          maximum=200, reduced=20)
     stability_threshold: float = param(1e-5, "Growth rate ln max|mu| / T (per unit tau) above which a TB is called "
                                        "unstable.", exclusiveMinimum=0, maximum=1)

@@ -204,7 +204,7 @@ def start(profile: ArrayLike, kappa: float, alpha: float, sites: int = 3, rtol: 
 
 
 def continue_family(first: TravellingBreather, cs: ArrayLike, tol: float = 1e-11, rtol: float = RTOL,
-                    min_step: float = 1e-4, log: Callable[[str], object] | None = None
+                    min_step: float = 0.02, log: Callable[[str], object] | None = None
                     ) -> tuple[list[TravellingBreather], float | None]:
     """TBs at the velocities ``cs`` (in order, from ``first``'s c) at ``first``'s norm: each predicted along the
     family's tangent at the previous member (:meth:`TravellingBreather.predict`) and corrected by :func:`newton`
@@ -221,7 +221,7 @@ def continue_family(first: TravellingBreather, cs: ArrayLike, tol: float = 1e-11
             while True:
                 c2 = cur.c + step
                 A_g, th_g = cur.predict(1.0 / c2)
-                b = newton(A_g, 1.0 / c2, th_g, first.alpha, P0, cur.A, tol, rtol=rtol)
+                b = newton(A_g, 1.0 / c2, th_g, first.alpha, P0, cur.A, tol, max_iter=8, rtol=rtol)
                 if b.converged:
                     path.append(b)
                     cur = b
