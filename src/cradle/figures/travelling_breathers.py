@@ -102,6 +102,11 @@ def draw(tree: AnalysisTree) -> Figure:
     h = ax[1, 2]
     h.loglog(c, fam["static_distance_site"].values, "C0o-", ms=4, label="to the site breather")
     h.loglog(c, fam["static_distance_bond"].values, "C1s--", ms=4, label="to the bond breather")
+    from matplotlib.ticker import FixedLocator, NullFormatter
+
+    h.xaxis.set_major_locator(FixedLocator(c[:: max(1, len(c) // 5)]))
+    h.xaxis.set_major_formatter(lambda x, _: f"{x:g}")
+    h.xaxis.set_minor_formatter(NullFormatter())
     h.set_xlabel("velocity c")
     h.set_ylabel("distance to the static profile (relative)")
     h.set_title(f"(f) min over a period of max$_n$ $||A_n| - \\phi_n|$ / max $\\phi$; "
