@@ -104,7 +104,7 @@ def draw(tree: AnalysisTree) -> Figure:
     h.loglog(c, fam["static_distance_bond"].values, "C1s--", ms=4, label="to the bond breather")
     from matplotlib.ticker import FixedLocator, NullFormatter
 
-    h.xaxis.set_major_locator(FixedLocator(c[:: max(1, len(c) // 5)]))
+    h.xaxis.set_major_locator(FixedLocator([float(x) for x in c[:: max(1, len(c) // 5)]]))
     h.xaxis.set_major_formatter(lambda x, _: f"{x:g}")
     h.xaxis.set_minor_formatter(NullFormatter())
     h.set_xlabel("velocity c")
