@@ -35,9 +35,9 @@ def draw(tree: AnalysisTree) -> Figure:
     A = np.asarray(prof["A_re"].values) + 1j * np.asarray(prof["A_im"].values)
     n = np.asarray(prof["n"].values)
     N = n.size
-    params = tree.attrs
-    thr = float(params["stability_threshold"])
-    check_N = int(params["check_N"])
+    attrs = tree.attrs
+    thr = float(attrs["stability_threshold"])
+    check_N = int(attrs["check_N"])
 
     a = ax[0, 0]
     picks = sorted({0, len(c) // 2, len(c) - 1})
@@ -49,7 +49,7 @@ def draw(tree: AnalysisTree) -> Figure:
     a.set_ylim(1e-6, 2.0)
     a.set_xlabel("site n")
     a.set_ylabel("$|A_n(0)|$")
-    a.set_title(f"(a) profiles at norm {float(params['norm']):g} (ring of {N})", fontsize=9)
+    a.set_title(f"(a) profiles at norm {float(attrs['norm']):g} (ring of {N})", fontsize=9)
     a.legend(fontsize=7, loc="upper left")
 
     b = ax[0, 1]
@@ -64,7 +64,7 @@ def draw(tree: AnalysisTree) -> Figure:
     d.plot(c, fam["energy"].values, "C2o-", ms=4)
     d.set_xlabel("velocity c")
     d.set_ylabel("H (DpS Hamiltonian)")
-    d.set_title(f"(c) H at fixed norm; dH/dc changes sign at: {params['dH_dc_sign_changes']}", fontsize=9)
+    d.set_title(f"(c) H at fixed norm; dH/dc changes sign at: {attrs['dH_dc_sign_changes']}", fontsize=9)
 
     e = ax[1, 0]
     g = np.asarray(fam["growth_rate"].values)
@@ -76,7 +76,7 @@ def draw(tree: AnalysisTree) -> Figure:
     e.semilogy(c, np.maximum(np.asarray(fam["growth_rate_N"].values, float), floor), "C1s", ms=4, mfc="none",
                label=f"ring of {check_N}")
     e.semilogy(c, np.maximum(np.asarray(fam["growth_rate_rtol"].values, float), floor), "k+", ms=6,
-               label=f"rtol {float(params['check_rtol']):g}")
+               label=f"rtol {float(attrs['check_rtol']):g}")
     e.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
     e.set_ylim(floor / 2, 300.0 * max(float(np.nanmax(g)), float(np.nanmax(fam["growth_rate_N"].values)), thr))
     e.set_xlabel("velocity c")
@@ -110,7 +110,7 @@ def draw(tree: AnalysisTree) -> Figure:
     h.set_xlabel("velocity c")
     h.set_ylabel("distance to the static profile (relative)")
     h.set_title(f"(f) min over a period of max$_n$ $||A_n| - \\phi_n|$ / max $\\phi$; "
-                f"$\\propto c^{{{float(params['static_distance_power']):.2f}}}$", fontsize=9)
+                f"$\\propto c^{{{float(attrs['static_distance_power']):.2f}}}$", fontsize=9)
     h.legend(fontsize=7, loc="lower right")
     return fig
 
