@@ -1,0 +1,225 @@
+"""The continuum limit alpha -> 1+: DpS breathers against the log-NLS Gaussian, Hertz solitary waves against the
+log-KdV Gaussian (issue 37, item 5).
+
+For each eps = alpha - 1 of ``dps_eps`` this analysis computes the site- and bond-centred breathers of (dpsst) at
+unit amplitude (:func:`cradle.models.continuum.dps_breather`: the unit-amplitude solve of
+:mod:`cradle.models.homoclinic_continuation` on a ring sized from the Gaussian) and measures the distance of the
+staggered envelope b_n / max b to exp(-eps (n - n_c)^2) in the max norm over the ring; for each eps of ``hertz_eps``
+the solitary wave of the Hertz chain without on-site potential with force exponent 1 + eps at speed 1
+(:func:`cradle.models.continuum.hertz_wave`) and the distance of R / max R to exp(-3 eps xi^2) on its grid. The
+power of eps at which each distance vanishes is fitted over eps <= ``fit_below``
+(:func:`cradle.measurements.continuum.fit_power`); the first-order constants of the limit, (nu - 4)/eps -> 4 ln 2 - 2
+and ln max R -> 1/2 at c = 1, are stored beside. The limits and their derivation: :mod:`cradle.models.continuum`.
+"""
+from __future__ import annotations
+
+import math
+import time as _time
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from cradle.analyses.claims_table import COLUMNS, Row
+from cradle.analyses.protocol import Analysis
+from cradle.data.variables import Var
+from cradle.specs.declare import declared, param, plain
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from cradle.analyses.protocol import Log
+    from cradle.measurements.continuum import PowerFit
+    from cradle.scenes.spec import Context, Where
+    from cradle.specs.values import Errors
+
+_EPS = {"type": "number", "exclusiveMinimum": 0, "minimum": 1e-4, "maximum": 1.0,
+        "description": "An eps = alpha - 1 (alpha the Hertz exponent)."}
+
+#: the sources of the limits (stored with the file and in the claims rows)
+JS_2014 = ("G. James and Y. Starosvetsky, Breather solutions of the discrete p-Schroedinger equation, in Localized "
+           "Excitations in Nonlinear Complex Systems (Springer, 2014), doi 10.1007/978-3-319-02057-0_4")
+JP_2014 = ("G. James and D. Pelinovsky, Gaussian solitary waves and compactons in Fermi-Pasta-Ulam lattices with "
+           "Hertzian potentials, Proc. R. Soc. A 470 (2014) 20130462, arXiv 1307.3837")
+
+
+@declared(doc="The continuum limit alpha -> 1+ (issue 37): DpS breathers against the log-NLS Gaussian, solitary "
+              "waves of the Hertz chain without on-site potential against the log-KdV Gaussian, the fitted power of "
+              "alpha - 1 -> results/continuum-limit/continuum-limit.nc and results/figures/continuum-limit.{pdf,png}.")
+class ContinuumLimit:
+    dps_eps: list[float] = param([0.5, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001, 5e-4, 3e-4],
+                                 "The eps = alpha - 1 at which the DpS breathers (site and bond) are solved; the ring "
+                                 "grows as eps^(-1/2) and the dense solve as its cube (3e-4: 740 sites, 3 s each).",
+                                 minItems=4, maxItems=20, items=_EPS, reduced=[0.1, 0.05, 0.02, 0.01, 0.005])
+    hertz_eps: list[float] = param([0.5, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001],
+                                   "The eps = alpha - 1 at which the solitary wave of the Hertz chain is solved "
+                                   "(Petviashvili's iteration needs about 20/eps iterations: 1e-3 takes 3 s).",
+                                   minItems=4, maxItems=20, items={**_EPS, "minimum": 5e-4},
+                                   reduced=[0.1, 0.05, 0.02, 0.01])
+    fit_below: float = param(0.05, "The power of eps is fitted over the eps <= fit_below (at least 4 of each list).",
+                             exclusiveMinimum=0, maximum=1.0, reduced=0.1)
+    decades: float = param(16.0, "Each ring (box) is as wide as the Gaussian's fall by this many decades on each "
+                           "side, plus 4 sites.", minimum=4, maximum=30)
+    points: int = param(8, "Grid points per site of the solitary wave's box (an integer: the shifts are exact).",
+                        minimum=2, maximum=64)
+
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """Each form: no eps twice, at least 4 eps of each list at or below fit_below."""
+        for key in ("dps_eps", "hertz_eps"):
+            values = getattr(self, key)
+            if len(set(values)) != len(values):
+                out.add(where + [key], "lists a value twice", values)
+            if sum(e <= self.fit_below for e in values) < 4:
+                out.add(where + [key], f"needs at least 4 values <= fit_below = {self.fit_below:g} (the power fit "
+                        "has three parameters)", values)
+
+
+_E = ("eps",)
+_FAMILY = {
+    "eps": Var(_E, "eps = alpha - 1"),
+    "distance": Var(_E, "max-norm distance of the scaled profile to the Gaussian of the limit (both of unit maximum)"),
+    "residual": Var(_E, "max residual of the profile's equation relative to its amplitude"),
+    "sites": Var(_E, "sites of the ring (DpS) or of the periodic box (Hertz)"),
+}
+#: the stored variables, per group: a family against eps and each profile of it in its own group (its own grid)
+VARIABLES = {
+    "/": {},
+    "/dps_site": {**_FAMILY, "nu_first_order": Var(_E, "(nu - 4)/eps, nu the mu of (dpsst) of the unit-amplitude "
+                                                   "breather; the limit 4 ln 2 - 2")},
+    "/dps_bond": {**_FAMILY, "nu_first_order": Var(_E, "(nu - 4)/eps, nu the mu of (dpsst) of the unit-amplitude "
+                                                   "breather; the limit 4 ln 2 - 2")},
+    "/hertz": {**_FAMILY, "log_amplitude": Var(_E, "ln max R of the wave at c = 1; the limit 1/2"),
+               "iterations": Var(_E, "iterations of Petviashvili's iteration")},
+    "/dps_site/{k}": {"X": Var(("site",), "sqrt(eps) (n - n_c)"),
+                      "envelope": Var(("site",), "staggered envelope b_n / max b of the breather"),
+                      "gaussian": Var(("site",), "the log-NLS Gaussian exp(-eps (n - n_c)^2), unit maximum")},
+    "/dps_bond/{k}": {"X": Var(("site",), "sqrt(eps) (n - n_c)"),
+                      "envelope": Var(("site",), "staggered envelope b_n / max b of the breather"),
+                      "gaussian": Var(("site",), "the log-NLS Gaussian exp(-eps (n - n_c)^2), unit maximum")},
+    "/hertz/{k}": {"Y": Var(("point",), "sqrt(3 eps) xi"),
+                   "strain": Var(("point",), "strain R / max R of the solitary wave at c = 1"),
+                   "gaussian": Var(("point",), "the log-KdV Gaussian exp(-3 eps xi^2)")},
+    "/claims": {"row": Var(("row",), "index of a cited paper's statement"),
+                **{c: Var(("row",), f"claims-table column {c} (cradle.analyses.claims_table.COLUMNS)")
+                   for c in COLUMNS}},
+}
+
+
+def dps_family(spec: ContinuumLimit, kind: str) -> list:
+    """The breathers of one parity at every eps of the spec."""
+    from cradle.models.continuum import dps_breather
+
+    return [dps_breather(e, kind, spec.decades) for e in spec.dps_eps]
+
+
+def hertz_family(spec: ContinuumLimit) -> list:
+    """The solitary waves at c = 1 at every eps of the spec."""
+    from cradle.models.continuum import hertz_wave
+
+    return [hertz_wave(e, spec.decades, spec.points) for e in spec.hertz_eps]
+
+
+def _fit(eps: list[float], D: list[float], below: float) -> PowerFit:
+    from cradle.measurements.continuum import fit_power
+
+    e, d = np.asarray(eps), np.asarray(D)
+    keep = e <= below
+    return fit_power(e[keep], d[keep])
+
+
+def claims(fits: dict[str, PowerFit]) -> list[Row]:
+    """The cited papers' statements on the limit against ours: qualitative rows (the papers print no number for
+    it), judged by the fitted power (a distance that vanishes: power > 0 beyond its uncertainty)."""
+    rows = []
+    for key, what, src in (("dps_site", "site-centred DpS breathers", JS_2014),
+                           ("dps_bond", "bond-centred DpS breathers", JS_2014),
+                           ("hertz", "solitary waves of the Hertz chain without on-site potential", JP_2014)):
+        f = fits[key]
+        ok = f.power - 3 * f.uncertainty > 0
+        paper = ("breathers correspond asymptotically to Gaussian homoclinic solutions as alpha -> 1+ (qualitative)"
+                 if key != "hertz" else "solitary waves become Gaussian as alpha -> 1+ (log-KdV; qualitative)")
+        rows.append(Row(src.split(",")[0] + " 2014", f"{what} against the Gaussian of the limit", paper,
+                        f"distance ~ {f.K:.3g} (alpha-1)^{f.power:.4f} +- {f.uncertainty:.1g}",
+                        "agrees" if ok else "disagrees",
+                        "max-norm distance of the profile scaled to unit maximum to the Gaussian, power fitted over "
+                        "the smallest alpha - 1 (continuum-limit)", "power > 0 beyond 3 uncertainties",
+                        "analyses/continuum-limit.md"))
+    return rows
+
+
+def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
+    """The `continuum-limit` analysis as a tree of groups (:data:`VARIABLES`); it reads no file."""
+    from cradle.data.io import make_tree
+    from cradle.measurements.continuum import sup_distance
+    from cradle.models import solitary
+    from cradle.models.continuum import LOG_NLS_M, kdv_gaussian
+
+    say = log or (lambda *a: None)
+    t0 = _time.perf_counter()
+    groups: dict = {"/": ({}, {})}
+    variables = {k: v for k, v in VARIABLES.items() if "{" not in k}
+    fits: dict[str, PowerFit] = {}
+    seconds: dict[str, float] = {}
+    for kind in ("site", "bond"):
+        t1 = _time.perf_counter()
+        fam = dps_family(spec, kind)
+        seconds[kind] = _time.perf_counter() - t1
+        bad = [b.eps for b in fam if not b.converged]
+        if bad:
+            raise RuntimeError(f"continuum-limit: the {kind} breather did not converge at eps = {bad}")
+        D = [sup_distance(b.envelope, b.gaussian) for b in fam]
+        path = f"/dps_{kind}"
+        groups[path] = ({"distance": D, "residual": [b.residual for b in fam], "sites": [b.n.size for b in fam],
+                         "nu_first_order": [(b.nu - 4.0) / b.eps for b in fam]}, {"eps": list(spec.dps_eps)})
+        for k, b in enumerate(fam):
+            sub = f"{path}/e{k:02d}"
+            groups[sub] = ({"X": math.sqrt(b.eps) * (b.n - b.centre), "envelope": b.envelope / np.max(b.envelope),
+                            "gaussian": b.gaussian}, {})
+            variables[sub] = VARIABLES[path + "/{k}"]
+        fits[f"dps_{kind}"] = f = _fit(spec.dps_eps, D, spec.fit_below)
+        say(f"continuum-limit: DpS {kind}: distance ~ {f.K:.4g} eps^{f.power:.5f} (+- {f.uncertainty:.2g}); "
+            f"(nu - 4)/eps = {(fam[-1].nu - 4) / fam[-1].eps:.6f} at eps = {fam[-1].eps:g} (limit {LOG_NLS_M:.6f})")
+    t1 = _time.perf_counter()
+    waves = hertz_family(spec)
+    seconds["hertz"] = _time.perf_counter() - t1
+    D = [sup_distance(w.strain, kdv_gaussian(w.xi, e)) for w, e in zip(waves, spec.hertz_eps, strict=True)]
+    groups["/hertz"] = ({"distance": D, "residual": [solitary.residual(w) for w in waves],
+                         "sites": [w.xi.size // spec.points for w in waves],
+                         "log_amplitude": [math.log(w.strain_max) for w in waves],
+                         "iterations": [w.iterations for w in waves]}, {"eps": list(spec.hertz_eps)})
+    for k, (w, e) in enumerate(zip(waves, spec.hertz_eps, strict=True)):
+        sub = f"/hertz/e{k:02d}"
+        groups[sub] = ({"Y": math.sqrt(3.0 * e) * w.xi, "strain": w.strain / w.strain_max,
+                        "gaussian": kdv_gaussian(w.xi, e)}, {})
+        variables[sub] = VARIABLES["/hertz/{k}"]
+    fits["hertz"] = f = _fit(spec.hertz_eps, D, spec.fit_below)
+    say(f"continuum-limit: Hertz: distance ~ {f.K:.4g} eps^{f.power:.5f} (+- {f.uncertainty:.2g}); ln max R = "
+        f"{math.log(waves[-1].strain_max):.6f} at eps = {spec.hertz_eps[-1]:g} (limit 0.5)")
+    table = claims(fits)
+    groups["/claims"] = ({c: np.array([getattr(r, c) for r in table], dtype=object) for c in COLUMNS},
+                         {"row": np.arange(len(table))})
+    attrs: dict = {"nu_first_order_limit": LOG_NLS_M, "log_amplitude_limit": 0.5, "fit_below": spec.fit_below}
+    for key, f in fits.items():
+        attrs.update({f"{key}_power": f.power, f"{key}_power_stderr": f.stderr, f"{key}_power_spread": f.spread,
+                      f"{key}_power_uncertainty": f.uncertainty, f"{key}_constant": f.K,
+                      f"{key}_correction": f.k, f"{key}_fit_points": f.points})
+    attrs.update({
+        "dps_limit": "nu b_n = g(b_n + b_{n+1}) + g(b_n + b_{n-1}) -> b_XX + 4 b ln(2b) - m b = 0, X = sqrt(eps) n, "
+                     "nu = 4 + eps m: b_n / max b = exp(-eps (n - n_c)^2), m = 4 ln 2 - 2 at unit amplitude",
+        "hertz_limit": "c^2 R'' = f(R(xi+1)) - 2 f(R) + f(R(xi-1)), f = R^(1+eps) -> (c^2 - 1)/eps R = R ln R + "
+                       "R_YY/12, Y = sqrt(eps) xi: R / max R = exp(-3 eps xi^2), c^2 = 1 + eps (ln max R - 1/2)",
+        "distance_norm": "max over the ring (box) of |profile / max profile - Gaussian / max Gaussian| on the lattice "
+                         "sites (DpS: the staggered envelope b_n = (-1)^(n - n_pin) a_n; Hertz: the strain on the "
+                         "grid); centre n_c the central site (site) or the middle of the central bond (bond)",
+        "fit": "least squares of ln D = p ln eps + ln K + k eps over eps <= fit_below; uncertainty the larger of the "
+               "standard error of p and the change of p when the smallest or the largest eps is left out",
+        "dps_source": JS_2014, "hertz_source": JP_2014,
+        "dps_site_seconds": seconds["site"], "dps_bond_seconds": seconds["bond"], "hertz_seconds": seconds["hertz"],
+        "wall_time_s": _time.perf_counter() - t0,
+    })
+    return make_tree(groups, variables, attrs=attrs, params=plain(spec),
+                     title="The continuum limit alpha -> 1+: DpS breathers and Hertz solitary waves against Gaussians")
+
+
+ANALYSIS = Analysis(
+    name="continuum-limit", spec=ContinuumLimit, compute=compute, variables=VARIABLES,
+    title="The continuum limit alpha -> 1+: DpS breathers and Hertz solitary waves against Gaussians")
