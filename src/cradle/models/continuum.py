@@ -102,13 +102,6 @@ def kdv_speed_squared(eps: float, amplitude: float) -> float:
     return 1.0 + eps * (math.log(amplitude) - 0.5)
 
 
-def kdv_gaussian_start(xi: ArrayLike, c: float, alpha: float) -> NDArray[np.float64]:
-    """The log-KdV wave at speed c: A exp(-3 eps xi^2), A = exp((c^2 - 1)/eps + 1/2) (the start of Petviashvili's
-    iteration of :func:`cradle.models.solitary.solve` for alpha != 3/2)."""
-    eps = alpha - 1.0
-    return math.exp((c * c - 1.0) / eps + 0.5) * kdv_gaussian(xi, eps)
-
-
 def half_width(eps: float, decades: float, kappa: float = 1.0) -> int:
     """Sites from the centre at which the Gaussian exp(-kappa eps x^2) is ``decades`` decades down."""
     return int(math.ceil(math.sqrt(decades * math.log(10.0) / (kappa * eps))))

@@ -121,17 +121,16 @@ def solve(c: float = 1.0, length: float = 40.0, points: int = 64, tol: float = 1
     of ``length`` sites and ``points`` points per site, until the relative increment is below ``tol`` (or
     ``max_iterations``). ``alpha``: the exponent of the contact force f(r) = r_+^alpha (Hertz's 3/2 by default);
     Petviashvili's exponent is then alpha / (alpha - 1). The start is Nesterenko's profile at the same speed for
-    alpha = 3/2, the log-KdV Gaussian of the limit alpha -> 1+ otherwise
-    (:func:`cradle.models.continuum.kdv_gaussian_start`)."""
+    alpha = 3/2, the log-KdV Gaussian of the limit alpha -> 1+ otherwise, exp((c^2 - 1)/eps + 1/2) exp(-3 eps xi^2),
+    eps = alpha - 1 (:mod:`cradle.models.continuum`)."""
     xi, k = _grid(length, points)
     n = xi.size
     mult = _tent(k) / c**2
     if alpha == P:
         R, p, gamma = nesterenko_profile(xi, nesterenko_amplitude(c)), P, GAMMA
-    else:
-        from cradle.models.continuum import kdv_gaussian_start
-
-        R, p, gamma = kdv_gaussian_start(xi, c, alpha), alpha, alpha / (alpha - 1.0)
+    else:   # the log-KdV wave at speed c (cradle.models.continuum, which imports this module)
+        eps = alpha - 1.0
+        R, p, gamma = math.exp((c * c - 1.0) / eps + 0.5) * np.exp(-3.0 * eps * xi**2), alpha, alpha / eps
     increment, S, it = math.inf, math.nan, 0
     for it in range(1, max_iterations + 1):  # noqa: B007 (the count is returned)
         Rh = np.fft.rfft(R)
