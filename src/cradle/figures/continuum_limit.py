@@ -53,6 +53,7 @@ def _profiles(ax: Any, members: list[tuple[float, Any]], xname: str, yname: str,
 def _departures(ax: Any, fams: list[tuple[str, list[tuple[float, Any]]]], xname: str, yname: str, lim: float,
                 title: str) -> None:
     styles = ["-", ":"]
+    top = 0.0
     for s, (label, members) in enumerate(fams):
         for j, (e, g) in enumerate(_shown(members)):
             x = np.asarray(g[xname].values)
@@ -61,9 +62,12 @@ def _departures(ax: Any, fams: list[tuple[str, list[tuple[float, Any]]]], xname:
             order = np.argsort(x[keep])
             ax.plot(x[keep][order], d[keep][order], styles[s % 2], color=f"C{j}", lw=1.2,
                     label=f"{label}, $\\alpha - 1$ = {e:g}")
+            top = max(top, float(np.max(d[keep])))
     ax.axhline(0.0, color="0.6", lw=0.6)
     ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=6, loc="lower right", ncol=1 if len(fams) == 1 else 2)
+    # the key above the two humps, where no curve goes
+    ax.set_ylim(-0.04 * top, 1.6 * top)
+    ax.legend(fontsize=6, loc="upper center", ncol=len(fams))
 
 
 def draw(tree: AnalysisTree) -> Figure:
