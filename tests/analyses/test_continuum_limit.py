@@ -89,7 +89,7 @@ def test_the_distance_vanishes_as_the_first_power(reduced):
         p, u = float(tree.attrs[f"{key}_power"]), float(tree.attrs[f"{key}_power_uncertainty"])
         assert 0 < u < 0.05, key
         assert abs(p - 1.0) <= 3 * u, (key, p, u)
-    assert list(tree["claims"]["verdict"].values) == ["agrees"] * 3
+    assert list(tree["claims"]["verdict"].values)[:3] == ["agrees"] * 3
 
 
 def test_first_order_constants(reduced):
@@ -117,3 +117,62 @@ def test_config_refuses_a_fit_range_without_four_points():
         cc.analysis_spec(bad, "continuum-limit", "full")
     spec = cc.analysis_spec(raw, "continuum-limit", "reduced")
     assert spec.dps_eps == [0.1, 0.05, 0.02, 0.01, 0.005] and spec.fit_below == 0.1
+
+
+# ----------------------------------------------------------------- mobility
+
+
+def test_the_site_breather_is_unstable_and_the_growing_mode_is_real():
+    from cradle.models.dps_mobility import unstable_site
+
+    br = unstable_site(3.0, 48)
+    assert br.residual <= RESIDUAL_TOL
+    assert br.lam > 0.1 and br.lam == pytest.approx(br.lam_max, rel=1e-8)
+    assert float(np.max(np.abs(br.phi))) == 0.5
+
+
+def test_norm_and_hamiltonian_drifts_fall_with_the_tolerance():
+    from cradle.integrators.dps_solver import integrate_dps
+    from cradle.models.dps_mobility import start, unstable_site
+
+    br = unstable_site(2.0, 48)
+    tau = np.linspace(0.0, 10.0 / br.lam, 3)
+    drifts = []
+    for rtol in (1e-8, 1e-10):
+        sol = integrate_dps(start(br, 1e-2), tau, alpha=2.0, rtol=rtol)
+        drifts.append((sol.max_l2_drift, sol.max_energy_drift))
+    # DOP853 is of order 8: a tolerance 100 times smaller cuts the drift of a conserved quantity at least tenfold
+    for before, after in zip(drifts[0], drifts[1], strict=True):
+        assert after < before / 10
+
+
+def test_peak_position_unwraps_round_the_ring():
+    from cradle.measurements.travel import displacement, peak_position
+
+    N = 16
+    n = np.arange(N)
+    # a peak moving 1.25 sites per row, twice round the ring: a symmetric profile puts the parabola's vertex at
+    # the centre exactly when it is a parabola on the three sites, as |A|^2 = 1 - (n - c)^2 / 4 is
+    centres = 3.0 + 1.25 * np.arange(26)
+    A = np.array([np.sqrt(np.maximum(1.0 - ((n - c + N / 2) % N - N / 2) ** 2 / 4.0, 0.0)) for c in centres])
+    assert np.allclose(peak_position(A) - peak_position(A)[0], centres - centres[0], atol=1e-12)
+    assert displacement(A) == pytest.approx(31.25)
+
+
+def test_crossover_is_read_along_the_alphas():
+    assert cl.crossover([1.5, 2.0, 2.5, 3.0], [True, True, False, False]) == 2.25
+    assert cl.crossover([1.5, 2.0, 2.5], [True, True, True]) == 2.5
+    assert math.isnan(cl.crossover([1.5, 2.0], [False, False]))
+
+
+def test_mobility_verdicts_of_the_reduced_form(reduced):
+    spec, tree = reduced
+    mob = tree["mobility"]
+    # the integrator's drift of the norm and of H is a thousandth of the smallest perturbation studied, at most
+    for key in ("mobility_max_l2_drift", "mobility_max_energy_drift"):
+        assert float(tree.attrs[key]) < 1e-3 * min(spec.deltas), key
+    # the growth rate rises with alpha (the instability vanishes as alpha -> 1+)
+    assert np.all(np.diff(mob["growth_rate"].values) > 0)
+    for t in spec.thresholds:
+        assert int(tree.attrs[f"verdicts_unchanged_N_doubled_threshold_{t:g}"]) == 1
+        assert int(tree.attrs[f"verdicts_unchanged_rtol_over_10_threshold_{t:g}"]) == 1

@@ -26,9 +26,11 @@ from cradle.specs.declare import declared, param, plain
 
 if TYPE_CHECKING:
     import xarray as xr
+    from numpy.typing import NDArray
 
     from cradle.analyses.protocol import Log
     from cradle.measurements.continuum import PowerFit
+    from cradle.models.dps_mobility import UnstableBreather
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -61,9 +63,34 @@ class ContinuumLimit:
                            "side, plus 4 sites.", minimum=4, maximum=30)
     points: int = param(8, "Grid points per site of the solitary wave's box (an integer: the shifts are exact).",
                         minimum=2, maximum=64)
+    mobility_alphas: list[float] = param([1.5, 1.75, 2.0, 2.25, 2.5, 3.0], "The alpha at which the unstable "
+                                         "site-centred DpS breather is perturbed and run (its growth rate must be "
+                                         "resolved: >= 1.5; 1.4 grows e-fold in 3400 time units).", minItems=2,
+                                         maxItems=12, items={"type": "number", "minimum": 1.3, "maximum": 3.0},
+                                         reduced=[1.75, 3.0])
+    deltas: list[float] = param([1e-3, 1e-2], "Sizes of the perturbation along the growing mode, relative to the "
+                                "breather's amplitude.", minItems=1, maxItems=6,
+                                items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.3}, reduced=[1e-2])
+    seeds: int = param(2, "Runs with seeded complex noise added (seeds 0 .. seeds-1), each with the largest delta.",
+                       minimum=0, maximum=16, reduced=1)
+    noise: float = param(1e-3, "Size of the seeded noise per site (standard normal real and imaginary parts), "
+                         "relative to the breather's amplitude.", exclusiveMinimum=0, maximum=0.1)
+    mobility_N: int = param(128, "Sites of the ring of the mobility runs (the discretisation check doubles it).",
+                            minimum=32, maximum=1024, reduced=64)
+    growth_times: float = param(40.0, "A run lasts (ln(1/delta) + growth_times) / lambda (lambda the growth rate), "
+                                "at most tau_max.", minimum=5, maximum=200)
+    tau_max: float = param(20000.0, "Longest run (units of tau).", exclusiveMinimum=0, maximum=1e6)
+    rtol: float = param(1e-10, "Relative tolerance of the DpS runs (dop853_numba); the check divides it by 10.",
+                        minimum=1e-13, maximum=1e-6)
+    thresholds: list[float] = param([1.5, 5.0], "A run travels when its peak moves farther than this (sites) at "
+                                    "some time; each threshold gives its own verdicts and crossover.", minItems=1,
+                                    maxItems=4, items={"type": "number", "exclusiveMinimum": 0, "maximum": 100})
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Each form: no eps twice, at least 4 eps of each list at or below fit_below."""
+        """Each form: no eps twice, at least 4 eps of each list at or below fit_below; mobility alphas increasing."""
+        if list(self.mobility_alphas) != sorted(set(self.mobility_alphas)):
+            out.add(where + ["mobility_alphas"], "must increase strictly (the crossover is read along them)",
+                    self.mobility_alphas)
         for key in ("dps_eps", "hertz_eps"):
             values = getattr(self, key)
             if len(set(values)) != len(values):
@@ -98,6 +125,29 @@ VARIABLES = {
     "/hertz/{k}": {"Y": Var(("point",), "sqrt(3 eps) xi"),
                    "strain": Var(("point",), "strain R / max R of the solitary wave at c = 1"),
                    "gaussian": Var(("point",), "the log-KdV Gaussian exp(-3 eps xi^2)")},
+    "/mobility": {
+        "alpha": Var(("alpha",), "Hertz exponent alpha"),
+        "delta": Var(("delta",), "size of the perturbation along the growing mode, relative to the amplitude"),
+        "seed": Var(("seed",), "seed of the noise added to the largest delta's start"),
+        "threshold": Var(("threshold",), "distance (sites) beyond which a run travels"),
+        "sample": Var(("sample",), "index of a stored time"),
+        "growth_rate": Var(("alpha",), "growth rate lambda of the site-centred breather's unstable mode (per tau)"),
+        "tau_end": Var(("alpha",), "length of the runs (tau)"),
+        "displacement": Var(("alpha", "delta"), "largest distance of the peak from its start (sites)"),
+        "displacement_noise": Var(("alpha", "seed"), "largest distance of the peak from its start, noise added "
+                                  "(sites)"),
+        "l2_drift": Var(("alpha", "delta"), "largest relative drift of sum |A_n|^2 over the run"),
+        "energy_drift": Var(("alpha", "delta"), "largest relative drift of the DpS Hamiltonian H over the run"),
+        "travels": Var(("threshold", "alpha", "delta"), "1 if the run travels beyond the threshold, else 0"),
+        "track": Var(("alpha", "sample"), "peak position minus its start (sites), largest delta"),
+        "growth": Var(("alpha", "sample"), "lambda tau at the stored times, largest delta"),
+    },
+    "/mobility_checks": {
+        "alpha": Var(("alpha",), "Hertz exponent alpha"),
+        "variant": Var(("variant",), "the discretisation: the runs', N doubled, rtol / 10"),
+        "displacement": Var(("alpha", "variant"), "largest distance of the peak from its start (sites), largest "
+                            "delta"),
+    },
     "/claims": {"row": Var(("row",), "index of a cited paper's statement"),
                 **{c: Var(("row",), f"claims-table column {c} (cradle.analyses.claims_table.COLUMNS)")
                    for c in COLUMNS}},
@@ -116,6 +166,90 @@ def hertz_family(spec: ContinuumLimit) -> list:
     from cradle.models.continuum import hertz_wave
 
     return [hertz_wave(e, spec.decades, spec.points) for e in spec.hertz_eps]
+
+
+def _run(br: UnstableBreather, A0: NDArray[np.complex128], tau_end: float, rtol: float,
+         samples: int = 801) -> tuple[NDArray[np.float64], NDArray[np.float64], float, float, float]:
+    """One DpS run from A0 to tau_end: (tau, peak track, displacement, l2 drift, H drift)."""
+    from cradle.integrators.dps_solver import integrate_dps
+    from cradle.measurements.travel import peak_position
+
+    tau = np.linspace(0.0, tau_end, samples)
+    sol = integrate_dps(A0, tau, alpha=br.alpha, rtol=rtol)
+    x = peak_position(sol.A)
+    x = x - x[0]
+    return tau, x, float(np.max(np.abs(x))), float(sol.max_l2_drift), float(sol.max_energy_drift)
+
+
+def crossover(alphas: list[float], travels: list[bool]) -> float:
+    """The midpoint between the largest alpha that travels and the next alpha of the list (NaN if none travels;
+    the last alpha if all of them do)."""
+    idx = [i for i, t in enumerate(travels) if t]
+    if not idx:
+        return float("nan")
+    i = idx[-1]
+    return float(alphas[i]) if i == len(alphas) - 1 else 0.5 * (alphas[i] + alphas[i + 1])
+
+
+def mobility(spec: ContinuumLimit, say: Log) -> tuple[tuple[dict, dict], tuple[dict, dict], dict]:
+    """The mobility runs (issue 37, item 4): the unstable site breather perturbed along its growing mode by each
+    delta (and, at the largest delta, seeded noise added), run in DpS; the displacement of its peak, the
+    verdicts under each threshold, the crossover alpha over perturbations, and the discretisation check (N
+    doubled, rtol / 10) at the largest delta. Returns the groups "/mobility", "/mobility_checks" and attributes."""
+    from cradle.models.dps_mobility import start, unstable_site
+
+    al = list(spec.mobility_alphas)
+    nd, ns = len(spec.deltas), spec.seeds
+    disp, l2, H = np.zeros((len(al), nd)), np.zeros((len(al), nd)), np.zeros((len(al), nd))
+    disp_noise = np.zeros((len(al), ns))
+    lam, tau_end = np.zeros(len(al)), np.zeros(len(al))
+    samples = 801
+    track, growth = np.zeros((len(al), samples)), np.zeros((len(al), samples))
+    checks = np.zeros((len(al), 3))
+    for i, alpha in enumerate(al):
+        br = unstable_site(alpha, spec.mobility_N)
+        lam[i] = br.lam
+        if not br.lam > 0:
+            raise RuntimeError(f"continuum-limit: the site breather at alpha = {alpha} has no resolved growth rate")
+        big = max(spec.deltas)
+        tau_end[i] = min((math.log(1.0 / big) + spec.growth_times) / br.lam, spec.tau_max)
+        for j, d in enumerate(spec.deltas):
+            T = min((math.log(1.0 / d) + spec.growth_times) / br.lam, spec.tau_max)
+            tau, x, disp[i, j], l2[i, j], H[i, j] = _run(br, start(br, d), T, spec.rtol, samples)
+            if d == big:
+                track[i], growth[i] = x, br.lam * tau
+                checks[i, 0] = disp[i, j]
+        for k in range(ns):
+            disp_noise[i, k] = _run(br, start(br, big, spec.noise, k), tau_end[i], spec.rtol, samples)[2]
+        wide = unstable_site(alpha, 2 * spec.mobility_N)
+        A0 = start(wide, big)
+        checks[i, 1] = _run(wide, np.roll(A0, 0), tau_end[i], spec.rtol, samples)[2]
+        checks[i, 2] = _run(br, start(br, big), tau_end[i], spec.rtol / 10.0, samples)[2]
+        say(f"continuum-limit: mobility alpha = {alpha:g}: lambda = {br.lam:.4g}, displacement "
+            f"{', '.join(f'{v:.3g}' for v in disp[i])} sites (deltas), noise "
+            f"{', '.join(f'{v:.3g}' for v in disp_noise[i])}; checks {', '.join(f'{v:.3g}' for v in checks[i])}")
+    th = list(spec.thresholds)
+    travels = np.array([[[disp[i, j] > t for j in range(nd)] for i in range(len(al))] for t in th])
+    attrs: dict = {}
+    for t_i, t in enumerate(th):
+        cross = [crossover(al, list(travels[t_i, :, j])) for j in range(nd)]
+        cross += [crossover(al, [disp_noise[i, k] > t for i in range(len(al))]) for k in range(ns)]
+        finite = [c for c in cross if np.isfinite(c)]
+        attrs[f"crossover_threshold_{t:g}"] = ", ".join(f"{c:g}" for c in cross)
+        attrs[f"crossover_min_threshold_{t:g}"] = min(finite) if finite else float("nan")
+        attrs[f"crossover_max_threshold_{t:g}"] = max(finite) if finite else float("nan")
+        for v, name in ((1, "N doubled"), (2, "rtol / 10")):
+            attrs[f"verdicts_unchanged_{name.replace(' ', '_').replace('/', 'over')}_threshold_{t:g}"] = int(
+                all((checks[i, v] > t) == (checks[i, 0] > t) for i in range(len(al))))
+    attrs.update({"mobility_max_l2_drift": float(np.max(l2)), "mobility_max_energy_drift": float(np.max(H))})
+    mob = ({"growth_rate": lam, "tau_end": tau_end, "displacement": disp, "displacement_noise": disp_noise,
+            "l2_drift": l2, "energy_drift": H, "travels": travels.astype(np.int8), "track": track,
+            "growth": growth},
+           {"alpha": al, "delta": list(spec.deltas), "seed": np.arange(ns), "threshold": th,
+            "sample": np.arange(samples)})
+    chk = ({"displacement": checks},
+           {"alpha": al, "variant": np.array(["runs", "N doubled", "rtol / 10"], dtype=object)})
+    return mob, chk, attrs
 
 
 def _fit(eps: list[float], D: list[float], below: float) -> PowerFit:
@@ -144,6 +278,27 @@ def claims(fits: dict[str, PowerFit]) -> list[Row]:
                         "the smallest alpha - 1 (continuum-limit)", "power > 0 beyond 3 uncertainties",
                         "analyses/continuum-limit.md"))
     return rows
+
+
+def mobility_claim(spec: ContinuumLimit, mob: dict, attrs: dict) -> Row:
+    """James & Starosvetsky's "a perturbation of an unstable breather generally results in a translational motion
+    (traveling breather) when alpha is close to unity, whereas pinning becomes predominant for larger values of
+    alpha" against the runs under the first threshold: agrees when the runs travel at the smallest alpha (more than
+    half of them) and none does at the largest."""
+    t = spec.thresholds[0]
+    runs = np.concatenate([np.asarray(mob["displacement"]), np.asarray(mob["displacement_noise"])], axis=1)
+    low, high = runs[0] > t, runs[-1] > t
+    ok = bool(np.mean(low) > 0.5 and not np.any(high))
+    al = spec.mobility_alphas
+    ours = (f"{int(np.sum(low))} of {low.size} runs travel beyond {t:g} sites at alpha = {al[0]:g}, "
+            f"{int(np.sum(high))} of {high.size} at alpha = {al[-1]:g}; crossover alpha "
+            f"{attrs[f'crossover_min_threshold_{t:g}']:g} to {attrs[f'crossover_max_threshold_{t:g}']:g}")
+    return Row("James and Starosvetsky 2014", "perturbed unstable DpS breather: travelling or pinned against alpha",
+               "travels for alpha close to 1, pinning predominant for larger alpha (qualitative)", ours,
+               "agrees" if ok else "disagrees",
+               "site-centred breather perturbed along its growing mode and by seeded noise, DpS runs (continuum-limit)",
+               f"most runs travel at the smallest alpha, none at the largest (threshold {t:g} sites)",
+               "analyses/continuum-limit.md")
 
 
 def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
@@ -194,7 +349,8 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
     fits["hertz"] = f = _fit(spec.hertz_eps, D, spec.fit_below)
     say(f"continuum-limit: Hertz: distance ~ {f.K:.4g} eps^{f.power:.5f} (+- {f.uncertainty:.2g}); ln max R = "
         f"{math.log(waves[-1].strain_max):.6f} at eps = {spec.hertz_eps[-1]:g} (limit 0.5)")
-    table = claims(fits)
+    groups["/mobility"], groups["/mobility_checks"], mob_attrs = mobility(spec, say)
+    table = claims(fits) + [mobility_claim(spec, groups["/mobility"][0], mob_attrs)]
     groups["/claims"] = ({c: np.array([getattr(r, c) for r in table], dtype=object) for c in COLUMNS},
                          {"row": np.arange(len(table))})
     attrs: dict = {"nu_first_order_limit": LOG_NLS_M, "log_amplitude_limit": 0.5, "fit_below": spec.fit_below}
@@ -214,6 +370,12 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
                "standard error of p and the change of p when the smallest or the largest eps is left out",
         "dps_source": JS_2014, "hertz_source": JP_2014,
         "dps_site_seconds": seconds["site"], "dps_bond_seconds": seconds["bond"], "hertz_seconds": seconds["hertz"],
+        **mob_attrs,
+        "mobility_definitions": "the site-centred breather (max |A| = 1/2) perturbed by delta (u + i w), u + i w its "
+                                "growing mode (max |u| = 1), run to (ln(1/delta) + growth_times)/lambda (at most "
+                                "tau_max); its position the parabola-refined peak of |A_n|^2; it travels when the "
+                                "largest distance from its start exceeds the threshold; the crossover is the "
+                                "midpoint between the largest travelling alpha and the next one",
         "wall_time_s": _time.perf_counter() - t0,
     })
     return make_tree(groups, variables, attrs=attrs, params=plain(spec),

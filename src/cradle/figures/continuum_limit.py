@@ -8,7 +8,9 @@ divided by eps (site and bond): it settles onto one curve, the distance is O(eps
 three families against eps, log-log, with the fitted powers (fit range shaded) and a line of slope 1; (d), (e) the
 same as (a), (b) for the solitary waves of the Hertz chain against the log-KdV Gaussian exp(-Y^2), Y = sqrt(3 eps)
 xi; (f) the first-order constants: (nu - 4)/eps of the DpS breathers against 4 ln 2 - 2, and 2 ln max R of the
-Hertz waves at c = 1 against 1.
+Hertz waves at c = 1 against 1. Mobility: (g) the peak position of the perturbed unstable site breather against
+lambda tau (largest delta), one curve per alpha; (h) the largest displacement against alpha, each delta and each
+noise seed, with the thresholds; (i) the growth rate lambda of the unstable mode against alpha.
 """
 from __future__ import annotations
 
@@ -72,7 +74,7 @@ def _departures(ax: Any, fams: list[tuple[str, list[tuple[float, Any]]]], xname:
 
 def draw(tree: AnalysisTree) -> Figure:
     """The six panels above."""
-    fig, ax = figure(2, 3, width=14.0, height=8.2)
+    fig, ax = figure(3, 3, width=14.0, height=12.0)
     site, bond, hertz = _members(tree, "dps_site"), _members(tree, "dps_bond"), _members(tree, "hertz")
 
     a = ax[0, 0]
@@ -134,4 +136,48 @@ def draw(tree: AnalysisTree) -> Figure:
     lo_y = min(0.7, float(np.nanmin(2.0 * np.asarray(tree["hertz"]["log_amplitude"].values))) - 0.05)
     f.set_ylim(lo_y, 1.55)
     f.legend(fontsize=7, loc="upper right")
+    _mobility(ax[2], tree)
     return fig
+
+
+def _mobility(ax: Any, tree: AnalysisTree) -> None:
+    mob = tree["mobility"]
+    al = np.asarray(mob["alpha"].values)
+    g = ax[0]
+    for i, a in enumerate(al):
+        g.plot(np.asarray(mob["growth"].values[i]), np.asarray(mob["track"].values[i]), color=f"C{i % 10}", lw=1.1,
+               label=f"$\\alpha$ = {a:g}")
+    g.axhline(0.0, color="0.6", lw=0.6)
+    g.set_xlabel("$\\lambda \\tau$ (growth times of the unstable mode)")
+    g.set_ylabel("peak position $-$ start (sites)")
+    g.set_title(f"(g) perturbed unstable site breather, $\\delta$ = {float(np.max(mob['delta'].values)):g}",
+                fontsize=9)
+    g.legend(fontsize=7, loc="upper left", ncol=2)
+    lo, hi = g.get_ylim()
+    g.set_ylim(lo, hi + 0.45 * (hi - lo))
+
+    h = ax[1]
+    deltas = np.asarray(mob["delta"].values)
+    D = np.asarray(mob["displacement"].values)
+    for j, d in enumerate(deltas):
+        h.plot(al, D[:, j], "o-", ms=4, mfc="none", lw=0.8, label=f"$\\delta$ = {d:g}")
+    Dn = np.asarray(mob["displacement_noise"].values)
+    for k in range(Dn.shape[1]):
+        h.plot(al, Dn[:, k], "x", ms=5, color="0.3", label="noise added, each seed" if k == 0 else None)
+    chk = np.asarray(tree["mobility_checks"]["displacement"].values)
+    h.plot(al, chk[:, 1], "+", ms=8, color="C3", label="N doubled")
+    for t_i, t in enumerate(np.asarray(mob["threshold"].values)):
+        h.axhline(float(t), color="k", ls=[":", "--", "-.", "-"][t_i % 4], lw=0.9,
+                  label=f"threshold {float(t):g} sites")
+    h.set_xlabel("$\\alpha$")
+    h.set_ylabel("largest displacement (sites)")
+    h.set_title("(h) travels or stays pinned", fontsize=9)
+    top = float(np.nanmax(np.concatenate([D.ravel(), Dn.ravel(), chk.ravel(), np.asarray(mob["threshold"].values)])))
+    h.set_ylim(0.0, 1.7 * top)
+    h.legend(fontsize=7, loc="upper right", ncol=2)
+
+    k = ax[2]
+    k.semilogy(al, np.asarray(mob["growth_rate"].values), "o-", ms=4, mfc="none")
+    k.set_xlabel("$\\alpha$")
+    k.set_ylabel("growth rate $\\lambda$ (per unit $\\tau$)")
+    k.set_title("(i) instability of the site breather ($\\max|A| = 1/2$)", fontsize=9)
