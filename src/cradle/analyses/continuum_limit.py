@@ -46,11 +46,12 @@ JP_2014 = ("G. James and D. Pelinovsky, Gaussian solitary waves and compactons i
 
 @declared(doc="The continuum limit alpha -> 1+ (issue 37): DpS breathers against the log-NLS Gaussian, solitary "
               "waves of the Hertz chain without on-site potential against the log-KdV Gaussian, the fitted power of "
-              "alpha - 1 -> results/continuum-limit/continuum-limit.nc and results/figures/continuum-limit.{pdf,png}.")
+              "alpha - 1; the unstable DpS breather perturbed, travelling or pinned against alpha -> "
+              "results/continuum-limit/continuum-limit.nc and results/figures/continuum-limit.{pdf,png}.")
 class ContinuumLimit:
     dps_eps: list[float] = param([0.5, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001, 5e-4, 3e-4],
                                  "The eps = alpha - 1 at which the DpS breathers (site and bond) are solved; the ring "
-                                 "grows as eps^(-1/2) and the dense solve as its cube (3e-4: 740 sites, 3 s each).",
+                                 "grows as eps^(-1/2) and the dense solve as its cube (3e-4: 710 sites, ~3 s each).",
                                  minItems=4, maxItems=20, items=_EPS, reduced=[0.1, 0.05, 0.02, 0.01, 0.005])
     hertz_eps: list[float] = param([0.5, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001],
                                    "The eps = alpha - 1 at which the solitary wave of the Hertz chain is solved "
