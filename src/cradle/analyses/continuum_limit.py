@@ -68,7 +68,7 @@ class ContinuumLimit:
                                          "site-centred DpS breather is perturbed and run (its growth rate must be "
                                          "resolved: >= 1.5; 1.4 grows e-fold in 3400 time units).", minItems=2,
                                          maxItems=12, items={"type": "number", "minimum": 1.3, "maximum": 3.0},
-                                         reduced=[1.75, 3.0])
+                                         reduced=[1.75, 2.0, 2.5, 3.0])
     deltas: list[float] = param([1e-3, 1e-2], "Sizes of the perturbation along the growing mode, relative to the "
                                 "breather's amplitude.", minItems=1, maxItems=6,
                                 items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.3}, reduced=[1e-2])
