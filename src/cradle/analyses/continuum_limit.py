@@ -83,6 +83,13 @@ class ContinuumLimit:
     tau_max: float = param(20000.0, "Longest run (units of tau).", exclusiveMinimum=0, maximum=1e6)
     rtol: float = param(1e-10, "Relative tolerance of the DpS runs (dop853_numba); the check divides it by 10.",
                         minimum=1e-13, maximum=1e-6)
+    lattice_alphas: list[float] = param([1.75, 2.0, 3.0], "The alpha at which the same start (largest delta) is run "
+                                        "in the lattice (nc) through the ansatz, x_n = 2 eps Re A_n, v_n = -2 eps "
+                                        "Im A_n (each run is tens of seconds: none in the reduced form).",
+                                        maxItems=6, items={"type": "number", "minimum": 1.3, "maximum": 3.0},
+                                        reduced=[])
+    lattice_eps: float = param(0.1, "Amplitude eps of the ansatz of the lattice runs (max |x_n| = eps at the start).",
+                               exclusiveMinimum=0, maximum=0.5)
     thresholds: list[float] = param([1.5, 5.0], "A run travels when its peak moves farther than this (sites) at "
                                     "some time; each threshold gives its own verdicts and crossover.", minItems=1,
                                     maxItems=4, items={"type": "number", "exclusiveMinimum": 0, "maximum": 100})
@@ -142,6 +149,13 @@ VARIABLES = {
         "travels": Var(("threshold", "alpha", "delta"), "1 if the run travels beyond the threshold, else 0"),
         "track": Var(("alpha", "sample"), "peak position minus its start (sites), largest delta"),
         "growth": Var(("alpha", "sample"), "lambda tau at the stored times, largest delta"),
+    },
+    "/lattice": {
+        "lattice_alpha": Var(("lattice_alpha",), "Hertz exponent alpha of the lattice runs"),
+        "displacement": Var(("lattice_alpha",), "largest distance of the peak of x_n^2 + v_n^2 from its start "
+                            "(sites), lattice (nc)"),
+        "t_end": Var(("lattice_alpha",), "length of the lattice run, tau_end / eps^(alpha - 1) (units of t)"),
+        "energy_drift": Var(("lattice_alpha",), "relative energy drift of the lattice run"),
     },
     "/mobility_checks": {
         "alpha": Var(("alpha",), "Hertz exponent alpha"),
@@ -281,6 +295,30 @@ def claims(fits: dict[str, PowerFit]) -> list[Row]:
     return rows
 
 
+def lattice_runs(spec: ContinuumLimit, say: Log) -> tuple[dict, dict]:
+    """The DpS start of the largest delta through the ansatz in the lattice (nc) (srkn6c, periodic), run for the
+    DpS run's length tau_end / eps^(alpha - 1); the displacement of the peak of x_n^2 + v_n^2."""
+    from cradle.integrators import integrate_lattice
+    from cradle.measurements.travel import displacement
+    from cradle.models.dps_mobility import start, unstable_site
+
+    al = list(spec.lattice_alphas)
+    disp, t_end, drift = np.zeros(len(al)), np.zeros(len(al)), np.zeros(len(al))
+    e = spec.lattice_eps
+    big = max(spec.deltas)
+    for i, alpha in enumerate(al):
+        br = unstable_site(alpha, spec.mobility_N)
+        tau = min((math.log(1.0 / big) + spec.growth_times) / br.lam, spec.tau_max)
+        t_end[i] = tau / e ** (alpha - 1.0)
+        A0 = start(br, big)
+        sol = integrate_lattice(2 * e * A0.real, -2 * e * A0.imag, np.linspace(0.0, t_end[i], 801), alpha=alpha)
+        disp[i] = displacement(np.sqrt(sol.x**2 + sol.v**2))
+        drift[i] = float(sol.energy_drift)
+        say(f"continuum-limit: lattice alpha = {alpha:g}, eps = {e:g}: displacement {disp[i]:.3g} sites over "
+            f"t = {t_end[i]:.4g}")
+    return {"displacement": disp, "t_end": t_end, "energy_drift": drift}, {"lattice_alpha": al}
+
+
 def mobility_claim(spec: ContinuumLimit, mob: dict, attrs: dict) -> Row:
     """James & Starosvetsky's "a perturbation of an unstable breather generally results in a translational motion
     (traveling breather) when alpha is close to unity, whereas pinning becomes predominant for larger values of
@@ -351,6 +389,7 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
     say(f"continuum-limit: Hertz: distance ~ {f.K:.4g} eps^{f.power:.5f} (+- {f.uncertainty:.2g}); ln max R = "
         f"{math.log(waves[-1].strain_max):.6f} at eps = {spec.hertz_eps[-1]:g} (limit 0.5)")
     groups["/mobility"], groups["/mobility_checks"], mob_attrs = mobility(spec, say)
+    groups["/lattice"] = lattice_runs(spec, say)
     table = claims(fits) + [mobility_claim(spec, groups["/mobility"][0], mob_attrs)]
     groups["/claims"] = ({c: np.array([getattr(r, c) for r in table], dtype=object) for c in COLUMNS},
                          {"row": np.arange(len(table))})

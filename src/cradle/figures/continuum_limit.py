@@ -10,7 +10,8 @@ same as (a), (b) for the solitary waves of the Hertz chain against the log-KdV G
 xi; (f) the first-order constants: (nu - 4)/eps of the DpS breathers against 4 ln 2 - 2, and 2 ln max R of the
 Hertz waves at c = 1 against 1. Mobility: (g) the peak position of the perturbed unstable site breather against
 lambda tau (largest delta), one curve per alpha; (h) the largest displacement against alpha, each delta and each
-noise seed, with the thresholds; (i) the growth rate lambda of the unstable mode against alpha.
+noise seed, N doubled, the lattice runs (full form), with the thresholds; (i) the growth rate lambda of the
+unstable mode against alpha.
 """
 from __future__ import annotations
 
@@ -166,6 +167,10 @@ def _mobility(ax: Any, tree: AnalysisTree) -> None:
         h.plot(al, Dn[:, k], "x", ms=5, color="0.3", label="noise added, each seed" if k == 0 else None)
     chk = np.asarray(tree["mobility_checks"]["displacement"].values)
     h.plot(al, chk[:, 1], "+", ms=8, color="C3", label="N doubled")
+    lat = tree["lattice"]
+    if lat["lattice_alpha"].size:
+        h.plot(np.asarray(lat["lattice_alpha"].values), np.asarray(lat["displacement"].values), "D", ms=5,
+               mfc="none", color="C4", label="lattice (nc) through the ansatz")
     for t_i, t in enumerate(np.asarray(mob["threshold"].values)):
         h.axhline(float(t), color="k", ls=[":", "--", "-.", "-"][t_i % 4], lw=0.9,
                   label=f"threshold {float(t):g} sites")
