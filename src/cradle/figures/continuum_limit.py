@@ -178,7 +178,7 @@ def _mobility(ax: Any, tree: AnalysisTree) -> None:
     h.set_ylabel("largest displacement (sites)")
     h.set_title("(h) travels or stays pinned", fontsize=9)
     top = float(np.nanmax(np.concatenate([D.ravel(), Dn.ravel(), chk.ravel(), np.asarray(mob["threshold"].values)])))
-    h.set_ylim(0.0, 1.7 * top)
+    h.set_ylim(-0.08 * top, 1.7 * top)   # room below for the markers of a run that stayed put
     h.legend(fontsize=7, loc="upper right", ncol=2)
 
     k = ax[2]
