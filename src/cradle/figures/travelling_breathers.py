@@ -41,12 +41,15 @@ def draw(tree: AnalysisTree) -> Figure:
 
     a = ax[0, 0]
     picks = sorted({0, len(c) // 2, len(c) - 1})
+    # the frame reaches below the smallest tail shown (the TBs' tails are everywhere above rounding)
+    bottom = 0.2 * float(np.min(np.abs(A[picks])))
     for k, i in enumerate(picks):
         a.semilogy(n, np.abs(A[i]), "o-", color=f"C{k}", ms=3, lw=1.0, label=f"TB, c = {c[i]:.3g}")
     phi = np.abs(np.asarray(prof["static_site"].values))
     shift = int(np.argmax(np.abs(A[picks[0]]))) - int(np.argmax(phi))
-    a.semilogy(n, np.maximum(np.roll(phi, shift), 1e-300), "k--", lw=1.0, label="static site breather")
-    a.set_ylim(1e-6, 2.0)
+    static = np.roll(phi, shift)
+    a.semilogy(n, np.where(static >= bottom, static, np.nan), "k--", lw=1.0, label="static site breather")
+    a.set_ylim(bottom, 2.0)
     a.set_xlabel("site n")
     a.set_ylabel("$|A_n(0)|$")
     a.set_title(f"(a) profiles at norm {float(attrs['norm']):g} (ring of {N})", fontsize=9)
