@@ -135,7 +135,8 @@ class DeskToyMinute:
                                      minItems=0, maxItems=6, items=_RADIUS, reduced=[])
     ensemble: int = param(12, "Members of the ensemble of each (ncdamped) desk toy at the first drag rate: the "
                           "lifted balls' release displacement times 1 + ensemble_spread z, z seeded standard "
-                          "normal; each member run at rtol and rtol / 10 (0: none).", minimum=0, maximum=64,
+                          "normal, one per member (the lift perturbed, the lifted balls still touching); each "
+                          "member run at rtol and rtol / 10 (0: none).", minimum=0, maximum=64,
                           reduced=3)
     ensemble_spread: float = param(1e-6, "Relative spread of the ensemble's release displacements: far below any "
                                    "desk toy's precision, far above the integrator's error.", exclusiveMinimum=0,
@@ -313,7 +314,8 @@ def no_ensemble(spec: DeskToyMinute) -> dict:
 def ensemble(spec: DeskToyMinute, x0: NDArray[np.float64], t: NDArray[np.float64], damping: Damping,
              lifted: int) -> dict:
     """The ensemble of one desk toy: ``spec.ensemble`` members, the lifted balls' release displacement times
-    1 + ensemble_spread z_m (z seeded standard normal, one per lifted ball), each run at rtol and rtol / 10.
+    1 + ensemble_spread z_m (z_m seeded standard normal, the same for every lifted ball: the lift angle
+    perturbed, the lifted balls still touching), each run at rtol and rtol / 10.
     ``member_phase`` (member, tolerance, threshold) and ``member_share``: each member's time to in-phase motion
     under R and S; ``mean_share_time`` (tolerance, threshold): when the ensemble's mean S(t) settles above each
     threshold ((nc)'s units; tolerance 0 is rtol, 1 is rtol / 10)."""
@@ -322,7 +324,7 @@ def ensemble(spec: DeskToyMinute, x0: NDArray[np.float64], t: NDArray[np.float64
     out = no_ensemble(spec)
     if spec.ensemble == 0:
         return out
-    z = np.random.default_rng(spec.ensemble_seed).standard_normal((spec.ensemble, lifted))
+    z = np.random.default_rng(spec.ensemble_seed).standard_normal(spec.ensemble)
     mean_S = np.zeros((2, t.size))
     for m in range(spec.ensemble):
         x = x0.copy()
@@ -468,7 +470,7 @@ MINUTE_VARIABLES: dict[str, Var] = {
     "separation_rate": Var(_C, "exponential growth rate of the separation over separation_band (a Lyapunov "
                            "exponent's estimate)", "1/s", attrs=(("comment", "NaN: not fitted"),)),
     "member": Var(("member",), "ensemble member: the lifted balls' release displacement times 1 + "
-                  "ensemble_spread z, z seeded standard normal"),
+                  "ensemble_spread z, z seeded standard normal (the lifted balls still touching)"),
     "tolerance": Var(("tolerance",), "relative tolerance of the ensemble's runs: rtol, then rtol / 10"),
     "member_inphase_time_phase": Var(_C + ("member", "tolerance", "phase_threshold"), "time after which R stays "
                                      ">= the threshold, for each ensemble member", "s",
