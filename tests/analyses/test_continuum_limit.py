@@ -113,7 +113,7 @@ def test_config_refuses_a_fit_range_without_four_points():
     bad = copy.deepcopy(raw)
     bad["beyond"]["continuum-limit"] = {"fit_below": 0.003}
     with pytest.raises(cc.ConfigError, match=r"beyond\.continuum-limit\.hertz_eps = \[.*\]: needs at least 4 values <= "
-                       r"fit_below = 0\.003"):
+                       r"beyond\.continuum-limit\.fit_below = 0\.003"):
         cc.analysis_spec(bad, "continuum-limit", "full")
     spec = cc.analysis_spec(raw, "continuum-limit", "reduced")
     assert spec.dps_eps == [0.1, 0.05, 0.02, 0.01, 0.005] and spec.fit_below == 0.1

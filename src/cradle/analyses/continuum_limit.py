@@ -23,6 +23,7 @@ from cradle.analyses.claims_table import COLUMNS, Row
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import key_path
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -104,8 +105,8 @@ class ContinuumLimit:
             if len(set(values)) != len(values):
                 out.add(where + [key], "lists a value twice", values)
             if sum(e <= self.fit_below for e in values) < 4:
-                out.add(where + [key], f"needs at least 4 values <= fit_below = {self.fit_below:g} (the power fit "
-                        "has three parameters)", values)
+                out.add(where + [key], f"needs at least 4 values <= {key_path(where + ['fit_below'])} = "
+                        f"{self.fit_below:g} (the power fit has three parameters)", values)
 
 
 _E = ("eps",)
