@@ -5,7 +5,7 @@ import dataclasses
 from typing import Any
 
 from cradle.analyses.protocol import FULL, REDUCED, form_spec, own_keys
-from cradle.scenes.spec import ENTRY_SECTIONS, Checked, Context, Where
+from cradle.scenes.spec import ENTRY_SECTIONS, Context, Where
 from cradle.specs.parse import BAD
 from cradle.specs.values import ConfigError, Errors, did_you_mean
 
@@ -52,7 +52,7 @@ def check(parts: dict, config: dict, out: Errors) -> None:
              for section in ENTRY_SECTIONS}
     scenes = {} if parts["defaults"] is BAD else parts["scenes"]
     context = Context(given=given, scenes=scenes, homoclinic=parts["homoclinic"])
-    entries: list[tuple[Where, Checked]] = [(["map", name], m) for name, m in parts["map"].items()]
+    entries: list[tuple[Where, Any]] = [(["map", name], m) for name, m in parts["map"].items()]
     entries += [(["homoclinic", name], h) for name, h in parts["homoclinic"].items()]
     entries += [(["scenes", name], s) for name, s in scenes.items()]
     _unique(given, out)
