@@ -344,10 +344,10 @@ def given_fields(cls: Any, value: Any, path: tuple, found: Errors, base: Any = N
     ``full``: ``value`` is a ``reduced:`` section over the full form's values ``full`` (its keys only)."""
     if _not_mapping(value, path, found):
         return BAD
-    overrides = {f.name: f for f in fields_of(cls) if f.name == "reduced" and f.tp is dict}
-    fields = [f for f in fields_of(cls) if full is None or f.name not in overrides]
+    fields = [f for f in fields_of(cls) if full is None or (f.name, f.tp) != ("reduced", dict)]
     by_key = {f.key: f for f in fields}
     bases = base if full is None else {**full, **reduced_defaults(cls)}
+    bases = {} if bases is None else bases if isinstance(bases, dict) else vars(bases)
     out: dict[str, Any] = {}
     for key, v in value.items():
         f = by_key.get(key)
@@ -357,18 +357,18 @@ def given_fields(cls: Any, value: Any, path: tuple, found: Errors, base: Any = N
                        at=path)
             if full is None:
                 _finite(v, (*path, key), found)
-        elif f.name not in overrides:   # ``reduced:`` is read below, over the full form's values
-            inner = _base_of(bases, f)
+        elif (f.name, f.tp) != ("reduced", dict):   # read below, over the full form's values
+            inner = bases.get(f.name)
             out[f.name] = _field(f, v, (*path, key), found, inner if inner is not None else f.make())
     if full is not None:
         return BAD if any(v is BAD for v in out.values()) else out
     for f in fields:
         if f.name not in out:
-            inner = _base_of(base, f)
+            inner = bases.get(f.name)
             if f.required and inner is None:
                 found.hold((*path, f.key), "missing (required key)", at=path)
             out[f.name] = inner if inner is not None else f.make()
-    if "reduced" in value and overrides:
+    if "reduced" in value and any((f.name, f.tp) == ("reduced", dict) for f in fields):
         out["reduced"] = given_fields(cls, value["reduced"], (*path, "reduced"), found, full=out)
     groups = cls.__schema_any_of__
     if groups and not any(all(k in value for k in g) for g in groups):
@@ -399,13 +399,6 @@ def _field(f: Field, value: Any, path: tuple, found: Errors, base: Any = None) -
         return parse(f.tp, value, path, found, base)
     value = leaf(f.node, value, path, found)
     return parse(f.tp, value, path, found, base) if f.nested and value is not BAD else value
-
-
-def _base_of(base: Any, f: Field) -> Any:
-    """The value ``base`` (an instance or a mapping) gives field ``f``, or None."""
-    if base is None:
-        return None
-    return base.get(f.name) if isinstance(base, dict) else getattr(base, f.name, None)
 
 
 def build_object(cls: type, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:

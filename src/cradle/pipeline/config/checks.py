@@ -31,18 +31,6 @@ def check_forms(spec: Any, where: Where, context: Context, out: Errors) -> None:
         form_spec(spec, REDUCED).check(at, context, out.only(at, keys))
 
 
-def _unique(given: dict[str, tuple[str, ...]], out: Errors) -> None:
-    """A name is one entry across map, homoclinic and scenes (a figure reads all three)."""
-    names: dict[str, str] = {}
-    for section in ENTRY_SECTIONS:
-        for name in given[section]:
-            if name in names:
-                out.add([section, name], f"name {name!r} is also used by {names[name]}.{name} (map, homoclinic "
-                                         f"and scenes names must be unique)")
-            else:
-                names[name] = section
-
-
 def check(parts: dict, config: dict, out: Errors) -> None:
     """The checks of every entry that passed (``parts``: :func:`.validate.read`'s), in the order of the file;
     then every scene an analysis reads is a ``scenes:`` entry. A scene is checked once ``defaults:`` passed."""
@@ -52,12 +40,14 @@ def check(parts: dict, config: dict, out: Errors) -> None:
              for section in ENTRY_SECTIONS}
     scenes = {} if parts["defaults"] is BAD else parts["scenes"]
     context = Context(given=given, scenes=scenes, homoclinic=parts["homoclinic"])
-    entries: list[tuple[Where, Any]] = [(["map", name], m) for name, m in parts["map"].items()]
-    entries += [(["homoclinic", name], h) for name, h in parts["homoclinic"].items()]
-    entries += [(["scenes", name], s) for name, s in scenes.items()]
-    _unique(given, out)
-    for where, entry in entries:
-        entry.check(where, context, out)
+    for section in ENTRY_SECTIONS:   # a name is one entry across the three: a figure reads them all
+        for name in given[section]:
+            if context.names[name] != section:
+                out.add([section, name], f"name {name!r} is also used by {context.names[name]}.{name} (map, "
+                                         f"homoclinic and scenes names must be unique)")
+    for section in ENTRY_SECTIONS:
+        for name, entry in (scenes if section == "scenes" else parts[section]).items():
+            entry.check([section, name], context, out)
     specs = {a.name: parts["beyond"][a.module] for a in ANALYSES.values() if a.module in parts["beyond"]}
     for name, spec in specs.items():
         if hasattr(spec, "check"):
