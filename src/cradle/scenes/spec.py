@@ -101,8 +101,7 @@ class Defaults:
 class Noise:
     kind: str = param("uniform", "Law of rho1_n, rho2_n: uniform on [-amplitude, amplitude] or gaussian with "
                       "standard deviation amplitude.", enum=["uniform", "gaussian"])
-    # at most 1: rho is relative to the wave's amplitude, and a noise larger than the wave leaves no perturbed wave
-    # of (perturb) (1e300 was accepted and the job's initial velocities overflowed to nan)
+    # at most 1: rho is relative to the wave's amplitude; a noise larger than the wave leaves no wave of (perturb)
     amplitude: float = param(REQUIRED, "Half-width (uniform) or standard deviation (gaussian) of the noise, relative "
                              "to the wave's amplitude; in [0, 1].", minimum=0, maximum=1)
     seed: int = param(REQUIRED, "Seed of numpy.random.default_rng (PCG64); recorded so the run is reproducible; "
@@ -483,13 +482,11 @@ class HomoclinicEntry:
             out.add(where + ["separation"], f"must be in [1, N-1] = [1, {self.N - 1}]", self.separation)
 
 
-#: the lattice integrators that take the damping terms and the terms of the imperfect cradle
-#: (:func:`cradle.integrators.integrate_lattice`)
+#: the lattice integrators that take damping and the terms of the imperfect cradle (integrate_lattice)
 DAMPED_METHODS = ("dop853_numba",)
 
 
-#: the SI values of a scene (``units: si``) converted to (nc)'s: key path -> (quantity of
-#: :data:`cradle.models.physical.QUANTITIES`, or "rate" for 1/s and "A" for the Kuwabara-Kono time)
+#: a scene's SI values (``units: si``): key path -> quantity (cradle.models.physical.QUANTITIES; rate 1/s, A in s)
 SI_KEYS = {("t_end",): "time", ("store", "every"): "time", ("store", "snapshots"): "time",
            ("initial", "a"): "displacement", ("initial", "amplitude"): "displacement",
            ("initial", "omega_tw"): "rate", ("initial", "omega_sw"): "rate",

@@ -44,8 +44,7 @@ def param(default: Any = REQUIRED, doc: str = "", *, ref: str | None = None, fil
     return dataclasses.field(default=default, metadata=meta)
 
 
-# for a type checker, a declared class is a frozen keyword-only dataclass. `param` is not named a field
-# specifier: it takes its default by position, which the checker would read as no default
+# `param` is no field specifier: it takes its default by position, which a type checker reads as none
 @typing.dataclass_transform(kw_only_default=True, frozen_default=True)
 def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of: list | None = None,
              extra: dict | None = None) -> Callable[[T], T]:
