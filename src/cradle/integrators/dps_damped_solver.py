@@ -109,10 +109,7 @@ def integrate_damped(run: _DpsRun, damping: DpsDamping, method: str, wall0: floa
         max_l2, max_E = float(stats[2]), float(stats[3])
         return _solution(solution, Y, rows, max_l2, max_E, n_steps, nfev, run, damping, method, wall0)
 
-    def fun(t: float, y: Floats) -> Floats:
-        dy = np.empty_like(y)
-        SD.dps_rhs(dsys, y, dy)
-        return dy
+    fun = SD.scipy_fun(dsys, y0)
 
     def store(i: int, y: Floats) -> None:
         Y[i] = y

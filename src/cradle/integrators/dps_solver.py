@@ -176,11 +176,7 @@ def integrate_dps(A0: ArrayLike, tau_out: ArrayLike, *, alpha: float, bc: str = 
 
     system = run.system
 
-    def fun(t: float, y: Floats) -> Floats:
-        dy = np.empty_like(y)
-        SD.dps_rhs(system, y, dy)
-        return dy
-
+    fun = SD.scipy_fun(system, y0)
     A = np.empty((T, N), dtype=complex)
     l2d = np.empty(T)
     Ed = np.empty(T)
@@ -243,11 +239,7 @@ def _integrate_sites(run: _DpsRun, sites: DpsSites, method: str, wall0: float) -
         Y, n_steps, nfev = _dop853.run_dop853(system, run.y0, tau_out, run.rtol, run.atol, stats, run.progress)
         max_l2, max_E = float(stats[2]), float(stats[3])
     else:
-        def fun(t: float, y: Floats) -> Floats:
-            dy = np.empty_like(y)
-            SD.dps_rhs(system, y, dy)
-            return dy
-
+        fun = SD.scipy_fun(system, run.y0)
         Y = np.empty((T, 2 * N))
         drifts = [0.0, 0.0]
 

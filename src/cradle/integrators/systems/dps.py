@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any, NamedTuple
 
+import numba
 import numpy as np
 from numba import njit
 
@@ -50,6 +51,8 @@ from cradle.integrators.terms.slots import (
 )
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from cradle.integrators._types import Floats
 
 _cache.activate()   # before the first @njit: numba picks the cache folder when decorating
@@ -180,6 +183,27 @@ def dps_rhs(system: DpsSystem, y: Floats, dy: Floats) -> None:
         gpr = gr
         gpi = gi
     close(inv, system, dy, N, S, l2, L2)
+
+
+def scipy_fun(system: DpsSystem, y0: Floats) -> Callable[[float, Floats], Floats]:
+    """f(tau, y) = dA_n/dtau of ``system`` on the real view y, for scipy's solvers.
+
+    The compiled :func:`dps_rhs` for the types of (system, y0) is looked up once and called directly: numba's
+    dispatcher would type the NamedTuple ``system`` field by field on every call, which at a few hundred sites
+    costs as much as the right-hand side itself."""
+    dy0 = np.empty_like(y0)
+    dps_rhs(system, y0, dy0)   # compiles or loads the overload
+    cres = dps_rhs.overloads[(numba.typeof(system), numba.typeof(y0), numba.typeof(dy0))]
+    entry = cres.entry_point   # type: ignore[attr-defined]  # (numba's stubs leave it out)
+
+    def fun(tau: float, y: Floats) -> Floats:
+        if y.dtype != np.float64 or not y.flags.c_contiguous:   # the overload's layout, checked here, not by numba
+            y = np.ascontiguousarray(y, dtype=np.float64)
+        dy = np.empty_like(y)
+        entry(system, y, dy)
+        return dy
+
+    return fun
 
 
 @implements(sites_of, Conserved)
