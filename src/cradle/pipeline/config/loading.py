@@ -137,16 +137,10 @@ def main(argv: list[str] | None = None) -> int:
     group.add_argument("--homoclinic", metavar="NAME")
     group.add_argument("--map", metavar="NAME")
     args = parser.parse_args(argv)
-    if args.write_schema:
-        from .reference import write_schema
+    if args.write_schema or args.write_reference:
+        from . import reference
 
-        print(f"wrote {write_schema()}")
-        return 0
-    if args.write_reference:
-        from .reference import REFERENCE_FILE, generated_schema, reference
-
-        REFERENCE_FILE.write_text(reference(generated_schema()) + "\n", encoding="utf-8")
-        print(f"wrote {REFERENCE_FILE}")
+        print(f"wrote {reference.write_schema() if args.write_schema else reference.write_reference()}")
         return 0
     try:
         cfg = load(args.config)
