@@ -38,6 +38,7 @@ CONFIG = cc.load(ROOT / "config.yaml")
 
 #: analyses whose reduced form reads no file and computes in seconds on one core: rendered in CI
 IN_PROCESS = ("breathers", "breather-interactions", "desk-toy", "desk-toy-minute", "dissipation", "dps-validity",
+              "continuum-limit",
               "mi-diagram")
 #: paper figures of map and homoclinic entries (each well under a second to compute): rendered in CI
 PAPER_IN_PROCESS = ("traj3", "traj2", "bcsc")

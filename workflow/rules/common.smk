@@ -10,7 +10,7 @@ from cradle.pipeline import config as cc
 from cradle import figures as _figures
 from cradle.pipeline import layout as L
 from cradle.pipeline.codedeps import code_stamps, stamp_all
-from cradle.specs.declare import plain
+from cradle.specs.declare import from_plain, plain
 from cradle.pipeline.config.movies import Movies
 
 #: the Python that runs this workflow: shell rules call it rather than whatever `python` is first on PATH
@@ -103,6 +103,19 @@ def movie_targets():
     except cc.ConfigError as err:
         raise WorkflowError(str(err)) from None
     return [L.path("movie", scene=s, ext=ext) for s in scenes for ext in ("mp4", "gif")]
+
+
+# the minute movies of the desk toys under movies.desk_toy_minute.toys (rule desk_toy_minute_movies, movies.smk)
+def desk_toy_minute_movie_targets():
+    from cradle.analyses.desk_toy_minute_movie import MinuteMovie
+
+    try:
+        toys = from_plain(
+            MinuteMovie, dict(Movies.resolve(config).get("desk_toy_minute") or {}), where="movies.desk_toy_minute"
+        ).toys
+    except cc.ConfigError as err:
+        raise WorkflowError(str(err)) from None
+    return [L.path("movie", scene=f"desk-toy-minute-{t}", ext=ext) for t in toys for ext in ("mp4", "gif")]
 
 
 # the movies of the desk toys of the desk-toy analysis's full form (rule desk_toy_movies, movies.smk)

@@ -31,9 +31,11 @@ rule movie:
 
 
 rule movies:
-    # the movies of every scene under `movies.scenes` in config.yaml
+    # the movies of every scene under `movies.scenes` in config.yaml, and the minute movies of
+    # movies.desk_toy_minute.toys
     input:
         movie_targets(),
+        desk_toy_minute_movie_targets(),
 
 
 # The desk toys of the full form of the desk-toy analysis (cradle.analyses.desk_toy) in motion, drawn to scale in mm
@@ -75,3 +77,42 @@ rule desk_toy_movies:
     # every desk toy of the full form of the desk-toy analysis
     input:
         desk_toy_movie_targets(),
+
+
+# The minute as a movie (issue 38): a desk toy of the desk-toy-minute analysis's full form in real time, the first
+# impacts, the break-up of one-out-one-out and chosen moments in slow motion (cradle.analyses.desk_toy_minute_movie,
+# settings `movies.desk_toy_minute`), drawn by cradle.figures.desk_toy_minute_movie ->
+# results/movies/desk-toy-minute-<toy>.{mp4,gif} and three frames, results/movies/stills/desk-toy-minute-<toy>-
+# {impact,breakup,late}.png. Part of `movies` (the toys under movies.desk_toy_minute.toys), not of `all`.
+rule desk_toy_minute_movie:
+    input:
+        code=code_of(
+            "workflow/scripts/desk_toy_minute_movie.py",
+            "cradle.figures.desk_toy_minute_movie",
+            "cradle.analyses.desk_toy_minute_movie",
+        ),
+    output:
+        mp4=L.path("movie", scene="desk-toy-minute-{toy}", ext="mp4"),
+        gif=L.path("movie", scene="desk-toy-minute-{toy}", ext="gif"),
+        stills=[L.path("movie-still", scene="desk-toy-minute-{toy}", frame=f) for f in ("impact", "breakup", "late")],
+    log:
+        L.path("log", job="movies/desk-toy-minute-{toy}"),
+    benchmark:
+        L.path("benchmark", job="movies/desk-toy-minute-{toy}")
+    wildcard_constraints:
+        toy=r"n[0-9]+-lifted[0-9]+",
+    conda:
+        "../envs/cradle.yaml"
+    params:
+        movies=lambda w: plain(dict(config["movies"])),
+        spec=lambda w: plain(analysis_spec(ANALYSES["desk-toy-minute"], FULL)),
+    message:
+        "Drawing the minute movie of desk toy {wildcards.toy}"
+    script:
+        "../scripts/desk_toy_minute_movie.py"
+
+
+rule desk_toy_minute_movies:
+    # the minute movies of the desk toys under movies.desk_toy_minute.toys
+    input:
+        desk_toy_minute_movie_targets(),

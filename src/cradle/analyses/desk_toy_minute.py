@@ -133,6 +133,21 @@ class DeskToyMinute:
                                        maxItems=6, items=_LENGTH, reduced=[])
     trend_radii: list[float] = param([0.005, 0.02], "Ball radii R (m) of the trend runs, beside the cradle's own.",
                                      minItems=0, maxItems=6, items=_RADIUS, reduced=[])
+    ensemble: int = param(12, "Members of the ensemble of each (ncdamped) desk toy at the first drag rate: the "
+                          "lifted balls' release displacement times 1 + ensemble_spread z, z seeded standard "
+                          "normal, one per member (the lift perturbed, the lifted balls still touching); each "
+                          "member run at rtol and rtol / 10 (0: none).", minimum=0, maximum=64,
+                          reduced=3)
+    ensemble_spread: float = param(1e-6, "Relative spread of the ensemble's release displacements: far below any "
+                                   "desk toy's precision, far above the integrator's error.", exclusiveMinimum=0,
+                                   maximum=1e-2)
+    ensemble_seed: int = param(38, "Seed of the ensemble's perturbations (numpy default_rng).", minimum=0)
+    separation_band: list[float] = param([100.0, 1e-3], "The growth rate of the separation between a run and its "
+                                         "rerun at rtol / 10 is fitted where it grows from the first value times "
+                                         "rtol to the second (both relative to the release amplitude): above the "
+                                         "integrator's error, below the swing.", minItems=2, maxItems=2,
+                                         items={"type": "number", "exclusiveMinimum": 0, "maximum": 1e12,
+                                                "description": "A bound of the fitted band."})
     out_fraction: float = param(0.5, "A ball is out at an out-swing when its amplitude is at least this share of "
                                 "the largest.", exclusiveMinimum=0, maximum=1)
 
@@ -145,6 +160,10 @@ class DeskToyMinute:
             if k >= longest:
                 out.add(where + ["lifted", i], f"must be < the longest chain ({longest}): one ball at least stays "
                                                "in the line (a chain of N <= lifted runs without it)", k)
+        low, high = self.separation_band
+        if not low * self.rtol < high:
+            out.add(where + ["separation_band"], f"must have first * rtol < second ({low:g} * {self.rtol:g} >= "
+                                                 f"{high:g}): the band is empty", self.separation_band)
         for key in ("chains", "lifted", "restitution", "kk_constant", "drag_rates", "phase_thresholds",
                     "share_thresholds", "pattern_thresholds", "trend_lengths", "trend_radii"):
             values = getattr(self, key)
@@ -282,9 +301,49 @@ def warm_up() -> None:
     minute_run(np.array([-1.0, 0.0]), np.array([0.0, 1.0]), Damping(onsite=1e-3, contact=1e-3), 1e-8)
 
 
+def _ensemble_keys(spec: DeskToyMinute) -> dict[str, tuple[int, ...]]:
+    M, P, S = spec.ensemble, len(spec.phase_thresholds), len(spec.share_thresholds)
+    return {"member_phase": (M, 2, P), "member_share": (M, 2, S), "mean_share_time": (2, S)}
+
+
+def no_ensemble(spec: DeskToyMinute) -> dict:
+    """The ensemble's entries of a case without one: NaN."""
+    return {k: np.full(shape, np.nan) for k, shape in _ensemble_keys(spec).items()}
+
+
+def ensemble(spec: DeskToyMinute, x0: NDArray[np.float64], t: NDArray[np.float64], damping: Damping,
+             lifted: int) -> dict:
+    """The ensemble of one desk toy: ``spec.ensemble`` members, the lifted balls' release displacement times
+    1 + ensemble_spread z_m (z_m seeded standard normal, the same for every lifted ball: the lift angle
+    perturbed, the lifted balls still touching), each run at rtol and rtol / 10.
+    ``member_phase`` (member, tolerance, threshold) and ``member_share``: each member's time to in-phase motion
+    under R and S; ``mean_share_time`` (tolerance, threshold): when the ensemble's mean S(t) settles above each
+    threshold ((nc)'s units; tolerance 0 is rtol, 1 is rtol / 10)."""
+    from cradle.measurements import desk_toy_minute as mm
+
+    out = no_ensemble(spec)
+    if spec.ensemble == 0:
+        return out
+    z = np.random.default_rng(spec.ensemble_seed).standard_normal(spec.ensemble)
+    mean_S = np.zeros((2, t.size))
+    for m in range(spec.ensemble):
+        x = x0.copy()
+        x[:lifted] *= 1.0 + spec.ensemble_spread * z[m]
+        for k, rtol in enumerate((spec.rtol, spec.rtol / CONVERGENCE_FACTOR)):
+            run = minute_run(x, t, damping, rtol)
+            R, S = mm.phase_coherence(run.x, run.v), mm.com_share(run.x, run.v)
+            out["member_phase"][m, k] = [mm.settle_time(t, R, th) for th in spec.phase_thresholds]
+            out["member_share"][m, k] = [mm.settle_time(t, S, th) for th in spec.share_thresholds]
+            mean_S[k] += S / spec.ensemble
+    out["mean_share_time"] = np.array([[mm.settle_time(t, mean_S[k], th) for th in spec.share_thresholds]
+                                       for k in range(2)])
+    return out
+
+
 def desk_toy_minute(spec: DeskToyMinute, n_beads: int, lifted: int) -> dict:
     """The runs and measurements of one desk toy in (nc)'s units: ``cases`` (one dict per case: the (ncdamped)
     runs of every contact and drag, then the hard spheres of every contact), the time grid and the scales."""
+    from cradle.measurements import desk_toy_minute as mm
     from cradle.models import desk_toy as dt
     from cradle.models.hard_spheres import hard_sphere_run
 
@@ -292,8 +351,10 @@ def desk_toy_minute(spec: DeskToyMinute, n_beads: int, lifted: int) -> dict:
     x0, v0, s = dt.desk_toy_initial(toy)
     t = time_grid(spec.duration / s.T, spec.samples)
     cases = []
+    amp = float(-x0[0])
+    low, high = spec.separation_band
     for e, A in contacts(spec):
-        for rate in drag_rates(spec):
+        for j, rate in enumerate(drag_rates(spec)):
             damping = damping_of(A, rate, s)
             c0 = _time.process_time()
             run = minute_run(x0, t, damping, spec.rtol)
@@ -304,8 +365,11 @@ def desk_toy_minute(spec: DeskToyMinute, n_beads: int, lifted: int) -> dict:
                     "balance": float(np.max(np.abs(run.energy + run.dissipated - run.energy[0])) / run.energy[0])}
             case.update(measure(spec, t, run.x, run.v, lifted))
             m2 = measure(spec, t, tight.x, tight.v, lifted)
+            sep = mm.separation(run.x, run.v, tight.x, tight.v)
             case.update({"tight_inphase_phase": m2["inphase_phase"], "tight_inphase_share": m2["inphase_share"],
-                         "tight_energy_end": float(tight.energy[-1])})
+                         "tight_energy_end": float(tight.energy[-1]), "separation": sep,
+                         "separation_rate": mm.growth_rate(t, sep / amp, low * spec.rtol, high)})
+            case.update(ensemble(spec, x0, t, damping, lifted) if j == 0 else no_ensemble(spec))
             cases.append(case)
     for (e, A), law in [(c, w) for c in contacts(spec) for w in (c[0], restitution_law(c[1], s))]:
         c0 = _time.process_time()
@@ -313,6 +377,7 @@ def desk_toy_minute(spec: DeskToyMinute, n_beads: int, lifted: int) -> dict:
         cpu = _time.process_time() - c0
         name = f"hard e={e:g}" if isinstance(law, float) else f"hard e(v) of A={A:.3g}s"
         case = {"name": name, "restitution": e, "kk_A": A, "drag": 0.0, "energy": hs.energy,
+                "separation": np.full(t.size, np.nan), "separation_rate": np.nan, **no_ensemble(spec),
                 "dissipated": hs.dissipated, "steps": int(hs.collision_t.size), "cpu": cpu,
                 "balance": float(np.max(np.abs(hs.energy + hs.dissipated - hs.energy[0])) / hs.energy[0]),
                 "tight_inphase_phase": [np.nan] * len(spec.phase_thresholds),
@@ -399,6 +464,24 @@ MINUTE_VARIABLES: dict[str, Var] = {
     "tight_inphase_time_share": Var(_C + ("share_threshold",), "inphase_time_share of the run at rtol / 10", "s",
                                     attrs=(("comment", "NaN for the hard spheres (event-driven, exact)"),)),
     "tight_energy_end": Var(_C, "energy at the end of the run at rtol / 10", "J"),
+    "separation": Var(_C + ("t",), "distance between the run and its rerun at rtol / 10, sqrt(sum_n (x_n - x'_n)^2 "
+                      "+ ((v_n - v'_n) / omega_0)^2)", "m",
+                      attrs=(("comment", "NaN for the hard spheres (event-driven, exact)"),)),
+    "separation_rate": Var(_C, "exponential growth rate of the separation over separation_band (a Lyapunov "
+                           "exponent's estimate)", "1/s", attrs=(("comment", "NaN: not fitted"),)),
+    "member": Var(("member",), "ensemble member: the lifted balls' release displacement times 1 + "
+                  "ensemble_spread z, z seeded standard normal (the lifted balls still touching)"),
+    "tolerance": Var(("tolerance",), "relative tolerance of the ensemble's runs: rtol, then rtol / 10"),
+    "member_inphase_time_phase": Var(_C + ("member", "tolerance", "phase_threshold"), "time after which R stays "
+                                     ">= the threshold, for each ensemble member", "s",
+                                     attrs=(("comment", "NaN: below at the end, or no ensemble for this case (the "
+                                                        "ensemble runs at the first drag rate only)"),)),
+    "member_inphase_time_share": Var(_C + ("member", "tolerance", "share_threshold"), "time after which S stays "
+                                     ">= the threshold, for each ensemble member", "s",
+                                     attrs=(("comment", "NaN: below at the end, or no ensemble for this case"),)),
+    "ensemble_inphase_time_share": Var(_C + ("tolerance", "share_threshold"), "time after which the ensemble's "
+                                       "mean S stays >= the threshold", "s",
+                                       attrs=(("comment", "NaN: below at the end, or no ensemble for this case"),)),
     "swing_time": Var(("swing",), "time k pi / omega_0 of out-swing k", "s"),
     "balls_out": Var(_C + ("swing",), "balls whose swing amplitude is at least out_fraction of the largest, at "
                      "out-swing k"),
@@ -453,6 +536,11 @@ def _group(spec: DeskToyMinute, r: dict, lifted: int) -> tuple[dict, dict, dict]
         "tight_inphase_time_phase": to_si(stack("tight_inphase_phase"), "time", s),
         "tight_inphase_time_share": to_si(stack("tight_inphase_share"), "time", s),
         "tight_energy_end": to_si(stack("tight_energy_end"), "energy", s),
+        "separation": to_si(stack("separation"), "displacement", s),
+        "separation_rate": stack("separation_rate") / s.T,
+        "member_inphase_time_phase": to_si(stack("member_phase"), "time", s),
+        "member_inphase_time_share": to_si(stack("member_share"), "time", s),
+        "ensemble_inphase_time_share": to_si(stack("mean_share_time"), "time", s),
         "swing_time": to_si(np.pi * np.arange(1, K + 1), "time", s),
         "balls_out": np.stack([np.asarray(c["balls_out"], dtype=np.int64) for c in cs]),
         "amplitude": to_si(stack("amplitude"), "displacement", s),
@@ -465,7 +553,8 @@ def _group(spec: DeskToyMinute, r: dict, lifted: int) -> tuple[dict, dict, dict]
     coords = {"case": [str(c["name"]) for c in cs], "t": to_si(t, "time", s), "n": np.arange(N),
               "swing": np.arange(1, K + 1), "phase_threshold": np.asarray(spec.phase_thresholds, float),
               "share_threshold": np.asarray(spec.share_thresholds, float),
-              "pattern_threshold": np.asarray(spec.pattern_thresholds, float)}
+              "pattern_threshold": np.asarray(spec.pattern_thresholds, float),
+              "member": np.arange(spec.ensemble), "tolerance": np.array([spec.rtol, spec.rtol / CONVERGENCE_FACTOR])}
     attrs = {"n_beads": N, "lifted": lifted, "X_m": s.X, "T_s": s.T, "E_J": s.E, "mass_kg": s.m,
              "omega0_rad_per_s": s.omega0, "amplitude_m": to_si(r["amplitude"], "displacement", s),
              "energy0_J": to_si(float(cs[0]["energy"][0]), "energy", s)}

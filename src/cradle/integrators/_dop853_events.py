@@ -266,6 +266,12 @@ def _locate(events: ContactEvents, system: NamedTuple, y: Floats, fy: Floats, yn
         s1, d1 = _switch(ynew, fnew, N, b, eta, qt)
         if (s0 > 0.0) == (s1 > 0.0):
             continue    # switched at the step's start (its side was set there)
+        if s0 == 0.0 and d0 >= 0.0:
+            # leaves zero at the step's start: a bond of touching balls at rest pushed by a neighbour's onset
+            # (c grows like a power of t - t_on from there): switched at the start, not inside the step, where
+            # the Hermite puts a root of that flat start
+            theta[b] = 0.0
+            continue
         theta[b] = _hermite_root(s0, d0 * w0, s1, d1 * w1)
         if EDGE <= theta[b] < th_min:   # below EDGE: switched at the step's start
             th_min = theta[b]

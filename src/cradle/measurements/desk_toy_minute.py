@@ -83,3 +83,34 @@ def balls_out(x: ArrayLike, v: ArrayLike, fraction: float = 0.5) -> NDArray[np.i
         raise ValueError(f"fraction = {fraction!r}: must be in (0, 1] (a share of the largest amplitude)")
     a = np.abs(analytic(x, v))
     return np.sum(a >= fraction * a.max(axis=-1, keepdims=True), axis=-1).astype(np.int64)
+
+
+def separation(x_a: ArrayLike, v_a: ArrayLike, x_b: ArrayLike, v_b: ArrayLike) -> NDArray[np.float64]:
+    """The distance between two runs' states, sqrt(sum_n (x_n - x'_n)^2 + (v_n - v'_n)^2) along the last axis
+    ((nc)'s units, where a velocity is a length: omega_0 = 1)."""
+    dx = np.asarray(x_a, dtype=float) - np.asarray(x_b, dtype=float)
+    dv = np.asarray(v_a, dtype=float) - np.asarray(v_b, dtype=float)
+    return np.sqrt(np.sum(dx**2 + dv**2, axis=-1))
+
+
+def growth_rate(t: ArrayLike, d: ArrayLike, low: float, high: float) -> float:
+    """The exponential growth rate of a separation ``d`` (:func:`separation`): the least-squares slope of log d
+    against t over its first stretch from ``low`` to ``high`` (from the last sample at or below ``low`` before d
+    first reaches ``high``, to that sample). ``low`` above the integrator's error, ``high`` below the saturation
+    (the swing): the stretch where a small difference grows as e^(lambda t). NaN when d never reaches ``high``
+    or the stretch has fewer than 3 samples."""
+    if not 0.0 < low < high:
+        raise ValueError(f"low = {low!r}, high = {high!r}: need 0 < low < high")
+    t = np.asarray(t, dtype=float)
+    d = np.asarray(d, dtype=float)
+    reach = np.flatnonzero(d >= high)
+    if reach.size == 0:
+        return math.nan
+    end = int(reach[0])
+    under = np.flatnonzero(d[:end] <= low)
+    start = int(under[-1]) if under.size else 0
+    seg = slice(start, end + 1)
+    ok = d[seg] > 0.0
+    if np.count_nonzero(ok) < 3:
+        return math.nan
+    return float(np.polyfit(t[seg][ok], np.log(d[seg][ok]), 1)[0])

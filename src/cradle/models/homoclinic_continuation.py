@@ -205,8 +205,9 @@ def solve_sized(kind: str, alpha: float, mu: float = 1.0, decades: float = 16.0,
     k + margin < N/2 (so the antipode is ``decades`` decades down and
     the ring solution is the lattice one to that accuracy), then shrinks to
     the even N = 2 (k + margin) + 2 and is solved once more there. The
-    width grows as alpha -> 1+ (about 0.4 (alpha-1)^(-1/2) sites at 8
-    decades: 14 at alpha = 1.1, 44 at 1.01), so N = 50 no longer holds the
+    width grows as alpha -> 1+ (about 4.3 (alpha-1)^(-1/2) sites at 8
+    decades, sqrt(8 ln 10) of the log-NLS Gaussian of :mod:`cradle.models.continuum`: 14 at alpha = 1.1, 44 at
+    1.01), so N = 50 no longer holds the
     breather of figure bcsc below alpha ~ 1.05. Returns (solution, N).
     """
     if kind not in ("site", "bond"):

@@ -38,6 +38,11 @@ whose solitary wave, in the units above (c0 = 1, a = 1), is R(z) = R_m cos^4(sqr
 |z| <= (pi/2) sqrt(5/2), zero beyond: a compact pulse of total width pi sqrt(5/2) = 4.97 sites ("about five
 particle diameters") moving at c_N = (2/sqrt(5)) R_m^(1/4) = (16/25)^(1/5) v_m^(1/5) (:func:`nesterenko`).
 
+:func:`solve`, :func:`velocity` and :func:`residual` also take another exponent alpha > 1 of f(r) = r_+^alpha (the
+"FPU lattice with Hertzian potential" of James & Pelinovsky, Proc. R. Soc. A 470 (2014) 20130462), for the limit
+alpha -> 1+ of :mod:`cradle.models.continuum`; the rest of this module (homogeneity exponents, Nesterenko's wave,
+the tail) is that of alpha = 3/2.
+
 The tail of :func:`solve` is limited by the rounding of the Fourier transforms (about 1e-16 of the peak);
 :func:`tail` continues it beyond that in real space, on log R (which never underflows), by the dominant part
 of the integral form: R(xi) = c^-2 int_{xi-1}^{xi} (1 - (xi - s)) f(R(s)) ds, the neglected part
@@ -78,6 +83,8 @@ class SolitaryWave:
     iterations: int
     increment: float
     stabiliser: float
+    alpha: float = P
+
 
     @property
     def strain_max(self) -> float:
@@ -91,8 +98,8 @@ class SolitaryWave:
 
     @property
     def force_max(self) -> float:
-        """f(R_m) = R_m^(3/2), the largest contact force."""
-        return self.strain_max**P
+        """f(R_m) = R_m^alpha, the largest contact force."""
+        return self.strain_max**self.alpha
 
 
 def _grid(length: float, points: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -109,53 +116,62 @@ def _tent(k: NDArray[np.float64]) -> NDArray[np.float64]:
 
 
 def solve(c: float = 1.0, length: float = 40.0, points: int = 64, tol: float = 1e-15,
-          max_iterations: int = 500) -> SolitaryWave:
+          max_iterations: int = 500, alpha: float = P) -> SolitaryWave:
     """The solitary wave of (sw) at speed ``c`` by Petviashvili's iteration (module docstring) on a periodic grid
-    of ``length`` sites and ``points`` points per site, from Nesterenko's profile at the same speed, until the
-    relative increment is below ``tol`` (or ``max_iterations``)."""
+    of ``length`` sites and ``points`` points per site, until the relative increment is below ``tol`` (or
+    ``max_iterations``). ``alpha``: the exponent of the contact force f(r) = r_+^alpha (Hertz's 3/2 by default);
+    Petviashvili's exponent is then alpha / (alpha - 1). The start is Nesterenko's profile at the same speed for
+    alpha = 3/2, the log-KdV Gaussian of the limit alpha -> 1+ otherwise, exp((c^2 - 1)/eps + 1/2) exp(-3 eps xi^2),
+    eps = alpha - 1 (:mod:`cradle.models.continuum`)."""
     xi, k = _grid(length, points)
     n = xi.size
     mult = _tent(k) / c**2
-    R = nesterenko_profile(xi, nesterenko_amplitude(c))
+    if alpha == P:
+        R, p, gamma = nesterenko_profile(xi, nesterenko_amplitude(c)), P, GAMMA
+    else:   # the log-KdV wave at speed c (cradle.models.continuum, which imports this module)
+        eps = alpha - 1.0
+        R, p, gamma = math.exp((c * c - 1.0) / eps + 0.5) * np.exp(-3.0 * eps * xi**2), alpha, alpha / eps
     increment, S, it = math.inf, math.nan, 0
     for it in range(1, max_iterations + 1):  # noqa: B007 (the count is returned)
         Rh = np.fft.rfft(R)
-        Nh = mult * np.fft.rfft(R**P)
+        Nh = mult * np.fft.rfft(R**p)
         S = float(np.vdot(Rh, Rh).real / np.vdot(Rh, Nh).real)
-        new = np.maximum(np.fft.irfft(S**GAMMA * Nh, n), 0.0)
+        new = np.maximum(np.fft.irfft(S**gamma * Nh, n), 0.0)
         increment = float(np.max(np.abs(new - R)) / np.max(new))
         R = new
         if increment < tol:
             break
-    return SolitaryWave(c=c, xi=xi, strain=R, velocity=velocity(xi, R, c), iterations=it, increment=increment,
-                        stabiliser=S)
+    return SolitaryWave(c=c, xi=xi, strain=R, velocity=velocity(xi, R, c, p), iterations=it, increment=increment,
+                        stabiliser=S, alpha=p)
 
 
-def velocity(xi: NDArray[np.float64], strain: NDArray[np.float64], c: float) -> NDArray[np.float64]:
-    """v(xi) = c^-1 int_{xi-1}^{xi} f(R(s)) ds on the periodic grid ``xi`` (an integer number of points per site),
-    by the Fourier multiplier (1 - e^(-ik)) / (ik) of the unit box."""
+def velocity(xi: NDArray[np.float64], strain: NDArray[np.float64], c: float, alpha: float = P) -> NDArray[np.float64]:
+    """v(xi) = c^-1 int_{xi-1}^{xi} f(R(s)) ds, f(r) = r^alpha, on the periodic grid ``xi`` (an integer number of
+    points per site), by the Fourier multiplier (1 - e^(-ik)) / (ik) of the unit box."""
     h = float(xi[1] - xi[0])
     k = 2.0 * np.pi * np.fft.rfftfreq(xi.size, d=h)
     box = np.ones_like(k, dtype=complex)
     nz = k != 0.0
     box[nz] = (1.0 - np.exp(-1j * k[nz])) / (1j * k[nz])
-    return np.fft.irfft(box * np.fft.rfft(strain**P), xi.size) / c
+    return np.fft.irfft(box * np.fft.rfft(strain**alpha), xi.size) / c
 
 
 def residual(w: SolitaryWave) -> float:
-    """max |c^2 R'' - (f(R(xi+1)) - 2 f(R(xi)) + f(R(xi-1)))| / max f(R): (sw) in its differential form, R'' by
-    Fourier differentiation and the shifts exact on the grid (not the integrated form the iteration solves)."""
+    """max |c^2 R'' - (f(R(xi+1)) - 2 f(R(xi)) + f(R(xi-1)))| / max f(R), f(r) = r^alpha of the wave: (sw) in its
+    differential form, R'' by Fourier differentiation and the shifts exact on the grid (not the integrated form the
+    iteration solves)."""
     h = float(w.xi[1] - w.xi[0])
     m = int(round(1.0 / h))
     k = 2.0 * np.pi * np.fft.rfftfreq(w.xi.size, d=h)
     d2 = np.fft.irfft(-(k**2) * np.fft.rfft(w.strain), w.xi.size)
-    f = w.strain**P
+    f = w.strain**w.alpha
     rhs = np.roll(f, -m) - 2.0 * f + np.roll(f, m)
     return float(np.max(np.abs(w.c**2 * d2 - rhs)) / np.max(f))
 
 
 def scaled(w: SolitaryWave, c: float) -> SolitaryWave:
-    """The wave at speed ``c`` from ``w`` by the homogeneity of (sw): R -> (c/c_w)^4 R, v -> (c/c_w)^5 v."""
+    """The wave at speed ``c`` from ``w`` by the homogeneity of (sw): R -> (c/c_w)^4 R, v -> (c/c_w)^5 v (alpha =
+    3/2 only: the exponents are 2/(alpha-1) and (alpha+1)/(alpha-1))."""
     s = c / w.c
     return SolitaryWave(c=c, xi=w.xi, strain=s**4 * w.strain, velocity=s**5 * w.velocity, iterations=w.iterations,
                         increment=w.increment, stabiliser=w.stabiliser)

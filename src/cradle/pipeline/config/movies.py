@@ -2,6 +2,7 @@
 parameters."""
 from __future__ import annotations
 
+from cradle.analyses.desk_toy_minute_movie import MinuteMovie
 from cradle.analyses.desk_toy_movie import SlowMotion
 from cradle.specs.declare import declared, param, schema_doc
 from cradle.specs.values import ConfigError, did_you_mean
@@ -27,6 +28,7 @@ class Movies:
     gif_width: int = param(480, "Width of the GIF in pixels (its frames are the MP4's, scaled down).", minimum=64,
                            maximum=1280)
     desk_toy: SlowMotion = param(SlowMotion(), schema_doc(SlowMotion))
+    desk_toy_minute: MinuteMovie = param(MinuteMovie(), schema_doc(MinuteMovie))
 
     @staticmethod
     def resolve(cfg: dict) -> dict:

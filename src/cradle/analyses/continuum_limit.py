@@ -1,0 +1,427 @@
+"""The continuum limit alpha -> 1+: DpS breathers against the log-NLS Gaussian, Hertz solitary waves against the
+log-KdV Gaussian (issue 37, item 5).
+
+For each eps = alpha - 1 of ``dps_eps`` this analysis computes the site- and bond-centred breathers of (dpsst) at
+unit amplitude (:func:`cradle.models.continuum.dps_breather`: the unit-amplitude solve of
+:mod:`cradle.models.homoclinic_continuation` on a ring sized from the Gaussian) and measures the distance of the
+staggered envelope b_n / max b to exp(-eps (n - n_c)^2) in the max norm over the ring; for each eps of ``hertz_eps``
+the solitary wave of the Hertz chain without on-site potential with force exponent 1 + eps at speed 1
+(:func:`cradle.models.continuum.hertz_wave`) and the distance of R / max R to exp(-3 eps xi^2) on its grid. The
+power of eps at which each distance vanishes is fitted over eps <= ``fit_below``
+(:func:`cradle.measurements.continuum.fit_power`); the first-order constants of the limit, (nu - 4)/eps -> 4 ln 2 - 2
+and ln max R -> 1/2 at c = 1, are stored beside. The limits and their derivation: :mod:`cradle.models.continuum`.
+"""
+from __future__ import annotations
+
+import math
+import time as _time
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from cradle.analyses.claims_table import COLUMNS, Row
+from cradle.analyses.protocol import Analysis
+from cradle.data.variables import Var
+from cradle.specs.declare import declared, param, plain
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from numpy.typing import NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.measurements.continuum import PowerFit
+    from cradle.models.dps_mobility import UnstableBreather
+    from cradle.scenes.spec import Context, Where
+    from cradle.specs.values import Errors
+
+_EPS = {"type": "number", "exclusiveMinimum": 0, "minimum": 1e-4, "maximum": 1.0,
+        "description": "An eps = alpha - 1 (alpha the Hertz exponent)."}
+
+#: the sources of the limits (stored with the file and in the claims rows)
+JS_2014 = ("G. James and Y. Starosvetsky, Breather solutions of the discrete p-Schroedinger equation, in Localized "
+           "Excitations in Nonlinear Complex Systems (Springer, 2014), doi 10.1007/978-3-319-02057-0_4")
+JP_2014 = ("G. James and D. Pelinovsky, Gaussian solitary waves and compactons in Fermi-Pasta-Ulam lattices with "
+           "Hertzian potentials, Proc. R. Soc. A 470 (2014) 20130462, arXiv 1307.3837")
+
+
+@declared(doc="The continuum limit alpha -> 1+ (issue 37): DpS breathers against the log-NLS Gaussian, solitary "
+              "waves of the Hertz chain without on-site potential against the log-KdV Gaussian, the fitted power of "
+              "alpha - 1; the unstable DpS breather perturbed, travelling or pinned against alpha -> "
+              "results/continuum-limit/continuum-limit.nc and results/figures/continuum-limit.{pdf,png}.")
+class ContinuumLimit:
+    dps_eps: list[float] = param([0.5, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001, 5e-4, 3e-4],
+                                 "The eps = alpha - 1 at which the DpS breathers (site and bond) are solved; the ring "
+                                 "grows as eps^(-1/2) and the dense solve as its cube (3e-4: 710 sites, ~3 s each).",
+                                 minItems=4, maxItems=20, items=_EPS, reduced=[0.1, 0.05, 0.02, 0.01, 0.005])
+    hertz_eps: list[float] = param([0.5, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001],
+                                   "The eps = alpha - 1 at which the solitary wave of the Hertz chain is solved "
+                                   "(Petviashvili's iteration needs about 20/eps iterations: 1e-3 takes 3 s).",
+                                   minItems=4, maxItems=20, items={**_EPS, "minimum": 5e-4},
+                                   reduced=[0.1, 0.05, 0.02, 0.01])
+    fit_below: float = param(0.05, "The power of eps is fitted over the eps <= fit_below (at least 4 of each list).",
+                             exclusiveMinimum=0, maximum=1.0, reduced=0.1)
+    decades: float = param(16.0, "Each ring (box) is as wide as the Gaussian's fall by this many decades on each "
+                           "side, plus 4 sites.", minimum=4, maximum=30)
+    points: int = param(8, "Grid points per site of the solitary wave's box (an integer: the shifts are exact).",
+                        minimum=2, maximum=64)
+    mobility_alphas: list[float] = param([1.5, 1.75, 2.0, 2.25, 2.5, 3.0], "The alpha at which the unstable "
+                                         "site-centred DpS breather is perturbed and run (its growth rate must be "
+                                         "resolved: >= 1.5; 1.4 grows e-fold in 3400 time units).", minItems=2,
+                                         maxItems=12, items={"type": "number", "minimum": 1.3, "maximum": 3.0},
+                                         reduced=[1.75, 2.0, 2.5, 3.0])
+    deltas: list[float] = param([1e-3, 1e-2], "Sizes of the perturbation along the growing mode, relative to the "
+                                "breather's amplitude.", minItems=1, maxItems=6,
+                                items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.3}, reduced=[1e-2])
+    seeds: int = param(2, "Runs with seeded complex noise added (seeds 0 .. seeds-1), each with the largest delta.",
+                       minimum=0, maximum=16, reduced=1)
+    noise: float = param(1e-3, "Size of the seeded noise per site (standard normal real and imaginary parts), "
+                         "relative to the breather's amplitude.", exclusiveMinimum=0, maximum=0.1)
+    mobility_N: int = param(128, "Sites of the ring of the mobility runs (the discretisation check doubles it).",
+                            minimum=32, maximum=1024, reduced=64)
+    growth_times: float = param(40.0, "A run lasts (ln(1/delta) + growth_times) / lambda (lambda the growth rate), "
+                                "at most tau_max.", minimum=5, maximum=200)
+    tau_max: float = param(20000.0, "Longest run (units of tau).", exclusiveMinimum=0, maximum=1e6)
+    rtol: float = param(1e-10, "Relative tolerance of the DpS runs (dop853_numba); the check divides it by 10.",
+                        minimum=1e-13, maximum=1e-6)
+    lattice_alphas: list[float] = param([1.75, 2.0, 3.0], "The alpha at which the same start (largest delta) is run "
+                                        "in the lattice (nc) through the ansatz, x_n = 2 eps Re A_n, v_n = -2 eps "
+                                        "Im A_n (each run is tens of seconds: none in the reduced form).",
+                                        maxItems=6, items={"type": "number", "minimum": 1.3, "maximum": 3.0},
+                                        reduced=[])
+    lattice_eps: float = param(0.1, "Amplitude eps of the ansatz of the lattice runs (max |x_n| = eps at the start).",
+                               exclusiveMinimum=0, maximum=0.5)
+    thresholds: list[float] = param([1.5, 5.0], "A run travels when its peak moves farther than this (sites) at "
+                                    "some time; each threshold gives its own verdicts and crossover.", minItems=1,
+                                    maxItems=4, items={"type": "number", "exclusiveMinimum": 0, "maximum": 100})
+
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """Each form: no eps twice, at least 4 eps of each list at or below fit_below; mobility alphas increasing."""
+        if list(self.mobility_alphas) != sorted(set(self.mobility_alphas)):
+            out.add(where + ["mobility_alphas"], "must increase strictly (the crossover is read along them)",
+                    self.mobility_alphas)
+        for key in ("dps_eps", "hertz_eps"):
+            values = getattr(self, key)
+            if len(set(values)) != len(values):
+                out.add(where + [key], "lists a value twice", values)
+            if sum(e <= self.fit_below for e in values) < 4:
+                out.add(where + [key], f"needs at least 4 values <= fit_below = {self.fit_below:g} (the power fit "
+                        "has three parameters)", values)
+
+
+_E = ("eps",)
+_FAMILY = {
+    "eps": Var(_E, "eps = alpha - 1"),
+    "distance": Var(_E, "max-norm distance of the scaled profile to the Gaussian of the limit (both of unit maximum)"),
+    "residual": Var(_E, "max residual of the profile's equation relative to its amplitude"),
+    "sites": Var(_E, "sites of the ring (DpS) or of the periodic box (Hertz)"),
+}
+#: the stored variables, per group: a family against eps and each profile of it in its own group (its own grid)
+VARIABLES = {
+    "/": {},
+    "/dps_site": {**_FAMILY, "nu_first_order": Var(_E, "(nu - 4)/eps, nu the mu of (dpsst) of the unit-amplitude "
+                                                   "breather; the limit 4 ln 2 - 2")},
+    "/dps_bond": {**_FAMILY, "nu_first_order": Var(_E, "(nu - 4)/eps, nu the mu of (dpsst) of the unit-amplitude "
+                                                   "breather; the limit 4 ln 2 - 2")},
+    "/hertz": {**_FAMILY, "log_amplitude": Var(_E, "ln max R of the wave at c = 1; the limit 1/2"),
+               "iterations": Var(_E, "iterations of Petviashvili's iteration")},
+    "/dps_site/{k}": {"X": Var(("site",), "sqrt(eps) (n - n_c)"),
+                      "envelope": Var(("site",), "staggered envelope b_n / max b of the breather"),
+                      "gaussian": Var(("site",), "the log-NLS Gaussian exp(-eps (n - n_c)^2), unit maximum")},
+    "/dps_bond/{k}": {"X": Var(("site",), "sqrt(eps) (n - n_c)"),
+                      "envelope": Var(("site",), "staggered envelope b_n / max b of the breather"),
+                      "gaussian": Var(("site",), "the log-NLS Gaussian exp(-eps (n - n_c)^2), unit maximum")},
+    "/hertz/{k}": {"Y": Var(("point",), "sqrt(3 eps) xi"),
+                   "strain": Var(("point",), "strain R / max R of the solitary wave at c = 1"),
+                   "gaussian": Var(("point",), "the log-KdV Gaussian exp(-3 eps xi^2)")},
+    "/mobility": {
+        "alpha": Var(("alpha",), "Hertz exponent alpha"),
+        "delta": Var(("delta",), "size of the perturbation along the growing mode, relative to the amplitude"),
+        "seed": Var(("seed",), "seed of the noise added to the largest delta's start"),
+        "threshold": Var(("threshold",), "distance (sites) beyond which a run travels"),
+        "sample": Var(("sample",), "index of a stored time"),
+        "growth_rate": Var(("alpha",), "growth rate lambda of the site-centred breather's unstable mode (per tau)"),
+        "tau_end": Var(("alpha",), "length of the runs (tau)"),
+        "displacement": Var(("alpha", "delta"), "largest distance of the peak from its start (sites)"),
+        "displacement_noise": Var(("alpha", "seed"), "largest distance of the peak from its start, noise added "
+                                  "(sites)"),
+        "l2_drift": Var(("alpha", "delta"), "largest relative drift of sum |A_n|^2 over the run"),
+        "energy_drift": Var(("alpha", "delta"), "largest relative drift of the DpS Hamiltonian H over the run"),
+        "travels": Var(("threshold", "alpha", "delta"), "1 if the run travels beyond the threshold, else 0"),
+        "track": Var(("alpha", "sample"), "peak position minus its start (sites), largest delta"),
+        "growth": Var(("alpha", "sample"), "lambda tau at the stored times, largest delta"),
+    },
+    "/lattice": {
+        "lattice_alpha": Var(("lattice_alpha",), "Hertz exponent alpha of the lattice runs"),
+        "displacement": Var(("lattice_alpha",), "largest distance of the peak of x_n^2 + v_n^2 from its start "
+                            "(sites), lattice (nc)"),
+        "t_end": Var(("lattice_alpha",), "length of the lattice run, tau_end / eps^(alpha - 1) (units of t)"),
+        "energy_drift": Var(("lattice_alpha",), "relative energy drift of the lattice run"),
+    },
+    "/mobility_checks": {
+        "alpha": Var(("alpha",), "Hertz exponent alpha"),
+        "variant": Var(("variant",), "the discretisation: the runs', N doubled, rtol / 10"),
+        "displacement": Var(("alpha", "variant"), "largest distance of the peak from its start (sites), largest "
+                            "delta"),
+    },
+    "/claims": {"row": Var(("row",), "index of a cited paper's statement"),
+                **{c: Var(("row",), f"claims-table column {c} (cradle.analyses.claims_table.COLUMNS)")
+                   for c in COLUMNS}},
+}
+
+
+def dps_family(spec: ContinuumLimit, kind: str) -> list:
+    """The breathers of one parity at every eps of the spec."""
+    from cradle.models.continuum import dps_breather
+
+    return [dps_breather(e, kind, spec.decades) for e in spec.dps_eps]
+
+
+def hertz_family(spec: ContinuumLimit) -> list:
+    """The solitary waves at c = 1 at every eps of the spec."""
+    from cradle.models.continuum import hertz_wave
+
+    return [hertz_wave(e, spec.decades, spec.points) for e in spec.hertz_eps]
+
+
+def _run(br: UnstableBreather, A0: NDArray[np.complex128], tau_end: float, rtol: float,
+         samples: int = 801) -> tuple[NDArray[np.float64], NDArray[np.float64], float, float, float]:
+    """One DpS run from A0 to tau_end: (tau, peak track, displacement, l2 drift, H drift)."""
+    from cradle.integrators.dps_solver import integrate_dps
+    from cradle.measurements.travel import peak_position
+
+    tau = np.linspace(0.0, tau_end, samples)
+    sol = integrate_dps(A0, tau, alpha=br.alpha, rtol=rtol)
+    x = peak_position(sol.A)
+    x = x - x[0]
+    return tau, x, float(np.max(np.abs(x))), float(sol.max_l2_drift), float(sol.max_energy_drift)
+
+
+def crossover(alphas: list[float], travels: list[bool]) -> float:
+    """The midpoint between the largest alpha that travels and the next alpha of the list (NaN if none travels;
+    the last alpha if all of them do)."""
+    idx = [i for i, t in enumerate(travels) if t]
+    if not idx:
+        return float("nan")
+    i = idx[-1]
+    return float(alphas[i]) if i == len(alphas) - 1 else 0.5 * (alphas[i] + alphas[i + 1])
+
+
+def mobility(spec: ContinuumLimit, say: Log) -> tuple[tuple[dict, dict], tuple[dict, dict], dict]:
+    """The mobility runs (issue 37, item 4): the unstable site breather perturbed along its growing mode by each
+    delta (and, at the largest delta, seeded noise added), run in DpS; the displacement of its peak, the
+    verdicts under each threshold, the crossover alpha over perturbations, and the discretisation check (N
+    doubled, rtol / 10) at the largest delta. Returns the groups "/mobility", "/mobility_checks" and attributes."""
+    from cradle.models.dps_mobility import start, unstable_site
+
+    al = list(spec.mobility_alphas)
+    nd, ns = len(spec.deltas), spec.seeds
+    disp, l2, H = np.zeros((len(al), nd)), np.zeros((len(al), nd)), np.zeros((len(al), nd))
+    disp_noise = np.zeros((len(al), ns))
+    lam, tau_end = np.zeros(len(al)), np.zeros(len(al))
+    samples = 801
+    track, growth = np.zeros((len(al), samples)), np.zeros((len(al), samples))
+    checks = np.zeros((len(al), 3))
+    for i, alpha in enumerate(al):
+        br = unstable_site(alpha, spec.mobility_N)
+        lam[i] = br.lam
+        if not br.lam > 0:
+            raise RuntimeError(f"continuum-limit: the site breather at alpha = {alpha} has no resolved growth rate")
+        big = max(spec.deltas)
+        tau_end[i] = min((math.log(1.0 / big) + spec.growth_times) / br.lam, spec.tau_max)
+        for j, d in enumerate(spec.deltas):
+            T = min((math.log(1.0 / d) + spec.growth_times) / br.lam, spec.tau_max)
+            tau, x, disp[i, j], l2[i, j], H[i, j] = _run(br, start(br, d), T, spec.rtol, samples)
+            if d == big:
+                track[i], growth[i] = x, br.lam * tau
+                checks[i, 0] = disp[i, j]
+        for k in range(ns):
+            disp_noise[i, k] = _run(br, start(br, big, spec.noise, k), tau_end[i], spec.rtol, samples)[2]
+        wide = unstable_site(alpha, 2 * spec.mobility_N)
+        A0 = start(wide, big)
+        checks[i, 1] = _run(wide, np.roll(A0, 0), tau_end[i], spec.rtol, samples)[2]
+        checks[i, 2] = _run(br, start(br, big), tau_end[i], spec.rtol / 10.0, samples)[2]
+        say(f"continuum-limit: mobility alpha = {alpha:g}: lambda = {br.lam:.4g}, displacement "
+            f"{', '.join(f'{v:.3g}' for v in disp[i])} sites (deltas), noise "
+            f"{', '.join(f'{v:.3g}' for v in disp_noise[i])}; checks {', '.join(f'{v:.3g}' for v in checks[i])}")
+    th = list(spec.thresholds)
+    travels = np.array([[[disp[i, j] > t for j in range(nd)] for i in range(len(al))] for t in th])
+    attrs: dict = {}
+    for t_i, t in enumerate(th):
+        cross = [crossover(al, list(travels[t_i, :, j])) for j in range(nd)]
+        cross += [crossover(al, [disp_noise[i, k] > t for i in range(len(al))]) for k in range(ns)]
+        finite = [c for c in cross if np.isfinite(c)]
+        attrs[f"crossover_threshold_{t:g}"] = ", ".join(f"{c:g}" for c in cross)
+        attrs[f"crossover_min_threshold_{t:g}"] = min(finite) if finite else float("nan")
+        attrs[f"crossover_max_threshold_{t:g}"] = max(finite) if finite else float("nan")
+        for v, name in ((1, "N doubled"), (2, "rtol / 10")):
+            attrs[f"verdicts_unchanged_{name.replace(' ', '_').replace('/', 'over')}_threshold_{t:g}"] = int(
+                all((checks[i, v] > t) == (checks[i, 0] > t) for i in range(len(al))))
+    attrs.update({"mobility_max_l2_drift": float(np.max(l2)), "mobility_max_energy_drift": float(np.max(H))})
+    mob = ({"growth_rate": lam, "tau_end": tau_end, "displacement": disp, "displacement_noise": disp_noise,
+            "l2_drift": l2, "energy_drift": H, "travels": travels.astype(np.int8), "track": track,
+            "growth": growth},
+           {"alpha": al, "delta": list(spec.deltas), "seed": np.arange(ns), "threshold": th,
+            "sample": np.arange(samples)})
+    chk = ({"displacement": checks},
+           {"alpha": al, "variant": np.array(["runs", "N doubled", "rtol / 10"], dtype=object)})
+    return mob, chk, attrs
+
+
+def _fit(eps: list[float], D: list[float], below: float) -> PowerFit:
+    from cradle.measurements.continuum import fit_power
+
+    e, d = np.asarray(eps), np.asarray(D)
+    keep = e <= below
+    return fit_power(e[keep], d[keep])
+
+
+def claims(fits: dict[str, PowerFit]) -> list[Row]:
+    """The cited papers' statements on the limit against ours: qualitative rows (the papers print no number for
+    it), judged by the fitted power (a distance that vanishes: power > 0 beyond its uncertainty)."""
+    rows = []
+    for key, what, src in (("dps_site", "site-centred DpS breathers", JS_2014),
+                           ("dps_bond", "bond-centred DpS breathers", JS_2014),
+                           ("hertz", "solitary waves of the Hertz chain without on-site potential", JP_2014)):
+        f = fits[key]
+        ok = f.power - 3 * f.uncertainty > 0
+        paper = ("breathers correspond asymptotically to Gaussian homoclinic solutions as alpha -> 1+ (qualitative)"
+                 if key != "hertz" else "solitary waves become Gaussian as alpha -> 1+ (log-KdV; qualitative)")
+        rows.append(Row(src.split(",")[0] + " 2014", f"{what} against the Gaussian of the limit", paper,
+                        f"distance ~ {f.K:.3g} (alpha-1)^{f.power:.4f} +- {f.uncertainty:.1g}",
+                        "agrees" if ok else "disagrees",
+                        "max-norm distance of the profile scaled to unit maximum to the Gaussian, power fitted over "
+                        "the smallest alpha - 1 (continuum-limit)", "power > 0 beyond 3 uncertainties",
+                        "analyses/continuum-limit.md"))
+    return rows
+
+
+def lattice_runs(spec: ContinuumLimit, say: Log) -> tuple[dict, dict]:
+    """The DpS start of the largest delta through the ansatz in the lattice (nc) (srkn6c, periodic), run for the
+    DpS run's length tau_end / eps^(alpha - 1); the displacement of the peak of x_n^2 + v_n^2."""
+    from cradle.integrators import integrate_lattice
+    from cradle.measurements.travel import displacement
+    from cradle.models.dps_mobility import start, unstable_site
+
+    al = list(spec.lattice_alphas)
+    disp, t_end, drift = np.zeros(len(al)), np.zeros(len(al)), np.zeros(len(al))
+    e = spec.lattice_eps
+    big = max(spec.deltas)
+    for i, alpha in enumerate(al):
+        br = unstable_site(alpha, spec.mobility_N)
+        tau = min((math.log(1.0 / big) + spec.growth_times) / br.lam, spec.tau_max)
+        t_end[i] = tau / e ** (alpha - 1.0)
+        A0 = start(br, big)
+        sol = integrate_lattice(2 * e * A0.real, -2 * e * A0.imag, np.linspace(0.0, t_end[i], 801), alpha=alpha)
+        disp[i] = displacement(np.sqrt(sol.x**2 + sol.v**2))
+        drift[i] = float(sol.energy_drift)
+        say(f"continuum-limit: lattice alpha = {alpha:g}, eps = {e:g}: displacement {disp[i]:.3g} sites over "
+            f"t = {t_end[i]:.4g}")
+    return {"displacement": disp, "t_end": t_end, "energy_drift": drift}, {"lattice_alpha": al}
+
+
+def mobility_claim(spec: ContinuumLimit, mob: dict, attrs: dict) -> Row:
+    """James & Starosvetsky's "a perturbation of an unstable breather generally results in a translational motion
+    (traveling breather) when alpha is close to unity, whereas pinning becomes predominant for larger values of
+    alpha" against the runs under the first threshold: agrees when the runs travel at the smallest alpha (more than
+    half of them) and none does at the largest."""
+    t = spec.thresholds[0]
+    runs = np.concatenate([np.asarray(mob["displacement"]), np.asarray(mob["displacement_noise"])], axis=1)
+    low, high = runs[0] > t, runs[-1] > t
+    ok = bool(np.mean(low) > 0.5 and not np.any(high))
+    al = spec.mobility_alphas
+    ours = (f"{int(np.sum(low))} of {low.size} runs travel beyond {t:g} sites at alpha = {al[0]:g}, "
+            f"{int(np.sum(high))} of {high.size} at alpha = {al[-1]:g}; crossover alpha "
+            f"{attrs[f'crossover_min_threshold_{t:g}']:g} to {attrs[f'crossover_max_threshold_{t:g}']:g}")
+    return Row("James and Starosvetsky 2014", "perturbed unstable DpS breather: travelling or pinned against alpha",
+               "travels for alpha close to 1, pinning predominant for larger alpha (qualitative)", ours,
+               "agrees" if ok else "disagrees",
+               "site-centred breather perturbed along its growing mode and by seeded noise, DpS runs (continuum-limit)",
+               f"most runs travel at the smallest alpha, none at the largest (threshold {t:g} sites)",
+               "analyses/continuum-limit.md")
+
+
+def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
+    """The `continuum-limit` analysis as a tree of groups (:data:`VARIABLES`); it reads no file."""
+    from cradle.data.io import make_tree
+    from cradle.measurements.continuum import sup_distance
+    from cradle.models import solitary
+    from cradle.models.continuum import LOG_NLS_M, kdv_gaussian
+
+    say = log or (lambda *a: None)
+    t0 = _time.perf_counter()
+    groups: dict = {"/": ({}, {})}
+    variables = {k: v for k, v in VARIABLES.items() if "{" not in k}
+    fits: dict[str, PowerFit] = {}
+    seconds: dict[str, float] = {}
+    for kind in ("site", "bond"):
+        t1 = _time.perf_counter()
+        fam = dps_family(spec, kind)
+        seconds[kind] = _time.perf_counter() - t1
+        bad = [b.eps for b in fam if not b.converged]
+        if bad:
+            raise RuntimeError(f"continuum-limit: the {kind} breather did not converge at eps = {bad}")
+        D = [sup_distance(b.envelope, b.gaussian) for b in fam]
+        path = f"/dps_{kind}"
+        groups[path] = ({"distance": D, "residual": [b.residual for b in fam], "sites": [b.n.size for b in fam],
+                         "nu_first_order": [(b.nu - 4.0) / b.eps for b in fam]}, {"eps": list(spec.dps_eps)})
+        for k, b in enumerate(fam):
+            sub = f"{path}/e{k:02d}"
+            groups[sub] = ({"X": math.sqrt(b.eps) * (b.n - b.centre), "envelope": b.envelope / np.max(b.envelope),
+                            "gaussian": b.gaussian}, {})
+            variables[sub] = VARIABLES[path + "/{k}"]
+        fits[f"dps_{kind}"] = f = _fit(spec.dps_eps, D, spec.fit_below)
+        say(f"continuum-limit: DpS {kind}: distance ~ {f.K:.4g} eps^{f.power:.5f} (+- {f.uncertainty:.2g}); "
+            f"(nu - 4)/eps = {(fam[-1].nu - 4) / fam[-1].eps:.6f} at eps = {fam[-1].eps:g} (limit {LOG_NLS_M:.6f})")
+    t1 = _time.perf_counter()
+    waves = hertz_family(spec)
+    seconds["hertz"] = _time.perf_counter() - t1
+    D = [sup_distance(w.strain, kdv_gaussian(w.xi, e)) for w, e in zip(waves, spec.hertz_eps, strict=True)]
+    groups["/hertz"] = ({"distance": D, "residual": [solitary.residual(w) for w in waves],
+                         "sites": [w.xi.size // spec.points for w in waves],
+                         "log_amplitude": [math.log(w.strain_max) for w in waves],
+                         "iterations": [w.iterations for w in waves]}, {"eps": list(spec.hertz_eps)})
+    for k, (w, e) in enumerate(zip(waves, spec.hertz_eps, strict=True)):
+        sub = f"/hertz/e{k:02d}"
+        groups[sub] = ({"Y": math.sqrt(3.0 * e) * w.xi, "strain": w.strain / w.strain_max,
+                        "gaussian": kdv_gaussian(w.xi, e)}, {})
+        variables[sub] = VARIABLES["/hertz/{k}"]
+    fits["hertz"] = f = _fit(spec.hertz_eps, D, spec.fit_below)
+    say(f"continuum-limit: Hertz: distance ~ {f.K:.4g} eps^{f.power:.5f} (+- {f.uncertainty:.2g}); ln max R = "
+        f"{math.log(waves[-1].strain_max):.6f} at eps = {spec.hertz_eps[-1]:g} (limit 0.5)")
+    groups["/mobility"], groups["/mobility_checks"], mob_attrs = mobility(spec, say)
+    groups["/lattice"] = lattice_runs(spec, say)
+    table = claims(fits) + [mobility_claim(spec, groups["/mobility"][0], mob_attrs)]
+    groups["/claims"] = ({c: np.array([getattr(r, c) for r in table], dtype=object) for c in COLUMNS},
+                         {"row": np.arange(len(table))})
+    attrs: dict = {"nu_first_order_limit": LOG_NLS_M, "log_amplitude_limit": 0.5, "fit_below": spec.fit_below}
+    for key, f in fits.items():
+        attrs.update({f"{key}_power": f.power, f"{key}_power_stderr": f.stderr, f"{key}_power_spread": f.spread,
+                      f"{key}_power_uncertainty": f.uncertainty, f"{key}_constant": f.K,
+                      f"{key}_correction": f.k, f"{key}_fit_points": f.points})
+    attrs.update({
+        "dps_limit": "nu b_n = g(b_n + b_{n+1}) + g(b_n + b_{n-1}) -> b_XX + 4 b ln(2b) - m b = 0, X = sqrt(eps) n, "
+                     "nu = 4 + eps m: b_n / max b = exp(-eps (n - n_c)^2), m = 4 ln 2 - 2 at unit amplitude",
+        "hertz_limit": "c^2 R'' = f(R(xi+1)) - 2 f(R) + f(R(xi-1)), f = R^(1+eps) -> (c^2 - 1)/eps R = R ln R + "
+                       "R_YY/12, Y = sqrt(eps) xi: R / max R = exp(-3 eps xi^2), c^2 = 1 + eps (ln max R - 1/2)",
+        "distance_norm": "max over the ring (box) of |profile / max profile - Gaussian / max Gaussian| on the lattice "
+                         "sites (DpS: the staggered envelope b_n = (-1)^(n - n_pin) a_n; Hertz: the strain on the "
+                         "grid); centre n_c the central site (site) or the middle of the central bond (bond)",
+        "fit": "least squares of ln D = p ln eps + ln K + k eps over eps <= fit_below; uncertainty the larger of the "
+               "standard error of p and the change of p when the smallest or the largest eps is left out",
+        "dps_source": JS_2014, "hertz_source": JP_2014,
+        "dps_site_seconds": seconds["site"], "dps_bond_seconds": seconds["bond"], "hertz_seconds": seconds["hertz"],
+        **mob_attrs,
+        "mobility_definitions": "the site-centred breather (max |A| = 1/2) perturbed by delta (u + i w), u + i w its "
+                                "growing mode (max |u| = 1), run to (ln(1/delta) + growth_times)/lambda (at most "
+                                "tau_max); its position the parabola-refined peak of |A_n|^2; it travels when the "
+                                "largest distance from its start exceeds the threshold; the crossover is the "
+                                "midpoint between the largest travelling alpha and the next one",
+        "wall_time_s": _time.perf_counter() - t0,
+    })
+    return make_tree(groups, variables, attrs=attrs, params=plain(spec),
+                     title="The continuum limit alpha -> 1+: DpS breathers and Hertz solitary waves against Gaussians")
+
+
+ANALYSIS = Analysis(
+    name="continuum-limit", spec=ContinuumLimit, compute=compute, variables=VARIABLES,
+    title="The continuum limit alpha -> 1+: DpS breathers and Hertz solitary waves against Gaussians")

@@ -1,0 +1,405 @@
+"""Travelling breathers of the DpS equation (dfnls) (issue 37, item 1): their family in the velocity at fixed norm,
+tails, invariants and Floquet multipliers modulo shift, against the dH/dc criterion.
+
+A TB on a ring of N sites solves A_n(tau + T) = e^{i theta} A_{n-1}(tau) (tb), c = 1/T
+(:mod:`cradle.models.dps_travelling`). DpS's scaling A -> lambda A, tau -> lambda^(1-alpha) tau keeps theta and maps
+(T, P) to (lambda^(1-alpha) T, lambda^2 P) (P = sum |A_n|^2): the family that remains is the one in c at fixed P,
+computed here at P = ``norm`` (any other norm is its image; the invariant velocity is c P^((1-alpha)/2)). This
+analysis
+
+* builds the static DpS breathers (ansatzapproxst2) of both parities (the mu = 1 solutions a_n of (dpsstn) of
+  :mod:`cradle.models.homoclinic`, as the breathers analysis, scaled to the norm), pushes the site one by the
+  phase gradient ``kick`` and takes one site of its motion as the first guess;
+* solves (tb) by Gauss-Newton on the shooting map modulo shift (:mod:`cradle.integrators.dps_travelling`) and
+  continues the family over ``speeds`` (down to the slowest and up to the fastest, tangent predictor);
+* stores each member's profile, theta, H, its tail (max |A_n| on the far quarter ring, relative), its shift-map
+  residual, its multipliers modulo shift (the four trivial ones at 1 filtered, their defect stored: the precision
+  of the stability verdict) and the growth rate ln max|mu| / T of the others; dH/dc along the family and where it
+  changes sign (Xu, Cuevas-Maraver, Kevrekidis and Vainchtein, arXiv 1701.04882: a sufficient condition for a
+  change of stability) against where the verdict changes;
+* at small c, the distance of |A_n(tau)| over one period to the static breathers' profiles (the c -> 0 end);
+* checks: the verdicts re-solved at ``check_rtol`` and on the ring of ``check_N`` sites; a direct run of the member
+  at ``direct_speed`` over ``direct_periods`` periods (norm and H drifts, the residual of (tb) after k periods);
+  the scaling symmetry (the TB re-solved at lambda^(1-alpha) T and lambda^2 P from another member's profile,
+  against lambda A);
+* the cited papers' statements as claims rows (group /claims, the columns of the claims table).
+"""
+from __future__ import annotations
+
+import itertools
+import math
+import time as _time
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from cradle.analyses.claims_table import COLUMNS, Row
+from cradle.analyses.protocol import Analysis
+from cradle.data.variables import Var
+from cradle.specs.declare import declared, param, plain
+from cradle.specs.values import RTOL_FLOOR
+
+if TYPE_CHECKING:
+    import xarray as xr
+    from numpy.typing import NDArray
+
+    from cradle.analyses.protocol import Log
+    from cradle.integrators.dps_travelling import TravellingBreather
+    from cradle.scenes.spec import Context, Where
+    from cradle.specs.values import Errors
+
+_SPEED = {"type": "number", "exclusiveMinimum": 0, "maximum": 2,
+          "description": "One velocity c = 1/T of the family (sites per unit tau at the norm of the spec)."}
+
+#: multipliers modulo shift equal to 1 on every TB: phase and time shift, each in a Jordan block with its
+#: conserved quantity (norm, H)
+TRIVIAL = 4
+#: the scaling check starts Newton this fraction of the way from the member towards its neighbour
+SCALING_NUDGE = 1e-3
+#: a multiplier is real when |Im mu| <= REAL |mu| (a real pair's imaginary parts are rounding)
+REAL = 1e-8
+#: a tail dips at a grid point when it is below this fraction of both neighbours' tails
+DIP = 0.3
+#: where the docs page explains the claims rows
+EXPLAINED = "analyses/travelling-breathers.md#claims"
+
+
+@declared(doc="Travelling breathers of the DpS equation (dfnls) on a ring (issue 37): Newton on the shooting map "
+              "modulo shift, continued in the velocity at fixed norm from a pushed static breather; tails, H, "
+              "Floquet multipliers modulo shift against the dH/dc criterion, the c -> 0 end against the static "
+              "breathers, checks of N, tolerance, scaling and a direct run -> results/travelling-breathers/"
+              "travelling-breathers.nc and results/figures/travelling-breathers.{pdf,png}.")
+class TravellingBreathers:
+    alpha: float = param(1.5, "Exponent alpha of (dfnls) (p = alpha + 1; Hertz: 3/2).", ref="alpha", maximum=10)
+    N: int = param(24, "Sites of the ring.", minimum=8, maximum=200, reduced=16)
+    norm: float = param(1.0, "Squared l2 norm P = sum |A_n|^2 of the family (the scaling maps every other onto it).",
+                        exclusiveMinimum=0, maximum=1e6)
+    kick: float = param(0.15, "Phase gradient kappa of the pushed static breather A_n = phi_n e^{i kappa (n - n_0)} "
+                        "whose motion gives the first guess.", exclusiveMinimum=0, maximum=1.5)
+    speeds: list[float] = param([0.05, 0.06, 0.08, 0.1, 0.12, 0.14, 0.16, 0.18, 0.2, 0.22, 0.24],
+                                "Velocities c of the stored members (increasing); the family is continued from the "
+                                "first guess's c down to the slowest and up to the fastest.", minItems=3,
+                                maxItems=60, items=_SPEED, reduced=[0.06, 0.08, 0.1, 0.12])
+    newton_tol: float = param(1e-11, "Newton stops when the shift-map residual max|R| <= newton_tol max|A|.",
+                              exclusiveMinimum=0, maximum=1e-6)
+    rtol: float = param(1e-13, "DOP853 relative tolerance of the shooting and of the monodromy.",
+                        minimum=RTOL_FLOOR, maximum=1e-8)
+    check_rtol: float = param(1e-12, "The tolerance of the verdict check (every member re-solved).",
+                              minimum=RTOL_FLOOR, maximum=1e-8)
+    check_N: int = param(30, "Sites of the ring of the verdict check (the family recomputed).", minimum=8,
+                         maximum=200, reduced=20)
+    stability_threshold: float = param(1e-5, "Growth rate ln max|mu| / T (per unit tau) above which a TB is called "
+                                       "unstable.", exclusiveMinimum=0, maximum=1)
+    direct_speed: float = param(0.1, "c of the member run directly (one of speeds).", exclusiveMinimum=0, maximum=2)
+    direct_periods: int = param(20, "Periods T of the direct run.", minimum=1, maximum=10000, reduced=4)
+    scale: float = param(2.0, "lambda of the scaling check.", exclusiveMinimum=0, minimum=0.01, maximum=100)
+    static_samples: int = param(64, "Samples per period of |A_n(tau)| against the static profiles.", minimum=8,
+                                maximum=4096, reduced=32)
+
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """Each form: speeds increasing, direct_speed among them, a check ring other than the ring."""
+        if any(y <= x for x, y in itertools.pairwise(self.speeds)):
+            out.add(where + ["speeds"], "must be strictly increasing", self.speeds)
+        if float(self.direct_speed) not in [float(x) for x in self.speeds]:
+            out.add(where + ["direct_speed"], f"must be one of speeds = {self.speeds}", self.direct_speed)
+        if self.check_N == self.N:
+            out.add(where + ["check_N"], f"must differ from N = {self.N} (it checks the verdicts against N)",
+                    self.check_N)
+
+
+# ----------------------------------------------------------------- the family
+
+
+def static_profiles(N: int, alpha: float, norm: float) -> dict[str, tuple[NDArray[np.float64], float]]:
+    """The static breathers A_n = phi_n e^{i Omega tau} of both parities at the norm: phi = s a (a of (dpsstn),
+    mu = 1, as the breathers analysis builds it), Omega = s^(alpha-1) / (2 tau0) (the scaling of (dpsstn))."""
+    from cradle.models import dps, homoclinic
+
+    out = {}
+    for kind in ("site", "bond"):
+        a = homoclinic.solve(homoclinic.initial_guess(N, kind, alpha, 0.1), alpha).a
+        s = math.sqrt(norm / float(np.sum(a**2)))
+        out[kind] = (s * a, s ** (alpha - 1.0) / (2.0 * dps.tau0(alpha)))
+    return out
+
+
+def family(spec: TravellingBreathers, N: int, rtol: float,
+           log: Log | None = None) -> tuple[list[TravellingBreather], float]:
+    """The members at the spec's speeds (those reached; a missing one is absent) on the ring of N sites, and
+    the c of the first guess."""
+    from cradle.integrators import dps_travelling as DT
+
+    phi, _ = static_profiles(N, spec.alpha, spec.norm)["site"]
+    A, T, theta = DT.start(phi, spec.kick, spec.alpha)
+    first = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=rtol)
+    if not first.converged:
+        raise RuntimeError(f"travelling breathers: no TB from the pushed breather (kick {spec.kick}, c = {1 / T:.4g})")
+    cs = np.asarray(spec.speeds, float)
+    down, _ = DT.continue_family(first, cs[cs < first.c][::-1], spec.newton_tol, rtol, log=log)
+    up, _ = DT.continue_family(first, cs[cs >= first.c], spec.newton_tol, rtol, log=log)
+    return down[::-1] + up, first.c
+
+
+def verdict(b: TravellingBreather, threshold: float) -> tuple[float, float, bool, bool]:
+    """(trivial defect, growth rate, unstable, real): the four multipliers nearest 1 are the trivial ones; their
+    largest |mu - 1| is the defect, ln max|mu| / T over the others the growth rate; ``real`` when the unstable
+    multiplier is real and > 1 (a pair left +1 along the real axis, the kind the dH/dc criterion is about)
+    rather than an oscillatory quartet."""
+    mu = b.multipliers
+    order = np.argsort(np.abs(mu - 1.0))
+    defect = float(np.abs(mu[order[TRIVIAL - 1]] - 1.0))
+    rest = mu[order[TRIVIAL:]]
+    top = rest[int(np.argmax(np.abs(rest)))]
+    rate = float(np.log(np.abs(top)) / b.T)
+    unstable = rate > threshold
+    return defect, rate, bool(unstable), bool(unstable and top.real > 0 and abs(top.imag) <= REAL * abs(top))
+
+
+def static_distance(b: TravellingBreather, profiles: dict, samples: int, rtol: float) -> dict[str, float]:
+    """min over tau in one period and over shifts k of max_n ||A_n(tau)| - |phi_{n-k}|| / max phi, for each
+    parity: how close the moving breather comes to the static one."""
+    from cradle.integrators import integrate_dps
+
+    tau = np.linspace(0.0, b.T, samples + 1)
+    run = integrate_dps(b.A, tau, alpha=b.alpha, rtol=rtol)
+    mod = np.abs(run.A)
+    out = {}
+    for kind, (phi, _) in profiles.items():
+        P = np.stack([np.roll(np.abs(phi), k) for k in range(phi.size)])      # (shift, n)
+        d = np.max(np.abs(mod[:, None, :] - P[None, :, :]), axis=2)
+        out[kind] = float(np.min(d) / np.max(np.abs(phi)))
+    return out
+
+
+def direct_run(b: TravellingBreather, periods: int, rtol: float) -> dict:
+    """The member run by (dfnls) over ``periods`` periods (integrate_dps, dop853_numba): norm and H drifts and
+    the residual max_n |A_n(kT) - e^{i k theta} A_{n-k}(0)| / max|A| at each k."""
+    from cradle.integrators import integrate_dps
+    from cradle.models import dps_travelling as M
+
+    k = np.arange(periods + 1)
+    run = integrate_dps(b.A, k * b.T, alpha=b.alpha, rtol=rtol)
+    res = np.array([np.max(np.abs(run.A[j] - np.exp(1j * j * b.theta) * M.shift(b.A, int(j)))) for j in k])
+    return {"k": k, "residual": res / np.max(np.abs(b.A)), "norm_drift": float(run.max_l2_drift),
+            "energy_drift": float(run.max_energy_drift)}
+
+
+def scaling_check(b: TravellingBreather, other: TravellingBreather, lam: float, spec: TravellingBreathers) -> dict:
+    """The TB at (lambda^(1-alpha) T, lambda^2 P) solved by Newton from lambda times a guess moved by
+    ``SCALING_NUDGE`` of the way towards ``other`` (another member: a guess that is no TB), with lambda A as the
+    phase reference: its distance to lambda A and the change of theta."""
+    from cradle.integrators import dps_travelling as DT
+    from cradle.models import dps_travelling as M
+
+    A_l, T_l = M.scaled(b.A, b.T, lam, spec.alpha)
+    guess = lam * (b.A + SCALING_NUDGE * (other.A - b.A))
+    theta = b.theta + SCALING_NUDGE * math.remainder(other.theta - b.theta, 2 * math.pi)
+    s = DT.newton(guess, T_l, theta, spec.alpha, lam**2 * spec.norm, A_l, spec.newton_tol, rtol=spec.rtol)
+    return {"profile_error": float(np.max(np.abs(s.A - A_l)) / np.max(np.abs(A_l))),
+            "theta_error": float(abs(math.remainder(s.theta - b.theta, 2 * math.pi))), "converged": s.converged,
+            "residual": s.residual}
+
+
+def sign_changes(c: NDArray[np.float64], y: NDArray[np.float64]) -> list[float]:
+    """The c where y changes sign between grid points (linear interpolation)."""
+    out = []
+    for i in range(len(c) - 1):
+        if np.isfinite(y[i]) and np.isfinite(y[i + 1]) and y[i] * y[i + 1] < 0:
+            out.append(float(c[i] - y[i] * (c[i + 1] - c[i]) / (y[i + 1] - y[i])))
+    return out
+
+
+def verdict_changes(c: NDArray[np.float64], unstable: NDArray[np.bool_]) -> list[float]:
+    """The midpoints of the grid intervals where the verdict changes."""
+    return [float(0.5 * (c[i] + c[i + 1])) for i in range(len(c) - 1) if unstable[i] != unstable[i + 1]]
+
+
+# ----------------------------------------------------------------- the stored file
+
+_C = ("c",)
+VARIABLES = {
+    "/": {
+        "c": Var(_C, "velocity c = 1/T of the travelling breather (sites per unit tau at the family's norm)"),
+    },
+    "/family": {
+        "period": Var(_C, "period T of (tb): one site per T"),
+        "theta": Var(_C, "phase theta of (tb), in (-pi, pi]"),
+        "energy": Var(_C, "DpS Hamiltonian H = -sum |A_{n+1} - A_n|^(alpha+1) / ((alpha+1) tau0)"),
+        "dH_dc": Var(_C, "dH/dc along the family at fixed norm (centred differences on the grid)"),
+        "tail": Var(_C, "max |A_n| on the quarter ring farthest from the centre / max |A_n| (the oscillatory tail)"),
+        "residual": Var(_C, "shift-map residual max_n |e^{-i theta} A_{n+1}(T) - A_n(0)| / max |A|"),
+        "iterations": Var(_C, "Newton iterations from the tangent predictor"),
+        "trivial_defect": Var(_C, "largest |mu - 1| of the four trivial multipliers modulo shift (exactly 0)"),
+        "growth_rate": Var(_C, "ln max |mu| / T over the non-trivial multipliers modulo shift (per unit tau)"),
+        "unstable": Var(_C, "1 if growth_rate > stability_threshold"),
+        "real_mode": Var(_C, "1 if unstable through a real multiplier > 1 (the dH/dc kind), not a complex quartet"),
+        "unstable_rtol": Var(_C, "the verdict re-solved at check_rtol"),
+        "growth_rate_rtol": Var(_C, "growth_rate re-solved at check_rtol"),
+        "unstable_N": Var(_C, "the verdict on the ring of check_N sites (-1: member not reached there)"),
+        "growth_rate_N": Var(_C, "growth_rate on the ring of check_N sites (NaN: not reached)"),
+        "tail_N": Var(_C, "tail on the ring of check_N sites (NaN: not reached)"),
+        "static_distance_site": Var(_C, "min over one period and shifts of max_n ||A_n(tau)| - phi_n^site| / max phi"),
+        "static_distance_bond": Var(_C, "the same against the bond-centred static breather"),
+    },
+    "/profiles": {
+        "n": Var(("n",), "site index on the ring"),
+        "A_re": Var(("c", "n"), "Re A_n(0) of the travelling breather"),
+        "A_im": Var(("c", "n"), "Im A_n(0) of the travelling breather"),
+        "static_site": Var(("n",), "phi_n of the site-centred static breather at the family's norm"),
+        "static_bond": Var(("n",), "phi_n of the bond-centred static breather at the family's norm"),
+    },
+    "/multipliers": {
+        "m": Var(("m",), "index of a Floquet multiplier modulo shift"),
+        "mu_re": Var(("c", "m"), "real part of a multiplier of e^{-i theta} S^{-1} DPhi_T"),
+        "mu_im": Var(("c", "m"), "imaginary part of a multiplier of e^{-i theta} S^{-1} DPhi_T"),
+    },
+    "/direct": {
+        "k": Var(("k",), "periods of the direct run"),
+        "residual": Var(("k",), "max_n |A_n(kT) - e^{i k theta} A_{n-k}(0)| / max |A|"),
+    },
+    "/claims": {"row": Var(("row",), "index of a cited statement"),
+                **{col: Var(("row",), f"claims-table column {col}") for col in COLUMNS}},
+}
+
+
+def tail_dips(c: NDArray[np.float64], tail: NDArray[np.float64]) -> list[int]:
+    """Indices of the inner grid points where the tail is below :data:`DIP` of both neighbours'."""
+    return [i for i in range(1, len(c) - 1) if tail[i] < DIP * min(tail[i - 1], tail[i + 1])]
+
+
+def claims(c: NDArray[np.float64], tail: NDArray[np.float64], tail_N: NDArray[np.float64], dH_changes: list[float],
+           real_changes: list[float], v_changes: list[float], spacing: float) -> list[Row]:
+    """The cited papers' statements against the family (qualitative rows)."""
+    dips, dips_N = tail_dips(c, tail), tail_dips(c, tail_N)
+    both = sorted(set(dips) & set(dips_N))
+    text = ", ".join(f"c = {c[i]:.3g}" for i in both) or "none"
+    rows = [Row("James 2018 (abstract)", "TB tails for p = 5/2: small, non-vanishing, oscillatory",
+                "generally non-vanishing", f"tail {np.min(tail):.2g} .. {np.max(tail):.2g} of the peak over c = "
+                f"{c[0]:.3g} .. {c[-1]:.3g}", "agrees" if np.min(tail) > 0 else "disagrees",
+                "max |A_n| on the far quarter ring / max |A_n|, each member"),
+            Row("James 2018 (abstract)", "near-localised TBs at particular parameters", "exist",
+                f"tail dips (below {DIP:g} of both neighbours) on both rings at: {text}; on one ring only at "
+                f"{len(set(dips) ^ set(dips_N))} grid points", "agrees" if both else "not comparable",
+                "local minima of the tail along the c grid, on the ring of N and of check_N sites")]
+    near = (all(any(abs(v - d) <= spacing for v in v_changes) for d in dH_changes)
+            and all(any(abs(v - d) <= spacing for d in dH_changes) for v in real_changes))
+    rows.append(Row("Xu et al. 2017 (arXiv 1701.04882)", "a stability change where dH/dc changes sign "
+                    "(sufficient, not necessary)", "stability changes at sign changes of dH/dc",
+                    f"dH/dc changes sign at {', '.join(f'{x:.3g}' for x in dH_changes) or 'none'}; a real "
+                    f"multiplier crosses +1 at {', '.join(f'{x:.3g}' for x in real_changes) or 'none'}; any verdict "
+                    f"changes at {', '.join(f'{x:.3g}' for x in v_changes) or 'none'}",
+                    "agrees" if near else "disagrees", "H and the multipliers modulo shift along the fixed-norm family",
+                    tolerance=f"one grid spacing ({spacing:.3g})"))
+    for r in rows:
+        r.explained_in = EXPLAINED
+    return rows
+
+
+def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
+    """The `travelling-breathers` analysis as a tree of groups (:data:`VARIABLES`); it reads no file."""
+    from cradle.data.io import make_tree
+    from cradle.integrators import dps_travelling as DT
+    from cradle.models import dps_travelling as M
+
+    say = log or (lambda *a: None)
+    t0 = _time.perf_counter()
+    fam, c_start = family(spec, spec.N, spec.rtol, say)
+    if len(fam) < 3:
+        raise RuntimeError(f"travelling breathers: only {len(fam)} members reached")
+    c = np.array([b.c for b in fam])
+    H = np.array([b.energy for b in fam])
+    tail = np.array([M.tail_amplitude(b.A) for b in fam])
+    ver = [verdict(b, spec.stability_threshold) for b in fam]
+    unstable = np.array([v[2] for v in ver])
+    dH = np.gradient(H, c)
+    # the checks: every member re-solved at check_rtol; the family on the ring of check_N sites
+    ver_r = []
+    for b in fam:
+        r = DT.newton(b.A, b.T, b.theta, spec.alpha, spec.norm, b.A, spec.newton_tol, rtol=spec.check_rtol)
+        ver_r.append(verdict(r, spec.stability_threshold) if r.converged else (np.nan, np.nan, None, None))
+    famN, _ = family(spec, spec.check_N, spec.rtol, say)
+    byc = {round(b.c, 12): b for b in famN}
+    growth_N: list[float] = []
+    unstable_N: list[int] = []
+    tail_N: list[float] = []
+    for x in c:
+        bN = byc.get(round(float(x), 12))
+        if bN is None:      # not reached on the other ring: no verdict
+            growth_N.append(np.nan)
+            unstable_N.append(-1)
+            tail_N.append(np.nan)
+            continue
+        _, g, u, _ = verdict(bN, spec.stability_threshold)
+        growth_N.append(g)
+        unstable_N.append(int(u))
+        tail_N.append(M.tail_amplitude(bN.A))
+    profiles = static_profiles(spec.N, spec.alpha, spec.norm)
+    dist = [static_distance(b, profiles, spec.static_samples, spec.rtol) for b in fam]
+    i_direct = int(np.argmin(np.abs(c - spec.direct_speed)))
+    direct = direct_run(fam[i_direct], spec.direct_periods, spec.rtol)
+    other = fam[i_direct + 1] if i_direct + 1 < len(fam) else fam[i_direct - 1]
+    scal = scaling_check(fam[i_direct], other, spec.scale, spec)
+    real = np.array([v[3] for v in ver])
+    dH_changes, v_changes, real_changes = sign_changes(c, dH), verdict_changes(c, unstable), verdict_changes(c, real)
+    rows = claims(c, tail, np.asarray(tail_N), dH_changes, real_changes, v_changes, float(np.max(np.diff(c))))
+    for b, v, t in zip(fam, ver, tail, strict=True):
+        say(f"travelling-breathers: c = {b.c:.4g}: theta = {b.theta:.10g}, H = {b.energy:.10g}, tail {t:.3g}, "
+            f"residual {b.residual:.2g}, trivial defect {v[0]:.2g}, growth {v[1]:.3g}")
+    groups: dict = {
+        "/": ({}, {"c": c}),
+        "/family": ({"period": 1.0 / c, "theta": [math.remainder(b.theta, 2 * math.pi) for b in fam], "energy": H,
+                     "dH_dc": dH, "tail": tail, "residual": [b.residual for b in fam],
+                     "iterations": [b.iterations for b in fam], "trivial_defect": [v[0] for v in ver],
+                     "growth_rate": [v[1] for v in ver], "unstable": unstable.astype(int),
+                     "real_mode": real.astype(int),
+                     "growth_rate_rtol": [v[1] for v in ver_r],
+                     "unstable_rtol": [-1 if v[2] is None else int(v[2]) for v in ver_r],
+                     "growth_rate_N": growth_N, "unstable_N": unstable_N, "tail_N": tail_N,
+                     "static_distance_site": [d["site"] for d in dist],
+                     "static_distance_bond": [d["bond"] for d in dist]}, {}),
+        "/profiles": ({"A_re": np.array([b.A.real for b in fam]), "A_im": np.array([b.A.imag for b in fam]),
+                       "static_site": profiles["site"][0], "static_bond": profiles["bond"][0]},
+                      {"n": np.arange(spec.N)}),
+        "/multipliers": ({"mu_re": np.array([b.multipliers.real for b in fam]),
+                          "mu_im": np.array([b.multipliers.imag for b in fam])},
+                         {"m": np.arange(2 * spec.N)}),
+        "/direct": ({"residual": direct["residual"]}, {"k": direct["k"]}),
+        "/claims": ({col: np.array([getattr(r, col) for r in rows], dtype=object) for col in COLUMNS},
+                    {"row": np.arange(len(rows))}),
+    }
+    near = np.minimum([d["site"] for d in dist], [d["bond"] for d in dist])
+    power = float(np.polyfit(np.log(c), np.log(near), 1)[0])
+    agree_r = [v[2] == w[2] for v, w in zip(ver, ver_r, strict=True)]
+    agree_N = [u == int(v[2]) for u, v in zip(unstable_N, ver, strict=True) if u >= 0]
+    attrs = {
+        "norm": spec.norm, "N": spec.N, "check_N": spec.check_N, "check_rtol": spec.check_rtol,
+        "stability_threshold": spec.stability_threshold, "c_start": c_start, "omega_static": profiles["site"][1],
+        "invariant_velocity": "c P^((1-alpha)/2): the scaling maps (c, P) to (lambda^(alpha-1) c, lambda^2 P)",
+        "max_residual": float(max(b.residual for b in fam)),
+        "max_trivial_defect": float(max(v[0] for v in ver)),
+        "n_unstable": int(unstable.sum()),
+        "dH_dc_sign_changes": ", ".join(f"{x:.6g}" for x in dH_changes) or "none",
+        "verdict_changes": ", ".join(f"{x:.6g}" for x in v_changes) or "none",
+        "real_multiplier_changes": ", ".join(f"{x:.6g}" for x in real_changes) or "none",
+        "verdicts_agree_rtol": f"{sum(agree_r)} of {len(agree_r)}",
+        "verdicts_agree_N": f"{sum(agree_N)} of {len(agree_N)}",
+        "direct_speed": float(c[i_direct]), "direct_norm_drift": direct["norm_drift"],
+        "direct_energy_drift": direct["energy_drift"], "direct_max_residual": float(np.max(direct["residual"])),
+        "static_distance_power": power,
+        "scaling_lambda": spec.scale, "scaling_profile_error": scal["profile_error"],
+        "scaling_theta_error": scal["theta_error"], "scaling_converged": int(scal["converged"]),
+        "method": "Gauss-Newton on the shooting map modulo shift R = e^{-i theta} S^{-1} Phi_T(A) - A at fixed T and "
+                  "norm, with the phase conditions of the phase rotation and the time shift; DOP853 (scipy) with the "
+                  "variational equations; tangent predictor in T",
+        "source": "G. James, Phil. Trans. R. Soc. A 376 (2018) 20170138 (abstract); H. Xu, J. Cuevas-Maraver, "
+                  "P. G. Kevrekidis, A. Vainchtein, arXiv 1701.04882",
+        "wall_time_s": _time.perf_counter() - t0,
+    }
+    tree = make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
+                     title="Travelling breathers of the DpS equation")
+    return tree
+
+
+ANALYSIS = Analysis(
+    name="travelling-breathers", spec=TravellingBreathers, compute=compute, variables=VARIABLES,
+    title="Travelling breathers of the DpS equation: family in c, tails, multipliers modulo shift")

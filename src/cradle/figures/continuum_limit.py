@@ -1,0 +1,188 @@
+"""Figure beyond the paper: the continuum limit alpha -> 1+ (continuum-limit).
+
+Drawn by :func:`draw` from results/continuum-limit/[full/]continuum-limit.nc (:mod:`cradle.analyses.continuum_limit`).
+
+(a) the staggered envelopes b_n / max b of the site-centred DpS breathers against X = sqrt(eps) (n - n_c) at the
+largest, a middle and the smallest eps, and the log-NLS Gaussian exp(-X^2); (b) their departure from the Gaussian
+divided by eps (site and bond): it settles onto one curve, the distance is O(eps); (c) the max-norm distances of the
+three families against eps, log-log, with the fitted powers (fit range shaded) and a line of slope 1; (d), (e) the
+same as (a), (b) for the solitary waves of the Hertz chain against the log-KdV Gaussian exp(-Y^2), Y = sqrt(3 eps)
+xi; (f) the first-order constants: (nu - 4)/eps of the DpS breathers against 4 ln 2 - 2, and 2 ln max R of the
+Hertz waves at c = 1 against 1. Mobility: (g) the peak position of the perturbed unstable site breather against
+lambda tau (largest delta), one curve per alpha; (h) the largest displacement against alpha, each delta and each
+noise seed, N doubled, the lattice runs (full form), with the thresholds; (i) the growth rate lambda of the
+unstable mode against alpha.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from cradle.figures import AnalysisTree, figure
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+#: finite points each data panel holds at least (tests/figures/test_figures_render.py)
+MIN_POINTS = 4
+
+
+def _members(tree: AnalysisTree, family: str) -> list[tuple[float, Any]]:
+    eps = np.asarray(tree[family]["eps"].values)
+    return [(float(e), tree[f"{family}/e{k:02d}"]) for k, e in enumerate(eps)]
+
+
+def _shown(members: list[tuple[float, Any]]) -> list[tuple[float, Any]]:
+    """The largest, a middle and the smallest eps."""
+    idx = sorted({0, len(members) // 2, len(members) - 1})
+    return [members[i] for i in idx]
+
+
+def _profiles(ax: Any, members: list[tuple[float, Any]], xname: str, yname: str, lim: float, title: str,
+              gauss: str) -> None:
+    for j, (e, g) in enumerate(_shown(members)):
+        x, y = np.asarray(g[xname].values), np.asarray(g[yname].values)
+        keep = np.abs(x) <= lim
+        ax.plot(x[keep], y[keep], "o" if xname == "X" else "-", color=f"C{j}", ms=3, lw=1.2,
+                label=f"$\\alpha - 1$ = {e:g}")
+    X = np.linspace(-lim, lim, 400)
+    ax.plot(X, np.exp(-X**2), "k--", lw=1.0, label=gauss)
+    ax.set_title(title, fontsize=9)
+    ax.set_ylim(-0.05, 1.3)
+    ax.legend(fontsize=7, loc="upper right")
+
+
+def _departures(ax: Any, fams: list[tuple[str, list[tuple[float, Any]]]], xname: str, yname: str, lim: float,
+                title: str) -> None:
+    styles = ["-", ":"]
+    top = 0.0
+    for s, (label, members) in enumerate(fams):
+        for j, (e, g) in enumerate(_shown(members)):
+            x = np.asarray(g[xname].values)
+            d = (np.asarray(g[yname].values) - np.asarray(g["gaussian"].values)) / e
+            keep = np.abs(x) <= lim
+            order = np.argsort(x[keep])
+            ax.plot(x[keep][order], d[keep][order], styles[s % 2], color=f"C{j}", lw=1.2,
+                    label=f"{label}, $\\alpha - 1$ = {e:g}")
+            top = max(top, float(np.max(d[keep])))
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_title(title, fontsize=9)
+    # the key above the two humps, where no curve goes
+    ax.set_ylim(-0.04 * top, 1.6 * top)
+    ax.legend(fontsize=6, loc="upper center", ncol=len(fams))
+
+
+def draw(tree: AnalysisTree) -> Figure:
+    """The six panels above."""
+    fig, ax = figure(3, 3, width=14.0, height=12.0)
+    site, bond, hertz = _members(tree, "dps_site"), _members(tree, "dps_bond"), _members(tree, "hertz")
+
+    a = ax[0, 0]
+    _profiles(a, site, "X", "envelope", 3.0, "(a) DpS site breathers: staggered envelope", "log-NLS $e^{-X^2}$")
+    a.set_xlabel("$X = \\sqrt{\\alpha - 1}\\,(n - n_c)$")
+    a.set_ylabel("$b_n / \\max b$")
+
+    b = ax[0, 1]
+    _departures(b, [("site", site), ("bond", bond)], "X", "envelope", 3.0,
+                "(b) DpS: (envelope $-\\ e^{-X^2}$) / ($\\alpha - 1$)")
+    b.set_xlabel("$X$")
+    b.set_ylabel("departure / $(\\alpha - 1)$")
+
+    c = ax[0, 2]
+    lo = float(tree.attrs["fit_below"])
+    c.axvspan(1e-5, lo, color="0.93", lw=0, label=f"fit range $\\alpha - 1 \\leq$ {lo:g}")
+    every = []
+    for key, label, mark in (("dps_site", "DpS site", "o"), ("dps_bond", "DpS bond", "s"),
+                             ("hertz", "Hertz chain", "^")):
+        e = np.asarray(tree[key]["eps"].values)
+        D = np.asarray(tree[key]["distance"].values)
+        every.append(e)
+        p = float(tree.attrs[f"{key}_power"])
+        u = float(tree.attrs[f"{key}_power_uncertainty"])
+        c.loglog(e, D, mark, ms=4, mfc="none", label=f"{label}: power {p:.4f} $\\pm$ {u:.1g}")
+    allE = np.concatenate(every)
+    ref = np.array([allE.min(), allE.max()])
+    c.loglog(ref, 0.15 * ref, "k:", lw=1.0, label="slope 1")
+    c.set_xlim(allE.min() / 1.6, allE.max() * 1.6)
+    c.set_xlabel("$\\alpha - 1$")
+    c.set_ylabel("max-norm distance to the Gaussian")
+    c.set_title("(c) distance to the continuum limit", fontsize=9)
+    c.legend(fontsize=7, loc="upper left")
+
+    d = ax[1, 0]
+    _profiles(d, hertz, "Y", "strain", 3.0, "(d) Hertz chain solitary waves ($c = 1$): strain", "log-KdV $e^{-Y^2}$")
+    d.set_xlabel("$Y = \\sqrt{3(\\alpha - 1)}\\,\\xi$")
+    d.set_ylabel("$R / \\max R$")
+
+    e_ = ax[1, 1]
+    _departures(e_, [("Hertz", hertz)], "Y", "strain", 3.0, "(e) Hertz: ($R/\\max R - e^{-Y^2}$) / ($\\alpha - 1$)")
+    e_.set_xlabel("$Y$")
+    e_.set_ylabel("departure / $(\\alpha - 1)$")
+
+    f = ax[1, 2]
+    for key, label, mark in (("dps_site", "DpS site $(\\nu - 4)/(\\alpha - 1)$", "o"),
+                             ("dps_bond", "DpS bond $(\\nu - 4)/(\\alpha - 1)$", "s")):
+        f.semilogx(np.asarray(tree[key]["eps"].values), np.asarray(tree[key]["nu_first_order"].values), mark,
+                   ms=4, mfc="none", label=label)
+    f.axhline(float(tree.attrs["nu_first_order_limit"]), color="C0", ls="--", lw=1.0,
+              label=f"$4\\ln 2 - 2$ = {float(tree.attrs['nu_first_order_limit']):.4f}")
+    he = np.asarray(tree["hertz"]["eps"].values)
+    f.semilogx(he, 2.0 * np.asarray(tree["hertz"]["log_amplitude"].values), "^", ms=4, mfc="none", color="C2",
+               label="Hertz $2 \\ln \\max R$ at $c = 1$")
+    f.axhline(2.0 * float(tree.attrs["log_amplitude_limit"]), color="C2", ls="--", lw=1.0, label="limit 1")
+    f.set_xlabel("$\\alpha - 1$")
+    f.set_ylabel("first-order constant")
+    f.set_title("(f) the constants of the limit", fontsize=9)
+    lo_y = min(0.7, float(np.nanmin(2.0 * np.asarray(tree["hertz"]["log_amplitude"].values))) - 0.05)
+    f.set_ylim(lo_y, 1.55)
+    f.legend(fontsize=7, loc="upper right")
+    _mobility(ax[2], tree)
+    return fig
+
+
+def _mobility(ax: Any, tree: AnalysisTree) -> None:
+    mob = tree["mobility"]
+    al = np.asarray(mob["alpha"].values)
+    g = ax[0]
+    for i, a in enumerate(al):
+        g.plot(np.asarray(mob["growth"].values[i]), np.asarray(mob["track"].values[i]), color=f"C{i % 10}", lw=1.1,
+               label=f"$\\alpha$ = {a:g}")
+    g.axhline(0.0, color="0.6", lw=0.6)
+    g.set_xlabel("$\\lambda \\tau$ (growth times of the unstable mode)")
+    g.set_ylabel("peak position $-$ start (sites)")
+    g.set_title(f"(g) perturbed unstable site breather, $\\delta$ = {float(np.max(mob['delta'].values)):g}",
+                fontsize=9)
+    g.legend(fontsize=7, loc="upper left", ncol=2)
+    lo, hi = g.get_ylim()
+    g.set_ylim(lo, hi + 0.45 * (hi - lo))
+
+    h = ax[1]
+    deltas = np.asarray(mob["delta"].values)
+    D = np.asarray(mob["displacement"].values)
+    for j, d in enumerate(deltas):
+        h.plot(al, D[:, j], "o-", ms=4, mfc="none", lw=0.8, label=f"$\\delta$ = {d:g}")
+    Dn = np.asarray(mob["displacement_noise"].values)
+    for k in range(Dn.shape[1]):
+        h.plot(al, Dn[:, k], "x", ms=5, color="0.3", label="noise added, each seed" if k == 0 else None)
+    chk = np.asarray(tree["mobility_checks"]["displacement"].values)
+    h.plot(al, chk[:, 1], "+", ms=8, color="C3", label="N doubled")
+    lat = tree["lattice"]
+    if lat["lattice_alpha"].size:
+        h.plot(np.asarray(lat["lattice_alpha"].values), np.asarray(lat["displacement"].values), "D", ms=5,
+               mfc="none", color="C4", label="lattice (nc) through the ansatz")
+    for t_i, t in enumerate(np.asarray(mob["threshold"].values)):
+        h.axhline(float(t), color="k", ls=[":", "--", "-.", "-"][t_i % 4], lw=0.9,
+                  label=f"threshold {float(t):g} sites")
+    h.set_xlabel("$\\alpha$")
+    h.set_ylabel("largest displacement (sites)")
+    h.set_title("(h) travels or stays pinned", fontsize=9)
+    top = float(np.nanmax(np.concatenate([D.ravel(), Dn.ravel(), chk.ravel(), np.asarray(mob["threshold"].values)])))
+    h.set_ylim(-0.08 * top, 1.7 * top)   # room below for the markers of a run that stayed put
+    h.legend(fontsize=7, loc="upper right", ncol=2)
+
+    k = ax[2]
+    k.semilogy(al, np.asarray(mob["growth_rate"].values), "o-", ms=4, mfc="none")
+    k.set_xlabel("$\\alpha$")
+    k.set_ylabel("growth rate $\\lambda$ (per unit $\\tau$)")
+    k.set_title("(i) instability of the site breather ($\\max|A| = 1/2$)", fontsize=9)

@@ -1,0 +1,236 @@
+"""Travelling breathers of (dfnls) on a ring by Newton's method on the shooting map modulo shift, their
+continuation in the velocity at fixed norm, and their Floquet multipliers modulo shift.
+
+The equations are those of :mod:`cradle.models.dps_travelling`: R(A, theta) = e^{-i theta} S^{-1} Phi_T(A) - A = 0
+at fixed T = 1/c, with the unknowns A (2N reals) and theta, and the conditions
+
+* P(A) = sum |A_n|^2 = P0 (the scaling fixed: the family is the one in c at fixed norm);
+* <i A_ref, A - A_ref> = 0 and <dA_ref/dtau, A - A_ref> = 0 (real inner product Re sum conj(u) v), which remove
+  the phase rotation and the time shift (A_ref the previous member or the start).
+
+The Jacobian dR/dA = e^{-i theta} S^{-1} DPhi_T(A) - I comes from the variational equations of (dfnls)
+(:func:`cradle.models.dps_travelling.linearised_rhs`) integrated with the orbit over one period by scipy's
+DOP853, as the exact lattice breathers of :mod:`cradle.integrators.lattice_breathers` are found; the 2N + 3
+equations in 2N + 1 unknowns are consistent at a solution (two of the 2N equations of R are dependent there,
+through the conserved norm and H), and are solved in least squares (Gauss-Newton: quadratic convergence on a
+consistent system). The same monodromy, composed with the shift, gives the Floquet multipliers modulo shift.
+
+Starts: the static DpS breather (ansatzapproxst2) of either parity pushed by a phase gradient
+(:func:`cradle.models.dps_travelling.kicked`) and integrated until it has moved a few sites: T is the time
+per site of the last ones, theta the best-fitting phase, the state the one at the start of that site.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from cradle.models import dps, dps_travelling as M
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from cradle.integrators._types import Floats
+
+RTOL = 1e-13    # DOP853 relative tolerance of the shooting (shift-map residuals ~1e-12)
+
+
+def flow(A0: ArrayLike, T: float, alpha: float, columns: ArrayLike | None = None,
+         rtol: float = RTOL) -> tuple[NDArray[np.complex128], NDArray[np.complex128] | None]:
+    """Phi_T(A0) of (dfnls) on the ring and, if ``columns`` (N x m complex) is given, the perturbations DPhi_T
+    applied to them (the variational equations integrated with the orbit). Returns (A(T), V(T) or None)."""
+    from scipy.integrate import solve_ivp
+
+    A0 = np.asarray(A0, complex)
+    N = A0.size
+    t0 = dps.tau0(alpha)
+    V0 = None if columns is None else np.asarray(columns, complex).reshape(N, -1)
+    m = 0 if V0 is None else V0.shape[1]
+
+    def f(t: float, y: Floats) -> Floats:
+        A = y[:N] + 1j * y[N:2 * N]
+        dA = M.rhs(A, alpha, t0)
+        out = [dA.real, dA.imag]
+        if m:
+            V = (y[2 * N:2 * N + N * m] + 1j * y[2 * N + N * m:]).reshape(N, m)
+            dV = M.linearised_rhs(A, V, alpha, t0).ravel()
+            out += [dV.real, dV.imag]
+        return np.concatenate(out)
+
+    y0 = [A0.real, A0.imag] + ([] if V0 is None else [V0.real.ravel(), V0.imag.ravel()])
+    y = np.concatenate(y0)
+    atol = np.full(y.size, rtol * float(np.max(np.abs(A0))))
+    atol[2 * N:] = rtol
+    sol = solve_ivp(f, (0.0, T), y, method="DOP853", rtol=rtol, atol=atol)
+    if not sol.success:
+        raise RuntimeError(f"travelling breather shooting: integration failed ({sol.message})")
+    yT = sol.y[:, -1]
+    AT = yT[:N] + 1j * yT[N:2 * N]
+    VT = None if V0 is None else (yT[2 * N:2 * N + N * m] + 1j * yT[2 * N + N * m:]).reshape(N, m)
+    return AT, VT
+
+
+def _basis(N: int) -> NDArray[np.complex128]:
+    """The 2N real directions of C^N as complex columns: e_k, then i e_k (the order of :func:`M.real`)."""
+    E = np.eye(N, dtype=complex)
+    return np.concatenate([E, 1j * E], axis=1)
+
+
+def monodromy(A: ArrayLike, T: float, theta: float, alpha: float,
+              rtol: float = RTOL) -> tuple[Floats, NDArray[np.complex128]]:
+    """(M, Phi_T(A)): the 2N x 2N real matrix of e^{-i theta} S^{-1} DPhi_T(A) (the monodromy modulo shift) and the
+    state one period later."""
+    A = np.asarray(A, complex)
+    B, V = flow(A, T, alpha, _basis(A.size), rtol)
+    assert V is not None
+    return M.real(np.exp(-1j * theta) * M.shift(V, -1)), B
+
+
+@dataclass
+class TravellingBreather:
+    """One TB of (tb): the state A = A(0), its period T = 1/c and phase theta; how Newton got there, the
+    multipliers modulo shift of its last monodromy and the tangent (dA/dT, dtheta/dT) of the fixed-norm family."""
+
+    A: NDArray[np.complex128]
+    T: float
+    theta: float
+    alpha: float
+    residual: float               # max |R| / max |A| of the last evaluation (shift-map residual)
+    converged: bool
+    iterations: int
+    multipliers: NDArray[np.complex128] = field(default_factory=lambda: np.zeros(0, complex))
+    dA_dT: NDArray[np.complex128] | None = None
+    dtheta_dT: float = 0.0
+
+    @property
+    def c(self) -> float:
+        return 1.0 / self.T
+
+    @property
+    def norm(self) -> float:
+        return float(np.sum(np.abs(self.A) ** 2))
+
+    @property
+    def energy(self) -> float:
+        return float(dps.hamiltonian(self.A, self.alpha))
+
+    def predict(self, T: float) -> tuple[NDArray[np.complex128], float]:
+        """(A, theta) of the member at period T along the tangent (Euler predictor); itself without one."""
+        if self.dA_dT is None:
+            return self.A, self.theta
+        return self.A + (T - self.T) * self.dA_dT, self.theta + (T - self.T) * self.dtheta_dT
+
+
+def _weighted_lstsq(J: Floats, F: Floats, rows: int) -> Floats:
+    """The least-squares solution of J x = F with the rows from ``rows`` on (the conditions) scaled to unit
+    norm, so that they weigh as the rows of R."""
+    w = np.ones(J.shape[0])
+    for k in range(rows, J.shape[0]):
+        w[k] = 1.0 / max(float(np.linalg.norm(J[k])), 1e-300)
+    return np.asarray(np.linalg.lstsq(w[:, None] * J, w * F, rcond=None)[0], dtype=np.float64)
+
+
+def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm: float,
+           reference: ArrayLike | None = None, tol: float = 1e-11, max_iter: int = 12,
+           rtol: float = RTOL, log: Callable[[str], object] | None = None) -> TravellingBreather:
+    """Solve (tb) at period T for (A, theta) with sum |A|^2 = ``norm`` and the two phase conditions about
+    ``reference`` (default: the guess), by Gauss-Newton from (A_guess, theta_guess) (module docstring).
+    Converged when max |R| <= tol max |A|; the multipliers of the last monodromy and the family's tangent
+    there are returned with it. Stops early when the residual grows tenfold (a guess outside the basin)."""
+    A = np.asarray(A_guess, complex).copy()
+    N = A.size
+    ref = A.copy() if reference is None else np.asarray(reference, complex)
+    t0 = dps.tau0(alpha)
+    d_phase, d_time = M.real(1j * ref), M.real(M.rhs(ref, alpha, t0))
+    theta = float(theta_guess)
+    res, best, mu = np.inf, np.inf, np.zeros(0, complex)
+    for it in range(max_iter + 1):
+        Mm, B = monodromy(A, T, theta, alpha, rtol)
+        R = M.residual(A, B, theta)
+        res = float(np.max(np.abs(R)) / np.max(np.abs(A)))
+        mu = np.linalg.eigvals(Mm).astype(complex)
+        if log:
+            log(f"travelling breathers: T = {T:.12g}, iteration {it}: theta = {theta:.12g}, residual {res:.3g}")
+        J = np.zeros((2 * N + 3, 2 * N + 1))
+        J[:2 * N, :2 * N] = Mm - np.eye(2 * N)
+        SB = np.exp(-1j * theta) * M.shift(B, -1)
+        J[:2 * N, 2 * N] = M.real(-1j * SB)
+        J[2 * N, :2 * N] = 2.0 * M.real(A)
+        J[2 * N + 1, :2 * N] = d_phase
+        J[2 * N + 2, :2 * N] = d_time
+        if res <= tol:
+            # the tangent: dR/dT = e^{-i theta} S^{-1} dA/dtau at Phi_T(A), the conditions unchanged
+            dF = np.concatenate([M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, t0), -1)), np.zeros(3)])
+            tan = _weighted_lstsq(J, -dF, 2 * N)
+            return TravellingBreather(A, T, theta, alpha, res, True, it, mu, M.complex_(tan[:2 * N]),
+                                      float(tan[2 * N]))
+        if it == max_iter or not np.isfinite(res) or res > 10.0 * best:
+            break
+        best = min(best, res)
+        F = np.concatenate([M.real(R), [np.sum(np.abs(A) ** 2) - norm, d_phase @ M.real(A - ref),
+                                        d_time @ M.real(A - ref)]])
+        step = _weighted_lstsq(J, -F, 2 * N)
+        A = A + M.complex_(step[:2 * N])
+        theta = theta + float(step[2 * N])
+    return TravellingBreather(A, T, theta, alpha, res, False, it, mu)
+
+
+def start(profile: ArrayLike, kappa: float, alpha: float, sites: int = 3, rtol: float = 1e-12,
+          samples_per_unit: int = 40) -> tuple[NDArray[np.complex128], float, float]:
+    """A first guess (A, T, theta) of a TB: the static profile pushed by ``kappa`` (:func:`M.kicked`) and run
+    until its centre has moved ``sites + 1`` sites; T is the time of the last site, A the state at its start."""
+    from cradle.integrators import integrate_dps
+
+    phi = np.asarray(profile, complex)
+    N = phi.size
+    c0 = M.centre(phi)
+    A0 = M.kicked(phi, kappa, c0)
+    # a rough speed from a short run, then a run long enough for sites + 1 sites
+    span = 20.0 / max(abs(float(dps.tau0(alpha))) ** -1 * abs(kappa), 1e-6)
+    tau = np.linspace(0.0, span, int(samples_per_unit * span) + 1)
+    sol = integrate_dps(A0, tau, alpha=alpha, rtol=rtol)
+    x = np.unwrap(np.array([M.centre(a) for a in sol.A]) * 2 * np.pi / N) * N / (2 * np.pi) - c0
+    x = x * np.sign(kappa)
+    if x[-1] < sites + 1:
+        raise RuntimeError(f"travelling breather start: kick {kappa} moved the breather {x[-1]:.3g} sites only")
+    t_a = float(np.interp(sites, x, tau))
+    t_b = float(np.interp(sites + 1, x, tau))
+    A = integrate_dps(A0, np.array([0.0, t_a]), alpha=alpha, rtol=rtol).A[-1]
+    B = integrate_dps(A, np.array([0.0, t_b - t_a]), alpha=alpha, rtol=rtol).A[-1]
+    return A, t_b - t_a, M.phase_of(A, B)
+
+
+def continue_family(first: TravellingBreather, cs: ArrayLike, tol: float = 1e-11, rtol: float = RTOL,
+                    min_step: float = 0.02, log: Callable[[str], object] | None = None
+                    ) -> tuple[list[TravellingBreather], float | None]:
+    """TBs at the velocities ``cs`` (in order, from ``first``'s c) at ``first``'s norm: each predicted along the
+    family's tangent at the previous member (:meth:`TravellingBreather.predict`) and corrected by :func:`newton`
+    with the previous member as the phase reference. A failed step is halved down to ``min_step`` (relative to
+    c); returns the members reached at the grid's c and the last c reached."""
+    say = log or (lambda *a: None)
+    out: list[TravellingBreather] = []
+    path = [first]
+    P0 = first.norm
+    for c in np.asarray(cs, float):
+        cur = path[-1]
+        while abs(cur.c - c) > 1e-14 * c:
+            step = c - cur.c
+            while True:
+                c2 = cur.c + step
+                A_g, th_g = cur.predict(1.0 / c2)
+                b = newton(A_g, 1.0 / c2, th_g, first.alpha, P0, cur.A, tol, max_iter=8, rtol=rtol)
+                if b.converged:
+                    path.append(b)
+                    cur = b
+                    break
+                step *= 0.5
+                if abs(step) < min_step * abs(c):
+                    say(f"travelling breathers: the family ends or turns near c = {cur.c:.6g}")
+                    return out, cur.c
+        out.append(cur)
+        say(f"travelling breathers: c = {cur.c:.6g}: theta = {cur.theta:.12g}, residual {cur.residual:.2g}, "
+            f"tail {M.tail_amplitude(cur.A):.3g}")
+    return out, out[-1].c if out else None
