@@ -9,9 +9,15 @@ import pytest
 
 from conftest import ROOT, run_snakemake
 from cradle.pipeline import config as cc
-from cradle.pipeline.config.loading import MAX_BYTES, MAX_DEPTH, MAX_VALUES
 from cradle.pipeline.workdir import copy_workflow
-from cradle.specs.values import DEFAULT_MAX_ITEMS, DEFAULT_MAX_LENGTH, NAME_MAX_LENGTH
+from cradle.specs.values import (
+    CONFIG_MAX_BYTES as MAX_BYTES,
+    CONFIG_MAX_DEPTH as MAX_DEPTH,
+    CONFIG_MAX_VALUES as MAX_VALUES,
+    DEFAULT_MAX_ITEMS,
+    DEFAULT_MAX_LENGTH,
+    NAME_MAX_LENGTH,
+)
 
 CONFIG = (ROOT / "config.yaml").read_text()
 SCENE = "scenes:\n  tw-weak:"

@@ -8,7 +8,7 @@ An analysis is one module of :mod:`cradle.analyses` that defines ``ANALYSIS = An
 * ``spec``: its declared spec class (:func:`cradle.specs.declare.declared`), the full form; a field
   declared with ``param(..., reduced=...)`` makes the cheaper form ``all`` builds (:func:`form_spec`), whose
   overrides the config may also give under ``reduced:``; what the schema cannot express is its method
-  ``check(where, context, out)`` (:class:`cradle.scenes.spec.Checked`), run on the typed section when
+  ``check(where, context, out)`` (:mod:`cradle.pipeline.config.checks`), run on the typed section when
   the config is validated (a reduced form reports its own keys, :func:`own_keys`);
 * ``reads(spec)``: the files it reads, by name (:class:`Read`: a layout kind and its names), opened and
   verified by the pipeline and handed to ``compute`` under those names;

@@ -1,18 +1,5 @@
-"""Declarations of the entries a job computes from: scenes, homoclinic and map entries, defaults.
-
-A scene is one lattice (nc) + DpS (dfnls) run from one initial condition. The kinds of initial condition
-(travelling (ansatzapprox), breather (ansatzapproxst2), packet, pair, kick) are one class each, chosen by
-``kind``. A *resolved* :class:`Scene` (:func:`cradle.pipeline.config.scene`) has its defaults filled in:
-``alpha`` and ``max_energy_drift`` numbers, ``exact`` and ``dps`` complete integrators, SI values in (nc)'s
-units (:func:`in_nc_units`). What follows from the declared values is a property, not a field
-(:attr:`Scene.times`, :attr:`Travelling.wavenumber`), so ``from_plain(Scene, plain(scene)) == scene``.
-
-Each class's ``check`` holds what no key says alone (a wave that fits the ring, a breather built from an
-existing homoclinic entry with the same N and bc, a figure's times stored by its scenes, ...): the protocol
-:class:`Checked`, run by :mod:`cradle.pipeline.config.checks` on the typed entries that passed the
-validation, with ``where`` the entry's key path, ``out`` the :class:`~cradle.specs.values.Errors` the
-one-line messages go to and ``context`` (:class:`Context`) the entries it may refer to.
-"""
+"""Declarations of the entries a job computes from: scenes (one lattice (nc) + DpS (dfnls) run, its initial
+condition one class per ``kind``), homoclinic and map entries, defaults; each ``check`` what no key says alone."""
 from __future__ import annotations
 
 import dataclasses
@@ -20,7 +7,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Protocol, cast
+from typing import Any, cast
 
 from cradle.models.damping import Damping
 from cradle.models.lattice_terms import Terms
@@ -43,7 +30,6 @@ from cradle.specs.values import (
 
 from .times import store_times
 
-# ---- what the check of one entry sees of the others
 #: a key path: ``["scenes", "tw-weak", "store", "snapshots", 1]``
 Where = list[str | int]
 
@@ -53,13 +39,8 @@ ENTRY_SECTIONS = ("map", "homoclinic", "scenes")
 
 @dataclass(frozen=True)
 class Context:
-    """The entries one entry's check may refer to.
-
-    ``given``: for each of :data:`ENTRY_SECTIONS`, every entry name the config gives (those with
-    schema errors too: a name that exists is not unknown); ``scenes``: the scenes the schema passed,
-    resolved against ``defaults:``; ``homoclinic``: the homoclinic entries the schema passed, ``alpha``
-    filled from ``defaults:``.
-    """
+    """The entries one entry's check may refer to: ``given`` every name of each of :data:`ENTRY_SECTIONS` (one
+    with problems too), ``scenes`` and ``homoclinic`` the resolved entries that passed."""
 
     given: Mapping[str, tuple[str, ...]]
     scenes: Mapping[str, Scene]
@@ -73,13 +54,6 @@ class Context:
             for name in self.given.get(section, ()):
                 out.setdefault(name, section)
         return out
-
-
-class Checked(Protocol):
-    """A declared class with the checks its schema cannot express."""
-
-    def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Report each problem of this entry, at ``where`` (its key path) or below, to ``out``."""
 
 
 SPLITTINGS = ("srkn6c", "srkn4c", "srkn6", "srkn4", "strang")   # fixed step: dt_factor
@@ -127,8 +101,7 @@ class Defaults:
 class Noise:
     kind: str = param("uniform", "Law of rho1_n, rho2_n: uniform on [-amplitude, amplitude] or gaussian with "
                       "standard deviation amplitude.", enum=["uniform", "gaussian"])
-    # at most 1: rho is relative to the wave's amplitude, and a noise larger than the wave leaves no perturbed wave
-    # of (perturb) (1e300 was accepted and the job's initial velocities overflowed to nan)
+    # at most 1: rho is relative to the wave's amplitude; a noise larger than the wave leaves no wave of (perturb)
     amplitude: float = param(REQUIRED, "Half-width (uniform) or standard deviation (gaussian) of the noise, relative "
                              "to the wave's amplitude; in [0, 1].", minimum=0, maximum=1)
     seed: int = param(REQUIRED, "Seed of numpy.random.default_rng (PCG64); recorded so the run is reproducible; "
@@ -159,8 +132,7 @@ class Travelling:
         return angle_expr(self.q)
 
     def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
-        """q in (-pi, pi], q N / (2 pi) an integer on a ring, exactly one of a and omega_tw, and a
-        finite a > 0 from (freq) when omega_tw is given (``where``: the scene's key path)."""
+        """q in (-pi, pi] fitting a ring, exactly one of a and omega_tw, a finite a > 0 from (freq)."""
         path = where + ["initial"]
         q = None
         try:
@@ -209,8 +181,7 @@ class Breather:
                       minimum=0)
 
     def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
-        """Exactly one of omega_sw and amplitude, a site on the chain, and a homoclinic entry of the
-        same N, bc and alpha (the breather is built from it; ``where``: the scene's key path)."""
+        """Exactly one of omega_sw and amplitude, a site on the chain, a homoclinic entry of the same N, bc, alpha."""
         path = where + ["initial"]
         om, amp = self.omega_sw, self.amplitude
         if om is not None and amp is not None:
@@ -259,7 +230,7 @@ class Packet:
                           "default (N-1)/2.", minimum=0)
 
     def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
-        """The envelope must fit the chain and be centred on it (loc1, left; ``where``: the scene's key path)."""
+        """The envelope must fit the chain and be centred on it."""
         path, N = where + ["initial"], scene.N
         if self.width > N:
             out.add(path + ["width"], f"must be <= N = {N} (the envelope must fit the chain)", self.width)
@@ -289,7 +260,7 @@ class Pair:
                         "default N // 2.", minimum=0)
 
     def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
-        """The two copies must be distinct and the centre a site (loc1, right; ``where``: the scene's key path)."""
+        """The two copies must be distinct and the centre a site."""
         path, N = where + ["initial"], scene.N
         if not 1 <= self.separation < N:
             out.add(path + ["separation"], f"must be in [1, N-1] = [1, {N - 1}]", self.separation)
@@ -306,7 +277,7 @@ class Kick:
     site: int = param(0, "The kicked bead (0 <= site < N); default 0, the first bead of the chain.", minimum=0)
 
     def check(self, scene: Scene, where: Where, context: Context, out: Errors) -> None:
-        """A nonzero kick on a bead of the chain (``where``: the scene's key path)."""
+        """A nonzero kick on a bead of the chain."""
         path = where + ["initial"]
         if self.velocity == 0:
             out.add(path + ["velocity"], "must be nonzero (a chain at rest does not move)", self.velocity)
@@ -366,8 +337,7 @@ class Scene:
         return tuple(store_times(self.store.snapshots, self.store.every, self.t_end))
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Snapshots increasing within [0, t_end], a stored grid of sane size, and the checks of the
-        initial condition's kind."""
+        """Snapshots increasing within [0, t_end], damping and terms with their integrator, the initial kind's."""
         t_end, prev = self.t_end, None
         for i, t in enumerate(self.store.snapshots or []):
             p = where + ["store", "snapshots", i]
@@ -377,23 +347,16 @@ class Scene:
                 out.add(p, f"must be > the previous snapshot {show(prev)} (snapshots must be strictly "
                            f"increasing)", t)
             prev = t
-        self._check_units(where, out)
-        self.initial.check(self, where, context, out)
-
-    def _check_units(self, where: Where, out: Errors) -> None:
-        """Damping and active terms only with the integrator that takes them (the cradle's own checks:
-        :meth:`check_cradle`)."""
         if self.damping is not None and self.damping.active and self.exact.method not in DAMPED_METHODS:
             out.add(where + ["exact", "method"], f"must be one of {', '.join(DAMPED_METHODS)} with damping (a "
                                                  "splitting is not symplectic for a damped cradle: "
                                                  "docs/dissipation.md)", self.exact.method)
         self._check_terms(where, out)
+        self.initial.check(self, where, context, out)
 
     def check_cradle(self, where: Where, out: Errors) -> None:
-        """A cradle with one on-site frequency and Hertz's exponent, a pendulum's initial displacement below its
-        string, SI values only with a cradle, and a run within MAX_T_END once its SI time is in (nc)'s units
-        (:func:`in_nc_units` converts). Run when the scene is read (:mod:`cradle.pipeline.config.validate`),
-        before the budget's estimate, which such a scene would make meaningless."""
+        """A cradle of one on-site frequency and Hertz's exponent, a swing below its string, SI values only with a
+        cradle, t_end within MAX_T_END in (nc)'s units: run when the scene is read, before the budget."""
         c = self.cradle
         if c is not None:
             if (c.length is None) == (c.omega0 is None):
@@ -412,7 +375,7 @@ class Scene:
                                        f"{MAX_T_END:.0f} ({T_END_WHY})")   # the value given is in SI
 
     def _check_swing(self, c: Cradle, where: Where, out: Errors) -> None:
-        """A pendulum's initial displacement below its string length (in (nc)'s units here: times X)."""
+        """A pendulum's initial displacement (in (nc)'s units here: times X) below its string length."""
         X = scales(c).X
         for key in ("a", "amplitude"):
             value = getattr(self.initial, key, None)
@@ -422,8 +385,7 @@ class Scene:
                         float(f"{value * X:.12g}"))
 
     def _check_terms(self, where: Where, out: Errors) -> None:
-        """Active terms of (ncimperfect) need DOP853 in numba, a precompressed chain a ring, explicit site values
-        one per bead, and a draw of positive frequencies and masses (:func:`cradle.models.inhomogeneity.sites`)."""
+        """Active terms need DOP853 in numba, precompression a ring, site values one per bead, a positive draw."""
         terms = self.terms
         if terms is None:
             return
@@ -454,7 +416,6 @@ class Scene:
                     terms.precompression.delta0)
         if all(len(v) == self.N for v in given.values()):
             from cradle.models.inhomogeneity import sites
-            from cradle.specs.values import ConfigError
 
             try:
                 sites(inh, self.N)
@@ -517,9 +478,8 @@ class HomoclinicEntry:
     centre: int = param(None, "Site the guess is centred on (0 <= centre < N); default N // 2.", minimum=0)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """The centre a site of the chain, the two humps of a double guess distinct, and a mu whose solution is a
-        double: max |a_n| = (mu / nu)^(1/(alpha-1)) with nu > 4 (the band edge of the linearised staggered problem,
-        docs/extremes.md) lies within 10^(+-300) (the solver's limit) for mu within 4 10^(+-300 (alpha - 1))."""
+        """The centre a site, the humps of a double guess distinct, and max |a_n| = (mu / nu)^(1/(alpha-1)) with
+        nu > 4 (docs/extremes.md) within 10^(+-300), the solver's limit."""
         alpha = self.alpha if isinstance(self.alpha, (int, float)) else 1.5
         decades = 300.0 * (alpha - 1.0)   # of mu, for 300 of the amplitude
         excess = math.log10(self.mu / 4.0) if self.mu > 0 else -math.inf
@@ -560,13 +520,11 @@ class HomoclinicEntry:
             guess_off_chain(self.N, self.guess, self.bc, self.centre, self.separation) is None)
 
 
-#: the lattice integrators that take the damping terms and the terms of the imperfect cradle
-#: (:func:`cradle.integrators.integrate_lattice`)
+#: the lattice integrators that take damping and the terms of the imperfect cradle (integrate_lattice)
 DAMPED_METHODS = ("dop853_numba",)
 
 
-#: the SI values of a scene (``units: si``) converted to (nc)'s: key path -> (quantity of
-#: :data:`cradle.models.physical.QUANTITIES`, or "rate" for 1/s and "A" for the Kuwabara-Kono time)
+#: a scene's SI values (``units: si``): key path -> quantity (cradle.models.physical.QUANTITIES; rate 1/s, A in s)
 SI_KEYS = {("t_end",): "time", ("store", "every"): "time", ("store", "snapshots"): "time",
            ("initial", "a"): "displacement", ("initial", "amplitude"): "displacement",
            ("initial", "omega_tw"): "rate", ("initial", "omega_sw"): "rate",
@@ -577,9 +535,7 @@ SI_KEYS = {("t_end",): "time", ("store", "every"): "time", ("store", "snapshots"
 
 
 def in_nc_units(scene: Scene) -> Scene:
-    """A scene given in SI (``units: si``, with its ``cradle:``) with its values in (nc)'s units (:data:`SI_KEYS`;
-    ``units`` dropped); any other scene as it is. Time t = omega_0 s, length x = u / X, a rate (1/s) over
-    omega_0, the Kuwabara-Kono time A (s) times omega_0 (:mod:`cradle.models.damping`)."""
+    """A scene given in SI (``units: si``) with its values in (nc)'s units (:data:`SI_KEYS`); any other as it is."""
     c = scene.cradle
     if scene.units != "si" or c is None or (c.length is None) == (c.omega0 is None):
         return scene   # nothing to convert, or a cradle the checks refuse

@@ -1,23 +1,8 @@
-"""``@checked``: a public function's arguments checked against the shared parameter types.
-
-A spec is validated once, where it is built; below that, code trusts it. A library user who calls a
-public function directly (``integrate_lattice``, the initial-data builders, ...) is refused bad
-numbers in one line by the same declarations as the config (:data:`.shared.SHARED`), read by the same
-pass (:func:`.parse.leaf`)::
+"""``@checked``: a public function's arguments named after a shared type checked against it, by the
+config's own pass (docs/developing.md "Specs")::
 
     @checked
     def travelling_wave(N: int, q: float, alpha: float, *, bc: str = "periodic", ...): ...
-
-    travelling_wave(20, 0.6, 1.0)
-    ConfigError: alpha = 1.0: must be > 1 (Hertz exponent of (vhertz))
-
-Every argument whose name is a shared type (alpha, N, bc, rtol, dt, ...) is checked against its
-declaration: type (finite numbers only, booleans are not numbers), bounds, enum. ``@checked(name=type)``
-maps an argument to a shared type of another name (``method="latticeMethod"``), or to None to leave it
-unchecked. A None passes where the argument's default is None. A number arrives as a float and an integer
-as an int, whatever numeric type was given (numpy's scalars too), so the function computes with what the
-config would have given it. The signature is read once, when the function is decorated; functions that
-loops call (right-hand sides, one step of a map) are not decorated: they trust their caller.
 """
 from __future__ import annotations
 
@@ -31,21 +16,18 @@ from .parse import leaf
 from .shared import SHARED
 from .values import ConfigError, Errors, show
 
-#: the keywords of a shared type an argument can be checked against
 _CHECKABLE = {"description", "type", "enum", "minimum", "exclusiveMinimum", "maximum", "exclusiveMaximum"}
 
 
 @functools.cache
 def checker(shared: str) -> Callable[[str, Any], Any]:
-    """``check(arg, value) -> value``: the value of argument ``arg`` as the shared type ``shared``
-    declares it (a float for a number, an int for an integer), or a one-line ConfigError."""
+    """``check(arg, value)``: the value as the shared type ``shared`` declares it, or a one-line ConfigError."""
     node = SHARED[shared]
     kind, unknown = node.get("type"), set(node) - _CHECKABLE
     if kind not in ("number", "integer", "string") or unknown:
         raise TypeError(f"@checked cannot check the shared type {shared!r} ({', '.join(sorted(unknown)) or kind})")
 
-    # the values already accepted, by type and value (a zero is left out: -0.0 == 0.0): a function is called
-    # with the same few arguments again and again, and reading one against the declaration costs microseconds
+    # the values accepted, by type and value (not a zero: -0.0 == 0.0): a function sees the same few again
     accepted: dict[tuple[type, Any], Any] = {}
 
     def check(arg: str, value: Any) -> Any:
@@ -76,12 +58,8 @@ def checker(shared: str) -> Callable[[str, Any], Any]:
 
 
 def checked(func: Callable[..., Any] | None = None, /, **types: str | None) -> Any:
-    """Decorator: check ``func``'s arguments named after a shared type (module docstring).
-
-    ``types`` maps an argument to the shared type it has when its name differs (``method="dpsMethod"``)
-    or to None (not checked). The arguments it checks are ``func.checked_arguments`` (argument ->
-    shared type). A declared default must itself pass, as the type it is converted to.
-    """
+    """Decorator: check ``func``'s arguments named after a shared type, or mapped to one by ``types``
+    (``method="dpsMethod"``, or None: not checked); ``func.checked_arguments`` lists them."""
     if func is None:
         return functools.partial(checked, **types)
     where = f"@checked on {func.__module__}.{func.__qualname__}"

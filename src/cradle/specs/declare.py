@@ -1,12 +1,5 @@
-"""Declarations of the typed config: :func:`declared` classes whose fields are :func:`param` s.
-
-Each config section, entry and kind of initial condition is a frozen dataclass; each field carries its
-description, its bounds (JSON-Schema keywords: minimum, enum, pattern, items, ...) and its default, written
-once. They are the only source: :mod:`.parse` validates plain values against them, :mod:`.schema` writes the
-JSON Schema and the reference for editors and readers. An annotation gives the type: ``float`` a number,
-``int`` an integer, ``str``, ``bool``, ``X | None`` (adds null), ``list[...]``, ``dict[str, C]`` (entries by
-name), a declared class (a nested object) or a union of declared classes (picked by ``kind``).
-"""
+"""Declarations of the typed config, :func:`declared` classes of :func:`param` fields, and their plain form
+(docs/developing.md "Specs")."""
 from __future__ import annotations
 
 import dataclasses
@@ -25,13 +18,10 @@ __all__ = ["NAME_PATTERN", "NULL", "REQUIRED", "SHARED", "declared", "from_plain
 
 T = TypeVar("T")
 
-#: the items of a list of angles, shared types merged in (as :func:`.parse.fields_of` gives them)
 ANGLE = _deref({"$ref": "#/$defs/angle"})
 
 REQUIRED = dataclasses.MISSING  # a key without default: the config must give it
-#: the items of a list that :func:`plain` returns as they are (a per-bead list of numbers or names)
 _ATOM_TYPES = frozenset({float, int, str})
-
 
 #: the default of a key whose default is null (filled in as None), unlike an optional key
 NULL: Any = type("Null", (), {"__repr__": lambda self: "NULL"})()
@@ -39,17 +29,9 @@ NULL: Any = type("Null", (), {"__repr__": lambda self: "NULL"})()
 
 def param(default: Any = REQUIRED, doc: str = "", *, ref: str | None = None, fill: dict | None = None,
           key: str | None = None, reduced: Any = REQUIRED, **keywords: Any) -> Any:
-    """A config key: ``default``, its description ``doc``, ``ref`` (a shared type of :data:`SHARED`,
-    e.g. "alpha") and JSON-Schema ``keywords`` (minimum, exclusiveMinimum, maximum, enum, items, ...).
-
-    ``default``: REQUIRED (the config must give the key), None (optional, absent unless given), NULL
-    (filled in as null) or a value (filled in). A mutable default (list, dict) is copied into every
-    instance. ``fill``: for a nested object whose class is a partial override (an integrator), the
-    descriptions of its keys in this place, where they get the defaults of the class. ``key``: the
-    config key when it is not a Python name (``from``). ``reduced``: the key's value in the reduced form of
-    an analysis (the cheaper one ``snakemake all`` builds), when it differs from the full form's
-    (:func:`.parse.reduced_defaults`).
-    """
+    """A config key: ``default`` (REQUIRED, None: optional, NULL: null, or a value), description ``doc``, shared
+    type ``ref``, JSON-Schema ``keywords``; ``fill``: the descriptions of a partial class's keys in this place;
+    ``key``: the config key when not a Python name; ``reduced``: its value in an analysis's reduced form."""
     meta = {"key": key, "doc": doc, "ref": ref, "keywords": keywords, "fill": fill, "required": default is REQUIRED,
             "null_default": default is NULL}
     if reduced is not REQUIRED:
@@ -62,18 +44,12 @@ def param(default: Any = REQUIRED, doc: str = "", *, ref: str | None = None, fil
     return dataclasses.field(default=default, metadata=meta)
 
 
-# for a type checker, a declared class is a frozen keyword-only dataclass. `param` is not named a field
-# specifier: it takes its default by position, which the checker would read as no default
+# `param` is no field specifier: it takes its default by position, which a type checker reads as none
 @typing.dataclass_transform(kw_only_default=True, frozen_default=True)
 def declared(name: str | None = None, *, doc: str, partial: bool = False, any_of: list | None = None,
              extra: dict | None = None) -> Callable[[T], T]:
-    """Class decorator: a frozen dataclass declaring one object of the config.
-
-    ``name``: its key under ``$defs`` (None: written inline where it is used); ``doc``: its
-    description; ``partial``: an override of settings inherited from elsewhere (its keys get no
-    defaults in ``$defs``); ``any_of``: alternatives of required keys (e.g. snapshots or every);
-    ``extra``: further schema keywords.
-    """
+    """Class decorator: a frozen dataclass declaring one object of the config, ``$defs`` key ``name`` (None:
+    inline); ``partial``: an override of inherited settings; ``any_of``: alternatives of required keys."""
     def wrap(cls: Any) -> Any:
         documented = cls.__dict__.get("__doc__") is not None
         if any(isinstance(f, dataclasses.Field) and "reduced" in f.metadata for f in vars(cls).values()):
@@ -99,19 +75,13 @@ REDUCED_DOC = ("The reduced form `snakemake all` builds (results/<name>/<name>.n
 
 
 def schema_doc(cls: Any) -> str:
-    """The description :func:`declared` gave the class ``cls`` (the type checker does not see the attribute
-    the decorator sets)."""
+    """The description :func:`declared` gave the class ``cls``."""
     return cls.__schema_doc__
 
 
 def plain(value: Any, canonical: bool = True) -> Any:
-    """A spec (or any value holding specs) as plain JSON values: declared instances as mappings of their
-    config keys, sorted, tuples as lists. What a rule's ``params:`` carry and a file stores; equal
-    specs give equal plain values whatever the order they were written in, and however a value was
-    written: a declared number as a float (``100``, ``1e2`` and ``100.0`` alike), an integer as an int,
-    an angle in one form (:func:`cradle.specs.values.canonical_angle`). An optional key that is absent
-    (None) is left out. ``canonical=False``: the values as given, in the order of the declarations and the
-    entries (a validated config with its defaults filled in)."""
+    """A spec (or any value holding specs) as plain JSON values, canonical by value with sorted keys (what
+    ``params:`` carry and a file stores); ``canonical=False``: as given, in the order declared."""
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         # an optional key left out (None, where null is not a value of its own) stays out
         items = [(f.key, _by_value(f, plain(getattr(value, f.name), canonical)) if canonical
@@ -129,7 +99,7 @@ def plain(value: Any, canonical: bool = True) -> Any:
 
 
 def _by_value(f: Field, value: Any) -> Any:
-    """A field's plain value in its one form by value: angles canonical, numbers typed as declared."""
+    """A field's plain value in its one form: angles canonical, numbers typed as declared."""
     if f.ref in ("angle", "angleString"):
         return canonical_angle(value)
     if f.node.get("items") == ANGLE and isinstance(value, list):
@@ -138,8 +108,7 @@ def _by_value(f: Field, value: Any) -> Any:
 
 
 def _typed(tp: Any, value: Any) -> Any:
-    """``value`` with every number of the annotation ``tp`` as its declared type (an int where a number is
-    declared is a float; an integral float where an integer is declared is an int)."""
+    """``value`` with every number of the annotation ``tp`` as its declared type."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
     if origin in (typing.Union, types.UnionType):
         numbers = [a for a in args if a in (float, int)]
@@ -159,10 +128,8 @@ def _typed(tp: Any, value: Any) -> Any:
 
 
 def check_fields(obj: Any, where: str, skip: tuple[str, ...] = ()) -> None:
-    """What a public declared class's ``__post_init__`` calls: an instance built directly (``Cradle(...)``, not
-    by the validation pass) whose fields break their declarations is refused, one ConfigError line per problem
-    naming ``where``, the key and the value; a value given in another form (``1`` for ``1.0``, ``'1'`` for
-    ``1``) is stored as the validation pass reads it. ``skip``: keys the caller checks itself."""
+    """What a public declared class's ``__post_init__`` calls: an instance built directly refused in one line
+    per bad field, a value stored as the pass reads it; ``skip``: keys the caller checks itself."""
     cls: Any = type(obj)
     if BUILDING.get() is cls:   # made by the validation pass of values it has just read
         return
@@ -180,10 +147,7 @@ def check_fields(obj: Any, where: str, skip: tuple[str, ...] = ()) -> None:
 
 
 def from_plain(cls: type[T], mapping: Any, where: str | None = None) -> T:
-    """A validated instance of the declared class ``cls`` from plain values (:func:`plain`'s output, a rule's
-    ``params:``, a file's stored parameters, keyword arguments): every key checked against its declaration
-    (:mod:`.parse`), then built. Raises :class:`cradle.specs.values.ConfigError`, one line per problem naming
-    ``where`` (default: the class name), the key and the value."""
+    """A validated instance of ``cls`` from plain values; a ConfigError line per problem names ``where``."""
     found = Errors()
     made = parse(cls, mapping, (where or cls.__name__,), found)
     if found or made is BAD:

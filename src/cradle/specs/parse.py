@@ -1,11 +1,5 @@
-"""The one validation pass: plain values in, the typed objects of their declarations out.
-
-Plain values are what YAML, ``snakemake --config`` (every nested scalar a string), a rule's ``params:`` or a
-file's stored parameters give. :func:`parse` reads them against a declared class (:mod:`.declare`): every key
-known, every required key given, each value of its declared type (a string read as the number, boolean or null
-its key expects), within its bounds, enum and pattern; absent keys take their defaults. Each problem is one
-:class:`Problem`, worded as ``config error: scenes.tw-weak.N = 1: must be >= 2`` by :func:`report`.
-"""
+"""The one validation pass: plain values in, the typed objects of their declarations out, each problem one
+line (docs/developing.md "Specs")."""
 from __future__ import annotations
 
 import contextvars
@@ -34,7 +28,7 @@ from .values import (
     number,
 )
 
-#: what :func:`parse` returns for a value it refused (its problems are reported)
+#: what :func:`parse` returns for a value it refused
 BAD: Any = type("Bad", (), {"__repr__": lambda self: "BAD"})()
 
 #: words a message adds to a bound, by (last key of the path, keyword)
@@ -58,26 +52,22 @@ _JSON_TYPES = {"integer": lambda v: number(v) and float(v).is_integer() if isins
                "number": number, "string": lambda v: isinstance(v, str), "boolean": lambda v: isinstance(v, bool),
                "null": lambda v: v is None, "array": lambda v: isinstance(v, (list, tuple)),
                "object": lambda v: isinstance(v, dict)}
-#: the keywords of a number declaration that :func:`_at_once` checks for a whole list
 _PLAIN_NUMBER = frozenset({"type", "description", *_BOUNDS})
-#: the declared class :func:`build_object` is making of values it has just read: that class's own check of its
-#: fields (:func:`.declare.check_fields`, for an instance built directly) would read them all again
+#: the class :func:`build_object` is making of values just read: its own ``check_fields`` skips them
 BUILDING: contextvars.ContextVar[type | None] = contextvars.ContextVar("building", default=None)
-#: the types of a number in a list (a boolean is not one: its type is bool, not int)
 _NUMBER_TYPES = frozenset({int, float})
-#: the problems of a list's items said before the rest of the list is left unread
+#: the problems of a list's items said before the rest is left unread
 MAX_ITEM_PROBLEMS = 10
 _INT_RE = re.compile(r"^[-+]?\d+$")
 _FLOAT_RE = re.compile(r"^[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?$|^[-+]?(inf|nan)$", re.IGNORECASE)
 
 
 def _from_string(text: str, kinds: list[str]) -> Any:
-    """``text`` read as a value of one of the JSON ``kinds`` (none of them string), or the text itself."""
+    """``text`` read as a value of one of the JSON ``kinds``, or the text itself."""
     s = text.strip()
     if "null" in kinds and s in ("null", "Null", "NULL", "~", ""):
         return None
-    if "boolean" in kinds and s.lower() in ("true", "false") and s in ("true", "True", "TRUE", "false", "False",
-                                                                        "FALSE"):
+    if "boolean" in kinds and s in ("true", "True", "TRUE", "false", "False", "FALSE"):
         return s.lower() == "true"
     if ("integer" in kinds or "number" in kinds) and _INT_RE.match(s):
         return int(s)
@@ -89,7 +79,7 @@ def _from_string(text: str, kinds: list[str]) -> Any:
 
 
 def _finite(value: Any, path: tuple, found: Errors) -> bool:
-    """Whether every float in ``value`` is finite; each one that is not is a problem at its key."""
+    """Whether every float in ``value`` is finite (each other one held at its key)."""
     if isinstance(value, float) and not math.isfinite(value):
         found.finite.append((path, path, "must be a finite number", value, False))
         return False
@@ -100,16 +90,12 @@ def _finite(value: Any, path: tuple, found: Errors) -> bool:
 
 
 def _all_numbers(value: list | tuple) -> bool:
-    """Whether every item is an int or a float (not a boolean: ``type`` tells it from an int)."""
-    return _NUMBER_TYPES.issuperset(map(type, value))   # in C, stopping at the first other type
+    return _NUMBER_TYPES.issuperset(map(type, value))   # in C; a bool's type is not int
 
 
 def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True) -> Any:
-    """``value`` checked against the keywords of ``node`` (a JSON-Schema subset: type, enum, const, bounds,
-    multipleOf, pattern, maxLength, anyOf, items, minItems, maxItems, uniqueItems), or :data:`BAD`; a string or a
-    list whose declaration gives no maximum has :data:`.values.DEFAULT_MAX_LENGTH` or
-    :data:`.values.DEFAULT_MAX_ITEMS`. ``coerce``: a string
-    where its key expects no string is read as the number, boolean or null it spells (``--config`` values)."""
+    """``value`` checked against the JSON-Schema keywords of ``node``, or :data:`BAD`; ``coerce``: a string where
+    none is expected read as the number, boolean or null it spells (``--config`` values)."""
     kinds = node.get("type")
     kinds = [kinds] if isinstance(kinds, str) else kinds or []
     if coerce and isinstance(value, str) and kinds and "string" not in kinds:
@@ -157,7 +143,6 @@ def leaf(node: dict, value: Any, path: tuple, found: Errors, coerce: bool = True
 
 
 def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
-    # a list longer than its maximum never gets here: leaf refuses it before its items are walked
     lo, hi = node.get("minItems"), node.get("maxItems", DEFAULT_MAX_ITEMS)
     if lo is not None and lo == hi and len(value) != lo:
         found.hold(path, f"must have exactly {lo} items", value)
@@ -176,16 +161,13 @@ def _items(node: dict, value: list, path: tuple, found: Errors) -> Any:
 
 
 def _same(item: Any) -> Any:
-    """What tells a repeated item of a list: a number or a string by type and value; anything else is a wrong item
-    (said by ``items``) and only itself (no repr of a nested list of a million values)."""
+    """What tells a repeated item: a number or a string by type and value; anything else only itself."""
     return (type(item), item) if isinstance(item, (str, int, float)) or item is None else id(item)
 
 
 def _at_once(node: dict, value: list) -> bool:
-    """Whether ``value`` is a list of finite numbers within the bounds of ``node`` (a declaration of a number with
-    bounds alone) or of names from its enum (a string with an enum alone), checked in one pass over the list (a
-    per-bead list of a long chain: the pass item by item costs a call per item). False: read it item by item,
-    which words each problem."""
+    """Whether the list ``value`` passes ``node`` (a bounded number, or an enum alone) in one pass (a per-bead
+    list); False: read it item by item, which words each problem."""
     if node.get("type") == "string" and set(node) <= {"type", "enum", "description"} and "enum" in node:
         names = frozenset(node["enum"])
         return all(type(v) is str and v in names for v in value)
@@ -198,8 +180,7 @@ def _at_once(node: dict, value: list) -> bool:
 
 
 def _mapping(node: dict, value: dict, path: tuple, found: Errors) -> Any:
-    """A mapping checked against ``properties`` (and ``required``; no other key when ``additionalProperties`` is
-    false): the per-method ladders of work-precision."""
+    """A mapping checked against ``properties``, ``required`` and ``additionalProperties``."""
     props = node["properties"]
     for key in node.get("required", ()):
         if key not in value:
@@ -215,8 +196,7 @@ def _mapping(node: dict, value: dict, path: tuple, found: Errors) -> Any:
 
 
 def _any_of(node: dict, value: Any, path: tuple, found: Errors) -> Any:
-    """The first branch of ``anyOf`` that takes ``value``; else the problems of the first branch whose type fits
-    it, or one line naming the types (an angle: the forms it may take)."""
+    """The first branch of ``anyOf`` that takes ``value``; else the problems of the first whose type fits."""
     tried = []
     for sub in node["anyOf"]:
         mine = Errors()
@@ -237,13 +217,8 @@ def _any_of(node: dict, value: Any, path: tuple, found: Errors) -> Any:
     return BAD
 
 
-# ---------------------------------------------------------------- declared classes
-
 class Field(NamedTuple):
-    """What the pass reads of one declared field: its name, config key, annotation, keywords (shared types
-    merged in) and default (``make()`` gives it: a fresh copy of a list or a mapping), its reduced value, the
-    shared type it refers to, whether null is a value of its own (not an absent key) and whether it holds
-    declared objects (an object, entries or a union)."""
+    """What the pass reads of one declared field (``node``: its keywords, shared types merged in)."""
     name: str
     key: str
     tp: Any
@@ -262,7 +237,7 @@ def declared_class(tp: Any) -> bool:
 
 @functools.cache
 def fields_of(cls: type) -> tuple[Field, ...]:
-    """The :class:`Field` of each field of the declared class ``cls`` (worked out once per class)."""
+    """The :class:`Field` of each field of the declared class ``cls``."""
     hints = typing.get_type_hints(cls)
     out = []
     for f in dataclasses.fields(cls):
@@ -280,8 +255,7 @@ def fields_of(cls: type) -> tuple[Field, ...]:
 
 
 def _deref(node: Any) -> Any:
-    """``node`` with every ``$ref`` to a shared type (:data:`.shared.SHARED`) merged in, its own keywords
-    winning (a union, read by its annotation, keeps its ``$ref``)."""
+    """``node`` with every ``$ref`` to a shared type merged in, its own keywords winning."""
     if isinstance(node, list):
         return [_deref(v) for v in node]
     if not isinstance(node, dict):
@@ -292,7 +266,7 @@ def _deref(node: Any) -> Any:
 
 
 def _annotation_node(tp: Any) -> dict:
-    """The JSON type of a scalar or list annotation (``float | None``: number or null); {} for the others."""
+    """The JSON type of a scalar or list annotation; {} for the others."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
     if origin in (typing.Union, types.UnionType):
         inner = [a for a in args if a is not type(None)]
@@ -307,10 +281,8 @@ def _annotation_node(tp: Any) -> dict:
 
 
 def parse(tp: Any, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
-    """``value`` as an instance of the annotation ``tp`` (a declared class, a union of them on ``kind``, a
-    mapping of entry names to one, or a scalar or list), every problem added to ``found``; :data:`BAD` if any.
-    ``base``: for a declared class, the instance (or mapping of field name -> value) whose values its absent
-    keys take instead of the declared defaults (a scene's integrators: those of ``defaults:``)."""
+    """``value`` as the annotation ``tp``, or :data:`BAD`; ``base``: what a declared class's absent keys take
+    instead of their defaults (a scene's integrators: those of ``defaults:``)."""
     origin, args = typing.get_origin(tp), typing.get_args(tp)
     if origin in (typing.Union, types.UnionType) and any(declared_class(a) for a in args):
         return _union([a for a in args if declared_class(a)], value, path, found)
@@ -331,7 +303,7 @@ def _not_mapping(value: Any, path: tuple, found: Errors) -> bool:
 
 
 def _union(classes: list, value: Any, path: tuple, found: Errors) -> Any:
-    """One of ``classes``, picked by its ``kind`` constant (the kinds of initial condition)."""
+    """One of ``classes``, picked by its ``kind`` constant."""
     if _not_mapping(value, path, found):
         return BAD
     kinds = {next(f.node["const"] for f in fields_of(c) if f.name == "kind"): c for c in classes}
@@ -349,9 +321,7 @@ def _union(classes: list, value: Any, path: tuple, found: Errors) -> Any:
 
 def entries(cls: type, value: Any, path: tuple, found: Errors, labels: tuple | None = None,
             base: Any = None, one: Callable[..., Any] | None = None) -> Any:
-    """A mapping of entry names to instances of ``cls``; an entry with problems is left out (they are reported).
-    ``labels``: the names allowed (figure labels), else any entry name (letters, digits, '-' and '_');
-    ``base``: what each entry leaves out (:func:`parse`); ``one``: what reads one entry (default :func:`parse`)."""
+    """Entry names -> instances of ``cls``, one with problems left out; ``labels``: the names allowed."""
     if _not_mapping(value, path, found):
         return BAD
     out = {}
@@ -371,17 +341,14 @@ def entries(cls: type, value: Any, path: tuple, found: Errors, labels: tuple | N
 
 
 def given_fields(cls: Any, value: Any, path: tuple, found: Errors, base: Any = None, full: Any = None) -> Any:
-    """field name -> value (or :data:`BAD`) of the declared class ``cls`` read from the mapping ``value``: the
-    keys given parsed, the others from ``base`` or their defaults; :data:`BAD` if ``value`` is no mapping.
-    ``full``: ``value`` holds the keys under ``reduced:`` of an analysis's section (its reduced form), and
-    ``full`` the full form's values: only the keys given, each over its declared reduced value or else the
-    full form's; :data:`BAD` if one is."""
+    """field name -> value of ``cls`` from the mapping ``value``, absent keys from ``base`` or their defaults;
+    ``full``: ``value`` is a ``reduced:`` section over the full form's values ``full`` (its keys only)."""
     if _not_mapping(value, path, found):
         return BAD
-    overrides = {f.name: f for f in fields_of(cls) if f.name == "reduced" and f.tp is dict}
-    fields = [f for f in fields_of(cls) if full is None or f.name not in overrides]
+    fields = [f for f in fields_of(cls) if full is None or (f.name, f.tp) != ("reduced", dict)]
     by_key = {f.key: f for f in fields}
     bases = base if full is None else {**full, **reduced_defaults(cls)}
+    bases = {} if bases is None else bases if isinstance(bases, dict) else vars(bases)
     out: dict[str, Any] = {}
     for key, v in value.items():
         f = by_key.get(key)
@@ -391,18 +358,18 @@ def given_fields(cls: Any, value: Any, path: tuple, found: Errors, base: Any = N
                        at=path)
             if full is None:
                 _finite(v, (*path, key), found)
-        elif f.name not in overrides:   # ``reduced:`` is read below, over the full form's values
-            inner = _base_of(bases, f)
+        elif (f.name, f.tp) != ("reduced", dict):   # read below, over the full form's values
+            inner = bases.get(f.name)
             out[f.name] = _field(f, v, (*path, key), found, inner if inner is not None else f.make())
     if full is not None:
         return BAD if any(v is BAD for v in out.values()) else out
     for f in fields:
         if f.name not in out:
-            inner = _base_of(base, f)
+            inner = bases.get(f.name)
             if f.required and inner is None:
                 found.hold((*path, f.key), "missing (required key)", at=path)
             out[f.name] = inner if inner is not None else f.make()
-    if "reduced" in value and overrides:
+    if "reduced" in value and any((f.name, f.tp) == ("reduced", dict) for f in fields):
         out["reduced"] = given_fields(cls, value["reduced"], (*path, "reduced"), found, full=out)
     groups = cls.__schema_any_of__
     if groups and not any(all(k in value for k in g) for g in groups):
@@ -411,7 +378,7 @@ def given_fields(cls: Any, value: Any, path: tuple, found: Errors, base: Any = N
 
 
 def reduced_defaults(cls: type) -> dict[str, Any]:
-    """field name -> its value in the reduced form, for every field of ``cls`` declared with ``reduced=``."""
+    """field name -> its declared ``reduced=`` value."""
     out = {}
     for f in fields_of(cls):
         if f.reduced is not None:
@@ -422,31 +389,21 @@ def reduced_defaults(cls: type) -> dict[str, Any]:
 
 @functools.cache
 def _reduced_objects(cls: type, name: str) -> Any:
-    """The declared reduced mapping of field ``name`` of ``cls`` read as its declared objects (frozen, so read
-    once), as the full form's are."""
+    """The declared reduced mapping of field ``name`` read as its objects (once)."""
     f = next(f for f in fields_of(cls) if f.name == name)
     return _field(f, json.loads(f.reduced), (cls.__name__, "reduced", f.key), Errors())
 
 
 def _field(f: Field, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
-    """The value of field ``f``: a scalar or a list against its keywords, an object (or entries, or a union) as
-    its annotation declares it (a mapping whose keywords declare its keys, work-precision's ladders: both)."""
+    """The value of field ``f``: against its keywords, or as its annotation declares it, or both."""
     if f.nested and "properties" not in f.node:
         return parse(f.tp, value, path, found, base)
     value = leaf(f.node, value, path, found)
     return parse(f.tp, value, path, found, base) if f.nested and value is not BAD else value
 
 
-def _base_of(base: Any, f: Field) -> Any:
-    """The value ``base`` (an instance or a mapping by field name) gives field ``f``, or None."""
-    if base is None:
-        return None
-    return base.get(f.name) if isinstance(base, dict) else getattr(base, f.name, None)
-
-
 def build_object(cls: type, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
-    """An instance of the declared class ``cls`` from the mapping ``value`` (:func:`given_fields`), or
-    :data:`BAD` when a problem lies at ``path`` or below."""
+    """An instance of ``cls`` from the mapping ``value``, or :data:`BAD`."""
     n = len(found)
     got = given_fields(cls, value, path, found, base)
     if got is BAD or len(found) > n:

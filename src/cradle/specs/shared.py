@@ -1,5 +1,4 @@
-"""The shared parameter types: each bound of alpha, N, bc, rtol, ... written once, for the config's keys
-(``param(ref=...)``) and the arguments of public functions (:mod:`.checked`) alike."""
+"""The shared parameter types: each bound of alpha, N, bc, rtol, ... written once, for config keys and arguments."""
 from __future__ import annotations
 
 from typing import Any
@@ -21,20 +20,17 @@ SHARED: dict[str, dict[str, Any]] = {
     "name": {"description": f"An entry name: letters, digits, '-' and '_', at most {NAME_MAX_LENGTH} characters (it "
                             f"becomes part of file names).", "type": "string", "pattern": NAME_PATTERN,
              "maxLength": NAME_MAX_LENGTH},
-    # at most 10: the paper's exponents are 3/2 (Hertz) to 3; beyond, a^(alpha-1) of (freq) underflows to 0 or
-    # overflows for the amplitudes of the experiments, and a huge alpha makes every power overflow
+    # at most 10: the paper's exponents are 3/2 to 3; beyond, a^(alpha-1) of (freq) under- or overflows
     "alpha": {"description": "Hertz exponent alpha of (vhertz); in (1, 10].", "type": "number", "exclusiveMinimum": 1,
               "maximum": 10},
-    # the budget's estimate of a run (cradle.pipeline.budget: memory, output, time) bounds N; the maximum here is
-    # only the largest integer every double holds
+    # the budget's estimate bounds N; the maximum here is only the largest integer every double holds
     "N": {"description": "Number of sites (beads) n = 0..N-1; >= 2, within the budget's estimate of its jobs.",
           "type": "integer", "minimum": 2, "maximum": MAX_COUNT},
     "bc": {"description": "Boundary conditions: periodic (x_N = x_0, a ring) or free (the end beads have one "
                           "neighbour).", "type": "string", "enum": ["periodic", "free"]},
     "rtol": {"description": f"Relative tolerance of an adaptive integrator, in [{RTOL_FLOOR:g}, 1e-2].",
              "type": "number", "minimum": RTOL_FLOOR, "maximum": 0.01},
-    # at most 1e-2: a run whose energy moved by more than 1 % of H(0) is no solution of (nc), and a larger bound
-    # would silently turn the check off
+    # at most 1e-2: a run whose energy moved by more than 1 % of H(0) is no solution of (nc)
     "maxEnergyDrift": {"description": "Largest accepted relative energy drift max_t |H(t)-H(0)|/H(0) of an exact "
                                       f"run; in [{DRIFT_FLOOR:g}, 1e-2] (a larger bound would turn the check off, a "
                                       "smaller one is below the rounding of H).",
@@ -43,8 +39,7 @@ SHARED: dict[str, dict[str, Any]] = {
                                    "number written as a string.", "type": "string", "pattern": ANGLE_PATTERN},
     "angle": {"description": "An angle: a number (radians) or a multiple of pi as a string ('pi/5', '4pi/5', "
                              "'-52pi/100', '4*pi/5').", "anyOf": [{"type": "number"}, {"$ref": "#/$defs/angleString"}]},
-    # arguments of public functions (cradle.specs.checked) that no config key refers to yet: a schema
-    # lists only the shared types its keys use, so these are not in config.schema.json
+    # arguments of public functions (cradle.specs.checked) only: not in config.schema.json
     "atol": {"description": f"Absolute tolerance of an adaptive integrator; >= {ATOL_FLOOR:g}.", "type": "number",
              "minimum": ATOL_FLOOR},
     "dt": {"description": "Time step of a fixed-step splitting; > 0.", "type": "number", "exclusiveMinimum": 0},

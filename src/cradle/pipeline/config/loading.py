@@ -1,10 +1,5 @@
-"""Reading config files (bounded in size, UTF-8, a key given twice refused with its line) and the command line.
-
-``python -m cradle.pipeline.config [config.yaml]`` validates a file; with
-``--scene``/``--homoclinic``/``--map NAME`` it prints that entry's resolved
-parameters (what its job receives, and what the ``params_sha256`` of its files
-hashes); ``--write-schema`` regenerates config.schema.json.
-"""
+"""Reading config files (bounded in size, UTF-8, a key given twice refused with its line) and the command line
+``python -m cradle.pipeline.config``."""
 from __future__ import annotations
 
 import json
@@ -18,11 +13,8 @@ import yaml
 from cradle.specs.declare import plain
 from cradle.specs.values import CONFIG_MAX_BYTES, CONFIG_MAX_DEPTH, CONFIG_MAX_VALUES, ConfigError
 
-from .resolve import homoclinic, map_entry, scene
 from .sections import SECTIONS
-from .validate import validate
-
-MAX_BYTES, MAX_VALUES, MAX_DEPTH = CONFIG_MAX_BYTES, CONFIG_MAX_VALUES, CONFIG_MAX_DEPTH
+from .validate import homoclinic, map_entry, scene, validate
 
 
 def _line(event: yaml.Event) -> int:
@@ -30,8 +22,8 @@ def _line(event: yaml.Event) -> int:
 
 
 def _bounded(text: str, name: str) -> None:
-    """Refuse ``text`` if its YAML holds more than :data:`MAX_VALUES` values (aliases expanded) or nests deeper
-    than :data:`MAX_DEPTH`, as soon as the parser's events say so (never building the values)."""
+    """Refuse ``text`` holding too many values (aliases expanded) or nested too deep, from the parser's events
+    (never building the values)."""
     sizes: dict[str | None, int] = {}   # anchor -> number of values it stands for
     open_: list[tuple[str | None, int]] = []   # (anchor, count at its start) of each open mapping or list
     count = 0
@@ -42,17 +34,17 @@ def _bounded(text: str, name: str) -> None:
             count += 1
             if isinstance(event, yaml.CollectionStartEvent):
                 open_.append((event.anchor, count))
-                if len(open_) > MAX_DEPTH:
+                if len(open_) > CONFIG_MAX_DEPTH:
                     raise ConfigError(f"config error: {name}: line {_line(event)}: nested more than "
-                                      f"{MAX_DEPTH} deep (mappings and lists)")
+                                      f"{CONFIG_MAX_DEPTH} deep (mappings and lists)")
             elif event.anchor is not None:
                 sizes[event.anchor] = 1
         elif isinstance(event, yaml.CollectionEndEvent):
             anchor, start = open_.pop()
             if anchor is not None:
                 sizes[anchor] = count - start + 1
-        if count > MAX_VALUES:
-            raise ConfigError(f"config error: {name}: line {_line(event)}: more than {MAX_VALUES} "
+        if count > CONFIG_MAX_VALUES:
+            raise ConfigError(f"config error: {name}: line {_line(event)}: more than {CONFIG_MAX_VALUES} "
                               f"values (aliases counted as the values they stand for); a config holds a few "
                               f"thousand")
 
@@ -61,16 +53,14 @@ _Parser = getattr(yaml, "CSafeLoader", yaml.SafeLoader)   # libyaml's parser whe
 
 
 class StrictLoader(_Parser):   # type: ignore[valid-type, misc]
-    """PyYAML's safe loader, refusing a key given twice in one mapping (PyYAML keeps the last silently); merge
-    keys (``<<: *base``) are honoured, a key given beside them overriding the merged one."""
+    """PyYAML's safe loader, refusing a key given twice in one mapping (merge keys ``<<: *base`` honoured)."""
 
     def construct_document(self, node: yaml.Node) -> Any:
         self._check_keys(node, set())
         return super().construct_document(node)
 
     def _check_keys(self, node: yaml.Node, done: set) -> None:
-        """Each mapping under ``node`` (each once, however many aliases name it) refused if one of its own keys
-        (merged keys aside) is given twice."""
+        """Each mapping under ``node`` (each once) refused if one of its own keys is given twice."""
         if id(node) in done:
             return
         done.add(id(node))
@@ -97,16 +87,16 @@ class StrictLoader(_Parser):   # type: ignore[valid-type, misc]
 
 
 def read_yaml(path: str | os.PathLike) -> dict:
-    """The mapping of a YAML config file, read with :class:`StrictLoader` (ConfigError on any problem: not
-    UTF-8, larger than :data:`MAX_BYTES`, too many values or too deep (:func:`_bounded`), a key given twice)."""
+    """The mapping of a YAML config file (ConfigError: not UTF-8, too large, too many values or too deep, a key
+    given twice)."""
     path = Path(path)
     try:
         with path.open("rb") as f:
-            data = f.read(MAX_BYTES + 1)
+            data = f.read(CONFIG_MAX_BYTES + 1)
     except OSError as err:
         raise ConfigError(f"config error: cannot read {str(path)!r}: {err.strerror}") from None
-    if len(data) > MAX_BYTES:
-        raise ConfigError(f"config error: {path}: larger than {MAX_BYTES} bytes; a config is a few tens of kB")
+    if len(data) > CONFIG_MAX_BYTES:
+        raise ConfigError(f"config error: {path}: larger than {CONFIG_MAX_BYTES} bytes; a config is a few tens of kB")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as err:
@@ -131,15 +121,11 @@ def load(path: str | Path) -> dict:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m cradle.pipeline.config [config.yaml] [--scene|--homoclinic|--map NAME] [--write-schema]``.
-
-    Validates the config (exit status 1 and one line per problem on stderr if
-    it is bad); with a NAME, prints that entry's resolved parameters as JSON.
-    """
+    """Validate a config file (exit status 1 and one line per problem if it is bad); with a NAME, print that
+    entry's resolved parameters as JSON."""
     import argparse
 
-    parser = argparse.ArgumentParser(prog="python -m cradle.pipeline.config",
-                                     description=main.__doc__.splitlines()[0] if main.__doc__ else None)
+    parser = argparse.ArgumentParser(prog="python -m cradle.pipeline.config", description=main.__doc__)
     parser.add_argument("config", nargs="?", default="config.yaml")
     parser.add_argument("--write-schema", action="store_true",
                         help="regenerate src/cradle/pipeline/config.schema.json from the declarations and exit")
@@ -151,26 +137,17 @@ def main(argv: list[str] | None = None) -> int:
     group.add_argument("--homoclinic", metavar="NAME")
     group.add_argument("--map", metavar="NAME")
     args = parser.parse_args(argv)
-    if args.write_schema:
-        from .reference import write_schema
+    if args.write_schema or args.write_reference:
+        from . import reference
 
-        print(f"wrote {write_schema()}")
-        return 0
-    if args.write_reference:
-        from .reference import REFERENCE_FILE, generated_schema, reference
-
-        REFERENCE_FILE.write_text(reference(generated_schema()) + "\n", encoding="utf-8")
-        print(f"wrote {REFERENCE_FILE}")
+        print(f"wrote {reference.write_schema() if args.write_schema else reference.write_reference()}")
         return 0
     try:
         cfg = load(args.config)
-        if args.scene:
-            print(json.dumps(plain(scene(cfg, args.scene)), indent=1))
-        elif args.homoclinic:
-            print(json.dumps(plain(homoclinic(cfg, args.homoclinic)), indent=1))
-        elif args.map:
-            print(json.dumps(plain(map_entry(cfg, args.map)), indent=1))
-        else:
+        for name, resolve in ((args.scene, scene), (args.homoclinic, homoclinic), (args.map, map_entry)):
+            if name:
+                print(json.dumps(plain(resolve(cfg, name)), indent=1))
+        if not (args.scene or args.homoclinic or args.map):
             counts = ", ".join(f"{len(cfg.get(s) or {})} {s}" for s in (*SECTIONS, "figures"))
             print(f"{args.config}: OK ({counts})")
     except ConfigError as err:

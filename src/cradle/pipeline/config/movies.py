@@ -1,8 +1,5 @@
-"""Declaration of ``movies:``: the movies of the cradle in motion (``cradle animate``, target ``movies``).
-
-A movie is drawn from a scene's stored runs only (:mod:`cradle.figures.movie`), so these keys change
-no computed number: they are not part of any scene's resolved parameters.
-"""
+"""Declaration of ``movies:`` (``cradle animate``, target ``movies``): drawn from stored runs, no scene's
+parameters."""
 from __future__ import annotations
 
 from cradle.analyses.desk_toy_minute_movie import MinuteMovie
@@ -35,8 +32,7 @@ class Movies:
 
     @staticmethod
     def resolve(cfg: dict) -> dict:
-        """``movies``, with every name of ``scenes`` an existing scene (checked when the target is built, so
-        that a config with fewer scenes, a test's, still validates)."""
+        """``movies``, every name of ``scenes`` an existing scene (checked when the target is built)."""
         spec = dict(cfg.get("movies") or {})
         scenes = cfg.get("scenes") or {}
         for i, name in enumerate(spec.get("scenes") or []):

@@ -35,6 +35,12 @@ def write_schema(path: str | Path | None = None) -> Path:
     """Write the generated schema to ``path`` (default: the committed file)."""
     return spec.write(generated_schema(), Path(path) if path else schema_path())
 
+
+def write_reference() -> Path:
+    """Write docs/config-reference.md (relative to the working directory, the checkout)."""
+    REFERENCE_FILE.write_text(reference(generated_schema()) + "\n", encoding="utf-8")
+    return REFERENCE_FILE
+
 _BOUNDS = (("minimum", ">= {}"), ("exclusiveMinimum", "> {}"), ("maximum", "<= {}"), ("exclusiveMaximum", "< {}"),
            ("minItems", "at least {} items"), ("maxItems", "at most {} items"), ("maxLength", "at most {} characters"))
 

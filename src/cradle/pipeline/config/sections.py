@@ -1,13 +1,4 @@
-"""Declarations of the config's sections: figures, ``beyond:``, and the whole file (each analysis's section is
-declared by its module, the budget by cradle.pipeline.budget, the movies by :mod:`.movies`).
-
-Each section is a frozen dataclass whose fields carry description, bounds and
-default (:func:`cradle.specs.declare.param`); :class:`Config` is the whole file. The entries a
-job computes from (defaults, map, homoclinic, scenes) are declared in :mod:`cradle.scenes.spec`.
-The checks that span several keys or sections are the ``check`` methods of the typed objects, here,
-in :mod:`cradle.scenes.spec` and in the analyses' spec classes; :func:`.checks.check` runs them all in
-order (:mod:`cradle.scenes.spec`).
-"""
+"""Declarations of figures, ``beyond:`` (one key per analysis, declared by its module) and the whole file."""
 from __future__ import annotations
 
 import bisect
@@ -22,8 +13,6 @@ from cradle.specs.values import TIME_TOL, Errors, did_you_mean
 from .movies import Movies
 
 SECTIONS = ENTRY_SECTIONS  # the name spaces a figure's `scenes:` list reads from
-
-
 KNOWN_FIGURES = tuple(FIGURES)
 
 
@@ -41,8 +30,7 @@ class Figure:
                                items={"type": "number", "minimum": 0})
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
-        """Names of existing entries, and times stored by the scenes it reads (its label is known: the
-        schema lists the labels)."""
+        """Names of existing entries, and times stored by the scenes it reads."""
         names = context.names
         for i, n in enumerate(self.scenes):
             if n not in names:
@@ -69,8 +57,7 @@ BEYOND_DOC = ("Analyses beyond the paper, one section each, keyed by the analysi
 
 
 def _beyond_class() -> Any:
-    """The declared class of the ``beyond:`` section: one key per analysis of the registry (its name), declared
-    by the analysis's own spec class and checked by that class's ``check`` (:mod:`.checks`)."""
+    """The declared class of ``beyond:``: one key per analysis of the registry, its own spec class."""
     from cradle.analyses.registry import ANALYSES
 
     namespace: dict[str, Any] = {"__annotations__": {}}

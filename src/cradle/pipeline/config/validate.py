@@ -1,24 +1,12 @@
-"""Validating config.yaml: one pass over the declarations builds the typed config, then the checks across keys.
-
-The Snakefile calls :func:`validate` right after loading the config (so after any ``--config`` overrides);
-``python -m cradle.pipeline.config [config.yaml]`` does the same from the command line. Every bad input is
-reported before any work starts, one line per problem, naming the key path and the value::
-
-    config error: scenes.tw-weak.N = 1: must be >= 2
-
-:func:`typed` reads every section against its declaration (:func:`cradle.specs.parse.parse`): a scene
-resolved against ``defaults:`` (alpha, max_energy_drift, its integrators' keys over those of ``defaults``) and
-its SI values in (nc)'s units, a homoclinic or map entry with its alpha. Then the jobs' budget
-(:mod:`cradle.pipeline.budget`) and the checks no key expresses alone (:mod:`.checks`) run on the entries
-that passed. The typed config of the last few configs is remembered (the Snakefile resolves one entry per job),
-and so is each entry's typed object (a config validated again with one entry changed reads that entry only).
-"""
+"""Validating config.yaml (one pass builds the typed config, then the budget and the checks across keys) and
+resolving one entry or analysis of it (docs/developing.md "Specs")."""
 from __future__ import annotations
 
 import json
 import pickle
 from typing import Any
 
+from cradle.analyses.protocol import Read
 from cradle.scenes.spec import Defaults, HomoclinicEntry, MapEntry, Scene, in_nc_units
 from cradle.specs.declare import plain
 from cradle.specs.parse import BAD, entries, fields_of, given_fields, parse
@@ -29,21 +17,17 @@ from .sections import KNOWN_FIGURES, SECTIONS, Beyond, Config, Figure
 
 #: the sections of entries resolved against ``defaults:``
 ENTRIES: dict[str, type] = {"map": MapEntry, "homoclinic": HomoclinicEntry, "scenes": Scene}
-
 #: the typed configs of the last few configs, by their canonical JSON (:func:`_key`)
 _TYPED: dict[str | None, Config] = {}
-#: the configs taken as validated (:func:`assume_validated`), by their canonical JSON
+#: the configs taken as validated (:func:`assume_validated`)
 _TRUSTED: set[str | None] = set()
-#: what :func:`remembered` made of the entries of recent configs, by (class, key path, pickle of value and base)
+#: what :func:`remembered` made of recent entries, by (class, key path, pickle of value and base)
 _MADE: dict[tuple, tuple] = {}
-#: the largest pickle of an entry :func:`remembered` keeps: config.yaml's entries pickle to a few kB; a list of a
-#: million values (kept with its problems, held by the cache) would fill memory and slow every garbage collection
-_REMEMBER_BYTES = 1 << 20
+_REMEMBER_BYTES = 1 << 20   # config.yaml's entries pickle to a few kB
 
 
 def _key(config: Any) -> str | None:
-    """The canonical JSON of a config, or None if it cannot be serialised or is too large to be worth remembering
-    (a config of a huge list is refused anyway: its JSON would cost more than validating it)."""
+    """The canonical JSON of a config, or None if it has none or is too large to remember."""
     if len(pickle.dumps(config, protocol=pickle.HIGHEST_PROTOCOL)) > _REMEMBER_BYTES:
         return None
     try:
@@ -53,21 +37,19 @@ def _key(config: Any) -> str | None:
 
 
 def _base(defaults: Any, cls: type) -> dict[str, Any]:
-    """What an entry of class ``cls`` leaves out and ``defaults:`` gives: alpha, and for a scene its
-    integrators and its energy drift bound."""
+    """What an entry of class ``cls`` leaves out and ``defaults:`` gives."""
     keys = ("alpha", "exact", "dps", "max_energy_drift") if cls is Scene else ("alpha",)
     return {} if defaults is BAD else {key: getattr(defaults, key) for key in keys}
 
 
 def remembered(cls: Any, value: Any, path: tuple, found: Errors, base: Any = None) -> Any:
-    """:func:`cradle.specs.parse.parse` of one entry (or section), remembered: a config validated again with one
-    entry changed (the Snakefile's --config overrides, the config fuzz) reads that entry only, and its checks
-    see the same frozen objects (a scene's stored times are worked out once)."""
+    """:func:`cradle.specs.parse.parse` of one entry, remembered: a config validated again with one entry changed
+    (``--config`` overrides, the config fuzz) reads that entry only."""
     try:
         key = (cls, path, pickle.dumps((value, base), protocol=pickle.HIGHEST_PROTOCOL))
     except Exception:  # noqa: BLE001 -- a value pickle refuses is read every time
         return parse(cls, value, path, found, base)
-    if len(key[2]) > _REMEMBER_BYTES:   # a huge entry (a list of a million values) is read, not kept
+    if len(key[2]) > _REMEMBER_BYTES:   # a huge entry is read, not kept
         return parse(cls, value, path, found, base)
     if key not in _MADE:
         mine = Errors()
@@ -81,31 +63,24 @@ def remembered(cls: Any, value: Any, path: tuple, found: Errors, base: Any = Non
 
 
 def read(config: Any) -> tuple[dict[str, Any], Errors]:
-    """Every section of ``config`` as its typed value (field name of :class:`.sections.Config` -> value; an
-    entry with problems left out), and the problems found."""
-    if config is None:
-        config = {}   # an empty YAML file
+    """Every section of ``config`` typed (field name of :class:`.sections.Config` -> value; an entry with
+    problems left out), and the problems found."""
+    config = {} if config is None else config   # an empty YAML file
     if not isinstance(config, dict):
         raise ConfigError(f"config error: config = {show(config)}: must be a mapping")
-    if not any(config.get(section) for section in SECTIONS):
-        # an empty file, or the wrong one: refused here rather than as a traceback while the DAG is built
+    if not any(config.get(section) for section in SECTIONS):   # an empty file, or the wrong one
         raise ConfigError(f"config error: config: no {', '.join(SECTIONS)} entries, nothing to build (keys given: "
                           f"{', '.join(map(str, config)) or 'none'})")
     found = Errors()
-    # the sections read entry by entry below are left to their defaults here
-    apart = ("defaults", *ENTRIES, "figures", "beyond")
+    apart = ("defaults", *ENTRIES, "figures", "beyond")   # read entry by entry below
     parts = given_fields(Config, {key: value for key, value in config.items() if key not in apart}, (), found)
-    defaults = remembered(Defaults, config["defaults"], ("defaults",), found) if "defaults" in config \
-        else Defaults()
-    parts["defaults"] = defaults
+    defaults = parts["defaults"] = remembered(Defaults, config.get("defaults", {}), ("defaults",), found)
     for section, cls in ENTRIES.items():
-        if section in config:
-            made = entries(cls, config[section], (section,), found, base=_base(defaults, cls), one=remembered)
-            parts[section] = {} if made is BAD else made
+        made = entries(cls, config.get(section, {}), (section,), found, base=_base(defaults, cls), one=remembered)
+        parts[section] = {} if made is BAD else made
     parts["scenes"] = _in_nc_units(parts["scenes"], found)
-    if "figures" in config:
-        made = entries(Figure, config["figures"], ("figures",), found, labels=KNOWN_FIGURES, one=remembered)
-        parts["figures"] = {} if made is BAD else made
+    made = entries(Figure, config.get("figures", {}), ("figures",), found, labels=KNOWN_FIGURES, one=remembered)
+    parts["figures"] = {} if made is BAD else made
     # each analysis as an entry (one with problems left out); given_fields says what else is wrong
     beyond, known = config.get("beyond", {}), {f.key: f for f in fields_of(Beyond)}
     mapping = isinstance(beyond, dict)
@@ -117,9 +92,8 @@ def read(config: Any) -> tuple[dict[str, Any], Errors]:
 
 
 def _in_nc_units(scenes: dict, found: Errors) -> dict:
-    """Each scene in (nc)'s units (:func:`in_nc_units`); one whose converted values break their declarations (an
-    SI value that is too large in (nc)'s units) or whose cradle is impossible (a swing beyond its string, another
-    exponent than Hertz's: :meth:`~cradle.scenes.spec.Scene.check_cradle`) left out, each problem said at it."""
+    """Each scene in (nc)'s units; one whose converted values break their declarations or whose cradle is
+    impossible (:meth:`~cradle.scenes.spec.Scene.check_cradle`) left out, its problems said."""
     out = {}
     for name, scene in scenes.items():
         try:
@@ -130,7 +104,7 @@ def _in_nc_units(scenes: dict, found: Errors) -> dict:
             continue
         mine = Errors()
         out[name].check_cradle(["scenes", name], mine)
-        if mine.lines:   # said here, and the scene left out: its estimate would be meaningless
+        if mine.lines:   # its budget's estimate would be meaningless
             found.lines += mine.lines
             found.paths |= mine.paths
             del out[name]
@@ -147,8 +121,7 @@ def typed(config: Any) -> Config:
     made = None if out.lines else Config(**{**parts, "beyond": Beyond(**parts["beyond"])})
     from cradle.pipeline import budget
 
-    # every job's estimated memory, output and time within budget before the physical checks build stored-time
-    # arrays: all jobs when every entry parsed, else the scenes that did (the largest budget if its own is bad)
+    # the budget before the checks build stored-time arrays: all jobs, else the scenes that parsed
     if made is not None:
         unestimated = budget.check(made)
     else:
@@ -167,22 +140,20 @@ def typed(config: Any) -> Config:
 
 
 def validate(config: Any) -> dict[str, Any]:
-    """``config`` validated, with every default filled in and every scene resolved (:func:`typed`), as plain
-    values in the order of the declarations: what the Snakefile's ``config`` holds. Raises
-    :class:`ConfigError` listing every problem found, one line each."""
+    """``config`` validated, defaults filled in, scenes resolved, as plain values in the order of the
+    declarations: what the Snakefile's ``config`` holds. Raises :class:`ConfigError`, one line per problem."""
     return plain(typed(config), canonical=False)
 
 
 def assume_validated(config: dict[str, Any]) -> dict[str, Any]:
-    """``config``, taken as validated (a Snakemake job's copy of the config its Snakefile validated:
-    workflow/rules/common.smk): an entry of it is then read alone (:func:`entry`), not the whole config."""
+    """``config`` taken as validated (a job's copy of its Snakefile's config): an entry is then read alone."""
     _TRUSTED.add(_key(config))
     return config
 
 
 def entry(config: dict[str, Any], section: str, name: str) -> Any:
-    """Entry ``name`` of ``section`` (scenes, homoclinic, map) of ``config``, typed and resolved; a config taken
-    as validated (:func:`assume_validated`) is read for that entry alone."""
+    """Entry ``name`` of ``section`` (scenes, homoclinic, map) of ``config``, typed and resolved against
+    ``defaults:`` (a scene in (nc)'s units)."""
     key = _key(config)
     if key in _TRUSTED and key not in _TYPED and name in (config.get(section) or {}):
         found, cls = Errors(), ENTRIES[section]
@@ -195,3 +166,35 @@ def entry(config: dict[str, Any], section: str, name: str) -> Any:
         raise ConfigError(f"config error: {section}.{name}: no {section} entry of that name ({section} entries: "
                           f"{', '.join(made) or 'none'})")
     return made[name]
+
+
+def scene(config: dict[str, Any], name: str) -> Scene:
+    return entry(config, "scenes", name)
+
+
+def homoclinic(config: dict[str, Any], name: str) -> HomoclinicEntry:
+    return entry(config, "homoclinic", name)
+
+
+def map_entry(config: dict[str, Any], name: str) -> MapEntry:
+    return entry(config, "map", name)
+
+
+def analysis_spec(config: dict[str, Any], name: str, form: str) -> Any:
+    """The typed spec of analysis ``name`` in one form, a key naming a section of entries given as ``all``
+    the names of its entries, sorted."""
+    from cradle.analyses.registry import ANALYSES, form_spec
+
+    a = ANALYSES[name]
+    if form not in a.forms:
+        raise ConfigError(f"config error: beyond.{a.name}: unknown form {form!r} (forms: {', '.join(a.forms)})")
+    cfg = typed(config)
+    names = {section: sorted(getattr(cfg, section)) for section in SECTIONS}
+    return form_spec(checks.with_all(getattr(cfg.beyond, a.module), names), form)
+
+
+def analysis_reads(config: dict[str, Any], name: str, form: str) -> dict[str, Read]:
+    """What analysis ``name`` reads in one form: name -> :class:`~cradle.analyses.protocol.Read`."""
+    from cradle.analyses.registry import ANALYSES
+
+    return ANALYSES[name].reads_of(analysis_spec(config, name, form))
