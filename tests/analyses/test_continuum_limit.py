@@ -115,6 +115,10 @@ def test_config_refuses_a_fit_range_without_four_points():
     with pytest.raises(cc.ConfigError, match=r"beyond\.continuum-limit\.hertz_eps = \[.*\]: needs at least 4 values <= "
                        r"beyond\.continuum-limit\.fit_below = 0\.003"):
         cc.analysis_spec(bad, "continuum-limit", "full")
+    bad["beyond"]["continuum-limit"] = {"fit_below": 1e-300}   # neither list reaches it: the line names fit_below
+    with pytest.raises(cc.ConfigError, match=r"beyond\.continuum-limit\.fit_below = 1e-300: leaves fewer than 4 "
+                       r"values of dps_eps and of hertz_eps"):
+        cc.analysis_spec(bad, "continuum-limit", "full")
     spec = cc.analysis_spec(raw, "continuum-limit", "reduced")
     assert spec.dps_eps == [0.1, 0.05, 0.02, 0.01, 0.005] and spec.fit_below == 0.1
 

@@ -100,13 +100,19 @@ class ContinuumLimit:
         if list(self.mobility_alphas) != sorted(set(self.mobility_alphas)):
             out.add(where + ["mobility_alphas"], "must increase strictly (the crossover is read along them)",
                     self.mobility_alphas)
+        short = []
         for key in ("dps_eps", "hertz_eps"):
             values = getattr(self, key)
             if len(set(values)) != len(values):
                 out.add(where + [key], "lists a value twice", values)
             if sum(e <= self.fit_below for e in values) < 4:
-                out.add(where + [key], f"needs at least 4 values <= {key_path(where + ['fit_below'])} = "
-                        f"{self.fit_below:g} (the power fit has three parameters)", values)
+                short.append(key)
+        if len(short) == 2:   # neither list reaches it: the bound is what is wrong
+            out.add(where + ["fit_below"], "leaves fewer than 4 values of dps_eps and of hertz_eps at or below it "
+                    "(the power fit has three parameters)", self.fit_below)
+        for key in short if len(short) == 1 else ():
+            out.add(where + [key], f"needs at least 4 values <= {key_path(where + ['fit_below'])} = "
+                    f"{self.fit_below:g} (the power fit has three parameters)", getattr(self, key))
 
 
 _E = ("eps",)
