@@ -78,6 +78,13 @@ def test_collision_time_closed_form_and_its_scaling():
     assert ph.collision_time(DESK, 3.0) / ph.collision_time(DESK, 0.3) == pytest.approx(10 ** -0.2, rel=1e-12)
 
 
+@pytest.mark.parametrize("v", [299792458.0, 1e300])
+def test_collision_time_refuses_a_speed_at_or_beyond_light(v):
+    # v^2 of 1e300 overflowed inside (OverflowError); the speed of light is the bound no sphere reaches
+    with pytest.raises(ConfigError, match=rf"^v = {v!r}: must be < 299792458$".replace("+", r"\+")):
+        ph.collision_time(DESK, v)
+
+
 @pytest.mark.parametrize("kwargs, line", [
     (dict(material="stel", radius=0.01, length=0.1), "material = 'stel': unknown; did you mean 'steel'?"),
     (dict(material="steel", radius=-0.01, length=0.1), "cradle.radius = -0.01"),

@@ -65,7 +65,9 @@ SHARED: dict[str, dict[str, Any]] = {
     "eps": {"description": "Amplitude parameter eps of the ansatz (ansatzapprox); > 0.", "type": "number",
             "exclusiveMinimum": 0},
     "q": {"description": "Wavenumber q (radians per site).", "type": "number"},
-    "speed": {"description": "A relative speed of two spheres (m/s); > 0.", "type": "number", "exclusiveMinimum": 0},
+    "speed": {"description": "A relative speed of two spheres (m/s); > 0 and below the speed of light, "
+                             "299792458 m/s (exact in the SI).", "type": "number", "exclusiveMinimum": 0,
+              "exclusiveMaximum": 299792458.0},
     "iterations": {"description": "Iterations of the map G; integer >= 0.", "type": "integer", "minimum": 0,
                    "maximum": MAX_COUNT},
 }
