@@ -43,3 +43,16 @@ def test_the_checked_functions_still_compute():
     assert cradle.collision_time(STEEL, 0.1) > 0
     assert cradle.gamma_star(10).shape == (10,)
     assert cradle.orbits([[0.0, 1e-3]], 3, 1.5).shape[-2:] == (4, 2)
+
+
+@pytest.mark.parametrize("build", ["solve", "pair", "two_breathers"])
+def test_a_homoclinic_too_large_for_memory_is_one_line(build):
+    # N = 1e6 raised MemoryError from inside (a dense Jacobian of N^2 doubles, 7.3 TiB): refused before allocating it
+    from cradle.models import homoclinic, initial, pairs
+
+    call = {"solve": lambda: homoclinic.solve(np.zeros(10**6), alpha=1.5),
+            "pair": lambda: initial.pair(10**6, 1.5, amplitude=0.1, separation=10),
+            "two_breathers": lambda: pairs.two_breathers(10**6, 1.5)}[build]
+    with pytest.raises(ValueError, match=r"^N = 1000000: the dense Jacobian alone needs 7\.45e\+03 GiB "
+                                         r"\(N\^2 doubles\), more than this machine's .* GiB of memory$"):
+        call()

@@ -17,6 +17,7 @@ the tails below machine precision in :mod:`cradle.models.homoclinic_tails`.
 """
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -124,7 +125,19 @@ def _start(guess: ArrayLike, mu: float) -> np.ndarray:
     guess = np.asarray(guess, dtype=float)
     if guess.ndim != 1 or guess.size < 2:
         raise ValueError(f"need N >= 2 sites, got N={guess.size}")
+    need, have = 8.0 * guess.size**2, _memory()
+    if need > have:   # Powell's method and Newton hold the dense N x N Jacobian: refuse before allocating it
+        raise ValueError(f"N = {guess.size}: the dense Jacobian alone needs {need / 2**30:.3g} GiB (N^2 doubles), "
+                         f"more than this machine's {have / 2**30:.3g} GiB of memory")
     return guess
+
+
+def _memory() -> float:
+    """This machine's physical memory in bytes (inf where the system does not say)."""
+    try:
+        return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
+    except (AttributeError, ValueError, OSError):
+        return float("inf")
 
 
 @checked
