@@ -102,11 +102,13 @@ TREES = {a.name: a.module for a in ANALYSES.values()}
 
 
 def _variables(module: str) -> dict:
-    """The declared groups of an analysis, a group per scene (``/{scene}``) named ``s0``."""
+    """The declared groups of an analysis, a group per scene (``/{scene}``) or per member (``/dps_site/{k}``) named
+    ``s0``."""
+    import re
     from importlib import import_module
 
     variables = import_module(f"cradle.analyses.{module}").VARIABLES
-    return {path.format(scene="s0"): decl for path, decl in variables.items()}
+    return {re.sub(r"\{\w+\}", "s0", path): decl for path, decl in variables.items()}
 
 
 def _declared_tree(module: str):

@@ -12,6 +12,7 @@ where it does not.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -271,6 +272,7 @@ def solve_kind(N: int, kind: str, alpha: float, bc: str = "periodic", mu: float 
 WINDOW = 64
 
 
+@functools.lru_cache(maxsize=256)   # a config is validated again and again (Snakemake, the fuzz): solve once
 def zero_at(site: int, N: int, kind: str, alpha: float, bc: str = "periodic", mu: float = 1.0,
             amplitude: float = 0.1, centre: int | None = None, separation: int = 9) -> bool | None:
     """Whether the profile :func:`solve_kind` gives for these arguments is 0 (in double precision) at ``site``:
@@ -296,6 +298,7 @@ def zero_at(site: int, N: int, kind: str, alpha: float, bc: str = "periodic", mu
     return not 0 <= k < size or bool(a[k] == 0)
 
 
+@functools.lru_cache(maxsize=256)   # a config is validated again and again (Snakemake, the fuzz): solve once
 def solve_fails(N: int, kind: str, alpha: float, bc: str = "periodic", mu: float = 1.0, amplitude: float = 0.1,
                 centre: int | None = None, separation: int = 9) -> str | None:
     """Why :func:`solve_kind` fails for these arguments (it raises, or its answer did not converge or is not
