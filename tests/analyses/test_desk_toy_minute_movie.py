@@ -78,3 +78,13 @@ def test_stills_are_the_first_impact_the_break_up_and_late_swinging(movie, tmp_p
     assert slow[frames["impact"]] == 0 and slow[frames["late"]] == -1
     paths = write_stills(ds, {frames[k]: tmp_path / f"{k}.png" for k in STILLS}, 320, 180)
     assert len(paths) == 3 and all(p.stat().st_size > 0 for p in paths)
+
+
+def test_animate_writes_every_frame_and_a_gif_of_the_asked_frames(movie, tmp_path):
+    from cradle.figures.desk_toy_minute_movie import animate
+
+    _, _, ds = movie
+    info = animate(ds, tmp_path / "m.mp4", 320, 180, gif=tmp_path / "m.gif", gif_fps=5, gif_duration=1.0,
+                   gif_width=160)
+    assert info["path"].stat().st_size > 0 and info["gif"]["path"].stat().st_size > 0
+    assert info["gif"]["frames"] == min(5, len(info["times"])) and len(info["times"]) == ds["t"].size

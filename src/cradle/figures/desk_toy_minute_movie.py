@@ -205,22 +205,9 @@ def still_frames(ds: xr.Dataset) -> dict[str, int]:
 def write_stills(ds: xr.Dataset, paths: Mapping[int, str | os.PathLike], width: int = 1280,
                  height: int = 720) -> list[Path]:
     """Write the frames ``paths`` names (frame index -> PNG path) of the movie's run ``ds``."""
-    from PIL import Image
+    from cradle.figures.movie import write_stills_with
 
-    from cradle.figures.movie import _atomic
-
-    order = sorted(paths)
-    frames = render(ds, width, height, order)
-    next(frames)
-    written = []
-    for k, frame in zip(order, frames, strict=True):
-        img = Image.fromarray(frame)
-
-        def save(tmp: Path, img: Image.Image = img) -> None:
-            img.save(tmp, format="PNG")
-
-        written.append(_atomic(paths[k], save))
-    return written
+    return write_stills_with(render, ds, paths, width, height)
 
 
 def animate(ds: xr.Dataset, out: str | os.PathLike, width: int = 1280, height: int = 720,
@@ -229,18 +216,6 @@ def animate(ds: xr.Dataset, out: str | os.PathLike, width: int = 1280, height: i
     """Write the movie of the run ``ds`` to ``out`` (.mp4, every frame, at the frame rate the run was made for)
     and, if ``gif`` is a path, a GIF of ``gif_duration`` s at ``gif_fps``, its frames evenly spaced in frame index;
     returns what :func:`render` describes."""
-    from cradle.figures.movie import write_gif, write_mp4
+    from cradle.figures.movie import animate_with
 
-    fps = int(ds.attrs["fps"])
-    frames = render(ds, width, height)
-    info = next(frames)
-    write_mp4(out, frames, info["size"], fps)
-    info["path"] = Path(out)
-    if gif is not None:
-        n = len(info["times"])
-        pick = np.unique(np.rint(np.linspace(0, n - 1, min(max(1, round(gif_fps * gif_duration)), n))))
-        gframes = render(ds, width, height, pick.astype(np.int64))
-        next(gframes)
-        write_gif(gif, gframes, gif_fps, gif_width)
-        info["gif"] = {"path": Path(gif), "frames": len(pick)}
-    return info
+    return animate_with(render, ds, out, width, height, gif, gif_fps, gif_duration, gif_width)

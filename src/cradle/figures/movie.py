@@ -290,3 +290,43 @@ def animate(ds: xr.Dataset, out: str | os.PathLike, spec: MovieSpec = MovieSpec(
         write_gif(gif, gframes, gspec.fps, gif_width)
         info["gif"] = {"path": Path(gif), "frames": len(ginfo["indices"])}
     return info
+
+
+def write_stills_with(render_frames: Callable[..., Iterator[Any]], ds: xr.Dataset,
+                      paths: Mapping[int, str | os.PathLike], width: int, height: int) -> list[Path]:
+    """Write the frames ``paths`` names (frame index -> PNG path) of ``ds`` drawn by ``render_frames`` (the desk
+    toys' movies: :mod:`cradle.figures.desk_toy_movie`, :mod:`cradle.figures.desk_toy_minute_movie`)."""
+    from PIL import Image
+
+    order = sorted(paths)
+    frames = render_frames(ds, width, height, order)
+    next(frames)
+    written = []
+    for k, frame in zip(order, frames, strict=True):
+        img = Image.fromarray(frame)
+
+        def save(tmp: Path, img: Image.Image = img) -> None:
+            img.save(tmp, format="PNG")
+
+        written.append(_atomic(paths[k], save))
+    return written
+
+
+def animate_with(render_frames: Callable[..., Iterator[Any]], ds: xr.Dataset, out: str | os.PathLike, width: int,
+                 height: int, gif: str | os.PathLike | None, gif_fps: int, gif_duration: float,
+                 gif_width: int) -> dict:
+    """Write the movie of ``ds`` drawn by ``render_frames`` to ``out`` (.mp4, every frame, at the run's ``fps``
+    attribute) and, if ``gif`` is a path, a GIF of ``gif_duration`` s at ``gif_fps``, its frames evenly spaced in
+    frame index; returns what ``render_frames`` describes."""
+    frames = render_frames(ds, width, height)
+    info = next(frames)
+    write_mp4(out, frames, info["size"], int(ds.attrs["fps"]))
+    info["path"] = Path(out)
+    if gif is not None:
+        n = len(info["times"])
+        pick = np.unique(np.rint(np.linspace(0, n - 1, min(max(1, round(gif_fps * gif_duration)), n))))
+        gframes = render_frames(ds, width, height, pick.astype(np.int64))
+        next(gframes)
+        write_gif(gif, gframes, gif_fps, gif_width)
+        info["gif"] = {"path": Path(gif), "frames": len(pick)}
+    return info
