@@ -116,13 +116,13 @@ def test_every_shared_type_refuses_every_shape_of_bad_value(shared):
         assert refusal(shared, bad, "arg") == f"arg = {bad!r}: must be a finite number"
     for bad in (-1e300, -1, 0, 0.0, 1e-300, 1e300):
         lo = decl.get("minimum", decl.get("exclusiveMinimum"))
-        hi = decl.get("maximum")
+        hi, hi_ex = decl.get("maximum"), decl.get("exclusiveMaximum")
         too_low = bad < lo if "minimum" in decl else bad <= lo if lo is not None else False
-        too_high = hi is not None and bad > hi
+        too_high = hi is not None and bad > hi or hi_ex is not None and bad >= hi_ex
         if decl["type"] == "integer" and not float(bad).is_integer():
             assert refusal(shared, bad, "arg") == f"arg = {bad!r}: must be an integer"
         elif too_low or too_high:
-            assert refusal(shared, bad, "arg").startswith(f"arg = {bad!r}: must be {'>' if too_low else '<='}")
+            assert refusal(shared, bad, "arg").startswith(f"arg = {bad!r}: must be {'>' if too_low else '<'}")
         else:
             assert checker(shared)("arg", bad) == bad
 
