@@ -207,20 +207,9 @@ def render(ds: xr.Dataset, width: int = 1280, height: int = 720,
     yield {"times": mf.t[idx], "indices": idx, "speed": mf.speed[idx], "force_max": mf.force_max,
            "size": (width, height), "axes": mf.fig.axes}
 
-    # the static parts are drawn once; each frame restores them and draws the moving artists (Agg blitting)
-    for artist in mf.moving:
-        artist.set_animated(True)
-    mf.canvas.draw()
-    background = mf.canvas.copy_from_bbox(mf.fig.bbox)
-    for k in idx:
-        mf.show(int(k))
-        mf.canvas.restore_region(background)
-        for artist in mf.moving:
-            if artist.axes is not None:
-                artist.axes.draw_artist(artist)
-            else:
-                mf.fig.draw_artist(artist)
-        yield np.asarray(mf.canvas.buffer_rgba())[..., :3].copy()
+    from cradle.figures.movie import blitted
+
+    yield from blitted(mf, idx)
 
 
 def write_stills(ds: xr.Dataset, paths: Mapping[int, str | os.PathLike], width: int = 1280,

@@ -330,3 +330,21 @@ def animate_with(render_frames: Callable[..., Iterator[Any]], ds: xr.Dataset, ou
         write_gif(gif, gframes, gif_fps, gif_width)
         info["gif"] = {"path": Path(gif), "frames": len(pick)}
     return info
+
+
+def blitted(mf: Any, idx: NDArray[np.int64]) -> Iterator[NDArray[np.uint8]]:
+    """The frames of a desk toy's movie figure ``mf`` (``fig``, ``canvas``, ``moving`` artists, ``show(k)``) at
+    ``idx``: the static parts drawn once, each frame restoring them and drawing the moving artists (Agg blitting)."""
+    for artist in mf.moving:
+        artist.set_animated(True)
+    mf.canvas.draw()
+    background = mf.canvas.copy_from_bbox(mf.fig.bbox)
+    for k in idx:
+        mf.show(int(k))
+        mf.canvas.restore_region(background)
+        for artist in mf.moving:
+            if artist.axes is not None:
+                artist.axes.draw_artist(artist)
+            else:
+                mf.fig.draw_artist(artist)
+        yield np.asarray(mf.canvas.buffer_rgba())[..., :3].copy()
