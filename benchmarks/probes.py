@@ -525,6 +525,9 @@ def main(argv=None) -> int:
         subprocess.run(["git", "clone", "-q", str(ROOT), str(repo)], check=True)
     try:
         rows = run(repo, cache, args.only)
+        # the commit the scratch clone ran (this checkout may have moved on meanwhile), read before it is removed
+        head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=repo, capture_output=True,
+                              text=True).stdout
     finally:
         if not (args.keep or args.reuse):
             shutil.rmtree(tmp, ignore_errors=True)
@@ -534,8 +537,6 @@ def main(argv=None) -> int:
     print(f"{held} of {len(rows)} probes hold")
     if args.only:
         return 0 if held == len(rows) else 1
-    # the commit the scratch clone ran (this checkout may have moved on meanwhile)
-    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=repo, capture_output=True, text=True).stdout
     text = (f"Rerun by `python benchmarks/probes.py` ({time.strftime('%Y-%m-%d')}, commit {head.strip()}): "
             f"**{held} of {len(rows)} hold**.\n\n"
             "| group | probe | expected | exit | what the user is told (last line) | wall | holds |\n"
