@@ -45,6 +45,7 @@ if TYPE_CHECKING:
 
     from cradle.analyses.protocol import Log
     from cradle.integrators.dps_travelling import TravellingBreather
+    from cradle.integrators.lattice_travelling import LatticeTB
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -96,12 +97,32 @@ class TravellingBreathers:
     static_samples: int = param(64, "Samples per period of |A_n(tau)| against the static profiles.", minimum=8,
                                 maximum=4096, reduced=32)
 
+    # exact TBs of the lattice (nc) (issue 37, item 2): section "the lattice's travelling breathers" below
+    lattice_source: float = param(0.08, "c of the DpS member (one of speeds) whose ansatz starts the lattice's TBs.",
+                                  exclusiveMinimum=0, maximum=2)
+    lattice_eps: float = param(0.005, "eps of the ansatz x_n = 2 eps Re(A_n(eps^(alpha-1) t) e^{it}) that starts "
+                               "the lattice's TBs (the time per site is T_d eps^(1-alpha)).", exclusiveMinimum=0,
+                               maximum=0.5)
+    lattice_steps: list[float] = param([-0.02, -0.01, 0.0, 0.01, 0.02],
+                                       "Relative changes s of the lattice's velocity: members at c = c0 (1 + s), c0 "
+                                       "the first solve's (increasing, one of them 0).", minItems=1, maxItems=40,
+                                       items={"type": "number", "minimum": -0.5, "maximum": 0.5,
+                                              "description": "One relative change of the lattice TB's velocity."},
+                                       reduced=[0.0, 0.01])
+    lattice_periods: int = param(4, "Periods T of the direct run of the first lattice TB.", minimum=1, maximum=1000,
+                                 reduced=2)
+
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Each form: speeds increasing, direct_speed among them, a check ring other than the ring."""
         if any(y <= x for x, y in itertools.pairwise(self.speeds)):
             out.add(where + ["speeds"], "must be strictly increasing", self.speeds)
         if float(self.direct_speed) not in [float(x) for x in self.speeds]:
             out.add(where + ["direct_speed"], f"must be one of speeds = {self.speeds}", self.direct_speed)
+        if float(self.lattice_source) not in [float(x) for x in self.speeds]:
+            out.add(where + ["lattice_source"], f"must be one of speeds = {self.speeds}", self.lattice_source)
+        if any(y <= x for x, y in itertools.pairwise(self.lattice_steps)) or 0.0 not in self.lattice_steps:
+            out.add(where + ["lattice_steps"], "must be strictly increasing and hold 0 (the first solve)",
+                    self.lattice_steps)
         if self.check_N == self.N:
             out.add(where + ["check_N"], f"must differ from N = {self.N} (it checks the verdicts against N)",
                     self.check_N)
@@ -140,15 +161,17 @@ def family(spec: TravellingBreathers, N: int, rtol: float,
     return down[::-1] + up, first.c
 
 
-def verdict(b: TravellingBreather, threshold: float) -> tuple[float, float, bool, bool]:
-    """(trivial defect, growth rate, unstable, real): the four multipliers nearest 1 are the trivial ones; their
+def verdict(b: TravellingBreather | LatticeTB, threshold: float,
+            trivial: int = TRIVIAL) -> tuple[float, float, bool, bool]:
+    """(trivial defect, growth rate, unstable, real): the ``trivial`` multipliers nearest 1 are the trivial ones (four
+    for DpS, :data:`LATTICE_TRIVIAL` for the lattice); their
     largest |mu - 1| is the defect, ln max|mu| / T over the others the growth rate; ``real`` when the unstable
     multiplier is real and > 1 (a pair left +1 along the real axis, the kind the dH/dc criterion is about)
     rather than an oscillatory quartet."""
     mu = b.multipliers
     order = np.argsort(np.abs(mu - 1.0))
-    defect = float(np.abs(mu[order[TRIVIAL - 1]] - 1.0))
-    rest = mu[order[TRIVIAL:]]
+    defect = float(np.abs(mu[order[trivial - 1]] - 1.0))
+    rest = mu[order[trivial:]]
     top = rest[int(np.argmax(np.abs(rest)))]
     rate = float(np.log(np.abs(top)) / b.T)
     unstable = rate > threshold
@@ -214,6 +237,73 @@ def verdict_changes(c: NDArray[np.float64], unstable: NDArray[np.bool_]) -> list
     return [float(0.5 * (c[i] + c[i + 1])) for i in range(len(c) - 1) if unstable[i] != unstable[i + 1]]
 
 
+# ----------------------------------------------------------------- the lattice's travelling breathers
+# Issue 37, item 2: exact TBs of (nc), x_n(t + T) = x_{n-1}(t), started from a DpS member through the ansatz
+# (cradle.integrators.lattice_travelling); kept apart from the DpS family above.
+
+#: trivial multipliers modulo shift of a lattice TB: the time shift, in a Jordan block with the energy
+LATTICE_TRIVIAL = 2
+
+
+def lattice_family(spec: TravellingBreathers, source: TravellingBreather,
+                   log: Log | None = None) -> tuple[list[LatticeTB], dict]:
+    """The lattice's TBs at c = c0 (1 + s), s in ``lattice_steps``: the ansatz of the DpS member ``source`` at
+    ``lattice_eps`` run by (nc) for its time per site T_d eps^(1-alpha); the period of the first solve is the time
+    when the run comes closest to the shifted start (:func:`LT.launch_period`), c0 = 1/T; the others by continuation."""
+    from cradle.integrators import lattice_travelling as LT
+
+    z, T_hop = LT.ansatz_start(source.A, source.T, spec.alpha, spec.lattice_eps)
+    T, start_res = LT.launch_period(z, T_hop, spec.alpha)
+    first = LT.newton(z, T, spec.alpha, tol=spec.newton_tol, max_iter=20, rtol=spec.rtol, log=log)
+    if not first.converged:
+        raise RuntimeError(f"lattice travelling breathers: no TB from the ansatz of c = {source.c:.4g} at eps = "
+                           f"{spec.lattice_eps} (residual {first.residual:.3g} after {first.iterations} iterations)")
+    s = np.asarray(spec.lattice_steps, float)
+    cs = first.c * (1.0 + s)
+    down, _ = LT.continue_family(first, cs[s < 0][::-1], spec.newton_tol, spec.rtol, log=log)
+    up, _ = LT.continue_family(first, cs[s >= 0], spec.newton_tol, spec.rtol, log=log)
+    info = {"lattice_T_ansatz_start": T_hop, "lattice_T_first": T, "lattice_start_residual": start_res,
+            "lattice_first_iterations": first.iterations}
+    run = LT.direct_run(first, spec.lattice_periods, spec.rtol)
+    info |= {"lattice_direct_energy_drift": float(np.max(run["energy_drift"])),
+             "lattice_direct_max_residual": float(np.max(run["residual"]))}
+    return down[::-1] + up, info
+
+
+def lattice_groups(spec: TravellingBreathers, fam: list[TravellingBreather],
+                   log: Log | None = None) -> tuple[dict, dict]:
+    """The groups /lattice and /lattice_states of the file and their attributes."""
+    from cradle.integrators import lattice_breathers as LB, lattice_travelling as LT
+    from cradle.models import dps_travelling as M
+
+    source = fam[int(np.argmin([abs(b.c - spec.lattice_source) for b in fam]))]
+    members, info = lattice_family(spec, source, log)
+    ver = [verdict(b, spec.stability_threshold, LATTICE_TRIVIAL) for b in members]
+    dist = [LT.ansatz_distance(b, source.A, source.T) for b in members]
+    c = np.array([b.c for b in members])
+    N = members[0].z.size // 2
+    groups = {
+        "/lattice": ({"period": 1.0 / c, "eps": [d["eps"] for d in dist], "energy": [b.energy for b in members],
+                      "residual": [b.residual for b in members], "tail": [M.tail_amplitude(b.envelope)
+                                                                         for b in members],
+                      "trivial_defect": [v[0] for v in ver], "growth_rate": [v[1] for v in ver],
+                      "unstable": [int(v[2]) for v in ver],
+                      "reciprocal_defect": [LB.multiplier_checks(b.multipliers)["reciprocal"] for b in members],
+                      "ansatz_distance": [d["distance"] for d in dist], "ansatz_period": [d["T_ansatz"] for d in dist]},
+                     {"c_lattice": c}),
+        "/lattice_states": ({"x": np.array([b.z[:N] for b in members]), "v": np.array([b.z[N:] for b in members]),
+                             "mu_re": np.array([b.multipliers.real for b in members]),
+                             "mu_im": np.array([b.multipliers.imag for b in members]),
+                             "source_A_re": source.A.real, "source_A_im": source.A.imag},
+                            {"c_lattice": c, "site": np.arange(N), "mode": np.arange(2 * N)}),
+    }
+    info |= {"lattice_source_c": source.c, "lattice_eps": spec.lattice_eps,
+             "lattice_max_residual": float(max(b.residual for b in members)),
+             "lattice_max_trivial_defect": float(max(v[0] for v in ver)),
+             "lattice_n_unstable": int(sum(v[2] for v in ver))}
+    return groups, info
+
+
 # ----------------------------------------------------------------- the stored file
 
 _C = ("c",)
@@ -256,6 +346,34 @@ VARIABLES = {
     "/direct": {
         "k": Var(("k",), "periods of the direct run"),
         "residual": Var(("k",), "max_n |A_n(kT) - e^{i k theta} A_{n-k}(0)| / max |A|"),
+    },
+    "/lattice": {
+        "c_lattice": Var(("c_lattice",), "velocity c = 1/T of the lattice's TB (sites per unit t)"),
+        "period": Var(("c_lattice",), "period T of (tbnc): x_n(t + T) = x_{n-1}(t)"),
+        "eps": Var(("c_lattice",), "eps of the ansatz at the TB's amplitude: sqrt(sum |xi_n|^2 / sum |A_n|^2)"),
+        "energy": Var(("c_lattice",), "energy (ham) of the lattice's TB"),
+        "residual": Var(("c_lattice",), "shift-map residual max |S^{-1} Phi_T(z) - z| / max |z|"),
+        "tail": Var(("c_lattice",), "max |xi_n| on the quarter ring farthest from the centre / max |xi_n|, "
+                    "xi_n = (x_n - i v_n)/2"),
+        "trivial_defect": Var(("c_lattice",), "largest |mu - 1| of the two trivial multipliers modulo shift"),
+        "growth_rate": Var(("c_lattice",), "ln max |mu| / T over the non-trivial multipliers modulo shift "
+                           "(per unit t)"),
+        "unstable": Var(("c_lattice",), "1 if growth_rate > stability_threshold"),
+        "reciprocal_defect": Var(("c_lattice",), "max over mu of the distance of 1/mu to the nearest multiplier"),
+        "ansatz_distance": Var(("c_lattice",), "min over the DpS time, site shift and phase of max |z - z_ansatz| / "
+                               "max |z| (the source DpS TB through the ansatz)"),
+        "ansatz_period": Var(("c_lattice",), "time per site T_d eps^(1-alpha) that the ansatz gives at this eps"),
+    },
+    "/lattice_states": {
+        "c_lattice": Var(("c_lattice",), "velocity c = 1/T of the lattice's TB (sites per unit t)"),
+        "site": Var(("site",), "bead index n on the ring"),
+        "mode": Var(("mode",), "index of a Floquet multiplier modulo shift"),
+        "x": Var(("c_lattice", "site"), "x_n(0) of the lattice's TB"),
+        "v": Var(("c_lattice", "site"), "v_n(0) of the lattice's TB"),
+        "mu_re": Var(("c_lattice", "mode"), "real part of a multiplier of S^{-1} DPhi_T"),
+        "mu_im": Var(("c_lattice", "mode"), "imaginary part of a multiplier of S^{-1} DPhi_T"),
+        "source_A_re": Var(("site",), "Re A_n(0) of the DpS TB whose ansatz started the lattice's TBs"),
+        "source_A_im": Var(("site",), "Im A_n(0) of the DpS TB whose ansatz started the lattice's TBs"),
     },
     "/claims": {"row": Var(("row",), "index of a cited statement"),
                 **{col: Var(("row",), f"claims-table column {col}") for col in COLUMNS}},
@@ -395,6 +513,10 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
                   "P. G. Kevrekidis, A. Vainchtein, arXiv 1701.04882",
         "wall_time_s": _time.perf_counter() - t0,
     }
+    lattice, lattice_attrs = lattice_groups(spec, fam, say)
+    groups |= lattice
+    attrs |= lattice_attrs
+    attrs["wall_time_s"] = _time.perf_counter() - t0
     tree = make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
                      title="Travelling breathers of the DpS equation")
     return tree

@@ -9,7 +9,8 @@ check_N sites; (c) H against c at fixed norm (dH/dc > 0: H rises with c where it
 ln max|mu| / T of the non-trivial multipliers modulo shift against c (the stability threshold dashed; unstable
 members filled), on the two rings and at check_rtol; (e) the multipliers modulo shift of the most unstable member
 and of the slowest, with the unit circle; (f) the distance of |A_n(tau)| to the static site and bond breathers
-against c.
+against c; (g)-(i) the exact TBs of the lattice (nc) (issue 37, item 2): their |xi_n| against the DpS member's
+ansatz, their tails and distances to it against the lattice's velocity, their multipliers modulo shift.
 """
 from __future__ import annotations
 
@@ -27,8 +28,8 @@ MIN_POINTS = 3
 
 
 def draw(tree: AnalysisTree) -> Figure:
-    """The six panels above."""
-    fig, ax = figure(2, 3, width=13.5, height=7.6)
+    """The nine panels above."""
+    fig, ax = figure(3, 3, width=13.5, height=11.4)
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
     prof = tree["profiles"]
@@ -115,5 +116,55 @@ def draw(tree: AnalysisTree) -> Figure:
     h.set_title(f"(f) min over a period of max$_n$ $||A_n| - \\phi_n|$ / max $\\phi$; "
                 f"$\\propto c^{{{float(attrs['static_distance_power']):.2f}}}$", fontsize=9)
     h.legend(fontsize=7, loc="lower right")
+    _lattice_panels(tree, ax[2])
     return fig
+
+
+def _lattice_panels(tree: AnalysisTree, ax: np.ndarray) -> None:
+    """(g) |xi_n(0)| of the lattice's TBs and eps |A_n| of the DpS source member (aligned on the peak); (h) their
+    tails and distances to the ansatz against the lattice's velocity; (i) the multipliers modulo shift of the
+    slowest and the fastest lattice member."""
+    lat, st = tree["lattice"], tree["lattice_states"]
+    c = np.asarray(lat["c_lattice"].values)
+    xi = 0.5 * (np.asarray(st["x"].values) - 1j * np.asarray(st["v"].values))
+    A = np.asarray(st["source_A_re"].values) + 1j * np.asarray(st["source_A_im"].values)
+    n = np.asarray(st["site"].values)
+    eps = np.asarray(lat["eps"].values)
+    g = ax[0]
+    bottom = 0.2 * float(np.min(np.abs(xi)))
+    for k, i in enumerate(sorted({0, len(c) - 1})):
+        g.semilogy(n, np.abs(xi[i]), "o-", color=f"C{k + 4}", ms=3, lw=1.0, label=f"(nc) TB, c = {c[i]:.4g}")
+    dps = np.roll(eps[0] * np.abs(A), int(np.argmax(np.abs(xi[0]))) - int(np.argmax(np.abs(A))))
+    g.semilogy(n, np.where(dps >= bottom, dps, np.nan), "k--", lw=1.0,
+               label=f"DpS TB c = {float(tree.attrs['lattice_source_c']):.3g}, $\\varepsilon$ = {eps[0]:.3g}")
+    g.set_ylim(bottom, 5.0 * float(np.max(np.abs(xi))))
+    g.set_xlabel("site n")
+    g.set_ylabel("$|\\xi_n(0)|$, $\\xi_n = (x_n - i v_n)/2$")
+    g.set_title(f"(g) exact TBs of (nc), ring of {n.size}", fontsize=9)
+    g.legend(fontsize=7, loc="upper left")
+
+    h = ax[1]
+    h.semilogy(c, lat["tail"].values, "C4o-", ms=4, label="tail: max far $|\\xi_n|$ / max $|\\xi_n|$")
+    h.semilogy(c, lat["ansatz_distance"].values, "C5s--", ms=4, label="distance to the DpS TB's ansatz")
+    h.semilogy(c, lat["residual"].values, "k+", ms=6, label="shift-map residual")
+    h.set_ylim(None, 3.0)
+    h.set_xlabel("lattice velocity c = 1/T (sites per unit t)")
+    h.set_ylabel("relative to the peak")
+    h.set_title("(h) (nc) TBs: tail and distance to DpS", fontsize=9)
+    h.legend(fontsize=7, loc="center right")
+
+    i_ = ax[2]
+    mu = np.asarray(st["mu_re"].values) + 1j * np.asarray(st["mu_im"].values)
+    t = np.linspace(0, 2 * np.pi, 400)
+    i_.plot(np.cos(t), np.sin(t), color="0.6", lw=0.8, label="unit circle")
+    i_.plot(mu[0].real, mu[0].imag, "C4o", ms=5, mfc="none", label=f"c = {c[0]:.4g}")
+    i_.plot(mu[-1].real, mu[-1].imag, "C5x", ms=5, label=f"c = {c[-1]:.4g}")
+    i_.set_aspect("equal")
+    i_.set_xlim(-1.35, 1.35)
+    i_.set_ylim(-1.35, 1.6)
+    i_.set_xlabel("Re $\\mu$")
+    i_.set_ylabel("Im $\\mu$")
+    rate = float(np.max(lat["growth_rate"].values))
+    i_.set_title(f"(i) (nc) multipliers modulo shift (max growth {rate:.2g})", fontsize=9)
+    i_.legend(fontsize=7, loc="upper center", ncol=3, handlelength=1.0, columnspacing=0.8)
 

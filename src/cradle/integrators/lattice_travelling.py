@@ -248,3 +248,27 @@ def direct_run(b: LatticeTB, periods: int, rtol: float = RTOL) -> dict:
         res.append(float(np.max(np.abs(back - z0)) / np.max(np.abs(z0))))
         drift.append(abs(energy(z, b.alpha) - H0) / abs(H0))
     return {"k": np.arange(periods + 1), "residual": np.array(res), "energy_drift": np.array(drift)}
+
+
+def ansatz_distance(b: LatticeTB, A: ArrayLike, T_d: float, samples: int = 64, rtol: float = 1e-12) -> dict:
+    """The distance of the lattice TB to the DpS TB (A, T_d) through the ansatz: eps from the TB's own amplitude
+    (:attr:`LatticeTB.eps` over sqrt(sum |A_n|^2)), then min over the DpS time s in one period (``samples``), the
+    site shifts k and the phase phi (least squares on xi_n = (x_n - i v_n) / 2) of
+    max |z - z_ansatz(e^{i phi} A_{n-k}(s), eps)| / max |z|. Returns the distance, eps and the T_d eps^(1-alpha)
+    that the ansatz gives as the time per site (to set against the TB's T)."""
+    from cradle.integrators import integrate_dps
+    from cradle.models.initial import lattice_state
+
+    A = np.asarray(A, complex)
+    N = A.size
+    eps = b.eps / float(np.sqrt(np.sum(np.abs(A) ** 2)))
+    run = integrate_dps(A, np.linspace(0.0, T_d, samples, endpoint=False), alpha=b.alpha, rtol=rtol)
+    xi = b.envelope
+    best = np.inf
+    for As in run.A:
+        for k in range(N):
+            Ak = np.roll(As, k)
+            phi = float(np.angle(np.sum(np.conj(Ak) * xi)))
+            x0, v0 = lattice_state(np.exp(1j * phi) * Ak, eps, b.alpha, "periodic")
+            best = min(best, float(np.max(np.abs(np.concatenate([x0, v0]) - b.z))))
+    return {"distance": best / float(np.max(np.abs(b.z))), "eps": eps, "T_ansatz": T_d * eps ** (1.0 - b.alpha)}
