@@ -23,7 +23,7 @@ from cradle.specs.values import ConfigError
 
 def _tiny(**over):
     plain = {"N": 16, "check_N": 18, "speeds": [0.06, 0.08, 0.1], "direct_speed": 0.08, "direct_periods": 3,
-             "static_samples": 16, "lattice_steps": [0.0], "lattice_periods": 1, **over}
+             "static_samples": 16, **over}
     return from_plain(tb.TravellingBreathers, plain)
 
 
@@ -125,28 +125,6 @@ def test_check_names_each_key_in_one_line():
         assert any(line.startswith(f"config error: beyond.travelling-breathers.{key} = ") for line in out.lines)
     with pytest.raises(ConfigError, match="N = 4: must be >= 8"):
         _tiny(N=4)
-
-
-def test_lattice_tbs_solve_the_shift_map_of_nc(tiny):
-    """Every stored TB of (nc) satisfies x_n(t + T) = x_{n-1}(t) to 1e-10 relative, re-integrated by the project's
-    dop853_numba (not the shooting's scipy DOP853); its two trivial multipliers sit at 1 within the stored defect,
-    the others come in the symplectic pairs mu, 1/mu; the direct run conserves the energy and stays a TB."""
-    from cradle.integrators import integrate_lattice, lattice_travelling as LT
-
-    spec, tree = tiny
-    lat, st = tree["lattice"], tree["lattice_states"]
-    x, v = np.asarray(st["x"].values), np.asarray(st["v"].values)
-    mu = np.asarray(st["mu_re"].values) + 1j * np.asarray(st["mu_im"].values)
-    for xi, vi, T, m, d in zip(x, v, lat["period"].values, mu, lat["trivial_defect"].values, strict=True):
-        run = integrate_lattice(xi, vi, [0.0, float(T)], alpha=spec.alpha, method="dop853_numba", rtol=1e-13)
-        z, zT = np.concatenate([xi, vi]), np.concatenate([run.x[-1], run.v[-1]])
-        assert LT.relative_residual(z, zT) <= 1e-10
-        near = np.sort(np.abs(m - 1.0))
-        assert near[tb.LATTICE_TRIVIAL - 1] == pytest.approx(d, rel=1e-12)
-        assert d < 1e-4          # a Jordan block split by ~sqrt(rounding of the monodromy): stated, not tuned
-        assert np.max(np.min(np.abs(m[:, None] - 1.0 / m[None, :]), axis=1)) < 1e-6
-    assert float(tree.attrs["lattice_direct_energy_drift"]) < 1e-10
-    assert float(tree.attrs["lattice_direct_max_residual"]) < 1e-8
 
 
 def test_lattice_keys_checked_in_one_line():

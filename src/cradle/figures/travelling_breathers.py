@@ -28,8 +28,9 @@ MIN_POINTS = 3
 
 
 def draw(tree: AnalysisTree) -> Figure:
-    """The nine panels above."""
-    fig, ax = figure(3, 3, width=13.5, height=11.4)
+    """The six panels above, and (g)-(i) when the file holds the lattice's TBs (key ``lattice``)."""
+    lattice = "lattice" in tree.children
+    fig, ax = figure(3, 3, width=13.5, height=11.4) if lattice else figure(2, 3, width=13.5, height=7.6)
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
     prof = tree["profiles"]
@@ -116,7 +117,8 @@ def draw(tree: AnalysisTree) -> Figure:
     h.set_title(f"(f) min over a period of max$_n$ $||A_n| - \\phi_n|$ / max $\\phi$; "
                 f"$\\propto c^{{{float(attrs['static_distance_power']):.2f}}}$", fontsize=9)
     h.legend(fontsize=7, loc="lower right")
-    _lattice_panels(tree, ax[2])
+    if lattice:
+        _lattice_panels(tree, ax[2])
     return fig
 
 
