@@ -95,6 +95,23 @@ class TravellingBreathers:
     scale: float = param(2.0, "lambda of the scaling check.", exclusiveMinimum=0, minimum=0.01, maximum=100)
     static_samples: int = param(64, "Samples per period of |A_n(tau)| against the static profiles.", minimum=8,
                                 maximum=4096, reduced=32)
+    # TBs in motion (issue 37, item 3): the member at motion_speed launched in (nc) through (ansatz)
+    motion_speed: float = param(0.1, "c of the member launched in the lattice (nc) through (ansatz) (one of speeds).",
+                                exclusiveMinimum=0, maximum=2)
+    motion_eps: list[float] = param([0.03, 0.01, 0.003, 0.001, 3e-4, 1e-4, 3e-5],
+                                    "Small parameters eps of (ansatz) at which the member is launched in (nc) "
+                                    "(decreasing; the lattice time of a run grows as eps^(1-alpha)).", minItems=4,
+                                    maxItems=20, items={"type": "number", "minimum": 1e-6, "maximum": 0.5},
+                                    reduced=[0.01, 0.003, 0.001, 3e-4])
+    motion_sites: int = param(60, "Length of the runs: the sites the DpS TB travels (motion_sites T in tau).",
+                              minimum=2, maximum=2000, reduced=20)
+    motion_ring: int = param(96, "Sites of the ring the member is launched on (its N sites, then zeros): at least N + "
+                             "motion_sites + motion_window, so that it never meets what it left behind.", minimum=8,
+                             maximum=8192, reduced=42)
+    motion_window: int = param(6, "Half-width (sites) of the window around the breather outside which its weight "
+                               "(lattice energy, DpS norm) counts as radiation.", minimum=1, maximum=100)
+    motion_samples: int = param(16, "Samples per DpS period T of both runs (the positions, radiation and distances "
+                                "stored).", minimum=4, maximum=1000, reduced=8)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Each form: speeds increasing, direct_speed among them, a check ring other than the ring."""
@@ -105,6 +122,18 @@ class TravellingBreathers:
         if self.check_N == self.N:
             out.add(where + ["check_N"], f"must differ from N = {self.N} (it checks the verdicts against N)",
                     self.check_N)
+        self.check_motion(where, out)
+
+    def check_motion(self, where: Where, out: Errors) -> None:
+        """The keys of the TBs in motion: motion_speed among speeds, motion_eps decreasing, a ring long enough."""
+        if float(self.motion_speed) not in [float(x) for x in self.speeds]:
+            out.add(where + ["motion_speed"], f"must be one of speeds = {self.speeds}", self.motion_speed)
+        if any(y >= x for x, y in itertools.pairwise(self.motion_eps)):
+            out.add(where + ["motion_eps"], "must be strictly decreasing", self.motion_eps)
+        least = self.N + self.motion_sites + self.motion_window
+        if self.motion_ring < least:
+            out.add(where + ["motion_ring"], f"must be >= N + motion_sites + motion_window = {least} (the breather "
+                    "would meet what it left behind)", self.motion_ring)
 
 
 # ----------------------------------------------------------------- the family
@@ -214,6 +243,93 @@ def verdict_changes(c: NDArray[np.float64], unstable: NDArray[np.bool_]) -> list
     return [float(0.5 * (c[i] + c[i + 1])) for i in range(len(c) - 1) if unstable[i] != unstable[i + 1]]
 
 
+# ----------------------------------------------------------------- TBs in motion (issue 37, item 3)
+
+#: half-width (sites) of the centroid that gives a breather's position: the DpS core decays doubly exponentially,
+#: so its weight beyond it is below rounding of the weight's sum and radiation near the core barely moves it
+MOTION_CORE = 4
+
+
+def motion(spec: TravellingBreathers, b: TravellingBreather, log: Log) -> tuple[dict, dict]:
+    """The member ``b`` launched on a ring of ``motion_ring`` sites (:mod:`cradle.models.tb_launch`): in (dfnls)
+    (integrate_dps at the family's rtol), and in (nc) through (ansatz) at each eps of ``motion_eps`` (integrate_lattice,
+    srkn6c, the pipeline's exact method), both over ``motion_sites`` periods T of tau; positions, distances,
+    velocities and radiation by :mod:`cradle.measurements.breather_motion` (lattice: energy density; DpS: norm
+    density). Returns the ``/motion`` group and its attributes (prefixed ``motion_``)."""
+    from cradle.integrators import integrate_dps, integrate_lattice
+    from cradle.measurements import breather_motion as BM
+    from cradle.measurements.continuum import fit_power
+    from cradle.models import dps_travelling as M, tb_launch
+
+    t0 = _time.process_time()
+    al, S, per = spec.alpha, spec.motion_sites, spec.motion_samples
+    s = np.linspace(0.0, float(S), S * per + 1)
+    half = s.size // 2
+    # DpS: the same start on the same ring; after k periods it should be the start shifted by k sites
+    A0 = tb_launch.embedded(b.A, spec.motion_ring)
+    run = integrate_dps(A0, s * b.T, alpha=al, rtol=spec.rtol)
+    w = np.abs(run.A) ** 2
+    p_dps = BM.track(w, MOTION_CORE)
+    k = np.arange(S + 1)
+    at_k = run.A[k * per]
+    shift_res = max(float(np.max(np.abs(at_k[j] - np.exp(1j * j * b.theta) * M.shift(A0, int(j))))) for j in k)
+    attrs: dict = {
+        "motion_c": b.c, "motion_ring": spec.motion_ring, "motion_core": MOTION_CORE,
+        "motion_dps_speed_error": abs(BM.velocity(s, p_dps) - 1.0),
+        "motion_dps_position_error": float(np.max(np.abs(p_dps[k * per] - p_dps[0] - k))),
+        "motion_dps_shift_residual": shift_res / float(np.max(np.abs(A0))),
+        "motion_dps_norm_drift": float(run.max_l2_drift),
+        "motion_dps_radiation_max": float(np.max(BM.radiation(w, p_dps, spec.motion_window))),
+    }
+    dps_rad = BM.radiation(w, p_dps, spec.motion_window)
+    rows: dict[str, list] = {key: [] for key in ("speed_ratio", "speed_early", "speed_late", "radiation_end",
+                                                 "energy_drift", "distance", "radiation")}
+    for eps in spec.motion_eps:
+        ini = tb_launch.launch(b.A, eps, al, spec.motion_ring)
+        sol = integrate_lattice(ini.x0, ini.v0, s * b.T / eps ** (al - 1.0), alpha=al)
+        e = BM.energy_density(sol.x, sol.v, al)
+        p = BM.track(e, MOTION_CORE)
+        rad = BM.radiation(e, p, spec.motion_window)
+        # velocities against s = tau / T: in units of the DpS TB's c eps^(alpha-1)
+        rows["speed_ratio"].append(BM.velocity(s, p))
+        rows["speed_early"].append(BM.velocity(s[:half + 1], p[:half + 1]))
+        rows["speed_late"].append(BM.velocity(s[half:], p[half:]))
+        rows["radiation_end"].append(float(rad[-1]))
+        rows["energy_drift"].append(float(sol.energy_drift))
+        rows["distance"].append(p - p[0])
+        rows["radiation"].append(rad)
+        log(f"travelling-breathers: c = {b.c:.4g} in (nc) at eps = {eps:g}: {p[-1] - p[0]:.4f} sites while DpS "
+            f"travels {S}, speed ratio {rows['speed_ratio'][-1]:.6f} (halves {rows['speed_early'][-1]:.6f}, "
+            f"{rows['speed_late'][-1]:.6f}), radiation {rad[-1]:.3g}, energy drift {sol.energy_drift:.2g}")
+    ratio = np.asarray(rows["speed_ratio"])
+    deficit = 1.0 - ratio
+    if np.all(deficit > 0):
+        # (ansatz) leaves out terms of relative order eps^(alpha-1): the deficit's first correction is of that power
+        f = fit_power(spec.motion_eps, deficit, correction=al - 1.0)
+        attrs.update({"motion_order": f.power, "motion_order_uncertainty": f.uncertainty,
+                      "motion_order_constant": f.K, "motion_order_correction": f.k})
+    else:
+        attrs.update({"motion_order": np.nan, "motion_order_uncertainty": np.nan,
+                      "motion_order_constant": np.nan, "motion_order_correction": np.nan})
+    loss = 1.0 - np.asarray(rows["speed_late"]) / np.asarray(rows["speed_early"])
+    attrs.update({
+        "motion_order_expected": al - 1.0,
+        "motion_order_fit": "ln(1 - speed_ratio) = p ln eps + ln K + k eps^(alpha-1) over every eps (least squares); "
+                            "uncertainty the larger of the standard error and the change when the smallest or the "
+                            "largest eps is left out",
+        "motion_max_energy_drift": float(max(rows["energy_drift"])),
+        "motion_speed_loss_max": float(np.max(np.abs(loss))),
+        "motion_exact_tb": "open: no exact travelling breather of (nc) in this analysis yet (issue 37, item 2); the "
+                           "comparison of the launched DpS TB with the exact one launched the same way is not made",
+        "motion_cpu_s": _time.process_time() - t0,
+    })
+    data = {"speed_ratio": ratio, "speed_early": rows["speed_early"], "speed_late": rows["speed_late"],
+            "deficit": deficit, "radiation_end": rows["radiation_end"], "energy_drift": rows["energy_drift"],
+            "distance": np.array(rows["distance"]), "radiation": np.array(rows["radiation"]),
+            "dps_distance": p_dps - p_dps[0], "dps_radiation": dps_rad}
+    return {"/motion": (data, {"eps": list(spec.motion_eps), "s": s})}, attrs
+
+
 # ----------------------------------------------------------------- the stored file
 
 _C = ("c",)
@@ -256,6 +372,20 @@ VARIABLES = {
     "/direct": {
         "k": Var(("k",), "periods of the direct run"),
         "residual": Var(("k",), "max_n |A_n(kT) - e^{i k theta} A_{n-k}(0)| / max |A|"),
+    },
+    "/motion": {
+        "eps": Var(("eps",), "small parameter eps of (ansatz) of the lattice run (tau = eps^(alpha-1) t)"),
+        "s": Var(("s",), "tau / T: the sites the DpS TB travels (lattice time t = s T / eps^(alpha-1))"),
+        "speed_ratio": Var(("eps",), "lattice velocity over the DpS TB's c eps^(alpha-1) (least squares, whole run)"),
+        "speed_early": Var(("eps",), "the same over the first half of the run"),
+        "speed_late": Var(("eps",), "the same over the second half of the run"),
+        "deficit": Var(("eps",), "1 - speed_ratio: the lattice's speed deficit against DpS"),
+        "radiation_end": Var(("eps",), "energy outside the window around the breather over the total, at the end"),
+        "energy_drift": Var(("eps",), "max over every step of |H(t) - H(0)| / H(0) of the lattice run (ham)"),
+        "distance": Var(("eps", "s"), "lattice: position of the breather minus its start (sites)"),
+        "radiation": Var(("eps", "s"), "lattice: energy outside the window around the breather over the total"),
+        "dps_distance": Var(("s",), "DpS (same start, same ring): position minus start (sites)"),
+        "dps_radiation": Var(("s",), "DpS: norm outside the window around the breather over the norm"),
     },
     "/claims": {"row": Var(("row",), "index of a cited statement"),
                 **{col: Var(("row",), f"claims-table column {col}") for col in COLUMNS}},
@@ -339,6 +469,8 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
     direct = direct_run(fam[i_direct], spec.direct_periods, spec.rtol)
     other = fam[i_direct + 1] if i_direct + 1 < len(fam) else fam[i_direct - 1]
     scal = scaling_check(fam[i_direct], other, spec.scale, spec)
+    i_motion = int(np.argmin(np.abs(c - spec.motion_speed)))
+    motion_groups, motion_attrs = motion(spec, fam[i_motion], say)
     real = np.array([v[3] for v in ver])
     dH_changes, v_changes, real_changes = sign_changes(c, dH), verdict_changes(c, unstable), verdict_changes(c, real)
     rows = claims(c, tail, np.asarray(tail_N), dH_changes, real_changes, v_changes, float(np.max(np.diff(c))))
@@ -366,6 +498,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
         "/direct": ({"residual": direct["residual"]}, {"k": direct["k"]}),
         "/claims": ({col: np.array([getattr(r, col) for r in rows], dtype=object) for col in COLUMNS},
                     {"row": np.arange(len(rows))}),
+        **motion_groups,
     }
     near = np.minimum([d["site"] for d in dist], [d["bond"] for d in dist])
     power = float(np.polyfit(np.log(c), np.log(near), 1)[0])
@@ -393,6 +526,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
                   "variational equations; tangent predictor in T",
         "source": "G. James, Phil. Trans. R. Soc. A 376 (2018) 20170138 (abstract); H. Xu, J. Cuevas-Maraver, "
                   "P. G. Kevrekidis, A. Vainchtein, arXiv 1701.04882",
+        **motion_attrs,
         "wall_time_s": _time.perf_counter() - t0,
     }
     tree = make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
