@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.claims_table import COLUMNS, Row
+from cradle.analyses.claims_table import GROUP_VARIABLES, Row, group
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
@@ -273,15 +273,16 @@ def motion(spec: TravellingBreathers, b: TravellingBreather, log: Log) -> tuple[
     k = np.arange(S + 1)
     at_k = run.A[k * per]
     shift_res = max(float(np.max(np.abs(at_k[j] - np.exp(1j * j * b.theta) * M.shift(A0, int(j))))) for j in k)
+    dps_rad = BM.radiation(w, p_dps, spec.motion_window)
     attrs: dict = {
         "motion_c": b.c, "motion_ring": spec.motion_ring, "motion_core": MOTION_CORE,
+        "motion_window": spec.motion_window,
         "motion_dps_speed_error": abs(BM.velocity(s, p_dps) - 1.0),
         "motion_dps_position_error": float(np.max(np.abs(p_dps[k * per] - p_dps[0] - k))),
         "motion_dps_shift_residual": shift_res / float(np.max(np.abs(A0))),
         "motion_dps_norm_drift": float(run.max_l2_drift),
-        "motion_dps_radiation_max": float(np.max(BM.radiation(w, p_dps, spec.motion_window))),
+        "motion_dps_radiation_max": float(np.max(dps_rad)),
     }
-    dps_rad = BM.radiation(w, p_dps, spec.motion_window)
     rows: dict[str, list] = {key: [] for key in ("speed_ratio", "speed_early", "speed_late", "radiation_end",
                                                  "energy_drift", "distance", "radiation")}
     for eps in spec.motion_eps:
@@ -387,8 +388,7 @@ VARIABLES = {
         "dps_distance": Var(("s",), "DpS (same start, same ring): position minus start (sites)"),
         "dps_radiation": Var(("s",), "DpS: norm outside the window around the breather over the norm"),
     },
-    "/claims": {"row": Var(("row",), "index of a cited statement"),
-                **{col: Var(("row",), f"claims-table column {col}") for col in COLUMNS}},
+    "/claims": GROUP_VARIABLES,
 }
 
 
@@ -422,6 +422,7 @@ def claims(c: NDArray[np.float64], tail: NDArray[np.float64], tail_N: NDArray[np
                     tolerance=f"one grid spacing ({spacing:.3g})"))
     for r in rows:
         r.explained_in = EXPLAINED
+        r.qualitative = True     # James's abstract and Xu et al.'s criterion print no number
     return rows
 
 
@@ -496,8 +497,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
                           "mu_im": np.array([b.multipliers.imag for b in fam])},
                          {"m": np.arange(2 * spec.N)}),
         "/direct": ({"residual": direct["residual"]}, {"k": direct["k"]}),
-        "/claims": ({col: np.array([getattr(r, col) for r in rows], dtype=object) for col in COLUMNS},
-                    {"row": np.arange(len(rows))}),
+        "/claims": group(rows),
         **motion_groups,
     }
     near = np.minimum([d["site"] for d in dist], [d["bond"] for d in dist])
@@ -535,5 +535,5 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
 
 
 ANALYSIS = Analysis(
-    name="travelling-breathers", spec=TravellingBreathers, compute=compute, variables=VARIABLES,
+    name="travelling-breathers", spec=TravellingBreathers, compute=compute, variables=VARIABLES, claims="/claims",
     title="Travelling breathers of the DpS equation: family in c, tails, multipliers modulo shift")

@@ -9,11 +9,14 @@ check_N sites; (c) H against c at fixed norm (dH/dc > 0: H rises with c where it
 ln max|mu| / T of the non-trivial multipliers modulo shift against c (the stability threshold dashed; unstable
 members filled), on the two rings and at check_rtol; (e) the multipliers modulo shift of the most unstable member
 and of the slowest, with the unit circle; (f) the distance of |A_n(tau)| to the static site and bond breathers
-against c.
+against c; the TBs in motion (the member at motion_speed launched in (nc) through (ansatz) at several eps, and in
+(dfnls) from the same start): (g) the distance travelled against tau / T (DpS: one site per T), (h) the lattice's
+speed deficit 1 - v / (c eps^(alpha-1)) against eps with the fitted order, (i) the radiation (energy outside the
+window around the breather over the total) against tau / T.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -27,8 +30,8 @@ MIN_POINTS = 3
 
 
 def draw(tree: AnalysisTree) -> Figure:
-    """The six panels above."""
-    fig, ax = figure(2, 3, width=13.5, height=7.6)
+    """The nine panels above."""
+    fig, ax = figure(3, 3, width=13.5, height=11.2)
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
     prof = tree["profiles"]
@@ -115,5 +118,54 @@ def draw(tree: AnalysisTree) -> Figure:
     h.set_title(f"(f) min over a period of max$_n$ $||A_n| - \\phi_n|$ / max $\\phi$; "
                 f"$\\propto c^{{{float(attrs['static_distance_power']):.2f}}}$", fontsize=9)
     h.legend(fontsize=7, loc="lower right")
+    if "motion" in tree.children:
+        draw_motion(ax[2], tree)
     return fig
+
+
+def draw_motion(ax: Any, tree: AnalysisTree) -> None:
+    """Panels (g)-(i): the TB in motion in (nc) at each eps and in (dfnls)."""
+    mo = tree["motion"]
+    attrs = tree.attrs
+    s = np.asarray(mo["s"].values)
+    eps = np.asarray(mo["eps"].values)
+    colours = [f"C{k}" for k in range(len(eps))]
+
+    g = ax[0]
+    g.plot(s, np.asarray(mo["dps_distance"].values), "k-", lw=2.2, label="DpS (dfnls)")
+    for k, e in enumerate(eps):
+        g.plot(s, np.asarray(mo["distance"].values[k]), "-", color=colours[k], lw=1.0, label=f"(nc), eps = {e:g}")
+    g.set_xlabel("$\\tau / T$ (sites the DpS TB travels)")
+    g.set_ylabel("distance travelled (sites)")
+    g.set_title(f"(g) TB of c = {float(attrs['motion_c']):.3g} launched by (ansatz), ring of "
+                f"{int(attrs['motion_ring'])}", fontsize=9)
+    g.legend(fontsize=6.5, loc="upper left")
+
+    h = ax[1]
+    d = np.asarray(mo["deficit"].values)
+    h.loglog(eps, d, "C3o", ms=5, label="1 - v / (c eps$^{\\alpha-1}$)")
+    p, u = float(attrs["motion_order"]), float(attrs["motion_order_uncertainty"])
+    if np.isfinite(p):
+        K, k = float(attrs["motion_order_constant"]), float(attrs["motion_order_correction"])
+        fine = np.geomspace(float(eps.min()), float(eps.max()), 100)
+        al = float(attrs["motion_order_expected"]) + 1.0
+        h.loglog(fine, K * fine**p * np.exp(k * fine ** (al - 1.0)), "k-", lw=0.8,
+                 label=f"fit: order {p:.3f} $\\pm$ {u:.1g} (expected {al - 1.0:g})")
+    h.set_xlabel("eps of (ansatz)")
+    h.set_ylabel("speed deficit of (nc) against DpS")
+    h.set_title("(h) the lattice's speed tends to DpS's as eps $\\to$ 0", fontsize=9)
+    h.legend(fontsize=7, loc="lower right")
+
+    r = ax[2]
+    floor = 1e-3 * float(np.min(mo["radiation_end"].values))
+    for k, e in enumerate(eps):
+        r.semilogy(s, np.maximum(np.asarray(mo["radiation"].values[k]), floor), "-", color=colours[k], lw=1.0,
+                   label=f"(nc), eps = {e:g}")
+    r.semilogy(s, np.maximum(np.asarray(mo["dps_radiation"].values), floor), "k--", lw=1.2,
+               label=f"DpS (floor {floor:.0e})")
+    r.set_ylim(floor / 2, 30.0 * float(np.max(mo["radiation"].values)))
+    r.set_xlabel("$\\tau / T$")
+    r.set_ylabel(f"energy outside $\\pm${int(attrs['motion_window'])} sites / total")
+    r.set_title("(i) radiation left behind", fontsize=9)
+    r.legend(fontsize=6.5, loc="upper left", ncol=2)
 
