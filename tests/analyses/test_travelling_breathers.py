@@ -23,7 +23,8 @@ from cradle.specs.values import ConfigError
 
 def _tiny(**over):
     plain = {"N": 16, "check_N": 18, "speeds": [0.06, 0.08, 0.1], "direct_speed": 0.08, "direct_periods": 3,
-             "static_samples": 16, **over}
+             "static_samples": 16, "motion_eps": [0.01, 0.003, 0.001, 3e-4], "motion_sites": 8, "motion_ring": 30,
+             "motion_samples": 8, **over}
     return from_plain(tb.TravellingBreathers, plain)
 
 

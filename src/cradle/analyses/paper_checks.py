@@ -78,7 +78,8 @@ SMALL_SHIFT = np.pi / 4
 
 
 @declared(doc="The paper's numerical statements against ours (the claims table), from the outputs of the scenes "
-              "and homoclinic solutions named here -> results/paper-checks/paper-checks.nc and "
+              "and homoclinic solutions named here, then the cited papers' statements the analyses named here store "
+              "(their claims groups) -> results/paper-checks/paper-checks.nc and "
               "results/paper-checks/paper-checks.{csv,md}; a group of rows that reads an entry not named is left out.")
 class PaperChecks:
     scenes: list[str] | str = param("all", "The scenes whose initial data, runs and metrics the table reads (names "

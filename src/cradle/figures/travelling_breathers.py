@@ -162,10 +162,10 @@ def draw_motion(ax: Any, tree: AnalysisTree) -> None:
         r.semilogy(s, np.maximum(np.asarray(mo["radiation"].values[k]), floor), "-", color=colours[k], lw=1.0,
                    label=f"(nc), eps = {e:g}")
     r.semilogy(s, np.maximum(np.asarray(mo["dps_radiation"].values), floor), "k--", lw=1.2,
-               label=f"DpS (floor {floor:.0e})")
+               label="DpS (dfnls)")
     r.set_ylim(floor / 2, 30.0 * float(np.max(mo["radiation"].values)))
     r.set_xlabel("$\\tau / T$")
-    r.set_ylabel(f"energy outside $\\pm${int(attrs['motion_window'])} sites / total")
+    r.set_ylabel(f"energy outside $\\pm${int(attrs['motion_window'])} sites / total (floor {floor:.0e})")
     r.set_title("(i) radiation left behind", fontsize=9)
     r.legend(fontsize=6.5, loc="upper left", ncol=2)
 
