@@ -146,10 +146,10 @@ def draw_motion(ax: Any, tree: AnalysisTree) -> None:
     h.loglog(eps, d, "C3o", ms=5, label="1 - v / (c eps$^{\\alpha-1}$)")
     p, u = float(attrs["motion_order"]), float(attrs["motion_order_uncertainty"])
     if np.isfinite(p):
-        K, k = float(attrs["motion_order_constant"]), float(attrs["motion_order_correction"])
+        K, corr = float(attrs["motion_order_constant"]), float(attrs["motion_order_correction"])
         fine = np.geomspace(float(eps.min()), float(eps.max()), 100)
         al = float(attrs["motion_order_expected"]) + 1.0
-        h.loglog(fine, K * fine**p * np.exp(k * fine ** (al - 1.0)), "k-", lw=0.8,
+        h.loglog(fine, K * fine**p * np.exp(corr * fine ** (al - 1.0)), "k-", lw=0.8,
                  label=f"fit: order {p:.3f} $\\pm$ {u:.1g} (expected {al - 1.0:g})")
     h.set_xlabel("eps of (ansatz)")
     h.set_ylabel("speed deficit of (nc) against DpS")
