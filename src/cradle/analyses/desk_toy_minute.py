@@ -102,12 +102,14 @@ class DeskToyMinute:
     duration: float = param(60.0, "Real time of each run (s).", exclusiveMinimum=0, maximum=600, reduced=4.0)
     samples: int = param(16, "Stored times per swing period 2 pi / omega_0 (the out-swings k pi / omega_0 among "
                          "them: even).", minimum=8, maximum=256, multipleOf=2)
-    restitution: list[float] = param(list(STEEL_ASSUMED.bracket), "Restitution coefficients e at restitution_speed from which the "
+    restitution: list[float] = param(list(STEEL_ASSUMED.bracket),
+                                     "Restitution coefficients e at restitution_speed from which the "
                                      "Kuwabara-Kono constant A is found (cradle.analyses.dissipation.kk_constant): "
                                      "two values bracketing the ASSUMED 0.95 of the desk-toy analysis (no measured "
                                      "value was at hand); ignored when kk_constant is given.", minItems=1,
                                      maxItems=4, items=_E)
-    restitution_speed: float = param(STEEL_ASSUMED.v, "Impact speed (m/s) at which the restitution coefficients hold, and at "
+    restitution_speed: float = param(STEEL_ASSUMED.v,
+                                     "Impact speed (m/s) at which the restitution coefficients hold, and at "
                                      "which the hard spheres' constant e is taken.", exclusiveMinimum=0,
                                      maximum=100)
     kk_constant: list[float] | None = param(None, "Kuwabara-Kono constants A (s) of the force k (delta^(3/2) + "

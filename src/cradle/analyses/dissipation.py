@@ -128,11 +128,13 @@ class Dissipation:
     validity_eta: float = param(0.1, "eta of the contact validity runs.", exclusiveMinimum=0, maximum=10)
     steel_radius: float = param(0.01, "Radius of the steel cradle's balls (m).", exclusiveMinimum=0, maximum=1)
     steel_length: float = param(0.1, "Pendulum length of the steel cradle (m).", exclusiveMinimum=0, maximum=100)
-    steel_restitution: float = param(STEEL_ASSUMED.e, "Coefficient of restitution e of two of its balls at steel_speed: a "
+    steel_restitution: float = param(STEEL_ASSUMED.e,
+                                     "Coefficient of restitution e of two of its balls at steel_speed: a "
                                      "STATED ASSUMPTION (no measured value for 1 cm steel balls at cradle speeds "
                                      "was found in the sources available to us; docs/dissipation.md).",
                                      exclusiveMinimum=0, exclusiveMaximum=1)
-    steel_speed: float = param(STEEL_ASSUMED.v, "Relative impact speed (m/s) at which steel_restitution holds (assumed).",
+    steel_speed: float = param(STEEL_ASSUMED.v,
+                               "Relative impact speed (m/s) at which steel_restitution holds (assumed).",
                                exclusiveMinimum=0, maximum=100)
     air_viscosity: float = param(1.7894e-5, "Dynamic viscosity of air (Pa s): ISO 2533:1975 Standard Atmosphere, "
                                  "sea level (15 C); the on-site gamma of the steel cradle is Stokes' drag "
