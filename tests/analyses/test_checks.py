@@ -119,6 +119,20 @@ def test_the_table_collects_the_claims_rows_an_analysis_declares_after_the_paper
     assert [r.explained_in for r in got] == ["a.md#x", "b.md#y"]
 
 
+def test_another_analysis_is_read_from_the_output_of_the_form_all_builds_as_a_tree():
+    """The file a Read of kind analysis names is that analysis's output of its first form (the one `all` builds),
+    and the layout knows it as an analysis output (the compute job opens such an input as the tree of its groups)."""
+    from cradle.analyses.registry import ANALYSES
+    from cradle.pipeline import layout
+    from cradle.pipeline.identity import locate
+
+    for name in checks.claiming_analyses():
+        main = ANALYSES[name].forms[0]
+        path = layout.read_path(Read.of("analysis", analysis=name), "full")
+        assert path == layout.analysis_output(name, main, main)
+        assert locate(path) == ("analysis", {"analysis": name, "form": main})
+
+
 def test_an_analysis_named_without_claims_is_refused_in_one_line():
     from cradle.specs.values import Errors
 
