@@ -248,6 +248,8 @@ def verdict_changes(c: NDArray[np.float64], unstable: NDArray[np.bool_]) -> list
 #: half-width (sites) of the centroid that gives a breather's position: the DpS core decays doubly exponentially,
 #: so its weight beyond it is below rounding of the weight's sum and radiation near the core barely moves it
 MOTION_CORE = 4
+#: DOP853's relative tolerance in the rerun that checks the lattice's speed against the integrator
+MOTION_CHECK_RTOL = 1e-11
 
 
 def motion(spec: TravellingBreathers, b: TravellingBreather, log: Log) -> tuple[dict, dict]:
@@ -303,6 +305,15 @@ def motion(spec: TravellingBreathers, b: TravellingBreather, log: Log) -> tuple[
             f"travels {S}, speed ratio {rows['speed_ratio'][-1]:.6f} (halves {rows['speed_early'][-1]:.6f}, "
             f"{rows['speed_late'][-1]:.6f}), radiation {rad[-1]:.3g}, energy drift {sol.energy_drift:.2g}")
     ratio = np.asarray(rows["speed_ratio"])
+    # the integrator's share: the largest eps rerun by the adaptive DOP853 (another method, its own error control)
+    eps0 = spec.motion_eps[0]
+    ini = tb_launch.launch(b.A, eps0, al, spec.motion_ring)
+    ref = integrate_lattice(ini.x0, ini.v0, s * b.T / eps0 ** (al - 1.0), alpha=al, method="dop853_numba",
+                            rtol=MOTION_CHECK_RTOL)
+    ref_ratio = BM.velocity(s, BM.track(BM.energy_density(ref.x, ref.v, al), MOTION_CORE))
+    attrs.update({"motion_check_method": f"dop853_numba, rtol {MOTION_CHECK_RTOL:g}, at eps = {eps0:g}",
+                  "motion_check_speed_ratio": ref_ratio,
+                  "motion_check_speed_difference": abs(ref_ratio - float(ratio[0]))})
     deficit = 1.0 - ratio
     if np.all(deficit > 0):
         # (ansatz) leaves out terms of relative order eps^(alpha-1): the deficit's first correction is of that power
