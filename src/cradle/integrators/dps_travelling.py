@@ -102,6 +102,18 @@ class TravellingBreather:
     multipliers: NDArray[np.complex128] = field(default_factory=lambda: np.zeros(0, complex))
     dA_dT: NDArray[np.complex128] | None = None
     dtheta_dT: float = 0.0
+    monodromy: Floats | None = None   # the 2N x 2N real monodromy modulo shift of the last evaluation
+
+    def unstable_mode(self, trivial: int) -> tuple[complex, NDArray[np.complex128]]:
+        """(mu, v): the multiplier of largest modulus among all but the ``trivial`` ones nearest 1, and its
+        eigenvector as |v_n|^2 per site (the two real coordinates of site n added), normalised to sum 1."""
+        assert self.monodromy is not None, "a converged member keeps its monodromy"
+        mu, V = np.linalg.eig(self.monodromy)
+        rest = np.argsort(np.abs(mu - 1.0))[trivial:]
+        k = int(rest[np.argmax(np.abs(mu[rest]))])
+        N = self.A.size
+        w = np.abs(V[:N, k]) ** 2 + np.abs(V[N:, k]) ** 2
+        return complex(mu[k]), w / np.sum(w)
 
     @property
     def c(self) -> float:
@@ -164,7 +176,7 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
             dF = np.concatenate([M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, t0), -1)), np.zeros(3)])
             tan = _weighted_lstsq(J, -dF, 2 * N)
             return TravellingBreather(A, T, theta, alpha, res, True, it, mu, M.complex_(tan[:2 * N]),
-                                      float(tan[2 * N]))
+                                      float(tan[2 * N]), Mm)
         if it == max_iter or not np.isfinite(res) or res > 10.0 * best:
             break
         best = min(best, res)
