@@ -18,7 +18,11 @@ analysis
   changes sign (Xu, Cuevas-Maraver, Kevrekidis and Vainchtein, arXiv 1701.04882: a sufficient condition for a
   change of stability) against where the verdict changes;
 * at small c, the distance of |A_n(tau)| over one period to the static breathers' profiles (the c -> 0 end);
-* checks: the verdicts re-solved at ``check_rtol`` and on the ring of ``check_N`` sites; a direct run of the member
+* robustness of the verdicts (issue 37: verdicts that do not change with the discretisation): every member re-solved
+  at each of ``check_rtol`` and the family recomputed on each ring of ``check_N``; a verdict is settled where all of
+  them agree; what explains the others (the unstable mode's extent over the ring, the tail as a plane wave of
+  (dfnls) with its wavenumber q = theta and its modulational growth rate);
+* checks: a direct run of the member
   at ``direct_speed`` over ``direct_periods`` periods (norm and H drifts, the residual of (tb) after k periods);
   the scaling symmetry (the TB re-solved at lambda^(1-alpha) T and lambda^2 P from another member's profile,
   against lambda A);
