@@ -38,12 +38,6 @@ class DpsVariational(NamedTuple):
     m: int
 
 
-def dfnls_variational(alpha: float, inv2tau0: float, m: int) -> DpsVariational:
-    """(dfnls) on a ring with m variational columns."""
-    return DpsVariational(SD.dfnls(alpha, True, inv2tau0), int(m))
-
-
-@implements(rhs, DpsVariational)
 @njit(cache=True)
 def variational_rhs(system: DpsVariational, y: Floats, dy: Floats) -> None:
     """dy = f(y) of ``system``: the orbit by (dfnls), the columns by its variational equation (module docstring).
@@ -78,6 +72,17 @@ def variational_rhs(system: DpsVariational, y: Floats, dy: Floats) -> None:
             dy[a + 2 * j + 1] -= gr * c
             dy[b + 2 * j] -= gi * c
             dy[b + 2 * j + 1] += gr * c
+
+
+@implements(rhs, DpsVariational)
+@njit(cache=True)
+def _rhs(system: DpsVariational, y: Floats, dy: Floats) -> None:
+    variational_rhs(system, y, dy)   # a call: inlined into the stages, its body raised NumbaIRAssumptionWarning
+
+
+def dfnls_variational(alpha: float, inv2tau0: float, m: int) -> DpsVariational:
+    """(dfnls) on a ring with m variational columns."""
+    return DpsVariational(SD.dfnls(alpha, True, inv2tau0), int(m))
 
 
 @implements(monitor, DpsVariational)
