@@ -4,15 +4,15 @@ Drawn by :func:`draw` from results/travelling-breathers/[full/]travelling-breath
 (:mod:`cradle.analyses.travelling_breathers`).
 
 (a) |A_n(0)| (log scale) of the slowest, a middle and the fastest member, and the static site breather at the
-same norm; (b) the tail (max |A_n| on the far quarter ring / max |A_n|) against c, on the ring of N sites and of
-check_N sites; (c) H against c at fixed norm (dH/dc > 0: H rises with c where it does); (d) the growth rate
+same norm; (b) the tail (max |A_n| on the far quarter ring / max |A_n|) against c, on the ring of N sites and on
+every check ring; (c) H against c at fixed norm (dH/dc > 0: H rises with c where it does); (d) the growth rate
 ln max|mu| / T of the non-trivial multipliers modulo shift against c (the stability threshold dashed; unstable
-members filled), on the two rings and at check_rtol; (e) the multipliers modulo shift of the most unstable member
-and of the slowest, with the unit circle; (f) the distance of |A_n(tau)| to the static site and bond breathers
-against c; the TBs in motion (the member at motion_speed launched in (nc) through (ansatz) at several eps, and in
-(dfnls) from the same start): (g) the distance travelled against tau / T (DpS: one site per T), (h) the lattice's
-speed deficit 1 - v / (c eps^(alpha-1)) against eps with the fitted order, (i) the radiation (energy outside the
-window around the breather over the total) against tau / T.
+members filled), on every ring and at every check tolerance, the settled verdicts marked above; (e) the
+multipliers modulo shift of the most unstable member and of the slowest, with the unit circle; (f) the distance
+of |A_n(tau)| to the static site and bond breathers against c; the TBs in motion (the member at motion_speed
+launched in (nc) through (ansatz) at several eps, and in (dfnls) from the same start): (g) the distance travelled
+against tau / T (DpS: one site per T), (h) the lattice's speed deficit 1 - v / (c eps^(alpha-1)) against eps with
+the fitted order, (i) the radiation (energy outside the window around the breather over the total) against tau / T.
 """
 from __future__ import annotations
 
@@ -40,7 +40,6 @@ def draw(tree: AnalysisTree) -> Figure:
     N = n.size
     attrs = tree.attrs
     thr = float(attrs["stability_threshold"])
-    check_N = int(attrs["check_N"])
 
     a = ax[0, 0]
     picks = sorted({0, len(c) // 2, len(c) - 1})
@@ -58,9 +57,12 @@ def draw(tree: AnalysisTree) -> Figure:
     a.set_title(f"(a) profiles at norm {float(attrs['norm']):g} (ring of {N})", fontsize=9)
     a.legend(fontsize=7, loc="upper left")
 
+    rob = tree["robustness"]
+    rings = [int(x) for x in rob["ring"].values]
     b = ax[0, 1]
-    b.semilogy(c, fam["tail"].values, "C0o-", ms=4, label=f"ring of {N}")
-    b.semilogy(c, fam["tail_N"].values, "C1s--", ms=3, mfc="none", label=f"ring of {check_N}")
+    for i, ring in enumerate(rings):
+        b.semilogy(c, rob["tail"].values[i], f"C{i}{'os^v<>'[i % 6]}{'-' if i == 0 else '--'}", ms=4 if i == 0 else 3,
+                   mfc=None if i == 0 else "none", lw=1.0, label=f"ring of {ring}")
     b.set_xlabel("velocity c (sites per unit $\\tau$)")
     b.set_ylabel("tail: max far $|A_n|$ / max $|A_n|$")
     b.set_title("(b) oscillatory tail against c", fontsize=9)
@@ -75,20 +77,27 @@ def draw(tree: AnalysisTree) -> Figure:
     e = ax[1, 0]
     g = np.asarray(fam["growth_rate"].values)
     floor = thr / 100.0
-    un = np.asarray(fam["unstable"].values) == 1
-    e.semilogy(c, np.maximum(g, floor), "C3-", lw=1.0)
-    e.semilogy(c[un], np.maximum(g[un], floor), "C3o", ms=6, label=f"ring of {N}: unstable")
-    e.semilogy(c[~un], np.maximum(g[~un], floor), "C3o", ms=6, mfc="none", label=f"ring of {N}: stable")
-    e.semilogy(c, np.maximum(np.asarray(fam["growth_rate_N"].values, float), floor), "C1s", ms=4, mfc="none",
-               label=f"ring of {check_N}")
-    e.semilogy(c, np.maximum(np.asarray(fam["growth_rate_rtol"].values, float), floor), "k+", ms=6,
-               label=f"rtol {float(attrs['check_rtol']):g}")
+    G = np.asarray(rob["growth_rate"].values, float)
+    for i, ring in enumerate(rings):
+        gi = np.maximum(G[i], floor)
+        un = np.asarray(rob["unstable"].values[i]) == 1
+        mk = f"C{i}{'os^v<>'[i % 6]}"
+        e.semilogy(c[un], gi[un], mk, ms=6 if i == 0 else 5, label=f"ring of {ring}")
+        e.semilogy(c[~un], gi[~un], mk, ms=6 if i == 0 else 5, mfc="none")
+    for j, rt in enumerate(rob["rtol"].values[1:], 1):
+        gt = np.maximum(np.asarray(rob["growth_rate_tol"].values[j], float), floor)
+        e.semilogy(c, gt, ("k+", "kx", "k1")[(j - 1) % 3], ms=6, label=f"ring of {rings[0]}, rtol {float(rt):g}")
     e.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
-    e.set_ylim(floor / 2, 300.0 * max(float(np.nanmax(g)), float(np.nanmax(fam["growth_rate_N"].values)), thr))
+    top = 30.0 * max(float(np.nanmax(G)), thr)
+    settled = np.asarray(rob["settled"].values)
+    for x, v in zip(c, settled, strict=True):
+        e.text(x, floor / 4.0, {1: "U", 0: "S"}.get(int(v), "?"), ha="center", va="center", fontsize=7,
+               color={1: "C3", 0: "C2"}.get(int(v), "0.4"))
+    e.set_ylim(floor / 12.0, top * 1e3)
     e.set_xlabel("velocity c")
     e.set_ylabel(f"growth rate ln max$|\\mu|$ / T (floor {floor:g})")
-    e.set_title("(d) multipliers modulo shift: growth rate", fontsize=9)
-    e.legend(fontsize=6.5, loc="upper left", ncol=2)
+    e.set_title("(d) growth rate, filled: unstable; S, U: settled, ?: not", fontsize=9)
+    e.legend(fontsize=6, loc="upper left", ncol=2)
 
     f = ax[1, 1]
     mu = np.asarray(tree["multipliers"]["mu_re"].values) + 1j * np.asarray(tree["multipliers"]["mu_im"].values)
