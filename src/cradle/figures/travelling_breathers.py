@@ -13,7 +13,7 @@ of |A_n(tau)| to the static site and bond breathers against c; the TBs in motion
 launched in (nc) through (ansatz) at several eps, and in (dfnls) from the same start): (g) the distance travelled
 against tau / T (DpS: one site per T), (h) the lattice's speed deficit 1 - v / (c eps^(alpha-1)) against eps with
 the fitted order, (i) the radiation (energy outside the window around the breather over the total) against tau / T.
-the exact TBs of the lattice (nc) when the file holds them (key ``lattice``; issue 37, item 2), a row after the
+Then the exact TBs of the lattice (nc) when the file holds them (key ``lattice``; issue 37, item 2), a row after the
 others: (j) their |xi_n| against the DpS member's ansatz, (k) their tails and distances to it against the
 lattice's velocity, (l) their multipliers modulo shift.
 """
@@ -34,8 +34,8 @@ MIN_POINTS = 3
 
 def draw(tree: AnalysisTree) -> Figure:
     """The panels above: (g)-(i) when the file holds the TBs in motion, (j)-(l) when it holds the lattice's TBs."""
-    rows = 2 + int("motion" in tree.children) + int("lattice" in tree.children)
-    fig, ax = figure(rows, 3, width=13.5, height=3.75 * rows)
+    lattice = "lattice" in tree.children
+    fig, ax = figure(4, 3, width=13.5, height=14.9) if lattice else figure(3, 3, width=13.5, height=11.2)
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
     prof = tree["profiles"]
@@ -133,8 +133,8 @@ def draw(tree: AnalysisTree) -> Figure:
     h.legend(fontsize=7, loc="lower right")
     if "motion" in tree.children:
         draw_motion(ax[2], tree)
-    if "lattice" in tree.children:
-        _lattice_panels(tree, ax[-1])
+    if lattice:
+        _lattice_panels(tree, ax[3])
     return fig
 
 
