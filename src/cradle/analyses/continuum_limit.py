@@ -414,8 +414,8 @@ def lattice_small(spec: ContinuumLimit, say: Log) -> tuple[dict, dict]:
 
 def lattice_stability(spec: ContinuumLimit, say: Log) -> tuple[dict, dict]:
     """The pinning mode of the exact site breather of (nc) at each alpha and amplitude of the spec against DpS's
-    unstable mode (:func:`cradle.models.lattice_pinning.exact_site`)."""
-    from cradle.models.lattice_pinning import exact_site
+    unstable mode (:func:`cradle.integrators.lattice_pinning.exact_site`)."""
+    from cradle.integrators.lattice_pinning import exact_site
 
     al, es = list(spec.stability_alphas), list(spec.stability_eps)
     out = {k: np.zeros((len(al), len(es))) for k in ("sigma_ratio", "rate", "amplitude", "residual", "trivial")}
