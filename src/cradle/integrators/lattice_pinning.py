@@ -19,9 +19,11 @@ change its sign unless eps^(alpha-1) is small: sigma / lambda^2 is the measure s
 from __future__ import annotations
 
 import cmath
+import functools
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 
 
 @dataclass(frozen=True)
@@ -42,19 +44,26 @@ class PinningMode:
     converged: bool
 
 
+@functools.lru_cache(maxsize=32)
+def _dps_site(alpha: float, N: int) -> tuple[float, NDArray[np.float64], float]:
+    """DpS's growth rate lambda, the unit-amplitude site profile b_n and its nu (one solve per alpha and N)."""
+    from cradle.models.dps_mobility import unstable_site
+    from cradle.models.homoclinic_continuation import continued
+
+    s = continued("site", alpha, N)
+    return unstable_site(alpha, N).lam, s.profile, float(s.nu)
+
+
 def exact_site(alpha: float, N: int, eps: float) -> PinningMode:
     """The pinning mode of the exact site breather of (nc) at amplitude eps on a ring of N sites."""
     from cradle.integrators import lattice_breathers as lb
     from cradle.models import dps
-    from cradle.models.dps_mobility import unstable_site
-    from cradle.models.homoclinic_continuation import continued
 
-    lam = unstable_site(alpha, N).lam
-    s = continued("site", alpha, N)
-    a_mu1 = s.profile * s.nu ** (-1.0 / (alpha - 1.0))    # the mu = 1 profile of (dpsstn)
-    pin = int(np.argmax(np.abs(s.profile)))
+    lam, profile, nu = _dps_site(alpha, N)
+    a_mu1 = profile * nu ** (-1.0 / (alpha - 1.0))    # the mu = 1 profile of (dpsstn)
+    pin = int(np.argmax(np.abs(profile)))
     scale = eps ** (alpha - 1.0)
-    omega = 1.0 + s.nu * scale / (2.0**alpha * dps.tau0(alpha))
+    omega = 1.0 + nu * scale / (2.0**alpha * dps.tau0(alpha))
     b = lb.newton(lb.dps_start(a_mu1, omega, alpha), omega, alpha, kind="site", centre=pin)
     f = lb.floquet(b, "site", centre=pin)
     m = complex(f.mu_odd[int(np.argmin(np.abs(f.mu_odd - 1.0)))])
