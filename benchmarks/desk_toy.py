@@ -25,14 +25,15 @@ from cradle.integrators import integrate_lattice  # noqa: E402
 from cradle.measurements import desk_toy as m  # noqa: E402
 from cradle.models import desk_toy as dt, physical as ph  # noqa: E402
 from cradle.models.hard_spheres import hard_sphere_run  # noqa: E402
+from cradle.models.restitution_data import STEEL_ASSUMED  # noqa: E402
 from doctable import publish  # noqa: E402
 
 STEEL = ph.real_cradle("steel", 0.01, length=0.1)
 ANGLE = 20.0
 CASES = [(5, 1), (5, 2), (5, 3), (10, 1)]
 THRESHOLDS = (0.9, 0.5)
-#: restitution of two steel balls assumed here (see docs/desk-toy.md: an assumed value, not a measured one)
-STEEL_E = 0.95
+#: restitution of two steel balls: the assumed value of cradle.models.restitution_data (not a measured one)
+STEEL_E = STEEL_ASSUMED.e
 RTOL = 1e-14
 SAMPLES = 256   # stored times per swing period 2 pi
 

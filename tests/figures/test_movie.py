@@ -81,6 +81,7 @@ def test_mp4_and_gif_decode_to_the_frames_asked_for(tmp_path, bc):
     (["--width", "101"], "--width 101: 101 is not a multiple of 2"),
     (["--duration", "1e300"], "--duration 1e+300: must be <= 600"),
     (["--t-end", "inf"], "--t-end inf: must be a finite time"),
+    (["--t-start", "5", "--t-end", "1"], "--t-start 5, --t-end 1: need t_start < t_end"),
 ])
 def test_cradle_animate_refuses_bad_flags_before_any_work(tmp_path, capsys, argv, words):
     """A flag outside the bounds of its key of `movies:` is one line naming it, exit 2, before the scene is
@@ -115,3 +116,10 @@ def test_cradle_animate_on_a_run_of_the_cli(tmp_path, capsys):
     assert (tmp_path / "r" / "movies" / "tw.gif").exists()
     assert main(["animate", "nope", "--results", str(tmp_path / "r"), "--config", str(path)]) == 2
     assert "scene 'nope': no " in capsys.readouterr().err
+    # a window past the run's end: one line naming the flags, no movie written
+    out = tmp_path / "late.mp4"
+    assert main(["animate", "tw", "--results", str(tmp_path / "r"), "--config", str(path), "--out", str(out),
+                 "--t-start", "100"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--t-start/--t-end: no stored time in the window [100.0, None] (run covers " \
+        "[0, 5])" in err and "Traceback" not in err and not out.exists(), err

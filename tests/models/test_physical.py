@@ -124,6 +124,9 @@ def test_cradle_scale_prints_the_scales(capsys):
     (["--material", "steel", "--radius", "0.01"], "--length --omega0 is required"),
     (["--material", "steel", "--radius", "nan", "--length", "0.1"], "--radius: invalid finite number value: 'nan'"),
     (["--material", "steel", "--radius", "0.01", "--length", "0.1", "--amplitude", "inf"], "--amplitude: invalid"),
+    # two bad values: both said, each once, on the one line
+    (["--material", "steel", "--radius", "1e308", "--length", "1e-308"],
+     "cradle.length = 1e-308: must be >= 0.001; cradle.radius = 1e+308: must be <= 10"),
 ])
 def test_cradle_scale_refuses_in_one_line_exit_2(argv, line, capsys):
     assert main(["scale", *argv]) == 2

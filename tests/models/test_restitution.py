@@ -2,8 +2,10 @@
 and by the fit's contract.
 
 * 1 - e depends on b = A kappa^(2/5) v^(1/5) alone, so on v as v^(1/5): the same b from different (A, v) gives
-  the same e, and 1 - e at small b is C1 b with the next term C2 b^2 (C1 = 1.15344, C2 = 0.79826 in this
-  convention, Ramirez et al. 1999), measured on the collision;
+  the same e;
+* 1 - e at small b is C1 b - C2 b^2 + O(b^(5/2)), C1 = (4/5) (5/4)^(3/5) B(3/5, 3/2) in closed form (first-order
+  perturbation of the undamped collision, rs.first_order_coefficient): the collision reproduces it, extrapolated
+  to b = 0;
 * the convention converter: A = (3/2) A', both ways, and the force it describes the same;
 * the fit recovers A from restitutions the law generates, and its residuals are within the points' scatter.
 """
@@ -16,14 +18,38 @@ import pytest
 
 from cradle.models import restitution as rs
 
-C1, C2 = 1.15344, 0.79826
+#: the integrator's tolerance on the collision in the series tests: its error on e over b stays far below b^2
+RTOL = 1e-13
+
+
+def quotient(b: float) -> float:
+    """(1 - e) / b of the scaled collision."""
+    return (1.0 - rs.restitution(b, rtol=RTOL)) / b
+
+
+def test_first_order_coefficient_closed_form():
+    C1 = rs.first_order_coefficient()
+    # the closed form against its quadrature (u = (4/5) y^(5/2) undone): 2 * int_0^ymax y^(1/2) sqrt(1 - (4/5) y^(5/2))
+    from scipy.integrate import quad
+
+    y_max = 1.25**0.4
+    integral, err = quad(lambda y: math.sqrt(y) * math.sqrt(max(1.0 - 0.8 * y**2.5, 0.0)), 0.0, y_max,
+                         epsabs=1e-14, epsrel=1e-13)
+    assert C1 == pytest.approx(2.0 * integral, abs=10.0 * err + 1e-12)
+    # the (3/2)-normalised force's coefficient: b = (3/2) b'
+    assert 1.5 * C1 == pytest.approx(1.7301733, abs=5e-8)
 
 
 @pytest.mark.parametrize("b", [1e-4, 1e-3])
-def test_small_b_series(b):
-    loss = 1.0 - rs.restitution(b)
-    # the series 1 - e = C1 b - C2 b^2 + O(b^3): C1 to the size of the neglected cube
-    assert (loss + C2 * b**2) / b == pytest.approx(C1, abs=1e-5 + b**2)
+def test_the_collision_reproduces_C1(b):
+    C1 = rs.first_order_coefficient()
+    q1, q2 = quotient(b), quotient(2.0 * b)
+    # q(b) = C1 - C2 b + O(b^(3/2)): the force is clipped where y < b |y'| (it never pulls), which ends the contact
+    # early and adds a term of order b^(5/2) to 1 - e. Richardson's 2 q(b) - q(2 b) removes C2 b and leaves that
+    # term, bounded by b^(3/2) (a coefficient of order one), plus the integrator's error 3 RTOL / b
+    assert 2.0 * q1 - q2 == pytest.approx(C1, abs=b**1.5 + 3.0 * RTOL / b)
+    # and the second-order term lowers the loss: q(b) < C1 (C2 > 0), by at most b (C2 < 1)
+    assert 0.0 < C1 - q1 < b
 
 
 def test_restitution_depends_on_v_to_the_one_fifth():

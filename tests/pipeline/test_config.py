@@ -298,6 +298,16 @@ def test_names_unique_across_sections(cfg):
     one_error(cfg, "scenes.site", "also used by homoclinic.site")
 
 
+@pytest.mark.parametrize("section, name, said", [
+    ("scenes", "TW-Weak", "scenes.TW-Weak: name 'TW-Weak' differs from scenes.tw-weak only in case"),
+    # homoclinic names are claimed before scene names (as for equal names): the scene is the one said
+    ("homoclinic", "Tw-weak", "scenes.tw-weak: name 'tw-weak' differs from homoclinic.Tw-weak only in case")])
+def test_names_that_differ_only_in_case_are_refused(cfg, section, name, said):
+    """results/sim/tw-weak and results/sim/TW-Weak are one folder on macOS's and Windows's file systems."""
+    cfg[section][name] = copy.deepcopy(tw(cfg) if section == "scenes" else cfg["homoclinic"]["site"])
+    one_error(cfg, said, "case-insensitive file system")
+
+
 def test_all_problems_are_reported(cfg):
     tw(cfg)["N"] = 1
     tw(cfg)["Nn"] = 2

@@ -92,6 +92,34 @@ def test_deep_nesting_is_refused(tmp_path):
     assert f"nested more than {MAX_DEPTH} deep" in _refused(tmp_path, text)
 
 
+def test_an_integer_past_python_s_digit_limit_is_one_line_with_its_line(tmp_path):
+    """PyYAML's int() of 5001 digits raises a ValueError from deep inside the loader (Python's limit of 4300)."""
+    line = _refused(tmp_path, CONFIG + f"\nhuge: [1{'0' * 5000}]\n")
+    assert "not valid YAML: an integer of 5001 digits" in line and f"line {LAST}" in line
+
+
+@pytest.mark.parametrize("written, shown", [(f"0x{'f' * 5000}", "an integer of about 6021 digits"),
+                                            (f"1{'0' * 400}", "1" + "0" * 76 + "...")])
+def test_an_integer_beyond_every_double_is_refused_naming_its_key(tmp_path, written, shown):
+    """A hexadecimal integer has no digit limit and 400 digits none to reach: each is a value no double holds,
+    refused at its key (the message's rendering of it does not hit the limit either)."""
+    p = tmp_path / "c.yaml"
+    p.write_text(CONFIG.replace("    t_end: 621.95\n", f"    t_end: {written}\n", 1))   # tw-weak's
+    with pytest.raises(cc.ConfigError) as err:
+        cc.load(p)
+    line = str(err.value)
+    assert line == f"config error: scenes.tw-weak.t_end = {shown}: must be a number a double holds (|x| < 1.8e308)"
+
+
+def test_a_command_line_integer_past_the_digit_limit_is_one_line():
+    """`--config` values arrive as text: 5001 digits read as the double they spell (inf), not int()'s ValueError."""
+    config = cc.read_yaml(ROOT / "config.yaml")
+    config["scenes"]["tw-weak"]["t_end"] = "1" + "0" * 5000
+    with pytest.raises(cc.ConfigError) as err:
+        cc.validate(config)
+    assert str(err.value) == "config error: scenes.tw-weak.t_end = inf: must be a finite number"
+
+
 def test_a_file_that_is_not_utf8_is_one_line(tmp_path):
     line = _refused(tmp_path, CONFIG.encode() + b"\nx: \"caf\xe9\"\n")
     assert line.endswith(f": line {LAST}: byte 0xe9 is not UTF-8 text (invalid continuation byte); save the file as "

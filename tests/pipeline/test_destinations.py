@@ -106,6 +106,30 @@ def test_animate_onto_another_scenes_movie_or_a_foreign_file_is_refused(work, ca
     assert _snapshot(work) == before
 
 
+@pytest.mark.parametrize("argv, said", [
+    (["extend", "results/sim/tw-weak/exact.nc", "--t-end", "8", "--out", "notes.nc/longer.nc"],
+     "cannot write notes.nc/longer.nc: notes.nc is a file, not a folder"),
+    (["extend", "results/sim/tw-weak/exact.nc", "--t-end", "8", "--out", "notes.nc/a/b/longer.nc", "--overwrite"],
+     "cannot write notes.nc/a/b/longer.nc: notes.nc is a file, not a folder"),
+    (["extend", "results/sim/tw-weak/exact.nc", "--t-end", "8", "--out", "results"],
+     "cannot write results: it is a folder"),
+    (["run", "tw-weak", "--out", "notes.nc"], "cannot write notes.nc/initial/tw-weak.nc: notes.nc is a file, not a "
+                                              "folder"),
+    (["animate", "tw-weak", "--out", "notes.nc/talk.mp4"],
+     "cannot write notes.nc/talk.mp4: notes.nc is a file, not a folder"),
+])
+def test_a_destination_that_cannot_be_made_is_one_line_before_any_work(work, capsys, argv, said):
+    """A file where a folder must be (or a folder where the file goes) is said before the run, not by the write
+    at its end, even with --overwrite."""
+    Path("notes.nc").write_text("my notes")
+    before = _snapshot(work)
+    capsys.readouterr()
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "Traceback" not in err and err == f"cradle: error: {said}", err
+    assert _snapshot(work) == before
+
+
 def test_workflow_outputs_are_found_by_their_path(tmp_path):
     root = tmp_path / "results"
     assert workflow_output(root / "sim" / "a" / "exact.nc") == ("exact", {"scene": "a"})

@@ -138,6 +138,17 @@ def test_a_file_without_a_digest_is_read_and_noted(work, capsys):
     assert len(notes) == 1 and "results/metrics/tw-weak.nc: readable, but no digest recorded" in notes[0]
 
 
+@pytest.mark.parametrize("record", [b"", b"garbage", b"{}", b'{"format": "%s"}', b"[1, 2]"])
+def test_a_damaged_digest_record_is_refused_by_every_reader(work, capsys, record):
+    """A record that is there but is no record (truncated, overwritten, another format) cannot vouch for its file:
+    refused, not taken as "no digest" (which would let an edit through unnoticed)."""
+    rel = "results/sim/tw-moderate/exact.nc"
+    digests.sidecar(rel).write_bytes(record.replace(b"%s", digests.FORMAT.encode()))
+    for reader, line in _refusals(work, rel, capsys).items():
+        assert rel in line and "its digest record .exact.nc.digest is damaged" in line, (reader, line)
+        assert f"rebuild it: snakemake --force {rel}" in line, (reader, line)
+
+
 def _small() -> xr.Dataset:
     return xr.Dataset({"x": (("t", "n"), np.arange(12.0).reshape(4, 3))}, attrs={"a": 2.0})
 

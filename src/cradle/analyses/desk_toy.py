@@ -36,6 +36,7 @@ from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.models.damping import Damping
 from cradle.models.physical import Cradle
+from cradle.models.restitution_data import STEEL_ASSUMED
 from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR
 
@@ -53,10 +54,9 @@ if TYPE_CHECKING:
 #: the largest chain of this analysis: a desk toy has 5 to 10 balls; a longer chain is a lattice scene
 MAX_CHAIN = 100
 
-#: restitution of two steel balls at desk-toy speeds used by default beside e = 1: an ASSUMED value, the one of
-#: docs/desk-toy.md and benchmarks/desk_toy.py; no measured steel-on-steel value below 1 m/s was checked against
-#: its source for this analysis (Kuwabara & Kono, Jpn. J. Appl. Phys. 26 (1987) 1230 measured such collisions)
-STEEL_RESTITUTION_ASSUMED = 0.95
+#: restitution of two steel balls at desk-toy speeds used by default beside e = 1: an ASSUMED value
+#: (cradle.models.restitution_data.STEEL_ASSUMED, where its status is said; docs/desk-toy.md)
+STEEL_RESTITUTION_ASSUMED = STEEL_ASSUMED.e
 
 #: the (nc) cascade is stored every CASCADE_DT over CASCADE_SPAN after the impact at t = pi/2
 CASCADE_DT, CASCADE_SPAN = 1e-5, 0.05

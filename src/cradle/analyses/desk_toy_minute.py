@@ -11,8 +11,9 @@ the amplitude), free ends, stored ``samples`` times per swing period 2 pi / omeg
 The contact constant. Given as ``kk_constant`` (A in seconds: a measured or fitted value plugs in here), or, by
 default, from a restitution coefficient e at the impact speed ``restitution_speed`` through the two-ball collision
 of (ncdamped) itself (:func:`cradle.analyses.dissipation.kk_constant`: 1 - e = f(A kappa^(2/5) v^(1/5)),
-kappa = 2 k / m). No measured e of the balls was at hand: ``restitution`` lists two values that bracket the
-assumed 0.95 of the desk-toy analysis, and every run is made under each.
+kappa = 2 k / m). No measured e of the balls was at hand (:mod:`cradle.models.restitution_data` holds none):
+``restitution`` lists the two values of ``STEEL_ASSUMED.bracket`` around the assumed 0.95 of the desk-toy analysis,
+and every run is made under each.
 
 The drag. No source gives a desk toy's linear drag rate: by default the two rates of
 :func:`cradle.models.air_drag.bracketing_rates` (Stokes' drag, a lower bound; the quadratic drag at the release
@@ -45,6 +46,7 @@ from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.models.air_drag import AIR_DENSITY, AIR_VISCOSITY
 from cradle.models.physical import Cradle
+from cradle.models.restitution_data import STEEL_ASSUMED
 from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR
 
@@ -100,12 +102,14 @@ class DeskToyMinute:
     duration: float = param(60.0, "Real time of each run (s).", exclusiveMinimum=0, maximum=600, reduced=4.0)
     samples: int = param(16, "Stored times per swing period 2 pi / omega_0 (the out-swings k pi / omega_0 among "
                          "them: even).", minimum=8, maximum=256, multipleOf=2)
-    restitution: list[float] = param([0.9, 0.98], "Restitution coefficients e at restitution_speed from which the "
+    restitution: list[float] = param(list(STEEL_ASSUMED.bracket),
+                                     "Restitution coefficients e at restitution_speed from which the "
                                      "Kuwabara-Kono constant A is found (cradle.analyses.dissipation.kk_constant): "
                                      "two values bracketing the ASSUMED 0.95 of the desk-toy analysis (no measured "
                                      "value was at hand); ignored when kk_constant is given.", minItems=1,
                                      maxItems=4, items=_E)
-    restitution_speed: float = param(0.3, "Impact speed (m/s) at which the restitution coefficients hold, and at "
+    restitution_speed: float = param(STEEL_ASSUMED.v,
+                                     "Impact speed (m/s) at which the restitution coefficients hold, and at "
                                      "which the hard spheres' constant e is taken.", exclusiveMinimum=0,
                                      maximum=100)
     kk_constant: list[float] | None = param(None, "Kuwabara-Kono constants A (s) of the force k (delta^(3/2) + "

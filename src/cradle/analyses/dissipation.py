@@ -52,6 +52,8 @@ import numpy as np
 
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
+from cradle.models.restitution import first_order_coefficient
+from cradle.models.restitution_data import STEEL_ASSUMED
 from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR
 
@@ -126,11 +128,13 @@ class Dissipation:
     validity_eta: float = param(0.1, "eta of the contact validity runs.", exclusiveMinimum=0, maximum=10)
     steel_radius: float = param(0.01, "Radius of the steel cradle's balls (m).", exclusiveMinimum=0, maximum=1)
     steel_length: float = param(0.1, "Pendulum length of the steel cradle (m).", exclusiveMinimum=0, maximum=100)
-    steel_restitution: float = param(0.95, "Coefficient of restitution e of two of its balls at steel_speed: a "
+    steel_restitution: float = param(STEEL_ASSUMED.e,
+                                     "Coefficient of restitution e of two of its balls at steel_speed: a "
                                      "STATED ASSUMPTION (no measured value for 1 cm steel balls at cradle speeds "
                                      "was found in the sources available to us; docs/dissipation.md).",
                                      exclusiveMinimum=0, exclusiveMaximum=1)
-    steel_speed: float = param(0.3, "Relative impact speed (m/s) at which steel_restitution holds (assumed).",
+    steel_speed: float = param(STEEL_ASSUMED.v,
+                               "Relative impact speed (m/s) at which steel_restitution holds (assumed).",
                                exclusiveMinimum=0, maximum=100)
     air_viscosity: float = param(1.7894e-5, "Dynamic viscosity of air (Pa s): ISO 2533:1975 Standard Atmosphere, "
                                  "sea level (15 C); the on-site gamma of the steel cradle is Stokes' drag "
@@ -294,9 +298,10 @@ def kk_constant(restitution: float) -> float:
     return math.exp(log_b)
 
 
-#: Schwager & Poeschel (Phys. Rev. E 78 (2008) 051304), after Ramirez, Poeschel, Brilliantov & Schwager (Phys.
-#: Rev. E 60 (1999) 4465): 1 - e = C1 A kappa^(2/5) v^(1/5) + ..., for xi'' + kappa (xi^(3/2) + A xi^(1/2) xi') = 0
-SCHWAGER_C1 = 1.15344
+#: C1 of 1 - e = C1 A kappa^(2/5) v^(1/5) + ... for xi'' + kappa (xi^(3/2) + A xi^(1/2) xi') = 0 (the series of
+#: Ramirez, Poeschel, Brilliantov & Schwager, Phys. Rev. E 60 (1999) 4465; Schwager & Poeschel, Phys. Rev. E 78
+#: (2008) 051304), in closed form from the undamped collision (cradle.models.restitution.first_order_coefficient)
+SCHWAGER_C1 = first_order_coefficient()
 
 
 def steel_cradle(spec: Dissipation) -> dict:

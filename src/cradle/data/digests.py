@@ -163,14 +163,31 @@ def _record_text(name: str, parts: dict[str, str], previous: list[str]) -> str:
             f'"previous": {json.dumps(previous)}, "sha256": {json.dumps(sha)}}}')
 
 
-def read_record(path: str | os.PathLike) -> dict | None:
-    """The sidecar of ``path`` as recorded, or None when there is none (or it is not one of ours)."""
+def read_record(path: str | os.PathLike, strict: bool = False) -> dict | None:
+    """The sidecar of ``path`` as recorded, or None when there is none; one that is there but is not a record of
+    ours (unreadable, not JSON, another format, without its digests) is None too, or with ``strict``
+    :class:`ContentMismatch`: a damaged record cannot vouch for the file."""
     try:
         with open(sidecar(path), "rb") as fh:
-            record = json.loads(fh.read())
-    except (OSError, ValueError):
+            raw = fh.read()
+    except FileNotFoundError:
         return None
-    return record if isinstance(record, dict) and record.get("format") == FORMAT else None
+    except OSError as err:
+        if strict:
+            raise ContentMismatch(f"its digest record {sidecar(path).name} cannot be read ({err.strerror}): "
+                                  "whether the file was edited cannot be told") from None
+        return None
+    try:
+        record = json.loads(raw)
+    except ValueError:
+        record = None
+    if isinstance(record, dict) and record.get("format") == FORMAT and (
+            not strict or (isinstance(record.get("sha256"), str) and isinstance(record.get("items"), dict))):
+        return record
+    if strict:
+        raise ContentMismatch(f"its digest record {sidecar(path).name} is damaged (not a digest record of this "
+                              "project's files): whether the file was edited cannot be told")
+    return None
 
 
 def record(path: str | os.PathLike, source: str | os.PathLike | None = None, known: dict[str, str] | None = None,
@@ -232,7 +249,7 @@ def _named(key: str) -> str:
 def compare(path: str | os.PathLike, parts: dict[str, str], most: int = 3) -> bool:
     """Compare the :func:`items` ``parts`` of the file at ``path`` with its sidecar: True when they match (or match
     the file it replaced), False when there is no sidecar; else raise :class:`ContentMismatch` naming what differs."""
-    rec = read_record(path)
+    rec = read_record(path, strict=True)
     if rec is None:
         return False
     before = rec.get("previous")

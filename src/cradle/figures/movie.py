@@ -68,6 +68,10 @@ class MovieSpec:
             raise ValueError(f"movie fps = {self.fps}, duration = {self.duration}: need fps >= 1 and duration > 0")
 
 
+class EmptyWindow(ValueError):
+    """The window [t_start, t_end] of a :class:`MovieSpec` holds no stored time of the run."""
+
+
 def frame_indices(t: ArrayLike, spec: MovieSpec) -> np.ndarray:
     """Indices into the stored times ``t`` of the frames: fps * duration of them, evenly spaced in index
     over the window [t_start, t_end] (the stored times are evenly spaced), every stored time if there
@@ -76,7 +80,7 @@ def frame_indices(t: ArrayLike, spec: MovieSpec) -> np.ndarray:
     lo = 0 if spec.t_start is None else int(np.searchsorted(t, spec.t_start - 1e-9))
     hi = len(t) - 1 if spec.t_end is None else int(np.searchsorted(t, spec.t_end + 1e-9)) - 1
     if hi < lo:
-        raise ValueError(f"no stored time in the window [{spec.t_start}, {spec.t_end}] (run covers "
+        raise EmptyWindow(f"no stored time in the window [{spec.t_start}, {spec.t_end}] (run covers "
                          f"[{t[0]:g}, {t[-1]:g}])")
     wanted = max(1, round(spec.fps * spec.duration))
     if hi - lo + 1 <= wanted:

@@ -20,15 +20,17 @@ Phys. Rev. E 78 (2008) 051304). With delta = L y, time T s, L = (m_eff v^2 / k)^
 kappa = k / m_eff: the restitution e = |y'| when the overlap returns to zero depends on b alone
 (:func:`restitution`), so 1 - e grows as v^(1/5) (Kuwabara & Kono, Jpn. J. Appl. Phys. 26 (1987) 1230;
 Brilliantov, Spahn, Hertzsch & Poeschel, Phys. Rev. E 53 (1996) 5382). Its small-b series is
-1 - e = C1 b - C2 b^2 + ... (Ramirez, Poeschel, Brilliantov & Schwager, Phys. Rev. E 60 (1999) 4465); in this
-convention the collision itself gives C1 = 1.15344 (tests/models/test_restitution.py), and C1 (3/2) = 1.73016 in
-the other.
+1 - e = C1 b - C2 b^2 + ... (the form: Ramirez, Poeschel, Brilliantov & Schwager, Phys. Rev. E 60 (1999) 4465).
+C1 follows in closed form from the undamped collision (:func:`first_order_coefficient`):
+C1 = (4/5) (5/4)^(3/5) B(3/5, 3/2) = 1.1534489 in this convention, (3/2) C1 = 1.7301733 in the other; the
+collision reproduces it (tests/models/test_restitution.py). C2 (about 0.80) is measured on the collision, not
+derived here; the next term is of order b^(5/2), not b^3 (the clipped force ends the contact where y < b |y'|).
 
 **The fit.** :func:`fit_constant` fits A to measured (v, e, sigma) of one pair of spheres (:class:`Measurement`,
 each with its source) by weighted least squares of e(v; A), and gives its standard uncertainty from the
 curvature of chi^2, scaled up by sqrt(chi^2 / dof) when the points scatter more than their stated errors.
-No measurement is tabulated here: none was found whose numbers could be checked against their source
-(docs/dissipation.md, "The steel cradle"); a measurement enters as :class:`Measurement` values with their source.
+The measurements live in :mod:`cradle.models.restitution_data` (none yet: no source's numbers could be read;
+docs/dissipation.md), each a :class:`Measurement` with its source.
 """
 from __future__ import annotations
 
@@ -73,6 +75,18 @@ def restitution(b: float, rtol: float = 1e-11) -> float:
     if not ends or not len(ends[0]):
         return 0.0
     return float(abs(ends[0][0][1]))
+
+
+def first_order_coefficient() -> float:
+    """C1 of 1 - e = C1 b + O(b^2) for the scaled collision (module docstring), in closed form.
+
+    At first order in b the damping acts on the undamped Hertz collision, whose speed obeys
+    y'^2 = 1 - (4/5) y^(5/2) (energy y'^2/2 + (2/5) y^(5/2) = 1/2), up to y_max = (5/4)^(2/5) and back. The energy
+    it removes is b times the integral of y^(1/2) y'^2 over the contact time, 2 b times the integral of
+    y^(1/2) |y'| dy from 0 to y_max; e^2 = 1 - 2 Delta E, so 1 - e = Delta E + O(b^2). With u = (4/5) y^(5/2) the
+    integral is (2/5) (5/4)^(3/5) B(3/5, 3/2), so C1 = (4/5) (5/4)^(3/5) Gamma(3/5) Gamma(3/2) / Gamma(21/10)."""
+    beta = math.gamma(0.6) * math.gamma(1.5) / math.gamma(2.1)
+    return 0.8 * 1.25**0.6 * beta
 
 
 def scaled_constant(A: float, v: float | NDArray[np.float64], k: float, m_eff: float) -> NDArray[np.float64]:

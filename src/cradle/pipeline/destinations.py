@@ -77,6 +77,22 @@ def holds(path: Path) -> tuple[str | None, str | None]:
     return (None if kind is None else str(kind)), (None if name is None else str(name))
 
 
+def _creatable(path: Path) -> None:
+    """Raise :class:`Refused` unless ``path``'s folder exists or can be made: its nearest existing ancestor is a
+    folder this process may write in (said before any work, not by the write at the end)."""
+    import os
+
+    if path.is_dir():
+        raise Refused(f"cannot write {path}: it is a folder")
+    ancestor = path.parent
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise Refused(f"cannot write {path}: {ancestor} is a file, not a folder")
+    if not os.access(ancestor, os.W_OK | os.X_OK):
+        raise Refused(f"cannot write {path}: no permission to write in {ancestor}")
+
+
 def check(path: str | Path, *, command: str, makes: tuple[str, dict] | None = None,
           identity: tuple[str, str] | None = None, owner: str | None = None, overwrite: bool = False) -> None:
     """Raise :class:`Refused` unless ``command`` may write ``path``.
@@ -85,9 +101,10 @@ def check(path: str | Path, *, command: str, makes: tuple[str, dict] | None = No
     gives it: ``cradle run tw-weak --out results`` makes tw-weak's files), allowed; ``identity``: the
     (cradle_kind, cradle_name) of the netCDF file it writes, which an existing netCDF file must hold; ``owner``:
     what the record of an existing non-netCDF file must name (:func:`cradle.data.digests.record_owner`)."""
+    path = Path(path)
+    _creatable(path)
     if overwrite:
         return
-    path = Path(path)
     where = workflow_output(path)
     if where is not None and where == makes:  # the command's own product (cradle run SCENE --out results)
         return

@@ -56,6 +56,8 @@ _PLAIN_NUMBER = frozenset({"type", "description", *_BOUNDS})
 #: the class :func:`build_object` is making of values just read: its own ``check_fields`` skips them
 BUILDING: contextvars.ContextVar[type | None] = contextvars.ContextVar("building", default=None)
 _NUMBER_TYPES = frozenset({int, float})
+#: an integer of more bits is beyond the largest double (about 1.8e308): no config value
+_DOUBLE_BITS = 1024
 #: the problems of a list's items said before the rest is left unread
 MAX_ITEM_PROBLEMS = 10
 _INT_RE = re.compile(r"^[-+]?\d+$")
@@ -70,7 +72,7 @@ def _from_string(text: str, kinds: list[str]) -> Any:
     if "boolean" in kinds and s in ("true", "True", "TRUE", "false", "False", "FALSE"):
         return s.lower() == "true"
     if ("integer" in kinds or "number" in kinds) and _INT_RE.match(s):
-        return int(s)
+        return int(s) if len(s) <= 400 else float(s)   # past 308 digits no double: inf, said as not finite
     if "number" in kinds and _FLOAT_RE.match(s):
         return float(s)
     if "integer" in kinds and _FLOAT_RE.match(s) and float(s).is_integer():
@@ -83,10 +85,20 @@ def _finite(value: Any, path: tuple, found: Errors) -> bool:
     if isinstance(value, float) and not math.isfinite(value):
         found.finite.append((path, path, "must be a finite number", value, False))
         return False
-    if isinstance(value, list) and _all_numbers(value) and all(map(math.isfinite, value)):
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > _DOUBLE_BITS:
+        found.finite.append((path, path, "must be a number a double holds (|x| < 1.8e308)", value, False))
+        return False
+    if isinstance(value, list) and _all_numbers(value) and _all_finite(value):
         return True   # a long list of numbers in one pass, not a call per item
     items = value.items() if isinstance(value, dict) else enumerate(value) if isinstance(value, list) else ()
     return all([_finite(v, (*path, k), found) for k, v in items])
+
+
+def _all_finite(value: list) -> bool:
+    try:
+        return all(map(math.isfinite, value))
+    except OverflowError:   # an integer beyond every double: said item by item
+        return False
 
 
 def _all_numbers(value: list | tuple) -> bool:

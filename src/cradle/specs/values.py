@@ -69,7 +69,10 @@ def key_path(parts: Any) -> str:
 def show(value: Any) -> str:
     """A short, unambiguous rendering of a value (strings quoted, a long list cut)."""
     if not isinstance(value, (dict, list)):
-        text = repr(value)
+        try:
+            text = repr(value)
+        except ValueError:   # an integer past Python's 4300 digits
+            text = f"an integer of about {round(value.bit_length() * math.log10(2))} digits"
     else:
         if len(value) > 16:   # only the start: a list of a million values is not dumped whole
             value = dict(list(value.items())[:16]) if isinstance(value, dict) else value[:16]

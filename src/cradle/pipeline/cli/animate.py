@@ -64,6 +64,8 @@ def checked_flags(args: argparse.Namespace) -> dict:
         value = getattr(args, key)
         if value is not None and not math.isfinite(value):
             raise CliError(f"--{key.replace('_', '-')} {value!r}: must be a finite time")
+    if args.t_start is not None and args.t_end is not None and not args.t_start < args.t_end:
+        raise CliError(f"--t-start {args.t_start:g}, --t-end {args.t_end:g}: need t_start < t_end")
     return given
 
 
@@ -91,7 +93,7 @@ def _recorded(paths: list[Path | None], owner: str) -> None:
 
 
 def cmd_animate(args: argparse.Namespace) -> int:
-    from cradle.figures.movie import MovieSpec, animate
+    from cradle.figures.movie import EmptyWindow, MovieSpec, animate
     from cradle.pipeline import layout
     from cradle.pipeline.outputs import open_scene
 
@@ -128,7 +130,10 @@ def cmd_animate(args: argparse.Namespace) -> int:
         ds = open_scene(args.scene, root=args.results, metrics=False)
     except FileNotFoundError as err:
         raise CliError(str(err)) from None
-    info = animate(ds, out, spec, gif=gif, gif_spec=gspec, gif_width=given["gif_width"])
+    try:
+        info = animate(ds, out, spec, gif=gif, gif_spec=gspec, gif_width=given["gif_width"])
+    except EmptyWindow as err:   # said before any frame is drawn
+        raise CliError(f"--t-start/--t-end: {err}") from None
     _recorded([out, gif], owner)
     times = info["times"]
     print(f"{out}: {len(times)} frames at {spec.fps}/s, {spec.width}x{spec.height}, t = {times[0]:g} .. "

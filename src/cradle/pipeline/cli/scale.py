@@ -51,6 +51,8 @@ def cmd_scale(args: argparse.Namespace) -> int:
     try:
         lines = scale_lines(args)
     except ConfigError as err:
-        raise CliError(" ".join(str(err).removeprefix("config error: ").split())) from None
+        # every problem on the one line, "; " between them
+        raise CliError("; ".join(" ".join(line.removeprefix("config error: ").split()) for line in err.errors)) \
+            from None
     print("\n".join(lines))
     return 0

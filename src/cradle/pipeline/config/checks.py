@@ -40,11 +40,17 @@ def check(parts: dict, config: dict, out: Errors) -> None:
              for section in ENTRY_SECTIONS}
     scenes = {} if parts["defaults"] is BAD else parts["scenes"]
     context = Context(given=given, scenes=scenes, homoclinic=parts["homoclinic"])
+    folded: dict[str, str] = {}   # a name's results folder is one on a case-insensitive file system
     for section in ENTRY_SECTIONS:   # a name is one entry across the three: a figure reads them all
         for name in given[section]:
+            first = folded.setdefault(str(name).casefold(), name)
             if context.names[name] != section:
                 out.add([section, name], f"name {name!r} is also used by {context.names[name]}.{name} (map, "
                                          f"homoclinic and scenes names must be unique)")
+            elif first != name:
+                out.add([section, name], f"name {name!r} differs from {context.names[first]}.{first} only in case "
+                                         f"(their files would be one on a case-insensitive file system: macOS, "
+                                         f"Windows)")
     for section in ENTRY_SECTIONS:
         for name, entry in (scenes if section == "scenes" else parts[section]).items():
             entry.check([section, name], context, out)

@@ -55,6 +55,17 @@ _Parser = getattr(yaml, "CSafeLoader", yaml.SafeLoader)   # libyaml's parser whe
 class StrictLoader(_Parser):   # type: ignore[valid-type, misc]
     """PyYAML's safe loader, refusing a key given twice in one mapping (merge keys ``<<: *base`` honoured)."""
 
+    def construct_yaml_int(self, node: yaml.ScalarNode) -> Any:
+        """An integer as PyYAML reads it; one past Python's limit of digits (a ValueError from deep inside the
+        loader) said as the YAML error it is, with its line."""
+        try:
+            return super().construct_yaml_int(node)
+        except ValueError:
+            digits = sum(c.isdigit() for c in str(node.value))
+            raise yaml.constructor.ConstructorError(
+                None, None, f"an integer of {digits} digits: no config number needs more than a few (Python reads "
+                            f"at most {sys.get_int_max_str_digits()})", node.start_mark) from None
+
     def construct_document(self, node: yaml.Node) -> Any:
         self._check_keys(node, set())
         return super().construct_document(node)
@@ -84,6 +95,9 @@ class StrictLoader(_Parser):   # type: ignore[valid-type, misc]
         elif isinstance(node, yaml.SequenceNode):
             for item in node.value:
                 self._check_keys(item, done)
+
+
+StrictLoader.add_constructor("tag:yaml.org,2002:int", StrictLoader.construct_yaml_int)
 
 
 def read_yaml(path: str | os.PathLike) -> dict:
