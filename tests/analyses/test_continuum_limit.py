@@ -212,6 +212,8 @@ def test_the_distances_to_the_compactons_vanish_as_the_first_power(reduced):
     err = np.asarray(comp["nu_error"].values)
     assert np.all(np.abs(err) < 3.0)
     assert np.all(np.abs(np.diff(err[:, -2:], axis=1)) < 0.05 * np.abs(err[:, -1:]))
+    # the two compacton rows of the claims (James 2018, James and Pelinovsky 2014) follow the fitted powers
+    assert list(tree["claims"]["verdict"].values)[-2:] == ["agrees"] * 2
     # the support grows as 1/eps: pi (1 + eps) / (2 eps) for form A
     e = np.asarray(comp["eps"].values)
     assert np.allclose(np.asarray(comp["half_width"].values)[0], 0.5 * math.pi * (1 + e) / e, rtol=1e-14)
