@@ -50,7 +50,7 @@ def test_rows_from_closed_forms_and_map():
 
 
 def test_missing_scenes_leave_their_rows_out():
-    rows = checks.rows(checks.PaperChecks(scenes=[], homoclinic=[]), {})
+    rows = checks.rows(checks.PaperChecks(scenes=[], homoclinic=[], analyses=[]), {})
     labels = {r.label for r in rows}
     assert labels == {"(tau0)", "traj2"}
 
@@ -64,7 +64,7 @@ def test_every_row_states_its_tolerance():
 def test_the_file_holds_the_rows_and_its_tables_write_them_out(tmp_path):
     """compute -> netCDF (one text variable per column, one entry per row) -> the CSV and Markdown tables,
     the same text as the rows themselves give."""
-    spec = checks.PaperChecks(scenes=[], homoclinic=[])
+    spec = checks.PaperChecks(scenes=[], homoclinic=[], analyses=[])
     rows = checks.rows(spec, {})
     tree = open_tree(write_netcdf(checks.compute(spec, {}), tmp_path / "paper-checks.nc"))
     ds = tree.to_dataset()
@@ -85,12 +85,61 @@ def test_its_spec_names_every_scene_and_homoclinic_of_the_config_and_reads_them_
     # in name order: the table does not depend on the order of the config's blocks, so neither do its params
     assert spec.scenes == sorted(raw["scenes"]) and sorted(spec.homoclinic) == sorted(raw["homoclinic"])
     reads = checks.ANALYSIS.reads_of(spec)
-    assert len(reads) == 4 * len(raw["scenes"]) + len(raw["homoclinic"])
+    assert len(reads) == 4 * len(raw["scenes"]) + len(raw["homoclinic"]) + len(checks.claiming_analyses())
+    assert reads["analysis/travelling-breathers"] == Read.of("analysis", analysis="travelling-breathers")
     assert reads["fft106/metrics"] == Read.of("metrics", scene="fft106")
     assert reads["homoclinic/site"] == Read.of("homoclinic", name="site")
-    raw.setdefault("beyond", {})["paper-checks"] = {"scenes": ["tw-weak"], "homoclinic": []}
+    raw.setdefault("beyond", {})["paper-checks"] = {"scenes": ["tw-weak"], "homoclinic": [], "analyses": []}
     assert set(checks.ANALYSIS.reads_of(cc.analysis_spec(raw, "paper-checks", "full"))) == {
         "tw-weak/initial", "tw-weak/exact", "tw-weak/dps", "tw-weak/metrics"}
+
+
+def test_the_table_collects_the_claims_rows_an_analysis_declares_after_the_papers():
+    """An analysis's claims group (claims_table.group) read back by the table: its rows after the paper's, which
+    are unchanged, a qualitative one marked so in its tolerance cell, each naming the analysis; the groups are
+    found by the declaration (Analysis.claims), and the two analyses of issue 37 declare theirs."""
+    import xarray as xr
+
+    from cradle.analyses.claims_table import Row, group
+
+    assert {"travelling-breathers", "continuum-limit"} <= set(checks.claiming_analyses())
+    mine = [Row("Xu et al.", "q", "a change", "none", "agrees", "m", "one grid spacing", "a.md#x", qualitative=True),
+            Row("Someone 2020", "n", "1.5", "1.52", "disagrees", "fit", "+-0.1", "b.md#y")]
+    data, coords = group(mine)
+    tree = xr.DataTree.from_dict({"/": xr.Dataset(), "/claims": xr.Dataset(
+        {k: ("row", v) for k, v in data.items()}, coords={"row": coords["row"]})})
+    paper = checks.rows(checks.PaperChecks(scenes=[], homoclinic=[], analyses=[]), {})
+    both = checks.rows(checks.PaperChecks(scenes=[], homoclinic=[], analyses=["travelling-breathers"]),
+                       {"analysis/travelling-breathers": tree})
+    assert both[:len(paper)] == paper and len(both) == len(paper) + 2
+    got = both[len(paper):]
+    assert got[0].tolerance == "qualitative: one grid spacing" and got[0].qualitative
+    assert got[1].tolerance == "+-0.1" and not got[1].qualitative
+    assert [r.measured for r in got] == ["m (analysis travelling-breathers)", "fit (analysis travelling-breathers)"]
+    assert [r.explained_in for r in got] == ["a.md#x", "b.md#y"]
+
+
+def test_another_analysis_is_read_from_the_output_of_the_form_all_builds_as_a_tree():
+    """The file a Read of kind analysis names is that analysis's output of its first form (the one `all` builds),
+    and the layout knows it as an analysis output (the compute job opens such an input as the tree of its groups)."""
+    from cradle.analyses.registry import ANALYSES
+    from cradle.pipeline import layout
+    from cradle.pipeline.identity import locate
+
+    for name in checks.claiming_analyses():
+        main = ANALYSES[name].forms[0]
+        path = layout.read_path(Read.of("analysis", analysis=name), "full")
+        assert path == layout.analysis_output(name, main, main)
+        assert locate(path) == ("analysis", {"analysis": name, "form": main})
+
+
+def test_an_analysis_named_without_claims_is_refused_in_one_line():
+    from cradle.specs.values import Errors
+
+    out = Errors()
+    checks.PaperChecks(analyses=["travelling-breathers", "floquet"]).check(["beyond", "paper-checks"], None, out)
+    assert len(out.lines) == 1
+    assert out.lines[0].startswith("config error: beyond.paper-checks.analyses[1] = 'floquet': ")
 
 
 def test_a_harmonic_is_a_coherent_peak_above_the_local_band():

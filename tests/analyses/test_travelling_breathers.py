@@ -22,8 +22,9 @@ from cradle.specs.values import ConfigError
 
 
 def _tiny(**over):
-    plain = {"N": 16, "check_N": 18, "speeds": [0.06, 0.08, 0.1], "direct_speed": 0.08, "direct_periods": 3,
-             "static_samples": 16, **over}
+    plain = {"N": 16, "check_N": [18], "check_rtol": [1e-12], "speeds": [0.06, 0.08, 0.1], "direct_speed": 0.08,
+             "direct_periods": 3, "static_samples": 16, "motion_eps": [0.01, 0.003, 0.001, 3e-4], "motion_sites": 8,
+             "motion_ring": 30, "motion_samples": 8, **over}
     return from_plain(tb.TravellingBreathers, plain)
 
 
@@ -116,7 +117,7 @@ def test_claims_rows_have_the_table_columns(tiny):
 def test_check_names_each_key_in_one_line():
     from cradle.specs.values import Errors
 
-    spec = from_plain(tb.TravellingBreathers, {"N": 12, "check_N": 12, "speeds": [0.1, 0.08, 0.12],
+    spec = from_plain(tb.TravellingBreathers, {"N": 12, "check_N": [14, 12], "speeds": [0.1, 0.08, 0.12],
                                                "direct_speed": 0.2})
     out = Errors()
     spec.check(["beyond", "travelling-breathers"], None, out)
@@ -125,3 +126,42 @@ def test_check_names_each_key_in_one_line():
         assert any(line.startswith(f"config error: beyond.travelling-breathers.{key} = ") for line in out.lines)
     with pytest.raises(ConfigError, match="N = 4: must be >= 8"):
         _tiny(N=4)
+
+
+def test_robustness_rows_are_the_family_and_the_checks(tiny):
+    """/robustness holds the ring of N and the tolerance rtol as its first rows (the family itself), the first
+    check ring and check tolerance as /family's *_N and *_rtol; settled is 1 (0) exactly where every row says
+    unstable (stable)."""
+    spec, tree = tiny
+    rob, fam = tree["robustness"], tree["family"]
+    assert list(rob["ring"].values) == [spec.N, *spec.check_N]
+    assert list(rob["rtol"].values) == [spec.rtol, *spec.check_rtol]
+    assert np.array_equal(rob["growth_rate"].values[0], fam["growth_rate"].values)
+    assert np.array_equal(rob["growth_rate_tol"].values[0], fam["growth_rate"].values)
+    assert np.array_equal(rob["tail"].values[0], fam["tail"].values)
+    assert np.array_equal(rob["unstable"].values[1], fam["unstable_N"].values)
+    assert np.array_equal(rob["growth_rate_tol"].values[1], fam["growth_rate_rtol"].values)
+    rows = np.concatenate([rob["unstable"].values, rob["unstable_tol"].values])
+    settled = rob["settled"].values
+    assert np.array_equal(settled == tb.SETTLED_UNSTABLE, np.all(rows == 1, axis=0))
+    assert np.array_equal(settled == tb.SETTLED_STABLE, np.all(rows == 0, axis=0))
+    # an unstable mode's participation ratio is between one site and the whole ring; stable members have none
+    ext = rob["mode_extent"].values
+    un = rob["unstable"].values == 1
+    assert np.all(np.isnan(ext[~un]))
+    assert np.all((ext[un] >= 1.0 / spec.N) & (ext[un] <= 1.0))
+
+
+def test_tail_wave_and_its_mi_rate():
+    """A plane wave R e^{i q n} that fits the ring (q = 2 pi k / N; a bump elsewhere for the centre) has tail_wave
+    (q, R); its MI rate is 0 for |q| <= pi/2 (every such plane wave of (dfnls) is stable) and positive beyond."""
+    N, R = 32, 1e-4
+    q = 2 * np.pi * 11 / N
+    n = np.arange(N)
+    A = R * np.exp(1j * q * n)
+    A[14:19] = [0.1, 0.5, 1.0, 0.5, 0.1]
+    q_m, R_m = tb.tail_wave(A)
+    assert q_m == pytest.approx(q, abs=1e-12)
+    assert R_m == pytest.approx(R, rel=1e-12)
+    assert tb.tail_mi_rate(1.0, R, 1.5) == 0.0
+    assert tb.tail_mi_rate(q, R, 1.5) > 0.0

@@ -131,7 +131,8 @@ def test_key_sources_are_the_kernel_modules_and_their_cradle_imports():
     names = [p.relative_to(_cache.KERNEL_DIR).as_posix() for p in _cache.kernel_sources()]
     assert names == ["_cache.py", "_dop853.py", "_dop853_events.py", "_generic.py", "_kernels.py",
                      "_kernels_dps_sites.py", "_onset.py", "_onset_impulse.py", "_splitting.py", "_types.py",
-                     "systems/dps.py", "systems/imperfect.py", "systems/lattice.py", "terms/contact_damping.py",
+                     "systems/dps.py", "systems/dps_variational.py", "systems/imperfect.py", "systems/lattice.py",
+                     "terms/contact_damping.py",
                      "terms/hertz.py", "terms/inhomogeneity.py", "terms/onsite_damping.py",
                      "terms/onsite_harmonic.py", "terms/onsite_pendulum.py", "terms/onsite_quartic.py",
                      "terms/precompression.py", "terms/slots.py"]

@@ -1,12 +1,19 @@
 """The claims table's rows: the row, its columns and the verdict rule "within the paper's printed precision"
 (:mod:`cradle.analyses.paper_checks` computes the rows; :mod:`cradle.figures.paper_checks` writes them out as
-CSV and Markdown)."""
+CSV and Markdown).
+
+An analysis beyond the paper whose output holds rows for the table (the cited papers' statements against its
+results) stores them as one group, :func:`group` (variables :data:`GROUP_VARIABLES`: the :data:`COLUMNS` and
+:data:`QUALITATIVE`), and names that group in its declaration (``claims=`` of
+:class:`cradle.analyses.protocol.Analysis`); the table collects every such group (:func:`read_group`)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
+
+from cradle.data.variables import Var
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -16,6 +23,9 @@ if TYPE_CHECKING:
 HARMONIC_PRESENT = 0.01
 
 COLUMNS = ("label", "quantity", "paper", "ours", "tolerance", "verdict", "measured", "explained_in")
+#: the variable of an analysis's claims group beside the columns: 1 for a qualitative statement (the cited paper
+#: prints no number; the verdict is a yes/no judged as the row's tolerance says), 0 for a numerical one
+QUALITATIVE = "qualitative"
 
 
 @dataclass
@@ -30,6 +40,8 @@ class Row:
     #: the paragraph of the docs that explains the verdict, "<page>.md#<anchor>" under docs/; every row that
     #: disagrees needs one (tests/analyses/test_checks.py), declared beside its claim (:func:`explained`)
     explained_in: str = ""
+    #: a qualitative statement (the cited paper prints no number for it): marked so in the table's tolerance cell
+    qualitative: bool = False
 
 
 def explained(where: str, rows: list[Row]) -> list[Row]:
@@ -83,3 +95,25 @@ class Results:
 
     def homoclinic(self, name: str) -> xr.Dataset:
         return self.inputs[f"homoclinic/{name}"]
+
+
+#: the variables of an analysis's claims group (:func:`group`)
+GROUP_VARIABLES = {"row": Var(("row",), "index of a cited paper's statement"),
+                   **{c: Var(("row",), f"claims-table column {c} (cradle.analyses.claims_table.COLUMNS)")
+                      for c in COLUMNS},
+                   QUALITATIVE: Var(("row",), "1 if the statement is qualitative (the cited paper prints no number)")}
+
+
+def group(rows: list[Row]) -> tuple[dict, dict]:
+    """(data, coords) of an analysis's claims group (:data:`GROUP_VARIABLES`) holding ``rows``."""
+    data: dict = {c: np.array([getattr(r, c) for r in rows], dtype=object) for c in COLUMNS}
+    data[QUALITATIVE] = np.array([int(r.qualitative) for r in rows], dtype=np.int64)
+    return data, {"row": np.arange(len(rows))}
+
+
+def read_group(ds: xr.Dataset) -> list[Row]:
+    """The rows of a stored claims group (:func:`group`); a group stored without :data:`QUALITATIVE` holds
+    numerical statements only."""
+    n = ds.sizes.get("row", 0)
+    flag = np.asarray(ds[QUALITATIVE].values) if QUALITATIVE in ds else np.zeros(n, dtype=np.int64)
+    return [Row(**{c: str(ds[c].values[i]) for c in COLUMNS}, qualitative=bool(flag[i])) for i in range(n)]

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.claims_table import COLUMNS, Row
+from cradle.analyses.claims_table import GROUP_VARIABLES, Row, group
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
@@ -228,9 +228,7 @@ VARIABLES = {
         "displacement": Var(("alpha", "variant"), "largest distance of the peak from its start (sites), largest "
                             "delta"),
     },
-    "/claims": {"row": Var(("row",), "index of a cited paper's statement"),
-                **{c: Var(("row",), f"claims-table column {c} (cradle.analyses.claims_table.COLUMNS)")
-                   for c in COLUMNS}},
+    "/claims": GROUP_VARIABLES,
 }
 
 
@@ -356,7 +354,7 @@ def claims(fits: dict[str, PowerFit]) -> list[Row]:
                         "agrees" if ok else "disagrees",
                         "max-norm distance of the profile scaled to unit maximum to the Gaussian, power fitted over "
                         "the smallest alpha - 1 (continuum-limit)", "power > 0 beyond 3 uncertainties",
-                        "analyses/continuum-limit.md"))
+                        "analyses/continuum-limit.md", qualitative=True))
     return rows
 
 
@@ -404,14 +402,14 @@ def compacton_claims(cfits: dict[str, PowerFit]) -> list[Row]:
                     "agrees" if ok else "disagrees",
                     "max-norm distance of the envelope to the compacton of each degenerate form (continuum-limit); "
                     "the travelling breathers are not compared", "power > 0 beyond 3 uncertainties",
-                    "analyses/continuum-limit.md"))
+                    "analyses/continuum-limit.md", qualitative=True))
     f = cfits["compacton_hertz"]
     rows.append(Row("James and Pelinovsky 2014", "compactons of the fractional KdV against the Hertz chain's waves",
                     "compactons converge pointwise to the limiting Gaussian as alpha -> 1+ (qualitative)",
                     f"distance of the waves to the compacton ~ {f.K:.3g} (alpha-1)^{f.power:.4f} +- "
                     f"{f.uncertainty:.1g}", "agrees" if f.power - 3 * f.uncertainty > 0 else "disagrees",
                     "max-norm distance of R / max R at c = 1 to the compacton (continuum-limit)",
-                    "power > 0 beyond 3 uncertainties", "analyses/continuum-limit.md"))
+                    "power > 0 beyond 3 uncertainties", "analyses/continuum-limit.md", qualitative=True))
     return rows
 
 
@@ -515,7 +513,7 @@ def mobility_claim(spec: ContinuumLimit, mob: dict, attrs: dict) -> Row:
                "agrees" if ok else "disagrees",
                "site-centred breather perturbed along its growing mode and by seeded noise, DpS runs (continuum-limit)",
                f"most runs travel at the smallest alpha, none at the largest (threshold {t:g} sites)",
-               "analyses/continuum-limit.md")
+               "analyses/continuum-limit.md", qualitative=True)
 
 
 def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
@@ -582,8 +580,7 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
     groups["/lattice_small"] = lattice_small(spec, say)
     seconds["lattice_small"] = _time.perf_counter() - t1
     table = claims(fits) + [mobility_claim(spec, groups["/mobility"][0], mob_attrs)] + compacton_claims(cfits)
-    groups["/claims"] = ({c: np.array([getattr(r, c) for r in table], dtype=object) for c in COLUMNS},
-                         {"row": np.arange(len(table))})
+    groups["/claims"] = group(table)
     attrs: dict = {"nu_first_order_limit": LOG_NLS_M, "log_amplitude_limit": 0.5, "fit_below": spec.fit_below}
     for key, f in {**fits, **cfits}.items():
         attrs.update({f"{key}_power": f.power, f"{key}_power_stderr": f.stderr, f"{key}_power_spread": f.spread,
@@ -621,5 +618,5 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
 
 
 ANALYSIS = Analysis(
-    name="continuum-limit", spec=ContinuumLimit, compute=compute, variables=VARIABLES,
+    name="continuum-limit", spec=ContinuumLimit, compute=compute, variables=VARIABLES, claims="/claims",
     title="The continuum limit alpha -> 1+: DpS breathers and Hertz solitary waves against Gaussians")

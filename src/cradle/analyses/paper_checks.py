@@ -53,6 +53,8 @@ if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from cradle.analyses.protocol import Log
+    from cradle.scenes.spec import Context, Where
+    from cradle.specs.values import Errors
 
 #: the files of a scene the table may read
 SCENE_PARTS = ("initial", "exact", "dps", "metrics")
@@ -76,7 +78,8 @@ SMALL_SHIFT = np.pi / 4
 
 
 @declared(doc="The paper's numerical statements against ours (the claims table), from the outputs of the scenes "
-              "and homoclinic solutions named here -> results/paper-checks/paper-checks.nc and "
+              "and homoclinic solutions named here, then the cited papers' statements the analyses named here store "
+              "(their claims groups) -> results/paper-checks/paper-checks.nc and "
               "results/paper-checks/paper-checks.{csv,md}; a group of rows that reads an entry not named is left out.")
 class PaperChecks:
     scenes: list[str] | str = param("all", "The scenes whose initial data, runs and metrics the table reads (names "
@@ -85,13 +88,44 @@ class PaperChecks:
     homoclinic: list[str] | str = param("all", "The homoclinic solutions the table reads (names under homoclinic:), "
                                         "or all: every one of the config.",
                                         anyOf=[_ALL, {"type": "array", "items": {"$ref": "#/$defs/name"}}])
+    analyses: list[str] | str = param("all", "The analyses beyond the paper whose rows (the cited papers' statements "
+                                      "against theirs) the table collects from the output of the form all builds: "
+                                      "names under beyond: whose module declares a claims group, or all: every one "
+                                      "that does.", anyOf=[{**_ALL, "description": "Every analysis that declares a "
+                                                            "claims group."},
+                                                           {"type": "array", "items": {"$ref": "#/$defs/name"}}])
+
+    def check(self, where: Where, context: Context, out: Errors) -> None:
+        """Each analysis named declares a claims group."""
+        if isinstance(self.analyses, str):
+            return
+        every = claiming_analyses()
+        for i, name in enumerate(self.analyses):
+            if name not in every:
+                out.add(where + ["analyses", i], f"no analysis of that name declares claims rows (those that do: "
+                        f"{', '.join(every)})", name)
+
+
+def claiming_analyses() -> list[str]:
+    """The analyses that declare a claims group (``claims`` of their :class:`~cradle.analyses.protocol.Analysis`),
+    in the registry's order."""
+    from cradle.analyses.registry import ANALYSES
+
+    return [a.name for a in ANALYSES.values() if a.claims]
+
+
+def collected(spec: PaperChecks) -> list[str]:
+    """The analyses whose claims rows the table collects: those the spec names, or every one that declares some."""
+    return claiming_analyses() if isinstance(spec.analyses, str) else list(spec.analyses)
 
 
 def reads(spec: PaperChecks) -> dict[str, Read]:
-    """The initial data, both runs and the metrics of every scene of the spec (``<scene>/<part>``), and
-    every homoclinic solution (``homoclinic/<name>``)."""
+    """The initial data, both runs and the metrics of every scene of the spec (``<scene>/<part>``), every
+    homoclinic solution (``homoclinic/<name>``), and the output of every analysis whose claims it collects
+    (``analysis/<name>``)."""
     return {**scene_reads(spec.scenes, SCENE_PARTS),
-            **{f"homoclinic/{name}": Read.of("homoclinic", name=name) for name in spec.homoclinic}}
+            **{f"homoclinic/{name}": Read.of("homoclinic", name=name) for name in spec.homoclinic},
+            **{f"analysis/{name}": Read.of("analysis", analysis=name) for name in collected(spec)}}
 
 
 # ------------------------------------------------------------------ the rows
@@ -308,13 +342,30 @@ def _groups(res: Results, scenes: Iterable[str]) -> list[tuple[tuple[str, ...], 
 
 def rows(spec: PaperChecks, inputs: dict) -> list[Row]:
     """Every row whose inputs the spec names, computed from the Datasets ``inputs`` (:func:`reads`); a
-    group of rows that reads an entry the spec does not name is left out."""
+    group of rows that reads an entry the spec does not name is left out. Then the rows of the analyses it
+    collects (:func:`analysis_rows`), after the paper's."""
     res = Results(inputs)
     present = set(spec.scenes) | set(spec.homoclinic)
     out = []
     for group, thunk in _groups(res, spec.scenes):
         if all(n in present for n in group):
             out += thunk()
+    for name in collected(spec):
+        out += analysis_rows(name, inputs[f"analysis/{name}"])
+    return out
+
+
+def analysis_rows(name: str, tree: xr.DataTree) -> list[Row]:
+    """The rows of analysis ``name``'s claims group in its output ``tree``, as the table shows them: a qualitative
+    one says so in its tolerance cell, and each names the analysis in its ``measured`` cell."""
+    from cradle.analyses.claims_table import read_group
+    from cradle.analyses.registry import ANALYSES
+
+    out = read_group(tree[ANALYSES[name].claims].to_dataset())
+    for r in out:
+        if r.qualitative:
+            r.tolerance = f"qualitative: {r.tolerance}" if r.tolerance else "qualitative"
+        r.measured = f"{r.measured} (analysis {name})"
     return out
 
 
@@ -339,6 +390,7 @@ def compute(spec: PaperChecks, inputs: dict, log: Log | None = None) -> xr.Datas
 
     table = rows(spec, inputs)
     counts = {v: sum(r.verdict == v for r in table) for v in ("agrees", "disagrees", "not comparable")}
+    counts["qualitative"] = sum(r.qualitative for r in table)
     if log:
         log(f"paper-checks: {len(table)} statements: " + ", ".join(f"{n} {v}" for v, n in counts.items()))
     data = {c: np.array([getattr(r, c) for r in table], dtype=object) for c in COLUMNS}

@@ -19,6 +19,10 @@ An analysis is one module of :mod:`cradle.analyses` that defines ``ANALYSIS = An
 * ``tables``: the text formats (``("csv", "md")``) its drawing step writes instead of a figure: then
   ``cradle/figures/<module>.py`` defines ``tables(tree) -> {format: text}`` rather than ``draw(tree)``,
   and the files go beside its netCDF file (``results/<name>/<name>.<format>``; the claims table).
+* ``claims``: the group of its output (``"/claims"``) that holds rows for the claims table (the cited papers'
+  statements against its results, :func:`cradle.analyses.claims_table.group`); the table (``paper-checks``)
+  reads the output of the form ``all`` builds of every analysis that declares one (:class:`Read` of kind
+  ``analysis``) and collects them.
 
 A spec field ``scenes``, ``homoclinic`` or ``map`` whose declaration allows the text ``"all"`` is filled by
 the pipeline with the names of every entry of that config section, in name order
@@ -46,7 +50,9 @@ Log = Callable[[str], object]
 @dataclass(frozen=True)
 class Read:
     """One file an analysis reads: a kind of the results layout (``initial``, ``exact``, ``dps``,
-    ``metrics``, ``homoclinic``, ...) and the names that fill its template (``scene="tw-weak"``)."""
+    ``metrics``, ``homoclinic``, ...) and the names that fill its template (``scene="tw-weak"``); kind
+    ``analysis`` (``analysis="travelling-breathers"``) is another analysis's output, the form ``all`` builds,
+    handed over as a tree of its groups."""
 
     kind: str
     names: tuple[tuple[str, str], ...] = ()
@@ -85,6 +91,7 @@ class Analysis:
     reads: Callable[[Any], Mapping[str, Read]] = lambda spec: {}
     batches: Batches | None = None
     tables: tuple[str, ...] = ()  # text formats written by figures/<module>.py tables(tree), in place of a figure
+    claims: str = ""  # the group of its output holding rows of the claims table (claims_table.group); "" for none
 
     @property
     def module(self) -> str:

@@ -18,7 +18,11 @@ analysis
   changes sign (Xu, Cuevas-Maraver, Kevrekidis and Vainchtein, arXiv 1701.04882: a sufficient condition for a
   change of stability) against where the verdict changes;
 * at small c, the distance of |A_n(tau)| over one period to the static breathers' profiles (the c -> 0 end);
-* checks: the verdicts re-solved at ``check_rtol`` and on the ring of ``check_N`` sites; a direct run of the member
+* robustness of the verdicts (issue 37: verdicts that do not change with the discretisation): every member re-solved
+  at each of ``check_rtol`` and the family recomputed on each ring of ``check_N``; a verdict is settled where all of
+  them agree; what explains the others (the unstable mode's extent over the ring, the tail as a plane wave of
+  (dfnls) with its wavenumber q = theta and its modulational growth rate);
+* checks: a direct run of the member
   at ``direct_speed`` over ``direct_periods`` periods (norm and H drifts, the residual of (tb) after k periods);
   the scaling symmetry (the TB re-solved at lambda^(1-alpha) T and lambda^2 P from another member's profile,
   against lambda A);
@@ -33,7 +37,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.analyses.claims_table import COLUMNS, Row
+from cradle.analyses.claims_table import GROUP_VARIABLES, Row, group
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
 from cradle.specs.declare import declared, param, plain
@@ -50,6 +54,9 @@ if TYPE_CHECKING:
 
 _SPEED = {"type": "number", "exclusiveMinimum": 0, "maximum": 2,
           "description": "One velocity c = 1/T of the family (sites per unit tau at the norm of the spec)."}
+
+_RING = {"type": "integer", "minimum": 8, "maximum": 200, "description": "Sites of a check ring."}
+_RTOL = {"type": "number", "minimum": RTOL_FLOOR, "maximum": 1e-8, "description": "A DOP853 relative tolerance."}
 
 #: multipliers modulo shift equal to 1 on every TB: phase and time shift, each in a Jordan block with its
 #: conserved quantity (norm, H)
@@ -84,10 +91,12 @@ class TravellingBreathers:
                               exclusiveMinimum=0, maximum=1e-6)
     rtol: float = param(1e-13, "DOP853 relative tolerance of the shooting and of the monodromy.",
                         minimum=RTOL_FLOOR, maximum=1e-8)
-    check_rtol: float = param(1e-12, "The tolerance of the verdict check (every member re-solved).",
-                              minimum=RTOL_FLOOR, maximum=1e-8)
-    check_N: int = param(30, "Sites of the ring of the verdict check (the family recomputed).", minimum=8,
-                         maximum=200, reduced=20)
+    check_rtol: list[float] = param([1e-12, 3e-14], "The tolerances of the verdict check (every member re-solved on "
+                                    "the ring of N at each; the first is also stored in /family).", minItems=1,
+                                    maxItems=6, items=_RTOL, reduced=[1e-12])
+    check_N: list[int] = param([30, 40, 48], "Sites of the rings of the verdict check (the family recomputed on each; "
+                               "the first is also stored in /family).", minItems=1, maxItems=8, items=_RING,
+                               reduced=[20])
     stability_threshold: float = param(1e-5, "Growth rate ln max|mu| / T (per unit tau) above which a TB is called "
                                        "unstable.", exclusiveMinimum=0, maximum=1)
     direct_speed: float = param(0.1, "c of the member run directly (one of speeds).", exclusiveMinimum=0, maximum=2)
@@ -95,6 +104,23 @@ class TravellingBreathers:
     scale: float = param(2.0, "lambda of the scaling check.", exclusiveMinimum=0, minimum=0.01, maximum=100)
     static_samples: int = param(64, "Samples per period of |A_n(tau)| against the static profiles.", minimum=8,
                                 maximum=4096, reduced=32)
+    # TBs in motion (issue 37, item 3): the member at motion_speed launched in (nc) through (ansatz)
+    motion_speed: float = param(0.1, "c of the member launched in the lattice (nc) through (ansatz) (one of speeds).",
+                                exclusiveMinimum=0, maximum=2)
+    motion_eps: list[float] = param([0.03, 0.01, 0.003, 0.001, 3e-4, 1e-4, 3e-5],
+                                    "Small parameters eps of (ansatz) at which the member is launched in (nc) "
+                                    "(decreasing; the lattice time of a run grows as eps^(1-alpha)).", minItems=4,
+                                    maxItems=20, items={"type": "number", "minimum": 1e-6, "maximum": 0.5},
+                                    reduced=[0.01, 0.003, 0.001, 3e-4])
+    motion_sites: int = param(60, "Length of the runs: the sites the DpS TB travels (motion_sites T in tau).",
+                              minimum=2, maximum=2000, reduced=20)
+    motion_ring: int = param(96, "Sites of the ring the member is launched on (its N sites, then zeros): at least N + "
+                             "motion_sites + motion_window, so that it never meets what it left behind.", minimum=8,
+                             maximum=8192, reduced=42)
+    motion_window: int = param(6, "Half-width (sites) of the window around the breather outside which its weight "
+                               "(lattice energy, DpS norm) counts as radiation.", minimum=1, maximum=100)
+    motion_samples: int = param(16, "Samples per DpS period T of both runs (the positions, radiation and distances "
+                                "stored).", minimum=4, maximum=1000, reduced=8)
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Each form: speeds increasing, direct_speed among them, a check ring other than the ring."""
@@ -102,9 +128,21 @@ class TravellingBreathers:
             out.add(where + ["speeds"], "must be strictly increasing", self.speeds)
         if float(self.direct_speed) not in [float(x) for x in self.speeds]:
             out.add(where + ["direct_speed"], f"must be one of speeds = {self.speeds}", self.direct_speed)
-        if self.check_N == self.N:
-            out.add(where + ["check_N"], f"must differ from N = {self.N} (it checks the verdicts against N)",
-                    self.check_N)
+        if self.N in self.check_N or len(set(self.check_N)) < len(self.check_N):
+            out.add(where + ["check_N"], f"must be distinct rings other than N = {self.N} (they check the verdicts "
+                    "against N)", self.check_N)
+        self.check_motion(where, out)
+
+    def check_motion(self, where: Where, out: Errors) -> None:
+        """The keys of the TBs in motion: motion_speed among speeds, motion_eps decreasing, a ring long enough."""
+        if float(self.motion_speed) not in [float(x) for x in self.speeds]:
+            out.add(where + ["motion_speed"], f"must be one of speeds = {self.speeds}", self.motion_speed)
+        if any(y >= x for x, y in itertools.pairwise(self.motion_eps)):
+            out.add(where + ["motion_eps"], "must be strictly decreasing", self.motion_eps)
+        least = self.N + self.motion_sites + self.motion_window
+        if self.motion_ring < least:
+            out.add(where + ["motion_ring"], f"must be >= N + motion_sites + motion_window = {least} (the breather "
+                    "would meet what it left behind)", self.motion_ring)
 
 
 # ----------------------------------------------------------------- the family
@@ -214,6 +252,211 @@ def verdict_changes(c: NDArray[np.float64], unstable: NDArray[np.bool_]) -> list
     return [float(0.5 * (c[i] + c[i + 1])) for i in range(len(c) - 1) if unstable[i] != unstable[i + 1]]
 
 
+# ----------------------------------------------------------------- TBs in motion (issue 37, item 3)
+
+#: half-width (sites) of the centroid that gives a breather's position: the DpS core decays doubly exponentially,
+#: so its weight beyond it is below rounding of the weight's sum and radiation near the core barely moves it
+MOTION_CORE = 4
+#: DOP853's relative tolerance in the rerun that checks the lattice's speed against the integrator
+MOTION_CHECK_RTOL = 1e-11
+
+
+def motion(spec: TravellingBreathers, b: TravellingBreather, log: Log) -> tuple[dict, dict]:
+    """The member ``b`` launched on a ring of ``motion_ring`` sites (:mod:`cradle.models.tb_launch`): in (dfnls)
+    (integrate_dps at the family's rtol), and in (nc) through (ansatz) at each eps of ``motion_eps`` (integrate_lattice,
+    srkn6c, the pipeline's exact method), both over ``motion_sites`` periods T of tau; positions, distances,
+    velocities and radiation by :mod:`cradle.measurements.breather_motion` (lattice: energy density; DpS: norm
+    density). Returns the ``/motion`` group and its attributes (prefixed ``motion_``)."""
+    from cradle.integrators import integrate_dps, integrate_lattice
+    from cradle.measurements import breather_motion as BM
+    from cradle.measurements.continuum import fit_power
+    from cradle.models import dps_travelling as M, tb_launch
+
+    t0 = _time.process_time()
+    al, S, per = spec.alpha, spec.motion_sites, spec.motion_samples
+    s = np.linspace(0.0, float(S), S * per + 1)
+    half = s.size // 2
+    # DpS: the same start on the same ring; after k periods it should be the start shifted by k sites
+    A0 = tb_launch.embedded(b.A, spec.motion_ring)
+    run = integrate_dps(A0, s * b.T, alpha=al, rtol=spec.rtol)
+    w = np.abs(run.A) ** 2
+    p_dps = BM.track(w, MOTION_CORE)
+    k = np.arange(S + 1)
+    at_k = run.A[k * per]
+    shift_res = max(float(np.max(np.abs(at_k[j] - np.exp(1j * j * b.theta) * M.shift(A0, int(j))))) for j in k)
+    dps_rad = BM.radiation(w, p_dps, spec.motion_window)
+    attrs: dict = {
+        "motion_c": b.c, "motion_ring": spec.motion_ring, "motion_core": MOTION_CORE,
+        "motion_window": spec.motion_window,
+        "motion_dps_speed_error": abs(BM.velocity(s, p_dps) - 1.0),
+        "motion_dps_position_error": float(np.max(np.abs(p_dps[k * per] - p_dps[0] - k))),
+        "motion_dps_shift_residual": shift_res / float(np.max(np.abs(A0))),
+        "motion_dps_norm_drift": float(run.max_l2_drift),
+        "motion_dps_radiation_max": float(np.max(dps_rad)),
+    }
+    rows: dict[str, list] = {key: [] for key in ("speed_ratio", "speed_early", "speed_late", "radiation_end",
+                                                 "energy_drift", "distance", "radiation")}
+    for eps in spec.motion_eps:
+        ini = tb_launch.launch(b.A, eps, al, spec.motion_ring)
+        sol = integrate_lattice(ini.x0, ini.v0, s * b.T / eps ** (al - 1.0), alpha=al)
+        e = BM.energy_density(sol.x, sol.v, al)
+        p = BM.track(e, MOTION_CORE)
+        rad = BM.radiation(e, p, spec.motion_window)
+        # velocities against s = tau / T: in units of the DpS TB's c eps^(alpha-1)
+        rows["speed_ratio"].append(BM.velocity(s, p))
+        rows["speed_early"].append(BM.velocity(s[:half + 1], p[:half + 1]))
+        rows["speed_late"].append(BM.velocity(s[half:], p[half:]))
+        rows["radiation_end"].append(float(rad[-1]))
+        rows["energy_drift"].append(float(sol.energy_drift))
+        rows["distance"].append(p - p[0])
+        rows["radiation"].append(rad)
+        log(f"travelling-breathers: c = {b.c:.4g} in (nc) at eps = {eps:g}: {p[-1] - p[0]:.4f} sites while DpS "
+            f"travels {S}, speed ratio {rows['speed_ratio'][-1]:.6f} (halves {rows['speed_early'][-1]:.6f}, "
+            f"{rows['speed_late'][-1]:.6f}), radiation {rad[-1]:.3g}, energy drift {sol.energy_drift:.2g}")
+    ratio = np.asarray(rows["speed_ratio"])
+    # the integrator's share: the largest eps rerun by the adaptive DOP853 (another method, its own error control)
+    eps0 = spec.motion_eps[0]
+    ini = tb_launch.launch(b.A, eps0, al, spec.motion_ring)
+    ref = integrate_lattice(ini.x0, ini.v0, s * b.T / eps0 ** (al - 1.0), alpha=al, method="dop853_numba",
+                            rtol=MOTION_CHECK_RTOL)
+    ref_ratio = BM.velocity(s, BM.track(BM.energy_density(ref.x, ref.v, al), MOTION_CORE))
+    attrs.update({"motion_check_method": f"dop853_numba, rtol {MOTION_CHECK_RTOL:g}, at eps = {eps0:g}",
+                  "motion_check_speed_ratio": ref_ratio,
+                  "motion_check_speed_difference": abs(ref_ratio - float(ratio[0]))})
+    deficit = 1.0 - ratio
+    if np.all(deficit > 0):
+        # (ansatz) leaves out terms of relative order eps^(alpha-1): the deficit's first correction is of that power
+        f = fit_power(spec.motion_eps, deficit, correction=al - 1.0)
+        attrs.update({"motion_order": f.power, "motion_order_uncertainty": f.uncertainty,
+                      "motion_order_constant": f.K, "motion_order_correction": f.k})
+    else:
+        attrs.update({"motion_order": np.nan, "motion_order_uncertainty": np.nan,
+                      "motion_order_constant": np.nan, "motion_order_correction": np.nan})
+    loss = 1.0 - np.asarray(rows["speed_late"]) / np.asarray(rows["speed_early"])
+    attrs.update({
+        "motion_order_expected": al - 1.0,
+        "motion_order_fit": "ln(1 - speed_ratio) = p ln eps + ln K + k eps^(alpha-1) over every eps (least squares); "
+                            "uncertainty the larger of the standard error and the change when the smallest or the "
+                            "largest eps is left out",
+        "motion_max_energy_drift": float(max(rows["energy_drift"])),
+        "motion_speed_loss_max": float(np.max(np.abs(loss))),
+        "motion_exact_tb": "open: no exact travelling breather of (nc) in this analysis yet (issue 37, item 2); the "
+                           "comparison of the launched DpS TB with the exact one launched the same way is not made",
+        "motion_cpu_s": _time.process_time() - t0,
+    })
+    data = {"speed_ratio": ratio, "speed_early": rows["speed_early"], "speed_late": rows["speed_late"],
+            "deficit": deficit, "radiation_end": rows["radiation_end"], "energy_drift": rows["energy_drift"],
+            "distance": np.array(rows["distance"]), "radiation": np.array(rows["radiation"]),
+            "dps_distance": p_dps - p_dps[0], "dps_radiation": dps_rad}
+    return {"/motion": (data, {"eps": list(spec.motion_eps), "s": s})}, attrs
+
+
+# ----------------------------------------------------------------- robustness of the verdicts (rings, tolerances)
+
+#: a member's verdict is settled when the ring of N, every check ring and every check tolerance give it
+SETTLED_STABLE, SETTLED_UNSTABLE, RING_DEPENDENT = 0, 1, -1
+#: sideband wavenumbers p in (0, pi] over which the tail's plane-wave MI rate is maximised
+MI_SIDEBANDS = 512
+
+
+def far_sites(A: NDArray[np.complex128]) -> NDArray[np.bool_]:
+    """The quarter ring farthest from the centre (ring distance >= 3N/8), where the tail is measured."""
+    from cradle.models import dps_travelling as M
+
+    N = A.size
+    return np.abs((np.arange(N) - M.centre(A) + N / 2) % N - N / 2) >= 3 * N / 8
+
+
+def tail_wave(A: NDArray[np.complex128]) -> tuple[float, float]:
+    """(q, R): the tail as a plane wave R e^{i q n} on the far quarter ring, q = arg sum A_{n+1} conj(A_n) and R the
+    rms |A_n| there. A tail that is a plane wave of (dfnls) of small amplitude has frequency ~ R^(alpha-1), so
+    (tb) gives q = theta mod 2 pi to that order."""
+    far = np.where(far_sites(A))[0]
+    q = float(np.angle(np.sum(A[(far + 1) % A.size] * np.conj(A[far]))))
+    return q, float(np.sqrt(np.mean(np.abs(A[far]) ** 2)))
+
+
+def tail_mi_rate(q: float, R: float, alpha: float) -> float:
+    """The largest growth rate over the sidebands p of the plane wave R e^{i q n} of (dfnls) on the infinite
+    lattice (:func:`cradle.analyses.mi_diagram.growth_rate`): 0 for |q| <= pi/2."""
+    from cradle.analyses import mi_diagram
+
+    p = np.linspace(0.0, np.pi, MI_SIDEBANDS + 1)[1:]
+    return float(np.max(mi_diagram.growth_rate(q, p, alpha, R)))
+
+
+def member_checks(b: TravellingBreather, threshold: float) -> dict[str, float]:
+    """One member's verdict and what explains it: growth rate, verdict, tail and its plane wave (q, MI rate), and
+    the extent of the most unstable mode (participation ratio 1 / sum w_n^2 of its |v_n|^2 = w_n, over N: 1 for
+    a mode spread evenly over the ring, ~ (core width) / N for a mode of the core; NaN when stable)."""
+    from cradle.models import dps_travelling as M
+
+    _, rate, unstable, _ = verdict(b, threshold)
+    q, R = tail_wave(b.A)
+    extent = np.nan
+    if unstable:
+        _, w = b.unstable_mode(TRIVIAL)
+        extent = float(1.0 / np.sum(w**2) / b.A.size)
+    return {"growth": rate, "unstable": float(unstable), "tail": M.tail_amplitude(b.A), "theta": b.theta,
+            "tail_q": q, "tail_mi": tail_mi_rate(q, R, b.alpha), "extent": extent}
+
+
+ROBUST_RING = ("growth", "unstable", "tail", "theta", "tail_q", "tail_mi", "extent")
+
+
+def robustness(spec: TravellingBreathers, fam: list[TravellingBreather], log: Log | None = None) -> dict:
+    """The verdicts of the members ``fam`` (on the ring of N, at rtol) on every check ring (the family recomputed
+    there: :func:`family`) and at every check tolerance (each member re-solved on the ring of N): arrays (ring, c)
+    of :func:`member_checks` (NaN, verdict -1, where a ring's family does not reach the c), (rtol, c) of growth rate
+    and verdict, and per c the settled verdict (:data:`SETTLED_STABLE`, :data:`SETTLED_UNSTABLE`,
+    :data:`RING_DEPENDENT`)."""
+    from cradle.integrators import dps_travelling as DT
+
+    c = np.array([b.c for b in fam])
+    rings = [spec.N, *spec.check_N]
+    per_ring = {k: np.full((len(rings), c.size), np.nan) for k in ROBUST_RING}
+    for i, N in enumerate(rings):
+        members = fam if N == spec.N else family(spec, N, spec.rtol, log)[0]
+        byc = {round(b.c, 12): b for b in members}
+        for j, x in enumerate(c):
+            b = byc.get(round(float(x), 12))
+            if b is not None:
+                for k, v in member_checks(b, spec.stability_threshold).items():
+                    per_ring[k][i, j] = v
+    rtols = [spec.rtol, *spec.check_rtol]
+    growth_tol = np.full((len(rtols), c.size), np.nan)
+    growth_tol[0] = per_ring["growth"][0]
+    for i, rt in enumerate(rtols[1:], 1):
+        for j, b in enumerate(fam):
+            r = DT.newton(b.A, b.T, b.theta, spec.alpha, spec.norm, b.A, spec.newton_tol, rtol=rt)
+            if r.converged:
+                growth_tol[i, j] = verdict(r, spec.stability_threshold)[1]
+    unstable_tol = np.where(np.isnan(growth_tol), -1, growth_tol > spec.stability_threshold).astype(int)
+    unstable_ring = np.where(np.isnan(per_ring["unstable"]), -1, per_ring["unstable"]).astype(int)
+    everything = np.concatenate([unstable_ring, unstable_tol])
+    settled = np.where(np.all(everything == 1, axis=0), SETTLED_UNSTABLE,
+                       np.where(np.all(everything == 0, axis=0), SETTLED_STABLE, RING_DEPENDENT))
+    return {"ring": np.array(rings), "rtol": np.array(rtols), **{f"{k}_ring": v for k, v in per_ring.items()},
+            "unstable_ring": unstable_ring, "growth_tol": growth_tol, "unstable_tol": unstable_tol,
+            "settled": settled}
+
+
+def robustness_attrs(c: NDArray[np.float64], rob: dict) -> dict:
+    """The summary of :func:`robustness` stored as attributes: the rings and tolerances, the c of each settled
+    verdict, how far the tail's q is from theta (on the ring of N), the smallest extent of an unstable mode."""
+    settled = rob["settled"]
+    dq = np.abs(np.angle(np.exp(1j * (rob["tail_q_ring"][0] - rob["theta_ring"][0]))))
+    extent = rob["extent_ring"]
+    return {"rings": ", ".join(str(int(n)) for n in rob["ring"]),
+            "rtols": ", ".join(f"{x:g}" for x in rob["rtol"]),
+            "verdicts_settled": f"{int(np.sum(settled != RING_DEPENDENT))} of {settled.size}",
+            **{f"{name}_c": ", ".join(f"{x:g}" for x in c[settled == v]) or "none"
+               for name, v in (("settled_stable", SETTLED_STABLE), ("settled_unstable", SETTLED_UNSTABLE),
+                               ("ring_dependent", RING_DEPENDENT))},
+            "tail_q_minus_theta_max": float(np.max(dq)),
+            "unstable_mode_extent_min": float(np.nanmin(extent)) if np.any(np.isfinite(extent)) else np.nan}
+
+
 # ----------------------------------------------------------------- the stored file
 
 _C = ("c",)
@@ -257,8 +500,40 @@ VARIABLES = {
         "k": Var(("k",), "periods of the direct run"),
         "residual": Var(("k",), "max_n |A_n(kT) - e^{i k theta} A_{n-k}(0)| / max |A|"),
     },
-    "/claims": {"row": Var(("row",), "index of a cited statement"),
-                **{col: Var(("row",), f"claims-table column {col}") for col in COLUMNS}},
+    "/motion": {
+        "eps": Var(("eps",), "small parameter eps of (ansatz) of the lattice run (tau = eps^(alpha-1) t)"),
+        "s": Var(("s",), "tau / T: the sites the DpS TB travels (lattice time t = s T / eps^(alpha-1))"),
+        "speed_ratio": Var(("eps",), "lattice velocity over the DpS TB's c eps^(alpha-1) (least squares, whole run)"),
+        "speed_early": Var(("eps",), "the same over the first half of the run"),
+        "speed_late": Var(("eps",), "the same over the second half of the run"),
+        "deficit": Var(("eps",), "1 - speed_ratio: the lattice's speed deficit against DpS"),
+        "radiation_end": Var(("eps",), "energy outside the window around the breather over the total, at the end"),
+        "energy_drift": Var(("eps",), "max over every step of |H(t) - H(0)| / H(0) of the lattice run (ham)"),
+        "distance": Var(("eps", "s"), "lattice: position of the breather minus its start (sites)"),
+        "radiation": Var(("eps", "s"), "lattice: energy outside the window around the breather over the total"),
+        "dps_distance": Var(("s",), "DpS (same start, same ring): position minus start (sites)"),
+        "dps_radiation": Var(("s",), "DpS: norm outside the window around the breather over the norm"),
+    },
+    "/robustness": {
+        "ring": Var(("ring",), "sites of the ring (N, then check_N)"),
+        "rtol": Var(("rtol",), "DOP853 relative tolerance (rtol, then check_rtol), on the ring of N"),
+        "growth_rate": Var(("ring", "c"), "ln max |mu| / T over the non-trivial multipliers modulo shift (per unit "
+                                          "tau; NaN: member not reached on that ring)"),
+        "unstable": Var(("ring", "c"), "1 if growth_rate > stability_threshold (-1: not reached)"),
+        "tail": Var(("ring", "c"), "max |A_n| on the far quarter ring / max |A_n|"),
+        "theta": Var(("ring", "c"), "phase theta of (tb)"),
+        "tail_q": Var(("ring", "c"), "wavenumber q of the tail as a plane wave: arg sum A_{n+1} conj(A_n) on the far "
+                                     "quarter ring (q = theta mod 2 pi for a tail of small amplitude)"),
+        "tail_mi_rate": Var(("ring", "c"), "largest MI growth rate of the plane wave of the tail's q and rms amplitude "
+                                           "on the infinite lattice (per unit tau; 0 for |q| <= pi/2)"),
+        "mode_extent": Var(("ring", "c"), "participation ratio of the most unstable mode's |v_n|^2 over N (NaN: "
+                                          "stable)"),
+        "growth_rate_tol": Var(("rtol", "c"), "growth_rate on the ring of N at that tolerance (NaN: not converged)"),
+        "unstable_tol": Var(("rtol", "c"), "the verdict on the ring of N at that tolerance (-1: not converged)"),
+        "settled": Var(_C, "1 unstable and 0 stable on every ring and at every tolerance; -1 the verdict depends on "
+                           "the ring or the tolerance"),
+    },
+    "/claims": GROUP_VARIABLES,
 }
 
 
@@ -292,13 +567,13 @@ def claims(c: NDArray[np.float64], tail: NDArray[np.float64], tail_N: NDArray[np
                     tolerance=f"one grid spacing ({spacing:.3g})"))
     for r in rows:
         r.explained_in = EXPLAINED
+        r.qualitative = True     # James's abstract and Xu et al.'s criterion print no number
     return rows
 
 
 def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | None = None) -> xr.DataTree:
     """The `travelling-breathers` analysis as a tree of groups (:data:`VARIABLES`); it reads no file."""
     from cradle.data.io import make_tree
-    from cradle.integrators import dps_travelling as DT
     from cradle.models import dps_travelling as M
 
     say = log or (lambda *a: None)
@@ -312,33 +587,20 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
     ver = [verdict(b, spec.stability_threshold) for b in fam]
     unstable = np.array([v[2] for v in ver])
     dH = np.gradient(H, c)
-    # the checks: every member re-solved at check_rtol; the family on the ring of check_N sites
-    ver_r = []
-    for b in fam:
-        r = DT.newton(b.A, b.T, b.theta, spec.alpha, spec.norm, b.A, spec.newton_tol, rtol=spec.check_rtol)
-        ver_r.append(verdict(r, spec.stability_threshold) if r.converged else (np.nan, np.nan, None, None))
-    famN, _ = family(spec, spec.check_N, spec.rtol, say)
-    byc = {round(b.c, 12): b for b in famN}
-    growth_N: list[float] = []
-    unstable_N: list[int] = []
-    tail_N: list[float] = []
-    for x in c:
-        bN = byc.get(round(float(x), 12))
-        if bN is None:      # not reached on the other ring: no verdict
-            growth_N.append(np.nan)
-            unstable_N.append(-1)
-            tail_N.append(np.nan)
-            continue
-        _, g, u, _ = verdict(bN, spec.stability_threshold)
-        growth_N.append(g)
-        unstable_N.append(int(u))
-        tail_N.append(M.tail_amplitude(bN.A))
+    # the checks (robustness of the verdicts): the family on every check ring, every member at every check rtol;
+    # /family keeps the first of each
+    rob = robustness(spec, fam, say)
+    growth_N, unstable_N, tail_N = rob["growth_ring"][1], rob["unstable_ring"][1], rob["tail_ring"][1]
+    ver_r = [(np.nan, g, None if u < 0 else bool(u), None) for g, u in zip(rob["growth_tol"][1], rob["unstable_tol"][1],
+                                                                          strict=True)]
     profiles = static_profiles(spec.N, spec.alpha, spec.norm)
     dist = [static_distance(b, profiles, spec.static_samples, spec.rtol) for b in fam]
     i_direct = int(np.argmin(np.abs(c - spec.direct_speed)))
     direct = direct_run(fam[i_direct], spec.direct_periods, spec.rtol)
     other = fam[i_direct + 1] if i_direct + 1 < len(fam) else fam[i_direct - 1]
     scal = scaling_check(fam[i_direct], other, spec.scale, spec)
+    i_motion = int(np.argmin(np.abs(c - spec.motion_speed)))
+    motion_groups, motion_attrs = motion(spec, fam[i_motion], say)
     real = np.array([v[3] for v in ver])
     dH_changes, v_changes, real_changes = sign_changes(c, dH), verdict_changes(c, unstable), verdict_changes(c, real)
     rows = claims(c, tail, np.asarray(tail_N), dH_changes, real_changes, v_changes, float(np.max(np.diff(c))))
@@ -364,15 +626,20 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
                           "mu_im": np.array([b.multipliers.imag for b in fam])},
                          {"m": np.arange(2 * spec.N)}),
         "/direct": ({"residual": direct["residual"]}, {"k": direct["k"]}),
-        "/claims": ({col: np.array([getattr(r, col) for r in rows], dtype=object) for col in COLUMNS},
-                    {"row": np.arange(len(rows))}),
+        "/robustness": ({"growth_rate": rob["growth_ring"], "unstable": rob["unstable_ring"], "tail": rob["tail_ring"],
+                         "theta": rob["theta_ring"], "tail_q": rob["tail_q_ring"], "tail_mi_rate": rob["tail_mi_ring"],
+                         "mode_extent": rob["extent_ring"], "growth_rate_tol": rob["growth_tol"],
+                         "unstable_tol": rob["unstable_tol"], "settled": rob["settled"]},
+                        {"ring": rob["ring"], "rtol": rob["rtol"]}),
+        "/claims": group(rows),
+        **motion_groups,
     }
     near = np.minimum([d["site"] for d in dist], [d["bond"] for d in dist])
     power = float(np.polyfit(np.log(c), np.log(near), 1)[0])
     agree_r = [v[2] == w[2] for v, w in zip(ver, ver_r, strict=True)]
     agree_N = [u == int(v[2]) for u, v in zip(unstable_N, ver, strict=True) if u >= 0]
     attrs = {
-        "norm": spec.norm, "N": spec.N, "check_N": spec.check_N, "check_rtol": spec.check_rtol,
+        "norm": spec.norm, "N": spec.N, "check_N": spec.check_N[0], "check_rtol": spec.check_rtol[0],
         "stability_threshold": spec.stability_threshold, "c_start": c_start, "omega_static": profiles["site"][1],
         "invariant_velocity": "c P^((1-alpha)/2): the scaling maps (c, P) to (lambda^(alpha-1) c, lambda^2 P)",
         "max_residual": float(max(b.residual for b in fam)),
@@ -383,6 +650,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
         "real_multiplier_changes": ", ".join(f"{x:.6g}" for x in real_changes) or "none",
         "verdicts_agree_rtol": f"{sum(agree_r)} of {len(agree_r)}",
         "verdicts_agree_N": f"{sum(agree_N)} of {len(agree_N)}",
+        **robustness_attrs(c, rob),
         "direct_speed": float(c[i_direct]), "direct_norm_drift": direct["norm_drift"],
         "direct_energy_drift": direct["energy_drift"], "direct_max_residual": float(np.max(direct["residual"])),
         "static_distance_power": power,
@@ -393,6 +661,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
                   "variational equations; tangent predictor in T",
         "source": "G. James, Phil. Trans. R. Soc. A 376 (2018) 20170138 (abstract); H. Xu, J. Cuevas-Maraver, "
                   "P. G. Kevrekidis, A. Vainchtein, arXiv 1701.04882",
+        **motion_attrs,
         "wall_time_s": _time.perf_counter() - t0,
     }
     tree = make_tree(groups, VARIABLES, attrs=attrs, params=plain(spec),
@@ -401,5 +670,5 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
 
 
 ANALYSIS = Analysis(
-    name="travelling-breathers", spec=TravellingBreathers, compute=compute, variables=VARIABLES,
+    name="travelling-breathers", spec=TravellingBreathers, compute=compute, variables=VARIABLES, claims="/claims",
     title="Travelling breathers of the DpS equation: family in c, tails, multipliers modulo shift")

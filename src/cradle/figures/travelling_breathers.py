@@ -4,16 +4,19 @@ Drawn by :func:`draw` from results/travelling-breathers/[full/]travelling-breath
 (:mod:`cradle.analyses.travelling_breathers`).
 
 (a) |A_n(0)| (log scale) of the slowest, a middle and the fastest member, and the static site breather at the
-same norm; (b) the tail (max |A_n| on the far quarter ring / max |A_n|) against c, on the ring of N sites and of
-check_N sites; (c) H against c at fixed norm (dH/dc > 0: H rises with c where it does); (d) the growth rate
+same norm; (b) the tail (max |A_n| on the far quarter ring / max |A_n|) against c, on the ring of N sites and on
+every check ring; (c) H against c at fixed norm (dH/dc > 0: H rises with c where it does); (d) the growth rate
 ln max|mu| / T of the non-trivial multipliers modulo shift against c (the stability threshold dashed; unstable
-members filled), on the two rings and at check_rtol; (e) the multipliers modulo shift of the most unstable member
-and of the slowest, with the unit circle; (f) the distance of |A_n(tau)| to the static site and bond breathers
-against c.
+members filled), on every ring and at every check tolerance, the settled verdicts marked above; (e) the
+multipliers modulo shift of the most unstable member and of the slowest, with the unit circle; (f) the distance
+of |A_n(tau)| to the static site and bond breathers against c; the TBs in motion (the member at motion_speed
+launched in (nc) through (ansatz) at several eps, and in (dfnls) from the same start): (g) the distance travelled
+against tau / T (DpS: one site per T), (h) the lattice's speed deficit 1 - v / (c eps^(alpha-1)) against eps with
+the fitted order, (i) the radiation (energy outside the window around the breather over the total) against tau / T.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -27,8 +30,8 @@ MIN_POINTS = 3
 
 
 def draw(tree: AnalysisTree) -> Figure:
-    """The six panels above."""
-    fig, ax = figure(2, 3, width=13.5, height=7.6)
+    """The nine panels above."""
+    fig, ax = figure(3, 3, width=13.5, height=11.2)
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
     prof = tree["profiles"]
@@ -37,7 +40,6 @@ def draw(tree: AnalysisTree) -> Figure:
     N = n.size
     attrs = tree.attrs
     thr = float(attrs["stability_threshold"])
-    check_N = int(attrs["check_N"])
 
     a = ax[0, 0]
     picks = sorted({0, len(c) // 2, len(c) - 1})
@@ -55,9 +57,12 @@ def draw(tree: AnalysisTree) -> Figure:
     a.set_title(f"(a) profiles at norm {float(attrs['norm']):g} (ring of {N})", fontsize=9)
     a.legend(fontsize=7, loc="upper left")
 
+    rob = tree["robustness"]
+    rings = [int(x) for x in rob["ring"].values]
     b = ax[0, 1]
-    b.semilogy(c, fam["tail"].values, "C0o-", ms=4, label=f"ring of {N}")
-    b.semilogy(c, fam["tail_N"].values, "C1s--", ms=3, mfc="none", label=f"ring of {check_N}")
+    for i, ring in enumerate(rings):
+        b.semilogy(c, rob["tail"].values[i], f"C{i}{'os^v<>'[i % 6]}{'-' if i == 0 else '--'}", ms=4 if i == 0 else 3,
+                   mfc=None if i == 0 else "none", lw=1.0, label=f"ring of {ring}")
     b.set_xlabel("velocity c (sites per unit $\\tau$)")
     b.set_ylabel("tail: max far $|A_n|$ / max $|A_n|$")
     b.set_title("(b) oscillatory tail against c", fontsize=9)
@@ -72,20 +77,27 @@ def draw(tree: AnalysisTree) -> Figure:
     e = ax[1, 0]
     g = np.asarray(fam["growth_rate"].values)
     floor = thr / 100.0
-    un = np.asarray(fam["unstable"].values) == 1
-    e.semilogy(c, np.maximum(g, floor), "C3-", lw=1.0)
-    e.semilogy(c[un], np.maximum(g[un], floor), "C3o", ms=6, label=f"ring of {N}: unstable")
-    e.semilogy(c[~un], np.maximum(g[~un], floor), "C3o", ms=6, mfc="none", label=f"ring of {N}: stable")
-    e.semilogy(c, np.maximum(np.asarray(fam["growth_rate_N"].values, float), floor), "C1s", ms=4, mfc="none",
-               label=f"ring of {check_N}")
-    e.semilogy(c, np.maximum(np.asarray(fam["growth_rate_rtol"].values, float), floor), "k+", ms=6,
-               label=f"rtol {float(attrs['check_rtol']):g}")
+    G = np.asarray(rob["growth_rate"].values, float)
+    for i, ring in enumerate(rings):
+        gi = np.maximum(G[i], floor)
+        un = np.asarray(rob["unstable"].values[i]) == 1
+        mk = f"C{i}{'os^v<>'[i % 6]}"
+        e.semilogy(c[un], gi[un], mk, ms=6 if i == 0 else 5, label=f"ring of {ring}")
+        e.semilogy(c[~un], gi[~un], mk, ms=6 if i == 0 else 5, mfc="none")
+    for j, rt in enumerate(rob["rtol"].values[1:], 1):
+        gt = np.maximum(np.asarray(rob["growth_rate_tol"].values[j], float), floor)
+        e.semilogy(c, gt, ("k+", "kx", "k1")[(j - 1) % 3], ms=6, label=f"ring of {rings[0]}, rtol {float(rt):g}")
     e.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
-    e.set_ylim(floor / 2, 300.0 * max(float(np.nanmax(g)), float(np.nanmax(fam["growth_rate_N"].values)), thr))
+    top = 30.0 * max(float(np.nanmax(G)), thr)
+    settled = np.asarray(rob["settled"].values)
+    for x, v in zip(c, settled, strict=True):
+        e.text(x, floor / 4.0, {1: "U", 0: "S"}.get(int(v), "?"), ha="center", va="center", fontsize=7,
+               color={1: "C3", 0: "C2"}.get(int(v), "0.4"))
+    e.set_ylim(floor / 12.0, top * 1e3)
     e.set_xlabel("velocity c")
     e.set_ylabel(f"growth rate ln max$|\\mu|$ / T (floor {floor:g})")
-    e.set_title("(d) multipliers modulo shift: growth rate", fontsize=9)
-    e.legend(fontsize=6.5, loc="upper left", ncol=2)
+    e.set_title("(d) growth rate, filled: unstable; S, U: settled, ?: not", fontsize=9)
+    e.legend(fontsize=6, loc="upper left", ncol=2)
 
     f = ax[1, 1]
     mu = np.asarray(tree["multipliers"]["mu_re"].values) + 1j * np.asarray(tree["multipliers"]["mu_im"].values)
@@ -115,5 +127,54 @@ def draw(tree: AnalysisTree) -> Figure:
     h.set_title(f"(f) min over a period of max$_n$ $||A_n| - \\phi_n|$ / max $\\phi$; "
                 f"$\\propto c^{{{float(attrs['static_distance_power']):.2f}}}$", fontsize=9)
     h.legend(fontsize=7, loc="lower right")
+    if "motion" in tree.children:
+        draw_motion(ax[2], tree)
     return fig
+
+
+def draw_motion(ax: Any, tree: AnalysisTree) -> None:
+    """Panels (g)-(i): the TB in motion in (nc) at each eps and in (dfnls)."""
+    mo = tree["motion"]
+    attrs = tree.attrs
+    s = np.asarray(mo["s"].values)
+    eps = np.asarray(mo["eps"].values)
+    colours = [f"C{k}" for k in range(len(eps))]
+
+    g = ax[0]
+    g.plot(s, np.asarray(mo["dps_distance"].values), "k-", lw=2.2, label="DpS (dfnls)")
+    for k, e in enumerate(eps):
+        g.plot(s, np.asarray(mo["distance"].values[k]), "-", color=colours[k], lw=1.0, label=f"(nc), eps = {e:g}")
+    g.set_xlabel("$\\tau / T$ (sites the DpS TB travels)")
+    g.set_ylabel("distance travelled (sites)")
+    g.set_title(f"(g) TB of c = {float(attrs['motion_c']):.3g} launched by (ansatz), ring of "
+                f"{int(attrs['motion_ring'])}", fontsize=9)
+    g.legend(fontsize=6.5, loc="upper left")
+
+    h = ax[1]
+    d = np.asarray(mo["deficit"].values)
+    h.loglog(eps, d, "C3o", ms=5, label="1 - v / (c eps$^{\\alpha-1}$)")
+    p, u = float(attrs["motion_order"]), float(attrs["motion_order_uncertainty"])
+    if np.isfinite(p):
+        K, corr = float(attrs["motion_order_constant"]), float(attrs["motion_order_correction"])
+        fine = np.geomspace(float(eps.min()), float(eps.max()), 100)
+        al = float(attrs["motion_order_expected"]) + 1.0
+        h.loglog(fine, K * fine**p * np.exp(corr * fine ** (al - 1.0)), "k-", lw=0.8,
+                 label=f"fit: order {p:.3f} $\\pm$ {u:.1g} (expected {al - 1.0:g})")
+    h.set_xlabel("eps of (ansatz)")
+    h.set_ylabel("speed deficit of (nc) against DpS")
+    h.set_title("(h) the lattice's speed tends to DpS's as eps $\\to$ 0", fontsize=9)
+    h.legend(fontsize=7, loc="lower right")
+
+    r = ax[2]
+    floor = 1e-3 * float(np.min(mo["radiation_end"].values))
+    for k, e in enumerate(eps):
+        r.semilogy(s, np.maximum(np.asarray(mo["radiation"].values[k]), floor), "-", color=colours[k], lw=1.0,
+                   label=f"(nc), eps = {e:g}")
+    r.semilogy(s, np.maximum(np.asarray(mo["dps_radiation"].values), floor), "k--", lw=1.2,
+               label="DpS (dfnls)")
+    r.set_ylim(floor / 2, 30.0 * float(np.max(mo["radiation"].values)))
+    r.set_xlabel("$\\tau / T$")
+    r.set_ylabel(f"energy outside $\\pm${int(attrs['motion_window'])} sites / total (floor {floor:.0e})")
+    r.set_title("(i) radiation left behind", fontsize=9)
+    r.legend(fontsize=6.5, loc="upper left", ncol=2)
 

@@ -9,11 +9,12 @@ at fixed T = 1/c, with the unknowns A (2N reals) and theta, and the conditions
   the phase rotation and the time shift (A_ref the previous member or the start).
 
 The Jacobian dR/dA = e^{-i theta} S^{-1} DPhi_T(A) - I comes from the variational equations of (dfnls)
-(:func:`cradle.models.dps_travelling.linearised_rhs`) integrated with the orbit over one period by scipy's
-DOP853, as the exact lattice breathers of :mod:`cradle.integrators.lattice_breathers` are found; the 2N + 3
-equations in 2N + 1 unknowns are consistent at a solution (two of the 2N equations of R are dependent there,
-through the conserved norm and H), and are solved in least squares (Gauss-Newton: quadratic convergence on a
-consistent system). The same monodromy, composed with the shift, gives the Floquet multipliers modulo shift.
+(:func:`cradle.models.dps_travelling.linearised_rhs`), compiled with the orbit's right-hand side
+(:mod:`cradle.integrators.systems.dps_variational`) and integrated over one period by the project's DOP853
+loop; the 2N + 3 equations in 2N + 1 unknowns are consistent at a solution (two of the 2N equations of R are
+dependent there, through the conserved norm and H), and are solved in least squares (Gauss-Newton: quadratic
+convergence on a consistent system). The same monodromy, composed with the shift, gives the Floquet multipliers
+modulo shift.
 
 Starts: the static DpS breather (ansatzapproxst2) of either parity pushed by a phase gradient
 (:func:`cradle.models.dps_travelling.kicked`) and integrated until it has moved a few sites: T is the time
@@ -26,6 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from cradle.integrators.systems import dps as SD
 from cradle.models import dps, dps_travelling as M
 
 if TYPE_CHECKING:
@@ -41,35 +43,31 @@ RTOL = 1e-13    # DOP853 relative tolerance of the shooting (shift-map residuals
 def flow(A0: ArrayLike, T: float, alpha: float, columns: ArrayLike | None = None,
          rtol: float = RTOL) -> tuple[NDArray[np.complex128], NDArray[np.complex128] | None]:
     """Phi_T(A0) of (dfnls) on the ring and, if ``columns`` (N x m complex) is given, the perturbations DPhi_T
-    applied to them (the variational equations integrated with the orbit). Returns (A(T), V(T) or None)."""
-    from scipy.integrate import solve_ivp
+    applied to them (the variational equations integrated with the orbit). Returns (A(T), V(T) or None).
 
-    A0 = np.asarray(A0, complex)
+    The project's DOP853 loop (:func:`cradle.integrators._dop853.run_dop853`) on the compiled system
+    :class:`cradle.integrators.systems.dps_variational.DpsVariational`, with the tolerances rtol and
+    atol = rtol max|A0|; the columns are integrated multiplied by max|A0| (they are linear), so that this one atol
+    is rtol on the columns themselves."""
+    from cradle.integrators import _dop853
+    from cradle.integrators.systems import dps_variational as DV
+
+    A0 = np.ascontiguousarray(A0, dtype=np.complex128)
     N = A0.size
-    t0 = dps.tau0(alpha)
-    V0 = None if columns is None else np.asarray(columns, complex).reshape(N, -1)
-    m = 0 if V0 is None else V0.shape[1]
-
-    def f(t: float, y: Floats) -> Floats:
-        A = y[:N] + 1j * y[N:2 * N]
-        dA = M.rhs(A, alpha, t0)
-        out = [dA.real, dA.imag]
-        if m:
-            V = (y[2 * N:2 * N + N * m] + 1j * y[2 * N + N * m:]).reshape(N, m)
-            dV = M.linearised_rhs(A, V, alpha, t0).ravel()
-            out += [dV.real, dV.imag]
-        return np.concatenate(out)
-
-    y0 = [A0.real, A0.imag] + ([] if V0 is None else [V0.real.ravel(), V0.imag.ravel()])
-    y = np.concatenate(y0)
-    atol = np.full(y.size, rtol * float(np.max(np.abs(A0))))
-    atol[2 * N:] = rtol
-    sol = solve_ivp(f, (0.0, T), y, method="DOP853", rtol=rtol, atol=atol)
-    if not sol.success:
-        raise RuntimeError(f"travelling breather shooting: integration failed ({sol.message})")
-    yT = sol.y[:, -1]
-    AT = yT[:N] + 1j * yT[N:2 * N]
-    VT = None if V0 is None else (yT[2 * N:2 * N + N * m] + 1j * yT[2 * N + N * m:]).reshape(N, m)
+    V0 = np.zeros((N, 0), complex) if columns is None else np.asarray(columns, complex).reshape(N, -1)
+    m = V0.shape[1]
+    amp = float(np.max(np.abs(A0)))
+    system = DV.dfnls_variational(alpha, 1.0 / (2.0 * dps.tau0(alpha)), m)
+    y0 = np.concatenate([A0.view(np.float64), np.ascontiguousarray(amp * V0).view(np.float64).ravel()])
+    l2, S, _, _ = SD.dps_invariants(y0[:2 * N], alpha, True)
+    stats = np.array([l2, S, 0.0, 0.0])
+    try:
+        Y, _, _ = _dop853.run_dop853(system, y0, np.array([0.0, float(T)]), rtol, rtol * amp, stats, None)
+    except RuntimeError as e:
+        raise RuntimeError(f"travelling breather shooting: integration failed ({e})") from None
+    yT = Y[-1]
+    AT = yT[:2 * N].copy().view(np.complex128)
+    VT = None if columns is None else yT[2 * N:].copy().view(np.complex128).reshape(N, m) / amp
     return AT, VT
 
 
@@ -104,6 +102,18 @@ class TravellingBreather:
     multipliers: NDArray[np.complex128] = field(default_factory=lambda: np.zeros(0, complex))
     dA_dT: NDArray[np.complex128] | None = None
     dtheta_dT: float = 0.0
+    monodromy: Floats | None = None   # the 2N x 2N real monodromy modulo shift of the last evaluation
+
+    def unstable_mode(self, trivial: int) -> tuple[complex, NDArray[np.complex128]]:
+        """(mu, v): the multiplier of largest modulus among all but the ``trivial`` ones nearest 1, and its
+        eigenvector as |v_n|^2 per site (the two real coordinates of site n added), normalised to sum 1."""
+        assert self.monodromy is not None, "a converged member keeps its monodromy"
+        mu, V = np.linalg.eig(self.monodromy)
+        rest = np.argsort(np.abs(mu - 1.0))[trivial:]
+        k = int(rest[np.argmax(np.abs(mu[rest]))])
+        N = self.A.size
+        w = np.abs(V[:N, k]) ** 2 + np.abs(V[N:, k]) ** 2
+        return complex(mu[k]), w / np.sum(w)
 
     @property
     def c(self) -> float:
@@ -166,7 +176,7 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
             dF = np.concatenate([M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, t0), -1)), np.zeros(3)])
             tan = _weighted_lstsq(J, -dF, 2 * N)
             return TravellingBreather(A, T, theta, alpha, res, True, it, mu, M.complex_(tan[:2 * N]),
-                                      float(tan[2 * N]))
+                                      float(tan[2 * N]), Mm)
         if it == max_iter or not np.isfinite(res) or res > 10.0 * best:
             break
         best = min(best, res)

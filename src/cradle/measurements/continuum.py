@@ -20,9 +20,9 @@ def sup_distance(profile: ArrayLike, gaussian: ArrayLike) -> float:
 
 @dataclass(frozen=True)
 class PowerFit:
-    """ln D = power ln eps + ln K + k eps, fitted by least squares: the power, its standard error, the spread of the
-    power when the smallest or the largest eps is left out, the constant K, the first correction k, and the
-    points used."""
+    """ln D = power ln eps + ln K + k eps^q (q = 1 unless :func:`fit_power` is told otherwise), fitted by least
+    squares: the power, its standard error, the spread of the power when the smallest or the largest eps is left
+    out, the constant K, the first correction k, and the points used."""
 
     power: float
     stderr: float
@@ -37,8 +37,9 @@ class PowerFit:
         return max(self.stderr, self.spread)
 
 
-def _lstsq(eps: NDArray[np.float64], D: NDArray[np.float64]) -> tuple[NDArray[np.float64], float]:
-    A = np.column_stack((np.log(eps), np.ones_like(eps), eps))
+def _lstsq(eps: NDArray[np.float64], D: NDArray[np.float64],
+           correction: float = 1.0) -> tuple[NDArray[np.float64], float]:
+    A = np.column_stack((np.log(eps), np.ones_like(eps), eps if correction == 1.0 else eps**correction))
     coef, *_ = np.linalg.lstsq(A, np.log(D), rcond=None)
     dof = eps.size - 3
     if dof <= 0:
@@ -48,16 +49,18 @@ def _lstsq(eps: NDArray[np.float64], D: NDArray[np.float64]) -> tuple[NDArray[np
     return coef, float(np.sqrt(cov[0, 0]))
 
 
-def fit_power(eps: ArrayLike, D: ArrayLike) -> PowerFit:
-    """The power p of D ~ K eps^p (1 + k eps) over the given points (at least 4: three parameters and one degree of
-    freedom for the standard error), with the first correction in eps fitted so that the largest eps do not bias p."""
+def fit_power(eps: ArrayLike, D: ArrayLike, correction: float = 1.0) -> PowerFit:
+    """The power p of D ~ K eps^p (1 + k eps^q) over the given points (at least 4: three parameters and one degree of
+    freedom for the standard error), with the first correction, of power q = ``correction`` (1: a correction in
+    eps), fitted so that the largest eps do not bias p."""
     e = np.asarray(eps, dtype=float)
     d = np.asarray(D, dtype=float)
     if e.size < 4:
         raise ValueError(f"fit_power needs at least 4 points, got {e.size}")
     order = np.argsort(e)
     e, d = e[order], d[order]
-    coef, se = _lstsq(e, d)
-    spread = max(abs(float(_lstsq(e[1:], d[1:])[0][0] - coef[0])), abs(float(_lstsq(e[:-1], d[:-1])[0][0] - coef[0])))
+    coef, se = _lstsq(e, d, correction)
+    spread = max(abs(float(_lstsq(e[1:], d[1:], correction)[0][0] - coef[0])),
+                 abs(float(_lstsq(e[:-1], d[:-1], correction)[0][0] - coef[0])))
     return PowerFit(power=float(coef[0]), stderr=se, spread=spread, K=float(np.exp(coef[1])), k=float(coef[2]),
                     points=int(e.size))

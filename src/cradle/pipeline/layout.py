@@ -109,8 +109,14 @@ def analysis_drawn(analysis: Analysis, form: str, main_form: str, root: str | Pa
 
 
 def read_path(read: Read, form: str, root: str | Path = ROOT) -> str:
-    """The file of one :class:`cradle.analyses.protocol.Read` of an analysis built in ``form``."""
+    """The file of one :class:`cradle.analyses.protocol.Read` of an analysis built in ``form`` (another analysis's
+    output: the one of the form ``all`` builds)."""
     names = dict(read.names)
+    if read.kind == "analysis":
+        from cradle.analyses.registry import ANALYSES
+
+        main = ANALYSES[names["analysis"]].forms[0]
+        return analysis_output(names["analysis"], main, main, root)
     if read.kind == "analysis-batch":
         names["form"] = form
     return path(read.kind, root, **names)
