@@ -194,3 +194,45 @@ def test_a_lattice_run_through_the_ansatz_conserves_the_energy():
     # perturbation delta^2 = 1e-4 of the energy the start carries
     assert data["energy_drift"][0] < 1e-8
     assert coords["lattice_alpha"] == [3.0] and np.isfinite(data["displacement"][0])
+
+
+# ----------------------------------------------------------------- compactons and the lattice's pinning mode
+
+
+def test_the_distances_to_the_compactons_vanish_as_the_first_power(reduced):
+    spec, tree = reduced
+    for key in ("compacton_A_site", "compacton_B_site", "compacton_C_site", "compacton_A_bond", "compacton_B_bond",
+                "compacton_C_bond", "compacton_hertz"):
+        p, u = float(tree.attrs[f"{key}_power"]), float(tree.attrs[f"{key}_power_uncertainty"])
+        # the distance vanishes (the power is resolved well above 0) as the first power; B's distance, a tenth of the
+        # others, carries a relatively larger eps^2 term, so its fit over the reduced form's eps is the loosest
+        assert p - 3 * u > 0.5 and abs(p - 1.0) <= 3 * u, (key, p, u)
+    comp = tree["compacton_dps"]
+    # nu of each compacton agrees with the breather's to O(eps^2): (nu_c - nu) / eps^2 stays bounded and settles
+    err = np.asarray(comp["nu_error"].values)
+    assert np.all(np.abs(err) < 3.0)
+    assert np.all(np.abs(np.diff(err[:, -2:], axis=1)) < 0.05 * np.abs(err[:, -1:]))
+    # the two compacton rows of the claims (James 2018, James and Pelinovsky 2014) follow the fitted powers
+    assert list(tree["claims"]["verdict"].values)[-2:] == ["agrees"] * 2
+    # the support grows as 1/eps: pi (1 + eps) / (2 eps) for form A
+    e = np.asarray(comp["eps"].values)
+    assert np.allclose(np.asarray(comp["half_width"].values)[0], 0.5 * math.pi * (1 + e) / e, rtol=1e-14)
+
+
+def test_the_lattice_pinning_mode_tends_to_the_dps_one(reduced):
+    spec, tree = reduced
+    st = tree["lattice_stability"]
+    assert np.all(np.asarray(st["converged"].values) == 1)
+    assert np.all(np.asarray(st["residual"].values) < 1e-9)
+    # the trivial pair sits at +1 within the accuracy of the monodromy (the tolerance of the shooting integrator)
+    assert np.all(np.asarray(st["trivial"].values) < 1e-4)
+    e = np.asarray(st["stability_eps"].values)
+    for i, alpha in enumerate(np.asarray(st["stability_alpha"].values)):
+        S = np.asarray(st["sigma_ratio"].values)[i]
+        # DpS is the limit eps -> 0: sigma / lambda^2 -> 1 with a correction linear in eps^(alpha - 1); Richardson's
+        # extrapolation from the two smallest amplitudes removes it
+        a, b = np.argsort(e)[:2]
+        x_a, x_b = e[a] ** (alpha - 1), e[b] ** (alpha - 1)
+        ext = (x_b * S[a] - x_a * S[b]) / (x_b - x_a)
+        assert abs(ext - 1.0) < abs(S[a] - 1.0) / 5, (alpha, S)
+        assert np.all(np.asarray(st["amplitude"].values)[i] == pytest.approx(e, rel=0.1))

@@ -31,7 +31,9 @@ if TYPE_CHECKING:
 
     from cradle.analyses.protocol import Log
     from cradle.measurements.continuum import PowerFit
+    from cradle.models.continuum import DpsLimit
     from cradle.models.dps_mobility import UnstableBreather
+    from cradle.models.solitary import SolitaryWave
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
 
@@ -91,6 +93,23 @@ class ContinuumLimit:
                                         reduced=[])
     lattice_eps: float = param(0.1, "Amplitude eps of the ansatz of the lattice runs (max |x_n| = eps at the start).",
                                exclusiveMinimum=0, maximum=0.5)
+    lattice_small_alphas: list[float] = param([1.75, 2.0], "The alpha at which the same start is run in the "
+                                              "lattice at the smaller amplitudes lattice_small_eps (full form).",
+                                              maxItems=6, items={"type": "number", "minimum": 1.3, "maximum": 2.5},
+                                              reduced=[])
+    lattice_small_eps: list[float] = param([0.05, 0.04, 0.03, 0.02, 0.01], "Smaller amplitudes eps of the lattice "
+                                           "runs; a run lasts tau_end / eps^(alpha - 1), longer as eps falls (0.01 "
+                                           "at alpha = 2: about 25 s).", maxItems=10,
+                                           items={"type": "number", "minimum": 1e-3, "maximum": 0.5})
+    stability_alphas: list[float] = param([1.75, 2.0, 2.5, 3.0], "The alpha at which the exact site breather of the "
+                                          "lattice is solved at each stability_eps and its pinning mode compared "
+                                          "with DpS's unstable one (about 0.5 s each).", maxItems=8,
+                                          items={"type": "number", "minimum": 1.5, "maximum": 3.0},
+                                          reduced=[2.0])
+    stability_eps: list[float] = param([0.2, 0.1, 0.05, 0.04, 0.03, 0.02, 0.01, 0.005, 0.002, 0.001],
+                                       "Amplitudes eps of the exact lattice breathers of the stability check.",
+                                       maxItems=16, items={"type": "number", "minimum": 1e-3, "maximum": 0.3},
+                                       reduced=[0.1, 0.05, 0.02, 0.01, 0.002])
     thresholds: list[float] = param([1.5, 5.0], "A run travels when its peak moves farther than this (sites) at "
                                     "some time; each threshold gives its own verdicts and crossover.", minItems=1,
                                     maxItems=4, items={"type": "number", "exclusiveMinimum": 0, "maximum": 100})
@@ -163,6 +182,45 @@ VARIABLES = {
                             "(sites), lattice (nc)"),
         "t_end": Var(("lattice_alpha",), "length of the lattice run, tau_end / eps^(alpha - 1) (units of t)"),
         "energy_drift": Var(("lattice_alpha",), "relative energy drift of the lattice run"),
+    },
+    "/lattice_small": {
+        "small_alpha": Var(("small_alpha",), "Hertz exponent alpha of the small-amplitude lattice runs"),
+        "small_eps": Var(("small_eps",), "amplitude eps of the ansatz (max |x_n| at the start)"),
+        "displacement": Var(("small_alpha", "small_eps"), "largest distance of the peak of x_n^2 + v_n^2 from its "
+                            "start (sites), lattice (nc)"),
+        "t_end": Var(("small_alpha", "small_eps"), "length of the lattice run, tau_end / eps^(alpha - 1) (units of t)"),
+        "energy_drift": Var(("small_alpha", "small_eps"), "relative energy drift of the lattice run"),
+        "dps_displacement": Var(("small_alpha",), "largest distance of the peak from its start (sites), the same "
+                                "start run in DpS on the same ring"),
+    },
+    "/lattice_stability": {
+        "stability_alpha": Var(("stability_alpha",), "Hertz exponent alpha"),
+        "stability_eps": Var(("stability_eps",), "amplitude eps of the exact site breather of (nc)"),
+        "lam": Var(("stability_alpha",), "growth rate lambda of DpS's site breather (per tau), the limit eps -> 0"),
+        "sigma_ratio": Var(("stability_alpha", "stability_eps"), "sigma / lambda^2, sigma = Re z^2, z = ln m / "
+                           "(T eps^(alpha-1)), m the odd (pinning) Floquet multiplier nearest 1: > 0 unstable along "
+                           "the translation, < 0 an oscillating pinned mode; 1 in DpS"),
+        "rate": Var(("stability_alpha", "stability_eps"), "largest growth rate over the non-trivial Floquet "
+                    "multipliers divided by eps^(alpha-1) (per tau)"),
+        "amplitude": Var(("stability_alpha", "stability_eps"), "max |x_n(0)| of the exact breather"),
+        "residual": Var(("stability_alpha", "stability_eps"), "half-period residual of the exact breather"),
+        "trivial": Var(("stability_alpha", "stability_eps"), "distance of the trivial Floquet pair to +1"),
+        "converged": Var(("stability_alpha", "stability_eps"), "1 if Newton converged, else 0"),
+    },
+    "/compacton_dps": {
+        "form": Var(("form",), "degenerate form of the staggered stationary DpS (models.compacton: A, B, C)"),
+        "eps": Var(("eps",), "eps = alpha - 1"),
+        "distance_site": Var(("form", "eps"), "max-norm distance of the site breather's envelope b_n / max b to the "
+                             "compacton of unit maximum"),
+        "distance_bond": Var(("form", "eps"), "the same for the bond-centred breather"),
+        "nu_error": Var(("form", "eps"), "(nu of the compacton - nu of the site breather) / eps^2"),
+        "half_width": Var(("form", "eps"), "half the support of the compacton, pi / (2 kappa) (sites)"),
+    },
+    "/compacton_hertz": {
+        "eps": Var(("eps",), "eps = alpha - 1"),
+        "distance": Var(("eps",), "max-norm distance of the strain R / max R at c = 1 to the compacton"),
+        "log_amplitude_error": Var(("eps",), "(ln max R of the wave - ln max R of the compacton at c = 1) / eps"),
+        "half_width": Var(("eps",), "half the support of the compacton, pi / (2 kappa) (sites)"),
     },
     "/mobility_checks": {
         "alpha": Var(("alpha",), "Hertz exponent alpha"),
@@ -324,6 +382,119 @@ def lattice_runs(spec: ContinuumLimit, say: Log) -> tuple[dict, dict]:
     return {"displacement": disp, "t_end": t_end, "energy_drift": drift}, {"lattice_alpha": al}
 
 
+JAMES_2018 = ("G. James, Travelling breathers and solitary waves in strongly nonlinear lattices, Phil. Trans. R. Soc. "
+              "A 376 (2018) 20170138")
+
+
+def compacton_claims(cfits: dict[str, PowerFit]) -> list[Row]:
+    """The two abstracts' statements on compactons near p = 2 against ours (qualitative rows: the abstracts print no
+    number): James 2018's degenerate NLS compactons approximating DpS's breathers (here the static ones), and James
+    & Pelinovsky's compactons of the fractional KdV tending to the Gaussian (here: against the waves themselves).
+    Each agrees when the fitted power of the distance is positive beyond three uncertainties."""
+    rows = []
+    dps = [cfits[f"compacton_{f}_site"] for f in ("A", "B", "C")]
+    ok = all(f.power - 3 * f.uncertainty > 0 for f in dps)
+    rows.append(Row("James 2018", "compactons of degenerate NLS equations against DpS breathers near p = 2",
+                    "degenerate NLS equations with compacton solutions approximate DpS's (travelling) breathers as "
+                    "p -> 2+ (qualitative)",
+                    "static site breathers: distance ~ " + ", ".join(f"{f.K:.3g} (alpha-1)^{f.power:.3f}"
+                                                                     for f in dps) + " (forms A, B, C)",
+                    "agrees" if ok else "disagrees",
+                    "max-norm distance of the envelope to the compacton of each degenerate form (continuum-limit); "
+                    "the travelling breathers are not compared", "power > 0 beyond 3 uncertainties",
+                    "analyses/continuum-limit.md", qualitative=True))
+    f = cfits["compacton_hertz"]
+    rows.append(Row("James and Pelinovsky 2014", "compactons of the fractional KdV against the Hertz chain's waves",
+                    "compactons converge pointwise to the limiting Gaussian as alpha -> 1+ (qualitative)",
+                    f"distance of the waves to the compacton ~ {f.K:.3g} (alpha-1)^{f.power:.4f} +- "
+                    f"{f.uncertainty:.1g}", "agrees" if f.power - 3 * f.uncertainty > 0 else "disagrees",
+                    "max-norm distance of R / max R at c = 1 to the compacton (continuum-limit)",
+                    "power > 0 beyond 3 uncertainties", "analyses/continuum-limit.md", qualitative=True))
+    return rows
+
+
+def lattice_small(spec: ContinuumLimit, say: Log) -> tuple[dict, dict]:
+    """The lattice runs of :func:`lattice_runs` at each alpha of ``lattice_small_alphas`` and amplitude of
+    ``lattice_small_eps``, and the same start run in DpS on the same ring (its limit eps -> 0)."""
+    from cradle.integrators import integrate_lattice
+    from cradle.measurements.travel import displacement
+    from cradle.models.dps_mobility import start, unstable_site
+
+    al, es = list(spec.lattice_small_alphas), list(spec.lattice_small_eps)
+    disp, t_end, drift = (np.zeros((len(al), len(es))) for _ in range(3))
+    dps_disp = np.zeros(len(al))
+    big = max(spec.deltas)
+    for i, alpha in enumerate(al):
+        br = unstable_site(alpha, spec.mobility_N)
+        tau = min((math.log(1.0 / big) + spec.growth_times) / br.lam, spec.tau_max)
+        A0 = start(br, big)
+        dps_disp[i] = _run(br, A0, tau, spec.rtol)[2]
+        for j, e in enumerate(es):
+            t_end[i, j] = tau / e ** (alpha - 1.0)
+            sol = integrate_lattice(2 * e * A0.real, -2 * e * A0.imag, np.linspace(0.0, t_end[i, j], 801),
+                                    alpha=alpha)
+            disp[i, j] = displacement(np.sqrt(sol.x**2 + sol.v**2))
+            drift[i, j] = float(sol.energy_drift)
+            say(f"continuum-limit: lattice alpha = {alpha:g}, eps = {e:g}: displacement {disp[i, j]:.3g} sites over "
+                f"t = {t_end[i, j]:.4g} (DpS {dps_disp[i]:.3g})")
+    return ({"displacement": disp, "t_end": t_end, "energy_drift": drift, "dps_displacement": dps_disp},
+            {"small_alpha": al, "small_eps": es})
+
+
+def lattice_stability(spec: ContinuumLimit, say: Log) -> tuple[dict, dict]:
+    """The pinning mode of the exact site breather of (nc) at each alpha and amplitude of the spec against DpS's
+    unstable mode (:func:`cradle.integrators.lattice_pinning.exact_site`)."""
+    from cradle.integrators.lattice_pinning import exact_site
+
+    al, es = list(spec.stability_alphas), list(spec.stability_eps)
+    out = {k: np.zeros((len(al), len(es))) for k in ("sigma_ratio", "rate", "amplitude", "residual", "trivial")}
+    conv = np.zeros((len(al), len(es)), dtype=np.int8)
+    lam = np.zeros(len(al))
+    for i, alpha in enumerate(al):
+        for j, e in enumerate(es):
+            m = exact_site(alpha, spec.mobility_N, e)
+            lam[i] = m.lam
+            for k in out:
+                out[k][i, j] = getattr(m, k)
+            conv[i, j] = int(m.converged)
+        say(f"continuum-limit: exact lattice site breather at alpha = {alpha:g}: sigma / lambda^2 = "
+            f"{', '.join(f'{v:.3g}' for v in out['sigma_ratio'][i])} at eps = {', '.join(f'{e:g}' for e in es)}")
+    return {**out, "converged": conv, "lam": lam}, {"stability_alpha": al, "stability_eps": es}
+
+
+def compactons(spec: ContinuumLimit, fams: dict[str, list[DpsLimit]], waves: list[SolitaryWave]) -> tuple[
+        tuple[dict, dict], tuple[dict, dict], dict[str, PowerFit]]:
+    """The compactons of :mod:`cradle.models.compacton` against the breathers and waves of the spec (groups
+    "/compacton_dps", "/compacton_hertz") and the fitted power of each distance."""
+    from cradle.measurements.continuum import sup_distance
+    from cradle.models import compacton as K
+
+    eps = list(spec.dps_eps)
+    nf = len(K.FORMS)
+    D = {kind: np.zeros((nf, len(eps))) for kind in ("site", "bond")}
+    nu_error, half = np.zeros((nf, len(eps))), np.zeros((nf, len(eps)))
+    fits: dict[str, PowerFit] = {}
+    for f_i, form in enumerate(K.FORMS):
+        for kind in ("site", "bond"):
+            for k, b in enumerate(fams[kind]):
+                C = K.dps_compacton(b.n, b.centre, b.eps, form)
+                D[kind][f_i, k] = sup_distance(b.envelope, C / np.max(C))
+            fits[f"compacton_{form}_{kind}"] = _fit(eps, list(D[kind][f_i]), spec.fit_below)
+        for k, b in enumerate(fams["site"]):
+            nu_error[f_i, k] = (K.dps_nu(b.eps, form) - b.nu) / b.eps**2
+            half[f_i, k] = K.dps_half_width(b.eps, form)
+    he = list(spec.hertz_eps)
+    DH = [sup_distance(w.strain, K.hertz_compacton(w.xi, e)) for w, e in zip(waves, he, strict=True)]
+    fits["compacton_hertz"] = _fit(he, DH, spec.fit_below)
+    dps_group = ({"distance_site": D["site"], "distance_bond": D["bond"], "nu_error": nu_error, "half_width": half},
+                 {"form": np.array(K.FORMS, dtype=object), "eps": eps})
+    hertz_group = ({"distance": DH,
+                    "log_amplitude_error": [(math.log(w.strain_max) - K.hertz_log_amplitude(e)) / e
+                                            for w, e in zip(waves, he, strict=True)],
+                    "half_width": [0.5 * math.pi / K.hertz_kappa(e) for e in he]}, {"eps": he})
+    return dps_group, hertz_group, fits
+
+
 def mobility_claim(spec: ContinuumLimit, mob: dict, attrs: dict) -> Row:
     """James & Starosvetsky's "a perturbation of an unstable breather generally results in a translational motion
     (traveling breather) when alpha is close to unity, whereas pinning becomes predominant for larger values of
@@ -358,9 +529,10 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
     variables = {k: v for k, v in VARIABLES.items() if "{" not in k}
     fits: dict[str, PowerFit] = {}
     seconds: dict[str, float] = {}
+    fams: dict[str, list[DpsLimit]] = {}
     for kind in ("site", "bond"):
         t1 = _time.perf_counter()
-        fam = dps_family(spec, kind)
+        fams[kind] = fam = dps_family(spec, kind)
         seconds[kind] = _time.perf_counter() - t1
         bad = [b.eps for b in fam if not b.converged]
         if bad:
@@ -393,12 +565,24 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
     fits["hertz"] = f = _fit(spec.hertz_eps, D, spec.fit_below)
     say(f"continuum-limit: Hertz: distance ~ {f.K:.4g} eps^{f.power:.5f} (+- {f.uncertainty:.2g}); ln max R = "
         f"{math.log(waves[-1].strain_max):.6f} at eps = {spec.hertz_eps[-1]:g} (limit 0.5)")
+    t1 = _time.perf_counter()
+    groups["/compacton_dps"], groups["/compacton_hertz"], cfits = compactons(spec, fams, waves)
+    seconds["compactons"] = _time.perf_counter() - t1
+    for key in ("compacton_A_site", "compacton_B_site", "compacton_C_site", "compacton_hertz"):
+        f = cfits[key]
+        say(f"continuum-limit: {key}: distance ~ {f.K:.4g} eps^{f.power:.5f} (+- {f.uncertainty:.2g})")
     groups["/mobility"], groups["/mobility_checks"], mob_attrs = mobility(spec, say)
     groups["/lattice"] = lattice_runs(spec, say)
-    table = claims(fits) + [mobility_claim(spec, groups["/mobility"][0], mob_attrs)]
+    t1 = _time.perf_counter()
+    groups["/lattice_stability"] = lattice_stability(spec, say)
+    seconds["lattice_stability"] = _time.perf_counter() - t1
+    t1 = _time.perf_counter()
+    groups["/lattice_small"] = lattice_small(spec, say)
+    seconds["lattice_small"] = _time.perf_counter() - t1
+    table = claims(fits) + [mobility_claim(spec, groups["/mobility"][0], mob_attrs)] + compacton_claims(cfits)
     groups["/claims"] = group(table)
     attrs: dict = {"nu_first_order_limit": LOG_NLS_M, "log_amplitude_limit": 0.5, "fit_below": spec.fit_below}
-    for key, f in fits.items():
+    for key, f in {**fits, **cfits}.items():
         attrs.update({f"{key}_power": f.power, f"{key}_power_stderr": f.stderr, f"{key}_power_spread": f.spread,
                       f"{key}_power_uncertainty": f.uncertainty, f"{key}_constant": f.K,
                       f"{key}_correction": f.k, f"{key}_fit_points": f.points})
@@ -414,6 +598,13 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
                "standard error of p and the change of p when the smallest or the largest eps is left out",
         "dps_source": JS_2014, "hertz_source": JP_2014,
         "dps_site_seconds": seconds["site"], "dps_bond_seconds": seconds["bond"], "hertz_seconds": seconds["hertz"],
+        "compactons_seconds": seconds["compactons"], "lattice_stability_seconds": seconds["lattice_stability"],
+        "lattice_small_seconds": seconds["lattice_small"],
+        "compacton_dps": "b / max b = cos^(2/eps)(kappa (n - n_c)) on |n - n_c| <= pi/(2 kappa), 0 beyond; kappa = "
+                         "eps/(1+eps) (A: nu u = 4 g(u) + (g(u))''), eps/sqrt(1+eps) (B: nu u = 4 g(u) + g'(u) u''), "
+                         "eps sqrt(2/((2+eps)(1+eps))) (C: nu u = 4 g(u) + g'(u) u'' + g''(u) u'^2/2), u = 2b",
+        "compacton_hertz": "R / max R = cos^(2/eps)(kappa xi), kappa = sqrt(3) eps/(1+eps), of c^2 R = v + v''/12, "
+                           "v = R^(1+eps); (max R)^eps = 2 c^2 (1+eps)/(2+eps)",
         **mob_attrs,
         "mobility_definitions": "the site-centred breather (max |A| = 1/2) perturbed by delta (u + i w), u + i w its "
                                 "growing mode (max |u| = 1), run to (ln(1/delta) + growth_times)/lambda (at most "

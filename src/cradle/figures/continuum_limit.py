@@ -11,7 +11,12 @@ xi; (f) the first-order constants: (nu - 4)/eps of the DpS breathers against 4 l
 Hertz waves at c = 1 against 1. Mobility: (g) the peak position of the perturbed unstable site breather against
 lambda tau (largest delta), one curve per alpha; (h) the largest displacement against alpha, each delta and each
 noise seed, N doubled, the lattice runs (full form), with the thresholds; (i) the growth rate lambda of the
-unstable mode against alpha.
+unstable mode against alpha. Near p = 2: (j) the site breather's envelope at the alpha - 1 nearest 0.1, log scale,
+against the Gaussian and the three compactons of :mod:`cradle.models.compacton`, each to the edge of its support;
+(k) the distance of the site breathers and the Hertz waves to the Gaussians and to the compactons, divided by
+alpha - 1. The lattice: (l) sigma / lambda^2 of the pinning mode of the exact site breather of (nc) against its
+amplitude (1: DpS; below 0: pinned, oscillating; crosses: Newton not converged), with the outcome of the
+small-amplitude lattice runs (full form) as triangles below.
 """
 from __future__ import annotations
 
@@ -74,8 +79,8 @@ def _departures(ax: Any, fams: list[tuple[str, list[tuple[float, Any]]]], xname:
 
 
 def draw(tree: AnalysisTree) -> Figure:
-    """The six panels above."""
-    fig, ax = figure(3, 3, width=14.0, height=12.0)
+    """The panels above."""
+    fig, ax = figure(4, 3, width=14.0, height=16.0)
     site, bond, hertz = _members(tree, "dps_site"), _members(tree, "dps_bond"), _members(tree, "hertz")
 
     a = ax[0, 0]
@@ -138,7 +143,89 @@ def draw(tree: AnalysisTree) -> Figure:
     f.set_ylim(lo_y, 1.55)
     f.legend(fontsize=7, loc="upper right")
     _mobility(ax[2], tree)
+    _compactons(ax[3, 0], ax[3, 1], tree, site)
+    _stability(ax[3, 2], tree)
     return fig
+
+
+_FORM_STYLE = {"A": ("C1", "-."), "B": ("C2", "-"), "C": ("C4", "--")}
+
+
+def _compactons(j: Any, k: Any, tree: AnalysisTree, site: list[tuple[float, Any]]) -> None:
+    from cradle.models import compacton as K
+
+    comp = tree["compacton_dps"]
+    eps = np.asarray(comp["eps"].values)
+    i = int(np.argmin(np.abs(np.log(eps / 0.1))))     # the member nearest alpha - 1 = 0.1
+    e, g = site[i]
+    y = np.asarray(g["X"].values) / np.sqrt(e)       # n - n_c
+    env = np.asarray(g["envelope"].values)
+    order = np.argsort(y)
+    order = order[env[order] > 1e-16]                  # the frame's floor: the rest is rounding
+    j.semilogy(y[order], env[order], "o", ms=3, color="k", mfc="none", label="DpS site breather")
+    Y = np.linspace(y.min(), y.max(), 800)
+    j.semilogy(Y, np.exp(-e * Y**2), ":", color="C0", lw=1.2, label="log-NLS Gaussian")
+    for form in K.FORMS:
+        col, ls = _FORM_STYLE[form]
+        C = K.dps_compacton(Y, 0.0, e, form)
+        j.semilogy(Y[C > 0], C[C > 0], ls, color=col, lw=1.1,
+                   label=f"compacton ({form}), support $\\pm${K.dps_half_width(e, form):.1f}")
+    j.set_ylim(1e-17, 1e5)   # room above the peak for the key
+    j.set_xlabel("$n - n_c$")
+    j.set_ylabel("$b_n / \\max b$")
+    j.set_title(f"(j) DpS breather and compactons, $\\alpha - 1$ = {e:g}", fontsize=9)
+    j.legend(fontsize=6.5, loc="upper center", ncol=2)
+
+    for f_i, form in enumerate(np.asarray(comp["form"].values)):
+        col, ls = _FORM_STYLE[str(form)]
+        k.loglog(eps, np.asarray(comp["distance_site"].values)[f_i] / eps, "o" + ls, color=col, ms=3.5, mfc="none",
+                 lw=0.9, label=f"DpS site to compacton ({form})")
+    k.loglog(eps, np.asarray(tree["dps_site"]["distance"].values) / eps, "o:", color="C0", ms=3.5, mfc="none", lw=0.9,
+             label="DpS site to Gaussian")
+    he = np.asarray(tree["compacton_hertz"]["eps"].values)
+    k.loglog(he, np.asarray(tree["compacton_hertz"]["distance"].values) / he, "^-", color="C3", ms=4, mfc="none",
+             lw=0.9, label="Hertz to its compacton")
+    k.loglog(he, np.asarray(tree["hertz"]["distance"].values) / he, "^:", color="C3", ms=4, mfc="none", lw=0.9,
+             label="Hertz to Gaussian")
+    k.set_ylim(0.01, 10.0)   # room above the curves for the key
+    k.set_xlabel("$\\alpha - 1$")
+    k.set_ylabel("max-norm distance / $(\\alpha - 1)$")
+    k.set_title("(k) distance to the Gaussians and the compactons", fontsize=9)
+    k.legend(fontsize=6.5, loc="upper center", ncol=2)
+
+
+def _stability(ax: Any, tree: AnalysisTree) -> None:
+    st = tree["lattice_stability"]
+    es = np.asarray(st["stability_eps"].values)
+    S = np.asarray(st["sigma_ratio"].values)
+    conv = np.asarray(st["converged"].values).astype(bool)
+    for i, a in enumerate(np.asarray(st["stability_alpha"].values)):
+        ax.semilogx(es, S[i], "-", color=f"C{i}", lw=0.9, label=f"$\\alpha$ = {a:g}")
+        ax.semilogx(es[conv[i]], S[i][conv[i]], "o", color=f"C{i}", ms=4, mfc="none")
+        if np.any(~conv[i]):
+            ax.semilogx(es[~conv[i]], S[i][~conv[i]], "x", color=f"C{i}", ms=6)
+    ax.axhline(1.0, color="0.4", ls="--", lw=0.8, label="DpS ($\\sigma = \\lambda^2$)")
+    ax.axhline(0.0, color="0.4", lw=0.6)
+    small = tree["lattice_small"]
+    sa = np.asarray(small["small_alpha"].values)
+    if sa.size:
+        D = np.asarray(small["displacement"].values)
+        se = np.asarray(small["small_eps"].values)
+        al = list(np.asarray(st["stability_alpha"].values))
+        for i, a in enumerate(sa):
+            col = f"C{al.index(a)}" if a in al else "k"
+            # leaving the site is the robust verdict (how many sites follow depends on the ring: the doc's tables)
+            left = D[i] > 0.5
+            row = -0.25 - 0.12 * i                     # one row of triangles per alpha
+            ax.semilogx(se[left], np.full(left.sum(), row), "v", color=col, ms=6)
+            ax.semilogx(se[~left], np.full((~left).sum(), row), "v", color=col, ms=6, mfc="none")
+        ax.plot([], [], "v", color="0.3", ms=6, label="lattice run leaves its site")
+        ax.plot([], [], "v", color="0.3", ms=6, mfc="none", label="lattice run stays (< 0.5 site)")
+    ax.set_ylim(-0.25 - 0.12 * max(sa.size, 1) - 0.1, 1.5)
+    ax.set_xlabel("amplitude $\\varepsilon$ of the lattice breather")
+    ax.set_ylabel("$\\sigma / \\lambda^2$ of the pinning mode")
+    ax.set_title("(l) exact lattice site breather: pinning mode against DpS", fontsize=9)
+    ax.legend(fontsize=6.5, loc="upper right", ncol=2)
 
 
 def _mobility(ax: Any, tree: AnalysisTree) -> None:
