@@ -152,8 +152,6 @@ _FORM_STYLE = {"A": ("C1", "-."), "B": ("C2", "-"), "C": ("C4", "--")}
 
 
 def _compactons(j: Any, k: Any, tree: AnalysisTree, site: list[tuple[float, Any]]) -> None:
-    from cradle.models import compacton as K
-
     comp = tree["compacton_dps"]
     eps = np.asarray(comp["eps"].values)
     i = int(np.argmin(np.abs(np.log(eps / 0.1))))     # the member nearest alpha - 1 = 0.1
@@ -165,11 +163,15 @@ def _compactons(j: Any, k: Any, tree: AnalysisTree, site: list[tuple[float, Any]
     j.semilogy(y[order], env[order], "o", ms=3, color="k", mfc="none", label="DpS site breather")
     Y = np.linspace(y.min(), y.max(), 800)
     j.semilogy(Y, np.exp(-e * Y**2), ":", color="C0", lw=1.2, label="log-NLS Gaussian")
-    for form in K.FORMS:
+    forms = [str(f) for f in np.asarray(comp["form"].values)]
+    half = np.asarray(comp["half_width"].values)[:, i]
+    for form, hw in zip(forms, half, strict=True):
         col, ls = _FORM_STYLE[form]
-        C = K.dps_compacton(Y, 0.0, e, form)
-        j.semilogy(Y[C > 0], C[C > 0], ls, color=col, lw=1.1,
-                   label=f"compacton ({form}), support $\\pm${K.dps_half_width(e, form):.1f}")
+        # the stored compacton's closed form, cos^(2/eps)(kappa y) inside its support |y| < pi/(2 kappa) = hw
+        inside = np.abs(Y) < hw
+        C = np.cos(0.5 * np.pi * Y[inside] / hw) ** (2.0 / e)
+        j.semilogy(Y[inside][C > 0], C[C > 0], ls, color=col, lw=1.1,
+                   label=f"compacton ({form}), support $\\pm${hw:.1f}")
     j.set_ylim(1e-17, 1e5)   # room above the peak for the key
     j.set_xlabel("$n - n_c$")
     j.set_ylabel("$b_n / \\max b$")
