@@ -127,10 +127,24 @@ def test_a_file_that_is_not_utf8_is_one_line(tmp_path):
 
 
 def test_config_yaml_is_far_below_the_bounds():
-    """The bounds leave room: config.yaml reads in milliseconds, well under each of them."""
-    t0 = time.process_time()
-    cc.read_yaml(ROOT / "config.yaml")
-    assert time.process_time() - t0 < 0.2
+    """The bounds leave room: config.yaml is a tenth of each of them or less (its read's CPU time is measured by
+    benchmarks/validation_cost.py, not here)."""
+    import yaml
+
+    from cradle.pipeline.config.loading import _Parser
+
+    text = (ROOT / "config.yaml").read_text()
+    depth = deepest = values = 0
+    for event in yaml.parse(text, Loader=_Parser):
+        if isinstance(event, (yaml.ScalarEvent, yaml.CollectionStartEvent, yaml.AliasEvent)):
+            values += 1
+        if isinstance(event, yaml.CollectionStartEvent):
+            depth += 1
+            deepest = max(deepest, depth)
+        elif isinstance(event, yaml.CollectionEndEvent):
+            depth -= 1
+    assert len(text.encode()) * 10 < MAX_BYTES and values * 10 < MAX_VALUES and deepest * 5 < MAX_DEPTH, \
+        (len(text.encode()), values, deepest)
 
 
 def test_a_list_without_a_declared_maximum_has_the_default_one():
