@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from cradle.figures.desk_toy_movie import BALL, DPI, EDGE, FORCE, MM, ball_centres, playback_speed
+from cradle.figures.desk_toy_movie import BALL, EDGE, FORCE, MM, CradleFrames, ball_centres
 
 if TYPE_CHECKING:
     from collections.abc import Iterator, Mapping, Sequence
@@ -47,30 +47,24 @@ def _speed_text(speed: float) -> str:
     return "real time"
 
 
-class MinuteFigure:
+class MinuteFigure(CradleFrames):
     """The figure of the movie's run ``ds`` (module docstring) and its moving artists: :meth:`show` puts them at a
-    frame. ``fig`` (on its own Agg canvas, outside pyplot), ``moving`` (the artists :meth:`show` changes)."""
+    frame. ``fig`` (:class:`~cradle.figures.desk_toy_movie.CradleFrames`), ``moving`` (the artists :meth:`show`
+    changes)."""
 
     def __init__(self, ds: xr.Dataset, width: int = 1280, height: int = 720) -> None:
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.collections import LineCollection
-        from matplotlib.figure import Figure
         from matplotlib.patches import Circle
 
+        super().__init__(ds, width, height)
         a = ds.attrs
-        R, L = float(a["radius_m"]), float(a["length_m"])
-        self.R, self.L = R, L
-        self.t = np.asarray(ds["t"].values, dtype=float)
-        self.speed = playback_speed(self.t, float(a["fps"]))
-        self.x = np.asarray(ds["x"].values, dtype=float)
-        self.force = np.asarray(ds["force"].values, dtype=float)
+        R, L = self.R, self.L
         self.slow = np.asarray(ds["slow"].values, dtype=np.int64)
         self.labels = [str(s) for s in ds["impact_label"].values]
         n_beads = self.x.shape[-1]
         force_max = float(self.force.max()) if self.force.max() > 0 else 1.0
 
-        self.fig = fig = Figure(figsize=(width / DPI, height / DPI), dpi=DPI)
-        self.canvas = FigureCanvasAgg(fig)
+        fig = self.fig
         fig.text(0.5, 0.972, f"A desk toy watched for a minute: {n_beads} {a['material']} balls of radius "
                  f"{R * MM:g} mm on strings of {L * MM:g} mm, {int(a['lifted'])} lifted to "
                  f"{float(a['angle_deg']):g}° and released", ha="center", va="center", fontsize=12)

@@ -101,24 +101,37 @@ def _collided_in_impact(t: NDArray[np.float64], collided: NDArray[np.bool_], sta
     return shown
 
 
-class MovieFigure:
-    """The figure of the movie's run ``ds`` (module docstring) and its moving artists: :meth:`show` puts them at a
-    stored time. ``fig`` (on its own Agg canvas, outside pyplot: the session's backend is left alone),
-    ``moving`` (the artists :meth:`show` changes), ``force_max`` (N, the top of the force strip's scale)."""
+class CradleFrames:
+    """What both desk-toy movies read of their run ``ds`` and draw on: ``R``, ``L`` (m), the stored times ``t`` (s)
+    and their ``speed`` of playback, ``x`` ((model,) t, n; m), ``force`` (t, bond; N), and ``fig`` on its own Agg
+    ``canvas`` (outside pyplot: the session's backend is left alone)."""
 
-    def __init__(self, ds: xr.Dataset, width: int = 1280, height: int = 720) -> None:
+    def __init__(self, ds: xr.Dataset, width: int, height: int) -> None:
         from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.collections import LineCollection
         from matplotlib.figure import Figure
-        from matplotlib.patches import Circle
 
         a = ds.attrs
-        R, L = float(a["radius_m"]), float(a["length_m"])
-        self.R, self.L = R, L
+        self.R, self.L = float(a["radius_m"]), float(a["length_m"])
         self.t = np.asarray(ds["t"].values, dtype=float)
         self.speed = playback_speed(self.t, float(a["fps"]))
-        self.x = np.asarray(ds["x"].values, dtype=float)          # (model, t, n), m
-        self.force = np.asarray(ds["force"].values, dtype=float)  # (t, bond), N
+        self.x = np.asarray(ds["x"].values, dtype=float)
+        self.force = np.asarray(ds["force"].values, dtype=float)
+        self.fig = Figure(figsize=(width / DPI, height / DPI), dpi=DPI)
+        self.canvas = FigureCanvasAgg(self.fig)
+
+
+class MovieFigure(CradleFrames):
+    """The figure of the movie's run ``ds`` (module docstring) and its moving artists: :meth:`show` puts them at a
+    stored time. ``fig`` (:class:`CradleFrames`), ``moving`` (the artists :meth:`show` changes), ``force_max`` (N,
+    the top of the force strip's scale)."""
+
+    def __init__(self, ds: xr.Dataset, width: int = 1280, height: int = 720) -> None:
+        from matplotlib.collections import LineCollection
+        from matplotlib.patches import Circle
+
+        super().__init__(ds, width, height)
+        a = ds.attrs
+        R, L = self.R, self.L
         self.collided = _collided_in_impact(self.t, np.asarray(ds["collided"].values) > 0,
                                             np.asarray(ds["window_start"].values),
                                             np.asarray(ds["window_end"].values))
@@ -126,8 +139,7 @@ class MovieFigure:
         self.force_max = float(self.force.max()) if self.force.size and self.force.max() > 0 else 1.0
         names = [str(m) for m in ds["model"].values]
 
-        self.fig = fig = Figure(figsize=(width / DPI, height / DPI), dpi=DPI)
-        self.canvas = FigureCanvasAgg(fig)
+        fig = self.fig
         fig.text(0.5, 0.965, f"Newton's cradle: {n_beads} {a['material']} balls of radius {R * MM:g} mm on strings "
                  f"of {L * MM:g} mm, {int(a['lifted'])} lifted to {float(a['angle_deg']):g}° and released",
                  ha="center", va="center", fontsize=12)
