@@ -220,27 +220,14 @@ def continue_family(first: TravellingBreather, cs: ArrayLike, tol: float = 1e-11
     family's tangent at the previous member (:meth:`TravellingBreather.predict`) and corrected by :func:`newton`
     with the previous member as the phase reference. A failed step is halved down to ``min_step`` (relative to
     c); returns the members reached at the grid's c and the last c reached."""
-    say = log or (lambda *a: None)
-    out: list[TravellingBreather] = []
-    path = [first]
+    from cradle.integrators.continuation import continue_in_c
+
     P0 = first.norm
-    for c in np.asarray(cs, float):
-        cur = path[-1]
-        while abs(cur.c - c) > 1e-14 * c:
-            step = c - cur.c
-            while True:
-                c2 = cur.c + step
-                A_g, th_g = cur.predict(1.0 / c2)
-                b = newton(A_g, 1.0 / c2, th_g, first.alpha, P0, cur.A, tol, max_iter=8, rtol=rtol)
-                if b.converged:
-                    path.append(b)
-                    cur = b
-                    break
-                step *= 0.5
-                if abs(step) < min_step * abs(c):
-                    say(f"travelling breathers: the family ends or turns near c = {cur.c:.6g}")
-                    return out, cur.c
-        out.append(cur)
-        say(f"travelling breathers: c = {cur.c:.6g}: theta = {cur.theta:.12g}, residual {cur.residual:.2g}, "
-            f"tail {M.tail_amplitude(cur.A):.3g}")
-    return out, out[-1].c if out else None
+
+    def correct(cur: TravellingBreather, c2: float) -> TravellingBreather:
+        A_g, th_g = cur.predict(1.0 / c2)
+        return newton(A_g, 1.0 / c2, th_g, first.alpha, P0, cur.A, tol, max_iter=8, rtol=rtol)
+
+    return continue_in_c(first, cs, correct, min_step, log or (lambda *a: None), "travelling breathers",
+                         lambda b: f"theta = {b.theta:.12g}, residual {b.residual:.2g}, "
+                                   f"tail {M.tail_amplitude(b.A):.3g}")

@@ -219,25 +219,14 @@ def continue_family(first: LatticeTB, cs: ArrayLike, tol: float = 1e-11, rtol: f
     tangent at the previous member and corrected by :func:`newton` with the previous member as the phase reference.
     A failed step is halved down to ``min_step`` (relative to c); returns the members reached at the grid's c and
     the last c reached."""
-    say = log or (lambda *a: None)
-    out: list[LatticeTB] = []
-    cur = first
-    for c in np.asarray(cs, float):
-        while abs(cur.c - c) > 1e-14 * c:
-            step = c - cur.c
-            while True:
-                T2 = 1.0 / (cur.c + step)
-                b = newton(cur.predict(T2), T2, first.alpha, cur.z, tol, max_iter=8, rtol=rtol)
-                if b.converged:
-                    cur = b
-                    break
-                step *= 0.5
-                if abs(step) < min_step * abs(c):
-                    say(f"lattice travelling breathers: the family ends or turns near c = {cur.c:.6g}")
-                    return out, cur.c
-        out.append(cur)
-        say(f"lattice travelling breathers: c = {cur.c:.6g}: eps = {cur.eps:.4g}, residual {cur.residual:.2g}")
-    return out, out[-1].c if out else None
+    from cradle.integrators.continuation import continue_in_c
+
+    def correct(cur: LatticeTB, c2: float) -> LatticeTB:
+        T2 = 1.0 / c2
+        return newton(cur.predict(T2), T2, first.alpha, cur.z, tol, max_iter=8, rtol=rtol)
+
+    return continue_in_c(first, cs, correct, min_step, log or (lambda *a: None), "lattice travelling breathers",
+                         lambda b: f"eps = {b.eps:.4g}, residual {b.residual:.2g}")
 
 
 def direct_run(b: LatticeTB, periods: int, rtol: float = RTOL) -> dict:
