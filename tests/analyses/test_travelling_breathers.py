@@ -24,7 +24,8 @@ from cradle.specs.values import ConfigError
 def _tiny(**over):
     plain = {"N": 16, "check_N": [18], "check_rtol": [1e-12], "speeds": [0.06, 0.08, 0.1], "direct_speed": 0.08,
              "direct_periods": 3, "static_samples": 16, "motion_eps": [0.01, 0.003, 0.001, 3e-4], "motion_sites": 8,
-             "motion_ring": 30, "motion_samples": 8, **over}
+             "motion_ring": 30, "motion_samples": 8, "limit_N": [16, 18], "limit_step": 0.004,
+             "limit_halfwidth": 0.004, **over}
     return from_plain(tb.TravellingBreathers, plain)
 
 
@@ -175,3 +176,43 @@ def test_tail_wave_and_its_mi_rate():
     assert R_m == pytest.approx(R, rel=1e-12)
     assert tb.tail_mi_rate(1.0, R, 1.5) == 0.0
     assert tb.tail_mi_rate(q, R, 1.5) > 0.0
+
+
+def test_limit_scan_rows_and_rule(tiny):
+    """/robustness_limit: every scanned TB's multipliers come in the quadruples of a symplectic map (a real
+    pair mu, 1/mu on the axis, a pair on the circle, a quartet off it) to 1e-8 (the trivial Jordan blocks split
+    by rounding ~ the square root of the monodromy's error, as the stored trivial defect); the per-member
+    statistics are those of the fine data; the verdict is limit_rule's; a point is unstable exactly where its
+    growth rate exceeds the threshold."""
+    spec, tree = tiny
+    lim = tree["robustness_limit"]
+    assert list(lim["limit_ring"].values) == spec.limit_N
+    assert np.nanmax(lim["quartet_defect"].values) < 1e-8
+    cf = lim["c_fine"].values
+    c = tree["c"].values
+    G = lim["growth_rate"].values
+    for j, x in enumerate(c):
+        near = np.abs(cf - x) <= spec.limit_halfwidth + 1e-9
+        for i in range(len(spec.limit_N)):
+            g = G[i, near][np.isfinite(G[i, near])]
+            assert lim["typical_growth"].values[j, i] == pytest.approx(np.median(g), rel=0, abs=0)
+            assert lim["unstable_fraction"].values[j, i] == np.mean(g > spec.stability_threshold)
+        v, k = tb.limit_rule(np.array(spec.limit_N, float), lim["typical_growth"].values[j],
+                             spec.stability_threshold, spec.limit_decay)
+        assert lim["verdict"].values[j] == v
+    unstable = lim["unstable"].values
+    assert np.array_equal(unstable == 1, np.isfinite(G) & (G > spec.stability_threshold))
+
+
+def test_limit_rule_cases():
+    """The rule on made-up medians: above the threshold on every ring and flat -> unstable; falling as N^-1 ->
+    stable (k = 1 >= 1/2); at or below the threshold everywhere -> stable; above on the small rings only but
+    falling slower than N^-1/2 -> undecided."""
+    N = np.array([24.0, 48.0, 96.0])
+    thr = 1e-5
+    v, k = tb.limit_rule(N, np.array([1e-3, 1e-3, 1e-3]), thr, 0.5)
+    assert v == tb.LIMIT_UNSTABLE and k == pytest.approx(0.0, abs=1e-12)
+    v, k = tb.limit_rule(N, 1e-3 * 24 / N, thr, 0.5)
+    assert v == tb.LIMIT_STABLE and k == pytest.approx(1.0, abs=1e-12)
+    assert tb.limit_rule(N, np.array([1e-6, 1e-15, 1e-7]), thr, 0.5)[0] == tb.LIMIT_STABLE
+    assert tb.limit_rule(N, np.array([2e-5, 1.8e-5, 1e-6]), thr, 0.5)[0] == tb.LIMIT_UNDECIDED

@@ -123,6 +123,20 @@ class TravellingBreathers:
     motion_samples: int = param(16, "Samples per DpS period T of both runs (the positions, radiation and distances "
                                 "stored).", minimum=4, maximum=1000, reduced=8)
 
+    # the verdicts in the limit N -> infinity (issue 37, "verdicts robust to the discretisation"): section
+    # "robustness in the limit" below
+    limit_N: list[int] = param([24, 32, 48, 64], "Rings on which the neighbourhood of every member is scanned in "
+                               "fine steps of c (increasing; the limit verdict is read from how its growth rates "
+                               "change with N).", minItems=2, maxItems=8, items=_RING, reduced=[16, 20])
+    limit_step: float = param(0.001, "Step in c of the fine scan around each member.", exclusiveMinimum=0,
+                              maximum=0.05, reduced=0.004)
+    limit_halfwidth: float = param(0.005, "Half-width in c of each member's neighbourhood in the fine scan (the "
+                                   "neighbourhoods of neighbouring members may overlap).", exclusiveMinimum=0,
+                                   maximum=0.1, reduced=0.004)
+    limit_decay: float = param(0.5, "Exponent k: an instability whose typical growth rate falls faster than N^-k "
+                               "over the rings is a finite-size one (stable in the limit).", exclusiveMinimum=0,
+                               maximum=10)
+
     # exact TBs of the lattice (nc) (issue 37, item 2): section "the lattice's travelling breathers" below
     lattice: bool = param(False, "Also solve exact TBs of the lattice (nc) from a DpS member's ansatz (groups "
                           "/lattice, /lattice_states): minutes of CPU, and Newton stalls near 1e-7 so far (docs).")
@@ -155,6 +169,11 @@ class TravellingBreathers:
             out.add(where + ["check_N"], f"must be distinct rings other than N = {self.N} (they check the verdicts "
                     "against N)", self.check_N)
         self.check_motion(where, out)
+        if any(y <= x for x, y in itertools.pairwise(self.limit_N)):
+            out.add(where + ["limit_N"], "must be strictly increasing", self.limit_N)
+        if self.limit_step > self.limit_halfwidth:
+            out.add(where + ["limit_step"], f"must be <= limit_halfwidth = {self.limit_halfwidth} (a neighbourhood "
+                    "of one point says nothing of its bubbles)", self.limit_step)
 
     def check_motion(self, where: Where, out: Errors) -> None:
         """The keys of the TBs in motion: motion_speed among speeds, motion_eps decreasing, a ring long enough."""
@@ -184,17 +203,34 @@ def static_profiles(N: int, alpha: float, norm: float) -> dict[str, tuple[NDArra
     return out
 
 
+#: the first TB of each ring (solved from the pushed static breather), by (N, alpha, norm, kick, newton_tol, rtol):
+#: the family and the limit scan of the same ring start from it
+_FIRST: dict[tuple[int, float, float, float, float, float], TravellingBreather] = {}
+
+
+def first_member(spec: TravellingBreathers, N: int, rtol: float) -> TravellingBreather:
+    """The TB that Newton reaches from the static site breather pushed by ``kick`` on the ring of N (computed once
+    per process and parameters: the same numbers each call)."""
+    from cradle.integrators import dps_travelling as DT
+
+    key = (N, float(spec.alpha), float(spec.norm), float(spec.kick), float(spec.newton_tol), float(rtol))
+    if key not in _FIRST:
+        phi, _ = static_profiles(N, spec.alpha, spec.norm)["site"]
+        A, T, theta = DT.start(phi, spec.kick, spec.alpha)
+        _FIRST[key] = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=rtol)
+    return _FIRST[key]
+
+
 def family(spec: TravellingBreathers, N: int, rtol: float,
            log: Log | None = None) -> tuple[list[TravellingBreather], float]:
     """The members at the spec's speeds (those reached; a missing one is absent) on the ring of N sites, and
     the c of the first guess."""
     from cradle.integrators import dps_travelling as DT
 
-    phi, _ = static_profiles(N, spec.alpha, spec.norm)["site"]
-    A, T, theta = DT.start(phi, spec.kick, spec.alpha)
-    first = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=rtol)
+    first = first_member(spec, N, rtol)
     if not first.converged:
-        raise RuntimeError(f"travelling breathers: no TB from the pushed breather (kick {spec.kick}, c = {1 / T:.4g})")
+        raise RuntimeError(f"travelling breathers: no TB from the pushed breather (kick {spec.kick}, "
+                           f"c = {first.c:.4g})")
     cs = np.asarray(spec.speeds, float)
     down, _ = DT.continue_family(first, cs[cs < first.c][::-1], spec.newton_tol, rtol, log=log)
     up, _ = DT.continue_family(first, cs[cs >= first.c], spec.newton_tol, rtol, log=log)
@@ -549,6 +585,182 @@ def robustness_attrs(c: NDArray[np.float64], rob: dict) -> dict:
             "unstable_mode_extent_min": float(np.nanmin(extent)) if np.any(np.isfinite(extent)) else np.nan}
 
 
+# ----------------------------------------------------------------- robustness in the limit N -> infinity
+# Issue 37, "verdicts robust to the discretisation": on a ring the family's verdict at a given c flips with N
+# because the instabilities come in narrow windows of c whose places move with N. Each member's neighbourhood is
+# scanned in fine steps of c on rings of growing N; the limit verdict is read from how the neighbourhood's growth
+# rates change with N (LIMIT_RULE).
+
+#: limit verdicts per member (/robustness_limit/verdict)
+LIMIT_STABLE, LIMIT_UNSTABLE, LIMIT_UNDECIDED = 0, 1, -1
+#: consecutive grid points the fine scan may fail to reach before it stops in that direction
+LIMIT_MISSES = 4
+#: a failed continuation step is halved down to this fraction of c
+LIMIT_MIN_STEP = 1e-4
+#: a Newton iterate whose max |A| exceeds this many times sqrt(norm) has left the family (a TB's max |A| is below
+#: sqrt(norm)): the scan stops that attempt rather than integrate ever stiffer states
+LIMIT_RUNAWAY = 3.0
+LIMIT_RULE = ("for each member c and ring N, the fine grid c +- limit_halfwidth gives the median growth rate "
+              "g_N(c) (the typical member near c, which isolated windows cannot set) and the largest G_N(c) (the "
+              "windows' envelope); k is the least-squares slope of -ln g_N against ln N over the rings where g_N "
+              "exceeds the threshold. Unstable in the limit: g_N above the stability threshold on every ring and "
+              "k < limit_decay (the typical growth does not fall with N); stable in the limit: g_N at or below the "
+              "threshold on every ring (any instability near c is confined to windows), or k >= limit_decay; "
+              "undecided otherwise")
+
+
+def limit_grid(c: NDArray[np.float64], step: float, halfwidth: float) -> NDArray[np.float64]:
+    """The fine grid: every step from the slowest member minus ``halfwidth`` to the fastest plus it (rounded to
+    1e-9), so that the scan walks in steps of ``step`` only (a longer jump of the predictor sends Newton far
+    off) and the windows are counted over the whole range."""
+    m = int(math.floor(halfwidth / step + 1e-9))
+    n = int(round((float(c[-1]) - float(c[0])) / step)) + 2 * m
+    grid = float(c[0]) - m * step + step * np.arange(n + 1)
+    return np.round(grid[grid > 0], 9)
+
+
+def limit_scan(spec: TravellingBreathers, N: int, grid: NDArray[np.float64],
+               log: Log | None = None) -> list[TravellingBreather | None]:
+    """The TBs on the ring of N at the velocities ``grid`` (None where not reached): from the pushed static breather
+    (as :func:`family`), continued up and down the grid point by point, a failed step halved down to
+    :data:`LIMIT_MIN_STEP` of c; a point not reached is skipped (the next is tried from the last member reached)
+    and the scan stops in that direction after :data:`LIMIT_MISSES` misses in a row (the family ends, turns or
+    breaks at a resonance of the ring there)."""
+    from cradle.integrators import dps_travelling as DT
+
+    first = first_member(spec, N, spec.rtol)
+    out: list[TravellingBreather | None] = [None] * grid.size
+    if not first.converged:
+        return out
+
+    from cradle.integrators.continuation import continue_in_c
+
+    cap = LIMIT_RUNAWAY * math.sqrt(spec.norm)
+
+    def correct(cur: TravellingBreather, c2: float) -> TravellingBreather:
+        A_g, th_g = cur.predict(1.0 / c2)
+        return DT.newton(A_g, 1.0 / c2, th_g, spec.alpha, spec.norm, cur.A, spec.newton_tol, max_iter=8,
+                         rtol=spec.rtol, max_amplitude=cap)
+
+    def walk(order: NDArray[np.int64]) -> None:
+        cur, misses = first, 0
+        for i in order:
+            fam, _ = continue_in_c(cur, [grid[i]], correct, LIMIT_MIN_STEP, lambda *a: None, "limit scan",
+                                   lambda b: "")
+            if not fam:
+                misses += 1
+                if misses >= LIMIT_MISSES:
+                    return
+                continue
+            cur, misses, out[i] = fam[0], 0, fam[0]
+
+    idx = np.arange(grid.size)
+    walk(idx[grid >= first.c])
+    walk(idx[grid < first.c][::-1])
+    if log:
+        log(f"travelling-breathers: limit scan, ring of {N}: {sum(b is not None for b in out)} of {grid.size} "
+            f"velocities reached")
+    return out
+
+
+def limit_rule(rings: NDArray[np.float64], typical: NDArray[np.float64], threshold: float,
+               decay: float) -> tuple[int, float]:
+    """(verdict, k) of :data:`LIMIT_RULE` for one member: ``typical`` its median growth rate on each ring (NaN: not
+    reached there, left out)."""
+    ok = np.isfinite(typical)
+    n, g = rings[ok], typical[ok]
+    if n.size == 0:
+        return LIMIT_UNDECIDED, np.nan
+    above = g > threshold
+    k = float(-np.polyfit(np.log(n[above]), np.log(g[above]), 1)[0]) if np.sum(above) >= 2 else np.nan
+    if not np.any(above):
+        return LIMIT_STABLE, k
+    if np.all(above) and n.size >= 2:
+        return (LIMIT_UNSTABLE if k < decay else LIMIT_STABLE), k
+    if np.isfinite(k) and k >= decay:
+        return LIMIT_STABLE, k
+    return LIMIT_UNDECIDED, k
+
+
+def limit_member(b: TravellingBreather, threshold: float) -> dict[str, float]:
+    """One scanned TB: growth rate, verdict, theta, tail, the tail's MI rate, the multipliers' quartet and Krein
+    measures (:mod:`cradle.measurements.floquet_bubbles`) and how the unstable multiplier leaves the circle (its
+    argument: pi through -1, 0 through +1, else a quartet)."""
+    from cradle.measurements import floquet_bubbles as FB
+    from cradle.models import dps_travelling as M
+
+    assert b.monodromy is not None
+    _, rate, unstable, _ = verdict(b, threshold)
+    mu, sigma = FB.krein_signatures(b.monodromy)
+    k = FB.nontrivial(mu, TRIVIAL)
+    top = mu[k[int(np.argmax(np.abs(mu[k])))]]
+    q, R = tail_wave(b.A)
+    return {"growth": rate, "unstable": float(unstable), "theta": math.remainder(b.theta, 2 * math.pi),
+            "tail": M.tail_amplitude(b.A), "tail_mi": tail_mi_rate(q, R, b.alpha),
+            "krein_gap": FB.krein_gap(mu, sigma, TRIVIAL), "quartet_defect": FB.quartet_defect(mu),
+            "top_arg": float(np.angle(top)) if unstable else np.nan}
+
+
+LIMIT_FINE = ("growth", "unstable", "theta", "tail", "tail_mi", "krein_gap", "quartet_defect", "top_arg")
+
+
+def robustness_limit(spec: TravellingBreathers, c: NDArray[np.float64], log: Log | None = None) -> tuple[dict, dict]:
+    """The group /robustness_limit and its attributes: every ring of ``limit_N`` scanned over the fine grid around
+    the members ``c`` (:func:`limit_scan`, :func:`limit_member` per point), per member and ring the unstable
+    fraction, the median and the largest growth rate of its neighbourhood, and per member the limit verdict with
+    its exponent (:func:`limit_rule`)."""
+    t0 = _time.process_time()
+    grid = limit_grid(c, spec.limit_step, spec.limit_halfwidth)
+    rings = np.array(spec.limit_N, float)
+    fine = {k: np.full((rings.size, grid.size), np.nan) for k in LIMIT_FINE}
+    for i, N in enumerate(spec.limit_N):
+        for j, b in enumerate(limit_scan(spec, N, grid, log)):
+            if b is not None:
+                for k, v in limit_member(b, spec.stability_threshold).items():
+                    fine[k][i, j] = v
+    near = np.abs(grid[None, :] - c[:, None]) <= spec.limit_halfwidth + 1e-9      # (c, fine)
+    frac, typical, largest, reached = (np.full((rings.size, c.size), np.nan) for _ in range(4))
+    for i in range(rings.size):
+        for j in range(c.size):
+            g = fine["growth"][i, near[j]]
+            g = g[np.isfinite(g)]
+            reached[i, j] = g.size / max(int(np.sum(near[j])), 1)
+            if g.size:
+                frac[i, j] = float(np.mean(g > spec.stability_threshold))
+                typical[i, j] = float(np.median(g))
+                largest[i, j] = float(np.max(g))
+    rule = [limit_rule(rings, typical[:, j], spec.stability_threshold, spec.limit_decay) for j in range(c.size)]
+    env = [limit_rule(rings, largest[:, j], spec.stability_threshold, spec.limit_decay)[1] for j in range(c.size)]
+    # the windows' ring-by-ring census over the whole fine grid: how many, how wide, how fast
+    from cradle.measurements import floquet_bubbles as FB
+
+    census: dict[str, list[float]] = {"count": [], "mean_width": [], "largest": [], "fraction": []}
+    for i in range(rings.size):
+        ok = np.isfinite(fine["growth"][i])
+        w = FB.windows(grid[ok], fine["unstable"][i][ok] == 1)
+        census["count"].append(len(w))
+        census["mean_width"].append(float(np.mean([b - a + spec.limit_step for a, b in w])) if w else 0.0)
+        census["largest"].append(float(np.nanmax(fine["growth"][i])) if np.any(ok) else np.nan)
+        census["fraction"].append(float(np.mean(fine["unstable"][i][ok] == 1)) if np.any(ok) else np.nan)
+    verdicts = np.array([v for v, _ in rule], int)
+    data = {"growth_rate": fine["growth"], "unstable": np.where(np.isnan(fine["unstable"]), -1,
+                                                                fine["unstable"]).astype(int),
+            "theta": fine["theta"], "tail": fine["tail"], "tail_mi_rate": fine["tail_mi"],
+            "krein_gap": fine["krein_gap"], "quartet_defect": fine["quartet_defect"], "top_arg": fine["top_arg"],
+            "unstable_fraction": frac.T, "typical_growth": typical.T, "largest_growth": largest.T,
+            "reached": reached.T, "decay": [k for _, k in rule], "envelope_decay": env, "verdict": verdicts,
+            "windows": census["count"], "window_width": census["mean_width"],
+            "ring_largest_growth": census["largest"], "ring_unstable_fraction": census["fraction"]}
+    attrs = {"limit_rule": LIMIT_RULE, "limit_rings": ", ".join(str(n) for n in spec.limit_N),
+             "limit_step": spec.limit_step, "limit_halfwidth": spec.limit_halfwidth, "limit_decay": spec.limit_decay,
+             **{f"limit_{name}_c": ", ".join(f"{x:g}" for x in c[verdicts == v]) or "none"
+                for name, v in (("stable", LIMIT_STABLE), ("unstable", LIMIT_UNSTABLE),
+                                ("undecided", LIMIT_UNDECIDED))},
+             "limit_max_quartet_defect": float(np.nanmax(fine["quartet_defect"])),
+             "limit_cpu_s": _time.process_time() - t0}
+    return {"/robustness_limit": (data, {"limit_ring": rings.astype(int), "c_fine": grid})}, attrs
+
+
 # ----------------------------------------------------------------- the stored file
 
 _C = ("c",)
@@ -653,6 +865,36 @@ VARIABLES = {
         "settled": Var(_C, "1 unstable and 0 stable on every ring and at every tolerance; -1 the verdict depends on "
                            "the ring or the tolerance"),
     },
+    "/robustness_limit": {
+        "limit_ring": Var(("limit_ring",), "sites of a ring of the fine scan (limit_N)"),
+        "c_fine": Var(("c_fine",), "velocity c of the fine scan (c +- limit_halfwidth around every member)"),
+        "growth_rate": Var(("limit_ring", "c_fine"), "ln max |mu| / T over the non-trivial multipliers modulo shift "
+                                                     "(per unit tau; NaN: not reached on that ring)"),
+        "unstable": Var(("limit_ring", "c_fine"), "1 if growth_rate > stability_threshold (-1: not reached)"),
+        "theta": Var(("limit_ring", "c_fine"), "phase theta of (tb), in (-pi, pi]"),
+        "tail": Var(("limit_ring", "c_fine"), "max |A_n| on the far quarter ring / max |A_n|"),
+        "tail_mi_rate": Var(("limit_ring", "c_fine"), "largest MI growth rate of the tail's plane wave on the "
+                                                      "infinite lattice (per unit tau; 0 for |q| <= pi/2)"),
+        "krein_gap": Var(("limit_ring", "c_fine"), "smallest angle between non-trivial multipliers of opposite "
+                                                   "Krein signature on the unit circle (pi: no such pair)"),
+        "quartet_defect": Var(("limit_ring", "c_fine"), "largest distance from 1/conj(mu) or conj(mu) to the "
+                                                        "nearest multiplier (0 for a symplectic spectrum)"),
+        "top_arg": Var(("limit_ring", "c_fine"), "arg of the most unstable multiplier (pi: through -1, 0: through "
+                                                 "+1; NaN: stable)"),
+        "unstable_fraction": Var(("c", "limit_ring"), "fraction of the member's fine neighbourhood that is unstable "
+                                                      "on that ring (NaN: none reached)"),
+        "typical_growth": Var(("c", "limit_ring"), "median growth rate over the member's fine neighbourhood"),
+        "largest_growth": Var(("c", "limit_ring"), "largest growth rate over the member's fine neighbourhood"),
+        "reached": Var(("c", "limit_ring"), "fraction of the member's fine neighbourhood reached on that ring"),
+        "decay": Var(_C, "k: least-squares slope of -ln typical_growth against ln N over the rings where it "
+                         "exceeds the threshold (NaN: fewer than two)"),
+        "envelope_decay": Var(_C, "the same slope for largest_growth (the windows' envelope)"),
+        "verdict": Var(_C, "limit verdict of limit_rule: 1 unstable, 0 stable, -1 undecided"),
+        "windows": Var(("limit_ring",), "runs of consecutive unstable points of the fine grid on that ring"),
+        "window_width": Var(("limit_ring",), "mean width in c of those runs (points times limit_step)"),
+        "ring_largest_growth": Var(("limit_ring",), "largest growth rate over the whole fine grid on that ring"),
+        "ring_unstable_fraction": Var(("limit_ring",), "fraction of the reached fine grid that is unstable"),
+    },
     "/claims": GROUP_VARIABLES,
 }
 
@@ -719,6 +961,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
     direct = direct_run(fam[i_direct], spec.direct_periods, spec.rtol)
     other = fam[i_direct + 1] if i_direct + 1 < len(fam) else fam[i_direct - 1]
     scal = scaling_check(fam[i_direct], other, spec.scale, spec)
+    limit_groups, limit_attrs = robustness_limit(spec, c, say)
     i_motion = int(np.argmin(np.abs(c - spec.motion_speed)))
     motion_groups, motion_attrs = motion(spec, fam[i_motion], say)
     real = np.array([v[3] for v in ver])
@@ -753,6 +996,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
                         {"ring": rob["ring"], "rtol": rob["rtol"]}),
         "/claims": group(rows),
         **motion_groups,
+        **limit_groups,
     }
     near = np.minimum([d["site"] for d in dist], [d["bond"] for d in dist])
     power = float(np.polyfit(np.log(c), np.log(near), 1)[0])
@@ -782,6 +1026,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
         "source": "G. James, Phil. Trans. R. Soc. A 376 (2018) 20170138 (abstract); H. Xu, J. Cuevas-Maraver, "
                   "P. G. Kevrekidis, A. Vainchtein, arXiv 1701.04882",
         **motion_attrs,
+        **limit_attrs,
         "wall_time_s": _time.perf_counter() - t0,
     }
     if spec.lattice:

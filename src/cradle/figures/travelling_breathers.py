@@ -15,7 +15,10 @@ against tau / T (DpS: one site per T), (h) the lattice's speed deficit 1 - v / (
 the fitted order, (i) the radiation (energy outside the window around the breather over the total) against tau / T.
 Then the exact TBs of the lattice (nc) when the file holds them (key ``lattice``; issue 37, item 2), a row after the
 others: (j) their |xi_n| against the DpS member's ansatz, (k) their tails and distances to it against the
-lattice's velocity, (l) their multipliers modulo shift.
+lattice's velocity, (l) their multipliers modulo shift. Last, the verdicts in the limit N -> infinity when the file
+holds them (group /robustness_limit): (m) the growth rate along the fine grid of c on each ring, with the tail's MI
+rate, (n) the median growth rate of each member's neighbourhood on each ring with the limit verdicts, (o) the
+unstable fraction of the fine grid against N, where the tail is modulationally unstable and elsewhere.
 """
 from __future__ import annotations
 
@@ -35,7 +38,9 @@ MIN_POINTS = 3
 def draw(tree: AnalysisTree) -> Figure:
     """The panels above: (g)-(i) when the file holds the TBs in motion, (j)-(l) when it holds the lattice's TBs."""
     lattice = "lattice" in tree.children
-    fig, ax = figure(4, 3, width=13.5, height=14.9) if lattice else figure(3, 3, width=13.5, height=11.2)
+    limit = "robustness_limit" in tree.children
+    rows = 3 + int(lattice) + int(limit)
+    fig, ax = figure(rows, 3, width=13.5, height=11.2 + 3.7 * (rows - 3))
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
     prof = tree["profiles"]
@@ -135,7 +140,72 @@ def draw(tree: AnalysisTree) -> Figure:
         draw_motion(ax[2], tree)
     if lattice:
         _lattice_panels(tree, ax[3])
+    if limit:
+        draw_limit(ax[3 + int(lattice)], tree)
     return fig
+
+
+def draw_limit(ax: Any, tree: AnalysisTree) -> None:
+    """Panels (m)-(o), the verdicts in the limit N -> infinity: (m) the growth rate along the fine grid of c on each
+    ring (unstable points only) and the tail's MI rate on the largest ring; (n) per member the median growth rate
+    of its neighbourhood on each ring, the limit verdict of each member at the bottom; (o) per ring the fraction of
+    the fine grid that is unstable, where the tail is modulationally unstable (its MI rate above the threshold) and
+    elsewhere."""
+    lim = tree["robustness_limit"]
+    attrs = tree.attrs
+    thr = float(attrs["stability_threshold"])
+    floor = thr / 100.0
+    rings = [int(x) for x in lim["limit_ring"].values]
+    cf = np.asarray(lim["c_fine"].values)
+    G = np.asarray(lim["growth_rate"].values, float)
+    U = np.asarray(lim["unstable"].values) == 1
+    mi = np.asarray(lim["tail_mi_rate"].values, float)
+    marks = "os^v<>Dp"
+
+    j = ax[0]
+    for i, ring in enumerate(rings):
+        j.semilogy(cf[U[i]], G[i][U[i]], f"C{i}{marks[i % 8]}", ms=3.5, mfc="none" if i else None,
+                   label=f"unstable, ring of {ring}")
+    big = len(rings) - 1
+    j.semilogy(cf, np.where(mi[big] > floor, mi[big], np.nan), "k-", lw=0.8,
+               label=f"tail's MI rate (ring of {rings[big]})")
+    j.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
+    j.set_ylim(floor, 30.0 * max(float(np.nanmax(np.where(U, G, np.nan))) if U.any() else thr, thr))
+    j.set_xlabel("velocity c (fine grid)")
+    j.set_ylabel("growth rate ln max$|\\mu|$ / T")
+    j.set_title(f"(m) fine scan, step {float(attrs['limit_step']):g}: windows and the tail's MI", fontsize=9)
+    j.legend(fontsize=6, loc="upper left", ncol=2)
+
+    k = ax[1]
+    c = np.asarray(lim["c"].values)
+    typ = np.asarray(lim["typical_growth"].values, float)        # (c, ring)
+    for i, ring in enumerate(rings):
+        k.semilogy(c, np.maximum(typ[:, i], floor), f"C{i}{marks[i % 8]}", ms=5, mfc="none" if i else None,
+                   label=f"ring of {ring}")
+    k.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
+    for x, v in zip(c, np.asarray(lim["verdict"].values), strict=True):
+        k.text(x, floor / 4.0, {1: "U", 0: "S"}.get(int(v), "?"), ha="center", va="center", fontsize=7,
+               color={1: "C3", 0: "C2"}.get(int(v), "0.4"))
+    k.set_ylim(floor / 12.0, 300.0 * max(float(np.nanmax(typ)), thr))
+    k.set_xlabel("velocity c (member)")
+    k.set_ylabel(f"median growth over c $\\pm$ {float(attrs['limit_halfwidth']):g} (floor {floor:g})")
+    k.set_title("(n) the typical member near c; limit verdict S, U (?: undecided)", fontsize=9)
+    k.legend(fontsize=6, loc="upper left", ncol=2)
+
+    m = ax[2]
+    ok = np.isfinite(G)
+    mi_zone = ok & (mi > thr)
+    rest = ok & ~(mi > thr)
+    f_mi = [float(np.mean(U[i][mi_zone[i]])) if mi_zone[i].any() else np.nan for i in range(len(rings))]
+    f_rest = [float(np.mean(U[i][rest[i]])) if rest[i].any() else np.nan for i in range(len(rings))]
+    m.plot(rings, f_mi, "C3o-", ms=5, label="where the tail's MI rate > threshold")
+    m.plot(rings, f_rest, "C0s-", ms=5, label="elsewhere")
+    m.set_ylim(0.0, 1.15)
+    m.set_xticks(rings)
+    m.set_xlabel("sites N of the ring")
+    m.set_ylabel("fraction of the fine grid unstable")
+    m.set_title("(o) unstable fraction against N", fontsize=9)
+    m.legend(fontsize=7, loc="upper right")
 
 
 def draw_motion(ax: Any, tree: AnalysisTree) -> None:

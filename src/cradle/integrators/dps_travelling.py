@@ -145,11 +145,14 @@ def _weighted_lstsq(J: Floats, F: Floats, rows: int) -> Floats:
 
 def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm: float,
            reference: ArrayLike | None = None, tol: float = 1e-11, max_iter: int = 12,
-           rtol: float = RTOL, log: Callable[[str], object] | None = None) -> TravellingBreather:
+           rtol: float = RTOL, log: Callable[[str], object] | None = None,
+           max_amplitude: float | None = None) -> TravellingBreather:
     """Solve (tb) at period T for (A, theta) with sum |A|^2 = ``norm`` and the two phase conditions about
     ``reference`` (default: the guess), by Gauss-Newton from (A_guess, theta_guess) (module docstring).
     Converged when max |R| <= tol max |A|; the multipliers of the last monodromy and the family's tangent
-    there are returned with it. Stops early when the residual grows tenfold (a guess outside the basin)."""
+    there are returned with it. Stops early when the residual grows tenfold (a guess outside the basin) and, if
+    ``max_amplitude`` is given, when an iterate's max |A| exceeds it (the relative residual does not see an
+    iterate running off to large amplitude, whose integration grows ever stiffer)."""
     A = np.asarray(A_guess, complex).copy()
     N = A.size
     ref = A.copy() if reference is None else np.asarray(reference, complex)
@@ -178,6 +181,8 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
             return TravellingBreather(A, T, theta, alpha, res, True, it, mu, M.complex_(tan[:2 * N]),
                                       float(tan[2 * N]), Mm)
         if it == max_iter or not np.isfinite(res) or res > 10.0 * best:
+            break
+        if max_amplitude is not None and float(np.max(np.abs(A))) > max_amplitude:
             break
         best = min(best, res)
         F = np.concatenate([M.real(R), [np.sum(np.abs(A) ** 2) - norm, d_phase @ M.real(A - ref),

@@ -1,0 +1,81 @@
+"""The DpS travelling breathers' verdicts in the limit N -> infinity, ring by ring (travelling-breathers.md).
+
+    python benchmarks/tb_limit.py OUT.nc N [N ...] [--step S] [--halfwidth H]      e.g. ... /tmp/l64.nc 64
+
+The fine scan of cradle.analyses.travelling_breathers.robustness_limit (the full form's speeds, alpha = 3/2, unit
+norm, rtol 1e-13; default step and half-width those of the full form) on the rings N given, written to OUT.nc (the
+group /robustness_limit of the analysis's file, with the rings given) and summarised per member: the unstable
+fraction, the median and the largest growth rate of its neighbourhood on each ring, the exponent k and the limit
+verdict of LIMIT_RULE over the rings given (the analysis's full form gives it over limit_N). Several files of
+single rings are combined by benchmarks/tb_limit.py --merge OUT.nc IN.nc [IN.nc ...]. CPU: about 30 s (N = 24)
+to several minutes (N = 64) per ring on the shared machine; run under nice.
+"""
+from __future__ import annotations
+
+import dataclasses
+import sys
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "src"))
+
+from cradle.analyses import travelling_breathers as tb  # noqa: E402
+from cradle.analyses.protocol import FULL, form_spec  # noqa: E402
+from cradle.specs.declare import from_plain, plain  # noqa: E402
+
+
+def summary(c: np.ndarray, rings: list[int], group: dict, spec: tb.TravellingBreathers) -> None:
+    """One line per member: per ring the unstable fraction, median and largest growth; k and the verdict."""
+    print("c     | " + " | ".join(f"N = {n}: frac  median   largest" for n in rings) + " | k      verdict")
+    for j, x in enumerate(c):
+        cells = [f"{group['unstable_fraction'][j, i]:.2f} {group['typical_growth'][j, i]:.1e} "
+                 f"{group['largest_growth'][j, i]:.1e}" for i in range(len(rings))]
+        v, k = tb.limit_rule(np.array(rings, float), group["typical_growth"][j], spec.stability_threshold,
+                             spec.limit_decay)
+        print(f"{x:.3f} | " + " | ".join(cells) + f" | {k:+.2f} {({1: 'U', 0: 'S'}).get(v, '?')}")
+
+
+def main(argv: list[str]) -> None:
+    import xarray as xr
+
+    if argv[0] == "--merge":
+        parts = [xr.open_dataset(p, group="robustness_limit") for p in argv[2:]]
+        xr.concat(parts, dim="limit_ring", data_vars="minimal", coords="minimal", compat="override",
+                  join="outer").to_netcdf(argv[1], group="robustness_limit")
+        return
+    out, rest = argv[0], argv[1:]
+    opts = {"limit_step": None, "limit_halfwidth": None}
+    rings = []
+    while rest:
+        a = rest.pop(0)
+        if a in ("--step", "--halfwidth"):
+            opts["limit_" + a[2:]] = float(rest.pop(0))
+        else:
+            rings.append(int(a))
+    base = plain(form_spec(from_plain(tb.TravellingBreathers, {}), FULL))
+    base["limit_N"] = rings if len(rings) >= 2 else [rings[0], rings[0] + 1]
+    base.update({k: v for k, v in opts.items() if v is not None})
+    spec = from_plain(tb.TravellingBreathers, base)
+    if len(rings) == 1:
+        spec = dataclasses.replace(spec, limit_N=rings)
+    c = np.asarray(spec.speeds, float)
+    groups, attrs = tb.robustness_limit(spec, c, print)
+    data, coords = groups["/robustness_limit"]
+    ds = xr.Dataset({k: ((("limit_ring", "c_fine") if np.ndim(v) == 2 and np.shape(v)[0] == len(rings)
+                           and np.shape(v)[1] == coords["c_fine"].size else
+                           ("c", "limit_ring") if np.ndim(v) == 2 else
+                           ("limit_ring",) if np.size(v) == len(rings) and k in ("windows", "window_width",
+                                                                                  "ring_largest_growth",
+                                                                                  "ring_unstable_fraction")
+                           else ("c",)), np.asarray(v)) for k, v in data.items()},
+                    coords={"limit_ring": coords["limit_ring"], "c_fine": coords["c_fine"], "c": c},
+                    attrs={k: v for k, v in attrs.items() if isinstance(v, (int, float, str))})
+    ds.to_netcdf(out, group="robustness_limit")
+    summary(c, rings, data, spec)
+    print(f"CPU {attrs['limit_cpu_s']:.0f} s")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

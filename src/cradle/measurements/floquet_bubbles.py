@@ -1,0 +1,109 @@
+"""Floquet multipliers of a Hamiltonian periodic orbit (modulo shift) on a finite ring: Krein signatures, the
+symmetries of the spectrum, the collisions that open instability bubbles, and the limit of a verdict as the ring
+grows.
+
+The monodromy M of a Hamiltonian flow (here DpS's (dfnls) composed with the phase turn and the shift of (tb)) is
+symplectic, M^T J M = J with J = [[0, I], [-I, 0]] in the coordinates (Re A, Im A) (the form Im sum conj(u) v,
+which the phase rotation and the shift preserve). Its multipliers therefore come in quadruples mu, conj(mu),
+1/mu, 1/conj(mu) (pairs on the unit circle). A simple multiplier on the circle with eigenvector w has the Krein
+signature sign(-Im w^H J w) (+1 for the eigenvalue lambda of a complex-linear map z -> L z, whose real eigenvector
+is (z, -i z)); two multipliers of the same signature pass through each other on the circle, two of opposite
+signature that meet may leave it as a quartet (a Krein collision), and a pair that meets at -1 leaves it along
+the negative real axis. Near such a collision the two-mode model
+mu = e^{i phi} exp(+-sqrt(g^2 - (Delta/2)^2)), Delta the detuning of the two uncoupled multipliers' angles and g
+their coupling, gives ln |mu| = sqrt(g^2 - (Delta/2)^2) inside |Delta| < 2 g: a bubble whose width in Delta is 4 g
+and whose largest ln |mu| is g.
+
+Arrays and numbers in, arrays and numbers out: no integration here.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+#: a multiplier counts as on the unit circle when ||mu| - 1| is below this (the trivial ones' defect is ~1e-6)
+ON_CIRCLE = 1e-6
+
+
+def symplectic_form(n: int) -> NDArray[np.float64]:
+    """J = [[0, I_n], [-I_n, 0]]: the form Im sum conj(u) v in the coordinates (Re, Im) of C^n."""
+    Z, E = np.zeros((n, n)), np.eye(n)
+    return np.block([[Z, E], [-E, Z]])
+
+
+def symplectic_defect(M: ArrayLike) -> float:
+    """max |M^T J M - J| / max(1, max |M|^2): how far the real 2n x 2n matrix M is from symplectic."""
+    M = np.asarray(M, float)
+    J = symplectic_form(M.shape[0] // 2)
+    return float(np.max(np.abs(M.T @ J @ M - J)) / max(1.0, float(np.max(np.abs(M))) ** 2))
+
+
+def krein_signatures(M: ArrayLike) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
+    """(mu, sigma): the eigenvalues of the symplectic matrix M and the Krein signature of each, sign(-Im w^H J w) of
+    its eigenvector w for a multiplier on the unit circle (:data:`ON_CIRCLE`), 0 off it (a quartet's members carry
+    none). A multiple multiplier's eigenvectors are mixed by the eigensolver: its signatures are not meaningful."""
+    M = np.asarray(M, float)
+    J = symplectic_form(M.shape[0] // 2)
+    mu, W = np.linalg.eig(M)
+    q = -np.imag(np.einsum("ik,ij,jk->k", W.conj(), J, W))
+    sigma = np.where(np.abs(np.abs(mu) - 1.0) <= ON_CIRCLE, np.sign(q), 0.0)
+    return mu.astype(complex), sigma
+
+
+def quartet_defect(mu: ArrayLike) -> float:
+    """max over the multipliers of the distance from 1/conj(mu) and from conj(mu) to the nearest multiplier: zero
+    for the spectrum of a real symplectic matrix (quadruples mu, conj(mu), 1/mu, 1/conj(mu))."""
+    mu = np.asarray(mu, complex)
+    d1 = np.min(np.abs(1.0 / np.conj(mu)[:, None] - mu[None, :]), axis=1)
+    d2 = np.min(np.abs(np.conj(mu)[:, None] - mu[None, :]), axis=1)
+    return float(max(np.max(d1), np.max(d2)))
+
+
+def nontrivial(mu: ArrayLike, trivial: int) -> NDArray[np.int64]:
+    """Indices of the multipliers other than the ``trivial`` ones nearest 1."""
+    mu = np.asarray(mu, complex)
+    return np.argsort(np.abs(mu - 1.0))[trivial:]
+
+
+def krein_gap(mu: ArrayLike, sigma: ArrayLike, trivial: int) -> float:
+    """The smallest angle between two non-trivial multipliers of opposite Krein signature on the unit circle (pi if
+    no such pair): it closes where a pair collides and a bubble can open."""
+    mu, sigma = np.asarray(mu, complex), np.asarray(sigma, float)
+    k = nontrivial(mu, trivial)
+    a, s = np.angle(mu[k]), sigma[k]
+    plus, minus = a[s > 0], a[s < 0]
+    if plus.size == 0 or minus.size == 0:
+        return float(np.pi)
+    d = np.abs(np.angle(np.exp(1j * (plus[:, None] - minus[None, :]))))
+    return float(np.min(d))
+
+
+def windows(c: ArrayLike, unstable: ArrayLike) -> list[tuple[float, float]]:
+    """The runs of consecutive unstable grid points (first c, last c) along the grid c (NaN-free, increasing)."""
+    c = np.asarray(c, float)
+    u = np.asarray(unstable, bool)
+    out: list[tuple[float, float]] = []
+    i = 0
+    while i < u.size:
+        if u[i]:
+            j = i
+            while j + 1 < u.size and u[j + 1]:
+                j += 1
+            out.append((float(c[i]), float(c[j])))
+            i = j + 1
+        else:
+            i += 1
+    return out
+
+
+def collision_peak(width: float, detuning_rate: float) -> float:
+    """The largest ln |mu| of a bubble of the two-mode Krein collision model (module docstring) whose width along
+    the parameter is ``width`` when the uncoupled multipliers' angles separate at ``detuning_rate`` (radians per
+    unit of the parameter): g = detuning_rate * width / 4."""
+    return 0.25 * abs(detuning_rate) * width
+
+
+def collision_log_modulus(delta: ArrayLike, g: float) -> NDArray[np.float64]:
+    """ln |mu| = sqrt(max(0, g^2 - (delta/2)^2)) of the two-mode model at detuning ``delta``."""
+    d = np.asarray(delta, float)
+    return np.sqrt(np.maximum(0.0, g * g - 0.25 * d * d))

@@ -1,0 +1,84 @@
+"""cradle.measurements.floquet_bubbles: Krein signatures, the spectrum's symmetries and the two-mode collision model,
+checked against closed forms.
+
+* A complex-linear map z -> L z written in (Re z, Im z) is symplectic; its eigenvalue lambda carries the Krein
+  signature +1 and conj(lambda) -1 (the real eigenvector of lambda is (z, -i z)).
+* exp(J S) for a symmetric S is symplectic: M^T J M = J and its spectrum comes in quadruples (to rounding).
+* Two modes of opposite signature coupled by g (i da/dt = w1 a + g conj(b), i d conj(b)/dt = -w2 conj(b) - g a):
+  over unit time ln |mu| = sqrt(g^2 - (Delta/2)^2), Delta = w1 + w2 the detuning of their angles; the bubble is
+  4 g wide in Delta and g high, which collision_peak returns from the width and the detuning rate.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.linalg import expm
+
+from cradle.measurements import floquet_bubbles as FB
+
+
+def _real_form(L: np.ndarray) -> np.ndarray:
+    """The real 2n x 2n matrix of the complex-linear map z -> L z in the coordinates (Re z, Im z)."""
+    return np.block([[L.real, -L.imag], [L.imag, L.real]])
+
+
+def test_signatures_of_a_complex_linear_map():
+    phi = np.array([0.3, 1.1, 2.0, -2.5])
+    M = _real_form(np.diag(np.exp(1j * phi)))
+    assert FB.symplectic_defect(M) < 1e-15
+    mu, sigma = FB.krein_signatures(M)
+    for p in phi:
+        assert sigma[np.argmin(np.abs(mu - np.exp(1j * p)))] == 1.0
+        assert sigma[np.argmin(np.abs(mu - np.exp(-1j * p)))] == -1.0
+    assert FB.quartet_defect(mu) < 1e-14
+    # + at phi, - at -phi: the closest opposite pair is 2.0 (+) and 2.5 (-, from -2.5), 0.5 apart
+    assert FB.krein_gap(mu, sigma, 0) == pytest.approx(0.5, abs=1e-14)
+
+
+def test_exponential_of_a_hamiltonian_matrix_is_symplectic_with_quadruples():
+    rng = np.random.default_rng(1)
+    n = 5
+    S = rng.normal(size=(2 * n, 2 * n))
+    S = 0.3 * (S + S.T)        # indefinite: some quartets off the circle
+    M = expm(FB.symplectic_form(n) @ S)
+    assert FB.symplectic_defect(M) < 1e-12
+    mu = np.linalg.eigvals(M)
+    assert FB.quartet_defect(mu) < 1e-10
+
+
+def _two_modes(w1: float, w2: float, g: float) -> np.ndarray:
+    """The unit-time flow of i da/dt = w1 a + g conj(b), i d conj(b)/dt = -w2 conj(b) - g a (the Hamiltonian
+    w1 |a|^2 + w2 |b|^2 + coupling; uncoupled, a -> e^{-i w1} a and b -> e^{-i w2} b, so that for w2 = -w1 the
+    multiplier e^{+i w1} is b's of signature + and a's conjugate of signature -) in the real coordinates
+    (Re a, Re b, Im a, Im b): a symplectic 4 x 4 matrix, its generator built column by column."""
+    def f(y: np.ndarray) -> np.ndarray:
+        a, b = y[0] + 1j * y[2], y[1] + 1j * y[3]
+        da = -1j * (w1 * a + g * np.conj(b))
+        db = np.conj(1j * (w2 * np.conj(b) + g * a))
+        return np.array([da.real, db.real, da.imag, db.imag])
+
+    return expm(np.column_stack([f(e) for e in np.eye(4)]))
+
+
+def test_two_mode_collision_is_the_bubble_model():
+    g, w = 0.02, 1.0
+    delta = np.linspace(-0.1, 0.1, 2000)      # no grid point on an edge (+-2 g)
+    logmod = np.array([np.max(np.log(np.abs(np.linalg.eigvals(_two_modes(w + d, -w, g))))) for d in delta])
+    # at the bubble's edges the multiplier is double: the eigensolver gives it to the square root of rounding
+    assert np.max(np.abs(logmod - FB.collision_log_modulus(delta, g))) < np.sqrt(np.finfo(float).eps)
+    # outside the bubble all four on the circle, two of each signature
+    mu, sigma = FB.krein_signatures(_two_modes(w + 0.1, -w, g))
+    assert sorted(sigma) == [-1.0, -1.0, 1.0, 1.0]
+    assert FB.symplectic_defect(_two_modes(w, -w, g)) < 1e-14
+    h = delta[1] - delta[0]
+    inside = delta[logmod > np.sqrt(np.finfo(float).eps)]
+    width = inside[-1] - inside[0] + h
+    # the width on a grid of spacing h is the true 4 g to within h
+    assert FB.collision_peak(width, 1.0) == pytest.approx(np.max(logmod), rel=h / (4 * g))
+
+
+def test_windows_are_runs_of_unstable_points():
+    c = np.arange(10) * 0.1
+    u = np.array([0, 1, 1, 0, 0, 1, 0, 1, 1, 1], bool)
+    assert FB.windows(c, u) == [(0.1, 0.2), (0.5, 0.5), (pytest.approx(0.7), pytest.approx(0.9))]
+    assert FB.windows(c, np.zeros(10, bool)) == []
