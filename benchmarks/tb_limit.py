@@ -32,8 +32,7 @@ def summary(c: np.ndarray, rings: list[int], group: dict, spec: tb.TravellingBre
     for j, x in enumerate(c):
         cells = [f"{group['unstable_fraction'][j, i]:.2f} {group['typical_growth'][j, i]:.1e} "
                  f"{group['largest_growth'][j, i]:.1e}" for i in range(len(rings))]
-        v, k = tb.limit_rule(np.array(rings, float), group["typical_growth"][j], spec.stability_threshold,
-                             spec.limit_decay)
+        v, k = tb.limit_rule(np.array(rings, float), group["typical_growth"][j], spec.stability_threshold)
         print(f"{x:.3f} | " + " | ".join(cells) + f" | {k:+.2f} {({1: 'U', 0: 'S'}).get(v, '?')}")
 
 

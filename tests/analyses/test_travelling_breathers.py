@@ -198,21 +198,22 @@ def test_limit_scan_rows_and_rule(tiny):
             assert lim["typical_growth"].values[j, i] == pytest.approx(np.median(g), rel=0, abs=0)
             assert lim["unstable_fraction"].values[j, i] == np.mean(g > spec.stability_threshold)
         v, k = tb.limit_rule(np.array(spec.limit_N, float), lim["typical_growth"].values[j],
-                             spec.stability_threshold, spec.limit_decay)
+                             spec.stability_threshold)
         assert lim["verdict"].values[j] == v
     unstable = lim["unstable"].values
     assert np.array_equal(unstable == 1, np.isfinite(G) & (G > spec.stability_threshold))
 
 
 def test_limit_rule_cases():
-    """The rule on made-up medians: above the threshold on every ring and flat -> unstable; falling as N^-1 ->
-    stable (k = 1 >= 1/2); at or below the threshold everywhere -> stable; above on the small rings only but
-    falling slower than N^-1/2 -> undecided."""
+    """The rule on made-up medians: the two largest rings agree -> their verdict (whatever the smaller rings say);
+    they differ -> undecided; a ring not reached (NaN) is left out; k is the slope of -ln g against ln N."""
     N = np.array([24.0, 48.0, 96.0])
     thr = 1e-5
-    v, k = tb.limit_rule(N, np.array([1e-3, 1e-3, 1e-3]), thr, 0.5)
+    v, k = tb.limit_rule(N, np.array([1e-3, 1e-3, 1e-3]), thr)
     assert v == tb.LIMIT_UNSTABLE and k == pytest.approx(0.0, abs=1e-12)
-    v, k = tb.limit_rule(N, 1e-3 * 24 / N, thr, 0.5)
-    assert v == tb.LIMIT_STABLE and k == pytest.approx(1.0, abs=1e-12)
-    assert tb.limit_rule(N, np.array([1e-6, 1e-15, 1e-7]), thr, 0.5)[0] == tb.LIMIT_STABLE
-    assert tb.limit_rule(N, np.array([2e-5, 1.8e-5, 1e-6]), thr, 0.5)[0] == tb.LIMIT_UNDECIDED
+    v, k = tb.limit_rule(N, 1e-3 * 24 / N, thr)
+    assert v == tb.LIMIT_UNSTABLE and k == pytest.approx(1.0, abs=1e-12)
+    assert tb.limit_rule(N, np.array([1e-3, 1e-15, 1e-7]), thr)[0] == tb.LIMIT_STABLE
+    assert tb.limit_rule(N, np.array([1e-15, 1e-15, 1e-3]), thr)[0] == tb.LIMIT_UNDECIDED
+    assert tb.limit_rule(N, np.array([1e-15, 1e-3, np.nan]), thr)[0] == tb.LIMIT_UNDECIDED
+    assert tb.limit_rule(N, np.array([1e-3, 1e-3, np.nan]), thr)[0] == tb.LIMIT_UNSTABLE
