@@ -77,6 +77,21 @@ def test_two_mode_collision_is_the_bubble_model():
     assert FB.collision_peak(width, 1.0) == pytest.approx(np.max(logmod), rel=h / (4 * g))
 
 
+def test_collision_fit_recovers_the_bubble_from_outside():
+    """The pair's splitting outside the bubble of the two-mode flow (exact, from its eigenvalues) fitted by
+    collision_fit gives back the coupling g (the bubble's height) and the detuning rate s = 1 of Delta = w1 + w2:
+    the model is exact, so to the eigensolver's rounding away from the edges."""
+    g, w = 0.02, 1.0
+    d = np.concatenate([np.linspace(-0.08, -0.045, 15), np.linspace(0.045, 0.08, 15)])
+    split = []
+    for x in d:
+        mu, sigma = FB.krein_signatures(_two_modes(w + x, -w, g))
+        split.append(FB.pair_splitting(mu, sigma, w, 0.2))
+    s, gfit = FB.collision_fit(d, split, 0.0)
+    assert s == pytest.approx(1.0, abs=1e-9)
+    assert gfit == pytest.approx(g, abs=1e-9)
+
+
 def test_windows_are_runs_of_unstable_points():
     c = np.arange(10) * 0.1
     u = np.array([0, 1, 1, 0, 0, 1, 0, 1, 1, 1], bool)

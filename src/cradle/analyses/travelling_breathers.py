@@ -695,6 +695,33 @@ def limit_member(b: TravellingBreather, threshold: float) -> dict[str, float]:
             "top_arg": float(np.angle(top)) if unstable else np.nan}
 
 
+def bubble_scan(spec: TravellingBreathers, b: TravellingBreather, cs: NDArray[np.float64], angle: float,
+                width: float) -> dict[str, NDArray[np.float64]]:
+    """One window resolved: the TBs continued from ``b`` over the velocities ``cs`` (in order; steps halved down to
+    :data:`LIMIT_MIN_STEP` of c), at each the largest ln |mu| of the non-trivial multipliers, the argument of that
+    multiplier and the splitting of the pair of opposite Krein signature within ``width`` of ``angle``
+    (:func:`cradle.measurements.floquet_bubbles.pair_splitting`; NaN inside the bubble, where the pair is a
+    quartet off the circle). Returns arrays c, log_modulus, top_arg, splitting, period (NaN where not reached)."""
+    from cradle.integrators import dps_travelling as DT
+    from cradle.measurements import floquet_bubbles as FB
+
+    fam, _ = DT.continue_family(b, cs, spec.newton_tol, spec.rtol, min_step=LIMIT_MIN_STEP)
+    out = {k: np.full(cs.size, np.nan) for k in ("log_modulus", "top_arg", "splitting", "period")}
+    byc = {round(m.c, 12): m for m in fam}
+    for i, x in enumerate(cs):
+        m = byc.get(round(float(x), 12))
+        if m is None or m.monodromy is None:
+            continue
+        mu, sigma = FB.krein_signatures(m.monodromy)
+        k = FB.nontrivial(mu, TRIVIAL)
+        top = mu[k[int(np.argmax(np.abs(mu[k])))]]
+        out["log_modulus"][i] = float(np.log(np.abs(top)))
+        out["top_arg"][i] = float(np.angle(top))
+        out["splitting"][i] = FB.pair_splitting(mu, sigma, angle, width)
+        out["period"][i] = m.T
+    return {"c": np.asarray(cs, float), **out}
+
+
 LIMIT_FINE = ("growth", "unstable", "theta", "tail", "tail_mi", "krein_gap", "quartet_defect", "top_arg")
 
 
