@@ -170,7 +170,7 @@ def draw_limit(ax: Any, tree: AnalysisTree) -> None:
     j.semilogy(cf, np.where(mi[big] > floor, mi[big], np.nan), "k-", lw=0.8,
                label=f"tail's MI rate (ring of {rings[big]})")
     j.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
-    j.set_ylim(floor, 30.0 * max(float(np.nanmax(np.where(U, G, np.nan))) if U.any() else thr, thr))
+    j.set_ylim(floor, 100.0 * max(float(np.nanmax(np.where(U, G, np.nan))) if U.any() else thr, thr))
     j.set_xlabel("velocity c (fine grid)")
     j.set_ylabel("growth rate ln max$|\\mu|$ / T")
     j.set_title(f"(m) fine scan, step {float(attrs['limit_step']):g}: windows and the tail's MI", fontsize=9)
