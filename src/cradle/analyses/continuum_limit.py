@@ -10,6 +10,9 @@ the solitary wave of the Hertz chain without on-site potential with force expone
 power of eps at which each distance vanishes is fitted over eps <= ``fit_below``
 (:func:`cradle.measurements.continuum.fit_power`); the first-order constants of the limit, (nu - 4)/eps -> 4 ln 2 - 2
 and ln max R -> 1/2 at c = 1, are stored beside. The limits and their derivation: :mod:`cradle.models.continuum`.
+Near p = 2 the breathers are also compared with the compactons of :mod:`cradle.models.compacton`, and DpS travelling
+breathers (:mod:`cradle.integrators.dps_travelling`) at c = K sqrt(eps) / tau0 with the travelling profiles of
+:mod:`cradle.models.travelling_continuum` (:func:`travelling`, group "/travelling").
 """
 from __future__ import annotations
 
@@ -49,7 +52,8 @@ JP_2014 = ("G. James and D. Pelinovsky, Gaussian solitary waves and compactons i
 
 @declared(doc="The continuum limit alpha -> 1+ (issue 37): DpS breathers against the log-NLS Gaussian, solitary "
               "waves of the Hertz chain without on-site potential against the log-KdV Gaussian, the fitted power of "
-              "alpha - 1; the unstable DpS breather perturbed, travelling or pinned against alpha -> "
+              "alpha - 1; the unstable DpS breather perturbed, travelling or pinned against alpha; DpS travelling "
+              "breathers against the boosted Gaussian and compactons -> "
               "results/continuum-limit/continuum-limit.nc and results/figures/continuum-limit.{pdf,png}.")
 class ContinuumLimit:
     dps_eps: list[float] = param([0.5, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001, 5e-4, 3e-4],
@@ -459,7 +463,8 @@ def compacton_claims(cfits: dict[str, PowerFit]) -> list[Row]:
                                                                      for f in dps) + " (forms A, B, C)",
                     "agrees" if ok else "disagrees",
                     "max-norm distance of the envelope to the compacton of each degenerate form (continuum-limit); "
-                    "the travelling breathers are not compared", "power > 0 beyond 3 uncertainties",
+                    "the travelling breathers: James 2018's row on them (full form)",
+                    "power > 0 beyond 3 uncertainties",
                     "analyses/continuum-limit.md", qualitative=True))
     f = cfits["compacton_hertz"]
     rows.append(Row("James and Pelinovsky 2014", "compactons of the fractional KdV against the Hertz chain's waves",
