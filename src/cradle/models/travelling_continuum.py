@@ -43,9 +43,10 @@ O(eps ln|phi|) relative in the core and O(1) near a compacton's edge, where |phi
 a solution, and the travelling-wave ODE admits no moving compact edge either: near an edge at distance d, a profile
 U ~ C d^s (s complex, Re s > 0) makes the transport term 2 i tau0 v U' of order d^(Re s - 1) and the degenerate
 dispersion |U|^eps U'' of order d^(eps Re s + Re s - 2); they balance only for eps Re s = 1, and then the
-coefficients demand s = 1 - 2 i tau0 v / |C|^eps (B; the same contradiction for A and C), whose real part is 1, not
-1/eps: a compact edge moves only at v = 0. (A heuristic argument on power-law edges, ours; it does not exclude
-travelling solutions with other edges.) So the travelling compactons of A-C are taken here as the boosted static
+coefficients demand s (s - 1) = -2 i tau0 v s / |C|^eps up to O(eps) (B; the same contradiction for A and C), so
+s = 1 - 2 i tau0 v / |C|^eps, whose real part is 1 + O(eps), not 1/eps: a compact edge moves only at v = 0. (A
+heuristic argument on power-law edges, ours; it does not exclude travelling solutions with other edges.) So the
+travelling compactons of A-C are taken here as the boosted static
 compactons: approximate solutions whose residual (:func:`residual`) is stored beside the TBs' distance to them.
 
 **The lattice's carrier.** At a carrier kappa the linear staggered lattice has frequency 2 tau0 Omega = -(2 + 2 cos
