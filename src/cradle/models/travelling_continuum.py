@@ -46,8 +46,8 @@ dispersion |U|^eps U'' of order d^(eps Re s + Re s - 2); they balance only for e
 coefficients demand s (s - 1) = -2 i tau0 v s / |C|^eps up to O(eps) (B; the same contradiction for A and C), so
 s = 1 - 2 i tau0 v / |C|^eps, whose real part is 1 + O(eps), not 1/eps: a compact edge moves only at v = 0. (A
 heuristic argument on power-law edges, ours; it does not exclude travelling solutions with other edges.) So the
-travelling compactons of A-C are taken here as the boosted static
-compactons: approximate solutions whose residual (:func:`residual`) is stored beside the TBs' distance to them.
+travelling compactons of A-C are taken here as the boosted static compactons: approximate solutions whose residual
+(:func:`residual`) is stored beside the TBs' distance to them.
 
 **The lattice's carrier.** At a carrier kappa the linear staggered lattice has frequency 2 tau0 Omega = -(2 + 2 cos
 kappa) and group velocity sin(kappa) / tau0; to leading order the envelope of a modulated wave of carrier kappa
