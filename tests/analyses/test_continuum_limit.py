@@ -254,18 +254,22 @@ def test_the_travelling_breathers_are_solutions_and_c_0_is_the_static_comparison
         # the measurement at c = 0 on the static site breather is the static comparison's, on the same ring
         b = C.dps_breather(float(e), "site", spec.tb_decades)
         assert Ds[models.index("gaussian"), i] == pytest.approx(sup_distance(b.envelope, b.gaussian), rel=1e-12)
-        assert Ds[models.index("carrier"), i] == Ds[models.index("gaussian"), i]   # the same profile at c = 0
+        for base in ("gaussian", "A", "B", "C"):                               # the same profile at c = 0
+            assert Ds[models.index(base + " carrier"), i] == Ds[models.index(base), i]
 
 
 def test_the_carrier_gaussian_is_the_static_distance_away(reduced):
     # the lattice's dispersion at the carrier narrows the TB (models.travelling_continuum): against the Gaussian
     # narrowed so, the TB is about as far as the static breather is from its Gaussian, nearer than the boost's
+    # (the same for each compacton)
     _, tree = reduced
     tb = tree["travelling"]
     models = [str(m) for m in np.asarray(tb["model"].values)]
     D = np.asarray(tb["distance"].values)
-    Ds = np.asarray(tb["static_distance"].values)[models.index("gaussian")][:, None]
-    assert np.all(np.abs(D[models.index("carrier")] - Ds) < np.abs(D[models.index("gaussian")] - Ds))
+    Ds = np.asarray(tb["static_distance"].values)
+    for base in ("gaussian", "A", "B", "C"):
+        S = Ds[models.index(base)][:, None]
+        assert np.all(np.abs(D[models.index(base + " carrier")] - S) < np.abs(D[models.index(base)] - S)), base
 
 
 def test_theta_of_the_travelling_breathers_tends_to_the_boosts(reduced):

@@ -90,11 +90,21 @@ def test_at_c_0_the_travelling_profiles_are_the_static_ones():
     eps, tau0 = 0.1, 1.9
     n = np.arange(40, dtype=float)
     assert np.array_equal(T.travelling_profile("gaussian", n, 20.0, eps, 0.0, tau0).real, dps_gaussian(n, 20.0, eps))
-    assert np.allclose(T.travelling_profile("carrier", n, 20.5, eps, 0.0, tau0), dps_gaussian(n, 20.5, eps)
+    assert np.allclose(T.travelling_profile("gaussian carrier", n, 20.5, eps, 0.0, tau0), dps_gaussian(n, 20.5, eps)
                        / np.max(dps_gaussian(n, 20.5, eps)), rtol=1e-15, atol=0)
     for form in K.FORMS:
         C = K.dps_compacton(n, 20.0, eps, form)
-        assert np.allclose(T.travelling_profile(form, n, 20.0, eps, 0.0, tau0), C / C.max(), rtol=1e-15, atol=1e-300)
+        for model in (form, form + " carrier"):
+            assert np.allclose(T.travelling_profile(model, n, 20.0, eps, 0.0, tau0), C / C.max(), rtol=1e-15,
+                               atol=1e-300)
+    # moving: the carrier Gaussian is exp(-a (n - centre)^2) with the lattice's phase gradient
+    c = 0.05
+    kl = math.asin(tau0 * c)
+    G = np.exp(-T.carrier_width(eps, kl) * (n - 20.0) ** 2) * np.exp(1j * kl * (n - 20.0))
+    # exp of an exponent up to a (n - centre)^2 ~ 40, computed two ways: relative rounding ~ 40 ulps
+    assert np.allclose(T.travelling_profile("gaussian carrier", n, 20.0, eps, c, tau0), G, rtol=1e-13, atol=1e-300)
+    with pytest.raises(ValueError, match="must be one of"):
+        T.travelling_profile("carrier", n, 20.0, eps, c, tau0)
     # for real positive profiles the complex distance is the static comparison's
     b = dps_gaussian(n, 19.7, 0.09)
     G = dps_gaussian(n, 20.0, eps)

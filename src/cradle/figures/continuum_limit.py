@@ -19,10 +19,11 @@ amplitude (1: DpS; below 0: pinned, oscillating; crosses: Newton not converged),
 small-amplitude lattice runs (full form) as triangles below. The travelling breathers, a fifth row when the file
 holds them (group /travelling): (m) the departure of a TB's envelope |B_n| / max|B| from e^{-X^2} (circles) and from
 the carrier-corrected Gaussian of :mod:`cradle.models.travelling_continuum` (crosses) at the eps nearest 0.1, against
-the static breather's departure from e^{-X^2} (line): the crosses fall on the line; (n) the distances of the TBs to
-each travelling profile divided by eps, at the largest boost (filled, solid), the smallest (open, dashed) and the
-static breather (dotted), with the fitted powers; (o) the TBs' theta against the boosted Gaussian's, and the
-residual of the boosted compacton in form (B) (its Galilean defect), against eps.
+the static breather's departure from e^{-X^2} (line): the crosses fall on the line; (n) the distances of the TBs at
+the largest boost to the boosted Gaussian and compactons (circles) and to the same narrowed by the lattice's carrier
+(crosses), divided by eps, against the static breather's (dotted), with the fitted powers; (o) the TBs' theta
+against the boosted Gaussian's, and the residual of the boosted compacton in form (B) (its Galilean defect), against
+eps.
 """
 from __future__ import annotations
 
@@ -157,8 +158,8 @@ def draw(tree: AnalysisTree) -> Figure:
     return fig
 
 
-_MODEL_STYLE = {"gaussian": ("C0", "boosted Gaussian"), "carrier": ("C3", "carrier Gaussian"),
-                "A": ("C1", "compacton (A)"), "B": ("C2", "compacton (B)"), "C": ("C4", "compacton (C)")}
+_MODEL_STYLE = {"gaussian": ("C0", "Gaussian"), "A": ("C1", "compacton (A)"), "B": ("C2", "compacton (B)"),
+                "C": ("C4", "compacton (C)")}
 
 
 def _travelling(ax: Any, tree: AnalysisTree) -> None:
@@ -203,17 +204,16 @@ def _travelling(ax: Any, tree: AnalysisTree) -> None:
     D = np.asarray(tb["distance"].values)
     Ds = np.asarray(tb["static_distance"].values)
     P = np.asarray(tb["power"].values)
-    for m_i, model in enumerate(np.asarray(tb["model"].values)):
-        col, label = _MODEL_STYLE[str(model)]
-        fitted = f", power {P[m_i, -1]:.3f}" if np.isfinite(P[m_i, -1]) else ""
-        n.loglog(eps, D[m_i, :, -1] / eps, "o-", color=col, ms=3.5, lw=1.0, label=f"{label}{fitted}")
-        if K.size > 1:
-            n.loglog(eps, D[m_i, :, 0] / eps, "s--", color=col, ms=3, mfc="none", lw=0.8)
-        n.loglog(eps, Ds[m_i] / eps, ":", color=col, lw=1.0)
-    n.plot([], [], "ko-", ms=3.5, lw=1.0, label=f"TB, $K$ = {K[-1]:g}")
-    if K.size > 1:
-        n.plot([], [], "ks--", ms=3, mfc="none", lw=0.8, label=f"TB, $K$ = {K[0]:g}")
-    n.plot([], [], "k:", lw=1.0, label="static breather ($c = 0$)")
+    models = [str(x) for x in np.asarray(tb["model"].values)]
+    for base, (col, label) in _MODEL_STYLE.items():
+        b_, c_ = models.index(base), models.index(base + " carrier")
+        fitted = f", powers {P[b_, -1]:.3f}, {P[c_, -1]:.3f}" if np.isfinite(P[b_, -1]) else ""
+        n.loglog(eps, D[b_, :, -1] / eps, "o-", color=col, ms=3.5, lw=1.0, label=f"{label}{fitted}")
+        n.loglog(eps, D[c_, :, -1] / eps, "x--", color=col, ms=5, lw=0.9)
+        n.loglog(eps, Ds[b_] / eps, ":", color=col, lw=1.2)
+    n.plot([], [], "ko-", ms=3.5, lw=1.0, label=f"TB ($K$ = {K[-1]:g}) to the boosted profile")
+    n.plot([], [], "kx--", ms=5, lw=0.9, label="TB to the profile narrowed by the carrier")
+    n.plot([], [], "k:", lw=1.2, label="static breather ($c = 0$)")
     n.set_ylim(0.01, 20.0)   # room above the curves for the key
     n.set_xlim(eps.min() / 1.5, eps.max() * 1.5)
     n.set_xlabel("$\\alpha - 1$")

@@ -205,29 +205,30 @@ def boost_residual(equation: str, eps: float, k: float, points: int = 4001) -> f
     return float(np.max(np.abs(R)) / np.max(np.abs(phi)))
 
 
-#: the travelling profiles a TB is compared with: the boosted log-NLS Gaussian, the carrier-corrected Gaussian and
-#: the boosted static compactons of forms A, B, C (module docstring)
-MODELS = ("gaussian", "carrier", "A", "B", "C")
+#: the travelling profiles a TB is compared with: the boosted log-NLS Gaussian and the boosted static compactons of
+#: forms A, B, C (module docstring), and each narrowed by the lattice's carrier ("... carrier": n - n_c scaled by
+#: sqrt(a / eps), a of :func:`carrier_width`, the phase gradient asin(tau0 c))
+MODELS = ("gaussian", "A", "B", "C", "gaussian carrier", "A carrier", "B carrier", "C carrier")
 
 
 def travelling_profile(model: str, n: ArrayLike, centre: float, eps: float, c: float,
                        tau0: float) -> NDArray[np.complex128]:
     """The envelope B_n / max|B| of ``model`` (one of :data:`MODELS`) centred at ``centre`` and travelling at c, at
     the instant its centre is there: a real profile of unit maximum times its boost's phase e^{i kappa (n - centre)}
-    (kappa = tau0 c; the carrier Gaussian exp(-a (n - centre)^2) with the lattice's kappa = asin(tau0 c)). At c = 0
-    each is the static profile of :mod:`cradle.models.continuum` or :mod:`cradle.models.compacton`."""
+    (kappa = tau0 c); a "carrier" model has the lattice's kappa = asin(tau0 c) and n - centre scaled by
+    sqrt(a / eps) (:func:`carrier_width`: the Gaussian becomes exp(-a (n - centre)^2)). At c = 0 each is the static
+    profile of :mod:`cradle.models.continuum` or :mod:`cradle.models.compacton`."""
     from cradle.models import compacton as K
 
+    base, _, carrier = model.partition(" ")
+    if carrier not in ("", "carrier") or base not in ("gaussian", *K.FORMS):
+        raise ValueError(f"model = {model!r}: must be one of {', '.join(MODELS)}")
     y = np.asarray(n, float) - centre
-    if model == "carrier":
+    if carrier:
         kap = carrier_kappa(c, tau0)
-        env = np.exp(-carrier_width(eps, kap) * y**2)
+        z = y * math.sqrt(carrier_width(eps, kap) / eps)
     else:
         kap = boost_kappa(c, tau0)
-        if model == "gaussian":
-            env = np.exp(-eps * y**2)
-        elif model in K.FORMS:
-            env = K.dps_compacton(y, 0.0, eps, model)
-        else:
-            raise ValueError(f"model = {model!r}: must be one of {', '.join(MODELS)}")
+        z = y
+    env = np.exp(-eps * z**2) if base == "gaussian" else K.dps_compacton(z, 0.0, eps, base)
     return np.asarray(env / np.max(env) * np.exp(1j * kap * y), dtype=np.complex128)
