@@ -24,7 +24,7 @@ from cradle.specs.values import ConfigError
 def _tiny(**over):
     plain = {"N": 16, "check_N": [18], "check_rtol": [1e-12], "speeds": [0.06, 0.08, 0.1], "direct_speed": 0.08,
              "direct_periods": 3, "static_samples": 16, "motion_eps": [0.01, 0.003, 0.001, 3e-4], "motion_sites": 8,
-             "motion_ring": 30, "motion_samples": 8, **over}
+             "motion_ring": 30, "motion_samples": 8, "lattice": False, **over}
     return from_plain(tb.TravellingBreathers, plain)
 
 
@@ -131,10 +131,11 @@ def test_check_names_each_key_in_one_line():
 def test_lattice_keys_checked_in_one_line():
     from cradle.specs.values import Errors
 
-    spec = from_plain(tb.TravellingBreathers, {"lattice_source": 0.07, "lattice_steps": [0.01, 0.02]})
+    spec = from_plain(tb.TravellingBreathers, {"lattice_source": 0.07, "lattice_steps": [0.01, 0.02],
+                                               "lattice_eps": [0.001, 0.003, 0.002]})
     out = Errors()
     spec.check(["beyond", "travelling-breathers"], None, out)
-    for key in ("lattice_source", "lattice_steps"):
+    for key in ("lattice_source", "lattice_steps", "lattice_eps"):
         assert any(line.startswith(f"config error: beyond.travelling-breathers.{key} = ") for line in out.lines)
 
 
