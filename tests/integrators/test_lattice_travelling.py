@@ -18,7 +18,12 @@ import numpy as np
 import pytest
 
 from cradle.analyses import theorem1
-from cradle.integrators import dps_travelling as DT, integrate_lattice, lattice_breathers as LB, lattice_travelling as LT
+from cradle.integrators import (
+    dps_travelling as DT,
+    integrate_lattice,
+    lattice_breathers as LB,
+    lattice_travelling as LT,
+)
 
 ALPHA, A0, N = 1.5, 0.8, 6
 

@@ -345,8 +345,8 @@ def matched_dps(spec: TravellingBreathers, source: TravellingBreather, b: Lattic
 
 def launched_pair(spec: TravellingBreathers, source: TravellingBreather, b: LatticeTB, eps: float) -> dict:
     """Item 3's comparison at ``eps``: the DpS member ``source`` launched in (nc) through (ansatz) and the exact TB
-    ``b`` launched the same way (its N beads on the ring of ``motion_ring``, centred at N/2, zeros elsewhere), both run by
-    (nc) (srkn6c) over the lattice time of ``motion_sites`` DpS periods and measured as in :func:`motion`: speeds in
+    ``b`` launched the same way (its N beads on the ring of ``motion_ring``, centred at N/2, zeros elsewhere), both run
+    by (nc) (srkn6c) over the lattice time of ``motion_sites`` DpS periods and measured as in :func:`motion`: speeds in
     units of the DpS TB's c eps^(alpha-1), the radiation at the end."""
     from cradle.integrators import integrate_lattice
     from cradle.measurements import breather_motion as BM
@@ -357,7 +357,7 @@ def launched_pair(spec: TravellingBreathers, source: TravellingBreather, b: Latt
     t = s * source.T / eps ** (al - 1.0)
     ini = tb_launch.launch(source.A, eps, al, spec.motion_ring)
     xi = tb_launch.embedded(b.envelope, spec.motion_ring)
-    out = {}
+    out: dict = {}
     for key, (x0, v0) in {"dps": (ini.x0, ini.v0), "exact": (2.0 * xi.real, -2.0 * xi.imag)}.items():
         sol = integrate_lattice(x0, v0, t, alpha=al)
         e = BM.energy_density(sol.x, sol.v, al)
@@ -372,7 +372,7 @@ def launched_pair(spec: TravellingBreathers, source: TravellingBreather, b: Latt
 
 def lattice_groups(spec: TravellingBreathers, fam: list[TravellingBreather],
                    log: Log | None = None) -> tuple[dict, dict]:
-    """The groups /lattice (the continuation in c at the first of ``lattice_eps``), /lattice_eps (one exact TB per
+    """The groups /lattice (the continuation in c at the first of ``lattice_eps``), /lattice_eps (one exact TB at
     eps: residual, tail, multipliers, distance to the DpS TB through the ansatz, and item 3's launched pair),
     /lattice_states and /lattice_motion, and their attributes (prefixed ``lattice_``)."""
     from cradle.integrators import lattice_breathers as LB, lattice_travelling as LT
@@ -417,7 +417,7 @@ def lattice_groups(spec: TravellingBreathers, fam: list[TravellingBreather],
                       "reciprocal_defect": [LB.multiplier_checks(b.multipliers)["reciprocal"] for b in family],
                       "smallest_singular": [b.smallest_singular for b in family]},
                      {"c_lattice": c_f}),
-        "/lattice_eps": ({"period": [b.T for b in tbs], "c": [b.c for b in tbs], "eps_tb": eps_b,
+        "/lattice_eps": ({"period": [b.T for b in tbs], "c_tb": [b.c for b in tbs], "eps_tb": eps_b,
                           "ansatz_period": [x["T_hop"] for x in starts],
                           "start_residual": [x["start_residual"] for x in starts],
                           "residual": [b.residual for b in tbs], "iterations": [b.iterations for b in tbs],
@@ -554,8 +554,8 @@ def motion(spec: TravellingBreathers, b: TravellingBreather, log: Log) -> tuple[
                             "largest eps is left out",
         "motion_max_energy_drift": float(max(rows["energy_drift"])),
         "motion_speed_loss_max": float(np.max(np.abs(loss))),
-        "motion_exact_tb": "open: no exact travelling breather of (nc) in this analysis yet (issue 37, item 2); the "
-                           "comparison of the launched DpS TB with the exact one launched the same way is not made",
+        "motion_exact_tb": "the exact TBs of (nc) launched the same way beside the DpS member (its own ring and eps): "
+                           "/lattice_eps (dps_speed, exact_speed, *_radiation), with the key lattice (the full form)",
         "motion_cpu_s": _time.process_time() - t0,
     })
     data = {"speed_ratio": ratio, "speed_early": rows["speed_early"], "speed_late": rows["speed_late"],
@@ -734,7 +734,7 @@ VARIABLES = {
     "/lattice_eps": {
         "eps_lattice": Var(("eps_lattice",), "eps of the ansatz that started the solve (lattice_eps)"),
         "period": Var(("eps_lattice",), "period T of (tbnc) of the exact TB"),
-        "c": Var(("eps_lattice",), "its velocity 1/T (sites per unit t)"),
+        "c_tb": Var(("eps_lattice",), "its velocity 1/T (sites per unit t)"),
         "eps_tb": Var(("eps_lattice",), "eps at the TB's own amplitude: sqrt(sum |xi_n|^2 / norm)"),
         "ansatz_period": Var(("eps_lattice",), "time per site T_d eps^(1-alpha) of the DpS member at eps_lattice"),
         "start_residual": Var(("eps_lattice",), "shift-map residual of the ansatz at T (the closest return)"),

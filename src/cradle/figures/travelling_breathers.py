@@ -201,13 +201,13 @@ def _lattice_panels(tree: AnalysisTree, ax: np.ndarray) -> None:
     prof = np.abs(xi) / eps[:, None]
     bottom = 0.2 * float(np.min(prof))
     for k, e in enumerate(eps):
-        g.semilogy(n, prof[k], "o-", color=f"C{k}", ms=3, lw=1.0, label=f"(nc) TB, $\varepsilon$ = {e:.3g}")
+        g.semilogy(n, prof[k], "o-", color=f"C{k}", ms=3, lw=1.0, label=f"(nc) TB, $\\varepsilon$ = {e:.3g}")
     dps = np.roll(np.abs(A), int(np.argmax(prof[-1])) - int(np.argmax(np.abs(A))))
     g.semilogy(n, np.where(dps >= bottom, dps, np.nan), "k--", lw=1.0,
-               label=f"DpS TB through (ansatz), $\varepsilon$ = {eps[-1]:.3g}")
-    g.set_ylim(bottom, 30.0 * float(np.max(prof)))
+               label=f"DpS TB through (ansatz), $\\varepsilon$ = {eps[-1]:.3g}")
+    g.set_ylim(bottom, 1e4 * float(np.max(prof)))   # room for the legend above the peak
     g.set_xlabel("site n")
-    g.set_ylabel("$|\xi_n(0)| / \varepsilon$, $\xi_n = (x_n - i v_n)/2$")
+    g.set_ylabel("$|\\xi_n(0)| / \\varepsilon$, $\\xi_n = (x_n - i v_n)/2$")
     g.set_title(f"(j) exact TBs of (nc) from c = {float(attrs['lattice_source_c']):.3g}, ring of {n.size}",
                 fontsize=9)
     g.legend(fontsize=6.5, loc="upper left", ncol=2)
@@ -218,28 +218,37 @@ def _lattice_panels(tree: AnalysisTree, ax: np.ndarray) -> None:
     p, u = float(attrs["lattice_distance_power"]), float(attrs["lattice_distance_power_error"])
     fine = np.geomspace(float(eps.min()), float(eps.max()), 50)
     K = float(np.exp(np.mean(np.log(d) - p * np.log(eps))))
-    h.loglog(fine, K * fine**p, "k-", lw=0.8, label=f"fit $\propto \varepsilon^{{{p:.3f} \pm {u:.1g}}}$ "
+    h.loglog(fine, K * fine**p, "k-", lw=0.8, label=f"fit $\\propto \\varepsilon^{{{p:.3f} \\pm {u:.1g}}}$ "
              f"(expected {float(attrs['lattice_distance_power_expected']):g})")
     h.loglog(eps, np.asarray(le["residual"].values), "k+", ms=7, label="shift-map residual of the TB")
     h.set_ylim(1e-13, 30.0 * float(np.max(d)))
-    h.set_xlabel("$\varepsilon$ at the TB's amplitude")
+    h.set_xlabel("$\\varepsilon$ at the TB's amplitude")
     h.set_ylabel("relative to max $|z|$")
     h.set_title("(k) (nc) TBs against DpS's", fontsize=9)
     h.legend(fontsize=6.5, loc="center right")
 
     i_ = ax[2]
     e0 = np.asarray(le["eps_lattice"].values)
-    own = 1.0 - np.asarray(le["ansatz_period"].values) / np.asarray(le["period"].values)
-    i_.loglog(e0, 1.0 - np.asarray(le["dps_speed"].values), "C3o-", ms=5, lw=1.0,
-              label="speed deficit: DpS TB launched")
-    i_.loglog(e0, 1.0 - np.asarray(le["exact_speed"].values), "C0s--", ms=5, lw=1.0, mfc="none",
-              label="speed deficit: exact TB launched")
-    i_.loglog(e0, own, "kx", ms=7, label="1 - $T_d \varepsilon^{1-\alpha}$ / T (exact TB's own)")
-    i_.loglog(e0, np.asarray(le["dps_radiation"].values), "C3v:", ms=5, lw=1.0, label="radiation: DpS TB launched")
-    i_.loglog(e0, np.maximum(np.asarray(le["exact_radiation"].values), 1e-12), "C0^:", ms=5, lw=1.0, mfc="none",
-              label="radiation: exact TB launched")
-    i_.set_ylim(1e-12, 10.0)
-    i_.set_xlabel("$\varepsilon$ of (ansatz)")
-    i_.set_ylabel("deficit against c $\varepsilon^{\alpha-1}$; energy fraction")
+    own = np.asarray(le["ansatz_period"].values) / np.asarray(le["period"].values)
+    lines = i_.semilogx(e0, np.asarray(le["dps_speed"].values), "C3o-", ms=5, lw=1.0, label="speed: DpS TB launched")
+    lines += i_.semilogx(e0, np.asarray(le["exact_speed"].values), "C0s--", ms=7, lw=1.0, mfc="none",
+                         label="speed: exact TB launched")
+    lines += i_.semilogx(e0, own, "kx", ms=6, label="$T_d \\varepsilon^{1-\\alpha}$ / T: the exact TB's own")
+    i_.set_ylabel("speed / (c $\\varepsilon^{\\alpha-1}$) of the DpS TB")
+    i_.set_xlabel("$\\varepsilon$ of (ansatz)")
+    lo = float(min(np.min(own), np.min(le["dps_speed"].values)))
+    # the speeds in the upper quarter, the radiation in the middle, the legend between them and the floor
+    i_.set_ylim(lo - 3.0 * (1.0 - lo), 1.0)
+    r = i_.twinx()
+    floor = 1e-15
+    lines += r.loglog(e0, np.maximum(np.asarray(le["dps_radiation"].values), floor), "C3v:", ms=5, lw=1.0,
+                      label="radiation: DpS TB launched")
+    lines += r.loglog(e0, np.maximum(np.asarray(le["exact_radiation"].values), floor), "C0^:", ms=5, lw=1.0,
+                      mfc="none", label=f"radiation: exact TB launched (floor {floor:g})")
+    r.set_ylim(floor / 10.0, 1e6)
+    r.set_ylabel("energy outside the window / total, at the end")
+    for a, x in ((h, eps), (i_, e0)):
+        a.set_xticks([float(v) for v in x], [f"{float(v):.2g}" for v in x])
+        a.minorticks_off()
     i_.set_title("(l) launched in (nc): DpS TB against the exact TB", fontsize=9)
-    i_.legend(fontsize=6.5, loc="lower right")
+    i_.legend(lines, [ln.get_label() for ln in lines], fontsize=6.5, loc="lower left", bbox_to_anchor=(0.0, 0.08))
