@@ -311,7 +311,7 @@ def continue_family(first: LatticeTB, cs: ArrayLike, tol: float = 1e-11, rtol: f
 
     def correct(cur: LatticeTB, c2: float) -> LatticeTB:
         T2 = 1.0 / c2
-        return newton(cur.predict(T2), T2, first.alpha, cur.z, tol, max_iter=8, rtol=rtol)
+        return newton(cur.predict(T2), T2, first.alpha, cur.z, tol, max_iter=12, rtol=rtol)
 
     return continue_in_c(first, cs, correct, min_step, log or (lambda *a: None), "lattice travelling breathers",
                          lambda b: f"eps = {b.eps:.4g}, residual {b.residual:.2g}")
