@@ -211,3 +211,17 @@ def test_a_configfile_that_is_not_utf8_is_refused_by_snakemakes_own_loader_first
     proc = run_snakemake(work, "-n", "--configfile", "extra.yaml", timeout=120)
     assert proc.returncode != 0 and "UnicodeDecodeError" in proc.stdout + proc.stderr
     assert not (work / "results").exists()
+
+
+def test_validating_config_yaml_imports_no_compiled_kernel_and_no_xarray():
+    """The Snakefile validates before every run: the declarations, the budget and the checks need neither numba's
+    kernels nor xarray (scipy.optimize only for the homoclinic entries solved at validation)."""
+    import subprocess
+    import sys
+
+    code = ("import sys; from cradle.pipeline import config as cc; loaded = set(sys.modules); "
+            f"cc.validate(cc.read_yaml({str(ROOT / 'config.yaml')!r})); "
+            "heavy = ('numba', 'xarray', 'pandas', 'matplotlib', 'netCDF4', 'cradle.integrators'); "
+            "print(sorted(m for m in heavy if m in loaded), sorted(m for m in heavy if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
+    assert out == "[] []"

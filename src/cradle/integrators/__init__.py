@@ -33,7 +33,8 @@ from cradle.integrators.dps_solver import DPS_METHODS, DpsSolution, integrate_dp
 from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, SCIPY_METHODS
 from cradle.integrators.lattice_solver import MAX_RERUNS, METHODS, LatticeSolution, integrate_lattice
 from cradle.integrators.lattice_splitting import CORRECTED_METHODS, SPLITTING_METHODS
-from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bounds, default_dt, omega_max
+from cradle.integrators.lattice_step import compression_bounds
+from cradle.models.lattice import DEFAULT_DT_FACTOR, default_dt, omega_max
 
 __all__ = [
     "LatticeSolution",

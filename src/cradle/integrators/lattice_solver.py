@@ -69,8 +69,9 @@ from cradle.integrators import _kernels as K, lattice_adaptive as LA
 from cradle.integrators._validate import check_energy_scale, check_state, check_times
 from cradle.integrators.lattice_adaptive import ADAPTIVE_METHODS, run_dop853_damped, run_dop853_numba, run_scipy
 from cradle.integrators.lattice_splitting import SPLITTING_METHODS, run_splitting
-from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, compression_bounds, default_dt
+from cradle.integrators.lattice_step import compression_bounds
 from cradle.models.damping import Damping
+from cradle.models.lattice import DEFAULT_DT_FACTOR, default_dt
 from cradle.models.lattice_terms import Terms, check as check_terms
 from cradle.specs.checked import checked
 from cradle.specs.values import MAX_T_END

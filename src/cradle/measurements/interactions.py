@@ -39,13 +39,15 @@ breather with a ragged top), :func:`humps`.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import xarray as xr
 from numpy.typing import ArrayLike, NDArray
 
 from cradle.measurements.breathers import peak_compression
+
+if TYPE_CHECKING:   # only an annotation: the config's declarations import this module, not xarray
+    import xarray as xr
 
 #: classes of :func:`classify`, in the order the analyses encode them (outcome code = index)
 OUTCOMES = ("merge", "bound", "repel", "transmit", "none")

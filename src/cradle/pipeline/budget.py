@@ -48,7 +48,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, fields
 from typing import TYPE_CHECKING, Any, Protocol
 
-from cradle.models.lattice import omega_max
+from cradle.models.lattice import DEFAULT_DT_FACTOR, default_dt, omega_max
 from cradle.scenes.spec import SPLITTINGS, ExactIntegrator, HomoclinicEntry, MapEntry, Scene, Store
 from cradle.specs.declare import declared, param
 
@@ -228,19 +228,16 @@ def _exact_seconds(N: int, t_end: float, exact: ExactIntegrator, stored: int,
     between stored times takes at least one step (the steps end on the stored times), a damping
     ``rate`` (:func:`damping_rate`) takes at least t_end rate / :data:`DOP853_STABLE` steps, and a splitting
     at least t_end / dt steps of its default step dt = dt_factor 2 pi / omega_max(c) at a compression c = 2
-    ``amplitude`` (:func:`cradle.integrators.lattice_step.default_dt`; a large amplitude takes small steps)."""
+    ``amplitude`` (:func:`cradle.models.lattice.default_dt`; a large amplitude takes small steps)."""
     method = exact.method
     steps = t_end * STEPS_PER_TIME_UNIT.get(method, max(STEPS_PER_TIME_UNIT.values()))
     c = min(2.0 * abs(amplitude), 1e300)
     stiff = method in SPLITTINGS and omega_max(c, alpha) > STIFF_OMEGA
-    if exact.dt_factor or stiff:  # only then import the integrators (numba): the Snakefile validates
-        from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR, default_dt
-
-        if exact.dt_factor:
-            steps *= DEFAULT_DT_FACTOR.get(method, exact.dt_factor) / exact.dt_factor
-        if stiff:
-            dt = default_dt(c, alpha, method, exact.dt_factor)
-            steps = max(steps, t_end / dt if dt > 0.0 else math.inf)
+    if exact.dt_factor:
+        steps *= DEFAULT_DT_FACTOR.get(method, exact.dt_factor) / exact.dt_factor
+    if stiff:
+        dt = default_dt(c, alpha, method, exact.dt_factor)
+        steps = max(steps, t_end / dt if dt > 0.0 else math.inf)
     steps = max(steps, float(stored - 1), min(t_end * rate / DOP853_STABLE, 1e300))
     return steps * N * COST_PER_BEAD_STEP_S.get(method, max(COST_PER_BEAD_STEP_S.values())), steps
 

@@ -99,7 +99,7 @@ def simulate_streamed(spec: Scene, init_ds: xr.Dataset, name: str, outs: dict, *
     drift above ``max_energy_drift``.
     """
     from cradle.integrators import MAX_RERUNS, compression_bounds, default_dt
-    from cradle.integrators.lattice_step import DEFAULT_DT_FACTOR
+    from cradle.models.lattice import DEFAULT_DT_FACTOR
 
     wall0 = time.perf_counter()
     method = spec.exact.method
