@@ -236,3 +236,60 @@ def test_the_lattice_pinning_mode_tends_to_the_dps_one(reduced):
         ext = (x_b * S[a] - x_a * S[b]) / (x_b - x_a)
         assert abs(ext - 1.0) < abs(S[a] - 1.0) / 5, (alpha, S)
         assert np.all(np.asarray(st["amplitude"].values)[i] == pytest.approx(e, rel=0.1))
+
+
+# ----------------------------------------------------------------- travelling breathers near alpha = 1
+
+
+def test_the_travelling_breathers_are_solutions_and_c_0_is_the_static_comparison(reduced):
+    from cradle.measurements.continuum import sup_distance
+
+    spec, tree = reduced
+    tb = tree["travelling"]
+    assert np.all(np.asarray(tb["residual"].values) <= 1e-10)          # the shift-map residual (issue 37)
+    eps = np.asarray(tb["tb_eps"].values)
+    models = [str(m) for m in np.asarray(tb["model"].values)]
+    Ds = np.asarray(tb["static_distance"].values)
+    for i, e in enumerate(eps):
+        # the measurement at c = 0 on the static site breather is the static comparison's, on the same ring
+        b = C.dps_breather(float(e), "site", spec.tb_decades)
+        assert Ds[models.index("gaussian"), i] == pytest.approx(sup_distance(b.envelope, b.gaussian), rel=1e-12)
+        for base in ("gaussian", "A", "B", "C"):                               # the same profile at c = 0
+            assert Ds[models.index(base + " carrier"), i] == Ds[models.index(base), i]
+
+
+def test_the_carrier_gaussian_is_the_static_distance_away(reduced):
+    # the lattice's dispersion at the carrier narrows the TB (models.travelling_continuum): against the Gaussian
+    # narrowed so, the TB is about as far as the static breather is from its Gaussian, nearer than the boost's
+    # (the same for each compacton)
+    _, tree = reduced
+    tb = tree["travelling"]
+    models = [str(m) for m in np.asarray(tb["model"].values)]
+    D = np.asarray(tb["distance"].values)
+    Ds = np.asarray(tb["static_distance"].values)
+    for base in ("gaussian", "A", "B", "C"):
+        S = Ds[models.index(base)][:, None]
+        assert np.all(np.abs(D[models.index(base + " carrier")] - S) < np.abs(D[models.index(base)] - S)), base
+
+
+def test_theta_of_the_travelling_breathers_tends_to_the_boosts(reduced):
+    _, tree = reduced
+    tb = tree["travelling"]
+    eps = np.asarray(tb["tb_eps"].values)
+    err = np.abs(np.asarray(tb["theta_error"].values))
+    order = np.argsort(eps)
+    # O(eps^(3/2)) (docs): at least the first power between the two smallest eps
+    i, j = order[0], order[1]
+    assert np.all(err[i] / err[j] < eps[i] / eps[j])
+
+
+def test_config_refuses_bad_boosts():
+    raw = yaml.safe_load((Path(__file__).resolve().parents[2] / "config.yaml").read_text())
+    bad = copy.deepcopy(raw)
+    bad["beyond"]["continuum-limit"] = {"tb_boosts": [1.0, 0.5]}
+    with pytest.raises(cc.ConfigError, match=r"beyond\.continuum-limit\.tb_boosts = \[1\.0, 0\.5\]: must increase"):
+        cc.analysis_spec(bad, "continuum-limit", "full")
+    bad["beyond"]["continuum-limit"] = {"tb_boosts": [0.5, 2.5]}
+    with pytest.raises(cc.ConfigError, match=r"beyond\.continuum-limit\.tb_boosts = \[0\.5, 2\.5\]: times "
+                       r"sqrt\(max beyond\.continuum-limit\.tb_eps\) must be < 1"):
+        cc.analysis_spec(bad, "continuum-limit", "full")

@@ -24,7 +24,7 @@ from cradle.specs.values import ConfigError
 def _tiny(**over):
     plain = {"N": 16, "check_N": [18], "check_rtol": [1e-12], "speeds": [0.06, 0.08, 0.1], "direct_speed": 0.08,
              "direct_periods": 3, "static_samples": 16, "motion_eps": [0.01, 0.003, 0.001, 3e-4], "motion_sites": 8,
-             "motion_ring": 30, "motion_samples": 8, "limit_N": [16, 18], "limit_step": 0.004,
+             "motion_ring": 30, "motion_samples": 8, "lattice": False, "limit_N": [16, 18], "limit_step": 0.004,
              "limit_halfwidth": 0.004, **over}
     return from_plain(tb.TravellingBreathers, plain)
 
@@ -132,10 +132,11 @@ def test_check_names_each_key_in_one_line():
 def test_lattice_keys_checked_in_one_line():
     from cradle.specs.values import Errors
 
-    spec = from_plain(tb.TravellingBreathers, {"lattice_source": 0.07, "lattice_steps": [0.01, 0.02]})
+    spec = from_plain(tb.TravellingBreathers, {"lattice_source": 0.07, "lattice_steps": [0.01, 0.02],
+                                               "lattice_eps": [0.001, 0.003, 0.002]})
     out = Errors()
     spec.check(["beyond", "travelling-breathers"], None, out)
-    for key in ("lattice_source", "lattice_steps"):
+    for key in ("lattice_source", "lattice_steps", "lattice_eps"):
         assert any(line.startswith(f"config error: beyond.travelling-breathers.{key} = ") for line in out.lines)
 
 
@@ -242,3 +243,40 @@ def test_a_window_is_a_krein_collision():
     tol = r["detuning_rate"] * 2 * h / 4
     assert abs(r["height_model"] - r["height_measured"]) <= tol
     assert abs(FB.collision_peak(r["width_measured"], r["detuning_rate"]) - r["height_measured"]) <= tol
+
+
+@pytest.fixture(scope="module")
+def lattice_tree():
+    """The lattice part on a small spec: three TBs of (nc) from the c = 0.1 member's ansatz on the ring of 16, no
+    continuation step, a short launch."""
+    spec = _tiny(lattice=True, lattice_eps=[0.005, 0.004, 0.003], lattice_steps=[0.0], lattice_periods=1)
+    fam, _ = tb.family(spec, spec.N, spec.rtol)
+    return spec, tb.lattice_groups(spec, fam)
+
+
+@pytest.mark.slow
+def test_stored_lattice_tbs_solve_tbnc(lattice_tree):
+    """Every stored TB of (nc) satisfies (tbnc) to 1e-10 (relative), re-integrated by the contact-event DOP853 at
+    another tolerance; its multipliers come in pairs mu, 1/mu; launched the same way it keeps its energy."""
+    from cradle.integrators import lattice_travelling as LT
+
+    spec, (groups, attrs) = lattice_tree
+    data, _ = groups["/lattice_eps"]
+    states, _ = groups["/lattice_states"]
+    for x, v, T in zip(states["x"], states["v"], data["period"], strict=True):
+        z = np.concatenate([x, v])
+        assert LT.relative_residual(z, LT.flow(z, T, spec.alpha, 1e-13)) <= 1e-10
+    assert max(data["residual"]) <= 1e-10
+    assert attrs["lattice_max_reciprocal_defect"] < 1e-6
+    # the exact TB launched travels at its own speed (in units of the DpS TB's c eps^(alpha-1)): T_d eps^(1-alpha)/T
+    own = np.asarray(data["ansatz_period"]) / np.asarray(data["period"])
+    assert np.max(np.abs(np.asarray(data["exact_speed"]) - own)) < 1e-3
+    assert max(data["exact_energy_drift"]) < 1e-8
+
+
+@pytest.mark.slow
+def test_lattice_tbs_approach_dps(lattice_tree):
+    """The distance to the DpS TB through the ansatz falls with eps (the ansatz's error, of order eps^(alpha-1))."""
+    _, (groups, _) = lattice_tree
+    d = np.asarray(groups["/lattice_eps"][0]["ansatz_distance"])
+    assert np.all(np.diff(d) < 0)

@@ -6,6 +6,11 @@ a(t + P/2) = -a(t) it is also a travelling wave modulo shift, x_n(t + P/2) = x_{
 perturbed guess, with the energy of amplitude a0; an independent integrator confirms the shift-map residual; the
 monodromy modulo shift is symplectic (multipliers in pairs mu, 1/mu) with the trivial pair at 1 (time shift and
 energy); a direct run conserves the energy and stays a travelling wave.
+
+A TB from the DpS ansatz (ring of 16, the c = 0.1 DpS member, eps = 0.005): Newton reaches a shift-map residual below
+1e-10, confirmed at another tolerance of the contact-event DOP853; a direct run over several periods conserves the
+energy and stays a TB; its multipliers come in the symplectic pairs mu, 1/mu; the compiled variational equations
+give the monodromy of scipy's DOP853 over the project's right-hand side.
 """
 from __future__ import annotations
 
@@ -13,7 +18,12 @@ import numpy as np
 import pytest
 
 from cradle.analyses import theorem1
-from cradle.integrators import integrate_lattice, lattice_breathers as LB, lattice_travelling as LT
+from cradle.integrators import (
+    dps_travelling as DT,
+    integrate_lattice,
+    lattice_breathers as LB,
+    lattice_travelling as LT,
+)
 
 ALPHA, A0, N = 1.5, 0.8, 6
 
@@ -64,3 +74,59 @@ def test_direct_run_conserves_energy_and_stays_a_travelling_wave(binary):
     run = LT.direct_run(b, 5)
     assert np.max(run["energy_drift"]) < 1e-11
     assert np.max(run["residual"]) < 1e-9
+
+
+def test_compiled_monodromy_matches_scipy():
+    """The compiled variational equations (systems.lattice_variational) against scipy's DOP853 over the project's
+    right-hand side and Jacobian (lattice_breathers.flow): the same flow and monodromy to the tolerances' level."""
+    T = theorem1.binary_period(A0, ALPHA) / 2.0
+    z = np.concatenate([A0 * (-1.0) ** np.arange(N), np.zeros(N)])
+    z = z + 1e-3 * A0 * np.random.default_rng(2).standard_normal(2 * N)
+    M, zT = LT.monodromy(z, T, ALPHA, 1e-13)
+    x, v, _, Phi = LB.flow(z[:N], z[N:], T, ALPHA, "periodic", np.eye(2 * N), 1e-13)
+    assert np.max(np.abs(zT - np.concatenate([x, v]))) < 1e-11
+    assert np.max(np.abs(M - LT.unshift(Phi))) < 1e-8 * np.max(np.abs(M))
+
+
+@pytest.fixture(scope="module")
+def from_ansatz():
+    from cradle.analyses.travelling_breathers import static_profiles
+
+    phi, _ = static_profiles(16, ALPHA, 1.0)["site"]
+    A, T, theta = DT.start(phi, 0.15, ALPHA)
+    first = DT.newton(A, T, theta, ALPHA, 1.0)
+    source = DT.continue_family(first, [0.1])[0][0]
+    z, T_hop = LT.ansatz_start(source.A, source.T, ALPHA, 0.005)
+    T, _ = LT.launch_period(z, T_hop, ALPHA)
+    return LT.newton(z, T, ALPHA, tol=1e-11, max_iter=20)
+
+
+@pytest.mark.slow
+def test_tb_from_the_ansatz_solves_tbnc(from_ansatz):
+    b = from_ansatz
+    assert b.converged and b.residual <= 1e-10
+    # the same state through the contact-event DOP853 at another tolerance (another step sequence)
+    assert LT.relative_residual(b.z, LT.flow(b.z, b.T, ALPHA, 1e-13)) <= 1e-10
+    # a TB, not the rest state: eps of the ansatz at its amplitude near the start's
+    assert b.eps == pytest.approx(0.005, rel=0.05)
+
+
+@pytest.mark.slow
+def test_tb_from_the_ansatz_direct_run(from_ansatz):
+    """Three periods run one after the other: the energy kept, and after k periods the start shifted by k sites
+    (the residual may grow with k by the integrator's error and the multipliers' departure from the unit circle)."""
+    run = LT.direct_run(from_ansatz, 3)
+    # each period is some 1e4 steps at rtol 1e-14: the energy may move by 1e-11 a period, not grow faster
+    assert np.all(run["energy_drift"][1:] < 1e-11 * run["k"][1:])
+    assert np.max(run["residual"]) < 1e-9
+
+
+@pytest.mark.slow
+def test_tb_from_the_ansatz_multipliers_symplectic(from_ansatz):
+    checks = LB.multiplier_checks(from_ansatz.multipliers)
+    # the monodromy from the variational equations at rtol 1e-13, its multipliers paired to that level
+    assert checks["reciprocal"] < 1e-6
+    assert checks["conjugate"] < 1e-8
+    # four at 1 (time shift and energy; the carrier's phase and the wave action), the others well away
+    d = np.sort(np.abs(from_ansatz.multipliers - 1.0))
+    assert d[3] < 1e-3 < d[4]

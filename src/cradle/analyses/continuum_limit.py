@@ -10,6 +10,9 @@ the solitary wave of the Hertz chain without on-site potential with force expone
 power of eps at which each distance vanishes is fitted over eps <= ``fit_below``
 (:func:`cradle.measurements.continuum.fit_power`); the first-order constants of the limit, (nu - 4)/eps -> 4 ln 2 - 2
 and ln max R -> 1/2 at c = 1, are stored beside. The limits and their derivation: :mod:`cradle.models.continuum`.
+Near p = 2 the breathers are also compared with the compactons of :mod:`cradle.models.compacton`, and DpS travelling
+breathers (:mod:`cradle.integrators.dps_travelling`) at c = K sqrt(eps) / tau0 with the travelling profiles of
+:mod:`cradle.models.travelling_continuum` (:func:`travelling`, group "/travelling").
 """
 from __future__ import annotations
 
@@ -49,7 +52,8 @@ JP_2014 = ("G. James and D. Pelinovsky, Gaussian solitary waves and compactons i
 
 @declared(doc="The continuum limit alpha -> 1+ (issue 37): DpS breathers against the log-NLS Gaussian, solitary "
               "waves of the Hertz chain without on-site potential against the log-KdV Gaussian, the fitted power of "
-              "alpha - 1; the unstable DpS breather perturbed, travelling or pinned against alpha -> "
+              "alpha - 1; the unstable DpS breather perturbed, travelling or pinned against alpha; DpS travelling "
+              "breathers against the boosted Gaussian and compactons -> "
               "results/continuum-limit/continuum-limit.nc and results/figures/continuum-limit.{pdf,png}.")
 class ContinuumLimit:
     dps_eps: list[float] = param([0.5, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001, 5e-4, 3e-4],
@@ -110,6 +114,19 @@ class ContinuumLimit:
                                        "Amplitudes eps of the exact lattice breathers of the stability check.",
                                        maxItems=16, items={"type": "number", "minimum": 1e-3, "maximum": 0.3},
                                        reduced=[0.1, 0.05, 0.02, 0.01, 0.002])
+    tb_eps: list[float] = param([0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002], "The eps = alpha - 1 at which DpS "
+                                "travelling breathers are computed and compared with the continuum's travelling "
+                                "solutions (ring sized by tb_decades: 0.002 takes 200 sites and about a minute); the "
+                                "powers are fitted when at least 4 of them are <= fit_below.", maxItems=12,
+                                items=_EPS, reduced=[0.2, 0.1])
+    tb_boosts: list[float] = param([0.5, 1.0], "Boosts K of the TBs in the log-NLS's units: a phase gradient kappa = "
+                                   "K sqrt(eps) per site, velocity c = K sqrt(eps) / tau0 (increasing).", minItems=1,
+                                   maxItems=6, items={"type": "number", "exclusiveMinimum": 0, "maximum": 3},
+                                   reduced=[1.0])
+    tb_decades: float = param(8.0, "The TBs' ring is as wide as the Gaussian's fall by this many decades on each "
+                              "side, plus 4 sites.", minimum=4, maximum=30)
+    tb_samples: int = param(16, "Instants over one period T of each TB at which its distance to each travelling "
+                            "profile is measured (the largest is kept).", minimum=1, maximum=256)
     thresholds: list[float] = param([1.5, 5.0], "A run travels when its peak moves farther than this (sites) at "
                                     "some time; each threshold gives its own verdicts and crossover.", minItems=1,
                                     maxItems=4, items={"type": "number", "exclusiveMinimum": 0, "maximum": 100})
@@ -119,6 +136,15 @@ class ContinuumLimit:
         if list(self.mobility_alphas) != sorted(set(self.mobility_alphas)):
             out.add(where + ["mobility_alphas"], "must increase strictly (the crossover is read along them)",
                     self.mobility_alphas)
+        if list(self.tb_boosts) != sorted(set(self.tb_boosts)):
+            out.add(where + ["tb_boosts"], "must increase strictly (the family is continued along them)",
+                    self.tb_boosts)
+        if len(set(self.tb_eps)) != len(self.tb_eps):
+            out.add(where + ["tb_eps"], "lists a value twice", self.tb_eps)
+        if self.tb_eps and max(self.tb_boosts) * math.sqrt(max(self.tb_eps)) >= 1.0:
+            out.add(where + ["tb_boosts"], f"times sqrt(max {key_path(where + ['tb_eps'])}) must be < 1 (the "
+                    "phase gradient kappa = K sqrt(eps) of a carrier whose lattice group velocity sin(kappa) / tau0 "
+                    "is c)", self.tb_boosts)
         short = []
         for key in ("dps_eps", "hertz_eps"):
             values = getattr(self, key)
@@ -227,6 +253,42 @@ VARIABLES = {
         "variant": Var(("variant",), "the discretisation: the runs', N doubled, rtol / 10"),
         "displacement": Var(("alpha", "variant"), "largest distance of the peak from its start (sites), largest "
                             "delta"),
+    },
+    "/travelling": {
+        "tb_eps": Var(("tb_eps",), "eps = alpha - 1 of the travelling breathers"),
+        "boost": Var(("boost",), "boost K: phase gradient kappa = K sqrt(eps) per site, c = K sqrt(eps) / tau0"),
+        "model": Var(("model",), "travelling profile (models.travelling_continuum.MODELS): the boosted log-NLS "
+                     "Gaussian and static compactons of forms A, B, C, then each narrowed by the lattice's carrier"),
+        "equation": Var(("equation",), "continuum equation (log-NLS, A, B, C) of the boost residual"),
+        "sites": Var(("tb_eps",), "sites of the ring"),
+        "c": Var(("tb_eps", "boost"), "velocity c = 1/T of the TB (sites per unit tau)"),
+        "kappa": Var(("tb_eps", "boost"), "the boost's phase gradient tau0 c (per site)"),
+        "theta": Var(("tb_eps", "boost"), "phase theta of (tb) of the TB, wrapped into (-pi, pi]"),
+        "theta_boost": Var(("tb_eps", "boost"), "theta of the boosted Gaussian of the same c and amplitude: kappa/2 + "
+                           "nu/(2 kappa) - pi (mod 2 pi)"),
+        "theta_error": Var(("tb_eps", "boost"), "theta - theta_boost, wrapped into (-pi, pi]"),
+        "residual": Var(("tb_eps", "boost"), "shift-map residual max|R| / max|A| of the TB"),
+        "tail": Var(("tb_eps", "boost"), "max |A_n| over the far quarter ring relative to max |A|"),
+        "amplitude": Var(("tb_eps", "boost"), "max |A_n| of the TB (its norm is the unit-amplitude static one's)"),
+        "distance": Var(("model", "tb_eps", "boost"), "largest over one period of the max-norm distance of the "
+                        "envelope B_n / max|B| (global phase fitted) to the travelling profile, phase included"),
+        "distance_modulus": Var(("model", "tb_eps", "boost"), "the same for the moduli |B_n| / max|B| only"),
+        "static_distance": Var(("model", "tb_eps"), "the same measurement on the static site breather (c = 0) on "
+                               "the same ring: the limit c -> 0"),
+        "boost_residual": Var(("equation", "tb_eps", "boost"), "max |residual| / max |U| of the boosted "
+                              "unit-amplitude travelling solution in its equation (exact for log-NLS; the boosted "
+                              "static compacton for A, B, C), at the TB's kappa"),
+        "power": Var(("model", "boost"), "fitted power of eps of the distance (NaN: fewer than 4 eps <= fit_below)"),
+        "power_uncertainty": Var(("model", "boost"), "its uncertainty (the larger of stderr and leave-one-end-out)"),
+        "constant": Var(("model", "boost"), "K of distance ~ K eps^power"),
+        "theta_power": Var(("boost",), "fitted power of eps of |theta_error|"),
+        "theta_power_uncertainty": Var(("boost",), "its uncertainty"),
+    },
+    "/travelling/{k}": {
+        "X": Var(("site",), "sqrt(eps) (n - n_c), n_c the TB's centre at tau = 0"),
+        "envelope": Var(("boost", "site"), "|B_n| / max|B| of the TB at tau = 0"),
+        "X_static": Var(("site",), "sqrt(eps) (n - n_c) of the static site breather"),
+        "static": Var(("site",), "the static site breather's envelope b_n / max b on the same ring"),
     },
     "/claims": GROUP_VARIABLES,
 }
@@ -401,7 +463,8 @@ def compacton_claims(cfits: dict[str, PowerFit]) -> list[Row]:
                                                                      for f in dps) + " (forms A, B, C)",
                     "agrees" if ok else "disagrees",
                     "max-norm distance of the envelope to the compacton of each degenerate form (continuum-limit); "
-                    "the travelling breathers are not compared", "power > 0 beyond 3 uncertainties",
+                    "the travelling breathers: James 2018's row on them (full form)",
+                    "power > 0 beyond 3 uncertainties",
                     "analyses/continuum-limit.md", qualitative=True))
     f = cfits["compacton_hertz"]
     rows.append(Row("James and Pelinovsky 2014", "compactons of the fractional KdV against the Hertz chain's waves",
@@ -411,6 +474,33 @@ def compacton_claims(cfits: dict[str, PowerFit]) -> list[Row]:
                     "max-norm distance of R / max R at c = 1 to the compacton (continuum-limit)",
                     "power > 0 beyond 3 uncertainties", "analyses/continuum-limit.md", qualitative=True))
     return rows
+
+
+def travelling_claims(spec: ContinuumLimit, tb: dict) -> list[Row]:
+    """James 2018's comparison of three continuum models with the TBs as p -> 2+ (qualitative: the abstract prints
+    no number), when the TB distances are fitted (at least 4 tb_eps <= fit_below): agrees when the distance of the
+    TBs to the boosted Gaussian and to each boosted compacton vanishes (fitted power positive beyond three
+    uncertainties) at every boost."""
+    P, U = np.asarray(tb["power"]), np.asarray(tb["power_uncertainty"])
+    if not np.all(np.isfinite(P)):
+        return []
+    from cradle.models import travelling_continuum as TC
+
+    ok = bool(np.all(P - 3 * U > 0))
+    K = list(spec.tb_boosts)[-1]
+    def fits(models: tuple[str, ...]) -> str:
+        return ", ".join(f"{tb['constant'][m, -1]:.3g} (alpha-1)^{P[m, -1]:.3f}"
+                         for m in (TC.MODELS.index(x) for x in models))
+
+    ours = (f"TBs at c = K sqrt(alpha-1) / tau0, K = {', '.join(f'{k:g}' for k in spec.tb_boosts)}; at K = {K:g} "
+            f"distance ~ {fits(('gaussian', 'A', 'B', 'C'))} (boosted Gaussian; boosted compactons A, B, C); "
+            f"narrowed by the lattice's carrier {fits(('gaussian carrier', 'B carrier'))} (Gaussian, B)")
+    return [Row("James 2018", "continuum models against DpS travelling breathers near p = 2",
+                "the log-NLS (Gaussian) and degenerate NLS (compacton) models compared with travelling breathers as "
+                "p -> 2+ (qualitative)", ours, "agrees" if ok else "disagrees",
+                "max-norm distance of the TB's complex envelope over one period to the boosted profiles "
+                "(continuum-limit, /travelling)", "power > 0 beyond 3 uncertainties at every boost",
+                "analyses/continuum-limit.md", qualitative=True)]
 
 
 def lattice_small(spec: ContinuumLimit, say: Log) -> tuple[dict, dict]:
@@ -493,6 +583,105 @@ def compactons(spec: ContinuumLimit, fams: dict[str, list[DpsLimit]], waves: lis
                                             for w, e in zip(waves, he, strict=True)],
                     "half_width": [0.5 * math.pi / K.hertz_kappa(e) for e in he]}, {"eps": he})
     return dps_group, hertz_group, fits
+
+
+#: the boost K of the push that starts each TB family, if no smaller boost is asked for: Newton converges from it at
+#: every eps tried (a push of K = 1 at eps = 0.2 stalls), and the continuation in c goes on from there
+START_BOOST = 0.5
+
+
+def travelling(spec: ContinuumLimit, say: Log) -> dict[str, tuple[dict, dict]]:
+    """DpS travelling breathers near alpha = 1 against the continuum's travelling solutions (groups "/travelling" and
+    "/travelling/eNN"). At each eps of ``tb_eps``: the unit-amplitude static site breather
+    (:func:`cradle.models.continuum.dps_breather` on a ring of ``tb_decades``) pushed by the phase gradient
+    min(K, START_BOOST) sqrt(eps), K the smallest boost (:func:`cradle.integrators.dps_travelling.start`), solved at
+    its own c and continued at its norm to c = K sqrt(eps) / tau0 for every K of ``tb_boosts``; each member's
+    envelope B_n = (-1)^n A_n at ``tb_samples`` instants of one period, against each travelling profile of
+    :func:`cradle.models.travelling_continuum.travelling_profile` centred at its centroid
+    (:func:`cradle.models.dps_travelling.centre`); theta against the boost's (theta)."""
+    from cradle.integrators import dps_travelling as DT, integrate_dps
+    from cradle.measurements.continuum import complex_distance, sup_distance
+    from cradle.models import dps, dps_travelling as M, travelling_continuum as TC
+    from cradle.models.continuum import dps_breather
+
+    es, ks = list(spec.tb_eps), list(spec.tb_boosts)
+    ne, nk, nm = len(es), len(ks), len(TC.MODELS)
+    shape = (ne, nk)
+    out = {key: np.full(shape, np.nan) for key in ("c", "kappa", "theta", "theta_boost", "theta_error", "residual",
+                                                   "tail", "amplitude")}
+    D, Dm = np.full((nm, ne, nk), np.nan), np.full((nm, ne, nk), np.nan)
+    Ds = np.full((nm, ne), np.nan)
+    R = np.full((len(TC.EQUATIONS), ne, nk), np.nan)
+    sites = np.zeros(ne, dtype=np.int64)
+    subs: dict[str, tuple[dict, dict]] = {}
+    for i, e in enumerate(es):
+        alpha = 1.0 + e
+        t0 = dps.tau0(alpha)
+        st = dps_breather(e, "site", spec.tb_decades)
+        N = st.n.size
+        sites[i] = N
+        n = st.n
+        sign = (-1.0) ** n
+        for m_i, model in enumerate(TC.MODELS):
+            Ds[m_i, i] = complex_distance(sign * st.profile, TC.travelling_profile(model, n, M.centre(st.profile), e,
+                                                                                   0.0, t0))
+        targets = [K * math.sqrt(e) / t0 for K in ks]
+        P = float(np.sum(st.profile**2))
+        A, T, th = DT.start(st.profile.astype(complex), min(ks[0], START_BOOST) * math.sqrt(e), alpha)
+        first = DT.newton(A, T, th, alpha, P)
+        if not first.converged:
+            raise RuntimeError(f"continuum-limit: no travelling breather at eps = {e:g} from the pushed breather "
+                               f"(c = {1 / T:.4g}, residual {first.residual:.2g})")
+        fam, last = DT.continue_family(first, targets)
+        if len(fam) < nk:
+            raise RuntimeError(f"continuum-limit: the travelling breathers at eps = {e:g} end near c = {last:.4g} "
+                               f"before c = {targets[-1]:.4g}")
+        env = np.zeros((nk, N))
+        x0 = np.zeros(N)
+        for j, b in enumerate(fam):
+            amp = float(np.max(np.abs(b.A)))
+            kap = TC.boost_kappa(b.c, t0)
+            pred = TC.boost_theta(b.c, t0, TC.nu_gaussian(e, amp))
+            out["c"][i, j], out["kappa"][i, j], out["theta"][i, j] = b.c, kap, TC.wrap(b.theta)
+            out["theta_boost"][i, j], out["theta_error"][i, j] = pred, TC.wrap(b.theta - pred)
+            out["residual"][i, j], out["tail"][i, j], out["amplitude"][i, j] = b.residual, M.tail_amplitude(b.A), amp
+            run = integrate_dps(b.A, np.linspace(0.0, b.T, spec.tb_samples + 1)[:-1], alpha=alpha, rtol=DT.RTOL)
+            for As in run.A:
+                cen = M.centre(As)
+                for m_i, model in enumerate(TC.MODELS):
+                    prof = TC.travelling_profile(model, n, cen, e, b.c, t0)
+                    D[m_i, i, j] = np.fmax(D[m_i, i, j], complex_distance(sign * As, prof))
+                    Dm[m_i, i, j] = np.fmax(Dm[m_i, i, j], sup_distance(np.abs(As), np.abs(prof)))
+            for q, eq in enumerate(TC.EQUATIONS):
+                R[q, i, j] = TC.boost_residual(eq, e, kap)
+            cen = M.centre(b.A)
+            env[j] = np.abs(b.A) / amp
+            if j == 0:
+                x0 = math.sqrt(e) * (((n - cen + N / 2) % N) - N / 2)
+        def row(v: NDArray[np.float64], f: str = ".4g") -> str:
+            return ", ".join(f"{x:{f}}" for x in v)
+
+        g, gc = TC.MODELS.index("gaussian"), TC.MODELS.index("gaussian carrier")
+        say(f"continuum-limit: travelling breathers at eps = {e:g} ({N} sites): c = {row(out['c'][i])}; distance / "
+            f"eps to the boosted Gaussian {row(D[g, i] / e)}, carrier Gaussian {row(D[gc, i] / e)} (static "
+            f"{Ds[g, i] / e:.4g}); theta - theta_boost {row(out['theta_error'][i], '.2g')}")
+        subs[f"/travelling/e{i:02d}"] = ({"X": x0, "envelope": env, "X_static": math.sqrt(e) * (n - st.centre),
+                                          "static": st.envelope / np.max(st.envelope)}, {})
+    fit = {key: np.full((nm, nk), np.nan) for key in ("power", "power_uncertainty", "constant")}
+    tp, tu = np.full(nk, np.nan), np.full(nk, np.nan)
+    if sum(e <= spec.fit_below for e in es) >= 4:
+        for j in range(nk):
+            for m_i in range(nm):
+                f = _fit(es, list(D[m_i, :, j]), spec.fit_below)
+                fit["power"][m_i, j], fit["power_uncertainty"][m_i, j], fit["constant"][m_i, j] = (
+                    f.power, f.uncertainty, f.K)
+            f = _fit(es, list(np.abs(out["theta_error"][:, j])), spec.fit_below)
+            tp[j], tu[j] = f.power, f.uncertainty
+    group = ({**out, "distance": D, "distance_modulus": Dm, "static_distance": Ds, "boost_residual": R,
+              "sites": sites, **fit, "theta_power": tp, "theta_power_uncertainty": tu},
+             {"tb_eps": es, "boost": ks, "model": np.array(TC.MODELS, dtype=object),
+              "equation": np.array(TC.EQUATIONS, dtype=object)})
+    return {"/travelling": group, **subs}
 
 
 def mobility_claim(spec: ContinuumLimit, mob: dict, attrs: dict) -> Row:
@@ -579,7 +768,16 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
     t1 = _time.perf_counter()
     groups["/lattice_small"] = lattice_small(spec, say)
     seconds["lattice_small"] = _time.perf_counter() - t1
+    t1 = _time.perf_counter()
+    tb = travelling(spec, say)
+    seconds["travelling"] = _time.perf_counter() - t1
+    groups.update(tb)
+    variables["/travelling"] = VARIABLES["/travelling"]
+    for sub in tb:
+        if sub != "/travelling":
+            variables[sub] = VARIABLES["/travelling/{k}"]
     table = claims(fits) + [mobility_claim(spec, groups["/mobility"][0], mob_attrs)] + compacton_claims(cfits)
+    table += travelling_claims(spec, tb["/travelling"][0])
     groups["/claims"] = group(table)
     attrs: dict = {"nu_first_order_limit": LOG_NLS_M, "log_amplitude_limit": 0.5, "fit_below": spec.fit_below}
     for key, f in {**fits, **cfits}.items():
@@ -600,6 +798,7 @@ def compute(spec: ContinuumLimit, inputs: dict | None = None, log: Log | None = 
         "dps_site_seconds": seconds["site"], "dps_bond_seconds": seconds["bond"], "hertz_seconds": seconds["hertz"],
         "compactons_seconds": seconds["compactons"], "lattice_stability_seconds": seconds["lattice_stability"],
         "lattice_small_seconds": seconds["lattice_small"],
+        "travelling_seconds": seconds["travelling"],
         "compacton_dps": "b / max b = cos^(2/eps)(kappa (n - n_c)) on |n - n_c| <= pi/(2 kappa), 0 beyond; kappa = "
                          "eps/(1+eps) (A: nu u = 4 g(u) + (g(u))''), eps/sqrt(1+eps) (B: nu u = 4 g(u) + g'(u) u''), "
                          "eps sqrt(2/((2+eps)(1+eps))) (C: nu u = 4 g(u) + g'(u) u'' + g''(u) u'^2/2), u = 2b",

@@ -134,17 +134,25 @@ class TravellingBreathers:
                                    "neighbourhoods of neighbouring members may overlap).", exclusiveMinimum=0,
                                    maximum=0.1, reduced=0.004)
 
-    # exact TBs of the lattice (nc) (issue 37, item 2): section "the lattice's travelling breathers" below
-    lattice: bool = param(False, "Also solve exact TBs of the lattice (nc) from a DpS member's ansatz (groups "
-                          "/lattice, /lattice_states): minutes of CPU, and Newton stalls near 1e-7 so far (docs).")
-    lattice_source: float = param(0.08, "c of the DpS member (one of speeds) whose ansatz starts the lattice's TBs.",
+    # exact TBs of the lattice (nc) (issue 37, items 2 and 3): section "the lattice's travelling breathers" below
+    lattice: bool = param(True, "Also solve exact TBs of the lattice (nc) from a DpS member's ansatz (groups "
+                          "/lattice, /lattice_eps, /lattice_states): minutes of CPU, so in the full form only.",
+                          reduced=False)
+    lattice_N: int = param(16, "Sites of the ring of the lattice's TBs (the DpS member at lattice_source solved on "
+                           "it; on 24 sites Newton stops near 2e-8, docs).", minimum=8, maximum=200)
+    lattice_source: float = param(0.1, "c of the DpS member (one of speeds) whose ansatz starts the lattice's TBs; the "
+                                  "same member launched in (nc) beside the exact TBs (item 3's comparison).",
                                   exclusiveMinimum=0, maximum=2)
-    lattice_eps: float = param(0.005, "eps of the ansatz x_n = 2 eps Re(A_n(eps^(alpha-1) t) e^{it}) that starts "
-                               "the lattice's TBs (the time per site is T_d eps^(1-alpha)).", exclusiveMinimum=0,
-                               maximum=0.5)
+    lattice_eps: list[float] = param([0.005, 0.003, 0.002, 0.001],
+                                     "eps of the ansatz x_n = 2 eps Re(A_n(eps^(alpha-1) t) e^{it}) from which an "
+                                     "exact TB is solved at each (decreasing; the time per site is T_d "
+                                     "eps^(1-alpha)); the distance to the DpS TB is fitted against them.",
+                                     minItems=3, maxItems=12,
+                                     items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.5})
     lattice_steps: list[float] = param([-0.02, -0.01, 0.0, 0.01, 0.02],
                                        "Relative changes s of the lattice's velocity: members at c = c0 (1 + s), c0 "
-                                       "the first solve's (increasing, one of them 0).", minItems=1, maxItems=40,
+                                       "the velocity of the TB at the first lattice_eps (increasing, one of them 0).",
+                                       minItems=1, maxItems=40,
                                        items={"type": "number", "minimum": -0.5, "maximum": 0.5,
                                               "description": "One relative change of the lattice TB's velocity."},
                                        reduced=[0.0, 0.01])
@@ -162,6 +170,8 @@ class TravellingBreathers:
         if any(y <= x for x, y in itertools.pairwise(self.lattice_steps)) or 0.0 not in self.lattice_steps:
             out.add(where + ["lattice_steps"], "must be strictly increasing and hold 0 (the first solve)",
                     self.lattice_steps)
+        if any(y >= x for x, y in itertools.pairwise(self.lattice_eps)):
+            out.add(where + ["lattice_eps"], "must be strictly decreasing", self.lattice_eps)
         if self.N in self.check_N or len(set(self.check_N)) < len(self.check_N):
             out.add(where + ["check_N"], f"must be distinct rings other than N = {self.N} (they check the verdicts "
                     "against N)", self.check_N)
@@ -314,67 +324,181 @@ def verdict_changes(c: NDArray[np.float64], unstable: NDArray[np.bool_]) -> list
 # Issue 37, item 2: exact TBs of (nc), x_n(t + T) = x_{n-1}(t), started from a DpS member through the ansatz
 # (cradle.integrators.lattice_travelling); kept apart from the DpS family above.
 
-#: trivial multipliers modulo shift of a lattice TB: the time shift, in a Jordan block with the energy
-LATTICE_TRIVIAL = 2
+#: multipliers modulo shift of a lattice TB at 1: the time shift in a Jordan block with the energy, and the carrier's
+#: phase (DpS's phase symmetry, broken weakly in (nc)) in one with the near-conserved wave action
+LATTICE_TRIVIAL = 4
 
 
-def lattice_family(spec: TravellingBreathers, source: TravellingBreather,
-                   log: Log | None = None) -> tuple[list[LatticeTB], dict]:
-    """The lattice's TBs at c = c0 (1 + s), s in ``lattice_steps``: the ansatz of the DpS member ``source`` at
-    ``lattice_eps`` run by (nc) for its time per site T_d eps^(1-alpha); the period of the first solve is the time
-    when the run comes closest to the shifted start (:func:`LT.launch_period`), c0 = 1/T; the others by continuation."""
+def lattice_source(spec: TravellingBreathers, fam: list[TravellingBreather]) -> TravellingBreather:
+    """The DpS member at ``lattice_source`` on the ring of ``lattice_N``: from the family when that is its ring, else
+    solved on it as :func:`family` starts (the pushed static breather) and continued to that c."""
+    from cradle.integrators import dps_travelling as DT
+
+    if spec.lattice_N == spec.N:
+        return fam[int(np.argmin([abs(b.c - spec.lattice_source) for b in fam]))]
+    phi, _ = static_profiles(spec.lattice_N, spec.alpha, spec.norm)["site"]
+    A, T, theta = DT.start(phi, spec.kick, spec.alpha)
+    first = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=spec.rtol)
+    members, _ = DT.continue_family(first, [spec.lattice_source], spec.newton_tol, spec.rtol)
+    if not first.converged or not members:
+        raise RuntimeError(f"lattice travelling breathers: no DpS TB at c = {spec.lattice_source} on the ring of "
+                           f"{spec.lattice_N}")
+    return members[0]
+
+
+def lattice_tb(spec: TravellingBreathers, source: TravellingBreather, eps: float,
+               log: Log | None = None) -> tuple[LatticeTB, dict]:
+    """The exact TB of (nc) from the ansatz of the DpS member ``source`` at ``eps``: the ansatz run by (nc) for its time
+    per site T_d eps^(1-alpha); the period T of the solve is the time when the run comes closest to the shifted start
+    (:func:`LT.launch_period`: the lattice breather is slower than DpS's, issue 37 item 3)."""
     from cradle.integrators import lattice_travelling as LT
 
-    z, T_hop = LT.ansatz_start(source.A, source.T, spec.alpha, spec.lattice_eps)
+    z, T_hop = LT.ansatz_start(source.A, source.T, spec.alpha, eps)
     T, start_res = LT.launch_period(z, T_hop, spec.alpha)
-    first = LT.newton(z, T, spec.alpha, tol=spec.newton_tol, max_iter=20, rtol=spec.rtol, log=log)
-    if not first.converged:
-        raise RuntimeError(f"lattice travelling breathers: no TB from the ansatz of c = {source.c:.4g} at eps = "
-                           f"{spec.lattice_eps} (residual {first.residual:.3g} after {first.iterations} iterations)")
-    s = np.asarray(spec.lattice_steps, float)
-    cs = first.c * (1.0 + s)
-    down, _ = LT.continue_family(first, cs[s < 0][::-1], spec.newton_tol, spec.rtol, log=log)
-    up, _ = LT.continue_family(first, cs[s >= 0], spec.newton_tol, spec.rtol, log=log)
-    info = {"lattice_T_ansatz_start": T_hop, "lattice_T_first": T, "lattice_start_residual": start_res,
-            "lattice_first_iterations": first.iterations}
-    run = LT.direct_run(first, spec.lattice_periods, spec.rtol)
-    info |= {"lattice_direct_energy_drift": float(np.max(run["energy_drift"])),
-             "lattice_direct_max_residual": float(np.max(run["residual"]))}
-    return down[::-1] + up, info
+    b = LT.newton(z, T, spec.alpha, tol=spec.newton_tol, max_iter=20, log=log)
+    if not b.converged:
+        raise RuntimeError(f"lattice travelling breathers: no TB from the ansatz of c = {source.c:.4g} at eps = {eps} "
+                           f"(residual {b.residual:.3g} after {b.iterations} iterations)")
+    return b, {"T_hop": T_hop, "start_residual": start_res}
+
+
+def matched_dps(spec: TravellingBreathers, source: TravellingBreather, b: LatticeTB) -> TravellingBreather:
+    """The DpS TB at the lattice TB's own parameters through the ansatz: norm ``spec.norm``, period
+    T_d = T eps_b^(alpha-1), eps_b = :attr:`LatticeTB.eps` / sqrt(norm) (continued from ``source``)."""
+    from cradle.integrators import dps_travelling as DT
+
+    eps_b = b.eps / math.sqrt(spec.norm)
+    c_d = 1.0 / (b.T * eps_b ** (spec.alpha - 1.0))
+    members, _ = DT.continue_family(source, [c_d], spec.newton_tol, spec.rtol)
+    if not members:
+        raise RuntimeError(f"lattice travelling breathers: no DpS TB at c = {c_d:.6g} (the lattice TB's through the "
+                           "ansatz)")
+    return members[0]
+
+
+def launched_pair(spec: TravellingBreathers, source: TravellingBreather, b: LatticeTB, eps: float) -> dict:
+    """Item 3's comparison at ``eps``: the DpS member ``source`` launched in (nc) through (ansatz) and the exact TB
+    ``b`` launched the same way (its N beads on the ring of ``motion_ring``, centred at N/2, zeros elsewhere), both run
+    by (nc) (srkn6c) over the lattice time of ``motion_sites`` DpS periods and measured as in :func:`motion`: speeds in
+    units of the DpS TB's c eps^(alpha-1), the radiation at the end."""
+    from cradle.integrators import integrate_lattice
+    from cradle.measurements import breather_motion as BM
+    from cradle.models import tb_launch
+
+    al, S, per = spec.alpha, spec.motion_sites, spec.motion_samples
+    s = np.linspace(0.0, float(S), S * per + 1)
+    t = s * source.T / eps ** (al - 1.0)
+    ini = tb_launch.launch(source.A, eps, al, spec.motion_ring)
+    xi = tb_launch.embedded(b.envelope, spec.motion_ring)
+    out: dict = {}
+    for key, (x0, v0) in {"dps": (ini.x0, ini.v0), "exact": (2.0 * xi.real, -2.0 * xi.imag)}.items():
+        sol = integrate_lattice(x0, v0, t, alpha=al)
+        e = BM.energy_density(sol.x, sol.v, al)
+        p = BM.track(e, MOTION_CORE)
+        rad = BM.radiation(e, p, spec.motion_window)
+        out |= {f"{key}_speed": BM.velocity(s, p), f"{key}_radiation": float(rad[-1]),
+                f"{key}_radiation_max": float(np.max(rad)), f"{key}_energy_drift": float(sol.energy_drift),
+                f"{key}_distance": p - p[0]}
+    out["s"] = s
+    return out
 
 
 def lattice_groups(spec: TravellingBreathers, fam: list[TravellingBreather],
                    log: Log | None = None) -> tuple[dict, dict]:
-    """The groups /lattice and /lattice_states of the file and their attributes."""
+    """The groups /lattice (the continuation in c at the first of ``lattice_eps``), /lattice_eps (one exact TB at
+    eps: residual, tail, multipliers, distance to the DpS TB through the ansatz, and item 3's launched pair),
+    /lattice_states and /lattice_motion, and their attributes (prefixed ``lattice_``)."""
     from cradle.integrators import lattice_breathers as LB, lattice_travelling as LT
     from cradle.models import dps_travelling as M
 
-    source = fam[int(np.argmin([abs(b.c - spec.lattice_source) for b in fam]))]
-    members, info = lattice_family(spec, source, log)
-    ver = [verdict(b, spec.stability_threshold, LATTICE_TRIVIAL) for b in members]
-    dist = [LT.ansatz_distance(b, source.A, source.T) for b in members]
-    c = np.array([b.c for b in members])
-    N = members[0].z.size // 2
+    t0 = _time.process_time()
+    say = log or (lambda *a: None)
+    source = lattice_source(spec, fam)
+    tbs, starts, dist, dps_m, pairs = [], [], [], [], []
+    for eps in spec.lattice_eps:
+        b, info = lattice_tb(spec, source, eps, log)
+        d = matched_dps(spec, source, b)
+        tbs.append(b)
+        starts.append(info)
+        dps_m.append(d)
+        dist.append(LT.ansatz_distance(b, d.A, d.T))
+        pairs.append(launched_pair(spec, source, b, eps))
+        say(f"travelling-breathers: lattice TB from eps = {eps:g}: T = {b.T:.10g} (ansatz {info['T_hop']:.6g}), "
+            f"eps_b = {b.eps:.6g}, residual {b.residual:.2g}, {b.iterations} iterations, distance to DpS "
+            f"{dist[-1]['distance']:.3g}")
+    ver = [verdict(b, spec.stability_threshold, LATTICE_TRIVIAL) for b in tbs]
+    eps_b = np.array([b.eps for b in tbs]) / math.sqrt(spec.norm)
+    distance = np.array([x["distance"] for x in dist])
+    fit, cov = np.polyfit(np.log(eps_b), np.log(distance), 1, cov=True)
+    # the continuation in c from the first TB
+    first = tbs[0]
+    steps = np.asarray(spec.lattice_steps, float)
+    cs = first.c * (1.0 + steps)
+    # steps halved down to a tenth of the grid's (the amplitude moves some 30 times faster than c along the family)
+    least = 0.1 * float(np.min(np.diff(steps))) if steps.size > 1 else 0.001
+    down, _ = LT.continue_family(first, cs[steps < 0][::-1], spec.newton_tol, min_step=least, log=log)
+    up, _ = LT.continue_family(first, cs[steps > 0], spec.newton_tol, min_step=least, log=log)
+    family = down[::-1] + [first] + up
+    fver = [verdict(b, spec.stability_threshold, LATTICE_TRIVIAL) for b in family]
+    run = LT.direct_run(first, spec.lattice_periods)
+    N = first.z.size // 2
+    c_f = np.array([b.c for b in family])
     groups = {
-        "/lattice": ({"period": 1.0 / c, "eps": [d["eps"] for d in dist], "energy": [b.energy for b in members],
-                      "residual": [b.residual for b in members], "tail": [M.tail_amplitude(b.envelope)
-                                                                         for b in members],
-                      "trivial_defect": [v[0] for v in ver], "growth_rate": [v[1] for v in ver],
-                      "unstable": [int(v[2]) for v in ver],
-                      "reciprocal_defect": [LB.multiplier_checks(b.multipliers)["reciprocal"] for b in members],
-                      "ansatz_distance": [d["distance"] for d in dist], "ansatz_period": [d["T_ansatz"] for d in dist]},
-                     {"c_lattice": c}),
-        "/lattice_states": ({"x": np.array([b.z[:N] for b in members]), "v": np.array([b.z[N:] for b in members]),
-                             "mu_re": np.array([b.multipliers.real for b in members]),
-                             "mu_im": np.array([b.multipliers.imag for b in members]),
+        "/lattice": ({"period": 1.0 / c_f, "eps": [b.eps / math.sqrt(spec.norm) for b in family],
+                      "energy": [b.energy for b in family], "residual": [b.residual for b in family],
+                      "tail": [M.tail_amplitude(b.envelope) for b in family],
+                      "trivial_defect": [v[0] for v in fver], "growth_rate": [v[1] for v in fver],
+                      "unstable": [int(v[2]) for v in fver],
+                      "reciprocal_defect": [LB.multiplier_checks(b.multipliers)["reciprocal"] for b in family],
+                      "smallest_singular": [b.smallest_singular for b in family]},
+                     {"c_lattice": c_f}),
+        "/lattice_eps": ({"period": [b.T for b in tbs], "c_tb": [b.c for b in tbs], "eps_tb": eps_b,
+                          "ansatz_period": [x["T_hop"] for x in starts],
+                          "start_residual": [x["start_residual"] for x in starts],
+                          "residual": [b.residual for b in tbs], "iterations": [b.iterations for b in tbs],
+                          "energy": [b.energy for b in tbs], "tail": [M.tail_amplitude(b.envelope) for b in tbs],
+                          "trivial_defect": [v[0] for v in ver], "growth_rate": [v[1] for v in ver],
+                          "unstable": [int(v[2]) for v in ver],
+                          "reciprocal_defect": [LB.multiplier_checks(b.multipliers)["reciprocal"] for b in tbs],
+                          "smallest_singular": [b.smallest_singular for b in tbs],
+                          "dps_c": [d.c for d in dps_m],
+                          "resonance": [math.remainder(d.theta + b.T, 2.0 * math.pi) for b, d in zip(tbs, dps_m,
+                                                                                                   strict=True)],
+                          "ansatz_distance": distance,
+                          **{k: [p[k] for p in pairs] for k in ("dps_speed", "exact_speed", "dps_radiation",
+                                                                "exact_radiation", "exact_radiation_max",
+                                                                "dps_energy_drift", "exact_energy_drift")}},
+                         {"eps_lattice": list(spec.lattice_eps)}),
+        "/lattice_states": ({"x": np.array([b.z[:N] for b in tbs]), "v": np.array([b.z[N:] for b in tbs]),
+                             "mu_re": np.array([b.multipliers.real for b in tbs]),
+                             "mu_im": np.array([b.multipliers.imag for b in tbs]),
+                             "dps_A_re": np.array([d.A.real for d in dps_m]),
+                             "dps_A_im": np.array([d.A.imag for d in dps_m]),
                              "source_A_re": source.A.real, "source_A_im": source.A.imag},
-                            {"c_lattice": c, "site": np.arange(N), "mode": np.arange(2 * N)}),
+                            {"eps_lattice": list(spec.lattice_eps), "site": np.arange(N), "mode": np.arange(2 * N)}),
     }
-    info |= {"lattice_source_c": source.c, "lattice_eps": spec.lattice_eps,
-             "lattice_max_residual": float(max(b.residual for b in members)),
-             "lattice_max_trivial_defect": float(max(v[0] for v in ver)),
-             "lattice_n_unstable": int(sum(v[2] for v in ver))}
-    return groups, info
+    groups["/lattice_motion"] = ({"dps_distance": np.array([p["dps_distance"] for p in pairs]),
+                                  "exact_distance": np.array([p["exact_distance"] for p in pairs])},
+                                 {"eps_lattice": list(spec.lattice_eps), "s_lattice": pairs[0]["s"]})
+    attrs = {"lattice_source_c": source.c,
+             "lattice_max_residual": float(max(b.residual for b in tbs + family)),
+             "lattice_max_trivial_defect": float(max(v[0] for v in ver + fver)),
+             "lattice_max_reciprocal_defect": float(max(LB.multiplier_checks(b.multipliers)["reciprocal"]
+                                                        for b in tbs + family)),
+             "lattice_n_unstable": int(sum(v[2] for v in ver + fver)),
+             "lattice_distance_power": float(fit[0]), "lattice_distance_power_error": float(math.sqrt(cov[0, 0])),
+             "lattice_distance_power_expected": spec.alpha - 1.0,
+             "lattice_c_reached": f"{c_f[0]:.8g} to {c_f[-1]:.8g} ({len(family)} of {len(cs)} members)",
+             "lattice_direct_periods": spec.lattice_periods,
+             "lattice_direct_energy_drift": float(np.max(run["energy_drift"])),
+             "lattice_direct_max_residual": float(np.max(run["residual"])),
+             "lattice_method": "Gauss-Newton on R = S^{-1} Phi_T(z) - z at fixed T with the time-shift phase "
+                               "condition; Phi_T by DOP853 with contact events (rtol "
+                               f"{LT.RTOL:g}), the Jacobian by the variational equations (rtol {LT.JAC_RTOL:g}); the "
+                               "near-symmetry's direction left out of the step (truncated least squares) until the "
+                               "residual is what it alone can remove",
+             "lattice_cpu_s": _time.process_time() - t0}
+    return groups, attrs
 
 
 # ----------------------------------------------------------------- TBs in motion (issue 37, item 3)
@@ -465,8 +589,8 @@ def motion(spec: TravellingBreathers, b: TravellingBreather, log: Log) -> tuple[
                             "largest eps is left out",
         "motion_max_energy_drift": float(max(rows["energy_drift"])),
         "motion_speed_loss_max": float(np.max(np.abs(loss))),
-        "motion_exact_tb": "open: no exact travelling breather of (nc) in this analysis yet (issue 37, item 2); the "
-                           "comparison of the launched DpS TB with the exact one launched the same way is not made",
+        "motion_exact_tb": "the exact TBs of (nc) launched the same way beside the DpS member (its own ring and eps): "
+                           "/lattice_eps (dps_speed, exact_speed, *_radiation), with the key lattice (the full form)",
         "motion_cpu_s": _time.process_time() - t0,
     })
     data = {"speed_ratio": ratio, "speed_early": rows["speed_early"], "speed_late": rows["speed_late"],
@@ -826,32 +950,73 @@ VARIABLES = {
         "residual": Var(("k",), "max_n |A_n(kT) - e^{i k theta} A_{n-k}(0)| / max |A|"),
     },
     "/lattice": {
-        "c_lattice": Var(("c_lattice",), "velocity c = 1/T of the lattice's TB (sites per unit t)"),
+        "c_lattice": Var(("c_lattice",), "velocity c = 1/T of the lattice's TB (sites per unit t), the continuation "
+                         "from the TB at the first lattice_eps"),
         "period": Var(("c_lattice",), "period T of (tbnc): x_n(t + T) = x_{n-1}(t)"),
-        "eps": Var(("c_lattice",), "eps of the ansatz at the TB's amplitude: sqrt(sum |xi_n|^2 / sum |A_n|^2)"),
+        "eps": Var(("c_lattice",), "eps of the ansatz at the TB's amplitude: sqrt(sum |xi_n|^2 / norm)"),
         "energy": Var(("c_lattice",), "energy (ham) of the lattice's TB"),
         "residual": Var(("c_lattice",), "shift-map residual max |S^{-1} Phi_T(z) - z| / max |z|"),
         "tail": Var(("c_lattice",), "max |xi_n| on the quarter ring farthest from the centre / max |xi_n|, "
                     "xi_n = (x_n - i v_n)/2"),
-        "trivial_defect": Var(("c_lattice",), "largest |mu - 1| of the two trivial multipliers modulo shift"),
-        "growth_rate": Var(("c_lattice",), "ln max |mu| / T over the non-trivial multipliers modulo shift "
-                           "(per unit t)"),
+        "trivial_defect": Var(("c_lattice",), "largest |mu - 1| of the four multipliers modulo shift nearest 1 (time "
+                              "shift and energy; the carrier's phase and the wave action)"),
+        "growth_rate": Var(("c_lattice",), "ln max |mu| / T over the other multipliers modulo shift (per unit t)"),
         "unstable": Var(("c_lattice",), "1 if growth_rate > stability_threshold"),
         "reciprocal_defect": Var(("c_lattice",), "max over mu of the distance of 1/mu to the nearest multiplier"),
-        "ansatz_distance": Var(("c_lattice",), "min over the DpS time, site shift and phase of max |z - z_ansatz| / "
-                               "max |z| (the source DpS TB through the ansatz)"),
-        "ansatz_period": Var(("c_lattice",), "time per site T_d eps^(1-alpha) that the ansatz gives at this eps"),
+        "smallest_singular": Var(("c_lattice",), "smallest singular value of the bordered Jacobian over its largest "
+                                 "(the near-symmetry's direction)"),
+    },
+    "/lattice_eps": {
+        "eps_lattice": Var(("eps_lattice",), "eps of the ansatz that started the solve (lattice_eps)"),
+        "period": Var(("eps_lattice",), "period T of (tbnc) of the exact TB"),
+        "c_tb": Var(("eps_lattice",), "its velocity 1/T (sites per unit t)"),
+        "eps_tb": Var(("eps_lattice",), "eps at the TB's own amplitude: sqrt(sum |xi_n|^2 / norm)"),
+        "ansatz_period": Var(("eps_lattice",), "time per site T_d eps^(1-alpha) of the DpS member at eps_lattice"),
+        "start_residual": Var(("eps_lattice",), "shift-map residual of the ansatz at T (the closest return)"),
+        "residual": Var(("eps_lattice",), "shift-map residual max |S^{-1} Phi_T(z) - z| / max |z| of the TB"),
+        "iterations": Var(("eps_lattice",), "Newton iterations from the ansatz"),
+        "energy": Var(("eps_lattice",), "energy (ham) of the TB"),
+        "tail": Var(("eps_lattice",), "max |xi_n| on the far quarter ring / max |xi_n|"),
+        "trivial_defect": Var(("eps_lattice",), "largest |mu - 1| of the four multipliers modulo shift nearest 1"),
+        "growth_rate": Var(("eps_lattice",), "ln max |mu| / T over the other multipliers modulo shift (per unit t)"),
+        "unstable": Var(("eps_lattice",), "1 if growth_rate > stability_threshold"),
+        "reciprocal_defect": Var(("eps_lattice",), "max over mu of the distance of 1/mu to the nearest multiplier"),
+        "smallest_singular": Var(("eps_lattice",), "smallest singular value of the bordered Jacobian over its "
+                                 "largest"),
+        "dps_c": Var(("eps_lattice",), "velocity of the DpS TB through the ansatz: 1 / (T eps_tb^(alpha-1))"),
+        "resonance": Var(("eps_lattice",), "theta + T of that DpS TB, modulo 2 pi into (-pi, pi] (0: the ansatz's "
+                         "resonance)"),
+        "ansatz_distance": Var(("eps_lattice",), "min over the DpS time, site shift and phase of max |z - "
+                               "z_ansatz(A, eps_tb)| / max |z|, A that DpS TB"),
+        "dps_speed": Var(("eps_lattice",), "the DpS member launched in (nc) through (ansatz): speed over c "
+                         "eps^(alpha-1)"),
+        "exact_speed": Var(("eps_lattice",), "the exact TB launched the same way: speed over c eps^(alpha-1)"),
+        "dps_radiation": Var(("eps_lattice",), "the DpS launch: energy outside the window / total, at the end"),
+        "exact_radiation": Var(("eps_lattice",), "the exact TB's launch: energy outside the window / total, at the "
+                               "end"),
+        "exact_radiation_max": Var(("eps_lattice",), "the exact TB's launch: largest such fraction over the run"),
+        "dps_energy_drift": Var(("eps_lattice",), "the DpS launch: max |H(t) - H(0)| / H(0)"),
+        "exact_energy_drift": Var(("eps_lattice",), "the exact TB's launch: max |H(t) - H(0)| / H(0)"),
     },
     "/lattice_states": {
-        "c_lattice": Var(("c_lattice",), "velocity c = 1/T of the lattice's TB (sites per unit t)"),
+        "eps_lattice": Var(("eps_lattice",), "eps of the ansatz that started the solve (lattice_eps)"),
         "site": Var(("site",), "bead index n on the ring"),
         "mode": Var(("mode",), "index of a Floquet multiplier modulo shift"),
-        "x": Var(("c_lattice", "site"), "x_n(0) of the lattice's TB"),
-        "v": Var(("c_lattice", "site"), "v_n(0) of the lattice's TB"),
-        "mu_re": Var(("c_lattice", "mode"), "real part of a multiplier of S^{-1} DPhi_T"),
-        "mu_im": Var(("c_lattice", "mode"), "imaginary part of a multiplier of S^{-1} DPhi_T"),
+        "x": Var(("eps_lattice", "site"), "x_n(0) of the lattice's TB"),
+        "v": Var(("eps_lattice", "site"), "v_n(0) of the lattice's TB"),
+        "mu_re": Var(("eps_lattice", "mode"), "real part of a multiplier of S^{-1} DPhi_T"),
+        "mu_im": Var(("eps_lattice", "mode"), "imaginary part of a multiplier of S^{-1} DPhi_T"),
+        "dps_A_re": Var(("eps_lattice", "site"), "Re A_n(0) of the DpS TB through the ansatz (dps_c, the norm)"),
+        "dps_A_im": Var(("eps_lattice", "site"), "Im A_n(0) of that DpS TB"),
         "source_A_re": Var(("site",), "Re A_n(0) of the DpS TB whose ansatz started the lattice's TBs"),
         "source_A_im": Var(("site",), "Im A_n(0) of the DpS TB whose ansatz started the lattice's TBs"),
+    },
+    "/lattice_motion": {
+        "eps_lattice": Var(("eps_lattice",), "eps of the launch"),
+        "s_lattice": Var(("s_lattice",), "tau / T of the DpS member (the lattice time t = s T / eps^(alpha-1))"),
+        "dps_distance": Var(("eps_lattice", "s_lattice"), "the DpS member launched in (nc): position minus start"),
+        "exact_distance": Var(("eps_lattice", "s_lattice"), "the exact TB launched the same way: position minus "
+                              "start"),
     },
     "/motion": {
         "eps": Var(("eps",), "small parameter eps of (ansatz) of the lattice run (tau = eps^(alpha-1) t)"),

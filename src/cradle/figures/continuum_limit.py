@@ -16,7 +16,14 @@ against the Gaussian and the three compactons of :mod:`cradle.models.compacton`,
 (k) the distance of the site breathers and the Hertz waves to the Gaussians and to the compactons, divided by
 alpha - 1. The lattice: (l) sigma / lambda^2 of the pinning mode of the exact site breather of (nc) against its
 amplitude (1: DpS; below 0: pinned, oscillating; crosses: Newton not converged), with the outcome of the
-small-amplitude lattice runs (full form) as triangles below.
+small-amplitude lattice runs (full form) as triangles below. The travelling breathers, a fifth row when the file
+holds them (group /travelling): (m) the departure of a TB's envelope |B_n| / max|B| from e^{-X^2} (circles) and from
+the carrier-corrected Gaussian of :mod:`cradle.models.travelling_continuum` (crosses) at the eps nearest 0.1, against
+the static breather's departure from e^{-X^2} (line): the crosses fall on the line; (n) the distances of the TBs at
+the largest boost to the boosted Gaussian and compactons (circles) and to the same narrowed by the lattice's carrier
+(crosses), divided by eps, against the static breather's (dotted), with the fitted powers; (o) the TBs' theta
+against the boosted Gaussian's, and the residual of the boosted compacton in form (B) (its Galilean defect), against
+eps.
 """
 from __future__ import annotations
 
@@ -80,7 +87,8 @@ def _departures(ax: Any, fams: list[tuple[str, list[tuple[float, Any]]]], xname:
 
 def draw(tree: AnalysisTree) -> Figure:
     """The panels above."""
-    fig, ax = figure(4, 3, width=14.0, height=16.0)
+    travelling = "travelling" in tree.children and tree["travelling"]["tb_eps"].size > 0
+    fig, ax = figure(5, 3, width=14.0, height=20.0) if travelling else figure(4, 3, width=14.0, height=16.0)
     site, bond, hertz = _members(tree, "dps_site"), _members(tree, "dps_bond"), _members(tree, "hertz")
 
     a = ax[0, 0]
@@ -145,7 +153,94 @@ def draw(tree: AnalysisTree) -> Figure:
     _mobility(ax[2], tree)
     _compactons(ax[3, 0], ax[3, 1], tree, site)
     _stability(ax[3, 2], tree)
+    if travelling:
+        _travelling(ax[4], tree)
     return fig
+
+
+_MODEL_STYLE = {"gaussian": ("C0", "Gaussian"), "A": ("C1", "compacton (A)"), "B": ("C2", "compacton (B)"),
+                "C": ("C4", "compacton (C)")}
+
+
+def _travelling(ax: Any, tree: AnalysisTree) -> None:
+    """(m) the TB's envelope against the Gaussian at the eps nearest 0.1, (n) the distances of the TBs to the
+    travelling profiles over eps, (o) theta against the boost's and the boost residual of the compactons."""
+    tb = tree["travelling"]
+    eps = np.asarray(tb["tb_eps"].values)
+    K = np.asarray(tb["boost"].values)
+    kap = np.asarray(tb["kappa"].values)
+    c = np.asarray(tb["c"].values)
+    i = int(np.argmin(np.abs(np.log(eps / 0.1))))
+    e = float(eps[i])
+    g = tree[f"travelling/e{i:02d}"]
+    m = ax[0]
+    lim = 3.0
+    Xs, st = np.asarray(g["X_static"].values), np.asarray(g["static"].values)
+    keep = np.abs(Xs) <= lim
+    o = np.argsort(Xs[keep])
+    m.plot(Xs[keep][o], (st[keep][o] - np.exp(-Xs[keep][o] ** 2)) / e, "k-", lw=1.2,
+           label="static breather $-\\ e^{-X^2}$ ($c = 0$)")
+    X, env = np.asarray(g["X"].values), np.asarray(g["envelope"].values)
+    keep = np.abs(X) <= lim
+    o = np.argsort(X[keep])
+    Xk = X[keep][o]
+    for j, k in enumerate(K):
+        m.plot(Xk, (env[j][keep][o] - np.exp(-Xk**2)) / e, "o", ms=3.5, mfc="none", color=f"C{j + 1}",
+               label=f"TB $-\\ e^{{-X^2}}$, $K$ = {k:g} ($c$ = {c[i, j]:.3g})")
+        # the carrier-corrected Gaussian exp(-a (n - n_c)^2) in closed form (models.travelling_continuum.carrier_width)
+        kl = np.arcsin(np.minimum(1.0, kap[i, j]))
+        a = (1.0 + np.cos(kl)) / (2.0 * np.cos(kl))
+        m.plot(Xk, (env[j][keep][o] - np.exp(-a * Xk**2)) / e, "x", ms=4.5, color=f"C{j + 1}",
+               label=f"TB $-$ carrier Gaussian, $K$ = {k:g}")
+    m.axhline(0.0, color="0.6", lw=0.6)
+    lo, hi = m.get_ylim()
+    m.set_ylim(lo, hi + 0.9 * (hi - lo))   # the key above the curves
+    m.set_xlabel("$X = \\sqrt{\\alpha - 1}\\,(n - n_c)$")
+    m.set_ylabel("departure of $|B_n|/\\max|B|$ / $(\\alpha - 1)$")
+    m.set_title(f"(m) travelling breathers' envelopes, $\\alpha - 1$ = {e:g}", fontsize=9)
+    m.legend(fontsize=6.5, loc="upper center", ncol=2)
+
+    n = ax[1]
+    D = np.asarray(tb["distance"].values)
+    Ds = np.asarray(tb["static_distance"].values)
+    P = np.asarray(tb["power"].values)
+    models = [str(x) for x in np.asarray(tb["model"].values)]
+    for base, (col, label) in _MODEL_STYLE.items():
+        b_, c_ = models.index(base), models.index(base + " carrier")
+        fitted = f", powers {P[b_, -1]:.3f}, {P[c_, -1]:.3f}" if np.isfinite(P[b_, -1]) else ""
+        n.loglog(eps, D[b_, :, -1] / eps, "o-", color=col, ms=3.5, lw=1.0, label=f"{label}{fitted}")
+        n.loglog(eps, D[c_, :, -1] / eps, "x--", color=col, ms=5, lw=0.9)
+        n.loglog(eps, Ds[b_] / eps, ":", color=col, lw=1.2)
+    n.plot([], [], "ko-", ms=3.5, lw=1.0, label=f"TB ($K$ = {K[-1]:g}) to the boosted profile")
+    n.plot([], [], "kx--", ms=5, lw=0.9, label="TB to the profile narrowed by the carrier")
+    n.plot([], [], "k:", lw=1.2, label="static breather ($c = 0$)")
+    n.set_ylim(0.01, 20.0)   # room above the curves for the key
+    n.set_xlim(eps.min() / 1.5, eps.max() * 1.5)
+    n.set_xlabel("$\\alpha - 1$")
+    n.set_ylabel("distance / $(\\alpha - 1)$ (phase included)")
+    n.set_title("(n) TBs against the travelling profiles", fontsize=9)
+    n.legend(fontsize=6, loc="upper center", ncol=2)
+
+    t = ax[2]
+    err = np.abs(np.asarray(tb["theta_error"].values))
+    tp = np.asarray(tb["theta_power"].values)
+    R = np.asarray(tb["boost_residual"].values)
+    eqs = [str(q) for q in np.asarray(tb["equation"].values)]
+    for j, k in enumerate(K):
+        fitted = f", power {tp[j]:.2f}" if np.isfinite(tp[j]) else ""
+        t.loglog(eps, err[:, j], "o-", color=f"C{j + 1}", ms=3.5, lw=1.0,
+                 label=f"$|\\theta - \\theta_{{boost}}|$, $K$ = {k:g}{fitted}")
+        b = eqs.index("B")
+        t.loglog(eps, R[b, :, j], "^--", color=f"C{j + 1}", ms=4, mfc="none", lw=0.9,
+                 label=f"boosted compacton's residual in (B), $K$ = {k:g}")
+    top = float(np.nanmax([np.nanmax(err), np.nanmax(R[eqs.index("B")])]))
+    bottom = float(np.nanmin([np.nanmin(err[err > 0]), np.nanmin(R[eqs.index("B")])]))
+    t.set_ylim(bottom / 3.0, top * 300.0)   # room above for the key
+    t.set_xlim(eps.min() / 1.5, eps.max() * 1.5)
+    t.set_xlabel("$\\alpha - 1$")
+    t.set_ylabel("phase error (rad); residual / max$|U|$")
+    t.set_title("(o) TB's phase $\\theta$ against the boost; the forms' Galilean defect", fontsize=9)
+    t.legend(fontsize=6.5, loc="upper left")
 
 
 _FORM_STYLE = {"A": ("C1", "-."), "B": ("C2", "-"), "C": ("C4", "--")}

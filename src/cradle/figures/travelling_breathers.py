@@ -13,12 +13,14 @@ of |A_n(tau)| to the static site and bond breathers against c; the TBs in motion
 launched in (nc) through (ansatz) at several eps, and in (dfnls) from the same start): (g) the distance travelled
 against tau / T (DpS: one site per T), (h) the lattice's speed deficit 1 - v / (c eps^(alpha-1)) against eps with
 the fitted order, (i) the radiation (energy outside the window around the breather over the total) against tau / T.
-Then the exact TBs of the lattice (nc) when the file holds them (key ``lattice``; issue 37, item 2), a row after the
-others: (j) their |xi_n| against the DpS member's ansatz, (k) their tails and distances to it against the
-lattice's velocity, (l) their multipliers modulo shift. Last, the verdicts in the limit N -> infinity when the file
-holds them (group /robustness_limit): (m) the growth rate along the fine grid of c on each ring, with the tail's MI
-rate, (n) the median growth rate of each member's neighbourhood on each ring with the limit verdicts, (o) the
-unstable fraction of the fine grid against N, where the tail is modulationally unstable and elsewhere.
+Then the exact TBs of the lattice (nc) when the file holds them (key ``lattice``; issue 37, items 2 and 3), a row
+after the others: (j) their |xi_n| / eps at each eps against the DpS TB through the ansatz, (k) their distance to it
+and their residuals against eps, (l) the DpS member and the exact TB launched the same way in (nc): speed deficits
+and radiation against eps.
+Last, the verdicts in the limit N -> infinity when the file holds them (group /robustness_limit): (m) the growth
+rate along the fine grid of c on each ring, with the tail's MI rate, (n) the median growth rate of each member's
+neighbourhood on each ring with the limit verdicts, (o) the unstable fraction of the fine grid against N, where the
+tail is modulationally unstable and elsewhere.
 """
 from __future__ import annotations
 
@@ -37,7 +39,7 @@ MIN_POINTS = 3
 
 def draw(tree: AnalysisTree) -> Figure:
     """The panels above: (g)-(i) when the file holds the TBs in motion, (j)-(l) when it holds the lattice's TBs."""
-    lattice = "lattice" in tree.children
+    lattice = "lattice_eps" in tree.children
     limit = "robustness_limit" in tree.children
     rows = 3 + int(lattice) + int(limit)
     fig, ax = figure(rows, 3, width=13.5, height=11.2 + 3.7 * (rows - 3))
@@ -256,50 +258,68 @@ def draw_motion(ax: Any, tree: AnalysisTree) -> None:
 
 
 def _lattice_panels(tree: AnalysisTree, ax: np.ndarray) -> None:
-    """(j) |xi_n(0)| of the lattice's TBs and eps |A_n| of the DpS source member (aligned on the peak); (k) their
-    tails and distances to the ansatz against the lattice's velocity; (l) the multipliers modulo shift of the
-    slowest and the fastest lattice member."""
-    lat, st = tree["lattice"], tree["lattice_states"]
-    c = np.asarray(lat["c_lattice"].values)
+    """(j) |xi_n(0)| / eps of the lattice's exact TBs at each eps and |A_n(0)| of the DpS TB through the ansatz at
+    the smallest (aligned on the peak); (k) their distance to that DpS TB against eps with the fitted power, and
+    their shift-map residuals; (l) item 3: the DpS member and the exact TB launched the same way in (nc), their
+    speed deficits against the DpS TB's c eps^(alpha-1) and the radiation each leaves, against eps."""
+    le, st = tree["lattice_eps"], tree["lattice_states"]
+    attrs = tree.attrs
+    eps = np.asarray(le["eps_tb"].values)
     xi = 0.5 * (np.asarray(st["x"].values) - 1j * np.asarray(st["v"].values))
-    A = np.asarray(st["source_A_re"].values) + 1j * np.asarray(st["source_A_im"].values)
     n = np.asarray(st["site"].values)
-    eps = np.asarray(lat["eps"].values)
+    A = np.asarray(st["dps_A_re"].values[-1]) + 1j * np.asarray(st["dps_A_im"].values[-1])
     g = ax[0]
-    bottom = 0.2 * float(np.min(np.abs(xi)))
-    for k, i in enumerate(sorted({0, len(c) - 1})):
-        g.semilogy(n, np.abs(xi[i]), "o-", color=f"C{k + 4}", ms=3, lw=1.0, label=f"(nc) TB, c = {c[i]:.4g}")
-    dps = np.roll(eps[0] * np.abs(A), int(np.argmax(np.abs(xi[0]))) - int(np.argmax(np.abs(A))))
+    prof = np.abs(xi) / eps[:, None]
+    bottom = 0.2 * float(np.min(prof))
+    for k, e in enumerate(eps):
+        g.semilogy(n, prof[k], "o-", color=f"C{k}", ms=3, lw=1.0, label=f"(nc) TB, $\\varepsilon$ = {e:.3g}")
+    dps = np.roll(np.abs(A), int(np.argmax(prof[-1])) - int(np.argmax(np.abs(A))))
     g.semilogy(n, np.where(dps >= bottom, dps, np.nan), "k--", lw=1.0,
-               label=f"DpS TB c = {float(tree.attrs['lattice_source_c']):.3g}, $\\varepsilon$ = {eps[0]:.3g}")
-    g.set_ylim(bottom, 5.0 * float(np.max(np.abs(xi))))
+               label=f"DpS TB through (ansatz), $\\varepsilon$ = {eps[-1]:.3g}")
+    g.set_ylim(bottom, 1e4 * float(np.max(prof)))   # room for the legend above the peak
     g.set_xlabel("site n")
-    g.set_ylabel("$|\\xi_n(0)|$, $\\xi_n = (x_n - i v_n)/2$")
-    g.set_title(f"(j) exact TBs of (nc), ring of {n.size}", fontsize=9)
-    g.legend(fontsize=7, loc="upper left")
+    g.set_ylabel("$|\\xi_n(0)| / \\varepsilon$, $\\xi_n = (x_n - i v_n)/2$")
+    g.set_title(f"(j) exact TBs of (nc) from c = {float(attrs['lattice_source_c']):.3g}, ring of {n.size}",
+                fontsize=9)
+    g.legend(fontsize=6.5, loc="upper left", ncol=2)
 
     h = ax[1]
-    h.semilogy(c, lat["tail"].values, "C4o-", ms=4, label="tail: max far $|\\xi_n|$ / max $|\\xi_n|$")
-    h.semilogy(c, lat["ansatz_distance"].values, "C5s--", ms=4, label="distance to the DpS TB's ansatz")
-    h.semilogy(c, lat["residual"].values, "k+", ms=6, label="shift-map residual")
-    h.set_ylim(None, 3.0)
-    h.set_xlabel("lattice velocity c = 1/T (sites per unit t)")
-    h.set_ylabel("relative to the peak")
-    h.set_title("(k) (nc) TBs: tail and distance to DpS", fontsize=9)
-    h.legend(fontsize=7, loc="center right")
+    d = np.asarray(le["ansatz_distance"].values)
+    h.loglog(eps, d, "C0o", ms=5, label="distance to the DpS TB through (ansatz)")
+    p, u = float(attrs["lattice_distance_power"]), float(attrs["lattice_distance_power_error"])
+    fine = np.geomspace(float(eps.min()), float(eps.max()), 50)
+    K = float(np.exp(np.mean(np.log(d) - p * np.log(eps))))
+    h.loglog(fine, K * fine**p, "k-", lw=0.8, label=f"fit $\\propto \\varepsilon^{{{p:.3f} \\pm {u:.1g}}}$ "
+             f"(expected {float(attrs['lattice_distance_power_expected']):g})")
+    h.loglog(eps, np.asarray(le["residual"].values), "k+", ms=7, label="shift-map residual of the TB")
+    h.set_ylim(1e-13, 30.0 * float(np.max(d)))
+    h.set_xlabel("$\\varepsilon$ at the TB's amplitude")
+    h.set_ylabel("relative to max $|z|$")
+    h.set_title("(k) (nc) TBs against DpS's", fontsize=9)
+    h.legend(fontsize=6.5, loc="center right")
 
     i_ = ax[2]
-    mu = np.asarray(st["mu_re"].values) + 1j * np.asarray(st["mu_im"].values)
-    t = np.linspace(0, 2 * np.pi, 400)
-    i_.plot(np.cos(t), np.sin(t), color="0.6", lw=0.8, label="unit circle")
-    i_.plot(mu[0].real, mu[0].imag, "C4o", ms=5, mfc="none", label=f"c = {c[0]:.4g}")
-    i_.plot(mu[-1].real, mu[-1].imag, "C5x", ms=5, label=f"c = {c[-1]:.4g}")
-    i_.set_aspect("equal")
-    i_.set_xlim(-1.35, 1.35)
-    i_.set_ylim(-1.35, 1.6)
-    i_.set_xlabel("Re $\\mu$")
-    i_.set_ylabel("Im $\\mu$")
-    rate = float(np.max(lat["growth_rate"].values))
-    i_.set_title(f"(l) (nc) multipliers modulo shift (max growth {rate:.2g})", fontsize=9)
-    i_.legend(fontsize=7, loc="upper center", ncol=3, handlelength=1.0, columnspacing=0.8)
-
+    e0 = np.asarray(le["eps_lattice"].values)
+    own = np.asarray(le["ansatz_period"].values) / np.asarray(le["period"].values)
+    lines = i_.semilogx(e0, np.asarray(le["dps_speed"].values), "C3o-", ms=5, lw=1.0, label="speed: DpS TB launched")
+    lines += i_.semilogx(e0, np.asarray(le["exact_speed"].values), "C0s--", ms=7, lw=1.0, mfc="none",
+                         label="speed: exact TB launched")
+    lines += i_.semilogx(e0, own, "kx", ms=6, label="$T_d \\varepsilon^{1-\\alpha}$ / T: the exact TB's own")
+    i_.set_ylabel("speed / (c $\\varepsilon^{\\alpha-1}$) of the DpS TB")
+    i_.set_xlabel("$\\varepsilon$ of (ansatz)")
+    lo = float(min(np.min(own), np.min(le["dps_speed"].values)))
+    # the speeds in the upper quarter, the radiation in the middle, the legend between them and the floor
+    i_.set_ylim(lo - 3.0 * (1.0 - lo), 1.0)
+    r = i_.twinx()
+    floor = 1e-15
+    lines += r.loglog(e0, np.maximum(np.asarray(le["dps_radiation"].values), floor), "C3v:", ms=5, lw=1.0,
+                      label="radiation: DpS TB launched")
+    lines += r.loglog(e0, np.maximum(np.asarray(le["exact_radiation"].values), floor), "C0^:", ms=5, lw=1.0,
+                      mfc="none", label=f"radiation: exact TB launched (floor {floor:g})")
+    r.set_ylim(floor / 10.0, 1e6)
+    r.set_ylabel("energy outside the window / total, at the end")
+    for a, x in ((h, eps), (i_, e0)):
+        a.set_xticks([float(v) for v in x], [f"{float(v):.2g}" for v in x])
+        a.minorticks_off()
+    i_.set_title("(l) launched in (nc): DpS TB against the exact TB", fontsize=9)
+    i_.legend(lines, [ln.get_label() for ln in lines], fontsize=6.5, loc="lower left", bbox_to_anchor=(0.0, 0.08))

@@ -35,8 +35,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cradle.integrators import lattice_breathers as LB
-from cradle.integrators.dps_travelling import _weighted_lstsq
 from cradle.models import lattice
 
 if TYPE_CHECKING:
@@ -46,8 +44,11 @@ if TYPE_CHECKING:
 
     from cradle.integrators._types import Floats
 
-RTOL = 1e-13    # DOP853 relative tolerance of the shooting (shift-map residuals ~1e-12)
-DAMPED = 1e-3   # residual above which a Newton step is damped until the residual decreases
+RTOL = 1e-14       # DOP853 (contact events) relative tolerance of the residual's flow (residuals ~1e-12)
+JAC_RTOL = 1e-12   # DOP853 relative tolerance of the variational equations (Newton's Jacobian)
+RCOND = 1e-9       # singular values of the bordered Jacobian below RCOND times the largest are left out of a step,
+GAP = 1e-2         # and the smallest when it is below GAP times the next (the near-symmetry's; module docstring)
+DAMPED = 1e-3      # residual above which a Newton step is damped until the residual decreases
 
 
 def unshift(z: ArrayLike) -> Floats:
@@ -71,20 +72,61 @@ def energy(z: ArrayLike, alpha: float) -> float:
     return float(lattice.hamiltonian(z[:N], z[N:], alpha, "periodic"))
 
 
+def shoot(z: ArrayLike, T: float, alpha: float, columns: Floats | None = None,
+          rtol: float = RTOL) -> tuple[Floats, Floats | None]:
+    """(Phi_T(z), DPhi_T(z) columns or None): (nc) on the ring from z = (x, v) over T and, if ``columns``
+    (2N x m) is given, the variational equations along them.
+
+    The project's DOP853 loop (:func:`cradle.integrators._dop853.run_dop853`) on the compiled system
+    :class:`cradle.integrators.systems.lattice_variational.LatticeVariational`, with the tolerances rtol and
+    atol = rtol max|z|; the columns are integrated multiplied by max|z| (they are linear), so that this one atol is
+    rtol on the columns themselves (as :func:`cradle.integrators.lattice_breathers.flow` weighs them)."""
+    from cradle.integrators import _dop853
+    from cradle.integrators.systems import lattice_variational as LV
+
+    z = np.ascontiguousarray(z, dtype=float)
+    N = z.size // 2
+    C = np.zeros((2 * N, 0)) if columns is None else np.asarray(columns, float)
+    m = C.shape[1]
+    amp = float(np.max(np.abs(z)))
+    system = LV.lattice_variational(N, alpha, m)
+    y0 = np.concatenate([z, (amp * C[:N]).ravel(), (amp * C[N:]).ravel()])
+    stats = np.array([energy(z, alpha), 0.0, 0.0, 0.0])
+    try:
+        Y, _, _ = _dop853.run_dop853(system, y0, np.array([0.0, float(T)]), rtol, rtol * amp, stats, None)
+    except RuntimeError as e:
+        raise RuntimeError(f"lattice travelling breather shooting: integration failed ({e})") from None
+    yT = Y[-1]
+    if columns is None:
+        return yT[:2 * N].copy(), None
+    Phi = np.concatenate([yT[2 * N:2 * N + N * m].reshape(N, m), yT[2 * N + N * m:].reshape(N, m)]) / amp
+    return yT[:2 * N].copy(), Phi
+
+
 def flow(z: ArrayLike, T: float, alpha: float, rtol: float = RTOL) -> Floats:
-    """Phi_T(z) of (nc) on the ring."""
+    """Phi_T(z) of (nc) on the ring, accurate enough for the residual of (tbnc): the project's DOP853 with the steps
+    ending at the contact onsets and releases (:mod:`cradle.integrators._dop853_events`, through
+    :func:`cradle.integrators.lattice_adaptive.run_dop853_damped` without damping), atol = rtol max|z|. Across the
+    onsets plain DOP853 loses its order (the Hertz force is C^{1,alpha-1} there): its Phi_T is too coarse for a
+    residual below 1e-8 (docs/analyses/travelling-breathers.md, the lattice section)."""
+    from cradle.integrators import _kernels as K
+    from cradle.integrators.lattice_adaptive import run_dop853_damped
+    from cradle.models.damping import NONE
+
     z = np.asarray(z, float)
     N = z.size // 2
-    x, v, _, _ = LB.flow(z[:N], z[N:], T, alpha, "periodic", None, rtol)
-    return np.concatenate([x, v])
+    amp = float(np.max(np.abs(z)))
+    X, V, *_ = run_dop853_damped(z[:N], z[N:], np.array([0.0, float(T)]), rtol, rtol * amp, alpha,
+                                 K.mode_flag("hertz", alpha), True, NONE, None)
+    return np.concatenate([X[-1], V[-1]])
 
 
 def monodromy(z: ArrayLike, T: float, alpha: float, rtol: float = RTOL) -> tuple[Floats, Floats]:
     """(M, Phi_T(z)): the 2N x 2N monodromy modulo shift S^{-1} DPhi_T(z) and the state one period later."""
     z = np.asarray(z, float)
-    N = z.size // 2
-    x, v, _, Phi = LB.flow(z[:N], z[N:], T, alpha, "periodic", np.eye(2 * N), rtol)
-    return unshift(Phi), np.concatenate([x, v])
+    zT, Phi = shoot(z, T, alpha, np.eye(z.size), rtol)
+    assert Phi is not None
+    return unshift(Phi), zT
 
 
 def relative_residual(z: ArrayLike, zT: ArrayLike) -> float:
@@ -96,7 +138,8 @@ def relative_residual(z: ArrayLike, zT: ArrayLike) -> float:
 @dataclass
 class LatticeTB:
     """One TB of (tbnc): the state z = (x(0), v(0)) and period T; how Newton got there, the multipliers modulo shift
-    of its last monodromy and the tangent dz/dT of the family."""
+    of its last monodromy, the family's tangent dz/dT and the bordered Jacobian's conditioning at the end (its
+    smallest singular value over its largest, and how many directions the truncated steps left out)."""
 
     z: Floats
     T: float
@@ -106,6 +149,8 @@ class LatticeTB:
     iterations: int
     multipliers: NDArray[np.complex128] = field(default_factory=lambda: np.zeros(0, complex))
     dz_dT: Floats | None = None
+    smallest_singular: float = math.nan
+    dropped: int = 0
 
     @property
     def c(self) -> float:
@@ -131,45 +176,88 @@ class LatticeTB:
         return self.z if self.dz_dT is None else self.z + (T - self.T) * self.dz_dT
 
 
+def truncated_lstsq(J: Floats, F: Floats, rows: int, rcond: float = RCOND,
+                    gap: float = GAP) -> tuple[Floats, float, int]:
+    """(x, s_min / s_max, dropped): the least-squares solution of J x = F from the singular values of J above
+    ``rcond`` times the largest, the smallest also left out when it is below ``gap`` times the next (the rows from
+    ``rows`` on, the conditions, scaled to unit norm as in :func:`cradle.integrators.dps_travelling._weighted_lstsq`).
+
+    Why truncated: (nc) keeps DpS's phase symmetry A -> e^{i phi} A almost exactly (the carrier's phase), so that the
+    bordered Jacobian of (tbnc) has a direction besides the time shift whose singular value, set by how weakly the
+    symmetry is broken, lies far below the others; a full step along it is the residual over that singular value,
+    and the curvature of the shooting map along it turns the move into a residual larger than the one removed."""
+    w = np.ones(J.shape[0])
+    for k in range(rows, J.shape[0]):
+        w[k] = 1.0 / max(float(np.linalg.norm(J[k])), 1e-300)
+    U, sv, Vt = np.linalg.svd(w[:, None] * J, full_matrices=False)
+    keep = sv > rcond * sv[0]
+    if sv.size > 1 and keep[-1] and sv[-1] < gap * sv[-2]:
+        keep[-1] = False
+    x = Vt[keep].T @ ((U[:, keep].T @ (w * F)) / sv[keep])
+    return np.asarray(x, dtype=np.float64), float(sv[-1] / sv[0]), int(np.sum(~keep))
+
+
 def newton(z_guess: ArrayLike, T: float, alpha: float, reference: ArrayLike | None = None, tol: float = 1e-11,
            max_iter: int = 12, rtol: float = RTOL, log: Callable[[str], object] | None = None,
-           save: Callable[[Floats], object] | None = None) -> LatticeTB:
+           save: Callable[[Floats], object] | None = None, jac_rtol: float = JAC_RTOL,
+           rcond: float = RCOND) -> LatticeTB:
     """Solve (tbnc) at period T for z by Gauss-Newton from ``z_guess``, with the phase condition about
-    ``reference`` (default: the guess). Converged when max |R| <= tol max |z|; the multipliers of the last monodromy
-    and the family's tangent there come with it. Stops early when the residual grows tenfold."""
+    ``reference`` (default: the guess). The residual R = S^{-1} Phi_T(z) - z from :func:`flow` at ``rtol`` (contact
+    events), the Jacobian S^{-1} DPhi_T - I from the variational equations at ``jac_rtol`` (:func:`monodromy`).
+
+    The step: far from a solution (residual above DAMPED) the truncated step of :func:`truncated_lstsq`, halved until
+    the residual decreases; near it the better of the truncated step (on the slice transverse to the near-symmetry)
+    and the full least-squares step (along it too: what the slice cannot remove, the near-symmetry's share of R),
+    halved until one of them decreases the residual. Converged when max |R| <= tol max |z|; the multipliers of a
+    last monodromy at max(rtol, 1e-13) and the family's tangent there come with it. Stops when no step decreases
+    the residual near a solution, or when it grows tenfold far from one."""
     z = np.asarray(z_guess, float).copy()
     n2 = z.size
     ref = z.copy() if reference is None else np.asarray(reference, float)
     d_time = vector_field(ref, alpha)
-    res, best, mu = np.inf, np.inf, np.zeros(0, complex)
+    res, best, mu, smin, dropped = np.inf, np.inf, np.zeros(0, complex), math.nan, 0
+
+    def residual(y: Floats) -> float:
+        return relative_residual(y, flow(y, T, alpha, rtol))
+
     for it in range(max_iter + 1):
-        Mm, zT = monodromy(z, T, alpha, rtol)
+        zT = flow(z, T, alpha, rtol)
         R = unshift(zT) - z
         res = float(np.max(np.abs(R)) / np.max(np.abs(z)))
-        mu = np.linalg.eigvals(Mm).astype(complex)
         if log:
             log(f"lattice travelling breathers: T = {T:.12g}, iteration {it}: residual {res:.3g}")
-        J = np.vstack([Mm - np.eye(n2), d_time[None, :]])
         if res <= tol:
+            Mm, _ = monodromy(z, T, alpha, max(rtol, 1e-13))
+            mu = np.linalg.eigvals(Mm).astype(complex)
+            J = np.vstack([Mm - np.eye(n2), d_time[None, :]])
             # the tangent: dR/dT = S^{-1} f(Phi_T(z)), the phase condition unchanged
             dF = np.concatenate([unshift(vector_field(zT, alpha)), [0.0]])
-            return LatticeTB(z, T, alpha, res, True, it, mu, _weighted_lstsq(J, -dF, n2))
+            tangent, smin, dropped = truncated_lstsq(J, -dF, n2, rcond)
+            return LatticeTB(z, T, alpha, res, True, it, mu, tangent, smin, dropped)
         if it == max_iter or not np.isfinite(res) or res > 10.0 * best:
             break
         best = min(best, res)
+        Mm, _ = monodromy(z, T, alpha, jac_rtol)
+        J = np.vstack([Mm - np.eye(n2), d_time[None, :]])
         F = np.concatenate([R, [d_time @ (z - ref)]])
-        step = _weighted_lstsq(J, -F, n2)
-        lam = 1.0
-        # damped far from the solution only: near it the tail beads, barely in contact, make the map C^{1,alpha-1}
-        # there, and full steps converge where a line search stalls
-        while res > DAMPED and lam > 1e-3:
-            if relative_residual(z + lam * step, flow(z + lam * step, T, alpha, rtol)) < res:
+        step, smin, dropped = truncated_lstsq(J, -F, n2, rcond)
+        steps = [step]
+        if res <= DAMPED and dropped:
+            steps.append(truncated_lstsq(J, -F, n2, 0.0, 0.0)[0])
+        lam, k = 1.0, 0
+        # far from a solution the truncated step, damped until the residual decreases (or to the last halving)
+        while lam > 1e-3:
+            r_new, k = min((residual(z + lam * d), j) for j, d in enumerate(steps))
+            if r_new < res:
                 break
             lam *= 0.5
-        z = z + lam * step
+        else:
+            if res <= DAMPED:
+                break
+        z = z + lam * steps[k]
         if save is not None:
             save(z)
-    return LatticeTB(z, T, alpha, res, False, it, mu)
+    return LatticeTB(z, T, alpha, res, False, it, mu, None, smin, dropped)
 
 
 def ansatz_start(A: ArrayLike, T_d: float, alpha: float, eps: float) -> tuple[Floats, float]:
@@ -223,7 +311,7 @@ def continue_family(first: LatticeTB, cs: ArrayLike, tol: float = 1e-11, rtol: f
 
     def correct(cur: LatticeTB, c2: float) -> LatticeTB:
         T2 = 1.0 / c2
-        return newton(cur.predict(T2), T2, first.alpha, cur.z, tol, max_iter=8, rtol=rtol)
+        return newton(cur.predict(T2), T2, first.alpha, cur.z, tol, max_iter=12, rtol=rtol)
 
     return continue_in_c(first, cs, correct, min_step, log or (lambda *a: None), "lattice travelling breathers",
                          lambda b: f"eps = {b.eps:.4g}, residual {b.residual:.2g}")

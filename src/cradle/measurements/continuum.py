@@ -18,6 +18,16 @@ def sup_distance(profile: ArrayLike, gaussian: ArrayLike) -> float:
     return float(np.max(np.abs(p / np.max(p) - G / np.max(G))))
 
 
+def complex_distance(profile: ArrayLike, model: ArrayLike) -> float:
+    """max_n |profile_n e^{-i phi0} / max|profile| - model_n / max|model||, the global phase phi0 = arg sum_n
+    conj(model_n) profile_n (the least-squares one): the distance of a complex envelope to a model's, phase
+    gradient included; for real, positive profiles it is :func:`sup_distance`."""
+    p = np.asarray(profile, dtype=complex)
+    m = np.asarray(model, dtype=complex)
+    phase = np.exp(-1j * np.angle(np.sum(np.conj(m) * p)))
+    return float(np.max(np.abs(p * phase / np.max(np.abs(p)) - m / np.max(np.abs(m)))))
+
+
 @dataclass(frozen=True)
 class PowerFit:
     """ln D = power ln eps + ln K + k eps^q (q = 1 unless :func:`fit_power` is told otherwise), fitted by least
