@@ -202,7 +202,7 @@ def draw_limit(ax: Any, tree: AnalysisTree) -> None:
     f_rest = [float(np.mean(U[i][rest[i]])) if rest[i].any() else np.nan for i in range(len(rings))]
     m.plot(rings, f_mi, "C3o-", ms=5, label="where the tail's MI rate > threshold")
     m.plot(rings, f_rest, "C0s-", ms=5, label="elsewhere")
-    m.set_ylim(0.0, 1.15)
+    m.set_ylim(-0.05, 1.15)      # a fraction 0 stays inside the frame
     m.set_xticks(rings)
     m.set_xlabel("sites N of the ring")
     m.set_ylabel("fraction of the fine grid unstable")
