@@ -220,6 +220,7 @@ def test_limit_rule_cases():
     assert tb.limit_rule(N, np.array([1e-3, 1e-3, np.nan]), thr)[0] == tb.LIMIT_UNSTABLE
 
 
+@pytest.mark.slow
 def test_a_window_is_a_krein_collision():
     """A window of the ring of 24 resolved in steps h = 2e-6 of c (c = 0.11925-0.11931, growth 2.4e-4 per unit
     tau): a multiplier of signature + and one of signature - approach each other on the circle, leave it as a
