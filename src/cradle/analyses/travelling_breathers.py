@@ -22,6 +22,10 @@ analysis
   at each of ``check_rtol`` and the family recomputed on each ring of ``check_N``; a verdict is settled where all of
   them agree; what explains the others (the unstable mode's extent over the ring, the tail as a plane wave of
   (dfnls) with its wavenumber q = theta and its modulational growth rate);
+* the verdicts in the limit N -> infinity: each member's neighbourhood scanned in steps of ``limit_step`` on every ring
+  of ``limit_N`` (growth rates, Krein signatures, the tail's MI rate per TB), the typical (median) growth rate of the
+  neighbourhood per ring, and one rule (:data:`LIMIT_RULE`) that reads the limit verdict from the two largest rings;
+  a window resolved as a Krein collision (:func:`bubble_scan`, :mod:`cradle.measurements.floquet_bubbles`);
 * checks: a direct run of the member
   at ``direct_speed`` over ``direct_periods`` periods (norm and H drifts, the residual of (tb) after k periods);
   the scaling symmetry (the TB re-solved at lambda^(1-alpha) T and lambda^2 P from another member's profile,
