@@ -756,6 +756,9 @@ def limit_scan(spec: TravellingBreathers, N: int, grid: NDArray[np.float64],
     first = first_member(spec, N, spec.rtol)
     out: list[TravellingBreather | None] = [None] * grid.size
     if not first.converged:
+        if log:
+            log(f"travelling-breathers: limit scan, ring of {N}: no TB from the pushed breather (residual "
+                f"{first.residual:.3g}); the ring is left out")
         return out
 
     from cradle.integrators.continuation import continue_in_c
@@ -905,7 +908,8 @@ def robustness_limit(spec: TravellingBreathers, c: NDArray[np.float64], log: Log
              **{f"limit_{name}_c": ", ".join(f"{x:g}" for x in c[verdicts == v]) or "none"
                 for name, v in (("stable", LIMIT_STABLE), ("unstable", LIMIT_UNSTABLE),
                                 ("undecided", LIMIT_UNDECIDED))},
-             "limit_max_quartet_defect": float(np.nanmax(fine["quartet_defect"])),
+             "limit_max_quartet_defect": (float(np.nanmax(fine["quartet_defect"]))
+                                          if np.any(np.isfinite(fine["quartet_defect"])) else np.nan),
              "limit_cpu_s": _time.process_time() - t0}
     return {"/robustness_limit": (data, {"limit_ring": rings.astype(int), "c_fine": grid})}, attrs
 
