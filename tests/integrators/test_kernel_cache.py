@@ -132,6 +132,7 @@ def test_key_sources_are_the_kernel_modules_and_their_cradle_imports():
     assert names == ["_cache.py", "_dop853.py", "_dop853_events.py", "_generic.py", "_kernels.py",
                      "_kernels_dps_sites.py", "_onset.py", "_onset_impulse.py", "_splitting.py", "_types.py",
                      "systems/dps.py", "systems/dps_variational.py", "systems/imperfect.py", "systems/lattice.py",
+                     "systems/lattice_variational.py",
                      "terms/contact_damping.py",
                      "terms/hertz.py", "terms/inhomogeneity.py", "terms/onsite_damping.py",
                      "terms/onsite_harmonic.py", "terms/onsite_pendulum.py", "terms/onsite_quartic.py",
