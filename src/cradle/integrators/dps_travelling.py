@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from cradle.integrators.continuation import continue_in_c
 from cradle.integrators.systems import dps as SD
 from cradle.models import dps, dps_travelling as M
 
@@ -225,8 +226,6 @@ def continue_family(first: TravellingBreather, cs: ArrayLike, tol: float = 1e-11
     family's tangent at the previous member (:meth:`TravellingBreather.predict`) and corrected by :func:`newton`
     with the previous member as the phase reference. A failed step is halved down to ``min_step`` (relative to
     c); returns the members reached at the grid's c and the last c reached."""
-    from cradle.integrators.continuation import continue_in_c
-
     P0 = first.norm
 
     def correct(cur: TravellingBreather, c2: float) -> TravellingBreather:

@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from cradle.integrators.continuation import continue_in_c
 from cradle.models import lattice
 
 if TYPE_CHECKING:
@@ -307,8 +308,6 @@ def continue_family(first: LatticeTB, cs: ArrayLike, tol: float = 1e-11, rtol: f
     tangent at the previous member and corrected by :func:`newton` with the previous member as the phase reference.
     A failed step is halved down to ``min_step`` (relative to c); returns the members reached at the grid's c and
     the last c reached."""
-    from cradle.integrators.continuation import continue_in_c
-
     def correct(cur: LatticeTB, c2: float) -> LatticeTB:
         T2 = 1.0 / c2
         return newton(cur.predict(T2), T2, first.alpha, cur.z, tol, max_iter=12, rtol=rtol)

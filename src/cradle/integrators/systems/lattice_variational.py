@@ -14,7 +14,6 @@ visited once, K_n = 0 on an open bond). What is monitored: the orbit's energy (h
 """
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
@@ -23,6 +22,7 @@ from numba import njit
 from cradle.integrators import _cache, _kernels as K
 from cradle.integrators._dop853 import monitor, rhs
 from cradle.integrators._generic import implements
+from cradle.integrators.terms.hertz import hertz
 
 if TYPE_CHECKING:
     from cradle.integrators._types import Floats
@@ -62,7 +62,7 @@ def variational_rhs(system: LatticeVariational, y: Floats, dy: Floats) -> None:
         c = y[n] - y[n1]
         if c <= 0.0:
             continue
-        kn = 1.5 * math.sqrt(c) if system.mode == K.HERTZ_15 else system.alpha * c ** (system.alpha - 1.0)
+        kn = system.alpha * hertz(c, system.alpha, system.mode)[1]   # V0'' = alpha c^(alpha-1)
         a = n * m
         b = n1 * m
         for j in range(m):
