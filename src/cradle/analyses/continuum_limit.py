@@ -263,6 +263,9 @@ VARIABLES = {
         "sites": Var(("tb_eps",), "sites of the ring"),
         "c": Var(("tb_eps", "boost"), "velocity c = 1/T of the TB (sites per unit tau)"),
         "kappa": Var(("tb_eps", "boost"), "the boost's phase gradient tau0 c (per site)"),
+        "carrier_narrowing": Var(("tb_eps", "boost"), "a / eps of the carrier-narrowed Gaussian exp(-a (n - n_c)^2) at "
+                                 "the lattice's carrier asin(tau0 c): (1 + cos) / (2 cos) of it "
+                                 "(models.travelling_continuum.carrier_width)"),
         "theta": Var(("tb_eps", "boost"), "phase theta of (tb) of the TB, wrapped into (-pi, pi]"),
         "theta_boost": Var(("tb_eps", "boost"), "theta of the boosted Gaussian of the same c and amplitude: kappa/2 + "
                            "nu/(2 kappa) - pi (mod 2 pi)"),
@@ -607,8 +610,8 @@ def travelling(spec: ContinuumLimit, say: Log) -> dict[str, tuple[dict, dict]]:
     es, ks = list(spec.tb_eps), list(spec.tb_boosts)
     ne, nk, nm = len(es), len(ks), len(TC.MODELS)
     shape = (ne, nk)
-    out = {key: np.full(shape, np.nan) for key in ("c", "kappa", "theta", "theta_boost", "theta_error", "residual",
-                                                   "tail", "amplitude")}
+    out = {key: np.full(shape, np.nan) for key in ("c", "kappa", "carrier_narrowing", "theta", "theta_boost",
+                                                   "theta_error", "residual", "tail", "amplitude")}
     D, Dm = np.full((nm, ne, nk), np.nan), np.full((nm, ne, nk), np.nan)
     Ds = np.full((nm, ne), np.nan)
     R = np.full((len(TC.EQUATIONS), ne, nk), np.nan)
@@ -643,6 +646,7 @@ def travelling(spec: ContinuumLimit, say: Log) -> dict[str, tuple[dict, dict]]:
             kap = TC.boost_kappa(b.c, t0)
             pred = TC.boost_theta(b.c, t0, TC.nu_gaussian(e, amp))
             out["c"][i, j], out["kappa"][i, j], out["theta"][i, j] = b.c, kap, TC.wrap(b.theta)
+            out["carrier_narrowing"][i, j] = TC.carrier_width(e, TC.carrier_kappa(b.c, t0)) / e
             out["theta_boost"][i, j], out["theta_error"][i, j] = pred, TC.wrap(b.theta - pred)
             out["residual"][i, j], out["tail"][i, j], out["amplitude"][i, j] = b.residual, M.tail_amplitude(b.A), amp
             run = integrate_dps(b.A, np.linspace(0.0, b.T, spec.tb_samples + 1)[:-1], alpha=alpha, rtol=DT.RTOL)

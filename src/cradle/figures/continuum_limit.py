@@ -168,7 +168,7 @@ def _travelling(ax: Any, tree: AnalysisTree) -> None:
     tb = tree["travelling"]
     eps = np.asarray(tb["tb_eps"].values)
     K = np.asarray(tb["boost"].values)
-    kap = np.asarray(tb["kappa"].values)
+    narrowing = np.asarray(tb["carrier_narrowing"].values)
     c = np.asarray(tb["c"].values)
     i = int(np.argmin(np.abs(np.log(eps / 0.1))))
     e = float(eps[i])
@@ -187,9 +187,7 @@ def _travelling(ax: Any, tree: AnalysisTree) -> None:
     for j, k in enumerate(K):
         m.plot(Xk, (env[j][keep][o] - np.exp(-Xk**2)) / e, "o", ms=3.5, mfc="none", color=f"C{j + 1}",
                label=f"TB $-\\ e^{{-X^2}}$, $K$ = {k:g} ($c$ = {c[i, j]:.3g})")
-        # the carrier-corrected Gaussian exp(-a (n - n_c)^2) in closed form (models.travelling_continuum.carrier_width)
-        kl = np.arcsin(np.minimum(1.0, kap[i, j]))
-        a = (1.0 + np.cos(kl)) / (2.0 * np.cos(kl))
+        a = narrowing[i, j]   # the carrier-corrected Gaussian exp(-a X^2) the analysis stored
         m.plot(Xk, (env[j][keep][o] - np.exp(-a * Xk**2)) / e, "x", ms=4.5, color=f"C{j + 1}",
                label=f"TB $-$ carrier Gaussian, $K$ = {k:g}")
     m.axhline(0.0, color="0.6", lw=0.6)
