@@ -223,7 +223,7 @@ def test_limit_rule_cases():
 def test_tail_rule_verdict_cases():
     """The tail rule on made-up inputs: a tail that is MI-unstable decides (unstable) whatever the fit; otherwise a
     verdict needs g_inf two standard errors on one side of the threshold (a g_inf merely consistent with 0 is
-    undecided when it is also consistent with instability); a fit missing is undecided."""
+    undecided when it is also consistent with instability); a fit missing or degenerate is undecided."""
     thr = 1e-5
 
     def fit(g, e):
@@ -236,6 +236,7 @@ def test_tail_rule_verdict_cases():
     assert tb.tail_rule_verdict(False, fit(2e-4, 2e-4), thr) == tb.LIMIT_UNDECIDED
     assert tb.tail_rule_verdict(False, fit(1e-6, 1e-5), thr) == tb.LIMIT_UNDECIDED
     assert tb.tail_rule_verdict(False, fit(np.nan, np.nan), thr) == tb.LIMIT_UNDECIDED
+    assert tb.tail_rule_verdict(False, {**fit(2e-4, 1e-5), "degenerate": 1.0}, thr) == tb.LIMIT_UNDECIDED
     assert tb.tail_mi_unstable(np.pi / 2 + 1e-9) and not tb.tail_mi_unstable(np.pi / 2 - 1e-9)
     assert tb.tail_mi_unstable(-2.0) and tb.tail_mi_unstable(2 * np.pi + 2.0) and not tb.tail_mi_unstable(-1.0)
 
@@ -270,7 +271,8 @@ def test_limit_tail_rows_and_rule(tiny):
             env = lt["envelope"].values[j, i]
             # the larger ring's grid (step limit_large_step) holds every point of the fine grid here
             assert (np.isnan(env) and not keep.any()) or env == np.max(g[keep])
-        fit = {"g_inf": lt["fit_g_inf"].values[j], "g_inf_error": lt["fit_g_inf_error"].values[j]}
+        fit = {"g_inf": lt["fit_g_inf"].values[j], "g_inf_error": lt["fit_g_inf_error"].values[j],
+               "degenerate": lt["fit_degenerate"].values[j]}
         assert lt["verdict"].values[j] == tb.tail_rule_verdict(bool(kind[j]), fit, spec.stability_threshold)
 
 

@@ -954,10 +954,12 @@ def robustness_limit(spec: TravellingBreathers, c: NDArray[np.float64], log: Log
 TAIL_RULE = ("tail MI-unstable (cos theta < 0, closed form: every tail amplitude R > 0 is unstable at a rate "
              "proportional to R^(alpha-1)): unstable in the limit. Tail MI-stable: the largest growth rate over the "
              "member's neighbourhood c +- limit_halfwidth, on the points whose own tail is MI-stable and that every "
-             "ring's grid holds, on each ring of limit_N and limit_large_N, fitted as g_inf + b N^-k; stable when "
-             "g_inf plus TAIL_RULE_SIGMAS standard errors is below the stability threshold, unstable when g_inf less "
-             "that many errors is above it, undecided otherwise (both are consistent with the fit: a g_inf merely "
-             "consistent with 0 is not enough) or when the fit is missing (fewer than 4 rings)")
+             "ring's grid holds, on each ring of limit_N and limit_large_N, fitted as g_inf + b N^-k (its error the "
+             "larger of the standard error and g_inf's change when the smallest or the largest ring is left out); "
+             "stable when g_inf plus TAIL_RULE_SIGMAS errors is below the stability threshold, unstable when g_inf "
+             "less that many errors is above it, undecided otherwise (both are consistent with the fit: a g_inf "
+             "merely consistent with 0 is not enough), when the fit is missing (fewer than 4 rings) and when it is "
+             "degenerate (k on a bound of its range: its error is then no error of g_inf)")
 #: a verdict from the fit needs g_inf this many standard errors on one side of the stability threshold
 TAIL_RULE_SIGMAS = 2.0
 
@@ -990,7 +992,7 @@ def tail_rule_verdict(mi_unstable: bool, fit: dict[str, float], threshold: float
     if mi_unstable:
         return LIMIT_UNSTABLE
     g, err = fit["g_inf"], fit["g_inf_error"]
-    if not (np.isfinite(g) and np.isfinite(err)):
+    if not (np.isfinite(g) and np.isfinite(err)) or fit.get("degenerate", 0.0) == 1.0:
         return LIMIT_UNDECIDED
     if g - TAIL_RULE_SIGMAS * err > threshold:
         return LIMIT_UNSTABLE
@@ -1063,8 +1065,8 @@ def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[
              "mi_rate_unit": [x[0] for x in closed], "mi_sideband": [x[1] for x in closed],
              "mi_band_low": [x[2] for x in closed], "mi_band_high": [x[3] for x in closed],
              "tail_mi_rate_min": np.nanmin(mi_ring, axis=0), "tail_mi_rate_max": np.nanmax(mi_ring, axis=0),
-             "envelope": envelope, **{f"fit_{k}": [f[k] for f in fits] for k in ("g_inf", "g_inf_error", "b", "k",
-                                                                                 "points")},
+             "envelope": envelope, **{f"fit_{k}": [f[k] for f in fits] for k in ("g_inf", "g_inf_error", "g_inf_stderr",
+                                                                                 "b", "k", "points", "degenerate")},
              "verdict": verdicts}
     groups = {"/limit_tail": (group, {"fit_ring": np.array(rings)})}
     if grid_large.size:
@@ -1279,10 +1281,14 @@ VARIABLES = {
                                            "the member's tail kind common to every ring (per unit tau; NaN: none "
                                            "reached)"),
         "fit_g_inf": Var(_C, "g_inf of envelope = g_inf + b N^-k over the rings (per unit tau; NaN: fewer than 4)"),
-        "fit_g_inf_error": Var(_C, "standard error of fit_g_inf (per unit tau)"),
+        "fit_g_inf_error": Var(_C, "error of fit_g_inf: the larger of its standard error and its change when the "
+                                   "smallest or the largest ring is left out (per unit tau)"),
+        "fit_g_inf_stderr": Var(_C, "standard error of fit_g_inf from the residuals (per unit tau)"),
         "fit_b": Var(_C, "b of that fit (per unit tau times sites^k)"),
         "fit_k": Var(_C, "exponent k of that fit"),
         "fit_points": Var(_C, "rings in that fit"),
+        "fit_degenerate": Var(_C, "1 if k ended on a bound of its range (the error is then no error of g_inf; NaN: "
+                                  "no fit)"),
         "verdict": Var(_C, "limit verdict of tail_rule: 1 unstable, 0 stable, -1 undecided"),
     },
     "/limit_large": {

@@ -206,7 +206,7 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
     q.semilogy(c[~kind], np.full(int(np.sum(~kind)), floor / 2.0), "k_", ms=10, mew=2,
                label="tail MI-stable (no MI rate)")
     q.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
-    q.set_ylim(floor / 4.0, 1e4 * max(float(np.nanmax(hi)), thr))
+    q.set_ylim(floor / 4.0, 3e3 * max(float(np.nanmax(hi)), thr))
     q.set_xlabel("velocity c (member)")
     q.set_ylabel(rf"growth rate per unit $\tau$ (floor {floor:g})")
     q.set_title("(q) the tail's modulational instability", fontsize=9)
@@ -215,15 +215,16 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
     r = ax[2]
     r.axis("off")
     rows = verdict_table(tree)
-    tab = r.table(cellText=rows[1:], colLabels=rows[0], loc="center", cellLoc="center")
+    # the whole panel: every column as wide as its longest header allows
+    tab = r.table(cellText=rows[1:], colLabels=rows[0], cellLoc="center", bbox=[0.0, 0.0, 1.0, 1.0])
     tab.auto_set_font_size(False)
     tab.set_fontsize(6)
-    tab.scale(1.0, 1.1)
     for (i, _), cell in tab.get_celld().items():
         text = cell.get_text().get_text()
         if i > 0 and text in ("U", "S"):
             cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
-    r.set_title("(r) verdicts: each ring, each rtol (ring of N), the limit", fontsize=9)
+    r.set_title("(r) verdicts on each ring N, at each rtol (ring of N), and the\nlimit rules (median of "
+                "/robustness_limit, tail of /limit_tail)", fontsize=9)
     del verdict
 
 
@@ -236,15 +237,15 @@ def verdict_table(tree: AnalysisTree) -> list[list[str]]:
     def letter(v: float) -> str:
         return {1: "U", 0: "S"}.get(int(v), "?") if np.isfinite(v) else "-"
 
-    head = ["c", *[f"N={int(n)}" for n in rob["ring"].values], *[f"rtol {float(t):g}" for t in rob["rtol"].values[1:]]]
+    head = ["c", *[f"N={int(n)}" for n in rob["ring"].values], *[f"{float(t):g}" for t in rob["rtol"].values[1:]]]
     cols = [np.where(np.asarray(rob["unstable"].values[i]) < 0, np.nan, rob["unstable"].values[i])
             for i in range(rob["ring"].size)]
     cols += [np.where(np.asarray(rob["unstable_tol"].values[i]) < 0, np.nan, rob["unstable_tol"].values[i])
              for i in range(1, rob["rtol"].size)]
     if "robustness_limit" in tree.children:
-        head.append("median rule")
+        head.append("median")
         cols.append(np.asarray(tree["robustness_limit"]["verdict"].values, float))
-    head.append("tail rule")
+    head.append("tail")
     cols.append(np.asarray(lt["verdict"].values, float))
     rows = [head]
     for j, x in enumerate(c):
