@@ -223,8 +223,7 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
         text = cell.get_text().get_text()
         if i > 0 and text in ("U", "S"):
             cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
-    r.set_title("(r) verdicts on each ring N, at each rtol (ring of N), and the\nlimit rules (median of "
-                "/robustness_limit, tail of /limit_tail)", fontsize=9)
+    r.set_title("(r) verdicts per ring N and rtol (ring of N);\nin the limit: median rule, tail rule", fontsize=9)
     del verdict
 
 
