@@ -255,8 +255,9 @@ def test_limit_tail_rows_and_rule(tiny):
     assert np.allclose(np.exp(1j * q), np.exp(1j * theta), rtol=0, atol=1e-15)
     kind = lt["tail_mi_unstable"].values
     assert np.array_equal(kind == 1, np.cos(q) < 0)
-    assert np.array_equal(lt["mi_rate_unit"].values, [mi_diagram.max_growth_rate(x, spec.alpha)[0] for x in q])
-    assert np.all(lt["mi_rate_unit"].values[kind == 0] == 0) and np.all(lt["mi_rate_unit"].values[kind == 1] > 0)
+    unit = lt["unit_amplitude_mi_rate"].values
+    assert np.array_equal(unit, [mi_diagram.max_growth_rate(x, spec.alpha)[0] for x in q])
+    assert np.all(unit[kind == 0] == 0) and np.all(unit[kind == 1] > 0)
     assert np.max(lt["theta_spread"].values) < 1e-8
     assert list(lt["fit_ring"].values) == [*spec.limit_N, *spec.limit_large_N]
     assert np.nanmax(large["quartet_defect"].values) < 1e-8

@@ -1062,8 +1062,8 @@ def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[
                                                         - rob["theta_ring"][0])))), axis=0)
     mi_ring = rob["tail_mi_ring"]
     group = {"tail_q": q, "tail_mi_unstable": kind.astype(int), "theta_spread": spread,
-             "mi_rate_unit": [x[0] for x in closed], "mi_sideband": [x[1] for x in closed],
-             "mi_band_low": [x[2] for x in closed], "mi_band_high": [x[3] for x in closed],
+             "unit_amplitude_mi_rate": [x[0] for x in closed], "fastest_sideband": [x[1] for x in closed],
+             "unstable_band_low": [x[2] for x in closed], "unstable_band_high": [x[3] for x in closed],
              "tail_mi_rate_min": np.nanmin(mi_ring, axis=0), "tail_mi_rate_max": np.nanmax(mi_ring, axis=0),
              "envelope": envelope, **{f"fit_{k}": [f[k] for f in fits] for k in ("g_inf", "g_inf_error", "g_inf_stderr",
                                                                                  "b", "k", "points", "degenerate")},
@@ -1269,11 +1269,11 @@ VARIABLES = {
                                     "amplitude), else 0"),
         "theta_spread": Var(_C, "largest |theta - theta on the ring of N| (modulo 2 pi) over the rings of "
                                 "/robustness and the tolerances of check_rtol", "rad"),
-        "mi_rate_unit": Var(_C, "largest MI growth rate of the plane wave e^{i q n} of unit amplitude, closed form "
-                                "(per unit tau; times R^(alpha-1) at amplitude R)"),
-        "mi_sideband": Var(_C, "sideband wavenumber p of that largest rate (NaN: stable)", "rad"),
-        "mi_band_low": Var(_C, "lower edge of the unstable sideband band in [0, pi] (NaN: stable)", "rad"),
-        "mi_band_high": Var(_C, "upper edge of the unstable sideband band in [0, pi] (NaN: stable)", "rad"),
+        "unit_amplitude_mi_rate": Var(_C, "largest MI growth rate of the plane wave e^{i q n} of unit amplitude, "
+                                          "closed form (per unit tau; times R^(alpha-1) at amplitude R)"),
+        "fastest_sideband": Var(_C, "sideband wavenumber p of that largest rate (NaN: stable)", "rad"),
+        "unstable_band_low": Var(_C, "lower edge of the unstable sideband band in [0, pi] (NaN: stable)", "rad"),
+        "unstable_band_high": Var(_C, "upper edge of the unstable sideband band in [0, pi] (NaN: stable)", "rad"),
         "tail_mi_rate_min": Var(_C, "smallest MI growth rate of the tail measured on the rings of /robustness (per "
                                     "unit tau: its amplitude changes with N)"),
         "tail_mi_rate_max": Var(_C, "largest MI growth rate of the tail measured on those rings (per unit tau)"),
