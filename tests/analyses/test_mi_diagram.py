@@ -98,3 +98,34 @@ def test_mi_diagram_file_is_a_tree_named_as_in_the_paper(tmp_path):
     chk = tree["checks"]
     assert chk["q"].values[0, 0] == 2 * np.pi * 14 / 40 and abs(chk["rel_error"].values[0, 0]) < 0.05
     assert all(path.stat().st_size > 0 for path in save_figure(draw(tree), tmp_path / "mi-diagram"))
+
+
+@pytest.mark.parametrize("alpha", [1.2, 1.5, 3.0])
+def test_max_growth_rate_closed_form(alpha):
+    """max_growth_rate's closed form: the maximum of growth_rate over a fine grid of p (never below it, equal to
+    within the grid's resolution), at the stated sideband; the band is where growth_rate > 0; zero with no band for
+    cos q >= 0; the rate scales as R^(alpha-1); at q = pi it is 2^(alpha-1) (alpha-1) / (sqrt(alpha) tau0) at
+    cos p = 1/alpha (the case a <= 0), and for -(alpha-1)/(alpha+1) < cos q < 0 the largest sideband is p = pi."""
+    p = np.linspace(0.0, np.pi, 400001)
+    h = p[1] - p[0]
+    crossover = np.arccos(-(alpha - 1) / (alpha + 1))
+    for q in (0.3, np.pi / 2 - 1e-3, np.pi / 2 + 1e-3, 0.5 * (np.pi / 2 + crossover), crossover + 0.05, 2.6, np.pi,
+              -2.2):
+        rate, p_max, lo, hi = MI.max_growth_rate(q, alpha, 1e-3)
+        grid = MI.growth_rate(q, p, alpha, 1e-3)
+        if np.cos(q) >= 0:
+            assert rate == 0.0 and np.all(grid == 0.0) and np.isnan(lo) and np.isnan(hi)
+            continue
+        # never above it but for rounding (the two formulas round differently near cos q = 0), equal to within
+        # the grid's resolution
+        assert rate >= grid.max() * (1 - 1e-12) and rate == pytest.approx(grid.max(), rel=1e-8)
+        assert float(MI.growth_rate(q, p_max, alpha, 1e-3)) == pytest.approx(rate, rel=1e-12)
+        band = p[grid > 0]
+        assert abs(band.min() - lo) <= h and abs(band.max() - hi) <= h
+        if np.cos(q) > -(alpha - 1) / (alpha + 1):
+            assert p_max == np.pi
+        for R in (1e-8, 0.3):
+            assert MI.max_growth_rate(q, alpha, R)[0] == pytest.approx(rate * (R / 1e-3) ** (alpha - 1), rel=1e-12)
+    g, p_pi, _, _ = MI.max_growth_rate(np.pi, alpha, 1.0)
+    assert g * dps.tau0(alpha) == pytest.approx(2 ** (alpha - 1) * (alpha - 1) / np.sqrt(alpha), rel=1e-12)
+    assert np.cos(p_pi) == pytest.approx(1 / alpha, rel=1e-12)

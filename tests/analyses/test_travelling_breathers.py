@@ -25,7 +25,7 @@ def _tiny(**over):
     plain = {"N": 16, "check_N": [18], "check_rtol": [1e-12], "speeds": [0.06, 0.08, 0.1], "direct_speed": 0.08,
              "direct_periods": 3, "static_samples": 16, "motion_eps": [0.01, 0.003, 0.001, 3e-4], "motion_sites": 8,
              "motion_ring": 30, "motion_samples": 8, "lattice": False, "limit_N": [16, 18], "limit_step": 0.004,
-             "limit_halfwidth": 0.004, **over}
+             "limit_halfwidth": 0.004, "limit_large_N": [20], "limit_large_step": 0.004, **over}
     return from_plain(tb.TravellingBreathers, plain)
 
 
@@ -218,6 +218,63 @@ def test_limit_rule_cases():
     assert tb.limit_rule(N, np.array([1e-15, 1e-15, 1e-3]), thr)[0] == tb.LIMIT_UNDECIDED
     assert tb.limit_rule(N, np.array([1e-15, 1e-3, np.nan]), thr)[0] == tb.LIMIT_UNDECIDED
     assert tb.limit_rule(N, np.array([1e-3, 1e-3, np.nan]), thr)[0] == tb.LIMIT_UNSTABLE
+
+
+def test_tail_rule_verdict_cases():
+    """The tail rule on made-up inputs: a tail that is MI-unstable decides (unstable) whatever the fit; otherwise a
+    verdict needs g_inf two standard errors on one side of the threshold (a g_inf merely consistent with 0 is
+    undecided when it is also consistent with instability); a fit missing or degenerate is undecided."""
+    thr = 1e-5
+
+    def fit(g, e):
+        return {"g_inf": g, "g_inf_error": e}
+
+    assert tb.tail_rule_verdict(True, fit(np.nan, np.nan), thr) == tb.LIMIT_UNSTABLE
+    assert tb.tail_rule_verdict(False, fit(-3e-5, 1e-5), thr) == tb.LIMIT_STABLE
+    assert tb.tail_rule_verdict(False, fit(1e-7, 1e-6), thr) == tb.LIMIT_STABLE
+    assert tb.tail_rule_verdict(False, fit(2e-4, 1e-5), thr) == tb.LIMIT_UNSTABLE
+    assert tb.tail_rule_verdict(False, fit(2e-4, 2e-4), thr) == tb.LIMIT_UNDECIDED
+    assert tb.tail_rule_verdict(False, fit(1e-6, 1e-5), thr) == tb.LIMIT_UNDECIDED
+    assert tb.tail_rule_verdict(False, fit(np.nan, np.nan), thr) == tb.LIMIT_UNDECIDED
+    assert tb.tail_rule_verdict(False, {**fit(2e-4, 1e-5), "degenerate": 1.0}, thr) == tb.LIMIT_UNDECIDED
+    assert tb.tail_mi_unstable(np.pi / 2 + 1e-9) and not tb.tail_mi_unstable(np.pi / 2 - 1e-9)
+    assert tb.tail_mi_unstable(-2.0) and tb.tail_mi_unstable(2 * np.pi + 2.0) and not tb.tail_mi_unstable(-1.0)
+
+
+def test_limit_tail_rows_and_rule(tiny):
+    """/limit_tail: q is theta modulo 2 pi; the tail's kind is the sign of cos q and its unit MI rate the closed
+    form; theta is the same on every ring and tolerance (it is the rule's input: DpS's (tb) fixes it for the
+    member, not the ring; to the Newton tolerance); the envelope is the largest growth over the stored fine data of
+    the member's kind; the verdict is tail_rule_verdict's; every larger ring's TB has a symplectic spectrum."""
+    from cradle.analyses import mi_diagram
+
+    spec, tree = tiny
+    lt, lim, large = tree["limit_tail"], tree["robustness_limit"], tree["limit_large"]
+    theta = tree["family"]["theta"].values
+    q = lt["tail_q"].values
+    assert np.allclose(np.exp(1j * q), np.exp(1j * theta), rtol=0, atol=1e-15)
+    kind = lt["tail_mi_unstable"].values
+    assert np.array_equal(kind == 1, np.cos(q) < 0)
+    unit = lt["unit_amplitude_mi_rate"].values
+    assert np.array_equal(unit, [mi_diagram.max_growth_rate(x, spec.alpha)[0] for x in q])
+    assert np.all(unit[kind == 0] == 0) and np.all(unit[kind == 1] > 0)
+    assert np.max(lt["theta_spread"].values) < 1e-8
+    assert list(lt["fit_ring"].values) == [*spec.limit_N, *spec.limit_large_N]
+    assert np.nanmax(large["quartet_defect"].values) < 1e-8
+    rings = [(lim["c_fine"].values, lim["growth_rate"].values[i], lim["theta"].values[i])
+             for i in range(len(spec.limit_N))]
+    rings += [(large["c_large"].values, large["growth_rate"].values[i], large["theta"].values[i])
+              for i in range(len(spec.limit_large_N))]
+    for j, x in enumerate(tree["c"].values):
+        for i, (grid, g, th) in enumerate(rings):
+            keep = (np.abs(grid - x) <= spec.limit_halfwidth + 1e-9) & np.isfinite(g)
+            keep &= (np.cos(th) < 0) == bool(kind[j])
+            env = lt["envelope"].values[j, i]
+            # the larger ring's grid (step limit_large_step) holds every point of the fine grid here
+            assert (np.isnan(env) and not keep.any()) or env == np.max(g[keep])
+        fit = {"g_inf": lt["fit_g_inf"].values[j], "g_inf_error": lt["fit_g_inf_error"].values[j],
+               "degenerate": lt["fit_degenerate"].values[j]}
+        assert lt["verdict"].values[j] == tb.tail_rule_verdict(bool(kind[j]), fit, spec.stability_threshold)
 
 
 @pytest.mark.slow

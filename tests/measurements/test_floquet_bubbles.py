@@ -97,3 +97,24 @@ def test_windows_are_runs_of_unstable_points():
     u = np.array([0, 1, 1, 0, 0, 1, 0, 1, 1, 1], bool)
     assert FB.windows(c, u) == [(0.1, 0.2), (0.5, 0.5), (pytest.approx(0.7), pytest.approx(0.9))]
     assert FB.windows(c, np.zeros(10, bool)) == []
+
+
+def test_fit_limit_recovers_a_series_and_its_limit():
+    """fit_limit on exact series g_inf + b N^-k over rings 24-112 gives them back (the model is exact: to the
+    solver's tolerance); a pure finite-size series (g_inf = 0) gives g_inf consistent with 0 within its error; the
+    error covers the change when a ring is left out; fewer than four finite rings give NaN."""
+    N = np.array([24.0, 32.0, 48.0, 64.0, 96.0, 112.0])
+    for g_inf, b, k in ((1e-4, 2e-2, 1.3), (3e-4, -5e-3, 0.5), (0.0, 2e-2, 0.65)):
+        f = FB.fit_limit(N, g_inf + b * N ** (-k))
+        assert f["g_inf"] == pytest.approx(g_inf, abs=1e-9 * abs(b))
+        assert f["k"] == pytest.approx(k, rel=1e-6) and f["b"] == pytest.approx(b, rel=1e-6)
+        assert f["points"] == 6 and f["degenerate"] == 0
+    f = FB.fit_limit(N, 2e-2 * N ** -0.65 * (1 + 0.05 * np.array([1, -1, 1, -1, 1, -1])))
+    assert abs(f["g_inf"]) <= 2 * f["g_inf_error"]
+    # a series one ring moves: g_inf's error is at least that move
+    y = 1e-4 + 2e-2 * N ** -1.3
+    y[0] *= 3.0
+    f, g5 = FB.fit_limit(N, y), FB.fit_once(N[1:], y[1:])
+    assert f["g_inf_error"] >= abs(f["g_inf"] - g5["g_inf"]) and f["g_inf_stderr"] <= f["g_inf_error"]
+    f = FB.fit_limit(N, [1e-3, np.nan, 5e-4, np.nan, 3e-4, np.nan])
+    assert np.isnan(f["g_inf"]) and f["points"] == 3

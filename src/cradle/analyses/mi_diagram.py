@@ -145,6 +145,33 @@ def growth_rate(q: ArrayLike, p: ArrayLike, alpha: float, R: float = 1.0) -> NDA
     return 0.5 * K * np.sqrt(np.maximum(f, 0.0))
 
 
+def max_growth_rate(q: float, alpha: float, R: float = 1.0) -> tuple[float, float, float, float]:
+    """(max_p lambda, its p, the unstable band's edges p_lo, p_hi in [0, pi]) of the plane wave R e^{i q n} of
+    (dfnls), in closed form from :func:`growth_rate`'s f(w) = w a (w b - d), a = (alpha-1) + (alpha+1) c,
+    b = (alpha-1) - (alpha+1) c, d = 4 (alpha-1) s^2, w = 2 sin^2(p/2) in [0, 2]:
+
+    * c = cos q >= 0: f <= 0 for every p (no band: NaN edges), rate 0;
+    * -(alpha-1)/(alpha+1) < c < 0 (a > 0): f > 0 for w > d/b, largest at w = 2 (p = pi), where
+      2 a (2 b - d) = -8 a c: lambda = K sqrt(-2 a c);
+    * c <= -(alpha-1)/(alpha+1) (a <= 0): f > 0 for 0 < w < d/b, largest at w = d / (2 b), where
+      f = -a d^2 / (4 b): lambda = (K d / 4) sqrt(-a / b),
+
+    K = (2 R s)^(alpha-1) / tau0. Every R > 0 has the same band and sign; the rate scales as R^(alpha-1)."""
+    c, s = math.cos(q), abs(math.sin(q / 2.0))
+    a, b = (alpha - 1.0) + (alpha + 1.0) * c, (alpha - 1.0) - (alpha + 1.0) * c
+    d = 4.0 * (alpha - 1.0) * s**2
+    K = (2.0 * R * s) ** (alpha - 1.0) / dps.tau0(alpha)
+
+    def p_of(w: float) -> float:
+        return 2.0 * math.asin(math.sqrt(min(w, 2.0) / 2.0))
+
+    if c >= 0.0:
+        return 0.0, float("nan"), float("nan"), float("nan")
+    if a > 0.0:
+        return K * math.sqrt(-2.0 * a * c), math.pi, p_of(d / b), math.pi
+    return 0.25 * K * d * math.sqrt(-a / b), p_of(d / (2.0 * b)), 0.0, p_of(d / b)
+
+
 def scaled_growth_rate(q: ArrayLike, p: ArrayLike, alpha: float) -> NDArray[np.float64]:
     """lambda tau0 R^(1-alpha): a function of (q, p) only."""
     return growth_rate(q, p, alpha, 1.0) * dps.tau0(alpha)

@@ -137,6 +137,17 @@ class TravellingBreathers:
     limit_halfwidth: float = param(0.005, "Half-width in c of each member's neighbourhood in the fine scan (the "
                                    "neighbourhoods of neighbouring members may overlap).", exclusiveMinimum=0,
                                    maximum=0.1, reduced=0.004)
+    # the tail rule (section "the tail rule in the limit" below): larger rings around the members whose tail is
+    # modulationally stable, the only ones whose limit verdict needs the growth rates' extrapolation in N
+    limit_large_N: list[int] = param([80, 96, 112], "Larger rings (each above the largest of limit_N) scanned only "
+                                     "over the neighbourhoods of the members whose tail's plane wave is modulationally "
+                                     "stable; with limit_N they give the fit g_inf + b N^-k of the tail rule.",
+                                     minItems=0, maxItems=6, items=_RING, reduced=[])
+    limit_large_step: float = param(0.002, "Step in c of the scan on limit_large_N (a multiple of limit_step: the "
+                                    "fit compares every ring on the points common to all).", exclusiveMinimum=0,
+                                    maximum=0.05)
+    limit_large_newton_tol: float = param(5e-11, "newton_tol on limit_large_N (on 96 sites the first TB stops at "
+                                          "2.4e-11 against 1e-11).", exclusiveMinimum=0, maximum=1e-6)
 
     # exact TBs of the lattice (nc) (issue 37, items 2 and 3): section "the lattice's travelling breathers" below
     lattice: bool = param(True, "Also solve exact TBs of the lattice (nc) from a DpS member's ansatz (groups "
@@ -185,6 +196,20 @@ class TravellingBreathers:
         if self.limit_step > self.limit_halfwidth:
             out.add(where + ["limit_step"], f"must be <= limit_halfwidth = {self.limit_halfwidth} (a neighbourhood "
                     "of one point says nothing of its bubbles)", self.limit_step)
+        self.check_limit_large(where, out)
+
+    def check_limit_large(self, where: Where, out: Errors) -> None:
+        """The larger rings of the tail rule: increasing, above limit_N, on a grid that is a multiple of
+        limit_step."""
+        if any(y <= x for x, y in itertools.pairwise(self.limit_large_N)):
+            out.add(where + ["limit_large_N"], "must be strictly increasing", self.limit_large_N)
+        elif self.limit_large_N and self.limit_large_N[0] <= max(self.limit_N):
+            out.add(where + ["limit_large_N"], f"must be above the largest of limit_N = {self.limit_N}",
+                    self.limit_large_N)
+        ratio = self.limit_large_step / self.limit_step
+        if self.limit_large_N and (abs(ratio - round(ratio)) > 1e-9 or round(ratio) < 1):
+            out.add(where + ["limit_large_step"], f"must be a whole multiple of limit_step = {self.limit_step} (the "
+                    "fit compares the rings on common points)", self.limit_large_step)
 
     def check_motion(self, where: Where, out: Errors) -> None:
         """The keys of the TBs in motion: motion_speed among speeds, motion_eps decreasing, a ring long enough."""
@@ -679,11 +704,14 @@ def robustness(spec: TravellingBreathers, fam: list[TravellingBreather], log: Lo
     rtols = [spec.rtol, *spec.check_rtol]
     growth_tol = np.full((len(rtols), c.size), np.nan)
     growth_tol[0] = per_ring["growth"][0]
+    theta_tol = np.full((len(rtols), c.size), np.nan)
+    theta_tol[0] = per_ring["theta"][0]
     for i, rt in enumerate(rtols[1:], 1):
         for j, b in enumerate(fam):
             r = DT.newton(b.A, b.T, b.theta, spec.alpha, spec.norm, b.A, spec.newton_tol, rtol=rt)
             if r.converged:
                 growth_tol[i, j] = verdict(r, spec.stability_threshold)[1]
+                theta_tol[i, j] = r.theta
     unstable_tol = np.where(np.isnan(growth_tol), -1, growth_tol > spec.stability_threshold).astype(int)
     unstable_ring = np.where(np.isnan(per_ring["unstable"]), -1, per_ring["unstable"]).astype(int)
     everything = np.concatenate([unstable_ring, unstable_tol])
@@ -691,7 +719,7 @@ def robustness(spec: TravellingBreathers, fam: list[TravellingBreather], log: Lo
                        np.where(np.all(everything == 0, axis=0), SETTLED_STABLE, RING_DEPENDENT))
     return {"ring": np.array(rings), "rtol": np.array(rtols), **{f"{k}_ring": v for k, v in per_ring.items()},
             "unstable_ring": unstable_ring, "growth_tol": growth_tol, "unstable_tol": unstable_tol,
-            "settled": settled}
+            "theta_tol": theta_tol, "settled": settled}
 
 
 def robustness_attrs(c: NDArray[np.float64], rob: dict) -> dict:
@@ -914,6 +942,151 @@ def robustness_limit(spec: TravellingBreathers, c: NDArray[np.float64], log: Log
     return {"/robustness_limit": (data, {"limit_ring": rings.astype(int), "c_fine": grid})}, attrs
 
 
+# ----------------------------------------------------------------- the tail rule in the limit N -> infinity
+# Issue 37, "verdicts robust to the discretisation", with an input that does not change with N: the tail. A TB on
+# the infinite lattice carries a tail that never vanishes (James 2018), a plane wave of wavenumber q = theta; the
+# linearisation about the TB has the tail's own spectrum as its essential spectrum (in the TB's frame shifted by an
+# imaginary Doppler term only), so a tail that is modulationally unstable makes the TB unstable at the tail's MI
+# rate, whatever its core does. theta is the same on every ring and tolerance (/limit_tail/theta_spread); whether
+# the plane wave is modulationally unstable is cos q < 0 for every amplitude (mi_diagram.max_growth_rate). Only
+# the members whose tail is stable need the extrapolation of their finite-size instabilities in N.
+
+TAIL_RULE = ("tail MI-unstable (cos theta < 0, closed form: every tail amplitude R > 0 is unstable at a rate "
+             "proportional to R^(alpha-1)): unstable in the limit. Tail MI-stable: the largest growth rate over the "
+             "member's neighbourhood c +- limit_halfwidth, on the points whose own tail is MI-stable and that every "
+             "ring's grid holds, on each ring of limit_N and limit_large_N, fitted as g_inf + b N^-k (its error the "
+             "larger of the standard error and g_inf's change when the smallest or the largest ring is left out); "
+             "stable when g_inf plus TAIL_RULE_SIGMAS errors is below the stability threshold, unstable when g_inf "
+             "less that many errors is above it, undecided otherwise (both are consistent with the fit: a g_inf "
+             "merely consistent with 0 is not enough), when the fit is missing (fewer than 4 rings) and when it is "
+             "degenerate (k on a bound of its range: its error is then no error of g_inf)")
+#: a verdict from the fit needs g_inf this many standard errors on one side of the stability threshold
+TAIL_RULE_SIGMAS = 2.0
+
+
+def tail_mi_unstable(theta: float) -> bool:
+    """Whether the tail's plane wave e^{i theta n} is modulationally unstable (cos theta < 0, any amplitude)."""
+    return math.cos(theta) < 0.0
+
+
+def common_points(grids: list[NDArray[np.float64]]) -> NDArray[np.float64]:
+    """The velocities every grid holds (rounded to 1e-9, as :func:`limit_grid` rounds)."""
+    common = set(np.round(grids[0], 9))
+    for g in grids[1:]:
+        common &= set(np.round(g, 9))
+    return np.array(sorted(common))
+
+
+def kind_envelope(grid: NDArray[np.float64], growth: NDArray[np.float64], theta: NDArray[np.float64],
+                  centre: float, halfwidth: float, unstable_kind: bool, points: NDArray[np.float64]) -> float:
+    """The largest growth rate over the grid points within ``halfwidth`` of ``centre`` that are among ``points``
+    and whose tail is of the kind ``unstable_kind`` (:func:`tail_mi_unstable`); NaN when none is reached."""
+    keep = (np.abs(grid - centre) <= halfwidth + 1e-9) & np.isin(np.round(grid, 9), points) & np.isfinite(growth)
+    keep &= np.array([tail_mi_unstable(t) == unstable_kind if np.isfinite(t) else False for t in theta])
+    return float(np.max(growth[keep])) if np.any(keep) else np.nan
+
+
+def tail_rule_verdict(mi_unstable: bool, fit: dict[str, float], threshold: float) -> int:
+    """The limit verdict of :data:`TAIL_RULE` from the tail's kind and the fit of the envelope against N
+    (:func:`cradle.measurements.floquet_bubbles.fit_limit`)."""
+    if mi_unstable:
+        return LIMIT_UNSTABLE
+    g, err = fit["g_inf"], fit["g_inf_error"]
+    if not (np.isfinite(g) and np.isfinite(err)) or fit.get("degenerate", 0.0) == 1.0:
+        return LIMIT_UNDECIDED
+    if g - TAIL_RULE_SIGMAS * err > threshold:
+        return LIMIT_UNSTABLE
+    if g + TAIL_RULE_SIGMAS * err < threshold:
+        return LIMIT_STABLE
+    return LIMIT_UNDECIDED
+
+
+LARGE_FINE = ("growth", "unstable", "theta", "tail", "tail_mi", "quartet_defect")
+
+
+def large_scan(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[np.float64],
+               log: Log | None = None) -> tuple[NDArray[np.float64], dict[str, NDArray[np.float64]]]:
+    """The rings of ``limit_large_N`` scanned (:func:`limit_scan` at ``limit_large_newton_tol``) over the grid of step
+    ``limit_large_step`` around the members whose tail is MI-stable: the grid and, per (ring, point), the
+    quantities of :func:`limit_member` named in :data:`LARGE_FINE` (NaN where not reached)."""
+    import dataclasses
+
+    stable = np.array([not tail_mi_unstable(t) for t in theta])
+    if not spec.limit_large_N or not np.any(stable):
+        return np.zeros(0), {k: np.zeros((len(spec.limit_large_N), 0)) for k in LARGE_FINE}
+    grid = limit_grid(c[stable], spec.limit_large_step, spec.limit_halfwidth)
+    out = {k: np.full((len(spec.limit_large_N), grid.size), np.nan) for k in LARGE_FINE}
+    relaxed = dataclasses.replace(spec, newton_tol=spec.limit_large_newton_tol)
+    for i, N in enumerate(spec.limit_large_N):
+        for j, b in enumerate(limit_scan(relaxed, N, grid, log)):
+            if b is not None:
+                m = limit_member(b, spec.stability_threshold)
+                for k in LARGE_FINE:
+                    out[k][i, j] = m[k]
+    return grid, out
+
+
+def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[np.float64], rob: dict,
+              limit: tuple[dict, dict], log: Log | None = None) -> tuple[dict, dict]:
+    """The groups /limit_tail (per member: the tail's plane wave and its MI in closed form, the envelope of the
+    growth rates on every ring, its fit in N and the verdict of :data:`TAIL_RULE`) and /limit_large (the scans of
+    :func:`large_scan`), with their attributes (prefixed ``tail_rule_``). ``theta`` the members' theta on the ring
+    of N, ``rob`` :func:`robustness`'s arrays, ``limit`` the (data, coords) of /robustness_limit."""
+    from cradle.analyses import mi_diagram
+    from cradle.measurements import floquet_bubbles as FB
+
+    t0 = _time.process_time()
+    data, coords = limit
+    grid_small = coords["c_fine"]
+    grid_large, large = large_scan(spec, c, theta, log)
+    rings = [*spec.limit_N, *spec.limit_large_N]
+    points = common_points([grid_small, grid_large] if grid_large.size else [grid_small])
+    per_ring = ([(grid_small, data["growth_rate"][i], data["theta"][i]) for i in range(len(spec.limit_N))]
+                + [(grid_large, large["growth"][i], large["theta"][i]) for i in range(len(spec.limit_large_N))])
+    q = np.array([math.remainder(t, 2 * math.pi) for t in theta])
+    kind = np.array([tail_mi_unstable(t) for t in q])
+    closed = [mi_diagram.max_growth_rate(float(x), spec.alpha, 1.0) for x in q]
+    hw = spec.limit_halfwidth
+    # a member whose neighbourhood the larger rings' grid covers is compared on the points every ring holds, any
+    # other on the fine grid of limit_N (the larger rings hold none of its points)
+    h = spec.limit_large_step
+    covered = [grid_large.size > 0 and grid_large[0] - h < x - hw + 1e-9 and grid_large[-1] + h > x + hw - 1e-9
+               for x in c]
+    envelope = np.array([[kind_envelope(g_, gr, th, float(x), hw, bool(k), points if cov else np.round(grid_small, 9))
+                          for g_, gr, th in per_ring] for x, k, cov in zip(c, kind, covered, strict=True)])
+    fits = [FB.fit_limit(rings, envelope[j]) for j in range(c.size)]
+    verdicts = np.array([tail_rule_verdict(bool(kind[j]), fits[j], spec.stability_threshold)
+                         for j in range(c.size)], int)
+    # theta on every ring of /robustness and at every tolerance, against the ring of N's: the rule's input
+    spread = np.nanmax(np.abs(np.angle(np.exp(1j * (np.vstack([rob["theta_ring"], rob["theta_tol"]])
+                                                        - rob["theta_ring"][0])))), axis=0)
+    mi_ring = rob["tail_mi_ring"]
+    group = {"tail_q": q, "tail_mi_unstable": kind.astype(int), "theta_spread": spread,
+             "unit_amplitude_mi_rate": [x[0] for x in closed], "fastest_sideband": [x[1] for x in closed],
+             "unstable_band_low": [x[2] for x in closed], "unstable_band_high": [x[3] for x in closed],
+             "tail_mi_rate_min": np.nanmin(mi_ring, axis=0), "tail_mi_rate_max": np.nanmax(mi_ring, axis=0),
+             "envelope": envelope, **{f"fit_{k}": [f[k] for f in fits] for k in ("g_inf", "g_inf_error", "g_inf_stderr",
+                                                                                 "b", "k", "points", "degenerate")},
+             "verdict": verdicts}
+    groups = {"/limit_tail": (group, {"fit_ring": np.array(rings)})}
+    if grid_large.size:
+        groups["/limit_large"] = ({"growth_rate": large["growth"], "theta": large["theta"], "tail": large["tail"],
+                                   "tail_mi_rate": large["tail_mi"], "quartet_defect": large["quartet_defect"],
+                                   "unstable": np.where(np.isnan(large["unstable"]), -1,
+                                                        large["unstable"]).astype(int)},
+                                  {"large_ring": np.array(spec.limit_large_N), "c_large": grid_large})
+    attrs = {"tail_rule": TAIL_RULE, "tail_rule_rings": ", ".join(str(n) for n in rings),
+             "tail_rule_points": f"{points.size} common velocities, step {float(np.min(np.diff(points))):.3g}"
+             if points.size > 1 else f"{points.size}",
+             "tail_rule_mi_unstable_c": ", ".join(f"{x:g}" for x in c[kind]) or "none",
+             **{f"tail_rule_{name}_c": ", ".join(f"{x:g}" for x in c[verdicts == v]) or "none"
+                for name, v in (("stable", LIMIT_STABLE), ("unstable", LIMIT_UNSTABLE),
+                                ("undecided", LIMIT_UNDECIDED))},
+             "tail_rule_theta_spread_max": float(np.nanmax(spread)),
+             "tail_rule_cpu_s": _time.process_time() - t0}
+    return groups, attrs
+
+
 # ----------------------------------------------------------------- the stored file
 
 _C = ("c",)
@@ -1089,6 +1262,48 @@ VARIABLES = {
         "ring_largest_growth": Var(("limit_ring",), "largest growth rate over the whole fine grid on that ring"),
         "ring_unstable_fraction": Var(("limit_ring",), "fraction of the reached fine grid that is unstable"),
     },
+    "/limit_tail": {
+        "fit_ring": Var(("fit_ring",), "sites of a ring of the tail rule's fit (limit_N, then limit_large_N)"),
+        "tail_q": Var(_C, "wavenumber q of the tail's plane wave: theta modulo 2 pi, in (-pi, pi]", "rad"),
+        "tail_mi_unstable": Var(_C, "1 if the tail's plane wave is modulationally unstable (cos q < 0: at every "
+                                    "amplitude), else 0"),
+        "theta_spread": Var(_C, "largest |theta - theta on the ring of N| (modulo 2 pi) over the rings of "
+                                "/robustness and the tolerances of check_rtol", "rad"),
+        "unit_amplitude_mi_rate": Var(_C, "largest MI growth rate of the plane wave e^{i q n} of unit amplitude, "
+                                          "closed form (per unit tau; times R^(alpha-1) at amplitude R)"),
+        "fastest_sideband": Var(_C, "sideband wavenumber p of that largest rate (NaN: stable)", "rad"),
+        "unstable_band_low": Var(_C, "lower edge of the unstable sideband band in [0, pi] (NaN: stable)", "rad"),
+        "unstable_band_high": Var(_C, "upper edge of the unstable sideband band in [0, pi] (NaN: stable)", "rad"),
+        "tail_mi_rate_min": Var(_C, "smallest MI growth rate of the tail measured on the rings of /robustness (per "
+                                    "unit tau: its amplitude changes with N)"),
+        "tail_mi_rate_max": Var(_C, "largest MI growth rate of the tail measured on those rings (per unit tau)"),
+        "envelope": Var(("c", "fit_ring"), "largest growth rate over the member's neighbourhood, on the points of "
+                                           "the member's tail kind common to every ring (per unit tau; NaN: none "
+                                           "reached)"),
+        "fit_g_inf": Var(_C, "g_inf of envelope = g_inf + b N^-k over the rings (per unit tau; NaN: fewer than 4)"),
+        "fit_g_inf_error": Var(_C, "error of fit_g_inf: the larger of its standard error and its change when the "
+                                   "smallest or the largest ring is left out (per unit tau)"),
+        "fit_g_inf_stderr": Var(_C, "standard error of fit_g_inf from the residuals (per unit tau)"),
+        "fit_b": Var(_C, "b of that fit (per unit tau times sites^k)"),
+        "fit_k": Var(_C, "exponent k of that fit"),
+        "fit_points": Var(_C, "rings in that fit"),
+        "fit_degenerate": Var(_C, "1 if k ended on a bound of its range (the error is then no error of g_inf; NaN: "
+                                  "no fit)"),
+        "verdict": Var(_C, "limit verdict of tail_rule: 1 unstable, 0 stable, -1 undecided"),
+    },
+    "/limit_large": {
+        "large_ring": Var(("large_ring",), "sites of a larger ring of the tail rule (limit_large_N)"),
+        "c_large": Var(("c_large",), "velocity c of its scan (around the members whose tail is MI-stable)"),
+        "growth_rate": Var(("large_ring", "c_large"), "ln max |mu| / T over the non-trivial multipliers modulo "
+                                                      "shift (per unit tau; NaN: not reached)"),
+        "unstable": Var(("large_ring", "c_large"), "1 if growth_rate > stability_threshold (-1: not reached)"),
+        "theta": Var(("large_ring", "c_large"), "phase theta of (tb), in (-pi, pi]", "rad"),
+        "tail": Var(("large_ring", "c_large"), "max |A_n| on the far quarter ring / max |A_n|"),
+        "tail_mi_rate": Var(("large_ring", "c_large"), "largest MI growth rate of the tail's plane wave on the "
+                                                       "infinite lattice (per unit tau)"),
+        "quartet_defect": Var(("large_ring", "c_large"), "largest distance from 1/conj(mu) or conj(mu) to the "
+                                                         "nearest multiplier (0 for a symplectic spectrum)"),
+    },
     "/claims": GROUP_VARIABLES,
 }
 
@@ -1156,6 +1371,8 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
     other = fam[i_direct + 1] if i_direct + 1 < len(fam) else fam[i_direct - 1]
     scal = scaling_check(fam[i_direct], other, spec.scale, spec)
     limit_groups, limit_attrs = robustness_limit(spec, c, say)
+    tail_groups, tail_attrs = tail_rule(spec, c, np.array([b.theta for b in fam]), rob,
+                                        limit_groups["/robustness_limit"], say)
     i_motion = int(np.argmin(np.abs(c - spec.motion_speed)))
     motion_groups, motion_attrs = motion(spec, fam[i_motion], say)
     real = np.array([v[3] for v in ver])
@@ -1191,6 +1408,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
         "/claims": group(rows),
         **motion_groups,
         **limit_groups,
+        **tail_groups,
     }
     near = np.minimum([d["site"] for d in dist], [d["bond"] for d in dist])
     power = float(np.polyfit(np.log(c), np.log(near), 1)[0])
@@ -1221,6 +1439,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
                   "P. G. Kevrekidis, A. Vainchtein, arXiv 1701.04882",
         **motion_attrs,
         **limit_attrs,
+        **tail_attrs,
         "wall_time_s": _time.perf_counter() - t0,
     }
     if spec.lattice:

@@ -20,7 +20,10 @@ and radiation against eps.
 Last, the verdicts in the limit N -> infinity when the file holds them (group /robustness_limit): (m) the growth
 rate along the fine grid of c on each ring, with the tail's MI rate, (n) the median growth rate of each member's
 neighbourhood on each ring with the limit verdicts, (o) the unstable fraction of the fine grid against N, where the
-tail is modulationally unstable and elsewhere.
+tail is modulationally unstable and elsewhere. Then the tail rule (group /limit_tail): (p) the envelope of the
+growth rates of each member whose tail is MI-stable against N with its fit g_inf + b N^-k, (q) the tail's MI rate
+in closed form against the growth rate measured on each ring, (r) the table of the verdicts on each ring, at each
+tolerance and in the limit.
 """
 from __future__ import annotations
 
@@ -41,7 +44,8 @@ def draw(tree: AnalysisTree) -> Figure:
     """The panels above: (g)-(i) when the file holds the TBs in motion, (j)-(l) when it holds the lattice's TBs."""
     lattice = "lattice_eps" in tree.children
     limit = "robustness_limit" in tree.children
-    rows = 3 + int(lattice) + int(limit)
+    tail = "limit_tail" in tree.children
+    rows = 3 + int(lattice) + int(limit) + int(tail)
     fig, ax = figure(rows, 3, width=13.5, height=11.2 + 3.7 * (rows - 3))
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
@@ -144,7 +148,108 @@ def draw(tree: AnalysisTree) -> Figure:
         _lattice_panels(tree, ax[3])
     if limit:
         draw_limit(ax[3 + int(lattice)], tree)
+    if tail:
+        draw_tail_rule(ax[3 + int(lattice) + int(limit)], tree)
     return fig
+
+
+VERDICT_LETTER = {1: "U", 0: "S"}
+VERDICT_COLOUR = {1: "C3", 0: "C2"}
+
+
+def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
+    """Panels (p)-(r), the tail rule's verdicts in the limit (group /limit_tail): (p) per member the largest growth
+    rate of its neighbourhood (points of its tail's kind) against N with the fit g_inf + b N^-k; (q) the tail's MI
+    rate in closed form at the tail amplitudes measured on the rings (bars: smallest to largest) against the growth
+    rate measured at the member on each ring; (r) the table of verdicts per ring, tolerance and in the limit."""
+    lt = tree["limit_tail"]
+    attrs = tree.attrs
+    thr = float(attrs["stability_threshold"])
+    floor = thr / 100.0
+    c = np.asarray(tree["c"].values)
+    rings = np.asarray(lt["fit_ring"].values, float)
+    env = np.asarray(lt["envelope"].values, float)                 # (c, ring)
+    kind = np.asarray(lt["tail_mi_unstable"].values) == 1
+    verdict = np.asarray(lt["verdict"].values)
+
+    p = ax[0]
+    fine = np.linspace(float(rings.min()), 2.0 * float(rings.max()), 200)
+    shown = [j for j in range(c.size) if np.sum(np.isfinite(env[j])) >= 2 and not kind[j]]
+    for k, j in enumerate(shown):
+        col = f"C{k % 10}"
+        p.semilogy(rings, np.maximum(env[j], floor), "o", color=col, ms=5, label=f"c = {c[j]:g}")
+        g0, b, kk = (float(lt[f"fit_{x}"].values[j]) for x in ("g_inf", "b", "k"))
+        if np.isfinite(g0):
+            e0 = float(lt["fit_g_inf_error"].values[j])
+            p.semilogy(fine, np.maximum(g0 + b * fine ** (-kk), floor), "-", color=col, lw=0.8,
+                       label=rf"fit: $g_\infty$ = {g0:.1e} $\pm$ {e0:.1e}")
+    p.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
+    p.set_ylim(floor / 3.0, 1e3 * max(float(np.nanmax(env)) if np.isfinite(env).any() else thr, thr))
+    p.set_xlabel("sites N of the ring")
+    p.set_ylabel(rf"largest growth over c $\pm$ {float(attrs['limit_halfwidth']):g} (floor {floor:g})")
+    p.set_title("(p) members whose tail is MI-stable: envelope against N", fontsize=9)
+    p.legend(fontsize=6, loc="upper left", ncol=2)
+
+    q = ax[1]
+    rob = tree["robustness"]
+    G = np.asarray(rob["growth_rate"].values, float)
+    lo = np.asarray(lt["tail_mi_rate_min"].values, float)
+    hi = np.asarray(lt["tail_mi_rate_max"].values, float)
+    un = kind & np.isfinite(lo)
+    for k, j in enumerate(np.where(un)[0]):
+        # a bar from the smallest to the largest rate (a dot where the rings' tails agree)
+        q.semilogy([c[j], c[j]], [max(lo[j], floor), max(hi[j], floor)], "k_-", lw=3, ms=6, alpha=0.5,
+                   label="tail's MI rate (closed form), over the rings' tails" if k == 0 else "_")
+    for i, ring in enumerate(rob["ring"].values):
+        q.semilogy(c, np.maximum(G[i], floor), f"C{i}{'os^v<>'[i % 6]}", ms=4, mfc="none",
+                   label=f"growth at c, ring of {int(ring)}")
+    q.semilogy(c[~kind], np.full(int(np.sum(~kind)), floor / 2.0), "k_", ms=10, mew=2,
+               label="tail MI-stable (no MI rate)")
+    q.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
+    q.set_ylim(floor / 4.0, 3e3 * max(float(np.nanmax(hi)), thr))
+    q.set_xlabel("velocity c (member)")
+    q.set_ylabel(rf"growth rate per unit $\tau$ (floor {floor:g})")
+    q.set_title("(q) the tail's modulational instability", fontsize=9)
+    q.legend(fontsize=6, loc="upper left", ncol=2)
+
+    r = ax[2]
+    r.axis("off")
+    rows = verdict_table(tree)
+    # the whole panel: every column as wide as its longest header allows
+    tab = r.table(cellText=rows[1:], colLabels=rows[0], cellLoc="center", bbox=[0.0, 0.0, 1.0, 1.0])
+    tab.auto_set_font_size(False)
+    tab.set_fontsize(6)
+    for (i, _), cell in tab.get_celld().items():
+        text = cell.get_text().get_text()
+        if i > 0 and text in ("U", "S"):
+            cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
+    r.set_title("(r) verdicts per ring N and rtol (ring of N);\nin the limit: median rule, tail rule", fontsize=9)
+    del verdict
+
+
+def verdict_table(tree: AnalysisTree) -> list[list[str]]:
+    """The rows of panel (r): c, the verdict on each ring of /robustness and at each tolerance, the median rule's
+    limit verdict (/robustness_limit) and the tail rule's (/limit_tail); '-' where a member was not reached."""
+    rob, lt = tree["robustness"], tree["limit_tail"]
+    c = np.asarray(tree["c"].values)
+
+    def letter(v: float) -> str:
+        return {1: "U", 0: "S"}.get(int(v), "?") if np.isfinite(v) else "-"
+
+    head = ["c", *[f"N={int(n)}" for n in rob["ring"].values], *[f"{float(t):g}" for t in rob["rtol"].values[1:]]]
+    cols = [np.where(np.asarray(rob["unstable"].values[i]) < 0, np.nan, rob["unstable"].values[i])
+            for i in range(rob["ring"].size)]
+    cols += [np.where(np.asarray(rob["unstable_tol"].values[i]) < 0, np.nan, rob["unstable_tol"].values[i])
+             for i in range(1, rob["rtol"].size)]
+    if "robustness_limit" in tree.children:
+        head.append("median")
+        cols.append(np.asarray(tree["robustness_limit"]["verdict"].values, float))
+    head.append("tail")
+    cols.append(np.asarray(lt["verdict"].values, float))
+    rows = [head]
+    for j, x in enumerate(c):
+        rows.append([f"{x:g}", *[letter(float(col[j])) for col in cols]])
+    return rows
 
 
 def draw_limit(ax: Any, tree: AnalysisTree) -> None:

@@ -150,3 +150,69 @@ def bubble(scan: dict[str, NDArray[np.float64]], threshold: float, angle: float,
     return {"bubble_from": a, "bubble_to": b, "step": step, "width_measured": b - a + step, "width_model": 4 * g / s,
             "height_measured": float(np.nanmax(lm[inner])), "height_model": g, "detuning_rate": s,
             "growth_rate_measured": float(np.nanmax(lm[inner] / T[inner])), "points_outside": float(out.sum())}
+
+
+#: fewest rings for :func:`fit_limit`: three parameters and at least one degree of freedom for their errors
+LIMIT_FIT_MIN = 4
+#: the range of the exponent k in :func:`fit_limit` (a fit that ends on either bound is degenerate)
+LIMIT_FIT_K = (0.0, 8.0)
+
+
+def fit_limit(N: ArrayLike, g: ArrayLike) -> dict[str, float]:
+    """:func:`fit_once` over every ring, its error widened to the change of g_inf when the smallest or the largest
+    ring is left out (when at least :data:`LIMIT_FIT_MIN` remain; as :func:`cradle.measurements.continuum.fit_power`
+    does): a g_inf that one ring moves is no better known than that. ``g_inf_stderr`` keeps the standard error."""
+    n, y = np.asarray(N, float), np.asarray(g, float)
+    ok = np.isfinite(y)
+    n, y = n[ok], y[ok]
+    fit = fit_once(n, y)
+    fit["g_inf_stderr"] = fit["g_inf_error"]
+    if n.size > LIMIT_FIT_MIN and np.isfinite(fit["g_inf"]):
+        order = np.argsort(n)
+        for keep in (order[1:], order[:-1]):
+            sub = fit_once(n[keep], y[keep])["g_inf"]
+            fit["g_inf_error"] = max(fit["g_inf_error"], abs(sub - fit["g_inf"])) if np.isfinite(sub) else np.nan
+    return fit
+
+
+def fit_once(N: ArrayLike, g: ArrayLike) -> dict[str, float]:
+    """g(N) = g_inf + b N^(-k) fitted to growth rates g on rings of N sites (least squares, k in
+    :data:`LIMIT_FIT_K`): the growth rate in the limit N -> infinity g_inf, its standard error (from the residuals;
+    NaN with fewer than :data:`LIMIT_FIT_MIN` finite points, as every output then), b, k and ``degenerate`` (1 when
+    k ends on a bound of its range: the standard error is then no error of g_inf). A series that settles at g_inf
+    returns it; a finite-size effect returns g_inf consistent with 0."""
+    from scipy.optimize import curve_fit
+
+    n, y = np.asarray(N, float), np.asarray(g, float)
+    ok = np.isfinite(y)
+    n, y = n[ok], y[ok]
+    nan = {"g_inf": np.nan, "g_inf_error": np.nan, "b": np.nan, "k": np.nan, "points": float(n.size),
+           "degenerate": np.nan}
+    if n.size < LIMIT_FIT_MIN:
+        return nan
+    scale = max(float(np.max(np.abs(y))), np.finfo(float).tiny)
+    # in units of the largest rate and of the smallest ring: every parameter of order 1 for the solver
+    x, z = n / np.min(n), y / scale
+
+    def model(x: NDArray[np.float64], g0: float, b: float, k: float) -> NDArray[np.float64]:
+        return g0 + b * x ** (-k)
+
+    best = None
+    for k0 in (0.5, 1.0, 2.0):
+        try:
+            p, cov = curve_fit(model, x, z, p0=(z[-1], z[0] - z[-1], k0),
+                               bounds=([-np.inf, -np.inf, LIMIT_FIT_K[0]], [np.inf, np.inf, LIMIT_FIT_K[1]]))
+        except RuntimeError:
+            continue
+        cost = float(np.sum((model(x, *p) - z) ** 2))
+        if best is None or cost < best[0]:
+            best = (cost, p, cov)
+    if best is None:
+        return nan
+    _, p, cov = best
+    err = float(np.sqrt(cov[0, 0])) if np.isfinite(cov[0, 0]) else np.nan
+    # on a bound (to the solver's tolerance) the exponent is not fitted but imposed
+    degenerate = min(p[2] - LIMIT_FIT_K[0], LIMIT_FIT_K[1] - p[2]) < 1e-6
+    return {"g_inf": float(p[0] * scale), "g_inf_error": err * scale,
+            "b": float(p[1] * scale * np.min(n) ** p[2]), "k": float(p[2]), "points": float(n.size),
+            "degenerate": float(degenerate)}
