@@ -41,7 +41,8 @@ def draw(tree: AnalysisTree) -> Figure:
     """The panels above: (g)-(i) when the file holds the TBs in motion, (j)-(l) when it holds the lattice's TBs."""
     lattice = "lattice_eps" in tree.children
     limit = "robustness_limit" in tree.children
-    rows = 3 + int(lattice) + int(limit)
+    on_rings = "lattice_rings" in tree.children
+    rows = 3 + int(lattice) + int(limit) + int(on_rings)
     fig, ax = figure(rows, 3, width=13.5, height=11.2 + 3.7 * (rows - 3))
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
@@ -144,7 +145,80 @@ def draw(tree: AnalysisTree) -> Figure:
         _lattice_panels(tree, ax[3])
     if limit:
         draw_limit(ax[3 + int(lattice)], tree)
+    if on_rings:
+        draw_rings(ax[3 + int(lattice) + int(limit)], tree)
     return fig
+
+
+def _from_centre(xi: np.ndarray) -> np.ndarray:
+    """Signed ring distance of each site from the largest |xi_n|."""
+    N = xi.size
+    return (np.arange(N) - int(np.argmax(np.abs(xi))) + N // 2) % N - N // 2
+
+
+def draw_rings(ax: Any, tree: AnalysisTree) -> None:
+    """The lattice's TBs on other rings and at larger eps (groups /lattice_rings, /lattice_large): (p) |xi_n(0)| /
+    max against the distance from the centre on each ring at the first eps, and at the larger eps on the first ring;
+    (q) the tail against eps on each ring, with every member's residual; (r) the tail along the continuation in c
+    against the DpS velocity through (ansatz), unstable members filled."""
+    rg = tree["lattice_rings"]
+    rings = np.asarray(rg["ring"].values)
+    x, v = np.asarray(rg["x"].values), np.asarray(rg["v"].values)
+    large = tree["lattice_large"] if "lattice_large" in tree.children else None
+    g = ax[0]
+    floor = 1e-16
+    for k, N in enumerate(rings):
+        xi = 0.5 * (x[k, 0, :N] - 1j * v[k, 0, :N])
+        a = np.abs(xi) / np.max(np.abs(xi))
+        g.semilogy(_from_centre(xi), np.maximum(a, floor), "o", color=f"C{k}", ms=3,
+                   label=f"ring of {N}, $\\varepsilon$ = {float(rg['eps_tb'].values[k, 0]):.3g}")
+    if large is not None:
+        for j, e in enumerate(np.asarray(large["eps_tb"].values)):
+            xi = 0.5 * (np.asarray(large["x"].values[j]) - 1j * np.asarray(large["v"].values[j]))
+            a = np.abs(xi) / np.max(np.abs(xi))
+            g.semilogy(_from_centre(xi), np.maximum(a, floor), "k" + "x+"[j % 2], ms=5,
+                       label=f"ring of {rings[0]}, $\\varepsilon$ = {e:.3g} (core first)")
+    g.set_ylim(floor / 10.0, 1e5)
+    g.set_xlabel("site n minus the centre's")
+    g.set_ylabel("$|\\xi_n(0)|$ / max")
+    g.set_title("(p) exact TBs of (nc) on larger rings: the far field", fontsize=9)
+    g.legend(fontsize=6.5, loc="upper left", ncol=2)
+
+    h = ax[1]
+    for k, N in enumerate(rings):
+        h.loglog(np.asarray(rg["eps_tb"].values[k]), np.asarray(rg["tail"].values[k]), "o-", color=f"C{k}", ms=4,
+                 lw=1.0, label=f"tail, ring of {N}")
+    res = [np.asarray(rg["residual"].values).ravel()]
+    eps_all = [np.asarray(rg["eps_tb"].values).ravel()]
+    if large is not None:
+        h.loglog(np.asarray(large["eps_tb"].values), np.asarray(large["tail"].values), "ks", ms=5, mfc="none",
+                 label=f"tail, ring of {rings[0]}, larger $\\varepsilon$ (core first)")
+        res.append(np.asarray(large["residual"].values))
+        eps_all.append(np.asarray(large["eps_tb"].values))
+    h.loglog(np.concatenate(eps_all), np.concatenate(res), "k+", ms=6, label="shift-map residual (each TB)")
+    h.set_ylim(1e-14, 1e2)
+    h.set_xlabel("$\\varepsilon$ at the TB's amplitude")
+    h.set_ylabel("max $|\\xi_n|$ on the far quarter ring / max")
+    h.set_title("(q) the tail against $\\varepsilon$ and N", fontsize=9)
+    h.legend(fontsize=6.5, loc="upper left", ncol=2)
+
+    i_ = ax[2]
+    thr = float(tree.attrs["stability_threshold"])
+    for k, N in enumerate(rings):
+        dc = np.asarray(rg["dps_c_family"].values[k])
+        if not np.any(np.isfinite(dc)):
+            continue
+        tail = np.asarray(rg["tail_family"].values[k])
+        un = np.asarray(rg["growth_rate_family"].values[k]) > thr
+        i_.semilogy(dc, tail, "-", color=f"C{k}", lw=1.0)
+        i_.semilogy(dc[~un], tail[~un], "o", color=f"C{k}", ms=5, mfc="none", label=f"ring of {N}")
+        if np.any(un):
+            i_.semilogy(dc[un], tail[un], "o", color=f"C{k}", ms=5)
+    i_.semilogy([], [], "ko", ms=5, label=f"filled: unstable (growth > {thr:g} per unit t)")
+    i_.set_xlabel("velocity of the DpS TB through (ansatz), 1 / (T $\\varepsilon^{\\alpha-1}$)")
+    i_.set_ylabel("tail (far quarter ring) / max")
+    i_.set_title("(r) the tail along the continuation in c", fontsize=9)
+    i_.legend(fontsize=6.5, loc="upper right")
 
 
 def draw_limit(ax: Any, tree: AnalysisTree) -> None:
