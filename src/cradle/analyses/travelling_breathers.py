@@ -143,7 +143,7 @@ class TravellingBreathers:
                           "/lattice, /lattice_eps, /lattice_states): minutes of CPU, so in the full form only.",
                           reduced=False)
     lattice_N: int = param(16, "Sites of the ring of the lattice's TBs (the DpS member at lattice_source solved on "
-                           "it; on 24 sites Newton stops near 2e-8, docs).", minimum=8, maximum=200)
+                           "it; lattice_rings carries them to larger rings).", minimum=8, maximum=200)
     lattice_source: float = param(0.1, "c of the DpS member (one of speeds) whose ansatz starts the lattice's TBs; the "
                                   "same member launched in (nc) beside the exact TBs (item 3's comparison).",
                                   exclusiveMinimum=0, maximum=2)

@@ -26,6 +26,14 @@ x_n(t) ~ 2 eps Re(A_n(eps^(alpha-1) t) e^{it}) (:func:`cradle.models.initial.lat
 the lattice period T = T_d eps^(1-alpha) is resonant with the carrier, theta + T = 2 pi m (m an integer, about the
 breathing periods per site): given the DpS member and m, T = 2 pi m - theta and eps = (T_d / T)^(1/(alpha-1))
 (:func:`resonant_start`).
+
+Larger rings and amplitudes. Far from the core a TB's sites are nearly free oscillators of frequency 1 (the Hertz
+coupling of amplitude a is of order a^(alpha-1)), so a ring with room for a far field has directions the equations
+barely fix there. From the ansatz (residual ~1e-2) a step of all unknowns puts ~1e-3 of the amplitude on the far
+sites, and Newton then heads for a TB carrying a plane-wave tail of that size, whose phase is a second near-neutral
+direction, and stalls. Two remedies, both converging: :func:`newton_core_first` (the core's unknowns first, the far
+sites at the ansatz's values) and :func:`embed` (a TB of a smaller ring carried to a larger one, sites at rest added
+on the far side, where its field is already below the residual).
 """
 from __future__ import annotations
 
