@@ -167,7 +167,7 @@ class TravellingBreathers:
                                      "lattice_eps are solved again, each carried from the ring before by adding sites "
                                      "at rest on the far side (increasing; group /lattice_rings).", minItems=0,
                                      maxItems=8, items=_RING)
-    lattice_family_rings: list[int] = param([24, 32], "Rings of lattice_rings on which the continuation in c "
+    lattice_family_rings: list[int] = param([24], "Rings of lattice_rings on which the continuation in c "
                                             "(lattice_steps) is done too (its cost grows as N^2).", minItems=0,
                                             maxItems=8, items=_RING)
     lattice_large_eps: list[float] = param([0.01, 0.03], "eps of the ansatz above lattice_eps at which an exact TB "
@@ -617,7 +617,8 @@ def lattice_rings_groups(spec: TravellingBreathers, source: TravellingBreather, 
         fam_rows.append(fam)
         say(f"travelling-breathers: lattice TBs on the ring of {N}: " + ", ".join(
             "-" if b is None else f"eps {b.eps:.4g} residual {b.residual:.2g}" for b in row)
-            + f"; {sum(b is not None for b in fam)} of {steps.size} members in c")
+            + (f"; {sum(b is not None for b in fam)} of {steps.size} members in c" if N in spec.lattice_family_rings
+               else ""))
     width = max(rings)
     eps_vals = [[ring_member(b, spec) for b in row] for row in eps_rows]
     fam_vals = [[ring_member(b, spec) for b in row] for row in fam_rows]

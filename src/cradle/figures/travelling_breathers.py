@@ -21,6 +21,10 @@ Last, the verdicts in the limit N -> infinity when the file holds them (group /r
 rate along the fine grid of c on each ring, with the tail's MI rate, (n) the median growth rate of each member's
 neighbourhood on each ring with the limit verdicts, (o) the unstable fraction of the fine grid against N, where the
 tail is modulationally unstable and elsewhere.
+Then the lattice's TBs on larger rings and at larger eps when the file holds them (groups /lattice_rings,
+/lattice_large): (p) |xi_n(0)| / max against the distance from the centre on each ring, (q) the tail against eps on
+each ring with every TB's residual, (r) the tail along the continuation in c against the DpS velocity through
+(ansatz), unstable members filled.
 """
 from __future__ import annotations
 
@@ -166,12 +170,13 @@ def draw_rings(ax: Any, tree: AnalysisTree) -> None:
     x, v = np.asarray(rg["x"].values), np.asarray(rg["v"].values)
     large = tree["lattice_large"] if "lattice_large" in tree.children else None
     g = ax[0]
-    floor = 1e-16
+    floor = 1e-14
     for k, N in enumerate(rings):
         xi = 0.5 * (x[k, 0, :N] - 1j * v[k, 0, :N])
         a = np.abs(xi) / np.max(np.abs(xi))
-        g.semilogy(_from_centre(xi), np.maximum(a, floor), "o", color=f"C{k}", ms=3,
-                   label=f"ring of {N}, $\\varepsilon$ = {float(rg['eps_tb'].values[k, 0]):.3g}")
+        # a marker per ring, hollow and shrinking, so that rings whose far fields coincide all show
+        g.semilogy(_from_centre(xi), np.maximum(a, floor), "osD^v<>"[k % 7], color=f"C{k}", ms=7 - 1.2 * k, mfc="none",
+                   mew=0.9, label=f"ring of {N}, $\\varepsilon$ = {float(rg['eps_tb'].values[k, 0]):.3g}")
     if large is not None:
         for j, e in enumerate(np.asarray(large["eps_tb"].values)):
             xi = 0.5 * (np.asarray(large["x"].values[j]) - 1j * np.asarray(large["v"].values[j]))
@@ -215,10 +220,12 @@ def draw_rings(ax: Any, tree: AnalysisTree) -> None:
         if np.any(un):
             i_.semilogy(dc[un], tail[un], "o", color=f"C{k}", ms=5)
     i_.semilogy([], [], "ko", ms=5, label=f"filled: unstable (growth > {thr:g} per unit t)")
+    top = float(np.nanmax(np.asarray(rg["tail_family"].values)))
+    i_.set_ylim(top=1e3 * top)    # room for the legend above the largest tail
     i_.set_xlabel("velocity of the DpS TB through (ansatz), 1 / (T $\\varepsilon^{\\alpha-1}$)")
     i_.set_ylabel("tail (far quarter ring) / max")
     i_.set_title("(r) the tail along the continuation in c", fontsize=9)
-    i_.legend(fontsize=6.5, loc="upper right")
+    i_.legend(fontsize=6.5, loc="upper left")
 
 
 def draw_limit(ax: Any, tree: AnalysisTree) -> None:
