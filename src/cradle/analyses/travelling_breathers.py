@@ -167,7 +167,7 @@ class TravellingBreathers:
                                      "lattice_eps are solved again, each carried from the ring before by adding sites "
                                      "at rest on the far side (increasing; group /lattice_rings).", minItems=0,
                                      maxItems=8, items=_RING)
-    lattice_family_rings: list[int] = param([24], "Rings of lattice_rings on which the continuation in c "
+    lattice_family_rings: list[int] = param([24, 32], "Rings of lattice_rings on which the continuation in c "
                                             "(lattice_steps) is done too (its cost grows as N^2).", minItems=0,
                                             maxItems=8, items=_RING)
     lattice_large_eps: list[float] = param([0.01, 0.03], "eps of the ansatz above lattice_eps at which an exact TB "
@@ -611,8 +611,10 @@ def lattice_rings_groups(spec: TravellingBreathers, source: TravellingBreather, 
         if N in spec.lattice_family_rings and first is not None:
             cs = first.c * (1.0 + steps)
             least = 0.1 * float(np.min(np.diff(steps))) if steps.size > 1 else 0.001
-            down, _ = LT.continue_family(first, cs[:i0][::-1], spec.newton_tol, min_step=least, log=log)
-            up, _ = LT.continue_family(first, cs[i0 + 1:], spec.newton_tol, min_step=least, log=log)
+            # the corrector on the core first: the predictor's error would otherwise put a tail on the far sites
+            down, _ = LT.continue_family(first, cs[:i0][::-1], spec.newton_tol, min_step=least, log=log,
+                                         core_first=True)
+            up, _ = LT.continue_family(first, cs[i0 + 1:], spec.newton_tol, min_step=least, log=log, core_first=True)
             fam = by_step(cs, down[::-1] + [first] + up)
         fam_rows.append(fam)
         say(f"travelling-breathers: lattice TBs on the ring of {N}: " + ", ".join(
@@ -641,7 +643,7 @@ def lattice_rings_groups(spec: TravellingBreathers, source: TravellingBreather, 
                                       f"{len(spec.lattice_family_rings) * steps.size} in c beyond the first ring",
              "lattice_rings_method": "each ring's TB from the same member of the ring before, sites at rest added on "
                                      "the far side (the breather centred), Newton at the same T; the continuation in "
-                                     "c as on the ring of lattice_N",
+                                     "c as on the ring of lattice_N, its corrector on the core's unknowns first",
              "lattice_rings_cpu_s": cpu_rings, **large_attrs}
     return groups, attrs
 

@@ -299,10 +299,12 @@ def core_unknowns(z: ArrayLike, threshold: float = CORE) -> NDArray[np.bool_]:
 
 
 def newton_core_first(z_guess: ArrayLike, T: float, alpha: float, tol: float = 1e-11, max_iter: int = 12,
-                      log: Callable[[str], object] | None = None) -> tuple[LatticeTB, float]:
+                      log: Callable[[str], object] | None = None,
+                      reference: ArrayLike | None = None) -> tuple[LatticeTB, float]:
     """(TB, the first stage's residual): :func:`newton` in two stages from ``z_guess`` (the phase condition about
-    it in both): the core's unknowns (:func:`core_unknowns`) alone until the residual is below CORE_TOL (the far
-    sites kept at the guess's, the ansatz's doubly exponentially small values), then all of them to ``tol``.
+    ``reference``, default the guess, in both): the core's unknowns (:func:`core_unknowns`) alone until the
+    residual is below CORE_TOL (the far sites kept at the guess's, the ansatz's doubly exponentially small values),
+    then all of them to ``tol``.
 
     Why: from an ansatz whose residual is the DpS approximation's (some 1e-2), a step of all unknowns puts some 1e-3
     of the amplitude on the far sites (the Jacobian's smallest directions after the carrier phase live there); on a
@@ -311,8 +313,9 @@ def newton_core_first(z_guess: ArrayLike, T: float, alpha: float, tol: float = 1
     (docs/analyses/travelling-breathers.md, the lattice section). With the core solved first the residual left on
     the far sites is the core's own decay, and the full Newton finds the TB without such a tail."""
     z0 = np.asarray(z_guess, float)
-    core = newton(z0, T, alpha, tol=CORE_TOL, max_iter=max_iter, log=log, free=core_unknowns(z0))
-    return newton(core.z, T, alpha, reference=z0, tol=tol, max_iter=max_iter, log=log), core.residual
+    ref = z0 if reference is None else np.asarray(reference, float)
+    core = newton(z0, T, alpha, reference=ref, tol=CORE_TOL, max_iter=max_iter, log=log, free=core_unknowns(z0))
+    return newton(core.z, T, alpha, reference=ref, tol=tol, max_iter=max_iter, log=log), core.residual
 
 
 def embed(z: ArrayLike, N: int) -> Floats:
@@ -369,14 +372,17 @@ def launch_period(z: ArrayLike, T_hop: float, alpha: float, window: float = 0.25
 
 
 def continue_family(first: LatticeTB, cs: ArrayLike, tol: float = 1e-11, rtol: float = RTOL,
-                    min_step: float = 0.02, log: Callable[[str], object] | None = None
+                    min_step: float = 0.02, log: Callable[[str], object] | None = None, core_first: bool = False
                     ) -> tuple[list[LatticeTB], float | None]:
     """TBs of (tbnc) at the velocities ``cs`` (in order, from ``first``'s c): each predicted along the family's
-    tangent at the previous member and corrected by :func:`newton` with the previous member as the phase reference.
-    A failed step is halved down to ``min_step`` (relative to c); returns the members reached at the grid's c and
-    the last c reached."""
+    tangent at the previous member and corrected by :func:`newton` (by :func:`newton_core_first` with
+    ``core_first``: on a ring with room for a far field, where the predictor's error would put a tail there) with the
+    previous member as the phase reference. A failed step is halved down to ``min_step`` (relative to c); returns the
+    members reached at the grid's c and the last c reached."""
     def correct(cur: LatticeTB, c2: float) -> LatticeTB:
         T2 = 1.0 / c2
+        if core_first:
+            return newton_core_first(cur.predict(T2), T2, first.alpha, tol, reference=cur.z)[0]
         return newton(cur.predict(T2), T2, first.alpha, cur.z, tol, max_iter=12, rtol=rtol)
 
     return continue_in_c(first, cs, correct, min_step, log or (lambda *a: None), "lattice travelling breathers",
