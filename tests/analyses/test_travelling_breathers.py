@@ -305,9 +305,11 @@ def test_a_window_is_a_krein_collision():
 
 @pytest.fixture(scope="module")
 def lattice_tree():
-    """The lattice part on a small spec: three TBs of (nc) from the c = 0.1 member's ansatz on the ring of 16, no
-    continuation step, a short launch."""
-    spec = _tiny(lattice=True, lattice_eps=[0.005, 0.004, 0.003], lattice_steps=[0.0], lattice_periods=1)
+    """The lattice part on a small spec: three TBs of (nc) from the c = 0.1 member's ansatz on the ring of 16, one
+    continuation step of 1 %, a short launch; the three carried to a ring of 20 and the step taken there too (the
+    corrector on the core first), one TB at eps = 0.01 solved the core first."""
+    spec = _tiny(lattice=True, lattice_eps=[0.005, 0.004, 0.003], lattice_steps=[0.0, 0.01], lattice_periods=1,
+                 lattice_rings=[20], lattice_family_rings=[20], lattice_large_eps=[0.01])
     fam, _ = tb.family(spec, spec.N, spec.rtol)
     return spec, tb.lattice_groups(spec, fam)
 
@@ -330,6 +332,92 @@ def test_stored_lattice_tbs_solve_tbnc(lattice_tree):
     own = np.asarray(data["ansatz_period"]) / np.asarray(data["period"])
     assert np.max(np.abs(np.asarray(data["exact_speed"]) - own)) < 1e-3
     assert max(data["exact_energy_drift"]) < 1e-8
+
+
+def _stored_members(groups: dict) -> list[tuple[np.ndarray, float]]:
+    """(z, T) of every TB stored in /lattice_rings and /lattice_large (the NaN-padded rows cut to their ring)."""
+    out = []
+    rings, _ = groups["/lattice_rings"]
+    for key in ("", "_family"):
+        for x_r, v_r, T_r in zip(rings["x" + key], rings["v" + key], rings["period" + key], strict=True):
+            for x, v, T in zip(x_r, v_r, T_r, strict=True):
+                if np.isfinite(T):
+                    keep = np.isfinite(x)
+                    out.append((np.concatenate([x[keep], v[keep]]), float(T)))
+    large, _ = groups["/lattice_large"]
+    out += [(np.concatenate([x, v]), float(T)) for x, v, T in zip(large["x"], large["v"], large["period"],
+                                                                  strict=True)]
+    return out
+
+
+@pytest.mark.slow
+def test_every_ring_and_large_eps_member_solves_tbnc(lattice_tree):
+    """Every TB stored on the other rings and at larger eps satisfies (tbnc) to 1e-10 (relative), re-integrated by the
+    contact-event DOP853 at another tolerance: the ring of 16 (its three, the continuation's two members, eps = 0.01
+    solved the core first) and the ring of 20 (the three carried, the continuation's two)."""
+    from cradle.integrators import lattice_travelling as LT
+
+    spec, (groups, attrs) = lattice_tree
+    members = _stored_members(groups)
+    assert sorted(z.size // 2 for z, _ in members) == [16] * 6 + [20] * 5
+    for z, T in members:
+        assert LT.relative_residual(z, LT.flow(z, T, spec.alpha, 1e-13)) <= 1e-10
+    assert attrs["lattice_rings_max_residual"] <= spec.newton_tol
+    assert attrs["lattice_large_max_residual"] <= spec.newton_tol
+
+
+@pytest.mark.slow
+def test_ring_and_large_eps_multipliers_symplectic(lattice_tree):
+    """The multipliers modulo shift of every new member come in pairs mu, 1/mu (the monodromy of a Hamiltonian
+    flow composed with a permutation of the (x_n, v_n) pairs is symplectic); four of them at 1 (time shift and energy,
+    the carrier's phase and the wave action) within 1e-3."""
+    _, (groups, _) = lattice_tree
+    for name in ("/lattice_rings", "/lattice_large"):
+        data, _ = groups[name]
+        assert np.nanmax(data["reciprocal_defect"]) < 1e-6
+        assert np.nanmax(data["trivial_defect"]) < 1e-3
+
+
+@pytest.mark.slow
+def test_ring_and_large_eps_direct_runs_conserve_energy(lattice_tree):
+    """The TB carried to the ring of 20 and the one at eps = 0.01, run by (nc) for two periods: the energy kept to
+    1e-11 per period, and after k periods the start shifted by k sites."""
+    from cradle.integrators import lattice_travelling as LT
+
+    spec, (groups, _) = lattice_tree
+    members = _stored_members(groups)
+    for z, T in (members[3], members[-1]):       # the first on the ring of 20, the one at eps = 0.01
+        run = LT.direct_run(LT.LatticeTB(z, T, spec.alpha, 0.0, True, 0), 2)
+        assert np.all(run["energy_drift"][1:] < 1e-11 * run["k"][1:])
+        assert np.max(run["residual"]) < 1e-9
+
+
+def test_embed_centres_the_breather_and_adds_rest_sites():
+    """embed: on the ring of N the state's largest |xi_n| sits at N0 // 2 + (N - N0) // 2, its N0 sites in order (a
+    rotation of the ring), the other N - N0 at rest."""
+    from cradle.integrators import lattice_travelling as LT
+
+    N0, N = 6, 11
+    x, v = np.array([0.1, 0.0, -0.2, 0.3, 0.9, 0.05]), np.array([0.0, 0.2, 0.1, 0.0, -0.4, 0.1])
+    z = LT.embed(np.concatenate([x, v]), N)
+    X, V = z[:N], z[N:]
+    assert int(np.argmax(np.hypot(X, V))) == N0 // 2 + (N - N0) // 2
+    r = N0 // 2 - 4    # the peak at site 4 moved to N0 // 2
+    assert np.array_equal(X[2:8], np.roll(x, r)) and np.array_equal(V[2:8], np.roll(v, r))
+    assert not np.any(X[:2]) and not np.any(X[8:]) and not np.any(V[:2]) and not np.any(V[8:])
+    with pytest.raises(ValueError, match="smaller"):
+        LT.embed(z, N0)
+
+
+def test_ring_keys_checked_in_one_line():
+    from cradle.specs.values import Errors
+
+    spec = from_plain(tb.TravellingBreathers, {"lattice_rings": [32, 24], "lattice_family_rings": [20],
+                                               "lattice_large_eps": [0.004, 0.01]})
+    out = Errors()
+    spec.check(["beyond", "travelling-breathers"], None, out)
+    for key in ("lattice_rings", "lattice_family_rings", "lattice_large_eps"):
+        assert any(line.startswith(f"config error: beyond.travelling-breathers.{key} = ") for line in out.lines)
 
 
 @pytest.mark.slow

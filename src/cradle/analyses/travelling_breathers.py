@@ -154,7 +154,7 @@ class TravellingBreathers:
                           "/lattice, /lattice_eps, /lattice_states): minutes of CPU, so in the full form only.",
                           reduced=False)
     lattice_N: int = param(16, "Sites of the ring of the lattice's TBs (the DpS member at lattice_source solved on "
-                           "it; on 24 sites Newton stops near 2e-8, docs).", minimum=8, maximum=200)
+                           "it; lattice_rings carries them to larger rings).", minimum=8, maximum=200)
     lattice_source: float = param(0.1, "c of the DpS member (one of speeds) whose ansatz starts the lattice's TBs; the "
                                   "same member launched in (nc) beside the exact TBs (item 3's comparison).",
                                   exclusiveMinimum=0, maximum=2)
@@ -173,6 +173,18 @@ class TravellingBreathers:
                                        reduced=[0.0, 0.01])
     lattice_periods: int = param(4, "Periods T of the direct run of the first lattice TB.", minimum=1, maximum=1000,
                                  reduced=2)
+    # the lattice's TBs on other rings and at larger amplitude: section "the lattice's TBs on other rings" below
+    lattice_rings: list[int] = param([24, 32, 48], "Rings beyond lattice_N on which the lattice's TBs at every "
+                                     "lattice_eps are solved again, each carried from the ring before by adding sites "
+                                     "at rest on the far side (increasing; group /lattice_rings).", minItems=0,
+                                     maxItems=8, items=_RING)
+    lattice_family_rings: list[int] = param([24, 32], "Rings of lattice_rings on which the continuation in c "
+                                            "(lattice_steps) is done too (its cost grows as N^2).", minItems=0,
+                                            maxItems=8, items=_RING)
+    lattice_large_eps: list[float] = param([0.01, 0.03], "eps of the ansatz above lattice_eps at which an exact TB "
+                                           "is solved on the ring of lattice_N, the core first (group "
+                                           "/lattice_large; increasing).", minItems=0, maxItems=8,
+                                           items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.5})
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Each form: speeds increasing, direct_speed among them, a check ring other than the ring."""
@@ -187,6 +199,7 @@ class TravellingBreathers:
                     self.lattice_steps)
         if any(y >= x for x, y in itertools.pairwise(self.lattice_eps)):
             out.add(where + ["lattice_eps"], "must be strictly decreasing", self.lattice_eps)
+        self.check_rings(where, out)
         if self.N in self.check_N or len(set(self.check_N)) < len(self.check_N):
             out.add(where + ["check_N"], f"must be distinct rings other than N = {self.N} (they check the verdicts "
                     "against N)", self.check_N)
@@ -210,6 +223,19 @@ class TravellingBreathers:
         if self.limit_large_N and (abs(ratio - round(ratio)) > 1e-9 or round(ratio) < 1):
             out.add(where + ["limit_large_step"], f"must be a whole multiple of limit_step = {self.limit_step} (the "
                     "fit compares the rings on common points)", self.limit_large_step)
+
+    def check_rings(self, where: Where, out: Errors) -> None:
+        """The keys of the lattice's TBs on other rings and at larger amplitude."""
+        rings = [self.lattice_N, *self.lattice_rings]
+        if any(y <= x for x, y in itertools.pairwise(rings)):
+            out.add(where + ["lattice_rings"], f"must be strictly increasing and above lattice_N = {self.lattice_N} "
+                    "(each ring is carried from the one before)", self.lattice_rings)
+        if any(n not in self.lattice_rings for n in self.lattice_family_rings):
+            out.add(where + ["lattice_family_rings"], f"must be among lattice_rings = {self.lattice_rings}",
+                    self.lattice_family_rings)
+        if any(y <= x for x, y in itertools.pairwise([max(self.lattice_eps), *self.lattice_large_eps])):
+            out.add(where + ["lattice_large_eps"], f"must be strictly increasing and above max(lattice_eps) = "
+                    f"{max(self.lattice_eps)}", self.lattice_large_eps)
 
     def check_motion(self, where: Where, out: Errors) -> None:
         """The keys of the TBs in motion: motion_speed among speeds, motion_eps decreasing, a ring long enough."""
@@ -527,7 +553,158 @@ def lattice_groups(spec: TravellingBreathers, fam: list[TravellingBreather],
                                "near-symmetry's direction left out of the step (truncated least squares) until the "
                                "residual is what it alone can remove",
              "lattice_cpu_s": _time.process_time() - t0}
+    more, more_attrs = lattice_rings_groups(spec, source, tbs, by_step(cs, family), log)
+    return groups | more, attrs | more_attrs
+
+
+# ----------------------------------------------------------------- the lattice's TBs on other rings
+# Issue 37, item 2: the TBs of (nc) on rings beyond lattice_N (each carried from the ring before, sites at rest added
+# on the far side), the continuation in c on some of them, and TBs at larger eps solved the core first
+# (cradle.integrators.lattice_travelling.newton_core_first); kept apart from the ring of lattice_N above.
+
+#: the per-member variables of /lattice_rings, (ring, eps_lattice) and, with the suffix _family, (ring, c_step)
+RING_MEMBER = ("period", "eps_tb", "dps_c", "residual", "iterations", "tail", "energy", "trivial_defect",
+               "growth_rate", "unstable", "reciprocal_defect", "smallest_singular")
+
+
+def by_step(cs: NDArray[np.float64], members: list[LatticeTB]) -> list[LatticeTB | None]:
+    """The members of a continuation at the grid's c (None where it was not reached)."""
+    return [next((b for b in members if math.isclose(b.c, c, rel_tol=1e-12)), None) for c in cs]
+
+
+def ring_member(b: LatticeTB | None, spec: TravellingBreathers) -> dict[str, float]:
+    """The stored numbers of one lattice TB (:data:`RING_MEMBER`; NaN for a member not reached); dps_c the velocity
+    of the DpS TB through the ansatz, 1 / (T eps_b^(alpha-1)), eps_b = eps / sqrt(norm)."""
+    from cradle.integrators import lattice_breathers as LB
+    from cradle.models import dps_travelling as M
+
+    out = dict.fromkeys(RING_MEMBER, math.nan)
+    if b is None:
+        return out
+    eps_b = b.eps / math.sqrt(spec.norm)
+    out |= {"period": b.T, "eps_tb": eps_b, "dps_c": 1.0 / (b.T * eps_b ** (spec.alpha - 1.0)),
+            "residual": b.residual, "iterations": b.iterations, "tail": M.tail_amplitude(b.envelope),
+            "energy": b.energy, "smallest_singular": b.smallest_singular}
+    if b.multipliers.size:    # a converged member's
+        triv, growth, unstable, _ = verdict(b, spec.stability_threshold, LATTICE_TRIVIAL)
+        out |= {"trivial_defect": triv, "growth_rate": growth, "unstable": int(unstable),
+                "reciprocal_defect": LB.multiplier_checks(b.multipliers)["reciprocal"]}
+    return out
+
+
+def _padded(members: list[LatticeTB | None], width: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(x, v) of the members as rows of ``width`` sites, NaN beyond each ring and for a member not reached."""
+    x, v = np.full((len(members), width), np.nan), np.full((len(members), width), np.nan)
+    for i, b in enumerate(members):
+        if b is not None:
+            N = b.z.size // 2
+            x[i, :N], v[i, :N] = b.z[:N], b.z[N:]
+    return x, v
+
+
+def carried(spec: TravellingBreathers, b: LatticeTB, N: int, log: Log | None) -> LatticeTB | None:
+    """The TB ``b`` of a smaller ring solved again on the ring of N (:func:`LT.embed`; the phase condition about the
+    carried state), or None when Newton does not converge."""
+    from cradle.integrators import lattice_travelling as LT
+
+    out = LT.newton(LT.embed(b.z, N), b.T, spec.alpha, tol=spec.newton_tol, log=log)
+    return out if out.converged else None
+
+
+def lattice_rings_groups(spec: TravellingBreathers, source: TravellingBreather, tbs: list[LatticeTB],
+                         family: list[LatticeTB | None], log: Log | None = None) -> tuple[dict, dict]:
+    """The groups /lattice_rings (the TBs at every lattice_eps on the ring of lattice_N and on every ring of
+    ``lattice_rings``; the continuation in c on ``lattice_family_rings``) and /lattice_large (TBs at
+    ``lattice_large_eps`` on the ring of lattice_N by :func:`LT.newton_core_first`), with their attributes
+    (prefixed ``lattice_rings_``, ``lattice_large_``). ``source``: the DpS member whose ansatz started ``tbs`` (the
+    TBs at lattice_eps); ``family``: the members of /lattice at the lattice_steps (None where not reached)."""
+    from cradle.integrators import lattice_travelling as LT
+
+    t0 = _time.process_time()
+    say = log or (lambda *a: None)
+    rings = [spec.lattice_N, *spec.lattice_rings]
+    steps = np.asarray(spec.lattice_steps, float)
+    i0 = int(np.argmin(np.abs(steps)))
+    eps_rows: list[list[LatticeTB | None]] = [list(tbs)]
+    fam_rows: list[list[LatticeTB | None]] = [list(family)]
+    for N in spec.lattice_rings:
+        # each member from the same member of the ring before (the first ring: the ring of lattice_N)
+        row = [None if p is None else carried(spec, p, N, log) for p in eps_rows[-1]]
+        eps_rows.append(row)
+        fam: list[LatticeTB | None] = [None] * steps.size
+        first = row[0]
+        if N in spec.lattice_family_rings and first is not None:
+            cs = first.c * (1.0 + steps)
+            least = 0.1 * float(np.min(np.diff(steps))) if steps.size > 1 else 0.001
+            # the corrector on the core first: the predictor's error would otherwise put a tail on the far sites
+            down, _ = LT.continue_family(first, cs[:i0][::-1], spec.newton_tol, min_step=least, log=log,
+                                         core_first=True)
+            up, _ = LT.continue_family(first, cs[i0 + 1:], spec.newton_tol, min_step=least, log=log, core_first=True)
+            fam = by_step(cs, down[::-1] + [first] + up)
+        fam_rows.append(fam)
+        say(f"travelling-breathers: lattice TBs on the ring of {N}: " + ", ".join(
+            "-" if b is None else f"eps {b.eps:.4g} residual {b.residual:.2g}" for b in row)
+            + (f"; {sum(b is not None for b in fam)} of {steps.size} members in c" if N in spec.lattice_family_rings
+               else ""))
+    width = max(rings)
+    eps_vals = [[ring_member(b, spec) for b in row] for row in eps_rows]
+    fam_vals = [[ring_member(b, spec) for b in row] for row in fam_rows]
+    xe, ve = zip(*[_padded(row, width) for row in eps_rows], strict=True)
+    xf, vf = zip(*[_padded(row, width) for row in fam_rows], strict=True)
+    data = {k: np.array([[m[k] for m in row] for row in eps_vals]) for k in RING_MEMBER}
+    data |= {f"{k}_family": np.array([[m[k] for m in row] for row in fam_vals]) for k in RING_MEMBER}
+    data |= {"x": np.array(xe), "v": np.array(ve), "x_family": np.array(xf), "v_family": np.array(vf),
+             "c_family": np.array([[math.nan if b is None else b.c for b in row] for row in fam_rows])}
+    stored = [b for row in eps_rows + fam_rows for b in row if b is not None]
+    cpu_rings = _time.process_time() - t0
+    large, large_attrs = lattice_large(spec, source, log)
+    groups = {"/lattice_rings": (data, {"ring": rings, "eps_lattice": list(spec.lattice_eps),
+                                        "c_step": list(steps), "ring_site": np.arange(width)}),
+              **large}
+    attrs = {"lattice_rings_max_residual": float(max(b.residual for b in stored)),
+             "lattice_rings_reached": f"{sum(b is not None for row in eps_rows for b in row)} of "
+                                      f"{len(rings) * len(tbs)} members at lattice_eps, "
+                                      f"{sum(b is not None for row in fam_rows[1:] for b in row)} of "
+                                      f"{len(spec.lattice_family_rings) * steps.size} in c beyond the first ring",
+             "lattice_rings_method": "each ring's TB from the same member of the ring before, sites at rest added on "
+                                     "the far side (the breather centred), Newton at the same T; the continuation in "
+                                     "c as on the ring of lattice_N, its corrector on the core's unknowns first",
+             "lattice_rings_cpu_s": cpu_rings, **large_attrs}
     return groups, attrs
+
+
+def lattice_large(spec: TravellingBreathers, source: TravellingBreather, log: Log | None = None) -> tuple[dict, dict]:
+    """The group /lattice_large: the exact TBs from the ansatz of the DpS member ``source`` at each
+    ``lattice_large_eps`` on the ring of lattice_N, by :func:`LT.newton_core_first` at the period of the closest
+    return (:func:`LT.launch_period`); its attributes prefixed ``lattice_large_``. Empty without such eps."""
+    from cradle.integrators import lattice_travelling as LT
+
+    if not spec.lattice_large_eps:
+        return {}, {}
+    t0 = _time.process_time()
+    say = log or (lambda *a: None)
+    members, extra = [], []
+    for eps in spec.lattice_large_eps:
+        z, T_hop = LT.ansatz_start(source.A, source.T, spec.alpha, eps)
+        T, start_res = LT.launch_period(z, T_hop, spec.alpha)
+        b, core_res = LT.newton_core_first(z, T, spec.alpha, tol=spec.newton_tol, max_iter=20, log=log)
+        say(f"travelling-breathers: lattice TB at eps = {eps:g} (core first): residual {b.residual:.2g}, "
+            f"converged {b.converged}")
+        members.append(b)
+        extra.append({"ansatz_period": T_hop, "start_residual": start_res, "core_residual": core_res,
+                      "converged": int(b.converged)})
+    vals = [ring_member(b, spec) for b in members]
+    data: dict[str, object] = {k: [m[k] for m in vals] for k in RING_MEMBER}
+    data |= {k: [e[k] for e in extra] for k in extra[0]}
+    data |= {"x": np.array([b.z[:b.z.size // 2] for b in members]),
+             "v": np.array([b.z[b.z.size // 2:] for b in members])}
+    attrs = {"lattice_large_max_residual": float(max(b.residual for b in members)),
+             "lattice_large_method": "Newton in two stages at the period of the closest return: the core's unknowns "
+                                     f"alone (|xi_n| above {LT.CORE:g} of the largest) to a residual of "
+                                     f"{LT.CORE_TOL:g}, the far sites at the ansatz's values, then all unknowns",
+             "lattice_large_cpu_s": _time.process_time() - t0}
+    return {"/lattice_large": (data, {"eps_large": list(spec.lattice_large_eps),
+                                      "site": np.arange(spec.lattice_N)})}, attrs
 
 
 # ----------------------------------------------------------------- TBs in motion (issue 37, item 3)
@@ -1191,6 +1368,59 @@ VARIABLES = {
         "dps_A_im": Var(("eps_lattice", "site"), "Im A_n(0) of that DpS TB"),
         "source_A_re": Var(("site",), "Re A_n(0) of the DpS TB whose ansatz started the lattice's TBs"),
         "source_A_im": Var(("site",), "Im A_n(0) of the DpS TB whose ansatz started the lattice's TBs"),
+    },
+    "/lattice_rings": {
+        "ring": Var(("ring",), "sites N of the ring (the first: lattice_N, the members of /lattice_eps and /lattice)"),
+        "eps_lattice": Var(("eps_lattice",), "eps of the ansatz that started the TB on the ring of lattice_N"),
+        "c_step": Var(("c_step",), "relative change s of the velocity: c = c0 (1 + s), c0 that of the member at the "
+                      "first eps_lattice on the same ring"),
+        "ring_site": Var(("ring_site",), "site n (up to the largest ring; NaN beyond each ring)"),
+        **{f"{k}{suffix}": Var(dims, f"{text} ({which})", units)
+           for suffix, dims, which in (("", ("ring", "eps_lattice"), "the TB at eps_lattice on that ring"),
+                                       ("_family", ("ring", "c_step"), "the continuation in c on that ring"))
+           for k, (text, units) in {
+               "period": ("period T of (tbnc), x_n(t + T) = x_{n-1}(t), in units of t", "1"),
+               "eps_tb": ("eps at the TB's amplitude: sqrt(sum |xi_n|^2 / norm)", "1"),
+               "dps_c": ("velocity of the DpS TB through (ansatz), 1 / (T eps_tb^(alpha-1)), sites per unit tau", "1"),
+               "residual": ("shift-map residual max |S^{-1} Phi_T(z) - z| / max |z|", "1"),
+               "iterations": ("Newton iterations", "1"),
+               "tail": ("max |xi_n| on the far quarter ring / max |xi_n|, xi_n = (x_n - i v_n)/2", "1"),
+               "energy": ("energy (ham) of the TB", "1"),
+               "trivial_defect": ("largest |mu - 1| of the four multipliers modulo shift nearest 1", "1"),
+               "growth_rate": ("ln max |mu| / T over the other multipliers modulo shift, per unit t", "1"),
+               "unstable": ("1 if growth_rate > stability_threshold", "1"),
+               "reciprocal_defect": ("max over mu of the distance of 1/mu to the nearest multiplier", "1"),
+               "smallest_singular": ("smallest singular value of the bordered Jacobian over its largest", "1"),
+           }.items()},
+        "c_family": Var(("ring", "c_step"), "velocity c = 1/T of the member of the continuation, sites per unit t"),
+        "x": Var(("ring", "eps_lattice", "ring_site"), "x_n(0) of the TB at eps_lattice"),
+        "v": Var(("ring", "eps_lattice", "ring_site"), "v_n(0) of the TB at eps_lattice"),
+        "x_family": Var(("ring", "c_step", "ring_site"), "x_n(0) of the member of the continuation in c"),
+        "v_family": Var(("ring", "c_step", "ring_site"), "v_n(0) of the member of the continuation in c"),
+    },
+    "/lattice_large": {
+        "eps_large": Var(("eps_large",), "eps of the ansatz (lattice_large_eps) on the ring of lattice_N"),
+        "site": Var(("site",), "site n of the ring of lattice_N"),
+        **{k: Var(("eps_large",), text) for k, text in {
+            "period": "period T of (tbnc): the time of the ansatz's closest return to its shifted start, in units of t",
+            "eps_tb": "eps at the TB's amplitude: sqrt(sum |xi_n|^2 / norm)",
+            "dps_c": "velocity of the DpS TB through (ansatz), 1 / (T eps_tb^(alpha-1)), sites per unit tau",
+            "residual": "shift-map residual max |S^{-1} Phi_T(z) - z| / max |z| at the end",
+            "iterations": "Newton iterations of the second stage (all unknowns)",
+            "tail": "max |xi_n| on the far quarter ring / max |xi_n|",
+            "energy": "energy (ham) of the TB",
+            "trivial_defect": "largest |mu - 1| of the four multipliers modulo shift nearest 1",
+            "growth_rate": "ln max |mu| / T over the other multipliers modulo shift, per unit t",
+            "unstable": "1 if growth_rate > stability_threshold",
+            "reciprocal_defect": "max over mu of the distance of 1/mu to the nearest multiplier",
+            "smallest_singular": "smallest singular value of the bordered Jacobian over its largest",
+            "ansatz_period": "time per site T_d eps^(1-alpha) of the DpS member in units of t",
+            "start_residual": "shift-map residual of the ansatz at T",
+            "core_residual": "shift-map residual after the first stage (the core's unknowns alone)",
+            "converged": "1 if the residual reached newton_tol",
+        }.items()},
+        "x": Var(("eps_large", "site"), "x_n(0) of the TB"),
+        "v": Var(("eps_large", "site"), "v_n(0) of the TB"),
     },
     "/lattice_motion": {
         "eps_lattice": Var(("eps_lattice",), "eps of the launch"),

@@ -24,6 +24,10 @@ tail is modulationally unstable and elsewhere. Then the tail rule (group /limit_
 growth rates of each member whose tail is MI-stable against N with its fit g_inf + b N^-k, (q) the tail's MI rate
 in closed form against the growth rate measured on each ring, (r) the table of the verdicts on each ring, at each
 tolerance and in the limit.
+Then the lattice's TBs on larger rings and at larger eps when the file holds them (groups /lattice_rings,
+/lattice_large): (s) |xi_n(0)| / max against the distance from the centre on each ring, (t) the tail against eps on
+each ring with every TB's residual, (u) the tail along the continuation in c against the DpS velocity through
+(ansatz), unstable members filled.
 """
 from __future__ import annotations
 
@@ -45,7 +49,8 @@ def draw(tree: AnalysisTree) -> Figure:
     lattice = "lattice_eps" in tree.children
     limit = "robustness_limit" in tree.children
     tail = "limit_tail" in tree.children
-    rows = 3 + int(lattice) + int(limit) + int(tail)
+    on_rings = "lattice_rings" in tree.children
+    rows = 3 + int(lattice) + int(limit) + int(tail) + int(on_rings)
     fig, ax = figure(rows, 3, width=13.5, height=11.2 + 3.7 * (rows - 3))
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
@@ -150,6 +155,8 @@ def draw(tree: AnalysisTree) -> Figure:
         draw_limit(ax[3 + int(lattice)], tree)
     if tail:
         draw_tail_rule(ax[3 + int(lattice) + int(limit)], tree)
+    if on_rings:
+        draw_rings(ax[3 + int(lattice) + int(limit) + int(tail)], tree)
     return fig
 
 
@@ -250,6 +257,80 @@ def verdict_table(tree: AnalysisTree) -> list[list[str]]:
     for j, x in enumerate(c):
         rows.append([f"{x:g}", *[letter(float(col[j])) for col in cols]])
     return rows
+
+
+def _from_centre(xi: np.ndarray) -> np.ndarray:
+    """Signed ring distance of each site from the largest |xi_n|."""
+    N = xi.size
+    return (np.arange(N) - int(np.argmax(np.abs(xi))) + N // 2) % N - N // 2
+
+
+def draw_rings(ax: Any, tree: AnalysisTree) -> None:
+    """The lattice's TBs on other rings and at larger eps (groups /lattice_rings, /lattice_large): (s) |xi_n(0)| /
+    max against the distance from the centre on each ring at the first eps, and at the larger eps on the first ring;
+    (t) the tail against eps on each ring, with every member's residual; (u) the tail along the continuation in c
+    against the DpS velocity through (ansatz), unstable members filled."""
+    rg = tree["lattice_rings"]
+    rings = np.asarray(rg["ring"].values)
+    x, v = np.asarray(rg["x"].values), np.asarray(rg["v"].values)
+    large = tree["lattice_large"] if "lattice_large" in tree.children else None
+    g = ax[0]
+    floor = 1e-14
+    for k, N in enumerate(rings):
+        xi = 0.5 * (x[k, 0, :N] - 1j * v[k, 0, :N])
+        a = np.abs(xi) / np.max(np.abs(xi))
+        # a marker per ring, hollow and shrinking, so that rings whose far fields coincide all show
+        g.semilogy(_from_centre(xi), np.maximum(a, floor), "osD^v<>"[k % 7], color=f"C{k}", ms=7 - 1.2 * k, mfc="none",
+                   mew=0.9, label=f"ring of {N}, $\\varepsilon$ = {float(rg['eps_tb'].values[k, 0]):.3g}")
+    if large is not None:
+        for j, e in enumerate(np.asarray(large["eps_tb"].values)):
+            xi = 0.5 * (np.asarray(large["x"].values[j]) - 1j * np.asarray(large["v"].values[j]))
+            a = np.abs(xi) / np.max(np.abs(xi))
+            g.semilogy(_from_centre(xi), np.maximum(a, floor), "k" + "x+"[j % 2], ms=5,
+                       label=f"ring of {rings[0]}, $\\varepsilon$ = {e:.3g} (core first)")
+    g.set_ylim(floor / 10.0, 1e5)
+    g.set_xlabel("site n minus the centre's")
+    g.set_ylabel("$|\\xi_n(0)|$ / max")
+    g.set_title("(s) exact TBs of (nc) on larger rings: the far field", fontsize=9)
+    g.legend(fontsize=6.5, loc="upper left", ncol=2)
+
+    h = ax[1]
+    for k, N in enumerate(rings):
+        h.loglog(np.asarray(rg["eps_tb"].values[k]), np.asarray(rg["tail"].values[k]), "o-", color=f"C{k}", ms=4,
+                 lw=1.0, label=f"tail, ring of {N}")
+    res = [np.asarray(rg["residual"].values).ravel()]
+    eps_all = [np.asarray(rg["eps_tb"].values).ravel()]
+    if large is not None:
+        h.loglog(np.asarray(large["eps_tb"].values), np.asarray(large["tail"].values), "ks", ms=5, mfc="none",
+                 label=f"tail, ring of {rings[0]}, larger $\\varepsilon$ (core first)")
+        res.append(np.asarray(large["residual"].values))
+        eps_all.append(np.asarray(large["eps_tb"].values))
+    h.loglog(np.concatenate(eps_all), np.concatenate(res), "k+", ms=6, label="shift-map residual (each TB)")
+    h.set_ylim(1e-14, 1e2)
+    h.set_xlabel("$\\varepsilon$ at the TB's amplitude")
+    h.set_ylabel("max $|\\xi_n|$ on the far quarter ring / max")
+    h.set_title("(t) the tail against $\\varepsilon$ and N", fontsize=9)
+    h.legend(fontsize=6.5, loc="upper left", ncol=2)
+
+    i_ = ax[2]
+    thr = float(tree.attrs["stability_threshold"])
+    for k, N in enumerate(rings):
+        dc = np.asarray(rg["dps_c_family"].values[k])
+        if not np.any(np.isfinite(dc)):
+            continue
+        tail = np.asarray(rg["tail_family"].values[k])
+        un = np.asarray(rg["growth_rate_family"].values[k]) > thr
+        i_.semilogy(dc, tail, "-", color=f"C{k}", lw=1.0)
+        i_.semilogy(dc[~un], tail[~un], "o", color=f"C{k}", ms=5, mfc="none", label=f"ring of {N}")
+        if np.any(un):
+            i_.semilogy(dc[un], tail[un], "o", color=f"C{k}", ms=5)
+    i_.semilogy([], [], "ko", ms=5, label=f"filled: unstable (growth > {thr:g} per unit t)")
+    top = float(np.nanmax(np.asarray(rg["tail_family"].values)))
+    i_.set_ylim(top=1e3 * top)    # room for the legend above the largest tail
+    i_.set_xlabel("velocity of the DpS TB through (ansatz), 1 / (T $\\varepsilon^{\\alpha-1}$)")
+    i_.set_ylabel("tail (far quarter ring) / max")
+    i_.set_title("(u) the tail along the continuation in c", fontsize=9)
+    i_.legend(fontsize=6.5, loc="upper left")
 
 
 def draw_limit(ax: Any, tree: AnalysisTree) -> None:

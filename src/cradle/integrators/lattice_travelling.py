@@ -26,6 +26,14 @@ x_n(t) ~ 2 eps Re(A_n(eps^(alpha-1) t) e^{it}) (:func:`cradle.models.initial.lat
 the lattice period T = T_d eps^(1-alpha) is resonant with the carrier, theta + T = 2 pi m (m an integer, about the
 breathing periods per site): given the DpS member and m, T = 2 pi m - theta and eps = (T_d / T)^(1/(alpha-1))
 (:func:`resonant_start`).
+
+Larger rings and amplitudes. Far from the core a TB's sites are nearly free oscillators of frequency 1 (the Hertz
+coupling of amplitude a is of order a^(alpha-1)), so a ring with room for a far field has directions the equations
+barely fix there. From the ansatz (residual ~1e-2) a step of all unknowns puts ~1e-3 of the amplitude on the far
+sites, and Newton then heads for a TB carrying a plane-wave tail of that size, whose phase is a second near-neutral
+direction, and stalls. Two remedies, both converging: :func:`newton_core_first` (the core's unknowns first, the far
+sites at the ansatz's values) and :func:`embed` (a TB of a smaller ring carried to a larger one, sites at rest added
+on the far side, where its field is already below the residual).
 """
 from __future__ import annotations
 
@@ -50,6 +58,8 @@ JAC_RTOL = 1e-12   # DOP853 relative tolerance of the variational equations (New
 RCOND = 1e-9       # singular values of the bordered Jacobian below RCOND times the largest are left out of a step,
 GAP = 1e-2         # and the smallest when it is below GAP times the next (the near-symmetry's; module docstring)
 DAMPED = 1e-3      # residual above which a Newton step is damped until the residual decreases
+CORE = 1e-6        # sites whose |xi_n| is below CORE times the largest are held fixed in newton_core_first's first
+CORE_TOL = 1e-5    # stage, which hands over to all unknowns below this residual (above what the far sites hold)
 
 
 def unshift(z: ArrayLike) -> Floats:
@@ -201,7 +211,7 @@ def truncated_lstsq(J: Floats, F: Floats, rows: int, rcond: float = RCOND,
 def newton(z_guess: ArrayLike, T: float, alpha: float, reference: ArrayLike | None = None, tol: float = 1e-11,
            max_iter: int = 12, rtol: float = RTOL, log: Callable[[str], object] | None = None,
            save: Callable[[Floats], object] | None = None, jac_rtol: float = JAC_RTOL,
-           rcond: float = RCOND) -> LatticeTB:
+           rcond: float = RCOND, free: NDArray[np.bool_] | None = None) -> LatticeTB:
     """Solve (tbnc) at period T for z by Gauss-Newton from ``z_guess``, with the phase condition about
     ``reference`` (default: the guess). The residual R = S^{-1} Phi_T(z) - z from :func:`flow` at ``rtol`` (contact
     events), the Jacobian S^{-1} DPhi_T - I from the variational equations at ``jac_rtol`` (:func:`monodromy`).
@@ -211,7 +221,8 @@ def newton(z_guess: ArrayLike, T: float, alpha: float, reference: ArrayLike | No
     and the full least-squares step (along it too: what the slice cannot remove, the near-symmetry's share of R),
     halved until one of them decreases the residual. Converged when max |R| <= tol max |z|; the multipliers of a
     last monodromy at max(rtol, 1e-13) and the family's tangent there come with it. Stops when no step decreases
-    the residual near a solution, or when it grows tenfold far from one."""
+    the residual near a solution, or when it grows tenfold far from one. ``free`` (a mask of the 2N unknowns): the
+    steps move only those, the others stay at the guess's values (:func:`newton_core_first`)."""
     z = np.asarray(z_guess, float).copy()
     n2 = z.size
     ref = z.copy() if reference is None else np.asarray(reference, float)
@@ -238,13 +249,22 @@ def newton(z_guess: ArrayLike, T: float, alpha: float, reference: ArrayLike | No
         if it == max_iter or not np.isfinite(res) or res > 10.0 * best:
             break
         best = min(best, res)
-        Mm, _ = monodromy(z, T, alpha, jac_rtol)
-        J = np.vstack([Mm - np.eye(n2), d_time[None, :]])
+        if free is None:
+            Mm, _ = monodromy(z, T, alpha, jac_rtol)
+            J = np.vstack([Mm - np.eye(n2), d_time[None, :]])
+        else:
+            # only the free unknowns' columns of the Jacobian
+            eye = np.eye(n2)[:, free]
+            Phi = shoot(z, T, alpha, eye, jac_rtol)[1]
+            assert Phi is not None
+            J = np.vstack([unshift(Phi) - eye, d_time[None, free]])
         F = np.concatenate([R, [d_time @ (z - ref)]])
         step, smin, dropped = truncated_lstsq(J, -F, n2, rcond)
         steps = [step]
         if res <= DAMPED and dropped:
             steps.append(truncated_lstsq(J, -F, n2, 0.0, 0.0)[0])
+        if free is not None:
+            steps = [_on(free, d) for d in steps]
         lam, k = 1.0, 0
         # far from a solution the truncated step, damped until the residual decreases (or to the last halving)
         while lam > 1e-3:
@@ -259,6 +279,56 @@ def newton(z_guess: ArrayLike, T: float, alpha: float, reference: ArrayLike | No
         if save is not None:
             save(z)
     return LatticeTB(z, T, alpha, res, False, it, mu, None, smin, dropped)
+
+
+def _on(free: NDArray[np.bool_], d: Floats) -> Floats:
+    """The step d of the free unknowns as a step of all 2N (zero on the others)."""
+    out = np.zeros(free.size)
+    out[free] = d
+    return out
+
+
+def core_unknowns(z: ArrayLike, threshold: float = CORE) -> NDArray[np.bool_]:
+    """The mask of the unknowns (x_n, v_n) of the core: the sites where |xi_n| = |x_n - i v_n| / 2 exceeds
+    ``threshold`` times its largest value."""
+    z = np.asarray(z, float)
+    N = z.size // 2
+    xi = np.hypot(z[:N], z[N:])
+    core = xi > threshold * float(np.max(xi))
+    return np.concatenate([core, core])
+
+
+def newton_core_first(z_guess: ArrayLike, T: float, alpha: float, tol: float = 1e-11, max_iter: int = 12,
+                      log: Callable[[str], object] | None = None,
+                      reference: ArrayLike | None = None) -> tuple[LatticeTB, float]:
+    """(TB, the first stage's residual): :func:`newton` in two stages from ``z_guess`` (the phase condition about
+    ``reference``, default the guess, in both): the core's unknowns (:func:`core_unknowns`) alone until the
+    residual is below CORE_TOL (the far sites kept at the guess's, the ansatz's doubly exponentially small values),
+    then all of them to ``tol``.
+
+    Why: from an ansatz whose residual is the DpS approximation's (some 1e-2), a step of all unknowns puts some 1e-3
+    of the amplitude on the far sites (the Jacobian's smallest directions after the carrier phase live there); on a
+    ring with room for a tail (24 sites at eps = 0.005, 16 at eps = 0.01) Newton then heads for a TB carrying a
+    plane-wave tail of that size, whose tail phase is a second near-neutral direction, and stalls near 2e-7
+    (docs/analyses/travelling-breathers.md, the lattice section). With the core solved first the residual left on
+    the far sites is the core's own decay, and the full Newton finds the TB without such a tail."""
+    z0 = np.asarray(z_guess, float)
+    ref = z0 if reference is None else np.asarray(reference, float)
+    core = newton(z0, T, alpha, reference=ref, tol=CORE_TOL, max_iter=max_iter, log=log, free=core_unknowns(z0))
+    return newton(core.z, T, alpha, reference=ref, tol=tol, max_iter=max_iter, log=log), core.residual
+
+
+def embed(z: ArrayLike, N: int) -> Floats:
+    """The state z = (x, v) of a ring of N0 <= N sites on the ring of N: the breather's centre (the largest |xi_n|)
+    moved to site N0 // 2, then (N - N0) // 2 sites at rest added before it and the rest after (the new sites at
+    the far side, where a TB's far field is already below rounding of its core)."""
+    z = np.asarray(z, float)
+    N0 = z.size // 2
+    if N < N0:
+        raise ValueError(f"embed: the ring of N = {N} is smaller than the state's {N0}")
+    r = N0 // 2 - int(np.argmax(np.hypot(z[:N0], z[N0:])))
+    before, after = np.zeros((N - N0) // 2), np.zeros(N - N0 - (N - N0) // 2)
+    return np.concatenate([before, np.roll(z[:N0], r), after, before, np.roll(z[N0:], r), after])
 
 
 def ansatz_start(A: ArrayLike, T_d: float, alpha: float, eps: float) -> tuple[Floats, float]:
@@ -302,14 +372,17 @@ def launch_period(z: ArrayLike, T_hop: float, alpha: float, window: float = 0.25
 
 
 def continue_family(first: LatticeTB, cs: ArrayLike, tol: float = 1e-11, rtol: float = RTOL,
-                    min_step: float = 0.02, log: Callable[[str], object] | None = None
+                    min_step: float = 0.02, log: Callable[[str], object] | None = None, core_first: bool = False
                     ) -> tuple[list[LatticeTB], float | None]:
     """TBs of (tbnc) at the velocities ``cs`` (in order, from ``first``'s c): each predicted along the family's
-    tangent at the previous member and corrected by :func:`newton` with the previous member as the phase reference.
-    A failed step is halved down to ``min_step`` (relative to c); returns the members reached at the grid's c and
-    the last c reached."""
+    tangent at the previous member and corrected by :func:`newton` (by :func:`newton_core_first` with
+    ``core_first``: on a ring with room for a far field, where the predictor's error would put a tail there) with the
+    previous member as the phase reference. A failed step is halved down to ``min_step`` (relative to c); returns the
+    members reached at the grid's c and the last c reached."""
     def correct(cur: LatticeTB, c2: float) -> LatticeTB:
         T2 = 1.0 / c2
+        if core_first:
+            return newton_core_first(cur.predict(T2), T2, first.alpha, tol, reference=cur.z)[0]
         return newton(cur.predict(T2), T2, first.alpha, cur.z, tol, max_iter=12, rtol=rtol)
 
     return continue_in_c(first, cs, correct, min_step, log or (lambda *a: None), "lattice travelling breathers",
