@@ -323,12 +323,12 @@ def embed(z: ArrayLike, N: int) -> Floats:
     moved to site N0 // 2, then (N - N0) // 2 sites at rest added before it and the rest after (the new sites at
     the far side, where a TB's far field is already below rounding of its core)."""
     z = np.asarray(z, float)
-    N0 = z.size // 2
-    if N < N0:
-        raise ValueError(f"embed: the ring of N = {N} is smaller than the state's {N0}")
-    r = N0 // 2 - int(np.argmax(np.hypot(z[:N0], z[N0:])))
-    before, after = np.zeros((N - N0) // 2), np.zeros(N - N0 - (N - N0) // 2)
-    return np.concatenate([before, np.roll(z[:N0], r), after, before, np.roll(z[N0:], r), after])
+    given = z.size // 2   # N0, the state's ring: a relation between the arguments, not a bound of N
+    if N < given:
+        raise ValueError(f"embed: the ring of N = {N} is smaller than the state's {given}")
+    r = given // 2 - int(np.argmax(np.hypot(z[:given], z[given:])))
+    before, after = np.zeros((N - given) // 2), np.zeros(N - given - (N - given) // 2)
+    return np.concatenate([before, np.roll(z[:given], r), after, before, np.roll(z[given:], r), after])
 
 
 def ansatz_start(A: ArrayLike, T_d: float, alpha: float, eps: float) -> tuple[Floats, float]:
