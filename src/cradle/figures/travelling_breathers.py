@@ -44,6 +44,10 @@ if TYPE_CHECKING:
 MIN_POINTS = 3
 
 
+#: a verdict as the panels write it: 1 unstable, 0 stable (another value: undecided, "?" in grey)
+VERDICT_LETTER = {1: "U", 0: "S"}
+VERDICT_COLOUR = {1: "C3", 0: "C2"}
+
 def draw(tree: AnalysisTree) -> Figure:
     """The panels above: (g)-(i) when the file holds the TBs in motion, (j)-(l) when it holds the lattice's TBs."""
     lattice = "lattice_eps" in tree.children
@@ -111,8 +115,8 @@ def draw(tree: AnalysisTree) -> Figure:
     top = 30.0 * max(float(np.nanmax(G)), thr)
     settled = np.asarray(rob["settled"].values)
     for x, v in zip(c, settled, strict=True):
-        e.text(x, floor / 4.0, {1: "U", 0: "S"}.get(int(v), "?"), ha="center", va="center", fontsize=7,
-               color={1: "C3", 0: "C2"}.get(int(v), "0.4"))
+        e.text(x, floor / 4.0, VERDICT_LETTER.get(int(v), "?"), ha="center", va="center", fontsize=7,
+               color=VERDICT_COLOUR.get(int(v), "0.4"))
     e.set_ylim(floor / 12.0, top * 1e3)
     e.set_xlabel("velocity c")
     e.set_ylabel(f"growth rate ln max$|\\mu|$ / T (floor {floor:g})")
@@ -160,10 +164,6 @@ def draw(tree: AnalysisTree) -> Figure:
     return fig
 
 
-VERDICT_LETTER = {1: "U", 0: "S"}
-VERDICT_COLOUR = {1: "C3", 0: "C2"}
-
-
 def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
     """Panels (p)-(r), the tail rule's verdicts in the limit (group /limit_tail): (p) per member the largest growth
     rate of its neighbourhood (points of its tail's kind) against N with the fit g_inf + b N^-k; (q) the tail's MI
@@ -177,7 +177,6 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
     rings = np.asarray(lt["fit_ring"].values, float)
     env = np.asarray(lt["envelope"].values, float)                 # (c, ring)
     kind = np.asarray(lt["tail_mi_unstable"].values) == 1
-    verdict = np.asarray(lt["verdict"].values)
 
     p = ax[0]
     fine = np.linspace(float(rings.min()), 2.0 * float(rings.max()), 200)
@@ -231,7 +230,6 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
         if i > 0 and text in ("U", "S"):
             cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
     r.set_title("(r) verdicts per ring N and rtol (ring of N);\nin the limit: median rule, tail rule", fontsize=9)
-    del verdict
 
 
 def verdict_table(tree: AnalysisTree) -> list[list[str]]:
@@ -241,7 +239,7 @@ def verdict_table(tree: AnalysisTree) -> list[list[str]]:
     c = np.asarray(tree["c"].values)
 
     def letter(v: float) -> str:
-        return {1: "U", 0: "S"}.get(int(v), "?") if np.isfinite(v) else "-"
+        return VERDICT_LETTER.get(int(v), "?") if np.isfinite(v) else "-"
 
     head = ["c", *[f"N={int(n)}" for n in rob["ring"].values], *[f"{float(t):g}" for t in rob["rtol"].values[1:]]]
     cols = [np.where(np.asarray(rob["unstable"].values[i]) < 0, np.nan, rob["unstable"].values[i])
@@ -372,8 +370,8 @@ def draw_limit(ax: Any, tree: AnalysisTree) -> None:
                    label=f"ring of {ring}")
     k.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
     for x, v in zip(c, np.asarray(lim["verdict"].values), strict=True):
-        k.text(x, floor / 4.0, {1: "U", 0: "S"}.get(int(v), "?"), ha="center", va="center", fontsize=7,
-               color={1: "C3", 0: "C2"}.get(int(v), "0.4"))
+        k.text(x, floor / 4.0, VERDICT_LETTER.get(int(v), "?"), ha="center", va="center", fontsize=7,
+               color=VERDICT_COLOUR.get(int(v), "0.4"))
     k.set_ylim(floor / 12.0, 300.0 * max(float(np.nanmax(typ)), thr))
     k.set_xlabel("velocity c (member)")
     k.set_ylabel(f"median growth over c $\\pm$ {float(attrs['limit_halfwidth']):g} (floor {floor:g})")
