@@ -187,14 +187,17 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
         g0, b, kk = (float(lt[f"fit_{x}"].values[j]) for x in ("g_inf", "b", "k"))
         if np.isfinite(g0):
             e0 = float(lt["fit_g_inf_error"].values[j])
+            # no error where a fit leaving out an end ring fails: its standard error, said to be only that
+            err = f"{e0:.1e}" if np.isfinite(e0) else f"{float(lt['fit_g_inf_stderr'].values[j]):.1e} (s.e. only)"
             p.semilogy(fine, np.maximum(g0 + b * fine ** (-kk), floor), "-", color=col, lw=0.8,
-                       label=rf"fit: $g_\infty$ = {g0:.1e} $\pm$ {e0:.1e}")
+                       label=rf"fit: $g_\infty$ = {g0:.1e} $\pm$ {err}"
+                       + (f" (k = {kk:g}: on a bound)" if float(lt["fit_degenerate"].values[j]) == 1 else ""))
     p.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
     p.set_ylim(floor / 3.0, 1e3 * max(float(np.nanmax(env)) if np.isfinite(env).any() else thr, thr))
     p.set_xlabel("sites N of the ring")
     p.set_ylabel(rf"largest growth over c $\pm$ {float(attrs['limit_halfwidth']):g} (floor {floor:g})")
     p.set_title("(p) members whose tail is MI-stable: envelope against N", fontsize=9)
-    p.legend(fontsize=6, loc="upper left", ncol=2)
+    p.legend(fontsize=6, loc="upper left")
 
     q = ax[1]
     rob = tree["robustness"]
@@ -216,7 +219,7 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
     q.set_xlabel("velocity c (member)")
     q.set_ylabel(rf"growth rate per unit $\tau$ (floor {floor:g})")
     q.set_title("(q) the tail's modulational instability", fontsize=9)
-    q.legend(fontsize=6, loc="upper left", ncol=2)
+    q.legend(fontsize=6, loc="upper left")
 
     r = ax[2]
     r.axis("off")
