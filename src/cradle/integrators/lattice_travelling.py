@@ -132,10 +132,12 @@ def flow(z: ArrayLike, T: float, alpha: float, rtol: float = RTOL) -> Floats:
     return np.concatenate([X[-1], V[-1]])
 
 
-def monodromy(z: ArrayLike, T: float, alpha: float, rtol: float = RTOL) -> tuple[Floats, Floats]:
-    """(M, Phi_T(z)): the 2N x 2N monodromy modulo shift S^{-1} DPhi_T(z) and the state one period later."""
+def monodromy(z: ArrayLike, T: float, alpha: float, rtol: float = RTOL,
+              seed: Floats | None = None) -> tuple[Floats, Floats]:
+    """(M, Phi_T(z)): the 2N x 2N monodromy modulo shift S^{-1} DPhi_T(z) and the state one period later;
+    ``seed``: the variations carried instead of the identity's columns (M is then S^{-1} DPhi_T(z) seed)."""
     z = np.asarray(z, float)
-    zT, Phi = shoot(z, T, alpha, np.eye(z.size), rtol)
+    zT, Phi = shoot(z, T, alpha, np.eye(z.size) if seed is None else seed, rtol)
     assert Phi is not None
     return unshift(Phi), zT
 
@@ -249,15 +251,10 @@ def newton(z_guess: ArrayLike, T: float, alpha: float, reference: ArrayLike | No
         if it == max_iter or not np.isfinite(res) or res > 10.0 * best:
             break
         best = min(best, res)
-        if free is None:
-            Mm, _ = monodromy(z, T, alpha, jac_rtol)
-            J = np.vstack([Mm - np.eye(n2), d_time[None, :]])
-        else:
-            # only the free unknowns' columns of the Jacobian
-            eye = np.eye(n2)[:, free]
-            Phi = shoot(z, T, alpha, eye, jac_rtol)[1]
-            assert Phi is not None
-            J = np.vstack([unshift(Phi) - eye, d_time[None, free]])
+        cols = slice(None) if free is None else free   # only the free unknowns' columns of the Jacobian
+        eye = np.eye(n2)[:, cols]
+        Mm, _ = monodromy(z, T, alpha, jac_rtol, eye)
+        J = np.vstack([Mm - eye, d_time[None, cols]])
         F = np.concatenate([R, [d_time @ (z - ref)]])
         step, smin, dropped = truncated_lstsq(J, -F, n2, rcond)
         steps = [step]
