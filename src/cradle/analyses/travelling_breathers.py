@@ -53,6 +53,7 @@ if TYPE_CHECKING:
 
     from cradle.analyses.protocol import Log
     from cradle.integrators.dps_travelling import TravellingBreather
+    from cradle.integrators.lattice_tail import SignedTail
     from cradle.integrators.lattice_travelling import LatticeTB
     from cradle.scenes.spec import Context, Where
     from cradle.specs.values import Errors
@@ -178,13 +179,27 @@ class TravellingBreathers:
                                      "lattice_eps are solved again, each carried from the ring before by adding sites "
                                      "at rest on the far side (increasing; group /lattice_rings).", minItems=0,
                                      maxItems=8, items=_RING)
-    lattice_family_rings: list[int] = param([24, 32], "Rings of lattice_rings on which the continuation in c "
+    lattice_family_rings: list[int] = param([24, 32, 48], "Rings of lattice_rings on which the continuation in c "
                                             "(lattice_steps) is done too (its cost grows as N^2).", minItems=0,
                                             maxItems=8, items=_RING)
     lattice_large_eps: list[float] = param([0.01, 0.03], "eps of the ansatz above lattice_eps at which an exact TB "
                                            "is solved on the ring of lattice_N, the core first (group "
                                            "/lattice_large; increasing).", minItems=0, maxItems=8,
                                            items={"type": "number", "exclusiveMinimum": 0, "maximum": 0.5})
+    # the zeros of the lattice TBs' signed tail: section "where the lattice's tail vanishes" below
+    lattice_zero_rings: list[int] = param([24, 32, 48], "Rings of lattice_family_rings on which the signed tail is "
+                                          "followed through its two minima and its zeros located (group "
+                                          "/lattice_zeros).", minItems=0, maxItems=8, items=_RING)
+    lattice_zero_eps: float = param(0.003, "The member of lattice_eps whose branch is followed through the first "
+                                    "minimum of the tail.", exclusiveMinimum=0, maximum=0.5)
+    lattice_zero_step: float = param(0.01, "The member of lattice_steps (on each ring's continuation) whose branch is "
+                                     "followed through the second minimum.", minimum=-0.5, maximum=0.5)
+    lattice_zero_grid: list[float] = param([-0.0004, -0.0002, 0.0, 0.0002, 0.0004],
+                                           "Relative changes s of the velocity around each minimum's member, c = c1 "
+                                           "(1 + s) (increasing, one of them 0): the fine grid whose sign change "
+                                           "brackets the zero.", minItems=2, maxItems=40,
+                                           items={"type": "number", "minimum": -0.05, "maximum": 0.05,
+                                                  "description": "One relative change of the velocity."})
 
     def check(self, where: Where, context: Context, out: Errors) -> None:
         """Each form: speeds increasing, direct_speed among them, a check ring other than the ring."""
@@ -236,6 +251,23 @@ class TravellingBreathers:
         if any(y <= x for x, y in itertools.pairwise([max(self.lattice_eps), *self.lattice_large_eps])):
             out.add(where + ["lattice_large_eps"], f"must be strictly increasing and above max(lattice_eps) = "
                     f"{max(self.lattice_eps)}", self.lattice_large_eps)
+        self.check_zeros(where, out)
+
+    def check_zeros(self, where: Where, out: Errors) -> None:
+        """The keys of the tail's zeros: rings with a continuation, members that are computed, a grid about 0."""
+        if any(n not in self.lattice_family_rings for n in self.lattice_zero_rings):
+            out.add(where + ["lattice_zero_rings"], f"must be among lattice_family_rings = "
+                    f"{self.lattice_family_rings} (the second minimum's member is on the continuation)",
+                    self.lattice_zero_rings)
+        if float(self.lattice_zero_eps) not in [float(x) for x in self.lattice_eps]:
+            out.add(where + ["lattice_zero_eps"], f"must be one of lattice_eps = {self.lattice_eps}",
+                    self.lattice_zero_eps)
+        if float(self.lattice_zero_step) not in [float(x) for x in self.lattice_steps]:
+            out.add(where + ["lattice_zero_step"], f"must be one of lattice_steps = {self.lattice_steps}",
+                    self.lattice_zero_step)
+        if any(y <= x for x, y in itertools.pairwise(self.lattice_zero_grid)) or 0.0 not in self.lattice_zero_grid:
+            out.add(where + ["lattice_zero_grid"], "must be strictly increasing and hold 0 (the minimum's member)",
+                    self.lattice_zero_grid)
 
     def check_motion(self, where: Where, out: Errors) -> None:
         """The keys of the TBs in motion: motion_speed among speeds, motion_eps decreasing, a ring long enough."""
@@ -658,9 +690,10 @@ def lattice_rings_groups(spec: TravellingBreathers, source: TravellingBreather, 
     stored = [b for row in eps_rows + fam_rows for b in row if b is not None]
     cpu_rings = _time.process_time() - t0
     large, large_attrs = lattice_large(spec, source, log)
+    zeros, zeros_attrs = lattice_zeros(spec, rings, eps_rows, fam_rows, log)
     groups = {"/lattice_rings": (data, {"ring": rings, "eps_lattice": list(spec.lattice_eps),
                                         "c_step": list(steps), "ring_site": np.arange(width)}),
-              **large}
+              **large, **zeros}
     attrs = {"lattice_rings_max_residual": float(max(b.residual for b in stored)),
              "lattice_rings_reached": f"{sum(b is not None for row in eps_rows for b in row)} of "
                                       f"{len(rings) * len(tbs)} members at lattice_eps, "
@@ -669,7 +702,7 @@ def lattice_rings_groups(spec: TravellingBreathers, source: TravellingBreather, 
              "lattice_rings_method": "each ring's TB from the same member of the ring before, sites at rest added on "
                                      "the far side (the breather centred), Newton at the same T; the continuation in "
                                      "c as on the ring of lattice_N, its corrector on the core's unknowns first",
-             "lattice_rings_cpu_s": cpu_rings, **large_attrs}
+             "lattice_rings_cpu_s": cpu_rings, **large_attrs, **zeros_attrs}
     return groups, attrs
 
 
@@ -705,6 +738,141 @@ def lattice_large(spec: TravellingBreathers, source: TravellingBreather, log: Lo
              "lattice_large_cpu_s": _time.process_time() - t0}
     return {"/lattice_large": (data, {"eps_large": list(spec.lattice_large_eps),
                                       "site": np.arange(spec.lattice_N)})}, attrs
+
+
+# ----------------------------------------------------------------- where the lattice's tail vanishes
+# Issue 37, item 2: "the parameters where it nearly vanishes". The signed tail of a lattice TB
+# (cradle.integrators.lattice_tail) followed along the branch of each of the two members where the far field is
+# least (the TB at lattice_zero_eps, the continuation's member at lattice_zero_step) on a fine grid of c, and its
+# zero located by regula falsi; kept apart from the rings above.
+
+#: the regula falsi's iterates at most (from the measured slopes, two or three reach the residual's floor)
+ZERO_ITERATIONS = 4
+#: the minima followed, in the order of the coordinate ``minimum``
+ZERO_MINIMA = ("the branch of the TB at lattice_zero_eps", "the branch of the continuation's member at "
+               "lattice_zero_step")
+#: the numbers of each grid point and of each located zero in /lattice_zeros
+ZERO_POINT = ("c", "period", "eps_tb", "dps_c", "residual", "sigma", "tail", "phase_defect")
+#: the located zero's further numbers: its Floquet verdict, the symmetric time's defect, the bracket, the iterates
+ZERO_MORE = ("symmetry_defect", "trivial_defect", "growth_rate", "unstable", "reciprocal_defect", "bracket_low",
+             "bracket_high", "iterations")
+
+
+def zero_point(b: LatticeTB | None, s: SignedTail | None, spec: TravellingBreathers) -> dict[str, float]:
+    """The numbers :data:`ZERO_POINT` of one member and its signed tail (NaN for a member not reached)."""
+    m = ring_member(b, spec)
+    if b is None or s is None:
+        return dict.fromkeys(ZERO_POINT, math.nan)
+    return {k: m[k] for k in ZERO_POINT if k in m} | {"c": b.c, "sigma": s.sigma, "phase_defect": s.phase_defect}
+
+
+def zero_grid(spec: TravellingBreathers, start: LatticeTB,
+              log: Log | None) -> list[tuple[LatticeTB, SignedTail] | None]:
+    """(member, signed tail) at each c = c1 (1 + s), s of ``lattice_zero_grid``, c1 the velocity of ``start`` (None
+    where the continuation stopped): :func:`LT.continue_family` from ``start`` down and up with the plain corrector
+    (the grid's steps leave a predictor error far below the far field)."""
+    from cradle.integrators import lattice_tail as LTail, lattice_travelling as LT
+
+    grid = np.asarray(spec.lattice_zero_grid, float)
+    cs = start.c * (1.0 + grid)
+    least = 0.125 * float(np.min(np.diff(grid))) if grid.size > 1 else 1e-4
+    down, _ = LT.continue_family(start, cs[grid < 0][::-1], spec.newton_tol, min_step=least, log=log)
+    up, _ = LT.continue_family(start, cs[grid > 0], spec.newton_tol, min_step=least, log=log)
+    members = by_step(cs, [*down[::-1], start, *up])
+    return [None if b is None else (b, LTail.signed_tail(b.z, b.T, b.alpha)) for b in members]
+
+
+def zero_bracket(points: list[tuple[LatticeTB, SignedTail] | None]) -> int | None:
+    """i such that the grid points i and i + 1 bracket a zero of the signed tail: of the neighbours whose signs
+    differ, those with the smallest larger |sigma| (a zero's bracket, not a ring resonance's, where |sigma| is large
+    on both sides); None without a sign change."""
+    pairs = [(max(abs(p[1].sigma), abs(q[1].sigma)), i) for i, (p, q) in enumerate(itertools.pairwise(points))
+             if p is not None and q is not None and p[1].sigma * q[1].sigma < 0]
+    return min(pairs)[1] if pairs else None
+
+
+def tail_zero(spec: TravellingBreathers, start: LatticeTB, log: Log | None = None) -> dict:
+    """The zero of the signed tail on the branch of ``start``: the grid of :func:`zero_grid`, then
+    :func:`LTail.locate_zero` in its bracket (:func:`zero_bracket`). Returns the grid's points (``grid``: a dict of
+    :data:`ZERO_POINT` lists), the zero's numbers (``zero``: :data:`ZERO_POINT` and :data:`ZERO_MORE`, NaN without
+    a bracket), its state ``z`` (None without) and the iterates' (c, sigma) (``trace``)."""
+    from cradle.integrators import lattice_breathers as LB, lattice_tail as LTail
+
+    pts = zero_grid(spec, start, log)
+    rows = [zero_point(None, None, spec) if p is None else zero_point(p[0], p[1], spec) for p in pts]
+    grid = {k: [r[k] for r in rows] for k in ZERO_POINT}
+    zero = dict.fromkeys(ZERO_POINT + ZERO_MORE, math.nan)
+    i = zero_bracket(pts)
+    if i is None:
+        return {"grid": grid, "zero": zero, "z": None, "trace": []}
+    (a, sa), (b, sb) = pts[i], pts[i + 1]  # type: ignore[misc]
+    m, s, trace = LTail.locate_zero(a, b, sa.sigma, sb.sigma, spec.newton_tol, ZERO_ITERATIONS, log)
+    triv, growth, unstable, _ = verdict(m, spec.stability_threshold, LATTICE_TRIVIAL)
+    zero = zero_point(m, s, spec) | {"symmetry_defect": s.symmetry_defect, "trivial_defect": triv,
+                                      "growth_rate": growth, "unstable": int(unstable),
+                                      "reciprocal_defect": LB.multiplier_checks(m.multipliers)["reciprocal"],
+                                      "bracket_low": a.c, "bracket_high": b.c, "iterations": len(trace)}
+    return {"grid": grid, "zero": zero, "z": m.z, "trace": trace}
+
+
+def lattice_zeros(spec: TravellingBreathers, rings: list[int], eps_rows: list[list[LatticeTB | None]],
+                  fam_rows: list[list[LatticeTB | None]], log: Log | None = None) -> tuple[dict, dict]:
+    """The group /lattice_zeros: on each ring of ``lattice_zero_rings`` (``rings``, ``eps_rows`` and ``fam_rows``
+    as :func:`lattice_rings_groups` builds them) the zero of the signed tail on the branch of the TB at
+    lattice_zero_eps and on that of the continuation's member at lattice_zero_step (:func:`tail_zero`); its
+    attributes prefixed ``lattice_zeros_``. Empty without such rings."""
+    if not spec.lattice_zero_rings:
+        return {}, {}
+    t0 = _time.process_time()
+    say = log or (lambda *a: None)
+    j_eps = [float(e) for e in spec.lattice_eps].index(float(spec.lattice_zero_eps))
+    j_step = [float(s) for s in spec.lattice_steps].index(float(spec.lattice_zero_step))
+    found: list[list[dict | None]] = []
+    for N in spec.lattice_zero_rings:
+        k = rings.index(N)
+        row: list[dict | None] = []
+        for start in (eps_rows[k][j_eps], fam_rows[k][j_step]):
+            f = None if start is None else tail_zero(spec, start, log)
+            row.append(f)
+            if f is not None:
+                zr = f["zero"]
+                say(f"travelling-breathers: tail zero on the ring of {N}: c = {zr['c']:.10g}, sigma "
+                    f"{zr['sigma']:.2g}, residual {zr['residual']:.2g}")
+        found.append(row)
+    width = max(spec.lattice_zero_rings)
+    n_grid, n_it = len(spec.lattice_zero_grid), ZERO_ITERATIONS
+    blank_grid = {k: [math.nan] * n_grid for k in ZERO_POINT}
+    blank = dict.fromkeys(ZERO_POINT + ZERO_MORE, math.nan)
+    data: dict[str, object] = {
+        f"{k}_grid": np.array([[(blank_grid if f is None else f["grid"])[k] for f in row] for row in found])
+        for k in ZERO_POINT}
+    data |= {k: np.array([[(blank if f is None else f["zero"])[k] for f in row] for row in found])
+             for k in ZERO_POINT + ZERO_MORE}
+    trace = np.full((len(found), 2, n_it, 2), np.nan)
+    xs, vs = np.full((len(found), 2, width), np.nan), np.full((len(found), 2, width), np.nan)
+    for i, row in enumerate(found):
+        for j, f in enumerate(row):
+            if f is None:
+                continue
+            for q, cs in enumerate(f["trace"]):
+                trace[i, j, q] = cs
+            if f["z"] is not None:
+                n = f["z"].size // 2
+                xs[i, j, :n], vs[i, j, :n] = f["z"][:n], f["z"][n:]
+    data |= {"c_iterate": trace[..., 0], "sigma_iterate": trace[..., 1], "x": xs, "v": vs}
+    located = [f["zero"] for row in found for f in row if f is not None and np.isfinite(f["zero"]["c"])]
+    attrs = {"lattice_zeros_located": f"{len(located)} of {2 * len(found)}",
+             "lattice_zeros_max_residual": float(max((z["residual"] for z in located), default=math.nan)),
+             "lattice_zeros_max_abs_sigma": float(max((abs(z["sigma"]) for z in located), default=math.nan)),
+             "lattice_zeros_method": "signed tail sigma = Re(B / xi_n0) |xi_n0| / max|xi| at the TB's symmetric time "
+                                     "(cradle.integrators.lattice_tail); the grid by the continuation in c from each "
+                                     "minimum's member, the zero by regula falsi (Illinois) in the grid's bracket of "
+                                     f"least |sigma|, at most {ZERO_ITERATIONS} iterates, stopped where |sigma| is "
+                                     "below the iterate's own shift-map residual",
+             "lattice_zeros_cpu_s": _time.process_time() - t0}
+    coords = {"zero_ring": list(spec.lattice_zero_rings), "minimum": [0, 1],
+              "zero_step": list(spec.lattice_zero_grid), "iterate": np.arange(n_it), "zero_site": np.arange(width)}
+    return {"/lattice_zeros": (data, coords)}, attrs
 
 
 # ----------------------------------------------------------------- TBs in motion (issue 37, item 3)
@@ -1421,6 +1589,49 @@ VARIABLES = {
         }.items()},
         "x": Var(("eps_large", "site"), "x_n(0) of the TB"),
         "v": Var(("eps_large", "site"), "v_n(0) of the TB"),
+    },
+    "/lattice_zeros": {
+        "zero_ring": Var(("zero_ring",), "sites N of the ring (lattice_zero_rings)"),
+        "minimum": Var(("minimum",), "the minimum followed: 0 the branch of the TB at lattice_zero_eps, 1 that of the "
+                       "continuation's member at lattice_zero_step"),
+        "zero_step": Var(("zero_step",), "relative change s of the velocity on the fine grid: c = c1 (1 + s), c1 that "
+                         "of the minimum's member"),
+        "iterate": Var(("iterate",), "iterate of the regula falsi"),
+        "zero_site": Var(("zero_site",), "site n (up to the largest ring; NaN beyond each ring)"),
+        **{f"{k}{suffix}": Var(dims, f"{text} ({which})", units)
+           for suffix, dims, which in (("_grid", ("zero_ring", "minimum", "zero_step"), "the fine grid's member"),
+                                       ("", ("zero_ring", "minimum"), "the TB where the signed tail vanishes"))
+           for k, (text, units) in {
+               "c": ("velocity c = 1/T, sites per unit t", "1"),
+               "period": ("period T of (tbnc), x_n(t + T) = x_{n-1}(t), in units of t", "1"),
+               "eps_tb": ("eps at the TB's amplitude: sqrt(sum |xi_n|^2 / norm)", "1"),
+               "dps_c": ("velocity of the DpS TB through (ansatz), 1 / (T eps_tb^(alpha-1)), sites per unit tau", "1"),
+               "residual": ("shift-map residual max |S^{-1} Phi_T(z) - z| / max |z|", "1"),
+               "sigma": ("signed tail Re(B / xi_n0) |xi_n0| / max |xi_n| at the symmetric time, B the far field's "
+                         "plane wave at the antipode (cradle.integrators.lattice_tail)", "1"),
+               "tail": ("max |xi_n| on the far quarter ring / max |xi_n| at t = 0", "1"),
+               "phase_defect": ("Im(B / xi_n0) |xi_n0| / max |xi_n|: the part of the far field off the symmetric "
+                                "phase", "1"),
+           }.items()},
+        "symmetry_defect": Var(("zero_ring", "minimum"), "distance of eta_n = xi_n / xi_n0 to conj(eta_{2 n0 - n}), "
+                               "weighted by |xi_n| / max, at the symmetric time"),
+        "trivial_defect": Var(("zero_ring", "minimum"), "largest |mu - 1| of the four multipliers modulo shift nearest "
+                              "1"),
+        "growth_rate": Var(("zero_ring", "minimum"), "ln max |mu| / T over the other multipliers modulo shift, "
+                           "per unit t"),
+        "unstable": Var(("zero_ring", "minimum"), "1 if growth_rate > stability_threshold"),
+        "reciprocal_defect": Var(("zero_ring", "minimum"), "max over mu of the distance of 1/mu to the nearest "
+                                 "multiplier"),
+        "bracket_low": Var(("zero_ring", "minimum"), "c of the grid member at the bracket's lower end, sites per "
+                           "unit t"),
+        "bracket_high": Var(("zero_ring", "minimum"), "c of the grid member at the bracket's upper end, sites per "
+                            "unit t"),
+        "iterations": Var(("zero_ring", "minimum"), "iterates of the regula falsi"),
+        "c_iterate": Var(("zero_ring", "minimum", "iterate"), "velocity c of each iterate of the regula falsi, sites "
+                         "per unit t"),
+        "sigma_iterate": Var(("zero_ring", "minimum", "iterate"), "signed tail of each iterate"),
+        "x": Var(("zero_ring", "minimum", "zero_site"), "x_n(0) of the TB where the signed tail vanishes"),
+        "v": Var(("zero_ring", "minimum", "zero_site"), "v_n(0) of the TB where the signed tail vanishes"),
     },
     "/lattice_motion": {
         "eps_lattice": Var(("eps_lattice",), "eps of the launch"),

@@ -28,6 +28,9 @@ Then the lattice's TBs on larger rings and at larger eps when the file holds the
 /lattice_large): (s) |xi_n(0)| / max against the distance from the centre on each ring, (t) the tail against eps on
 each ring with every TB's residual, (u) the tail along the continuation in c against the DpS velocity through
 (ansatz), unstable members filled.
+Last, where the lattice TBs' tail vanishes when the file holds it (group /lattice_zeros): (v), (w) the signed tail
+along the fine grid of c through each of its two minima on each ring, the regula falsi's iterates and the zero
+located; (x) the table of the zeros.
 """
 from __future__ import annotations
 
@@ -54,7 +57,8 @@ def draw(tree: AnalysisTree) -> Figure:
     limit = "robustness_limit" in tree.children
     tail = "limit_tail" in tree.children
     on_rings = "lattice_rings" in tree.children
-    rows = 3 + int(lattice) + int(limit) + int(tail) + int(on_rings)
+    zeros = "lattice_zeros" in tree.children
+    rows = 3 + int(lattice) + int(limit) + int(tail) + int(on_rings) + int(zeros)
     fig, ax = figure(rows, 3, width=13.5, height=11.2 + 3.7 * (rows - 3))
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
@@ -161,6 +165,8 @@ def draw(tree: AnalysisTree) -> Figure:
         draw_tail_rule(ax[3 + int(lattice) + int(limit)], tree)
     if on_rings:
         draw_rings(ax[3 + int(lattice) + int(limit) + int(tail)], tree)
+    if zeros:
+        draw_zeros(ax[rows - 1], tree)
     return fig
 
 
@@ -332,6 +338,50 @@ def draw_rings(ax: Any, tree: AnalysisTree) -> None:
     i_.set_ylabel("tail (far quarter ring) / max")
     i_.set_title("(u) the tail along the continuation in c", fontsize=9)
     i_.legend(fontsize=6.5, loc="upper left")
+
+
+def draw_zeros(ax: Any, tree: AnalysisTree) -> None:
+    """Where the lattice TBs' tail vanishes (group /lattice_zeros): (v), (w) the signed tail along the fine grid of c
+    through each minimum on each ring (symmetric log scale, linear within the largest residual), the regula falsi's
+    iterates and the located zero; (x) the table of the zeros: c, eps, the DpS velocity through (ansatz), |sigma|,
+    the residual and the growth rate there."""
+    zg = tree["lattice_zeros"]
+    rings = [int(N) for N in zg["zero_ring"].values]
+    res = np.asarray(zg["residual_grid"].values)
+    lin = float(np.nanmax(res))
+    for j, (a, name) in enumerate(((ax[0], "(v)"), (ax[1], "(w)"))):
+        for k, N in enumerate(rings):
+            c = np.asarray(zg["c_grid"].values[k, j])
+            a.plot(1e3 * c, zg["sigma_grid"].values[k, j], "osD^"[k % 4] + "-", color=f"C{k}", ms=5, mfc="none",
+                   lw=1.0, label=f"grid, ring of {N}")
+            a.plot(1e3 * np.asarray(zg["c_iterate"].values[k, j]), zg["sigma_iterate"].values[k, j], "+",
+                   color=f"C{k}", ms=7)
+            a.plot(1e3 * float(zg["c"].values[k, j]), float(zg["sigma"].values[k, j]), "*", color=f"C{k}", ms=11,
+                   mec="k", mew=0.5)
+        a.plot([], [], "k+", ms=7, label="regula falsi iterates")
+        a.plot([], [], "k*", ms=11, label="zero located (least |$\\sigma$|)")
+        a.axhspan(-lin, lin, color="0.85", zorder=0, label=f"|$\\sigma$| below the largest residual, {lin:.1g}")
+        a.set_yscale("symlog", linthresh=lin)
+        top = float(np.nanmax(np.abs(zg["sigma_grid"].values[:, j])))
+        a.set_ylim(-top, 1e3 * top)     # room for the legend above the largest tail
+        a.set_xlabel("velocity c (sites per unit t) $\\times 10^3$")
+        a.set_ylabel("signed tail $\\sigma$ (far field at the antipode / max)")
+        a.set_title(f"{name} the signed tail through minimum {j} and its zero", fontsize=9)
+        a.legend(fontsize=6.5, loc="upper left", ncol=2)
+    t = ax[2]
+    t.axis("off")
+    head = ["ring", "min.", "c $\\times 10^3$", "$\\varepsilon$", "DpS c", "|$\\sigma$|", "residual", "growth"]
+    rows = []
+    for k, N in enumerate(rings):
+        for j in range(2):
+            def val(key: str, k: int = k, j: int = j) -> float:
+                return float(zg[key].values[k, j])
+            rows.append([str(N), str(j), f"{1e3 * val('c'):.7f}", f"{val('eps_tb'):.5f}", f"{val('dps_c'):.4f}",
+                         f"{abs(val('sigma')):.1e}", f"{val('residual'):.1e}", f"{val('growth_rate'):.1e}"])
+    tab = t.table(cellText=rows, colLabels=head, cellLoc="center", bbox=[0.0, 0.0, 1.0, 1.0])
+    tab.auto_set_font_size(False)
+    tab.set_fontsize(7)
+    t.set_title("(x) the zeros of the signed tail (growth per unit t)", fontsize=9)
 
 
 def draw_limit(ax: Any, tree: AnalysisTree) -> None:
