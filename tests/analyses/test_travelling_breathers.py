@@ -307,9 +307,11 @@ def test_a_window_is_a_krein_collision():
 def lattice_tree():
     """The lattice part on a small spec: three TBs of (nc) from the c = 0.1 member's ansatz on the ring of 16, one
     continuation step of 1 %, a short launch; the three carried to a ring of 20 and the step taken there too (the
-    corrector on the core first), one TB at eps = 0.01 solved the core first."""
+    corrector on the core first), one TB at eps = 0.01 solved the core first; on the ring of 20 the signed tail on a
+    grid of +-0.02 % in c about the eps = 0.003 TB and the +1 % member, and its zeros."""
     spec = _tiny(lattice=True, lattice_eps=[0.005, 0.004, 0.003], lattice_steps=[0.0, 0.01], lattice_periods=1,
-                 lattice_rings=[20], lattice_family_rings=[20], lattice_large_eps=[0.01])
+                 lattice_rings=[20], lattice_family_rings=[20], lattice_large_eps=[0.01], lattice_zero_rings=[20],
+                 lattice_zero_grid=[-0.0002, 0.0, 0.0002])
     fam, _ = tb.family(spec, spec.N, spec.rtol)
     return spec, tb.lattice_groups(spec, fam)
 
@@ -392,6 +394,32 @@ def test_ring_and_large_eps_direct_runs_conserve_energy(lattice_tree):
         assert np.max(run["residual"]) < 1e-9
 
 
+@pytest.mark.slow
+def test_tail_zero_is_bracketed_and_solves_tbnc(lattice_tree):
+    """Each located zero of the signed tail (on the ring of 20; the branch of the eps = 0.003 TB at least): the grid's
+    signed tails at the bracket's ends have opposite signs, the zero's c lies between them and its |sigma| is below
+    every grid point's; the stored TB satisfies (tbnc) to 1e-10 re-integrated at another tolerance, its multipliers
+    come in pairs mu, 1/mu and four of them lie at 1 within 1e-3."""
+    from cradle.integrators import lattice_travelling as LT
+
+    spec, (groups, _) = lattice_tree
+    data, coords = groups["/lattice_zeros"]
+    c = np.asarray(data["c"])
+    assert np.isfinite(c[0, 0])
+    for i, j in zip(*np.nonzero(np.isfinite(c)), strict=True):
+        cg, sg = np.asarray(data["c_grid"][i, j]), np.asarray(data["sigma_grid"][i, j])
+        k = int(np.flatnonzero(cg == data["bracket_low"][i, j])[0])
+        assert cg[k + 1] == data["bracket_high"][i, j]
+        assert sg[k] * sg[k + 1] < 0
+        assert cg[k] < c[i, j] < cg[k + 1]
+        assert abs(data["sigma"][i, j]) < np.nanmin(np.abs(sg))
+        N = int(coords["zero_ring"][i])
+        z = np.concatenate([data["x"][i, j, :N], data["v"][i, j, :N]])
+        assert LT.relative_residual(z, LT.flow(z, 1.0 / c[i, j], spec.alpha, 1e-13)) <= 1e-10
+        assert data["reciprocal_defect"][i, j] < 1e-6
+        assert data["trivial_defect"][i, j] < 1e-3
+
+
 def test_embed_centres_the_breather_and_adds_rest_sites():
     """embed: on the ring of N the state's largest |xi_n| sits at N0 // 2 + (N - N0) // 2, its N0 sites in order (a
     rotation of the ring), the other N - N0 at rest."""
@@ -413,10 +441,13 @@ def test_ring_keys_checked_in_one_line():
     from cradle.specs.values import Errors
 
     spec = from_plain(tb.TravellingBreathers, {"lattice_rings": [32, 24], "lattice_family_rings": [20],
-                                               "lattice_large_eps": [0.004, 0.01]})
+                                               "lattice_large_eps": [0.004, 0.01], "lattice_zero_rings": [32],
+                                               "lattice_zero_eps": 0.004, "lattice_zero_step": 0.03,
+                                               "lattice_zero_grid": [0.001, -0.001]})
     out = Errors()
     spec.check(["beyond", "travelling-breathers"], None, out)
-    for key in ("lattice_rings", "lattice_family_rings", "lattice_large_eps"):
+    for key in ("lattice_rings", "lattice_family_rings", "lattice_large_eps", "lattice_zero_rings",
+                "lattice_zero_eps", "lattice_zero_step", "lattice_zero_grid"):
         assert any(line.startswith(f"config error: beyond.travelling-breathers.{key} = ") for line in out.lines)
 
 

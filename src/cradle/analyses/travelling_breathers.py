@@ -754,8 +754,8 @@ ZERO_MINIMA = ("the branch of the TB at lattice_zero_eps", "the branch of the co
 #: the numbers of each grid point and of each located zero in /lattice_zeros
 ZERO_POINT = ("c", "period", "eps_tb", "dps_c", "residual", "sigma", "tail", "phase_defect")
 #: the located zero's further numbers: its Floquet verdict, the symmetric time's defect, the bracket, the iterates
-ZERO_MORE = ("symmetry_defect", "trivial_defect", "growth_rate", "unstable", "reciprocal_defect", "bracket_low",
-             "bracket_high", "iterations")
+ZERO_MORE = ("c_error", "symmetry_defect", "trivial_defect", "growth_rate", "unstable", "reciprocal_defect",
+             "bracket_low", "bracket_high", "iterations")
 
 
 def zero_point(b: LatticeTB | None, s: SignedTail | None, spec: TravellingBreathers) -> dict[str, float]:
@@ -808,7 +808,10 @@ def tail_zero(spec: TravellingBreathers, start: LatticeTB, log: Log | None = Non
     (a, sa), (b, sb) = pts[i], pts[i + 1]  # type: ignore[misc]
     m, s, trace = LTail.locate_zero(a, b, sa.sigma, sb.sigma, spec.newton_tol, ZERO_ITERATIONS, log)
     triv, growth, unstable, _ = verdict(m, spec.stability_threshold, LATTICE_TRIVIAL)
-    zero = zero_point(m, s, spec) | {"symmetry_defect": s.symmetry_defect, "trivial_defect": triv,
+    # the place is known to the c over which the bracket's slope moves sigma by what is not resolved
+    slope = abs(sb.sigma - sa.sigma) / abs(b.c - a.c)
+    zero = zero_point(m, s, spec) | {"c_error": max(abs(s.sigma), m.residual) / slope,
+                                      "symmetry_defect": s.symmetry_defect, "trivial_defect": triv,
                                       "growth_rate": growth, "unstable": int(unstable),
                                       "reciprocal_defect": LB.multiplier_checks(m.multipliers)["reciprocal"],
                                       "bracket_low": a.c, "bracket_high": b.c, "iterations": len(trace)}
@@ -1613,6 +1616,8 @@ VARIABLES = {
                "phase_defect": ("Im(B / xi_n0) |xi_n0| / max |xi_n|: the part of the far field off the symmetric "
                                 "phase", "1"),
            }.items()},
+        "c_error": Var(("zero_ring", "minimum"), "uncertainty of c: max(|sigma|, residual) over the bracket's slope "
+                       "d sigma / dc, sites per unit t"),
         "symmetry_defect": Var(("zero_ring", "minimum"), "distance of eta_n = xi_n / xi_n0 to conj(eta_{2 n0 - n}), "
                                "weighted by |xi_n| / max, at the symmetric time"),
         "trivial_defect": Var(("zero_ring", "minimum"), "largest |mu - 1| of the four multipliers modulo shift nearest "

@@ -101,21 +101,25 @@ def symmetric_time(z: Floats, T: float, alpha: float) -> tuple[float, int, Float
     ts = np.linspace(0.0, T, int(SAMPLES_PER_UNIT * T) + 1)
     X, V = orbit(z, ts, alpha, SCAN_RTOL)
     omega = carrier_frequency(X, V)
-    best = (math.inf, 0.0, 0)
+    best = (math.inf, 0, 0)
     for k in range(ts.size):
         p = int(np.argmax(np.hypot(X[k], V[k])))
         for n0 in ((p - 1) % N, p, (p + 1) % N):
             d = symmetry_defect(X[k], V[k], n0, omega)
             if d < best[0]:
-                best = (d, float(ts[k]), n0)
-    _, tk, n0 = best
-    h = float(ts[1] - ts[0])
+                best = (d, k, n0)
+    _, k, n0 = best
+    k = min(max(k, 1), ts.size - 2)
+    # the defect between the neighbouring samples, from the sample before (the core's defect needs no more than
+    # the scan's tolerance; the state at t1 itself is integrated from z at LT.RTOL below)
+    start = np.concatenate([X[k - 1], V[k - 1]])
 
     def defect2(t: float) -> float:
-        X1, V1 = orbit(z, np.array([0.0, t]), alpha)
+        X1, V1 = orbit(start, np.array([0.0, t - ts[k - 1]]), alpha, SCAN_RTOL)
         return symmetry_defect(X1[-1], V1[-1], n0, omega) ** 2
 
-    t1 = float(minimize_scalar(defect2, bracket=(tk - h, tk, tk + h), tol=1e-12).x)
+    t1 = float(minimize_scalar(defect2, bounds=(ts[k - 1], ts[k + 1]), method="bounded",
+                               options={"xatol": 1e-9}).x)
     X1, V1 = orbit(z, np.array([0.0, t1]), alpha)
     return t1, n0, np.concatenate([X1[-1], V1[-1]]), symmetry_defect(X1[-1], V1[-1], n0, omega), omega
 

@@ -1,0 +1,54 @@
+"""The signed tail of a lattice TB (cradle.integrators.lattice_tail), checked from its definition.
+
+The reversor R of (nc), x_n -> -x_{2 n0 - n}, v_n -> v_{2 n0 - n} at the symmetric time, with the carrier's phase
+xi -> e^{i phi} xi: a state built symmetric about bead n0 has eta_n = xi_n / xi_{n0} = conj(eta_{2 n0 - n}) exactly,
+at every phase; moved by one bead it does not. The zero's bracket is the sign change of least |sigma|; without a
+sign change there is nothing to locate. The TBs themselves, their zeros and multipliers are checked in
+tests/analyses/test_travelling_breathers.py (the lattice fixture).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from cradle.integrators import lattice_tail as LTail, lattice_travelling as LT
+
+N, N0 = 12, 5
+
+
+def _symmetric(phi: float) -> tuple[np.ndarray, np.ndarray]:
+    """A state R-symmetric about bead N0, its carrier phase turned by phi: xi_n = e^{i phi} (i a_n + b_n), a_n even
+    and b_n odd about N0 (so that xi_n = -e^{2 i phi} conj(xi_{2 N0 - n}))."""
+    d = (np.arange(N) - N0 + N // 2) % N - N // 2
+    a, b = np.exp(-0.3 * d**2), 0.2 * d * np.exp(-0.5 * d**2)
+    b[d == -N // 2] = 0.0    # the antipode is its own mirror: an odd part vanishes there
+    xi = np.exp(1j * phi) * (1j * a + b)
+    return 2.0 * xi.real, -2.0 * xi.imag
+
+
+@pytest.mark.parametrize("phi", [0.0, 0.7, -2.3])
+def test_symmetry_defect_vanishes_on_a_symmetric_state(phi):
+    x, v = _symmetric(phi)
+    assert LTail.symmetry_defect(x, v, N0, 1.0) < 1e-14
+    # the mirror about another bead is not a symmetry of this state
+    assert LTail.symmetry_defect(x, v, N0 + 1, 1.0) > 0.1
+
+
+def _point(c: float, sigma: float) -> tuple[LT.LatticeTB, LTail.SignedTail]:
+    b = LT.LatticeTB(np.zeros(2 * N), 1.0 / c, 1.5, 0.0, True, 0)
+    return b, LTail.SignedTail(sigma, 0.0, 0.0, 0.0, 1.0, 0.0, 0)
+
+
+def test_zero_bracket_is_the_sign_change_of_least_tail():
+    from cradle.analyses.travelling_breathers import zero_bracket
+
+    # a ring resonance (a pole: large and of opposite signs) between points 0 and 1, a zero between 2 and 3
+    pts = [_point(1.0, 3e-8), _point(1.1, -4e-8), _point(1.2, -2e-10), _point(1.3, 1e-10), None, _point(1.5, 2e-10)]
+    assert zero_bracket(pts) == 2
+    assert zero_bracket([_point(1.0, 1e-10), _point(1.1, 2e-10)]) is None
+
+
+def test_locate_zero_needs_a_bracket():
+    (a, _), (b, _) = _point(1.0, 0.0), _point(1.1, 0.0)
+    with pytest.raises(ValueError, match="bracket"):
+        LTail.locate_zero(a, b, 1e-10, 2e-10, 1e-11)
