@@ -404,10 +404,10 @@ def test_tail_zero_is_bracketed_and_solves_tbnc(lattice_tree):
 
     spec, (groups, _) = lattice_tree
     data, coords = groups["/lattice_zeros"]
-    c = np.asarray(data["c"])
+    c = np.asarray(data["c_tb"])
     assert np.isfinite(c[0, 0])
     for i, j in zip(*np.nonzero(np.isfinite(c)), strict=True):
-        cg, sg = np.asarray(data["c_grid"][i, j]), np.asarray(data["sigma_grid"][i, j])
+        cg, sg = np.asarray(data["c_tb_grid"][i, j]), np.asarray(data["sigma_grid"][i, j])
         k = int(np.flatnonzero(cg == data["bracket_low"][i, j])[0])
         assert cg[k + 1] == data["bracket_high"][i, j]
         assert sg[k] * sg[k + 1] < 0

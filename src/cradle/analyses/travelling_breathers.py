@@ -752,7 +752,7 @@ ZERO_ITERATIONS = 4
 ZERO_MINIMA = ("the branch of the TB at lattice_zero_eps", "the branch of the continuation's member at "
                "lattice_zero_step")
 #: the numbers of each grid point and of each located zero in /lattice_zeros
-ZERO_POINT = ("c", "period", "eps_tb", "dps_c", "residual", "sigma", "tail", "phase_defect")
+ZERO_POINT = ("c_tb", "period", "eps_tb", "dps_c", "residual", "sigma", "tail", "phase_defect")
 #: the located zero's further numbers: its Floquet verdict, the symmetric time's defect, the bracket, the iterates
 ZERO_MORE = ("c_error", "symmetry_defect", "trivial_defect", "growth_rate", "unstable", "reciprocal_defect",
              "bracket_low", "bracket_high", "iterations")
@@ -763,7 +763,7 @@ def zero_point(b: LatticeTB | None, s: SignedTail | None, spec: TravellingBreath
     m = ring_member(b, spec)
     if b is None or s is None:
         return dict.fromkeys(ZERO_POINT, math.nan)
-    return {k: m[k] for k in ZERO_POINT if k in m} | {"c": b.c, "sigma": s.sigma, "phase_defect": s.phase_defect}
+    return {k: m[k] for k in ZERO_POINT if k in m} | {"c_tb": b.c, "sigma": s.sigma, "phase_defect": s.phase_defect}
 
 
 def zero_grid(spec: TravellingBreathers, start: LatticeTB,
@@ -839,7 +839,7 @@ def lattice_zeros(spec: TravellingBreathers, rings: list[int], eps_rows: list[li
             row.append(f)
             if f is not None:
                 zr = f["zero"]
-                say(f"travelling-breathers: tail zero on the ring of {N}: c = {zr['c']:.10g}, sigma "
+                say(f"travelling-breathers: tail zero on the ring of {N}: c = {zr['c_tb']:.10g}, sigma "
                     f"{zr['sigma']:.2g}, residual {zr['residual']:.2g}")
         found.append(row)
     width = max(spec.lattice_zero_rings)
@@ -863,7 +863,7 @@ def lattice_zeros(spec: TravellingBreathers, rings: list[int], eps_rows: list[li
                 n = f["z"].size // 2
                 xs[i, j, :n], vs[i, j, :n] = f["z"][:n], f["z"][n:]
     data |= {"c_iterate": trace[..., 0], "sigma_iterate": trace[..., 1], "x": xs, "v": vs}
-    located = [f["zero"] for row in found for f in row if f is not None and np.isfinite(f["zero"]["c"])]
+    located = [f["zero"] for row in found for f in row if f is not None and np.isfinite(f["zero"]["c_tb"])]
     attrs = {"lattice_zeros_located": f"{len(located)} of {2 * len(found)}",
              "lattice_zeros_max_residual": float(max((z["residual"] for z in located), default=math.nan)),
              "lattice_zeros_max_abs_sigma": float(max((abs(z["sigma"]) for z in located), default=math.nan)),
@@ -1605,7 +1605,7 @@ VARIABLES = {
            for suffix, dims, which in (("_grid", ("zero_ring", "minimum", "zero_step"), "the fine grid's member"),
                                        ("", ("zero_ring", "minimum"), "the TB where the signed tail vanishes"))
            for k, (text, units) in {
-               "c": ("velocity c = 1/T, sites per unit t", "1"),
+               "c_tb": ("velocity c = 1/T, sites per unit t", "1"),
                "period": ("period T of (tbnc), x_n(t + T) = x_{n-1}(t), in units of t", "1"),
                "eps_tb": ("eps at the TB's amplitude: sqrt(sum |xi_n|^2 / norm)", "1"),
                "dps_c": ("velocity of the DpS TB through (ansatz), 1 / (T eps_tb^(alpha-1)), sites per unit tau", "1"),

@@ -351,12 +351,12 @@ def draw_zeros(ax: Any, tree: AnalysisTree) -> None:
     lin = float(np.nanmax(res))
     for j, (a, name) in enumerate(((ax[0], "(v)"), (ax[1], "(w)"))):
         for k, N in enumerate(rings):
-            c = np.asarray(zg["c_grid"].values[k, j])
+            c = np.asarray(zg["c_tb_grid"].values[k, j])
             a.plot(1e3 * c, zg["sigma_grid"].values[k, j], "osD^"[k % 4] + "-", color=f"C{k}", ms=5, mfc="none",
                    lw=1.0, label=f"grid, ring of {N}")
             a.plot(1e3 * np.asarray(zg["c_iterate"].values[k, j]), zg["sigma_iterate"].values[k, j], "+",
                    color=f"C{k}", ms=7)
-            a.plot(1e3 * float(zg["c"].values[k, j]), float(zg["sigma"].values[k, j]), "*", color=f"C{k}", ms=11,
+            a.plot(1e3 * float(zg["c_tb"].values[k, j]), float(zg["sigma"].values[k, j]), "*", color=f"C{k}", ms=11,
                    mec="k", mew=0.5)
         a.plot([], [], "k+", ms=7, label="regula falsi iterates")
         a.plot([], [], "k*", ms=11, label="zero located (least |$\\sigma$|)")
@@ -376,7 +376,7 @@ def draw_zeros(ax: Any, tree: AnalysisTree) -> None:
         for j in range(2):
             def val(key: str, k: int = k, j: int = j) -> float:
                 return float(zg[key].values[k, j])
-            rows.append([str(N), str(j), f"{1e3 * val('c'):.7f}", f"{val('eps_tb'):.5f}", f"{val('dps_c'):.4f}",
+            rows.append([str(N), str(j), f"{1e3 * val('c_tb'):.7f}", f"{val('eps_tb'):.5f}", f"{val('dps_c'):.4f}",
                          f"{abs(val('sigma')):.1e}", f"{val('residual'):.1e}", f"{val('growth_rate'):.1e}"])
     tab = t.table(cellText=rows, colLabels=head, cellLoc="center", bbox=[0.0, 0.0, 1.0, 1.0])
     tab.auto_set_font_size(False)
