@@ -783,11 +783,25 @@ def zero_grid(spec: TravellingBreathers, start: LatticeTB,
 
 
 def zero_bracket(points: list[tuple[LatticeTB, SignedTail] | None]) -> int | None:
-    """i such that the grid points i and i + 1 bracket a zero of the signed tail: of the neighbours whose signs
-    differ, those with the smallest larger |sigma| (a zero's bracket, not a ring resonance's, where |sigma| is large
-    on both sides); None without a sign change."""
-    pairs = [(max(abs(p[1].sigma), abs(q[1].sigma)), i) for i, (p, q) in enumerate(itertools.pairwise(points))
-             if p is not None and q is not None and p[1].sigma * q[1].sigma < 0]
+    """i such that the grid points i and i + 1 bracket a zero of the signed tail: their signs differ and the tail
+    grows away from them, |sigma| larger at i - 1 with the sign of i and at i + 2 with that of i + 1 (each where it
+    exists, one at least: a zero, not a flip of signs within the tail's scatter); of several, the one with the
+    smallest larger |sigma| of the two (a ring resonance's is large on both sides). None without one."""
+    s = [math.nan if p is None else p[1].sigma for p in points]
+
+    def grows(i: int, j: int) -> bool | None:
+        """Whether point j (beyond the bracket) has point i's sign and a larger |sigma| (None: no point j)."""
+        if not 0 <= j < len(s) or not math.isfinite(s[j]):
+            return None
+        return s[i] * s[j] > 0 and abs(s[j]) > abs(s[i])
+
+    pairs = []
+    for i in range(len(s) - 1):
+        if not s[i] * s[i + 1] < 0:
+            continue
+        outer = [g for g in (grows(i, i - 1), grows(i + 1, i + 2)) if g is not None]
+        if outer and all(outer):
+            pairs.append((max(abs(s[i]), abs(s[i + 1])), i))
     return min(pairs)[1] if pairs else None
 
 
