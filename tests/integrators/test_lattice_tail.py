@@ -2,8 +2,9 @@
 
 The reversor R of (nc), x_n -> -x_{2 n0 - n}, v_n -> v_{2 n0 - n} at the symmetric time, with the carrier's phase
 xi -> e^{i phi} xi: a state built symmetric about bead n0 has eta_n = xi_n / xi_{n0} = conj(eta_{2 n0 - n}) exactly,
-at every phase; moved by one bead it does not. The zero's bracket is a sign change away from which the tail grows
-(of several, the one of least |sigma|); without one there is nothing to locate. The TBs themselves, their zeros
+at every phase; moved by one bead it does not. A zero's bracket is a sign change away from which the tail grows
+on one side at least and shrinks on neither (a ring resonance's: it grows towards it); without one there is nothing
+to locate. The TBs themselves, their zeros
 and multipliers are checked in tests/analyses/test_travelling_breathers.py (the lattice fixture).
 """
 from __future__ import annotations
@@ -42,13 +43,15 @@ def _point(c: float, sigma: float) -> tuple[LT.LatticeTB, LTail.SignedTail]:
 def test_zero_bracket_is_a_sign_change_with_the_tail_growing_away():
     from cradle.analyses.travelling_breathers import zero_bracket
 
-    # a ring resonance (a pole: large and of opposite signs) between points 1 and 2, a zero between 3 and 4
+    # a ring resonance (a pole: |sigma| grows towards it) between points 1 and 2, a zero between 3 and 4
     pts = [_point(1.0, 1e-8), _point(1.1, 3e-8), _point(1.2, -4e-8), _point(1.3, -2e-10), _point(1.4, 1e-10),
            None, _point(1.6, 2e-10)]
     assert zero_bracket(pts) == 3
-    # no sign change; a flip within the scatter (the tail does not grow away from it)
+    # a zero with a resonance just beyond it on one side (the point beyond has flipped sign): still a zero
+    assert zero_bracket([_point(1.0, -4e-10), _point(1.1, 6e-11), _point(1.2, -3e-11), _point(1.3, -1e-10)]) == 1
+    # no sign change; a resonance alone (|sigma| grows towards the flip on both sides)
     assert zero_bracket([_point(1.0, 1e-10), _point(1.1, 2e-10)]) is None
-    assert zero_bracket([_point(1.0, 2e-11), _point(1.1, -3e-11), _point(1.2, 1e-11), _point(1.3, 4e-11)]) is None
+    assert zero_bracket([_point(1.0, -8e-11), _point(1.1, -9e-10), _point(1.2, 1e-9), _point(1.3, 1e-10)]) is None
 
 
 def test_locate_zero_needs_a_bracket():

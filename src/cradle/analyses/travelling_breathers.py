@@ -783,33 +783,35 @@ def zero_grid(spec: TravellingBreathers, start: LatticeTB,
 
 
 def zero_bracket(points: list[tuple[LatticeTB, SignedTail] | None]) -> int | None:
-    """i such that the grid points i and i + 1 bracket a zero of the signed tail: their signs differ and the tail
-    grows away from them, |sigma| larger at i - 1 with the sign of i and at i + 2 with that of i + 1 (each where it
-    exists, one at least: a zero, not a flip of signs within the tail's scatter); of several, the one with the
-    smallest larger |sigma| of the two (a ring resonance's is large on both sides). None without one."""
+    """i such that the grid points i and i + 1 bracket a zero of the signed tail: their signs differ, and beyond them
+    the tail grows away (|sigma| larger with the same sign at i - 1 or at i + 2) and shrinks on neither side (a ring
+    resonance's bracket, where |sigma| grows towards the sign change, is not a zero's; a point beyond with the other
+    sign is a resonance or another zero beyond and says nothing); of several, the one with the smallest larger
+    |sigma| of the two. None without one."""
     s = [math.nan if p is None else p[1].sigma for p in points]
 
-    def grows(i: int, j: int) -> bool | None:
-        """Whether point j (beyond the bracket) has point i's sign and a larger |sigma| (None: no point j)."""
-        if not 0 <= j < len(s) or not math.isfinite(s[j]):
-            return None
-        return s[i] * s[j] > 0 and abs(s[j]) > abs(s[i])
+    def beyond(i: int, j: int) -> int:
+        """+1 if point j has point i's sign and a larger |sigma|, -1 if that sign and a smaller one, else 0."""
+        if not 0 <= j < len(s) or not math.isfinite(s[j]) or s[i] * s[j] <= 0:
+            return 0
+        return 1 if abs(s[j]) > abs(s[i]) else -1
 
     pairs = []
     for i in range(len(s) - 1):
         if not s[i] * s[i + 1] < 0:
             continue
-        outer = [g for g in (grows(i, i - 1), grows(i + 1, i + 2)) if g is not None]
-        if outer and all(outer):
+        outer = (beyond(i, i - 1), beyond(i + 1, i + 2))
+        if 1 in outer and -1 not in outer:
             pairs.append((max(abs(s[i]), abs(s[i + 1])), i))
     return min(pairs)[1] if pairs else None
 
 
 def tail_zero(spec: TravellingBreathers, start: LatticeTB, log: Log | None = None) -> dict:
     """The zero of the signed tail on the branch of ``start``: the grid of :func:`zero_grid`, then
-    :func:`LTail.locate_zero` in its bracket (:func:`zero_bracket`). Returns the grid's points (``grid``: a dict of
+    :func:`LTail.locate_zero` in its bracket (:func:`zero_bracket`); located when the iterates reach the floor,
+    |sigma| at most the TB's own residual. Returns the grid's points (``grid``: a dict of
     :data:`ZERO_POINT` lists), the zero's numbers (``zero``: :data:`ZERO_POINT` and :data:`ZERO_MORE`, NaN without
-    a bracket), its state ``z`` (None without) and the iterates' (c, sigma) (``trace``)."""
+    a zero located), its state ``z`` (None without) and the iterates' (c, sigma) (``trace``)."""
     from cradle.integrators import lattice_breathers as LB, lattice_tail as LTail
 
     pts = zero_grid(spec, start, log)
@@ -821,6 +823,9 @@ def tail_zero(spec: TravellingBreathers, start: LatticeTB, log: Log | None = Non
         return {"grid": grid, "zero": zero, "z": None, "trace": []}
     (a, sa), (b, sb) = pts[i], pts[i + 1]  # type: ignore[misc]
     m, s, trace = LTail.locate_zero(a, b, sa.sigma, sb.sigma, spec.newton_tol, ZERO_ITERATIONS, log)
+    if abs(s.sigma) > m.residual:
+        # the iterates did not reach the floor: a flip within the tail's scatter, not a zero that can be seen
+        return {"grid": grid, "zero": zero, "z": None, "trace": trace}
     triv, growth, unstable, _ = verdict(m, spec.stability_threshold, LATTICE_TRIVIAL)
     # the place is known to the c over which the bracket's slope moves sigma by what is not resolved
     slope = abs(sb.sigma - sa.sigma) / abs(b.c - a.c)
