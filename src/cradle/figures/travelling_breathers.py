@@ -343,13 +343,14 @@ def draw_rings(ax: Any, tree: AnalysisTree) -> None:
 def draw_zeros(ax: Any, tree: AnalysisTree) -> None:
     """Where the lattice TBs' tail vanishes (group /lattice_zeros): (v), (w) the signed tail along the fine grid of c
     through each minimum on each ring (symmetric log scale, linear within the largest residual), the regula falsi's
-    iterates and the located zero; (x) the table of the zeros: c, eps, the DpS velocity through (ansatz), |sigma|,
-    the residual and the growth rate there."""
+    iterates and the located zero; (x) the table of the zeros: c with its uncertainty, eps, the DpS velocity through
+    (ansatz), |sigma|, the residual and the growth rate there."""
+    from matplotlib.ticker import MaxNLocator
+
     zg = tree["lattice_zeros"]
     rings = [int(N) for N in zg["zero_ring"].values]
-    res = np.asarray(zg["residual_grid"].values)
-    lin = float(np.nanmax(res))
-    for j, (a, name) in enumerate(((ax[0], "(v)"), (ax[1], "(w)"))):
+    lin = float(np.nanmax(np.asarray(zg["residual_grid"].values)))
+    for j, (a, name) in enumerate(((ax[0], "(v) the first"), (ax[1], "(w) the second"))):
         for k, N in enumerate(rings):
             c = np.asarray(zg["c_tb_grid"].values[k, j])
             a.plot(1e3 * c, zg["sigma_grid"].values[k, j], "osD^"[k % 4] + "-", color=f"C{k}", ms=5, mfc="none",
@@ -359,29 +360,37 @@ def draw_zeros(ax: Any, tree: AnalysisTree) -> None:
             a.plot(1e3 * float(zg["c_tb"].values[k, j]), float(zg["sigma"].values[k, j]), "*", color=f"C{k}", ms=11,
                    mec="k", mew=0.5)
         a.plot([], [], "k+", ms=7, label="regula falsi iterates")
-        a.plot([], [], "k*", ms=11, label="zero located (least |$\\sigma$|)")
+        a.plot([], [], "k*", ms=11, label="zero located")
         a.axhspan(-lin, lin, color="0.85", zorder=0, label=f"|$\\sigma$| below the largest residual, {lin:.1g}")
-        a.set_yscale("symlog", linthresh=lin)
         top = float(np.nanmax(np.abs(zg["sigma_grid"].values[:, j])))
-        a.set_ylim(-top, 1e3 * top)     # room for the legend above the largest tail
+        a.set_yscale("symlog", linthresh=lin)
+        decades = 10.0 ** np.arange(np.ceil(np.log10(lin)), np.ceil(np.log10(top)) + 1)
+        a.set_yticks([*(-decades[::-1]), 0.0, *decades])
+        a.set_ylim(-3.0 * top, 1e3 * top)     # room for the legend above the largest tail
+        a.xaxis.set_major_locator(MaxNLocator(5))
         a.set_xlabel("velocity c (sites per unit t) $\\times 10^3$")
         a.set_ylabel("signed tail $\\sigma$ (far field at the antipode / max)")
-        a.set_title(f"{name} the signed tail through minimum {j} and its zero", fontsize=9)
+        a.set_title(f"{name} minimum of the tail: its sign along c", fontsize=9)
         a.legend(fontsize=6.5, loc="upper left", ncol=2)
     t = ax[2]
     t.axis("off")
-    head = ["ring", "min.", "c $\\times 10^3$", "$\\varepsilon$", "DpS c", "|$\\sigma$|", "residual", "growth"]
+    head = ["ring", "min.", "c $\\times 10^3$", "$\\varepsilon$", "DpS c", "|$\\sigma$|", "residual", "growth / t"]
     rows = []
     for k, N in enumerate(rings):
         for j in range(2):
             def val(key: str, k: int = k, j: int = j) -> float:
                 return float(zg[key].values[k, j])
-            rows.append([str(N), str(j), f"{1e3 * val('c_tb'):.7f}", f"{val('eps_tb'):.5f}", f"{val('dps_c'):.4f}",
-                         f"{abs(val('sigma')):.1e}", f"{val('residual'):.1e}", f"{val('growth_rate'):.1e}"])
-    tab = t.table(cellText=rows, colLabels=head, cellLoc="center", bbox=[0.0, 0.0, 1.0, 1.0])
+            if not np.isfinite(val("c_tb")):
+                rows.append([str(N), str(j), "no zero", "", "", "", "", ""])
+                continue
+            rows.append([str(N), str(j), f"{1e3 * val('c_tb'):.6f}({1e9 * val('c_error'):.0f})",
+                         f"{val('eps_tb'):.5f}", f"{val('dps_c'):.4f}", f"{abs(val('sigma')):.1e}",
+                         f"{val('residual'):.1e}", f"{val('growth_rate'):.0e}"])
+    tab = t.table(cellText=rows, colLabels=head, cellLoc="center", bbox=[0.0, 0.0, 1.0, 1.0],
+                  colWidths=[0.08, 0.07, 0.22, 0.12, 0.11, 0.12, 0.14, 0.14])
     tab.auto_set_font_size(False)
     tab.set_fontsize(7)
-    t.set_title("(x) the zeros of the signed tail (growth per unit t)", fontsize=9)
+    t.set_title("(x) the zeros (c: uncertainty in its last digits)", fontsize=9)
 
 
 def draw_limit(ax: Any, tree: AnalysisTree) -> None:
