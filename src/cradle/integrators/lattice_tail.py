@@ -12,8 +12,8 @@ xi -> e^{i phi} xi almost exactly (DpS's phase symmetry). A TB is therefore symm
 under R combined with a phase: eta_n = xi_n / xi_{n0} = conj(eta_{2 n0 - n}) (the envelope centred on the bead n0).
 At that time B / xi_{n0} is real: R maps the far arc onto itself about the antipode, where the plane wave is
 -e^{i phi} conj(B), and the centre, where xi_{n0} = -e^{i phi} conj(xi_{n0}). Its sign is the tail's sign relative
-to the core's, and a change of sign along a family is a zero of the tail (or a pole: a ring resonance, where a tail
-mode's multiplier passes 1 and the tail is large on both sides).
+to the core's, and a change of sign along a family is a zero of the tail (or a pole: a ring resonance, the tail
+large on both sides).
 
 The signed tail ``sigma = Re(B / xi_{n0}) |xi_{n0}| / max |xi_n|`` at t1: +-|B| / max|xi| where the phase is exact,
 comparable to :func:`cradle.models.dps_travelling.tail_amplitude` (the far quarter's max over the peak at the stored
