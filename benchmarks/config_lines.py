@@ -13,13 +13,12 @@ from __future__ import annotations
 
 import argparse
 import ast
-import subprocess
 import sys
 from collections import Counter
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from doctable import publish  # noqa: E402
+from doctable import git_commit, publish  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src" / "cradle"
@@ -97,9 +96,9 @@ def main(argv: list[str] | None = None) -> int:
     for path in FILES:
         counts += classify(path)
     total = sum(counts.values())
-    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout
+    head = git_commit()
     rows = [f"| {kind} | {counts[kind]} | {what} |" for kind, what in KINDS.items()]
-    text = (f"`python benchmarks/config_lines.py` at commit {head.strip()}: {len(FILES)} files, {total} lines "
+    text = (f"`python benchmarks/config_lines.py` at commit {head}: {len(FILES)} files, {total} lines "
             f"(target of the issue: under 1,250)\n\n| what | lines | holds |\n|---|---:|---|\n" + "\n".join(rows)
             + f"\n| **all** | **{total}** | |\n")
     print(text)
