@@ -748,9 +748,6 @@ def lattice_large(spec: TravellingBreathers, source: TravellingBreather, log: Lo
 
 #: the regula falsi's iterates at most (from the measured slopes, two or three reach the residual's floor)
 ZERO_ITERATIONS = 4
-#: the minima followed, in the order of the coordinate ``minimum``
-ZERO_MINIMA = ("the branch of the TB at lattice_zero_eps", "the branch of the continuation's member at "
-               "lattice_zero_step")
 #: the numbers of each grid point and of each located zero in /lattice_zeros
 ZERO_POINT = ("c_tb", "period", "eps_tb", "dps_c", "residual", "sigma", "tail", "phase_defect")
 #: the located zero's further numbers: its Floquet verdict, the symmetric time's defect, the bracket, the iterates
@@ -888,9 +885,10 @@ def lattice_zeros(spec: TravellingBreathers, rings: list[int], eps_rows: list[li
              "lattice_zeros_max_abs_sigma": float(max((abs(z["sigma"]) for z in located), default=math.nan)),
              "lattice_zeros_method": "signed tail sigma = Re(B / xi_n0) |xi_n0| / max|xi| at the TB's symmetric time "
                                      "(cradle.integrators.lattice_tail); the grid by the continuation in c from each "
-                                     "minimum's member, the zero by regula falsi (Illinois) in the grid's bracket of "
-                                     f"least |sigma|, at most {ZERO_ITERATIONS} iterates, stopped where |sigma| is "
-                                     "below the iterate's own shift-map residual",
+                                     "minimum's member, the zero by regula falsi (Illinois) in a sign change of the "
+                                     "grid away from which |sigma| grows (zero_bracket), at most "
+                                     f"{ZERO_ITERATIONS} iterates, stopped and accepted where |sigma| is at most the "
+                                     "iterate's own shift-map residual",
              "lattice_zeros_cpu_s": _time.process_time() - t0}
     coords = {"zero_ring": list(spec.lattice_zero_rings), "minimum": [0, 1],
               "zero_step": list(spec.lattice_zero_grid), "iterate": np.arange(n_it), "zero_site": np.arange(width)}
