@@ -27,7 +27,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from cradle.integrators import lattice_travelling as LT
 
@@ -96,6 +95,8 @@ def symmetric_time(z: Floats, T: float, alpha: float) -> tuple[float, int, Float
     """(t1, n0, z(t1), symmetry defect, omega): the time in [0, T] and bead where the TB is R-symmetric up to a phase
     (:func:`symmetry_defect` least over a scan of SAMPLES_PER_UNIT per unit time and the beads next to the largest,
     then refined by Brent's method), its state there and the core's carrier frequency."""
+    from scipy.optimize import minimize_scalar
+
     z = np.asarray(z, float)
     N = z.size // 2
     ts = np.linspace(0.0, T, int(SAMPLES_PER_UNIT * T) + 1)
