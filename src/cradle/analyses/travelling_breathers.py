@@ -272,14 +272,18 @@ _FIRST: dict[tuple[int, float, float, float, float, float], TravellingBreather] 
 
 def first_member(spec: TravellingBreathers, N: int, rtol: float) -> TravellingBreather:
     """The TB that Newton reaches from the static site breather pushed by ``kick`` on the ring of N (computed once
-    per process and parameters: the same numbers each call)."""
+    per process and parameters: the same numbers each call); where the plain Newton stops short (rings of 128 and
+    more), the one :func:`cradle.integrators.dps_travelling.newton_core_first` reaches from the same start."""
     from cradle.integrators import dps_travelling as DT
 
     key = (N, float(spec.alpha), float(spec.norm), float(spec.kick), float(spec.newton_tol), float(rtol))
     if key not in _FIRST:
         phi, _ = static_profiles(N, spec.alpha, spec.norm)["site"]
         A, T, theta = DT.start(phi, spec.kick, spec.alpha)
-        _FIRST[key] = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=rtol)
+        b = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=rtol)
+        if not b.converged:
+            b = DT.newton_core_first(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=rtol)[0]
+        _FIRST[key] = b
     return _FIRST[key]
 
 

@@ -39,6 +39,8 @@ if TYPE_CHECKING:
     from cradle.integrators._types import Floats
 
 RTOL = 1e-13    # DOP853 relative tolerance of the shooting (shift-map residuals ~1e-12)
+CORE = 1e-6     # sites whose |A_n| is below CORE times the largest are held fixed in newton_core_first's first
+CORE_TOL = 1e-5  # stage, which hands over to all unknowns below this residual
 
 
 def flow(A0: ArrayLike, T: float, alpha: float, columns: ArrayLike | None = None,
@@ -147,13 +149,16 @@ def _weighted_lstsq(J: Floats, F: Floats, rows: int) -> Floats:
 def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm: float,
            reference: ArrayLike | None = None, tol: float = 1e-11, max_iter: int = 12,
            rtol: float = RTOL, log: Callable[[str], object] | None = None,
-           max_amplitude: float | None = None) -> TravellingBreather:
+           max_amplitude: float | None = None, free: NDArray[np.bool_] | None = None) -> TravellingBreather:
     """Solve (tb) at period T for (A, theta) with sum |A|^2 = ``norm`` and the two phase conditions about
     ``reference`` (default: the guess), by Gauss-Newton from (A_guess, theta_guess) (module docstring).
     Converged when max |R| <= tol max |A|; the multipliers of the last monodromy and the family's tangent
     there are returned with it. Stops early when the residual grows tenfold (a guess outside the basin) and, if
     ``max_amplitude`` is given, when an iterate's max |A| exceeds it (the relative residual does not see an
-    iterate running off to large amplitude, whose integration grows ever stiffer)."""
+    iterate running off to large amplitude, whose integration grows ever stiffer). ``free`` (a mask of the N sites):
+    the steps move only those sites' A_n (and theta), the others stay at the guess's values, and only their columns
+    of the Jacobian are integrated; converged then returns no multipliers and no tangent (:func:`newton_core_first`'s
+    first stage)."""
     A = np.asarray(A_guess, complex).copy()
     N = A.size
     ref = A.copy() if reference is None else np.asarray(reference, complex)
@@ -161,20 +166,28 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
     d_phase, d_time = M.real(1j * ref), M.real(M.rhs(ref, alpha, t0))
     theta = float(theta_guess)
     res, best, mu = np.inf, np.inf, np.zeros(0, complex)
+    cols = slice(None) if free is None else np.concatenate([free, free])   # the moving unknowns' columns
     for it in range(max_iter + 1):
-        Mm, B = monodromy(A, T, theta, alpha, rtol)
+        if free is None:
+            Mm, B = monodromy(A, T, theta, alpha, rtol)
+            mu = np.linalg.eigvals(Mm).astype(complex)
+        else:
+            B, V = flow(A, T, alpha, _basis(N)[:, cols], rtol)
+            Mm = M.real(np.exp(-1j * theta) * M.shift(V, -1))
         R = M.residual(A, B, theta)
         res = float(np.max(np.abs(R)) / np.max(np.abs(A)))
-        mu = np.linalg.eigvals(Mm).astype(complex)
         if log:
             log(f"travelling breathers: T = {T:.12g}, iteration {it}: theta = {theta:.12g}, residual {res:.3g}")
-        J = np.zeros((2 * N + 3, 2 * N + 1))
-        J[:2 * N, :2 * N] = Mm - np.eye(2 * N)
+        if free is not None and res <= tol:
+            return TravellingBreather(A, T, theta, alpha, res, True, it)
+        m = Mm.shape[1]
+        J = np.zeros((2 * N + 3, m + 1))
+        J[:2 * N, :m] = Mm - np.eye(2 * N)[:, cols]
         SB = np.exp(-1j * theta) * M.shift(B, -1)
-        J[:2 * N, 2 * N] = M.real(-1j * SB)
-        J[2 * N, :2 * N] = 2.0 * M.real(A)
-        J[2 * N + 1, :2 * N] = d_phase
-        J[2 * N + 2, :2 * N] = d_time
+        J[:2 * N, m] = M.real(-1j * SB)
+        J[2 * N, :m] = 2.0 * M.real(A)[cols]
+        J[2 * N + 1, :m] = d_phase[cols]
+        J[2 * N + 2, :m] = d_time[cols]
         if res <= tol:
             # the tangent: dR/dT = e^{-i theta} S^{-1} dA/dtau at Phi_T(A), the conditions unchanged
             dF = np.concatenate([M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, t0), -1)), np.zeros(3)])
@@ -189,10 +202,39 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
         F = np.concatenate([M.real(R), [np.sum(np.abs(A) ** 2) - norm, d_phase @ M.real(A - ref),
                                         d_time @ M.real(A - ref)]])
         step = _weighted_lstsq(J, -F, 2 * N)
-        A = A + M.complex_(step[:2 * N])
-        theta = theta + float(step[2 * N])
+        if free is None:
+            A = A + M.complex_(step[:2 * N])
+        else:
+            dA = np.zeros(2 * N)
+            dA[cols] = step[:m]
+            A = A + M.complex_(dA)
+        theta = theta + float(step[m])
     return TravellingBreather(A, T, theta, alpha, res, False, it, mu)
 
+
+
+def core_sites(A: ArrayLike, threshold: float = CORE) -> NDArray[np.bool_]:
+    """The mask of the core's sites: |A_n| above ``threshold`` times max |A_n|."""
+    a = np.abs(np.asarray(A))
+    return np.asarray(a > threshold * float(np.max(a)), dtype=np.bool_)
+
+
+def newton_core_first(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm: float,
+                      tol: float = 1e-11, max_iter: int = 12, rtol: float = RTOL,
+                      log: Callable[[str], object] | None = None) -> tuple[TravellingBreather, float]:
+    """(TB, the first stage's residual): :func:`newton` in two stages from (A_guess, theta_guess), the phase
+    conditions about the guess in both: the core's sites (:func:`core_sites`) alone until the residual is below
+    CORE_TOL (the far sites kept at the guess's values), then all of them to ``tol``.
+
+    Why (the lattice's remedy, :func:`cradle.integrators.lattice_travelling.newton_core_first`, carried over): on a
+    large ring the bordered Jacobian's smallest singular directions live on the far, nearly still sites (the
+    coupling of DpS vanishes with the amplitude), and a first step of all unknowns from the pushed breather puts
+    some 1e-3 of the peak there; Newton then heads for a TB on a plane-wave tail of that size whose phase is a
+    near-neutral direction, and stalls (docs/analyses/travelling-breathers.md, "DpS Newton on large rings")."""
+    A0 = np.asarray(A_guess, complex)
+    core = newton(A0, T, theta_guess, alpha, norm, A0, CORE_TOL, max_iter, rtol, log, free=core_sites(A0))
+    full = newton(core.A, T, core.theta, alpha, norm, A0, tol, max_iter, rtol, log)
+    return full, core.residual
 
 def start(profile: ArrayLike, kappa: float, alpha: float, sites: int = 3, rtol: float = 1e-12,
           samples_per_unit: int = 40) -> tuple[NDArray[np.complex128], float, float]:
