@@ -173,6 +173,7 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
             mu = np.linalg.eigvals(Mm).astype(complex)
         else:
             B, V = flow(A, T, alpha, _basis(N)[:, cols], rtol)
+            assert V is not None
             Mm = M.real(np.exp(-1j * theta) * M.shift(V, -1))
         R = M.residual(A, B, theta)
         res = float(np.max(np.abs(R)) / np.max(np.abs(A)))
