@@ -278,3 +278,101 @@ def continue_family(first: TravellingBreather, cs: ArrayLike, tol: float = 1e-11
     return continue_in_c(first, cs, correct, min_step, log or (lambda *a: None), "travelling breathers",
                          lambda b: f"theta = {b.theta:.12g}, residual {b.residual:.2g}, "
                                    f"tail {M.tail_amplitude(b.A):.3g}")
+
+
+# ----------------------------------------------------------------- pseudo-arclength: the family through its folds
+# Natural continuation in c (continue_family) stops where the family turns back in c (a fold: dA/dT grows without
+# bound there, a pair of multipliers meets +1). On a ring the fixed-norm family folds near the instability windows
+# along c (docs/analyses/travelling-breathers.md, "the windows are folds"); the branch beyond a fold is followed with
+# T as an unknown and the arclength condition <t, x - x_pred> = 0, x = (Re A, Im A, theta, T), t the unit tangent.
+
+
+def _arc_system(A: NDArray[np.complex128], T: float, theta: float, alpha: float, norm: float,
+                ref: NDArray[np.complex128], rtol: float) -> tuple[Floats, Floats, Floats, float]:
+    """(J, F, M, residual): the 2N + 3 equations of (tb) with the norm and the two phase conditions about ``ref`` at
+    x = (A, theta, T), their Jacobian in (Re A, Im A, theta, T), the monodromy modulo shift and the relative
+    residual."""
+    N = A.size
+    t0 = dps.tau0(alpha)
+    Mm, B = monodromy(A, T, theta, alpha, rtol)
+    R = M.residual(A, B, theta)
+    SB = np.exp(-1j * theta) * M.shift(B, -1)
+    d_phase, d_time = M.real(1j * ref), M.real(M.rhs(ref, alpha, t0))
+    J = np.zeros((2 * N + 3, 2 * N + 2))
+    J[:2 * N, :2 * N] = Mm - np.eye(2 * N)
+    J[:2 * N, 2 * N] = M.real(-1j * SB)
+    J[:2 * N, 2 * N + 1] = M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, t0), -1))   # dR/dT
+    J[2 * N, :2 * N] = 2.0 * M.real(A)
+    J[2 * N + 1, :2 * N] = d_phase
+    J[2 * N + 2, :2 * N] = d_time
+    F = np.concatenate([M.real(R), [np.sum(np.abs(A) ** 2) - norm, d_phase @ M.real(A - ref),
+                                    d_time @ M.real(A - ref)]])
+    return J, F, Mm, float(np.max(np.abs(R)) / np.max(np.abs(A)))
+
+
+def _arc_tangent(J: Floats, rows: int, previous: Floats) -> Floats:
+    """The unit null vector of J (its rows from ``rows`` on scaled to unit norm), oriented along ``previous``."""
+    w = np.ones(J.shape[0])
+    for k in range(rows, J.shape[0]):
+        w[k] = 1.0 / max(float(np.linalg.norm(J[k])), 1e-300)
+    t = np.linalg.svd(w[:, None] * J)[2][-1]
+    return np.asarray(t if float(t @ previous) >= 0.0 else -t, dtype=np.float64)
+
+
+def _pack(A: ArrayLike, theta: float, T: float) -> Floats:
+    return np.concatenate([M.real(A), [theta, T]])
+
+
+def arc_newton(x_pred: Floats, tangent: Floats, alpha: float, norm: float, ref: NDArray[np.complex128],
+               tol: float = 1e-11, max_iter: int = 8, rtol: float = RTOL) -> tuple[TravellingBreather, Floats]:
+    """(TB, tangent): Gauss-Newton on (tb), the norm, the phase conditions about ``ref`` and the arclength condition
+    <tangent, x - x_pred> = 0 from the predicted x_pred = (Re A, Im A, theta, T); the TB (not converged: the last
+    iterate) and the unit tangent of the family at it, oriented along ``tangent``."""
+    N = (x_pred.size - 2) // 2
+    x = np.array(x_pred, float)
+    res, best = np.inf, np.inf
+    for it in range(max_iter + 1):
+        A, theta, T = M.complex_(x[:2 * N]), float(x[2 * N]), float(x[2 * N + 1])
+        J, F, Mm, res = _arc_system(A, T, theta, alpha, norm, ref, rtol)
+        if res <= tol:
+            mu = np.linalg.eigvals(Mm).astype(complex)
+            t = _arc_tangent(J, 2 * N, tangent)
+            dT = t[2 * N + 1]
+            dA, dth = (M.complex_(t[:2 * N] / dT), float(t[2 * N] / dT)) if abs(dT) > 0 else (None, 0.0)
+            return TravellingBreather(A, T, theta, alpha, res, True, it, mu, dA, dth, Mm), t
+        if it == max_iter or not np.isfinite(res) or res > 10.0 * best:
+            break
+        best = min(best, res)
+        Jx = np.vstack([J, tangent[None, :]])
+        Fx = np.concatenate([F, [tangent @ (x - x_pred)]])
+        x = x + _weighted_lstsq(Jx, -Fx, 2 * N)
+    A, theta, T = M.complex_(x[:2 * N]), float(x[2 * N]), float(x[2 * N + 1])
+    return TravellingBreather(A, T, theta, alpha, res, False, it), tangent
+
+
+def continue_arclength(first: TravellingBreather, ds: float, steps: int, c_stop: tuple[float, float],
+                       tol: float = 1e-11, rtol: float = RTOL, min_ds: float = 1e-4,
+                       log: Callable[[str], object] | None = None) -> list[TravellingBreather]:
+    """The family from ``first`` (a converged member with its tangent) by pseudo-arclength steps of ``ds`` in
+    x = (Re A, Im A, theta, T), towards increasing c at the start: at most ``steps`` members, until c leaves the
+    interval ``c_stop``; a failed step is halved down to ``min_ds`` (there the continuation stops), a step that
+    succeeds at once lets the next grow by half again up to ``ds``. The members in order of arclength, ``first``
+    included; each carries its multipliers and monodromy."""
+    assert first.dA_dT is not None, "the first member carries its tangent"
+    t = -_pack(first.dA_dT, first.dtheta_dT, 1.0)   # c = 1/T grows as T falls
+    t /= np.linalg.norm(t)
+    out, cur, h = [first], first, ds
+    while len(out) <= steps and c_stop[0] <= cur.c <= c_stop[1]:
+        b, t_new = arc_newton(_pack(cur.A, cur.theta, cur.T) + h * t, t, first.alpha, first.norm, cur.A, tol,
+                              rtol=rtol)
+        if not b.converged:
+            h *= 0.5
+            if h < min_ds:
+                break
+            continue
+        out.append(b)
+        cur, t, h = b, t_new, min(ds, 1.5 * h)
+        if log:
+            log(f"travelling breathers, arclength: c = {b.c:.7f}, theta = {b.theta:.10f}, H = {b.energy:.13f}, "
+                f"residual {b.residual:.2g}")
+    return out
