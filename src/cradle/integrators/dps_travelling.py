@@ -351,7 +351,7 @@ def arc_newton(x_pred: Floats, tangent: Floats, alpha: float, norm: float, ref: 
 
 
 def continue_arclength(first: TravellingBreather, ds: float, steps: int, c_stop: tuple[float, float],
-                       tol: float = 1e-11, rtol: float = RTOL, min_ds: float = 1e-4,
+                       tol: float = 1e-11, rtol: float = RTOL, min_ds: float = 1e-6,
                        log: Callable[[str], object] | None = None) -> list[TravellingBreather]:
     """The family from ``first`` (a converged member with its tangent) by pseudo-arclength steps of ``ds`` in
     x = (Re A, Im A, theta, T), towards increasing c at the start: at most ``steps`` members, until c leaves the
