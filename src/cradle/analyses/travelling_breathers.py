@@ -1194,9 +1194,22 @@ def tail_rule_verdict(mi_unstable: bool, fit: dict[str, float], threshold: float
 
 MEMBER_RULE = ("two questions the envelope of TAIL_RULE mixes: (i) the member itself, its own growth rate at c on "
                "each ring of limit_N and limit_large_N fitted as g_inf + b N^-k and read as TAIL_RULE reads the "
-               "envelope (member_verdict); (ii) any TB within c +- limit_halfwidth, the envelope (verdict). A window "
-               "near c may hold TBs of another branch of the ring's family (past a fold in c, on a larger tail: "
-               "/limit_fold), unstable where the member is not")
+               "envelope, or stable when it is stable on every ring reached, at least 4 of them (member_verdict); "
+               "(ii) any TB within c +- limit_halfwidth, the envelope (verdict). A window near c may hold TBs of "
+               "another branch of the ring's family (past a fold in c, on a larger tail: /limit_fold), unstable where "
+               "the member is not")
+
+
+def member_verdict(mi_unstable: bool, growth: NDArray[np.float64], fit: dict[str, float], threshold: float) -> int:
+    """The limit verdict of the member itself (:data:`MEMBER_RULE`): stable when it is stable on every ring reached
+    and at least as many rings as a fit needs are reached (no growth to extrapolate), else the reading of
+    :func:`tail_rule_verdict` of its own growth rates' fit."""
+    from cradle.measurements import floquet_bubbles as FB
+
+    g = growth[np.isfinite(growth)]
+    if not mi_unstable and g.size >= FB.LIMIT_FIT_MIN and np.all(g <= threshold):
+        return LIMIT_STABLE
+    return tail_rule_verdict(mi_unstable, fit, threshold)
 
 
 def member_growth(grid: NDArray[np.float64], growth: NDArray[np.float64], c: float) -> float:
@@ -1236,13 +1249,23 @@ def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[
     growth rates on every ring, its fit in N and the verdict of :data:`TAIL_RULE`) and /limit_large (the scans of
     :func:`large_scan`), with their attributes (prefixed ``tail_rule_``). ``theta`` the members' theta on the ring
     of N, ``rob`` :func:`robustness`'s arrays, ``limit`` the (data, coords) of /robustness_limit."""
+    t0 = _time.process_time()
+    grid_large, large = large_scan(spec, c, theta, log)
+    groups, attrs = tail_rule_of(spec, c, theta, rob, limit, grid_large, large)
+    attrs["tail_rule_cpu_s"] = _time.process_time() - t0
+    return groups, attrs
+
+
+def tail_rule_of(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[np.float64], rob: dict,
+                 limit: tuple[dict, dict], grid_large: NDArray[np.float64],
+                 large: dict[str, NDArray[np.float64]]) -> tuple[dict, dict]:
+    """:func:`tail_rule` from the scans of the larger rings (:func:`large_scan`'s grid and arrays), without its CPU
+    attribute: the rule's reading alone (``benchmarks/tb_limit.py --rule`` applies it to stored scans)."""
     from cradle.analyses import mi_diagram
     from cradle.measurements import floquet_bubbles as FB
 
-    t0 = _time.process_time()
     data, coords = limit
     grid_small = coords["c_fine"]
-    grid_large, large = large_scan(spec, c, theta, log)
     rings = [*spec.limit_N, *spec.limit_large_N]
     points = common_points([grid_small, grid_large] if grid_large.size else [grid_small])
     per_ring = ([(grid_small, data["growth_rate"][i], data["theta"][i]) for i in range(len(spec.limit_N))]
@@ -1264,7 +1287,7 @@ def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[
     # the member itself (question (i) of MEMBER_RULE): its own growth rate at c on each ring, fitted the same way
     at_c = np.array([[member_growth(g_, gr, float(x)) for g_, gr, _ in per_ring] for x in c])
     member_fits = [FB.fit_limit(rings, at_c[j]) for j in range(c.size)]
-    member_verdicts = np.array([tail_rule_verdict(bool(kind[j]), member_fits[j], spec.stability_threshold)
+    member_verdicts = np.array([member_verdict(bool(kind[j]), at_c[j], member_fits[j], spec.stability_threshold)
                                 for j in range(c.size)], int)
     # theta on every ring of /robustness and at every tolerance, against the ring of N's: the rule's input
     spread = np.nanmax(np.abs(np.angle(np.exp(1j * (np.vstack([rob["theta_ring"], rob["theta_tol"]])
@@ -1296,8 +1319,7 @@ def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[
              "tail_rule_theta_spread_max": float(np.nanmax(spread)), "member_rule": MEMBER_RULE,
              **{f"member_rule_{name}_c": ", ".join(f"{x:g}" for x in c[member_verdicts == v]) or "none"
                 for name, v in (("stable", LIMIT_STABLE), ("unstable", LIMIT_UNSTABLE),
-                                ("undecided", LIMIT_UNDECIDED))},
-             "tail_rule_cpu_s": _time.process_time() - t0}
+                                ("undecided", LIMIT_UNDECIDED))}}
     return groups, attrs
 
 
