@@ -1349,8 +1349,9 @@ def real_growth(b: TravellingBreather) -> float:
 
 def fold_scan(spec: TravellingBreathers, N: int, log: Log | None = None) -> dict[str, NDArray[np.float64]]:
     """The family on the ring of N through its fold nearest above the first member (:data:`FOLD`): arrays c, H,
-    theta, growth, real_growth, tail, residual along the arclength (first the natural continuation's members, then
-    the pseudo-arclength ones), padded to ``limit_fold_points`` plus the natural ones with NaN."""
+    theta, growth, real_growth, tail, residual and the states A (arc, site) along the arclength (first the natural
+    continuation's members, then the pseudo-arclength ones), padded to ``limit_fold_points`` plus the natural ones
+    with NaN."""
     from cradle.integrators import dps_travelling as DT
     from cradle.models import dps_travelling as M
 
@@ -1363,9 +1364,13 @@ def fold_scan(spec: TravellingBreathers, N: int, log: Log | None = None) -> dict
                                 spec.limit_large_newton_tol, spec.rtol, log=log)
     members = [first, *fam, *arc[1:]]
     width = spec.limit_fold_points + grid.size + 1
-    out = {k: np.full(width, np.nan) for k in ("c", "energy", "theta", "growth", "real_growth", "tail", "residual")}
+    out = {k: np.full(width, np.nan) for k in ("velocity", "energy", "theta", "growth", "real_growth", "tail",
+                                               "residual")}
+    out["A_re"], out["A_im"] = np.full((width, N), np.nan), np.full((width, N), np.nan)
     for i, b in enumerate(members):
-        out["c"][i], out["energy"][i], out["theta"][i] = b.c, b.energy, math.remainder(b.theta, 2 * math.pi)
+        out["A_re"][i], out["A_im"][i] = b.A.real, b.A.imag
+        out["velocity"][i], out["energy"][i] = b.c, b.energy
+        out["theta"][i] = math.remainder(b.theta, 2 * math.pi)
         out["growth"][i] = verdict(b, spec.stability_threshold)[1]
         out["real_growth"][i], out["tail"][i], out["residual"][i] = real_growth(b), M.tail_amplitude(b.A), b.residual
     if log:
@@ -1398,20 +1403,22 @@ def fold_group(spec: TravellingBreathers, log: Log | None = None) -> tuple[dict,
     in c, the extrema of H(c) and the c where a real pair crosses the threshold through +1."""
     t0 = _time.process_time()
     scans = [fold_scan(spec, N, log) for N in spec.limit_fold_N]
-    width = max(s["c"].size for s in scans)
-    data = {k: np.array([np.pad(s[k], (0, width - s[k].size), constant_values=np.nan) for s in scans])
+    width, sites = max(s["velocity"].size for s in scans), max(spec.limit_fold_N)
+    data = {k: np.array([np.pad(s[k], [(0, width - s[k].shape[0])] + [(0, sites - N)] * (s[k].ndim - 1),
+                                constant_values=np.nan) for s, N in zip(scans, spec.limit_fold_N, strict=True)])
             for k in scans[0]}
     attrs: dict = {"fold_rule": FOLD}
     for N, s in zip(spec.limit_fold_N, scans, strict=True):
-        folds, extrema = fold_turns(s["c"], s["energy"])
+        folds, extrema = fold_turns(s["velocity"], s["energy"])
         attrs[f"fold_{N}_c_turns"] = ", ".join(f"{x:.7f}" for x in folds) or "none"
         attrs[f"fold_{N}_dH_dc_zero"] = ", ".join(f"{x:.7f}" for x in extrema) or "none"
-        attrs[f"fold_{N}_real_edges"] = ", ".join(f"{x:.7f}" for x in real_edges(s["c"], s["real_growth"],
+        attrs[f"fold_{N}_real_edges"] = ", ".join(f"{x:.7f}" for x in real_edges(s["velocity"], s["real_growth"],
                                                                                   spec.stability_threshold)) or "none"
         attrs[f"fold_{N}_largest_real_growth"] = float(np.nanmax(s["real_growth"]))
     attrs["fold_cpu_s"] = _time.process_time() - t0
     return {"/limit_fold": ({k: v for k, v in data.items()},
-                            {"fold_ring": np.array(spec.limit_fold_N), "arc": np.arange(width)})}, attrs
+                            {"fold_ring": np.array(spec.limit_fold_N), "arc": np.arange(width),
+                             "fold_site": np.arange(sites)})}, attrs
 
 
 # ----------------------------------------------------------------- the stored file
@@ -1684,7 +1691,7 @@ VARIABLES = {
         "fold_ring": Var(("fold_ring",), "sites of a ring of the fold scan (limit_fold_N)"),
         "arc": Var(("arc",), "index along the family: the first member, the natural continuation's, then the "
                              "pseudo-arclength's"),
-        "c": Var(("fold_ring", "arc"), "velocity c = 1/T (sites per unit tau; NaN: past the last member)"),
+        "velocity": Var(("fold_ring", "arc"), "velocity c = 1/T (sites per unit tau; NaN: past the last member)"),
         "energy": Var(("fold_ring", "arc"), "Hamiltonian H of (dfnls) at unit norm"),
         "theta": Var(("fold_ring", "arc"), "phase theta of (tb), in (-pi, pi]", "rad"),
         "growth": Var(("fold_ring", "arc"), "ln max |mu| / T over the non-trivial multipliers modulo shift (per "
@@ -1693,6 +1700,9 @@ VARIABLES = {
                                                  "unit tau; 0: none)"),
         "tail": Var(("fold_ring", "arc"), "max |A_n| on the far quarter ring / max |A_n|"),
         "residual": Var(("fold_ring", "arc"), "shift-map residual max |R| / max |A|"),
+        "fold_site": Var(("fold_site",), "site n of the ring (NaN beyond the ring's own sites)"),
+        "A_re": Var(("fold_ring", "arc", "fold_site"), "Re A_n(0) of the member"),
+        "A_im": Var(("fold_ring", "arc", "fold_site"), "Im A_n(0) of the member"),
     },
     "/limit_large": {
         "large_ring": Var(("large_ring",), "sites of a larger ring of the tail rule (limit_large_N)"),
