@@ -139,9 +139,10 @@ class TravellingBreathers:
                                    maximum=0.1, reduced=0.004)
     # the tail rule (section "the tail rule in the limit" below): larger rings around the members whose tail is
     # modulationally stable, the only ones whose limit verdict needs the growth rates' extrapolation in N
-    limit_large_N: list[int] = param([80, 96, 112], "Larger rings (each above the largest of limit_N) scanned only "
-                                     "over the neighbourhoods of the members whose tail's plane wave is modulationally "
-                                     "stable; with limit_N they give the fit g_inf + b N^-k of the tail rule.",
+    limit_large_N: list[int] = param([80, 96, 112, 128, 160], "Larger rings (each above the largest of limit_N) "
+                                     "scanned only over the neighbourhoods of the members whose tail's plane wave is "
+                                     "modulationally stable; with limit_N they give the fit g_inf + b N^-k of the tail "
+                                     "rule (from 128 sites the first TB needs the core-first Newton).",
                                      minItems=0, maxItems=6, items=_RING, reduced=[])
     limit_large_step: float = param(0.002, "Step in c of the scan on limit_large_N (a multiple of limit_step: the "
                                     "fit compares every ring on the points common to all).", exclusiveMinimum=0,
