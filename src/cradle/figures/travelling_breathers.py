@@ -185,7 +185,7 @@ def draw_fold(ax: Any, tree: AnalysisTree) -> None:
         ok = np.isfinite(c)
         c, H = c[ok], np.asarray(fd["energy"].values[i], float)[ok]
         v.plot(c, H, "-", color=col, lw=0.8)
-        v.plot(c[0], H[0], "o", color=col, ms=5, label=f"ring of {int(ring)}: first member")
+        v.plot(c[0], H[0], "o", color=col, ms=8 - 3 * (i % 2), label=f"ring of {int(ring)}: first member")
         zeros = str(tree.attrs[f"fold_{int(ring)}_dH_dc_zero"])
         at = [float(z) for z in zeros.split(", ")] if zeros != "none" else []
         for k, z in enumerate(at):
@@ -199,10 +199,12 @@ def draw_fold(ax: Any, tree: AnalysisTree) -> None:
         w.semilogy(c, np.maximum(real, floor), "-", color=col, lw=1.2, label=f"ring of {int(ring)}: real, above +1")
         x.semilogy(c, np.asarray(fd["tail"].values[i], float)[ok], ".-", color=col, ms=3, lw=0.6,
                    label=f"ring of {int(ring)}")
+    lo, hi = v.get_ylim()
+    v.set_ylim(lo - 0.6 * (hi - lo), hi)   # room below the data for the legend
     v.set_xlabel("velocity c")
     v.set_ylabel("H at unit norm")
     v.set_title("(v) the family through its fold: H against c", fontsize=9)
-    v.legend(fontsize=6, loc="upper left")
+    v.legend(fontsize=6, loc="lower right")
     w.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
     w.set_ylim(floor / 3.0, 1e2)
     w.set_xlabel("velocity c")
@@ -248,9 +250,10 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
                        label=rf"fit: $g_\infty$ = {g0:.1e} $\pm$ {err}"
                        + (f" (k = {kk:g}: on a bound)" if float(lt["fit_degenerate"].values[j]) == 1 else ""))
     p.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
-    p.set_ylim(floor / 3.0, 1e3 * max(float(np.nanmax(env)) if np.isfinite(env).any() else thr, thr))
+    # room above the data for the legend (two entries per member and its fit)
+    p.set_ylim(floor / 3.0, 1e6 * max(float(np.nanmax(env)) if np.isfinite(env).any() else thr, thr))
     p.set_xlabel("sites N of the ring")
-    p.set_ylabel(rf"largest growth over c $\pm$ {float(attrs['limit_halfwidth']):g} (floor {floor:g})")
+    p.set_ylabel(rf"growth: largest over c $\pm$ {float(attrs['limit_halfwidth']):g}; at c (floor {floor:g})")
     p.set_title("(p) members whose tail is MI-stable: envelope against N", fontsize=9)
     p.legend(fontsize=6, loc="upper left")
 
@@ -293,7 +296,8 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
 
 def verdict_table(tree: AnalysisTree) -> list[list[str]]:
     """The rows of panel (r): c, the verdict on each ring of /robustness and at each tolerance, the median rule's
-    limit verdict (/robustness_limit) and the tail rule's (/limit_tail); '-' where a member was not reached."""
+    limit verdict (/robustness_limit), the tail rule's (/limit_tail: the envelope) and the member's own ("at c");
+    '-' where a member was not reached."""
     rob, lt = tree["robustness"], tree["limit_tail"]
     c = np.asarray(tree["c"].values)
 
@@ -308,7 +312,7 @@ def verdict_table(tree: AnalysisTree) -> list[list[str]]:
     if "robustness_limit" in tree.children:
         head.append("median")
         cols.append(np.asarray(tree["robustness_limit"]["verdict"].values, float))
-    head += ["tail", "member"]
+    head += ["tail", "at c"]
     cols += [np.asarray(lt["verdict"].values, float), np.asarray(lt["member_verdict"].values, float)]
     rows = [head]
     for j, x in enumerate(c):
