@@ -12,12 +12,11 @@ from __future__ import annotations
 import datetime as dt
 import math
 import os
-import subprocess
 import time
 from pathlib import Path
 
 from cradle.specs.checked import checked
-from doctable import publish
+from doctable import git_commit, publish
 
 ROOT = Path(__file__).resolve().parents[1]
 ROUNDS = int(os.environ.get("ROUNDS", 5))
@@ -45,8 +44,7 @@ def main() -> int:
     wrapped = checked(method="latticeMethod")(plain)
     bare, with_checks = per_call(plain), per_call(wrapped)
     extra = with_checks - bare
-    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True, check=False).stdout.strip() or "?"
+    commit = git_commit()
     stamp = dt.datetime.now(dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     text = "\n".join([
         f"`python benchmarks/checked_call_cost.py` at commit {commit}, {stamp}; wall time per call, best of "

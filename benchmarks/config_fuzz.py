@@ -46,7 +46,7 @@ sys.path[:0] = [str(ROOT / "tests"), str(ROOT / "tests" / "pipeline")]
 
 from cradle.pipeline import config as cc  # noqa: E402
 from cradle.specs.values import key_path  # noqa: E402
-from doctable import publish  # noqa: E402
+from doctable import git_commit, publish  # noqa: E402
 from test_config_fuzz import _alarm, cases, leaves, run_case, substituted  # noqa: E402
 
 #: the values each leaf is given
@@ -153,7 +153,7 @@ def real_table(sample: list[dict], eligible: int, accepted: int, seed: int, belo
                     f"{b_ratio:.2f} | {'yes' if ok else 'NO: ' + got['last'][:120].replace('|', '/')} |")
         print(rows[-1], flush=True)
     head = [f"`python benchmarks/config_fuzz.py --real {len(sample)} --seed {seed} --below {below:g}` at commit "
-            f"{_commit()}, {_stamp()} (load average {os.getloadavg()[0]:.1f}): {len(sample)} of the {eligible} "
+            f"{git_commit()}, {_stamp()} (load average {os.getloadavg()[0]:.1f}): {len(sample)} of the {eligible} "
             f"accepted cases (of {accepted}) whose changed value reaches a job `cradle run` runs with an estimate "
             f"under {below:g} s, each run for real (`cradle run NAME` of the case's config, its own process); CPU "
             f"time of that process against the estimate's seconds, bytes of its netCDF files against the estimate's; "
@@ -162,11 +162,6 @@ def real_table(sample: list[dict], eligible: int, accepted: int, seed: int, belo
             "written / estimate | within 10x |",
             "|---|---|---:|---:|---:|---:|---:|---:|---:|---|"]
     return "\n".join(head + rows), bad
-
-
-def _commit() -> str:
-    return subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
-                          text=True, check=False).stdout.strip() or "?"
 
 
 def _stamp() -> str:
@@ -201,7 +196,7 @@ def main(argv: list[str]) -> int:
             failures.append(f"{case}: {outcome}, {took:.2f} s: {problem}")
     cpu = time.process_time() - start
     times.sort(reverse=True)
-    lines = [f"`python benchmarks/config_fuzz.py` at commit {_commit()}, {_stamp()} (load average "
+    lines = [f"`python benchmarks/config_fuzz.py` at commit {git_commit()}, {_stamp()} (load average "
              f"{os.getloadavg()[0]:.1f}: the 2 cores are shared): {len(paths)} leaves of config.yaml and of two scenes "
              f"giving `cradle:`, `damping:` and `terms:` (mappings included) x {len(VALUES)} values "
              f"({len(NOT_MAPPINGS)} for a mapping) = {sum(counts.values())} cases: "

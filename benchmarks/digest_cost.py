@@ -30,13 +30,12 @@ import datetime as dt
 import os
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
-from doctable import publish
+from doctable import git_commit, publish
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = Path(sys.argv[1]) if len(sys.argv) > 1 else ROOT / "results"
@@ -106,8 +105,7 @@ def measure(path: Path, scratch: Path) -> dict:
 
 
 def table(rows: dict[Path, dict]) -> str:
-    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True, check=False).stdout.strip() or "?"
+    commit = git_commit()
     load = os.getloadavg()[0]
     stamp = dt.datetime.now(dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     lines = [f"`python benchmarks/digest_cost.py` at commit {commit}, {stamp}, the {len(rows)} largest files of "

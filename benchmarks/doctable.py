@@ -11,9 +11,18 @@ and :func:`publish` replaces what lies between the two markers.
 from __future__ import annotations
 
 import re
+import subprocess
 from pathlib import Path
 
-DOCS = Path(__file__).resolve().parents[1] / "docs"
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+
+
+def git_commit(rev: str = "HEAD", repo: Path = ROOT, short: bool = True) -> str:
+    """The commit ``rev`` names in the git checkout ``repo`` (abbreviated unless ``short`` is false): what a table
+    says it measured."""
+    return subprocess.run(["git", "rev-parse", *(["--short"] if short else []), rev], cwd=repo, capture_output=True,
+                          text=True, check=True).stdout.strip()
 
 
 def publish(page: str, name: str, text: str, docs: Path = DOCS) -> Path:

@@ -24,7 +24,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 from compare_outputs import compare_folders
-from doctable import publish
+from doctable import git_commit, publish
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORDS = ROOT / "results" / "benchmarks" / "full-sweeps.txt"
@@ -48,8 +48,7 @@ def read_records(path: Path) -> list[dict]:
 
 
 def _commit(clone: Path) -> str:
-    return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=clone, capture_output=True, text=True,
-                          check=True).stdout.strip()
+    return git_commit(repo=clone)
 
 
 def build(clone: Path, target: str, cores: int, records: Path, role: str) -> None:

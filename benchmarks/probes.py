@@ -31,7 +31,7 @@ from pathlib import Path
 import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from doctable import publish  # noqa: E402
+from doctable import git_commit, publish  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 SNAKEMAKE = shutil.which("snakemake", path=str(Path(sys.executable).parent)) or "snakemake"
@@ -516,8 +516,7 @@ def main(argv=None) -> int:
     tmp = args.reuse or Path(tempfile.mkdtemp(prefix="cradle-probes-"))
     repo, cache = tmp / "repo", tmp / "kernels"
     if args.reuse:   # this commit, its outputs rebuilt where it changed them; the probes' files gone
-        rev = subprocess.run(["git", "rev-parse", args.rev], cwd=ROOT, capture_output=True, text=True,
-                             check=True).stdout.strip()
+        rev = git_commit(args.rev, short=False)
         subprocess.run(["git", "fetch", "-q", str(ROOT), rev], cwd=repo, check=True)
         subprocess.run(["git", "reset", "-q", "--hard", "FETCH_HEAD"], cwd=repo, check=True)
         subprocess.run(["git", "clean", "-q", "-f", "-x", "-e", "results", "-e", ".snakemake"], cwd=repo, check=True)
@@ -526,8 +525,7 @@ def main(argv=None) -> int:
     try:
         rows = run(repo, cache, args.only)
         # the commit the scratch clone ran (this checkout may have moved on meanwhile), read before it is removed
-        head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=repo, capture_output=True,
-                              text=True).stdout
+        head = git_commit(repo=repo)
     finally:
         if not (args.keep or args.reuse):
             shutil.rmtree(tmp, ignore_errors=True)
@@ -537,7 +535,7 @@ def main(argv=None) -> int:
     print(f"{held} of {len(rows)} probes hold")
     if args.only:
         return 0 if held == len(rows) else 1
-    text = (f"Rerun by `python benchmarks/probes.py` ({time.strftime('%Y-%m-%d')}, commit {head.strip()}): "
+    text = (f"Rerun by `python benchmarks/probes.py` ({time.strftime('%Y-%m-%d')}, commit {head}): "
             f"**{held} of {len(rows)} hold**.\n\n"
             "| group | probe | expected | exit | what the user is told (last line) | wall | holds |\n"
             "|---|---|---|---|---|---|---|\n"

@@ -44,7 +44,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from doctable import publish
+from doctable import git_commit, publish
 
 ROOT = Path(__file__).resolve().parents[1]
 STAMP = re.compile(r"^(\d{4}-\d\d-\d\d \d\d:\d\d:\d\d,\d{3}) (.*)$")
@@ -161,12 +161,10 @@ def main(argv=None) -> int:
     ap.add_argument("--before", metavar="REV", help="also build this commit, alternating with HEAD, for a "
                     "before/after measured in the same session")
     args = ap.parse_args(argv)
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
-                            text=True).stdout.strip()
+    commit = git_commit()
     revs = {"": "HEAD"}
     if args.before:
-        before = subprocess.run(["git", "rev-parse", "--short", args.before], cwd=ROOT, capture_output=True,
-                                text=True, check=True).stdout.strip()
+        before = git_commit(args.before)
         revs = {f"{before}: ": before, "": "HEAD"}
     with tempfile.TemporaryDirectory(prefix="cradle-rebuild-") as tmp:
         clones = {}

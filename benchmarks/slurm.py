@@ -29,7 +29,7 @@ from pathlib import Path
 
 from compare_outputs import compare_folders
 from cradle.pipeline.workdir import copy_workflow
-from doctable import publish
+from doctable import git_commit, publish
 
 ROOT = Path(__file__).resolve().parents[1]
 WAYS = {
@@ -74,8 +74,7 @@ def main(argv=None) -> int:
         if shutil.which(cmd) is None:
             sys.exit(f"no {cmd} on PATH: start Slurm first (tests/cluster/slurm-up.sh)")
     ways = ["local", "allocation"] + (["rule-instances"] if args.rule_instances else [])
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
-                            text=True).stdout.strip()
+    commit = git_commit()
     started = _dt.datetime.now(_dt.UTC)
     runs: dict[str, list[dict]] = {w: [] for w in ways}
     with tempfile.TemporaryDirectory(prefix="cradle-slurm-bench-") as tmp:

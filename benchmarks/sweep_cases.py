@@ -47,6 +47,8 @@ from pathlib import Path
 
 import numpy as np
 
+from doctable import git_commit
+
 ROOT = Path(__file__).resolve().parents[1]
 INTEGRATORS = ("integrate_lattice", "integrate_dps")
 ROUNDS = 2
@@ -412,8 +414,7 @@ def main(argv=None):
     print(text)
     if a.no_write:
         return
-    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True).stdout.strip()
+    commit = git_commit()
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     when = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     args = " ".join("OLD_SRC" if x == a.before else x for x in (argv if argv is not None else sys.argv[1:]))

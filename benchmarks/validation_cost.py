@@ -25,7 +25,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from doctable import publish  # noqa: E402
+from doctable import git_commit, publish  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -73,7 +73,7 @@ def main(argv: list[str] | None = None) -> int:
     cold = [one(ROOT / "config.yaml", "cold") for _ in range(args.repeats)]
     warm = [one(ROOT / "config.yaml", "warm") for _ in range(args.repeats)]
     process = [{"process": whole(ROOT / "config.yaml")} for _ in range(args.repeats)]
-    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout
+    head = git_commit()
     steps = (("read", cold, "`read_yaml` (bounded YAML read)"),
              ("validate", cold, "`validate` in a fresh process (the modules it imports on its way included)"),
              ("imports", warm, "of which: importing scipy.optimize (the homoclinic entries solved at validation)"),
@@ -83,7 +83,7 @@ def main(argv: list[str] | None = None) -> int:
     for key, runs, what in steps:
         xs = [r[key] for r in runs]
         rows.append(f"| {what} | {statistics.median(xs) * 1e3:.0f} | {min(xs) * 1e3:.0f}-{max(xs) * 1e3:.0f} |")
-    text = (f"`python benchmarks/validation_cost.py` at commit {head.strip()}, "
+    text = (f"`python benchmarks/validation_cost.py` at commit {head}, "
             f"{dt.datetime.now(dt.UTC):%Y-%m-%d %H:%M} UTC (load average {os.getloadavg()[0]:.1f}): "
             f"config.yaml, {args.repeats} fresh processes each way, CPU time; target: validation under 200 ms\n\n"
             "| step | median [ms] | range [ms] |\n|---|---:|---:|\n" + "\n".join(rows) + "\n")

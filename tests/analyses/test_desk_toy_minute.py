@@ -20,6 +20,7 @@ import yaml
 from cradle.analyses import desk_toy_minute as dm
 from cradle.analyses.protocol import FULL, REDUCED, form_spec
 from cradle.measurements import desk_toy_minute as mm
+from cradle.models import restitution as rs
 from cradle.models.hard_spheres import hard_sphere_run
 from cradle.models.physical import scales, to_si
 from cradle.pipeline import config as cc
@@ -214,8 +215,6 @@ def test_restitution_law_is_the_two_ball_collision_of_the_contact():
     log-log interpolation), rising as the approach speed falls (1 - e ~ u^(1/5)), and equal to the contact's e at the
     reference speed within the interpolation between those nodes: linear in log-log with a step h = ln(10)/8, an
     error of h^2/8 times the curvature of log(1 - e) against log b, under 1e-3 of 1 - e where 1 - e ~ 0.1."""
-    from cradle.analyses.dissipation import restitution_loss
-
     spec = _spec()
     s = scales(dm.DEFAULT_CRADLE)
     e, A = dm.contacts(spec)[0]
@@ -223,7 +222,7 @@ def test_restitution_law_is_the_two_ball_collision_of_the_contact():
     scale = A * (s.k / (s.m / 2.0)) ** 0.4 * s.V**0.2
     for b in dm._B_TABLE[40:60:5]:
         u = (b / scale) ** 5.0
-        assert law(u) == pytest.approx(1.0 - restitution_loss(float(b)), rel=1e-12)
+        assert law(u) == pytest.approx(rs.restitution(float(b)), rel=1e-12)
     speeds = np.logspace(-6, 0, 13) * spec.restitution_speed / s.V
     values = [law(u) for u in speeds]
     assert all(a > b for a, b in zip(values, values[1:], strict=False))

@@ -16,6 +16,7 @@ import pytest
 
 from cradle.analyses import dissipation as dis
 from cradle.analyses.protocol import FULL, form_spec
+from cradle.models import restitution as rs
 from cradle.specs.declare import from_plain
 
 ALPHA = dis.ALPHA
@@ -92,15 +93,15 @@ def test_lattice_linear_limit_onsite(a):
 def test_restitution_of_the_collision_against_schwager_poeschel():
     """1 - e of the (ncdamped) collision is C1 b - C2 b^2 + ... with C1 in closed form
     (restitution.first_order_coefficient) and C2 < 1 (0.80, measured in tests/models/test_restitution.py): at
-    b = 1e-4 the quotient is C1 within b; kk_constant inverts it."""
+    b = 1e-4 the quotient is C1 within b; scaled_for inverts it."""
     b = 1e-4
     assert restitution_quotient(b) == pytest.approx(dis.SCHWAGER_C1, abs=b)
     e = 0.95
-    assert dis.restitution_loss(dis.kk_constant(e)) == pytest.approx(1.0 - e, abs=1e-9)
+    assert 1.0 - rs.restitution(rs.scaled_for(e)) == pytest.approx(1.0 - e, abs=1e-9)
 
 
 def restitution_quotient(b: float) -> float:
-    return dis.restitution_loss(b) / b
+    return (1.0 - rs.restitution(b)) / b
 
 
 TINY = {"N": 16, "wave_mode": 2, "waves": [1.01], "onsite": [0.05, 0.1], "contact": [1.0, 3.0], "t_end": 40.0,

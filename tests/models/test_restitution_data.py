@@ -1,6 +1,6 @@
 """The measured restitutions and the one assumption (cradle.models.restitution_data): every analysis that needs the
-restitution of the steel desk toy takes it from there, and the two implementations of the two-ball collision (the
-model's and the dissipation analysis's) turn the assumption into the same Kuwabara-Kono constant and back."""
+restitution of the steel desk toy takes it from there, and the two-ball collision turns the assumption into a
+Kuwabara-Kono constant and back."""
 from __future__ import annotations
 
 import pytest
@@ -28,11 +28,11 @@ def test_the_analyses_default_to_the_assumption():
 
 
 def test_the_assumption_gives_one_constant_in_both_collisions():
-    """A from dissipation.kk_constant (b of its collision over kappa^(2/5) v^(1/5)) gives back e at v through
+    """A from restitution.scaled_for (b of the collision over kappa^(2/5) v^(1/5)) gives back e at v through
     restitution.restitution_at (the model's collision); the two integrate the same equation to rtol 1e-11."""
     a = STEEL_ASSUMED
     k, m_eff = rs._pair(rs.Measurement(a.material, 0.01, False, a.v, a.e, 1.0, "-"))
     s = ph.scales(ph.real_cradle(a.material, 0.01, length=0.1))
     assert (k, m_eff) == pytest.approx((s.k, s.m / 2.0), rel=1e-12)
-    A = dissipation.kk_constant(a.e) / ((k / m_eff) ** 0.4 * a.v**0.2)
+    A = rs.scaled_for(a.e) / ((k / m_eff) ** 0.4 * a.v**0.2)
     assert float(rs.restitution_at(A, a.v, k, m_eff)[0]) == pytest.approx(a.e, abs=1e-9)

@@ -10,7 +10,7 @@ the amplitude), free ends, stored ``samples`` times per swing period 2 pi / omeg
 
 The contact constant. Given as ``kk_constant`` (A in seconds: a measured or fitted value plugs in here), or, by
 default, from a restitution coefficient e at the impact speed ``restitution_speed`` through the two-ball collision
-of (ncdamped) itself (:func:`cradle.analyses.dissipation.kk_constant`: 1 - e = f(A kappa^(2/5) v^(1/5)),
+of (ncdamped) itself (:func:`cradle.models.restitution.scaled_for`: 1 - e = f(A kappa^(2/5) v^(1/5)),
 kappa = 2 k / m). No measured e of the balls was at hand (:mod:`cradle.models.restitution_data` holds none):
 ``restitution`` lists the two values of ``STEEL_ASSUMED.bracket`` around the assumed 0.95 of the desk-toy analysis,
 and every run is made under each.
@@ -44,6 +44,7 @@ import numpy as np
 
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
+from cradle.models import restitution as rs
 from cradle.models.air_drag import AIR_DENSITY, AIR_VISCOSITY
 from cradle.models.physical import Cradle
 from cradle.models.restitution_data import STEEL_ASSUMED
@@ -104,7 +105,7 @@ class DeskToyMinute:
                          "them: even).", minimum=8, maximum=256, multipleOf=2)
     restitution: list[float] = param(list(STEEL_ASSUMED.bracket),
                                      "Restitution coefficients e at restitution_speed from which the "
-                                     "Kuwabara-Kono constant A is found (cradle.analyses.dissipation.kk_constant): "
+                                     "Kuwabara-Kono constant A is found (cradle.models.restitution.scaled_for): "
                                      "two values bracketing the ASSUMED 0.95 of the desk-toy analysis (no measured "
                                      "value was at hand); ignored when kk_constant is given.", minItems=1,
                                      maxItems=4, items=_E)
@@ -190,17 +191,13 @@ def _kappa(s: Scales) -> float:
 @functools.cache   # a root of an ODE's solution: found once per value
 def restitution_of(A_seconds: float, speed: float, s: Scales) -> float:
     """e of the two-ball collision of (ncdamped) at impact speed ``speed`` (m/s) for the Kuwabara-Kono A (s)."""
-    from cradle.analyses.dissipation import restitution_loss
-
-    return 1.0 - restitution_loss(A_seconds * _kappa(s) ** 0.4 * speed**0.2)
+    return rs.restitution(A_seconds * _kappa(s) ** 0.4 * speed**0.2)
 
 
 @functools.cache   # a root of an ODE's solution: found once per value
 def kk_of(restitution: float, speed: float, s: Scales) -> float:
     """The Kuwabara-Kono A (s) whose two-ball collision has restitution e at impact speed ``speed`` (m/s)."""
-    from cradle.analyses.dissipation import kk_constant
-
-    return kk_constant(restitution) / (_kappa(s) ** 0.4 * speed**0.2)
+    return rs.scaled_for(restitution) / (_kappa(s) ** 0.4 * speed**0.2)
 
 
 #: the scaled Kuwabara-Kono constants b of the tabulated two-ball restitution loss (:func:`restitution_law`)
@@ -209,15 +206,13 @@ _B_TABLE = np.logspace(-8.0, 0.0, 65)
 
 @functools.cache
 def _loss_table() -> NDArray[np.float64]:
-    from cradle.analyses.dissipation import restitution_loss
-
-    return np.array([restitution_loss(float(b)) for b in _B_TABLE])
+    return np.array([1.0 - rs.restitution(float(b)) for b in _B_TABLE])
 
 
 def restitution_law(A_seconds: float, s: Scales) -> Callable[[float], float]:
     """e(u) of the two-ball collision of (ncdamped) for the Kuwabara-Kono A (s), u the approach speed in (nc)'s
-    units: 1 - e = f(b), b = A kappa^(2/5) (u V)^(1/5), f tabulated by :func:`cradle.analyses.dissipation.
-    restitution_loss` on 8 points a decade of b in [1e-8, 1] and interpolated in log-log (f(b) = C1 b + O(b^2)
+    units: 1 - e = f(b), b = A kappa^(2/5) (u V)^(1/5), f tabulated by :func:`cradle.models.restitution.
+    restitution` on 8 points a decade of b in [1e-8, 1] and interpolated in log-log (f(b) = C1 b + O(b^2)
     below: linear there)."""
     log_b, log_f = np.log(_B_TABLE), np.log(_loss_table())
     scale = A_seconds * _kappa(s) ** 0.4 * s.V**0.2

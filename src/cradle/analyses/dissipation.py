@@ -39,9 +39,10 @@ DpS (:func:`cradle.measurements.damped_validity.sup_error`) for the plane wave a
 
 The steel cradle (:func:`steel_cradle`): for the cradle of :func:`cradle.models.physical.real_cradle` (steel,
 radius, pendulum length), eta from a coefficient of restitution e at an impact speed v through the two-bead
-collision of (ncdamped) itself (:func:`restitution_loss`: 1 - e = f(A kappa^(2/5) v^(1/5)), kappa = 2 k / m,
-f(b) = C1 b + O(b^2) with Schwager & Poeschel's C1), and gamma from Stokes' drag of air, 6 pi mu_air R v; both
-are stated assumptions, not measurements (the spec's param docs and docs/dissipation.md say which).
+collision of (ncdamped) itself (:func:`cradle.models.restitution.restitution`: 1 - e = f(A kappa^(2/5) v^(1/5)),
+kappa = 2 k / m, f(b) = C1 b + O(b^2) with Schwager & Poeschel's C1), and gamma from Stokes' drag of air,
+6 pi mu_air R v; both are stated assumptions, not measurements (the spec's param docs and docs/dissipation.md say
+which).
 """
 from __future__ import annotations
 
@@ -52,7 +53,7 @@ import numpy as np
 
 from cradle.analyses.protocol import Analysis
 from cradle.data.variables import Var
-from cradle.models.restitution import first_order_coefficient
+from cradle.models.restitution import first_order_coefficient, restitution, scaled_for
 from cradle.models.restitution_data import STEEL_ASSUMED
 from cradle.specs.declare import declared, param, plain
 from cradle.specs.values import RTOL_FLOOR
@@ -266,38 +267,6 @@ def validity(spec: Dissipation, term: str, eps: float) -> dict:
 # ----------------------------------------------------------------- the steel cradle
 
 
-def restitution_loss(b: float) -> float:
-    """1 - e of the two-bead collision of (ncdamped) without the on-site force, in its scaled form
-    y'' = -max(y^(3/2) + b y^(1/2) y', 0) from y = 0, y' = 1 (y the overlap; b = A kappa^(2/5) v^(1/5) with
-    kappa = k / m_eff, m_eff = m / 2, v the impact speed): e = |y'| when the overlap returns to 0."""
-    from scipy.integrate import solve_ivp
-
-    def rhs(_s: float, z: NDArray[np.float64]) -> list[float]:
-        y, w = max(z[0], 0.0), z[1]
-        return [w, -max(y ** 1.5 + b * math.sqrt(y) * w, 0.0)]
-
-    def back(_s: float, z: NDArray[np.float64]) -> float:
-        return z[0]
-
-    setattr(back, "terminal", True)  # noqa: B010 (scipy reads these attributes of the event function)
-    setattr(back, "direction", -1)  # noqa: B010
-    sol = solve_ivp(rhs, (0.0, 20.0), [0.0, 1.0], events=back, rtol=1e-11, atol=1e-13, method="DOP853",
-                    first_step=1e-6)
-    ends = sol.y_events or []
-    if not ends or not len(ends[0]):  # the balls stay in contact: all the speed is lost
-        return 1.0
-    return float(1.0 - abs(ends[0][0][1]))
-
-
-def kk_constant(restitution: float) -> float:
-    """b = A kappa^(2/5) v^(1/5) of :func:`restitution_loss` for a restitution coefficient e (bisection in log b)."""
-    from scipy.optimize import brentq
-
-    log_b = brentq(lambda lb: restitution_loss(math.exp(lb)) - (1.0 - restitution), math.log(1e-8), math.log(10.0),
-                   xtol=1e-12)
-    return math.exp(log_b)
-
-
 #: C1 of 1 - e = C1 A kappa^(2/5) v^(1/5) + ... for xi'' + kappa (xi^(3/2) + A xi^(1/2) xi') = 0 (the series of
 #: Ramirez, Poeschel, Brilliantov & Schwager, Phys. Rev. E 60 (1999) 4465; Schwager & Poeschel, Phys. Rev. E 78
 #: (2008) 051304), in closed form from the undamped collision (cradle.models.restitution.first_order_coefficient)
@@ -312,14 +281,14 @@ def steel_cradle(spec: Dissipation) -> dict:
     cr = physical.real_cradle("steel", spec.steel_radius, length=spec.steel_length)
     s = physical.scales(cr)
     kappa = s.k / (s.m / 2.0)
-    b = kk_constant(spec.steel_restitution)
+    b = scaled_for(spec.steel_restitution)
     A = b / (kappa**0.4 * spec.steel_speed**0.2)
     rho = physical.MATERIALS["steel"].rho
     rate = 4.5 * spec.air_viscosity / (rho * spec.steel_radius**2)  # 6 pi mu R / m, m = (4/3) pi R^3 rho
     small = 1e-4
     return {"eta": contact_eta(A, s.omega0), "gamma": onsite_gamma(rate, s.omega0), "A_seconds": A,
             "rate_per_second": rate, "omega0": s.omega0, "X": s.X, "kk_b": b,
-            "C1_measured": restitution_loss(small) / small}
+            "C1_measured": (1.0 - restitution(small)) / small}
 
 
 # ----------------------------------------------------------------- the pipeline stage
@@ -525,7 +494,8 @@ def compute(spec: Dissipation, inputs: dict | None = None, log: Log | None = Non
                     f"(gamma = gamma~ eps^(alpha-1)); contact: eta = {spec.validity_eta:g}",
         "steel_cradle": f"steel (physical.MATERIALS), radius {spec.steel_radius:g} m, length {spec.steel_length:g} m; "
                         f"contact: ASSUMED restitution e = {spec.steel_restitution:g} at {spec.steel_speed:g} m/s "
-                        "converted through the collision of (ncdamped) itself (restitution_loss); on-site: Stokes "
+                        "converted through the collision of (ncdamped) itself (cradle.models.restitution.restitution); "
+                        "on-site: Stokes "
                         f"drag 6 pi mu R v, mu = {spec.air_viscosity:g} Pa s (ISO 2533), a lower bound",
         "schwager_C1": SCHWAGER_C1,
         "max_balance_drift": float(np.nanmax(bal)),

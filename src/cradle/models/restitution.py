@@ -89,6 +89,16 @@ def first_order_coefficient() -> float:
     return 0.8 * 1.25**0.6 * beta
 
 
+def scaled_for(e: float) -> float:
+    """The b of the scaled collision whose restitution is e (:func:`restitution` inverted, by bisection in log b
+    over [1e-8, 10])."""
+    from scipy.optimize import brentq
+
+    log_b = brentq(lambda lb: (1.0 - restitution(math.exp(lb))) - (1.0 - e), math.log(1e-8), math.log(10.0),
+                   xtol=1e-12)
+    return math.exp(log_b)
+
+
 def scaled_constant(A: float, v: float | NDArray[np.float64], k: float, m_eff: float) -> NDArray[np.float64]:
     """b = A kappa^(2/5) v^(1/5), kappa = k / m_eff: the one number the restitution depends on."""
     return A * (k / m_eff) ** 0.4 * np.asarray(v, dtype=float) ** 0.2
