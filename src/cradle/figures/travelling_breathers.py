@@ -290,8 +290,8 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
         text = cell.get_text().get_text()
         if i > 0 and text in ("U", "S"):
             cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
-    r.set_title("(r) verdicts per ring N and rtol (ring of N);\nin the limit: median rule, tail rule "
-                "(envelope), member at c", fontsize=9)
+    r.set_title("(r) verdicts per ring N and rtol (ring of N);\nin the limit: median rule, tail rule, "
+                "member at c", fontsize=9)
 
 
 def verdict_table(tree: AnalysisTree) -> list[list[str]]:
