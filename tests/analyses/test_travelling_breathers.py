@@ -548,3 +548,24 @@ def test_fold_keys_checked_in_one_line():
     spec.check(["beyond", "travelling-breathers"], None, out)
     assert out.lines == ["config error: beyond.travelling-breathers.limit_fold_N = [80, 48]: must be strictly "
                          "increasing"]
+
+
+def test_arclength_tangent_is_the_natural_one_away_from_a_fold():
+    """Away from a fold the family is a graph over T: the unit null vector of the bordered Jacobian in
+    (Re A, Im A, theta, T) that arc_newton returns at a converged member is (dA/dT, dtheta/dT, 1) of the natural
+    continuation's tangent, normalised (both solve the same linear equations; to the rounding of an SVD and a
+    least-squares solve on a Jacobian integrated to rtol 1e-13)."""
+    from cradle.analyses.protocol import FULL, form_spec
+    from cradle.integrators import dps_travelling as DT
+
+    spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
+    first = tb.first_member(spec, 16, spec.rtol)
+    # the tangent depends on the phase conditions' slice: both about the member itself
+    b = DT.newton(first.A, first.T, first.theta, spec.alpha, spec.norm, first.A, spec.newton_tol, rtol=spec.rtol)
+    assert b.converged and b.dA_dT is not None
+    x = np.concatenate([M.real(b.A), [b.theta, b.T]])
+    natural = np.concatenate([M.real(b.dA_dT), [b.dtheta_dT, 1.0]])
+    natural /= np.linalg.norm(natural)
+    same, t = DT.arc_newton(x, natural, spec.alpha, spec.norm, b.A, spec.newton_tol, rtol=spec.rtol)
+    assert same.converged and same.iterations == 0
+    assert np.max(np.abs(t - natural)) < 1e-8
