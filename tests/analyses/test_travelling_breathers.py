@@ -7,7 +7,9 @@ run conserves the norm and H and stays a TB over its periods; DpS's scaling maps
 re-solved at lambda^(1-alpha) T, lambda^2 P from another member's profile is lambda A, theta unchanged); the four
 trivial multipliers modulo shift sit at 1 within the stored defect, which is small; multipliers come in the
 symplectic pairs mu, 1/conj(mu); at the slow end the TB passes the static breathers of (dpsstn) ever closer as
-c decreases.
+c decreases. On larger rings: a TB embedded in a larger ring solves it after Newton, the core-first corrector
+converges on 128 sites where the plain one stalls, the family followed through its fold by pseudo-arclength solves
+(tb) at every stored member, and the arclength tangent is the natural one away from a fold.
 """
 from __future__ import annotations
 
