@@ -19,6 +19,12 @@ modulo shift.
 Starts: the static DpS breather (ansatzapproxst2) of either parity pushed by a phase gradient
 (:func:`cradle.models.dps_travelling.kicked`) and integrated until it has moved a few sites: T is the time
 per site of the last ones, theta the best-fitting phase, the state the one at the start of that site.
+
+Large rings (128 sites and more): the far sites are nearly still (DpS's coupling vanishes with the amplitude) and
+barely held by the equations; a first step of all unknowns puts some 1e-3 of the peak there and Newton stalls near a
+TB on a plane-wave tail of that size. :func:`newton_core_first` (the core's sites first) converges there, as does
+Newton from a smaller ring's TB set on the larger one (:func:`cradle.models.tb_launch.embedded`). The family in c
+folds (it turns back in c); :func:`continue_arclength` follows it through a fold by pseudo-arclength.
 """
 from __future__ import annotations
 
