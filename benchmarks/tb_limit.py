@@ -12,6 +12,13 @@ neighbourhoods of those members only (the grid still runs continuously from the 
 --newton-tol relaxes Newton on large rings (on 96 sites the first TB stops at 2.4e-11 against the default 1e-11).
 Several files of single rings are combined by benchmarks/tb_limit.py --merge OUT.nc IN.nc [IN.nc ...]. CPU: about
 30 s (N = 24) to several minutes (N = 64) per ring on the shared machine; run under nice.
+
+    python benchmarks/tb_limit.py --rule FULL.nc [RING.nc ...]
+
+reads the tail rule (cradle.analyses.travelling_breathers.tail_rule_of) from a full form's file (its /robustness,
+/robustness_limit and /limit_large) with the rings of the RING.nc files (this script's output, on the grid of
+/limit_large) added as larger rings, and prints per member with an MI-stable tail the envelope and the member's own
+growth rate on each ring, their fits g_inf + b N^-k and both verdicts (the table of travelling-breathers.md).
 """
 from __future__ import annotations
 
@@ -39,9 +46,53 @@ def summary(c: np.ndarray, rings: list[int], group: dict, spec: tb.TravellingBre
         print(f"{x:.3f} | " + " | ".join(cells) + f" | {k:+.2f} {({1: 'U', 0: 'S'}).get(v, '?')}")
 
 
+def rule(full: str, extra: list[str]) -> None:
+    """The tail rule's envelope and member fits over the full form's rings and the extra rings' (module docstring)."""
+    import xarray as xr
+
+    def read(group: str, path: str = full) -> xr.Dataset:
+        return xr.open_dataset(path, group=group)
+
+    c = xr.open_dataset(full).c.values
+    theta = read("family").theta.values
+    rob = read("robustness")
+    limit = read("robustness_limit")
+    large = read("limit_large")
+    parts = [read("robustness_limit", p) for p in extra]
+    for p in parts:
+        if not np.array_equal(np.round(p.c_fine.values, 9), np.round(large.c_large.values, 9)):
+            raise SystemExit(f"{p.encoding.get('source')}: its grid is not /limit_large's")
+    rings_large = [*large.large_ring.values.tolist(), *[int(n) for p in parts for n in p.limit_ring.values]]
+    arrays = {k: np.vstack([large[v].values, *[p[v].values for p in parts]])
+              for k, v in (("growth", "growth_rate"), ("theta", "theta"), ("tail", "tail"), ("tail_mi", "tail_mi_rate"),
+                           ("quartet_defect", "quartet_defect"), ("unstable", "unstable"))}
+    spec = dataclasses.replace(form_spec(from_plain(tb.TravellingBreathers, {}), FULL),
+                               limit_N=limit.limit_ring.values.tolist(), limit_large_N=rings_large)
+    robd = {"theta_ring": rob.theta.values, "theta_tol": rob.theta.values[:1], "tail_mi_ring": rob.tail_mi_rate.values}
+    groups, attrs = tb.tail_rule_of(spec, c, theta, robd, ({"growth_rate": limit.growth_rate.values,
+                                                             "theta": limit.theta.values},
+                                                            {"c_fine": limit.c_fine.values}),
+                                    large.c_large.values, arrays)
+    g, coords = groups["/limit_tail"]
+    letter = {tb.LIMIT_STABLE: "S", tb.LIMIT_UNSTABLE: "U", tb.LIMIT_UNDECIDED: "?"}
+    print("rings " + " ".join(str(n) for n in coords["fit_ring"]))
+    for j, x in enumerate(c):
+        if g["tail_mi_unstable"][j]:
+            continue
+        for name, row, pre in (("envelope", g["envelope"][j], "fit_"),
+                               ("member", g["member_growth"][j], "member_fit_")):
+            v = g["verdict" if name == "envelope" else "member_verdict"][j]
+            print(f"{x:.3f} {name:8s} " + " ".join(f"{y:.1e}" for y in row)
+                  + f" | g_inf {g[pre + 'g_inf'][j]:.2e} +- {g[pre + 'g_inf_error'][j]:.1e}, k {g[pre + 'k'][j]:.2f}"
+                  + f"{' (degenerate)' if g[pre + 'degenerate'][j] == 1 else ''} -> {letter[int(v)]}")
+
+
 def main(argv: list[str]) -> None:
     import xarray as xr
 
+    if argv[0] == "--rule":
+        rule(argv[1], argv[2:])
+        return
     if argv[0] == "--merge":
         parts = [xr.open_dataset(p, group="robustness_limit") for p in argv[2:]]
         xr.concat(parts, dim="limit_ring", data_vars="minimal", coords="minimal", compat="override",

@@ -7,7 +7,9 @@ run conserves the norm and H and stays a TB over its periods; DpS's scaling maps
 re-solved at lambda^(1-alpha) T, lambda^2 P from another member's profile is lambda A, theta unchanged); the four
 trivial multipliers modulo shift sit at 1 within the stored defect, which is small; multipliers come in the
 symplectic pairs mu, 1/conj(mu); at the slow end the TB passes the static breathers of (dpsstn) ever closer as
-c decreases.
+c decreases. On larger rings: a TB embedded in a larger ring solves it after Newton, the core-first corrector
+converges on 128 sites where the plain one stalls, the family followed through its fold by pseudo-arclength solves
+(tb) at every stored member, and the arclength tangent is the natural one away from a fold.
 """
 from __future__ import annotations
 
@@ -25,7 +27,8 @@ def _tiny(**over):
     plain = {"N": 16, "check_N": [18], "check_rtol": [1e-12], "speeds": [0.06, 0.08, 0.1], "direct_speed": 0.08,
              "direct_periods": 3, "static_samples": 16, "motion_eps": [0.01, 0.003, 0.001, 3e-4], "motion_sites": 8,
              "motion_ring": 30, "motion_samples": 8, "lattice": False, "limit_N": [16, 18], "limit_step": 0.004,
-             "limit_halfwidth": 0.004, "limit_large_N": [20], "limit_large_step": 0.004, **over}
+             "limit_halfwidth": 0.004, "limit_large_N": [20], "limit_large_step": 0.004, "limit_fold_N": [16],
+             "limit_fold_points": 8, **over}
     return from_plain(tb.TravellingBreathers, plain)
 
 
@@ -457,3 +460,145 @@ def test_lattice_tbs_approach_dps(lattice_tree):
     _, (groups, _) = lattice_tree
     d = np.asarray(groups["/lattice_eps"][0]["ansatz_distance"])
     assert np.all(np.diff(d) < 0)
+
+
+# ----------------------------------------------------------------- DpS Newton on large rings; the member and the folds
+
+
+def _solves_tb(A: np.ndarray, T: float, theta: float, alpha: float) -> float:
+    """The shift-map residual of (A, T, theta) re-integrated by the project's other DOP853 (dop853_numba)."""
+    B = integrate_dps(A, np.array([0.0, T]), alpha=alpha, rtol=1e-13).A[-1]
+    return M.relative_residual(A, B, theta)
+
+
+def test_a_tb_embedded_in_a_larger_ring_solves_it():
+    """A TB of the ring of 16 set on a ring of 24 (tb_launch.embedded: zeros on the far side) is a TB there up to its
+    own far field: the shift-map residual of the embedded state is at most a few times the small ring's tail (the
+    field cut at the seam; DpS's coupling vanishes with the amplitude, so the zeros added are at rest), and Newton
+    from it converges to the stated 1e-10 (re-integrated by the other DOP853) with theta unchanged to that order
+    (DpS's (tb) fixes theta for the member, not the ring)."""
+    from cradle.analyses.protocol import FULL, form_spec
+    from cradle.integrators import dps_travelling as DT
+    from cradle.models import tb_launch
+
+    spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
+    small = tb.first_member(spec, 16, spec.rtol)
+    A = tb_launch.embedded(small.A, 24)
+    assert _solves_tb(A, small.T, small.theta, spec.alpha) <= 4 * M.tail_amplitude(small.A)
+    big = DT.newton(A, small.T, small.theta, spec.alpha, spec.norm, tol=spec.newton_tol)
+    assert big.converged and _solves_tb(big.A, big.T, big.theta, spec.alpha) <= 1e-10
+    assert abs(np.angle(np.exp(1j * (big.theta - small.theta)))) <= 1e-6
+
+
+@pytest.mark.slow
+def test_core_first_converges_where_plain_newton_stalls():
+    """On a ring of 128 Newton from the pushed breather stops above 1e-10 (its first step puts some 1e-3 of the peak
+    on the far sites, and it heads for a TB on a plane-wave tail of that size); newton_core_first, the core's sites
+    first, converges: the residual re-integrated by the other DOP853 <= 1e-10, the norm the family's, four
+    multipliers at 1 within a small defect and the others in symplectic pairs mu, 1/conj(mu)."""
+    from cradle.analyses.protocol import FULL, form_spec
+    from cradle.integrators import dps_travelling as DT
+    from cradle.measurements import floquet_bubbles as FB
+
+    spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
+    phi, _ = tb.static_profiles(128, spec.alpha, spec.norm)["site"]
+    A, T, theta = DT.start(phi, spec.kick, spec.alpha)
+    plain = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol)
+    assert not plain.converged and plain.residual > 1e-10
+    b, first_stage = DT.newton_core_first(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol)
+    assert b.converged and first_stage <= DT.CORE_TOL
+    assert _solves_tb(b.A, b.T, b.theta, spec.alpha) <= 1e-10
+    assert abs(b.norm - spec.norm) <= 1e-12
+    defect, _, _, _ = tb.verdict(b, spec.stability_threshold)
+    assert defect < 1e-5
+    assert FB.quartet_defect(b.multipliers) < 1e-8
+
+
+def test_member_and_fold_rows(tiny):
+    """/limit_tail's member_growth is the growth at c itself on each ring's grid and member_verdict the rule's;
+    /limit_fold's members solve (tb) at their own T (re-integrated by the other DOP853) at the family's norm (to
+    the Newton tolerance: the norm is one of its equations), in
+    order along the arclength (first member, natural continuation upwards, then pseudo-arclength), and the folds
+    and extrema the attributes name are turns of c and of H along the stored arc."""
+    spec, tree = tiny
+    lt, lim, large = tree["limit_tail"], tree["robustness_limit"], tree["limit_large"]
+    rings = [(lim["c_fine"].values, lim["growth_rate"].values[i]) for i in range(len(spec.limit_N))]
+    rings += [(large["c_large"].values, large["growth_rate"].values[i]) for i in range(len(spec.limit_large_N))]
+    for j, x in enumerate(tree["c"].values):
+        for i, (grid, g) in enumerate(rings):
+            hit = np.flatnonzero(np.abs(grid - x) <= 1e-9)
+            want = g[hit[0]] if hit.size else np.nan
+            assert np.array_equal(lt["member_growth"].values[j, i], want, equal_nan=True)
+        fit = {"g_inf": lt["member_fit_g_inf"].values[j], "g_inf_error": lt["member_fit_g_inf_error"].values[j],
+               "degenerate": lt["member_fit_degenerate"].values[j]}
+        want_v = tb.member_verdict(bool(lt["tail_mi_unstable"].values[j]), lt["member_growth"].values[j], fit,
+                                   spec.stability_threshold)
+        assert lt["member_verdict"].values[j] == want_v
+    fold = tree["limit_fold"]
+    c, H = fold["velocity"].values[0], fold["energy"].values[0]
+    ok = np.isfinite(c)
+    assert ok.sum() >= spec.limit_fold_points
+    A = fold["A_re"].values[0] + 1j * fold["A_im"].values[0]
+    for i in np.flatnonzero(ok):
+        assert fold["residual"].values[0, i] <= spec.limit_large_newton_tol
+        # the norm is one of the equations the same Newton solves: to its tolerance
+        assert abs(np.sum(np.abs(A[i]) ** 2) - spec.norm) <= spec.limit_large_newton_tol * spec.norm
+    for i in np.flatnonzero(ok)[:: max(1, ok.sum() // 4)]:
+        assert _solves_tb(A[i], 1.0 / c[i], fold["theta"].values[0, i], spec.alpha) <= 1e-10
+    folds, extrema = tb.fold_turns(c, H)
+    assert tree.attrs["fold_16_c_turns"] == (", ".join(f"{x:.7f}" for x in folds) or "none")
+    assert tree.attrs["fold_16_dH_dc_zero"] == (", ".join(f"{x:.7f}" for x in extrema) or "none")
+
+
+def test_fold_turns_and_real_edges_on_made_up_arcs():
+    """fold_turns: c rising then falling is one fold at the top; H falling then rising while c keeps falling is one
+    extremum of H(c); real_edges: the midpoints where the growth through +1 crosses the threshold."""
+    c = np.array([0.1, 0.2, 0.3, 0.25, 0.2, 0.15, np.nan])
+    H = np.array([1.0, 2.0, 3.0, 2.5, 2.4, 2.6, np.nan])
+    assert tb.fold_turns(c, H) == ([0.3], [0.2])
+    g = np.array([0.0, 0.0, 1.0, 1.0, 0.0, 0.0, np.nan])
+    assert tb.real_edges(c, g, 0.5) == [0.25, 0.225]
+
+
+def test_member_verdict_cases():
+    """The member is stable when stable on every ring reached (at least 4): no growth to extrapolate; otherwise its
+    fit reads as the tail rule's, and a tail that is MI-unstable decides."""
+    thr = 1e-5
+    nofit = {"g_inf": np.nan, "g_inf_error": np.nan}
+    assert tb.member_verdict(False, np.array([1e-14, 2e-14, np.nan, 3e-14, 5e-14]), nofit, thr) == tb.LIMIT_STABLE
+    assert tb.member_verdict(False, np.array([1e-14, 2e-14, 3e-14]), nofit, thr) == tb.LIMIT_UNDECIDED
+    assert tb.member_verdict(False, np.array([1e-14, 2e-4, 3e-14, 1e-4]), nofit, thr) == tb.LIMIT_UNDECIDED
+    assert tb.member_verdict(True, np.array([1e-14, 2e-14, 3e-14, 1e-14]), nofit, thr) == tb.LIMIT_UNSTABLE
+    fit = {"g_inf": 2e-4, "g_inf_error": 1e-5}
+    assert tb.member_verdict(False, np.array([1e-4, 2e-4, 3e-4, 2e-4]), fit, thr) == tb.LIMIT_UNSTABLE
+
+
+def test_fold_keys_checked_in_one_line():
+    from cradle.specs.values import Errors
+
+    spec = from_plain(tb.TravellingBreathers, {"limit_fold_N": [80, 48]})
+    out = Errors()
+    spec.check(["beyond", "travelling-breathers"], None, out)
+    assert out.lines == ["config error: beyond.travelling-breathers.limit_fold_N = [80, 48]: must be strictly "
+                         "increasing"]
+
+
+def test_arclength_tangent_is_the_natural_one_away_from_a_fold():
+    """Away from a fold the family is a graph over T: the unit null vector of the bordered Jacobian in
+    (Re A, Im A, theta, T) that arc_newton returns at a converged member is (dA/dT, dtheta/dT, 1) of the natural
+    continuation's tangent, normalised (both solve the same linear equations; to the rounding of an SVD and a
+    least-squares solve on a Jacobian integrated to rtol 1e-13)."""
+    from cradle.analyses.protocol import FULL, form_spec
+    from cradle.integrators import dps_travelling as DT
+
+    spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
+    first = tb.first_member(spec, 16, spec.rtol)
+    # the tangent depends on the phase conditions' slice: both about the member itself
+    b = DT.newton(first.A, first.T, first.theta, spec.alpha, spec.norm, first.A, spec.newton_tol, rtol=spec.rtol)
+    assert b.converged and b.dA_dT is not None
+    x = np.concatenate([M.real(b.A), [b.theta, b.T]])
+    natural = np.concatenate([M.real(b.dA_dT), [b.dtheta_dT, 1.0]])
+    natural /= np.linalg.norm(natural)
+    same, t = DT.arc_newton(x, natural, spec.alpha, spec.norm, b.A, spec.newton_tol, rtol=spec.rtol)
+    assert same.converged and same.iterations == 0
+    assert np.max(np.abs(t - natural)) < 1e-8

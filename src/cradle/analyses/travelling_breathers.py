@@ -140,15 +140,24 @@ class TravellingBreathers:
                                    maximum=0.1, reduced=0.004)
     # the tail rule (section "the tail rule in the limit" below): larger rings around the members whose tail is
     # modulationally stable, the only ones whose limit verdict needs the growth rates' extrapolation in N
-    limit_large_N: list[int] = param([80, 96, 112], "Larger rings (each above the largest of limit_N) scanned only "
-                                     "over the neighbourhoods of the members whose tail's plane wave is modulationally "
-                                     "stable; with limit_N they give the fit g_inf + b N^-k of the tail rule.",
+    limit_large_N: list[int] = param([80, 96, 112, 128, 160], "Larger rings (each above the largest of limit_N) "
+                                     "scanned only over the neighbourhoods of the members whose tail's plane wave is "
+                                     "modulationally stable; with limit_N they give the fit g_inf + b N^-k of the tail "
+                                     "rule (from 128 sites the first TB needs the core-first Newton).",
                                      minItems=0, maxItems=6, items=_RING, reduced=[])
     limit_large_step: float = param(0.002, "Step in c of the scan on limit_large_N (a multiple of limit_step: the "
                                     "fit compares every ring on the points common to all).", exclusiveMinimum=0,
                                     maximum=0.05)
     limit_large_newton_tol: float = param(5e-11, "newton_tol on limit_large_N (on 96 sites the first TB stops at "
                                           "2.4e-11 against 1e-11).", exclusiveMinimum=0, maximum=1e-6)
+    # the windows as folds (section "the windows are folds" below): the family near the first member followed
+    # through its fold in c by pseudo-arclength, the check of Xu et al.'s dH/dc criterion on a ring
+    limit_fold_N: list[int] = param([48, 80], "Rings on which the family is continued upwards in c from the first "
+                                    "member until it turns (a fold), then followed through the fold by "
+                                    "pseudo-arclength (group /limit_fold).", minItems=0, maxItems=4, items=_RING,
+                                    reduced=[])
+    limit_fold_points: int = param(60, "Members of the pseudo-arclength continuation on each ring of limit_fold_N.",
+                                   minimum=2, maximum=1000)
 
     # exact TBs of the lattice (nc) (issue 37, items 2 and 3): section "the lattice's travelling breathers" below
     lattice: bool = param(True, "Also solve exact TBs of the lattice (nc) from a DpS member's ansatz (groups "
@@ -234,6 +243,8 @@ class TravellingBreathers:
         elif self.limit_large_N and self.limit_large_N[0] <= max(self.limit_N):
             out.add(where + ["limit_large_N"], f"must be above the largest of limit_N = {self.limit_N}",
                     self.limit_large_N)
+        if any(y <= x for x, y in itertools.pairwise(self.limit_fold_N)):
+            out.add(where + ["limit_fold_N"], "must be strictly increasing", self.limit_fold_N)
         ratio = self.limit_large_step / self.limit_step
         if self.limit_large_N and (abs(ratio - round(ratio)) > 1e-9 or round(ratio) < 1):
             out.add(where + ["limit_large_step"], f"must be a whole multiple of limit_step = {self.limit_step} (the "
@@ -304,14 +315,18 @@ _FIRST: dict[tuple[int, float, float, float, float, float], TravellingBreather] 
 
 def first_member(spec: TravellingBreathers, N: int, rtol: float) -> TravellingBreather:
     """The TB that Newton reaches from the static site breather pushed by ``kick`` on the ring of N (computed once
-    per process and parameters: the same numbers each call)."""
+    per process and parameters: the same numbers each call); where the plain Newton stops short (rings of 128 and
+    more), the one :func:`cradle.integrators.dps_travelling.newton_core_first` reaches from the same start."""
     from cradle.integrators import dps_travelling as DT
 
     key = (N, float(spec.alpha), float(spec.norm), float(spec.kick), float(spec.newton_tol), float(rtol))
     if key not in _FIRST:
         phi, _ = static_profiles(N, spec.alpha, spec.norm)["site"]
         A, T, theta = DT.start(phi, spec.kick, spec.alpha)
-        _FIRST[key] = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=rtol)
+        b = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=rtol)
+        if not b.converged:
+            b = DT.newton_core_first(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol, rtol=rtol)[0]
+        _FIRST[key] = b
     return _FIRST[key]
 
 
@@ -1366,6 +1381,32 @@ def tail_rule_verdict(mi_unstable: bool, fit: dict[str, float], threshold: float
     return LIMIT_UNDECIDED
 
 
+MEMBER_RULE = ("two questions the envelope of TAIL_RULE mixes: (i) the member itself, its own growth rate at c on "
+               "each ring of limit_N and limit_large_N fitted as g_inf + b N^-k and read as TAIL_RULE reads the "
+               "envelope, or stable when it is stable on every ring reached, at least 4 of them (member_verdict); "
+               "(ii) any TB within c +- limit_halfwidth, the envelope (verdict). A window near c may hold TBs of "
+               "another branch of the ring's family (past a fold in c, on a larger tail: /limit_fold), unstable where "
+               "the member is not")
+
+
+def member_verdict(mi_unstable: bool, growth: NDArray[np.float64], fit: dict[str, float], threshold: float) -> int:
+    """The limit verdict of the member itself (:data:`MEMBER_RULE`): stable when it is stable on every ring reached
+    and at least as many rings as a fit needs are reached (no growth to extrapolate), else the reading of
+    :func:`tail_rule_verdict` of its own growth rates' fit."""
+    from cradle.measurements import floquet_bubbles as FB
+
+    g = growth[np.isfinite(growth)]
+    if not mi_unstable and g.size >= FB.LIMIT_FIT_MIN and np.all(g <= threshold):
+        return LIMIT_STABLE
+    return tail_rule_verdict(mi_unstable, fit, threshold)
+
+
+def member_growth(grid: NDArray[np.float64], growth: NDArray[np.float64], c: float) -> float:
+    """The growth rate at the grid point c itself (NaN when the grid does not hold c or the scan did not reach it)."""
+    hit = np.flatnonzero(np.abs(grid - c) <= 1e-9)
+    return float(growth[hit[0]]) if hit.size else np.nan
+
+
 LARGE_FINE = ("growth", "unstable", "theta", "tail", "tail_mi", "quartet_defect")
 
 
@@ -1397,13 +1438,23 @@ def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[
     growth rates on every ring, its fit in N and the verdict of :data:`TAIL_RULE`) and /limit_large (the scans of
     :func:`large_scan`), with their attributes (prefixed ``tail_rule_``). ``theta`` the members' theta on the ring
     of N, ``rob`` :func:`robustness`'s arrays, ``limit`` the (data, coords) of /robustness_limit."""
+    t0 = _time.process_time()
+    grid_large, large = large_scan(spec, c, theta, log)
+    groups, attrs = tail_rule_of(spec, c, theta, rob, limit, grid_large, large)
+    attrs["tail_rule_cpu_s"] = _time.process_time() - t0
+    return groups, attrs
+
+
+def tail_rule_of(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[np.float64], rob: dict,
+                 limit: tuple[dict, dict], grid_large: NDArray[np.float64],
+                 large: dict[str, NDArray[np.float64]]) -> tuple[dict, dict]:
+    """:func:`tail_rule` from the scans of the larger rings (:func:`large_scan`'s grid and arrays), without its CPU
+    attribute: the rule's reading alone (``benchmarks/tb_limit.py --rule`` applies it to stored scans)."""
     from cradle.analyses import mi_diagram
     from cradle.measurements import floquet_bubbles as FB
 
-    t0 = _time.process_time()
     data, coords = limit
     grid_small = coords["c_fine"]
-    grid_large, large = large_scan(spec, c, theta, log)
     rings = [*spec.limit_N, *spec.limit_large_N]
     points = common_points([grid_small, grid_large] if grid_large.size else [grid_small])
     per_ring = ([(grid_small, data["growth_rate"][i], data["theta"][i]) for i in range(len(spec.limit_N))]
@@ -1422,6 +1473,11 @@ def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[
     fits = [FB.fit_limit(rings, envelope[j]) for j in range(c.size)]
     verdicts = np.array([tail_rule_verdict(bool(kind[j]), fits[j], spec.stability_threshold)
                          for j in range(c.size)], int)
+    # the member itself (question (i) of MEMBER_RULE): its own growth rate at c on each ring, fitted the same way
+    at_c = np.array([[member_growth(g_, gr, float(x)) for g_, gr, _ in per_ring] for x in c])
+    member_fits = [FB.fit_limit(rings, at_c[j]) for j in range(c.size)]
+    member_verdicts = np.array([member_verdict(bool(kind[j]), at_c[j], member_fits[j], spec.stability_threshold)
+                                for j in range(c.size)], int)
     # theta on every ring of /robustness and at every tolerance, against the ring of N's: the rule's input
     spread = np.nanmax(np.abs(np.angle(np.exp(1j * (np.vstack([rob["theta_ring"], rob["theta_tol"]])
                                                         - rob["theta_ring"][0])))), axis=0)
@@ -1432,7 +1488,9 @@ def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[
              "tail_mi_rate_min": np.nanmin(mi_ring, axis=0), "tail_mi_rate_max": np.nanmax(mi_ring, axis=0),
              "envelope": envelope, **{f"fit_{k}": [f[k] for f in fits] for k in ("g_inf", "g_inf_error", "g_inf_stderr",
                                                                                  "b", "k", "points", "degenerate")},
-             "verdict": verdicts}
+             "verdict": verdicts, "member_growth": at_c,
+             **{f"member_fit_{k}": [f[k] for f in member_fits] for k in ("g_inf", "g_inf_error", "k", "degenerate")},
+             "member_verdict": member_verdicts}
     groups = {"/limit_tail": (group, {"fit_ring": np.array(rings)})}
     if grid_large.size:
         groups["/limit_large"] = ({"growth_rate": large["growth"], "theta": large["theta"], "tail": large["tail"],
@@ -1447,9 +1505,109 @@ def tail_rule(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[
              **{f"tail_rule_{name}_c": ", ".join(f"{x:g}" for x in c[verdicts == v]) or "none"
                 for name, v in (("stable", LIMIT_STABLE), ("unstable", LIMIT_UNSTABLE),
                                 ("undecided", LIMIT_UNDECIDED))},
-             "tail_rule_theta_spread_max": float(np.nanmax(spread)),
-             "tail_rule_cpu_s": _time.process_time() - t0}
+             "tail_rule_theta_spread_max": float(np.nanmax(spread)), "member_rule": MEMBER_RULE,
+             **{f"member_rule_{name}_c": ", ".join(f"{x:g}" for x in c[member_verdicts == v]) or "none"
+                for name, v in (("stable", LIMIT_STABLE), ("unstable", LIMIT_UNSTABLE),
+                                ("undecided", LIMIT_UNDECIDED))}}
     return groups, attrs
+
+
+# ----------------------------------------------------------------- the windows are folds
+# A window near c in which a real multiplier leaves +1 (c ~ 0.084 on the rings up to 112) is no instability of the
+# member itself: natural continuation in c stops below it (dA/dT grows without bound: a fold), and followed through the
+# fold by pseudo-arclength the family comes back in c on a branch with a larger tail, where a real pair leaves +1 and
+# returns at the extrema of H(c), as Xu et al.'s criterion says. The scan of fixed c jumps onto that branch.
+
+#: the step in c of the natural continuation that finds the fold, and the pseudo-arclength step in (A, theta, T)
+FOLD_STEP, FOLD_DS = 2e-4, 1e-2
+FOLD = ("on each ring of limit_fold_N: the family continued from the first member upwards in c in steps of FOLD_STEP "
+        "until the step, halved down to LIMIT_MIN_STEP of c, fails (the family turns), then followed by "
+        "pseudo-arclength (steps FOLD_DS in (Re A, Im A, theta, T)) for limit_fold_points members while c stays "
+        "within limit_halfwidth of the first member; per member c, H, the growth rate, the growth rate of a real "
+        "multiplier above +1 and the tail. Xu et al.'s criterion: a real pair leaves +1 where dH/dc changes sign")
+
+
+def real_growth(b: TravellingBreather) -> float:
+    """ln mu / T of the largest real multiplier mu > 1 among the non-trivial ones (0 when there is none): the growth
+    through +1 that the dH/dc criterion is about."""
+    mu = b.multipliers
+    rest = mu[np.argsort(np.abs(mu - 1.0))[TRIVIAL:]]
+    real = rest[(np.abs(rest.imag) <= REAL * np.abs(rest)) & (rest.real > 1.0)]
+    return float(np.log(np.max(real.real)) / b.T) if real.size else 0.0
+
+
+def fold_scan(spec: TravellingBreathers, N: int, log: Log | None = None) -> dict[str, NDArray[np.float64]]:
+    """The family on the ring of N through its fold nearest above the first member (:data:`FOLD`): arrays c, H,
+    theta, growth, real_growth, tail, residual and the states A (arc, site) along the arclength (first the natural
+    continuation's members, then the pseudo-arclength ones), padded to ``limit_fold_points`` plus the natural ones
+    with NaN."""
+    from cradle.integrators import dps_travelling as DT
+    from cradle.models import dps_travelling as M
+
+    first = first_member(spec, N, spec.rtol)
+    hw = spec.limit_halfwidth
+    grid = np.round(first.c + FOLD_STEP * np.arange(1, int(hw / FOLD_STEP) + 1), 9)
+    fam, _ = DT.continue_family(first, grid, spec.limit_large_newton_tol, spec.rtol, min_step=LIMIT_MIN_STEP)
+    last = fam[-1] if fam else first
+    arc = DT.continue_arclength(last, FOLD_DS, spec.limit_fold_points, (first.c - hw, first.c + hw),
+                                spec.limit_large_newton_tol, spec.rtol, log=log)
+    members = [first, *fam, *arc[1:]]
+    width = spec.limit_fold_points + grid.size + 1
+    out = {k: np.full(width, np.nan) for k in ("velocity", "energy", "theta", "growth", "real_growth", "tail",
+                                               "residual")}
+    out["A_re"], out["A_im"] = np.full((width, N), np.nan), np.full((width, N), np.nan)
+    for i, b in enumerate(members):
+        out["A_re"][i], out["A_im"][i] = b.A.real, b.A.imag
+        out["velocity"][i], out["energy"][i] = b.c, b.energy
+        out["theta"][i] = math.remainder(b.theta, 2 * math.pi)
+        out["growth"][i] = verdict(b, spec.stability_threshold)[1]
+        out["real_growth"][i], out["tail"][i], out["residual"][i] = real_growth(b), M.tail_amplitude(b.A), b.residual
+    if log:
+        log(f"travelling-breathers: fold scan, ring of {N}: {len(fam)} members by c up to c = {last.c:.6g}, "
+            f"{len(arc) - 1} by arclength")
+    return out
+
+
+def fold_turns(c: NDArray[np.float64], H: NDArray[np.float64]) -> tuple[list[float], list[float]]:
+    """(folds, extrema): the c where the arclength's c turns (dc changes sign) and where H(c) has an extremum
+    along a branch (dH changes sign while c keeps its direction), each the c of the middle member."""
+    ok = np.isfinite(c)
+    c, H = c[ok], H[ok]
+    dc, dH = np.diff(c), np.diff(H)
+    folds = [float(c[i + 1]) for i in range(dc.size - 1) if dc[i] * dc[i + 1] < 0]
+    extrema = [float(c[i + 1]) for i in range(dc.size - 1) if dc[i] * dc[i + 1] > 0 and dH[i] * dH[i + 1] < 0]
+    return folds, extrema
+
+
+def real_edges(c: NDArray[np.float64], g: NDArray[np.float64], threshold: float) -> list[float]:
+    """The c midway between consecutive members along the arclength where the growth through +1 crosses the
+    stability threshold (a real pair leaving or returning to +1)."""
+    ok = np.isfinite(c)
+    c, above = c[ok], g[ok] > threshold
+    return [float(0.5 * (c[i] + c[i + 1])) for i in range(c.size - 1) if above[i] != above[i + 1]]
+
+
+def fold_group(spec: TravellingBreathers, log: Log | None = None) -> tuple[dict, dict]:
+    """The group /limit_fold (:func:`fold_scan` on each ring of limit_fold_N) and its attributes: per ring the folds
+    in c, the extrema of H(c) and the c where a real pair crosses the threshold through +1."""
+    t0 = _time.process_time()
+    scans = [fold_scan(spec, N, log) for N in spec.limit_fold_N]
+    width, sites = max(s["velocity"].size for s in scans), max(spec.limit_fold_N)
+    data = {k: np.array([np.pad(s[k], [(0, width - s[k].shape[0])] + [(0, sites - N)] * (s[k].ndim - 1),
+                                constant_values=np.nan) for s, N in zip(scans, spec.limit_fold_N, strict=True)])
+            for k in scans[0]}
+    attrs: dict = {"fold_rule": FOLD}
+    for N, s in zip(spec.limit_fold_N, scans, strict=True):
+        folds, extrema = fold_turns(s["velocity"], s["energy"])
+        attrs[f"fold_{N}_c_turns"] = ", ".join(f"{x:.7f}" for x in folds) or "none"
+        attrs[f"fold_{N}_dH_dc_zero"] = ", ".join(f"{x:.7f}" for x in extrema) or "none"
+        attrs[f"fold_{N}_real_edges"] = ", ".join(f"{x:.7f}" for x in real_edges(s["velocity"], s["real_growth"],
+                                                                                  spec.stability_threshold)) or "none"
+        attrs[f"fold_{N}_largest_real_growth"] = float(np.nanmax(s["real_growth"]))
+    attrs["fold_cpu_s"] = _time.process_time() - t0
+    return {"/limit_fold": ({k: v for k, v in data.items()},
+                            {"fold_ring": np.array(spec.limit_fold_N), "arc": np.arange(width),
+                             "fold_site": np.arange(sites)})}, attrs
 
 
 # ----------------------------------------------------------------- the stored file
@@ -1753,6 +1911,32 @@ VARIABLES = {
         "fit_degenerate": Var(_C, "1 if k ended on a bound of its range (the error is then no error of g_inf; NaN: "
                                   "no fit)"),
         "verdict": Var(_C, "limit verdict of tail_rule: 1 unstable, 0 stable, -1 undecided"),
+        "member_growth": Var(("c", "fit_ring"), "growth rate of the member itself, at c, on each ring (per unit "
+                                                "tau; NaN: not reached or c not on that ring's grid)"),
+        "member_fit_g_inf": Var(_C, "g_inf of member_growth = g_inf + b N^-k over the rings (per unit tau; NaN: "
+                                    "fewer than 4)"),
+        "member_fit_g_inf_error": Var(_C, "error of member_fit_g_inf, as fit_g_inf_error (per unit tau)"),
+        "member_fit_k": Var(_C, "exponent k of that fit"),
+        "member_fit_degenerate": Var(_C, "1 if k ended on a bound of its range (NaN: no fit)"),
+        "member_verdict": Var(_C, "limit verdict of the member itself (member_rule): 1 unstable, 0 stable, -1 "
+                                  "undecided"),
+    },
+    "/limit_fold": {
+        "fold_ring": Var(("fold_ring",), "sites of a ring of the fold scan (limit_fold_N)"),
+        "arc": Var(("arc",), "index along the family: the first member, the natural continuation's, then the "
+                             "pseudo-arclength's"),
+        "velocity": Var(("fold_ring", "arc"), "velocity c = 1/T (sites per unit tau; NaN: past the last member)"),
+        "energy": Var(("fold_ring", "arc"), "Hamiltonian H of (dfnls) at unit norm"),
+        "theta": Var(("fold_ring", "arc"), "phase theta of (tb), in (-pi, pi]", "rad"),
+        "growth": Var(("fold_ring", "arc"), "ln max |mu| / T over the non-trivial multipliers modulo shift (per "
+                                            "unit tau)"),
+        "real_growth": Var(("fold_ring", "arc"), "ln mu / T of the largest real non-trivial multiplier mu > 1 (per "
+                                                 "unit tau; 0: none)"),
+        "tail": Var(("fold_ring", "arc"), "max |A_n| on the far quarter ring / max |A_n|"),
+        "residual": Var(("fold_ring", "arc"), "shift-map residual max |R| / max |A|"),
+        "fold_site": Var(("fold_site",), "site n of the ring (NaN beyond the ring's own sites)"),
+        "A_re": Var(("fold_ring", "arc", "fold_site"), "Re A_n(0) of the member"),
+        "A_im": Var(("fold_ring", "arc", "fold_site"), "Im A_n(0) of the member"),
     },
     "/limit_large": {
         "large_ring": Var(("large_ring",), "sites of a larger ring of the tail rule (limit_large_N)"),
@@ -1836,6 +2020,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
     limit_groups, limit_attrs = robustness_limit(spec, c, say)
     tail_groups, tail_attrs = tail_rule(spec, c, np.array([b.theta for b in fam]), rob,
                                         limit_groups["/robustness_limit"], say)
+    fold_groups, fold_attrs = fold_group(spec, say) if spec.limit_fold_N else ({}, {})
     i_motion = int(np.argmin(np.abs(c - spec.motion_speed)))
     motion_groups, motion_attrs = motion(spec, fam[i_motion], say)
     real = np.array([v[3] for v in ver])
@@ -1872,6 +2057,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
         **motion_groups,
         **limit_groups,
         **tail_groups,
+        **fold_groups,
     }
     near = np.minimum([d["site"] for d in dist], [d["bond"] for d in dist])
     power = float(np.polyfit(np.log(c), np.log(near), 1)[0])
@@ -1903,6 +2089,7 @@ def compute(spec: TravellingBreathers, inputs: dict | None = None, log: Log | No
         **motion_attrs,
         **limit_attrs,
         **tail_attrs,
+        **fold_attrs,
         "wall_time_s": _time.perf_counter() - t0,
     }
     if spec.lattice:

@@ -21,16 +21,20 @@ Last, the verdicts in the limit N -> infinity when the file holds them (group /r
 rate along the fine grid of c on each ring, with the tail's MI rate, (n) the median growth rate of each member's
 neighbourhood on each ring with the limit verdicts, (o) the unstable fraction of the fine grid against N, where the
 tail is modulationally unstable and elsewhere. Then the tail rule (group /limit_tail): (p) the envelope of the
-growth rates of each member whose tail is MI-stable against N with its fit g_inf + b N^-k, (q) the tail's MI rate
+growth rates of each member whose tail is MI-stable against N with its fit g_inf + b N^-k and the member's own
+growth at c (crosses, its limit verdict in the legend), (q) the tail's MI rate
 in closed form against the growth rate measured on each ring, (r) the table of the verdicts on each ring, at each
-tolerance and in the limit.
+tolerance and in the limit (median rule, tail rule's envelope, the member at c).
 Then the lattice's TBs on larger rings and at larger eps when the file holds them (groups /lattice_rings,
 /lattice_large): (s) |xi_n(0)| / max against the distance from the centre on each ring, (t) the tail against eps on
 each ring with every TB's residual, (u) the tail along the continuation in c against the DpS velocity through
 (ansatz), unstable members filled.
-Last, where the lattice TBs' tail vanishes when the file holds it (group /lattice_zeros): (v), (w) the signed tail
+Then the family through its fold near the first member when the file holds it (group /limit_fold): (v) H against c
+along the arclength on each ring, (w) the growth rate of a real multiplier above +1 and the largest growth rate
+against c, with the extrema of H(c), (x) the tail along the arc.
+Last, where the lattice TBs' tail vanishes when the file holds it (group /lattice_zeros): (y), (z) the signed tail
 along the fine grid of c through each of its two minima on each ring, the regula falsi's iterates and the zero
-located; (x) the table of the zeros.
+located; (aa) the table of the zeros.
 """
 from __future__ import annotations
 
@@ -57,8 +61,9 @@ def draw(tree: AnalysisTree) -> Figure:
     limit = "robustness_limit" in tree.children
     tail = "limit_tail" in tree.children
     on_rings = "lattice_rings" in tree.children
+    fold = "limit_fold" in tree.children
     zeros = "lattice_zeros" in tree.children
-    rows = 3 + int(lattice) + int(limit) + int(tail) + int(on_rings) + int(zeros)
+    rows = 3 + int(lattice) + int(limit) + int(tail) + int(on_rings) + int(fold) + int(zeros)
     fig, ax = figure(rows, 3, width=13.5, height=11.2 + 3.7 * (rows - 3))
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
@@ -165,9 +170,57 @@ def draw(tree: AnalysisTree) -> Figure:
         draw_tail_rule(ax[3 + int(lattice) + int(limit)], tree)
     if on_rings:
         draw_rings(ax[3 + int(lattice) + int(limit) + int(tail)], tree)
+    if fold:
+        draw_fold(ax[3 + int(lattice) + int(limit) + int(tail) + int(on_rings)], tree)
     if zeros:
         draw_zeros(ax[rows - 1], tree)
     return fig
+
+
+def draw_fold(ax: Any, tree: AnalysisTree) -> None:
+    """Panels (v)-(x), the family through its fold (group /limit_fold), on each ring along the arclength: (v) H
+    against c (the fold: c turns; the extrema of H(c) marked), (w) the growth rate of a real multiplier above +1 and
+    the largest growth rate against c, the extrema of H(c) as vertical lines, (x) the tail against c."""
+    fd = tree["limit_fold"]
+    thr = float(tree.attrs["stability_threshold"])
+    floor = thr / 100.0
+    v, w, x = ax
+    for i, ring in enumerate(fd["fold_ring"].values):
+        col = f"C{i}"
+        c = np.asarray(fd["velocity"].values[i], float)
+        ok = np.isfinite(c)
+        c, H = c[ok], np.asarray(fd["energy"].values[i], float)[ok]
+        v.plot(c, H, "-", color=col, lw=0.8)
+        v.plot(c[0], H[0], "o", color=col, ms=8 - 3 * (i % 2), label=f"ring of {int(ring)}: first member")
+        zeros = str(tree.attrs[f"fold_{int(ring)}_dH_dc_zero"])
+        at = [float(z) for z in zeros.split(", ")] if zeros != "none" else []
+        for k, z in enumerate(at):
+            j = int(np.argmin(np.abs(c - z)))
+            v.plot(c[j], H[j], "D", color=col, ms=5, mfc="none",
+                   label=f"ring of {int(ring)}: dH/dc = 0" if k == 0 else "_")
+            w.axvline(z, color=col, ls=":", lw=0.8, label=f"ring of {int(ring)}: dH/dc = 0" if k == 0 else "_")
+        real = np.asarray(fd["real_growth"].values[i], float)[ok]
+        grow = np.asarray(fd["growth"].values[i], float)[ok]
+        w.semilogy(c, np.maximum(grow, floor), ".", color=col, ms=3, label=f"ring of {int(ring)}: largest")
+        w.semilogy(c, np.maximum(real, floor), "-", color=col, lw=1.2, label=f"ring of {int(ring)}: real, above +1")
+        x.semilogy(c, np.asarray(fd["tail"].values[i], float)[ok], ".-", color=col, ms=3, lw=0.6,
+                   label=f"ring of {int(ring)}")
+    lo, hi = v.get_ylim()
+    v.set_ylim(lo - 0.6 * (hi - lo), hi)   # room below the data for the legend
+    v.set_xlabel("velocity c")
+    v.set_ylabel("H at unit norm")
+    v.set_title("(v) the family through its fold: H against c", fontsize=9)
+    v.legend(fontsize=6, loc="lower right")
+    w.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
+    w.set_ylim(floor / 3.0, 1e2)
+    w.set_xlabel("velocity c")
+    w.set_ylabel(rf"growth rate per unit $\tau$ (floor {floor:g})")
+    w.set_title("(w) growth along the arc; real multiplier above +1", fontsize=9)
+    w.legend(fontsize=6, loc="upper left", ncol=2)
+    x.set_xlabel("velocity c")
+    x.set_ylabel("tail: max far |A_n| / max |A_n|")
+    x.set_title("(x) the tail along the arc", fontsize=9)
+    x.legend(fontsize=6, loc="upper left")
 
 
 def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
@@ -187,9 +240,13 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
     p = ax[0]
     fine = np.linspace(float(rings.min()), 2.0 * float(rings.max()), 200)
     shown = [j for j in range(c.size) if np.sum(np.isfinite(env[j])) >= 2 and not kind[j]]
+    member = np.asarray(lt["member_growth"].values, float)         # (c, ring)
     for k, j in enumerate(shown):
         col = f"C{k % 10}"
-        p.semilogy(rings, np.maximum(env[j], floor), "o", color=col, ms=5, label=f"c = {c[j]:g}")
+        p.semilogy(rings, np.maximum(env[j], floor), "o", color=col, ms=5, label=f"c = {c[j]:g}: envelope")
+        p.semilogy(rings, np.maximum(member[j], floor), "x", color=col, ms=6,
+                   label=f"c = {c[j]:g}: the member at c, verdict "
+                         f"{VERDICT_LETTER.get(int(lt['member_verdict'].values[j]), '?')}")
         g0, b, kk = (float(lt[f"fit_{x}"].values[j]) for x in ("g_inf", "b", "k"))
         if np.isfinite(g0):
             e0 = float(lt["fit_g_inf_error"].values[j])
@@ -199,9 +256,10 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
                        label=rf"fit: $g_\infty$ = {g0:.1e} $\pm$ {err}"
                        + (f" (k = {kk:g}: on a bound)" if float(lt["fit_degenerate"].values[j]) == 1 else ""))
     p.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
-    p.set_ylim(floor / 3.0, 1e3 * max(float(np.nanmax(env)) if np.isfinite(env).any() else thr, thr))
+    # room above the data for the legend (two entries per member and its fit)
+    p.set_ylim(floor / 3.0, 1e6 * max(float(np.nanmax(env)) if np.isfinite(env).any() else thr, thr))
     p.set_xlabel("sites N of the ring")
-    p.set_ylabel(rf"largest growth over c $\pm$ {float(attrs['limit_halfwidth']):g} (floor {floor:g})")
+    p.set_ylabel(rf"growth: largest over c $\pm$ {float(attrs['limit_halfwidth']):g}; at c (floor {floor:g})")
     p.set_title("(p) members whose tail is MI-stable: envelope against N", fontsize=9)
     p.legend(fontsize=6, loc="upper left")
 
@@ -238,12 +296,14 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
         text = cell.get_text().get_text()
         if i > 0 and text in ("U", "S"):
             cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
-    r.set_title("(r) verdicts per ring N and rtol (ring of N);\nin the limit: median rule, tail rule", fontsize=9)
+    r.set_title("(r) verdicts per ring N and rtol (ring of N);\nin the limit: median rule, tail rule, "
+                "member at c", fontsize=9)
 
 
 def verdict_table(tree: AnalysisTree) -> list[list[str]]:
     """The rows of panel (r): c, the verdict on each ring of /robustness and at each tolerance, the median rule's
-    limit verdict (/robustness_limit) and the tail rule's (/limit_tail); '-' where a member was not reached."""
+    limit verdict (/robustness_limit), the tail rule's (/limit_tail: the envelope) and the member's own ("at c");
+    '-' where a member was not reached."""
     rob, lt = tree["robustness"], tree["limit_tail"]
     c = np.asarray(tree["c"].values)
 
@@ -258,8 +318,8 @@ def verdict_table(tree: AnalysisTree) -> list[list[str]]:
     if "robustness_limit" in tree.children:
         head.append("median")
         cols.append(np.asarray(tree["robustness_limit"]["verdict"].values, float))
-    head.append("tail")
-    cols.append(np.asarray(lt["verdict"].values, float))
+    head += ["tail", "at c"]
+    cols += [np.asarray(lt["verdict"].values, float), np.asarray(lt["member_verdict"].values, float)]
     rows = [head]
     for j, x in enumerate(c):
         rows.append([f"{x:g}", *[letter(float(col[j])) for col in cols]])
@@ -341,16 +401,16 @@ def draw_rings(ax: Any, tree: AnalysisTree) -> None:
 
 
 def draw_zeros(ax: Any, tree: AnalysisTree) -> None:
-    """Where the lattice TBs' tail vanishes (group /lattice_zeros): (v), (w) the signed tail along the fine grid of c
+    """Where the lattice TBs' tail vanishes (group /lattice_zeros): (y), (z) the signed tail along the fine grid of c
     through each minimum on each ring (symmetric log scale, linear within the largest residual), the regula falsi's
-    iterates and the located zero; (x) the table of the zeros: c with its uncertainty, eps, the DpS velocity through
+    iterates and the located zero; (aa) the table of the zeros: c with its uncertainty, eps, the DpS velocity through
     (ansatz), |sigma|, the residual and the growth rate there."""
     from matplotlib.ticker import MaxNLocator
 
     zg = tree["lattice_zeros"]
     rings = [int(N) for N in zg["zero_ring"].values]
     lin = float(np.nanmax(np.asarray(zg["residual_grid"].values)))
-    for j, (a, name) in enumerate(((ax[0], "(v) the first"), (ax[1], "(w) the second"))):
+    for j, (a, name) in enumerate(((ax[0], "(y) the first"), (ax[1], "(z) the second"))):
         for k, N in enumerate(rings):
             c = np.asarray(zg["c_tb_grid"].values[k, j])
             a.plot(1e3 * c, zg["sigma_grid"].values[k, j], "osD^"[k % 4] + "-", color=f"C{k}", ms=5, mfc="none",
@@ -390,7 +450,7 @@ def draw_zeros(ax: Any, tree: AnalysisTree) -> None:
                   colWidths=[0.08, 0.07, 0.22, 0.12, 0.11, 0.12, 0.14, 0.14])
     tab.auto_set_font_size(False)
     tab.set_fontsize(7)
-    t.set_title("(x) the zeros (c: uncertainty in its last digits)", fontsize=9)
+    t.set_title("(aa) the zeros (c: uncertainty in its last digits)", fontsize=9)
 
 
 def draw_limit(ax: Any, tree: AnalysisTree) -> None:

@@ -19,6 +19,12 @@ modulo shift.
 Starts: the static DpS breather (ansatzapproxst2) of either parity pushed by a phase gradient
 (:func:`cradle.models.dps_travelling.kicked`) and integrated until it has moved a few sites: T is the time
 per site of the last ones, theta the best-fitting phase, the state the one at the start of that site.
+
+Large rings (128 sites and more): the far sites are nearly still (DpS's coupling vanishes with the amplitude) and
+barely held by the equations; a first step of all unknowns puts some 1e-3 of the peak there and Newton stalls near a
+TB on a plane-wave tail of that size. :func:`newton_core_first` (the core's sites first) converges there, as does
+Newton from a smaller ring's TB set on the larger one (:func:`cradle.models.tb_launch.embedded`). The family in c
+folds (it turns back in c); :func:`continue_arclength` follows it through a fold by pseudo-arclength.
 """
 from __future__ import annotations
 
@@ -39,6 +45,8 @@ if TYPE_CHECKING:
     from cradle.integrators._types import Floats
 
 RTOL = 1e-13    # DOP853 relative tolerance of the shooting (shift-map residuals ~1e-12)
+CORE = 1e-6     # sites whose |A_n| is below CORE times the largest are held fixed in newton_core_first's first
+CORE_TOL = 1e-5  # stage, which hands over to all unknowns below this residual
 
 
 def flow(A0: ArrayLike, T: float, alpha: float, columns: ArrayLike | None = None,
@@ -147,13 +155,16 @@ def _weighted_lstsq(J: Floats, F: Floats, rows: int) -> Floats:
 def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm: float,
            reference: ArrayLike | None = None, tol: float = 1e-11, max_iter: int = 12,
            rtol: float = RTOL, log: Callable[[str], object] | None = None,
-           max_amplitude: float | None = None) -> TravellingBreather:
+           max_amplitude: float | None = None, free: NDArray[np.bool_] | None = None) -> TravellingBreather:
     """Solve (tb) at period T for (A, theta) with sum |A|^2 = ``norm`` and the two phase conditions about
     ``reference`` (default: the guess), by Gauss-Newton from (A_guess, theta_guess) (module docstring).
     Converged when max |R| <= tol max |A|; the multipliers of the last monodromy and the family's tangent
     there are returned with it. Stops early when the residual grows tenfold (a guess outside the basin) and, if
     ``max_amplitude`` is given, when an iterate's max |A| exceeds it (the relative residual does not see an
-    iterate running off to large amplitude, whose integration grows ever stiffer)."""
+    iterate running off to large amplitude, whose integration grows ever stiffer). ``free`` (a mask of the N sites):
+    the steps move only those sites' A_n (and theta), the others stay at the guess's values, and only their columns
+    of the Jacobian are integrated; converged then returns no multipliers and no tangent (:func:`newton_core_first`'s
+    first stage)."""
     A = np.asarray(A_guess, complex).copy()
     N = A.size
     ref = A.copy() if reference is None else np.asarray(reference, complex)
@@ -161,20 +172,29 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
     d_phase, d_time = M.real(1j * ref), M.real(M.rhs(ref, alpha, t0))
     theta = float(theta_guess)
     res, best, mu = np.inf, np.inf, np.zeros(0, complex)
+    cols = slice(None) if free is None else np.concatenate([free, free])   # the moving unknowns' columns
     for it in range(max_iter + 1):
-        Mm, B = monodromy(A, T, theta, alpha, rtol)
+        if free is None:
+            Mm, B = monodromy(A, T, theta, alpha, rtol)
+            mu = np.linalg.eigvals(Mm).astype(complex)
+        else:
+            B, V = flow(A, T, alpha, _basis(N)[:, cols], rtol)
+            assert V is not None
+            Mm = M.real(np.exp(-1j * theta) * M.shift(V, -1))
         R = M.residual(A, B, theta)
         res = float(np.max(np.abs(R)) / np.max(np.abs(A)))
-        mu = np.linalg.eigvals(Mm).astype(complex)
         if log:
             log(f"travelling breathers: T = {T:.12g}, iteration {it}: theta = {theta:.12g}, residual {res:.3g}")
-        J = np.zeros((2 * N + 3, 2 * N + 1))
-        J[:2 * N, :2 * N] = Mm - np.eye(2 * N)
+        if free is not None and res <= tol:
+            return TravellingBreather(A, T, theta, alpha, res, True, it)
+        m = Mm.shape[1]
+        J = np.zeros((2 * N + 3, m + 1))
+        J[:2 * N, :m] = Mm - np.eye(2 * N)[:, cols]
         SB = np.exp(-1j * theta) * M.shift(B, -1)
-        J[:2 * N, 2 * N] = M.real(-1j * SB)
-        J[2 * N, :2 * N] = 2.0 * M.real(A)
-        J[2 * N + 1, :2 * N] = d_phase
-        J[2 * N + 2, :2 * N] = d_time
+        J[:2 * N, m] = M.real(-1j * SB)
+        J[2 * N, :m] = 2.0 * M.real(A)[cols]
+        J[2 * N + 1, :m] = d_phase[cols]
+        J[2 * N + 2, :m] = d_time[cols]
         if res <= tol:
             # the tangent: dR/dT = e^{-i theta} S^{-1} dA/dtau at Phi_T(A), the conditions unchanged
             dF = np.concatenate([M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, t0), -1)), np.zeros(3)])
@@ -189,10 +209,39 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
         F = np.concatenate([M.real(R), [np.sum(np.abs(A) ** 2) - norm, d_phase @ M.real(A - ref),
                                         d_time @ M.real(A - ref)]])
         step = _weighted_lstsq(J, -F, 2 * N)
-        A = A + M.complex_(step[:2 * N])
-        theta = theta + float(step[2 * N])
+        if free is None:
+            A = A + M.complex_(step[:2 * N])
+        else:
+            dA = np.zeros(2 * N)
+            dA[cols] = step[:m]
+            A = A + M.complex_(dA)
+        theta = theta + float(step[m])
     return TravellingBreather(A, T, theta, alpha, res, False, it, mu)
 
+
+
+def core_sites(A: ArrayLike, threshold: float = CORE) -> NDArray[np.bool_]:
+    """The mask of the core's sites: |A_n| above ``threshold`` times max |A_n|."""
+    a = np.abs(np.asarray(A))
+    return np.asarray(a > threshold * float(np.max(a)), dtype=np.bool_)
+
+
+def newton_core_first(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm: float,
+                      tol: float = 1e-11, max_iter: int = 12, rtol: float = RTOL,
+                      log: Callable[[str], object] | None = None) -> tuple[TravellingBreather, float]:
+    """(TB, the first stage's residual): :func:`newton` in two stages from (A_guess, theta_guess), the phase
+    conditions about the guess in both: the core's sites (:func:`core_sites`) alone until the residual is below
+    CORE_TOL (the far sites kept at the guess's values), then all of them to ``tol``.
+
+    Why (the lattice's remedy, :func:`cradle.integrators.lattice_travelling.newton_core_first`, carried over): on a
+    large ring the bordered Jacobian's smallest singular directions live on the far, nearly still sites (the
+    coupling of DpS vanishes with the amplitude), and a first step of all unknowns from the pushed breather puts
+    some 1e-3 of the peak there; Newton then heads for a TB on a plane-wave tail of that size whose phase is a
+    near-neutral direction, and stalls (docs/analyses/travelling-breathers.md, "DpS Newton on large rings")."""
+    A0 = np.asarray(A_guess, complex)
+    core = newton(A0, T, theta_guess, alpha, norm, A0, CORE_TOL, max_iter, rtol, log, free=core_sites(A0))
+    full = newton(core.A, T, core.theta, alpha, norm, A0, tol, max_iter, rtol, log)
+    return full, core.residual
 
 def start(profile: ArrayLike, kappa: float, alpha: float, sites: int = 3, rtol: float = 1e-12,
           samples_per_unit: int = 40) -> tuple[NDArray[np.complex128], float, float]:
@@ -235,3 +284,101 @@ def continue_family(first: TravellingBreather, cs: ArrayLike, tol: float = 1e-11
     return continue_in_c(first, cs, correct, min_step, log or (lambda *a: None), "travelling breathers",
                          lambda b: f"theta = {b.theta:.12g}, residual {b.residual:.2g}, "
                                    f"tail {M.tail_amplitude(b.A):.3g}")
+
+
+# ----------------------------------------------------------------- pseudo-arclength: the family through its folds
+# Natural continuation in c (continue_family) stops where the family turns back in c (a fold: dA/dT grows without
+# bound there, a pair of multipliers meets +1). On a ring the fixed-norm family folds near the instability windows
+# along c (docs/analyses/travelling-breathers.md, "the windows are folds"); the branch beyond a fold is followed with
+# T as an unknown and the arclength condition <t, x - x_pred> = 0, x = (Re A, Im A, theta, T), t the unit tangent.
+
+
+def _arc_system(A: NDArray[np.complex128], T: float, theta: float, alpha: float, norm: float,
+                ref: NDArray[np.complex128], rtol: float) -> tuple[Floats, Floats, Floats, float]:
+    """(J, F, M, residual): the 2N + 3 equations of (tb) with the norm and the two phase conditions about ``ref`` at
+    x = (A, theta, T), their Jacobian in (Re A, Im A, theta, T), the monodromy modulo shift and the relative
+    residual."""
+    N = A.size
+    t0 = dps.tau0(alpha)
+    Mm, B = monodromy(A, T, theta, alpha, rtol)
+    R = M.residual(A, B, theta)
+    SB = np.exp(-1j * theta) * M.shift(B, -1)
+    d_phase, d_time = M.real(1j * ref), M.real(M.rhs(ref, alpha, t0))
+    J = np.zeros((2 * N + 3, 2 * N + 2))
+    J[:2 * N, :2 * N] = Mm - np.eye(2 * N)
+    J[:2 * N, 2 * N] = M.real(-1j * SB)
+    J[:2 * N, 2 * N + 1] = M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, t0), -1))   # dR/dT
+    J[2 * N, :2 * N] = 2.0 * M.real(A)
+    J[2 * N + 1, :2 * N] = d_phase
+    J[2 * N + 2, :2 * N] = d_time
+    F = np.concatenate([M.real(R), [np.sum(np.abs(A) ** 2) - norm, d_phase @ M.real(A - ref),
+                                    d_time @ M.real(A - ref)]])
+    return J, F, Mm, float(np.max(np.abs(R)) / np.max(np.abs(A)))
+
+
+def _arc_tangent(J: Floats, rows: int, previous: Floats) -> Floats:
+    """The unit null vector of J (its rows from ``rows`` on scaled to unit norm), oriented along ``previous``."""
+    w = np.ones(J.shape[0])
+    for k in range(rows, J.shape[0]):
+        w[k] = 1.0 / max(float(np.linalg.norm(J[k])), 1e-300)
+    t = np.linalg.svd(w[:, None] * J)[2][-1]
+    return np.asarray(t if float(t @ previous) >= 0.0 else -t, dtype=np.float64)
+
+
+def _pack(A: ArrayLike, theta: float, T: float) -> Floats:
+    return np.concatenate([M.real(A), [theta, T]])
+
+
+def arc_newton(x_pred: Floats, tangent: Floats, alpha: float, norm: float, ref: NDArray[np.complex128],
+               tol: float = 1e-11, max_iter: int = 8, rtol: float = RTOL) -> tuple[TravellingBreather, Floats]:
+    """(TB, tangent): Gauss-Newton on (tb), the norm, the phase conditions about ``ref`` and the arclength condition
+    <tangent, x - x_pred> = 0 from the predicted x_pred = (Re A, Im A, theta, T); the TB (not converged: the last
+    iterate) and the unit tangent of the family at it, oriented along ``tangent``."""
+    N = (x_pred.size - 2) // 2
+    x = np.array(x_pred, float)
+    res, best = np.inf, np.inf
+    for it in range(max_iter + 1):
+        A, theta, T = M.complex_(x[:2 * N]), float(x[2 * N]), float(x[2 * N + 1])
+        J, F, Mm, res = _arc_system(A, T, theta, alpha, norm, ref, rtol)
+        if res <= tol:
+            mu = np.linalg.eigvals(Mm).astype(complex)
+            t = _arc_tangent(J, 2 * N, tangent)
+            dT = t[2 * N + 1]
+            dA, dth = (M.complex_(t[:2 * N] / dT), float(t[2 * N] / dT)) if abs(dT) > 0 else (None, 0.0)
+            return TravellingBreather(A, T, theta, alpha, res, True, it, mu, dA, dth, Mm), t
+        if it == max_iter or not np.isfinite(res) or res > 10.0 * best:
+            break
+        best = min(best, res)
+        Jx = np.vstack([J, tangent[None, :]])
+        Fx = np.concatenate([F, [tangent @ (x - x_pred)]])
+        x = x + _weighted_lstsq(Jx, -Fx, 2 * N)
+    A, theta, T = M.complex_(x[:2 * N]), float(x[2 * N]), float(x[2 * N + 1])
+    return TravellingBreather(A, T, theta, alpha, res, False, it), tangent
+
+
+def continue_arclength(first: TravellingBreather, ds: float, steps: int, c_stop: tuple[float, float],
+                       tol: float = 1e-11, rtol: float = RTOL, min_ds: float = 1e-6,
+                       log: Callable[[str], object] | None = None) -> list[TravellingBreather]:
+    """The family from ``first`` (a converged member with its tangent) by pseudo-arclength steps of ``ds`` in
+    x = (Re A, Im A, theta, T), towards increasing c at the start: at most ``steps`` members, until c leaves the
+    interval ``c_stop``; a failed step is halved down to ``min_ds`` (there the continuation stops), a step that
+    succeeds at once lets the next grow by half again up to ``ds``. The members in order of arclength, ``first``
+    included; each carries its multipliers and monodromy."""
+    assert first.dA_dT is not None, "the first member carries its tangent"
+    t = -_pack(first.dA_dT, first.dtheta_dT, 1.0)   # c = 1/T grows as T falls
+    t /= np.linalg.norm(t)
+    out, cur, h = [first], first, ds
+    while len(out) <= steps and c_stop[0] <= cur.c <= c_stop[1]:
+        b, t_new = arc_newton(_pack(cur.A, cur.theta, cur.T) + h * t, t, first.alpha, first.norm, cur.A, tol,
+                              rtol=rtol)
+        if not b.converged:
+            h *= 0.5
+            if h < min_ds:
+                break
+            continue
+        out.append(b)
+        cur, t, h = b, t_new, min(ds, 1.5 * h)
+        if log:
+            log(f"travelling breathers, arclength: c = {b.c:.7f}, theta = {b.theta:.10f}, H = {b.energy:.13f}, "
+                f"residual {b.residual:.2g}")
+    return out
