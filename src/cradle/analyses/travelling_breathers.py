@@ -761,7 +761,7 @@ def lattice_large(spec: TravellingBreathers, source: TravellingBreather, log: Lo
 # least (the TB at lattice_zero_eps, the continuation's member at lattice_zero_step) on a fine grid of c, and its
 # zero located by regula falsi; kept apart from the rings above.
 
-#: the regula falsi's iterates at most (from the measured slopes, two or three reach the residual's floor)
+#: the regula falsi's iterates at most (from the measured slopes, one to three reach the floor)
 ZERO_ITERATIONS = 4
 #: the numbers of each grid point and of each located zero in /lattice_zeros
 ZERO_POINT = ("c_tb", "period", "eps_tb", "dps_c", "residual", "sigma", "tail", "phase_defect")
@@ -821,9 +821,9 @@ def zero_bracket(points: list[tuple[LatticeTB, SignedTail] | None]) -> int | Non
 def tail_zero(spec: TravellingBreathers, start: LatticeTB, log: Log | None = None) -> dict:
     """The zero of the signed tail on the branch of ``start``: the grid of :func:`zero_grid`, then
     :func:`LTail.locate_zero` in its bracket (:func:`zero_bracket`); located when the iterates reach the floor,
-    |sigma| at most the TB's own residual. Returns the grid's points (``grid``: a dict of
-    :data:`ZERO_POINT` lists), the zero's numbers (``zero``: :data:`ZERO_POINT` and :data:`ZERO_MORE`, NaN without
-    a zero located), its state ``z`` (None without) and the iterates' (c, sigma) (``trace``)."""
+    |sigma| at most newton_tol (the residuals' bound; below it they scatter). Returns the grid's points (``grid``: a
+    dict of :data:`ZERO_POINT` lists), the zero's numbers (``zero``: :data:`ZERO_POINT` and :data:`ZERO_MORE`, NaN
+    without a zero located), its state ``z`` (None without) and the iterates' (c, sigma) (``trace``)."""
     from cradle.integrators import lattice_breathers as LB, lattice_tail as LTail
 
     pts = zero_grid(spec, start, log)
@@ -835,7 +835,7 @@ def tail_zero(spec: TravellingBreathers, start: LatticeTB, log: Log | None = Non
         return {"grid": grid, "zero": zero, "z": None, "trace": []}
     (a, sa), (b, sb) = pts[i], pts[i + 1]  # type: ignore[misc]
     m, s, trace = LTail.locate_zero(a, b, sa.sigma, sb.sigma, spec.newton_tol, ZERO_ITERATIONS, log)
-    if abs(s.sigma) > m.residual:
+    if abs(s.sigma) > spec.newton_tol:
         # the iterates did not reach the floor: a flip within the tail's scatter, not a zero that can be seen
         return {"grid": grid, "zero": zero, "z": None, "trace": trace}
     triv, growth, unstable, _ = verdict(m, spec.stability_threshold, LATTICE_TRIVIAL)
@@ -902,8 +902,8 @@ def lattice_zeros(spec: TravellingBreathers, rings: list[int], eps_rows: list[li
                                      "(cradle.integrators.lattice_tail); the grid by the continuation in c from each "
                                      "minimum's member, the zero by regula falsi (Illinois) in a sign change of the "
                                      "grid away from which |sigma| grows (zero_bracket), at most "
-                                     f"{ZERO_ITERATIONS} iterates, stopped and accepted where |sigma| is at most the "
-                                     "iterate's own shift-map residual",
+                                     f"{ZERO_ITERATIONS} iterates, stopped and accepted where |sigma| is at most "
+                                     "newton_tol (the residual's bound)",
              "lattice_zeros_cpu_s": _time.process_time() - t0}
     coords = {"zero_ring": list(spec.lattice_zero_rings), "minimum": [0, 1],
               "zero_step": list(spec.lattice_zero_grid), "iterate": np.arange(n_it), "zero_site": np.arange(width)}

@@ -150,7 +150,7 @@ def locate_zero(a: LT.LatticeTB, b: LT.LatticeTB, sa: float, sb: float, tol: flo
     and ``b`` of a family (signed tails ``sa``, ``sb`` of opposite signs) by regula falsi (the Illinois variant): the
     member at the interpolated c, predicted by interpolating z between the bracket's ends, solved by
     :func:`LT.newton` to ``tol``; it replaces the end of its sign. Stops after ``max_iter`` iterates, at an iterate
-    whose |sigma| is at most its own shift-map residual (a smaller tail is not resolved: the floor), or when Newton
+    whose |sigma| is at most ``tol`` (the residual's bound: a smaller tail is not resolved, the floor), or when Newton
     fails; returns the iterate of least |sigma|."""
     if sa * sb >= 0:
         raise ValueError(f"locate_zero: the signed tails {sa:.3g} and {sb:.3g} do not bracket a zero")
@@ -169,7 +169,7 @@ def locate_zero(a: LT.LatticeTB, b: LT.LatticeTB, sa: float, sb: float, tol: flo
             log(f"lattice tail zero: c = {m.c:.12g}, sigma = {s.sigma:.3g}, residual {m.residual:.2g}")
         if best is None or abs(s.sigma) < abs(best[1].sigma):
             best = (m, s)
-        if abs(s.sigma) <= m.residual:
+        if abs(s.sigma) <= tol:
             break
         # Illinois: the end kept twice in a row has its value halved, so that both ends move
         if s.sigma * sa > 0:
