@@ -57,21 +57,6 @@ class SignedTail:
     n0: int
 
 
-def orbit(z: Floats, ts: Floats, alpha: float, rtol: float = LT.RTOL) -> tuple[Floats, Floats]:
-    """(X, V): the states of (nc) on the ring from z = (x, v) at the times ``ts`` (from 0), by the contact-event
-    DOP853 of :func:`LT.flow`."""
-    from cradle.integrators import _kernels as K
-    from cradle.integrators.lattice_adaptive import run_dop853_damped
-    from cradle.models.damping import NONE
-
-    z = np.asarray(z, float)
-    N = z.size // 2
-    amp = float(np.max(np.abs(z)))
-    X, V, *_ = run_dop853_damped(z[:N], z[N:], np.asarray(ts, float), rtol, rtol * amp, alpha,
-                                 K.mode_flag("hertz", alpha), True, NONE, None)
-    return X, V
-
-
 def symmetry_defect(x: Floats, v: Floats, n0: int, omega: float) -> float:
     """sqrt(sum_n w_n^2 |eta_n - conj(eta_{2 n0 - n})|^2), eta_n = xi_n / xi_{n0}, xi_n = (x_n - i v_n / omega) / 2,
     w_n = |xi_n| / max |xi|: zero when the state is R-symmetric about bead n0 up to a phase."""
@@ -100,7 +85,7 @@ def symmetric_time(z: Floats, T: float, alpha: float) -> tuple[float, int, Float
     z = np.asarray(z, float)
     N = z.size // 2
     ts = np.linspace(0.0, T, int(SAMPLES_PER_UNIT * T) + 1)
-    X, V = orbit(z, ts, alpha, SCAN_RTOL)
+    X, V = LT.orbit(z, ts, alpha, SCAN_RTOL)
     omega = carrier_frequency(X, V)
     best = (math.inf, 0, 0)
     for k in range(ts.size):
@@ -116,12 +101,12 @@ def symmetric_time(z: Floats, T: float, alpha: float) -> tuple[float, int, Float
     start = np.concatenate([X[k - 1], V[k - 1]])
 
     def defect2(t: float) -> float:
-        X1, V1 = orbit(start, np.array([0.0, t - ts[k - 1]]), alpha, SCAN_RTOL)
+        X1, V1 = LT.orbit(start, np.array([0.0, t - ts[k - 1]]), alpha, SCAN_RTOL)
         return symmetry_defect(X1[-1], V1[-1], n0, omega) ** 2
 
     t1 = float(minimize_scalar(defect2, bounds=(ts[k - 1], ts[k + 1]), method="bounded",
                                options={"xatol": 1e-9}).x)
-    X1, V1 = orbit(z, np.array([0.0, t1]), alpha)
+    X1, V1 = LT.orbit(z, np.array([0.0, t1]), alpha)
     return t1, n0, np.concatenate([X1[-1], V1[-1]]), symmetry_defect(X1[-1], V1[-1], n0, omega), omega
 
 

@@ -114,12 +114,13 @@ def shoot(z: ArrayLike, T: float, alpha: float, columns: Floats | None = None,
     return yT[:2 * N].copy(), Phi
 
 
-def flow(z: ArrayLike, T: float, alpha: float, rtol: float = RTOL) -> Floats:
-    """Phi_T(z) of (nc) on the ring, accurate enough for the residual of (tbnc): the project's DOP853 with the steps
-    ending at the contact onsets and releases (:mod:`cradle.integrators._dop853_events`, through
-    :func:`cradle.integrators.lattice_adaptive.run_dop853_damped` without damping), atol = rtol max|z|. Across the
-    onsets plain DOP853 loses its order (the Hertz force is C^{1,alpha-1} there): its Phi_T is too coarse for a
-    residual below 1e-8 (docs/analyses/travelling-breathers.md, the lattice section)."""
+def orbit(z: ArrayLike, ts: ArrayLike, alpha: float, rtol: float = RTOL) -> tuple[Floats, Floats]:
+    """(X, V): the states of (nc) on the ring from z = (x, v) at the times ``ts`` (from 0), accurate enough for the
+    residual of (tbnc): the project's DOP853 with the steps ending at the contact onsets and releases
+    (:mod:`cradle.integrators._dop853_events`, through :func:`cradle.integrators.lattice_adaptive.run_dop853_damped`
+    without damping), atol = rtol max|z|. Across the onsets plain DOP853 loses its order (the Hertz force is
+    C^{1,alpha-1} there): its Phi_T is too coarse for a residual below 1e-8 (docs/analyses/travelling-breathers.md,
+    the lattice section)."""
     from cradle.integrators import _kernels as K
     from cradle.integrators.lattice_adaptive import run_dop853_damped
     from cradle.models.damping import NONE
@@ -127,8 +128,14 @@ def flow(z: ArrayLike, T: float, alpha: float, rtol: float = RTOL) -> Floats:
     z = np.asarray(z, float)
     N = z.size // 2
     amp = float(np.max(np.abs(z)))
-    X, V, *_ = run_dop853_damped(z[:N], z[N:], np.array([0.0, float(T)]), rtol, rtol * amp, alpha,
+    X, V, *_ = run_dop853_damped(z[:N], z[N:], np.asarray(ts, float), rtol, rtol * amp, alpha,
                                  K.mode_flag("hertz", alpha), True, NONE, None)
+    return X, V
+
+
+def flow(z: ArrayLike, T: float, alpha: float, rtol: float = RTOL) -> Floats:
+    """Phi_T(z) of (nc) on the ring (:func:`orbit` at T)."""
+    X, V = orbit(z, np.array([0.0, float(T)]), alpha, rtol)
     return np.concatenate([X[-1], V[-1]])
 
 
