@@ -152,6 +152,30 @@ def _weighted_lstsq(J: Floats, F: Floats, rows: int) -> Floats:
     return np.asarray(np.linalg.lstsq(w[:, None] * J, w * F, rcond=None)[0], dtype=np.float64)
 
 
+def _bordered(A: NDArray[np.complex128], B: NDArray[np.complex128], R: NDArray[np.complex128], Mm: Floats,
+              theta: float, norm: float, ref: NDArray[np.complex128], d_phase: Floats, d_time: Floats,
+              cols: slice | NDArray[np.bool_] = slice(None)) -> tuple[Floats, Floats]:
+    """(J, F): the 2N + 3 equations of (tb) at (A, theta) with B = Phi_T(A) (its residual R, the norm, the two phase
+    conditions about ``ref``) and their Jacobian in the unknowns ``cols`` of (Re A, Im A) and theta, from ``Mm`` (the
+    monodromy modulo shift, those columns)."""
+    N, m = A.size, Mm.shape[1]
+    J = np.zeros((2 * N + 3, m + 1))
+    J[:2 * N, :m] = Mm - np.eye(2 * N)[:, cols]
+    SB = np.exp(-1j * theta) * M.shift(B, -1)
+    J[:2 * N, m] = M.real(-1j * SB)
+    J[2 * N, :m] = 2.0 * M.real(A)[cols]
+    J[2 * N + 1, :m] = d_phase[cols]
+    J[2 * N + 2, :m] = d_time[cols]
+    F = np.concatenate([M.real(R), [np.sum(np.abs(A) ** 2) - norm, d_phase @ M.real(A - ref),
+                                    d_time @ M.real(A - ref)]])
+    return J, F
+
+
+def _dR_dT(B: NDArray[np.complex128], theta: float, alpha: float) -> Floats:
+    """dR/dT of (tb) at fixed (A, theta): e^{-i theta} S^{-1} dA/dtau at B = Phi_T(A)."""
+    return M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, dps.tau0(alpha)), -1))
+
+
 def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm: float,
            reference: ArrayLike | None = None, tol: float = 1e-11, max_iter: int = 12,
            rtol: float = RTOL, log: Callable[[str], object] | None = None,
@@ -187,17 +211,11 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
             log(f"travelling breathers: T = {T:.12g}, iteration {it}: theta = {theta:.12g}, residual {res:.3g}")
         if free is not None and res <= tol:
             return TravellingBreather(A, T, theta, alpha, res, True, it)
+        J, F = _bordered(A, B, R, Mm, theta, norm, ref, d_phase, d_time, cols)
         m = Mm.shape[1]
-        J = np.zeros((2 * N + 3, m + 1))
-        J[:2 * N, :m] = Mm - np.eye(2 * N)[:, cols]
-        SB = np.exp(-1j * theta) * M.shift(B, -1)
-        J[:2 * N, m] = M.real(-1j * SB)
-        J[2 * N, :m] = 2.0 * M.real(A)[cols]
-        J[2 * N + 1, :m] = d_phase[cols]
-        J[2 * N + 2, :m] = d_time[cols]
         if res <= tol:
-            # the tangent: dR/dT = e^{-i theta} S^{-1} dA/dtau at Phi_T(A), the conditions unchanged
-            dF = np.concatenate([M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, t0), -1)), np.zeros(3)])
+            # the tangent: dR/dT, the conditions unchanged
+            dF = np.concatenate([_dR_dT(B, theta, alpha), np.zeros(3)])
             tan = _weighted_lstsq(J, -dF, 2 * N)
             return TravellingBreather(A, T, theta, alpha, res, True, it, mu, M.complex_(tan[:2 * N]),
                                       float(tan[2 * N]), Mm)
@@ -206,8 +224,6 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
         if max_amplitude is not None and float(np.max(np.abs(A))) > max_amplitude:
             break
         best = min(best, res)
-        F = np.concatenate([M.real(R), [np.sum(np.abs(A) ** 2) - norm, d_phase @ M.real(A - ref),
-                                        d_time @ M.real(A - ref)]])
         step = _weighted_lstsq(J, -F, 2 * N)
         if free is None:
             A = A + M.complex_(step[:2 * N])
@@ -217,7 +233,6 @@ def newton(A_guess: ArrayLike, T: float, theta_guess: float, alpha: float, norm:
             A = A + M.complex_(dA)
         theta = theta + float(step[m])
     return TravellingBreather(A, T, theta, alpha, res, False, it, mu)
-
 
 
 def core_sites(A: ArrayLike, threshold: float = CORE) -> NDArray[np.bool_]:
@@ -242,6 +257,7 @@ def newton_core_first(A_guess: ArrayLike, T: float, theta_guess: float, alpha: f
     core = newton(A0, T, theta_guess, alpha, norm, A0, CORE_TOL, max_iter, rtol, log, free=core_sites(A0))
     full = newton(core.A, T, core.theta, alpha, norm, A0, tol, max_iter, rtol, log)
     return full, core.residual
+
 
 def start(profile: ArrayLike, kappa: float, alpha: float, sites: int = 3, rtol: float = 1e-12,
           samples_per_unit: int = 40) -> tuple[NDArray[np.complex128], float, float]:
@@ -298,21 +314,11 @@ def _arc_system(A: NDArray[np.complex128], T: float, theta: float, alpha: float,
     """(J, F, M, residual): the 2N + 3 equations of (tb) with the norm and the two phase conditions about ``ref`` at
     x = (A, theta, T), their Jacobian in (Re A, Im A, theta, T), the monodromy modulo shift and the relative
     residual."""
-    N = A.size
-    t0 = dps.tau0(alpha)
     Mm, B = monodromy(A, T, theta, alpha, rtol)
+    d_phase, d_time = M.real(1j * ref), M.real(M.rhs(ref, alpha, dps.tau0(alpha)))
     R = M.residual(A, B, theta)
-    SB = np.exp(-1j * theta) * M.shift(B, -1)
-    d_phase, d_time = M.real(1j * ref), M.real(M.rhs(ref, alpha, t0))
-    J = np.zeros((2 * N + 3, 2 * N + 2))
-    J[:2 * N, :2 * N] = Mm - np.eye(2 * N)
-    J[:2 * N, 2 * N] = M.real(-1j * SB)
-    J[:2 * N, 2 * N + 1] = M.real(np.exp(-1j * theta) * M.shift(M.rhs(B, alpha, t0), -1))   # dR/dT
-    J[2 * N, :2 * N] = 2.0 * M.real(A)
-    J[2 * N + 1, :2 * N] = d_phase
-    J[2 * N + 2, :2 * N] = d_time
-    F = np.concatenate([M.real(R), [np.sum(np.abs(A) ** 2) - norm, d_phase @ M.real(A - ref),
-                                    d_time @ M.real(A - ref)]])
+    J, F = _bordered(A, B, R, Mm, theta, norm, ref, d_phase, d_time)
+    J = np.column_stack([J, np.concatenate([_dR_dT(B, theta, alpha), np.zeros(3)])])
     return J, F, Mm, float(np.max(np.abs(R)) / np.max(np.abs(A)))
 
 
