@@ -1530,8 +1530,10 @@ FOLD = ("on each ring of limit_fold_N: the family continued from the first membe
 def real_growth(b: TravellingBreather) -> float:
     """ln mu / T of the largest real multiplier mu > 1 among the non-trivial ones (0 when there is none): the growth
     through +1 that the dH/dc criterion is about."""
+    from cradle.measurements import floquet_bubbles as FB
+
     mu = b.multipliers
-    rest = mu[np.argsort(np.abs(mu - 1.0))[TRIVIAL:]]
+    rest = mu[FB.nontrivial(mu, TRIVIAL)]
     real = rest[(np.abs(rest.imag) <= REAL * np.abs(rest)) & (rest.real > 1.0)]
     return float(np.log(np.max(real.real)) / b.T) if real.size else 0.0
 
