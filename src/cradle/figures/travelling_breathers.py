@@ -436,7 +436,7 @@ def draw_zeros(ax: Any, tree: AnalysisTree) -> None:
         a.legend(fontsize=6.5, loc="upper left", ncol=2)
     t = ax[2]
     t.axis("off")
-    head = ["ring", "min.", "c $\\times 10^3$", "$\\varepsilon$", "DpS c", "|$\\sigma$|", "residual", "growth / t"]
+    head = ["ring", "min.", "c $\\times 10^3$", "$\\varepsilon$", "DpS c", "|$\\sigma$|", "residual", "growth"]
     rows = []
     for k, N in enumerate(rings):
         for j in range(2):
@@ -449,10 +449,10 @@ def draw_zeros(ax: Any, tree: AnalysisTree) -> None:
                          f"{val('eps_tb'):.5f}", f"{val('dps_c'):.4f}", f"{abs(val('sigma')):.1e}",
                          f"{val('residual'):.1e}", f"{val('growth_rate'):.0e}"])
     tab = t.table(cellText=rows, colLabels=head, cellLoc="center", bbox=[0.0, 0.0, 1.0, 1.0],
-                  colWidths=[0.08, 0.07, 0.22, 0.12, 0.11, 0.12, 0.14, 0.14])
+                  colWidths=[0.07, 0.06, 0.21, 0.12, 0.11, 0.13, 0.15, 0.15])
     tab.auto_set_font_size(False)
-    tab.set_fontsize(7)
-    t.set_title("(aa) the zeros (c: uncertainty in its last digits)", fontsize=9)
+    tab.set_fontsize(6)
+    t.set_title("(aa) the zeros (c: uncertainty in its last digits;\ngrowth rate per unit t)", fontsize=9)
 
 
 def draw_limit(ax: Any, tree: AnalysisTree) -> None:
