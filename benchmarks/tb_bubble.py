@@ -22,6 +22,7 @@ sys.path.insert(0, str(ROOT / "src"))
 
 from cradle.analyses import travelling_breathers as tb  # noqa: E402
 from cradle.analyses.protocol import FULL, form_spec  # noqa: E402
+from cradle.analyses.travelling_breathers import dps_family, fine_scan  # noqa: E402
 from cradle.integrators import dps_travelling as DT  # noqa: E402
 from cradle.measurements import floquet_bubbles as FB  # noqa: E402
 from cradle.specs.declare import from_plain  # noqa: E402
@@ -31,10 +32,10 @@ def main(argv: list[str]) -> None:
     N, c_from, c_to, step, angle = int(argv[0]), float(argv[1]), float(argv[2]), float(argv[3]), float(argv[4])
     span = float(argv[5]) if len(argv) > 5 else 2e-5
     spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
-    first = tb.first_member(spec, N, spec.rtol)
+    first = dps_family.first_member(spec, N, spec.rtol)
     lead, _ = DT.continue_family(first, np.arange(first.c, c_from, 0.005)[1:].tolist() + [c_from], spec.newton_tol,
-                                 spec.rtol, min_step=tb.LIMIT_MIN_STEP)
-    r = tb.bubble_scan(spec, lead[-1], np.round(np.arange(c_from, c_to + step / 2, step), 12)[1:], angle, 0.05)
+                                 spec.rtol, min_step=fine_scan.LIMIT_MIN_STEP)
+    r = fine_scan.bubble_scan(spec, lead[-1], np.round(np.arange(c_from, c_to + step / 2, step), 12)[1:], angle, 0.05)
     fit = FB.bubble(r, spec.stability_threshold, angle, span)
     for k, v in fit.items():
         print(f"{k}: {v:.6g}")

@@ -3,22 +3,23 @@
     python benchmarks/tb_limit.py OUT.nc N [N ...] [--step S] [--halfwidth H] [--speeds C,C,...] [--newton-tol E]
     e.g. ... /tmp/l64.nc 64;  ... /tmp/l96.nc 96 --speeds 0.08,0.1,0.12,0.14 --newton-tol 5e-11
 
-The fine scan of cradle.analyses.travelling_breathers.robustness_limit (the full form's speeds, alpha = 3/2, unit
-norm, rtol 1e-13; default step and half-width those of the full form) on the rings N given, written to OUT.nc (the
-group /robustness_limit of the analysis's file, with the rings given) and summarised per member: the unstable
-fraction, the median and the largest growth rate of its neighbourhood on each ring, the exponent k and the limit
-verdict of LIMIT_RULE over the rings given (the analysis's full form gives it over limit_N). --speeds scans the
-neighbourhoods of those members only (the grid still runs continuously from the slowest to the fastest);
+The fine scan of robustness_limit (cradle.analyses.travelling_breathers.fine_scan; the full form's speeds, alpha =
+3/2, unit norm, rtol 1e-13; default step and half-width those of the full form) on the rings N given, written to
+OUT.nc (the group /robustness_limit of the analysis's file, with the rings given) and summarised per member: the
+unstable fraction, the median and the largest growth rate of its neighbourhood on each ring, the exponent k and the
+limit verdict of LIMIT_RULE over the rings given (the analysis's full form gives it over limit_N). --speeds scans
+the neighbourhoods of those members only (the grid still runs continuously from the slowest to the fastest);
 --newton-tol relaxes Newton on large rings (on 96 sites the first TB stops at 2.4e-11 against the default 1e-11).
 Several files of single rings are combined by benchmarks/tb_limit.py --merge OUT.nc IN.nc [IN.nc ...]. CPU: about
 30 s (N = 24) to several minutes (N = 64) per ring on the shared machine; run under nice.
 
     python benchmarks/tb_limit.py --rule FULL.nc [RING.nc ...]
 
-reads the tail rule (cradle.analyses.travelling_breathers.tail_rule_of) from a full form's file (its /robustness,
-/robustness_limit and /limit_large) with the rings of the RING.nc files (this script's output, on the grid of
-/limit_large) added as larger rings, and prints per member with an MI-stable tail the envelope and the member's own
-growth rate on each ring, their fits g_inf + b N^-k and both verdicts (the table of travelling-breathers.md).
+reads the tail rule (tail_rule_of of cradle.analyses.travelling_breathers.limit_tail) from a full form's file (its
+/robustness, /robustness_limit and /limit_large) with the rings of the RING.nc files (this script's output, on the
+grid of /limit_large) added as larger rings, and prints per member with an MI-stable tail the envelope and the
+member's own growth rate on each ring, their fits g_inf + b N^-k and both verdicts (the table of
+travelling-breathers.md).
 """
 from __future__ import annotations
 
@@ -33,6 +34,7 @@ sys.path.insert(0, str(ROOT / "src"))
 
 from cradle.analyses import travelling_breathers as tb  # noqa: E402
 from cradle.analyses.protocol import FULL, form_spec  # noqa: E402
+from cradle.analyses.travelling_breathers import fine_scan, limit_tail  # noqa: E402
 from cradle.specs.declare import from_plain, plain  # noqa: E402
 
 
@@ -42,7 +44,7 @@ def summary(c: np.ndarray, rings: list[int], group: dict, spec: tb.TravellingBre
     for j, x in enumerate(c):
         cells = [f"{group['unstable_fraction'][j, i]:.2f} {group['typical_growth'][j, i]:.1e} "
                  f"{group['largest_growth'][j, i]:.1e}" for i in range(len(rings))]
-        v, k = tb.limit_rule(np.array(rings, float), group["typical_growth"][j], spec.stability_threshold)
+        v, k = fine_scan.limit_rule(np.array(rings, float), group["typical_growth"][j], spec.stability_threshold)
         print(f"{x:.3f} | " + " | ".join(cells) + f" | {k:+.2f} {({1: 'U', 0: 'S'}).get(v, '?')}")
 
 
@@ -69,12 +71,12 @@ def rule(full: str, extra: list[str]) -> None:
     spec = dataclasses.replace(form_spec(from_plain(tb.TravellingBreathers, {}), FULL),
                                limit_N=limit.limit_ring.values.tolist(), limit_large_N=rings_large)
     robd = {"theta_ring": rob.theta.values, "theta_tol": rob.theta.values[:1], "tail_mi_ring": rob.tail_mi_rate.values}
-    groups, attrs = tb.tail_rule_of(spec, c, theta, robd, ({"growth_rate": limit.growth_rate.values,
+    groups, attrs = limit_tail.tail_rule_of(spec, c, theta, robd, ({"growth_rate": limit.growth_rate.values,
                                                              "theta": limit.theta.values},
                                                             {"c_fine": limit.c_fine.values}),
                                     large.c_large.values, arrays)
     g, coords = groups["/limit_tail"]
-    letter = {tb.LIMIT_STABLE: "S", tb.LIMIT_UNSTABLE: "U", tb.LIMIT_UNDECIDED: "?"}
+    letter = {fine_scan.LIMIT_STABLE: "S", fine_scan.LIMIT_UNSTABLE: "U", fine_scan.LIMIT_UNDECIDED: "?"}
     print("rings " + " ".join(str(n) for n in coords["fit_ring"]))
     for j, x in enumerate(c):
         if g["tail_mi_unstable"][j]:
@@ -122,7 +124,7 @@ def main(argv: list[str]) -> None:
         # the scan reads only the speeds (two are allowed here, where the spec asks three for its family)
         spec = dataclasses.replace(spec, speeds=speeds)
     c = np.asarray(spec.speeds, float)
-    groups, attrs = tb.robustness_limit(spec, c, print)
+    groups, attrs = fine_scan.robustness_limit(spec, c, print)
     data, coords = groups["/robustness_limit"]
     ds = xr.Dataset({k: ((("limit_ring", "c_fine") if np.ndim(v) == 2 and np.shape(v)[0] == len(rings)
                            and np.shape(v)[1] == coords["c_fine"].size else

@@ -21,6 +21,7 @@ sys.path.insert(0, str(ROOT / "src"))
 
 from cradle.analyses import travelling_breathers as tb  # noqa: E402
 from cradle.analyses.protocol import FULL, form_spec  # noqa: E402
+from cradle.analyses.travelling_breathers import dps_family  # noqa: E402
 from cradle.integrators import dps_travelling as DT  # noqa: E402
 from cradle.specs.declare import from_plain  # noqa: E402
 
@@ -29,13 +30,13 @@ def main(argv: list[str]) -> None:
     N, c_from, c_to = int(argv[0]), float(argv[1]), float(argv[2])
     step = float(argv[3]) if len(argv) > 3 else 1e-3
     spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
-    members, _ = tb.family(spec, N, spec.rtol)
+    members, _ = dps_family.family(spec, N, spec.rtol)
     start = min(members, key=lambda b: abs(b.c - c_from))
     cs = np.round(np.arange(c_from, c_to + step / 2, step), 9)
     fam, last = DT.continue_family(start, cs[cs >= start.c], spec.newton_tol, spec.rtol)
     print(f"ring of {N}: c, theta, growth rate, verdict")
     for b in fam:
-        _, rate, unstable, _ = tb.verdict(b, spec.stability_threshold)
+        _, rate, unstable, _ = dps_family.verdict(b, spec.stability_threshold)
         print(f"{b.c:.5f} {b.theta:+.5f} {rate:.2e} {'U' if unstable else 'S'}")
     if fam and fam[-1].c < cs[-1] - step / 2:
         print(f"the continuation stopped after c = {last:.5g}")

@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from cradle.analyses import travelling_breathers as tb
+from cradle.analyses.travelling_breathers import dps_family, in_motion
 from cradle.integrators import integrate_dps, integrate_lattice
 from cradle.measurements import breather_motion as BM
 from cradle.models import dps_travelling as M, lattice, tb_launch
@@ -29,7 +30,7 @@ def member():
     """The TB Newton finds from the static site breather pushed by kappa = 0.15 (c ~ 0.08), ring of 16."""
     from cradle.integrators import dps_travelling as DT
 
-    phi, _ = tb.static_profiles(16, ALPHA, 1.0)["site"]
+    phi, _ = dps_family.static_profiles(16, ALPHA, 1.0)["site"]
     A, T, theta = DT.start(phi, 0.15, ALPHA)
     b = DT.newton(A, T, theta, ALPHA, 1.0, tol=1e-11)
     assert b.converged
@@ -46,7 +47,7 @@ def _spec(**over):
 @pytest.fixture(scope="module")
 def moved(member):
     spec = _spec()
-    groups, attrs = tb.motion(spec, member, lambda *a: None)
+    groups, attrs = in_motion.motion(spec, member, lambda *a: None)
     return spec, groups["/motion"][0], attrs
 
 
@@ -68,8 +69,8 @@ def test_the_dps_tb_moves_one_site_per_period_to_its_residual(member):
     r = max(float(np.max(np.abs(run.A[j * per] - np.exp(1j * j * member.theta) * M.shift(A0, int(j))))) for j in k)
     assert r < 1e-8 * np.max(np.abs(A0))
     w = np.abs(run.A) ** 2
-    p = BM.track(w, tb.MOTION_CORE)
-    c = tb.MOTION_CORE
+    p = BM.track(w, in_motion.MOTION_CORE)
+    c = in_motion.MOTION_CORE
     bound = 2 * c * (2 * c + 1) * 2 * np.max(np.abs(A0)) * r / np.min(np.sum(w, axis=1)) * 1.01
     assert np.max(np.abs(p[k * per] - p[0] - k)) <= bound
 
@@ -107,7 +108,7 @@ def test_the_dps_run_on_the_long_ring_travels_its_sites(member, moved):
     start shifted by k sites to the stored shift residual r, and its position k sites on to the centroid's bound
     for that r (as above, the norm sum w = 1); the norm is kept."""
     spec, data, attrs = moved
-    c, amax = tb.MOTION_CORE, float(np.max(np.abs(member.A)))
+    c, amax = in_motion.MOTION_CORE, float(np.max(np.abs(member.A)))
     r = float(attrs["motion_dps_shift_residual"]) * amax
     assert r < 1e-5 * amax
     assert float(attrs["motion_dps_position_error"]) <= 2 * c * (2 * c + 1) * 2 * amax * r * 1.01

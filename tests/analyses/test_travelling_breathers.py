@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from cradle.analyses import travelling_breathers as tb
+from cradle.analyses.travelling_breathers import dps_family, fine_scan, lattice, limit_fold, limit_tail, verdict_checks
 from cradle.integrators import integrate_dps
 from cradle.models import dps_travelling as M
 from cradle.specs.declare import from_plain
@@ -76,7 +77,7 @@ def test_trivial_multipliers_and_symplectic_pairs(tiny):
     defect = np.asarray(tree["family"]["trivial_defect"].values)
     for m, d in zip(mu, defect, strict=True):
         near = np.sort(np.abs(m - 1.0))
-        assert near[tb.TRIVIAL - 1] == pytest.approx(d, rel=1e-12)
+        assert near[dps_family.TRIVIAL - 1] == pytest.approx(d, rel=1e-12)
         # two Jordan blocks of size 2 split by ~sqrt(rounding of the monodromy): stated, not tuned
         assert d < 1e-5
         # (dfnls) is Hamiltonian: mu and 1/conj(mu) are both multipliers
@@ -99,7 +100,7 @@ def test_static_profiles_are_those_of_the_breathers_analysis():
     """phi = s a with a the mu = 1 solution of (dpsstn) the breathers analysis solves; Omega from the scaling."""
     from cradle.models import dps, homoclinic, stationary
 
-    prof = tb.static_profiles(12, 1.5, 1.0)
+    prof = dps_family.static_profiles(12, 1.5, 1.0)
     for kind, (phi, om) in prof.items():
         a = homoclinic.solve(homoclinic.initial_guess(12, kind, 1.5, 0.1), 1.5).a
         s = np.sqrt(1.0 / np.sum(a**2))
@@ -158,8 +159,8 @@ def test_robustness_rows_are_the_family_and_the_checks(tiny):
     assert np.array_equal(rob["growth_rate_tol"].values[1], fam["growth_rate_rtol"].values)
     rows = np.concatenate([rob["unstable"].values, rob["unstable_tol"].values])
     settled = rob["settled"].values
-    assert np.array_equal(settled == tb.SETTLED_UNSTABLE, np.all(rows == 1, axis=0))
-    assert np.array_equal(settled == tb.SETTLED_STABLE, np.all(rows == 0, axis=0))
+    assert np.array_equal(settled == verdict_checks.SETTLED_UNSTABLE, np.all(rows == 1, axis=0))
+    assert np.array_equal(settled == verdict_checks.SETTLED_STABLE, np.all(rows == 0, axis=0))
     # an unstable mode's participation ratio is between one site and the whole ring; stable members have none
     ext = rob["mode_extent"].values
     un = rob["unstable"].values == 1
@@ -175,11 +176,11 @@ def test_tail_wave_and_its_mi_rate():
     n = np.arange(N)
     A = R * np.exp(1j * q * n)
     A[14:19] = [0.1, 0.5, 1.0, 0.5, 0.1]
-    q_m, R_m = tb.tail_wave(A)
+    q_m, R_m = verdict_checks.tail_wave(A)
     assert q_m == pytest.approx(q, abs=1e-12)
     assert R_m == pytest.approx(R, rel=1e-12)
-    assert tb.tail_mi_rate(1.0, R, 1.5) == 0.0
-    assert tb.tail_mi_rate(q, R, 1.5) > 0.0
+    assert verdict_checks.tail_mi_rate(1.0, R, 1.5) == 0.0
+    assert verdict_checks.tail_mi_rate(q, R, 1.5) > 0.0
 
 
 def test_limit_scan_rows_and_rule(tiny):
@@ -201,7 +202,7 @@ def test_limit_scan_rows_and_rule(tiny):
             g = G[i, near][np.isfinite(G[i, near])]
             assert lim["typical_growth"].values[j, i] == pytest.approx(np.median(g), rel=0, abs=0)
             assert lim["unstable_fraction"].values[j, i] == np.mean(g > spec.stability_threshold)
-        v, k = tb.limit_rule(np.array(spec.limit_N, float), lim["typical_growth"].values[j],
+        v, k = fine_scan.limit_rule(np.array(spec.limit_N, float), lim["typical_growth"].values[j],
                              spec.stability_threshold)
         assert lim["verdict"].values[j] == v
     unstable = lim["unstable"].values
@@ -213,14 +214,14 @@ def test_limit_rule_cases():
     they differ -> undecided; a ring not reached (NaN) is left out; k is the slope of -ln g against ln N."""
     N = np.array([24.0, 48.0, 96.0])
     thr = 1e-5
-    v, k = tb.limit_rule(N, np.array([1e-3, 1e-3, 1e-3]), thr)
-    assert v == tb.LIMIT_UNSTABLE and k == pytest.approx(0.0, abs=1e-12)
-    v, k = tb.limit_rule(N, 1e-3 * 24 / N, thr)
-    assert v == tb.LIMIT_UNSTABLE and k == pytest.approx(1.0, abs=1e-12)
-    assert tb.limit_rule(N, np.array([1e-3, 1e-15, 1e-7]), thr)[0] == tb.LIMIT_STABLE
-    assert tb.limit_rule(N, np.array([1e-15, 1e-15, 1e-3]), thr)[0] == tb.LIMIT_UNDECIDED
-    assert tb.limit_rule(N, np.array([1e-15, 1e-3, np.nan]), thr)[0] == tb.LIMIT_UNDECIDED
-    assert tb.limit_rule(N, np.array([1e-3, 1e-3, np.nan]), thr)[0] == tb.LIMIT_UNSTABLE
+    v, k = fine_scan.limit_rule(N, np.array([1e-3, 1e-3, 1e-3]), thr)
+    assert v == fine_scan.LIMIT_UNSTABLE and k == pytest.approx(0.0, abs=1e-12)
+    v, k = fine_scan.limit_rule(N, 1e-3 * 24 / N, thr)
+    assert v == fine_scan.LIMIT_UNSTABLE and k == pytest.approx(1.0, abs=1e-12)
+    assert fine_scan.limit_rule(N, np.array([1e-3, 1e-15, 1e-7]), thr)[0] == fine_scan.LIMIT_STABLE
+    assert fine_scan.limit_rule(N, np.array([1e-15, 1e-15, 1e-3]), thr)[0] == fine_scan.LIMIT_UNDECIDED
+    assert fine_scan.limit_rule(N, np.array([1e-15, 1e-3, np.nan]), thr)[0] == fine_scan.LIMIT_UNDECIDED
+    assert fine_scan.limit_rule(N, np.array([1e-3, 1e-3, np.nan]), thr)[0] == fine_scan.LIMIT_UNSTABLE
 
 
 def test_tail_rule_verdict_cases():
@@ -232,16 +233,17 @@ def test_tail_rule_verdict_cases():
     def fit(g, e):
         return {"g_inf": g, "g_inf_error": e}
 
-    assert tb.tail_rule_verdict(True, fit(np.nan, np.nan), thr) == tb.LIMIT_UNSTABLE
-    assert tb.tail_rule_verdict(False, fit(-3e-5, 1e-5), thr) == tb.LIMIT_STABLE
-    assert tb.tail_rule_verdict(False, fit(1e-7, 1e-6), thr) == tb.LIMIT_STABLE
-    assert tb.tail_rule_verdict(False, fit(2e-4, 1e-5), thr) == tb.LIMIT_UNSTABLE
-    assert tb.tail_rule_verdict(False, fit(2e-4, 2e-4), thr) == tb.LIMIT_UNDECIDED
-    assert tb.tail_rule_verdict(False, fit(1e-6, 1e-5), thr) == tb.LIMIT_UNDECIDED
-    assert tb.tail_rule_verdict(False, fit(np.nan, np.nan), thr) == tb.LIMIT_UNDECIDED
-    assert tb.tail_rule_verdict(False, {**fit(2e-4, 1e-5), "degenerate": 1.0}, thr) == tb.LIMIT_UNDECIDED
-    assert tb.tail_mi_unstable(np.pi / 2 + 1e-9) and not tb.tail_mi_unstable(np.pi / 2 - 1e-9)
-    assert tb.tail_mi_unstable(-2.0) and tb.tail_mi_unstable(2 * np.pi + 2.0) and not tb.tail_mi_unstable(-1.0)
+    assert limit_tail.tail_rule_verdict(True, fit(np.nan, np.nan), thr) == fine_scan.LIMIT_UNSTABLE
+    assert limit_tail.tail_rule_verdict(False, fit(-3e-5, 1e-5), thr) == fine_scan.LIMIT_STABLE
+    assert limit_tail.tail_rule_verdict(False, fit(1e-7, 1e-6), thr) == fine_scan.LIMIT_STABLE
+    assert limit_tail.tail_rule_verdict(False, fit(2e-4, 1e-5), thr) == fine_scan.LIMIT_UNSTABLE
+    assert limit_tail.tail_rule_verdict(False, fit(2e-4, 2e-4), thr) == fine_scan.LIMIT_UNDECIDED
+    assert limit_tail.tail_rule_verdict(False, fit(1e-6, 1e-5), thr) == fine_scan.LIMIT_UNDECIDED
+    assert limit_tail.tail_rule_verdict(False, fit(np.nan, np.nan), thr) == fine_scan.LIMIT_UNDECIDED
+    assert limit_tail.tail_rule_verdict(False, {**fit(2e-4, 1e-5), "degenerate": 1.0}, thr) == fine_scan.LIMIT_UNDECIDED
+    assert limit_tail.tail_mi_unstable(np.pi / 2 + 1e-9) and not limit_tail.tail_mi_unstable(np.pi / 2 - 1e-9)
+    assert limit_tail.tail_mi_unstable(-2.0) and limit_tail.tail_mi_unstable(2 * np.pi + 2.0)
+    assert not limit_tail.tail_mi_unstable(-1.0)
 
 
 def test_limit_tail_rows_and_rule(tiny):
@@ -277,7 +279,7 @@ def test_limit_tail_rows_and_rule(tiny):
             assert (np.isnan(env) and not keep.any()) or env == np.max(g[keep])
         fit = {"g_inf": lt["fit_g_inf"].values[j], "g_inf_error": lt["fit_g_inf_error"].values[j],
                "degenerate": lt["fit_degenerate"].values[j]}
-        assert lt["verdict"].values[j] == tb.tail_rule_verdict(bool(kind[j]), fit, spec.stability_threshold)
+        assert lt["verdict"].values[j] == limit_tail.tail_rule_verdict(bool(kind[j]), fit, spec.stability_threshold)
 
 
 @pytest.mark.slow
@@ -293,11 +295,11 @@ def test_a_window_is_a_krein_collision():
     from cradle.measurements import floquet_bubbles as FB
 
     spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
-    first = tb.first_member(spec, 24, spec.rtol)
+    first = dps_family.first_member(spec, 24, spec.rtol)
     lead, _ = DT.continue_family(first, [0.09, 0.1, 0.11, 0.119, 0.11924], spec.newton_tol, spec.rtol,
-                                 min_step=tb.LIMIT_MIN_STEP)
+                                 min_step=fine_scan.LIMIT_MIN_STEP)
     h = 2e-6
-    scan = tb.bubble_scan(spec, lead[-1], np.round(0.11924 + h * np.arange(1, 46), 12), 1.31, 0.05)
+    scan = fine_scan.bubble_scan(spec, lead[-1], np.round(0.11924 + h * np.arange(1, 46), 12), 1.31, 0.05)
     r = FB.bubble(scan, spec.stability_threshold, 1.31, 2e-5)
     assert r["width_measured"] > 10 * h                     # resolved
     assert abs(r["width_model"] - r["width_measured"]) <= 2 * h
@@ -315,8 +317,8 @@ def lattice_tree():
     spec = _tiny(lattice=True, lattice_eps=[0.005, 0.004, 0.003], lattice_steps=[0.0, 0.01], lattice_periods=1,
                  lattice_rings=[20], lattice_family_rings=[20], lattice_large_eps=[0.01], lattice_zero_rings=[20],
                  lattice_zero_grid=[-0.0002, 0.0, 0.0002])
-    fam, _ = tb.family(spec, spec.N, spec.rtol)
-    return spec, tb.lattice_groups(spec, fam)
+    fam, _ = dps_family.family(spec, spec.N, spec.rtol)
+    return spec, lattice.lattice_groups(spec, fam)
 
 
 @pytest.mark.slow
@@ -482,7 +484,7 @@ def test_a_tb_embedded_in_a_larger_ring_solves_it():
     from cradle.models import tb_launch
 
     spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
-    small = tb.first_member(spec, 16, spec.rtol)
+    small = dps_family.first_member(spec, 16, spec.rtol)
     A = tb_launch.embedded(small.A, 24)
     assert _solves_tb(A, small.T, small.theta, spec.alpha) <= 4 * M.tail_amplitude(small.A)
     big = DT.newton(A, small.T, small.theta, spec.alpha, spec.norm, tol=spec.newton_tol)
@@ -501,7 +503,7 @@ def test_core_first_converges_where_plain_newton_stalls():
     from cradle.measurements import floquet_bubbles as FB
 
     spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
-    phi, _ = tb.static_profiles(128, spec.alpha, spec.norm)["site"]
+    phi, _ = dps_family.static_profiles(128, spec.alpha, spec.norm)["site"]
     A, T, theta = DT.start(phi, spec.kick, spec.alpha)
     plain = DT.newton(A, T, theta, spec.alpha, spec.norm, tol=spec.newton_tol)
     assert not plain.converged and plain.residual > 1e-10
@@ -509,7 +511,7 @@ def test_core_first_converges_where_plain_newton_stalls():
     assert b.converged and first_stage <= DT.CORE_TOL
     assert _solves_tb(b.A, b.T, b.theta, spec.alpha) <= 1e-10
     assert abs(b.norm - spec.norm) <= 1e-12
-    defect, _, _, _ = tb.verdict(b, spec.stability_threshold)
+    defect, _, _, _ = dps_family.verdict(b, spec.stability_threshold)
     assert defect < 1e-5
     assert FB.quartet_defect(b.multipliers) < 1e-8
 
@@ -531,7 +533,7 @@ def test_member_and_fold_rows(tiny):
             assert np.array_equal(lt["member_growth"].values[j, i], want, equal_nan=True)
         fit = {"g_inf": lt["member_fit_g_inf"].values[j], "g_inf_error": lt["member_fit_g_inf_error"].values[j],
                "degenerate": lt["member_fit_degenerate"].values[j]}
-        want_v = tb.member_verdict(bool(lt["tail_mi_unstable"].values[j]), lt["member_growth"].values[j], fit,
+        want_v = limit_tail.member_verdict(bool(lt["tail_mi_unstable"].values[j]), lt["member_growth"].values[j], fit,
                                    spec.stability_threshold)
         assert lt["member_verdict"].values[j] == want_v
     fold = tree["limit_fold"]
@@ -545,7 +547,7 @@ def test_member_and_fold_rows(tiny):
         assert abs(np.sum(np.abs(A[i]) ** 2) - spec.norm) <= spec.limit_large_newton_tol * spec.norm
     for i in np.flatnonzero(ok)[:: max(1, ok.sum() // 4)]:
         assert _solves_tb(A[i], 1.0 / c[i], fold["theta"].values[0, i], spec.alpha) <= 1e-10
-    folds, extrema = tb.fold_turns(c, H)
+    folds, extrema = limit_fold.fold_turns(c, H)
     assert tree.attrs["fold_16_c_turns"] == (", ".join(f"{x:.7f}" for x in folds) or "none")
     assert tree.attrs["fold_16_dH_dc_zero"] == (", ".join(f"{x:.7f}" for x in extrema) or "none")
 
@@ -555,9 +557,9 @@ def test_fold_turns_and_real_edges_on_made_up_arcs():
     extremum of H(c); real_edges: the midpoints where the growth through +1 crosses the threshold."""
     c = np.array([0.1, 0.2, 0.3, 0.25, 0.2, 0.15, np.nan])
     H = np.array([1.0, 2.0, 3.0, 2.5, 2.4, 2.6, np.nan])
-    assert tb.fold_turns(c, H) == ([0.3], [0.2])
+    assert limit_fold.fold_turns(c, H) == ([0.3], [0.2])
     g = np.array([0.0, 0.0, 1.0, 1.0, 0.0, 0.0, np.nan])
-    assert tb.real_edges(c, g, 0.5) == [0.25, 0.225]
+    assert limit_fold.real_edges(c, g, 0.5) == [0.25, 0.225]
 
 
 def test_member_verdict_cases():
@@ -565,12 +567,15 @@ def test_member_verdict_cases():
     fit reads as the tail rule's, and a tail that is MI-unstable decides."""
     thr = 1e-5
     nofit = {"g_inf": np.nan, "g_inf_error": np.nan}
-    assert tb.member_verdict(False, np.array([1e-14, 2e-14, np.nan, 3e-14, 5e-14]), nofit, thr) == tb.LIMIT_STABLE
-    assert tb.member_verdict(False, np.array([1e-14, 2e-14, 3e-14]), nofit, thr) == tb.LIMIT_UNDECIDED
-    assert tb.member_verdict(False, np.array([1e-14, 2e-4, 3e-14, 1e-4]), nofit, thr) == tb.LIMIT_UNDECIDED
-    assert tb.member_verdict(True, np.array([1e-14, 2e-14, 3e-14, 1e-14]), nofit, thr) == tb.LIMIT_UNSTABLE
+    assert limit_tail.member_verdict(False, np.array([1e-14, 2e-14, np.nan, 3e-14, 5e-14]), nofit,
+                                     thr) == fine_scan.LIMIT_STABLE
+    assert limit_tail.member_verdict(False, np.array([1e-14, 2e-14, 3e-14]), nofit, thr) == fine_scan.LIMIT_UNDECIDED
+    assert limit_tail.member_verdict(False, np.array([1e-14, 2e-4, 3e-14, 1e-4]), nofit,
+                                     thr) == fine_scan.LIMIT_UNDECIDED
+    assert limit_tail.member_verdict(True, np.array([1e-14, 2e-14, 3e-14, 1e-14]), nofit,
+                                     thr) == fine_scan.LIMIT_UNSTABLE
     fit = {"g_inf": 2e-4, "g_inf_error": 1e-5}
-    assert tb.member_verdict(False, np.array([1e-4, 2e-4, 3e-4, 2e-4]), fit, thr) == tb.LIMIT_UNSTABLE
+    assert limit_tail.member_verdict(False, np.array([1e-4, 2e-4, 3e-4, 2e-4]), fit, thr) == fine_scan.LIMIT_UNSTABLE
 
 
 def test_fold_keys_checked_in_one_line():
@@ -592,7 +597,7 @@ def test_arclength_tangent_is_the_natural_one_away_from_a_fold():
     from cradle.integrators import dps_travelling as DT
 
     spec = form_spec(from_plain(tb.TravellingBreathers, {}), FULL)
-    first = tb.first_member(spec, 16, spec.rtol)
+    first = dps_family.first_member(spec, 16, spec.rtol)
     # the tangent depends on the phase conditions' slice: both about the member itself
     b = DT.newton(first.A, first.T, first.theta, spec.alpha, spec.norm, first.A, spec.newton_tol, rtol=spec.rtol)
     assert b.converged and b.dA_dT is not None

@@ -41,7 +41,7 @@ def _point(c: float, sigma: float) -> tuple[LT.LatticeTB, LTail.SignedTail]:
 
 
 def test_zero_bracket_is_a_sign_change_with_the_tail_growing_away():
-    from cradle.analyses.travelling_breathers import zero_bracket
+    from cradle.analyses.travelling_breathers.tail_zeros import zero_bracket
 
     # a ring resonance (a pole: |sigma| grows towards it) between points 1 and 2, a zero between 3 and 4
     pts = [_point(1.0, 1e-8), _point(1.1, 3e-8), _point(1.2, -4e-8), _point(1.3, -2e-10), _point(1.4, 1e-10),

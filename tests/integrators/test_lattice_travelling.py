@@ -90,7 +90,7 @@ def test_compiled_monodromy_matches_scipy():
 
 @pytest.fixture(scope="module")
 def from_ansatz():
-    from cradle.analyses.travelling_breathers import static_profiles
+    from cradle.analyses.travelling_breathers.dps_family import static_profiles
 
     phi, _ = static_profiles(16, ALPHA, 1.0)["site"]
     A, T, theta = DT.start(phi, 0.15, ALPHA)

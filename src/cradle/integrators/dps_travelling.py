@@ -36,6 +36,7 @@ import numpy as np
 from cradle.integrators.continuation import continue_in_c
 from cradle.integrators.systems import dps as SD
 from cradle.models import dps, dps_travelling as M
+from cradle.models.multipliers import split_trivial
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -118,7 +119,7 @@ class TravellingBreather:
         eigenvector as |v_n|^2 per site (the two real coordinates of site n added), normalised to sum 1."""
         assert self.monodromy is not None, "a converged member keeps its monodromy"
         mu, V = np.linalg.eig(self.monodromy)
-        rest = np.argsort(np.abs(mu - 1.0))[trivial:]
+        _, rest = split_trivial(mu, trivial)
         k = int(rest[np.argmax(np.abs(mu[rest]))])
         N = self.A.size
         w = np.abs(V[:N, k]) ** 2 + np.abs(V[N:, k]) ** 2

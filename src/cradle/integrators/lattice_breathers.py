@@ -38,6 +38,7 @@ from typing import TYPE_CHECKING, overload
 import numpy as np
 
 from cradle.models.lattice import hamiltonian
+from cradle.models.multipliers import split_trivial
 from cradle.specs.checked import checked
 
 if TYPE_CHECKING:
@@ -334,7 +335,7 @@ def floquet(b: Breather, kind: str, centre: int | None = None, rtol: float = RTO
         raise ValueError(f"unknown breather kind {kind!r} (site or bond)")
     tail = np.repeat(np.exp([1j * b.T, -1j * b.T]), N - nc)
     mu = np.concatenate([mu_e, mu_o, tail])
-    i_triv = np.argsort(np.abs(mu_e - 1.0))[:2]
+    i_triv, _ = split_trivial(mu_e, 2)
     trivial = float(np.max(np.abs(mu_e[i_triv] - 1.0)))
     keep = np.ones(mu_e.size, bool)
     keep[i_triv] = False

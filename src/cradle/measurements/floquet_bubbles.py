@@ -21,6 +21,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from cradle.models.multipliers import split_trivial
+
 #: a multiplier counts as on the unit circle when ||mu| - 1| is below this (the trivial ones' defect is ~1e-6)
 ON_CIRCLE = 1e-6
 
@@ -59,17 +61,11 @@ def quartet_defect(mu: ArrayLike) -> float:
     return float(max(np.max(d1), np.max(d2)))
 
 
-def nontrivial(mu: ArrayLike, trivial: int) -> NDArray[np.int64]:
-    """Indices of the multipliers other than the ``trivial`` ones nearest 1."""
-    mu = np.asarray(mu, complex)
-    return np.argsort(np.abs(mu - 1.0))[trivial:]
-
-
 def krein_gap(mu: ArrayLike, sigma: ArrayLike, trivial: int) -> float:
     """The smallest angle between two non-trivial multipliers of opposite Krein signature on the unit circle (pi if
     no such pair): it closes where a pair collides and a bubble can open."""
     mu, sigma = np.asarray(mu, complex), np.asarray(sigma, float)
-    k = nontrivial(mu, trivial)
+    _, k = split_trivial(mu, trivial)
     a, s = np.angle(mu[k]), sigma[k]
     plus, minus = a[s > 0], a[s < 0]
     if plus.size == 0 or minus.size == 0:
