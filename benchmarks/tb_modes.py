@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 import sys
 import time
 from pathlib import Path
@@ -35,6 +36,8 @@ sys.path.insert(0, str(ROOT / "src"))
 
 from cradle.analyses import travelling_breathers as tb  # noqa: E402
 from cradle.analyses.protocol import FULL, form_spec  # noqa: E402
+from cradle.analyses.travelling_breathers import dps_family as DF, fine_scan as FS  # noqa: E402
+from cradle.integrators import dps_travelling as DT  # noqa: E402
 from cradle.measurements import floquet_modes as FM  # noqa: E402
 from cradle.specs.declare import from_plain  # noqa: E402
 
@@ -58,37 +61,34 @@ def grid_for(spec: tb.TravellingBreathers, N: int) -> np.ndarray:
     c = np.asarray(MEMBERS)
     if N > max(spec.limit_N):
         stable = np.array([0.08, 0.12, 0.14])      # large_scan's grid: the members whose tail is MI-stable
-        return tb.limit_grid(stable, spec.limit_large_step, spec.limit_halfwidth)
-    return tb.limit_grid(c, spec.limit_step, spec.limit_halfwidth)
+        return FS.limit_grid(stable, spec.limit_large_step, spec.limit_halfwidth)
+    return FS.limit_grid(c, spec.limit_step, spec.limit_halfwidth)
 
 
-def measure(b: tb.TravellingBreather, N: int, c: float, rtol: float, cpu: float) -> dict:
+def measure(b: DT.TravellingBreather, N: int, c: float, rtol: float, cpu: float) -> dict:
     """One member's line: the TB and its unstable mode."""
     from cradle.models import dps_travelling as M
 
     assert b.monodromy is not None
-    m = FM.mode_measures(b.monodromy, b.A, b.T, tb.TRIVIAL)
+    m = FM.mode_measures(b.monodromy, b.A, b.T, DF.TRIVIAL)
     keep = Path(SAVE) / f"N{N}_c{c:g}_rtol{rtol:g}.npz"
     keep.parent.mkdir(parents=True, exist_ok=True)
     np.savez(keep, A=b.A, T=b.T, theta=b.theta)
-    m["internal"] = FM.internal_modes(b.monodromy, b.A, tb.TRIVIAL, FM.core_mask(b.A, *FM.CORE_DEFINITIONS[0]))
-    return {"N": N, "c": c, "rtol": rtol, "c_exact": b.c, "theta": tb.math.remainder(b.theta, 2 * np.pi),
+    m["internal"] = FM.internal_modes(b.monodromy, b.A, DF.TRIVIAL, FM.core_mask(b.A, *FM.CORE_DEFINITIONS[0]))
+    return {"N": N, "c": c, "rtol": rtol, "c_exact": b.c, "theta": math.remainder(b.theta, 2 * np.pi),
             "H": b.energy, "tail": M.tail_amplitude(b.A), "residual": b.residual, "cpu_s": cpu, **m}
 
 
-def resolve(spec: tb.TravellingBreathers, b: tb.TravellingBreather, rtol: float) -> tb.TravellingBreather:
+def resolve(spec: tb.TravellingBreathers, b: DT.TravellingBreather, rtol: float) -> DT.TravellingBreather:
     """The member re-solved at another DOP853 tolerance: Newton from it, at its newton_tol."""
-    from cradle.integrators import dps_travelling as DT
-
     return DT.newton(b.A, b.T, b.theta, spec.alpha, spec.norm, b.A, spec.newton_tol, rtol=rtol)
 
 
 def run(out: str, rings: list[int], carry: list[int]) -> None:
     """The scans (and carried rings) of the module docstring, one JSON line per member and tolerance."""
-    from cradle.integrators import dps_travelling as DT
     from cradle.models import tb_launch
 
-    last: dict[float, tb.TravellingBreather] = {}
+    last: dict[float, DT.TravellingBreather] = {}
     with open(out, "a") as f:
         def emit(line: dict) -> None:
             f.write(json.dumps(line) + "\n")
@@ -104,7 +104,7 @@ def run(out: str, rings: list[int], carry: list[int]) -> None:
             spec = spec_for(N)
             grid = grid_for(spec, N)
             t0 = time.process_time()
-            scan = tb.limit_scan(spec, N, grid, print)
+            scan = FS.limit_scan(spec, N, grid, print)
             cpu = time.process_time() - t0
             for c in MEMBERS:
                 hit = np.flatnonzero(np.abs(grid - c) <= 1e-9)
@@ -162,9 +162,10 @@ def table(path: str, out: str | None) -> None:
     text += ["", "Slopes against N (least squares of ln y on ln N over the rings where the member is unstable; "
              "± one standard error) and the reading of MODE_RULE:", "",
              "| c | rtol | unstable rings | growth ~ N^s | PR / N ~ N^s | core fraction ~ N^s (three cores) | "
-             + " | ".join(f"MODE_RULE at {t:g}" for t in FM.MODE_RULE_THRESHOLDS) + " |",
-             "|---|---|---|---|---|---|" + "---|" * len(FM.MODE_RULE_THRESHOLDS)]
-    letter = {tb.LIMIT_STABLE: "S", tb.LIMIT_UNSTABLE: "U", tb.LIMIT_UNDECIDED: "?"}
+             + " | ".join(f"δ = {t:g}{', resolved' if r else ''}" for r in (False, True)
+                          for t in FM.MODE_RULE_THRESHOLDS) + " |",
+             "|---|---|---|---|---|---|" + "---|" * 2 * len(FM.MODE_RULE_THRESHOLDS)]
+    letter = {FM.STABLE: "S", FM.UNSTABLE: "U", FM.UNDECIDED: "?"}
     for c, rtol, rows in fits:
         N = np.array([x["N"] for x in rows], float)
         g = np.array([x["growth"] for x in rows])
@@ -172,8 +173,8 @@ def table(path: str, out: str | None) -> None:
         cores = np.array([[x[f"core_fraction_{i}"] for i in range(3)] for x in rows]).T
         u = g > spec.stability_threshold
         s = {k: FM.power_slope(N[u], y[u]) for k, y in (("g", g), ("pr", pr), *((f"c{i}", cores[i]) for i in range(3)))}
-        verdicts = [letter[FM.mode_verdict(N, g, cores[0], spec.stability_threshold, t)[0]]
-                    for t in FM.MODE_RULE_THRESHOLDS]
+        verdicts = [letter[FM.mode_verdict(N, g, cores[0], spec.stability_threshold, t, r)[0]]
+                    for r in (False, True) for t in FM.MODE_RULE_THRESHOLDS]
         text.append(f"| {c:g} | {rtol:g} | {int(u.sum())} of {u.size} | {s['g'][0]:+.2f} ± {s['g'][1]:.2f} | "
                     f"{s['pr'][0]:+.2f} ± {s['pr'][1]:.2f} | "
                     + ", ".join(f"{s[f'c{i}'][0]:+.2f} ± {s[f'c{i}'][1]:.2f}" for i in range(3))

@@ -133,6 +133,7 @@ def test_rule_reads_an_extended_mode_with_growth_1_over_n_stable():
     """Two extended modes meeting through the core: growth ~ 1/N, core fraction ~ (core sites)/N."""
     v, info = FM.mode_verdict(RINGS, 0.02 / RINGS, 2.0 / RINGS, 1e-5)
     assert v == FM.STABLE
+    assert FM.mode_verdict(RINGS, 0.02 / RINGS, 2.0 / RINGS, 1e-5, resolved=True)[0] == FM.STABLE
     assert info["growth_slope"] == pytest.approx(-1.0, abs=1e-12)
     assert info["core_slope"] == pytest.approx(-1.0, abs=1e-12)
     assert info["unstable_rings"] == RINGS.size
@@ -160,6 +161,13 @@ def test_rule_stable_everywhere_and_undecided_cases():
     assert FM.mode_verdict(RINGS, g, 2.0 / RINGS, 1e-5)[0] == FM.UNDECIDED
     # extended (core ~ 1/N) but the growth does not fall: not a finite-size effect either way
     assert FM.mode_verdict(RINGS, 3e-4 * RINGS**0.1, 2.0 / RINGS, 1e-5)[0] == FM.UNDECIDED
+    # growth scattered about 1/N: consistent with it, its fall not resolved at two standard errors
+    g = 0.02 / RINGS * np.array([3.0, 0.3, 1.0, 2.0, 0.4, 1.5, 0.5, 2.5, 1.0]) * RINGS**0.6
+    _, info = FM.mode_verdict(RINGS, g, 2.0 / RINGS, 1e-5)
+    assert info["growth_slope"] - 2 * info["growth_slope_error"] <= -1.0 < info["growth_slope"]
+    assert info["growth_slope"] + 2 * info["growth_slope_error"] >= 0.0
+    assert FM.mode_verdict(RINGS, g, 2.0 / RINGS, 1e-5)[0] == FM.STABLE
+    assert FM.mode_verdict(RINGS, g, 2.0 / RINGS, 1e-5, resolved=True)[0] == FM.UNDECIDED
     # a core fraction falling as N^-0.6: within 0.5 of -1 but not within 0.3
     f = 0.3 * RINGS**-0.6
     assert FM.mode_verdict(RINGS, 0.02 / RINGS, f, 1e-5, 0.3)[0] == FM.UNDECIDED
