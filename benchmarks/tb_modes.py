@@ -2,6 +2,7 @@
 (travelling-breathers.md, "Why the finite rings disagree: the unstable mode").
 
     python benchmarks/tb_modes.py run OUT.jsonl N [N ...] [--carry M,M,...]
+    python benchmarks/tb_modes.py carry OUT.jsonl FROM M,M,... [--members C,C,...]
     python benchmarks/tb_modes.py table OUT.jsonl [TABLE.md]
 
 ``run``: on each ring N the scan of the analysis's full form (cradle.analyses.travelling_breathers.limit_scan, alpha =
@@ -13,7 +14,8 @@ unstable multiplier's argument, theta, H, tail, residual, and its mode (cradle.m
 participation ratio over N, core fraction under each core definition). One JSON line per (N, c, rtol), with the CPU
 of the ring's scan. ``--carry`` takes each member of the largest ring run to the rings M (> it) by
 cradle.models.tb_launch.embedded and dps_travelling.newton_core_first (at the large rings' newton_tol), each from the
-ring before. Run under nice; the CPU is stated beside other work.
+ring before; ``carry`` does the same from the members a run kept of the ring FROM (``SAVE``). Run under nice; the
+CPU is stated beside other work.
 
 ``table``: the markdown table of the lines (per member and ring: growth, arg mu, participation / N, core fractions),
 the slopes of each against N (least squares in log-log over the rings where the member is unstable, with their
@@ -86,9 +88,6 @@ def resolve(spec: tb.TravellingBreathers, b: DT.TravellingBreather, rtol: float)
 
 def run(out: str, rings: list[int], carry: list[int]) -> None:
     """The scans (and carried rings) of the module docstring, one JSON line per member and tolerance."""
-    from cradle.models import tb_launch
-
-    last: dict[float, DT.TravellingBreather] = {}
     with open(out, "a") as f:
         def emit(line: dict) -> None:
             f.write(json.dumps(line) + "\n")
@@ -112,7 +111,6 @@ def run(out: str, rings: list[int], carry: list[int]) -> None:
                 if b is None:
                     print(f"N = {N}, c = {c}: not reached", flush=True)
                     continue
-                last[c] = b
                 emit(measure(b, N, c, spec.rtol, cpu))
                 t1 = time.process_time()
                 b2 = resolve(spec, b, CHECK_RTOL)
@@ -120,22 +118,43 @@ def run(out: str, rings: list[int], carry: list[int]) -> None:
                     emit(measure(b2, N, c, CHECK_RTOL, time.process_time() - t1))
                 else:
                     print(f"N = {N}, c = {c}: no convergence at rtol {CHECK_RTOL:g} ({b2.residual:.2e})", flush=True)
-        for N in carry:
+    if carry:
+        carry_rings(out, max(rings), carry, list(MEMBERS))
+
+
+def carry_rings(out: str, start: int, rings: list[int], members: list[float]) -> None:
+    """Each member kept from the ring of ``start`` (``SAVE``, rtol 1e-13) carried to the rings given in turn:
+    embedded (sites at rest added on the far side), Newton the core first, then re-solved at CHECK_RTOL."""
+    from cradle.models import tb_launch
+
+    last: dict[float, tuple[np.ndarray, float, float]] = {}
+    for c in members:
+        z = np.load(Path(SAVE) / f"N{start}_c{c:g}_rtol{1e-13:g}.npz")
+        last[c] = (np.asarray(z["A"]), float(z["T"]), float(z["theta"]))
+    with open(out, "a") as f:
+        for N in rings:
             spec = spec_for(N)
-            for c, b in list(last.items()):
+            for c in list(last):
+                A0, T, theta = last[c]
                 t0 = time.process_time()
-                A = tb_launch.embedded(b.A, N)
-                b1, _ = DT.newton_core_first(A, b.T, b.theta, spec.alpha, spec.norm, spec.newton_tol, rtol=spec.rtol)
+                b1, _ = DT.newton_core_first(tb_launch.embedded(A0, N), T, theta, spec.alpha, spec.norm,
+                                             spec.newton_tol, rtol=spec.rtol)
                 if not b1.converged:
                     print(f"N = {N}, c = {c}: carried TB not converged ({b1.residual:.2e})", flush=True)
                     del last[c]
                     continue
-                last[c] = b1
-                emit(measure(b1, N, c, spec.rtol, time.process_time() - t0) | {"carried": True})
+                last[c] = (b1.A, b1.T, b1.theta)
+                line = measure(b1, N, c, spec.rtol, time.process_time() - t0) | {"carried": True}
+                f.write(json.dumps(line) + "\n")
+                f.flush()
+                print(json.dumps(line), flush=True)
                 t1 = time.process_time()
                 b2 = resolve(spec, b1, CHECK_RTOL)
                 if b2.converged:
-                    emit(measure(b2, N, c, CHECK_RTOL, time.process_time() - t1) | {"carried": True})
+                    line = measure(b2, N, c, CHECK_RTOL, time.process_time() - t1) | {"carried": True}
+                    f.write(json.dumps(line) + "\n")
+                    f.flush()
+                    print(json.dumps(line), flush=True)
 
 
 def table(path: str, out: str | None) -> None:
@@ -143,8 +162,8 @@ def table(path: str, out: str | None) -> None:
     lines = [json.loads(x) for x in Path(path).read_text().splitlines() if x.strip()]
     spec = spec_for(24)
     text = ["| c | rtol | N | growth (per unit τ) | arg μ | PR / N | core fraction: |A| > 1e-2 (sites) | "
-            "|A| > 1e-3 (sites) | norm 1 − 1e-6 (sites) | θ | tail | CPU of the ring (s) |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+            "|A| > 1e-3 (sites) | norm 1 − 1e-6 (sites) | θ | H | tail | CPU (s) |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     fits = []
     for c in MEMBERS:
         for rtol in (spec.rtol, CHECK_RTOL):
@@ -156,7 +175,7 @@ def table(path: str, out: str | None) -> None:
                             f"{x['arg']:+.3f} | {x['participation_share']:.3f} | "
                             + " | ".join(f"{x[f'core_fraction_{i}']:.2e} ({x[f'core_sites_{i}']:.0f})"
                                          for i in range(3))
-                            + f" | {x['theta']:+.9f} | {x['tail']:.1e} | {x['cpu_s']:.0f} |")
+                            + f" | {x['theta']:+.9f} | {x['H']:.10f} | {x['tail']:.1e} | {x['cpu_s']:.0f} |")
             if rows:
                 fits.append((c, rtol, rows))
     text += ["", "Slopes against N (least squares of ln y on ln N over the rings where the member is unstable; "
@@ -188,6 +207,14 @@ def table(path: str, out: str | None) -> None:
 def main(argv: list[str]) -> None:
     if argv[0] == "table":
         table(argv[1], argv[2] if len(argv) > 2 else None)
+        return
+    if argv[0] == "carry":
+        members = list(MEMBERS)
+        if "--members" in argv:
+            i = argv.index("--members")
+            members = [float(x) for x in argv[i + 1].split(",")]
+            argv = argv[:i] + argv[i + 2:]
+        carry_rings(argv[1], int(argv[2]), [int(x) for x in argv[3].split(",")], members)
         return
     out, rest, carry = argv[1], argv[2:], []
     if "--carry" in rest:

@@ -172,3 +172,9 @@ def test_rule_stable_everywhere_and_undecided_cases():
     f = 0.3 * RINGS**-0.6
     assert FM.mode_verdict(RINGS, 0.02 / RINGS, f, 1e-5, 0.3)[0] == FM.UNDECIDED
     assert FM.mode_verdict(RINGS, 0.02 / RINGS, f, 1e-5, 0.5)[0] == FM.STABLE
+    # a core fraction ~ 1/N on average but so scattered that a share not falling (slope 0) is not excluded
+    f = 2.0 / RINGS * np.array([1.0, 6.0, 0.5, 5.0, 0.6, 4.0, 1.0, 8.0, 2.0])
+    _, info = FM.mode_verdict(RINGS, 0.02 / RINGS, f, 1e-5)
+    assert abs(info["core_slope"] + 1.0) <= 0.3 and info["core_slope"] + 2 * info["core_slope_error"] >= 0.0
+    assert np.all(f < FM.CORE_SHARE)
+    assert FM.mode_verdict(RINGS, 0.02 / RINGS, f, 1e-5)[0] == FM.UNDECIDED

@@ -157,12 +157,13 @@ MODE_RULE = ("for a member whose tail is MI-stable: stable when it is stable on 
              "fraction f_N (its weight on the sites where |A_n| > 1e-2 max |A|) and growth rate g_N fitted as "
              "powers of N (least squares in log-log, standard errors e). Reading 1, two extended modes of the tail "
              "meeting through the core (coupling ~ 1/N): f_N < CORE_SHARE on every such ring, its slope within "
-             "delta of -1, and g_N no slower to fall than 1/N within 2 e (slope - 2 e <= -1; 'resolved': the fall "
-             "itself resolved, slope + 2 e < 0): stable in the limit, a finite-size instability. Reading 2, a mode "
-             "of the core meeting the tail's modes (an O(1) share on the core, a Fermi-golden-rule rate in the "
-             "limit): f_N >= CORE_SHARE on the largest unstable ring or f_N's slope above -delta: unstable in the "
-             "limit. Undecided otherwise. delta = MODE_RULE_THRESHOLDS[0] and the growth read as consistent with "
-             "1/N; the other thresholds and the resolved reading reported beside")
+             "delta of -1 and below 0 by 2 e (reading 2's O(1) share excluded), and g_N no slower to fall than "
+             "1/N within 2 e (slope - 2 e <= -1; 'resolved': the fall itself resolved, slope + 2 e < 0): stable "
+             "in the limit, a finite-size instability. Reading 2, a mode of the core meeting the tail's modes (an "
+             "O(1) share on the core, a Fermi-golden-rule rate in the limit): f_N >= CORE_SHARE on the largest "
+             "unstable ring or f_N's slope above -delta: unstable in the limit. Undecided otherwise. delta = "
+             "MODE_RULE_THRESHOLDS[0] and the growth read as consistent with 1/N; the other thresholds and the "
+             "resolved reading reported beside")
 
 
 def mode_verdict(N: ArrayLike, growth: ArrayLike, core: ArrayLike, threshold: float,
@@ -189,6 +190,6 @@ def mode_verdict(N: ArrayLike, growth: ArrayLike, core: ArrayLike, threshold: fl
     if largest >= CORE_SHARE or sf > -delta:
         return UNSTABLE, info
     falls = sg + 2.0 * eg < 0.0 if resolved else sg - 2.0 * eg <= -1.0
-    if np.all(f[u] < CORE_SHARE) and abs(sf + 1.0) <= delta and falls:
+    if np.all(f[u] < CORE_SHARE) and abs(sf + 1.0) <= delta and sf + 2.0 * ef < 0.0 and falls:
         return STABLE, info
     return UNDECIDED, info
