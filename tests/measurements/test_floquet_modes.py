@@ -178,3 +178,8 @@ def test_rule_stable_everywhere_and_undecided_cases():
     assert abs(info["core_slope"] + 1.0) <= 0.3 and info["core_slope"] + 2 * info["core_slope_error"] >= 0.0
     assert np.all(f < FM.CORE_SHARE)
     assert FM.mode_verdict(RINGS, 0.02 / RINGS, f, 1e-5)[0] == FM.UNDECIDED
+    # a core fraction whose slope is near 0 but so scattered that 1/N is not excluded: not reading 2 either
+    f = 0.05 * np.array([1.0, 0.1, 3.0, 0.2, 1.0, 0.1, 5.0, 0.1, 1.0])
+    _, info = FM.mode_verdict(RINGS, 0.02 / RINGS, f, 1e-5)
+    assert info["core_slope"] > -0.3 and info["core_slope"] - 2 * info["core_slope_error"] <= -1.0
+    assert FM.mode_verdict(RINGS, 0.02 / RINGS, f, 1e-5)[0] == FM.UNDECIDED

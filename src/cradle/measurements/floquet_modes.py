@@ -161,7 +161,8 @@ MODE_RULE = ("for a member whose tail is MI-stable: stable when it is stable on 
              "1/N within 2 e (slope - 2 e <= -1; 'resolved': the fall itself resolved, slope + 2 e < 0): stable "
              "in the limit, a finite-size instability. Reading 2, a mode of the core meeting the tail's modes (an "
              "O(1) share on the core, a Fermi-golden-rule rate in the limit): f_N >= CORE_SHARE on the largest "
-             "unstable ring or f_N's slope above -delta: unstable in the limit. Undecided otherwise. delta = "
+             "unstable ring, or f_N's slope above -delta and above -1 by 2 e (reading 1 excluded): unstable in the "
+             "limit. Undecided otherwise. delta = "
              "MODE_RULE_THRESHOLDS[0] and the growth read as consistent with 1/N; the other thresholds and the "
              "resolved reading reported beside")
 
@@ -187,7 +188,7 @@ def mode_verdict(N: ArrayLike, growth: ArrayLike, core: ArrayLike, threshold: fl
     if np.sum(u) < MODE_RULE_MIN or not (np.isfinite(sf) and np.isfinite(sg)):
         return UNDECIDED, info
     largest = f[u][int(np.argmax(n[u]))]
-    if largest >= CORE_SHARE or sf > -delta:
+    if largest >= CORE_SHARE or (sf > -delta and sf - 2.0 * ef > -1.0):
         return UNSTABLE, info
     falls = sg + 2.0 * eg < 0.0 if resolved else sg - 2.0 * eg <= -1.0
     if np.all(f[u] < CORE_SHARE) and abs(sf + 1.0) <= delta and sf + 2.0 * ef < 0.0 and falls:
