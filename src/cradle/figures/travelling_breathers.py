@@ -233,9 +233,14 @@ def draw_modes(ax: Any, tree: AnalysisTree) -> None:
     b.legend(fontsize=6, loc="upper left", ncol=2)
     from matplotlib.ticker import FixedLocator, NullFormatter
 
+    # a tick at every ring, a label where it clears the last one labelled
+    labelled = [float(rings[0])]
+    for x in rings[1:]:
+        if x / labelled[-1] >= 1.2:
+            labelled.append(float(x))
     for panel in (a, b):
         panel.xaxis.set_major_locator(FixedLocator([float(x) for x in rings]))
-        panel.xaxis.set_major_formatter(lambda x, _: f"{x:g}")
+        panel.xaxis.set_major_formatter(lambda x, _: f"{x:g}" if x in labelled else "")
         panel.xaxis.set_minor_formatter(NullFormatter())
         panel.tick_params(axis="x", labelsize=7)
 
