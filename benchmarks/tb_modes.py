@@ -161,8 +161,8 @@ def table(path: str, out: str | None) -> None:
     """The markdown table of the module docstring."""
     lines = [json.loads(x) for x in Path(path).read_text().splitlines() if x.strip()]
     spec = spec_for(24)
-    text = ["| c | rtol | N | growth (per unit τ) | arg μ | PR / N | core fraction: |A| > 1e-2 (sites) | "
-            "|A| > 1e-3 (sites) | norm 1 − 1e-6 (sites) | θ | H | tail | CPU (s) |",
+    text = ["| c | rtol | N | growth (per unit τ) | arg μ | PR / N | core fraction: \\|A\\| > 1e-2 (sites) | "
+            "\\|A\\| > 1e-3 (sites) | norm 1 − 1e-6 (sites) | θ | H | tail | CPU (s) |",
             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     fits = []
     for c in MEMBERS:
