@@ -184,20 +184,21 @@ def cradle_of(spec: DeskToyMinute) -> Cradle:
     return spec.cradle if spec.cradle is not None else DEFAULT_CRADLE
 
 
-def _kappa(s: Scales) -> float:
-    return s.k / (s.m / 2.0)
+def _b(A_seconds: float, speed: float, s: Scales) -> float:
+    """b = A kappa^(2/5) v^(1/5) of two equal balls (reduced mass m/2) at impact speed ``speed`` (m/s)."""
+    return float(rs.scaled_constant(A_seconds, speed, s.k, s.m / 2.0))
 
 
 @functools.cache   # a root of an ODE's solution: found once per value
 def restitution_of(A_seconds: float, speed: float, s: Scales) -> float:
     """e of the two-ball collision of (ncdamped) at impact speed ``speed`` (m/s) for the Kuwabara-Kono A (s)."""
-    return rs.restitution(A_seconds * _kappa(s) ** 0.4 * speed**0.2)
+    return rs.restitution(_b(A_seconds, speed, s))
 
 
 @functools.cache   # a root of an ODE's solution: found once per value
 def kk_of(restitution: float, speed: float, s: Scales) -> float:
     """The Kuwabara-Kono A (s) whose two-ball collision has restitution e at impact speed ``speed`` (m/s)."""
-    return rs.scaled_for(restitution) / (_kappa(s) ** 0.4 * speed**0.2)
+    return rs.scaled_for(restitution) / _b(1.0, speed, s)
 
 
 #: the scaled Kuwabara-Kono constants b of the tabulated two-ball restitution loss (:func:`restitution_law`)
@@ -215,7 +216,7 @@ def restitution_law(A_seconds: float, s: Scales) -> Callable[[float], float]:
     restitution` on 8 points a decade of b in [1e-8, 1] and interpolated in log-log (f(b) = C1 b + O(b^2)
     below: linear there)."""
     log_b, log_f = np.log(_B_TABLE), np.log(_loss_table())
-    scale = A_seconds * _kappa(s) ** 0.4 * s.V**0.2
+    scale = _b(A_seconds, s.V, s)
     slope = float(_loss_table()[0] / _B_TABLE[0])
 
     def law(u: float) -> float:
