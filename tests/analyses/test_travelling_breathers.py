@@ -558,6 +558,41 @@ def test_member_and_fold_rows(tiny):
     assert tree.attrs["fold_16_dH_dc_zero"] == (", ".join(f"{x:.7f}" for x in extrema) or "none")
 
 
+def test_mode_rows_and_rule(tiny):
+    """/limit_tail's member_participation and member_core_fraction are the fine scans' mode measures at c itself on
+    each ring (participation over N in (0, 1], core fractions in [0, 1]), and mode_verdict is MODE_RULE's on them
+    (unstable where the tail is MI-unstable)."""
+    from cradle.measurements import floquet_modes as FM
+
+    spec, tree = tiny
+    lt, lim, large = tree["limit_tail"], tree["robustness_limit"], tree["limit_large"]
+    for name in ("mode_participation", "mode_core_fraction", "mode_core_fraction_norm"):
+        for grp in (lim, large):
+            v = grp[name].values[np.isfinite(grp["growth_rate"].values)]
+            assert v.size and np.all(np.isfinite(v)) and np.all((v >= 0) & (v <= 1 + 1e-12))
+    assert np.all(lim["mode_participation"].values[np.isfinite(lim["growth_rate"].values)] > 0)
+    rings = [(lim["c_fine"].values, lim, i) for i in range(len(spec.limit_N))]
+    rings += [(large["c_large"].values, large, i) for i in range(len(spec.limit_large_N))]
+    for j, x in enumerate(tree["c"].values):
+        for i, (grid, grp, k) in enumerate(rings):
+            hit = np.flatnonzero(np.abs(grid - x) <= 1e-9)
+            for mine, theirs in (("member_participation", "mode_participation"),
+                                 ("member_core_fraction", "mode_core_fraction"),
+                                 ("member_core_fraction_norm", "mode_core_fraction_norm")):
+                want = grp[theirs].values[k, hit[0]] if hit.size else np.nan
+                assert np.array_equal(lt[mine].values[j, i], want, equal_nan=True)
+        if lt["tail_mi_unstable"].values[j]:
+            assert lt["mode_verdict"].values[j] == fine_scan.LIMIT_UNSTABLE
+            continue
+        want_v, info = FM.mode_verdict(lt["fit_ring"].values, lt["member_growth"].values[j],
+                                       lt["member_core_fraction"].values[j], spec.stability_threshold)
+        assert lt["mode_verdict"].values[j] == want_v
+        assert np.array_equal(lt["mode_core_slope"].values[j], info["core_slope"], equal_nan=True)
+    assert tree.attrs["mode_rule"] == FM.MODE_RULE
+    assert (FM.STABLE, FM.UNSTABLE, FM.UNDECIDED) == (fine_scan.LIMIT_STABLE, fine_scan.LIMIT_UNSTABLE,
+                                                    fine_scan.LIMIT_UNDECIDED)
+
+
 def test_fold_turns_and_real_edges_on_made_up_arcs():
     """fold_turns: c rising then falling is one fold at the top; H falling then rising while c keeps falling is one
     extremum of H(c); real_edges: the midpoints where the growth through +1 crosses the threshold."""

@@ -35,6 +35,12 @@ against c, with the extrema of H(c), (x) the tail along the arc.
 Last, where the lattice TBs' tail vanishes when the file holds it (group /lattice_zeros): (y), (z) the signed tail
 along the fine grid of c through each of its two minima on each ring, the regula falsi's iterates and the zero
 located; (aa) the table of the zeros.
+Then why the finite rings disagree, when the file holds the members' unstable modes (/limit_tail's
+member_core_fraction): for each member whose tail is MI-stable, on every ring, (ab) its growth rate at c against N
+with the power of N fitted over the rings where it is unstable, (ac) its top mode's core fraction and participation
+ratio over N against N (filled: unstable there, the mode that grows; open: stable, the mode of the largest
+non-trivial multiplier on the circle) with the fitted power of the core fraction and N^-1 for reference, (ad) the
+table of MODE_RULE's verdicts under each threshold.
 """
 from __future__ import annotations
 
@@ -63,7 +69,8 @@ def draw(tree: AnalysisTree) -> Figure:
     on_rings = "lattice_rings" in tree.children
     fold = "limit_fold" in tree.children
     zeros = "lattice_zeros" in tree.children
-    rows = 3 + int(lattice) + int(limit) + int(tail) + int(on_rings) + int(fold) + int(zeros)
+    modes = tail and "member_core_fraction" in tree["limit_tail"].data_vars
+    rows = 3 + int(lattice) + int(limit) + int(tail) + int(on_rings) + int(fold) + int(zeros) + int(modes)
     fig, ax = figure(rows, 3, width=13.5, height=11.2 + 3.7 * (rows - 3))
     fam = tree["family"]
     c = np.asarray(fam["c"].values)
@@ -145,7 +152,7 @@ def draw(tree: AnalysisTree) -> Figure:
     f.set_xlabel("Re $\\mu$")
     f.set_ylabel("Im $\\mu$")
     f.set_title("(e) Floquet multipliers modulo shift", fontsize=9)
-    f.legend(fontsize=7, loc="upper center", ncol=3, handlelength=1.0, columnspacing=0.8)
+    f.legend(fontsize=6, loc="upper center", ncol=3, handlelength=1.0, columnspacing=0.8)
 
     h = ax[1, 2]
     h.loglog(c, fam["static_distance_site"].values, "C0o-", ms=4, label="to the site breather")
@@ -173,8 +180,91 @@ def draw(tree: AnalysisTree) -> Figure:
     if fold:
         draw_fold(ax[3 + int(lattice) + int(limit) + int(tail) + int(on_rings)], tree)
     if zeros:
-        draw_zeros(ax[rows - 1], tree)
+        draw_zeros(ax[rows - 1 - int(modes)], tree)
+    if modes:
+        draw_modes(ax[rows - 1], tree)
     return fig
+
+
+def draw_modes(ax: Any, tree: AnalysisTree) -> None:
+    """Panels (ab)-(ad): the unstable mode of each member whose tail is MI-stable against N (module docstring)."""
+    from cradle.measurements import floquet_modes as FM
+
+    lt = tree["limit_tail"]
+    thr = float(tree.attrs["stability_threshold"])
+    floor = thr / 100.0
+    c = np.asarray(tree["c"].values)
+    rings = np.asarray(lt["fit_ring"].values, float)
+    g = np.asarray(lt["member_growth"].values, float)                  # (c, ring)
+    core = np.asarray(lt["member_core_fraction"].values, float)
+    share = np.asarray(lt["member_participation"].values, float)
+    shown = [j for j in range(c.size) if int(lt["tail_mi_unstable"].values[j]) == 0 and np.isfinite(g[j]).any()]
+    fine = np.geomspace(float(rings.min()), float(rings.max()), 50)
+    a, b = ax[0], ax[1]
+    for k, j in enumerate(shown):
+        col, un = f"C{k % 10}", g[j] > thr
+        a.loglog(rings[un], g[j][un], "o", color=col, ms=5, label=f"c = {c[j]:g}")
+        a.loglog(rings[~un], np.full(int(np.sum(~un)), floor), "o", color=col, ms=5, mfc="none")
+        b.loglog(rings[un], core[j][un], "o", color=col, ms=5, label=f"c = {c[j]:g}")
+        b.loglog(rings[~un], core[j][~un], "o", color=col, ms=5, mfc="none")
+        b.loglog(rings[un], share[j][un], "^", color=col, ms=5)
+        b.loglog(rings[~un], share[j][~un], "^", color=col, ms=5, mfc="none")
+        for panel, y, key in ((a, g[j], "growth"), (b, core[j], "core")):
+            s_, e_ = float(lt[f"mode_{key}_slope"].values[j]), float(lt[f"mode_{key}_slope_error"].values[j])
+            if np.isfinite(s_):
+                # the least-squares line through the unstable rings' points, at their geometric centre
+                n0, y0 = np.exp(np.mean(np.log(rings[un]))), np.exp(np.mean(np.log(y[un])))
+                panel.loglog(fine, y0 * (fine / n0) ** s_, "-", color=col, lw=0.8,
+                             label=rf"c = {c[j]:g}: $N^{{{s_:.2f} \pm {e_:.2f}}}$")
+    b.loglog([], [], "ko", ms=5, label="core fraction")
+    b.loglog([], [], "k^", ms=5, label="participation / N")
+    b.loglog([], [], "ko", ms=5, mfc="none", label="open: stable ring (top mode on the circle)")
+    a.axhline(thr, color="0.4", ls="--", lw=0.8, label="stability threshold")
+    a.set_ylim(floor / 3.0, 1e3 * max(float(np.nanmax(g[shown])) if shown else thr, thr))
+    a.set_xlabel("sites N of the ring")
+    a.set_ylabel(rf"growth rate at c, per unit $\tau$ (open: stable, at {floor:g})")
+    a.set_title("(ab) the member's growth rate against N (MI-stable tails)", fontsize=9)
+    a.legend(fontsize=6, loc="upper left", ncol=2)
+    b.loglog(fine, 2.0 / fine, "k:", lw=0.8, label="2 / N (spread evenly, 2 core sites)")
+    b.set_ylim(3e-3, 100.0)
+    b.set_xlabel("sites N of the ring")
+    b.set_ylabel("core fraction (|A| > 1e-2 max), participation / N")
+    b.set_title("(ac) where the top mode lives (filled: unstable)", fontsize=9)
+    b.legend(fontsize=6, loc="upper left", ncol=2)
+    from matplotlib.ticker import FixedLocator, NullFormatter
+
+    # a tick at every ring, a label where it clears the last one labelled
+    labelled = [float(rings[0])]
+    for x in rings[1:]:
+        if x / labelled[-1] >= 1.2:
+            labelled.append(float(x))
+    for panel in (a, b):
+        panel.xaxis.set_major_locator(FixedLocator([float(x) for x in rings]))
+        panel.xaxis.set_major_formatter(lambda x, _: f"{x:g}" if x in labelled else "")
+        panel.xaxis.set_minor_formatter(NullFormatter())
+        panel.tick_params(axis="x", labelsize=7)
+
+    t = ax[2]
+    t.axis("off")
+    letter = {0: "S", 1: "U", -1: "?"}
+    heads = ["c", "unst."] + [f"{d:g}{' r' if r else ''}" for r in (False, True) for d in FM.MODE_RULE_THRESHOLDS]
+    rows = []
+    for j in shown:
+        u = g[j] > thr
+        rows.append([f"{c[j]:g}", f"{int(np.sum(u))}/{int(np.sum(np.isfinite(g[j])))}"]
+                    + [letter[FM.mode_verdict(rings, g[j], core[j], thr, d, r)[0]]
+                       for r in (False, True) for d in FM.MODE_RULE_THRESHOLDS])
+    tab = t.table(cellText=rows or [["–"] * len(heads)], colLabels=heads, cellLoc="center",
+                  bbox=[0.0, 0.35, 1.0, 0.5])
+    tab.auto_set_font_size(False)
+    tab.set_fontsize(7)
+    for (i, _), cell in tab.get_celld().items():
+        text = cell.get_text().get_text()
+        if i > 0 and text in ("U", "S"):
+            cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
+    t.set_title("(ad) MODE_RULE in the limit (S stable: finite-size; U;\n? undecided) under each tolerance δ of the "
+                "core\nfraction's slope (r: the growth's fall resolved);\nunst.: rings unstable at c / rings reached",
+                fontsize=9)
 
 
 def draw_fold(ax: Any, tree: AnalysisTree) -> None:

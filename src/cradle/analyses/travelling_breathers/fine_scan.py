@@ -118,9 +118,11 @@ def limit_rule(rings: NDArray[np.float64], typical: NDArray[np.float64], thresho
 
 def limit_member(b: TravellingBreather, threshold: float) -> dict[str, float]:
     """One scanned TB: growth rate, verdict, theta, tail, the tail's MI rate, the multipliers' quartet and Krein
-    measures (:mod:`cradle.measurements.floquet_bubbles`) and how the unstable multiplier leaves the circle (its
-    argument: pi through -1, 0 through +1, else a quartet)."""
-    from cradle.measurements import floquet_bubbles as FB
+    measures (:mod:`cradle.measurements.floquet_bubbles`), how the unstable multiplier leaves the circle (its
+    argument: pi through -1, 0 through +1, else a quartet) and where the mode of the largest non-trivial multiplier
+    lives (:mod:`cradle.measurements.floquet_modes`: participation ratio over N, core fraction under the first and
+    the last of its core definitions)."""
+    from cradle.measurements import floquet_bubbles as FB, floquet_modes as FM
     from cradle.models import dps_travelling as M
 
     assert b.monodromy is not None
@@ -129,10 +131,12 @@ def limit_member(b: TravellingBreather, threshold: float) -> dict[str, float]:
     _, k = split_trivial(mu, TRIVIAL)
     top = mu[k[int(np.argmax(np.abs(mu[k])))]]
     q, R = tail_wave(b.A)
+    mode = FM.mode_measures(b.monodromy, b.A, b.T, TRIVIAL, (FM.CORE_DEFINITIONS[0], FM.CORE_DEFINITIONS[-1]))
     return {"growth": rate, "unstable": float(unstable), "theta": math.remainder(b.theta, 2 * math.pi),
             "tail": M.tail_amplitude(b.A), "tail_mi": tail_mi_rate(q, R, b.alpha),
             "krein_gap": FB.krein_gap(mu, sigma, TRIVIAL), "quartet_defect": FB.quartet_defect(mu),
-            "top_arg": float(np.angle(top)) if unstable else np.nan}
+            "top_arg": float(np.angle(top)) if unstable else np.nan, "mode_share": mode["participation_share"],
+            "mode_core": mode["core_fraction_0"], "mode_core_norm": mode["core_fraction_1"]}
 
 
 def bubble_scan(spec: TravellingBreathers, b: TravellingBreather, cs: NDArray[np.float64], angle: float,
@@ -162,7 +166,8 @@ def bubble_scan(spec: TravellingBreathers, b: TravellingBreather, cs: NDArray[np
     return {"c": np.asarray(cs, float), **out}
 
 
-LIMIT_FINE = ("growth", "unstable", "theta", "tail", "tail_mi", "krein_gap", "quartet_defect", "top_arg")
+LIMIT_FINE = ("growth", "unstable", "theta", "tail", "tail_mi", "krein_gap", "quartet_defect", "top_arg",
+              "mode_share", "mode_core", "mode_core_norm")
 
 
 def robustness_limit(spec: TravellingBreathers, c: NDArray[np.float64], log: Log | None = None) -> tuple[dict, dict]:
@@ -208,7 +213,9 @@ def robustness_limit(spec: TravellingBreathers, c: NDArray[np.float64], log: Log
                                                                 fine["unstable"]).astype(int),
             "theta": fine["theta"], "tail": fine["tail"], "tail_mi_rate": fine["tail_mi"],
             "krein_gap": fine["krein_gap"], "quartet_defect": fine["quartet_defect"], "top_arg": fine["top_arg"],
-            "unstable_fraction": frac.T, "typical_growth": typical.T, "largest_growth": largest.T,
+            "mode_participation": fine["mode_share"], "mode_core_fraction": fine["mode_core"],
+            "mode_core_fraction_norm": fine["mode_core_norm"], "unstable_fraction": frac.T,
+            "typical_growth": typical.T, "largest_growth": largest.T,
             "reached": reached.T, "decay": [k for _, k in rule], "envelope_decay": env, "verdict": verdicts,
             "windows": census["count"], "window_width": census["mean_width"],
             "ring_largest_growth": census["largest"], "ring_unstable_fraction": census["fraction"]}

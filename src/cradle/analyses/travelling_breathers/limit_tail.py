@@ -109,7 +109,32 @@ def member_growth(grid: NDArray[np.float64], growth: NDArray[np.float64], c: flo
     return float(growth[hit[0]]) if hit.size else np.nan
 
 
-LARGE_FINE = ("growth", "unstable", "theta", "tail", "tail_mi", "quartet_defect")
+LARGE_FINE = ("growth", "unstable", "theta", "tail", "tail_mi", "quartet_defect", "mode_share", "mode_core",
+              "mode_core_norm")
+
+
+def mode_rule(kind: NDArray[np.bool_], rings: list[int], growth: NDArray[np.float64], core: NDArray[np.float64],
+              threshold: float) -> tuple[dict, dict]:
+    """The verdicts of :data:`cradle.measurements.floquet_modes.MODE_RULE` per member (``kind``: its tail is
+    MI-unstable, then unstable as :data:`TAIL_RULE` says; ``growth``, ``core``: (member, ring) at c): the group's
+    variables (the verdict and the slopes it reads) and the attributes (the rule, the members under each verdict,
+    the verdicts under every threshold and growth reading)."""
+    from cradle.measurements import floquet_modes as FM
+
+    def one(j: int, delta: float, resolved: bool) -> tuple[int, dict[str, float]]:
+        if kind[j]:
+            return LIMIT_UNSTABLE, {}
+        return FM.mode_verdict(rings, growth[j], core[j], threshold, delta, resolved)
+
+    main = [one(j, FM.MODE_RULE_THRESHOLDS[0], False) for j in range(kind.size)]
+    keys = ("growth_slope", "growth_slope_error", "core_slope", "core_slope_error")
+    group = {"mode_verdict": np.array([v for v, _ in main], int),
+             **{f"mode_{k}": [i.get(k, np.nan) for _, i in main] for k in keys}}
+    letter = {LIMIT_STABLE: "S", LIMIT_UNSTABLE: "U", LIMIT_UNDECIDED: "?"}
+    readings = "; ".join(f"delta {d:g}{', resolved' if r else ''}: "
+                         + " ".join(letter[one(j, d, r)[0]] for j in range(kind.size))
+                         for r in (False, True) for d in FM.MODE_RULE_THRESHOLDS)
+    return group, {"mode_rule": FM.MODE_RULE, "mode_rule_readings": readings}
 
 
 def large_scan(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[np.float64],
@@ -180,6 +205,19 @@ def tail_rule_of(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArr
     member_fits = [FB.fit_limit(rings, at_c[j]) for j in range(c.size)]
     member_verdicts = np.array([member_verdict(bool(kind[j]), at_c[j], member_fits[j], spec.stability_threshold)
                                 for j in range(c.size)], int)
+    # the member's unstable mode (MODE_RULE): its participation ratio over N and core fraction at c on each ring
+    # (NaN where the scans did not store them: files written before they were measured)
+    def at_member(small: str, larger: str) -> NDArray[np.float64]:
+        rows = ([(grid_small, data[small][i] if small in data else grid_small * np.nan)
+                 for i in range(len(spec.limit_N))]
+                + [(grid_large, large[larger][i] if larger in large else grid_large * np.nan)
+                   for i in range(len(spec.limit_large_N))])
+        return np.array([[member_growth(g_, y, float(x)) for g_, y in rows] for x in c])
+
+    modes = {k: at_member(v, w) for k, v, w in (("share", "mode_participation", "mode_share"),
+                                                ("core", "mode_core_fraction", "mode_core"),
+                                                ("core_norm", "mode_core_fraction_norm", "mode_core_norm"))}
+    by_mode, mode_attrs = mode_rule(kind, rings, at_c, modes["core"], spec.stability_threshold)
     # theta on every ring of /robustness and at every tolerance, against the ring of N's: the rule's input
     spread = np.nanmax(np.abs(np.angle(np.exp(1j * (np.vstack([rob["theta_ring"], rob["theta_tol"]])
                                                         - rob["theta_ring"][0])))), axis=0)
@@ -192,11 +230,14 @@ def tail_rule_of(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArr
                                                                                  "b", "k", "points", "degenerate")},
              "verdict": verdicts, "member_growth": at_c,
              **{f"member_fit_{k}": [f[k] for f in member_fits] for k in ("g_inf", "g_inf_error", "k", "degenerate")},
-             "member_verdict": member_verdicts}
+             "member_verdict": member_verdicts, "member_participation": modes["share"],
+             "member_core_fraction": modes["core"], "member_core_fraction_norm": modes["core_norm"], **by_mode}
     groups = {"/limit_tail": (group, {"fit_ring": np.array(rings)})}
     if grid_large.size:
         groups["/limit_large"] = ({"growth_rate": large["growth"], "theta": large["theta"], "tail": large["tail"],
                                    "tail_mi_rate": large["tail_mi"], "quartet_defect": large["quartet_defect"],
+                                   "mode_participation": large["mode_share"], "mode_core_fraction": large["mode_core"],
+                                   "mode_core_fraction_norm": large["mode_core_norm"],
                                    "unstable": np.where(np.isnan(large["unstable"]), -1,
                                                         large["unstable"]).astype(int)},
                                   {"large_ring": np.array(spec.limit_large_N), "c_large": grid_large})
@@ -209,6 +250,9 @@ def tail_rule_of(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArr
                                 ("undecided", LIMIT_UNDECIDED))},
              "tail_rule_theta_spread_max": float(np.nanmax(spread)), "member_rule": MEMBER_RULE,
              **{f"member_rule_{name}_c": ", ".join(f"{x:g}" for x in c[member_verdicts == v]) or "none"
+                for name, v in (("stable", LIMIT_STABLE), ("unstable", LIMIT_UNSTABLE),
+                                ("undecided", LIMIT_UNDECIDED))}, **mode_attrs,
+             **{f"mode_rule_{name}_c": ", ".join(f"{x:g}" for x in c[by_mode["mode_verdict"] == v]) or "none"
                 for name, v in (("stable", LIMIT_STABLE), ("unstable", LIMIT_UNSTABLE),
                                 ("undecided", LIMIT_UNDECIDED))}}
     return groups, attrs

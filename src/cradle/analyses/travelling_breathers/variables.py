@@ -263,6 +263,14 @@ VARIABLES = {
                                                         "nearest multiplier (0 for a symplectic spectrum)"),
         "top_arg": Var(("limit_ring", "c_fine"), "arg of the most unstable multiplier (pi: through -1, 0: through "
                                                  "+1; NaN: stable)"),
+        "mode_participation": Var(("limit_ring", "c_fine"), "participation ratio 1 / sum w_n^2 over N of the mode "
+                                                            "of the largest non-trivial multiplier (w_n its weight "
+                                                            "per site, summing to 1)"),
+        "mode_core_fraction": Var(("limit_ring", "c_fine"), "weight of that mode on the core, the sites where "
+                                                            "|A_n| > 1e-2 max |A_n|"),
+        "mode_core_fraction_norm": Var(("limit_ring", "c_fine"), "weight of that mode on the core, the sites "
+                                                                 "nearest the centre that hold 1 - 1e-6 of the "
+                                                                 "norm"),
         "unstable_fraction": Var(("c", "limit_ring"), "fraction of the member's fine neighbourhood that is unstable "
                                                       "on that ring (NaN: none reached)"),
         "typical_growth": Var(("c", "limit_ring"), "median growth rate over the member's fine neighbourhood"),
@@ -314,6 +322,23 @@ VARIABLES = {
         "member_fit_degenerate": Var(_C, "1 if k ended on a bound of its range (NaN: no fit)"),
         "member_verdict": Var(_C, "limit verdict of the member itself (member_rule): 1 unstable, 0 stable, -1 "
                                   "undecided"),
+        "member_participation": Var(("c", "fit_ring"), "participation ratio over N of the member's mode of largest "
+                                                       "non-trivial multiplier, at c, on each ring (NaN: not "
+                                                       "reached)"),
+        "member_core_fraction": Var(("c", "fit_ring"), "weight of that mode on the core (|A_n| > 1e-2 max |A_n|), "
+                                                       "at c, on each ring"),
+        "member_core_fraction_norm": Var(("c", "fit_ring"), "weight of that mode on the core (the sites nearest "
+                                                            "the centre holding 1 - 1e-6 of the norm), at c, on "
+                                                            "each ring"),
+        "mode_verdict": Var(_C, "limit verdict of mode_rule, read from the unstable mode's core fraction and "
+                                "growth against N (tail MI-unstable: 1, as tail_rule): 1 unstable, 0 stable, -1 "
+                                "undecided"),
+        "mode_growth_slope": Var(_C, "power s of N in member_growth ~ N^s over the rings where the member is "
+                                     "unstable (NaN: fewer than 3, or tail MI-unstable)"),
+        "mode_growth_slope_error": Var(_C, "standard error of mode_growth_slope"),
+        "mode_core_slope": Var(_C, "power s of N in member_core_fraction ~ N^s over the same rings (-1: an "
+                                   "extended mode)"),
+        "mode_core_slope_error": Var(_C, "standard error of mode_core_slope"),
     },
     "/limit_fold": {
         "fold_ring": Var(("fold_ring",), "sites of a ring of the fold scan (limit_fold_N)"),
@@ -344,6 +369,13 @@ VARIABLES = {
                                                        "infinite lattice (per unit tau)"),
         "quartet_defect": Var(("large_ring", "c_large"), "largest distance from 1/conj(mu) or conj(mu) to the "
                                                          "nearest multiplier (0 for a symplectic spectrum)"),
+        "mode_participation": Var(("large_ring", "c_large"), "participation ratio over N of the mode of the largest "
+                                                             "non-trivial multiplier"),
+        "mode_core_fraction": Var(("large_ring", "c_large"), "weight of that mode on the core (|A_n| > 1e-2 max "
+                                                             "|A_n|)"),
+        "mode_core_fraction_norm": Var(("large_ring", "c_large"), "weight of that mode on the core (the sites "
+                                                                  "nearest the centre holding 1 - 1e-6 of the "
+                                                                  "norm)"),
     },
     "/claims": GROUP_VARIABLES,
 }
