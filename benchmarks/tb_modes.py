@@ -14,8 +14,8 @@ unstable multiplier's argument, theta, H, tail, residual, and its mode (cradle.m
 participation ratio over N, core fraction under each core definition). One JSON line per (N, c, rtol), with the CPU
 of the ring's scan. ``--carry`` takes each member of the largest ring run to the rings M (> it) by
 cradle.models.tb_launch.embedded and dps_travelling.newton_core_first (at the large rings' newton_tol), each from the
-ring before; ``carry`` does the same from the members a run kept of the ring FROM (``SAVE``). Run under nice; the
-CPU is stated beside other work.
+ring before; ``carry`` does the same from the members a run kept of the ring FROM (in OUT-members/, beside
+OUT). Run under nice; the CPU is stated beside other work.
 
 ``table``: the markdown table of the lines (per member and ring: growth, arg mu, participation / N, core fractions),
 the slopes of each against N (least squares in log-log over the rings where the member is unstable, with their
@@ -45,8 +45,11 @@ from cradle.specs.declare import from_plain  # noqa: E402
 
 MEMBERS = (0.08, 0.10, 0.12, 0.14)
 CHECK_RTOL = 1e-12
-#: where run keeps each member (A, T, theta) for a later look
-SAVE = "/tmp/tb_modes_members"
+
+
+def members_dir(out: str) -> Path:
+    """Where run keeps each member (A, T, theta) for carry: a folder beside OUT (OUT.jsonl -> OUT-members/)."""
+    return Path(out).with_name(Path(out).stem + "-members")
 
 
 def spec_for(N: int) -> tb.TravellingBreathers:
@@ -67,13 +70,13 @@ def grid_for(spec: tb.TravellingBreathers, N: int) -> np.ndarray:
     return FS.limit_grid(c, spec.limit_step, spec.limit_halfwidth)
 
 
-def measure(b: DT.TravellingBreather, N: int, c: float, rtol: float, cpu: float) -> dict:
-    """One member's line: the TB and its unstable mode."""
+def measure(b: DT.TravellingBreather, N: int, c: float, rtol: float, cpu: float, keep_dir: Path) -> dict:
+    """One member's line: the TB and its unstable mode (the TB kept in ``keep_dir``)."""
     from cradle.models import dps_travelling as M
 
     assert b.monodromy is not None
     m = FM.mode_measures(b.monodromy, b.A, b.T, DF.TRIVIAL)
-    keep = Path(SAVE) / f"N{N}_c{c:g}_rtol{rtol:g}.npz"
+    keep = keep_dir / f"N{N}_c{c:g}_rtol{rtol:g}.npz"
     keep.parent.mkdir(parents=True, exist_ok=True)
     np.savez(keep, A=b.A, T=b.T, theta=b.theta)
     m["internal"] = FM.internal_modes(b.monodromy, b.A, DF.TRIVIAL, FM.core_mask(b.A, *FM.CORE_DEFINITIONS[0]))
@@ -111,11 +114,11 @@ def run(out: str, rings: list[int], carry: list[int]) -> None:
                 if b is None:
                     print(f"N = {N}, c = {c}: not reached", flush=True)
                     continue
-                emit(measure(b, N, c, spec.rtol, cpu))
+                emit(measure(b, N, c, spec.rtol, cpu, members_dir(out)))
                 t1 = time.process_time()
                 b2 = resolve(spec, b, CHECK_RTOL)
                 if b2.converged:
-                    emit(measure(b2, N, c, CHECK_RTOL, time.process_time() - t1))
+                    emit(measure(b2, N, c, CHECK_RTOL, time.process_time() - t1, members_dir(out)))
                 else:
                     print(f"N = {N}, c = {c}: no convergence at rtol {CHECK_RTOL:g} ({b2.residual:.2e})", flush=True)
     if carry:
@@ -123,13 +126,13 @@ def run(out: str, rings: list[int], carry: list[int]) -> None:
 
 
 def carry_rings(out: str, start: int, rings: list[int], members: list[float]) -> None:
-    """Each member kept from the ring of ``start`` (``SAVE``, rtol 1e-13) carried to the rings given in turn:
+    """Each member kept from the ring of ``start`` (:func:`members_dir`, rtol 1e-13) carried to the rings given in turn:
     embedded (sites at rest added on the far side), Newton the core first, then re-solved at CHECK_RTOL."""
     from cradle.models import tb_launch
 
     last: dict[float, tuple[np.ndarray, float, float]] = {}
     for c in members:
-        z = np.load(Path(SAVE) / f"N{start}_c{c:g}_rtol{1e-13:g}.npz")
+        z = np.load(members_dir(out) / f"N{start}_c{c:g}_rtol{1e-13:g}.npz")
         last[c] = (np.asarray(z["A"]), float(z["T"]), float(z["theta"]))
     with open(out, "a") as f:
         for N in rings:
@@ -144,14 +147,14 @@ def carry_rings(out: str, start: int, rings: list[int], members: list[float]) ->
                     del last[c]
                     continue
                 last[c] = (b1.A, b1.T, b1.theta)
-                line = measure(b1, N, c, spec.rtol, time.process_time() - t0) | {"carried": True}
+                line = measure(b1, N, c, spec.rtol, time.process_time() - t0, members_dir(out)) | {"carried": True}
                 f.write(json.dumps(line) + "\n")
                 f.flush()
                 print(json.dumps(line), flush=True)
                 t1 = time.process_time()
                 b2 = resolve(spec, b1, CHECK_RTOL)
                 if b2.converged:
-                    line = measure(b2, N, c, CHECK_RTOL, time.process_time() - t1) | {"carried": True}
+                    line = measure(b2, N, c, CHECK_RTOL, time.process_time() - t1, members_dir(out)) | {"carried": True}
                     f.write(json.dumps(line) + "\n")
                     f.flush()
                     print(json.dumps(line), flush=True)
