@@ -188,8 +188,6 @@ def draw(tree: AnalysisTree) -> Figure:
 
 def draw_modes(ax: Any, tree: AnalysisTree) -> None:
     """Panels (ab)-(ad): the unstable mode of each member whose tail is MI-stable against N (module docstring)."""
-    from cradle.measurements import floquet_modes as FM
-
     lt = tree["limit_tail"]
     thr = float(tree.attrs["stability_threshold"])
     floor = thr / 100.0
@@ -247,13 +245,15 @@ def draw_modes(ax: Any, tree: AnalysisTree) -> None:
     t = ax[2]
     t.axis("off")
     letter = {0: "S", 1: "U", -1: "?"}
-    heads = ["c", "unst."] + [f"{d:g}{' r' if r else ''}" for r in (False, True) for d in FM.MODE_RULE_THRESHOLDS]
+    # the readings "delta 0.3", "delta 0.3, resolved" as the columns "0.3", "0.3 r"
+    heads = ["c", "unst."] + [str(r).replace("delta ", "").replace(", resolved", " r")
+                              for r in lt["mode_reading"].values]
+    each = np.asarray(lt["mode_verdict_readings"].values, int)              # (c, reading)
     rows = []
     for j in shown:
         u = g[j] > thr
         rows.append([f"{c[j]:g}", f"{int(np.sum(u))}/{int(np.sum(np.isfinite(g[j])))}"]
-                    + [letter[FM.mode_verdict(rings, g[j], core[j], thr, d, r)[0]]
-                       for r in (False, True) for d in FM.MODE_RULE_THRESHOLDS])
+                    + [letter[int(v)] for v in each[j]])
     tab = t.table(cellText=rows or [["–"] * len(heads)], colLabels=heads, cellLoc="center",
                   bbox=[0.0, 0.35, 1.0, 0.5])
     tab.auto_set_font_size(False)

@@ -117,8 +117,9 @@ def mode_rule(kind: NDArray[np.bool_], rings: list[int], growth: NDArray[np.floa
               threshold: float) -> tuple[dict, dict]:
     """The verdicts of :data:`cradle.measurements.floquet_modes.MODE_RULE` per member (``kind``: its tail is
     MI-unstable, then unstable as :data:`TAIL_RULE` says; ``growth``, ``core``: (member, ring) at c): the group's
-    variables (the verdict and the slopes it reads) and the attributes (the rule, the members under each verdict,
-    the verdicts under every threshold and growth reading)."""
+    variables (the verdict and the slopes it reads, and the verdict under every threshold and growth reading) and
+    the attributes (the rule, the readings as text, and under the key ``mode_reading`` the readings' names: the
+    group's coordinate, popped by the caller)."""
     from cradle.measurements import floquet_modes as FM
 
     def one(j: int, delta: float, resolved: bool) -> tuple[int, dict[str, float]]:
@@ -128,13 +129,16 @@ def mode_rule(kind: NDArray[np.bool_], rings: list[int], growth: NDArray[np.floa
 
     main = [one(j, FM.MODE_RULE_THRESHOLDS[0], False) for j in range(kind.size)]
     keys = ("growth_slope", "growth_slope_error", "core_slope", "core_slope_error")
+    readings = [(d, r) for r in (False, True) for d in FM.MODE_RULE_THRESHOLDS]
+    each = np.array([[one(j, d, r)[0] for d, r in readings] for j in range(kind.size)], int).reshape(kind.size,
+                                                                                                    len(readings))
     group = {"mode_verdict": np.array([v for v, _ in main], int),
-             **{f"mode_{k}": [i.get(k, np.nan) for _, i in main] for k in keys}}
+             **{f"mode_{k}": [i.get(k, np.nan) for _, i in main] for k in keys}, "mode_verdict_readings": each}
+    names = [f"delta {d:g}{', resolved' if r else ''}" for d, r in readings]
     letter = {LIMIT_STABLE: "S", LIMIT_UNSTABLE: "U", LIMIT_UNDECIDED: "?"}
-    readings = "; ".join(f"delta {d:g}{', resolved' if r else ''}: "
-                         + " ".join(letter[one(j, d, r)[0]] for j in range(kind.size))
-                         for r in (False, True) for d in FM.MODE_RULE_THRESHOLDS)
-    return group, {"mode_rule": FM.MODE_RULE, "mode_rule_readings": readings}
+    text = "; ".join(f"{name}: " + " ".join(letter[int(v)] for v in each[:, i]) for i, name in enumerate(names))
+    return group, {"mode_rule": FM.MODE_RULE, "mode_rule_readings": text,
+                   "mode_reading": np.array(names, dtype=object)}
 
 
 def large_scan(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArray[np.float64],
@@ -232,7 +236,8 @@ def tail_rule_of(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArr
              **{f"member_fit_{k}": [f[k] for f in member_fits] for k in ("g_inf", "g_inf_error", "k", "degenerate")},
              "member_verdict": member_verdicts, "member_participation": modes["share"],
              "member_core_fraction": modes["core"], "member_core_fraction_norm": modes["core_norm"], **by_mode}
-    groups = {"/limit_tail": (group, {"fit_ring": np.array(rings)})}
+    reading = mode_attrs.pop("mode_reading")
+    groups = {"/limit_tail": (group, {"fit_ring": np.array(rings), "mode_reading": reading})}
     if grid_large.size:
         groups["/limit_large"] = ({"growth_rate": large["growth"], "theta": large["theta"], "tail": large["tail"],
                                    "tail_mi_rate": large["tail_mi"], "quartet_defect": large["quartet_defect"],

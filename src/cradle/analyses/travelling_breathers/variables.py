@@ -330,6 +330,10 @@ VARIABLES = {
         "member_core_fraction_norm": Var(("c", "fit_ring"), "weight of that mode on the core (the sites nearest "
                                                             "the centre holding 1 - 1e-6 of the norm), at c, on "
                                                             "each ring"),
+        "mode_reading": Var(("mode_reading",), "a reading of mode_rule: the tolerance delta on the core fraction's "
+                                               "slope, and whether the growth's fall must be resolved"),
+        "mode_verdict_readings": Var(("c", "mode_reading"), "limit verdict of mode_rule under each reading (0 "
+                                                             "stable, 1 unstable, -1 undecided)"),
         "mode_verdict": Var(_C, "limit verdict of mode_rule, read from the unstable mode's core fraction and "
                                 "growth against N (tail MI-unstable: 1, as tail_rule): 1 unstable, 0 stable, -1 "
                                 "undecided"),
