@@ -36,7 +36,6 @@ import numpy as np
 from cradle.integrators.continuation import continue_in_c
 from cradle.integrators.systems import dps as SD
 from cradle.models import dps, dps_travelling as M
-from cradle.models.multipliers import split_trivial
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -113,17 +112,6 @@ class TravellingBreather:
     dA_dT: NDArray[np.complex128] | None = None
     dtheta_dT: float = 0.0
     monodromy: Floats | None = None   # the 2N x 2N real monodromy modulo shift of the last evaluation
-
-    def unstable_mode(self, trivial: int) -> tuple[complex, NDArray[np.complex128]]:
-        """(mu, v): the multiplier of largest modulus among all but the ``trivial`` ones nearest 1, and its
-        eigenvector as |v_n|^2 per site (the two real coordinates of site n added), normalised to sum 1."""
-        assert self.monodromy is not None, "a converged member keeps its monodromy"
-        mu, V = np.linalg.eig(self.monodromy)
-        _, rest = split_trivial(mu, trivial)
-        k = int(rest[np.argmax(np.abs(mu[rest]))])
-        N = self.A.size
-        w = np.abs(V[:N, k]) ** 2 + np.abs(V[N:, k]) ** 2
-        return complex(mu[k]), w / np.sum(w)
 
     @property
     def c(self) -> float:

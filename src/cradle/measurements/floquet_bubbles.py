@@ -44,12 +44,19 @@ def krein_signatures(M: ArrayLike) -> tuple[NDArray[np.complex128], NDArray[np.f
     """(mu, sigma): the eigenvalues of the symplectic matrix M and the Krein signature of each, sign(-Im w^H J w) of
     its eigenvector w for a multiplier on the unit circle (:data:`ON_CIRCLE`), 0 off it (a quartet's members carry
     none). A multiple multiplier's eigenvectors are mixed by the eigensolver: its signatures are not meaningful."""
+    mu, sigma, _ = krein_modes(M)
+    return mu, sigma
+
+
+def krein_modes(M: ArrayLike) -> tuple[NDArray[np.complex128], NDArray[np.float64], NDArray[np.complex128]]:
+    """(mu, sigma, W): :func:`krein_signatures` with the eigenvectors (the columns of W, in the order of mu), for
+    readers that also need the modes (:mod:`cradle.measurements.floquet_modes`) from the one eigendecomposition."""
     M = np.asarray(M, float)
     J = symplectic_form(M.shape[0] // 2)
     mu, W = np.linalg.eig(M)
     q = -np.imag(np.einsum("ik,ij,jk->k", W.conj(), J, W))
     sigma = np.where(np.abs(np.abs(mu) - 1.0) <= ON_CIRCLE, np.sign(q), 0.0)
-    return mu.astype(complex), sigma
+    return mu.astype(complex), sigma, W.astype(complex)
 
 
 def quartet_defect(mu: ArrayLike) -> float:

@@ -25,6 +25,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+#: a monodromy's (eigenvalues, eigenvectors as columns), as numpy.linalg.eig returns them
+Eig = tuple[NDArray[np.complex128], NDArray[np.complex128]]
 #: the core definitions the measurements report under: (kind, level) of :func:`core_mask`
 CORE_DEFINITIONS: tuple[tuple[str, float], ...] = (("amplitude", 1e-2), ("amplitude", 1e-3), ("norm", 1.0 - 1e-6))
 
@@ -79,24 +81,28 @@ def core_fraction(w: ArrayLike, core: ArrayLike) -> float:
     return float(np.sum(np.asarray(w, float)[np.asarray(core, bool)]))
 
 
-def top_mode(monodromy: ArrayLike, trivial: int) -> tuple[complex, NDArray[np.complex128]]:
+def top_mode(monodromy: ArrayLike, trivial: int,
+             eig: Eig | None = None) -> tuple[complex, NDArray[np.complex128]]:
     """(mu, v): the multiplier of largest modulus among all but the ``trivial`` ones nearest 1 of the real 2N x 2N
-    monodromy, and its eigenvector (length 2N, coordinates (Re A, Im A))."""
+    monodromy, and its eigenvector (length 2N, coordinates (Re A, Im A)); ``eig`` the monodromy's (eigenvalues,
+    eigenvectors) when the caller has them (:func:`cradle.measurements.floquet_bubbles.krein_modes`)."""
     from cradle.models.multipliers import split_trivial
 
-    mu, V = np.linalg.eig(np.asarray(monodromy, float))
+    mu, V = eig if eig is not None else np.linalg.eig(np.asarray(monodromy, float))
     _, k = split_trivial(mu, trivial)
     j = int(k[int(np.argmax(np.abs(mu[k])))])
     return complex(mu[j]), np.asarray(V[:, j], dtype=np.complex128)
 
 
 def mode_measures(monodromy: ArrayLike, A: ArrayLike, T: float, trivial: int,
-                  cores: tuple[tuple[str, float], ...] = CORE_DEFINITIONS) -> dict[str, float]:
+                  cores: tuple[tuple[str, float], ...] = CORE_DEFINITIONS,
+                  eig: Eig | None = None) -> dict[str, float]:
     """The unstable (largest) non-trivial mode of a TB of state A and period T: growth rate ln|mu| / T, |arg mu| (a
     quartet's mu and conj(mu) are equally large: the eigensolver picks either),
     participation ratio and its share of the ring's N sites, and per core definition of ``cores`` the core's size in
-    sites and the mode's core fraction (keys ``core_sites_i``, ``core_fraction_i`` in the order of ``cores``)."""
-    mu, v = top_mode(monodromy, trivial)
+    sites and the mode's core fraction (keys ``core_sites_i``, ``core_fraction_i`` in the order of ``cores``);
+    ``eig`` as :func:`top_mode` takes it."""
+    mu, v = top_mode(monodromy, trivial, eig)
     w = site_weights(v)
     N = w.size
     pr = participation(w)
@@ -117,17 +123,14 @@ def internal_modes(monodromy: ArrayLike, A: ArrayLike, trivial: int, core: Array
     from cradle.measurements import floquet_bubbles as FB
     from cradle.models.multipliers import split_trivial
 
-    M = np.asarray(monodromy, float)
-    mu, V = np.linalg.eig(M)
-    J = FB.symplectic_form(M.shape[0] // 2)
+    mu, sigma, V = FB.krein_modes(monodromy)
     out = []
     for j in split_trivial(mu, trivial)[1]:
         if abs(abs(mu[j]) - 1.0) > FB.ON_CIRCLE or np.angle(mu[j]) < 0.0:
             continue
         f = core_fraction(site_weights(V[:, j]), core)
         if f > share:
-            sigma = float(np.sign(-np.imag(V[:, j].conj() @ J @ V[:, j])))
-            out.append((float(np.angle(mu[j])), sigma, f))
+            out.append((float(np.angle(mu[j])), float(sigma[j]), f))
     return sorted(out)
 
 

@@ -127,11 +127,12 @@ def limit_member(b: TravellingBreather, threshold: float) -> dict[str, float]:
 
     assert b.monodromy is not None
     _, rate, unstable, _ = verdict(b, threshold)
-    mu, sigma = FB.krein_signatures(b.monodromy)
+    mu, sigma, W = FB.krein_modes(b.monodromy)
     _, k = split_trivial(mu, TRIVIAL)
     top = mu[k[int(np.argmax(np.abs(mu[k])))]]
     q, R = tail_wave(b.A)
-    mode = FM.mode_measures(b.monodromy, b.A, b.T, TRIVIAL, (FM.CORE_DEFINITIONS[0], FM.CORE_DEFINITIONS[-1]))
+    mode = FM.mode_measures(b.monodromy, b.A, b.T, TRIVIAL, (FM.CORE_DEFINITIONS[0], FM.CORE_DEFINITIONS[-1]),
+                            eig=(mu, W))
     return {"growth": rate, "unstable": float(unstable), "theta": math.remainder(b.theta, 2 * math.pi),
             "tail": M.tail_amplitude(b.A), "tail_mi": tail_mi_rate(q, R, b.alpha),
             "krein_gap": FB.krein_gap(mu, sigma, TRIVIAL), "quartet_defect": FB.quartet_defect(mu),

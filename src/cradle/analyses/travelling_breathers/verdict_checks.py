@@ -55,14 +55,15 @@ def member_checks(b: TravellingBreather, threshold: float) -> dict[str, float]:
     """One member's verdict and what explains it: growth rate, verdict, tail and its plane wave (q, MI rate), and
     the extent of the most unstable mode (participation ratio 1 / sum w_n^2 of its |v_n|^2 = w_n, over N: 1 for
     a mode spread evenly over the ring, ~ (core width) / N for a mode of the core; NaN when stable)."""
+    from cradle.measurements import floquet_modes as FM
     from cradle.models import dps_travelling as M
 
     _, rate, unstable, _ = verdict(b, threshold)
     q, R = tail_wave(b.A)
     extent = np.nan
     if unstable:
-        _, w = b.unstable_mode(TRIVIAL)
-        extent = float(1.0 / np.sum(w**2) / b.A.size)
+        assert b.monodromy is not None
+        extent = FM.participation(FM.site_weights(FM.top_mode(b.monodromy, TRIVIAL)[1])) / b.A.size
     return {"growth": rate, "unstable": float(unstable), "tail": M.tail_amplitude(b.A), "theta": b.theta,
             "tail_q": q, "tail_mi": tail_mi_rate(q, R, b.alpha), "extent": extent}
 
