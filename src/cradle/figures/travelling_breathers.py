@@ -186,6 +186,17 @@ def draw(tree: AnalysisTree) -> Figure:
     return fig
 
 
+def verdict_cells(ax: Any, rows: list[list[str]], heads: list[str], bbox: list[float], size: float) -> None:
+    """A table of verdicts on ``ax`` (its cells centred, font ``size``), each "U" and "S" in its verdict's colour."""
+    tab = ax.table(cellText=rows, colLabels=heads, cellLoc="center", bbox=bbox)
+    tab.auto_set_font_size(False)
+    tab.set_fontsize(size)
+    for (i, _), cell in tab.get_celld().items():
+        text = cell.get_text().get_text()
+        if i > 0 and text in ("U", "S"):
+            cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
+
+
 def draw_modes(ax: Any, tree: AnalysisTree) -> None:
     """Panels (ab)-(ad): the unstable mode of each member whose tail is MI-stable against N (module docstring)."""
     lt = tree["limit_tail"]
@@ -254,14 +265,7 @@ def draw_modes(ax: Any, tree: AnalysisTree) -> None:
         u = g[j] > thr
         rows.append([f"{c[j]:g}", f"{int(np.sum(u))}/{int(np.sum(np.isfinite(g[j])))}"]
                     + [letter[int(v)] for v in each[j]])
-    tab = t.table(cellText=rows or [["–"] * len(heads)], colLabels=heads, cellLoc="center",
-                  bbox=[0.0, 0.35, 1.0, 0.5])
-    tab.auto_set_font_size(False)
-    tab.set_fontsize(7)
-    for (i, _), cell in tab.get_celld().items():
-        text = cell.get_text().get_text()
-        if i > 0 and text in ("U", "S"):
-            cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
+    verdict_cells(t, rows or [["–"] * len(heads)], heads, [0.0, 0.35, 1.0, 0.5], 7)
     t.set_title("(ad) MODE_RULE in the limit (S stable: finite-size; U;\n? undecided) under each tolerance δ of the "
                 "core\nfraction's slope (r: the growth's fall resolved);\nunst.: rings unstable at c / rings reached",
                 fontsize=9)
@@ -381,13 +385,7 @@ def draw_tail_rule(ax: Any, tree: AnalysisTree) -> None:
     r.axis("off")
     rows = verdict_table(tree)
     # the whole panel: every column as wide as its longest header allows
-    tab = r.table(cellText=rows[1:], colLabels=rows[0], cellLoc="center", bbox=[0.0, 0.0, 1.0, 1.0])
-    tab.auto_set_font_size(False)
-    tab.set_fontsize(6)
-    for (i, _), cell in tab.get_celld().items():
-        text = cell.get_text().get_text()
-        if i > 0 and text in ("U", "S"):
-            cell.get_text().set_color(VERDICT_COLOUR[1 if text == "U" else 0])
+    verdict_cells(r, rows[1:], rows[0], [0.0, 0.0, 1.0, 1.0], 6)
     r.set_title("(r) verdicts per ring N and rtol (ring of N);\nin the limit: median rule, tail rule, "
                 "member at c", fontsize=9)
 
