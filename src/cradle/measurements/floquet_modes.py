@@ -25,6 +25,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from cradle.measurements import floquet_bubbles as FB
+
 #: a monodromy's (eigenvalues, eigenvectors as columns), as numpy.linalg.eig returns them
 Eig = tuple[NDArray[np.complex128], NDArray[np.complex128]]
 #: the core definitions the measurements report under: (kind, level) of :func:`core_mask`
@@ -120,7 +122,6 @@ def internal_modes(monodromy: ArrayLike, A: ArrayLike, trivial: int, core: Array
     """The non-trivial multipliers on the unit circle whose mode holds more than ``share`` of its weight on the sites
     of ``core``: the core's internal modes, as (arg mu, Krein signature, core fraction), one per conjugate pair (arg
     >= 0; its conjugate carries the opposite signature)."""
-    from cradle.measurements import floquet_bubbles as FB
     from cradle.models.multipliers import split_trivial
 
     mu, sigma, V = FB.krein_modes(monodromy)
@@ -187,7 +188,7 @@ def mode_verdict(N: ArrayLike, growth: ArrayLike, core: ArrayLike, threshold: fl
     info = {"growth_slope": sg, "growth_slope_error": eg, "core_slope": sf, "core_slope_error": ef,
             "unstable_rings": float(np.sum(u)), "rings": float(n.size)}
     if not np.any(u):
-        return (STABLE if n.size >= 4 else UNDECIDED), info
+        return (STABLE if n.size >= FB.LIMIT_FIT_MIN else UNDECIDED), info
     if np.sum(u) < MODE_RULE_MIN or not (np.isfinite(sf) and np.isfinite(sg)):
         return UNDECIDED, info
     largest = f[u][int(np.argmax(n[u]))]

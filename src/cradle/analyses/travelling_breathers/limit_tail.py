@@ -204,20 +204,21 @@ def tail_rule_of(spec: TravellingBreathers, c: NDArray[np.float64], theta: NDArr
     fits = [FB.fit_limit(rings, envelope[j]) for j in range(c.size)]
     verdicts = np.array([tail_rule_verdict(bool(kind[j]), fits[j], spec.stability_threshold)
                          for j in range(c.size)], int)
-    # the member itself (question (i) of MEMBER_RULE): its own growth rate at c on each ring, fitted the same way
-    at_c = np.array([[member_growth(g_, gr, float(x)) for g_, gr, _ in per_ring] for x in c])
-    member_fits = [FB.fit_limit(rings, at_c[j]) for j in range(c.size)]
-    member_verdicts = np.array([member_verdict(bool(kind[j]), at_c[j], member_fits[j], spec.stability_threshold)
-                                for j in range(c.size)], int)
-    # the member's unstable mode (MODE_RULE): its participation ratio over N and core fraction at c on each ring
-    # (NaN where the scans did not store them: files written before they were measured)
     def at_member(small: str, larger: str) -> NDArray[np.float64]:
+        """(member, ring): the scans' variable ``small`` (limit_N) and ``larger`` (limit_large_N) at each member's c
+        (NaN where a scan did not store it: files written before the modes were measured)."""
         rows = ([(grid_small, data[small][i] if small in data else grid_small * np.nan)
                  for i in range(len(spec.limit_N))]
                 + [(grid_large, large[larger][i] if larger in large else grid_large * np.nan)
                    for i in range(len(spec.limit_large_N))])
         return np.array([[member_growth(g_, y, float(x)) for g_, y in rows] for x in c])
 
+    # the member itself (question (i) of MEMBER_RULE): its own growth rate at c on each ring, fitted the same way
+    at_c = at_member("growth_rate", "growth")
+    member_fits = [FB.fit_limit(rings, at_c[j]) for j in range(c.size)]
+    member_verdicts = np.array([member_verdict(bool(kind[j]), at_c[j], member_fits[j], spec.stability_threshold)
+                                for j in range(c.size)], int)
+    # the member's unstable mode (MODE_RULE): its participation ratio over N and core fraction at c on each ring
     modes = {k: at_member(v, w) for k, v, w in (("share", "mode_participation", "mode_share"),
                                                 ("core", "mode_core_fraction", "mode_core"),
                                                 ("core_norm", "mode_core_fraction_norm", "mode_core_norm"))}
