@@ -148,7 +148,7 @@ def power_slope(N: ArrayLike, y: ArrayLike) -> tuple[float, float]:
 
 
 # ----------------------------------------------------------------- the limit read from the mechanism
-#: verdict codes (those of cradle.analyses.travelling_breathers' LIMIT_STABLE, LIMIT_UNSTABLE, LIMIT_UNDECIDED)
+#: verdict codes of a limit rule (the travelling-breathers analysis's LIMIT_STABLE, ... are these)
 STABLE, UNSTABLE, UNDECIDED = 0, 1, -1
 #: a mode with more than this share of its weight on the core is a mode of the core (localised)
 CORE_SHARE = 0.5

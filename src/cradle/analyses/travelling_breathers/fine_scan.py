@@ -15,6 +15,7 @@ import numpy as np
 
 from cradle.analyses.travelling_breathers.dps_family import TRIVIAL, first_member, verdict
 from cradle.analyses.travelling_breathers.verdict_checks import tail_mi_rate, tail_wave
+from cradle.measurements import floquet_modes as FM
 from cradle.models.multipliers import split_trivial
 
 if TYPE_CHECKING:
@@ -25,8 +26,8 @@ if TYPE_CHECKING:
     from cradle.integrators.dps_travelling import TravellingBreather
 
 
-#: limit verdicts per member (/robustness_limit/verdict)
-LIMIT_STABLE, LIMIT_UNSTABLE, LIMIT_UNDECIDED = 0, 1, -1
+#: limit verdicts per member (/robustness_limit/verdict): the codes of every limit rule, MODE_RULE's among them
+LIMIT_STABLE, LIMIT_UNSTABLE, LIMIT_UNDECIDED = FM.STABLE, FM.UNSTABLE, FM.UNDECIDED
 #: consecutive grid points the fine scan may fail to reach before it stops in that direction
 LIMIT_MISSES = 4
 #: a failed continuation step is halved down to this fraction of c
@@ -122,7 +123,7 @@ def limit_member(b: TravellingBreather, threshold: float) -> dict[str, float]:
     argument: pi through -1, 0 through +1, else a quartet) and where the mode of the largest non-trivial multiplier
     lives (:mod:`cradle.measurements.floquet_modes`: participation ratio over N, core fraction under the first and
     the last of its core definitions)."""
-    from cradle.measurements import floquet_bubbles as FB, floquet_modes as FM
+    from cradle.measurements import floquet_bubbles as FB
     from cradle.models import dps_travelling as M
 
     assert b.monodromy is not None
